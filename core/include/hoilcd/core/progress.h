@@ -1,0 +1,43 @@
+// The one progress reporter: a bar with count, rate and time left on a terminal; plain
+// periodic lines when stderr is not a terminal; silent when quiet. Thread-safe Update().
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace hoilcd {
+
+class ProgressReporter {
+ public:
+  // unit names what is counted ("frames", "pairs").
+  ProgressReporter(std::string title, int64_t total, std::string unit, bool quiet = false);
+  ~ProgressReporter();
+  ProgressReporter(const ProgressReporter&) = delete;
+  ProgressReporter& operator=(const ProgressReporter&) = delete;
+
+  void Update(int64_t done_increment = 1);
+  void Done();
+  double ElapsedSeconds() const;
+
+  // Process-wide default for quietness (set by `hoilcd --quiet`).
+  static void SetQuietByDefault(bool quiet);
+
+ private:
+  void Print(bool final_line);
+
+  std::string title_;
+  std::string unit_;
+  int64_t total_;
+  bool quiet_;
+  bool tty_;
+  bool done_ = false;
+  std::atomic<int64_t> count_{0};
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_print_;
+  std::mutex mutex_;
+};
+
+}  // namespace hoilcd

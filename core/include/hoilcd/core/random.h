@@ -1,0 +1,93 @@
+// The one RNG keying scheme: every random stream is derived from Hash(seed, purpose, keys...),
+// never from a shared generator, so results do not depend on thread count or order (SPEC.md).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string_view>
+
+namespace hoilcd {
+
+// SplitMix64 finaliser: a fast, well-mixed 64-bit bijection.
+constexpr uint64_t MixBits(uint64_t v) {
+  v ^= v >> 31;
+  v *= 0x7fb5d329728ea185ULL;
+  v ^= v >> 27;
+  v *= 0x81dadef4bc2dd44dULL;
+  v ^= v >> 33;
+  return v;
+}
+
+// FNV-1a of a purpose string, so purposes are named ("sensor.netd") rather than numbered.
+constexpr uint64_t HashString(std::string_view s) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (char c : s) {
+    h ^= static_cast<uint8_t>(c);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+constexpr uint64_t HashCombine(uint64_t h) { return MixBits(h); }
+template <typename... Rest>
+constexpr uint64_t HashCombine(uint64_t h, uint64_t next, Rest... rest) {
+  return HashCombine(MixBits(h ^ (next + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2))),
+                     static_cast<uint64_t>(rest)...);
+}
+
+// PCG32 (O'Neill 2014): small state, good statistics, cheap to construct per key.
+class Rng {
+ public:
+  explicit Rng(uint64_t key) : state_(0), inc_((MixBits(key ^ 0xda3e39cb94b95bdbULL) << 1u) | 1u) {
+    NextU32();
+    state_ += MixBits(key);
+    NextU32();
+  }
+  uint32_t NextU32() {
+    const uint64_t old = state_;
+    state_ = old * 6364136223846793005ULL + inc_;
+    const uint32_t xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const uint32_t rot = static_cast<uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+  // Uniform in [0, 1) with 53 bits.
+  double Uniform() {
+    const uint64_t hi = NextU32(), lo = NextU32();
+    return static_cast<double>(((hi << 32) | lo) >> 11) * (1.0 / 9007199254740992.0);
+  }
+  // Uniform integer in [0, n) without modulo bias (Lemire).
+  uint32_t UniformInt(uint32_t n) {
+    uint64_t m = static_cast<uint64_t>(NextU32()) * n;
+    uint32_t l = static_cast<uint32_t>(m);
+    if (l < n) {
+      const uint32_t t = (0u - n) % n;
+      while (l < t) {
+        m = static_cast<uint64_t>(NextU32()) * n;
+        l = static_cast<uint32_t>(m);
+      }
+    }
+    return static_cast<uint32_t>(m >> 32);
+  }
+  // Standard normal (Box–Muller, one value per call for simplicity of keying).
+  double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
+  // Uniform in [0, 1) with 24 bits, one draw: for hot loops (sensor noise).
+  float UniformFloat() { return static_cast<float>(NextU32() >> 8) * (1.0f / 16777216.0f); }
+  double Normal() {
+    const double u1 = 1.0 - Uniform();
+    const double u2 = Uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+  double Normal(double mean, double stddev) { return mean + stddev * Normal(); }
+
+ private:
+  uint64_t state_;
+  uint64_t inc_;
+};
+
+// The stream for (seed, purpose, keys...): e.g. KeyedRng(seed, "sensor.netd", frame, pixel).
+template <typename... Keys>
+Rng KeyedRng(uint64_t seed, std::string_view purpose, Keys... keys) {
+  return Rng(HashCombine(seed, HashString(purpose), static_cast<uint64_t>(keys)...));
+}
+
+}  // namespace hoilcd

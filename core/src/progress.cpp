@@ -1,0 +1,85 @@
+#include "hoilcd/core/progress.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace hoilcd {
+namespace {
+std::atomic<bool> g_quiet_default{false};
+
+std::string FormatSeconds(double s) {
+  char buf[32];
+  if (s < 0 || s > 1e7) return "?";
+  const int total = static_cast<int>(s + 0.5);
+  std::snprintf(buf, sizeof(buf), "%d:%02d", total / 60, total % 60);
+  return buf;
+}
+}  // namespace
+
+void ProgressReporter::SetQuietByDefault(bool quiet) { g_quiet_default = quiet; }
+
+ProgressReporter::ProgressReporter(std::string title, int64_t total, std::string unit, bool quiet)
+    : title_(std::move(title)),
+      unit_(std::move(unit)),
+      total_(total),
+      quiet_(quiet || g_quiet_default.load()),
+      tty_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_print_(start_) {}
+
+ProgressReporter::~ProgressReporter() {
+  if (!done_) Done();
+}
+
+double ProgressReporter::ElapsedSeconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void ProgressReporter::Update(int64_t done_increment) {
+  count_.fetch_add(done_increment);
+  if (quiet_) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double interval = tty_ ? 0.1 : 10.0;
+  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return;
+  if (std::chrono::duration<double>(now - last_print_).count() < interval) return;
+  last_print_ = now;
+  Print(false);
+}
+
+void ProgressReporter::Done() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (done_) return;
+  done_ = true;
+  if (!quiet_) Print(true);
+}
+
+void ProgressReporter::Print(bool final_line) {
+  const int64_t done = count_.load();
+  const double elapsed = ElapsedSeconds();
+  const double rate = elapsed > 0 ? done / elapsed : 0.0;
+  const double left = rate > 0 ? (total_ - done) / rate : -1.0;
+  char line[256];
+  if (tty_) {
+    const int width = 30;
+    const int filled = total_ > 0 ? static_cast<int>(width * done / total_) : 0;
+    std::string bar(filled, '#');
+    bar.resize(width, '.');
+    std::snprintf(line, sizeof(line), "\r%s [%s] %lld/%lld %s  %.1f %s/s  %s %s", title_.c_str(),
+                  bar.c_str(), static_cast<long long>(done), static_cast<long long>(total_),
+                  unit_.c_str(), rate, unit_.c_str(), final_line ? "took" : "left",
+                  FormatSeconds(final_line ? elapsed : left).c_str());
+    std::fputs(line, stderr);
+    if (final_line) std::fputs("\n", stderr);
+  } else {
+    std::snprintf(line, sizeof(line), "%s: %lld/%lld %s, %.1f %s/s, %s %s\n", title_.c_str(),
+                  static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate,
+                  unit_.c_str(), final_line ? "took" : "left",
+                  FormatSeconds(final_line ? elapsed : left).c_str());
+    std::fputs(line, stderr);
+  }
+  std::fflush(stderr);
+}
+
+}  // namespace hoilcd

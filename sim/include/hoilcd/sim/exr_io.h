@@ -1,0 +1,20 @@
+// Multi-channel float32 OpenEXR frames (T, T_true, Z, id, class) for the dataset folder.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hoilcd {
+
+// Named single-channel CV_32F images of equal size.
+using ExrChannels = std::vector<std::pair<std::string, cv::Mat>>;
+
+// Encodes channels as a ZIP-compressed float32 EXR in memory (for atomic writes and checksums).
+std::string EncodeExr(const ExrChannels& channels);
+
+// Reads every channel of an EXR file as CV_32F; throws InputError naming the file.
+ExrChannels ReadExr(const std::string& path);
+
+}  // namespace hoilcd
