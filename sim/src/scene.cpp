@@ -98,6 +98,13 @@ void FillDefaults(json* doc, const json& schema) {
   }
 }
 
+// Asset names stay names; a relative .gltf/.glb path is relative to the scene file's folder.
+std::string ResolveAssetRef(const std::string& ref, const fs::path& scene_dir) {
+  const std::string ext = fs::path(ref).extension().string();
+  if ((ext != ".gltf" && ext != ".glb") || fs::path(ref).is_absolute()) return ref;
+  return (scene_dir / ref).lexically_normal().string();
+}
+
 SurfaceSpec ReadSurface(const json& j) {
   return {j.at("temperature_c").get<double>(), j.at("emissivity").get<double>(),
           j.at("specular").get<bool>()};
@@ -273,8 +280,8 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   }
   for (const json& t : doc["tables"]) s.tables.push_back({Vec2(t["center_m"]), t["yaw_deg"].get<double>()});
   const json& furniture = doc["furniture"];
-  s.table_asset = furniture["table_asset"].get<std::string>();
-  s.chair_asset = furniture["chair_asset"].get<std::string>();
+  s.table_asset = ResolveAssetRef(furniture["table_asset"].get<std::string>(), scene_dir);
+  s.chair_asset = ResolveAssetRef(furniture["chair_asset"].get<std::string>(), scene_dir);
   s.seat_setback_m = furniture["seat_setback_m"].get<double>();
   s.seat_spacing_4_m = furniture["seat_spacing_4_m"].get<double>();
   s.seat_spacing_6_m = furniture["seat_spacing_6_m"].get<double>();
@@ -286,7 +293,7 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
     s.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
   }
   for (const json& o : doc["objects"]) {
-    ObjectSpec spec{o["asset"].get<std::string>(), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
+    ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
                     o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
     if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
   }

@@ -23,7 +23,7 @@ std::string FramePath(const char* folder, int frame, const char* extension) {
 
 // A frame counts as done when all three of its files are listed and match their checksums.
 bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int frame) {
-  for (const std::string rel : {FramePath("thermal", frame, "png"), FramePath("radiometric", frame, "png"),
+  for (const std::string& rel : {FramePath("thermal", frame, "png"), FramePath("radiometric", frame, "png"),
                                 FramePath("exr", frame, "exr")}) {
     const auto it = manifest.files.find(rel);
     if (it == manifest.files.end()) return false;

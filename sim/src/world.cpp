@@ -254,11 +254,14 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
         person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
         person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
         person.sway_period_s = crowd.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
-        const double skin_c = crowd.at("skin_temperature_c").get<double>() +
-                              crowd.at("skin_temperature_sd_c").get<double>() * rng.Normal();
-        const double clothing_c = crowd.at("clothing_temperature_c").get<double>() +
-                                  crowd.at("clothing_temperature_sd_c").get<double>() * rng.Normal();
-        const double hair_c = crowd.at("hair_temperature_c").get<double>() + 0.5 * rng.Normal();
+        // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
+        auto varied = [&](const char* mean, const char* sd) {
+          return crowd.at(mean).get<double>() +
+                 crowd.at(sd).get<double>() * std::clamp(rng.Normal(), -2.0, 2.0);
+        };
+        const double skin_c = varied("skin_temperature_c", "skin_temperature_sd_c");
+        const double clothing_c = varied("clothing_temperature_c", "clothing_temperature_sd_c");
+        const double hair_c = crowd.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
         const Asset& body = assets_.Get("person_" + person.posture);
         person.world_from_seat = PlacementTransform(seat_pos, seat_yaw);
         person.instance = Place(body, PlacementTransform(seat_pos, seat_yaw, person.height_scale),
