@@ -109,7 +109,7 @@ struct RobotSample {
   Pose2 odometry;          // noisy wheel odometry; theta wrapped to (-pi, pi]
   double speed_m_s = 0;    // m/s, front-wheel speed
   double steer_rad = 0;    // rad, steering angle
-  double lap = 0;          // laps completed along the route, fractional
+  double lap = 0;          // laps completed: distance along the rounded route / its length
 };
 
 struct RobotRun {
