@@ -41,13 +41,13 @@ std::string FormatNumber(double value) {
 struct Piece {
   bool is_arc = false;
   double length_m = 0;
-  double s0_m = 0;  // start along the loop
-  Eigen::Vector2d start = Eigen::Vector2d::Zero();  // line
-  Eigen::Vector2d dir = Eigen::Vector2d::UnitX();   // line, unit
-  Eigen::Vector2d center = Eigen::Vector2d::Zero(); // arc
-  double radius_m = 0;                              // arc
-  double start_angle_rad = 0;                       // arc: angle of the start point about center
-  double turn_sign = 1;                             // arc: +1 counter-clockwise, -1 clockwise
+  double s0_m = 0;                                   // start along the loop
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();   // line
+  Eigen::Vector2d dir = Eigen::Vector2d::UnitX();    // line, unit
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  // arc
+  double radius_m = 0;                               // arc
+  double start_angle_rad = 0;                        // arc: angle of the start point about center
+  double turn_sign = 1;                              // arc: +1 counter-clockwise, -1 clockwise
 
   Eigen::Vector2d Point(double u) const {
     if (!is_arc) return start + dir * u;
@@ -167,7 +167,9 @@ class RoutePath {
     consider(lead_, 0.0);
     const double first_lap = std::floor(std::max(lo - lead_.length_m, 0.0) / loop_m_);
     for (double lap = first_lap; lead_.length_m + lap * loop_m_ <= hi; lap += 1.0) {
-      for (const Piece& piece : pieces_) consider(piece, lead_.length_m + lap * loop_m_ + piece.s0_m);
+      for (const Piece& piece : pieces_) {
+        consider(piece, lead_.length_m + lap * loop_m_ + piece.s0_m);
+      }
     }
     *distance = best_d;
     return best_s;
@@ -199,9 +201,9 @@ class SpeedProfile {
     step_m_ = path.loop_m() / n;
     limit_.resize(n);
     for (int i = 0; i < n; ++i) {
-      const double k = std::max(std::abs(path.LoopCurvature(i * step_m_)),
-                                std::abs(path.LoopCurvature(std::min((i + 1) * step_m_,
-                                                                     path.loop_m() - 1e-9))));
+      const double k =
+          std::max(std::abs(path.LoopCurvature(i * step_m_)),
+                   std::abs(path.LoopCurvature(std::min((i + 1) * step_m_, path.loop_m() - 1e-9))));
       limit_[i] = k > 0 ? std::min(cruise_m_s, std::sqrt(max_lateral_accel_m_s2 / k)) : cruise_m_s;
     }
     for (int pass = 0; pass < 2; ++pass) {
@@ -254,8 +256,8 @@ Box FootprintBox(const Pose2& pose, const TricycleOptions& o) {
   box.axes << std::cos(pose.theta_rad), -std::sin(pose.theta_rad), std::sin(pose.theta_rad),
       std::cos(pose.theta_rad);
   box.half = Eigen::Vector2d(0.5 * o.length_m, 0.5 * o.width_m);
-  box.center = Eigen::Vector2d(pose.x_m, pose.y_m) +
-               box.axes.col(0) * (0.5 * o.length_m - o.base_to_rear_m);
+  box.center =
+      Eigen::Vector2d(pose.x_m, pose.y_m) + box.axes.col(0) * (0.5 * o.length_m - o.base_to_rear_m);
   return box;
 }
 
@@ -275,6 +277,7 @@ double DistancePointBox(const Eigen::Vector2d& p, const Box& box) {
 }
 
 // Separating-axis test between two oriented rectangles; touching does not count as overlap.
+// Hand-written: cv::rotatedRectangleIntersection works in float and builds the overlap polygon.
 bool BoxesOverlap(const Box& a, const Box& b) {
   const Eigen::Vector2d d = b.center - a.center;
   for (const Box* box : {&a, &b}) {
@@ -452,9 +455,8 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   const double steer_sd = odometry.steer_noise_deg * kDegToRad;
   // Generous bound on the simulated time, so a route the robot cannot follow fails loudly.
   const double planned_m = route.frames > 0 ? 0.0 : route.laps * path.loop_m() + path.lead_m();
-  const double max_time_s = route.frames > 0
-                                ? route.frames / frame_rate_hz
-                                : 60.0 + 20.0 * planned_m / route.cruise_speed_m_s;
+  const double max_time_s = route.frames > 0 ? route.frames / frame_rate_hz
+                                             : 60.0 + 20.0 * planned_m / route.cruise_speed_m_s;
 
   RobotRun run;
   run.min_obstacle_distance_m = std::numeric_limits<double>::infinity();
@@ -474,8 +476,8 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
       if (FootprintHits(footprint, obstacles[j])) {
         char when[64];
         std::snprintf(when, sizeof(when), "%.2f", time_s);
-        throw InputError("route", "robot collides with '" + obstacles[j].name + "' at t = " +
-                                      when + " s");
+        throw InputError("route",
+                         "robot collides with '" + obstacles[j].name + "' at t = " + when + " s");
       }
       const double d = DistanceToObstacle(base, obstacles[j]);
       run.obstacle_distance_m[j] = std::min(run.obstacle_distance_m[j], d);
@@ -491,8 +493,8 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   for (long step = 0;; ++step) {
     const double t = step * dt;
     if (t > max_time_s + dt) {
-      throw InputError("route", "robot did not finish the route within " +
-                                    FormatNumber(max_time_s) + " s");
+      throw InputError("route",
+                       "robot did not finish the route within " + FormatNumber(max_time_s) + " s");
     }
     // Pure pursuit on the rounded route.
     double tracking_error = 0;
@@ -503,14 +505,13 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
     const double c = std::cos(truth.theta_rad), sn = std::sin(truth.theta_rad);
     const Eigen::Vector2d rel = target - Eigen::Vector2d(truth.x_m, truth.y_m);
     const double lateral = -sn * rel.x() + c * rel.y();
-    const double curvature =
-        std::clamp(2.0 * lateral / std::max(rel.squaredNorm(), 1e-12), -max_curvature, max_curvature);
+    const double curvature = std::clamp(2.0 * lateral / std::max(rel.squaredNorm(), 1e-12),
+                                        -max_curvature, max_curvature);
     run.max_curvature_per_m = std::max(run.max_curvature_per_m, std::abs(curvature));
     const double steer_cmd = std::atan(curvature * robot.wheelbase_m);
     steer = std::clamp(steer + std::clamp(steer_cmd - steer, -max_steer_step, max_steer_step),
                        -max_steer, max_steer);
-    const double base_limit =
-        std::min(profile.At(s), profile.At(s + route.lookahead_m));
+    const double base_limit = std::min(profile.At(s), profile.At(s + route.lookahead_m));
     const double speed_cmd = std::min(robot.max_speed_m_s, base_limit / std::cos(steer));
     speed = std::clamp(speed + std::clamp(speed_cmd - speed, -max_speed_step, max_speed_step), 0.0,
                        robot.max_speed_m_s);

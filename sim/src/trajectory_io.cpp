@@ -17,9 +17,8 @@ constexpr int kPosesCsvColumns = 13;
 // std::to_chars / from_chars: locale-independent, unlike printf and strtod.
 void AppendNumber(std::string& out, double value) {
   char buffer[32];
-  const auto result =
-      std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general,
-                    kSignificantDigits);
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value,
+                                    std::chars_format::general, kSignificantDigits);
   out.append(buffer, result.ptr);
 }
 
@@ -139,10 +138,10 @@ std::vector<PoseRecord> ParsePosesCsv(const std::string& text, const std::string
                                             "' is not a non-negative integer");
       ok = false;
     }
-    double* targets[] = {&r.time_s,        &r.base.x_m,        &r.base.y_m,
-                         &r.base.theta_rad, &r.camera.x_m,      &r.camera.y_m,
-                         &r.camera.z_m,     &r.camera.yaw_rad,  &r.camera.pitch_rad,
-                         &r.odometry.x_m,   &r.odometry.y_m,    &r.odometry.theta_rad};
+    double* targets[] = {&r.time_s,         &r.base.x_m,       &r.base.y_m,
+                         &r.base.theta_rad, &r.camera.x_m,     &r.camera.y_m,
+                         &r.camera.z_m,     &r.camera.yaw_rad, &r.camera.pitch_rad,
+                         &r.odometry.x_m,   &r.odometry.y_m,   &r.odometry.theta_rad};
     for (int c = 1; c < kPosesCsvColumns; ++c) {
       if (!ParseDouble(fields[c], targets[c - 1])) {
         problems.Add(Where(file_name, i), "column '" + std::string(columns[c]) + "': '" +

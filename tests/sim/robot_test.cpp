@@ -134,7 +134,8 @@ TEST(PaperRoom, RespectsCurvatureSteeringSpeedAndAccelerationLimits) {
     if (k == 0) continue;
     const RobotSample& p = run.samples[k - 1];
     ASSERT_LE(std::abs(s.steer_rad - p.steer_rad),
-              robot.max_steer_rate_deg_s * M_PI / 180 * dt + 1e-9) << "frame " << k;
+              robot.max_steer_rate_deg_s * M_PI / 180 * dt + 1e-9)
+        << "frame " << k;
     ASSERT_LE(std::abs(s.speed_m_s - p.speed_m_s), robot.max_accel_m_s2 * dt + 1e-9)
         << "frame " << k;
   }
@@ -183,10 +184,10 @@ TEST(Odometry, DriftAfterTwoLapsIsNonZeroAndWithinTheNoiseModelBound) {
   const double steer_sd = noise.steer_noise_deg * M_PI / 180;
   const double min_cos = std::cos(robot.max_steer_deg * M_PI / 180);
   // 6-sigma bounds on the white-noise parts.
-  const double heading_bound = length * bias / robot.wheelbase_m +
-                               noise.slip_frac * std::abs(run.heading_change_rad) +
-                               6.0 * steer_sd * ds * std::sqrt(steps) / (robot.wheelbase_m * min_cos) +
-                               6.0 * noise.encoder_noise_frac * 2.0 * M_PI * std::sqrt(steps) / steps;
+  const double heading_bound =
+      length * bias / robot.wheelbase_m + noise.slip_frac * std::abs(run.heading_change_rad) +
+      6.0 * steer_sd * ds * std::sqrt(steps) / (robot.wheelbase_m * min_cos) +
+      6.0 * noise.encoder_noise_frac * 2.0 * M_PI * std::sqrt(steps) / steps;
   const double distance_bound =
       length * noise.slip_frac + 6.0 * noise.encoder_noise_frac * ds * std::sqrt(steps);
   const double position_bound = distance_bound + length * heading_bound;
@@ -315,7 +316,7 @@ TEST(Collision, TableOnTheRouteIsNamed) {
 TEST(Obstacle2D, DistancesToRotatedRectangleAndCircle) {
   const Obstacle2D box = Obstacle2D::Rectangle("box", {1, 1}, {2, 1}, M_PI / 2);
   EXPECT_NEAR(DistanceToObstacle({1, 1}, box), 0.0, 1e-12);
-  EXPECT_NEAR(DistanceToObstacle({1, 3}, box), 1.0, 1e-12);   // long side now along y
+  EXPECT_NEAR(DistanceToObstacle({1, 3}, box), 1.0, 1e-12);  // long side now along y
   EXPECT_NEAR(DistanceToObstacle({2.5, 1}, box), 1.0, 1e-12);
   EXPECT_NEAR(DistanceToObstacle({2.5, 3}, box), std::hypot(1.0, 1.0), 1e-12);
   const Obstacle2D disc = Obstacle2D::Circle("disc", {0, 0}, 0.5);
@@ -336,15 +337,18 @@ TEST(Options, CheckNamesWhatIsWrong) {
   const RobotCase robot_cases[] = {
       {[](TricycleOptions& o) { o.wheelbase_m = -0.3; }, "wheelbase_m must be positive"},
       {[](TricycleOptions& o) { o.max_steer_deg = 90; }, "max_steer_deg must be in (0, 89)"},
-      {[](TricycleOptions& o) { o.max_steer_rate_deg_s = 0; }, "max_steer_rate_deg_s must be positive"},
+      {[](TricycleOptions& o) { o.max_steer_rate_deg_s = 0; },
+       "max_steer_rate_deg_s must be positive"},
       {[](TricycleOptions& o) { o.max_speed_m_s = 0; }, "max_speed_m_s must be positive"},
       {[](TricycleOptions& o) { o.max_accel_m_s2 = -1; }, "max_accel_m_s2 must be positive"},
       {[](TricycleOptions& o) { o.integration_rate_hz = 0.5; }, "integration_rate_hz must be in"},
       {[](TricycleOptions& o) { o.width_m = 0; }, "length_m and width_m must be positive"},
       {[](TricycleOptions& o) { o.base_to_rear_m = 1; }, "base_to_rear_m must be in [0, length_m)"},
       {[](TricycleOptions& o) { o.camera_height_m = NAN; }, "camera offsets must be finite"},
-      {[](TricycleOptions& o) { o.camera_pitch_deg = 95; }, "camera_pitch_deg must be in (-90, 90)"},
-      {[](TricycleOptions& o) { o.camera_roll_deg = INFINITY; }, "camera_yaw_deg and camera_roll_deg"},
+      {[](TricycleOptions& o) { o.camera_pitch_deg = 95; },
+       "camera_pitch_deg must be in (-90, 90)"},
+      {[](TricycleOptions& o) { o.camera_roll_deg = INFINITY; },
+       "camera_yaw_deg and camera_roll_deg"},
   };
   for (const RobotCase& c : robot_cases) {
     TricycleOptions o;
@@ -358,14 +362,20 @@ TEST(Options, CheckNamesWhatIsWrong) {
     const char* message;
   };
   const RouteCase route_cases[] = {
-      {[](RouteOptions& o) { o.waypoints_m.clear(); }, "waypoints_m needs at least 3 points, has 0"},
-      {[](RouteOptions& o) { o.waypoints_m[1] = {NAN, 0}; }, "waypoint 1 is not finite"},
-      {[](RouteOptions& o) { o.waypoints_m[2] = o.waypoints_m[1]; }, "waypoint 1 repeats the next one"},
+      {[](RouteOptions& o) { o.waypoints_m.clear(); },
+       "waypoints_m needs at least 3 points, has 0"},
+      {[](RouteOptions& o) {
+         o.waypoints_m[1] = {NAN, 0};
+       },
+       "waypoint 1 is not finite"},
+      {[](RouteOptions& o) { o.waypoints_m[2] = o.waypoints_m[1]; },
+       "waypoint 1 repeats the next one"},
       {[](RouteOptions& o) { o.frames = -1; }, "frames must be >= 0"},
       {[](RouteOptions& o) { o.laps = 0; }, "laps must be in (0, 1000]"},
       {[](RouteOptions& o) { o.cruise_speed_m_s = 0; }, "cruise_speed_m_s must be positive"},
       {[](RouteOptions& o) { o.lookahead_m = -1; }, "lookahead_m must be positive"},
-      {[](RouteOptions& o) { o.max_lateral_accel_m_s2 = 0; }, "max_lateral_accel_m_s2 must be positive"},
+      {[](RouteOptions& o) { o.max_lateral_accel_m_s2 = 0; },
+       "max_lateral_accel_m_s2 must be positive"},
       {[](RouteOptions& o) { o.corner_radius_m = 0; }, "corner_radius_m must be positive"},
   };
   for (const RouteCase& c : route_cases) {
@@ -380,7 +390,8 @@ TEST(Options, CheckNamesWhatIsWrong) {
     const char* message;
   };
   const OdometryCase odometry_cases[] = {
-      {[](OdometryNoiseOptions& o) { o.encoder_noise_frac = -0.1; }, "encoder_noise_frac must be in"},
+      {[](OdometryNoiseOptions& o) { o.encoder_noise_frac = -0.1; },
+       "encoder_noise_frac must be in"},
       {[](OdometryNoiseOptions& o) { o.steer_noise_deg = 20; }, "steer_noise_deg must be in"},
       {[](OdometryNoiseOptions& o) { o.steer_bias_deg = NAN; }, "steer_bias_deg must be in"},
       {[](OdometryNoiseOptions& o) { o.slip_frac = 0.6; }, "slip_frac must be in"},
@@ -422,9 +433,9 @@ TEST(Options, InfeasibleCombinationsAreRefused) {
   back.waypoints_m = {{0, 0}, {1, 0}, {0.5, 0}};
   EXPECT_NE(SimulationError({}, back, {}, kFrameRateHz).find("turns back on itself"),
             std::string::npos);
-  EXPECT_NE(SimulationError({}, {}, {}, 0.0)
-                .find("must be positive and at most integration_rate_hz"),
-            std::string::npos);
+  EXPECT_NE(
+      SimulationError({}, {}, {}, 0.0).find("must be positive and at most integration_rate_hz"),
+      std::string::npos);
   EXPECT_NE(SimulationError({}, {}, {Obstacle2D::Circle("stool", {9, 9}, 0)}, kFrameRateHz)
                 .find("obstacle 0 ('stool'): radius_m must be positive"),
             std::string::npos);

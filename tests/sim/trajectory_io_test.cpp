@@ -43,7 +43,8 @@ std::string ParseTumError(const std::string& text) {
 
 // "" when haystack contains needle, else a message showing both.
 std::string MissingText(const std::string& haystack, const std::string& needle) {
-  return haystack.find(needle) != std::string::npos ? "" : "'" + needle + "' not in '" + haystack + "'";
+  return haystack.find(needle) != std::string::npos ? ""
+                                                    : "'" + needle + "' not in '" + haystack + "'";
 }
 
 TEST(PosesCsv, StartsWithTheSpecHeaderAndHasOneRowPerFrame) {
@@ -58,7 +59,9 @@ TEST(PosesCsv, RoundTripKeepsNineSignificantDigits) {
   const std::vector<PoseRecord> records = PoseRecordsFromRun(ShortRun());
   const std::vector<PoseRecord> back = ParsePosesCsv(FormatPosesCsv(records), "poses.csv");
   ASSERT_EQ(back.size(), records.size());
-  auto near = [](double a, double b) { return std::abs(a - b) <= 1e-8 * std::max(1.0, std::abs(a)); };
+  auto near = [](double a, double b) {
+    return std::abs(a - b) <= 1e-8 * std::max(1.0, std::abs(a));
+  };
   for (size_t k = 0; k < records.size(); ++k) {
     const PoseRecord &a = records[k], &b = back[k];
     ASSERT_EQ(a.frame, b.frame);
@@ -97,24 +100,26 @@ TEST(PosesCsv, ReaderErrorsNameFileAndLine) {
   const std::string header = std::string(kPosesCsvHeader) + "\n";
   const std::string good = "0,0,0.4,0.4,1.57,0.4,0.6,0.55,1.57,0.087,0.4,0.4,1.57\n";
   EXPECT_EQ(ParseCsvError(header + good), "");
-  EXPECT_EQ(MissingText(ParseCsvError("frame,t,x\n" + good), "poses.csv:1: expected the header"), "");
+  EXPECT_EQ(MissingText(ParseCsvError("frame,t,x\n" + good), "poses.csv:1: expected the header"),
+            "");
   EXPECT_EQ(MissingText(ParseCsvError(""), "poses.csv:1: expected the header"), "");
   EXPECT_EQ(MissingText(ParseCsvError(header + good + "1,0.04,0.4\n"),
-                     "poses.csv:3: expected 13 comma-separated values, found 3"),
+                        "poses.csv:3: expected 13 comma-separated values, found 3"),
             "");
   const std::string bad_y = "1,0.04,0.4,abc,1.57,0.4,0.6,0.55,1.57,0.087,0.4,0.4,1.57\n";
   EXPECT_EQ(MissingText(ParseCsvError(header + good + bad_y),
-                     "poses.csv:3: column 'y': 'abc' is not a finite number"),
+                        "poses.csv:3: column 'y': 'abc' is not a finite number"),
             "");
   const std::string nan_odo = "1,0.04,0.4,0.4,1.57,0.4,0.6,0.55,1.57,0.087,0.4,0.4,nan\n";
   EXPECT_EQ(MissingText(ParseCsvError(header + good + nan_odo),
-                     "poses.csv:3: column 'odo_theta': 'nan' is not a finite number"),
+                        "poses.csv:3: column 'odo_theta': 'nan' is not a finite number"),
             "");
   const std::string bad_frame = "-1" + good.substr(1);
   EXPECT_EQ(MissingText(ParseCsvError(header + bad_frame),
-                     "poses.csv:2: column 'frame': '-1' is not a non-negative integer"),
+                        "poses.csv:2: column 'frame': '-1' is not a non-negative integer"),
             "");
-  EXPECT_EQ(MissingText(ParseCsvError(header + good + good), "poses.csv:3: frame 0 does not follow frame 0"),
+  EXPECT_EQ(MissingText(ParseCsvError(header + good + good),
+                        "poses.csv:3: frame 0 does not follow frame 0"),
             "");
   // Every problem is reported, not only the first.
   const std::string both = ParseCsvError(header + good + bad_y + "2,1\n");
@@ -165,15 +170,16 @@ TEST(TumPoses, ReaderErrorsNameFileAndLine) {
   const std::string good = "0 1 2 0.5 0 0 0 1\n";
   EXPECT_EQ(ParseTumError(comment + good + "\n"), "");
   EXPECT_EQ(MissingText(ParseTumError(comment + good + "0.04 1 2 0.5 0 0 1\n"),
-                     "poses_tum.txt:3: expected 8 values 't tx ty tz qx qy qz qw', found 7"),
+                        "poses_tum.txt:3: expected 8 values 't tx ty tz qx qy qz qw', found 7"),
             "");
   EXPECT_EQ(MissingText(ParseTumError(comment + "0 1 x 0.5 0 0 0 1\n"),
-                     "poses_tum.txt:2: column 'ty': 'x' is not a finite number"),
+                        "poses_tum.txt:2: column 'ty': 'x' is not a finite number"),
             "");
   EXPECT_EQ(MissingText(ParseTumError(comment + "0 1 2 0.5 0 0 0 2\n"),
-                     "poses_tum.txt:2: quaternion is not unit length"),
+                        "poses_tum.txt:2: quaternion is not unit length"),
             "");
-  EXPECT_EQ(MissingText(ParseTumError(comment + good + good), "poses_tum.txt:3: timestamps must increase"),
+  EXPECT_EQ(MissingText(ParseTumError(comment + good + good),
+                        "poses_tum.txt:3: timestamps must increase"),
             "");
 }
 

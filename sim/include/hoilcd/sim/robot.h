@@ -22,21 +22,21 @@ struct Pose2 {
 // y' = v cos(d) sin(theta), theta' = v sin(d) / L, with v the front-wheel speed and d the
 // steering angle; the base's path curvature is tan(d) / L.
 struct TricycleOptions {
-  double wheelbase_m = 0.30;           // m, rear axle to front wheel (L)
-  double max_steer_deg = 60.0;         // deg, |steering angle| limit
-  double max_steer_rate_deg_s = 120.0; // deg/s, steering rate limit
-  double max_speed_m_s = 0.6;          // m/s, front-wheel speed limit
-  double max_accel_m_s2 = 0.5;         // m/s^2, front-wheel acceleration and deceleration limit
-  double integration_rate_hz = 200.0;  // Hz, internal control and integration rate
-  double length_m = 0.42;              // m, footprint length along the body x axis
-  double width_m = 0.34;               // m, footprint width
-  double base_to_rear_m = 0.08;        // m, footprint rear edge behind the base origin
-  double camera_forward_m = 0.20;      // m, camera ahead of the base origin
-  double camera_lateral_m = 0.0;       // m, camera to the left of the base origin
-  double camera_height_m = 0.55;       // m, camera above the floor
-  double camera_pitch_deg = 5.0;       // deg, camera pitch; positive looks down (REP 103)
-  double camera_yaw_deg = 0.0;         // deg, camera yaw relative to the body, counter-clockwise
-  double camera_roll_deg = 0.0;        // deg, camera roll about its optical axis
+  double wheelbase_m = 0.30;            // m, rear axle to front wheel (L)
+  double max_steer_deg = 60.0;          // deg, |steering angle| limit
+  double max_steer_rate_deg_s = 120.0;  // deg/s, steering rate limit
+  double max_speed_m_s = 0.6;           // m/s, front-wheel speed limit
+  double max_accel_m_s2 = 0.5;          // m/s^2, front-wheel acceleration and deceleration limit
+  double integration_rate_hz = 200.0;   // Hz, internal control and integration rate
+  double length_m = 0.42;               // m, footprint length along the body x axis
+  double width_m = 0.34;                // m, footprint width
+  double base_to_rear_m = 0.08;         // m, footprint rear edge behind the base origin
+  double camera_forward_m = 0.20;       // m, camera ahead of the base origin
+  double camera_lateral_m = 0.0;        // m, camera to the left of the base origin
+  double camera_height_m = 0.55;        // m, camera above the floor
+  double camera_pitch_deg = 5.0;        // deg, camera pitch; positive looks down (REP 103)
+  double camera_yaw_deg = 0.0;          // deg, camera yaw relative to the body, counter-clockwise
+  double camera_roll_deg = 0.0;         // deg, camera roll about its optical axis
 
   // Smallest radius the base can turn on: L / tan(max_steer).
   double MinTurnRadiusM() const;
@@ -53,12 +53,12 @@ std::vector<Eigen::Vector2d> PaperRoomWaypoints();
 // least 0.32 m from the furniture (tests/sim/robot_test.cpp).
 struct RouteOptions {
   std::vector<Eigen::Vector2d> waypoints_m = PaperRoomWaypoints();  // m, polygon corners, in order
-  double laps = 2.0;                   // laps to drive when frames == 0
-  int frames = 0;                      // frames to simulate; > 0 overrides laps
-  double cruise_speed_m_s = 0.43;      // m/s, speed of the base on straight stretches
-  double lookahead_m = 0.20;           // m, pure-pursuit lookahead along the path
+  double laps = 2.0;                     // laps to drive when frames == 0
+  int frames = 0;                        // frames to simulate; > 0 overrides laps
+  double cruise_speed_m_s = 0.43;        // m/s, speed of the base on straight stretches
+  double lookahead_m = 0.20;             // m, pure-pursuit lookahead along the path
   double max_lateral_accel_m_s2 = 0.35;  // m/s^2, bounds speed in turns: v^2 * curvature
-  double corner_radius_m = 0.30;       // m, radius of the arcs rounding the polygon corners
+  double corner_radius_m = 0.30;         // m, radius of the arcs rounding the polygon corners
 
   // Empty string when valid, else what is wrong (limits shared with the robot are checked by
   // SimulateRobot).
@@ -83,12 +83,12 @@ struct OdometryNoiseOptions {
 // A 2-D obstacle footprint on the floor: an oriented rectangle or a circle.
 struct Obstacle2D {
   enum class Shape { kRectangle, kCircle };
-  std::string name;                                   // named in collision errors
+  std::string name;  // named in collision errors
   Shape shape = Shape::kRectangle;
-  Eigen::Vector2d center_m = Eigen::Vector2d::Zero(); // m, world position of the centre
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();     // m, world position of the centre
   Eigen::Vector2d half_size_m = Eigen::Vector2d::Zero();  // m, rectangle half extents (local x, y)
-  double yaw_rad = 0;                                 // rad, rectangle orientation
-  double radius_m = 0;                                // m, circle radius
+  double yaw_rad = 0;                                     // rad, rectangle orientation
+  double radius_m = 0;                                    // m, circle radius
 
   static Obstacle2D Rectangle(std::string name, const Eigen::Vector2d& center_m,
                               const Eigen::Vector2d& size_m, double yaw_rad = 0);
@@ -103,13 +103,13 @@ CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& options)
 
 struct RobotSample {
   int frame = 0;
-  double time_s = 0;       // s, frame / frame_rate_hz
-  Pose2 base;              // ground truth; theta wrapped to (-pi, pi]
-  CameraPose camera;       // ground truth camera pose
-  Pose2 odometry;          // noisy wheel odometry; theta wrapped to (-pi, pi]
-  double speed_m_s = 0;    // m/s, front-wheel speed
-  double steer_rad = 0;    // rad, steering angle
-  double lap = 0;          // laps completed: distance along the rounded route / its length
+  double time_s = 0;     // s, frame / frame_rate_hz
+  Pose2 base;            // ground truth; theta wrapped to (-pi, pi]
+  CameraPose camera;     // ground truth camera pose
+  Pose2 odometry;        // noisy wheel odometry; theta wrapped to (-pi, pi]
+  double speed_m_s = 0;  // m/s, front-wheel speed
+  double steer_rad = 0;  // rad, steering angle
+  double lap = 0;        // laps completed: distance along the rounded route / its length
 };
 
 struct RobotRun {
@@ -117,11 +117,11 @@ struct RobotRun {
   double min_obstacle_distance_m = 0;  // m, over all obstacles and integration steps (base point)
   std::string closest_obstacle;        // name of the obstacle reaching that minimum
   std::vector<double> obstacle_distance_m;  // m, per obstacle (input order): its minimum
-  double max_curvature_per_m = 0;      // 1/m, largest |commanded curvature|
-  double max_tracking_error_m = 0;     // m, largest distance of the base from the rounded route
-  double path_length_m = 0;            // m, distance travelled by the base
-  double heading_change_rad = 0;       // rad, total signed heading change (-2 pi per clockwise lap)
-  double laps = 0;                     // laps completed at the last sample
+  double max_curvature_per_m = 0;           // 1/m, largest |commanded curvature|
+  double max_tracking_error_m = 0;  // m, largest distance of the base from the rounded route
+  double path_length_m = 0;         // m, distance travelled by the base
+  double heading_change_rad = 0;    // rad, total signed heading change (-2 pi per clockwise lap)
+  double laps = 0;                  // laps completed at the last sample
 };
 
 // Simulates from t = 0; frame k is at t = k / frame_rate_hz. The robot starts at rest on the first
