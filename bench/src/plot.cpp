@@ -15,6 +15,8 @@
 
 #include "hoilcd/core/error.h"
 
+// Axes, ticks and legends are drawn here with OpenCV primitives: cv::plot::Plot2d (opencv_contrib)
+// draws a single series without tick labels or legend, and no plotting library is a dependency.
 namespace hoilcd {
 namespace {
 
@@ -411,8 +413,8 @@ cv::Mat RenderOnce(const PlotOptions& o, const AxesSpec& spec, bool vertical_gri
   return canvas;
 }
 
-// Draws the figure; when the legend would hide data and the y range is automatic, draws it
-// again with room for the legend at the top.
+// Draws the figure; when the legend would hide data, the y range is automatic and the legend
+// is small next to the plot, draws it again with room for the legend at the top.
 cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
                const std::vector<LegendItem>& legend, const DrawData& draw_data,
                cv::Rect* plot_area_px) {
@@ -422,7 +424,8 @@ cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
   if (covered == 0 || o.y_range || !o.legend || legend.empty()) return canvas;
   const double needed_px = LegendSize(legend, o.font_scale).height + 2 * kLegendMarginPx;
   const double usable_px = o.height_px * 0.8;
-  spec.y.hi = spec.y.lo + spec.y.Span() / std::max(0.3, 1.0 - needed_px / usable_px);
+  if (needed_px > 0.45 * usable_px) return canvas;
+  spec.y.hi = spec.y.lo + spec.y.Span() / (1.0 - needed_px / usable_px);
   return RenderOnce(o, spec, vertical_grid, legend, draw_data, plot_area_px, &covered);
 }
 
@@ -472,6 +475,42 @@ void DrawBand(cv::Mat& roi, const Axes& a, const Series& s, const cv::Scalar& co
   cv::Mat overlay = roi.clone();
   cv::fillPoly(overlay, runs, colour, cv::LINE_AA, kShift);
   cv::addWeighted(overlay, 0.22, roi, 0.78, 0.0, roi);
+}
+
+cv::Mat ToColour(const cv::Mat& image) {
+  HOILCD_CHECK_MSG(image.channels() == 1 || image.type() == CV_8UC3,
+                   "match tile must be single-channel or CV_8UC3, got type " << image.type());
+  if (image.channels() == 3) return image;
+  cv::Mat gray = image;
+  if (image.depth() != CV_8U) cv::normalize(image, gray, 0, 255, cv::NORM_MINMAX, CV_8U);
+  cv::Mat colour;
+  cv::applyColorMap(gray, colour, cv::COLORMAP_INFERNO);
+  return colour;
+}
+
+cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptions& o) {
+  cv::Mat shown;
+  if (tile.image.empty()) {
+    shown = cv::Mat(empty_size, CV_8UC3, Grey(200));
+  } else {
+    cv::resize(ToColour(tile.image), shown, cv::Size(), o.scale, o.scale, cv::INTER_NEAREST);
+  }
+  const double radius = std::max(2.5, 1.5 * o.scale);
+  for (const cv::Point2f& p : tile.points) {
+    const cv::Point2d centre((p.x + 0.5) * o.scale - 0.5, (p.y + 0.5) * o.scale - 0.5);
+    cv::circle(shown, Fixed(centre), cvRound(radius * kSubPixels), tile.point_colour, cv::FILLED,
+               cv::LINE_AA, kShift);
+  }
+  if (!tile.caption.empty()) {
+    const cv::Size text = TextSize(tile.caption, o.font_scale);
+    const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) &
+                         cv::Rect(0, 0, shown.cols, shown.rows);
+    cv::Mat backing = shown(box);
+    cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0,
+                    backing);
+    PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, o.font_scale, White());
+  }
+  return shown;
 }
 
 }  // namespace
@@ -692,46 +731,6 @@ std::string MosaicOptions::Check() const {
   if (!(font_scale >= 0.3 && font_scale <= 2.0)) return "font_scale must be in [0.3, 2]";
   return "";
 }
-
-namespace {
-
-cv::Mat ToColour(const cv::Mat& image) {
-  HOILCD_CHECK_MSG(image.channels() == 1 || image.type() == CV_8UC3,
-                   "match tile must be single-channel or CV_8UC3, got type " << image.type());
-  if (image.channels() == 3) return image;
-  cv::Mat gray = image;
-  if (image.depth() != CV_8U) cv::normalize(image, gray, 0, 255, cv::NORM_MINMAX, CV_8U);
-  cv::Mat colour;
-  cv::applyColorMap(gray, colour, cv::COLORMAP_INFERNO);
-  return colour;
-}
-
-cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptions& o) {
-  cv::Mat shown;
-  if (tile.image.empty()) {
-    shown = cv::Mat(empty_size, CV_8UC3, Grey(200));
-  } else {
-    cv::resize(ToColour(tile.image), shown, cv::Size(), o.scale, o.scale, cv::INTER_NEAREST);
-  }
-  const double radius = std::max(2.5, 1.5 * o.scale);
-  for (const cv::Point2f& p : tile.points) {
-    const cv::Point2d centre((p.x + 0.5) * o.scale - 0.5, (p.y + 0.5) * o.scale - 0.5);
-    cv::circle(shown, Fixed(centre), cvRound(radius * kSubPixels), tile.point_colour, cv::FILLED,
-               cv::LINE_AA, kShift);
-  }
-  if (!tile.caption.empty()) {
-    const cv::Size text = TextSize(tile.caption, o.font_scale);
-    const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) &
-                         cv::Rect(0, 0, shown.cols, shown.rows);
-    cv::Mat backing = shown(box);
-    cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0,
-                    backing);
-    PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, o.font_scale, White());
-  }
-  return shown;
-}
-
-}  // namespace
 
 cv::Mat MatchMosaic(const std::vector<std::vector<MatchTile>>& rows, const MosaicOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
