@@ -1,0 +1,70 @@
+// A global-image baseline in the spirit of SeqSLAM (Milford & Wyeth 2012): each thermal frame
+// becomes a tiny patch-normalised thumbnail, frames are compared by normalised cross-correlation,
+// and an optional sequence search scores straight trajectories through the similarity matrix.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+namespace hoilcd {
+
+struct ThumbnailOptions {
+  int width_px = 32;   // thumbnail width after area downsampling, px
+  int height_px = 24;  // thumbnail height after area downsampling, px
+  int patch_px = 8;    // side of the square patches normalised to zero mean / unit variance,
+                       // thumbnail px (SeqSLAM's patch normalisation); edge patches may be smaller
+  std::string Check() const;
+};
+
+// The descriptor of one 8-bit frame (CV_8UC1): area-downsampled to width x height, every patch
+// shifted and scaled to zero mean and unit variance (a flat patch becomes all zeros), flattened
+// row-major, then the whole vector centred and scaled to unit length. The dot product of two
+// descriptors is therefore their normalised cross-correlation, in [-1, 1]; an all-zero descriptor
+// (a featureless frame) correlates 0 with everything, itself included.
+std::vector<float> ThumbnailDescriptor(const cv::Mat& thermal_u8, const ThumbnailOptions& options);
+
+// Normalised cross-correlation of two descriptors of equal length (their dot product), summed in
+// a fixed order so a pair's score is bit-identical whichever call computes it.
+float ThumbnailSimilarity(const std::vector<float>& a, const std::vector<float>& b);
+
+class ThumbnailIndex {
+ public:
+  explicit ThumbnailIndex(ThumbnailOptions options = {});
+  // Frame ids are 0..size-1 in Add order.
+  void Add(const cv::Mat& thermal_u8);
+  int size() const { return static_cast<int>(descriptors_.size()); }
+  const std::vector<float>& descriptor(int frame) const;
+
+  // scores[i][j] = ThumbnailSimilarity(frame queries[i], frame database[j]) in [-1, 1], higher
+  // is more similar; parallel over query rows (threads 0 = all cores), identical at any thread
+  // count. ScoreAll(all, all, threads) gives the dense frame-by-frame matrix SequenceScores takes.
+  std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries,
+                                           const std::vector<int>& database, int threads) const;
+
+ private:
+  ThumbnailOptions options_;
+  std::vector<std::vector<float>> descriptors_;
+};
+
+// SeqSLAM's trajectory search. v is database frames advanced per query frame.
+struct SequenceOptions {
+  int sequence_length = 10;    // frames along each trajectory, the end point included (SeqSLAM ds)
+  double min_velocity = 0.8;   // slowest trajectory, database frames per query frame
+  double max_velocity = 1.25;  // fastest trajectory, database frames per query frame
+  int velocity_steps = 5;      // trajectories tried, evenly spaced in [min, max]; 1 = the midpoint
+  std::string Check() const;
+};
+
+// `similarity[i][j]`: single-frame similarity of query-timeline frame i and database-timeline
+// frame j, both consecutive in time (e.g. the dense all-frames matrix, rows = cols = frames).
+// Returns a matrix of the same shape: out[i][j] = max over velocities v of the mean of
+// similarity[i - k][j - round(v k)] for k = 0..sequence_length-1, the line ending at (i, j).
+// Near the first rows a line is shortened to the rows there are (every entry of the row alike);
+// steps that leave the columns count as similarity 0 (NCC's "unrelated"), so a line cut short at
+// the matrix edge cannot win on one lucky frame. Parallel over rows, deterministic.
+std::vector<std::vector<float>> SequenceScores(const std::vector<std::vector<float>>& similarity,
+                                               const SequenceOptions& options, int threads);
+
+}  // namespace hoilcd
