@@ -4,6 +4,7 @@
 #include <sstream>
 #include <type_traits>
 #include <unordered_set>
+#include <utility>
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/lapjv.h"

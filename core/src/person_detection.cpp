@@ -53,8 +53,9 @@ std::string PersonDetectorOptions::Check() const {
 // Seated neighbours touch at shoulders or arms, but each has a head on top: the per-column pixel
 // count has one peak per person with a valley between. We split recursively at the deepest valley
 // (relative to the lower of its two flanking peaks) while it is deep enough and both peaks are
-// tall enough to be people, cutting in the middle of the valley floor. Chosen over distance-transform
-// peaks because touching torsos of equal width give one ridge there, not two maxima.
+// tall enough to be people, cutting in the middle of the valley floor. Chosen over
+// distance-transform peaks because touching torsos of equal width give one ridge there, not two
+// maxima.
 std::vector<int> FindSplitColumns(const std::vector<double>& column_counts,
                                   const PersonDetectorOptions& options) {
   const int n = static_cast<int>(column_counts.size());
@@ -162,13 +163,14 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
   }
 
   cv::Mat labels, stats, centroids;
-  const int num_labels = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  const int num_labels =
+      cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
   PersonDetections result;
   result.mask = cv::Mat::zeros(mask.size(), CV_8U);
   for (int label = 1; label < num_labels; ++label) {
-    const cv::Rect blob(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
-                        stats.at<int>(label, cv::CC_STAT_WIDTH),
-                        stats.at<int>(label, cv::CC_STAT_HEIGHT));
+    const cv::Rect blob(
+        stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+        stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
     if (stats.at<int>(label, cv::CC_STAT_AREA) < options.min_area_px) continue;
     std::vector<double> counts(blob.width, 0.0);
     for (int y = blob.y; y < blob.br().y; ++y) {

@@ -26,15 +26,15 @@ struct Detection {
 };
 
 struct ByteTrackOptions {
-  double track_high_thresh = 0.5;         // score; above: first association (strictly, as Python)
-  double track_low_thresh = 0.1;          // score; between this and high: second association
-  double new_track_thresh = 0.6;          // score; an unmatched high detection at least this starts a track
-  double match_thresh = 0.8;              // IoU cost (1 - IoU, score-fused); first association limit
-  double second_match_thresh = 0.5;       // IoU cost; low-score association limit
-  double unconfirmed_match_thresh = 0.7;  // IoU cost (score-fused); unconfirmed-track limit
-  int track_buffer_frames = 30;           // frames at 30 Hz a lost track is kept (scaled by rate)
-  double frame_rate_hz = 25;              // Hz; lost tracks live int(rate/30 * buffer) frames
-  bool fuse_score = true;                 // multiply IoU by detection score (Python, not MOT20)
+  double track_high_thresh = 0.5;  // score; above (strictly, as Python): first association
+  double track_low_thresh = 0.1;   // score; strictly between low and high: second association
+  double new_track_thresh = 0.6;   // score; a leftover high detection this good starts a track
+  double match_thresh = 0.8;       // cost 1 - IoU*score; first association limit
+  double second_match_thresh = 0.5;       // cost 1 - IoU; low-score association limit
+  double unconfirmed_match_thresh = 0.7;  // cost 1 - IoU*score; unconfirmed-track limit
+  int track_buffer_frames = 30;  // frames at 30 Hz a lost track is kept (scaled by the rate)
+  double frame_rate_hz = 25;     // Hz; lost tracks live int(rate / 30 * buffer) frames
+  bool fuse_score = true;        // cost uses IoU * detection score (Python, not MOT20)
   std::string Check() const;
 };
 
