@@ -10,7 +10,7 @@
 
 #include <cstring>
 #include <filesystem>
-#include <set>
+#include <sstream>
 
 #include "hoilcd/core/error.h"
 
@@ -26,6 +26,12 @@ constexpr int kMaxNodeDepth = 256;  // deeper than any real file; stops cyclic n
 // glTF (+Y up, front +Z) to hoilcd asset frame (z up, x forward): a cyclic axis permutation.
 Eigen::Vector3f ToAssetFrame(const Eigen::Vector3d& p_gltf) {
   return Eigen::Vector3d(p_gltf.z(), p_gltf.x(), p_gltf.y()).cast<float>();
+}
+
+std::string FormatNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
 }
 
 std::string Pointer(const std::string& collection, size_t index, const std::string& rest = "") {
@@ -44,7 +50,8 @@ class GltfReader {
       Fail("/scenes", "the file has no scene");
       return;
     }
-    const size_t scene_index = model_.defaultScene >= 0 ? static_cast<size_t>(model_.defaultScene) : 0;
+    const size_t scene_index =
+        model_.defaultScene >= 0 ? static_cast<size_t>(model_.defaultScene) : 0;
     if (scene_index >= model_.scenes.size()) {
       Fail("/scene", "names scene " + std::to_string(scene_index) + " which does not exist");
       return;
@@ -110,7 +117,7 @@ class GltfReader {
               Fail(where, "must be a number (°C)");
             } else if (value.GetNumberAsDouble() < kMinTemperatureC ||
                        value.GetNumberAsDouble() > kMaxTemperatureC) {
-              Fail(where, "temperature " + std::to_string(value.GetNumberAsDouble()) +
+              Fail(where, "temperature " + FormatNumber(value.GetNumberAsDouble()) +
                               " °C is outside [-50, 200]");
             } else {
               material.temperature_c = value.GetNumberAsDouble();
@@ -119,8 +126,8 @@ class GltfReader {
             if (!value.IsNumber()) {
               Fail(where, "must be a number in (0, 1]");
             } else if (!(value.GetNumberAsDouble() > 0 && value.GetNumberAsDouble() <= 1)) {
-              Fail(where, "emissivity " + std::to_string(value.GetNumberAsDouble()) +
-                              " is outside (0, 1]");
+              Fail(where,
+                   "emissivity " + FormatNumber(value.GetNumberAsDouble()) + " is outside (0, 1]");
             } else {
               material.emissivity = value.GetNumberAsDouble();
             }
@@ -200,9 +207,9 @@ class GltfReader {
             ok = false;
             Fail(where + "/position", "must be an array of 3 numbers (glTF metres)");
           } else {
-            point.position_m = ToAssetFrame({value.Get(0).GetNumberAsDouble(),
-                                             value.Get(1).GetNumberAsDouble(),
-                                             value.Get(2).GetNumberAsDouble()});
+            point.position_m =
+                ToAssetFrame({value.Get(0).GetNumberAsDouble(), value.Get(1).GetNumberAsDouble(),
+                              value.Get(2).GetNumberAsDouble()});
           }
         } else {
           ok = false;
@@ -228,9 +235,9 @@ class GltfReader {
       trs.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
     }
     if (node.rotation.size() == 4) {
-      trs.rotate(Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1],
-                                    node.rotation[2])
-                     .normalized());
+      trs.rotate(
+          Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])
+              .normalized());
     }
     if (node.scale.size() == 3) {
       trs.scale(Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]));
@@ -241,8 +248,8 @@ class GltfReader {
   void AddNode(Asset& asset, size_t node_index, const Eigen::Matrix4d& parent, int depth) {
     const std::string pointer = Pointer("nodes", node_index);
     if (depth > kMaxNodeDepth) {
-      Fail(pointer, "node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) +
-                        " levels (a cycle?)");
+      Fail(pointer,
+           "node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) + " levels (a cycle?)");
       return;
     }
     const tinygltf::Node& node = model_.nodes[node_index];
@@ -277,13 +284,16 @@ class GltfReader {
     }
     const tinygltf::BufferView& buffer_view =
         model_.bufferViews[static_cast<size_t>(accessor.bufferView)];
-    const std::string view_pointer = Pointer("bufferViews", static_cast<size_t>(accessor.bufferView));
+    const std::string view_pointer =
+        Pointer("bufferViews", static_cast<size_t>(accessor.bufferView));
     if (!ValidIndex(buffer_view.buffer, model_.buffers.size(), view_pointer + "/buffer")) {
       return false;
     }
-    const std::vector<unsigned char>& data = model_.buffers[static_cast<size_t>(buffer_view.buffer)].data;
+    const std::vector<unsigned char>& data =
+        model_.buffers[static_cast<size_t>(buffer_view.buffer)].data;
     const int stride = accessor.ByteStride(buffer_view);
-    const int component = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
+    const int component =
+        tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
     const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
     if (stride <= 0 || component <= 0 || components <= 0) {
       Fail(where, "has an invalid type, component type or byte stride");
@@ -291,8 +301,9 @@ class GltfReader {
     }
     const size_t element = static_cast<size_t>(component) * static_cast<size_t>(components);
     const size_t begin = buffer_view.byteOffset + accessor.byteOffset;
-    const size_t end = accessor.count == 0 ? begin
-                                           : begin + static_cast<size_t>(stride) * (accessor.count - 1) + element;
+    const size_t end = accessor.count == 0
+                           ? begin
+                           : begin + static_cast<size_t>(stride) * (accessor.count - 1) + element;
     if (buffer_view.byteOffset + buffer_view.byteLength > data.size() ||
         end > buffer_view.byteOffset + buffer_view.byteLength) {
       Fail(where, "reads past the end of its buffer view or buffer");
@@ -344,13 +355,14 @@ class GltfReader {
       bool in_range = true;
       for (uint32_t index : indices) in_range = in_range && index < positions.count;
       if (!in_range) {
-        Fail(pointer + "/indices", "refers to a vertex past the " +
-                                       std::to_string(positions.count) + " positions");
+        Fail(pointer + "/indices",
+             "refers to a vertex past the " + std::to_string(positions.count) + " positions");
         continue;
       }
       uint32_t material = kNoMaterial;
       if (primitive.material >= 0) {
-        if (!ValidIndex(primitive.material, model_.materials.size(), pointer + "/material")) continue;
+        if (!ValidIndex(primitive.material, model_.materials.size(), pointer + "/material"))
+          continue;
         material = static_cast<uint32_t>(primitive.material);
       } else {
         needs_default_material_ = true;

@@ -74,8 +74,8 @@ double SuperCoord(double c, double exponent) {
 }
 
 // Closed surface through `rings` (each sampled at `around` points), closed by a pole at each end.
-Shape Loft(const std::vector<Ring>& rings, const Vec3& start_pole, const Vec3& end_pole,
-           int around, double exponent = 2.0) {
+Shape Loft(const std::vector<Ring>& rings, const Vec3& start_pole, const Vec3& end_pole, int around,
+           double exponent = 2.0) {
   Shape shape;
   const auto n = static_cast<uint32_t>(around);
   shape.positions.push_back(start_pole);
@@ -270,13 +270,13 @@ const ThermalSpec kRadiator{"radiator", 42.0, 0.93, false, {0.95, 0.95, 0.95, 1}
 // Joint positions of one posture (hoilcd frame; index 0 = left (+y), 1 = right (-y)).
 struct Pose {
   std::string posture;
-  Vec3 pelvis;            // spine base, at hip-joint height
-  Mat3 torso;             // columns: forward, left, up of the torso
-  Mat3 head;              // columns: forward, left, up of the head
+  Vec3 pelvis;  // spine base, at hip-joint height
+  Mat3 torso;   // columns: forward, left, up of the torso
+  Mat3 head;    // columns: forward, left, up of the head
   Vec3 elbow[2];
   Vec3 wrist[2];
-  Vec3 hand_tip[2];       // fingertips
-  Vec3 hand_up[2];        // back-of-hand direction
+  Vec3 hand_tip[2];  // fingertips
+  Vec3 hand_up[2];   // back-of-hand direction
   Vec3 hip[2];
   Vec3 knee[2];
   Vec3 ankle[2];
@@ -313,13 +313,13 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
 
   // Torso: a superelliptic loft from the hips to the shoulders.
   const TorsoSection sections[] = {
-      {-0.03, 0.145, 0.100, -0.01}, {0.05, 0.155, 0.105, 0.00}, {0.15, 0.145, 0.100, 0.00},
-      {0.26, 0.160, 0.110, 0.01},   {0.36, 0.175, 0.112, 0.01}, {0.42, 0.180, 0.100, 0.00},
+      {-0.03, 0.145, 0.100, -0.01}, {0.05, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
+      {0.26, 0.160, 0.110, 0.01},   {0.36, 0.175, 0.112, 0.01},   {0.42, 0.180, 0.100, 0.00},
       {0.46, 0.170, 0.088, -0.005}, {0.485, 0.135, 0.075, -0.01}, {0.505, 0.080, 0.062, -0.01}};
   std::vector<Ring> rings;
   for (const TorsoSection& s : sections) {
-    rings.push_back({torso_point(s.forward, 0, s.height), t.col(1) * s.half_width,
-                     t.col(0) * s.half_depth});
+    rings.push_back(
+        {torso_point(s.forward, 0, s.height), t.col(1) * s.half_width, t.col(0) * s.half_depth});
   }
   asset.Add(Loft(rings, torso_point(-0.01, 0, -0.06), torso_point(-0.01, 0, 0.515), 32, 2.6),
             upper);
@@ -340,9 +340,9 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
     const bool is_hair = u > 0.45 || (f < 0.35 && u > 0.15) || (f < -0.15 && u > -0.55);
     return is_hair ? hair : skin;
   });
-  asset.Add(Ellipsoid(head_center + h * Vec3(0.095, 0, -0.015), h, Vec3(0.025, 0.014, 0.032), 12,
-                      8),
-            skin);
+  asset.Add(
+      Ellipsoid(head_center + h * Vec3(0.095, 0, -0.015), h, Vec3(0.025, 0.014, 0.032), 12, 8),
+      skin);
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
     asset.Add(Ellipsoid(head_center + h * Vec3(-0.005, sign * 0.081, -0.005), h,
@@ -552,9 +552,8 @@ AssetBuilder Laptop() {
   const Vec3 hinge(-0.11, 0, 0.018);
   const Vec3 lid_center = hinge + lid_axes * Vec3(0.0035, 0, 0.11);
   const Vec3 screen_normal = lid_axes.col(0);
-  asset.Add(Box(lid_center, lid_axes, Vec3(0.0035, 0.16, 0.11)), [&](const Vec3&, const Vec3& n) {
-    return n.dot(screen_normal) > 0.99 ? screen : lid;
-  });
+  asset.Add(Box(lid_center, lid_axes, Vec3(0.0035, 0.16, 0.11)),
+            [&](const Vec3&, const Vec3& n) { return n.dot(screen_normal) > 0.99 ? screen : lid; });
   return asset;
 }
 
@@ -629,11 +628,11 @@ tinygltf::Model ToGltf(const AssetBuilder& asset) {
                                                          spec.base_color.end());
     material.pbrMetallicRoughness.metallicFactor = spec.metallic;
     material.pbrMetallicRoughness.roughnessFactor = spec.specular ? 0.2 : 0.8;
-    material.extras = tinygltf::Value(tinygltf::Value::Object{
-        {"temperature_c", tinygltf::Value(spec.temperature_c)},
-        {"emissivity", tinygltf::Value(spec.emissivity)},
-        {"specular", tinygltf::Value(spec.specular)},
-        {"region", tinygltf::Value(spec.region)}});
+    material.extras = tinygltf::Value(
+        tinygltf::Value::Object{{"temperature_c", tinygltf::Value(spec.temperature_c)},
+                                {"emissivity", tinygltf::Value(spec.emissivity)},
+                                {"specular", tinygltf::Value(spec.specular)},
+                                {"region", tinygltf::Value(spec.region)}});
     model.materials.push_back(material);
 
     const Shape& part = asset.parts[m];
@@ -651,9 +650,8 @@ tinygltf::Model ToGltf(const AssetBuilder& asset) {
       }
     }
     tinygltf::Accessor position_accessor;
-    position_accessor.bufferView =
-        AddBufferView(model, positions.data(), positions.size() * sizeof(float),
-                      TINYGLTF_TARGET_ARRAY_BUFFER);
+    position_accessor.bufferView = AddBufferView(
+        model, positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
     position_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     position_accessor.type = TINYGLTF_TYPE_VEC3;
     position_accessor.count = part.positions.size();
@@ -669,8 +667,7 @@ tinygltf::Model ToGltf(const AssetBuilder& asset) {
                                                 TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
       index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
     } else {
-      index_accessor.bufferView = AddBufferView(model, part.indices.data(),
-                                                part.indices.size() * 4,
+      index_accessor.bufferView = AddBufferView(model, part.indices.data(), part.indices.size() * 4,
                                                 TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
       index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     }

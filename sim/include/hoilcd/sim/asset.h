@@ -17,11 +17,11 @@ namespace hoilcd {
 
 // Thermal properties of one glTF material (defaults apply when its extras omit a field).
 struct ThermalMaterial {
-  std::string name;            // glTF material name
-  std::string region;          // e.g. "skin", "hair", "clothing_upper", "wood"; default: name
-  double temperature_c = 22;   // surface temperature, °C, in [-50, 200]
-  double emissivity = 0.9;     // 8–14 µm band emissivity, in (0, 1]
-  bool specular = false;       // true: reflections are traced (metal, glass), else diffuse
+  std::string name;           // glTF material name
+  std::string region;         // e.g. "skin", "hair", "clothing_upper", "wood"; default: name
+  double temperature_c = 22;  // surface temperature, °C, in [-50, 200]
+  double emissivity = 0.9;    // 8–14 µm band emissivity, in (0, 1]
+  bool specular = false;      // true: reflections are traced (metal, glass), else diffuse
 };
 
 // Where the asset touches its support: "seat", "table" or "floor" (HOI ground truth).
