@@ -266,6 +266,7 @@ class GltfReader {
   }
 
   // Locates an accessor's elements in its buffer; false (with a problem) if it cannot be read.
+  // Hand-written: tinygltf parses accessors but offers no bounds-checked element reader.
   struct View {
     const unsigned char* first = nullptr;
     size_t stride = 0;

@@ -36,6 +36,7 @@ Mat3 PitchForward(double angle_rad) {
 
 // ---------------------------------------------------------------------------------------------
 // Shapes: closed triangle surfaces in the hoilcd frame.
+// Hand-written: the libraries we build with (Eigen, tinygltf) make no capsule/loft meshes.
 
 struct Shape {
   std::vector<Vec3> positions;
