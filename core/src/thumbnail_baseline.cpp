@@ -118,7 +118,7 @@ std::vector<std::vector<float>> ThumbnailIndex::ScoreAll(const std::vector<int>&
   return scores;
 }
 
-std::string SequenceOptions::Check() const {
+std::string SeqSlamOptions::Check() const {
   if (sequence_length < 1) return "sequence_length must be >= 1";
   if (!std::isfinite(min_velocity) || !std::isfinite(max_velocity)) {
     return "min_velocity and max_velocity must be finite";
@@ -129,7 +129,7 @@ std::string SequenceOptions::Check() const {
 }
 
 std::vector<std::vector<float>> SequenceScores(const std::vector<std::vector<float>>& similarity,
-                                               const SequenceOptions& options, int threads) {
+                                               const SeqSlamOptions& options, int threads) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
   const int rows = static_cast<int>(similarity.size());
   const int cols = rows == 0 ? 0 : static_cast<int>(similarity[0].size());

@@ -111,7 +111,7 @@ TEST(ThumbnailBaseline, SequenceSearchRecoversTheDiagonalWhereSingleFramesAreToo
     }
   }
   const double single = DiagonalTop1(similarity);
-  SequenceOptions options;
+  SeqSlamOptions options;
   const auto sequence = SequenceScores(similarity, options, 2);
   const double matched = DiagonalTop1(sequence);
   EXPECT_LT(single, 0.4);
@@ -127,7 +127,7 @@ TEST(ThumbnailBaseline, SequenceSearchFollowsTheVelocityOfTheDatabase) {
     for (int j = 0; j < kDatabase; ++j)
       similarity[i][j] = static_cast<float>((j == 2 * i ? 0.3 : 0.0) +
                                             KeyedRng(12, "test.thumbnail.noise", i, j).Normal(0, 0.1));
-  SequenceOptions options;
+  SeqSlamOptions options;
   options.min_velocity = 1.5;
   options.max_velocity = 2.5;
   options.velocity_steps = 3;
@@ -142,7 +142,7 @@ TEST(ThumbnailBaseline, SequenceSearchFollowsTheVelocityOfTheDatabase) {
 
 TEST(ThumbnailBaseline, SequenceOfLengthOneIsTheSingleFrameMatrix) {
   const std::vector<std::vector<float>> similarity = {{0.1f, -0.5f}, {0.9f, 0.2f}, {0.3f, 0.4f}};
-  SequenceOptions options;
+  SeqSlamOptions options;
   options.sequence_length = 1;
   EXPECT_EQ(SequenceScores(similarity, options, 1), similarity);
 }
@@ -152,7 +152,7 @@ TEST(ThumbnailBaseline, SequenceIsShortenedAtTheFirstRowsAndCountsStepsPastTheCo
   // has one step past column 0 counted as 0.
   const std::vector<std::vector<float>> similarity = {
       {1.0f, 0.0f, 0.0f}, {0.6f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-  SequenceOptions options;
+  SeqSlamOptions options;
   options.sequence_length = 3;
   options.min_velocity = options.max_velocity = 1.0;
   const auto sequence = SequenceScores(similarity, options, 1);
@@ -169,14 +169,14 @@ TEST(ThumbnailBaseline, OptionChecksNameTheBadField) {
   thumbnail = ThumbnailOptions();
   thumbnail.width_px = 0;
   EXPECT_NE(thumbnail.Check().find("width_px"), std::string::npos);
-  SequenceOptions sequence;
+  SeqSlamOptions sequence;
   EXPECT_EQ(sequence.Check(), "");
   sequence.min_velocity = 2.0;
   EXPECT_NE(sequence.Check().find("min_velocity"), std::string::npos);
-  sequence = SequenceOptions();
+  sequence = SeqSlamOptions();
   sequence.sequence_length = 0;
   EXPECT_NE(sequence.Check().find("sequence_length"), std::string::npos);
-  sequence = SequenceOptions();
+  sequence = SeqSlamOptions();
   sequence.velocity_steps = 0;
   EXPECT_NE(sequence.Check().find("velocity_steps"), std::string::npos);
 }

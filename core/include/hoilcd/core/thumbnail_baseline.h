@@ -49,7 +49,7 @@ class ThumbnailIndex {
 };
 
 // SeqSLAM's trajectory search. v is database frames advanced per query frame.
-struct SequenceOptions {
+struct SeqSlamOptions {
   int sequence_length = 10;    // frames along each trajectory, the end point included (SeqSLAM ds)
   double min_velocity = 0.8;   // slowest trajectory, database frames per query frame
   double max_velocity = 1.25;  // fastest trajectory, database frames per query frame
@@ -65,6 +65,6 @@ struct SequenceOptions {
 // steps that leave the columns count as similarity 0 (NCC's "unrelated"), so a line cut short at
 // the matrix edge cannot win on one lucky frame. Parallel over rows, deterministic.
 std::vector<std::vector<float>> SequenceScores(const std::vector<std::vector<float>>& similarity,
-                                               const SequenceOptions& options, int threads);
+                                               const SeqSlamOptions& options, int threads);
 
 }  // namespace hoilcd
