@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
