@@ -283,8 +283,8 @@ TEST(PosesCsv, MalformedLinesNameFileLineAndColumn) {
             std::string::npos) << message;
   EXPECT_NE(message.find("D/poses.csv:4: expected 13 columns, got 14"), std::string::npos)
       << message;
-  EXPECT_NE(InputErrorOf([] { PosesFromCsv("frame,t\n", "p.csv"); }).find("p.csv:1: expected header"),
-            std::string::npos);
+  const std::string header_message = InputErrorOf([] { PosesFromCsv("frame,t\n", "p.csv"); });
+  EXPECT_NE(header_message.find("p.csv:1: expected header"), std::string::npos);
 }
 
 TEST(PosesTum, WritesWorldFromCamWithCameraLookingAlongHeading) {
@@ -331,8 +331,9 @@ TEST(PersonsJson, BadBoxIsReportedWithItsPointer) {
                     R"("posture":"seated","contacts":[]}]}]})",
                     "persons.json");
   });
-  EXPECT_NE(message.find("persons.json: /frames/0/persons/0/box_px: expected [x, y, width, height]"),
-            std::string::npos) << message;
+  EXPECT_NE(
+      message.find("persons.json: /frames/0/persons/0/box_px: expected [x, y, width, height]"),
+      std::string::npos) << message;
 }
 
 TEST(EventsJson, RoundTripKeepsEveryFieldAndUnknownTypeIsAnError) {
