@@ -1,0 +1,65 @@
+// Person detection in thermal frames for the dynamic-landmark loop closure (DLCD): threshold at
+// clothing temperature, clean up, split blobs where seated neighbours touch, reject warm objects
+// by shape and temperature, and score each person in (0, 1] for ByteTrack.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "hoilcd/core/byte_tracker.h"
+
+namespace hoilcd {
+
+struct PersonDetectorOptions {
+  // Thresholding and clean-up.
+  double threshold_c = 26.5;   // degC on the radiometric frame (people's clothing is 27-30)
+  int threshold_u8 = 166;      // 8-bit level used without a radiometric frame (26.5 degC in 20-30)
+  double u8_min_c = 20;        // degC shown as 0 in the 8-bit frame (for temperatures without one)
+  double u8_max_c = 30;        // degC shown as 255 in the 8-bit frame
+  int open_kernel_px = 3;      // px, elliptic opening diameter that removes speckle (0 = none)
+  int close_kernel_px = 5;     // px, elliptic closing diameter that fills small holes (0 = none)
+  // Splitting touching neighbours (column-projection valleys between heads).
+  int profile_smooth_px = 3;        // px, box-filter width over the per-column pixel counts
+  double split_valley_ratio = 0.85; // split at a valley at most this fraction of the lower peak
+  double valley_tolerance_ratio = 0.1;  // of the lower peak; valley floor cut in its middle
+  double min_peak_ratio = 0.5;      // a peak is a person only if >= this fraction of the blob's max
+  int min_split_width_px = 8;       // px, every part of a split is at least this wide
+  // Rejection of non-people (each part after splitting).
+  int min_area_px = 60;             // px^2, smaller parts are noise or cups
+  int min_height_px = 12;           // px, lower parts are ignored
+  double min_aspect_hw = 0.6;       // height/width, flatter parts are laptops, radiators, tables
+  double max_aspect_hw = 5.0;       // height/width, taller parts are pipes or door frames
+  double max_median_c = 37.0;       // degC, hotter parts are cups (> 40) or radiators (~40)
+  double hot_c = 30;                // degC; the 8-bit image saturates here (u8_max_c)
+  double max_hot_fraction = 0.7;    // parts with more pixels >= hot_c are laptops, cups, radiators
+  double max_fill_ratio = 0.9;      // area / box area; rectangles fill more ...
+  double max_solidity = 0.97;       // ... and are convex (area / hull area): both => object
+  // Score = geometric mean of an area, a shape and a temperature score.
+  double score_area_px = 400;       // px^2, area at which the area score is 1 - 1/e
+  double typical_aspect_hw = 1.8;   // height/width of a seated person, shape score 1
+  double aspect_sigma_log = 0.7;    // natural-log units, width of the shape score
+  double person_min_c = 27;         // degC, median below this lowers the temperature score
+  double person_max_c = 35;         // degC, median above this lowers the temperature score
+  double temperature_sigma_c = 2;   // degC, fall-off of the temperature score outside the range
+  std::string Check() const;
+};
+
+struct PersonDetections {
+  std::vector<Detection> detections;
+  cv::Mat mask;  // CV_8U 0/255: pixels of the accepted people after clean-up
+};
+
+// `thermal_u8`: CV_8UC1 display image (may be empty when `radiometric_c` is given);
+// `radiometric_c`: CV_32FC1 apparent temperature in degC, or empty. Same size when both given.
+// Detections come in reading order of their blobs (then left to right within a split blob).
+PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiometric_c,
+                               const PersonDetectorOptions& options);
+
+// Where a blob with these per-column pixel counts splits: ascending columns (0-based within the
+// profile) at which a new part starts. Exposed for tests.
+std::vector<int> FindSplitColumns(const std::vector<double>& column_counts,
+                                  const PersonDetectorOptions& options);
+
+}  // namespace hoilcd

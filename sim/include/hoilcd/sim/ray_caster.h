@@ -1,0 +1,53 @@
+// Embree 3 ray casting over instanced triangle meshes. Each distinct mesh (an asset, the room)
+// is a prototype scene built once; placements are Embree instances whose transforms can change
+// every frame (people move by transform updates, never by rebuilding geometry).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace hoilcd {
+
+struct TriangleMesh;
+
+struct RayHit {
+  float distance_m = 0;     // along the (unit) ray direction; infinity on a miss
+  int instance = -1;        // instance id from AddInstance, -1 on a miss
+  int triangle = -1;        // triangle index within the prototype mesh
+  Eigen::Vector3f normal_world = Eigen::Vector3f::Zero();  // unit geometric normal, facing the ray
+  bool hit() const { return instance >= 0; }
+};
+
+class RayCaster {
+ public:
+  RayCaster();
+  ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  // Builds a prototype from a mesh (positions in the prototype's own frame); returns its id.
+  int AddPrototype(const TriangleMesh& mesh);
+  // Places a prototype; returns the instance id (consecutive from 0).
+  int AddInstance(int prototype, const Eigen::Matrix4f& world_from_object);
+  void SetInstanceTransform(int instance, const Eigen::Matrix4f& world_from_object);
+  // Must be called after adding instances or moving them, before casting rays.
+  void Commit();
+
+  int num_instances() const;
+  int prototype_of(int instance) const;
+  const Eigen::Matrix4f& transform_of(int instance) const;
+
+  // Closest hit along origin + t * direction, t in (t_min, t_max). Thread-safe after Commit().
+  RayHit Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                   float t_min = 0.0f, float t_max = std::numeric_limits<float>::infinity()) const;
+  // Closest hit against one instance alone (ignoring everything else): for visibility ratios.
+  RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin,
+                           const Eigen::Vector3f& direction) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hoilcd

@@ -1,0 +1,46 @@
+// Renders one frame of the World from a camera pose: per pixel the band radiance reaching the
+// camera (emission + ambient or one traced specular reflection), supersampled at object edges,
+// plus depth, instance id and class id. The sensor model turns radiance into temperatures.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "hoilcd/core/camera.h"
+#include "hoilcd/sim/world.h"
+
+namespace hoilcd {
+
+struct RenderOptions {
+  bool edge_supersampling = true;    // supersample pixels on object/material/depth edges
+  int edge_samples_per_axis = 3;     // n×n stratified samples in an edge pixel
+  bool specular_reflections = true;  // one traced reflection on specular surfaces
+  int threads = 0;                   // 0 = every core
+  std::string Check() const;
+};
+
+struct FrameBuffers {
+  cv::Mat radiance;  // CV_32F, W·m⁻²·sr⁻¹ (8–14 µm band)
+  cv::Mat depth_m;   // CV_32F, distance along the camera's z axis, m
+  cv::Mat instance;  // CV_32S, World instance id (-1: nothing)
+  cv::Mat class_id;  // CV_32S, World class id
+  int edge_pixels = 0;  // how many pixels were supersampled
+};
+
+class FrameRenderer {
+ public:
+  FrameRenderer(const World& world, const CameraIntrinsics& intrinsics, RenderOptions options);
+  FrameBuffers Render(const CameraPose& pose) const;
+  // Radiance along one world ray (used by Render and by tests).
+  float Radiance(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, RayHit* hit) const;
+
+ private:
+  float Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+              bool allow_reflection) const;
+
+  const World& world_;
+  CameraIntrinsics intrinsics_;
+  RenderOptions options_;
+};
+
+}  // namespace hoilcd

@@ -1,0 +1,101 @@
+// Scene files: JSON validated against scenes/scene.schema.json (embedded in the binary), with
+// command-line overrides (--set KEY=VALUE) applied first and every default filled in from the
+// schema, so the resolved scene is complete. The typed Scene is what the simulator reads.
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/error.h"
+
+namespace hoilcd {
+
+// The scene JSON Schema text (scenes/scene.schema.json, compiled in).
+const std::string& SceneSchemaText();
+
+// Applies one "KEY=VALUE" override. KEY is a dotted path ("crowd.people_per_table",
+// "tables.0.center_m") or a JSON pointer ("/crowd/people_per_table"); VALUE is parsed as JSON
+// when it is valid JSON, else taken as a string. Throws InputError naming the override.
+void ApplyOverride(nlohmann::json* doc, const std::string& key_equals_value);
+
+// Every schema violation of doc, each as {file: /json/pointer, what was expected}.
+std::vector<Problem> ValidateScene(const nlohmann::json& doc, const std::string& file);
+
+// Inserts schema defaults for every absent property, recursively.
+void FillSceneDefaults(nlohmann::json* doc);
+
+struct SurfaceSpec {
+  double temperature_c = 22;
+  double emissivity = 0.92;
+  bool specular = false;
+};
+
+struct WindowSpec {
+  std::string wall;  // north | south | east | west
+  double center_m = 0, bottom_m = 0, width_m = 0, height_m = 0;
+  SurfaceSpec surface;
+};
+
+struct TableSpec {
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
+  double yaw_deg = 0;
+};
+
+struct SeatingSpec {
+  int table = 0;
+  int seat = 0;
+  std::string posture;  // "random" or a posture asset name
+};
+
+struct ObjectSpec {
+  std::string asset;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  double yaw_deg = 0;
+  double temperature_offset_c = 0;
+  bool enabled = true;
+};
+
+// The typed, fully resolved scene. Field meanings and units: scenes/scene.schema.json.
+struct Scene {
+  std::string file;                 // where it was loaded from (for messages)
+  nlohmann::json resolved;          // the resolved document (dataset's scene.json)
+  std::string hash;                 // checksum of the resolved document
+  std::string assets_dir;           // absolute folder searched for asset names
+
+  std::string name;
+  uint64_t seed = 1;
+  int frames = 1996;
+  double frame_rate_hz = 25;
+
+  Eigen::Vector3d room_size_m{7.0, 3.0, 2.6};
+  double environment_temperature_c = 22;
+  SurfaceSpec floor, ceiling;
+  double wall_temperature_bottom_c = 21, wall_temperature_top_c = 23.5;
+  SurfaceSpec walls;
+  std::vector<WindowSpec> windows;
+
+  std::vector<TableSpec> tables;
+  std::string table_asset, chair_asset;
+  double seat_setback_m = 0.2, seat_spacing_4_m = 0.45, seat_spacing_6_m = 0.3;
+  double seat_warmth_c = 6;
+
+  nlohmann::json crowd;             // crowd parameters (read by the crowd module)
+  std::vector<SeatingSpec> seating;
+  int people_per_table = 4;
+
+  std::vector<ObjectSpec> objects;  // distractor switches already applied
+  nlohmann::json camera;            // camera + sensor parameters
+  nlohmann::json robot, route, odometry;
+};
+
+// Reads, overrides, validates (all problems at once), fills defaults, and types a scene file.
+// Throws InputError listing every problem as "FILE: /json/pointer: what was expected".
+Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// The same from an in-memory document (file names messages).
+Scene SceneFromJson(nlohmann::json doc, const std::string& file,
+                    const std::vector<std::string>& overrides = {});
+
+}  // namespace hoilcd

@@ -1,0 +1,117 @@
+// Uncooled microbolometer camera model: turns the renderer's scene radiance into the apparent
+// temperature the camera reports (optics blur, bolometer time constant, fixed-pattern noise,
+// drift reset by flat-field correction, temporal noise, quantisation), plus the 8- and 16-bit
+// encodings of the dataset folder. Every random draw is keyed by (seed, effect, frame, pixel).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "hoilcd/sim/radiometry.h"
+
+namespace hoilcd {
+
+// Every effect has a switch. Figures in kelvin are specified at reference_temperature_c (the
+// NETD convention, 300 K) and applied in the signal (radiance) domain through the camera's
+// responsivity dL/dT there, as a real detector does: on colder surfaces the same signal noise
+// reads as slightly more temperature noise, on hotter ones as less.
+struct SensorOptions {
+  bool optics_blur = true;               // Gaussian point-spread function on the radiance
+  double psf_sigma_px = 0.5;             // PSF standard deviation, px (FWHM 1.18 px)
+  bool temporal_noise = true;            // white noise, new every frame
+  double netd_k = 0.040;                 // noise-equivalent temperature difference (1-σ), K
+  bool fixed_pattern = true;             // residual non-uniformity after factory calibration
+  double fpn_offset_k = 0.05;            // per-pixel offset (1-σ), K
+  double fpn_gain_sigma = 0.002;         // per-pixel relative gain error (1-σ), fraction
+  double column_stripe_k = 0.03;         // per-column offset (1-σ), K
+  double shutter_temperature_c = 25.0;   // FFC shutter temperature: gain errors vanish there, °C
+  bool drift = true;                     // global offset ramp between flat-field corrections
+  double drift_k_per_min = 0.2;          // 1-σ of the ramp's random slope per FFC interval, K/min
+  double ffc_interval_s = 60.0;          // time between flat-field corrections, s (0: never)
+  bool time_constant = true;             // bolometer thermal lag (motion smear)
+  double time_constant_s = 0.010;        // bolometer thermal time constant, s
+  bool quantisation = true;              // output rounded to a temperature step
+  double quantisation_step_k = 0.01;     // output temperature step, K
+  double reference_temperature_c = 26.85;  // scene temperature at which K figures hold, °C
+  double emissivity_setting = 1.0;       // emissivity the camera assumes when converting, 0–1
+  double reflected_temperature_c = 22.0;   // reflected temperature assumed when ε setting < 1, °C
+  double display_min_c = 20.0;           // 8-bit display window: maps to 0, °C
+  double display_max_c = 30.0;           // 8-bit display window: maps to 255, °C
+
+  // "" when valid, else what is wrong (field name and expected range).
+  std::string Check() const;
+};
+
+// A stateful model for one sequence, applied to frames in order. Apply(k) does, per pixel:
+//   1. optics blur of the radiance (cv::GaussianBlur, reflected border);
+//   2. time constant: y_k = a·x_k + (1−a)·x_{k−1}, a = 1 − exp(−Δt/τ), x the blurred radiance.
+//      This is the per-frame discretisation of a first-order low-pass: between frames the
+//      bolometer relaxes towards the new input by a; the remainder of older frames, (1−a)²
+//      (3·10⁻⁴ at 25 Hz, τ 10 ms) is dropped so that the state is exactly one frame. The
+//      renderer may also pass a motion-blurred radiance for smear within a frame;
+//   3. fixed pattern: y + g_p·(y − L_shutter) + R·(o_p + c_column), R = dL/dT at the reference;
+//   4. drift: + R·d(k), d a linear ramp from 0 at each FFC with a keyed random slope;
+//   5. temporal noise: + R·NETD·n(k, p), n standard normal;
+//   6. conversion to apparent temperature with the emissivity setting, then quantisation.
+// Resuming at frame k: on a new model, call Apply(k−1, radiance_{k−1}) then Apply(k, ...); the
+// output from frame k on is byte-identical to an uninterrupted run. The first frame a model
+// sees is taken as steady (x_{k−1} = x_k).
+class SensorModel {
+ public:
+  // `table` must outlive the model. num_threads: 0 = every core; output does not depend on it.
+  SensorModel(SensorOptions options, int width, int height, double frame_rate_hz, uint64_t seed,
+              const BandRadianceTable* table, int num_threads = 1);
+
+  // Scene radiance (CV_32F, W·m⁻²·sr⁻¹, width×height) to apparent temperature (CV_32F, °C).
+  // frame: 0 or more, and one more than the previous call's (a new model accepts any frame).
+  cv::Mat Apply(int frame, const cv::Mat& radiance);
+
+  // Apparent temperature of an ideal camera (no sensor effects, same emissivity setting):
+  // the EXR's T_true channel. Equals Apply with every effect off.
+  cv::Mat IdealTemperature(const cv::Mat& radiance) const;
+
+  // Frames in [1, num_frames) at which a flat-field correction happens (round(j·interval·fps)
+  // for j = 1, 2, ...); the camera has just corrected when frame 0 is taken.
+  std::vector<int> FfcFrames(int num_frames) const;
+
+  // Drift offset at `frame`, K (0 at each FFC frame; 0 when drift is off).
+  double DriftK(int frame) const;
+
+  // Expected 1-σ temporal noise in apparent temperature for a scene at temperature_c, K
+  // (NETD scaled by the responsivity ratio; 0 when temporal noise is off).
+  double TemporalNoiseK(double temperature_c) const;
+
+  const SensorOptions& options() const { return options_; }
+
+ private:
+  float ApparentCelsius(double signal) const;
+  // Index j of the FFC interval holding `frame` (FFC j at round(j·interval·fps), FFC 0 at 0).
+  int64_t FfcIndex(int frame) const;
+  int64_t FfcFrame(int64_t index) const;
+
+  SensorOptions options_;
+  int width_, height_;
+  double frame_rate_hz_;
+  uint64_t seed_;
+  const BandRadianceTable* table_;
+  int num_threads_;
+  double responsivity_;        // dL/dT at the reference temperature, W·m⁻²·sr⁻¹·K⁻¹
+  double shutter_radiance_;    // band radiance of the shutter
+  double reflected_radiance_;  // band radiance of the assumed reflected temperature
+  float blend_;                // a = 1 − exp(−Δt/τ)
+  cv::Mat gain_;               // CV_32F per-pixel relative gain error
+  cv::Mat offset_signal_;      // CV_32F per-pixel + column offset, radiance units
+  cv::Mat previous_;           // blurred radiance of the last frame applied (empty: none yet)
+  int last_frame_ = -1;
+};
+
+// 8-bit display image: linear over [display_min_c, display_max_c] → [0, 255], clamped, rounded.
+cv::Mat ToDisplay8Bit(const cv::Mat& temperature_c, double display_min_c, double display_max_c);
+
+// 16-bit radiometric image (CV_16U): value = temperature in K × 100, rounded, clamped to 0..65535.
+cv::Mat ToCentikelvin16(const cv::Mat& temperature_c);
+
+}  // namespace hoilcd

@@ -1,0 +1,39 @@
+// Renders a whole recording session into a dataset folder (SPEC.md "Dataset folder"): the robot
+// drives its route, people move, each frame is ray cast, passed through the sensor model and
+// written atomically. Re-running the same command resumes: frames already written and listed
+// in the manifest with matching checksums are kept, the rest are rendered.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "hoilcd/sim/scene.h"
+
+namespace hoilcd {
+
+struct SequenceOptions {
+  std::string output_dir;               // dataset folder (created if missing)
+  int frames = 0;                       // render only the first N frames (0 = the scene's count)
+  int threads = 0;                      // 0 = every core
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame
+  int checkpoint_every_frames = 25;     // manifest rewritten this often (resume granularity)
+  std::string Check() const;
+};
+
+struct SequenceResult {
+  int frames_total = 0;      // frames in the dataset when done
+  int frames_rendered = 0;   // rendered by this call
+  int frames_reused = 0;     // kept from an earlier, interrupted run
+  double seconds = 0;        // wall time of this call
+  bool complete = false;
+};
+
+// Thrown when SequenceOptions::cancel was set; the dataset is consistent and resumable.
+class RenderInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options);
+
+}  // namespace hoilcd

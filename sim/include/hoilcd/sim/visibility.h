@@ -1,0 +1,20 @@
+// Ground truth about people in a rendered frame (persons.json): visible box, visible pixel
+// fraction against the person rendered alone, occlusion fraction, and the projected
+// human–object contact points with their visibility.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "hoilcd/core/camera.h"
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/sim/world.h"
+
+namespace hoilcd {
+
+// instance_ids: CV_32S per-pixel World instance ids of the frame. Lists every person with at
+// least one visible pixel, in person-id order.
+std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
+                                         const CameraPose& pose, const cv::Mat& instance_ids);
+
+}  // namespace hoilcd

@@ -1,0 +1,96 @@
+// The world as the renderer sees it: the room, furniture, people and objects of a Scene as
+// Embree instances with per-instance thermal materials and class ids, the seated people with
+// their seats and contact points, and the 2-D obstacles the robot must avoid.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hoilcd/sim/asset.h"
+#include "hoilcd/sim/radiometry.h"
+#include "hoilcd/sim/ray_caster.h"
+#include "hoilcd/sim/robot.h"
+#include "hoilcd/sim/scene.h"
+
+namespace hoilcd {
+
+// A material as one instance shows it this frame. Radiance is linear in height between the
+// bottom and top values (walls are warmer near the ceiling); other materials have bottom == top.
+struct InstanceMaterial {
+  float temperature_c = 22;
+  float temperature_top_c = 22;
+  float emissivity = 0.9f;
+  bool specular = false;
+  float blackbody_bottom = 0;  // band radiance at z = 0, W·m⁻²·sr⁻¹
+  float blackbody_top = 0;     // band radiance at z = room height
+};
+
+enum class InstanceRole { kRoom, kTable, kChair, kPerson, kObject };
+
+struct InstanceInfo {
+  InstanceRole role = InstanceRole::kObject;
+  std::string name;                     // "table 3", "person 7", "cup 2"
+  int class_id = 0;
+  int person_id = -1;                   // stable id for people, else -1
+  const Asset* asset = nullptr;         // null for the room
+  std::vector<InstanceMaterial> materials;  // per prototype material
+  const TriangleMesh* mesh = nullptr;   // the prototype's mesh (triangle -> material index)
+};
+
+struct SeatedPerson {
+  int person_id = 0;
+  int instance = -1;
+  int table = 0, seat = 0;
+  std::string posture;
+  Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();  // rest pose
+  double height_scale = 1;
+  double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
+};
+
+class World {
+ public:
+  World(const Scene& scene, const BandRadianceTable& table);
+
+  // Moves people (breathing, sway) to time t and recommits the ray caster.
+  void SetTime(double time_s);
+
+  const RayCaster& caster() const { return *caster_; }
+  const InstanceInfo& instance(int id) const { return instances_[id]; }
+  int num_instances() const { return static_cast<int>(instances_.size()); }
+  const std::map<std::string, int>& classes() const { return classes_; }
+  const std::vector<SeatedPerson>& people() const { return people_; }
+  const std::vector<Obstacle2D>& obstacles() const { return obstacles_; }
+  double room_height_m() const { return room_size_m_.z(); }
+  // Band radiance of the room's surroundings, for diffuse reflection (L_env).
+  float environment_radiance() const { return environment_radiance_; }
+  const BandRadianceTable& radiance_table() const { return table_; }
+
+ private:
+  int ClassId(const std::string& name);
+  int Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role,
+            std::string name, double temperature_offset_c);
+  void BuildRoom(const Scene& scene);
+  void BuildFurnitureAndPeople(const Scene& scene);
+  void Finish(InstanceMaterial* m) const;
+
+  const BandRadianceTable& table_;
+  AssetLibrary assets_;
+  std::unique_ptr<RayCaster> caster_;
+  std::map<const Asset*, int> prototype_of_asset_;
+  std::vector<InstanceInfo> instances_;
+  TriangleMesh room_mesh_;
+  std::map<std::string, int> classes_;
+  std::vector<SeatedPerson> people_;
+  std::vector<Obstacle2D> obstacles_;
+  Eigen::Vector3d room_size_m_;
+  float environment_radiance_ = 0;
+  double breathing_amplitude_m_ = 0, breathing_period_s_ = 4, sway_amplitude_rad_ = 0;
+};
+
+// World transform of an asset placed at position with a yaw about z (and uniform scale).
+Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad,
+                                   double scale = 1.0);
+
+}  // namespace hoilcd

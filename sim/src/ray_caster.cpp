@@ -1,0 +1,201 @@
+#include "hoilcd/sim/ray_caster.h"
+
+#include <embree3/rtcore.h>
+
+#include <Eigen/Dense>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/sim/asset.h"
+
+namespace hoilcd {
+namespace {
+
+// Embree reports errors through a callback (registered once per device); exceptions must not
+// cross Embree's C frames, so the message is stored and thrown after the call returns.
+void EmbreeError(void* user, RTCError code, const char* message) {
+  auto* last_error = static_cast<std::string*>(user);
+  if (last_error->empty()) {
+    *last_error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                  (message ? message : "");
+  }
+}
+
+// Small RAII owners of Embree handles.
+struct DeviceHandle {
+  RTCDevice device = rtcNewDevice(nullptr);
+  ~DeviceHandle() { rtcReleaseDevice(device); }
+};
+struct SceneHandle {
+  explicit SceneHandle(RTCDevice device) : scene(rtcNewScene(device)) {}
+  ~SceneHandle() { rtcReleaseScene(scene); }
+  SceneHandle(const SceneHandle&) = delete;
+  SceneHandle& operator=(const SceneHandle&) = delete;
+  RTCScene scene;
+};
+struct GeometryHandle {
+  explicit GeometryHandle(RTCGeometry g) : geometry(g) {}
+  ~GeometryHandle() { rtcReleaseGeometry(geometry); }
+  GeometryHandle(const GeometryHandle&) = delete;
+  GeometryHandle& operator=(const GeometryHandle&) = delete;
+  RTCGeometry geometry;
+};
+
+RTCRayHit MakeRay(const Eigen::Vector3f& o, const Eigen::Vector3f& d, float t_min, float t_max) {
+  RTCRayHit rh;
+  rh.ray.org_x = o.x();
+  rh.ray.org_y = o.y();
+  rh.ray.org_z = o.z();
+  rh.ray.dir_x = d.x();
+  rh.ray.dir_y = d.y();
+  rh.ray.dir_z = d.z();
+  rh.ray.tnear = t_min;
+  rh.ray.tfar = t_max;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.flags = 0;
+  rh.ray.time = 0;
+  rh.ray.id = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+}  // namespace
+
+struct RayCaster::Impl {
+  DeviceHandle device;
+  std::string last_error;  // written by EmbreeError during build calls (single-threaded)
+
+  void ThrowIfError() {
+    if (!last_error.empty()) {
+      const std::string message = last_error;
+      last_error.clear();
+      throw std::runtime_error(message);
+    }
+  }
+  std::unique_ptr<SceneHandle> top;
+  std::vector<std::unique_ptr<SceneHandle>> prototypes;
+  std::vector<std::unique_ptr<GeometryHandle>> instances;
+  std::vector<int> instance_prototype;
+  std::vector<Eigen::Matrix4f> instance_transform;
+  std::vector<Eigen::Matrix3f> instance_normal_matrix;  // inverse-transpose of the linear part
+  std::vector<Eigen::Matrix4f> instance_inverse;
+
+  RayHit Finish(const RTCRayHit& rh, const Eigen::Vector3f& direction, int forced_instance) const {
+    RayHit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      hit.distance_m = std::numeric_limits<float>::infinity();
+      return hit;
+    }
+    hit.distance_m = rh.ray.tfar;
+    hit.instance = forced_instance >= 0 ? forced_instance : static_cast<int>(rh.hit.instID[0]);
+    hit.triangle = static_cast<int>(rh.hit.primID);
+    Eigen::Vector3f n = instance_normal_matrix[hit.instance] *
+                        Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    n.normalize();
+    if (n.dot(direction) > 0) n = -n;
+    hit.normal_world = n;
+    return hit;
+  }
+};
+
+RayCaster::RayCaster() : impl_(std::make_unique<Impl>()) {
+  HOILCD_CHECK_MSG(impl_->device.device != nullptr, "rtcNewDevice failed");
+  rtcSetDeviceErrorFunction(impl_->device.device, EmbreeError, &impl_->last_error);
+  impl_->top = std::make_unique<SceneHandle>(impl_->device.device);
+  // Instances move every frame: a fast rebuild of the small top-level BVH beats a good one.
+  rtcSetSceneFlags(impl_->top->scene, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(impl_->top->scene, RTC_BUILD_QUALITY_LOW);
+}
+
+RayCaster::~RayCaster() = default;
+
+int RayCaster::AddPrototype(const TriangleMesh& mesh) {
+  HOILCD_CHECK(mesh.indices.size() % 3 == 0 && !mesh.positions_m.empty());
+  auto scene = std::make_unique<SceneHandle>(impl_->device.device);
+  rtcSetSceneBuildQuality(scene->scene, RTC_BUILD_QUALITY_HIGH);
+  GeometryHandle geometry(rtcNewGeometry(impl_->device.device, RTC_GEOMETRY_TYPE_TRIANGLE));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+      mesh.positions_m.size()));
+  for (size_t i = 0; i < mesh.positions_m.size(); ++i) {
+    vertices[3 * i + 0] = mesh.positions_m[i].x();
+    vertices[3 * i + 1] = mesh.positions_m[i].y();
+    vertices[3 * i + 2] = mesh.positions_m[i].z();
+  }
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+      mesh.indices.size() / 3));
+  for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
+  rtcCommitGeometry(geometry.geometry);
+  rtcAttachGeometry(scene->scene, geometry.geometry);
+  rtcCommitScene(scene->scene);
+  impl_->ThrowIfError();
+  impl_->prototypes.push_back(std::move(scene));
+  return static_cast<int>(impl_->prototypes.size()) - 1;
+}
+
+int RayCaster::AddInstance(int prototype, const Eigen::Matrix4f& world_from_object) {
+  HOILCD_CHECK(prototype >= 0 && prototype < static_cast<int>(impl_->prototypes.size()));
+  auto geometry = std::make_unique<GeometryHandle>(
+      rtcNewGeometry(impl_->device.device, RTC_GEOMETRY_TYPE_INSTANCE));
+  rtcSetGeometryInstancedScene(geometry->geometry, impl_->prototypes[prototype]->scene);
+  const unsigned id = rtcAttachGeometry(impl_->top->scene, geometry->geometry);
+  HOILCD_CHECK(id == impl_->instances.size());
+  impl_->instances.push_back(std::move(geometry));
+  impl_->instance_prototype.push_back(prototype);
+  impl_->instance_transform.emplace_back();
+  impl_->instance_normal_matrix.emplace_back();
+  impl_->instance_inverse.emplace_back();
+  SetInstanceTransform(static_cast<int>(id), world_from_object);
+  return static_cast<int>(id);
+}
+
+void RayCaster::SetInstanceTransform(int instance, const Eigen::Matrix4f& world_from_object) {
+  HOILCD_CHECK(instance >= 0 && instance < num_instances());
+  RTCGeometry g = impl_->instances[instance]->geometry;
+  rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, world_from_object.data());
+  rtcCommitGeometry(g);
+  impl_->instance_transform[instance] = world_from_object;
+  impl_->instance_normal_matrix[instance] =
+      world_from_object.topLeftCorner<3, 3>().inverse().transpose();
+  impl_->instance_inverse[instance] = world_from_object.inverse();
+}
+
+void RayCaster::Commit() {
+  rtcCommitScene(impl_->top->scene);
+  impl_->ThrowIfError();
+}
+
+int RayCaster::num_instances() const { return static_cast<int>(impl_->instances.size()); }
+int RayCaster::prototype_of(int instance) const { return impl_->instance_prototype.at(instance); }
+const Eigen::Matrix4f& RayCaster::transform_of(int instance) const {
+  return impl_->instance_transform.at(instance);
+}
+
+RayHit RayCaster::Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                            float t_min, float t_max) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = MakeRay(origin, direction, t_min, t_max);
+  rtcIntersect1(impl_->top->scene, &context, &rh);
+  return impl_->Finish(rh, direction, -1);
+}
+
+RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,
+                                    const Eigen::Vector3f& direction) const {
+  const Eigen::Matrix4f& inv = impl_->instance_inverse.at(instance);
+  const Eigen::Vector3f o = inv.topLeftCorner<3, 3>() * origin + inv.topRightCorner<3, 1>();
+  const Eigen::Vector3f d = inv.topLeftCorner<3, 3>() * direction;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  // The object-space direction is not unit length; t stays the world distance along the ray.
+  RTCRayHit rh = MakeRay(o, d, 0.0f, std::numeric_limits<float>::infinity());
+  rtcIntersect1(impl_->prototypes[impl_->instance_prototype[instance]]->scene, &context, &rh);
+  return impl_->Finish(rh, direction, instance);
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,327 @@
+#include "hoilcd/sim/scene.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <valijson/adapters/nlohmann_json_adapter.hpp>
+#include <valijson/schema.hpp>
+#include <valijson/schema_parser.hpp>
+#include <valijson/validator.hpp>
+
+#include "hoilcd/core/dataset.h"
+#include "scene_schema_text.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const json& SchemaJson() {
+  static const json schema = json::parse(SceneSchemaText());
+  return schema;
+}
+
+const valijson::Schema& CompiledSchema() {
+  static const std::unique_ptr<valijson::Schema> schema = [] {
+    auto s = std::make_unique<valijson::Schema>();
+    valijson::SchemaParser parser;
+    valijson::adapters::NlohmannJsonAdapter adapter(SchemaJson());
+    parser.populateSchema(adapter, *s);
+    return s;
+  }();
+  return *schema;
+}
+
+// valijson context ["<root>", "[room]", "[size_m]", "[0]"] -> JSON pointer "/room/size_m/0".
+std::string ContextToPointer(const std::vector<std::string>& context) {
+  std::string pointer;
+  for (const std::string& part : context) {
+    if (part == "<root>") continue;
+    std::string key = part;
+    if (key.size() >= 2 && key.front() == '[' && key.back() == ']') key = key.substr(1, key.size() - 2);
+    pointer += "/" + json::json_pointer::string_t(key);
+  }
+  return pointer.empty() ? "/" : pointer;
+}
+
+// The schema node that describes a JSON pointer inside a document (null when unknown).
+const json* SchemaAt(const std::string& pointer) {
+  const json* node = &SchemaJson();
+  std::stringstream ss(pointer);
+  std::string part;
+  std::getline(ss, part, '/');
+  while (std::getline(ss, part, '/')) {
+    if (node->contains("properties") && (*node)["properties"].contains(part)) {
+      node = &(*node)["properties"][part];
+    } else if (node->contains("items")) {
+      node = &(*node)["items"];
+    } else {
+      return nullptr;
+    }
+  }
+  return node;
+}
+
+// Rewrites valijson's messages into "what was expected" phrasing where we can say it better.
+std::string Describe(const std::string& pointer, const std::string& description) {
+  const std::string marker = "constraints: '";
+  const size_t at = description.find(marker);
+  if (at != std::string::npos) {
+    const std::string key = description.substr(at + marker.size(),
+                                               description.size() - at - marker.size() - 2);
+    std::string expected;
+    if (const json* node = SchemaAt(pointer); node && node->contains("properties")) {
+      for (const auto& [name, _] : (*node)["properties"].items()) {
+        expected += (expected.empty() ? "" : ", ") + name;
+      }
+    }
+    return "unknown key '" + key + "'" + (expected.empty() ? "" : " (expected one of: " + expected + ")");
+  }
+  std::string out = description;
+  if (const json* node = SchemaAt(pointer); node && node->contains("description")) {
+    out += " (" + (*node)["description"].get<std::string>() + ")";
+  }
+  return out;
+}
+
+void FillDefaults(json* doc, const json& schema) {
+  if (doc->is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (!doc->contains(key) && sub.contains("default")) (*doc)[key] = sub["default"];
+      if (doc->contains(key)) FillDefaults(&(*doc)[key], sub);
+    }
+  } else if (doc->is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (json& item : *doc) FillDefaults(&item, schema["items"]);
+  }
+}
+
+// Asset names stay names; a relative .gltf/.glb path is relative to the scene file's folder.
+std::string ResolveAssetRef(const std::string& ref, const fs::path& scene_dir) {
+  const std::string ext = fs::path(ref).extension().string();
+  if ((ext != ".gltf" && ext != ".glb") || fs::path(ref).is_absolute()) return ref;
+  return (scene_dir / ref).lexically_normal().string();
+}
+
+SurfaceSpec ReadSurface(const json& j) {
+  return {j.at("temperature_c").get<double>(), j.at("emissivity").get<double>(),
+          j.at("specular").get<bool>()};
+}
+
+Eigen::Vector2d Vec2(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
+Eigen::Vector3d Vec3(const json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+// Cross-field checks the schema cannot express.
+void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
+  const std::string& f = scene.file;
+  if (scene.resolved["camera"]["display_max_c"].get<double>() <=
+      scene.resolved["camera"]["display_min_c"].get<double>()) {
+    problems->Add(f + ": /camera/display_max_c", "must be greater than /camera/display_min_c");
+  }
+  for (size_t i = 0; i < scene.tables.size(); ++i) {
+    const Eigen::Vector2d& c = scene.tables[i].center_m;
+    if (c.x() < 0 || c.y() < 0 || c.x() > scene.room_size_m.x() || c.y() > scene.room_size_m.y()) {
+      problems->Add(f + ": /tables/" + std::to_string(i) + "/center_m",
+                    "a position inside the room (x in [0, " + std::to_string(scene.room_size_m.x()) +
+                        "], y in [0, " + std::to_string(scene.room_size_m.y()) + "])");
+    }
+  }
+  for (size_t i = 0; i < scene.seating.size(); ++i) {
+    if (scene.seating[i].table >= static_cast<int>(scene.tables.size())) {
+      problems->Add(f + ": /crowd/seating/" + std::to_string(i) + "/table",
+                    "a table index below " + std::to_string(scene.tables.size()));
+    }
+  }
+  for (size_t i = 0; i < scene.windows.size(); ++i) {
+    const WindowSpec& w = scene.windows[i];
+    const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room_size_m.x()
+                                                                         : scene.room_size_m.y();
+    const std::string at = f + ": /room/windows/" + std::to_string(i);
+    if (w.center_m - 0.5 * w.width_m < 0 || w.center_m + 0.5 * w.width_m > wall_length) {
+      problems->Add(at + "/center_m", "the window to fit along its wall (length " +
+                                          std::to_string(wall_length) + " m)");
+    }
+    if (w.bottom_m + w.height_m > scene.room_size_m.z()) {
+      problems->Add(at + "/height_m", "the window top below the ceiling");
+    }
+  }
+  const json& waypoints = scene.route.at("waypoints_m");
+  for (size_t i = 0; i < waypoints.size(); ++i) {
+    const Eigen::Vector2d p = Vec2(waypoints[i]);
+    if (p.x() < 0 || p.y() < 0 || p.x() > scene.room_size_m.x() || p.y() > scene.room_size_m.y()) {
+      problems->Add(f + ": /route/waypoints_m/" + std::to_string(i), "a waypoint inside the room");
+    }
+  }
+}
+
+bool DistractorEnabled(const json& distractors, const std::string& asset) {
+  const std::string name = fs::path(asset).stem().string();
+  for (const char* cls : {"cup", "laptop", "monitor", "radiator"}) {
+    if (name.rfind(cls, 0) == 0) return distractors.at(std::string(cls) + "s").get<bool>();
+  }
+  return true;
+}
+
+}  // namespace
+
+const std::string& SceneSchemaText() {
+  static const std::string text(kSceneSchemaText);
+  return text;
+}
+
+void ApplyOverride(json* doc, const std::string& key_equals_value) {
+  const std::string where = "--set " + key_equals_value;
+  const size_t eq = key_equals_value.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError(where, "expected KEY=VALUE");
+  std::string key = key_equals_value.substr(0, eq);
+  const std::string value_text = key_equals_value.substr(eq + 1);
+  if (key.front() != '/') {
+    std::replace(key.begin(), key.end(), '.', '/');
+    key = "/" + key;
+  }
+  json value = json::parse(value_text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded()) value = value_text;
+  try {
+    const json::json_pointer pointer(key);
+    // Arrays may be indexed only within their size (or "-" to append).
+    if (!pointer.empty() && doc->contains(pointer.parent_pointer()) &&
+        (*doc)[pointer.parent_pointer()].is_array() && pointer.back() != "-") {
+      const json& array = (*doc)[pointer.parent_pointer()];
+      const std::string& index = pointer.back();
+      if (index.find_first_not_of("0123456789") != std::string::npos ||
+          std::stoul(index) >= array.size()) {
+        throw InputError(where, "an index below " + std::to_string(array.size()) + " at " +
+                                    pointer.parent_pointer().to_string());
+      }
+    }
+    (*doc)[pointer] = value;
+  } catch (const json::exception& e) {
+    throw InputError(where, std::string("a valid path into the scene (") + e.what() + ")");
+  }
+}
+
+std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
+  valijson::Validator validator;
+  valijson::ValidationResults results;
+  valijson::adapters::NlohmannJsonAdapter target(doc);
+  validator.validate(CompiledSchema(), target, &results);
+  std::vector<std::pair<std::string, std::string>> errors;
+  valijson::ValidationResults::Error error;
+  while (results.popError(error)) {
+    errors.emplace_back(ContextToPointer(error.context), error.description);
+  }
+  // valijson also reports each failing ancestor ("Failed to validate against schema associated
+  // with property name 'room'"); keep only the deepest messages, which say what was expected.
+  std::vector<Problem> problems;
+  for (const auto& [pointer, description] : errors) {
+    bool has_deeper = false;
+    for (const auto& other : errors) {
+      if (other.first.size() > pointer.size() &&
+          other.first.compare(0, pointer.size(), pointer) == 0 &&
+          (pointer == "/" || other.first[pointer.size()] == '/')) {
+        has_deeper = true;
+        break;
+      }
+    }
+    const bool generic = description.rfind("Failed to validate", 0) == 0;
+    if (has_deeper && generic) continue;
+    if (generic && errors.size() > 1) continue;
+    problems.push_back({file + ": " + pointer, Describe(pointer, description)});
+  }
+  std::sort(problems.begin(), problems.end(),
+            [](const Problem& a, const Problem& b) { return a.where < b.where; });
+  problems.erase(std::unique(problems.begin(), problems.end(),
+                             [](const Problem& a, const Problem& b) {
+                               return a.where == b.where && a.message == b.message;
+                             }),
+                 problems.end());
+  return problems;
+}
+
+void FillSceneDefaults(json* doc) { FillDefaults(doc, SchemaJson()); }
+
+Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
+  if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
+  for (const std::string& o : overrides) ApplyOverride(&doc, o);
+  ProblemCollector problems;
+  for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
+  problems.ThrowIfAny();
+  FillSceneDefaults(&doc);
+
+  Scene s;
+  s.file = file;
+  s.name = doc["name"].get<std::string>();
+  s.seed = doc["seed"].get<uint64_t>();
+  s.frames = doc["frames"].get<int>();
+  s.frame_rate_hz = doc["frame_rate_hz"].get<double>();
+
+  const fs::path scene_dir = fs::absolute(fs::path(file)).parent_path();
+  const std::string assets_dir = doc["assets_dir"].get<std::string>();
+  s.assets_dir = assets_dir.empty() ? std::string(HOILCD_SOURCE_DIR) + "/assets"
+                                    : (scene_dir / assets_dir).lexically_normal().string();
+
+  const json& room = doc["room"];
+  s.room_size_m = Vec3(room["size_m"]);
+  s.environment_temperature_c = room["environment_temperature_c"].get<double>();
+  s.floor = ReadSurface(room["floor"]);
+  s.ceiling = ReadSurface(room["ceiling"]);
+  s.wall_temperature_bottom_c = room["walls"]["temperature_bottom_c"].get<double>();
+  s.wall_temperature_top_c = room["walls"]["temperature_top_c"].get<double>();
+  s.walls = {s.wall_temperature_bottom_c, room["walls"]["emissivity"].get<double>(),
+             room["walls"]["specular"].get<bool>()};
+  for (const json& w : room["windows"]) {
+    s.windows.push_back({w["wall"].get<std::string>(), w["center_m"].get<double>(),
+                         w["bottom_m"].get<double>(), w["width_m"].get<double>(),
+                         w["height_m"].get<double>(), ReadSurface(w)});
+  }
+  for (const json& t : doc["tables"]) s.tables.push_back({Vec2(t["center_m"]), t["yaw_deg"].get<double>()});
+  const json& furniture = doc["furniture"];
+  s.table_asset = ResolveAssetRef(furniture["table_asset"].get<std::string>(), scene_dir);
+  s.chair_asset = ResolveAssetRef(furniture["chair_asset"].get<std::string>(), scene_dir);
+  s.seat_setback_m = furniture["seat_setback_m"].get<double>();
+  s.seat_spacing_4_m = furniture["seat_spacing_4_m"].get<double>();
+  s.seat_spacing_6_m = furniture["seat_spacing_6_m"].get<double>();
+  s.seat_warmth_c = furniture["seat_warmth_c"].get<double>();
+
+  s.crowd = doc["crowd"];
+  s.people_per_table = s.crowd["people_per_table"].get<int>();
+  for (const json& p : s.crowd["seating"]) {
+    s.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
+  }
+  for (const json& o : doc["objects"]) {
+    ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
+                    o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
+    if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
+  }
+  s.camera = doc["camera"];
+  s.robot = doc["robot"];
+  s.route = doc["route"];
+  s.odometry = doc["odometry"];
+  s.resolved = doc;
+  s.hash = ChecksumOf(doc.dump());
+
+  ProblemCollector consistency;
+  CheckConsistency(s, &consistency);
+  consistency.ThrowIfAny();
+  return s;
+}
+
+Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the scene file (does it exist and is it readable?)");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(buffer.str());
+  } catch (const json::parse_error& e) {
+    throw InputError(path, std::string("valid JSON (") + e.what() + ")");
+  }
+  return SceneFromJson(std::move(doc), path, overrides);
+}
+
+}  // namespace hoilcd

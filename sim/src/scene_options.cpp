@@ -1,0 +1,107 @@
+#include "hoilcd/sim/scene_options.h"
+
+namespace hoilcd {
+namespace {
+double D(const nlohmann::json& j, const char* key) { return j.at(key).get<double>(); }
+bool B(const nlohmann::json& j, const char* key) { return j.at(key).get<bool>(); }
+
+// Options structs report problems as strings; in a scene they are input errors.
+void Require(const std::string& problem, const Scene& scene, const char* section) {
+  if (!problem.empty()) throw InputError(scene.file + ": /" + section, problem);
+}
+}  // namespace
+
+CameraIntrinsics IntrinsicsFromScene(const Scene& scene) {
+  const nlohmann::json& c = scene.camera;
+  return CameraIntrinsics::FromHorizontalFov(c.at("width_px").get<int>(), c.at("height_px").get<int>(),
+                                             D(c, "hfov_deg"));
+}
+
+SensorOptions SensorOptionsFromScene(const Scene& scene) {
+  const nlohmann::json& c = scene.camera;
+  SensorOptions o;
+  o.optics_blur = B(c, "optics_blur");
+  o.psf_sigma_px = D(c, "psf_sigma_px");
+  o.temporal_noise = B(c, "temporal_noise");
+  o.netd_k = D(c, "netd_k");
+  o.fixed_pattern = B(c, "fixed_pattern");
+  o.fpn_offset_k = D(c, "fpn_offset_k");
+  o.fpn_gain_sigma = D(c, "fpn_gain_sigma");
+  o.column_stripe_k = D(c, "column_stripe_k");
+  o.drift = B(c, "drift");
+  o.drift_k_per_min = D(c, "drift_k_per_min");
+  o.ffc_interval_s = D(c, "ffc_interval_s");
+  o.time_constant = B(c, "time_constant");
+  o.time_constant_s = D(c, "time_constant_s");
+  o.quantisation = B(c, "quantisation");
+  o.quantisation_step_k = D(c, "quantisation_step_k");
+  o.emissivity_setting = D(c, "emissivity_setting");
+  o.reflected_temperature_c = scene.environment_temperature_c;
+  o.display_min_c = D(c, "display_min_c");
+  o.display_max_c = D(c, "display_max_c");
+  Require(o.Check(), scene, "camera");
+  return o;
+}
+
+RenderOptions RenderOptionsFromScene(const Scene& scene, int threads) {
+  const nlohmann::json& c = scene.camera;
+  RenderOptions o;
+  o.edge_supersampling = B(c, "edge_supersampling");
+  o.edge_samples_per_axis = c.at("edge_samples_per_axis").get<int>();
+  o.specular_reflections = B(c, "specular_reflections");
+  o.threads = threads;
+  Require(o.Check(), scene, "camera");
+  return o;
+}
+
+TricycleOptions TricycleOptionsFromScene(const Scene& scene) {
+  const nlohmann::json& r = scene.robot;
+  TricycleOptions o;
+  o.wheelbase_m = D(r, "wheelbase_m");
+  o.max_steer_deg = D(r, "max_steer_deg");
+  o.max_steer_rate_deg_s = D(r, "max_steer_rate_deg_s");
+  o.max_speed_m_s = D(r, "max_speed_m_s");
+  o.max_accel_m_s2 = D(r, "max_accel_m_s2");
+  o.integration_rate_hz = D(r, "integration_rate_hz");
+  o.length_m = D(r, "length_m");
+  o.width_m = D(r, "width_m");
+  o.base_to_rear_m = D(r, "base_to_rear_m");
+  o.camera_forward_m = D(r, "camera_forward_m");
+  o.camera_lateral_m = D(r, "camera_lateral_m");
+  o.camera_height_m = D(r, "camera_height_m");
+  o.camera_pitch_deg = D(r, "camera_pitch_deg");
+  o.camera_yaw_deg = D(r, "camera_yaw_deg");
+  o.camera_roll_deg = D(r, "camera_roll_deg");
+  Require(o.Check(), scene, "robot");
+  return o;
+}
+
+RouteOptions RouteOptionsFromScene(const Scene& scene) {
+  const nlohmann::json& r = scene.route;
+  RouteOptions o;
+  o.waypoints_m.clear();
+  for (const nlohmann::json& p : r.at("waypoints_m")) {
+    o.waypoints_m.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+  }
+  o.frames = scene.frames;
+  o.cruise_speed_m_s = D(r, "cruise_speed_m_s");
+  o.lookahead_m = D(r, "lookahead_m");
+  o.max_lateral_accel_m_s2 = D(r, "max_lateral_accel_m_s2");
+  o.corner_radius_m = D(r, "corner_radius_m");
+  Require(o.Check(), scene, "route");
+  return o;
+}
+
+OdometryNoiseOptions OdometryOptionsFromScene(const Scene& scene) {
+  const nlohmann::json& r = scene.odometry;
+  OdometryNoiseOptions o;
+  o.enabled = B(r, "enabled");
+  o.encoder_noise_frac = D(r, "encoder_noise_frac");
+  o.steer_noise_deg = D(r, "steer_noise_deg");
+  o.steer_bias_deg = D(r, "steer_bias_deg");
+  o.slip_frac = D(r, "slip_frac");
+  Require(o.Check(), scene, "odometry");
+  return o;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,224 @@
+#include "hoilcd/sim/sensor.h"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include <opencv2/imgproc.hpp>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr int64_t kRowsPerChunk = 16;
+
+}  // namespace
+
+std::string SensorOptions::Check() const {
+  std::ostringstream out;
+  auto require = [&out](bool ok, const char* field, const char* expected, double value) {
+    if (!ok && out.tellp() == 0) out << field << " must be " << expected << " (got " << value << ")";
+  };
+  require(psf_sigma_px > 0.0 && psf_sigma_px <= 10.0, "psf_sigma_px", "in (0, 10] px",
+          psf_sigma_px);
+  require(netd_k >= 0.0 && netd_k <= 10.0, "netd_k", "in [0, 10] K", netd_k);
+  require(fpn_offset_k >= 0.0 && fpn_offset_k <= 10.0, "fpn_offset_k", "in [0, 10] K",
+          fpn_offset_k);
+  require(fpn_gain_sigma >= 0.0 && fpn_gain_sigma <= 0.2, "fpn_gain_sigma", "in [0, 0.2]",
+          fpn_gain_sigma);
+  require(column_stripe_k >= 0.0 && column_stripe_k <= 10.0, "column_stripe_k", "in [0, 10] K",
+          column_stripe_k);
+  require(shutter_temperature_c >= -50.0 && shutter_temperature_c <= 150.0,
+          "shutter_temperature_c", "in [-50, 150] °C", shutter_temperature_c);
+  require(drift_k_per_min >= 0.0 && drift_k_per_min <= 60.0, "drift_k_per_min",
+          "in [0, 60] K/min", drift_k_per_min);
+  require(ffc_interval_s == 0.0 || ffc_interval_s >= 1.0, "ffc_interval_s",
+          "0 (never) or at least 1 s", ffc_interval_s);
+  require(time_constant_s > 0.0 && time_constant_s <= 1.0, "time_constant_s", "in (0, 1] s",
+          time_constant_s);
+  require(quantisation_step_k > 0.0 && quantisation_step_k <= 10.0, "quantisation_step_k",
+          "in (0, 10] K", quantisation_step_k);
+  require(reference_temperature_c >= -50.0 && reference_temperature_c <= 150.0,
+          "reference_temperature_c", "in [-50, 150] °C", reference_temperature_c);
+  require(emissivity_setting >= 0.01 && emissivity_setting <= 1.0, "emissivity_setting",
+          "in [0.01, 1]", emissivity_setting);
+  require(reflected_temperature_c >= -50.0 && reflected_temperature_c <= 150.0,
+          "reflected_temperature_c", "in [-50, 150] °C", reflected_temperature_c);
+  require(display_max_c > display_min_c, "display_max_c", "greater than display_min_c",
+          display_max_c);
+  return out.str();
+}
+
+SensorModel::SensorModel(SensorOptions options, int width, int height, double frame_rate_hz,
+                         uint64_t seed, const BandRadianceTable* table, int num_threads)
+    : options_(std::move(options)),
+      width_(width),
+      height_(height),
+      frame_rate_hz_(frame_rate_hz),
+      seed_(seed),
+      table_(table),
+      num_threads_(ResolveThreadCount(num_threads)) {
+  const std::string problem = options_.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  HOILCD_CHECK(table_ != nullptr);
+  HOILCD_CHECK_MSG(width > 0 && height > 0, width << "x" << height);
+  HOILCD_CHECK_MSG(frame_rate_hz > 0.0, "frame rate " << frame_rate_hz);
+  HOILCD_CHECK_MSG(options_.ffc_interval_s == 0.0 || options_.ffc_interval_s * frame_rate_hz >= 1.0,
+                   "FFC interval shorter than a frame");
+  responsivity_ = table_->SlopeFromKelvin(options_.reference_temperature_c + kZeroCelsiusK);
+  shutter_radiance_ = table_->RadianceFromKelvin(options_.shutter_temperature_c + kZeroCelsiusK);
+  reflected_radiance_ =
+      table_->RadianceFromKelvin(options_.reflected_temperature_c + kZeroCelsiusK);
+  blend_ = static_cast<float>(
+      -std::expm1(-1.0 / (frame_rate_hz_ * options_.time_constant_s)));
+
+  // Fixed pattern: keyed by pixel (or column) only, so it is the same in every frame.
+  gain_ = cv::Mat::zeros(height_, width_, CV_32F);
+  offset_signal_ = cv::Mat::zeros(height_, width_, CV_32F);
+  std::vector<double> column_k(width_);
+  for (int x = 0; x < width_; ++x) {
+    column_k[x] = options_.column_stripe_k * KeyedRng(seed_, "sensor.column_stripe", x).Normal();
+  }
+  for (int y = 0; y < height_; ++y) {
+    float* gain = gain_.ptr<float>(y);
+    float* offset = offset_signal_.ptr<float>(y);
+    for (int x = 0; x < width_; ++x) {
+      const int64_t pixel = static_cast<int64_t>(y) * width_ + x;
+      gain[x] = static_cast<float>(options_.fpn_gain_sigma *
+                                   KeyedRng(seed_, "sensor.fpn_gain", pixel).Normal());
+      const double offset_k =
+          options_.fpn_offset_k * KeyedRng(seed_, "sensor.fpn_offset", pixel).Normal();
+      offset[x] = static_cast<float>(responsivity_ * (offset_k + column_k[x]));
+    }
+  }
+}
+
+float SensorModel::ApparentCelsius(double signal) const {
+  if (options_.emissivity_setting < 1.0) {
+    signal = (signal - (1.0 - options_.emissivity_setting) * reflected_radiance_) /
+             options_.emissivity_setting;
+  }
+  return static_cast<float>(table_->KelvinFromRadiance(signal) - kZeroCelsiusK);
+}
+
+int64_t SensorModel::FfcFrame(int64_t index) const {
+  return std::llround(static_cast<double>(index) * options_.ffc_interval_s * frame_rate_hz_);
+}
+
+int64_t SensorModel::FfcIndex(int frame) const {
+  if (options_.ffc_interval_s <= 0.0) return 0;
+  int64_t index =
+      static_cast<int64_t>(std::floor(frame / (options_.ffc_interval_s * frame_rate_hz_)));
+  while (FfcFrame(index + 1) <= frame) ++index;
+  while (index > 0 && FfcFrame(index) > frame) --index;
+  return index;
+}
+
+std::vector<int> SensorModel::FfcFrames(int num_frames) const {
+  std::vector<int> frames;
+  if (options_.ffc_interval_s <= 0.0) return frames;
+  for (int64_t j = 1;; ++j) {
+    const int64_t frame = FfcFrame(j);
+    if (frame >= num_frames) break;
+    frames.push_back(static_cast<int>(frame));
+  }
+  return frames;
+}
+
+double SensorModel::DriftK(int frame) const {
+  if (!options_.drift) return 0.0;
+  const int64_t index = FfcIndex(frame);
+  const double since_ffc_s = static_cast<double>(frame - FfcFrame(index)) / frame_rate_hz_;
+  const double slope_k_per_s =
+      options_.drift_k_per_min / 60.0 * KeyedRng(seed_, "sensor.drift", index).Normal();
+  return slope_k_per_s * since_ffc_s;
+}
+
+double SensorModel::TemporalNoiseK(double temperature_c) const {
+  if (!options_.temporal_noise) return 0.0;
+  return options_.netd_k * responsivity_ / table_->SlopeFromKelvin(temperature_c + kZeroCelsiusK);
+}
+
+cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
+  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ &&
+                       radiance.rows == height_,
+                   "radiance must be CV_32F " << width_ << "x" << height_);
+  HOILCD_CHECK_MSG(frame >= 0, "frame " << frame);
+  HOILCD_CHECK_MSG(last_frame_ < 0 || frame == last_frame_ + 1,
+                   "frame " << frame << " after frame " << last_frame_ << " (frames go in order)");
+  cv::Mat blurred;
+  if (options_.optics_blur) {
+    cv::GaussianBlur(radiance, blurred, cv::Size(0, 0), options_.psf_sigma_px,
+                     options_.psf_sigma_px, cv::BORDER_REFLECT);
+  } else {
+    blurred = radiance.clone();
+  }
+  const cv::Mat& previous = previous_.empty() ? blurred : previous_;
+  const double drift_signal = responsivity_ * DriftK(frame);
+  const double noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
+  const double step_k = options_.quantisation_step_k;
+
+  cv::Mat temperature(height_, width_, CV_32F);
+  ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int) {
+    for (int64_t y = begin; y < end; ++y) {
+      const float* now = blurred.ptr<float>(static_cast<int>(y));
+      const float* before = previous.ptr<float>(static_cast<int>(y));
+      const float* gain = gain_.ptr<float>(static_cast<int>(y));
+      const float* offset = offset_signal_.ptr<float>(static_cast<int>(y));
+      float* out = temperature.ptr<float>(static_cast<int>(y));
+      for (int x = 0; x < width_; ++x) {
+        double signal = now[x];
+        if (options_.time_constant) signal = blend_ * now[x] + (1.0f - blend_) * before[x];
+        if (options_.fixed_pattern) signal += gain[x] * (signal - shutter_radiance_) + offset[x];
+        signal += drift_signal;
+        if (options_.temporal_noise) {
+          const int64_t pixel = y * width_ + x;
+          signal += noise_signal * KeyedRng(seed_, "sensor.noise", frame, pixel).Normal();
+        }
+        float t_c = ApparentCelsius(signal);
+        if (options_.quantisation) t_c = static_cast<float>(std::round(t_c / step_k) * step_k);
+        out[x] = t_c;
+      }
+    }
+  });
+  previous_ = blurred;
+  last_frame_ = frame;
+  return temperature;
+}
+
+cv::Mat SensorModel::IdealTemperature(const cv::Mat& radiance) const {
+  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ &&
+                       radiance.rows == height_,
+                   "radiance must be CV_32F " << width_ << "x" << height_);
+  cv::Mat temperature(height_, width_, CV_32F);
+  ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int) {
+    for (int64_t y = begin; y < end; ++y) {
+      const float* in = radiance.ptr<float>(static_cast<int>(y));
+      float* out = temperature.ptr<float>(static_cast<int>(y));
+      for (int x = 0; x < width_; ++x) out[x] = ApparentCelsius(in[x]);
+    }
+  });
+  return temperature;
+}
+
+cv::Mat ToDisplay8Bit(const cv::Mat& temperature_c, double display_min_c, double display_max_c) {
+  HOILCD_CHECK(temperature_c.type() == CV_32FC1);
+  HOILCD_CHECK_MSG(display_max_c > display_min_c,
+                   "display window [" << display_min_c << ", " << display_max_c << "]");
+  const double scale = 255.0 / (display_max_c - display_min_c);
+  cv::Mat display;
+  temperature_c.convertTo(display, CV_8U, scale, -display_min_c * scale);  // saturates, rounds
+  return display;
+}
+
+cv::Mat ToCentikelvin16(const cv::Mat& temperature_c) {
+  HOILCD_CHECK(temperature_c.type() == CV_32FC1);
+  cv::Mat centikelvin;
+  temperature_c.convertTo(centikelvin, CV_16U, 100.0, kZeroCelsiusK * 100.0);  // saturates, rounds
+  return centikelvin;
+}
+
+}  // namespace hoilcd

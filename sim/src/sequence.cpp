@@ -1,0 +1,197 @@
+#include "hoilcd/sim/sequence.h"
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/core/progress.h"
+#include "hoilcd/sim/exr_io.h"
+#include "hoilcd/sim/renderer.h"
+#include "hoilcd/sim/scene_options.h"
+#include "hoilcd/sim/sensor.h"
+#include "hoilcd/sim/visibility.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string FramePath(const char* folder, int frame, const char* extension) {
+  return std::string(folder) + "/" + FrameFileName(frame, extension);
+}
+
+// A frame counts as done when all three of its files are listed and match their checksums.
+bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int frame) {
+  for (const std::string& rel : {FramePath("thermal", frame, "png"), FramePath("radiometric", frame, "png"),
+                                FramePath("exr", frame, "exr")}) {
+    const auto it = manifest.files.find(rel);
+    if (it == manifest.files.end()) return false;
+    std::error_code ec;
+    if (!fs::exists(dir + "/" + rel, ec)) return false;
+    if (ChecksumOf(ReadFileBytes(dir + "/" + rel)) != it->second) return false;
+  }
+  return true;
+}
+
+cv::Mat ToFloat(const cv::Mat& m) {
+  cv::Mat f;
+  m.convertTo(f, CV_32F);
+  return f;
+}
+
+}  // namespace
+
+std::string SequenceOptions::Check() const {
+  if (output_dir.empty()) return "an output folder is required";
+  if (frames < 0) return "frames must be 0 (all) or positive";
+  if (threads < 0) return "threads must be 0 (every core) or positive";
+  if (checkpoint_every_frames < 1) return "checkpoint_every_frames must be positive";
+  return "";
+}
+
+SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("render", problem);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string& dir = options.output_dir;
+  const int frames = options.frames > 0 ? std::min(options.frames, scene.frames) : scene.frames;
+
+  const BandRadianceTable table;
+  World world(scene, table);
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  const RobotRun run = SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
+                                     OdometryOptionsFromScene(scene), world.obstacles(),
+                                     scene.frame_rate_hz, scene.seed);
+  HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
+  const SensorOptions sensor_options = SensorOptionsFromScene(scene);
+  SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz,
+                     scene.seed, &table, options.threads);
+  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, options.threads));
+
+  // An existing folder must be an earlier run of this very scene; anything else is the user's.
+  DatasetManifest manifest;
+  const std::string manifest_path = dir + "/manifest.json";
+  std::error_code ec;
+  if (fs::exists(manifest_path, ec)) {
+    DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
+    if (old.scene_hash != scene.hash || old.seed != scene.seed) {
+      throw InputError(dir, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
+                                ", seed " + std::to_string(old.seed) +
+                                "); choose another output folder or delete this one");
+    }
+    manifest = old;
+  } else if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) {
+    throw InputError(dir, "exists, is not empty and is not a hoilcd dataset; refusing to write into it");
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "cannot create the output folder (" + ec.message() + ")");
+
+  manifest.hoilcd_version = HOILCD_VERSION;
+  manifest.scene_hash = scene.hash;
+  manifest.seed = scene.seed;
+  manifest.intrinsics = intrinsics;
+  manifest.frame_rate_hz = scene.frame_rate_hz;
+  manifest.frame_count = frames;
+  manifest.window_min_c = sensor_options.display_min_c;
+  manifest.window_max_c = sensor_options.display_max_c;
+  manifest.classes = world.classes();
+  manifest.complete = false;
+
+  std::vector<bool> done(frames, false);
+  for (int f = 0; f < frames; ++f) done[f] = FrameDone(dir, manifest, f);
+  // Drop listings of files that are not (or no longer) valid frames or side files.
+  for (auto it = manifest.files.begin(); it != manifest.files.end();) {
+    bool keep = false;
+    for (int f = 0; f < frames && !keep; ++f) {
+      keep = done[f] && (it->first == FramePath("thermal", f, "png") ||
+                         it->first == FramePath("radiometric", f, "png") ||
+                         it->first == FramePath("exr", f, "exr"));
+    }
+    it = keep ? std::next(it) : manifest.files.erase(it);
+  }
+  WriteFileAtomic(manifest_path, manifest.ToJson());
+
+  SequenceResult result;
+  result.frames_total = frames;
+  std::vector<FramePersons> persons(frames);
+  ProgressReporter progress("render", frames, "frames");
+  int sensor_frame = -1;  // last frame the sensor model has seen
+  int since_checkpoint = 0;
+  for (int f = 0; f < frames; ++f) {
+    if (options.cancel && options.cancel->load()) {
+      WriteFileAtomic(manifest_path, manifest.ToJson());
+      throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
+    }
+    const RobotSample& sample = run.samples[f];
+    world.SetTime(sample.time_s);
+    if (done[f]) {
+      // Kept from an earlier run: ground truth comes from its stored instance ids.
+      const ExrChannels exr = ReadExr(dir + "/" + FramePath("exr", f, "exr"));
+      for (const auto& [name, channel] : exr) {
+        if (name != "id") continue;
+        cv::Mat ids;
+        channel.convertTo(ids, CV_32S);
+        persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, ids)};
+      }
+      ++result.frames_reused;
+      progress.Update();
+      continue;
+    }
+    if (f > 0 && sensor_frame != f - 1) {
+      // Resuming: the bolometer remembers one frame, so re-prime it with the previous one.
+      world.SetTime(run.samples[f - 1].time_s);
+      sensor.Apply(f - 1, renderer.Render(run.samples[f - 1].camera).radiance);
+      world.SetTime(sample.time_s);
+    }
+    const FrameBuffers buffers = renderer.Render(sample.camera);
+    const cv::Mat temperature = sensor.Apply(f, buffers.radiance);
+    sensor_frame = f;
+    const cv::Mat ideal = sensor.IdealTemperature(buffers.radiance);
+    persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance)};
+
+    WriteDatasetFile(dir, FramePath("thermal", f, "png"),
+                     EncodePng(ToDisplay8Bit(temperature, sensor_options.display_min_c,
+                                             sensor_options.display_max_c)),
+                     &manifest);
+    WriteDatasetFile(dir, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(temperature)),
+                     &manifest);
+    WriteDatasetFile(dir, FramePath("exr", f, "exr"),
+                     EncodeExr({{"T", temperature},
+                                {"T_true", ideal},
+                                {"Z", buffers.depth_m},
+                                {"id", ToFloat(buffers.instance)},
+                                {"class", ToFloat(buffers.class_id)}}),
+                     &manifest);
+    ++result.frames_rendered;
+    progress.Update();
+    if (++since_checkpoint >= options.checkpoint_every_frames) {
+      WriteFileAtomic(manifest_path, manifest.ToJson());
+      since_checkpoint = 0;
+    }
+  }
+  progress.Done();
+
+  // Side files, then the manifest that declares the dataset complete.
+  std::vector<PoseRecord> poses;
+  for (int f = 0; f < frames; ++f) {
+    const RobotSample& s = run.samples[f];
+    poses.push_back({s.frame, s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, s.camera.x_m,
+                     s.camera.y_m, s.camera.z_m, s.camera.yaw_rad, s.camera.pitch_rad, s.odometry.x_m,
+                     s.odometry.y_m, s.odometry.theta_rad});
+  }
+  std::vector<DatasetEvent> events;
+  for (int f : sensor.FfcFrames(frames)) events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+  WriteDatasetFile(dir, "poses.csv", PosesToCsv(poses), &manifest);
+  WriteDatasetFile(dir, "poses_tum.txt", PosesToTum(poses, run.samples.empty() ? 0.0 : run.samples[0].camera.roll_rad),
+                   &manifest);
+  WriteDatasetFile(dir, "persons.json", PersonsToJson(persons), &manifest);
+  WriteDatasetFile(dir, "events.json", EventsToJson(events), &manifest);
+  WriteDatasetFile(dir, "scene.json", scene.resolved.dump(2), &manifest);
+  manifest.complete = true;
+  WriteFileAtomic(manifest_path, manifest.ToJson());
+  result.complete = true;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace hoilcd

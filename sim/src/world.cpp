@@ -1,0 +1,308 @@
+#include "hoilcd/sim/world.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+             const Eigen::Vector3f& c, const Eigen::Vector3f& d, uint32_t material) {
+  const auto base = static_cast<uint32_t>(mesh->positions_m.size());
+  for (const Eigen::Vector3f* p : {&a, &b, &c, &d}) mesh->positions_m.push_back(*p);
+  for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh->indices.push_back(base + i);
+  mesh->triangle_material.push_back(material);
+  mesh->triangle_material.push_back(material);
+}
+
+// Posture asset for a seated person, chosen by the scene's weights (keyed by person).
+std::string ChoosePosture(const nlohmann::json& weights, Rng* rng) {
+  static const char* kPostures[] = {"seated_upright", "seated_leaning", "seated_arms_on_table"};
+  double total = 0;
+  for (const char* p : kPostures) total += weights.at(p).get<double>();
+  if (total <= 0) return "seated_upright";
+  double pick = rng->Uniform() * total;
+  for (const char* p : kPostures) {
+    pick -= weights.at(p).get<double>();
+    if (pick < 0) return p;
+  }
+  return kPostures[2];
+}
+
+Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen::Vector3d& position,
+                       double yaw_rad, double margin_m = 0.0) {
+  const Eigen::Vector3f lo = asset.bounds_m.min(), hi = asset.bounds_m.max();
+  const Eigen::Vector2d center_local(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()));
+  const Eigen::Rotation2Dd rot(yaw_rad);
+  Obstacle2D o;
+  o.name = name;
+  o.shape = Obstacle2D::Shape::kRectangle;
+  o.center_m = position.head<2>() + rot * center_local;
+  o.half_size_m = Eigen::Vector2d(0.5 * (hi.x() - lo.x()) + margin_m, 0.5 * (hi.y() - lo.y()) + margin_m);
+  o.yaw_rad = yaw_rad;
+  return o;
+}
+
+}  // namespace
+
+Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad, double scale) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.topLeftCorner<3, 3>() =
+      (Eigen::AngleAxisf(static_cast<float>(yaw_rad), Eigen::Vector3f::UnitZ()).toRotationMatrix() *
+       static_cast<float>(scale));
+  m.topRightCorner<3, 1>() = position_m.cast<float>();
+  return m;
+}
+
+World::World(const Scene& scene, const BandRadianceTable& table)
+    : table_(table), assets_(scene.assets_dir), caster_(std::make_unique<RayCaster>()),
+      room_size_m_(scene.room_size_m) {
+  environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.environment_temperature_c));
+  const nlohmann::json& crowd = scene.crowd;
+  breathing_amplitude_m_ = crowd.at("breathing_amplitude_m").get<double>();
+  breathing_period_s_ = crowd.at("breathing_period_s").get<double>();
+  sway_amplitude_rad_ = crowd.at("sway_amplitude_deg").get<double>() * kDegToRad;
+  for (const char* name : {"none", "floor", "ceiling", "wall", "window", "table", "chair", "person",
+                           "cup", "laptop", "monitor", "radiator"}) {
+    ClassId(name);
+  }
+  BuildRoom(scene);
+  BuildFurnitureAndPeople(scene);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const ObjectSpec& o = scene.objects[i];
+    const Asset& asset = assets_.Get(o.asset);
+    const double yaw = o.yaw_deg * kDegToRad;
+    Place(asset, PlacementTransform(o.position_m, yaw), InstanceRole::kObject,
+          asset.class_name + " " + std::to_string(i), o.temperature_offset_c);
+    if (o.position_m.z() < 0.2) {
+      obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset,
+                                       o.position_m, yaw));
+    }
+  }
+  SetTime(0.0);
+}
+
+int World::ClassId(const std::string& name) {
+  const auto it = classes_.find(name);
+  if (it != classes_.end()) return it->second;
+  const int id = static_cast<int>(classes_.size());
+  classes_[name] = id;
+  return id;
+}
+
+void World::Finish(InstanceMaterial* m) const {
+  m->blackbody_bottom = table_.RadianceFromCelsius(m->temperature_c);
+  m->blackbody_top = table_.RadianceFromCelsius(m->temperature_top_c);
+}
+
+int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role,
+                 std::string name, double temperature_offset_c) {
+  auto [it, inserted] = prototype_of_asset_.emplace(&asset, -1);
+  if (inserted) it->second = caster_->AddPrototype(asset.mesh);
+  const int id = caster_->AddInstance(it->second, world_from_object);
+  InstanceInfo info;
+  info.role = role;
+  info.name = std::move(name);
+  info.class_id = ClassId(asset.class_name.empty() ? "object" : asset.class_name);
+  info.asset = &asset;
+  info.mesh = &asset.mesh;
+  for (const ThermalMaterial& tm : asset.materials) {
+    InstanceMaterial m;
+    m.temperature_c = m.temperature_top_c = static_cast<float>(tm.temperature_c + temperature_offset_c);
+    m.emissivity = static_cast<float>(tm.emissivity);
+    m.specular = tm.specular;
+    Finish(&m);
+    info.materials.push_back(m);
+  }
+  instances_.push_back(std::move(info));
+  return id;
+}
+
+void World::BuildRoom(const Scene& scene) {
+  const auto X = static_cast<float>(room_size_m_.x()), Y = static_cast<float>(room_size_m_.y()),
+             Z = static_cast<float>(room_size_m_.z());
+  using V = Eigen::Vector3f;
+  AddQuad(&room_mesh_, V(0, 0, 0), V(X, 0, 0), V(X, Y, 0), V(0, Y, 0), 0);  // floor
+  AddQuad(&room_mesh_, V(0, 0, Z), V(0, Y, Z), V(X, Y, Z), V(X, 0, Z), 1);  // ceiling
+  AddQuad(&room_mesh_, V(0, 0, 0), V(0, 0, Z), V(X, 0, Z), V(X, 0, 0), 2);  // south
+  AddQuad(&room_mesh_, V(0, Y, 0), V(X, Y, 0), V(X, Y, Z), V(0, Y, Z), 2);  // north
+  AddQuad(&room_mesh_, V(0, 0, 0), V(0, Y, 0), V(0, Y, Z), V(0, 0, Z), 2);  // west
+  AddQuad(&room_mesh_, V(X, 0, 0), V(X, 0, Z), V(X, Y, Z), V(X, Y, 0), 2);  // east
+  const float inset = 0.002f;  // windows sit just inside the wall plane
+  for (size_t i = 0; i < scene.windows.size(); ++i) {
+    const WindowSpec& w = scene.windows[i];
+    const auto a = static_cast<float>(w.center_m - 0.5 * w.width_m);
+    const auto b = static_cast<float>(w.center_m + 0.5 * w.width_m);
+    const auto z0 = static_cast<float>(w.bottom_m), z1 = static_cast<float>(w.bottom_m + w.height_m);
+    const auto material = static_cast<uint32_t>(3 + i);
+    if (w.wall == "south") AddQuad(&room_mesh_, V(a, inset, z0), V(a, inset, z1), V(b, inset, z1), V(b, inset, z0), material);
+    if (w.wall == "north") AddQuad(&room_mesh_, V(a, Y - inset, z0), V(b, Y - inset, z0), V(b, Y - inset, z1), V(a, Y - inset, z1), material);
+    if (w.wall == "west") AddQuad(&room_mesh_, V(inset, a, z0), V(inset, b, z0), V(inset, b, z1), V(inset, a, z1), material);
+    if (w.wall == "east") AddQuad(&room_mesh_, V(X - inset, a, z0), V(X - inset, a, z1), V(X - inset, b, z1), V(X - inset, b, z0), material);
+  }
+  const int prototype = caster_->AddPrototype(room_mesh_);
+  caster_->AddInstance(prototype, Eigen::Matrix4f::Identity());
+  InstanceInfo info;
+  info.role = InstanceRole::kRoom;
+  info.name = "room";
+  info.class_id = ClassId("wall");
+  info.mesh = &room_mesh_;
+  auto surface = [&](const SurfaceSpec& s, double top_c) {
+    InstanceMaterial m;
+    m.temperature_c = static_cast<float>(s.temperature_c);
+    m.temperature_top_c = static_cast<float>(top_c);
+    m.emissivity = static_cast<float>(s.emissivity);
+    m.specular = s.specular;
+    Finish(&m);
+    return m;
+  };
+  info.materials.push_back(surface(scene.floor, scene.floor.temperature_c));
+  info.materials.push_back(surface(scene.ceiling, scene.ceiling.temperature_c));
+  info.materials.push_back(surface(scene.walls, scene.wall_temperature_top_c));
+  for (const WindowSpec& w : scene.windows) info.materials.push_back(surface(w.surface, w.surface.temperature_c));
+  instances_.push_back(std::move(info));
+  const double t = 0.05;  // walls as thin obstacles just outside the room
+  auto wall = [&](const std::string& name, double cx, double cy, double hx, double hy) {
+    Obstacle2D o;
+    o.name = name;
+    o.shape = Obstacle2D::Shape::kRectangle;
+    o.center_m = {cx, cy};
+    o.half_size_m = {hx, hy};
+    obstacles_.push_back(o);
+  };
+  wall("south wall", 0.5 * X, -t, 0.5 * X + t, t);
+  wall("north wall", 0.5 * X, Y + t, 0.5 * X + t, t);
+  wall("west wall", -t, 0.5 * Y, t, 0.5 * Y + t);
+  wall("east wall", X + t, 0.5 * Y, t, 0.5 * Y + t);
+}
+
+void World::BuildFurnitureAndPeople(const Scene& scene) {
+  const Asset& table_asset = assets_.Get(scene.table_asset);
+  const Asset& chair_asset = assets_.Get(scene.chair_asset);
+  const nlohmann::json& crowd = scene.crowd;
+  bool three_per_side = scene.people_per_table > 4;
+  for (const SeatingSpec& s : scene.seating) three_per_side |= (s.seat % 3 == 2);
+  const int per_side = three_per_side ? 3 : 2;
+  const double spacing = three_per_side ? scene.seat_spacing_6_m : scene.seat_spacing_4_m;
+  const double half_depth = table_asset.bounds_m.max().y();
+
+  // Who sits where: the explicit list, or people_per_table random seats per table.
+  std::vector<SeatingSpec> seating = scene.seating;
+  if (seating.empty()) {
+    for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
+      std::vector<int> seats;
+      for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < per_side; ++k) seats.push_back(side * 3 + k);
+      Rng rng = KeyedRng(scene.seed, "crowd.seats", t);
+      for (int i = static_cast<int>(seats.size()) - 1; i > 0; --i) {
+        std::swap(seats[i], seats[rng.UniformInt(static_cast<uint32_t>(i + 1))]);
+      }
+      seats.resize(std::min<size_t>(seats.size(), scene.people_per_table));
+      std::sort(seats.begin(), seats.end());
+      for (int s : seats) seating.push_back({t, s, "random"});
+    }
+  }
+
+  for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
+    const TableSpec& spec = scene.tables[t];
+    const double yaw = spec.yaw_deg * kDegToRad;
+    const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
+    Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
+    obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
+    const Eigen::Rotation2Dd rot(yaw);
+    for (int side = 0; side < 2; ++side) {
+      for (int k = 0; k < per_side; ++k) {
+        const int seat = side * 3 + k;
+        const double along = (k - 0.5 * (per_side - 1)) * spacing;
+        const double across = (side == 0 ? -1.0 : 1.0) * (half_depth + scene.seat_setback_m);
+        const Eigen::Vector2d p = spec.center_m + rot * Eigen::Vector2d(along, across);
+        const double seat_yaw = yaw + (side == 0 ? M_PI / 2 : -M_PI / 2);
+        const Eigen::Vector3d seat_pos(p.x(), p.y(), 0.0);
+        const bool occupied = std::any_of(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
+          return s.table == t && s.seat == seat;
+        });
+        const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
+        const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
+                                chair_name, 0.0);
+        if (occupied) {  // a seat someone sits on is warmed by their body
+          for (InstanceMaterial& m : instances_[chair].materials) {
+            if (!m.specular) {
+              m.temperature_c += static_cast<float>(scene.seat_warmth_c);
+              m.temperature_top_c = m.temperature_c;
+              Finish(&m);
+            }
+          }
+        }
+        obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
+        if (!occupied) continue;
+        const SeatingSpec& who = *std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
+          return s.table == t && s.seat == seat;
+        });
+        SeatedPerson person;
+        person.person_id = static_cast<int>(people_.size());
+        person.table = t;
+        person.seat = seat;
+        Rng rng = KeyedRng(scene.seed, "crowd.person", person.person_id);
+        person.posture = who.posture == "random" ? ChoosePosture(crowd.at("posture_weights"), &rng) : who.posture;
+        person.height_scale = std::clamp(1.0 + crowd.at("height_scale_sd").get<double>() * rng.Normal(), 0.8, 1.2);
+        person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
+        person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
+        person.sway_period_s = crowd.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
+        // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
+        auto varied = [&](const char* mean, const char* sd) {
+          return crowd.at(mean).get<double>() +
+                 crowd.at(sd).get<double>() * std::clamp(rng.Normal(), -2.0, 2.0);
+        };
+        const double skin_c = varied("skin_temperature_c", "skin_temperature_sd_c");
+        const double clothing_c = varied("clothing_temperature_c", "clothing_temperature_sd_c");
+        const double hair_c = crowd.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
+        const Asset& body = assets_.Get("person_" + person.posture);
+        person.world_from_seat = PlacementTransform(seat_pos, seat_yaw);
+        person.instance = Place(body, PlacementTransform(seat_pos, seat_yaw, person.height_scale),
+                                InstanceRole::kPerson, "person " + std::to_string(person.person_id), 0.0);
+        InstanceInfo& info = instances_[person.instance];
+        info.person_id = person.person_id;
+        for (size_t m = 0; m < body.materials.size(); ++m) {
+          const std::string& region = body.materials[m].region;
+          InstanceMaterial& im = info.materials[m];
+          // Region temperatures follow the person; the asset's own value sets the offset
+          // between e.g. upper and lower clothing.
+          const double asset_clothing = body.MaterialIndex("clothing_upper") >= 0
+              ? body.materials[body.MaterialIndex("clothing_upper")].temperature_c : 28.5;
+          if (region == "skin") im.temperature_c = static_cast<float>(skin_c);
+          if (region == "hair") im.temperature_c = static_cast<float>(hair_c);
+          if (region.rfind("clothing", 0) == 0) {
+            im.temperature_c = static_cast<float>(clothing_c + body.materials[m].temperature_c - asset_clothing);
+          }
+          im.temperature_top_c = im.temperature_c;
+          Finish(&im);
+        }
+        people_.push_back(person);
+      }
+    }
+  }
+}
+
+void World::SetTime(double time_s) {
+  for (const SeatedPerson& p : people_) {
+    const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
+    const double breath = breathing_amplitude_m_ *
+                          std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
+    // Breathing lifts the upper body a few millimetres: a vertical stretch about the floor.
+    Eigen::Matrix4f local = Eigen::Matrix4f::Identity();
+    local.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisf(static_cast<float>(sway), Eigen::Vector3f::UnitZ()).toRotationMatrix() *
+        static_cast<float>(p.height_scale);
+    local(2, 2) *= static_cast<float>(1.0 + breath / 1.3);
+    caster_->SetInstanceTransform(p.instance, p.world_from_seat * local);
+  }
+  caster_->Commit();
+}
+
+}  // namespace hoilcd

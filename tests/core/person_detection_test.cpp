@@ -1,0 +1,184 @@
+#include "hoilcd/core/person_detection.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr float kRoomC = 22.0f, kSkinC = 34.0f, kClothingC = 28.5f;
+
+// A seated person seen from the front: a head on a torso.
+void DrawPerson(cv::Mat& frame_c, int torso_x, int torso_top, int torso_width, int torso_height) {
+  cv::rectangle(frame_c, cv::Rect(torso_x, torso_top, torso_width, torso_height),
+                cv::Scalar(kClothingC), cv::FILLED);
+  cv::ellipse(frame_c, cv::Point(torso_x + torso_width / 2, torso_top - 7), cv::Size(7, 9), 0, 0,
+              360, cv::Scalar(kSkinC), cv::FILLED);
+}
+
+void AddNoise(cv::Mat& frame_c, int frame) {
+  for (int y = 0; y < frame_c.rows; ++y) {
+    for (int x = 0; x < frame_c.cols; ++x) {
+      Rng rng = KeyedRng(11, "test.person_detection.noise", frame, y * frame_c.cols + x);
+      frame_c.at<float>(y, x) += static_cast<float>(rng.Normal(0, 0.15));
+    }
+  }
+}
+
+// Two people whose torsos touch at column 110, a small and a larger hot cup, a laptop and a
+// radiator, on a 22 degC room.
+cv::Mat SceneC() {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 80, 55, 30, 50);
+  DrawPerson(frame_c, 110, 58, 30, 47);
+  cv::circle(frame_c, cv::Point(200, 100), 4, cv::Scalar(45), cv::FILLED);
+  cv::circle(frame_c, cv::Point(225, 100), 7, cv::Scalar(48), cv::FILLED);
+  cv::rectangle(frame_c, cv::Rect(160, 140, 40, 10), cv::Scalar(32), cv::FILLED);
+  cv::rectangle(frame_c, cv::Rect(10, 160, 70, 22), cv::Scalar(40), cv::FILLED);
+  AddNoise(frame_c, 0);
+  return frame_c;
+}
+
+cv::Mat ToDisplayU8(const cv::Mat& frame_c) {
+  cv::Mat u8;
+  frame_c.convertTo(u8, CV_8U, 255.0 / 10.0, -20.0 * 255.0 / 10.0);  // saturating 20-30 degC
+  return u8;
+}
+
+void ExpectTheTwoTouchingPeople(const PersonDetections& result) {
+  ASSERT_EQ(result.detections.size(), 2u);
+  const cv::Rect2f left = result.detections[0].box, right = result.detections[1].box;
+  // The split falls where the torsos meet (column 110), within a pixel or two.
+  EXPECT_NEAR(left.x, 80, 1);
+  EXPECT_NEAR(left.x + left.width, 110, 2);
+  EXPECT_NEAR(right.x, 110, 2);
+  EXPECT_NEAR(right.x + right.width, 140, 1);
+  EXPECT_NEAR(left.y, 55 - 16, 2);   // top of the head
+  EXPECT_NEAR(left.y + left.height, 105, 1);
+  for (const Detection& d : result.detections) {
+    EXPECT_GE(d.score, 0.6f) << "a clear person must be able to start a track";
+    EXPECT_LE(d.score, 1.0f);
+  }
+  ASSERT_EQ(result.mask.type(), CV_8UC1);
+  EXPECT_EQ(result.mask.at<uint8_t>(80, 95), 255);
+  EXPECT_EQ(result.mask.at<uint8_t>(80, 125), 255);
+  EXPECT_EQ(result.mask.at<uint8_t>(100, 200), 0) << "cup pixels are not person pixels";
+  EXPECT_EQ(result.mask.at<uint8_t>(100, 225), 0) << "cup pixels are not person pixels";
+  EXPECT_EQ(result.mask.at<uint8_t>(145, 180), 0) << "laptop pixels are not person pixels";
+  EXPECT_EQ(result.mask.at<uint8_t>(170, 40), 0) << "radiator pixels are not person pixels";
+}
+
+TEST(DetectPersons, SplitsTwoTouchingPeopleAndIgnoresCupsLaptopAndRadiator) {
+  ExpectTheTwoTouchingPeople(DetectPersons(cv::Mat(), SceneC(), PersonDetectorOptions{}));
+}
+
+TEST(DetectPersons, WorksOnTheEightBitImageAloneToo) {
+  ExpectTheTwoTouchingPeople(DetectPersons(ToDisplayU8(SceneC()), cv::Mat(), {}));
+}
+
+TEST(DetectPersons, RadiometricFrameTakesPrecedenceOverTheEightBitOne) {
+  const cv::Mat blank_u8(192, 256, CV_8U, cv::Scalar(0));
+  ExpectTheTwoTouchingPeople(DetectPersons(blank_u8, SceneC(), {}));
+}
+
+TEST(DetectPersons, ASinglePersonIsNotSplit) {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 100, 60, 34, 50);
+  AddNoise(frame_c, 1);
+  const PersonDetections result = DetectPersons(cv::Mat(), frame_c, {});
+  ASSERT_EQ(result.detections.size(), 1u);
+  EXPECT_NEAR(result.detections[0].box.width, 34, 1);
+}
+
+TEST(DetectPersons, AnUprightLaptopScreenOfPersonLikeProportionsIsRejected) {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  cv::rectangle(frame_c, cv::Rect(100, 80, 30, 24), cv::Scalar(32), cv::FILLED);
+  AddNoise(frame_c, 2);
+  EXPECT_TRUE(DetectPersons(cv::Mat(), frame_c, {}).detections.empty());
+  EXPECT_TRUE(DetectPersons(ToDisplayU8(frame_c), cv::Mat(), {}).detections.empty());
+  // A cooler rectangle of the same shape is still rejected for being a rectangle.
+  cv::rectangle(frame_c, cv::Rect(100, 80, 30, 24), cv::Scalar(28), cv::FILLED);
+  EXPECT_TRUE(DetectPersons(cv::Mat(), frame_c, {}).detections.empty());
+}
+
+TEST(DetectPersons, APersonHoldingAHotCupIsStillAPerson) {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 100, 60, 34, 50);
+  cv::circle(frame_c, cv::Point(100, 95), 5, cv::Scalar(50), cv::FILLED);
+  AddNoise(frame_c, 3);
+  EXPECT_EQ(DetectPersons(cv::Mat(), frame_c, {}).detections.size(), 1u);
+}
+
+TEST(DetectPersons, ColderThanClothingIsNotAPerson) {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  cv::rectangle(frame_c, cv::Rect(100, 60, 30, 50), cv::Scalar(25.5), cv::FILLED);
+  EXPECT_TRUE(DetectPersons(cv::Mat(), frame_c, {}).detections.empty());
+}
+
+TEST(DetectPersons, SmallerPeopleScoreLower) {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 30, 60, 34, 60);
+  DrawPerson(frame_c, 180, 80, 12, 20);
+  const PersonDetections result = DetectPersons(cv::Mat(), frame_c, {});
+  ASSERT_EQ(result.detections.size(), 2u);
+  EXPECT_GT(result.detections[0].score, result.detections[1].score);
+  EXPECT_GT(result.detections[1].score, 0.0f);
+}
+
+TEST(DetectPersons, RejectsMismatchedInputs) {
+  EXPECT_THROW(DetectPersons(cv::Mat(), cv::Mat(), {}), std::logic_error);
+  EXPECT_THROW(DetectPersons(cv::Mat(10, 10, CV_32F), cv::Mat(), {}), std::logic_error);
+  EXPECT_THROW(DetectPersons(cv::Mat(10, 10, CV_8U), cv::Mat(12, 10, CV_32F), {}),
+               std::logic_error);
+}
+
+TEST(FindSplitColumns, SplitsInTheMiddleOfTheValleyBetweenTwoHeads) {
+  // Torso 50 px high everywhere, heads 16 px higher at columns 10-19 and 40-49.
+  std::vector<double> counts(60, 50.0);
+  for (int c = 10; c < 20; ++c) counts[c] = 66;
+  for (int c = 40; c < 50; ++c) counts[c] = 66;
+  const std::vector<int> splits = FindSplitColumns(counts, {});
+  ASSERT_EQ(splits.size(), 1u);
+  EXPECT_NEAR(splits[0], 30, 1);
+}
+
+TEST(FindSplitColumns, OneHeadOrAShallowDipGivesNoSplit) {
+  std::vector<double> one_head(40, 50.0);
+  for (int c = 15; c < 25; ++c) one_head[c] = 66;
+  EXPECT_TRUE(FindSplitColumns(one_head, {}).empty());
+  std::vector<double> shallow(60, 62.0);
+  for (int c = 10; c < 20; ++c) shallow[c] = 66;
+  for (int c = 40; c < 50; ++c) shallow[c] = 66;
+  EXPECT_TRUE(FindSplitColumns(shallow, {}).empty());
+}
+
+TEST(FindSplitColumns, ThreeNeighboursGiveTwoSplits) {
+  std::vector<double> counts(90, 45.0);
+  for (int base : {10, 40, 70}) {
+    for (int c = base; c < base + 10; ++c) counts[c] = 64;
+  }
+  const std::vector<int> splits = FindSplitColumns(counts, {});
+  ASSERT_EQ(splits.size(), 2u);
+  EXPECT_NEAR(splits[0], 30, 1);
+  EXPECT_NEAR(splits[1], 60, 1);
+}
+
+TEST(PersonDetectorOptions, CheckNamesTheBadField) {
+  EXPECT_EQ(PersonDetectorOptions{}.Check(), "");
+  PersonDetectorOptions bad;
+  bad.threshold_u8 = 300;
+  EXPECT_NE(bad.Check().find("threshold_u8"), std::string::npos);
+  bad = {};
+  bad.min_aspect_hw = 6;
+  EXPECT_NE(bad.Check().find("min_aspect_hw"), std::string::npos);
+  bad = {};
+  bad.split_valley_ratio = 1.5;
+  EXPECT_NE(bad.Check().find("split_valley_ratio"), std::string::npos);
+  EXPECT_THROW(DetectPersons(cv::Mat(), SceneC(), bad), std::logic_error);
+}
+
+}  // namespace
+}  // namespace hoilcd

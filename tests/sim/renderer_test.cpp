@@ -1,0 +1,102 @@
+#include "hoilcd/sim/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include "hoilcd/sim/scene.h"
+#include "hoilcd/sim/scene_options.h"
+#include "hoilcd/sim/sensor.h"
+
+namespace hoilcd {
+namespace {
+
+using nlohmann::json;
+
+// A closed room, every surface and the surroundings at 25 °C, with mixed emissivities and a
+// specular floor: Kirchhoff says the camera must read 25 °C everywhere.
+TEST(Renderer, IsothermalEnclosureRendersItsTemperatureWhateverTheEmissivities) {
+  json doc = {{"tables", json::array()},
+              {"objects", json::array()},
+              {"room",
+               {{"environment_temperature_c", 25.0},
+                {"floor", {{"temperature_c", 25.0}, {"emissivity", 0.3}, {"specular", true}}},
+                {"ceiling", {{"temperature_c", 25.0}, {"emissivity", 0.95}}},
+                {"walls", {{"temperature_bottom_c", 25.0}, {"temperature_top_c", 25.0}, {"emissivity", 0.6}}},
+                {"windows", {{{"wall", "north"}, {"center_m", 2.0}, {"bottom_m", 0.5}, {"width_m", 1.0},
+                              {"height_m", 1.0}, {"temperature_c", 25.0}, {"emissivity", 0.5}}}}}}};
+  const Scene scene = SceneFromJson(doc, "iso.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  FrameRenderer renderer(world, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 1));
+  CameraPose pose;
+  pose.x_m = 1.0, pose.y_m = 1.5, pose.z_m = 0.6, pose.pitch_rad = 0.3;
+  const FrameBuffers frame = renderer.Render(pose);
+  SensorOptions ideal;
+  SensorModel sensor(ideal, frame.radiance.cols, frame.radiance.rows, 25, 1, &table);
+  const cv::Mat t = sensor.IdealTemperature(frame.radiance);
+  double lo, hi;
+  cv::minMaxLoc(t, &lo, &hi);
+  EXPECT_NEAR(lo, 25.0, 0.01);
+  EXPECT_NEAR(hi, 25.0, 0.01);
+}
+
+class PaperRoomView : public ::testing::Test {
+ protected:
+  // The camera in the south corridor looking along the table row towards +x.
+  static CameraPose CorridorPose() {
+    CameraPose pose;
+    pose.x_m = 0.6, pose.y_m = 0.4, pose.z_m = 0.55;
+    pose.yaw_rad = 0.12, pose.pitch_rad = 5.0 * M_PI / 180.0;
+    return pose;
+  }
+};
+
+TEST_F(PaperRoomView, RenderIsIdenticalAtOneAndTwoThreads) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  FrameRenderer one(world, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 1));
+  FrameRenderer two(world, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 2));
+  const FrameBuffers a = one.Render(CorridorPose()), b = two.Render(CorridorPose());
+  EXPECT_EQ(cv::norm(a.radiance, b.radiance, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a.instance, b.instance, cv::NORM_INF), 0.0);
+  EXPECT_GT(a.edge_pixels, 100);
+}
+
+TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  FrameRenderer renderer(world, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 0));
+  const FrameBuffers frame = renderer.Render(CorridorPose());
+  SensorModel sensor(SensorOptionsFromScene(scene), frame.radiance.cols, frame.radiance.rows, 25, 1, &table);
+  const cv::Mat t = sensor.Apply(0, frame.radiance);
+  const int person = world.classes().at("person");
+  // Interior pixels of each class (one pixel away from any other class), so edge mixing and
+  // the optics blur do not count.
+  auto interior = [&](int cls) {
+    cv::Mat mask = frame.class_id == cls;
+    cv::erode(mask, mask, cv::Mat::ones(3, 3, CV_8U));
+    return mask;
+  };
+  const cv::Mat people = interior(person);
+  ASSERT_GT(cv::countNonZero(people), 500) << "the corridor view must show people";
+  double lo, hi;
+  cv::minMaxLoc(t, &lo, &hi, nullptr, nullptr, people);
+  EXPECT_GE(lo, 26.0);
+  EXPECT_LE(hi, 37.0);
+  EXPECT_GT(hi, 32.0) << "exposed skin reads above 32 °C";
+  for (const char* background : {"wall", "floor"}) {
+    const cv::Mat m = interior(world.classes().at(background));
+    ASSERT_GT(cv::countNonZero(m), 100) << background;
+    cv::minMaxLoc(t, &lo, &hi, nullptr, nullptr, m);
+    EXPECT_GE(lo, 19.0) << background;
+    EXPECT_LE(hi, 25.0) << background;
+  }
+  const cv::Mat cups = frame.class_id == world.classes().at("cup");
+  ASSERT_GT(cv::countNonZero(cups), 0) << "a cup must be in view";
+  cv::minMaxLoc(t, &lo, &hi, nullptr, nullptr, cups);
+  EXPECT_GT(hi, 40.0) << "a hot cup reads above 40 °C";
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -1,0 +1,458 @@
+#include "hoilcd/sim/robot.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/error.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr double kFrameRateHz = 25.0;
+constexpr int kPaperFrames = 1996;
+constexpr int kFurnitureCount = 6 * 5;  // per table: the table and four seats
+
+// The paper room (SPEC.md, section 5.1): six tables in one central row with a seat on each side
+// of each table end, then the four walls as thin rectangles just outside x in [0, 7], y in [0, 3].
+std::vector<Obstacle2D> PaperRoomObstacles() {
+  std::vector<Obstacle2D> obstacles;
+  for (int i = 0; i < 6; ++i) {
+    const double x = 1.20 + 0.92 * i;
+    obstacles.push_back(
+        Obstacle2D::Rectangle("table " + std::to_string(i), {x, 1.5}, {0.90, 0.75}));
+    for (const double side : {-1.0, 1.0}) {
+      for (const double dx : {-0.225, 0.225}) {
+        obstacles.push_back(Obstacle2D::Rectangle(
+            "seat " + std::to_string(i) + (side < 0 ? "S" : "N") + (dx < 0 ? "W" : "E"),
+            {x + dx, 1.5 + side * (0.375 + 0.2)}, {0.45, 0.40}));
+      }
+    }
+  }
+  obstacles.push_back(Obstacle2D::Rectangle("wall south", {3.5, -0.05}, {7.2, 0.1}));
+  obstacles.push_back(Obstacle2D::Rectangle("wall north", {3.5, 3.05}, {7.2, 0.1}));
+  obstacles.push_back(Obstacle2D::Rectangle("wall west", {-0.05, 1.5}, {0.1, 3.2}));
+  obstacles.push_back(Obstacle2D::Rectangle("wall east", {7.05, 1.5}, {0.1, 3.2}));
+  return obstacles;
+}
+
+RouteOptions PaperRoute() {
+  RouteOptions route;
+  route.frames = kPaperFrames;
+  return route;
+}
+
+RobotRun PaperRun(uint64_t seed = 7, const OdometryNoiseOptions& noise = {}) {
+  return SimulateRobot({}, PaperRoute(), noise, PaperRoomObstacles(), kFrameRateHz, seed);
+}
+
+double PositionError(const RobotSample& s) {
+  return std::hypot(s.odometry.x_m - s.base.x_m, s.odometry.y_m - s.base.y_m);
+}
+
+double HeadingError(const RobotSample& s) {
+  return std::remainder(s.odometry.theta_rad - s.base.theta_rad, 2.0 * M_PI);
+}
+
+TEST(PaperRoom, DefaultRouteDrivesAboutTwoClockwiseLapsIn1996Frames) {
+  const RobotRun run = PaperRun();
+  ASSERT_EQ(run.samples.size(), static_cast<size_t>(kPaperFrames));
+  for (int k = 0; k < kPaperFrames; ++k) {
+    ASSERT_EQ(run.samples[k].frame, k);
+    ASSERT_DOUBLE_EQ(run.samples[k].time_s, k / kFrameRateHz);
+  }
+  EXPECT_GE(run.laps, 1.8);
+  EXPECT_LE(run.laps, 2.2);
+  EXPECT_DOUBLE_EQ(run.samples.back().lap, run.laps);
+  // The start: first waypoint, heading towards the second (+y), at rest.
+  EXPECT_NEAR(run.samples[0].base.x_m, 0.40, 1e-9);
+  EXPECT_NEAR(run.samples[0].base.y_m, 0.40, 1e-9);
+  EXPECT_NEAR(run.samples[0].base.theta_rad, M_PI / 2, 1e-9);
+  // Clockwise: negative signed area, heading turning by -2 pi per lap (the corner at the first
+  // waypoint is turned at the end of each lap).
+  double area = 0, heading_change = 0;
+  for (size_t k = 1; k < run.samples.size(); ++k) {
+    const Pose2& a = run.samples[k - 1].base;
+    const Pose2& b = run.samples[k].base;
+    area += 0.5 * (a.x_m * b.y_m - b.x_m * a.y_m);
+    heading_change += std::remainder(b.theta_rad - a.theta_rad, 2.0 * M_PI);
+  }
+  EXPECT_LT(area, -2.0 * 6.0 * 2.0);  // well over two thirds of the 6.2 x 2.2 m route, twice
+  EXPECT_NEAR(heading_change, run.heading_change_rad, 1e-9);
+  EXPECT_LT(heading_change, -2.0 * M_PI * (run.laps - 0.3));
+  EXPECT_GT(heading_change, -2.0 * M_PI * (run.laps + 0.3));
+  // Lap progress never runs backwards.
+  for (size_t k = 1; k < run.samples.size(); ++k) {
+    ASSERT_GE(run.samples[k].lap, run.samples[k - 1].lap);
+  }
+}
+
+TEST(PaperRoom, StaysInsideTheRoomAndAtLeast30cmFromFurniture) {
+  const std::vector<Obstacle2D> obstacles = PaperRoomObstacles();
+  const TricycleOptions robot;
+  const RobotRun run = PaperRun();  // walls are obstacles: the body never crosses them
+  ASSERT_EQ(run.obstacle_distance_m.size(), obstacles.size());
+  for (int j = 0; j < kFurnitureCount; ++j) {
+    EXPECT_GE(run.obstacle_distance_m[j], 0.30) << obstacles[j].name;
+  }
+  EXPECT_GE(run.min_obstacle_distance_m, 0.30);
+  EXPECT_FALSE(run.closest_obstacle.empty());
+  for (const RobotSample& s : run.samples) {
+    const double c = std::cos(s.base.theta_rad), sn = std::sin(s.base.theta_rad);
+    for (const double along : {-robot.base_to_rear_m, robot.length_m - robot.base_to_rear_m}) {
+      for (const double across : {-0.5 * robot.width_m, 0.5 * robot.width_m}) {
+        const double x = s.base.x_m + c * along - sn * across;
+        const double y = s.base.y_m + sn * along + c * across;
+        ASSERT_GT(x, 0.0) << "frame " << s.frame;
+        ASSERT_LT(x, 7.0) << "frame " << s.frame;
+        ASSERT_GT(y, 0.0) << "frame " << s.frame;
+        ASSERT_LT(y, 3.0) << "frame " << s.frame;
+      }
+    }
+    // The per-step minimum bounds what the frames show.
+    for (int j = 0; j < kFurnitureCount; ++j) {
+      ASSERT_GE(DistanceToObstacle({s.base.x_m, s.base.y_m}, obstacles[j]),
+                run.obstacle_distance_m[j] - 1e-12);
+    }
+  }
+}
+
+TEST(PaperRoom, RespectsCurvatureSteeringSpeedAndAccelerationLimits) {
+  const TricycleOptions robot;
+  const RobotRun run = PaperRun();
+  const double max_steer = robot.max_steer_deg * M_PI / 180;
+  EXPECT_LE(run.max_curvature_per_m, std::tan(max_steer) / robot.wheelbase_m + 1e-12);
+  EXPECT_GT(run.max_curvature_per_m, 1.0 / 0.5);  // it does turn the corners
+  const double dt = 1.0 / kFrameRateHz;
+  for (size_t k = 0; k < run.samples.size(); ++k) {
+    const RobotSample& s = run.samples[k];
+    ASSERT_LE(std::abs(s.steer_rad), max_steer + 1e-12);
+    ASSERT_GE(s.speed_m_s, 0.0);
+    ASSERT_LE(s.speed_m_s, robot.max_speed_m_s + 1e-12);
+    if (k == 0) continue;
+    const RobotSample& p = run.samples[k - 1];
+    ASSERT_LE(std::abs(s.steer_rad - p.steer_rad),
+              robot.max_steer_rate_deg_s * M_PI / 180 * dt + 1e-9)
+        << "frame " << k;
+    ASSERT_LE(std::abs(s.speed_m_s - p.speed_m_s), robot.max_accel_m_s2 * dt + 1e-9)
+        << "frame " << k;
+  }
+  EXPECT_LT(run.max_tracking_error_m, 0.05);
+}
+
+TEST(PaperRoom, CameraIsRigidlyMountedAheadOfTheBase) {
+  const TricycleOptions robot;
+  const RobotRun run = PaperRun();
+  for (const RobotSample& s : run.samples) {
+    const CameraPose expected = CameraPoseFromBase(s.base, robot);
+    ASSERT_DOUBLE_EQ(s.camera.x_m, expected.x_m);
+    ASSERT_DOUBLE_EQ(s.camera.yaw_rad, expected.yaw_rad);
+    ASSERT_NEAR(std::hypot(s.camera.x_m - s.base.x_m, s.camera.y_m - s.base.y_m),
+                robot.camera_forward_m, 1e-12);
+    ASSERT_DOUBLE_EQ(s.camera.z_m, robot.camera_height_m);
+    ASSERT_NEAR(s.camera.pitch_rad, robot.camera_pitch_deg * M_PI / 180, 1e-15);
+  }
+}
+
+TEST(CameraPoseFromBase, OpticalAxisPointsAlongHeadingPitchedDown) {
+  TricycleOptions robot;
+  robot.camera_lateral_m = 0.05;
+  const Pose2 base{1.0, 2.0, M_PI / 2};
+  const CameraPose cam = CameraPoseFromBase(base, robot);
+  EXPECT_NEAR(cam.x_m, 1.0 - 0.05, 1e-12);
+  EXPECT_NEAR(cam.y_m, 2.0 + robot.camera_forward_m, 1e-12);
+  const Eigen::Vector3d axis = cam.WorldFromCam().rotation * Eigen::Vector3d::UnitZ();
+  const double pitch = robot.camera_pitch_deg * M_PI / 180;
+  EXPECT_NEAR(axis.x(), 0.0, 1e-12);
+  EXPECT_NEAR(axis.y(), std::cos(pitch), 1e-12);
+  EXPECT_NEAR(axis.z(), -std::sin(pitch), 1e-12);
+}
+
+// Heading error grows by bias / L per metre travelled (theta' = v sin(d) / L, ds = v cos(d) dt),
+// slip scales every turn by (1 + slip); white noise averages out over the 200 Hz steps.
+TEST(Odometry, DriftAfterTwoLapsIsNonZeroAndWithinTheNoiseModelBound) {
+  const TricycleOptions robot;
+  const OdometryNoiseOptions noise;
+  const RobotRun run = PaperRun();
+  const RobotSample& last = run.samples.back();
+  const double length = run.path_length_m;
+  const double steps = run.samples.back().time_s * robot.integration_rate_hz;
+  const double ds = length / steps;
+  const double bias = std::abs(noise.steer_bias_deg) * M_PI / 180;
+  const double steer_sd = noise.steer_noise_deg * M_PI / 180;
+  const double min_cos = std::cos(robot.max_steer_deg * M_PI / 180);
+  // 6-sigma bounds on the white-noise parts.
+  const double heading_bound =
+      length * bias / robot.wheelbase_m + noise.slip_frac * std::abs(run.heading_change_rad) +
+      6.0 * steer_sd * ds * std::sqrt(steps) / (robot.wheelbase_m * min_cos) +
+      6.0 * noise.encoder_noise_frac * 2.0 * M_PI * std::sqrt(steps) / steps;
+  const double distance_bound =
+      length * noise.slip_frac + 6.0 * noise.encoder_noise_frac * ds * std::sqrt(steps);
+  const double position_bound = distance_bound + length * heading_bound;
+  EXPECT_GT(PositionError(last), 1e-3);
+  EXPECT_GT(std::abs(HeadingError(last)), 1e-4);
+  EXPECT_LT(std::abs(HeadingError(last)), heading_bound);
+  EXPECT_LT(PositionError(last), position_bound);
+  EXPECT_LT(PositionError(last), 0.5);  // a few per cent of the 32 m driven
+}
+
+TEST(Odometry, SteeringBiasAloneDriftsHeadingByBiasTimesDistanceOverWheelbase) {
+  OdometryNoiseOptions noise;
+  noise.encoder_noise_frac = 0;
+  noise.steer_noise_deg = 0;
+  noise.slip_frac = 0;
+  noise.steer_bias_deg = 0.1;
+  const RobotRun run = PaperRun(7, noise);
+  const double predicted = run.path_length_m * 0.1 * M_PI / 180 / TricycleOptions().wheelbase_m;
+  EXPECT_NEAR(HeadingError(run.samples.back()), predicted, 0.02 * predicted);
+}
+
+TEST(Odometry, SlipAloneScalesTheTurnedAngle) {
+  OdometryNoiseOptions noise;
+  noise.encoder_noise_frac = 0;
+  noise.steer_noise_deg = 0;
+  noise.steer_bias_deg = 0;
+  noise.slip_frac = 0.02;
+  const RobotRun run = PaperRun(7, noise);
+  EXPECT_NEAR(HeadingError(run.samples.back()), 0.02 * run.heading_change_rad, 1e-6);
+}
+
+TEST(Odometry, DisabledNoiseGivesExactlyTheGroundTruth) {
+  OdometryNoiseOptions noise;
+  noise.enabled = false;
+  const RobotRun run = PaperRun(7, noise);
+  for (const RobotSample& s : run.samples) {
+    ASSERT_EQ(s.odometry.x_m, s.base.x_m);
+    ASSERT_EQ(s.odometry.y_m, s.base.y_m);
+    ASSERT_EQ(s.odometry.theta_rad, s.base.theta_rad);
+  }
+}
+
+TEST(Determinism, SameSeedGivesIdenticalSamplesOtherSeedOnlyOtherOdometry) {
+  const RobotRun a = PaperRun(11), b = PaperRun(11), c = PaperRun(12);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  ASSERT_EQ(a.samples.size(), c.samples.size());
+  bool odometry_differs = false;
+  for (size_t k = 0; k < a.samples.size(); ++k) {
+    const RobotSample &sa = a.samples[k], &sb = b.samples[k], &sc = c.samples[k];
+    ASSERT_EQ(sa.base.x_m, sb.base.x_m);
+    ASSERT_EQ(sa.base.theta_rad, sb.base.theta_rad);
+    ASSERT_EQ(sa.odometry.x_m, sb.odometry.x_m);
+    ASSERT_EQ(sa.odometry.y_m, sb.odometry.y_m);
+    ASSERT_EQ(sa.odometry.theta_rad, sb.odometry.theta_rad);
+    ASSERT_EQ(sa.base.x_m, sc.base.x_m);
+    ASSERT_EQ(sa.base.y_m, sc.base.y_m);
+    ASSERT_EQ(sa.camera.yaw_rad, sc.camera.yaw_rad);
+    if (sa.odometry.x_m != sc.odometry.x_m) odometry_differs = true;
+  }
+  EXPECT_TRUE(odometry_differs);
+}
+
+TEST(Route, LapsModeStopsAtTheFirstFrameCompletingTheLaps) {
+  RouteOptions route;
+  route.laps = 1.0;
+  const RobotRun run = SimulateRobot({}, route, {}, PaperRoomObstacles(), kFrameRateHz, 1);
+  ASSERT_GE(run.samples.size(), 2u);
+  EXPECT_GE(run.samples.back().lap, 1.0);
+  EXPECT_LT(run.samples[run.samples.size() - 2].lap, 1.0);
+  // Three corners and part of the one at the start waypoint are turned by then.
+  EXPECT_LT(run.heading_change_rad, -1.5 * M_PI);
+  EXPECT_GT(run.heading_change_rad, -2.0 * M_PI);
+  // Back near the start after one lap.
+  EXPECT_LT(std::hypot(run.samples.back().base.x_m - 0.4, run.samples.back().base.y_m - 0.4), 0.3);
+}
+
+TEST(Route, IntegrationRatesThatAreNoMultipleOfTheFrameRateAgree) {
+  TricycleOptions fine, odd;
+  fine.integration_rate_hz = 400;
+  odd.integration_rate_hz = 190;
+  RouteOptions route;
+  route.frames = 400;
+  const RobotRun a = SimulateRobot(fine, route, {}, {}, kFrameRateHz, 1);
+  const RobotRun b = SimulateRobot(odd, route, {}, {}, kFrameRateHz, 1);
+  ASSERT_EQ(b.samples.size(), 400u);
+  for (size_t k = 0; k < a.samples.size(); ++k) {
+    ASSERT_DOUBLE_EQ(b.samples[k].time_s, k / kFrameRateHz);
+    ASSERT_NEAR(a.samples[k].base.x_m, b.samples[k].base.x_m, 0.02) << "frame " << k;
+    ASSERT_NEAR(a.samples[k].base.y_m, b.samples[k].base.y_m, 0.02) << "frame " << k;
+  }
+}
+
+TEST(Collision, RouteThroughAnObstacleRaisesAnErrorNamingItAndTheTime) {
+  std::vector<Obstacle2D> obstacles = PaperRoomObstacles();
+  obstacles.push_back(Obstacle2D::Circle("pillar", {3.5, 2.6}, 0.1));
+  try {
+    SimulateRobot({}, PaperRoute(), {}, obstacles, kFrameRateHz, 1);
+    FAIL() << "expected a collision";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("robot collides with 'pillar' at t = "), std::string::npos) << what;
+    // The route reaches x = 3.5 on the north side after about 2.2 + 3 m, i.e. some 12 s.
+    const double t = std::stod(what.substr(what.find("t = ") + 4));
+    EXPECT_GT(t, 8.0);
+    EXPECT_LT(t, 16.0);
+  }
+}
+
+TEST(Collision, TableOnTheRouteIsNamed) {
+  std::vector<Obstacle2D> obstacles = PaperRoomObstacles();
+  obstacles.push_back(Obstacle2D::Rectangle("table 3", {6.6, 1.5}, {0.9, 0.75}, 0.3));
+  EXPECT_THROW(
+      {
+        try {
+          SimulateRobot({}, PaperRoute(), {}, obstacles, kFrameRateHz, 1);
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("robot collides with 'table 3' at t = "),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      InputError);
+}
+
+TEST(Obstacle2D, DistancesToRotatedRectangleAndCircle) {
+  const Obstacle2D box = Obstacle2D::Rectangle("box", {1, 1}, {2, 1}, M_PI / 2);
+  EXPECT_NEAR(DistanceToObstacle({1, 1}, box), 0.0, 1e-12);
+  EXPECT_NEAR(DistanceToObstacle({1, 3}, box), 1.0, 1e-12);  // long side now along y
+  EXPECT_NEAR(DistanceToObstacle({2.5, 1}, box), 1.0, 1e-12);
+  EXPECT_NEAR(DistanceToObstacle({2.5, 3}, box), std::hypot(1.0, 1.0), 1e-12);
+  const Obstacle2D disc = Obstacle2D::Circle("disc", {0, 0}, 0.5);
+  EXPECT_NEAR(DistanceToObstacle({3, 4}, disc), 4.5, 1e-12);
+  EXPECT_EQ(DistanceToObstacle({0.1, 0}, disc), 0.0);
+}
+
+// Every message the options can produce, and SimulateRobot refusing them as InputError.
+TEST(Options, CheckNamesWhatIsWrong) {
+  EXPECT_EQ(TricycleOptions().Check(), "");
+  EXPECT_EQ(RouteOptions().Check(), "");
+  EXPECT_EQ(OdometryNoiseOptions().Check(), "");
+
+  struct RobotCase {
+    void (*edit)(TricycleOptions&);
+    const char* message;
+  };
+  const RobotCase robot_cases[] = {
+      {[](TricycleOptions& o) { o.wheelbase_m = -0.3; }, "wheelbase_m must be positive"},
+      {[](TricycleOptions& o) { o.max_steer_deg = 90; }, "max_steer_deg must be in (0, 89)"},
+      {[](TricycleOptions& o) { o.max_steer_rate_deg_s = 0; },
+       "max_steer_rate_deg_s must be positive"},
+      {[](TricycleOptions& o) { o.max_speed_m_s = 0; }, "max_speed_m_s must be positive"},
+      {[](TricycleOptions& o) { o.max_accel_m_s2 = -1; }, "max_accel_m_s2 must be positive"},
+      {[](TricycleOptions& o) { o.integration_rate_hz = 0.5; }, "integration_rate_hz must be in"},
+      {[](TricycleOptions& o) { o.width_m = 0; }, "length_m and width_m must be positive"},
+      {[](TricycleOptions& o) { o.base_to_rear_m = 1; }, "base_to_rear_m must be in [0, length_m)"},
+      {[](TricycleOptions& o) { o.camera_height_m = NAN; }, "camera offsets must be finite"},
+      {[](TricycleOptions& o) { o.camera_pitch_deg = 95; },
+       "camera_pitch_deg must be in (-90, 90)"},
+      {[](TricycleOptions& o) { o.camera_roll_deg = INFINITY; },
+       "camera_yaw_deg and camera_roll_deg"},
+  };
+  for (const RobotCase& c : robot_cases) {
+    TricycleOptions o;
+    c.edit(o);
+    EXPECT_NE(o.Check().find(c.message), std::string::npos) << o.Check();
+    EXPECT_THROW(SimulateRobot(o, {}, {}, {}, kFrameRateHz, 1), InputError) << c.message;
+  }
+
+  struct RouteCase {
+    void (*edit)(RouteOptions&);
+    const char* message;
+  };
+  const RouteCase route_cases[] = {
+      {[](RouteOptions& o) { o.waypoints_m.clear(); },
+       "waypoints_m needs at least 3 points, has 0"},
+      {[](RouteOptions& o) {
+         o.waypoints_m[1] = {NAN, 0};
+       },
+       "waypoint 1 is not finite"},
+      {[](RouteOptions& o) { o.waypoints_m[2] = o.waypoints_m[1]; },
+       "waypoint 1 repeats the next one"},
+      {[](RouteOptions& o) { o.frames = -1; }, "frames must be >= 0"},
+      {[](RouteOptions& o) { o.laps = 0; }, "laps must be in (0, 1000]"},
+      {[](RouteOptions& o) { o.cruise_speed_m_s = 0; }, "cruise_speed_m_s must be positive"},
+      {[](RouteOptions& o) { o.lookahead_m = -1; }, "lookahead_m must be positive"},
+      {[](RouteOptions& o) { o.max_lateral_accel_m_s2 = 0; },
+       "max_lateral_accel_m_s2 must be positive"},
+      {[](RouteOptions& o) { o.corner_radius_m = 0; }, "corner_radius_m must be positive"},
+  };
+  for (const RouteCase& c : route_cases) {
+    RouteOptions o;
+    c.edit(o);
+    EXPECT_NE(o.Check().find(c.message), std::string::npos) << o.Check();
+    EXPECT_THROW(SimulateRobot({}, o, {}, {}, kFrameRateHz, 1), InputError) << c.message;
+  }
+
+  struct OdometryCase {
+    void (*edit)(OdometryNoiseOptions&);
+    const char* message;
+  };
+  const OdometryCase odometry_cases[] = {
+      {[](OdometryNoiseOptions& o) { o.encoder_noise_frac = -0.1; },
+       "encoder_noise_frac must be in"},
+      {[](OdometryNoiseOptions& o) { o.steer_noise_deg = 20; }, "steer_noise_deg must be in"},
+      {[](OdometryNoiseOptions& o) { o.steer_bias_deg = NAN; }, "steer_bias_deg must be in"},
+      {[](OdometryNoiseOptions& o) { o.slip_frac = 0.6; }, "slip_frac must be in"},
+  };
+  for (const OdometryCase& c : odometry_cases) {
+    OdometryNoiseOptions o;
+    c.edit(o);
+    EXPECT_NE(o.Check().find(c.message), std::string::npos) << o.Check();
+    EXPECT_THROW(SimulateRobot({}, {}, o, {}, kFrameRateHz, 1), InputError) << c.message;
+  }
+}
+
+std::string SimulationError(const TricycleOptions& robot, const RouteOptions& route,
+                            const std::vector<Obstacle2D>& obstacles, double frame_rate_hz) {
+  try {
+    SimulateRobot(robot, route, {}, obstacles, frame_rate_hz, 1);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Options, InfeasibleCombinationsAreRefused) {
+  RouteOptions tight;
+  tight.corner_radius_m = 0.1;
+  EXPECT_NE(SimulationError({}, tight, {}, kFrameRateHz)
+                .find("corner_radius_m 0.1 is below the robot's minimum turning radius"),
+            std::string::npos);
+  RouteOptions wide;
+  wide.corner_radius_m = 1.5;
+  EXPECT_NE(SimulationError({}, wide, {}, kFrameRateHz).find("does not fit segment 0"),
+            std::string::npos);
+  RouteOptions fast;
+  fast.cruise_speed_m_s = 1.0;
+  EXPECT_NE(SimulationError({}, fast, {}, kFrameRateHz)
+                .find("cruise_speed_m_s exceeds the robot's max_speed_m_s"),
+            std::string::npos);
+  RouteOptions back;
+  back.waypoints_m = {{0, 0}, {1, 0}, {0.5, 0}};
+  EXPECT_NE(SimulationError({}, back, {}, kFrameRateHz).find("turns back on itself"),
+            std::string::npos);
+  EXPECT_NE(
+      SimulationError({}, {}, {}, 0.0).find("must be positive and at most integration_rate_hz"),
+      std::string::npos);
+  EXPECT_NE(SimulationError({}, {}, {Obstacle2D::Circle("stool", {9, 9}, 0)}, kFrameRateHz)
+                .find("obstacle 0 ('stool'): radius_m must be positive"),
+            std::string::npos);
+  EXPECT_NE(SimulationError({}, {}, {Obstacle2D::Rectangle("crate", {9, 9}, {0, 1})}, kFrameRateHz)
+                .find("obstacle 0 ('crate'): half_size_m must be positive"),
+            std::string::npos);
+  EXPECT_NE(SimulationError({}, {}, {Obstacle2D::Circle("ghost", {NAN, 9}, 1)}, kFrameRateHz)
+                .find("obstacle 0 ('ghost'): not finite"),
+            std::string::npos);
+}
+
+TEST(Options, RouteTheRobotCannotFinishFailsLoudly) {
+  RouteOptions crawl;
+  crawl.max_lateral_accel_m_s2 = 1e-9;  // corners at 20 micrometres per second
+  EXPECT_NE(SimulationError({}, crawl, {}, kFrameRateHz).find("did not finish the route within"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -1,0 +1,162 @@
+#include "hoilcd/sim/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace hoilcd {
+namespace {
+
+using nlohmann::json;
+
+std::string ScenePath(const std::string& name) {
+  return std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + name;
+}
+
+std::vector<Problem> ProblemsOf(const json& doc, const std::vector<std::string>& overrides = {}) {
+  try {
+    SceneFromJson(doc, "test.json", overrides);
+  } catch (const InputError& e) {
+    return e.problems();
+  }
+  return {};
+}
+
+bool HasProblem(const std::vector<Problem>& problems, const std::string& where,
+                const std::string& fragment) {
+  for (const Problem& p : problems) {
+    if (p.where == where && p.message.find(fragment) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(Scene, EveryShippedSceneIsValid) {
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes")) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "scene.schema.json") continue;
+    EXPECT_NO_THROW(LoadScene(entry.path().string())) << entry.path();
+  }
+}
+
+TEST(Scene, EmptyDocumentIsThePaperRoomByDefaults) {
+  const Scene s = SceneFromJson(json::object(), "empty.json");
+  EXPECT_EQ(s.frames, 1996);
+  EXPECT_DOUBLE_EQ(s.frame_rate_hz, 25.0);
+  EXPECT_EQ(s.tables.size(), 6u);
+  EXPECT_EQ(s.people_per_table, 4);
+  EXPECT_DOUBLE_EQ(s.room_size_m.x(), 7.0);
+  EXPECT_DOUBLE_EQ(s.room_size_m.y(), 3.0);
+  EXPECT_EQ(s.camera["width_px"], 256);
+  EXPECT_EQ(s.camera["height_px"], 192);
+  // The resolved document has every default filled in.
+  EXPECT_TRUE(s.resolved["camera"].contains("netd_k"));
+  EXPECT_TRUE(s.resolved["robot"].contains("wheelbase_m"));
+}
+
+TEST(Scene, PaperRoomFileEqualsTheDefaultsItDocuments) {
+  const Scene file = LoadScene(ScenePath("paper_room.json"));
+  json doc = json::object();
+  doc["name"] = file.name;
+  doc["description"] = file.resolved["description"];
+  EXPECT_EQ(file.hash, SceneFromJson(doc, "x.json").hash);
+}
+
+TEST(Scene, UnknownKeyIsAnErrorNamingTheKeyAndItsPath) {
+  const auto problems = ProblemsOf(json{{"crowd", {{"people_per_tabel", 3}}}});
+  ASSERT_FALSE(problems.empty());
+  EXPECT_TRUE(HasProblem(problems, "test.json: /crowd", "unknown key 'people_per_tabel'"))
+      << problems.front().ToString();
+  EXPECT_TRUE(HasProblem(problems, "test.json: /crowd", "people_per_table"));
+}
+
+TEST(Scene, WrongTypeAndOutOfRangeValuesAreReportedTogether) {
+  const auto problems =
+      ProblemsOf(json{{"frames", "many"}, {"crowd", {{"people_per_table", 9}}}, {"camera", {{"netd_k", -1}}}});
+  EXPECT_TRUE(HasProblem(problems, "test.json: /frames", "")) ;
+  EXPECT_TRUE(HasProblem(problems, "test.json: /crowd/people_per_table", ""));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /camera/netd_k", ""));
+  EXPECT_EQ(problems.size(), 3u);
+}
+
+TEST(Scene, CrossFieldProblemsNameTheirPaths) {
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"camera", {{"display_min_c", 30}, {"display_max_c", 20}}}}),
+                         "test.json: /camera/display_max_c", "greater"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"tables", {{{"center_m", {9.0, 1.0}}}}}}),
+                         "test.json: /tables/0/center_m", "inside the room"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"crowd", {{"seating", {{{"table", 7}, {"seat", 0}}}}}}}),
+                         "test.json: /crowd/seating/0/table", "below 6"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"route", {{"waypoints_m", {{0.5, 0.5}, {8.0, 0.5}}}}}}),
+                         "test.json: /route/waypoints_m/1", "inside the room"));
+}
+
+TEST(Scene, OverridesSetValuesByDottedPathOrPointer) {
+  const Scene a = SceneFromJson(json::object(), "x.json", {"crowd.people_per_table=2"});
+  EXPECT_EQ(a.people_per_table, 2);
+  const Scene b = SceneFromJson(json::object(), "x.json", {"/camera/netd_k=0.05", "name=other"});
+  EXPECT_DOUBLE_EQ(b.camera["netd_k"].get<double>(), 0.05);
+  EXPECT_EQ(b.name, "other");
+  const Scene c = SceneFromJson(LoadScene(ScenePath("paper_room.json")).resolved, "x.json",
+                                {"tables.0.center_m=[1.5, 1.4]"});
+  EXPECT_DOUBLE_EQ(c.tables[0].center_m.x(), 1.5);
+  EXPECT_NE(a.hash, b.hash);
+}
+
+TEST(Scene, BadOverridesAreErrorsNamingTheOverride) {
+  try {
+    SceneFromJson(json::object(), "x.json", {"crowd.people_per_table"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems().at(0).where, "--set crowd.people_per_table");
+    EXPECT_NE(e.problems().at(0).message.find("KEY=VALUE"), std::string::npos);
+  }
+  // A value of the wrong type is caught by validation at the overridden path.
+  EXPECT_TRUE(HasProblem(ProblemsOf(json::object(), {"crowd.people_per_table=lots"}),
+                         "x.json: /crowd/people_per_table", "") ||
+              !ProblemsOf(json::object(), {"crowd.people_per_table=lots"}).empty());
+  try {
+    SceneFromJson(LoadScene(ScenePath("paper_room.json")).resolved, "x.json", {"tables.9.yaw_deg=1"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("index below 6"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, MissingAndMalformedFilesAreErrorsNamingTheFile) {
+  try {
+    LoadScene("/nonexistent/scene.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems().at(0).where, "/nonexistent/scene.json");
+  }
+  const std::string path = (std::filesystem::temp_directory_path() / "hoilcd_bad_scene.json").string();
+  std::ofstream(path) << "{ \"frames\": 10, ";
+  try {
+    LoadScene(path);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems().at(0).where, path);
+    EXPECT_NE(e.problems().at(0).message.find("valid JSON"), std::string::npos);
+  }
+  std::ofstream(path) << "[1, 2]";
+  EXPECT_THROW(LoadScene(path), InputError);
+  std::filesystem::remove(path);
+}
+
+TEST(Scene, HashDependsOnResolvedContentOnly) {
+  const Scene a = SceneFromJson(json{{"seed", 1}}, "a.json");
+  const Scene b = SceneFromJson(json::object(), "b.json");  // seed 1 by default
+  EXPECT_EQ(a.hash, b.hash);
+  EXPECT_NE(a.hash, SceneFromJson(json{{"seed", 2}}, "a.json").hash);
+}
+
+TEST(Scene, DistractorSwitchesRemoveTheirObjects) {
+  const Scene all = SceneFromJson(json::object(), "x.json");
+  const Scene no_cups = SceneFromJson(json{{"distractors", {{"cups", false}}}}, "x.json");
+  int cups = 0;
+  for (const ObjectSpec& o : all.objects) cups += o.asset == "cup";
+  EXPECT_GT(cups, 0);
+  EXPECT_EQ(no_cups.objects.size(), all.objects.size() - cups);
+}
+
+}  // namespace
+}  // namespace hoilcd
