@@ -8,6 +8,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "hoilcd/bench/methods.h"
+#include "hoilcd/bench/report.h"
+#include "hoilcd/bench/run.h"
+#include "hoilcd/bench/runner.h"
+#include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/scene.h"
@@ -59,6 +64,73 @@ int RunRender(const SceneArgs& args, const SequenceOptions& options) {
   return 0;
 }
 
+// Flags shared by bench, run and sweep.
+struct BenchArgs {
+  std::string methods;
+  BenchOptions options;
+};
+
+void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
+  cmd->add_option("--methods", args->methods,
+                  "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
+  cmd->add_option("--protocol", args->options.protocol.protocol, "laps (database = first lap) or revisit")
+      ->check(CLI::IsMember({"laps", "revisit"}));
+  cmd->add_option("--radius", args->options.protocol.radius_m, "true-match radius, m (paper: 0.2)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--exclusion-window", args->options.protocol.exclusion_window_s,
+                  "frames this close in time to a query are not in its database, s")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--heading-tolerance", args->options.protocol.heading_tolerance_deg,
+                  "max heading difference of a true match, deg (negative: off)");
+  cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
+      ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
+  cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+BenchOptions ResolveBench(const BenchArgs& args, int threads) {
+  BenchOptions o = args.options;
+  o.methods = args.methods.empty() ? DefaultMethods() : ParseMethodList(args.methods);
+  o.threads = threads;
+  if (const std::string problem = o.Check(); !problem.empty()) throw InputError("bench options", problem);
+  return o;
+}
+
+void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
+  std::printf("%s", FormatResultTable(result).c_str());
+  std::printf("%s
+", PaperFindingSummary(result).c_str());
+  std::printf("report: %s/report.md
+", report_dir.c_str());
+}
+
+int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads) {
+  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true);
+  const BenchOptions options = ResolveBench(args, threads);
+  const BenchResult result = RunBench(dataset, options);
+  const std::string out = report_dir.empty() ? dir + "/report" : report_dir;
+  ReportTiming timing;
+  timing.bench_s = result.seconds;
+  WriteReport(result, dataset, options, timing, out);
+  PrintOutcome(result, out);
+  return 0;
+}
+
+int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions run) {
+  SceneArgs a = scene_args;
+  if (a.path.empty()) a.path = std::string(HOILCD_SOURCE_DIR) + "/scenes/paper_room.json";
+  const Scene scene = LoadSceneArgs(a);
+  std::signal(SIGINT, OnInterrupt);
+  run.cancel = &g_interrupted;
+  const RunOutcome outcome = RunScene(scene, ResolveBench(args, run.threads), run);
+  PrintOutcome(outcome.result, outcome.report_dir);
+  std::printf("end to end: %.1f s = render %.1f s%s + bench %.1f s (dataset %s)\n",
+              outcome.timing.render_s + outcome.timing.bench_s, outcome.timing.render_s,
+              outcome.timing.render_cached ? " (cached)" : "", outcome.timing.bench_s,
+              outcome.dataset_dir.c_str());
+  return 0;
+}
+
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
   auto* opt = cmd->add_option("scene", args->path, "scene file (JSON, see scenes/scene.schema.json)");
   if (scene_required) opt->required();
@@ -92,6 +164,25 @@ int RunCommandLine(int argc, char** argv) {
   render->add_option("--threads", render_options.threads, "worker threads (0: every core)")
       ->check(CLI::NonNegativeNumber);
 
+  std::string bench_dir, bench_report;
+  int bench_threads = 0;
+  BenchArgs bench_args;
+  CLI::App* bench = app.add_subcommand("bench", "evaluate loop-closure methods on a dataset folder");
+  bench->add_option("dataset", bench_dir, "dataset folder written by hoilcd render")->required();
+  bench->add_option("-o,--output", bench_report, "report folder (default DATASET/report)");
+  bench->add_option("--threads", bench_threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
+  AddBenchFlags(bench, &bench_args);
+
+  SceneArgs run_scene;
+  BenchArgs run_args;
+  RunOptions run_options;
+  CLI::App* run = app.add_subcommand("run", "render a scene (or reuse its cached dataset), benchmark it, report");
+  AddSceneFlags(run, &run_scene, false);
+  run->add_option("--cache", run_options.cache_dir, "folder of cached datasets and reports");
+  run->add_option("-o,--output", run_options.report_dir, "report folder (default CACHE/<scene>-<hash>/report)");
+  run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
+  AddBenchFlags(run, &run_args);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -101,6 +192,8 @@ int RunCommandLine(int argc, char** argv) {
   try {
     if (*validate) return RunValidate(validate_args);
     if (*render) return RunRender(render_args, render_options);
+    if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads);
+    if (*run) return RunRunCommand(run_scene, run_args, run_options);
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

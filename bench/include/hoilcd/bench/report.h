@@ -1,0 +1,29 @@
+// The benchmark report folder (SPEC.md "Evaluation protocol"): report.json with every number,
+// queries.csv, report.md shaped like the paper's Table 1, and PNG figures (PR curves, the
+// trajectory coloured by top-1 correctness, MRR per lap, match pictures like figures 6–7).
+#pragma once
+
+#include <string>
+
+#include "hoilcd/bench/runner.h"
+#include "hoilcd/core/dataset.h"
+
+namespace hoilcd {
+
+struct ReportTiming {
+  double render_s = 0;        // rendering time of this run (0 when the dataset was cached)
+  bool render_cached = false; // the dataset was reused
+  double bench_s = 0;         // RunBench wall time
+};
+
+// The terminal table: method, MRR, R@1, R@5, PR-AUC, R@100%P, ms/query.
+std::string FormatResultTable(const BenchResult& result);
+
+// Whether the paper's finding holds (DLCD > SLCD, fusion >= the better minus 0.01), in words.
+std::string PaperFindingSummary(const BenchResult& result);
+
+// Writes the report folder (created if missing; files written atomically).
+void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                 const ReportTiming& timing, const std::string& dir);
+
+}  // namespace hoilcd

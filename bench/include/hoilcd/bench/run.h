@@ -1,0 +1,34 @@
+// `hoilcd run`: render a scene (reusing a cached dataset whose manifest matches the scene's
+// hash), benchmark it, write the report, and say how long each part took.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "hoilcd/bench/report.h"
+#include "hoilcd/bench/runner.h"
+#include "hoilcd/sim/scene.h"
+
+namespace hoilcd {
+
+struct RunOptions {
+  std::string cache_dir = "runs";   // datasets and reports go to CACHE/<scene>-<hash>/
+  std::string report_dir;           // default CACHE/<scene>-<hash>/report
+  int threads = 0;                  // 0 = every core
+  const std::atomic<bool>* cancel = nullptr;
+  std::string Check() const;
+};
+
+struct RunOutcome {
+  std::string dataset_dir;
+  std::string report_dir;
+  BenchResult result;
+  ReportTiming timing;
+};
+
+// The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.
+std::string RunFolder(const Scene& scene, const std::string& cache_dir);
+
+RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options);
+
+}  // namespace hoilcd

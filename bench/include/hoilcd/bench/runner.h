@@ -1,0 +1,70 @@
+// Runs loop-closure methods over a dataset folder: features of every frame once, every query
+// scored against its database (protocol.h), metrics per method, person-tracking quality of
+// DLCD's front end against the ground truth. The report module writes what this returns.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hoilcd/bench/metrics.h"
+#include "hoilcd/bench/protocol.h"
+#include "hoilcd/bench/tracking_metrics.h"
+#include "hoilcd/core/byte_tracker.h"
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/core/hoi_features.h"
+#include "hoilcd/core/homography_ransac.h"
+#include "hoilcd/core/keypoints.h"
+#include "hoilcd/core/matching.h"
+#include "hoilcd/core/person_detection.h"
+#include "hoilcd/core/temporal_consistency.h"
+#include "hoilcd/core/thumbnail_baseline.h"
+#include "hoilcd/core/track_aware_matching.h"
+
+namespace hoilcd {
+
+struct BenchOptions {
+  std::vector<std::string> methods;      // names from methods.h (empty: DefaultMethods())
+  ProtocolOptions protocol;
+  MatchOptions match;
+  RansacOptions ransac;
+  int lo_refits = 2;                     // least-squares refits of the -lo variants
+  KeypointOptions keypoints;
+  PersonDetectorOptions detector;
+  ByteTrackOptions tracker;
+  HoiOptions hoi;
+  TrackAwareOptions track_aware;
+  ThumbnailOptions thumbnail;
+  TemporalConsistencyOptions temporal;
+  double rrf_k = 0.0;                    // reciprocal rank fusion constant (paper: 0)
+  int threads = 0;                       // 0 = every core
+  std::string Check() const;
+};
+
+// Features a method computed for one frame (for the report's match pictures).
+struct FrameFeatures {
+  std::vector<Point2> keypoints;   // SLCD
+  std::vector<HoiFeature> hoi;     // DLCD
+};
+
+struct MethodRun {
+  std::string name;
+  MethodMetrics metrics;
+  std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
+};
+
+struct BenchResult {
+  std::vector<Query> queries;
+  std::vector<MethodRun> runs;             // in the order asked for
+  std::vector<FrameFeatures> features;     // per frame
+  TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)
+  bool tracking_evaluated = false;
+  double mean_hoi_points_per_frame = 0;
+  double mean_keypoints_per_frame = 0;
+  double seconds = 0;                      // wall time of RunBench
+  const MethodRun* Find(const std::string& name) const;
+};
+
+BenchResult RunBench(const Dataset& dataset, const BenchOptions& options);
+
+}  // namespace hoilcd

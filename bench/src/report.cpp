@@ -1,0 +1,328 @@
+#include "hoilcd/bench/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+#include <sstream>
+
+#include "hoilcd/bench/methods.h"
+#include "hoilcd/bench/plot.h"
+#include "hoilcd/sim/asset.h"
+#include "hoilcd/sim/scene.h"
+
+namespace hoilcd {
+namespace {
+
+std::string Fixed(double v, int digits = 3) {
+  if (!std::isfinite(v)) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
+  return buf;
+}
+
+const char* kNotes[] = {
+    "Ranks with tied scores are expected values over a uniformly random order of the tied group "
+    "(many database frames share 0 inliers); no rank depends on database order.",
+    "SLCD uses Shi-Tomasi (GFTT) corners with SuperPoint-like settings (4 px NMS, 4 px border, up "
+    "to 1000 corners): pretrained SuperPoint weights cannot be shipped. Only coordinates are used, "
+    "as in the paper.",
+    "ByteTrack follows the Python reference (score fusion, 0.1 low-score floor); the official C++ "
+    "ports differ. Lost tracks are kept 30 frames.",
+    "Fusion ranks tied scores by their average position before reciprocal rank fusion, so fused "
+    "scores do not depend on database order either.",
+};
+
+// Footprints of the tables in the dataset's scene (for the trajectory figure).
+std::vector<cv::Rect2d> TableFootprints(const Dataset& dataset) {
+  std::vector<cv::Rect2d> out;
+  try {
+    const Scene scene = SceneFromJson(nlohmann::json::parse(dataset.scene_json()), dataset.dir() + "/scene.json");
+    AssetLibrary assets(scene.assets_dir);
+    const Asset& table = assets.Get(scene.table_asset);
+    const Eigen::Vector3f lo = table.bounds_m.min(), hi = table.bounds_m.max();
+    for (const TableSpec& t : scene.tables) {
+      const bool turned = std::fmod(std::abs(t.yaw_deg), 180.0) > 45.0 && std::fmod(std::abs(t.yaw_deg), 180.0) < 135.0;
+      const double w = turned ? hi.y() - lo.y() : hi.x() - lo.x();
+      const double h = turned ? hi.x() - lo.x() : hi.y() - lo.y();
+      out.emplace_back(t.center_m.x() - w / 2, t.center_m.y() - h / 2, w, h);
+    }
+  } catch (const InputError&) {
+    // The figure is still useful without furniture (e.g. a scene whose assets moved).
+  }
+  return out;
+}
+
+cv::Mat PrFigure(const BenchResult& result) {
+  std::vector<Series> series;
+  for (const MethodRun& run : result.runs) {
+    Series s;
+    s.label = run.name;
+    for (const PrPoint& p : run.metrics.pr_curve) {
+      s.x.push_back(p.recall);
+      s.y.push_back(p.precision);
+    }
+    series.push_back(s);
+  }
+  PlotOptions o;
+  o.title = "Top-1 precision-recall";
+  o.x_label = "recall";
+  o.y_label = "precision";
+  o.x_range = std::make_pair(0.0, 1.0);
+  o.y_range = std::make_pair(0.0, 1.05);
+  return LinePlot(series, o);
+}
+
+cv::Mat LapFigure(const BenchResult& result) {
+  std::set<int> laps;
+  for (const MethodRun& run : result.runs)
+    for (const auto& [lap, _] : run.metrics.per_lap) laps.insert(lap);
+  std::vector<std::string> groups;
+  for (int lap : laps) groups.push_back("lap " + std::to_string(lap + 1));
+  std::vector<Series> series;
+  for (const MethodRun& run : result.runs) {
+    Series s;
+    s.label = run.name;
+    for (int lap : laps) {
+      const auto it = run.metrics.per_lap.find(lap);
+      s.y.push_back(it == run.metrics.per_lap.end() || !std::isfinite(it->second.mrr) ? 0.0 : it->second.mrr);
+    }
+    series.push_back(s);
+  }
+  PlotOptions o;
+  o.title = "MRR per lap (queries of that lap)";
+  o.y_label = "MRR";
+  return BarPlot(groups, series, o);
+}
+
+cv::Mat TrajectoryFigure(const BenchResult& result, const MethodRun& run, const Dataset& dataset) {
+  const std::vector<PoseRecord>& poses = dataset.poses();
+  std::vector<TrajectoryPoint> points;
+  std::vector<TrajectoryLink> links;
+  const cv::Scalar grey(170, 170, 170), green(80, 160, 40), red(40, 40, 220), database(200, 150, 90);
+  std::vector<bool> is_query(poses.size(), false);
+  for (const QueryRecord& q : run.metrics.queries) {
+    is_query[q.frame] = true;
+    const PoseRecord& p = poses[q.frame];
+    const cv::Scalar c = !q.scored ? grey : (q.top1_is_true_match ? green : red);
+    points.push_back({p.x_m, p.y_m, c});
+    if (q.scored && !q.top1_is_true_match && q.top1_frame >= 0) {
+      const PoseRecord& r = poses[q.top1_frame];
+      links.push_back({cv::Point2d(p.x_m, p.y_m), cv::Point2d(r.x_m, r.y_m), red});
+    }
+  }
+  for (size_t f = 0; f < poses.size(); ++f)
+    if (!is_query[f]) points.push_back({poses[f].x_m, poses[f].y_m, database});
+  (void)result;
+  PlotOptions o;
+  o.title = "Trajectory, top-1 of " + run.name;
+  o.x_label = "x (m)";
+  o.y_label = "y (m)";
+  return TrajectoryPlot(points, links, TableFootprints(dataset),
+                        {{"correct top-1", green}, {"wrong top-1 (line to it)", red},
+                         {"no true match", grey}, {"database only", database}},
+                        o);
+}
+
+// A row like the paper's figure 6: query with its features, the top-1, the best true match.
+std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run, size_t query_index,
+                                const Dataset& dataset) {
+  const Query& q = result.queries[query_index];
+  const QueryRecord& rec = run.metrics.queries[query_index];
+  const bool hoi = run.name.rfind("dlcd", 0) == 0;
+  auto features = [&](int frame) {
+    std::vector<cv::Point2f> pts;
+    if (hoi) {
+      for (const HoiFeature& h : result.features[frame].hoi) pts.push_back(h.point);
+    } else {
+      pts = result.features[frame].keypoints;
+    }
+    return pts;
+  };
+  int best_true = -1;
+  double best_score = -1;
+  for (size_t j = 0; j < q.database.size(); ++j) {
+    if (q.is_true_match[j] && run.scores[query_index][j] > best_score) {
+      best_score = run.scores[query_index][j];
+      best_true = q.database[j];
+    }
+  }
+  std::vector<MatchTile> row;
+  const cv::Scalar colour = hoi ? cv::Scalar(255, 255, 0) : cv::Scalar(0, 255, 0);
+  row.push_back({dataset.Thermal(q.frame), "query " + std::to_string(q.frame), {}, colour});
+  row.push_back({dataset.Thermal(q.frame), run.name + " features", features(q.frame), colour});
+  row.push_back({dataset.Thermal(rec.top1_frame),
+                 "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " (true)" : " (false)") +
+                     " score " + Fixed(rec.top1_score, 0),
+                 features(rec.top1_frame), colour});
+  row.push_back({best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
+                 best_true >= 0 ? "true match " + std::to_string(best_true) + " score " + Fixed(best_score, 0)
+                                : "no true match",
+                 best_true >= 0 ? features(best_true) : std::vector<cv::Point2f>{}, colour});
+  return row;
+}
+
+}  // namespace
+
+std::string FormatResultTable(const BenchResult& result) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s\n", "method", "MRR", "R@1", "R@5",
+                "PR-AUC", "R@100%P", "ms/query");
+  out << line;
+  for (const MethodRun& run : result.runs) {
+    const MethodMetrics& m = run.metrics;
+    std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s\n", run.name.c_str(),
+                  Fixed(m.mrr).c_str(), Fixed(m.recall_at_1).c_str(), Fixed(m.recall_at_5).c_str(),
+                  Fixed(m.pr_auc).c_str(), Fixed(m.recall_at_100p).c_str(), Fixed(m.ms_per_query, 2).c_str());
+    out << line;
+  }
+  if (!result.runs.empty()) {
+    const MethodMetrics& m = result.runs.front().metrics;
+    out << m.queries_scored << " queries scored, " << m.queries_skipped << " skipped (no true match in their database)\n";
+  }
+  return out.str();
+}
+
+std::string PaperFindingSummary(const BenchResult& result) {
+  const MethodRun* s = result.Find("slcd");
+  const MethodRun* d = result.Find("dlcd");
+  const MethodRun* f = result.Find("fusion");
+  if (!s || !d) return "The paper's finding needs slcd and dlcd.";
+  std::ostringstream out;
+  const double sm = s->metrics.mrr, dm = d->metrics.mrr;
+  out << "DLCD MRR " << Fixed(dm) << (dm > sm ? " > " : " <= ") << "SLCD MRR " << Fixed(sm)
+      << (dm > sm ? " (holds, as in the paper)" : " (does NOT hold)");
+  if (f) {
+    const double fm = f->metrics.mrr, better = std::max(sm, dm);
+    out << "; fusion MRR " << Fixed(fm) << (fm >= better - 0.01 ? " >= " : " < ") << "better - 0.01 = "
+        << Fixed(better - 0.01) << (fm >= better - 0.01 ? " (holds)" : " (does NOT hold)");
+  }
+  if (result.mean_hoi_points_per_frame == 0) {
+    out << ". DLCD found no HOI points at all (no people detected), so it has nothing to match: its "
+           "ranks are pure ties.";
+  }
+  return out.str();
+}
+
+void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                 const ReportTiming& timing, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
+  const DatasetManifest& manifest = dataset.manifest();
+
+  nlohmann::json report;
+  report["hoilcd_version"] = HOILCD_VERSION;
+  report["dataset"] = {{"dir", dataset.dir()}, {"scene_hash", manifest.scene_hash},
+                       {"seed", manifest.seed}, {"frames", dataset.num_frames()}};
+  report["protocol"] = {{"protocol", options.protocol.protocol}, {"radius_m", options.protocol.radius_m},
+                        {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
+                        {"exclusion_window_s", options.protocol.exclusion_window_s}};
+  report["parameters"] = {{"vertical_tolerance", options.match.vertical_tolerance},
+                          {"ransac_trials", options.ransac.trials},
+                          {"inlier_threshold_px", options.ransac.inlier_threshold_px},
+                          {"lo_refits", options.lo_refits},
+                          {"keypoint_detector", options.keypoints.detector},
+                          {"rrf_k", options.rrf_k}};
+  for (const MethodRun& run : result.runs) {
+    nlohmann::json m = run.metrics.ToJson();
+    m["description"] = FindMethod(run.name).description;
+    report["methods"][run.name] = m;
+  }
+  if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
+  report["features"] = {{"mean_keypoints_per_frame", result.mean_keypoints_per_frame},
+                        {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
+  report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
+                      {"bench_s", timing.bench_s}};
+  report["finding"] = PaperFindingSummary(result);
+  report["notes"] = nlohmann::json::array();
+  for (const char* note : kNotes) report["notes"].push_back(note);
+  WriteFileAtomic(dir + "/report.json", report.dump(2));
+
+  std::string csv;
+  for (const MethodRun& run : result.runs) {
+    std::istringstream lines(QueryRecordsToCsv(run.metrics.queries));
+    std::string line;
+    bool header = true;
+    while (std::getline(lines, line)) {
+      if (header) {
+        if (csv.empty()) csv += "method," + line + "\n";
+        header = false;
+        continue;
+      }
+      csv += run.name + "," + line + "\n";
+    }
+  }
+  WriteFileAtomic(dir + "/queries.csv", csv);
+
+  WritePng(dir + "/pr_curves.png", PrFigure(result));
+  WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
+  std::vector<std::string> figures = {"pr_curves.png", "mrr_per_lap.png"};
+  for (const char* name : {"fusion", "dlcd", "slcd"}) {
+    if (const MethodRun* run = result.Find(name)) {
+      WritePng(dir + "/trajectory_" + std::string(name) + ".png", TrajectoryFigure(result, *run, dataset));
+      figures.push_back("trajectory_" + std::string(name) + ".png");
+    }
+  }
+  for (const char* name : {"dlcd", "slcd"}) {
+    const MethodRun* run = result.Find(name);
+    if (!run) continue;
+    std::vector<size_t> scored;
+    for (size_t i = 0; i < result.queries.size(); ++i)
+      if (run->metrics.queries[i].scored) scored.push_back(i);
+    if (scored.empty()) continue;
+    std::vector<std::vector<MatchTile>> rows;
+    for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
+      rows.push_back(MatchRow(result, *run, scored[(2 * k + 1) * scored.size() / 8], dataset));
+    }
+    WritePng(dir + "/matches_" + std::string(name) + ".png", MatchMosaic(rows));
+    figures.push_back("matches_" + std::string(name) + ".png");
+  }
+
+  std::ostringstream md;
+  md << "# hoilcd loop-closure report\n\n"
+     << "Dataset `" << dataset.dir() << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
+     << ", scene hash `" << manifest.scene_hash << "`), protocol `" << options.protocol.protocol
+     << "`, true match within " << options.protocol.radius_m << " m, exclusion window "
+     << options.protocol.exclusion_window_s << " s.\n\n"
+     << "## Results (shaped like the paper's Table 1)\n\n"
+     << "| method | MRR | R@1 | R@5 | R@10 | PR-AUC | R@100%P | ms/query (extract + match) |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (const MethodRun& run : result.runs) {
+    const MethodMetrics& m = run.metrics;
+    md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | "
+       << Fixed(m.recall_at_5) << " | " << Fixed(m.recall_at_10) << " | " << Fixed(m.pr_auc) << " | "
+       << Fixed(m.recall_at_100p) << " | " << Fixed(m.ms_per_query, 2) << " (" << Fixed(m.extract_ms_mean, 2)
+       << " + " << Fixed(m.match_ms_mean, 2) << ") |\n";
+  }
+  if (!result.runs.empty()) {
+    md << "\n" << result.runs.front().metrics.queries_scored << " queries scored, "
+       << result.runs.front().metrics.queries_skipped << " skipped (no true match in their database).\n";
+  }
+  md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
+     << "**Finding:** " << PaperFindingSummary(result) << "\n\n";
+  if (result.tracking_evaluated) {
+    const TrackingMetrics& t = result.tracking;
+    md << "## Person tracking (DLCD front end vs ground truth)\n\n"
+       << "precision " << Fixed(t.precision) << ", recall " << Fixed(t.recall) << ", MOTA " << Fixed(t.mota)
+       << ", IDF1 " << Fixed(t.idf1) << ", id switches " << t.id_switches << "; HOI points: median error "
+       << Fixed(t.hoi_median_error_px, 1) << " px, " << Fixed(100 * t.hoi_fraction_within_tolerance, 1)
+       << " % of visible contacts within 3 px. Mean HOI points per frame "
+       << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
+       << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
+  }
+  md << "## Methods\n\n";
+  for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";
+  md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
+     << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
+  for (const char* note : kNotes) md << "- " << note << "\n";
+  md << "\n## Figures\n\n";
+  for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";
+  WriteFileAtomic(dir + "/report.md", md.str());
+}
+
+}  // namespace hoilcd

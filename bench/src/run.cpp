@@ -1,0 +1,61 @@
+#include "hoilcd/bench/run.h"
+
+#include <cctype>
+#include <filesystem>
+
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/sim/sequence.h"
+
+namespace hoilcd {
+
+std::string RunOptions::Check() const {
+  if (cache_dir.empty()) return "cache_dir must not be empty";
+  if (threads < 0) return "threads must be 0 (every core) or positive";
+  return "";
+}
+
+std::string RunFolder(const Scene& scene, const std::string& cache_dir) {
+  const std::string hex = scene.hash.substr(scene.hash.find(':') + 1, 12);
+  std::string name = scene.name;
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  }
+  return cache_dir + "/" + name + "-" + hex;
+}
+
+RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options) {
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("run", problem);
+  RunOutcome out;
+  const std::string folder = RunFolder(scene, options.cache_dir);
+  out.dataset_dir = folder + "/dataset";
+  out.report_dir = options.report_dir.empty() ? folder + "/report" : options.report_dir;
+
+  // Reuse the cached dataset only when it is complete, intact and of this very scene.
+  bool cached = false;
+  std::error_code ec;
+  if (std::filesystem::exists(out.dataset_dir + "/manifest.json", ec)) {
+    try {
+      const Dataset existing = Dataset::Open(out.dataset_dir, /*verify_checksums=*/true);
+      cached = existing.manifest().scene_hash == scene.hash && existing.num_frames() == scene.frames;
+    } catch (const InputError&) {
+      cached = false;  // partial or damaged: RenderSequence resumes or re-renders what is bad
+    }
+  }
+  if (!cached) {
+    SequenceOptions render;
+    render.output_dir = out.dataset_dir;
+    render.threads = options.threads;
+    render.cancel = options.cancel;
+    out.timing.render_s = RenderSequence(scene, render).seconds;
+  }
+  out.timing.render_cached = cached;
+  const Dataset dataset = Dataset::Open(out.dataset_dir, /*verify_checksums=*/!cached);
+  BenchOptions b = bench;
+  b.threads = options.threads;
+  out.result = RunBench(dataset, b);
+  out.timing.bench_s = out.result.seconds;
+  WriteReport(out.result, dataset, b, out.timing, out.report_dir);
+  return out;
+}
+
+}  // namespace hoilcd

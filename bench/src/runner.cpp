@@ -1,0 +1,262 @@
+#include "hoilcd/bench/runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+#include <set>
+
+#include "hoilcd/bench/methods.h"
+#include "hoilcd/core/parallel.h"
+#include "hoilcd/core/progress.h"
+#include "hoilcd/core/rank_fusion.h"
+#include "hoilcd/core/retrieval_index.h"
+
+namespace hoilcd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+bool Wants(const std::vector<std::string>& methods, const std::string& name) {
+  return std::find(methods.begin(), methods.end(), name) != methods.end();
+}
+
+// Per-query scores of a point-set method: each query against its own database, in parallel
+// inside RetrievalIndex; per-query matching time recorded.
+std::vector<std::vector<double>> ScoreQueries(const RetrievalIndex& index, const std::vector<Query>& queries,
+                                              const MatchOptions& match, const RansacOptions& ransac,
+                                              uint64_t seed, int threads, const std::string& title,
+                                              std::vector<double>* match_ms) {
+  std::vector<std::vector<double>> scores(queries.size());
+  match_ms->assign(queries.size(), 0.0);
+  ProgressReporter progress(title, static_cast<int64_t>(queries.size()), "queries");
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const Query& q = queries[i];
+    const auto start = Clock::now();
+    if (q.NumTrueMatches() > 0 && !q.database.empty()) {
+      const auto row = index.ScoreAll({q.frame}, q.database, match, ransac, seed, threads);
+      scores[i].assign(row[0].begin(), row[0].end());
+    } else {
+      scores[i].assign(q.database.size(), 0.0);  // skipped queries are not scored
+    }
+    (*match_ms)[i] = MsSince(start);
+    progress.Update();
+  }
+  progress.Done();
+  return scores;
+}
+
+// Picks each query's database columns out of a dense frame x frame matrix.
+std::vector<std::vector<double>> FromDense(const std::vector<std::vector<float>>& dense,
+                                           const std::vector<Query>& queries) {
+  std::vector<std::vector<double>> scores(queries.size());
+  for (size_t i = 0; i < queries.size(); ++i) {
+    for (int r : queries[i].database) scores[i].push_back(dense[queries[i].frame][r]);
+  }
+  return scores;
+}
+
+std::vector<double> PerQueryExtract(const std::vector<double>& frame_ms, const std::vector<Query>& queries) {
+  std::vector<double> out;
+  for (const Query& q : queries) out.push_back(frame_ms[q.frame]);
+  return out;
+}
+
+}  // namespace
+
+std::string BenchOptions::Check() const {
+  for (const std::string& m : methods) {
+    const auto& catalog = MethodCatalog();
+    if (std::none_of(catalog.begin(), catalog.end(), [&](const MethodInfo& i) { return i.name == m; })) {
+      return "unknown method '" + m + "'";
+    }
+  }
+  for (const std::string& problem :
+       {protocol.Check(), match.Check(), ransac.Check(), keypoints.Check(), detector.Check(),
+        tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), temporal.Check()}) {
+    if (!problem.empty()) return problem;
+  }
+  if (lo_refits < 1) return "lo_refits must be positive";
+  if (rrf_k < 0) return "rrf_k must be non-negative";
+  if (threads < 0) return "threads must be 0 (every core) or positive";
+  return "";
+}
+
+const MethodRun* BenchResult::Find(const std::string& name) const {
+  for (const MethodRun& r : runs)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
+  BenchOptions options = options_in;
+  if (options.methods.empty()) options.methods = DefaultMethods();
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  const auto start = Clock::now();
+  const int n = dataset.num_frames();
+  const uint64_t seed = dataset.manifest().seed;
+  options.match.image_height_px = dataset.manifest().intrinsics.height;
+  const std::vector<std::string>& methods = options.methods;
+
+  BenchResult result;
+  result.queries = BuildQueries(dataset.poses(), options.protocol);
+  result.features.resize(n);
+
+  const bool need_slcd = Wants(methods, "slcd") || Wants(methods, "slcd-lo") ||
+                         Wants(methods, "fusion") || Wants(methods, "fusion-tc");
+  const bool need_dlcd = Wants(methods, "dlcd") || Wants(methods, "dlcd-lo") ||
+                         Wants(methods, "dlcd-track") || Wants(methods, "fusion") ||
+                         Wants(methods, "fusion-tc");
+  const bool need_thumb = Wants(methods, "thumb") || Wants(methods, "thumb-seq");
+
+  // Features of every frame, once. SLCD and thumbnails are per frame (parallel); DLCD's tracker
+  // carries state from frame to frame, so it runs in order.
+  std::vector<double> slcd_ms(n, 0.0), dlcd_ms(n, 0.0), thumb_ms(n, 0.0);
+  RetrievalIndex slcd_index, dlcd_index;
+  std::vector<std::vector<HoiFeature>> hoi(n);
+  ThumbnailIndex thumbnails(options.thumbnail);
+  std::vector<FrameTracks> tracks;
+  {
+    ProgressReporter progress("features", n, "frames");
+    std::vector<cv::Mat> thumb_frames;
+    DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
+    for (int f = 0; f < n; ++f) {
+      const cv::Mat thermal = dataset.Thermal(f);
+      if (need_slcd) {
+        const auto t = Clock::now();
+        result.features[f].keypoints = DetectKeypoints(thermal, options.keypoints);
+        slcd_ms[f] = MsSince(t);
+        slcd_index.Add(result.features[f].keypoints);
+      }
+      if (need_dlcd) {
+        const cv::Mat radiometric = dataset.RadiometricC(f);
+        const auto t = Clock::now();
+        hoi[f] = front_end.Process(thermal, radiometric);
+        dlcd_ms[f] = MsSince(t);
+        result.features[f].hoi = hoi[f];
+        std::vector<Point2> points;
+        for (const HoiFeature& h : hoi[f]) points.push_back(h.point);
+        dlcd_index.Add(points);
+        FrameTracks ft;
+        ft.frame = f;
+        for (const Track& track : front_end.last_tracks()) {
+          TrackedBox box{track.id, track.box, {}};
+          for (const HoiFeature& h : hoi[f])
+            if (h.track_id == track.id) box.hoi_points_px.push_back(h.point);
+          ft.tracks.push_back(box);
+        }
+        tracks.push_back(ft);
+      }
+      if (need_thumb) {
+        const auto t = Clock::now();
+        thumbnails.Add(thermal);
+        thumb_ms[f] = MsSince(t);
+      }
+      progress.Update();
+    }
+  }
+  double kp = 0, hp = 0;
+  for (const FrameFeatures& f : result.features) kp += f.keypoints.size(), hp += f.hoi.size();
+  result.mean_keypoints_per_frame = n ? kp / n : 0;
+  result.mean_hoi_points_per_frame = n ? hp / n : 0;
+  if (need_dlcd) {
+    result.tracking = ComputeTrackingMetrics(dataset.persons(), tracks);
+    result.tracking_evaluated = true;
+  }
+
+  std::map<std::string, MethodRun> runs;
+  std::map<std::string, std::vector<double>> match_times;
+  auto finish = [&](const std::string& name, std::vector<std::vector<double>> scores,
+                    const std::vector<double>& extract_ms, const std::vector<double>& match_ms) {
+    MethodRun run;
+    run.name = name;
+    run.metrics = ComputeMetrics(result.queries, scores, dataset.poses());
+    run.metrics.SetTiming(extract_ms, match_ms);
+    run.scores = std::move(scores);
+    runs[name] = std::move(run);
+    match_times[name] = match_ms;
+  };
+  RansacOptions lo = options.ransac;
+  lo.local_optimisation_refits = options.lo_refits;
+  std::vector<double> match_ms;
+  if (need_slcd) {
+    auto s = ScoreQueries(slcd_index, result.queries, options.match, options.ransac, seed, options.threads, "slcd", &match_ms);
+    finish("slcd", std::move(s), PerQueryExtract(slcd_ms, result.queries), match_ms);
+  }
+  if (Wants(methods, "slcd-lo")) {
+    auto s = ScoreQueries(slcd_index, result.queries, options.match, lo, seed, options.threads, "slcd-lo", &match_ms);
+    finish("slcd-lo", std::move(s), PerQueryExtract(slcd_ms, result.queries), match_ms);
+  }
+  if (need_dlcd) {
+    auto s = ScoreQueries(dlcd_index, result.queries, options.match, options.ransac, seed, options.threads, "dlcd", &match_ms);
+    finish("dlcd", std::move(s), PerQueryExtract(dlcd_ms, result.queries), match_ms);
+  }
+  if (Wants(methods, "dlcd-lo")) {
+    auto s = ScoreQueries(dlcd_index, result.queries, options.match, lo, seed, options.threads, "dlcd-lo", &match_ms);
+    finish("dlcd-lo", std::move(s), PerQueryExtract(dlcd_ms, result.queries), match_ms);
+  }
+  if (Wants(methods, "dlcd-track")) {
+    std::vector<std::vector<double>> scores(result.queries.size());
+    match_ms.assign(result.queries.size(), 0.0);
+    ProgressReporter progress("dlcd-track", static_cast<int64_t>(result.queries.size()), "queries");
+    for (size_t i = 0; i < result.queries.size(); ++i) {
+      const Query& q = result.queries[i];
+      const auto t = Clock::now();
+      scores[i].assign(q.database.size(), 0.0);
+      if (q.NumTrueMatches() > 0) {
+        ParallelFor(static_cast<int64_t>(q.database.size()), options.threads, [&](int64_t j) {
+          const int r = q.database[j];
+          scores[i][j] = ScoreTrackAwarePair(hoi[q.frame], hoi[r], options.track_aware, options.ransac,
+                                             seed, q.frame, r);
+        });
+      }
+      match_ms[i] = MsSince(t);
+      progress.Update();
+    }
+    progress.Done();
+    finish("dlcd-track", std::move(scores), PerQueryExtract(dlcd_ms, result.queries), match_ms);
+  }
+  if (Wants(methods, "fusion") || Wants(methods, "fusion-tc")) {
+    const MethodRun& s = runs.at("slcd");
+    const MethodRun& d = runs.at("dlcd");
+    std::vector<std::vector<double>> fused(result.queries.size());
+    std::vector<double> extract(result.queries.size()), match(result.queries.size());
+    for (size_t i = 0; i < result.queries.size(); ++i) {
+      const auto t = Clock::now();
+      fused[i] = ReciprocalRankFusionOfScores({s.scores[i], d.scores[i]}, options.rrf_k);
+      // Fusion costs both methods' extraction and matching plus the fusion itself.
+      extract[i] = slcd_ms[result.queries[i].frame] + dlcd_ms[result.queries[i].frame];
+      match[i] = match_times.at("slcd")[i] + match_times.at("dlcd")[i] + MsSince(t);
+    }
+    finish("fusion", fused, extract, match);
+    if (Wants(methods, "fusion-tc")) {
+      const auto t = Clock::now();
+      auto gated = TemporalConsistencyScores(result.queries, fused, options.temporal);
+      const double per_query = MsSince(t) / std::max<size_t>(1, result.queries.size());
+      std::vector<double> tc_match(match);
+      for (double& m : tc_match) m += per_query;
+      finish("fusion-tc", std::move(gated), extract, tc_match);
+    }
+  }
+  if (need_thumb) {
+    const auto t = Clock::now();
+    const std::vector<std::vector<float>> dense = thumbnails.SimilarityMatrix(options.threads);
+    const double per_query_ms = MsSince(t) / std::max(1, n);
+    std::vector<double> m(result.queries.size(), per_query_ms);
+    if (Wants(methods, "thumb")) finish("thumb", FromDense(dense, result.queries), PerQueryExtract(thumb_ms, result.queries), m);
+    if (Wants(methods, "thumb-seq")) {
+      const auto t2 = Clock::now();
+      const auto seq = SequenceMatch(dense, options.thumbnail, options.threads);
+      const double seq_ms = MsSince(t2) / std::max(1, n);
+      for (double& v : m) v += seq_ms;
+      finish("thumb-seq", FromDense(seq, result.queries), PerQueryExtract(thumb_ms, result.queries), m);
+    }
+  }
+  for (const std::string& name : methods) result.runs.push_back(std::move(runs.at(name)));
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,751 @@
+// make_assets: writes the hoilcd glTF 2.0 assets (people, furniture, hot objects) with their
+// thermal extras. Usage: make_assets OUT_DIR. Output is deterministic: no randomness, no clock,
+// and JSON objects are written with sorted keys, so regenerating shows no diff.
+//
+// Shapes are modelled in the hoilcd asset frame (metres, z up, x forward, y left) and converted
+// to glTF (+Y up, front +Z) on output: (X, Y, Z)_gltf = (y, z, x)_hoilcd.
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+constexpr double kPi = 3.14159265358979323846;
+
+double Deg(double degrees) { return degrees * kPi / 180.0; }
+
+// Rotation about the hoilcd y axis (left) that tips +z towards +x by `angle_rad`.
+Mat3 PitchForward(double angle_rad) {
+  return Eigen::AngleAxisd(angle_rad, Vec3::UnitY()).toRotationMatrix();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shapes: closed triangle surfaces in the hoilcd frame.
+// Hand-written: the libraries we build with (Eigen, tinygltf) make no capsule/loft meshes.
+
+struct Shape {
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;  // 3 per triangle
+};
+
+// Signed volume (divergence theorem); positive when the closed surface's triangles face outwards.
+double SignedVolume(const Shape& shape) {
+  double volume = 0;
+  for (size_t t = 0; t < shape.indices.size(); t += 3) {
+    const Vec3& a = shape.positions[shape.indices[t]];
+    const Vec3& b = shape.positions[shape.indices[t + 1]];
+    const Vec3& c = shape.positions[shape.indices[t + 2]];
+    volume += a.dot(b.cross(c)) / 6.0;
+  }
+  return volume;
+}
+
+void OrientOutwards(Shape& shape) {
+  if (SignedVolume(shape) >= 0) return;
+  for (size_t t = 0; t < shape.indices.size(); t += 3) {
+    std::swap(shape.indices[t + 1], shape.indices[t + 2]);
+  }
+}
+
+// One cross-section of a loft: centre plus two half-axis vectors (length = half size).
+struct Ring {
+  Vec3 center;
+  Vec3 u;
+  Vec3 v;
+};
+
+// Superellipse coordinate: exponent 2 is an ellipse, larger values are boxier.
+double SuperCoord(double c, double exponent) {
+  return std::copysign(std::pow(std::abs(c), 2.0 / exponent), c);
+}
+
+// Closed surface through `rings` (each sampled at `around` points), closed by a pole at each end.
+Shape Loft(const std::vector<Ring>& rings, const Vec3& start_pole, const Vec3& end_pole, int around,
+           double exponent = 2.0) {
+  Shape shape;
+  const auto n = static_cast<uint32_t>(around);
+  shape.positions.push_back(start_pole);
+  for (const Ring& ring : rings) {
+    for (int j = 0; j < around; ++j) {
+      const double theta = 2.0 * kPi * j / around;
+      shape.positions.push_back(ring.center + ring.u * SuperCoord(std::cos(theta), exponent) +
+                                ring.v * SuperCoord(std::sin(theta), exponent));
+    }
+  }
+  shape.positions.push_back(end_pole);
+  const auto ring_count = static_cast<uint32_t>(rings.size());
+  const auto end_index = static_cast<uint32_t>(shape.positions.size() - 1);
+  auto at = [n](uint32_t ring, uint32_t j) { return 1 + ring * n + (j % n); };
+  for (uint32_t j = 0; j < n; ++j) {
+    shape.indices.insert(shape.indices.end(), {0, at(0, j + 1), at(0, j)});
+    shape.indices.insert(shape.indices.end(),
+                         {end_index, at(ring_count - 1, j), at(ring_count - 1, j + 1)});
+  }
+  for (uint32_t r = 0; r + 1 < ring_count; ++r) {
+    for (uint32_t j = 0; j < n; ++j) {
+      shape.indices.insert(shape.indices.end(), {at(r, j), at(r, j + 1), at(r + 1, j)});
+      shape.indices.insert(shape.indices.end(), {at(r, j + 1), at(r + 1, j + 1), at(r + 1, j)});
+    }
+  }
+  OrientOutwards(shape);
+  return shape;
+}
+
+// Ellipsoid with half sizes `radii` along the columns of `axes`.
+Shape Ellipsoid(const Vec3& center, const Mat3& axes, const Vec3& radii, int around, int rings) {
+  std::vector<Ring> sections;
+  for (int i = 1; i < rings; ++i) {
+    const double phi = -kPi / 2 + kPi * i / rings;
+    sections.push_back({center + axes.col(2) * radii.z() * std::sin(phi),
+                        axes.col(0) * radii.x() * std::cos(phi),
+                        axes.col(1) * radii.y() * std::cos(phi)});
+  }
+  return Loft(sections, center - axes.col(2) * radii.z(), center + axes.col(2) * radii.z(), around);
+}
+
+// Any unit vector perpendicular to `w`.
+Vec3 Perpendicular(const Vec3& w) {
+  const Vec3 helper = std::abs(w.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitX();
+  return w.cross(helper).normalized();
+}
+
+// Tapered capsule: sphere of radius ra around joint a, rb around joint b, joined by a cone.
+Shape Capsule(const Vec3& a, const Vec3& b, double ra, double rb, int around = 16,
+              int cap_rings = 4) {
+  const Vec3 w = (b - a).normalized();
+  const Vec3 u = Perpendicular(w);
+  const Vec3 v = w.cross(u);
+  std::vector<Ring> sections;
+  for (int i = 1; i <= cap_rings; ++i) {
+    const double phi = -kPi / 2 + (kPi / 2) * i / cap_rings;
+    const double r = ra * std::cos(phi);
+    sections.push_back({a + w * ra * std::sin(phi), u * r, v * r});
+  }
+  for (int i = 0; i < cap_rings; ++i) {
+    const double phi = (kPi / 2) * i / cap_rings;
+    const double r = rb * std::cos(phi);
+    sections.push_back({b + w * rb * std::sin(phi), u * r, v * r});
+  }
+  return Loft(sections, a - w * ra, b + w * rb, around);
+}
+
+// Round rod whose rounded ends touch `a` and `b`.
+Shape Rod(const Vec3& a, const Vec3& b, double radius, int around = 12) {
+  const Vec3 w = (b - a).normalized();
+  return Capsule(a + w * radius, b - w * radius, radius, radius, around, 2);
+}
+
+// Solid of revolution about the z axis through `base`: profile (radius, height) from the bottom
+// pole to the top pole (radius 0 at both ends is implied).
+Shape Lathe(const Vec3& base, const std::vector<Eigen::Vector2d>& profile, double bottom_z,
+            double top_z, int around) {
+  std::vector<Ring> sections;
+  for (const Eigen::Vector2d& p : profile) {
+    sections.push_back({base + Vec3(0, 0, p.y()), Vec3(p.x(), 0, 0), Vec3(0, p.x(), 0)});
+  }
+  return Loft(sections, base + Vec3(0, 0, bottom_z), base + Vec3(0, 0, top_z), around);
+}
+
+// Box with half sizes `half` along the columns of `axes`; faces do not share vertices.
+Shape Box(const Vec3& center, const Mat3& axes, const Vec3& half) {
+  Shape shape;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int sign = -1; sign <= 1; sign += 2) {
+      const Vec3 n = axes.col(axis) * sign;
+      const Vec3 s = axes.col((axis + 1) % 3) * half[(axis + 1) % 3];
+      const Vec3 t = axes.col((axis + 2) % 3) * half[(axis + 2) % 3];
+      const Vec3 c = center + n * half[axis];
+      const auto first = static_cast<uint32_t>(shape.positions.size());
+      shape.positions.insert(shape.positions.end(), {c - s - t, c + s - t, c + s + t, c - s + t});
+      if (sign > 0) {
+        shape.indices.insert(shape.indices.end(),
+                             {first, first + 1, first + 2, first, first + 2, first + 3});
+      } else {
+        shape.indices.insert(shape.indices.end(),
+                             {first, first + 2, first + 1, first, first + 3, first + 2});
+      }
+    }
+  }
+  OrientOutwards(shape);
+  return shape;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Asset description: materials with thermal extras, triangles per material, scene extras.
+
+struct ThermalSpec {
+  std::string region;
+  double temperature_c;
+  double emissivity;
+  bool specular;
+  std::array<double, 4> base_color;  // for ordinary glTF viewers only
+  double metallic;
+};
+
+struct Contact {
+  std::string name;
+  Vec3 position;  // hoilcd frame
+};
+
+struct AssetBuilder {
+  std::string name;
+  std::string class_name;
+  std::string posture;  // people only
+  std::vector<ThermalSpec> materials;
+  std::vector<Shape> parts;  // one per material
+  std::vector<Contact> contacts;
+
+  int Material(const ThermalSpec& spec) {
+    for (size_t i = 0; i < materials.size(); ++i) {
+      if (materials[i].region == spec.region) return static_cast<int>(i);
+    }
+    materials.push_back(spec);
+    parts.emplace_back();
+    return static_cast<int>(materials.size() - 1);
+  }
+
+  // Adds the shape's triangles to the material `pick(centroid, normal)` returns for each.
+  void Add(const Shape& shape, const std::function<int(const Vec3&, const Vec3&)>& pick) {
+    std::vector<std::vector<int64_t>> remap(parts.size(),
+                                            std::vector<int64_t>(shape.positions.size(), -1));
+    for (size_t t = 0; t < shape.indices.size(); t += 3) {
+      const Vec3& a = shape.positions[shape.indices[t]];
+      const Vec3& b = shape.positions[shape.indices[t + 1]];
+      const Vec3& c = shape.positions[shape.indices[t + 2]];
+      const Vec3 normal = (b - a).cross(c - a).normalized();
+      const int material = pick((a + b + c) / 3.0, normal);
+      Shape& part = parts[static_cast<size_t>(material)];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t source = shape.indices[t + static_cast<size_t>(k)];
+        int64_t& target = remap[static_cast<size_t>(material)][source];
+        if (target < 0) {
+          target = static_cast<int64_t>(part.positions.size());
+          part.positions.push_back(shape.positions[source]);
+        }
+        part.indices.push_back(static_cast<uint32_t>(target));
+      }
+    }
+  }
+
+  void Add(const Shape& shape, int material) {
+    Add(shape, [material](const Vec3&, const Vec3&) { return material; });
+  }
+};
+
+// Thermal properties (SPEC.md "Radiometry"; assets/README.md lists sources and choices).
+const ThermalSpec kSkin{"skin", 34.0, 0.98, false, {0.85, 0.62, 0.50, 1}, 0};
+const ThermalSpec kHair{"hair", 30.0, 0.95, false, {0.20, 0.14, 0.10, 1}, 0};
+const ThermalSpec kClothingUpper{"clothing_upper", 28.5, 0.90, false, {0.25, 0.40, 0.65, 1}, 0};
+const ThermalSpec kClothingLower{"clothing_lower", 27.5, 0.90, false, {0.20, 0.20, 0.25, 1}, 0};
+const ThermalSpec kShoes{"shoes", 25.0, 0.90, false, {0.10, 0.08, 0.06, 1}, 0};
+const ThermalSpec kWood{"wood", 22.0, 0.90, false, {0.60, 0.45, 0.30, 1}, 0};
+const ThermalSpec kMetal{"metal", 22.0, 0.10, true, {0.75, 0.75, 0.78, 1}, 1};
+const ThermalSpec kPlastic{"plastic", 22.0, 0.94, false, {0.30, 0.30, 0.32, 1}, 0};
+const ThermalSpec kCeramic{"ceramic", 45.0, 0.92, false, {0.95, 0.95, 0.92, 1}, 0};
+const ThermalSpec kCoffee{"coffee", 55.0, 0.95, false, {0.30, 0.18, 0.08, 1}, 0};
+const ThermalSpec kLaptopBase{"laptop_base", 32.0, 0.90, false, {0.55, 0.55, 0.58, 1}, 0};
+const ThermalSpec kLaptopLid{"laptop_lid", 30.0, 0.90, false, {0.55, 0.55, 0.58, 1}, 0};
+const ThermalSpec kLaptopScreen{"laptop_screen", 30.0, 0.94, true, {0.05, 0.05, 0.08, 1}, 0};
+const ThermalSpec kMonitorBack{"monitor_back", 30.0, 0.94, false, {0.12, 0.12, 0.12, 1}, 0};
+const ThermalSpec kMonitorScreen{"monitor_screen", 27.0, 0.94, true, {0.03, 0.03, 0.05, 1}, 0};
+const ThermalSpec kRadiator{"radiator", 42.0, 0.93, false, {0.95, 0.95, 0.95, 1}, 0};
+
+// ---------------------------------------------------------------------------------------------
+// People.
+
+// Joint positions of one posture (hoilcd frame; index 0 = left (+y), 1 = right (-y)).
+struct Pose {
+  std::string posture;
+  Vec3 pelvis;  // spine base, at hip-joint height
+  Mat3 torso;   // columns: forward, left, up of the torso
+  Mat3 head;    // columns: forward, left, up of the head
+  Vec3 elbow[2];
+  Vec3 wrist[2];
+  Vec3 hand_tip[2];  // fingertips
+  Vec3 hand_up[2];   // back-of-hand direction
+  Vec3 hip[2];
+  Vec3 knee[2];
+  Vec3 ankle[2];
+  std::vector<Contact> contacts;
+};
+
+// Torso cross-sections: height above the pelvis, half width (left), half depth (forward),
+// forward offset of the centre.
+struct TorsoSection {
+  double height;
+  double half_width;
+  double half_depth;
+  double forward;
+};
+
+constexpr double kShoulderHeight = 0.44;  // shoulder joints above the pelvis along the spine
+constexpr double kShoulderHalfWidth = 0.185;
+
+Vec3 Shoulder(const Pose& pose, int side) {
+  const double sign = side == 0 ? 1.0 : -1.0;
+  return pose.pelvis + pose.torso * Vec3(-0.01, sign * kShoulderHalfWidth, kShoulderHeight);
+}
+
+void AddPerson(AssetBuilder& asset, const Pose& pose) {
+  const int skin = asset.Material(kSkin);
+  const int hair = asset.Material(kHair);
+  const int upper = asset.Material(kClothingUpper);
+  const int lower = asset.Material(kClothingLower);
+  const int shoes = asset.Material(kShoes);
+  const Mat3& t = pose.torso;
+  auto torso_point = [&](double forward, double left, double up) -> Vec3 {
+    return pose.pelvis + t * Vec3(forward, left, up);
+  };
+
+  // Torso: a superelliptic loft from the hips to the shoulders.
+  const TorsoSection sections[] = {
+      {-0.03, 0.145, 0.100, -0.01}, {0.05, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
+      {0.26, 0.160, 0.110, 0.01},   {0.36, 0.175, 0.112, 0.01},   {0.42, 0.180, 0.100, 0.00},
+      {0.46, 0.170, 0.088, -0.005}, {0.485, 0.135, 0.075, -0.01}, {0.505, 0.080, 0.062, -0.01}};
+  std::vector<Ring> rings;
+  for (const TorsoSection& s : sections) {
+    rings.push_back(
+        {torso_point(s.forward, 0, s.height), t.col(1) * s.half_width, t.col(0) * s.half_depth});
+  }
+  asset.Add(Loft(rings, torso_point(-0.01, 0, -0.06), torso_point(-0.01, 0, 0.515), 32, 2.6),
+            upper);
+
+  // Pelvis and buttocks.
+  asset.Add(Ellipsoid(torso_point(-0.01, 0, 0.0), t, Vec3(0.115, 0.15, 0.10), 24, 12), lower);
+
+  // Neck and head (face and ears skin; top, back and sides of the skull hair).
+  const Mat3& h = pose.head;
+  const Vec3 neck_base = torso_point(-0.015, 0, 0.45);
+  const Vec3 head_center = neck_base + h * Vec3(0.02, 0, 0.225);
+  asset.Add(Capsule(neck_base, neck_base + h * Vec3(0.01, 0, 0.12), 0.062, 0.056, 20, 4), skin);
+  const Vec3 head_radii(0.10, 0.083, 0.12);
+  asset.Add(Ellipsoid(head_center, h, head_radii, 32, 20), [&](const Vec3& c, const Vec3&) {
+    const Vec3 local = h.transpose() * (c - head_center);
+    const double f = local.x() / head_radii.x();
+    const double u = local.z() / head_radii.z();
+    const bool is_hair = u > 0.45 || (f < 0.35 && u > 0.15) || (f < -0.15 && u > -0.55);
+    return is_hair ? hair : skin;
+  });
+  asset.Add(
+      Ellipsoid(head_center + h * Vec3(0.095, 0, -0.015), h, Vec3(0.025, 0.014, 0.032), 12, 8),
+      skin);
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    asset.Add(Ellipsoid(head_center + h * Vec3(-0.005, sign * 0.081, -0.005), h,
+                        Vec3(0.02, 0.012, 0.032), 10, 6),
+              skin);
+  }
+
+  for (int side = 0; side < 2; ++side) {
+    const Vec3 shoulder = Shoulder(pose, side);
+    // Shoulder cap, upper arm, forearm (long sleeves), hand.
+    asset.Add(Ellipsoid(shoulder + t * Vec3(0, 0, -0.01), t, Vec3(0.06, 0.055, 0.055), 16, 10),
+              upper);
+    asset.Add(Capsule(shoulder, pose.elbow[side], 0.052, 0.042), upper);
+    asset.Add(Capsule(pose.elbow[side], pose.wrist[side], 0.041, 0.031), upper);
+    const Vec3 along = (pose.hand_tip[side] - pose.wrist[side]).normalized();
+    const Vec3 back = (pose.hand_up[side] - pose.hand_up[side].dot(along) * along).normalized();
+    Mat3 hand_axes;
+    hand_axes.col(2) = along;
+    hand_axes.col(0) = back;
+    hand_axes.col(1) = along.cross(back);
+    const double hand_half_length = (pose.hand_tip[side] - pose.wrist[side]).norm() / 2;
+    asset.Add(Ellipsoid((pose.wrist[side] + pose.hand_tip[side]) / 2, hand_axes,
+                        Vec3(0.017, 0.043, hand_half_length), 16, 10),
+              skin);
+    // Thigh, shin (trousers), shoe.
+    asset.Add(Capsule(pose.hip[side], pose.knee[side], 0.08, 0.055), lower);
+    asset.Add(Capsule(pose.knee[side], pose.ankle[side], 0.05, 0.038), lower);
+    const Vec3 shoe_center(pose.ankle[side].x() + 0.06, pose.ankle[side].y(), 0.045);
+    asset.Add(Ellipsoid(shoe_center, Mat3::Identity(), Vec3(0.135, 0.05, 0.045), 16, 10), shoes);
+  }
+  asset.contacts = pose.contacts;
+  asset.posture = pose.posture;
+  asset.class_name = "person";
+}
+
+// Hips, legs and feet of every seated posture: seat top at 0.45 m, origin under the seat centre.
+Pose SeatedLegs() {
+  Pose pose;
+  pose.pelvis = Vec3(-0.08, 0, 0.53);
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    pose.hip[side] = Vec3(-0.07, sign * 0.09, 0.53);
+    pose.knee[side] = Vec3(0.35, sign * 0.10, 0.51);
+    pose.ankle[side] = Vec3(0.39, sign * 0.11, 0.09);
+    pose.contacts.push_back({"floor", Vec3(0.45, sign * 0.11, 0.0)});
+  }
+  pose.contacts.insert(pose.contacts.begin(), {"seat", Vec3(-0.05, 0, 0.45)});
+  return pose;
+}
+
+Pose SeatedUpright() {
+  Pose pose = SeatedLegs();
+  pose.posture = "seated_upright";
+  pose.torso = Mat3::Identity();
+  pose.head = Mat3::Identity();
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    // Hands resting on the thighs.
+    pose.elbow[side] = Vec3(-0.06, sign * 0.22, 0.72);
+    pose.wrist[side] = Vec3(0.15, sign * 0.15, 0.655);
+    pose.hand_tip[side] = Vec3(0.32, sign * 0.12, 0.635);
+    pose.hand_up[side] = Vec3(0, 0, 1);
+  }
+  return pose;
+}
+
+Pose SeatedArmsOnTable() {
+  Pose pose = SeatedLegs();
+  pose.posture = "seated_arms_on_table";
+  pose.torso = PitchForward(Deg(4));
+  pose.head = PitchForward(Deg(8));
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    // Forearms on the table top (0.74 m, near edge at x = 0.30 m), hands flat near the middle.
+    pose.elbow[side] = Vec3(0.19, sign * 0.22, 0.79);
+    pose.wrist[side] = Vec3(0.45, sign * 0.13, 0.772);
+    pose.hand_tip[side] = Vec3(0.62, sign * 0.10, 0.760);
+    pose.hand_up[side] = Vec3(0, sign * 0.3, 1);
+    pose.contacts.push_back({"table", Vec3(0.33, sign * 0.175, 0.74)});
+  }
+  return pose;
+}
+
+Pose SeatedLeaning() {
+  Pose pose = SeatedLegs();
+  pose.posture = "seated_leaning";
+  pose.torso = PitchForward(Deg(20));
+  pose.head = PitchForward(Deg(12));
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    // Elbows and forearms on the table top, hands meeting in front.
+    pose.elbow[side] = Vec3(0.34, sign * 0.23, 0.785);
+    pose.wrist[side] = Vec3(0.56, sign * 0.10, 0.772);
+    pose.hand_tip[side] = Vec3(0.70, sign * 0.04, 0.760);
+    pose.hand_up[side] = Vec3(0, sign * 0.3, 1);
+    pose.contacts.push_back({"table", Vec3(0.40, sign * 0.195, 0.74)});
+  }
+  return pose;
+}
+
+Pose Standing() {
+  Pose pose;
+  pose.posture = "standing";
+  pose.pelvis = Vec3(0, 0, 0.925);
+  pose.torso = Mat3::Identity();
+  pose.head = Mat3::Identity();
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    pose.hip[side] = Vec3(0, sign * 0.09, 0.92);
+    pose.knee[side] = Vec3(0.015, sign * 0.10, 0.50);
+    pose.ankle[side] = Vec3(-0.01, sign * 0.105, 0.09);
+    pose.elbow[side] = Vec3(-0.03, sign * 0.225, 1.07);
+    pose.wrist[side] = Vec3(0.0, sign * 0.225, 0.82);
+    pose.hand_tip[side] = Vec3(0.01, sign * 0.215, 0.64);
+    pose.hand_up[side] = Vec3(0, sign, 0);
+    pose.contacts.push_back({"floor", Vec3(0.05, sign * 0.105, 0.0)});
+  }
+  return pose;
+}
+
+AssetBuilder Person(const std::string& name, const Pose& pose) {
+  AssetBuilder asset;
+  asset.name = name;
+  AddPerson(asset, pose);
+  return asset;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Furniture and hot objects.
+
+AssetBuilder Table() {
+  AssetBuilder asset;
+  asset.name = "table";
+  asset.class_name = "table";
+  const int wood = asset.Material(kWood);
+  const int metal = asset.Material(kMetal);
+  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(0.45, 0.375, 0.015)), wood);
+  for (int i = 0; i < 4; ++i) {
+    const double x = (i & 1) ? 0.40 : -0.40;
+    const double y = (i & 2) ? 0.325 : -0.325;
+    asset.Add(Rod(Vec3(x, y, 0), Vec3(x, y, 0.712), 0.02), metal);
+  }
+  return asset;
+}
+
+AssetBuilder Chair() {
+  AssetBuilder asset;
+  asset.name = "chair";
+  asset.class_name = "chair";
+  const int plastic = asset.Material(kPlastic);
+  const int metal = asset.Material(kMetal);
+  asset.Add(Box(Vec3(0, 0, 0.435), Mat3::Identity(), Vec3(0.21, 0.21, 0.015)), plastic);
+  const Mat3 back_axes = PitchForward(Deg(-8));
+  asset.Add(Box(Vec3(-0.235, 0, 0.72), back_axes, Vec3(0.015, 0.20, 0.13)), plastic);
+  for (int i = 0; i < 4; ++i) {
+    const double x = (i & 1) ? 0.18 : -0.18;
+    const double y = (i & 2) ? 0.18 : -0.18;
+    asset.Add(Rod(Vec3(x, y, 0), Vec3(x, y, 0.425), 0.012), metal);
+  }
+  for (int side = 0; side < 2; ++side) {
+    const double y = side == 0 ? 0.17 : -0.17;
+    asset.Add(Rod(Vec3(-0.18, y, 0.42), Vec3(-0.25, y, 0.84), 0.011), metal);
+  }
+  return asset;
+}
+
+AssetBuilder Cup() {
+  AssetBuilder asset;
+  asset.name = "cup";
+  asset.class_name = "cup";
+  const int ceramic = asset.Material(kCeramic);
+  const int coffee = asset.Material(kCoffee);
+  constexpr double kOuterRadius = 0.041;
+  constexpr double kInnerRadius = 0.036;
+  constexpr double kHeight = 0.085;
+  constexpr double kCoffeeLevel = 0.068;
+  const std::vector<Eigen::Vector2d> profile = {{kOuterRadius, 0.0},
+                                                {kOuterRadius, kHeight},
+                                                {kInnerRadius, kHeight},
+                                                {kInnerRadius, kCoffeeLevel}};
+  asset.Add(Lathe(Vec3::Zero(), profile, 0.0, kCoffeeLevel, 40), [&](const Vec3& c, const Vec3&) {
+    return std::abs(c.z() - kCoffeeLevel) < 1e-6 ? coffee : ceramic;
+  });
+  // Handle: a half torus on the -y side, ends sunk into the wall.
+  std::vector<Ring> rings;
+  constexpr int kSteps = 14;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double a = -kPi / 2 + kPi * i / kSteps;
+    const Vec3 center(0, -(0.036 + 0.022 * std::cos(a)), 0.043 + 0.025 * std::sin(a));
+    const Vec3 radial = Vec3(0, -std::cos(a), std::sin(a));
+    rings.push_back({center, Vec3(0.007, 0, 0), radial * 0.0055});
+  }
+  asset.Add(Loft(rings, rings.front().center, rings.back().center, 12), ceramic);
+  return asset;
+}
+
+AssetBuilder Laptop() {
+  AssetBuilder asset;
+  asset.name = "laptop";
+  asset.class_name = "laptop";
+  const int base = asset.Material(kLaptopBase);
+  const int lid = asset.Material(kLaptopLid);
+  const int screen = asset.Material(kLaptopScreen);
+  // Front (+x) is where the user sits; hinge at the back edge (x = -0.11 m).
+  asset.Add(Box(Vec3(0, 0, 0.009), Mat3::Identity(), Vec3(0.11, 0.16, 0.009)), base);
+  const Mat3 lid_axes = PitchForward(Deg(-20));  // opened to 110 degrees
+  const Vec3 hinge(-0.11, 0, 0.018);
+  const Vec3 lid_center = hinge + lid_axes * Vec3(0.0035, 0, 0.11);
+  const Vec3 screen_normal = lid_axes.col(0);
+  asset.Add(Box(lid_center, lid_axes, Vec3(0.0035, 0.16, 0.11)),
+            [&](const Vec3&, const Vec3& n) { return n.dot(screen_normal) > 0.99 ? screen : lid; });
+  return asset;
+}
+
+AssetBuilder Monitor() {
+  AssetBuilder asset;
+  asset.name = "monitor";
+  asset.class_name = "monitor";
+  const int back = asset.Material(kMonitorBack);
+  const int screen = asset.Material(kMonitorScreen);
+  const int plastic = asset.Material(kPlastic);
+  // 24-inch panel facing +x (the viewer), on a neck and foot plate.
+  asset.Add(Box(Vec3(0, 0, 0.29), Mat3::Identity(), Vec3(0.025, 0.27, 0.165)),
+            [&](const Vec3&, const Vec3& n) { return n.x() > 0.99 ? screen : back; });
+  asset.Add(Box(Vec3(-0.05, 0, 0.17), Mat3::Identity(), Vec3(0.02, 0.04, 0.16)), plastic);
+  asset.Add(Box(Vec3(-0.03, 0, 0.0075), Mat3::Identity(), Vec3(0.09, 0.11, 0.0075)), plastic);
+  return asset;
+}
+
+AssetBuilder Radiator() {
+  AssetBuilder asset;
+  asset.name = "radiator";
+  asset.class_name = "radiator";
+  const int hot = asset.Material(kRadiator);
+  // Panel 1.0 m wide (y), 0.6 m high, 0.1 m deep, 0.15 m above the floor, front facing +x.
+  asset.Add(Box(Vec3(0, 0, 0.45), Mat3::Identity(), Vec3(0.05, 0.50, 0.30)), hot);
+  for (int side = 0; side < 2; ++side) {
+    const double y = side == 0 ? 0.45 : -0.45;
+    asset.Add(Rod(Vec3(0, y, 0), Vec3(0, y, 0.16), 0.011), hot);
+  }
+  return asset;
+}
+
+// ---------------------------------------------------------------------------------------------
+// glTF output.
+
+tinygltf::Value Vec3Value(const Vec3& p_hoilcd) {
+  const Vec3 p(p_hoilcd.y(), p_hoilcd.z(), p_hoilcd.x());
+  return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(p.x()), tinygltf::Value(p.y()),
+                                                tinygltf::Value(p.z())});
+}
+
+// Rounds to 0.1 mm so the JSON stays readable.
+double Round(double value) { return std::round(value * 1e4) / 1e4; }
+
+int AddBufferView(tinygltf::Model& model, const void* data, size_t size, int target) {
+  std::vector<unsigned char>& bytes = model.buffers[0].data;
+  const size_t offset = bytes.size();
+  bytes.resize(offset + size);
+  std::memcpy(bytes.data() + offset, data, size);
+  bytes.resize((bytes.size() + 3) / 4 * 4, 0);  // keep every view 4-byte aligned
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = size;
+  view.target = target;
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size() - 1);
+}
+
+tinygltf::Model ToGltf(const AssetBuilder& asset) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "hoilcd make_assets";
+  model.buffers.emplace_back();
+  tinygltf::Mesh mesh;
+  mesh.name = asset.name;
+  for (size_t m = 0; m < asset.materials.size(); ++m) {
+    const ThermalSpec& spec = asset.materials[m];
+    tinygltf::Material material;
+    material.name = spec.region;
+    material.pbrMetallicRoughness.baseColorFactor.assign(spec.base_color.begin(),
+                                                         spec.base_color.end());
+    material.pbrMetallicRoughness.metallicFactor = spec.metallic;
+    material.pbrMetallicRoughness.roughnessFactor = spec.specular ? 0.2 : 0.8;
+    material.extras = tinygltf::Value(
+        tinygltf::Value::Object{{"temperature_c", tinygltf::Value(spec.temperature_c)},
+                                {"emissivity", tinygltf::Value(spec.emissivity)},
+                                {"specular", tinygltf::Value(spec.specular)},
+                                {"region", tinygltf::Value(spec.region)}});
+    model.materials.push_back(material);
+
+    const Shape& part = asset.parts[m];
+    if (part.indices.empty()) continue;
+    std::vector<float> positions;
+    std::vector<double> lo(3, 1e9);
+    std::vector<double> hi(3, -1e9);
+    for (const Vec3& p_hoilcd : part.positions) {
+      const float gltf[3] = {static_cast<float>(p_hoilcd.y()), static_cast<float>(p_hoilcd.z()),
+                             static_cast<float>(p_hoilcd.x())};
+      for (int k = 0; k < 3; ++k) {
+        positions.push_back(gltf[k]);
+        lo[static_cast<size_t>(k)] = std::min(lo[static_cast<size_t>(k)], double{gltf[k]});
+        hi[static_cast<size_t>(k)] = std::max(hi[static_cast<size_t>(k)], double{gltf[k]});
+      }
+    }
+    tinygltf::Accessor position_accessor;
+    position_accessor.bufferView = AddBufferView(
+        model, positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    position_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    position_accessor.type = TINYGLTF_TYPE_VEC3;
+    position_accessor.count = part.positions.size();
+    position_accessor.minValues = lo;
+    position_accessor.maxValues = hi;
+    model.accessors.push_back(position_accessor);
+    const int position_index = static_cast<int>(model.accessors.size() - 1);
+
+    tinygltf::Accessor index_accessor;
+    if (part.positions.size() < 65536) {
+      const std::vector<uint16_t> indices(part.indices.begin(), part.indices.end());
+      index_accessor.bufferView = AddBufferView(model, indices.data(), indices.size() * 2,
+                                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    } else {
+      index_accessor.bufferView = AddBufferView(model, part.indices.data(), part.indices.size() * 4,
+                                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    }
+    index_accessor.type = TINYGLTF_TYPE_SCALAR;
+    index_accessor.count = part.indices.size();
+    model.accessors.push_back(index_accessor);
+
+    tinygltf::Primitive primitive;
+    primitive.attributes["POSITION"] = position_index;
+    primitive.indices = static_cast<int>(model.accessors.size() - 1);
+    primitive.material = static_cast<int>(m);
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    mesh.primitives.push_back(primitive);
+  }
+  model.buffers[0].name = asset.name;
+  model.meshes.push_back(mesh);
+
+  tinygltf::Node node;
+  node.name = asset.name;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+
+  tinygltf::Scene scene;
+  scene.name = asset.name;
+  scene.nodes.push_back(0);
+  tinygltf::Value::Object extras{{"class", tinygltf::Value(asset.class_name)}};
+  if (!asset.posture.empty()) extras["posture"] = tinygltf::Value(asset.posture);
+  if (!asset.contacts.empty()) {
+    tinygltf::Value::Array contacts;
+    for (const Contact& contact : asset.contacts) {
+      const Vec3 rounded(Round(contact.position.x()), Round(contact.position.y()),
+                         Round(contact.position.z()));
+      contacts.push_back(tinygltf::Value(tinygltf::Value::Object{
+          {"name", tinygltf::Value(contact.name)}, {"position", Vec3Value(rounded)}}));
+    }
+    extras["contacts"] = tinygltf::Value(contacts);
+  }
+  scene.extras = tinygltf::Value(extras);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  return model;
+}
+
+size_t TriangleCount(const AssetBuilder& asset) {
+  size_t count = 0;
+  for (const Shape& part : asset.parts) count += part.indices.size() / 3;
+  return count;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: make_assets OUT_DIR\n";
+    return 2;
+  }
+  const std::string out_dir = argv[1];
+  const std::vector<AssetBuilder> assets = {
+      Person("person_seated_upright", SeatedUpright()),
+      Person("person_seated_leaning", SeatedLeaning()),
+      Person("person_seated_arms_on_table", SeatedArmsOnTable()),
+      Person("person_standing", Standing()),
+      Table(),
+      Chair(),
+      Cup(),
+      Laptop(),
+      Monitor(),
+      Radiator()};
+  tinygltf::TinyGLTF writer;
+  for (const AssetBuilder& asset : assets) {
+    const tinygltf::Model model = ToGltf(asset);
+    const std::string path = out_dir + "/" + asset.name + ".gltf";
+    if (!writer.WriteGltfSceneToFile(&model, path, true, true, true, false)) {
+      std::cerr << "make_assets: cannot write " << path << "\n";
+      return 1;
+    }
+    std::cout << path << ": " << TriangleCount(asset) << " triangles\n";
+  }
+  return 0;
+}
