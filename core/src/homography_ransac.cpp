@@ -14,6 +14,25 @@ namespace {
 
 // A sample triplet whose angle sine at any vertex is below this is treated as collinear.
 constexpr double kMinSampleSine = 1e-3;
+// With redraw_degenerate_samples, at most trials * this many samples are drawn in all.
+constexpr int64_t kMaxDrawsPerTrial = 10;
+
+// False if the sample's triplets keep their orientation in some but not all of the four
+// triplets: no homography without a point at infinity between them does that (OpenCV's
+// HomographyEstimatorCallback::checkSubset applies the same test).
+bool OrientationConsistent(const double sx[4], const double sy[4], const double dx[4],
+                           const double dy[4]) {
+  constexpr int kTriplets[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  int flipped = 0;
+  for (const auto& t : kTriplets) {
+    const double src = (sx[t[1]] - sx[t[0]]) * (sy[t[2]] - sy[t[0]]) -
+                       (sy[t[1]] - sy[t[0]]) * (sx[t[2]] - sx[t[0]]);
+    const double dst = (dx[t[1]] - dx[t[0]]) * (dy[t[2]] - dy[t[0]]) -
+                       (dy[t[1]] - dy[t[0]]) * (dx[t[2]] - dx[t[0]]);
+    flipped += src * dst < 0 ? 1 : 0;
+  }
+  return flipped == 0 || flipped == 4;
+}
 
 // True if no three of the four points are (nearly) collinear.
 bool FourPointsInGeneralPosition(const double x[4], const double y[4]) {
@@ -271,10 +290,16 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
       static_cast<float>(options.inlier_threshold_px * options.inlier_threshold_px);
   Rng rng(seed);
   const uint32_t n = static_cast<uint32_t>(count);
+  // With exactly 4 matches every sample is the same set: one draw decides.
+  const int64_t draw_budget =
+      count == 4 ? 1
+                 : static_cast<int64_t>(options.trials) *
+                       (options.redraw_degenerate_samples ? kMaxDrawsPerTrial : 1);
   double best[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   int best_inliers = 0;
   std::vector<uint8_t> lo_mask;
-  for (int trial = 0; trial < options.trials; ++trial) {
+  int hypotheses = 0;
+  for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget; ++draws) {
     uint32_t idx[4];
     idx[0] = rng.UniformInt(n);
     do idx[1] = rng.UniformInt(n); while (idx[1] == idx[0]);
@@ -287,7 +312,10 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
       dx[k] = query_x[idx[k]];
       dy[k] = query_y[idx[k]];
     }
-    if (!FourPointHomography(sx, sy, dx, dy, h)) continue;
+    if (!OrientationConsistent(sx, sy, dx, dy) || !FourPointHomography(sx, sy, dx, dy, h)) {
+      continue;
+    }
+    ++hypotheses;
     float hf[9];
     ToFloat(h, hf);
     const int inliers = CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq);

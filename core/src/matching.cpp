@@ -54,15 +54,14 @@ std::string MatchOptions::Check() const {
 PointGrid::PointGrid(const Point2* points, int count) {
   if (count <= 0) return;
   float min_x = points[0].x, max_x = min_x, min_y = points[0].y, max_y = min_y;
-  for (int i = 1; i < count; ++i) {
+  for (int i = 0; i < count; ++i) {
+    HOILCD_CHECK_MSG(std::isfinite(points[i].x) && std::isfinite(points[i].y),
+                     "point " << i << " has a non-finite coordinate");
     min_x = std::min(min_x, points[i].x);
     max_x = std::max(max_x, points[i].x);
     min_y = std::min(min_y, points[i].y);
     max_y = std::max(max_y, points[i].y);
   }
-  HOILCD_CHECK_MSG(std::isfinite(min_x) && std::isfinite(max_x) && std::isfinite(min_y) &&
-                       std::isfinite(max_y),
-                   "point coordinates must be finite");
   const float width = max_x - min_x, height = max_y - min_y;
   const float extent = std::max(width, height);
   origin_x_ = min_x;

@@ -233,6 +233,33 @@ TEST(EstimateHomographyRansac, LocalOptimisationNeverFindsFewerInliersThanPlainW
   EXPECT_GT(strictly_more, 0);
 }
 
+TEST(EstimateHomographyRansac, RedrawingDegenerateSamplesRecoversMoreInliersThanUsingUpTrials) {
+  Rng rng = KeyedRng(9, "test.ransac");
+  RansacOptions paper_literal;
+  paper_literal.redraw_degenerate_samples = false;
+  int64_t redrawn = 0, used_up = 0;
+  for (int t = 0; t < 100; ++t) {
+    const Problem p = MakeProblem(rng, 150, 60, 1.0);
+    redrawn += EstimateHomographyRansac(p.query, p.reference, p.matches, {}, t).inliers;
+    used_up += EstimateHomographyRansac(p.query, p.reference, p.matches, paper_literal, t).inliers;
+  }
+  EXPECT_GT(redrawn, used_up);
+}
+
+TEST(EstimateHomographyRansac, AllCollinearMatchesGiveZeroInliers) {
+  std::vector<Point2> line;
+  std::vector<Correspondence> matches;
+  for (int i = 0; i < 20; ++i) {
+    line.emplace_back(10.0f + 5.0f * i, 50.0f);
+    matches.push_back({i, i});
+  }
+  for (bool redraw : {false, true}) {
+    RansacOptions options;
+    options.redraw_degenerate_samples = redraw;
+    EXPECT_EQ(EstimateHomographyRansac(line, line, matches, options, 3).inliers, 0);
+  }
+}
+
 TEST(RansacOptions, CheckNamesEachInvalidFieldAndEstimateRejectsThem) {
   EXPECT_EQ(RansacOptions{}.Check(), "");
   RansacOptions bad;

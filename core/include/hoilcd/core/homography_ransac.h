@@ -26,6 +26,8 @@ inline bool operator==(const Correspondence& a, const Correspondence& b) {
 
 struct RansacOptions {
   int trials = 100;                   // exact number of hypotheses (paper), no adaptive stop
+  bool redraw_degenerate_samples = true;  // a degenerate sample is redrawn (up to 10 draws per
+                                          // trial on average) instead of using up its trial
   double inlier_threshold_px = 5.0;   // reprojection error bound, px
   int local_optimisation_refits = 0;  // 0 = plain RANSAC (paper); >0 = LO-RANSAC least-squares
                                       // refits on the inlier set of each new best model
@@ -39,8 +41,9 @@ struct HomographyResult {
 };
 
 // Homography maps reference points to query points; fewer than 4 matches => 0 inliers.
-// Deterministic given seed: samples are 4 distinct indices drawn from Rng(seed). A degenerate
-// sample uses up its trial (the paper: singularities invalidate the trial).
+// Deterministic given seed: samples are 4 distinct indices drawn from Rng(seed). A sample is
+// degenerate if three of its points are (nearly) collinear in either image or if it keeps the
+// orientation of some point triplets but not of others (as OpenCV's checkSubset).
 HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
                                           const std::vector<Point2>& reference,
                                           const std::vector<Correspondence>& matches,
