@@ -41,4 +41,30 @@ std::vector<int> RankByScore(const std::vector<double>& scores) {
   return order;
 }
 
+std::vector<double> FractionalRanks(const std::vector<double>& scores) {
+  const std::vector<int> order = RankByScore(scores);
+  std::vector<double> ranks(scores.size());
+  for (size_t begin = 0; begin < order.size();) {
+    size_t end = begin + 1;
+    while (end < order.size() && scores[order[end]] == scores[order[begin]]) ++end;
+    const double mean_rank = 0.5 * static_cast<double>(begin + 1 + end);  // positions begin+1..end
+    for (size_t i = begin; i < end; ++i) ranks[order[i]] = mean_rank;
+    begin = end;
+  }
+  return ranks;
+}
+
+std::vector<double> ReciprocalRankFusionOfScores(const std::vector<std::vector<double>>& scores,
+                                                 double k) {
+  HOILCD_CHECK_MSG(std::isfinite(k) && k > -1.0, "RRF constant k must be > -1, got " << k);
+  if (scores.empty()) return {};
+  std::vector<double> fused(scores.front().size(), 0.0);
+  for (const std::vector<double>& list : scores) {
+    HOILCD_CHECK_MSG(list.size() == fused.size(), "score lists differ in size");
+    const std::vector<double> ranks = FractionalRanks(list);
+    for (size_t i = 0; i < fused.size(); ++i) fused[i] += 1.0 / (k + ranks[i]);
+  }
+  return fused;
+}
+
 }  // namespace hoilcd

@@ -46,3 +46,27 @@ TEST(RankByScore, SortsDescendingAndKeepsTiesInIndexOrder) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(FractionalRanks, TiedItemsShareTheMeanOfTheirPositions) {
+  const std::vector<double> ranks = FractionalRanks({5, 0, 5, 0, 0, 9});
+  // Order: 9 (rank 1), the two 5s (ranks 2, 3 -> 2.5), the three 0s (ranks 4..6 -> 5).
+  EXPECT_EQ(ranks, (std::vector<double>{2.5, 5, 2.5, 5, 5, 1}));
+}
+
+TEST(ReciprocalRankFusionOfScores, EqualsRankFusionWithoutTiesAndIgnoresDatabaseOrderWithTies) {
+  const std::vector<double> a = {3, 1, 2}, b = {1, 3, 2};
+  const std::vector<double> fused = ReciprocalRankFusionOfScores({a, b}, 0.0);
+  const std::vector<double> reference =
+      ReciprocalRankFusion({RankByScore(a), RankByScore(b)}, 3, 0.0);
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(fused[i], reference[i]);
+  // All-tied lists give every item the same fused score, whatever the order.
+  const std::vector<double> tied = ReciprocalRankFusionOfScores({{0, 0, 0}, {0, 0, 0}}, 0.0);
+  EXPECT_DOUBLE_EQ(tied[0], tied[2]);
+  EXPECT_DOUBLE_EQ(tied[0], 2.0 / 2.0);
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -10,9 +10,9 @@
 #include <Eigen/Core>
 #include <opencv2/core/types.hpp>
 
-namespace hoilcd {
+#include "hoilcd/core/point.h"
 
-using Point2 = cv::Point2f;  // image coordinates, px
+namespace hoilcd {
 
 // A match: indices into the query and the reference point sets.
 struct Correspondence {

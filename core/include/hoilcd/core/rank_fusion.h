@@ -16,4 +16,14 @@ std::vector<double> ReciprocalRankFusion(const std::vector<std::vector<int>>& ra
 // metrics (expected rank over a tied group) are the bench's job, not this helper's.
 std::vector<int> RankByScore(const std::vector<double>& scores);
 
+// Ranks 1..n by descending score where tied items share the mean of the positions they occupy
+// (fractional ranking), so a rank never depends on database order.
+std::vector<double> FractionalRanks(const std::vector<double>& scores);
+
+// Reciprocal rank fusion of score lists over the same database (each parallel to it): fused
+// score = Σ 1/(k + r) with r the fractional rank in each list. With no ties it equals
+// ReciprocalRankFusion of the RankByScore rankings.
+std::vector<double> ReciprocalRankFusionOfScores(const std::vector<std::vector<double>>& scores,
+                                                 double k = 0.0);
+
 }  // namespace hoilcd
