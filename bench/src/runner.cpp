@@ -4,6 +4,7 @@
 #include <chrono>
 #include <numeric>
 #include <set>
+#include <set>
 
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/core/parallel.h"
@@ -48,6 +49,36 @@ std::vector<std::vector<double>> ScoreQueries(const RetrievalIndex& index, const
   return scores;
 }
 
+// Temporal consistency over per-query databases: scores go into the union of all databases
+// (frames absent from a query's own database score below everything), then back.
+std::vector<std::vector<double>> TemporalConsistencyOfQueries(const std::vector<Query>& queries,
+                                                             const std::vector<std::vector<double>>& scores,
+                                                             const TemporalConsistencyOptions& options) {
+  std::set<int> union_frames;
+  double lowest = 0;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    union_frames.insert(queries[i].database.begin(), queries[i].database.end());
+    for (double v : scores[i]) lowest = std::min(lowest, v);
+  }
+  const std::vector<int> database(union_frames.begin(), union_frames.end());
+  std::vector<int> column(database.empty() ? 0 : database.back() + 1, -1);
+  for (size_t j = 0; j < database.size(); ++j) column[database[j]] = static_cast<int>(j);
+  std::vector<int> query_frames;
+  std::vector<std::vector<float>> table(queries.size(), std::vector<float>(database.size(), static_cast<float>(lowest - 1)));
+  for (size_t i = 0; i < queries.size(); ++i) {
+    query_frames.push_back(queries[i].frame);
+    for (size_t j = 0; j < queries[i].database.size(); ++j) {
+      table[i][column[queries[i].database[j]]] = static_cast<float>(scores[i][j]);
+    }
+  }
+  const auto gated = TemporalConsistencyScores(query_frames, database, table, options);
+  std::vector<std::vector<double>> out(queries.size());
+  for (size_t i = 0; i < queries.size(); ++i) {
+    for (int r : queries[i].database) out[i].push_back(gated[i][column[r]]);
+  }
+  return out;
+}
+
 // Picks each query's database columns out of a dense frame x frame matrix.
 std::vector<std::vector<double>> FromDense(const std::vector<std::vector<float>>& dense,
                                            const std::vector<Query>& queries) {
@@ -75,7 +106,8 @@ std::string BenchOptions::Check() const {
   }
   for (const std::string& problem :
        {protocol.Check(), match.Check(), ransac.Check(), keypoints.Check(), detector.Check(),
-        tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), temporal.Check()}) {
+        tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), sequence.Check(),
+        temporal.Check()}) {
     if (!problem.empty()) return problem;
   }
   if (lo_refits < 1) return "lo_refits must be positive";
@@ -233,7 +265,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     finish("fusion", fused, extract, match);
     if (Wants(methods, "fusion-tc")) {
       const auto t = Clock::now();
-      auto gated = TemporalConsistencyScores(result.queries, fused, options.temporal);
+      auto gated = TemporalConsistencyOfQueries(result.queries, fused, options.temporal);
       const double per_query = MsSince(t) / std::max<size_t>(1, result.queries.size());
       std::vector<double> tc_match(match);
       for (double& m : tc_match) m += per_query;
@@ -242,13 +274,15 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   }
   if (need_thumb) {
     const auto t = Clock::now();
-    const std::vector<std::vector<float>> dense = thumbnails.SimilarityMatrix(options.threads);
+    std::vector<int> all(n);
+    std::iota(all.begin(), all.end(), 0);
+    const std::vector<std::vector<float>> dense = thumbnails.ScoreAll(all, all, options.threads);
     const double per_query_ms = MsSince(t) / std::max(1, n);
     std::vector<double> m(result.queries.size(), per_query_ms);
     if (Wants(methods, "thumb")) finish("thumb", FromDense(dense, result.queries), PerQueryExtract(thumb_ms, result.queries), m);
     if (Wants(methods, "thumb-seq")) {
       const auto t2 = Clock::now();
-      const auto seq = SequenceMatch(dense, options.thumbnail, options.threads);
+      const auto seq = SequenceScores(dense, options.sequence, options.threads);
       const double seq_ms = MsSince(t2) / std::max(1, n);
       for (double& v : m) v += seq_ms;
       finish("thumb-seq", FromDense(seq, result.queries), PerQueryExtract(thumb_ms, result.queries), m);

@@ -79,8 +79,8 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
         int cls = 0, mat = -1;
         if (hit.hit()) {
           const InstanceInfo& info = world_.instance(hit.instance);
-          cls = info.class_id;
           mat = static_cast<int>(info.mesh->triangle_material[hit.triangle]);
+          cls = info.materials[mat].class_id;
         }
         out.class_id.at<int>(y, x) = cls;
         material.at<int>(y, x) = hit.instance * 4096 + mat;
@@ -89,20 +89,17 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
   });
   if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return out;
 
-  // Pass 2: pixels whose 4-neighbours see another surface or a depth jump get n×n samples.
+  // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
+  // samples; smooth depth changes within one surface need none.
   cv::Mat edge(H, W, CV_8U, cv::Scalar(0));
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
       const int m = material.at<int>(y, x);
-      const float z = out.depth_m.at<float>(y, x);
-      auto differs = [&](int yy, int xx) {
-        if (yy < 0 || xx < 0 || yy >= H || xx >= W) return false;
-        const float z2 = out.depth_m.at<float>(yy, xx);
-        return material.at<int>(yy, xx) != m || std::abs(z2 - z) > 0.05f * std::max(z, z2);
-      };
-      if (differs(y - 1, x) || differs(y + 1, x) || differs(y, x - 1) || differs(y, x + 1)) {
-        edge.at<uint8_t>(y, x) = 1;
-      }
+      const bool differs = (y > 0 && material.at<int>(y - 1, x) != m) ||
+                           (y + 1 < H && material.at<int>(y + 1, x) != m) ||
+                           (x > 0 && material.at<int>(y, x - 1) != m) ||
+                           (x + 1 < W && material.at<int>(y, x + 1) != m);
+      edge.at<uint8_t>(y, x) = differs ? 1 : 0;
     }
   }
   out.edge_pixels = cv::countNonZero(edge);

@@ -87,6 +87,19 @@ std::string Describe(const std::string& pointer, const std::string& description)
   return out;
 }
 
+// Numbers the schema calls "number" are stored as floating point, so 25 and 25.0 resolve (and
+// hash) the same.
+void NormaliseNumbers(json* doc, const json& schema) {
+  if (schema.value("type", "") == "number" && doc->is_number()) *doc = doc->get<double>();
+  if (doc->is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (doc->contains(key)) NormaliseNumbers(&(*doc)[key], sub);
+    }
+  } else if (doc->is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (json& item : *doc) NormaliseNumbers(&item, schema["items"]);
+  }
+}
+
 void FillDefaults(json* doc, const json& schema) {
   if (doc->is_object() && schema.contains("properties")) {
     for (const auto& [key, sub] : schema["properties"].items()) {
@@ -187,16 +200,21 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
   if (value.is_discarded()) value = value_text;
   try {
     const json::json_pointer pointer(key);
-    // Arrays may be indexed only within their size (or "-" to append).
-    if (!pointer.empty() && doc->contains(pointer.parent_pointer()) &&
-        (*doc)[pointer.parent_pointer()].is_array() && pointer.back() != "-") {
-      const json& array = (*doc)[pointer.parent_pointer()];
-      const std::string& index = pointer.back();
-      if (index.find_first_not_of("0123456789") != std::string::npos ||
-          std::stoul(index) >= array.size()) {
-        throw InputError(where, "an index below " + std::to_string(array.size()) + " at " +
-                                    pointer.parent_pointer().to_string());
+    // Arrays may be indexed only within their size ("-" appends), at every level of the path.
+    json::json_pointer prefix;
+    const json* node = doc;
+    std::stringstream tokens(key.substr(1));
+    std::string token;
+    while (node && std::getline(tokens, token, '/')) {
+      if (node->is_array() && token != "-") {
+        if (token.empty() || token.find_first_not_of("0123456789") != std::string::npos ||
+            std::stoul(token) >= node->size()) {
+          throw InputError(where, "an index below " + std::to_string(node->size()) + " at " +
+                                      (prefix.empty() ? "/" : prefix.to_string()));
+        }
       }
+      prefix /= token;
+      node = doc->contains(prefix) ? &(*doc)[prefix] : nullptr;
     }
     (*doc)[pointer] = value;
   } catch (const json::exception& e) {
@@ -242,7 +260,10 @@ std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
   return problems;
 }
 
-void FillSceneDefaults(json* doc) { FillDefaults(doc, SchemaJson()); }
+void FillSceneDefaults(json* doc) {
+  FillDefaults(doc, SchemaJson());
+  NormaliseNumbers(doc, SchemaJson());
+}
 
 Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");

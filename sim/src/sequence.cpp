@@ -85,6 +85,13 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   }
   fs::create_directories(dir, ec);
   if (ec) throw InputError(dir, "cannot create the output folder (" + ec.message() + ")");
+  // A killed run may leave temp files of atomic writes ("NAME.tmp.PID"); they were never
+  // renamed into place, so nothing refers to them.
+  for (const auto& entry : fs::recursive_directory_iterator(dir, ec)) {
+    if (entry.is_regular_file() && entry.path().filename().string().find(".tmp.") != std::string::npos) {
+      fs::remove(entry.path(), ec);
+    }
+  }
 
   manifest.hoilcd_version = HOILCD_VERSION;
   manifest.scene_hash = scene.hash;

@@ -117,6 +117,7 @@ int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, I
     m.temperature_c = m.temperature_top_c = static_cast<float>(tm.temperature_c + temperature_offset_c);
     m.emissivity = static_cast<float>(tm.emissivity);
     m.specular = tm.specular;
+    m.class_id = info.class_id;
     Finish(&m);
     info.materials.push_back(m);
   }
@@ -153,8 +154,9 @@ void World::BuildRoom(const Scene& scene) {
   info.name = "room";
   info.class_id = ClassId("wall");
   info.mesh = &room_mesh_;
-  auto surface = [&](const SurfaceSpec& s, double top_c) {
+  auto surface = [&](const SurfaceSpec& s, double top_c, const char* cls) {
     InstanceMaterial m;
+    m.class_id = ClassId(cls);
     m.temperature_c = static_cast<float>(s.temperature_c);
     m.temperature_top_c = static_cast<float>(top_c);
     m.emissivity = static_cast<float>(s.emissivity);
@@ -162,10 +164,12 @@ void World::BuildRoom(const Scene& scene) {
     Finish(&m);
     return m;
   };
-  info.materials.push_back(surface(scene.floor, scene.floor.temperature_c));
-  info.materials.push_back(surface(scene.ceiling, scene.ceiling.temperature_c));
-  info.materials.push_back(surface(scene.walls, scene.wall_temperature_top_c));
-  for (const WindowSpec& w : scene.windows) info.materials.push_back(surface(w.surface, w.surface.temperature_c));
+  info.materials.push_back(surface(scene.floor, scene.floor.temperature_c, "floor"));
+  info.materials.push_back(surface(scene.ceiling, scene.ceiling.temperature_c, "ceiling"));
+  info.materials.push_back(surface(scene.walls, scene.wall_temperature_top_c, "wall"));
+  for (const WindowSpec& w : scene.windows) {
+    info.materials.push_back(surface(w.surface, w.surface.temperature_c, "window"));
+  }
   instances_.push_back(std::move(info));
   const double t = 0.05;  // walls as thin obstacles just outside the room
   auto wall = [&](const std::string& name, double cx, double cy, double hx, double hy) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
@@ -41,11 +43,11 @@ TEST(Renderer, IsothermalEnclosureRendersItsTemperatureWhateverTheEmissivities) 
 
 class PaperRoomView : public ::testing::Test {
  protected:
-  // The camera in the south corridor looking along the table row towards +x.
+  // The robot's camera at the west end of the route, looking along the table row (+x).
   static CameraPose CorridorPose() {
     CameraPose pose;
-    pose.x_m = 0.6, pose.y_m = 0.4, pose.z_m = 0.55;
-    pose.yaw_rad = 0.12, pose.pitch_rad = 5.0 * M_PI / 180.0;
+    pose.x_m = 0.4, pose.y_m = 1.5, pose.z_m = 0.95;
+    pose.yaw_rad = 0.0, pose.pitch_rad = 8.0 * M_PI / 180.0;
     return pose;
   }
 };

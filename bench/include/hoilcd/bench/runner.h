@@ -35,6 +35,7 @@ struct BenchOptions {
   HoiOptions hoi;
   TrackAwareOptions track_aware;
   ThumbnailOptions thumbnail;
+  SeqSlamOptions sequence;               // sequence matching of thumb-seq
   TemporalConsistencyOptions temporal;
   double rrf_k = 0.0;                    // reciprocal rank fusion constant (paper: 0)
   int threads = 0;                       // 0 = every core

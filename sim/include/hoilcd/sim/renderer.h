@@ -13,7 +13,7 @@ namespace hoilcd {
 
 struct RenderOptions {
   bool edge_supersampling = true;    // supersample pixels on object/material/depth edges
-  int edge_samples_per_axis = 3;     // n×n stratified samples in an edge pixel
+  int edge_samples_per_axis = 2;     // n×n stratified samples in an edge pixel
   bool specular_reflections = true;  // one traced reflection on specular surfaces
   int threads = 0;                   // 0 = every core
   std::string Check() const;

@@ -23,6 +23,7 @@ struct InstanceMaterial {
   float temperature_top_c = 22;
   float emissivity = 0.9f;
   bool specular = false;
+  int class_id = 0;            // class of pixels showing this material (the room has several)
   float blackbody_bottom = 0;  // band radiance at z = 0, W·m⁻²·sr⁻¹
   float blackbody_top = 0;     // band radiance at z = room height
 };
@@ -32,7 +33,7 @@ enum class InstanceRole { kRoom, kTable, kChair, kPerson, kObject };
 struct InstanceInfo {
   InstanceRole role = InstanceRole::kObject;
   std::string name;                     // "table 3", "person 7", "cup 2"
-  int class_id = 0;
+  int class_id = 0;                     // the instance's class (its materials may refine it)
   int person_id = -1;                   // stable id for people, else -1
   const Asset* asset = nullptr;         // null for the room
   std::vector<InstanceMaterial> materials;  // per prototype material

@@ -1,0 +1,51 @@
+// Evaluation protocol: which database frames each query is ranked against, and which of them are
+// true loop closures (robot base positions within radius_m, optionally headings within a
+// tolerance). Frames within the temporal exclusion window of a query never enter its database.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/dataset.h"
+
+namespace hoilcd {
+
+struct ProtocolOptions {
+  // "laps": database = first lap, queries = later laps; "revisit": every frame is a query and its
+  // database is every frame older than the exclusion window (SLAM style).
+  std::string protocol = "laps";
+  double radius_m = 0.2;              // m, base positions this close make a true match (paper)
+  double heading_tolerance_deg = -1;  // deg, max heading difference of a true match; < 0 = off
+  double exclusion_window_s = 10;     // s, frames with |t_query - t_ref| <= this are left out
+  // Empty when valid, else what is wrong.
+  std::string Check() const;
+};
+
+struct Query {
+  int frame = 0;                      // query frame
+  int lap = 0;                        // lap of the query frame, 0 = first (LapIndexFromPoses)
+  std::vector<int> database;          // frames to rank, ascending
+  std::vector<uint8_t> is_true_match; // parallel to database: 1 when a true loop closure
+  int NumTrueMatches() const;         // 0 => the query is skipped (not scored)
+};
+
+// Lap number per pose (0 = first lap), from the cumulative unwrapped ground-truth heading: a new
+// lap starts each time the heading has turned a further 2π in the sequence's overall turning
+// direction (−2π per clockwise lap). Never decreases along the sequence.
+std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses);
+
+// Euclidean distance between the robot base positions (x, y) of two poses, in metres.
+double BaseDistanceM(const PoseRecord& a, const PoseRecord& b);
+
+// Whether `reference` is a true match of `query` (radius and heading tolerance only; the
+// exclusion window is a property of the database, not of the pair).
+bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
+                 const ProtocolOptions& options);
+
+// Queries in frame order; those without a true match are kept (NumTrueMatches() == 0) so they can
+// be counted as skipped. `poses` are the dataset's rows (frames 0..N-1 in time order).
+std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
+                                const ProtocolOptions& options);
+
+}  // namespace hoilcd

@@ -1,0 +1,89 @@
+#include "hoilcd/bench/protocol.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hoilcd/core/error.h"
+
+namespace hoilcd {
+namespace {
+
+double WrapAngleRad(double angle_rad) { return std::remainder(angle_rad, 2.0 * M_PI); }
+
+}  // namespace
+
+std::string ProtocolOptions::Check() const {
+  if (protocol != "laps" && protocol != "revisit") {
+    return "protocol must be 'laps' or 'revisit', got '" + protocol + "'";
+  }
+  if (!(radius_m > 0) || !std::isfinite(radius_m)) return "radius_m must be positive";
+  if (std::isnan(heading_tolerance_deg) || heading_tolerance_deg > 180) {
+    return "heading_tolerance_deg must be at most 180 (or negative to turn it off)";
+  }
+  if (!(exclusion_window_s >= 0) || !std::isfinite(exclusion_window_s)) {
+    return "exclusion_window_s must be zero or positive";
+  }
+  return "";
+}
+
+int Query::NumTrueMatches() const {
+  return static_cast<int>(std::count(is_true_match.begin(), is_true_match.end(), 1));
+}
+
+std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses) {
+  std::vector<double> turned_rad(poses.size(), 0.0);
+  for (size_t i = 1; i < poses.size(); ++i) {
+    turned_rad[i] =
+        turned_rad[i - 1] + WrapAngleRad(poses[i].theta_rad - poses[i - 1].theta_rad);
+  }
+  const double direction = (!turned_rad.empty() && turned_rad.back() < 0) ? -1.0 : 1.0;
+  // A lap that ends exactly at 2π (up to rounding) belongs to the next lap.
+  constexpr double kToleranceRad = 1e-9;
+  std::vector<int> laps(poses.size(), 0);
+  int lap = 0;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const double laps_turned = (direction * turned_rad[i] + kToleranceRad) / (2.0 * M_PI);
+    lap = std::max(lap, static_cast<int>(std::floor(std::max(0.0, laps_turned))));
+    laps[i] = lap;
+  }
+  return laps;
+}
+
+double BaseDistanceM(const PoseRecord& a, const PoseRecord& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
+}
+
+bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
+                 const ProtocolOptions& options) {
+  if (BaseDistanceM(query, reference) > options.radius_m) return false;
+  if (options.heading_tolerance_deg < 0) return true;
+  const double difference_deg =
+      std::abs(WrapAngleRad(query.theta_rad - reference.theta_rad)) * 180.0 / M_PI;
+  return difference_deg <= options.heading_tolerance_deg;
+}
+
+std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
+                                const ProtocolOptions& options) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const std::vector<int> laps = LapIndexFromPoses(poses);
+  const bool laps_protocol = options.protocol == "laps";
+  std::vector<Query> queries;
+  for (size_t q = 0; q < poses.size(); ++q) {
+    if (laps_protocol && laps[q] == 0) continue;
+    Query query;
+    query.frame = poses[q].frame;
+    query.lap = laps[q];
+    for (size_t r = 0; r < poses.size(); ++r) {
+      const double dt_s = poses[q].time_s - poses[r].time_s;
+      if (std::abs(dt_s) <= options.exclusion_window_s) continue;
+      if (laps_protocol ? laps[r] != 0 : dt_s < 0) continue;
+      query.database.push_back(poses[r].frame);
+      query.is_true_match.push_back(IsTrueMatch(poses[q], poses[r], options) ? 1 : 0);
+    }
+    queries.push_back(std::move(query));
+  }
+  return queries;
+}
+
+}  // namespace hoilcd

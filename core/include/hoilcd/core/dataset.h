@@ -1,0 +1,138 @@
+// The dataset folder: the contract between the simulator (writer) and the benchmark (reader).
+// manifest.json lists every file with its checksum; frames are PNGs; poses, persons and events
+// are CSV/JSON side files. Writes are atomic, so a reader never accepts a half-written file.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <opencv2/core.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hoilcd/core/camera.h"
+
+namespace hoilcd {
+
+// "xxh3-128:<32 lowercase hex digits>" (XXH3 128-bit, canonical big-endian byte order).
+std::string ChecksumOf(std::string_view bytes);
+
+// Whole file as bytes; InputError(path, "cannot read ...") if missing or unreadable.
+std::string ReadFileBytes(const std::string& path);
+
+// Writes to "<path>.tmp.<pid>" in the same directory, fsyncs, renames over path: readers never
+// see a half-written file. Creates parent directories. InputError(path, ...) on failure.
+void WriteFileAtomic(const std::string& path, std::string_view bytes);
+
+// PNG bytes of a 1-channel CV_8U or CV_16U image; the same image always gives the same bytes.
+std::string EncodePng(const cv::Mat& image);
+
+// "000123.png" for (123, "png"); a leading dot in the extension is accepted too.
+std::string FrameFileName(int frame, const char* extension);
+
+struct DatasetManifest {
+  std::string hoilcd_version;               // version of the hoilcd that wrote the dataset
+  std::string scene_hash;                   // ChecksumOf(resolved scene JSON)
+  uint64_t seed = 0;                        // render seed
+  CameraIntrinsics intrinsics;              // px
+  double frame_rate_hz = 25;                // Hz
+  int frame_count = 0;                      // planned frames
+  double window_min_c = 20;                 // °C, thermal PNG value 0
+  double window_max_c = 30;                 // °C, thermal PNG value 255
+  std::map<std::string, int> classes;       // class name -> id used in the EXR 'class' channel
+  std::map<std::string, std::string> files; // relative path -> checksum, every file written so far
+  bool complete = false;                    // true once every frame and side file is written
+
+  std::string ToJson() const;
+  // Every problem found (type errors, unknown keys) is reported with its JSON pointer.
+  static DatasetManifest FromJson(const std::string& text, const std::string& path_for_errors);
+  // Frames whose thermal PNG is listed in `files`.
+  int FramesWritten() const;
+};
+
+// Writes DIR/relative_path atomically and records its checksum in manifest->files.
+void WriteDatasetFile(const std::string& dir, const std::string& relative_path,
+                      std::string_view bytes, DatasetManifest* manifest);
+
+struct ContactRecord {
+  std::string name;      // e.g. "left_hand", "seat"
+  double u_px = 0;       // image column
+  double v_px = 0;       // image row
+  bool visible = false;  // not occluded and inside the image
+};
+
+struct PersonRecord {
+  int id = -1;                        // person (instance) id, stable over the sequence
+  cv::Rect2f box_px;                  // visible-pixel bounding box
+  double visible_fraction = 0;        // visible pixels / pixels the unoccluded person would cover
+  double occlusion_fraction = 0;      // pixels hidden by other objects / unoccluded pixels
+  bool seated = false;
+  std::string posture;                // "seated", "standing", ...
+  std::vector<ContactRecord> contacts;
+};
+
+struct FramePersons {
+  int frame = 0;
+  std::vector<PersonRecord> persons;
+};
+
+struct DatasetEvent {
+  int frame = 0;
+  std::string type;  // "arrive" | "leave" | "swap" | "ffc"
+  int person = -1;   // -1 when no person is involved (ffc)
+  std::string seat;
+  std::string detail;
+};
+
+std::string PersonsToJson(const std::vector<FramePersons>& frames);
+std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path);
+std::string EventsToJson(const std::vector<DatasetEvent>& events);
+std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::string& path);
+
+// Ground truth and wheel odometry for one frame (a row of poses.csv).
+struct PoseRecord {
+  int frame = 0;
+  double time_s = 0;
+  double x_m = 0, y_m = 0, theta_rad = 0;            // robot base, ground truth
+  double cam_x_m = 0, cam_y_m = 0, cam_z_m = 0;      // camera, ground truth
+  double cam_yaw_rad = 0, cam_pitch_rad = 0;         // camera, ground truth (REP 103)
+  double odo_x_m = 0, odo_y_m = 0, odo_theta_rad = 0;  // noisy wheel odometry
+};
+
+// poses.csv: a header line "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,odo_x,odo_y,
+// odo_theta" then one row per frame; numbers are written so that they read back exactly.
+std::string PosesToCsv(const std::vector<PoseRecord>& poses);
+// Errors name "path:line" and the column.
+std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string& path);
+// TUM trajectory "t tx ty tz qx qy qz qw" of world_from_cam (OpenCV camera frame).
+std::string PosesToTum(const std::vector<PoseRecord>& poses, double cam_roll_rad);
+
+// A dataset folder opened for reading.
+class Dataset {
+ public:
+  // Parses manifest.json; a partial dataset is an InputError ("dataset is partial: N of M
+  // frames; re-run hoilcd render to finish it"). With verify_checksums every listed file is
+  // read and checked (mismatch or missing file: InputError naming it). Loads poses, persons
+  // and events.
+  static Dataset Open(const std::string& dir, bool verify_checksums = true);
+
+  const DatasetManifest& manifest() const { return manifest_; }
+  const std::string& dir() const { return dir_; }
+  int num_frames() const { return manifest_.frame_count; }
+  const std::vector<PoseRecord>& poses() const { return poses_; }
+  const std::vector<FramePersons>& persons() const { return persons_; }
+  const std::vector<DatasetEvent>& events() const { return events_; }
+
+  cv::Mat Thermal(int frame) const;       // CV_8U from thermal/NNNNNN.png
+  cv::Mat RadiometricC(int frame) const;  // CV_32F °C from radiometric/NNNNNN.png
+  std::string scene_json() const;         // contents of scene.json
+
+ private:
+  std::string dir_;
+  DatasetManifest manifest_;
+  std::vector<PoseRecord> poses_;
+  std::vector<FramePersons> persons_;
+  std::vector<DatasetEvent> events_;
+};
+
+}  // namespace hoilcd

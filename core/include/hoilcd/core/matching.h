@@ -1,0 +1,84 @@
+// Point matching shared by SLCD and DLCD (paper 4.1.1, 4.1.2, 5.2): mutual nearest neighbours on
+// 2-D coordinates, the vertical-consistency filter, and the full pair score
+// (MNN -> vertical filter -> RANSAC homography inlier count).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/types.hpp>
+
+#include "hoilcd/core/homography_ransac.h"
+
+namespace hoilcd {
+
+// Point2 and Correspondence are defined in homography_ransac.h.
+
+struct MatchOptions {
+  double vertical_tolerance = 0.1;  // τ_y, fraction of image height (|y_q - y_r| <= τ_y * H)
+  int image_height_px = 192;        // H, px
+  std::string Check() const;
+};
+
+// A uniform bucket grid over one point set for exact nearest-neighbour queries in about O(1)
+// per query. Points are stored reordered by cell (structure of arrays) for locality.
+class PointGrid {
+ public:
+  PointGrid() = default;
+  PointGrid(const Point2* points, int count);
+  int size() const { return static_cast<int>(ids_.size()); }
+  // Index of the point nearest to p (squared Euclidean distance in float; ties go to the lower
+  // index); -1 when the grid is empty.
+  int Nearest(Point2 p) const;
+
+ private:
+  std::vector<float> xs_, ys_;       // point coordinates in cell order, px
+  std::vector<int> ids_;             // original index of each stored point
+  std::vector<int> cell_start_;      // points of cell c are [cell_start_[c], cell_start_[c+1])
+  float origin_x_ = 0, origin_y_ = 0;  // lower corner of the grid, px
+  float cell_px_ = 1, inv_cell_ = 1;   // cell side, px, and its inverse
+  int nx_ = 0, ny_ = 0;                // cells per row and per column
+};
+
+// Mutual nearest neighbours on 2-D coordinates (bucket grid, not an O(n*m) scan), ties broken by
+// lower index. Pairs are sorted by query index.
+std::vector<Correspondence> MutualNearestNeighbours(const std::vector<Point2>& query,
+                                                    const std::vector<Point2>& reference);
+// The same on prebuilt grids; query_points/reference_points are the sets the grids were built on.
+void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,
+                             const Point2* reference_points, const PointGrid& reference_grid,
+                             std::vector<Correspondence>* matches);
+
+// Drops pairs with |y_q - y_r| > τ_y * H.
+std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query,
+                                           const std::vector<Point2>& reference,
+                                           const std::vector<Correspondence>& matches,
+                                           const MatchOptions& options);
+
+// The RANSAC stream of one (query, reference) pair: KeyedRng(seed, "ransac", query_id,
+// reference_id) is Rng(PairSeed(seed, query_id, reference_id)).
+uint64_t PairSeed(uint64_t seed, int query_id, int reference_id);
+
+// Full score of a pair: MNN -> vertical filter -> RANSAC; returns the inlier count. The RANSAC
+// stream is keyed by (seed, "ransac", query_id, reference_id).
+int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+              const MatchOptions& match_options, const RansacOptions& ransac_options,
+              uint64_t seed, int query_id, int reference_id);
+
+// Scores pairs of prebuilt grids, reusing its scratch buffers between calls (one per thread).
+// Score() equals ScorePair() on the same points; options are not re-checked here.
+class PairScorer {
+ public:
+  int Score(const Point2* query_points, const PointGrid& query_grid,
+            const Point2* reference_points, const PointGrid& reference_grid,
+            const MatchOptions& match_options, const RansacOptions& ransac_options,
+            uint64_t pair_seed);
+
+ private:
+  std::vector<Correspondence> matches_;
+  std::vector<int> reverse_nearest_;
+  std::vector<float> ref_x_, ref_y_, query_x_, query_y_;
+};
+
+}  // namespace hoilcd

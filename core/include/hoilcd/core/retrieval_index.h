@@ -1,0 +1,35 @@
+// Retrieval index for loop closure: per-frame 2-D point sets kept compactly (one flat array plus
+// offsets, with a prebuilt nearest-neighbour grid per frame) and all-pairs scoring
+// (MNN -> vertical filter -> RANSAC inlier count) in parallel over threads.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "hoilcd/core/matching.h"
+
+namespace hoilcd {
+
+class RetrievalIndex {
+ public:
+  // Frame ids are 0..size-1 in Add order. Coordinates must be finite.
+  void Add(std::vector<Point2> points);
+  int size() const { return static_cast<int>(grids_.size()); }
+  // The points of `frame`; *count receives how many.
+  const Point2* points(int frame, int* count) const;
+
+  // scores[i][j] = ScorePair(frame queries[i], frame database[j], ..., seed, queries[i],
+  // database[j]) for all pairs; parallel (threads 0 = all cores), identical at any thread count.
+  std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries,
+                                           const std::vector<int>& database,
+                                           const MatchOptions& match_options,
+                                           const RansacOptions& ransac_options, uint64_t seed,
+                                           int threads) const;
+
+ private:
+  std::vector<Point2> points_;    // every frame's points, frame after frame
+  std::vector<int64_t> offsets_ = {0};  // frame f holds points_[offsets_[f], offsets_[f+1])
+  std::vector<PointGrid> grids_;  // nearest-neighbour grid per frame
+};
+
+}  // namespace hoilcd

@@ -1,0 +1,657 @@
+#include "hoilcd/core/dataset.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <xxhash.h>
+
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
+
+namespace hoilcd {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr const char* kChecksumPrefix = "xxh3-128:";
+constexpr const char* kPosesHeader =
+    "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,odo_x,odo_y,odo_theta";
+constexpr int kPosesColumns = 13;
+
+std::string JoinPath(const std::string& dir, const std::string& relative) {
+  return (fs::path(dir) / relative).string();
+}
+
+// Shortest decimal text that reads back as exactly the same double.
+std::string FormatDouble(double value) {
+  std::array<char, 32> buffer;
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), result.ptr);
+}
+
+// Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
+class JsonReader {
+ public:
+  explicit JsonReader(std::string path) : path_(std::move(path)) {}
+
+  ProblemCollector& problems() { return problems_; }
+
+  void Add(const std::string& pointer, std::string message) {
+    problems_.Add(path_ + ": " + (pointer.empty() ? "/" : pointer), std::move(message));
+  }
+
+  json Parse(const std::string& text) {
+    try {
+      return json::parse(text);
+    } catch (const json::parse_error& e) {
+      throw InputError(path_, std::string("invalid JSON: ") + e.what());
+    }
+  }
+
+  bool ExpectObject(const json& value, const std::string& pointer) {
+    if (value.is_object()) return true;
+    Add(pointer, "expected an object");
+    return false;
+  }
+
+  bool ExpectArray(const json& value, const std::string& pointer) {
+    if (value.is_array()) return true;
+    Add(pointer, "expected an array");
+    return false;
+  }
+
+  // Unknown keys are errors, so typos fail loudly.
+  void CheckKeys(const json& object, const std::string& pointer,
+                 std::initializer_list<const char*> allowed) {
+    for (const auto& item : object.items()) {
+      bool known = false;
+      for (const char* key : allowed) known = known || item.key() == key;
+      if (!known) Add(pointer + "/" + item.key(), "unknown key");
+    }
+  }
+
+  template <typename T>
+  void Read(const json& object, const std::string& pointer, const char* key, T* out) {
+    const std::string where = pointer + "/" + key;
+    const auto it = object.find(key);
+    if (it == object.end()) {
+      Add(where, "missing");
+      return;
+    }
+    ReadValue(*it, where, out);
+  }
+
+  void ReadValue(const json& value, const std::string& where, std::string* out) {
+    if (value.is_string()) *out = value.get<std::string>();
+    else Add(where, "expected a string");
+  }
+  void ReadValue(const json& value, const std::string& where, double* out) {
+    if (value.is_number()) *out = value.get<double>();
+    else Add(where, "expected a number");
+  }
+  void ReadValue(const json& value, const std::string& where, float* out) {
+    if (value.is_number()) *out = value.get<float>();
+    else Add(where, "expected a number");
+  }
+  void ReadValue(const json& value, const std::string& where, int* out) {
+    if (value.is_number_integer() && value.get<int64_t>() >= INT32_MIN &&
+        value.get<int64_t>() <= INT32_MAX) {
+      *out = value.get<int>();
+    } else {
+      Add(where, "expected a 32-bit integer");
+    }
+  }
+  void ReadValue(const json& value, const std::string& where, uint64_t* out) {
+    if (value.is_number_unsigned()) *out = value.get<uint64_t>();
+    else Add(where, "expected a non-negative integer");
+  }
+  void ReadValue(const json& value, const std::string& where, bool* out) {
+    if (value.is_boolean()) *out = value.get<bool>();
+    else Add(where, "expected true or false");
+  }
+
+ private:
+  std::string path_;
+  ProblemCollector problems_;
+};
+
+bool IsSafeRelativePath(const std::string& relative) {
+  const fs::path p(relative);
+  if (relative.empty() || p.is_absolute()) return false;
+  for (const fs::path& part : p) {
+    if (part == "..") return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string ChecksumOf(std::string_view bytes) {
+  const XXH128_hash_t hash = XXH3_128bits(bytes.data(), bytes.size());
+  XXH128_canonical_t canonical;
+  XXH128_canonicalFromHash(&canonical, hash);
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out = kChecksumPrefix;
+  for (unsigned char byte : canonical.digest) {
+    out += kHex[byte >> 4];
+    out += kHex[byte & 15];
+  }
+  return out;
+}
+
+std::string ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot read file (missing or not readable)");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "cannot read file (I/O error)");
+  return bytes;
+}
+
+void WriteFileAtomic(const std::string& path, std::string_view bytes) {
+  const fs::path target(path);
+  if (target.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(target.parent_path(), ec);
+    if (ec) throw InputError(path, "cannot create directory: " + ec.message());
+  }
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(path, std::string("cannot write file: ") + std::strerror(errno));
+  auto fail = [&](const char* what) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw InputError(path, std::string(what) + std::strerror(err));
+  };
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("cannot write file: ");
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (::fsync(fd) != 0) fail("cannot flush file to disk: ");
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw InputError(path, std::string("cannot write file: ") + std::strerror(err));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw InputError(path, std::string("cannot rename temporary file into place: ") +
+                               std::strerror(err));
+  }
+}
+
+std::string EncodePng(const cv::Mat& image) {
+  HOILCD_CHECK_MSG(image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
+                   "EncodePng takes a 1-channel CV_8U or CV_16U image");
+  std::vector<uchar> buffer;
+  HOILCD_CHECK(cv::imencode(".png", image, buffer, {cv::IMWRITE_PNG_COMPRESSION, 6}));
+  return std::string(buffer.begin(), buffer.end());
+}
+
+std::string FrameFileName(int frame, const char* extension) {
+  HOILCD_CHECK(frame >= 0 && extension != nullptr);
+  char digits[16];
+  std::snprintf(digits, sizeof(digits), "%06d", frame);
+  std::string name = digits;
+  if (extension[0] != '.') name += '.';
+  return name + extension;
+}
+
+std::string DatasetManifest::ToJson() const {
+  json j;
+  j["hoilcd_version"] = hoilcd_version;
+  j["scene_hash"] = scene_hash;
+  j["seed"] = seed;
+  j["intrinsics"] = {{"width", intrinsics.width}, {"height", intrinsics.height},
+                     {"fx", intrinsics.fx},       {"fy", intrinsics.fy},
+                     {"cx", intrinsics.cx},       {"cy", intrinsics.cy}};
+  j["frame_rate_hz"] = frame_rate_hz;
+  j["frame_count"] = frame_count;
+  j["window_min_c"] = window_min_c;
+  j["window_max_c"] = window_max_c;
+  j["classes"] = classes;
+  j["files"] = files;
+  j["complete"] = complete;
+  return j.dump(2) + "\n";
+}
+
+DatasetManifest DatasetManifest::FromJson(const std::string& text,
+                                          const std::string& path_for_errors) {
+  JsonReader reader(path_for_errors);
+  const json j = reader.Parse(text);
+  DatasetManifest m;
+  if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
+  reader.CheckKeys(j, "", {"hoilcd_version", "scene_hash", "seed", "intrinsics", "frame_rate_hz",
+                           "frame_count", "window_min_c", "window_max_c", "classes", "files",
+                           "complete"});
+  reader.Read(j, "", "hoilcd_version", &m.hoilcd_version);
+  reader.Read(j, "", "scene_hash", &m.scene_hash);
+  reader.Read(j, "", "seed", &m.seed);
+  if (j.contains("intrinsics") && reader.ExpectObject(j["intrinsics"], "/intrinsics")) {
+    const json& k = j["intrinsics"];
+    reader.CheckKeys(k, "/intrinsics", {"width", "height", "fx", "fy", "cx", "cy"});
+    reader.Read(k, "/intrinsics", "width", &m.intrinsics.width);
+    reader.Read(k, "/intrinsics", "height", &m.intrinsics.height);
+    reader.Read(k, "/intrinsics", "fx", &m.intrinsics.fx);
+    reader.Read(k, "/intrinsics", "fy", &m.intrinsics.fy);
+    reader.Read(k, "/intrinsics", "cx", &m.intrinsics.cx);
+    reader.Read(k, "/intrinsics", "cy", &m.intrinsics.cy);
+    const std::string problem = m.intrinsics.Check();
+    if (!problem.empty()) reader.Add("/intrinsics", problem);
+  } else if (!j.contains("intrinsics")) {
+    reader.Add("/intrinsics", "missing");
+  }
+  reader.Read(j, "", "frame_rate_hz", &m.frame_rate_hz);
+  if (!(m.frame_rate_hz > 0)) reader.Add("/frame_rate_hz", "must be positive");
+  reader.Read(j, "", "frame_count", &m.frame_count);
+  if (m.frame_count < 0) reader.Add("/frame_count", "must not be negative");
+  reader.Read(j, "", "window_min_c", &m.window_min_c);
+  reader.Read(j, "", "window_max_c", &m.window_max_c);
+  if (!(m.window_max_c > m.window_min_c)) {
+    reader.Add("/window_max_c", "must be greater than window_min_c");
+  }
+  if (j.contains("classes") && reader.ExpectObject(j["classes"], "/classes")) {
+    for (const auto& item : j["classes"].items()) {
+      int id = 0;
+      reader.ReadValue(item.value(), "/classes/" + item.key(), &id);
+      m.classes[item.key()] = id;
+    }
+  } else if (!j.contains("classes")) {
+    reader.Add("/classes", "missing");
+  }
+  if (j.contains("files") && reader.ExpectObject(j["files"], "/files")) {
+    for (const auto& item : j["files"].items()) {
+      std::string checksum;
+      reader.ReadValue(item.value(), "/files/" + item.key(), &checksum);
+      if (!IsSafeRelativePath(item.key())) {
+        reader.Add("/files/" + item.key(), "expected a relative path inside the dataset folder");
+      }
+      m.files[item.key()] = checksum;
+    }
+  } else if (!j.contains("files")) {
+    reader.Add("/files", "missing");
+  }
+  reader.Read(j, "", "complete", &m.complete);
+  reader.problems().ThrowIfAny();
+  return m;
+}
+
+int DatasetManifest::FramesWritten() const {
+  int count = 0;
+  for (auto it = files.lower_bound("thermal/"); it != files.end(); ++it) {
+    if (it->first.rfind("thermal/", 0) != 0) break;
+    ++count;
+  }
+  return count;
+}
+
+void WriteDatasetFile(const std::string& dir, const std::string& relative_path,
+                      std::string_view bytes, DatasetManifest* manifest) {
+  HOILCD_CHECK(manifest != nullptr);
+  HOILCD_CHECK_MSG(IsSafeRelativePath(relative_path), relative_path);
+  WriteFileAtomic(JoinPath(dir, relative_path), bytes);
+  manifest->files[relative_path] = ChecksumOf(bytes);
+}
+
+std::string PersonsToJson(const std::vector<FramePersons>& frames) {
+  json out_frames = json::array();
+  for (const FramePersons& f : frames) {
+    json persons = json::array();
+    for (const PersonRecord& p : f.persons) {
+      json contacts = json::array();
+      for (const ContactRecord& c : p.contacts) {
+        contacts.push_back(
+            {{"name", c.name}, {"u_px", c.u_px}, {"v_px", c.v_px}, {"visible", c.visible}});
+      }
+      persons.push_back({{"id", p.id},
+                         {"box_px", {p.box_px.x, p.box_px.y, p.box_px.width, p.box_px.height}},
+                         {"visible_fraction", p.visible_fraction},
+                         {"occlusion_fraction", p.occlusion_fraction},
+                         {"seated", p.seated},
+                         {"posture", p.posture},
+                         {"contacts", contacts}});
+    }
+    out_frames.push_back({{"frame", f.frame}, {"persons", persons}});
+  }
+  return json{{"frames", out_frames}}.dump(1) + "\n";
+}
+
+std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path) {
+  JsonReader reader(path);
+  const json j = reader.Parse(text);
+  std::vector<FramePersons> frames;
+  if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
+  reader.CheckKeys(j, "", {"frames"});
+  if (!j.contains("frames")) reader.Add("/frames", "missing");
+  if (j.contains("frames") && reader.ExpectArray(j["frames"], "/frames")) {
+    const json& jf = j["frames"];
+    for (size_t i = 0; i < jf.size(); ++i) {
+      const std::string fp = "/frames/" + std::to_string(i);
+      if (!reader.ExpectObject(jf[i], fp)) continue;
+      reader.CheckKeys(jf[i], fp, {"frame", "persons"});
+      FramePersons f;
+      reader.Read(jf[i], fp, "frame", &f.frame);
+      if (!jf[i].contains("persons")) reader.Add(fp + "/persons", "missing");
+      if (jf[i].contains("persons") && reader.ExpectArray(jf[i]["persons"], fp + "/persons")) {
+        const json& jp = jf[i]["persons"];
+        for (size_t k = 0; k < jp.size(); ++k) {
+          const std::string pp = fp + "/persons/" + std::to_string(k);
+          if (!reader.ExpectObject(jp[k], pp)) continue;
+          reader.CheckKeys(jp[k], pp, {"id", "box_px", "visible_fraction", "occlusion_fraction",
+                                       "seated", "posture", "contacts"});
+          PersonRecord p;
+          reader.Read(jp[k], pp, "id", &p.id);
+          const auto box = jp[k].find("box_px");
+          if (box == jp[k].end()) {
+            reader.Add(pp + "/box_px", "missing");
+          } else if (!box->is_array() || box->size() != 4) {
+            reader.Add(pp + "/box_px", "expected [x, y, width, height]");
+          } else {
+            reader.ReadValue((*box)[0], pp + "/box_px/0", &p.box_px.x);
+            reader.ReadValue((*box)[1], pp + "/box_px/1", &p.box_px.y);
+            reader.ReadValue((*box)[2], pp + "/box_px/2", &p.box_px.width);
+            reader.ReadValue((*box)[3], pp + "/box_px/3", &p.box_px.height);
+          }
+          reader.Read(jp[k], pp, "visible_fraction", &p.visible_fraction);
+          reader.Read(jp[k], pp, "occlusion_fraction", &p.occlusion_fraction);
+          reader.Read(jp[k], pp, "seated", &p.seated);
+          reader.Read(jp[k], pp, "posture", &p.posture);
+          const auto contacts = jp[k].find("contacts");
+          if (contacts == jp[k].end()) {
+            reader.Add(pp + "/contacts", "missing");
+          } else if (reader.ExpectArray(*contacts, pp + "/contacts")) {
+            for (size_t c = 0; c < contacts->size(); ++c) {
+              const std::string cp = pp + "/contacts/" + std::to_string(c);
+              const json& jc = (*contacts)[c];
+              if (!reader.ExpectObject(jc, cp)) continue;
+              reader.CheckKeys(jc, cp, {"name", "u_px", "v_px", "visible"});
+              ContactRecord contact;
+              reader.Read(jc, cp, "name", &contact.name);
+              reader.Read(jc, cp, "u_px", &contact.u_px);
+              reader.Read(jc, cp, "v_px", &contact.v_px);
+              reader.Read(jc, cp, "visible", &contact.visible);
+              p.contacts.push_back(contact);
+            }
+          }
+          f.persons.push_back(std::move(p));
+        }
+      }
+      frames.push_back(std::move(f));
+    }
+  }
+  reader.problems().ThrowIfAny();
+  return frames;
+}
+
+std::string EventsToJson(const std::vector<DatasetEvent>& events) {
+  json out = json::array();
+  for (const DatasetEvent& e : events) {
+    out.push_back({{"frame", e.frame},
+                   {"type", e.type},
+                   {"person", e.person},
+                   {"seat", e.seat},
+                   {"detail", e.detail}});
+  }
+  return json{{"events", out}}.dump(1) + "\n";
+}
+
+std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::string& path) {
+  JsonReader reader(path);
+  const json j = reader.Parse(text);
+  std::vector<DatasetEvent> events;
+  if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
+  reader.CheckKeys(j, "", {"events"});
+  if (!j.contains("events")) reader.Add("/events", "missing");
+  if (j.contains("events") && reader.ExpectArray(j["events"], "/events")) {
+    const json& je = j["events"];
+    for (size_t i = 0; i < je.size(); ++i) {
+      const std::string ep = "/events/" + std::to_string(i);
+      if (!reader.ExpectObject(je[i], ep)) continue;
+      reader.CheckKeys(je[i], ep, {"frame", "type", "person", "seat", "detail"});
+      DatasetEvent e;
+      reader.Read(je[i], ep, "frame", &e.frame);
+      reader.Read(je[i], ep, "type", &e.type);
+      if (je[i].contains("type") && e.type != "arrive" && e.type != "leave" &&
+          e.type != "swap" && e.type != "ffc") {
+        reader.Add(ep + "/type", "expected one of arrive, leave, swap, ffc; got '" + e.type + "'");
+      }
+      reader.Read(je[i], ep, "person", &e.person);
+      reader.Read(je[i], ep, "seat", &e.seat);
+      reader.Read(je[i], ep, "detail", &e.detail);
+      events.push_back(std::move(e));
+    }
+  }
+  reader.problems().ThrowIfAny();
+  return events;
+}
+
+std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
+  std::string out = std::string(kPosesHeader) + "\n";
+  for (const PoseRecord& p : poses) {
+    out += std::to_string(p.frame);
+    for (double v : {p.time_s, p.x_m, p.y_m, p.theta_rad, p.cam_x_m, p.cam_y_m, p.cam_z_m,
+                     p.cam_yaw_rad, p.cam_pitch_rad, p.odo_x_m, p.odo_y_m, p.odo_theta_rad}) {
+      out += ',';
+      out += FormatDouble(v);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string& path) {
+  static const std::array<const char*, kPosesColumns> kNames = {
+      "frame", "t",     "x",     "y",       "theta", "cam_x",    "cam_y",
+      "cam_z", "cam_yaw", "cam_pitch", "odo_x", "odo_y", "odo_theta"};
+  std::vector<PoseRecord> poses;
+  ProblemCollector problems;
+  std::istringstream in(text);
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (line_number == 1) {
+      if (line != kPosesHeader) problems.Add(where, std::string("expected header ") + kPosesHeader);
+      continue;
+    }
+    if (line.empty()) continue;
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    std::string field;
+    while (std::getline(row, field, ',')) fields.push_back(field);
+    if (line.back() == ',') fields.emplace_back();
+    if (static_cast<int>(fields.size()) != kPosesColumns) {
+      problems.Add(where, "expected " + std::to_string(kPosesColumns) + " columns, got " +
+                              std::to_string(fields.size()));
+      continue;
+    }
+    PoseRecord p;
+    double* const doubles[] = {&p.time_s,      &p.x_m,           &p.y_m,     &p.theta_rad,
+                               &p.cam_x_m,     &p.cam_y_m,       &p.cam_z_m, &p.cam_yaw_rad,
+                               &p.cam_pitch_rad, &p.odo_x_m,     &p.odo_y_m, &p.odo_theta_rad};
+    bool ok = true;
+    for (int c = 0; c < kPosesColumns; ++c) {
+      const std::string& s = fields[c];
+      const char* end = s.data() + s.size();
+      std::from_chars_result r{};
+      double value = 0;
+      if (c == 0) r = std::from_chars(s.data(), end, p.frame);
+      else r = std::from_chars(s.data(), end, value);
+      if (s.empty() || r.ec != std::errc() || r.ptr != end || (c > 0 && !std::isfinite(value))) {
+        problems.Add(where, std::string("column ") + std::to_string(c + 1) + " '" + kNames[c] +
+                                "': expected " + (c == 0 ? "an integer" : "a finite number") +
+                                ", got '" + s + "'");
+        ok = false;
+        continue;
+      }
+      if (c > 0) *doubles[c - 1] = value;
+    }
+    if (ok) poses.push_back(p);
+  }
+  if (line_number == 0) problems.Add(path + ":1", std::string("expected header ") + kPosesHeader);
+  problems.ThrowIfAny();
+  return poses;
+}
+
+std::string PosesToTum(const std::vector<PoseRecord>& poses, double cam_roll_rad) {
+  std::string out = "# timestamp tx ty tz qx qy qz qw (world_from_cam, OpenCV camera frame)\n";
+  for (const PoseRecord& p : poses) {
+    CameraPose pose;
+    pose.x_m = p.cam_x_m;
+    pose.y_m = p.cam_y_m;
+    pose.z_m = p.cam_z_m;
+    pose.yaw_rad = p.cam_yaw_rad;
+    pose.pitch_rad = p.cam_pitch_rad;
+    pose.roll_rad = cam_roll_rad;
+    const Rigid3 world_from_cam = pose.WorldFromCam();
+    const Eigen::Quaterniond& q = world_from_cam.rotation;
+    const Eigen::Vector3d& t = world_from_cam.translation;
+    out += FormatDouble(p.time_s);
+    for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) {
+      out += ' ';
+      out += FormatDouble(v);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
+  Dataset ds;
+  ds.dir_ = dir;
+  const std::string manifest_path = JoinPath(dir, "manifest.json");
+  if (!fs::is_regular_file(manifest_path)) {
+    throw InputError(manifest_path,
+                     "no manifest.json: not a hoilcd dataset folder (write one with "
+                     "hoilcd render SCENE -o DIR)");
+  }
+  ds.manifest_ = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
+  const DatasetManifest& m = ds.manifest_;
+  if (!m.complete) {
+    throw InputError(dir, "dataset is partial: " + std::to_string(m.FramesWritten()) + " of " +
+                              std::to_string(m.frame_count) +
+                              " frames; re-run hoilcd render to finish it");
+  }
+
+  ProblemCollector problems;
+  for (const char* side : {"scene.json", "poses.csv", "persons.json", "events.json"}) {
+    if (!m.files.count(side)) problems.Add(manifest_path + ": /files", std::string("no ") + side);
+  }
+  for (int frame = 0; frame < m.frame_count; ++frame) {
+    for (const char* folder : {"thermal/", "radiometric/"}) {
+      const std::string name = folder + FrameFileName(frame, "png");
+      if (!m.files.count(name)) problems.Add(manifest_path + ": /files", "no " + name);
+    }
+  }
+  problems.ThrowIfAny();
+
+  if (verify_checksums) {
+    const std::vector<std::pair<std::string, std::string>> listed(m.files.begin(),
+                                                                  m.files.end());
+    std::vector<std::string> errors(listed.size());
+    ParallelFor(static_cast<int64_t>(listed.size()), ResolveThreadCount(0), [&](int64_t i) {
+      const std::string path = JoinPath(dir, listed[i].first);
+      std::string actual;
+      try {
+        actual = ChecksumOf(ReadFileBytes(path));
+      } catch (const InputError&) {
+        errors[i] = "listed in manifest.json but missing or unreadable";
+        return;
+      }
+      if (actual != listed[i].second) {
+        errors[i] = "checksum mismatch (manifest.json says " + listed[i].second + ", file has " +
+                    actual + "): the file was changed or corrupted; re-render the dataset";
+      }
+    });
+    for (size_t i = 0; i < listed.size(); ++i) {
+      if (!errors[i].empty()) problems.Add(JoinPath(dir, listed[i].first), errors[i]);
+    }
+    problems.ThrowIfAny();
+  }
+
+  const std::string poses_path = JoinPath(dir, "poses.csv");
+  ds.poses_ = PosesFromCsv(ReadFileBytes(poses_path), poses_path);
+  bool frames_in_order = static_cast<int>(ds.poses_.size()) == m.frame_count;
+  for (size_t i = 0; frames_in_order && i < ds.poses_.size(); ++i) {
+    frames_in_order = ds.poses_[i].frame == static_cast<int>(i);
+  }
+  if (!frames_in_order) {
+    throw InputError(poses_path, "expected one row per frame, frames 0 to " +
+                                     std::to_string(m.frame_count - 1) + " in order");
+  }
+  const std::string persons_path = JoinPath(dir, "persons.json");
+  ds.persons_ = PersonsFromJson(ReadFileBytes(persons_path), persons_path);
+  for (const FramePersons& f : ds.persons_) {
+    if (f.frame < 0 || f.frame >= m.frame_count) {
+      throw InputError(persons_path, "frame " + std::to_string(f.frame) + " outside 0.." +
+                                         std::to_string(m.frame_count - 1));
+    }
+  }
+  const std::string events_path = JoinPath(dir, "events.json");
+  ds.events_ = EventsFromJson(ReadFileBytes(events_path), events_path);
+  for (const DatasetEvent& e : ds.events_) {
+    if (e.frame < 0 || e.frame >= m.frame_count) {
+      throw InputError(events_path, "frame " + std::to_string(e.frame) + " outside 0.." +
+                                        std::to_string(m.frame_count - 1));
+    }
+  }
+  return ds;
+}
+
+namespace {
+cv::Mat ReadPng(const std::string& path, int expected_type, const CameraIntrinsics& k) {
+  const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (image.empty()) throw InputError(path, "cannot read PNG (missing or not a PNG)");
+  if (image.type() != expected_type) {
+    throw InputError(path, expected_type == CV_8UC1 ? "expected an 8-bit single-channel PNG"
+                                                    : "expected a 16-bit single-channel PNG");
+  }
+  if (image.cols != k.width || image.rows != k.height) {
+    throw InputError(path, "expected " + std::to_string(k.width) + "x" +
+                               std::to_string(k.height) + " px as in manifest.json");
+  }
+  return image;
+}
+}  // namespace
+
+cv::Mat Dataset::Thermal(int frame) const {
+  HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
+  return ReadPng(JoinPath(dir_, "thermal/" + FrameFileName(frame, "png")), CV_8UC1,
+                 manifest_.intrinsics);
+}
+
+cv::Mat Dataset::RadiometricC(int frame) const {
+  HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
+  const cv::Mat centikelvin = ReadPng(
+      JoinPath(dir_, "radiometric/" + FrameFileName(frame, "png")), CV_16UC1,
+      manifest_.intrinsics);
+  cv::Mat celsius;
+  centikelvin.convertTo(celsius, CV_32F, 0.01, -273.15);
+  return celsius;
+}
+
+std::string Dataset::scene_json() const { return ReadFileBytes(JoinPath(dir_, "scene.json")); }
+
+}  // namespace hoilcd

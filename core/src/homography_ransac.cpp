@@ -1,0 +1,385 @@
+#include "hoilcd/core/homography_ransac.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+// A sample triplet whose angle sine at any vertex is below this is treated as collinear.
+constexpr double kMinSampleSine = 1e-3;
+// With redraw_degenerate_samples, at most trials * this many samples are drawn in all.
+constexpr int64_t kMaxDrawsPerTrial = 10;
+
+// False if the sample's triplets keep their orientation in some but not all of the four
+// triplets: no homography without a point at infinity between them does that (OpenCV's
+// HomographyEstimatorCallback::checkSubset applies the same test).
+bool OrientationConsistent(const double sx[4], const double sy[4], const double dx[4],
+                           const double dy[4]) {
+  constexpr int kTriplets[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  int flipped = 0;
+  for (const auto& t : kTriplets) {
+    const double src = (sx[t[1]] - sx[t[0]]) * (sy[t[2]] - sy[t[0]]) -
+                       (sy[t[1]] - sy[t[0]]) * (sx[t[2]] - sx[t[0]]);
+    const double dst = (dx[t[1]] - dx[t[0]]) * (dy[t[2]] - dy[t[0]]) -
+                       (dy[t[1]] - dy[t[0]]) * (dx[t[2]] - dx[t[0]]);
+    flipped += src * dst < 0 ? 1 : 0;
+  }
+  return flipped == 0 || flipped == 4;
+}
+
+// True if no three of the four points are (nearly) collinear.
+bool FourPointsInGeneralPosition(const double x[4], const double y[4]) {
+  constexpr int kTriplets[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (const auto& t : kTriplets) {
+    const double ax = x[t[1]] - x[t[0]], ay = y[t[1]] - y[t[0]];
+    const double bx = x[t[2]] - x[t[0]], by = y[t[2]] - y[t[0]];
+    const double cross = ax * by - ay * bx;
+    if (cross * cross <= kMinSampleSine * kMinSampleSine * (ax * ax + ay * ay) * (bx * bx + by * by)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Unit square (0,0),(1,0),(1,1),(0,1) -> quad (x[i], y[i]) (Heckbert 1989), up to scale,
+// row-major; division-free so a general-position quad gives a finite, non-singular matrix.
+void SquareToQuad(const double x[4], const double y[4], double m[9]) {
+  const double sx = x[0] - x[1] + x[2] - x[3];
+  const double sy = y[0] - y[1] + y[2] - y[3];
+  const double dx1 = x[1] - x[2], dx2 = x[3] - x[2];
+  const double dy1 = y[1] - y[2], dy2 = y[3] - y[2];
+  const double den = dx1 * dy2 - dx2 * dy1;
+  const double g = sx * dy2 - dx2 * sy;
+  const double h = dx1 * sy - sx * dy1;
+  m[0] = (x[1] - x[0]) * den + g * x[1];
+  m[1] = (x[3] - x[0]) * den + h * x[3];
+  m[2] = x[0] * den;
+  m[3] = (y[1] - y[0]) * den + g * y[1];
+  m[4] = (y[3] - y[0]) * den + h * y[3];
+  m[5] = y[0] * den;
+  m[6] = g;
+  m[7] = h;
+  m[8] = den;
+}
+
+// Adjugate of a row-major 3x3 matrix (its inverse up to scale).
+void Adjugate(const double m[9], double a[9]) {
+  a[0] = m[4] * m[8] - m[5] * m[7];
+  a[1] = m[2] * m[7] - m[1] * m[8];
+  a[2] = m[1] * m[5] - m[2] * m[4];
+  a[3] = m[5] * m[6] - m[3] * m[8];
+  a[4] = m[0] * m[8] - m[2] * m[6];
+  a[5] = m[2] * m[3] - m[0] * m[5];
+  a[6] = m[3] * m[7] - m[4] * m[6];
+  a[7] = m[1] * m[6] - m[0] * m[7];
+  a[8] = m[0] * m[4] - m[1] * m[3];
+}
+
+void Multiply3(const double a[9], const double b[9], double c[9]) {
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      c[3 * r + k] = a[3 * r] * b[k] + a[3 * r + 1] * b[3 + k] + a[3 * r + 2] * b[6 + k];
+    }
+  }
+}
+
+// Similarity normalisation of four points: centroid to the origin, mean |x|+|y| to 1.
+struct Normalisation {
+  double cx, cy, scale;
+};
+
+Normalisation NormaliseFour(const double x[4], const double y[4], double nx[4], double ny[4]) {
+  Normalisation n;
+  n.cx = 0.25 * (x[0] + x[1] + x[2] + x[3]);
+  n.cy = 0.25 * (y[0] + y[1] + y[2] + y[3]);
+  double spread = 0;
+  for (int i = 0; i < 4; ++i) spread += std::abs(x[i] - n.cx) + std::abs(y[i] - n.cy);
+  n.scale = spread > 0 ? 4.0 / spread : 1.0;
+  for (int i = 0; i < 4; ++i) {
+    nx[i] = (x[i] - n.cx) * n.scale;
+    ny[i] = (y[i] - n.cy) * n.scale;
+  }
+  return n;
+}
+
+// H = T_dst⁻¹ · Hn · T_src for similarity normalisations T (x' = s (x - c)).
+void Denormalise(const double hn[9], const Normalisation& src, const Normalisation& dst,
+                 double h[9]) {
+  double t[9];
+  for (int r = 0; r < 3; ++r) {
+    t[3 * r] = hn[3 * r] * src.scale;
+    t[3 * r + 1] = hn[3 * r + 1] * src.scale;
+    t[3 * r + 2] = hn[3 * r + 2] - src.scale * (src.cx * hn[3 * r] + src.cy * hn[3 * r + 1]);
+  }
+  const double inv = 1.0 / dst.scale;
+  for (int k = 0; k < 3; ++k) {
+    h[k] = t[k] * inv + dst.cx * t[6 + k];
+    h[3 + k] = t[3 + k] * inv + dst.cy * t[6 + k];
+    h[6 + k] = t[6 + k];
+  }
+}
+
+// Scales h so its largest entry has magnitude 1; false if h is zero or not finite.
+bool NormaliseMaxAbs(double h[9]) {
+  double largest = 0;
+  for (int i = 0; i < 9; ++i) largest = std::max(largest, std::abs(h[i]));
+  if (!(largest > 0) || !std::isfinite(largest)) return false;
+  for (int i = 0; i < 9; ++i) h[i] /= largest;
+  return true;
+}
+
+// Closed-form 4-point homography src -> dst on normalised coordinates; h scaled to max |h| = 1.
+bool FourPointHomography(const double sx[4], const double sy[4], const double dx[4],
+                         const double dy[4], double h[9]) {
+  if (!FourPointsInGeneralPosition(sx, sy) || !FourPointsInGeneralPosition(dx, dy)) return false;
+  double nsx[4], nsy[4], ndx[4], ndy[4];
+  const Normalisation src = NormaliseFour(sx, sy, nsx, nsy);
+  const Normalisation dst = NormaliseFour(dx, dy, ndx, ndy);
+  double square_to_src[9], square_to_dst[9], src_to_square[9], hn[9];
+  SquareToQuad(nsx, nsy, square_to_src);
+  SquareToQuad(ndx, ndy, square_to_dst);
+  Adjugate(square_to_src, src_to_square);
+  Multiply3(square_to_dst, src_to_square, hn);
+  Denormalise(hn, src, dst, h);
+  return NormaliseMaxAbs(h);
+}
+
+// Inlier count of h over all matches; the loop is division-free so GCC vectorises it at -O3:
+// |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0).
+int CountInliers(const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
+                 const float* query_y, int count, float threshold_sq) {
+  const float h0 = h[0], h1 = h[1], h2 = h[2], h3 = h[3], h4 = h[4], h5 = h[5], h6 = h[6],
+              h7 = h[7], h8 = h[8];
+  int inliers = 0;
+  for (int i = 0; i < count; ++i) {
+    const float x = ref_x[i], y = ref_y[i];
+    const float w = h6 * x + h7 * y + h8;
+    const float du = h0 * x + h1 * y + h2 - query_x[i] * w;
+    const float dv = h3 * x + h4 * y + h5 - query_y[i] * w;
+    inliers += (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
+  }
+  return inliers;
+}
+
+void MarkInliers(const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
+                 const float* query_y, int count, float threshold_sq, uint8_t* mask) {
+  for (int i = 0; i < count; ++i) {
+    const float x = ref_x[i], y = ref_y[i];
+    const float w = h[6] * x + h[7] * y + h[8];
+    const float du = h[0] * x + h[1] * y + h[2] - query_x[i] * w;
+    const float dv = h[3] * x + h[4] * y + h[5] - query_y[i] * w;
+    mask[i] = (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
+  }
+}
+
+void ToFloat(const double h[9], float f[9]) {
+  for (int i = 0; i < 9; ++i) f[i] = static_cast<float>(h[i]);
+}
+
+Eigen::Matrix3d ToResultMatrix(const double h[9]) {
+  Eigen::Matrix3d m;
+  m << h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8];
+  if (std::abs(m(2, 2)) > 1e-12 * m.cwiseAbs().maxCoeff()) m /= m(2, 2);
+  return m;
+}
+
+}  // namespace
+
+std::string RansacOptions::Check() const {
+  std::ostringstream out;
+  if (trials < 1) out << "trials must be >= 1 (got " << trials << "); ";
+  if (!(inlier_threshold_px > 0) || !std::isfinite(inlier_threshold_px)) {
+    out << "inlier_threshold_px must be a positive number of pixels (got " << inlier_threshold_px
+        << "); ";
+  }
+  if (local_optimisation_refits < 0) {
+    out << "local_optimisation_refits must be >= 0 (got " << local_optimisation_refits << "); ";
+  }
+  std::string text = out.str();
+  if (!text.empty()) text.resize(text.size() - 2);
+  return text;
+}
+
+bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::Matrix3d* h) {
+  HOILCD_CHECK(h != nullptr);
+  double sx[4], sy[4], dx[4], dy[4], m[9];
+  for (int i = 0; i < 4; ++i) {
+    sx[i] = src[i].x;
+    sy[i] = src[i].y;
+    dx[i] = dst[i].x;
+    dy[i] = dst[i].y;
+  }
+  if (!FourPointHomography(sx, sy, dx, dy, m)) return false;
+  *h = ToResultMatrix(m);
+  return true;
+}
+
+bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float* query_x,
+                            const float* query_y, const uint8_t* use, int count,
+                            Eigen::Matrix3d* h) {
+  HOILCD_CHECK(h != nullptr);
+  // Hartley normalisation: centroid to the origin, mean distance sqrt(2).
+  double rcx = 0, rcy = 0, qcx = 0, qcy = 0;
+  int n = 0;
+  for (int i = 0; i < count; ++i) {
+    if (use != nullptr && !use[i]) continue;
+    rcx += ref_x[i];
+    rcy += ref_y[i];
+    qcx += query_x[i];
+    qcy += query_y[i];
+    ++n;
+  }
+  if (n < 4) return false;
+  rcx /= n;
+  rcy /= n;
+  qcx /= n;
+  qcy /= n;
+  double rd = 0, qd = 0;
+  for (int i = 0; i < count; ++i) {
+    if (use != nullptr && !use[i]) continue;
+    rd += std::hypot(ref_x[i] - rcx, ref_y[i] - rcy);
+    qd += std::hypot(query_x[i] - qcx, query_y[i] - qcy);
+  }
+  if (!(rd > 0) || !(qd > 0)) return false;
+  const Normalisation src{rcx, rcy, std::sqrt(2.0) * n / rd};
+  const Normalisation dst{qcx, qcy, std::sqrt(2.0) * n / qd};
+  Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+  for (int i = 0; i < count; ++i) {
+    if (use != nullptr && !use[i]) continue;
+    const double x = (ref_x[i] - src.cx) * src.scale, y = (ref_y[i] - src.cy) * src.scale;
+    const double u = (query_x[i] - dst.cx) * dst.scale, v = (query_y[i] - dst.cy) * dst.scale;
+    Eigen::Matrix<double, 9, 1> a, b;
+    a << -x, -y, -1, 0, 0, 0, u * x, u * y, u;
+    b << 0, 0, 0, -x, -y, -1, v * x, v * y, v;
+    ata.selfadjointView<Eigen::Lower>().rankUpdate(a);
+    ata.selfadjointView<Eigen::Lower>().rankUpdate(b);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver(
+      ata.selfadjointView<Eigen::Lower>());
+  if (solver.info() != Eigen::Success) return false;
+  const Eigen::Matrix<double, 9, 1> null_vector = solver.eigenvectors().col(0);
+  double hn[9], m[9];
+  for (int i = 0; i < 9; ++i) hn[i] = null_vector(i);
+  Denormalise(hn, src, dst, m);
+  if (!NormaliseMaxAbs(m)) return false;
+  Eigen::Matrix3d result;
+  result << m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8];
+  if (std::abs(result.determinant()) < 1e-12) return false;
+  *h = ToResultMatrix(m);
+  return true;
+}
+
+// Hand-written rather than cv::findHomography: the paper runs exactly N trials, while OpenCV
+// stops adaptively and refines the model afterwards.
+int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x,
+                        const float* query_y, int count, const RansacOptions& options,
+                        uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask) {
+  if (count < 4) {
+    if (best_h != nullptr) best_h->setIdentity();
+    if (inlier_mask != nullptr) std::fill(inlier_mask, inlier_mask + count, uint8_t{0});
+    return 0;
+  }
+  const float threshold_sq =
+      static_cast<float>(options.inlier_threshold_px * options.inlier_threshold_px);
+  Rng rng(seed);
+  const uint32_t n = static_cast<uint32_t>(count);
+  // With exactly 4 matches every sample is the same set: one draw decides.
+  const int64_t draw_budget =
+      count == 4 ? 1
+                 : static_cast<int64_t>(options.trials) *
+                       (options.redraw_degenerate_samples ? kMaxDrawsPerTrial : 1);
+  double best[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  int best_inliers = 0;
+  std::vector<uint8_t> lo_mask;
+  int hypotheses = 0;
+  for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget; ++draws) {
+    uint32_t idx[4];
+    idx[0] = rng.UniformInt(n);
+    do idx[1] = rng.UniformInt(n); while (idx[1] == idx[0]);
+    do idx[2] = rng.UniformInt(n); while (idx[2] == idx[0] || idx[2] == idx[1]);
+    do idx[3] = rng.UniformInt(n); while (idx[3] == idx[0] || idx[3] == idx[1] || idx[3] == idx[2]);
+    double sx[4], sy[4], dx[4], dy[4], h[9];
+    for (int k = 0; k < 4; ++k) {
+      sx[k] = ref_x[idx[k]];
+      sy[k] = ref_y[idx[k]];
+      dx[k] = query_x[idx[k]];
+      dy[k] = query_y[idx[k]];
+    }
+    if (!OrientationConsistent(sx, sy, dx, dy) || !FourPointHomography(sx, sy, dx, dy, h)) {
+      continue;
+    }
+    ++hypotheses;
+    float hf[9];
+    ToFloat(h, hf);
+    const int inliers = CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq);
+    if (inliers <= best_inliers) continue;
+    best_inliers = inliers;
+    std::copy(h, h + 9, best);
+    if (options.local_optimisation_refits <= 0 || inliers <= 4) continue;
+    lo_mask.resize(count);
+    MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
+    for (int refit = 0; refit < options.local_optimisation_refits; ++refit) {
+      Eigen::Matrix3d fit;
+      if (!HomographyLeastSquares(ref_x, ref_y, query_x, query_y, lo_mask.data(), count, &fit)) {
+        break;
+      }
+      double hr[9];
+      for (int k = 0; k < 9; ++k) hr[k] = fit(k / 3, k % 3);
+      if (!NormaliseMaxAbs(hr)) break;
+      ToFloat(hr, hf);
+      const int refit_inliers =
+          CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq);
+      if (refit_inliers <= best_inliers) break;
+      best_inliers = refit_inliers;
+      std::copy(hr, hr + 9, best);
+      MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
+    }
+  }
+  if (best_h != nullptr) *best_h = ToResultMatrix(best);
+  if (inlier_mask != nullptr) {
+    if (best_inliers == 0) {
+      std::fill(inlier_mask, inlier_mask + count, uint8_t{0});
+    } else {
+      float hf[9];
+      ToFloat(best, hf);
+      MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, inlier_mask);
+    }
+  }
+  return best_inliers;
+}
+
+HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
+                                          const std::vector<Point2>& reference,
+                                          const std::vector<Correspondence>& matches,
+                                          const RansacOptions& options, uint64_t seed) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const int count = static_cast<int>(matches.size());
+  std::vector<float> ref_x(count), ref_y(count), query_x(count), query_y(count);
+  for (int i = 0; i < count; ++i) {
+    const Correspondence& m = matches[i];
+    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
+                         m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
+                     "match " << i << " (" << m.query << ", " << m.reference
+                              << ") is out of range");
+    ref_x[i] = reference[m.reference].x;
+    ref_y[i] = reference[m.reference].y;
+    query_x[i] = query[m.query].x;
+    query_y[i] = query[m.query].y;
+  }
+  HomographyResult result;
+  result.inlier_mask.resize(count);
+  result.inliers = RansacHomographySoa(ref_x.data(), ref_y.data(), query_x.data(), query_y.data(),
+                                       count, options, seed, &result.reference_to_query,
+                                       result.inlier_mask.data());
+  return result;
+}
+
+}  // namespace hoilcd

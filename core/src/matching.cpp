@@ -1,0 +1,239 @@
+#include "hoilcd/core/matching.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+// Grid density: about this many points per cell (measured fastest among 0.5, 1, 2, 4).
+constexpr float kPointsPerCell = 1.0f;
+// Upper bound on cells per axis, so a few far-off points cannot blow up the grid.
+constexpr int kMaxCellsPerAxis = 1024;
+
+// Nearest neighbours with a cache for the reverse direction: reverse[j] is the nearest query of
+// reference j once computed, -2 before.
+void MutualNearestNeighboursCached(const Point2* query_points, const PointGrid& query_grid,
+                                   const Point2* reference_points,
+                                   const PointGrid& reference_grid, std::vector<int>* reverse,
+                                   std::vector<Correspondence>* matches) {
+  matches->clear();
+  reverse->assign(reference_grid.size(), -2);
+  if (query_grid.size() == 0 || reference_grid.size() == 0) return;
+  for (int i = 0; i < query_grid.size(); ++i) {
+    const int j = reference_grid.Nearest(query_points[i]);
+    int& back = (*reverse)[j];
+    if (back == -2) back = query_grid.Nearest(reference_points[j]);
+    if (back == i) matches->push_back({i, j});
+  }
+}
+
+bool WithinVerticalTolerance(float query_y, float reference_y, double tolerance_px) {
+  return std::abs(static_cast<double>(query_y) - static_cast<double>(reference_y)) <= tolerance_px;
+}
+
+}  // namespace
+
+std::string MatchOptions::Check() const {
+  std::ostringstream out;
+  if (!(vertical_tolerance >= 0) || !std::isfinite(vertical_tolerance)) {
+    out << "vertical_tolerance must be a non-negative fraction of the image height (got "
+        << vertical_tolerance << "); ";
+  }
+  if (image_height_px <= 0) out << "image_height_px must be > 0 (got " << image_height_px << "); ";
+  std::string text = out.str();
+  if (!text.empty()) text.resize(text.size() - 2);
+  return text;
+}
+
+PointGrid::PointGrid(const Point2* points, int count) {
+  if (count <= 0) return;
+  float min_x = points[0].x, max_x = min_x, min_y = points[0].y, max_y = min_y;
+  for (int i = 0; i < count; ++i) {
+    HOILCD_CHECK_MSG(std::isfinite(points[i].x) && std::isfinite(points[i].y),
+                     "point " << i << " has a non-finite coordinate");
+    min_x = std::min(min_x, points[i].x);
+    max_x = std::max(max_x, points[i].x);
+    min_y = std::min(min_y, points[i].y);
+    max_y = std::max(max_y, points[i].y);
+  }
+  const float width = max_x - min_x, height = max_y - min_y;
+  const float extent = std::max(width, height);
+  origin_x_ = min_x;
+  origin_y_ = min_y;
+  if (extent > 0) {
+    // Thin sets (a row of points) get cells sized as if the short side were extent/count.
+    const float floor_side = extent / static_cast<float>(count);
+    const float area = std::max(width, floor_side) * std::max(height, floor_side);
+    cell_px_ = std::sqrt(area * kPointsPerCell / static_cast<float>(count));
+    cell_px_ = std::max(cell_px_, extent / static_cast<float>(kMaxCellsPerAxis));
+  } else {
+    cell_px_ = 1.0f;
+  }
+  inv_cell_ = 1.0f / cell_px_;
+  nx_ = std::min(kMaxCellsPerAxis, static_cast<int>(width * inv_cell_) + 1);
+  ny_ = std::min(kMaxCellsPerAxis, static_cast<int>(height * inv_cell_) + 1);
+  // Counting sort of the points by cell; stable, so each cell lists its points by index.
+  std::vector<int> cell_of(count);
+  cell_start_.assign(static_cast<size_t>(nx_) * ny_ + 1, 0);
+  for (int i = 0; i < count; ++i) {
+    const int cx = std::min(nx_ - 1, static_cast<int>((points[i].x - origin_x_) * inv_cell_));
+    const int cy = std::min(ny_ - 1, static_cast<int>((points[i].y - origin_y_) * inv_cell_));
+    cell_of[i] = cy * nx_ + cx;
+    ++cell_start_[cell_of[i] + 1];
+  }
+  for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  xs_.resize(count);
+  ys_.resize(count);
+  ids_.resize(count);
+  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (int i = 0; i < count; ++i) {
+    const int slot = fill[cell_of[i]]++;
+    xs_[slot] = points[i].x;
+    ys_[slot] = points[i].y;
+    ids_[slot] = i;
+  }
+}
+
+int PointGrid::Nearest(Point2 p) const {
+  if (ids_.empty()) return -1;
+  // Cell of p, clamped into the grid (p may lie outside the bounding box of the set).
+  const float fx = std::clamp((p.x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1));
+  const float fy = std::clamp((p.y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1));
+  const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
+  float best_d = std::numeric_limits<float>::infinity();
+  int best_id = std::numeric_limits<int>::max();
+  auto scan_cell = [&](int x, int y) {
+    const int c = y * nx_ + x;
+    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+      const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
+      const float d = dx * dx + dy * dy;
+      if (d < best_d || (d == best_d && ids_[k] < best_id)) {
+        best_d = d;
+        best_id = ids_[k];
+      }
+    }
+  };
+  // Cell-assignment rounding can put a point a hair outside its cell's nominal box.
+  const float slack = 1e-3f * cell_px_ +
+                      1e-5f * (std::abs(origin_x_) + std::abs(origin_y_) + (nx_ + ny_) * cell_px_);
+  for (int r = 0;; ++r) {
+    const int x0 = cx - r, x1 = cx + r, y0 = cy - r, y1 = cy + r;
+    const int xa = std::max(x0, 0), xb = std::min(x1, nx_ - 1);
+    if (r == 0) {
+      scan_cell(cx, cy);
+    } else {
+      if (y0 >= 0) {
+        for (int x = xa; x <= xb; ++x) scan_cell(x, y0);
+      }
+      if (y1 < ny_) {
+        for (int x = xa; x <= xb; ++x) scan_cell(x, y1);
+      }
+      const int ya = std::max(y0 + 1, 0), yb = std::min(y1 - 1, ny_ - 1);
+      if (x0 >= 0) {
+        for (int y = ya; y <= yb; ++y) scan_cell(x0, y);
+      }
+      if (x1 < nx_) {
+        for (int y = ya; y <= yb; ++y) scan_cell(x1, y);
+      }
+    }
+    // Every point not yet scanned lies beyond one of the block's sides that are inside the grid.
+    float bound = std::numeric_limits<float>::infinity();
+    if (x0 > 0) bound = std::min(bound, p.x - (origin_x_ + x0 * cell_px_));
+    if (x1 < nx_ - 1) bound = std::min(bound, origin_x_ + (x1 + 1) * cell_px_ - p.x);
+    if (y0 > 0) bound = std::min(bound, p.y - (origin_y_ + y0 * cell_px_));
+    if (y1 < ny_ - 1) bound = std::min(bound, origin_y_ + (y1 + 1) * cell_px_ - p.y);
+    if (bound == std::numeric_limits<float>::infinity()) break;
+    bound -= slack;
+    if (bound > 0 && best_d < bound * bound) break;
+  }
+  return best_id;
+}
+
+void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,
+                             const Point2* reference_points, const PointGrid& reference_grid,
+                             std::vector<Correspondence>* matches) {
+  HOILCD_CHECK(matches != nullptr);
+  std::vector<int> reverse;
+  MutualNearestNeighboursCached(query_points, query_grid, reference_points, reference_grid,
+                                &reverse, matches);
+}
+
+std::vector<Correspondence> MutualNearestNeighbours(const std::vector<Point2>& query,
+                                                    const std::vector<Point2>& reference) {
+  const PointGrid query_grid(query.data(), static_cast<int>(query.size()));
+  const PointGrid reference_grid(reference.data(), static_cast<int>(reference.size()));
+  std::vector<Correspondence> matches;
+  MutualNearestNeighbours(query.data(), query_grid, reference.data(), reference_grid, &matches);
+  return matches;
+}
+
+std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query,
+                                           const std::vector<Point2>& reference,
+                                           const std::vector<Correspondence>& matches,
+                                           const MatchOptions& options) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const double tolerance_px = options.vertical_tolerance * options.image_height_px;
+  std::vector<Correspondence> kept;
+  kept.reserve(matches.size());
+  for (const Correspondence& m : matches) {
+    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
+                         m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
+                     "match (" << m.query << ", " << m.reference << ") is out of range");
+    if (WithinVerticalTolerance(query[m.query].y, reference[m.reference].y, tolerance_px)) {
+      kept.push_back(m);
+    }
+  }
+  return kept;
+}
+
+uint64_t PairSeed(uint64_t seed, int query_id, int reference_id) {
+  return HashCombine(seed, HashString("ransac"), static_cast<uint64_t>(query_id),
+                     static_cast<uint64_t>(reference_id));
+}
+
+int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
+                      const Point2* reference_points, const PointGrid& reference_grid,
+                      const MatchOptions& match_options, const RansacOptions& ransac_options,
+                      uint64_t pair_seed) {
+  MutualNearestNeighboursCached(query_points, query_grid, reference_points, reference_grid,
+                                &reverse_nearest_, &matches_);
+  const double tolerance_px = match_options.vertical_tolerance * match_options.image_height_px;
+  ref_x_.clear();
+  ref_y_.clear();
+  query_x_.clear();
+  query_y_.clear();
+  for (const Correspondence& m : matches_) {
+    const Point2 q = query_points[m.query], r = reference_points[m.reference];
+    if (!WithinVerticalTolerance(q.y, r.y, tolerance_px)) continue;
+    ref_x_.push_back(r.x);
+    ref_y_.push_back(r.y);
+    query_x_.push_back(q.x);
+    query_y_.push_back(q.y);
+  }
+  return RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(),
+                             static_cast<int>(ref_x_.size()), ransac_options, pair_seed, nullptr,
+                             nullptr);
+}
+
+int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+              const MatchOptions& match_options, const RansacOptions& ransac_options,
+              uint64_t seed, int query_id, int reference_id) {
+  const std::string match_problem = match_options.Check();
+  HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
+  const std::string ransac_problem = ransac_options.Check();
+  HOILCD_CHECK_MSG(ransac_problem.empty(), ransac_problem);
+  const PointGrid query_grid(query.data(), static_cast<int>(query.size()));
+  const PointGrid reference_grid(reference.data(), static_cast<int>(reference.size()));
+  PairScorer scorer;
+  return scorer.Score(query.data(), query_grid, reference.data(), reference_grid, match_options,
+                      ransac_options, PairSeed(seed, query_id, reference_id));
+}
+
+}  // namespace hoilcd

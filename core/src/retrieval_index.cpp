@@ -1,0 +1,61 @@
+#include "hoilcd/core/retrieval_index.h"
+
+#include <string>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
+
+namespace hoilcd {
+namespace {
+
+// Pairs per work chunk: large enough to amortise the hand-out, small enough to balance.
+constexpr int64_t kPairsPerChunk = 256;
+
+}  // namespace
+
+void RetrievalIndex::Add(std::vector<Point2> points) {
+  grids_.emplace_back(points.data(), static_cast<int>(points.size()));
+  points_.insert(points_.end(), points.begin(), points.end());
+  offsets_.push_back(static_cast<int64_t>(points_.size()));
+}
+
+const Point2* RetrievalIndex::points(int frame, int* count) const {
+  HOILCD_CHECK_MSG(frame >= 0 && frame < size(), "frame " << frame << " not in [0, " << size() << ")");
+  HOILCD_CHECK(count != nullptr);
+  *count = static_cast<int>(offsets_[frame + 1] - offsets_[frame]);
+  return points_.data() + offsets_[frame];
+}
+
+std::vector<std::vector<float>> RetrievalIndex::ScoreAll(const std::vector<int>& queries,
+                                                         const std::vector<int>& database,
+                                                         const MatchOptions& match_options,
+                                                         const RansacOptions& ransac_options,
+                                                         uint64_t seed, int threads) const {
+  const std::string match_problem = match_options.Check();
+  HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
+  const std::string ransac_problem = ransac_options.Check();
+  HOILCD_CHECK_MSG(ransac_problem.empty(), ransac_problem);
+  for (const std::vector<int>* ids : {&queries, &database}) {
+    for (int id : *ids) {
+      HOILCD_CHECK_MSG(id >= 0 && id < size(), "frame " << id << " not in [0, " << size() << ")");
+    }
+  }
+  const int64_t num_database = static_cast<int64_t>(database.size());
+  std::vector<std::vector<float>> scores(queries.size(), std::vector<float>(database.size(), 0.0f));
+  const int num_threads = ResolveThreadCount(threads);
+  std::vector<PairScorer> scorers(num_threads);
+  ParallelForChunks(static_cast<int64_t>(queries.size()) * num_database, kPairsPerChunk,
+                    num_threads, [&](int64_t begin, int64_t end, int worker) {
+                      PairScorer& scorer = scorers[worker];
+                      for (int64_t pair = begin; pair < end; ++pair) {
+                        const int64_t qi = pair / num_database, di = pair % num_database;
+                        const int q = queries[qi], r = database[di];
+                        scores[qi][di] = static_cast<float>(scorer.Score(
+                            points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r],
+                            grids_[r], match_options, ransac_options, PairSeed(seed, q, r)));
+                      }
+                    });
+  return scores;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# `hoilcd validate` accepts every shipped scene and reports every problem of a bad one with its
+# file and JSON pointer, exiting non-zero; a missing file and bad flags are clear errors too.
+set -euo pipefail
+hoilcd=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+for scene in "$source_dir"/scenes/*.json; do
+  case "$scene" in *scene.schema.json) continue ;; esac
+  "$hoilcd" validate "$scene" > /dev/null || fail "shipped scene $scene does not validate"
+done
+
+cat > "$work/bad.json" <<'JSON'
+{ "frames": 0, "crowd": { "people_per_tabel": 3 }, "camera": { "netd_k": "low" } }
+JSON
+if "$hoilcd" validate "$work/bad.json" > "$work/out" 2>&1; then fail "a bad scene validated"; fi
+grep -q "$work/bad.json: /frames" "$work/out" || fail "no /frames problem: $(cat "$work/out")"
+grep -q "$work/bad.json: /crowd: unknown key 'people_per_tabel'" "$work/out" || fail "no unknown-key problem: $(cat "$work/out")"
+grep -q "$work/bad.json: /camera/netd_k" "$work/out" || fail "no /camera/netd_k problem: $(cat "$work/out")"
+
+if "$hoilcd" validate "$work/missing.json" > "$work/out" 2>&1; then fail "a missing scene validated"; fi
+grep -q "missing.json" "$work/out" || fail "missing file not named"
+
+if "$hoilcd" render "$source_dir/scenes/paper_room.json" -o "$work/x" --set crowd.people_per_table=9 > "$work/out" 2>&1; then
+  fail "an out-of-range --set rendered"
+fi
+grep -q "/crowd/people_per_table" "$work/out" || fail "bad --set not reported at its path: $(cat "$work/out")"
+[ ! -e "$work/x/manifest.json" ] || fail "a rejected render wrote a dataset"
+
+if "$hoilcd" bench "$work/nothing" > "$work/out" 2>&1; then fail "bench of a missing dataset succeeded"; fi
+grep -q "nothing" "$work/out" || fail "missing dataset not named: $(cat "$work/out")"
+echo "1 passed, 0 failed"

@@ -1,0 +1,358 @@
+#include "hoilcd/core/dataset.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "hoilcd/core/error.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh, empty directory per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("hoilcd_dataset_test_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string str() const { return path_.string(); }
+  std::string operator/(const std::string& relative) const { return (path_ / relative).string(); }
+
+ private:
+  fs::path path_;
+};
+
+// Catches the InputError thrown by fn and returns what() (empty if nothing was thrown).
+template <typename Fn>
+std::string InputErrorOf(Fn fn) {
+  try {
+    fn();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<PoseRecord> SamplePoses(int count) {
+  std::vector<PoseRecord> poses;
+  for (int i = 0; i < count; ++i) {
+    PoseRecord p;
+    p.frame = i;
+    p.time_s = i / 25.0;
+    p.x_m = 0.1 * i + 1.0 / 3.0;
+    p.y_m = -1e-300 * i;
+    p.theta_rad = -0.7 * i;
+    p.cam_x_m = p.x_m + 0.25;
+    p.cam_y_m = p.y_m;
+    p.cam_z_m = 0.8;
+    p.cam_yaw_rad = p.theta_rad;
+    p.cam_pitch_rad = 0.05;
+    p.odo_x_m = p.x_m + 1e-3 * i;
+    p.odo_y_m = p.y_m - 2e-3 * i;
+    p.odo_theta_rad = p.theta_rad + 1e-4;
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+std::vector<FramePersons> SamplePersons() {
+  PersonRecord a{7, cv::Rect2f(1.5f, 2.f, 3.25f, 4.f), 0.8, 0.2, true, "seated",
+                 {{"seat", 2.5, 5.75, true}, {"left_hand", 1.0, 3.0, false}}};
+  PersonRecord b{9, cv::Rect2f(0.f, 0.f, 2.f, 2.f), 0.1, 0.9, false, "standing", {}};
+  return {{0, {a}}, {1, {}}, {2, {a, b}}};
+}
+
+std::vector<DatasetEvent> SampleEvents() {
+  return {{0, "ffc", -1, "", "shutter"}, {1, "arrive", 9, "table2_seat1", ""},
+          {2, "swap", 7, "table1_seat0", "with 9"}};
+}
+
+// Writes a complete tiny dataset (8 x 6 px frames) with the library's own writer functions.
+DatasetManifest WriteTinyDataset(const std::string& dir, int frames, bool complete) {
+  DatasetManifest m;
+  m.hoilcd_version = "test";
+  m.scene_hash = ChecksumOf("{}");
+  m.seed = 5;
+  m.intrinsics = CameraIntrinsics::FromHorizontalFov(8, 6, 50);
+  m.frame_count = frames;
+  m.classes = {{"person", 1}, {"table", 2}};
+  WriteDatasetFile(dir, "scene.json", "{}\n", &m);
+  const int written = complete ? frames : frames - 1;
+  for (int f = 0; f < written; ++f) {
+    const cv::Mat thermal(6, 8, CV_8UC1, cv::Scalar(10 * f + 1));
+    const cv::Mat radiometric(6, 8, CV_16UC1, cv::Scalar(29815 + 100 * f));
+    WriteDatasetFile(dir, "thermal/" + FrameFileName(f, "png"), EncodePng(thermal), &m);
+    WriteDatasetFile(dir, "radiometric/" + FrameFileName(f, "png"), EncodePng(radiometric), &m);
+  }
+  if (complete) {
+    WriteDatasetFile(dir, "poses.csv", PosesToCsv(SamplePoses(frames)), &m);
+    WriteDatasetFile(dir, "persons.json", PersonsToJson(SamplePersons()), &m);
+    WriteDatasetFile(dir, "events.json", EventsToJson(SampleEvents()), &m);
+  }
+  m.complete = complete;
+  WriteFileAtomic(dir + "/manifest.json", m.ToJson());
+  return m;
+}
+
+TEST(Checksum, HasPrefixAnd32HexDigitsAndChangesWithOneByte) {
+  const std::string a = ChecksumOf("hello");
+  ASSERT_EQ(a.size(), 9u + 32u);
+  EXPECT_EQ(a.substr(0, 9), "xxh3-128:");
+  EXPECT_EQ(a.find_first_not_of("0123456789abcdef", 9), std::string::npos);
+  EXPECT_EQ(a, ChecksumOf("hello"));
+  EXPECT_NE(a, ChecksumOf("hellp"));
+}
+
+TEST(FrameFileName, ZeroPadsToSixDigitsWithOrWithoutDot) {
+  EXPECT_EQ(FrameFileName(123, "png"), "000123.png");
+  EXPECT_EQ(FrameFileName(0, ".exr"), "000000.exr");
+}
+
+TEST(EncodePng, IsDeterministicAndDecodesToTheSamePixels) {
+  cv::Mat image16(6, 8, CV_16UC1);
+  for (int i = 0; i < 48; ++i) image16.at<uint16_t>(i / 8, i % 8) = 29000 + 37 * i;
+  const std::string bytes = EncodePng(image16);
+  EXPECT_EQ(bytes, EncodePng(image16.clone()));
+  const cv::Mat decoded =
+      cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(decoded.type(), CV_16UC1);
+  EXPECT_EQ(cv::countNonZero(decoded != image16), 0);
+  EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_8UC3)), std::logic_error);
+}
+
+TEST(WriteFileAtomic, ReplacesContentCreatesDirectoriesAndLeavesNoTempFile) {
+  TempDir dir;
+  const std::string path = dir / "a/b/file.txt";
+  WriteFileAtomic(path, "first version, longer");
+  EXPECT_EQ(ReadFileBytes(path), "first version, longer");
+  WriteFileAtomic(path, "second");
+  EXPECT_EQ(ReadFileBytes(path), "second");
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "a/b")) {
+    ++entries;
+    EXPECT_EQ(entry.path().filename(), "file.txt");
+  }
+  EXPECT_EQ(entries, 1);
+}
+
+TEST(ReadFileBytes, MissingFileIsAnInputErrorNamingIt) {
+  TempDir dir;
+  const std::string message = InputErrorOf([&] { ReadFileBytes(dir / "nope.bin"); });
+  EXPECT_NE(message.find("nope.bin: cannot read"), std::string::npos) << message;
+}
+
+TEST(DatasetManifest, JsonRoundTripKeepsEveryField) {
+  DatasetManifest m;
+  m.hoilcd_version = "0.1.0";
+  m.scene_hash = ChecksumOf("scene");
+  m.seed = 18446744073709551615ull;
+  m.intrinsics = CameraIntrinsics::FromHorizontalFov(256, 192, 50);
+  m.frame_rate_hz = 25;
+  m.frame_count = 1996;
+  m.window_min_c = 20.5;
+  m.window_max_c = 30.25;
+  m.classes = {{"person", 1}, {"table", 2}, {"wall", 4}};
+  m.files = {{"thermal/000000.png", ChecksumOf("a")}, {"poses.csv", ChecksumOf("b")}};
+  m.complete = true;
+  const DatasetManifest back = DatasetManifest::FromJson(m.ToJson(), "manifest.json");
+  EXPECT_EQ(back.ToJson(), m.ToJson());
+  EXPECT_EQ(back.seed, m.seed);
+  EXPECT_EQ(back.intrinsics.fx, m.intrinsics.fx);
+  EXPECT_EQ(back.classes, m.classes);
+  EXPECT_EQ(back.files, m.files);
+  EXPECT_TRUE(back.complete);
+  EXPECT_EQ(back.FramesWritten(), 1);
+}
+
+TEST(DatasetManifest, UnknownKeyWrongTypeAndEscapingPathAreReportedWithPointers) {
+  DatasetManifest m;
+  m.files = {{"../outside.png", ChecksumOf("x")}};
+  std::string text = m.ToJson();
+  text.replace(text.find("\"seed\": 0"), 9, "\"seed\": \"zero\", \"sead\": 1");
+  const std::string message =
+      InputErrorOf([&] { DatasetManifest::FromJson(text, "DIR/manifest.json"); });
+  EXPECT_NE(message.find("DIR/manifest.json: /seed: expected a non-negative integer"),
+            std::string::npos) << message;
+  EXPECT_NE(message.find("DIR/manifest.json: /sead: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("/files/../outside.png: expected a relative path"), std::string::npos)
+      << message;
+  EXPECT_NE(InputErrorOf([] { DatasetManifest::FromJson("{", "m.json"); }).find("invalid JSON"),
+            std::string::npos);
+}
+
+TEST(Dataset, OpensATinyCompleteFolderAndReadsEverything) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  const Dataset ds = Dataset::Open(dir.str());
+  EXPECT_EQ(ds.num_frames(), 3);
+  EXPECT_EQ(ds.manifest().classes.at("table"), 2);
+  ASSERT_EQ(ds.poses().size(), 3u);
+  EXPECT_EQ(ds.poses()[2].x_m, SamplePoses(3)[2].x_m);
+  ASSERT_EQ(ds.persons().size(), 3u);
+  EXPECT_EQ(ds.persons()[2].persons[1].id, 9);
+  ASSERT_EQ(ds.events().size(), 3u);
+  EXPECT_EQ(ds.events()[2].type, "swap");
+  EXPECT_EQ(ds.scene_json(), "{}\n");
+  const cv::Mat thermal = ds.Thermal(2);
+  ASSERT_EQ(thermal.type(), CV_8UC1);
+  EXPECT_EQ(thermal.size(), cv::Size(8, 6));
+  EXPECT_EQ(thermal.at<uint8_t>(5, 7), 21);
+  const cv::Mat celsius = ds.RadiometricC(1);
+  ASSERT_EQ(celsius.type(), CV_32FC1);
+  EXPECT_NEAR(celsius.at<float>(3, 4), 26.0, 1e-4);  // 29915 cK = 299.15 K
+  EXPECT_THROW(ds.Thermal(3), std::logic_error);
+}
+
+TEST(Dataset, CorruptedFrameIsAnErrorNamingThatFile) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  const std::string frame = dir / "thermal/000001.png";
+  std::string bytes = ReadFileBytes(frame);
+  bytes[bytes.size() / 2] ^= 0x01;
+  WriteFileAtomic(frame, bytes);
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_NE(message.find(frame + ": checksum mismatch"), std::string::npos) << message;
+  EXPECT_EQ(message.find("000000.png"), std::string::npos) << message;
+  EXPECT_NO_THROW(Dataset::Open(dir.str(), /*verify_checksums=*/false));
+}
+
+TEST(Dataset, MissingListedFileIsAnErrorNamingThatFile) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  fs::remove(dir / "radiometric/000002.png");
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_NE(message.find(dir / "radiometric/000002.png" + ": listed in manifest.json but missing"),
+            std::string::npos) << message;
+}
+
+TEST(Dataset, MissingManifestSaysItIsNotADatasetFolder) {
+  TempDir dir;
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_NE(message.find("manifest.json: no manifest.json: not a hoilcd dataset folder"),
+            std::string::npos) << message;
+}
+
+TEST(Dataset, PartialDatasetSaysHowManyFramesAndToRerunRender) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, false);
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_EQ(message,
+            dir.str() + ": dataset is partial: 2 of 3 frames; re-run hoilcd render to finish it");
+}
+
+TEST(PosesCsv, RoundTripIsExact) {
+  const std::vector<PoseRecord> poses = SamplePoses(5);
+  const std::string csv = PosesToCsv(poses);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,odo_x,odo_y,odo_theta");
+  const std::vector<PoseRecord> back = PosesFromCsv(csv, "poses.csv");
+  ASSERT_EQ(back.size(), poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_EQ(back[i].frame, poses[i].frame);
+    EXPECT_EQ(back[i].time_s, poses[i].time_s);
+    EXPECT_EQ(back[i].x_m, poses[i].x_m);
+    EXPECT_EQ(back[i].y_m, poses[i].y_m);
+    EXPECT_EQ(back[i].cam_pitch_rad, poses[i].cam_pitch_rad);
+    EXPECT_EQ(back[i].odo_theta_rad, poses[i].odo_theta_rad);
+  }
+  EXPECT_EQ(PosesToCsv(back), csv);
+}
+
+TEST(PosesCsv, MalformedLinesNameFileLineAndColumn) {
+  std::string csv = PosesToCsv(SamplePoses(3));
+  std::vector<std::string> lines;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  lines[2].replace(lines[2].find(',', lines[2].find(',') + 1) + 1, 0, "x");  // line 3, column x
+  lines[3] += ",7";                                                          // line 4: 14 columns
+  std::string broken;
+  for (const std::string& line : lines) broken += line + "\n";
+  const std::string message = InputErrorOf([&] { PosesFromCsv(broken, "D/poses.csv"); });
+  EXPECT_NE(message.find("D/poses.csv:3: column 3 'x': expected a finite number, got 'x"),
+            std::string::npos) << message;
+  EXPECT_NE(message.find("D/poses.csv:4: expected 13 columns, got 14"), std::string::npos)
+      << message;
+  const std::string header_message = InputErrorOf([] { PosesFromCsv("frame,t\n", "p.csv"); });
+  EXPECT_NE(header_message.find("p.csv:1: expected header"), std::string::npos);
+}
+
+TEST(PosesTum, WritesWorldFromCamWithCameraLookingAlongHeading) {
+  std::vector<PoseRecord> poses(1);
+  poses[0].time_s = 1.5;
+  poses[0].cam_x_m = 2;
+  poses[0].cam_y_m = 1;
+  poses[0].cam_z_m = 0.8;
+  poses[0].cam_yaw_rad = M_PI / 2;
+  const std::string tum = PosesToTum(poses, 0.0);
+  std::istringstream in(tum.substr(tum.find('\n') + 1));
+  double t, tx, ty, tz, qx, qy, qz, qw;
+  in >> t >> tx >> ty >> tz >> qx >> qy >> qz >> qw;
+  ASSERT_FALSE(in.fail());
+  EXPECT_EQ(t, 1.5);
+  EXPECT_EQ(tx, 2);
+  EXPECT_EQ(tz, 0.8);
+  const Eigen::Vector3d forward = Eigen::Quaterniond(qw, qx, qy, qz) * Eigen::Vector3d::UnitZ();
+  EXPECT_NEAR((forward - Eigen::Vector3d::UnitY()).norm(), 0, 1e-12);  // yaw 90°: looks along +y
+}
+
+TEST(PersonsJson, RoundTripKeepsEveryField) {
+  const std::vector<FramePersons> persons = SamplePersons();
+  const std::string text = PersonsToJson(persons);
+  const std::vector<FramePersons> back = PersonsFromJson(text, "persons.json");
+  ASSERT_EQ(back.size(), 3u);
+  const PersonRecord& p = back[2].persons[0];
+  EXPECT_EQ(p.id, 7);
+  EXPECT_EQ(p.box_px, cv::Rect2f(1.5f, 2.f, 3.25f, 4.f));
+  EXPECT_EQ(p.visible_fraction, 0.8);
+  EXPECT_TRUE(p.seated);
+  EXPECT_EQ(p.posture, "seated");
+  ASSERT_EQ(p.contacts.size(), 2u);
+  EXPECT_EQ(p.contacts[0].name, "seat");
+  EXPECT_EQ(p.contacts[0].v_px, 5.75);
+  EXPECT_FALSE(p.contacts[1].visible);
+  EXPECT_EQ(PersonsToJson(back), text);
+}
+
+TEST(PersonsJson, BadBoxIsReportedWithItsPointer) {
+  const std::string message = InputErrorOf([] {
+    PersonsFromJson(R"({"frames":[{"frame":0,"persons":[{"id":1,"box_px":[1,2,3],)"
+                    R"("visible_fraction":1,"occlusion_fraction":0,"seated":true,)"
+                    R"("posture":"seated","contacts":[]}]}]})",
+                    "persons.json");
+  });
+  EXPECT_NE(
+      message.find("persons.json: /frames/0/persons/0/box_px: expected [x, y, width, height]"),
+      std::string::npos) << message;
+}
+
+TEST(EventsJson, RoundTripKeepsEveryFieldAndUnknownTypeIsAnError) {
+  const std::vector<DatasetEvent> events = SampleEvents();
+  const std::string text = EventsToJson(events);
+  const std::vector<DatasetEvent> back = EventsFromJson(text, "events.json");
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[1].type, "arrive");
+  EXPECT_EQ(back[1].person, 9);
+  EXPECT_EQ(back[1].seat, "table2_seat1");
+  EXPECT_EQ(back[2].detail, "with 9");
+  EXPECT_EQ(EventsToJson(back), text);
+  const std::string message = InputErrorOf([] {
+    EventsFromJson(R"({"events":[{"frame":0,"type":"jump","person":1,"seat":"","detail":""}]})",
+                   "events.json");
+  });
+  EXPECT_NE(message.find("events.json: /events/0/type: expected one of arrive, leave, swap, ffc"),
+            std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace hoilcd

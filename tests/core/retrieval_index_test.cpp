@@ -1,0 +1,92 @@
+#include "hoilcd/core/retrieval_index.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+// Frames in small groups that see the same points shifted and jittered, so scores vary from 0
+// to nearly all points; a few frames are tiny (0, 3 or 5 points).
+std::vector<std::vector<Point2>> MakeFrames(int count) {
+  Rng rng = KeyedRng(1, "test.index");
+  std::vector<std::vector<Point2>> frames;
+  std::vector<Point2> base;
+  for (int f = 0; f < count; ++f) {
+    if (f % 4 == 0) {
+      base.clear();
+      for (int i = 0; i < 120; ++i) base.emplace_back(rng.Uniform(0, 256), rng.Uniform(0, 192));
+    }
+    std::vector<Point2> frame;
+    const float shift_x = static_cast<float>(rng.Uniform(-6, 6));
+    for (const Point2& p : base) {
+      if (rng.Uniform() < 0.2) continue;
+      frame.emplace_back(p.x + shift_x + static_cast<float>(rng.Normal(0, 0.8)),
+                         p.y + static_cast<float>(rng.Normal(0, 0.8)));
+    }
+    const int tiny[] = {0, 3, 5};
+    if (f % 7 == 6) frame.resize(tiny[f % 3]);
+    frames.push_back(frame);
+  }
+  return frames;
+}
+
+TEST(RetrievalIndex, StoresEachFramesPointsInAddOrder) {
+  const std::vector<std::vector<Point2>> frames = MakeFrames(9);
+  RetrievalIndex index;
+  for (const auto& frame : frames) index.Add(frame);
+  ASSERT_EQ(index.size(), 9);
+  for (int f = 0; f < 9; ++f) {
+    int count = -1;
+    const Point2* points = index.points(f, &count);
+    ASSERT_EQ(count, static_cast<int>(frames[f].size()));
+    for (int i = 0; i < count; ++i) EXPECT_EQ(points[i], frames[f][i]);
+  }
+  int count = 0;
+  EXPECT_THROW(index.points(9, &count), std::logic_error);
+}
+
+TEST(RetrievalIndex, ScoreAllEqualsScorePairPerPairAndIsIdenticalAtOneAndTwoThreads) {
+  const std::vector<std::vector<Point2>> frames = MakeFrames(24);
+  RetrievalIndex index;
+  for (const auto& frame : frames) index.Add(frame);
+  const std::vector<int> queries = {13, 0, 6, 21, 9, 14, 20, 1};
+  std::vector<int> database;
+  for (int f = 0; f < 24; f += 1) database.push_back(f);
+  const MatchOptions match_options;
+  RansacOptions ransac_options;
+  ransac_options.local_optimisation_refits = 1;
+  const auto one = index.ScoreAll(queries, database, match_options, ransac_options, 77, 1);
+  const auto two = index.ScoreAll(queries, database, match_options, ransac_options, 77, 2);
+  EXPECT_EQ(one, two);
+  ASSERT_EQ(one.size(), queries.size());
+  float best = 0;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    ASSERT_EQ(one[i].size(), database.size());
+    for (size_t j = 0; j < database.size(); ++j) {
+      const int expected = ScorePair(frames[queries[i]], frames[database[j]], match_options,
+                                     ransac_options, 77, queries[i], database[j]);
+      EXPECT_EQ(one[i][j], static_cast<float>(expected)) << queries[i] << " vs " << database[j];
+      best = std::max(best, one[i][j]);
+    }
+  }
+  EXPECT_GT(best, 50.0f);  // related frames do score
+}
+
+TEST(RetrievalIndex, ScoreAllRejectsUnknownFramesAndBadOptions) {
+  RetrievalIndex index;
+  index.Add({{1, 1}, {2, 2}});
+  EXPECT_THROW(index.ScoreAll({0}, {1}, {}, {}, 1, 1), std::logic_error);
+  RansacOptions bad;
+  bad.trials = 0;
+  EXPECT_THROW(index.ScoreAll({0}, {0}, {}, bad, 1, 1), std::logic_error);
+  EXPECT_TRUE(index.ScoreAll({}, {0}, {}, {}, 1, 1).empty());
+}
+
+}  // namespace
+}  // namespace hoilcd
