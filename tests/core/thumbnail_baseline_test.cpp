@@ -124,9 +124,10 @@ TEST(ThumbnailBaseline, SequenceSearchFollowsTheVelocityOfTheDatabase) {
   constexpr int kQueries = 60, kDatabase = 120;
   std::vector<std::vector<float>> similarity(kQueries, std::vector<float>(kDatabase));
   for (int i = 0; i < kQueries; ++i)
-    for (int j = 0; j < kDatabase; ++j)
-      similarity[i][j] = static_cast<float>((j == 2 * i ? 0.3 : 0.0) +
-                                            KeyedRng(12, "test.thumbnail.noise", i, j).Normal(0, 0.1));
+    for (int j = 0; j < kDatabase; ++j) {
+      Rng rng = KeyedRng(12, "test.thumbnail.noise", i, j);
+      similarity[i][j] = static_cast<float>((j == 2 * i ? 0.3 : 0.0) + rng.Normal(0.0, 0.1));
+    }
   SeqSlamOptions options;
   options.min_velocity = 1.5;
   options.max_velocity = 2.5;

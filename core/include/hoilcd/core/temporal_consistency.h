@@ -9,7 +9,7 @@
 namespace hoilcd {
 
 struct TemporalConsistencyOptions {
-  int consecutive_queries = 3;   // k: queries in a consistent run, the current one included (1 = off)
+  int consecutive_queries = 3;   // k: queries in a consistent run, current one included (1 = off)
   int candidates_per_query = 5;  // K: each earlier query supports the chain with its K best frames
   int max_frame_gap = 10;        // frames a chain may advance in the database per query step
   int max_query_gap = 1;         // frames between two queries for them to count as consecutive
