@@ -98,10 +98,8 @@ BenchOptions ResolveBench(const BenchArgs& args, int threads) {
 
 void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
   std::printf("%s", FormatResultTable(result).c_str());
-  std::printf("%s
-", PaperFindingSummary(result).c_str());
-  std::printf("report: %s/report.md
-", report_dir.c_str());
+  std::printf("%s\n", PaperFindingSummary(result).c_str());
+  std::printf("report: %s/report.md\n", report_dir.c_str());
 }
 
 int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads) {

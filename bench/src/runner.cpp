@@ -7,6 +7,7 @@
 #include <set>
 
 #include "hoilcd/bench/methods.h"
+#include "hoilcd/core/error.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/core/rank_fusion.h"
