@@ -4,7 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/random.h"
@@ -317,20 +318,36 @@ bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float*
   if (!(rd > 0) || !(qd > 0)) return false;
   const Normalisation src{rcx, rcy, std::sqrt(2.0) * n / rd};
   const Normalisation dst{qcx, qcy, std::sqrt(2.0) * n / qd};
-  Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+  // AᵀA of the DLT rows [-p, 0, u p] and [0, -p, v p] (p = (x, y, 1)) is made of the moment
+  // matrices S = Σ p pᵀ, U = Σ u p pᵀ, V = Σ v p pᵀ and W = Σ (u² + v²) p pᵀ.
+  Eigen::Matrix3d s_sum = Eigen::Matrix3d::Zero(), u_sum = s_sum, v_sum = s_sum, w_sum = s_sum;
   for (int i = 0; i < count; ++i) {
     if (use != nullptr && !use[i]) continue;
     const double x = (ref_x[i] - src.cx) * src.scale, y = (ref_y[i] - src.cy) * src.scale;
     const double u = (query_x[i] - dst.cx) * dst.scale, v = (query_y[i] - dst.cy) * dst.scale;
-    Eigen::Matrix<double, 9, 1> a, b;
-    a << -x, -y, -1, 0, 0, 0, u * x, u * y, u;
-    b << 0, 0, 0, -x, -y, -1, v * x, v * y, v;
-    ata.noalias() += a * a.transpose();
-    ata.noalias() += b * b.transpose();
+    const Eigen::Vector3d p(x, y, 1.0);
+    const Eigen::Matrix3d ppt = p * p.transpose();
+    s_sum += ppt;
+    u_sum += u * ppt;
+    v_sum += v * ppt;
+    w_sum += (u * u + v * v) * ppt;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver(ata);
-  if (solver.info() != Eigen::Success) return false;
-  const Eigen::Matrix<double, 9, 1> null_vector = solver.eigenvectors().col(0);
+  Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+  ata.block<3, 3>(0, 0) = s_sum;
+  ata.block<3, 3>(3, 3) = s_sum;
+  ata.block<3, 3>(0, 6) = -u_sum;
+  ata.block<3, 3>(6, 0) = -u_sum;
+  ata.block<3, 3>(3, 6) = -v_sum;
+  ata.block<3, 3>(6, 3) = -v_sum;
+  ata.block<3, 3>(6, 6) = w_sum;
+  // Fixing h(2,2) = 1 turns min hᵀ AᵀA h into the 8x8 normal equations M h' = -c; in normalised
+  // coordinates h(2,2) stays away from 0 for any homography that keeps the centroid finite.
+  const Eigen::LDLT<Eigen::Matrix<double, 8, 8>> ldlt(ata.topLeftCorner<8, 8>());
+  if (ldlt.info() != Eigen::Success) return false;
+  Eigen::Matrix<double, 9, 1> null_vector;
+  null_vector.head<8>() = ldlt.solve(-ata.block<8, 1>(0, 8));
+  null_vector(8) = 1.0;
+  if (!null_vector.allFinite()) return false;
   double hn[9], m[9];
   for (int i = 0; i < 9; ++i) hn[i] = null_vector(i);
   Denormalise(hn, src, dst, m);
