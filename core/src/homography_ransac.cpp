@@ -4,7 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/random.h"
@@ -17,40 +18,87 @@ constexpr double kMinSampleSine = 1e-3;
 // With redraw_degenerate_samples, at most trials * this many samples are drawn in all.
 constexpr int64_t kMaxDrawsPerTrial = 10;
 
-// False if the sample's triplets keep their orientation in some but not all of the four
-// triplets: no homography without a point at infinity between them does that (OpenCV's
-// HomographyEstimatorCallback::checkSubset applies the same test).
-bool OrientationConsistent(const double sx[4], const double sy[4], const double dx[4],
-                           const double dy[4]) {
-  constexpr int kTriplets[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-  int flipped = 0;
-  for (const auto& t : kTriplets) {
-    const double src = (sx[t[1]] - sx[t[0]]) * (sy[t[2]] - sy[t[0]]) -
-                       (sy[t[1]] - sy[t[0]]) * (sx[t[2]] - sx[t[0]]);
-    const double dst = (dx[t[1]] - dx[t[0]]) * (dy[t[2]] - dy[t[0]]) -
-                       (dy[t[1]] - dy[t[0]]) * (dx[t[2]] - dx[t[0]]);
-    flipped += src * dst < 0 ? 1 : 0;
-  }
-  return flipped == 0 || flipped == 4;
+// Signed doubled areas of the point triplets (0,1,2), (0,1,3), (0,2,3), (1,2,3) of a sample.
+// With a, b, c = p1, p2, p3 minus p0, the area of (1,2,3) is b×c + a×b - a×c.
+template <typename Real>
+inline void TripletAreas(const Real x[4], const Real y[4], Real area[4]) {
+  const Real ax = x[1] - x[0], ay = y[1] - y[0];
+  const Real bx = x[2] - x[0], by = y[2] - y[0];
+  const Real cx = x[3] - x[0], cy = y[3] - y[0];
+  area[0] = ax * by - ay * bx;
+  area[1] = ax * cy - ay * cx;
+  area[2] = bx * cy - by * cx;
+  area[3] = area[2] + area[0] - area[1];
 }
 
-// True if no three of the four points are (nearly) collinear.
-bool FourPointsInGeneralPosition(const double x[4], const double y[4]) {
-  constexpr int kTriplets[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-  for (const auto& t : kTriplets) {
-    const double ax = x[t[1]] - x[t[0]], ay = y[t[1]] - y[t[0]];
-    const double bx = x[t[2]] - x[t[0]], by = y[t[2]] - y[t[0]];
-    const double cross = ax * by - ay * bx;
-    if (cross * cross <= kMinSampleSine * kMinSampleSine * (ax * ax + ay * ay) * (bx * bx + by * by)) {
-      return false;
+// Samples drawn and pre-checked together, lane b holding sample b (structure of arrays).
+constexpr int kBatch = 8;
+struct SampleBatch {
+  uint32_t idx[kBatch][4] = {};
+  float sx[4][kBatch] = {}, sy[4][kBatch] = {}, dx[4][kBatch] = {}, dy[4][kBatch] = {};
+  int32_t consistent[kBatch] = {};
+};
+
+// consistent[b] = 0 if sample b keeps the orientation of some of its four point triplets but
+// flips others: no homography without a point at infinity between the images does that
+// (OpenCV's HomographyEstimatorCallback::checkSubset applies the same test). Lane-parallel, as
+// most random samples fail it. Float is enough: a sign can only come out wrong for a nearly
+// collinear triplet, which GeneralPosition rejects anyway.
+__attribute__((target_clones("avx2", "default"))) void CheckOrientations(SampleBatch* batch) {
+  for (int b = 0; b < kBatch; ++b) {
+    float src[4], dst[4];
+    const float qx[4] = {batch->sx[0][b], batch->sx[1][b], batch->sx[2][b], batch->sx[3][b]};
+    const float qy[4] = {batch->sy[0][b], batch->sy[1][b], batch->sy[2][b], batch->sy[3][b]};
+    const float px[4] = {batch->dx[0][b], batch->dx[1][b], batch->dx[2][b], batch->dx[3][b]};
+    const float py[4] = {batch->dy[0][b], batch->dy[1][b], batch->dy[2][b], batch->dy[3][b]};
+    TripletAreas(qx, qy, src);
+    TripletAreas(px, py, dst);
+    const float p0 = src[0] * dst[0], p1 = src[1] * dst[1], p2 = src[2] * dst[2],
+                p3 = src[3] * dst[3];
+    const float lowest = std::min(std::min(p0, p1), std::min(p2, p3));
+    const float highest = std::max(std::max(p0, p1), std::max(p2, p3));
+    batch->consistent[b] = (highest < 0) | (lowest >= 0);
+  }
+}
+
+// Draws `size` samples of 4 distinct indices in [0, n) from rng, in lane order, and checks them.
+void DrawBatch(Rng& rng, uint32_t n, int size, const float* ref_x, const float* ref_y,
+               const float* query_x, const float* query_y, SampleBatch* batch) {
+  for (int b = 0; b < size; ++b) {
+    uint32_t* idx = batch->idx[b];
+    idx[0] = rng.UniformInt(n);
+    do idx[1] = rng.UniformInt(n); while (idx[1] == idx[0]);
+    do idx[2] = rng.UniformInt(n); while (idx[2] == idx[0] || idx[2] == idx[1]);
+    do idx[3] = rng.UniformInt(n); while (idx[3] == idx[0] || idx[3] == idx[1] || idx[3] == idx[2]);
+    for (int k = 0; k < 4; ++k) {
+      batch->sx[k][b] = ref_x[idx[k]];
+      batch->sy[k][b] = ref_y[idx[k]];
+      batch->dx[k][b] = query_x[idx[k]];
+      batch->dy[k][b] = query_y[idx[k]];
     }
   }
-  return true;
+  CheckOrientations(batch);
+}
+
+// True if no triplet is (nearly) collinear: area² > sine² · |edge1|² · |edge2|² for the two
+// edges at the triplet's first vertex.
+inline bool GeneralPosition(const double x[4], const double y[4], const double area[4]) {
+  const double ax = x[1] - x[0], ay = y[1] - y[0];
+  const double bx = x[2] - x[0], by = y[2] - y[0];
+  const double cx = x[3] - x[0], cy = y[3] - y[0];
+  const double ex = bx - ax, ey = by - ay, fx = cx - ax, fy = cy - ay;  // p2 - p1, p3 - p1
+  const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double e2 = ex * ex + ey * ey, f2 = fx * fx + fy * fy;
+  const double edges[4] = {a2 * b2, a2 * c2, b2 * c2, e2 * f2};
+  constexpr double kSineSq = kMinSampleSine * kMinSampleSine;
+  int collinear = 0;
+  for (int k = 0; k < 4; ++k) collinear |= area[k] * area[k] <= kSineSq * edges[k] ? 1 : 0;
+  return collinear == 0;
 }
 
 // Unit square (0,0),(1,0),(1,1),(0,1) -> quad (x[i], y[i]) (Heckbert 1989), up to scale,
 // row-major; division-free so a general-position quad gives a finite, non-singular matrix.
-void SquareToQuad(const double x[4], const double y[4], double m[9]) {
+inline void SquareToQuad(const double x[4], const double y[4], double m[9]) {
   const double sx = x[0] - x[1] + x[2] - x[3];
   const double sy = y[0] - y[1] + y[2] - y[3];
   const double dx1 = x[1] - x[2], dx2 = x[3] - x[2];
@@ -70,7 +118,7 @@ void SquareToQuad(const double x[4], const double y[4], double m[9]) {
 }
 
 // Adjugate of a row-major 3x3 matrix (its inverse up to scale).
-void Adjugate(const double m[9], double a[9]) {
+inline void Adjugate(const double m[9], double a[9]) {
   a[0] = m[4] * m[8] - m[5] * m[7];
   a[1] = m[2] * m[7] - m[1] * m[8];
   a[2] = m[1] * m[5] - m[2] * m[4];
@@ -82,7 +130,7 @@ void Adjugate(const double m[9], double a[9]) {
   a[8] = m[0] * m[4] - m[1] * m[3];
 }
 
-void Multiply3(const double a[9], const double b[9], double c[9]) {
+inline void Multiply3(const double a[9], const double b[9], double c[9]) {
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
       c[3 * r + k] = a[3 * r] * b[k] + a[3 * r + 1] * b[3 + k] + a[3 * r + 2] * b[6 + k];
@@ -90,24 +138,10 @@ void Multiply3(const double a[9], const double b[9], double c[9]) {
   }
 }
 
-// Similarity normalisation of four points: centroid to the origin, mean |x|+|y| to 1.
+// Similarity normalisation x' = s (x - c) of a point set.
 struct Normalisation {
   double cx, cy, scale;
 };
-
-Normalisation NormaliseFour(const double x[4], const double y[4], double nx[4], double ny[4]) {
-  Normalisation n;
-  n.cx = 0.25 * (x[0] + x[1] + x[2] + x[3]);
-  n.cy = 0.25 * (y[0] + y[1] + y[2] + y[3]);
-  double spread = 0;
-  for (int i = 0; i < 4; ++i) spread += std::abs(x[i] - n.cx) + std::abs(y[i] - n.cy);
-  n.scale = spread > 0 ? 4.0 / spread : 1.0;
-  for (int i = 0; i < 4; ++i) {
-    nx[i] = (x[i] - n.cx) * n.scale;
-    ny[i] = (y[i] - n.cy) * n.scale;
-  }
-  return n;
-}
 
 // H = T_dst⁻¹ · Hn · T_src for similarity normalisations T (x' = s (x - c)).
 void Denormalise(const double hn[9], const Normalisation& src, const Normalisation& dst,
@@ -127,43 +161,73 @@ void Denormalise(const double hn[9], const Normalisation& src, const Normalisati
 }
 
 // Scales h so its largest entry has magnitude 1; false if h is zero or not finite.
-bool NormaliseMaxAbs(double h[9]) {
+inline bool NormaliseMaxAbs(double h[9]) {
   double largest = 0;
   for (int i = 0; i < 9; ++i) largest = std::max(largest, std::abs(h[i]));
   if (!(largest > 0) || !std::isfinite(largest)) return false;
-  for (int i = 0; i < 9; ++i) h[i] /= largest;
+  const double inv = 1.0 / largest;
+  for (int i = 0; i < 9; ++i) h[i] *= inv;
   return true;
 }
 
-// Closed-form 4-point homography src -> dst on normalised coordinates; h scaled to max |h| = 1.
-bool FourPointHomography(const double sx[4], const double sy[4], const double dx[4],
-                         const double dy[4], double h[9]) {
-  if (!FourPointsInGeneralPosition(sx, sy) || !FourPointsInGeneralPosition(dx, dy)) return false;
+// Closed-form 4-point homography src -> dst on coordinates centred on each set's centroid,
+// scaled to max |h| = 1; the caller has checked that both quads are in general position.
+// Scaling as well would not help: the closed form is a polynomial in the coordinates, and
+// floating-point relative error is scale-invariant.
+inline bool ClosedFormHomography(const double sx[4], const double sy[4], const double dx[4],
+                                 const double dy[4], double h[9]) {
+  const double scx = 0.25 * (sx[0] + sx[1] + sx[2] + sx[3]);
+  const double scy = 0.25 * (sy[0] + sy[1] + sy[2] + sy[3]);
+  const double dcx = 0.25 * (dx[0] + dx[1] + dx[2] + dx[3]);
+  const double dcy = 0.25 * (dy[0] + dy[1] + dy[2] + dy[3]);
   double nsx[4], nsy[4], ndx[4], ndy[4];
-  const Normalisation src = NormaliseFour(sx, sy, nsx, nsy);
-  const Normalisation dst = NormaliseFour(dx, dy, ndx, ndy);
+  for (int i = 0; i < 4; ++i) {
+    nsx[i] = sx[i] - scx;
+    nsy[i] = sy[i] - scy;
+    ndx[i] = dx[i] - dcx;
+    ndy[i] = dy[i] - dcy;
+  }
   double square_to_src[9], square_to_dst[9], src_to_square[9], hn[9];
   SquareToQuad(nsx, nsy, square_to_src);
   SquareToQuad(ndx, ndy, square_to_dst);
   Adjugate(square_to_src, src_to_square);
   Multiply3(square_to_dst, src_to_square, hn);
-  Denormalise(hn, src, dst, h);
+  // H = T(dst centroid) · Hn · T(-src centroid).
+  for (int r = 0; r < 3; ++r) hn[3 * r + 2] -= scx * hn[3 * r] + scy * hn[3 * r + 1];
+  for (int k = 0; k < 3; ++k) {
+    h[k] = hn[k] + dcx * hn[6 + k];
+    h[3 + k] = hn[3 + k] + dcy * hn[6 + k];
+    h[6 + k] = hn[6 + k];
+  }
   return NormaliseMaxAbs(h);
 }
 
-// Inlier count of h over all matches; the loop is division-free so GCC vectorises it at -O3:
-// |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0).
-int CountInliers(const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
-                 const float* query_y, int count, float threshold_sq) {
+// Matches per block of the inlier count; after each block the count gives up if it can no
+// longer beat the bar, which leaves the result of the RANSAC loop unchanged.
+constexpr int kInlierBlock = 64;
+
+// Inlier count of h over all matches, or some count <= bar once it cannot exceed bar. The block
+// loop is division-free so GCC vectorises it at -O3:
+// |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0). Cloned for AVX2 with a
+// run-time dispatch (the build has no -march); lane width does not change the float results.
+__attribute__((target_clones("avx2", "default"))) int CountInliers(
+    const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
+    const float* query_y, int count, float threshold_sq, int bar) {
   const float h0 = h[0], h1 = h[1], h2 = h[2], h3 = h[3], h4 = h[4], h5 = h[5], h6 = h[6],
               h7 = h[7], h8 = h[8];
   int inliers = 0;
-  for (int i = 0; i < count; ++i) {
-    const float x = ref_x[i], y = ref_y[i];
-    const float w = h6 * x + h7 * y + h8;
-    const float du = h0 * x + h1 * y + h2 - query_x[i] * w;
-    const float dv = h3 * x + h4 * y + h5 - query_y[i] * w;
-    inliers += (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
+  for (int begin = 0; begin < count; begin += kInlierBlock) {
+    const int end = std::min(count, begin + kInlierBlock);
+    int block_inliers = 0;
+    for (int i = begin; i < end; ++i) {
+      const float x = ref_x[i], y = ref_y[i];
+      const float w = h6 * x + h7 * y + h8;
+      const float du = h0 * x + h1 * y + h2 - query_x[i] * w;
+      const float dv = h3 * x + h4 * y + h5 - query_y[i] * w;
+      block_inliers += (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
+    }
+    inliers += block_inliers;
+    if (inliers + (count - end) <= bar) return inliers;
   }
   return inliers;
 }
@@ -216,7 +280,11 @@ bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::M
     dx[i] = dst[i].x;
     dy[i] = dst[i].y;
   }
-  if (!FourPointHomography(sx, sy, dx, dy, m)) return false;
+  double src_area[4], dst_area[4];
+  TripletAreas(sx, sy, src_area);
+  TripletAreas(dx, dy, dst_area);
+  if (!GeneralPosition(sx, sy, src_area) || !GeneralPosition(dx, dy, dst_area)) return false;
+  if (!ClosedFormHomography(sx, sy, dx, dy, m)) return false;
   *h = ToResultMatrix(m);
   return true;
 }
@@ -250,21 +318,36 @@ bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float*
   if (!(rd > 0) || !(qd > 0)) return false;
   const Normalisation src{rcx, rcy, std::sqrt(2.0) * n / rd};
   const Normalisation dst{qcx, qcy, std::sqrt(2.0) * n / qd};
-  Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+  // AᵀA of the DLT rows [-p, 0, u p] and [0, -p, v p] (p = (x, y, 1)) is made of the moment
+  // matrices S = Σ p pᵀ, U = Σ u p pᵀ, V = Σ v p pᵀ and W = Σ (u² + v²) p pᵀ.
+  Eigen::Matrix3d s_sum = Eigen::Matrix3d::Zero(), u_sum = s_sum, v_sum = s_sum, w_sum = s_sum;
   for (int i = 0; i < count; ++i) {
     if (use != nullptr && !use[i]) continue;
     const double x = (ref_x[i] - src.cx) * src.scale, y = (ref_y[i] - src.cy) * src.scale;
     const double u = (query_x[i] - dst.cx) * dst.scale, v = (query_y[i] - dst.cy) * dst.scale;
-    Eigen::Matrix<double, 9, 1> a, b;
-    a << -x, -y, -1, 0, 0, 0, u * x, u * y, u;
-    b << 0, 0, 0, -x, -y, -1, v * x, v * y, v;
-    ata.selfadjointView<Eigen::Lower>().rankUpdate(a);
-    ata.selfadjointView<Eigen::Lower>().rankUpdate(b);
+    const Eigen::Vector3d p(x, y, 1.0);
+    const Eigen::Matrix3d ppt = p * p.transpose();
+    s_sum += ppt;
+    u_sum += u * ppt;
+    v_sum += v * ppt;
+    w_sum += (u * u + v * v) * ppt;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver(
-      ata.selfadjointView<Eigen::Lower>());
-  if (solver.info() != Eigen::Success) return false;
-  const Eigen::Matrix<double, 9, 1> null_vector = solver.eigenvectors().col(0);
+  Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+  ata.block<3, 3>(0, 0) = s_sum;
+  ata.block<3, 3>(3, 3) = s_sum;
+  ata.block<3, 3>(0, 6) = -u_sum;
+  ata.block<3, 3>(6, 0) = -u_sum;
+  ata.block<3, 3>(3, 6) = -v_sum;
+  ata.block<3, 3>(6, 3) = -v_sum;
+  ata.block<3, 3>(6, 6) = w_sum;
+  // Fixing h(2,2) = 1 turns min hᵀ AᵀA h into the 8x8 normal equations M h' = -c; in normalised
+  // coordinates h(2,2) stays away from 0 for any homography that keeps the centroid finite.
+  const Eigen::LDLT<Eigen::Matrix<double, 8, 8>> ldlt(ata.topLeftCorner<8, 8>());
+  if (ldlt.info() != Eigen::Success) return false;
+  Eigen::Matrix<double, 9, 1> null_vector;
+  null_vector.head<8>() = ldlt.solve(-ata.block<8, 1>(0, 8));
+  null_vector(8) = 1.0;
+  if (!null_vector.allFinite()) return false;
   double hn[9], m[9];
   for (int i = 0; i < 9; ++i) hn[i] = null_vector(i);
   Denormalise(hn, src, dst, m);
@@ -299,26 +382,34 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
   int best_inliers = 0;
   std::vector<uint8_t> lo_mask;
   int hypotheses = 0;
+  SampleBatch batch;
+  int lane = 0, batch_size = 0;  // next lane to use, lanes drawn
   for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget; ++draws) {
-    uint32_t idx[4];
-    idx[0] = rng.UniformInt(n);
-    do idx[1] = rng.UniformInt(n); while (idx[1] == idx[0]);
-    do idx[2] = rng.UniformInt(n); while (idx[2] == idx[0] || idx[2] == idx[1]);
-    do idx[3] = rng.UniformInt(n); while (idx[3] == idx[0] || idx[3] == idx[1] || idx[3] == idx[2]);
-    double sx[4], sy[4], dx[4], dy[4], h[9];
-    for (int k = 0; k < 4; ++k) {
-      sx[k] = ref_x[idx[k]];
-      sy[k] = ref_y[idx[k]];
-      dx[k] = query_x[idx[k]];
-      dy[k] = query_y[idx[k]];
+    if (lane == batch_size) {
+      batch_size = static_cast<int>(std::min<int64_t>(kBatch, draw_budget - draws));
+      DrawBatch(rng, n, batch_size, ref_x, ref_y, query_x, query_y, &batch);
+      lane = 0;
     }
-    if (!OrientationConsistent(sx, sy, dx, dy) || !FourPointHomography(sx, sy, dx, dy, h)) {
+    const int b = lane++;
+    if (!batch.consistent[b]) continue;
+    double sx[4], sy[4], dx[4], dy[4], src_area[4], dst_area[4], h[9];
+    for (int k = 0; k < 4; ++k) {
+      sx[k] = batch.sx[k][b];
+      sy[k] = batch.sy[k][b];
+      dx[k] = batch.dx[k][b];
+      dy[k] = batch.dy[k][b];
+    }
+    TripletAreas(sx, sy, src_area);
+    TripletAreas(dx, dy, dst_area);
+    if (!GeneralPosition(sx, sy, src_area) || !GeneralPosition(dx, dy, dst_area) ||
+        !ClosedFormHomography(sx, sy, dx, dy, h)) {
       continue;
     }
     ++hypotheses;
     float hf[9];
     ToFloat(h, hf);
-    const int inliers = CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq);
+    const int inliers =
+        CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
     if (inliers <= best_inliers) continue;
     best_inliers = inliers;
     std::copy(h, h + 9, best);
@@ -335,7 +426,7 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
       if (!NormaliseMaxAbs(hr)) break;
       ToFloat(hr, hf);
       const int refit_inliers =
-          CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq);
+          CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
       if (refit_inliers <= best_inliers) break;
       best_inliers = refit_inliers;
       std::copy(hr, hr + 9, best);

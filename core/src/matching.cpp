@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -11,13 +12,14 @@
 namespace hoilcd {
 namespace {
 
-// Grid density: about this many points per cell (measured fastest among 0.5, 1, 2, 4).
+// Grid density: about this many points per cell (measured fastest among 0.5, 1 and 2).
 constexpr float kPointsPerCell = 1.0f;
 // Upper bound on cells per axis, so a few far-off points cannot blow up the grid.
 constexpr int kMaxCellsPerAxis = 1024;
 
-// Nearest neighbours with a cache for the reverse direction: reverse[j] is the nearest query of
-// reference j once computed, -2 before.
+// Nearest neighbours, remembering for each reference j the query it was found mutual with
+// (reverse[j]; -2 before). A reference whose first candidate was not mutual stays -2 and is
+// checked again for the next query that finds it; at most one query can be mutual with it.
 void MutualNearestNeighboursCached(const Point2* query_points, const PointGrid& query_grid,
                                    const Point2* reference_points,
                                    const PointGrid& reference_grid, std::vector<int>* reverse,
@@ -26,9 +28,17 @@ void MutualNearestNeighboursCached(const Point2* query_points, const PointGrid& 
   reverse->assign(reference_grid.size(), -2);
   if (query_grid.size() == 0 || reference_grid.size() == 0) return;
   for (int i = 0; i < query_grid.size(); ++i) {
-    const int j = reference_grid.Nearest(query_points[i]);
+    const Point2 q = query_points[i];
+    const int j = reference_grid.Nearest(q);
     int& back = (*reverse)[j];
-    if (back == -2) back = query_grid.Nearest(reference_points[j]);
+    if (back == -2) {
+      // The pair is mutual unless a query point is nearer to r_j than q_i: a search limited to
+      // q_i's distance, cheaper than a full nearest-neighbour query.
+      const Point2 r = reference_points[j];
+      const float dx = r.x - q.x, dy = r.y - q.y;
+      if (query_grid.AnyNearer(r, dx * dx + dy * dy, i)) continue;
+      back = i;
+    }
     if (back == i) matches->push_back({i, j});
   }
 }
@@ -78,6 +88,8 @@ PointGrid::PointGrid(const Point2* points, int count) {
   inv_cell_ = 1.0f / cell_px_;
   nx_ = std::min(kMaxCellsPerAxis, static_cast<int>(width * inv_cell_) + 1);
   ny_ = std::min(kMaxCellsPerAxis, static_cast<int>(height * inv_cell_) + 1);
+  slack_px_ = 1e-3f * cell_px_ +
+              1e-5f * (std::abs(origin_x_) + std::abs(origin_y_) + (nx_ + ny_) * cell_px_);
   // Counting sort of the points by cell; stable, so each cell lists its points by index.
   std::vector<int> cell_of(count);
   cell_start_.assign(static_cast<size_t>(nx_) * ny_ + 1, 0);
@@ -106,40 +118,37 @@ int PointGrid::Nearest(Point2 p) const {
   const float fx = std::clamp((p.x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1));
   const float fy = std::clamp((p.y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1));
   const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
-  float best_d = std::numeric_limits<float>::infinity();
-  int best_id = std::numeric_limits<int>::max();
-  auto scan_cell = [&](int x, int y) {
-    const int c = y * nx_ + x;
-    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+  // Candidates compare by one 64-bit key, (squared distance bits, index): the bits of a
+  // non-negative float order like the float, so the minimum key is the nearest point with ties
+  // going to the lower index, found without unpredictable branches.
+  uint64_t best_key = std::numeric_limits<uint64_t>::max();
+  auto scan = [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
       const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
+      uint32_t bits;
       const float d = dx * dx + dy * dy;
-      if (d < best_d || (d == best_d && ids_[k] < best_id)) {
-        best_d = d;
-        best_id = ids_[k];
-      }
+      std::memcpy(&bits, &d, sizeof bits);
+      best_key = std::min(best_key, (static_cast<uint64_t>(bits) << 32) |
+                                        static_cast<uint32_t>(ids_[k]));
     }
   };
-  // Cell-assignment rounding can put a point a hair outside its cell's nominal box.
-  const float slack = 1e-3f * cell_px_ +
-                      1e-5f * (std::abs(origin_x_) + std::abs(origin_y_) + (nx_ + ny_) * cell_px_);
-  for (int r = 0;; ++r) {
+  // The cells x0..x1 of one row are consecutive in storage, so a row span is one range.
+  auto scan_row = [&](int y, int x0, int x1) {
+    scan(cell_start_[y * nx_ + x0], cell_start_[y * nx_ + x1 + 1]);
+  };
+  // Ring 1 is the 3x3 block around the cell (scanned as three row spans); ring r > 1 adds the
+  // top and bottom rows of the (2r+1)² block and the cells at its sides.
+  for (int r = 1;; ++r) {
     const int x0 = cx - r, x1 = cx + r, y0 = cy - r, y1 = cy + r;
     const int xa = std::max(x0, 0), xb = std::min(x1, nx_ - 1);
-    if (r == 0) {
-      scan_cell(cx, cy);
+    if (r == 1) {
+      for (int y = std::max(y0, 0); y <= std::min(y1, ny_ - 1); ++y) scan_row(y, xa, xb);
     } else {
-      if (y0 >= 0) {
-        for (int x = xa; x <= xb; ++x) scan_cell(x, y0);
-      }
-      if (y1 < ny_) {
-        for (int x = xa; x <= xb; ++x) scan_cell(x, y1);
-      }
-      const int ya = std::max(y0 + 1, 0), yb = std::min(y1 - 1, ny_ - 1);
-      if (x0 >= 0) {
-        for (int y = ya; y <= yb; ++y) scan_cell(x0, y);
-      }
-      if (x1 < nx_) {
-        for (int y = ya; y <= yb; ++y) scan_cell(x1, y);
+      if (y0 >= 0) scan_row(y0, xa, xb);
+      if (y1 < ny_) scan_row(y1, xa, xb);
+      for (int y = std::max(y0 + 1, 0); y <= std::min(y1 - 1, ny_ - 1); ++y) {
+        if (x0 >= 0) scan_row(y, x0, x0);
+        if (x1 < nx_) scan_row(y, x1, x1);
       }
     }
     // Every point not yet scanned lies beyond one of the block's sides that are inside the grid.
@@ -149,10 +158,37 @@ int PointGrid::Nearest(Point2 p) const {
     if (y0 > 0) bound = std::min(bound, p.y - (origin_y_ + y0 * cell_px_));
     if (y1 < ny_ - 1) bound = std::min(bound, origin_y_ + (y1 + 1) * cell_px_ - p.y);
     if (bound == std::numeric_limits<float>::infinity()) break;
-    bound -= slack;
-    if (bound > 0 && best_d < bound * bound) break;
+    bound -= slack_px_;
+    if (best_key != std::numeric_limits<uint64_t>::max()) {
+      uint32_t bits = static_cast<uint32_t>(best_key >> 32);
+      float best_d;
+      std::memcpy(&best_d, &bits, sizeof best_d);
+      if (bound > 0 && best_d < bound * bound) break;
+    }
   }
-  return best_id;
+  return static_cast<int>(best_key & 0xffffffffu);
+}
+
+bool PointGrid::AnyNearer(Point2 p, float d2, int id) const {
+  if (ids_.empty()) return false;
+  const float radius = std::sqrt(d2) + slack_px_;
+  const auto cell_x = [&](float x) {
+    return static_cast<int>(std::clamp((x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1)));
+  };
+  const auto cell_y = [&](float y) {
+    return static_cast<int>(std::clamp((y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1)));
+  };
+  const int x0 = cell_x(p.x - radius), x1 = cell_x(p.x + radius);
+  const int y0 = cell_y(p.y - radius), y1 = cell_y(p.y + radius);
+  for (int y = y0; y <= y1; ++y) {
+    const int end = cell_start_[y * nx_ + x1 + 1];
+    for (int k = cell_start_[y * nx_ + x0]; k < end; ++k) {
+      const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
+      const float d = dx * dx + dy * dy;
+      if (d < d2 || (d == d2 && ids_[k] < id)) return true;
+    }
+  }
+  return false;
 }
 
 void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,

@@ -60,8 +60,9 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
 // Returns false for degenerate (collinear / near-singular) samples.
 bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::Matrix3d* h);
 
-// Least-squares DLT on n >= 4 correspondences (Hartley normalisation, smallest eigenvector of
-// AᵀA), used by the LO-RANSAC refits; returns false when the fit is degenerate.
+// Least-squares DLT on n >= 4 correspondences (Hartley normalisation, AᵀA from moment sums,
+// h(2,2) fixed to 1 in normalised coordinates, 8x8 LDLT), used by the LO-RANSAC refits; `use`
+// (may be null) selects the correspondences. Returns false when the fit is degenerate.
 bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float* query_x,
                             const float* query_y, const uint8_t* use, int count,
                             Eigen::Matrix3d* h);

@@ -31,6 +31,10 @@ class PointGrid {
   // Index of the point nearest to p (squared Euclidean distance in float; ties go to the lower
   // index); -1 when the grid is empty.
   int Nearest(Point2 p) const;
+  // True if some point other than `id` is nearer to p than squared distance d2 (float, as in
+  // Nearest), or as near with a lower index: that is, if `id` is not Nearest(p) when id's own
+  // squared distance to p is d2. Scans only the cells within sqrt(d2) of p.
+  bool AnyNearer(Point2 p, float d2, int id) const;
 
  private:
   std::vector<float> xs_, ys_;       // point coordinates in cell order, px
@@ -38,6 +42,8 @@ class PointGrid {
   std::vector<int> cell_start_;      // points of cell c are [cell_start_[c], cell_start_[c+1])
   float origin_x_ = 0, origin_y_ = 0;  // lower corner of the grid, px
   float cell_px_ = 1, inv_cell_ = 1;   // cell side, px, and its inverse
+  float slack_px_ = 0;                 // cell-assignment rounding can put a point this far
+                                       // outside its cell's nominal box, px
   int nx_ = 0, ny_ = 0;                // cells per row and per column
 };
 
