@@ -176,6 +176,8 @@ const Eigen::Matrix4f& RayCaster::transform_of(int instance) const {
   return impl_->instance_transform.at(instance);
 }
 
+RTCSceneTy* RayCaster::embree_scene() const { return impl_->top->scene; }
+
 RayHit RayCaster::Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
                             float t_min, float t_max) const {
   RTCIntersectContext context;

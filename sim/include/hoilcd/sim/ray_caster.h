@@ -4,8 +4,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <vector>
+
+struct RTCSceneTy;  // Embree's scene type (RTCScene is RTCSceneTy*)
 
 namespace hoilcd {
 
@@ -44,6 +47,10 @@ class RayCaster {
   // Closest hit against one instance alone (ignoring everything else): for visibility ratios.
   RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin,
                            const Eigen::Vector3f& direction) const;
+
+  // The top-level Embree scene (valid after Commit()), for callers that cast rays with Embree
+  // directly, e.g. the bare-Embree baseline of bench/benchmarks/render_bench.cpp.
+  RTCSceneTy* embree_scene() const;
 
  private:
   struct Impl;
