@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -185,6 +186,47 @@ RayHit RayCaster::Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f
   RTCRayHit rh = MakeRay(origin, direction, t_min, t_max);
   rtcIntersect1(impl_->top->scene, &context, &rh);
   return impl_->Finish(rh, direction, -1);
+}
+
+void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
+                                int count, RayHit* hits) const {
+  HOILCD_CHECK(count >= 1 && count <= kPacketSize);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) int valid[kPacketSize];
+  alignas(64) RTCRayHit16 rh;
+  for (int i = 0; i < kPacketSize; ++i) {
+    const Eigen::Vector3f& d = directions[std::min(i, count - 1)];
+    valid[i] = i < count ? -1 : 0;
+    rh.ray.org_x[i] = origin.x();
+    rh.ray.org_y[i] = origin.y();
+    rh.ray.org_z[i] = origin.z();
+    rh.ray.dir_x[i] = d.x();
+    rh.ray.dir_y[i] = d.y();
+    rh.ray.dir_z[i] = d.z();
+    rh.ray.tnear[i] = 0.0f;
+    rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
+    rh.ray.mask[i] = 0xFFFFFFFFu;
+    rh.ray.flags[i] = 0;
+    rh.ray.time[i] = 0;
+    rh.ray.id[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, impl_->top->scene, &context, &rh);
+  for (int i = 0; i < count; ++i) {
+    RTCRayHit one;
+    one.ray.tfar = rh.ray.tfar[i];
+    one.hit.geomID = rh.hit.geomID[i];
+    one.hit.primID = rh.hit.primID[i];
+    one.hit.instID[0] = rh.hit.instID[0][i];
+    one.hit.Ng_x = rh.hit.Ng_x[i];
+    one.hit.Ng_y = rh.hit.Ng_y[i];
+    one.hit.Ng_z = rh.hit.Ng_z[i];
+    hits[i] = impl_->Finish(one, directions[i], -1);
+  }
 }
 
 RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,

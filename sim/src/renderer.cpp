@@ -20,6 +20,17 @@ FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrins
     : world_(world), intrinsics_(intrinsics), options_(options) {
   HOILCD_CHECK_MSG(options_.Check().empty(), options_.Check());
   HOILCD_CHECK_MSG(intrinsics_.Check().empty(), intrinsics_.Check());
+  // The intrinsics are fixed, so the pixel-centre rays are computed once per renderer.
+  pixel_rays_.reserve(static_cast<size_t>(intrinsics_.width) * intrinsics_.height);
+  for (int y = 0; y < intrinsics_.height; ++y) {
+    for (int x = 0; x < intrinsics_.width; ++x) pixel_rays_.push_back(CameraRay(x, y));
+  }
+}
+
+Eigen::Vector3f FrameRenderer::CameraRay(double u, double v) const {
+  Eigen::Vector3f d = intrinsics_.Unproject(u, v).cast<float>();
+  d.normalize();
+  return d;
 }
 
 float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
@@ -52,6 +63,7 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
   const Rigid3 world_from_cam = pose.WorldFromCam();
   const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
   const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
+  const RayCaster& caster = world_.caster();
   FrameBuffers out;
   out.radiance.create(H, W, CV_32F);
   out.depth_m.create(H, W, CV_32F);
@@ -59,31 +71,39 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
   out.class_id.create(H, W, CV_32S);
   cv::Mat material(H, W, CV_32S);  // instance * 4096 + material, to find edges
 
-  auto ray_dir = [&](double u, double v, float* z_per_distance) {
-    Eigen::Vector3f d = intrinsics_.Unproject(u, v).cast<float>();
-    d.normalize();
-    *z_per_distance = d.z();
-    return Eigen::Vector3f(R * d);
-  };
-
-  // Pass 1: one ray through each pixel centre.
+  // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels.
+  constexpr int kBlock = 4;
+  static_assert(kBlock * kBlock == RayCaster::kPacketSize, "one packet per pixel block");
   ParallelForChunks(H, 8, options_.threads, [&](int64_t y0, int64_t y1, int) {
-    for (int y = static_cast<int>(y0); y < y1; ++y) {
-      for (int x = 0; x < W; ++x) {
-        float z_per_distance = 1;
-        const Eigen::Vector3f d = ray_dir(x, y, &z_per_distance);
-        RayHit hit;
-        out.radiance.at<float>(y, x) = Radiance(origin, d, &hit);
-        out.depth_m.at<float>(y, x) = hit.hit() ? hit.distance_m * z_per_distance : 0.0f;
-        out.instance.at<int>(y, x) = hit.instance;
-        int cls = 0, mat = -1;
-        if (hit.hit()) {
-          const InstanceInfo& info = world_.instance(hit.instance);
-          mat = static_cast<int>(info.mesh->triangle_material[hit.triangle]);
-          cls = info.materials[mat].class_id;
+    Eigen::Vector3f directions[RayCaster::kPacketSize];
+    RayHit hits[RayCaster::kPacketSize];
+    int pixels[RayCaster::kPacketSize];
+    for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
+      for (int bx = 0; bx < W; bx += kBlock) {
+        int count = 0;
+        for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
+          for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
+            pixels[count] = y * W + x;
+            directions[count++] = R * pixel_rays_[y * W + x];
+          }
         }
-        out.class_id.at<int>(y, x) = cls;
-        material.at<int>(y, x) = hit.instance * 4096 + mat;
+        caster.IntersectPacket(origin, directions, count, hits);
+        for (int i = 0; i < count; ++i) {
+          const RayHit& hit = hits[i];
+          const int p = pixels[i];
+          out.radiance.ptr<float>()[p] =
+              Shade(hit, origin, directions[i], options_.specular_reflections);
+          out.depth_m.ptr<float>()[p] = hit.hit() ? hit.distance_m * pixel_rays_[p].z() : 0.0f;
+          out.instance.ptr<int>()[p] = hit.instance;
+          int cls = 0, mat = -1;
+          if (hit.hit()) {
+            const InstanceInfo& info = world_.instance(hit.instance);
+            mat = static_cast<int>(info.mesh->triangle_material[hit.triangle]);
+            cls = info.materials[mat].class_id;
+          }
+          out.class_id.ptr<int>()[p] = cls;
+          material.ptr<int>()[p] = hit.instance * 4096 + mat;
+        }
       }
     }
   });
@@ -91,34 +111,54 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
 
   // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
   // samples; smooth depth changes within one surface need none.
-  cv::Mat edge(H, W, CV_8U, cv::Scalar(0));
+  cv::Mat edge(H, W, CV_8U);
   for (int y = 0; y < H; ++y) {
+    const int* row = material.ptr<int>(y);
+    const int* above = material.ptr<int>(std::max(y - 1, 0));
+    const int* below = material.ptr<int>(std::min(y + 1, H - 1));
+    uint8_t* flag = edge.ptr<uint8_t>(y);
     for (int x = 0; x < W; ++x) {
-      const int m = material.at<int>(y, x);
-      const bool differs = (y > 0 && material.at<int>(y - 1, x) != m) ||
-                           (y + 1 < H && material.at<int>(y + 1, x) != m) ||
-                           (x > 0 && material.at<int>(y, x - 1) != m) ||
-                           (x + 1 < W && material.at<int>(y, x + 1) != m);
-      edge.at<uint8_t>(y, x) = differs ? 1 : 0;
+      const int m = row[x];
+      flag[x] = above[x] != m || below[x] != m || (x > 0 && row[x - 1] != m) ||
+                (x + 1 < W && row[x + 1] != m);
     }
   }
   out.edge_pixels = cv::countNonZero(edge);
   const int n = options_.edge_samples_per_axis;
   ParallelForChunks(H, 8, options_.threads, [&](int64_t y0, int64_t y1, int) {
+    // The chunk's edge samples in pixel order, cast in packets; each pixel's samples are
+    // summed in the same order as one ray at a time would.
+    std::vector<int> edge_pixels;
     for (int y = static_cast<int>(y0); y < y1; ++y) {
       for (int x = 0; x < W; ++x) {
-        if (!edge.at<uint8_t>(y, x)) continue;
-        double sum = 0;
-        for (int sy = 0; sy < n; ++sy) {
-          for (int sx = 0; sx < n; ++sx) {
-            float unused;
-            const Eigen::Vector3f d = ray_dir(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n, &unused);
-            RayHit hit;
-            sum += Radiance(origin, d, &hit);
-          }
-        }
-        out.radiance.at<float>(y, x) = static_cast<float>(sum / (n * n));
+        if (edge.at<uint8_t>(y, x)) edge_pixels.push_back(y * W + x);
       }
+    }
+    std::vector<double> sums(edge_pixels.size(), 0.0);
+    Eigen::Vector3f directions[RayCaster::kPacketSize];
+    RayHit hits[RayCaster::kPacketSize];
+    int slots[RayCaster::kPacketSize];
+    int count = 0;
+    auto flush = [&] {
+      caster.IntersectPacket(origin, directions, count, hits);
+      for (int i = 0; i < count; ++i) {
+        sums[slots[i]] += Shade(hits[i], origin, directions[i], options_.specular_reflections);
+      }
+      count = 0;
+    };
+    for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
+      const int x = edge_pixels[slot] % W, y = edge_pixels[slot] / W;
+      for (int sy = 0; sy < n; ++sy) {
+        for (int sx = 0; sx < n; ++sx) {
+          slots[count] = static_cast<int>(slot);
+          directions[count++] = R * CameraRay(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n);
+          if (count == RayCaster::kPacketSize) flush();
+        }
+      }
+    }
+    if (count > 0) flush();
+    for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
+      out.radiance.ptr<float>()[edge_pixels[slot]] = static_cast<float>(sums[slot] / (n * n));
     }
   });
   return out;

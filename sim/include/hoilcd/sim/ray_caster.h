@@ -44,6 +44,13 @@ class RayCaster {
   // Closest hit along origin + t * direction, t in (t_min, t_max). Thread-safe after Commit().
   RayHit Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
                    float t_min = 0.0f, float t_max = std::numeric_limits<float>::infinity()) const;
+  // Closest hits of `count` (1..kPacketSize) rays from one origin with Embree's packet
+  // traversal (rtcIntersect16, coherent): much faster than single rays when the directions are
+  // close, e.g. a 4×4 block of pixels. hits[i] is what Intersect(origin, directions[i]) returns
+  // (up to the packet kernel's rounding). Thread-safe after Commit().
+  static constexpr int kPacketSize = 16;
+  void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
+                       RayHit* hits) const;
   // Closest hit against one instance alone (ignoring everything else): for visibility ratios.
   RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin,
                            const Eigen::Vector3f& direction) const;

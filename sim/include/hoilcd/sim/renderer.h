@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "hoilcd/core/camera.h"
 #include "hoilcd/sim/world.h"
@@ -38,9 +39,13 @@ class FrameRenderer {
   float Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               bool allow_reflection) const;
 
+  // Unit camera-frame direction of the ray through an image point (u, v), px.
+  Eigen::Vector3f CameraRay(double u, double v) const;
+
   const World& world_;
   CameraIntrinsics intrinsics_;
   RenderOptions options_;
+  std::vector<Eigen::Vector3f> pixel_rays_;  // CameraRay of every pixel centre, row-major
 };
 
 }  // namespace hoilcd
