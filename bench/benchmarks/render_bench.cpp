@@ -12,7 +12,10 @@
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -65,132 +68,203 @@ Setup& Shared() {
   return setup;
 }
 
-// Seconds per frame measured around the benchmark loop (the last, reported, invocation wins).
+// Wall and process CPU seconds per frame measured around the benchmark loop (the last,
+// reported, invocation wins). Process CPU time counts every thread, Embree's included.
 class FrameClock {
  public:
-  FrameClock() : start_(std::chrono::steady_clock::now()) {}
-  double SecondsPerFrame(const benchmark::State& state) const {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  FrameClock() : wall_start_(std::chrono::steady_clock::now()), cpu_start_(std::clock()) {}
+  double WallPerFrame(const benchmark::State& state) const {
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+    return s / static_cast<double>(state.iterations() * kPoses);
+  }
+  double CpuPerFrame(const benchmark::State& state) const {
+    const double s = static_cast<double>(std::clock() - cpu_start_) / CLOCKS_PER_SEC;
     return s / static_cast<double>(state.iterations() * kPoses);
   }
 
  private:
-  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point wall_start_;
+  std::clock_t cpu_start_;
 };
 
-void Finish(benchmark::State& state, const std::string& kind, double seconds_per_frame) {
+void Finish(benchmark::State& state, const std::string& kind, const FrameClock& clock) {
   Setup& s = Shared();
   const std::string threads = std::to_string(state.range(0));
-  s.seconds_per_frame[kind + "/" + threads] = seconds_per_frame;
-  state.counters["ms_per_frame"] = 1e3 * seconds_per_frame;
-  state.counters["fps"] = 1.0 / seconds_per_frame;
+  const double wall = clock.WallPerFrame(state), cpu = clock.CpuPerFrame(state);
+  s.seconds_per_frame[kind + "/" + threads] = wall;
+  s.seconds_per_frame[kind + "/" + threads + "/cpu"] = cpu;
+  state.counters["ms_per_frame"] = 1e3 * wall;
+  state.counters["cpu_ms_per_frame"] = 1e3 * cpu;
+  state.counters["fps"] = 1.0 / wall;
   const auto bare = s.seconds_per_frame.find("bare/" + threads);
   if (kind != "bare" && bare != s.seconds_per_frame.end()) {
-    state.counters["x_bare"] = seconds_per_frame / bare->second;
+    state.counters["x_bare"] = wall / bare->second;
+    state.counters["x_bare_cpu"] = cpu / s.seconds_per_frame.at("bare/" + threads + "/cpu");
   }
 }
 
 // Pose of every sample at one fixed world time, so (a) and (b) see identical geometry.
 void FixWorldTime(Setup& s) { s.world.SetTime(s.samples.front().time_s); }
 
+// Hits of bare Embree casts (kept so the casts cannot be optimised away).
+struct BareHits {
+  explicit BareHits(int pixels) : distance(pixels), instance(pixels), triangle(pixels) {}
+  std::vector<float> distance;
+  std::vector<unsigned> instance, triangle;
+};
+
+// The renderer's primary rays, one rtcIntersect1 per pixel in a plain loop, rows split into the
+// renderer's chunks of 8.
+void CastBare(const Setup& s, const CameraPose& pose, int threads, BareHits* hits) {
+  const int W = s.intrinsics.width, H = s.intrinsics.height;
+  RTCScene scene = s.world.caster().embree_scene();
+  const Rigid3 world_from_cam = pose.WorldFromCam();
+  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
+  const Eigen::Vector3f o = world_from_cam.translation.cast<float>();
+  ParallelForChunks(H, 8, threads, [&](int64_t y0, int64_t y1, int) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (int64_t i = y0 * W; i < y1 * W; ++i) {
+      const Eigen::Vector3f d = R * s.cam_directions[i];
+      RTCRayHit rh;
+      rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
+      rh.ray.dir_x = d.x(), rh.ray.dir_y = d.y(), rh.ray.dir_z = d.z();
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.ray.flags = 0;
+      rh.ray.time = 0;
+      rh.ray.id = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &context, &rh);
+      hits->distance[i] = rh.ray.tfar;
+      hits->instance[i] = rh.hit.instID[0];
+      hits->triangle[i] = rh.hit.primID;
+    }
+  });
+  benchmark::DoNotOptimize(hits->distance.data());
+}
+
+// The same rays as 4×4-pixel packets with rtcIntersect16 (coherent), as the renderer casts
+// them: the strongest bare-Embree baseline.
+void CastBarePackets(const Setup& s, const CameraPose& pose, int threads, BareHits* hits) {
+  const int W = s.intrinsics.width, H = s.intrinsics.height;
+  RTCScene scene = s.world.caster().embree_scene();
+  const Rigid3 world_from_cam = pose.WorldFromCam();
+  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
+  const Eigen::Vector3f o = world_from_cam.translation.cast<float>();
+  ParallelForChunks(H, 8, threads, [&](int64_t y0, int64_t y1, int) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[16];
+    alignas(64) RTCRayHit16 rh;
+    for (int64_t by = y0; by < y1; by += 4) {
+      for (int bx = 0; bx < W; bx += 4) {
+        for (int k = 0; k < 16; ++k) {
+          const Eigen::Vector3f d = R * s.cam_directions[(by + k / 4) * W + bx + k % 4];
+          valid[k] = -1;
+          rh.ray.org_x[k] = o.x(), rh.ray.org_y[k] = o.y(), rh.ray.org_z[k] = o.z();
+          rh.ray.dir_x[k] = d.x(), rh.ray.dir_y[k] = d.y(), rh.ray.dir_z[k] = d.z();
+          rh.ray.tnear[k] = 0.0f;
+          rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+          rh.ray.mask[k] = 0xFFFFFFFFu;
+          rh.ray.flags[k] = 0;
+          rh.ray.time[k] = 0;
+          rh.ray.id[k] = 0;
+          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(valid, scene, &context, &rh);
+        for (int k = 0; k < 16; ++k) {
+          const int64_t i = (by + k / 4) * W + bx + k % 4;
+          hits->distance[i] = rh.ray.tfar[k];
+          hits->instance[i] = rh.hit.instID[0][k];
+          hits->triangle[i] = rh.hit.primID[k];
+        }
+      }
+    }
+  });
+  benchmark::DoNotOptimize(hits->distance.data());
+}
+
 void BM_BareEmbree(benchmark::State& state) {
   Setup& s = Shared();
   FixWorldTime(s);
-  const int threads = static_cast<int>(state.range(0));
-  const int W = s.intrinsics.width, H = s.intrinsics.height;
-  RTCScene scene = s.world.caster().embree_scene();
-  std::vector<float> distance(W * H);
-  std::vector<unsigned> instance(W * H), triangle(W * H);
+  BareHits hits(s.intrinsics.width * s.intrinsics.height);
   FrameClock clock;
   for (auto _ : state) {
     for (const RobotSample& sample : s.samples) {
-      const Rigid3 world_from_cam = sample.camera.WorldFromCam();
-      const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
-      const Eigen::Vector3f o = world_from_cam.translation.cast<float>();
-      ParallelForChunks(H, 8, threads, [&](int64_t y0, int64_t y1, int) {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        for (int64_t i = y0 * W; i < y1 * W; ++i) {
-          const Eigen::Vector3f d = R * s.cam_directions[i];
-          RTCRayHit rh;
-          rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
-          rh.ray.dir_x = d.x(), rh.ray.dir_y = d.y(), rh.ray.dir_z = d.z();
-          rh.ray.tnear = 0.0f;
-          rh.ray.tfar = std::numeric_limits<float>::infinity();
-          rh.ray.mask = 0xFFFFFFFFu;
-          rh.ray.flags = 0;
-          rh.ray.time = 0;
-          rh.ray.id = 0;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene, &context, &rh);
-          distance[i] = rh.ray.tfar;
-          instance[i] = rh.hit.instID[0];
-          triangle[i] = rh.hit.primID;
-        }
-      });
-      benchmark::DoNotOptimize(distance.data());
-      benchmark::DoNotOptimize(instance.data());
-      benchmark::DoNotOptimize(triangle.data());
+      CastBare(s, sample.camera, static_cast<int>(state.range(0)), &hits);
     }
   }
-  Finish(state, "bare", clock.SecondsPerFrame(state));
+  Finish(state, "bare", clock);
 }
 
-// The same rays as 4×4-pixel packets with rtcIntersect16 (coherent), as the renderer casts them:
-// the strongest bare-Embree baseline.
 void BM_BareEmbreePackets(benchmark::State& state) {
   Setup& s = Shared();
   FixWorldTime(s);
-  const int threads = static_cast<int>(state.range(0));
-  const int W = s.intrinsics.width, H = s.intrinsics.height;
-  RTCScene scene = s.world.caster().embree_scene();
-  std::vector<float> distance(W * H);
-  std::vector<unsigned> instance(W * H), triangle(W * H);
+  BareHits hits(s.intrinsics.width * s.intrinsics.height);
   FrameClock clock;
   for (auto _ : state) {
     for (const RobotSample& sample : s.samples) {
-      const Rigid3 world_from_cam = sample.camera.WorldFromCam();
-      const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
-      const Eigen::Vector3f o = world_from_cam.translation.cast<float>();
-      ParallelForChunks(H, 8, threads, [&](int64_t y0, int64_t y1, int) {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        alignas(64) int valid[16];
-        alignas(64) RTCRayHit16 rh;
-        for (int64_t by = y0; by < y1; by += 4) {
-          for (int bx = 0; bx < W; bx += 4) {
-            for (int k = 0; k < 16; ++k) {
-              const Eigen::Vector3f d = R * s.cam_directions[(by + k / 4) * W + bx + k % 4];
-              valid[k] = -1;
-              rh.ray.org_x[k] = o.x(), rh.ray.org_y[k] = o.y(), rh.ray.org_z[k] = o.z();
-              rh.ray.dir_x[k] = d.x(), rh.ray.dir_y[k] = d.y(), rh.ray.dir_z[k] = d.z();
-              rh.ray.tnear[k] = 0.0f;
-              rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-              rh.ray.mask[k] = 0xFFFFFFFFu;
-              rh.ray.flags[k] = 0;
-              rh.ray.time[k] = 0;
-              rh.ray.id[k] = 0;
-              rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-              rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-            }
-            rtcIntersect16(valid, scene, &context, &rh);
-            for (int k = 0; k < 16; ++k) {
-              const int64_t i = (by + k / 4) * W + bx + k % 4;
-              distance[i] = rh.ray.tfar[k];
-              instance[i] = rh.hit.instID[0][k];
-              triangle[i] = rh.hit.primID[k];
-            }
-          }
-        }
-      });
-      benchmark::DoNotOptimize(distance.data());
-      benchmark::DoNotOptimize(instance.data());
-      benchmark::DoNotOptimize(triangle.data());
+      CastBarePackets(s, sample.camera, static_cast<int>(state.range(0)), &hits);
     }
   }
-  Finish(state, "bare_packets", clock.SecondsPerFrame(state));
+  Finish(state, "bare_packets", clock);
+}
+
+// The headline ratio, robust to other load on a shared machine: per pose, bare rtcIntersect1,
+// bare rtcIntersect16 and the full frame (Render + SensorModel::Apply) run back to back, each
+// timed on its own (wall and process CPU), so load changes hit all three alike.
+void BM_FullVsBareInterleaved(benchmark::State& state) {
+  Setup& s = Shared();
+  FixWorldTime(s);
+  const int threads = static_cast<int>(state.range(0));
+  const FrameRenderer renderer(s.world, s.intrinsics, RenderOptionsFromScene(s.scene, threads));
+  SensorModel sensor(SensorOptionsFromScene(s.scene), s.intrinsics.width, s.intrinsics.height,
+                     s.scene.frame_rate_hz, s.scene.seed, &s.table, threads);
+  BareHits hits(s.intrinsics.width * s.intrinsics.height);
+  enum { kBare, kPackets, kRender, kSensor, kParts };
+  double wall[kParts] = {}, cpu[kParts] = {};
+  int frame = 0;
+  for (auto _ : state) {
+    for (const RobotSample& sample : s.samples) {
+      cv::Mat radiance;
+      for (int part = 0; part < kParts; ++part) {
+        const auto wall_start = std::chrono::steady_clock::now();
+        const std::clock_t cpu_start = std::clock();
+        if (part == kBare) CastBare(s, sample.camera, threads, &hits);
+        if (part == kPackets) CastBarePackets(s, sample.camera, threads, &hits);
+        if (part == kRender) radiance = renderer.Render(sample.camera).radiance;
+        if (part == kSensor) benchmark::DoNotOptimize(sensor.Apply(frame++, radiance).data);
+        wall[part] +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        cpu[part] += static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+      }
+    }
+  }
+  const double frames = static_cast<double>(state.iterations() * kPoses);
+  const double full_wall = wall[kRender] + wall[kSensor], full_cpu = cpu[kRender] + cpu[kSensor];
+  state.counters["bare_ms"] = 1e3 * wall[kBare] / frames;
+  state.counters["bare16_ms"] = 1e3 * wall[kPackets] / frames;
+  state.counters["render_ms"] = 1e3 * wall[kRender] / frames;
+  state.counters["sensor_ms"] = 1e3 * wall[kSensor] / frames;
+  state.counters["x_bare"] = full_wall / wall[kBare];
+  state.counters["x_bare_cpu"] = full_cpu / cpu[kBare];
+  state.counters["x_bare16"] = full_wall / wall[kPackets];
+  state.counters["x_bare16_cpu"] = full_cpu / cpu[kPackets];
+  const std::string key = "interleaved/" + std::to_string(threads) + "/";
+  s.seconds_per_frame[key + "bare"] = wall[kBare] / frames;
+  s.seconds_per_frame[key + "bare/cpu"] = cpu[kBare] / frames;
+  s.seconds_per_frame[key + "bare16"] = wall[kPackets] / frames;
+  s.seconds_per_frame[key + "bare16/cpu"] = cpu[kPackets] / frames;
+  s.seconds_per_frame[key + "render"] = wall[kRender] / frames;
+  s.seconds_per_frame[key + "render/cpu"] = cpu[kRender] / frames;
+  s.seconds_per_frame[key + "full"] = full_wall / frames;
+  s.seconds_per_frame[key + "full/cpu"] = full_cpu / frames;
 }
 
 void BM_RenderOnly(benchmark::State& state) {
@@ -207,7 +281,7 @@ void BM_RenderOnly(benchmark::State& state) {
       benchmark::DoNotOptimize(frame.radiance.data);
     }
   }
-  Finish(state, "render", clock.SecondsPerFrame(state));
+  Finish(state, "render", clock);
   state.counters["edge_px"] = static_cast<double>(edge_pixels) / (state.iterations() * kPoses);
 }
 
@@ -226,7 +300,7 @@ void BM_FullFrame(benchmark::State& state) {
       benchmark::DoNotOptimize(t.data);
     }
   }
-  Finish(state, "full", clock.SecondsPerFrame(state));
+  Finish(state, "full", clock);
 }
 
 cv::Mat ToFloat(const cv::Mat& m) {
@@ -270,7 +344,7 @@ void BM_Pipeline(benchmark::State& state) {
       benchmark::DoNotOptimize(persons.data());
     }
   }
-  Finish(state, "pipeline", clock.SecondsPerFrame(state));
+  Finish(state, "pipeline", clock);
   state.counters["kB_per_frame"] = bytes / 1e3 / (state.iterations() * kPoses);
 }
 
@@ -289,35 +363,47 @@ void BM_PipelinePart(benchmark::State& state, int part) {
     temperature.push_back(sensor.Apply(i, buffers.back().radiance));
   }
   int frame = kPoses;
+  size_t bytes = 0;
   FrameClock clock;
   for (auto _ : state) {
     for (int i = 0; i < kPoses; ++i) {
+      std::string encoded;
       if (part == 0) {
         benchmark::DoNotOptimize(sensor.Apply(frame++, buffers[i].radiance).data);
       } else if (part == 1) {
-        benchmark::DoNotOptimize(
-            EncodePng(ToDisplay8Bit(temperature[i], options.display_min_c, options.display_max_c)));
+        encoded = EncodePng(
+            ToDisplay8Bit(temperature[i], options.display_min_c, options.display_max_c));
       } else if (part == 2) {
-        benchmark::DoNotOptimize(EncodePng(ToCentikelvin16(temperature[i])));
+        encoded = EncodePng(ToCentikelvin16(temperature[i]));
+      } else if (part == 5 || part == 6) {
+        std::vector<uchar> png;
+        cv::imencode(".png", ToCentikelvin16(temperature[i]), png,
+                     {cv::IMWRITE_PNG_COMPRESSION, part == 5 ? 1 : 3});
+        encoded.assign(png.begin(), png.end());
       } else if (part == 3) {
-        benchmark::DoNotOptimize(EncodeExr({{"T", temperature[i]},
-                                            {"T_true", sensor.IdealTemperature(buffers[i].radiance)},
-                                            {"Z", buffers[i].depth_m},
-                                            {"id", ToFloat(buffers[i].instance)},
-                                            {"class", ToFloat(buffers[i].class_id)}}));
+        encoded = EncodeExr({{"T", temperature[i]},
+                             {"T_true", sensor.IdealTemperature(buffers[i].radiance)},
+                             {"Z", buffers[i].depth_m},
+                             {"id", ToFloat(buffers[i].instance)},
+                             {"class", ToFloat(buffers[i].class_id)}});
       } else {
         benchmark::DoNotOptimize(
             VisiblePersons(s.world, s.intrinsics, s.samples[i].camera, buffers[i].instance));
       }
+      bytes += encoded.size();
+      benchmark::DoNotOptimize(encoded.data());
     }
   }
-  Finish(state, "part", clock.SecondsPerFrame(state));
+  if (bytes > 0) state.counters["kB_per_frame"] = bytes / 1e3 / (state.iterations() * kPoses);
+  Finish(state, "part", clock);
 }
 
 void Threads(benchmark::internal::Benchmark* b) {
-  b->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
+  b->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->MeasureProcessCPUTime();
+  b->Unit(benchmark::kMillisecond);
 }
 
+BENCHMARK(BM_FullVsBareInterleaved)->Apply(Threads)->MinTime(3.0);
 BENCHMARK(BM_BareEmbree)->Apply(Threads);
 BENCHMARK(BM_BareEmbreePackets)->Apply(Threads);
 BENCHMARK(BM_RenderOnly)->Apply(Threads);
@@ -326,6 +412,8 @@ BENCHMARK(BM_Pipeline)->Apply(Threads);
 BENCHMARK_CAPTURE(BM_PipelinePart, sensor_apply, 0)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PipelinePart, png8, 1)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PipelinePart, png16, 2)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PipelinePart, png16_level1, 5)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PipelinePart, png16_level3, 6)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PipelinePart, exr_with_t_true, 3)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PipelinePart, visible_persons, 4)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 
@@ -335,21 +423,43 @@ void PrintSummary() {
     const auto it = s.seconds_per_frame.find(key);
     return it == s.seconds_per_frame.end() ? 0.0 : it->second;
   };
-  std::printf("\nSummary of this run (wall time per frame, %d poses along the route):\n", kPoses);
+  std::printf("\nSummary of this run (per frame, %d poses along the route; wall ms, process CPU ms "
+              "in brackets; ratios to bare rtcIntersect1 of the same thread count, wall / CPU):\n",
+              kPoses);
   for (const char* t : {"1", "2"}) {
-    const double bare = get(std::string("bare/") + t);
+    const std::string n = t;
+    const double bare = get("bare/" + n), bare_cpu = get("bare/" + n + "/cpu");
     if (bare <= 0) continue;
-    std::printf("  %s thread(s): bare Embree %.2f ms; render %.2f ms (%.2fx); render+sensor %.2f ms "
-                "(%.2fx, target <= 2x); pipeline %.2f ms (%.2fx)\n",
-                t, 1e3 * bare, 1e3 * get(std::string("render/") + t),
-                get(std::string("render/") + t) / bare, 1e3 * get(std::string("full/") + t),
-                get(std::string("full/") + t) / bare, 1e3 * get(std::string("pipeline/") + t),
-                get(std::string("pipeline/") + t) / bare);
+    std::printf("  %s thread(s): bare rtcIntersect1 %.2f [%.2f]; bare rtcIntersect16 %.2f [%.2f]\n",
+                t, 1e3 * bare, 1e3 * bare_cpu, 1e3 * get("bare_packets/" + n),
+                1e3 * get("bare_packets/" + n + "/cpu"));
+    for (const char* kind : {"render", "full", "pipeline"}) {
+      const double wall = get(kind + ("/" + n)), cpu = get(kind + ("/" + n) + "/cpu");
+      if (wall <= 0) continue;
+      std::printf("    %-8s %7.2f [%6.2f]  %.2fx / %.2fx%s\n", kind, 1e3 * wall, 1e3 * cpu,
+                  wall / bare, cpu / bare_cpu,
+                  std::string(kind) == "full" ? "  (render + sensor; target <= 2x)" : "");
+    }
+  }
+  std::printf("Interleaved (bare and full frame back to back per pose; the headline figures):\n");
+  for (const char* t : {"1", "2"}) {
+    const std::string key = std::string("interleaved/") + t + "/";
+    const double bare = get(key + "bare"), bare_cpu = get(key + "bare/cpu");
+    if (bare <= 0) continue;
+    std::printf("  %s thread(s): bare rtcIntersect1 %.2f [%.2f], rtcIntersect16 %.2f [%.2f]; "
+                "render %.2f [%.2f]; render + sensor %.2f [%.2f] = %.2fx / %.2fx bare "
+                "rtcIntersect1 (target <= 2x), %.2fx / %.2fx bare rtcIntersect16\n",
+                t, 1e3 * bare, 1e3 * bare_cpu, 1e3 * get(key + "bare16"),
+                1e3 * get(key + "bare16/cpu"), 1e3 * get(key + "render"),
+                1e3 * get(key + "render/cpu"), 1e3 * get(key + "full"), 1e3 * get(key + "full/cpu"),
+                get(key + "full") / bare, get(key + "full/cpu") / bare_cpu,
+                get(key + "full") / get(key + "bare16"),
+                get(key + "full/cpu") / get(key + "bare16/cpu"));
   }
   const double pipeline2 = get("pipeline/2");
   if (pipeline2 > 0) {
-    std::printf("  2 threads: %.1f frames/s (pipeline), %.1f frames/s (render+sensor); "
-                "%d frames projected %.0f s (without disk writes)\n",
+    std::printf("  2 threads: %.1f frames/s (pipeline), %.1f frames/s (render + sensor); "
+                "%d frames projected %.0f s (pipeline, without disk writes)\n",
                 1.0 / pipeline2, 1.0 / get("full/2"), s.scene.frames, s.scene.frames * pipeline2);
   }
 }
