@@ -206,8 +206,20 @@ void BM_BareEmbree(benchmark::State& state) {
   Finish(state, "bare", clock);
 }
 
+// rtcIntersect16 runs only where the CPU has native 16-wide packets (the renderer falls back).
+bool Native16(const Setup& s) {
+  RTCDevice device = rtcGetSceneDevice(s.world.caster().embree_scene());
+  const bool native = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED);
+  rtcReleaseDevice(device);  // rtcGetSceneDevice retains it
+  return native;
+}
+
 void BM_BareEmbreePackets(benchmark::State& state) {
   Setup& s = Shared();
+  if (!Native16(s)) {
+    state.SkipWithError("no native 16-wide Embree packets on this CPU");
+    return;
+  }
   FixWorldTime(s);
   BareHits hits(s.intrinsics.width * s.intrinsics.height);
   FrameClock clock;
@@ -230,6 +242,7 @@ void BM_FullVsBareInterleaved(benchmark::State& state) {
   SensorModel sensor(SensorOptionsFromScene(s.scene), s.intrinsics.width, s.intrinsics.height,
                      s.scene.frame_rate_hz, s.scene.seed, &s.table, threads);
   BareHits hits(s.intrinsics.width * s.intrinsics.height);
+  const bool native16 = Native16(s);
   enum { kBare, kPackets, kRender, kSensor, kParts };
   double wall[kParts] = {}, cpu[kParts] = {};
   int frame = 0;
@@ -240,7 +253,7 @@ void BM_FullVsBareInterleaved(benchmark::State& state) {
         const auto wall_start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
         if (part == kBare) CastBare(s, sample.camera, threads, &hits);
-        if (part == kPackets) CastBarePackets(s, sample.camera, threads, &hits);
+        if (part == kPackets && native16) CastBarePackets(s, sample.camera, threads, &hits);
         if (part == kRender) radiance = renderer.Render(sample.camera).radiance;
         if (part == kSensor) benchmark::DoNotOptimize(sensor.Apply(frame++, radiance).data);
         wall[part] +=

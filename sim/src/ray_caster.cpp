@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/asset.h"
@@ -64,6 +65,52 @@ RTCRayHit MakeRay(const Eigen::Vector3f& o, const Eigen::Vector3f& d, float t_mi
   return rh;
 }
 
+// Packet casts of K rays (K = 8 or 16) from one origin; hits come back as single RTCRayHits.
+void IntersectK(const int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit8* rh) {
+  rtcIntersect8(valid, scene, context, rh);
+}
+void IntersectK(const int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit16* rh) {
+  rtcIntersect16(valid, scene, context, rh);
+}
+template <int K>
+using RayHitPacket = std::conditional_t<K == 8, RTCRayHit8, RTCRayHit16>;
+
+template <int K>
+void CastPacket(RTCScene scene, RTCIntersectContext* context, const Eigen::Vector3f& origin,
+                const Eigen::Vector3f* directions, int count, RTCRayHit* out) {
+  alignas(64) int valid[K];
+  alignas(64) RayHitPacket<K> rh;
+  for (int i = 0; i < K; ++i) {
+    const Eigen::Vector3f& d = directions[std::min(i, count - 1)];
+    valid[i] = i < count ? -1 : 0;
+    rh.ray.org_x[i] = origin.x();
+    rh.ray.org_y[i] = origin.y();
+    rh.ray.org_z[i] = origin.z();
+    rh.ray.dir_x[i] = d.x();
+    rh.ray.dir_y[i] = d.y();
+    rh.ray.dir_z[i] = d.z();
+    rh.ray.tnear[i] = 0.0f;
+    rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
+    rh.ray.mask[i] = 0xFFFFFFFFu;
+    rh.ray.flags[i] = 0;
+    rh.ray.time[i] = 0;
+    rh.ray.id[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  IntersectK(valid, scene, context, &rh);
+  for (int i = 0; i < count; ++i) {
+    out[i].ray.tfar = rh.ray.tfar[i];
+    out[i].hit.geomID = rh.hit.geomID[i];
+    out[i].hit.primID = rh.hit.primID[i];
+    out[i].hit.instID[0] = rh.hit.instID[0][i];
+    out[i].hit.Ng_x = rh.hit.Ng_x[i];
+    out[i].hit.Ng_y = rh.hit.Ng_y[i];
+    out[i].hit.Ng_z = rh.hit.Ng_z[i];
+  }
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
@@ -77,6 +124,7 @@ struct RayCaster::Impl {
       throw std::runtime_error(message);
     }
   }
+  int packet_width = 1;  // widest ray packet the CPU runs natively: 16, 8, or 1 (single rays)
   std::unique_ptr<SceneHandle> top;
   std::vector<std::unique_ptr<SceneHandle>> prototypes;
   std::vector<std::unique_ptr<GeometryHandle>> instances;
@@ -106,6 +154,12 @@ struct RayCaster::Impl {
 RayCaster::RayCaster() : impl_(std::make_unique<Impl>()) {
   HOILCD_CHECK_MSG(impl_->device.device != nullptr, "rtcNewDevice failed");
   rtcSetDeviceErrorFunction(impl_->device.device, EmbreeError, &impl_->last_error);
+  if (rtcGetDeviceProperty(impl_->device.device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) {
+    impl_->packet_width = 16;
+  } else if (rtcGetDeviceProperty(impl_->device.device,
+                                  RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) {
+    impl_->packet_width = 8;
+  }
   impl_->top = std::make_unique<SceneHandle>(impl_->device.device);
   // Instances move every frame: a fast rebuild of the small top-level BVH beats a good one.
   rtcSetSceneFlags(impl_->top->scene, RTC_SCENE_FLAG_DYNAMIC);
@@ -194,39 +248,21 @@ void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vect
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(64) int valid[kPacketSize];
-  alignas(64) RTCRayHit16 rh;
-  for (int i = 0; i < kPacketSize; ++i) {
-    const Eigen::Vector3f& d = directions[std::min(i, count - 1)];
-    valid[i] = i < count ? -1 : 0;
-    rh.ray.org_x[i] = origin.x();
-    rh.ray.org_y[i] = origin.y();
-    rh.ray.org_z[i] = origin.z();
-    rh.ray.dir_x[i] = d.x();
-    rh.ray.dir_y[i] = d.y();
-    rh.ray.dir_z[i] = d.z();
-    rh.ray.tnear[i] = 0.0f;
-    rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
-    rh.ray.mask[i] = 0xFFFFFFFFu;
-    rh.ray.flags[i] = 0;
-    rh.ray.time[i] = 0;
-    rh.ray.id[i] = 0;
-    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit single[kPacketSize];
+  if (impl_->packet_width == 16) {
+    CastPacket<16>(impl_->top->scene, &context, origin, directions, count, single);
+  } else if (impl_->packet_width == 8) {
+    for (int begin = 0; begin < count; begin += 8) {
+      CastPacket<8>(impl_->top->scene, &context, origin, directions + begin,
+                    std::min(8, count - begin), single + begin);
+    }
+  } else {
+    for (int i = 0; i < count; ++i) {
+      single[i] = MakeRay(origin, directions[i], 0.0f, std::numeric_limits<float>::infinity());
+      rtcIntersect1(impl_->top->scene, &context, &single[i]);
+    }
   }
-  rtcIntersect16(valid, impl_->top->scene, &context, &rh);
-  for (int i = 0; i < count; ++i) {
-    RTCRayHit one;
-    one.ray.tfar = rh.ray.tfar[i];
-    one.hit.geomID = rh.hit.geomID[i];
-    one.hit.primID = rh.hit.primID[i];
-    one.hit.instID[0] = rh.hit.instID[0][i];
-    one.hit.Ng_x = rh.hit.Ng_x[i];
-    one.hit.Ng_y = rh.hit.Ng_y[i];
-    one.hit.Ng_z = rh.hit.Ng_z[i];
-    hits[i] = impl_->Finish(one, directions[i], -1);
-  }
+  for (int i = 0; i < count; ++i) hits[i] = impl_->Finish(single[i], directions[i], -1);
 }
 
 RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,

@@ -45,9 +45,10 @@ class RayCaster {
   RayHit Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
                    float t_min = 0.0f, float t_max = std::numeric_limits<float>::infinity()) const;
   // Closest hits of `count` (1..kPacketSize) rays from one origin with Embree's packet
-  // traversal (rtcIntersect16, coherent): much faster than single rays when the directions are
-  // close, e.g. a 4×4 block of pixels. hits[i] is what Intersect(origin, directions[i]) returns
-  // (up to the packet kernel's rounding). Thread-safe after Commit().
+  // traversal (coherent; rtcIntersect16, or rtcIntersect8 / single rays where the CPU lacks
+  // native 16- / 8-wide packets): much faster than single rays when the directions are close,
+  // e.g. a 4×4 block of pixels. hits[i] is what Intersect(origin, directions[i]) returns (up to
+  // the packet kernel's rounding). Thread-safe after Commit().
   static constexpr int kPacketSize = 16;
   void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
                        RayHit* hits) const;
