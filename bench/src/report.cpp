@@ -279,7 +279,9 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
       rows.push_back(MatchRow(result, *run, scored[(2 * k + 1) * scored.size() / 8], dataset));
     }
-    WritePng(dir + "/matches_" + std::string(name) + ".png", MatchMosaic(rows));
+    MosaicOptions mosaic;
+    mosaic.scale = 1;  // four rows of four 256x192 tiles; x2 makes multi-megabyte PNGs
+    WritePng(dir + "/matches_" + std::string(name) + ".png", MatchMosaic(rows, mosaic));
     figures.push_back("matches_" + std::string(name) + ".png");
   }
 

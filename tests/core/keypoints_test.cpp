@@ -39,7 +39,9 @@ TEST(Keypoints, EveryDetectorFindsTheRectangleCornersAndRespectsBorderAndRadius)
     // Corner detectors fire at the corners; blob detectors (SIFT, AKAZE) at least on the shapes.
     const bool corner_detector = std::string(detector) == "gftt" || std::string(detector) == "fast" ||
                                  std::string(detector) == "orb";
-    if (corner_detector) EXPECT_GE(near_corner, 2) << detector;
+    if (corner_detector) {
+      EXPECT_GE(near_corner, 2) << detector;
+    }
     for (const Point2& p : points) {
       const bool on_shape = cv::Rect(30, 40, 90, 90).contains(p) || cv::Rect(140, 90, 70, 80).contains(p);
       EXPECT_TRUE(on_shape) << detector << " " << p;
