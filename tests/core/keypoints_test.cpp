@@ -70,3 +70,24 @@ TEST(Keypoints, CheckRejectsUnknownDetector) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(Keypoints, GfttIgnoresSensorNoiseOnAUniformWallButKeepsRealCorners) {
+  cv::Mat wall(192, 256, CV_8U);
+  cv::randn(wall, 60, 0.6);  // ~0.02 K of noise in a 20-30 °C window, the fixed pattern alike
+  KeypointOptions options;
+  EXPECT_TRUE(DetectKeypoints(wall, options).empty());
+  options.gftt_min_eigenvalue = 0;  // GFTT's relative quality alone fires on the noise
+  EXPECT_GT(DetectKeypoints(wall, options).size(), 100u);
+  cv::Mat scene = wall.clone();
+  cv::rectangle(scene, cv::Rect(100, 80, 40, 30), cv::Scalar(160), cv::FILLED);
+  cv::GaussianBlur(scene, scene, cv::Size(), 0.8);
+  const auto corners = DetectKeypoints(scene, KeypointOptions{});
+  EXPECT_GE(corners.size(), 4u);
+  EXPECT_LE(corners.size(), 12u);
+}
+
+}  // namespace
+}  // namespace hoilcd
