@@ -93,15 +93,10 @@ double JsonMetric(const nlohmann::json& method, const std::string& key) {
   return it != method.end() && it->is_number() ? it->get<double>() : NAN;
 }
 
-// The first top-level field in which two plans differ, as a JSON pointer.
+// Where two plans first differ, as a JSON pointer (the first operation of their JSON Patch).
 std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b) {
-  for (const auto& [key, value] : a.items()) {
-    if (!b.contains(key) || b.at(key) != value) return "/" + key;
-  }
-  for (const auto& [key, value] : b.items()) {
-    if (!a.contains(key)) return "/" + key;
-  }
-  return "";
+  const nlohmann::json patch = nlohmann::json::diff(a, b);
+  return patch.empty() ? "" : patch.front().value("path", "");
 }
 
 // What shards of one sweep share: the plan without the scene path (the same scene file may sit

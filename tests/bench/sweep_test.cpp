@@ -196,6 +196,19 @@ TEST_F(SweepEndToEnd, SummaryFilesAndOnePlotPerMetricAreWritten) {
   }
 }
 
+TEST_F(SweepEndToEnd, RerunKeepsEveryFinishedRunInsteadOfRunningItAgain) {
+  SweepOptions options;
+  options.run.cache_dir = (*root_ / "cache").string();
+  options.output_dir = Dir("whole");
+  int kept = 0, calls = 0;
+  RunSweep(*plan_, *bench_, options, [&](int, int, const SweepRunSpec&, bool k) {
+    ++calls;
+    kept += k ? 1 : 0;
+  });
+  EXPECT_EQ(calls, 4);
+  EXPECT_EQ(kept, 4);
+}
+
 TEST_F(SweepEndToEnd, MergeNamesAMissingRun) {
   const std::string message = InputErrorOf([&] { MergeSweep({Dir("shard0")}); });
   ASSERT_FALSE(message.empty());
