@@ -260,8 +260,13 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   WriteFileAtomic(dir + "/queries.csv", csv);
 
   WritePng(dir + "/pr_curves.png", PrFigure(result));
-  WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
-  std::vector<std::string> figures = {"pr_curves.png", "mrr_per_lap.png"};
+  std::vector<std::string> figures = {"pr_curves.png"};
+  const bool any_lap = std::any_of(result.runs.begin(), result.runs.end(),
+                                   [](const MethodRun& r) { return !r.metrics.per_lap.empty(); });
+  if (any_lap) {  // a sequence shorter than two laps has no scored lap to plot
+    WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
+    figures.push_back("mrr_per_lap.png");
+  }
   for (const char* name : {"fusion", "dlcd", "slcd"}) {
     if (const MethodRun* run = result.Find(name)) {
       WritePng(dir + "/trajectory_" + std::string(name) + ".png", TrajectoryFigure(result, *run, dataset));

@@ -88,3 +88,22 @@ TEST(Runner, UnknownMethodsAreInputErrorsNamingThem) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(Runner, ASequenceShorterThanALapHasNoScoredQueriesAndStillReports) {
+  const Dataset dataset = TinyDataset("short", {"frames=60"});
+  BenchOptions options;
+  options.methods = ParseMethodList("paper");
+  const BenchResult result = RunBench(dataset, options);
+  EXPECT_EQ(result.Find("slcd")->metrics.queries_scored, 0);
+  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_short_report").string();
+  fs::remove_all(report);
+  EXPECT_NO_THROW(WriteReport(result, dataset, options, ReportTiming{}, report));
+  EXPECT_TRUE(fs::exists(report + "/report.md"));
+  EXPECT_FALSE(fs::exists(report + "/mrr_per_lap.png"));
+}
+
+}  // namespace
+}  // namespace hoilcd
