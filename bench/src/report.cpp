@@ -154,9 +154,10 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
   const cv::Scalar colour = hoi ? cv::Scalar(255, 255, 0) : cv::Scalar(0, 255, 0);
   row.push_back({dataset.Thermal(q.frame), "query " + std::to_string(q.frame), {}, colour});
   row.push_back({dataset.Thermal(q.frame), run.name + " features", features(q.frame), colour});
+  const std::string tie = rec.top1_tie_size > 1 ? ", tied with " + std::to_string(rec.top1_tie_size - 1) : "";
   row.push_back({dataset.Thermal(rec.top1_frame),
                  "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " (true)" : " (false)") +
-                     " score " + Fixed(rec.top1_score, 0),
+                     " score " + Fixed(rec.top1_score, 0) + tie,
                  features(rec.top1_frame), colour});
   row.push_back({best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
                  best_true >= 0 ? "true match " + std::to_string(best_true) + " score " + Fixed(best_score, 0)
