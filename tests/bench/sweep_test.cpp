@@ -1,6 +1,7 @@
 #include "hoilcd/bench/sweep.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -113,7 +114,8 @@ std::string WriteTinyScene(const fs::path& dir) {
 class SweepEndToEnd : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = new fs::path(fs::temp_directory_path() / "hoilcd_sweep_test");
+    // One folder per process: ctest may run other test processes at the same time.
+    root_ = new fs::path(fs::temp_directory_path() / ("hoilcd_sweep_test_" + std::to_string(::getpid())));
     fs::remove_all(*root_);
     bench_ = new BenchOptions();
     bench_->methods = {"slcd", "dlcd", "fusion"};
@@ -129,8 +131,12 @@ class SweepEndToEnd : public ::testing::Test {
       options.output_dir = Dir("shard" + std::to_string(i));
       RunSweep(*plan_, *bench_, options);
     }
+    setup_done_ = true;
   }
+  // A failure inside SetUpTestSuite makes GoogleTest skip the tests; this turns it into failures.
+  void SetUp() override { ASSERT_TRUE(setup_done_) << "the sweeps of SetUpTestSuite failed"; }
   static void TearDownTestSuite() {
+    fs::remove_all(*root_);
     delete plan_;
     delete bench_;
     delete root_;
@@ -140,7 +146,9 @@ class SweepEndToEnd : public ::testing::Test {
   static fs::path* root_;
   static BenchOptions* bench_;
   static SweepPlan* plan_;
+  static bool setup_done_;
 };
+bool SweepEndToEnd::setup_done_ = false;
 fs::path* SweepEndToEnd::root_ = nullptr;
 BenchOptions* SweepEndToEnd::bench_ = nullptr;
 SweepPlan* SweepEndToEnd::plan_ = nullptr;
