@@ -7,11 +7,13 @@
 #include <exception>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/run.h"
 #include "hoilcd/bench/runner.h"
+#include "hoilcd/bench/sweep.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
@@ -129,6 +131,64 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
   return 0;
 }
 
+// Flags of `hoilcd sweep`.
+struct SweepArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  int seeds = 1;
+  std::string shard;
+  std::vector<std::string> merge;
+  std::string output;
+  RunOptions run;
+};
+
+void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
+  std::printf("%s", summary.FormatTable().c_str());
+  std::printf("summary: %s/summary.md (and summary.csv, plot_*.png)\n", out.c_str());
+}
+
+int RunSweepCommand(const SweepArgs& args, const BenchArgs& bench_args) {
+  if (!args.merge.empty()) {
+    if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+    std::optional<SweepPlan> expected;
+    if (!args.scene.empty()) {
+      expected = MakeSweepPlan(args.scene, args.sets, args.seeds, ResolveBench(bench_args, args.run.threads));
+    } else if (!args.sets.empty()) {
+      throw InputError("--set", "with --merge, --set is only checked against the shards when SCENE is given too");
+    }
+    const SweepSummary summary = MergeSweep(args.merge, expected ? &*expected : nullptr);
+    WriteSweepSummary(summary, args.output);
+    PrintSweepSummary(summary, args.output);
+    return 0;
+  }
+  if (args.scene.empty()) throw InputError("sweep", "a SCENE file is needed (or --merge DIR... to combine shard outputs)");
+  SweepOptions options;
+  options.output_dir = args.output;
+  options.run = args.run;
+  if (!args.shard.empty()) options.shard = ParseSweepShard(args.shard);
+  const BenchOptions bench = ResolveBench(bench_args, args.run.threads);
+  const SweepPlan plan = MakeSweepPlan(args.scene, args.sets, args.seeds, bench);
+  std::signal(SIGINT, OnInterrupt);
+  options.run.cancel = &g_interrupted;
+  std::printf("sweep of %s: %zu runs (%zu combinations x %d seeds)", plan.scene_name.c_str(), plan.Runs().size(),
+              plan.Combinations().size(), plan.seeds);
+  if (options.shard.count > 1) std::printf(", shard %d/%d does %zu", options.shard.index, options.shard.count, plan.ShardRuns(options.shard).size());
+  std::printf("\n");
+  RunSweep(plan, bench, options, [](int position, int total, const SweepRunSpec& run, bool kept) {
+    std::printf("run %d/%d: %s%s\n", position, total, run.Name().c_str(), kept ? " (kept from an earlier sweep)" : "");
+    std::fflush(stdout);
+  });
+  if (options.shard.count > 1) {
+    std::printf("shard %d/%d done in %s; when every shard is done: hoilcd sweep --merge DIR... -o OUT\n",
+                options.shard.index, options.shard.count, args.output.c_str());
+    return 0;
+  }
+  const SweepSummary summary = MergeSweep({args.output}, &plan);
+  WriteSweepSummary(summary, args.output);
+  PrintSweepSummary(summary, args.output);
+  return 0;
+}
+
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
   auto* opt = cmd->add_option("scene", args->path, "scene file (JSON, see scenes/scene.schema.json)");
   if (scene_required) opt->required();
@@ -181,6 +241,33 @@ int RunCommandLine(int argc, char** argv) {
   run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
   AddBenchFlags(run, &run_args);
 
+  SweepArgs sweep_args;
+  BenchArgs sweep_bench;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "run a scene over the cross product of listed values x seeds 1..N, keep every run's report, "
+      "summarise (mean, std, min, max over seeds) and plot each metric against each swept value.\n"
+      "  --shard I/N runs only every N-th run starting at I (0 <= I < N) of the sorted run list, for\n"
+      "  job arrays; OUT/sweep.json marks the shard. --merge DIR... -o OUT combines shard outputs\n"
+      "  (nothing is rendered) and fails naming any run that is missing or present twice. With\n"
+      "  SCENE and the shards' --set/--seeds/bench flags, a merge also checks the shards ran exactly\n"
+      "  that sweep; without SCENE, the sweep is read from the shards (they must agree).");
+  sweep->add_option("scene", sweep_args.scene, "scene file (JSON); optional with --merge");
+  sweep->add_option("--set", sweep_args.sets,
+                    "KEY=V1,V2,...: values to sweep (split on top-level commas, so [1,2] is one value); repeatable, "
+                    "the cross product is run")
+      ->type_name("KEY=V1,V2")
+      ->allow_extra_args(false);
+  sweep->add_option("--seeds", sweep_args.seeds, "run every combination with seeds 1..N")->check(CLI::PositiveNumber);
+  sweep->add_option("--cache", sweep_args.run.cache_dir, "folder of cached datasets (shared by every run and shard)");
+  sweep->add_option("-o,--output", sweep_args.output, "sweep folder: runs/<KEY=V,...,seed=S>/, summary.csv, summary.md, plots")
+      ->required();
+  sweep->add_option("--shard", sweep_args.shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
+      ->type_name("I/N");
+  sweep->add_option("--merge", sweep_args.merge, "combine these sweep output folders into OUT")->type_name("DIR...");
+  sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
+  AddBenchFlags(sweep, &sweep_bench);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -192,6 +279,7 @@ int RunCommandLine(int argc, char** argv) {
     if (*render) return RunRender(render_args, render_options);
     if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads);
     if (*run) return RunRunCommand(run_scene, run_args, run_options);
+    if (*sweep) return RunSweepCommand(sweep_args, sweep_bench);
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

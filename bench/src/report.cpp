@@ -154,9 +154,10 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
   const cv::Scalar colour = hoi ? cv::Scalar(255, 255, 0) : cv::Scalar(0, 255, 0);
   row.push_back({dataset.Thermal(q.frame), "query " + std::to_string(q.frame), {}, colour});
   row.push_back({dataset.Thermal(q.frame), run.name + " features", features(q.frame), colour});
+  const std::string tie = rec.top1_tie_size > 1 ? ", tied with " + std::to_string(rec.top1_tie_size - 1) : "";
   row.push_back({dataset.Thermal(rec.top1_frame),
                  "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " (true)" : " (false)") +
-                     " score " + Fixed(rec.top1_score, 0),
+                     " score " + Fixed(rec.top1_score, 0) + tie,
                  features(rec.top1_frame), colour});
   row.push_back({best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
                  best_true >= 0 ? "true match " + std::to_string(best_true) + " score " + Fixed(best_score, 0)
@@ -260,8 +261,13 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   WriteFileAtomic(dir + "/queries.csv", csv);
 
   WritePng(dir + "/pr_curves.png", PrFigure(result));
-  WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
-  std::vector<std::string> figures = {"pr_curves.png", "mrr_per_lap.png"};
+  std::vector<std::string> figures = {"pr_curves.png"};
+  const bool any_lap = std::any_of(result.runs.begin(), result.runs.end(),
+                                   [](const MethodRun& r) { return !r.metrics.per_lap.empty(); });
+  if (any_lap) {  // a sequence shorter than two laps has no scored lap to plot
+    WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
+    figures.push_back("mrr_per_lap.png");
+  }
   for (const char* name : {"fusion", "dlcd", "slcd"}) {
     if (const MethodRun* run = result.Find(name)) {
       WritePng(dir + "/trajectory_" + std::string(name) + ".png", TrajectoryFigure(result, *run, dataset));
@@ -279,7 +285,9 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
       rows.push_back(MatchRow(result, *run, scored[(2 * k + 1) * scored.size() / 8], dataset));
     }
-    WritePng(dir + "/matches_" + std::string(name) + ".png", MatchMosaic(rows));
+    MosaicOptions mosaic;
+    mosaic.scale = 1;  // four rows of four 256x192 tiles; x2 makes multi-megabyte PNGs
+    WritePng(dir + "/matches_" + std::string(name) + ".png", MatchMosaic(rows, mosaic));
     figures.push_back("matches_" + std::string(name) + ".png");
   }
 

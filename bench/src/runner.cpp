@@ -214,21 +214,21 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   RansacOptions lo = options.ransac;
   lo.local_optimisation_refits = options.lo_refits;
   std::vector<double> match_ms;
-  if (need_slcd) {
-    auto s = ScoreQueries(slcd_index, result.queries, options.match, options.ransac, seed, options.threads, "slcd", &match_ms);
-    finish("slcd", std::move(s), PerQueryExtract(slcd_ms, result.queries), match_ms);
-  }
-  if (Wants(methods, "slcd-lo")) {
-    auto s = ScoreQueries(slcd_index, result.queries, options.match, lo, seed, options.threads, "slcd-lo", &match_ms);
-    finish("slcd-lo", std::move(s), PerQueryExtract(slcd_ms, result.queries), match_ms);
-  }
-  if (need_dlcd) {
-    auto s = ScoreQueries(dlcd_index, result.queries, options.match, options.ransac, seed, options.threads, "dlcd", &match_ms);
-    finish("dlcd", std::move(s), PerQueryExtract(dlcd_ms, result.queries), match_ms);
-  }
-  if (Wants(methods, "dlcd-lo")) {
-    auto s = ScoreQueries(dlcd_index, result.queries, options.match, lo, seed, options.threads, "dlcd-lo", &match_ms);
-    finish("dlcd-lo", std::move(s), PerQueryExtract(dlcd_ms, result.queries), match_ms);
+  // The point-set methods: one index each, plain or locally optimised RANSAC.
+  struct PointMethod {
+    const char* name;
+    bool wanted;
+    const RetrievalIndex* index;
+    const RansacOptions* ransac;
+    const std::vector<double>* extract_ms;
+  };
+  for (const PointMethod& m : {PointMethod{"slcd", need_slcd, &slcd_index, &options.ransac, &slcd_ms},
+                               PointMethod{"slcd-lo", Wants(methods, "slcd-lo"), &slcd_index, &lo, &slcd_ms},
+                               PointMethod{"dlcd", need_dlcd, &dlcd_index, &options.ransac, &dlcd_ms},
+                               PointMethod{"dlcd-lo", Wants(methods, "dlcd-lo"), &dlcd_index, &lo, &dlcd_ms}}) {
+    if (!m.wanted) continue;
+    auto s = ScoreQueries(*m.index, result.queries, options.match, *m.ransac, seed, options.threads, m.name, &match_ms);
+    finish(m.name, std::move(s), PerQueryExtract(*m.extract_ms, result.queries), match_ms);
   }
   if (Wants(methods, "dlcd-track")) {
     std::vector<std::vector<double>> scores(result.queries.size());

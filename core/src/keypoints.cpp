@@ -19,6 +19,7 @@ std::string KeypointOptions::Check() const {
   if (border_px < 0) return "border_px must be non-negative";
   if (!(gftt_quality > 0 && gftt_quality < 1)) return "gftt_quality must be in (0, 1)";
   if (gftt_block_size_px < 3) return "gftt_block_size_px must be at least 3";
+  if (gftt_min_eigenvalue < 0) return "gftt_min_eigenvalue must be non-negative";
   if (fast_threshold < 1 || fast_threshold > 255) return "fast_threshold must be in 1..255";
   if (blur_sigma_px < 0) return "blur_sigma_px must be non-negative";
   return "";
@@ -36,6 +37,11 @@ std::vector<Point2> DetectKeypoints(const cv::Mat& thermal_u8, const KeypointOpt
   }
   std::vector<Point2> out;
   if (options.detector == "gftt") {
+    if (options.gftt_min_eigenvalue > 0) {
+      cv::Mat strength;
+      cv::cornerMinEigenVal(image, strength, options.gftt_block_size_px, 3);
+      mask &= (strength >= options.gftt_min_eigenvalue);
+    }
     std::vector<cv::Point2f> corners;
     cv::goodFeaturesToTrack(image, corners, options.max_keypoints, options.gftt_quality,
                             std::max(1.0, options.nms_radius_px), mask, options.gftt_block_size_px);

@@ -6,13 +6,13 @@ hoilcd=$1
 scene=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-frames=24
+frames=45
 
 "$hoilcd" -q render "$scene" -o "$work/whole" --frames $frames
 
 wait_for_frames() {  # dir count
   for _ in $(seq 1 1200); do
-    n=$(find "$1/exr" -name '*.exr' 2>/dev/null | wc -l)
+    n=$( (find "$1/exr" -name '*.exr' 2>/dev/null || true) | wc -l)
     [ "$n" -ge "$2" ] && return 0
     sleep 0.05
   done
@@ -24,7 +24,7 @@ for signal in KILL INT; do
   dir="$work/killed_$signal"
   "$hoilcd" -q render "$scene" -o "$dir" --frames $frames &
   pid=$!
-  wait_for_frames "$dir" 6
+  wait_for_frames "$dir" 30  # past the first manifest checkpoint (every 25 frames)
   kill -s $signal $pid
   status=0
   wait $pid || status=$?
@@ -32,7 +32,10 @@ for signal in KILL INT; do
     echo "Ctrl-C should exit with 130 (interrupted) or 0 (already done), got $status" >&2
     exit 1
   fi
-  "$hoilcd" -q render "$scene" -o "$dir" --frames $frames
+  resumed=$("$hoilcd" -q render "$scene" -o "$dir" --frames $frames)
+  case "$resumed" in
+    *"(0 kept"*) [ "$signal" = INT ] || { echo "nothing was kept after SIG$signal: $resumed" >&2; exit 1; } ;;
+  esac
   if ! diff <(cd "$work/whole" && find . -type f | sort | xargs md5sum) \
             <(cd "$dir" && find . -type f | sort | xargs md5sum); then
     echo "resumed render after SIG$signal differs from an uninterrupted one" >&2

@@ -39,7 +39,9 @@ TEST(Keypoints, EveryDetectorFindsTheRectangleCornersAndRespectsBorderAndRadius)
     // Corner detectors fire at the corners; blob detectors (SIFT, AKAZE) at least on the shapes.
     const bool corner_detector = std::string(detector) == "gftt" || std::string(detector) == "fast" ||
                                  std::string(detector) == "orb";
-    if (corner_detector) EXPECT_GE(near_corner, 2) << detector;
+    if (corner_detector) {
+      EXPECT_GE(near_corner, 2) << detector;
+    }
     for (const Point2& p : points) {
       const bool on_shape = cv::Rect(30, 40, 90, 90).contains(p) || cv::Rect(140, 90, 70, 80).contains(p);
       EXPECT_TRUE(on_shape) << detector << " " << p;
@@ -64,6 +66,27 @@ TEST(Keypoints, CheckRejectsUnknownDetector) {
   options.detector = "superpoint";
   EXPECT_NE(options.Check().find("gftt"), std::string::npos);
   EXPECT_THROW(DetectKeypoints(Rectangles(), options), std::logic_error);
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(Keypoints, GfttIgnoresSensorNoiseOnAUniformWallButKeepsRealCorners) {
+  cv::Mat wall(192, 256, CV_8U);
+  cv::randn(wall, 60, 0.6);  // ~0.02 K of noise in a 20-30 °C window, the fixed pattern alike
+  KeypointOptions options;
+  EXPECT_TRUE(DetectKeypoints(wall, options).empty());
+  options.gftt_min_eigenvalue = 0;  // GFTT's relative quality alone fires on the noise
+  EXPECT_GT(DetectKeypoints(wall, options).size(), 100u);
+  cv::Mat scene = wall.clone();
+  cv::rectangle(scene, cv::Rect(100, 80, 40, 30), cv::Scalar(160), cv::FILLED);
+  cv::GaussianBlur(scene, scene, cv::Size(), 0.8);
+  const auto corners = DetectKeypoints(scene, KeypointOptions{});
+  EXPECT_GE(corners.size(), 4u);
+  EXPECT_LE(corners.size(), 12u);
 }
 
 }  // namespace

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <opencv2/imgproc.hpp>
 
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
@@ -71,12 +74,23 @@ TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
   FrameRenderer renderer(world, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 0));
   const FrameBuffers frame = renderer.Render(CorridorPose());
   SensorModel sensor(SensorOptionsFromScene(scene), frame.radiance.cols, frame.radiance.rows, 25, 1, &table);
-  const cv::Mat t = sensor.Apply(0, frame.radiance);
+  // Assert on what a user reads: the frame's EXR channels T and class, written and read back.
+  cv::Mat class_f;
+  frame.class_id.convertTo(class_f, CV_32F);
+  const std::string exr_path = (std::filesystem::temp_directory_path() / "hoilcd_renderer_test.exr").string();
+  WriteFileAtomic(exr_path, EncodeExr({{"T", sensor.Apply(0, frame.radiance)}, {"class", class_f}}));
+  cv::Mat t, class_id;
+  for (const auto& [name, channel] : ReadExr(exr_path)) {
+    if (name == "T") t = channel;
+    if (name == "class") channel.convertTo(class_id, CV_32S);
+  }
+  ASSERT_FALSE(t.empty());
+  ASSERT_EQ(cv::norm(class_id, frame.class_id, cv::NORM_INF), 0.0);
   const int person = world.classes().at("person");
   // Interior pixels of each class (one pixel away from any other class), so edge mixing and
   // the optics blur do not count.
   auto interior = [&](int cls) {
-    cv::Mat mask = frame.class_id == cls;
+    cv::Mat mask = class_id == cls;
     cv::erode(mask, mask, cv::Mat::ones(3, 3, CV_8U));
     return mask;
   };
@@ -87,14 +101,20 @@ TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
   EXPECT_GE(lo, 26.0);
   EXPECT_LE(hi, 37.0);
   EXPECT_GT(hi, 32.0) << "exposed skin reads above 32 °C";
+  // Walls and floor from the south corridor, where they fill most of the view.
+  CameraPose corridor = CorridorPose();
+  corridor.y_m = 0.4;
+  const FrameBuffers side = renderer.Render(corridor);
+  const cv::Mat side_t = sensor.Apply(1, side.radiance);
   for (const char* background : {"wall", "floor"}) {
-    const cv::Mat m = interior(world.classes().at(background));
+    cv::Mat m = side.class_id == world.classes().at(background);
+    cv::erode(m, m, cv::Mat::ones(3, 3, CV_8U));
     ASSERT_GT(cv::countNonZero(m), 100) << background;
-    cv::minMaxLoc(t, &lo, &hi, nullptr, nullptr, m);
+    cv::minMaxLoc(side_t, &lo, &hi, nullptr, nullptr, m);
     EXPECT_GE(lo, 19.0) << background;
     EXPECT_LE(hi, 25.0) << background;
   }
-  const cv::Mat cups = frame.class_id == world.classes().at("cup");
+  const cv::Mat cups = class_id == world.classes().at("cup");
   ASSERT_GT(cv::countNonZero(cups), 0) << "a cup must be in view";
   cv::minMaxLoc(t, &lo, &hi, nullptr, nullptr, cups);
   EXPECT_GT(hi, 40.0) << "a hot cup reads above 40 °C";
