@@ -204,7 +204,9 @@ std::string EncodePng(const cv::Mat& image) {
   HOILCD_CHECK_MSG(image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
                    "EncodePng takes a 1-channel CV_8U or CV_16U image");
   std::vector<uchar> buffer;
-  HOILCD_CHECK(cv::imencode(".png", image, buffer, {cv::IMWRITE_PNG_COMPRESSION, 6}));
+  // zlib level 1: 4-5x less CPU than the default 6 for 2-4 % larger frames (bench/README.md
+  // "Rendering"); PNG encoding was the render pipeline's bottleneck.
+  HOILCD_CHECK(cv::imencode(".png", image, buffer, {cv::IMWRITE_PNG_COMPRESSION, 1}));
   return std::string(buffer.begin(), buffer.end());
 }
 
