@@ -343,9 +343,6 @@ __attribute__((target_clones("avx2", "default"))) void SolveBatch(const SampleBa
   *negative_count += (du * du + dv * dv < threshold_sq * (w * w)) & keep;
 }
 
-// Matches per early-exit check of the inlier count (a multiple of 8).
-constexpr int kInlierBlock = 32;
-
 // Inlier count of h over all matches, or some count <= bar once it cannot exceed bar (which
 // leaves the result of the RANSAC loop unchanged). Eight matches per step; for a count that is
 // not a multiple of 8 the last step reloads the final eight and masks those already counted.
@@ -369,16 +366,17 @@ __attribute__((target_clones("avx2", "default"))) int CountInliers(
   const Ints8 all = {-1, -1, -1, -1, -1, -1, -1, -1};
   Ints8 negative_count = {};
   const int whole = count - count % 8;
+  // The count cannot fall to the bar before count - bar matches are seen: no check until then,
+  // then a check after every step.
+  const int first_check = count - bar;
   int i = 0;
-  for (; i + kInlierBlock <= whole; i += kInlierBlock) {
-    for (int j = 0; j < kInlierBlock; j += 8) {
-      CountEight(hv, ref_x, ref_y, query_x, query_y, i + j, threshold, all, &negative_count);
-    }
-    const int inliers = -HorizontalSum(negative_count);
-    if (inliers + (count - i - kInlierBlock) <= bar) return inliers;
+  for (; i < whole && i + 8 < first_check; i += 8) {
+    CountEight(hv, ref_x, ref_y, query_x, query_y, i, threshold, all, &negative_count);
   }
   for (; i < whole; i += 8) {
     CountEight(hv, ref_x, ref_y, query_x, query_y, i, threshold, all, &negative_count);
+    const int inliers = -HorizontalSum(negative_count);
+    if (inliers + (count - i - 8) <= bar) return inliers;
   }
   if (whole < count) {
     const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};

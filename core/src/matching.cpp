@@ -323,20 +323,22 @@ int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
   MutualNearestNeighboursCached(query_points, query_grid, reference_points, reference_grid,
                                 &reverse_nearest_, &matches_);
   const double tolerance_px = match_options.vertical_tolerance * match_options.image_height_px;
-  ref_x_.clear();
-  ref_y_.clear();
-  query_x_.clear();
-  query_y_.clear();
+  const size_t capacity = matches_.size();
+  ref_x_.resize(capacity);
+  ref_y_.resize(capacity);
+  query_x_.resize(capacity);
+  query_y_.resize(capacity);
+  size_t kept = 0;
   for (const Correspondence& m : matches_) {
     const Point2 q = query_points[m.query], r = reference_points[m.reference];
-    if (!WithinVerticalTolerance(q.y, r.y, tolerance_px)) continue;
-    ref_x_.push_back(r.x);
-    ref_y_.push_back(r.y);
-    query_x_.push_back(q.x);
-    query_y_.push_back(q.y);
+    ref_x_[kept] = r.x;
+    ref_y_[kept] = r.y;
+    query_x_[kept] = q.x;
+    query_y_[kept] = q.y;
+    kept += WithinVerticalTolerance(q.y, r.y, tolerance_px) ? 1 : 0;
   }
   return RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(),
-                             static_cast<int>(ref_x_.size()), ransac_options, pair_seed, nullptr,
+                             static_cast<int>(kept), ransac_options, pair_seed, nullptr,
                              nullptr);
 }
 
