@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
 #include <sstream>
 
 #include <Eigen/Cholesky>
@@ -21,7 +24,7 @@ constexpr int64_t kMaxDrawsPerTrial = 10;
 // Signed doubled areas of the point triplets (0,1,2), (0,1,3), (0,2,3), (1,2,3) of a sample.
 // With a, b, c = p1, p2, p3 minus p0, the area of (1,2,3) is b×c + a×b - a×c.
 template <typename Real>
-inline void TripletAreas(const Real x[4], const Real y[4], Real area[4]) {
+[[gnu::always_inline]] inline void TripletAreas(const Real x[4], const Real y[4], Real area[4]) {
   const Real ax = x[1] - x[0], ay = y[1] - y[0];
   const Real bx = x[2] - x[0], by = y[2] - y[0];
   const Real cx = x[3] - x[0], cy = y[3] - y[0];
@@ -31,81 +34,48 @@ inline void TripletAreas(const Real x[4], const Real y[4], Real area[4]) {
   area[3] = area[2] + area[0] - area[1];
 }
 
-// Samples drawn and pre-checked together, lane b holding sample b (structure of arrays).
-constexpr int kBatch = 8;
-struct SampleBatch {
-  uint32_t idx[kBatch][4] = {};
-  float sx[4][kBatch] = {}, sy[4][kBatch] = {}, dx[4][kBatch] = {}, dy[4][kBatch] = {};
-  int32_t consistent[kBatch] = {};
+// Eight float lanes (GCC vector extensions; the default clones lower them to two SSE halves).
+using Floats8 = float __attribute__((vector_size(32)));
+using Ints8 = int32_t __attribute__((vector_size(32)));
+
+// The sample geometry below is written once for double (one sample) and Floats8 (eight samples,
+// one per lane): comparisons give bool or a lane mask, and `?:` selects per lane.
+template <typename Real>
+struct ScalarOf {
+  using Type = Real;
+};
+template <>
+struct ScalarOf<Floats8> {
+  using Type = float;
 };
 
-// consistent[b] = 0 if sample b keeps the orientation of some of its four point triplets but
-// flips others: no homography without a point at infinity between the images does that
-// (OpenCV's HomographyEstimatorCallback::checkSubset applies the same test). Lane-parallel, as
-// most random samples fail it. Float is enough: a sign can only come out wrong for a nearly
-// collinear triplet, which GeneralPosition rejects anyway.
-__attribute__((target_clones("avx2", "default"))) void CheckOrientations(SampleBatch* batch) {
-  for (int b = 0; b < kBatch; ++b) {
-    float src[4], dst[4];
-    const float qx[4] = {batch->sx[0][b], batch->sx[1][b], batch->sx[2][b], batch->sx[3][b]};
-    const float qy[4] = {batch->sy[0][b], batch->sy[1][b], batch->sy[2][b], batch->sy[3][b]};
-    const float px[4] = {batch->dx[0][b], batch->dx[1][b], batch->dx[2][b], batch->dx[3][b]};
-    const float py[4] = {batch->dy[0][b], batch->dy[1][b], batch->dy[2][b], batch->dy[3][b]};
-    TripletAreas(qx, qy, src);
-    TripletAreas(px, py, dst);
-    const float p0 = src[0] * dst[0], p1 = src[1] * dst[1], p2 = src[2] * dst[2],
-                p3 = src[3] * dst[3];
-    const float lowest = std::min(std::min(p0, p1), std::min(p2, p3));
-    const float highest = std::max(std::max(p0, p1), std::max(p2, p3));
-    batch->consistent[b] = (highest < 0) | (lowest >= 0);
-  }
-}
-
-// Draws `size` samples of 4 distinct indices in [0, n) from rng, in lane order, and checks them.
-void DrawBatch(Rng& rng, uint32_t n, int size, const float* ref_x, const float* ref_y,
-               const float* query_x, const float* query_y, SampleBatch* batch) {
-  for (int b = 0; b < size; ++b) {
-    uint32_t* idx = batch->idx[b];
-    idx[0] = rng.UniformInt(n);
-    do idx[1] = rng.UniformInt(n); while (idx[1] == idx[0]);
-    do idx[2] = rng.UniformInt(n); while (idx[2] == idx[0] || idx[2] == idx[1]);
-    do idx[3] = rng.UniformInt(n); while (idx[3] == idx[0] || idx[3] == idx[1] || idx[3] == idx[2]);
-    for (int k = 0; k < 4; ++k) {
-      batch->sx[k][b] = ref_x[idx[k]];
-      batch->sy[k][b] = ref_y[idx[k]];
-      batch->dx[k][b] = query_x[idx[k]];
-      batch->dy[k][b] = query_y[idx[k]];
-    }
-  }
-  CheckOrientations(batch);
-}
-
-// True if no triplet is (nearly) collinear: area² > sine² · |edge1|² · |edge2|² for the two
+// *general = no triplet is (nearly) collinear: area² > sine² · |edge1|² · |edge2|² for the two
 // edges at the triplet's first vertex.
-inline bool GeneralPosition(const double x[4], const double y[4], const double area[4]) {
-  const double ax = x[1] - x[0], ay = y[1] - y[0];
-  const double bx = x[2] - x[0], by = y[2] - y[0];
-  const double cx = x[3] - x[0], cy = y[3] - y[0];
-  const double ex = bx - ax, ey = by - ay, fx = cx - ax, fy = cy - ay;  // p2 - p1, p3 - p1
-  const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  const double e2 = ex * ex + ey * ey, f2 = fx * fx + fy * fy;
-  const double edges[4] = {a2 * b2, a2 * c2, b2 * c2, e2 * f2};
-  constexpr double kSineSq = kMinSampleSine * kMinSampleSine;
-  int collinear = 0;
-  for (int k = 0; k < 4; ++k) collinear |= area[k] * area[k] <= kSineSq * edges[k] ? 1 : 0;
-  return collinear == 0;
+template <typename Real, typename Mask>
+[[gnu::always_inline]] inline void GeneralPosition(const Real x[4], const Real y[4], const Real area[4], Mask* general) {
+  using Scalar = typename ScalarOf<Real>::Type;
+  const Real ax = x[1] - x[0], ay = y[1] - y[0];
+  const Real bx = x[2] - x[0], by = y[2] - y[0];
+  const Real cx = x[3] - x[0], cy = y[3] - y[0];
+  const Real ex = bx - ax, ey = by - ay, fx = cx - ax, fy = cy - ay;  // p2 - p1, p3 - p1
+  const Real a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const Real e2 = ex * ex + ey * ey, f2 = fx * fx + fy * fy;
+  const Scalar sine_sq = static_cast<Scalar>(kMinSampleSine * kMinSampleSine);
+  *general = (area[0] * area[0] > sine_sq * (a2 * b2)) & (area[1] * area[1] > sine_sq * (a2 * c2)) &
+             (area[2] * area[2] > sine_sq * (b2 * c2)) & (area[3] * area[3] > sine_sq * (e2 * f2));
 }
 
 // Unit square (0,0),(1,0),(1,1),(0,1) -> quad (x[i], y[i]) (Heckbert 1989), up to scale,
 // row-major; division-free so a general-position quad gives a finite, non-singular matrix.
-inline void SquareToQuad(const double x[4], const double y[4], double m[9]) {
-  const double sx = x[0] - x[1] + x[2] - x[3];
-  const double sy = y[0] - y[1] + y[2] - y[3];
-  const double dx1 = x[1] - x[2], dx2 = x[3] - x[2];
-  const double dy1 = y[1] - y[2], dy2 = y[3] - y[2];
-  const double den = dx1 * dy2 - dx2 * dy1;
-  const double g = sx * dy2 - dx2 * sy;
-  const double h = dx1 * sy - sx * dy1;
+template <typename Real>
+[[gnu::always_inline]] inline void SquareToQuad(const Real x[4], const Real y[4], Real m[9]) {
+  const Real sx = x[0] - x[1] + x[2] - x[3];
+  const Real sy = y[0] - y[1] + y[2] - y[3];
+  const Real dx1 = x[1] - x[2], dx2 = x[3] - x[2];
+  const Real dy1 = y[1] - y[2], dy2 = y[3] - y[2];
+  const Real den = dx1 * dy2 - dx2 * dy1;
+  const Real g = sx * dy2 - dx2 * sy;
+  const Real h = dx1 * sy - sx * dy1;
   m[0] = (x[1] - x[0]) * den + g * x[1];
   m[1] = (x[3] - x[0]) * den + h * x[3];
   m[2] = x[0] * den;
@@ -118,7 +88,8 @@ inline void SquareToQuad(const double x[4], const double y[4], double m[9]) {
 }
 
 // Adjugate of a row-major 3x3 matrix (its inverse up to scale).
-inline void Adjugate(const double m[9], double a[9]) {
+template <typename Real>
+[[gnu::always_inline]] inline void Adjugate(const Real m[9], Real a[9]) {
   a[0] = m[4] * m[8] - m[5] * m[7];
   a[1] = m[2] * m[7] - m[1] * m[8];
   a[2] = m[1] * m[5] - m[2] * m[4];
@@ -130,11 +101,299 @@ inline void Adjugate(const double m[9], double a[9]) {
   a[8] = m[0] * m[4] - m[1] * m[3];
 }
 
-inline void Multiply3(const double a[9], const double b[9], double c[9]) {
+template <typename Real>
+[[gnu::always_inline]] inline void Multiply3(const Real a[9], const Real b[9], Real c[9]) {
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
       c[3 * r + k] = a[3 * r] * b[k] + a[3 * r + 1] * b[3 + k] + a[3 * r + 2] * b[6 + k];
     }
+  }
+}
+
+// Closed-form 4-point homography src -> dst, up to scale. Each quad is moved to its centroid
+// and scaled to coordinates within [-1, 1], which keeps the degree-9 polynomial entries in
+// float range (relative precision is scale-invariant anyway).
+template <typename Real>
+[[gnu::always_inline]] inline void ClosedFormHomography(const Real sx[4], const Real sy[4], const Real dx[4],
+                                 const Real dy[4], Real h[9]) {
+  using Scalar = typename ScalarOf<Real>::Type;
+  const Scalar quarter = 0.25f;
+  const Real scx = quarter * (sx[0] + sx[1] + sx[2] + sx[3]);
+  const Real scy = quarter * (sy[0] + sy[1] + sy[2] + sy[3]);
+  const Real dcx = quarter * (dx[0] + dx[1] + dx[2] + dx[3]);
+  const Real dcy = quarter * (dy[0] + dy[1] + dy[2] + dy[3]);
+  // A quad of one repeated point keeps the smallest extent; GeneralPosition rejects it anyway.
+  Real src_extent = std::numeric_limits<Scalar>::min() + scx * 0;
+  Real dst_extent = src_extent;
+  Real nsx[4], nsy[4], ndx[4], ndy[4];
+  for (int i = 0; i < 4; ++i) {
+    nsx[i] = sx[i] - scx;
+    nsy[i] = sy[i] - scy;
+    ndx[i] = dx[i] - dcx;
+    ndy[i] = dy[i] - dcy;
+    for (const Real& v : {nsx[i], nsy[i]}) {
+      const Real magnitude = v < 0 ? -v : v;
+      src_extent = magnitude > src_extent ? magnitude : src_extent;
+    }
+    for (const Real& v : {ndx[i], ndy[i]}) {
+      const Real magnitude = v < 0 ? -v : v;
+      dst_extent = magnitude > dst_extent ? magnitude : dst_extent;
+    }
+  }
+  const Real src_scale = Scalar{1} / src_extent, dst_scale = Scalar{1} / dst_extent;
+  for (int i = 0; i < 4; ++i) {
+    nsx[i] *= src_scale;
+    nsy[i] *= src_scale;
+    ndx[i] *= dst_scale;
+    ndy[i] *= dst_scale;
+  }
+  Real square_to_src[9], square_to_dst[9], src_to_square[9], hn[9];
+  SquareToQuad(nsx, nsy, square_to_src);
+  SquareToQuad(ndx, ndy, square_to_dst);
+  Adjugate(square_to_src, src_to_square);
+  Multiply3(square_to_dst, src_to_square, hn);
+  // H = T(dst centroid) · S(dst_extent) · Hn · S(src_scale) · T(-src centroid).
+  for (int r = 0; r < 3; ++r) {
+    hn[3 * r] *= src_scale;
+    hn[3 * r + 1] *= src_scale;
+  }
+  for (int k = 0; k < 6; ++k) hn[k] *= dst_extent;
+  for (int r = 0; r < 3; ++r) hn[3 * r + 2] -= scx * hn[3 * r] + scy * hn[3 * r + 1];
+  for (int k = 0; k < 3; ++k) {
+    h[k] = hn[k] + dcx * hn[6 + k];
+    h[3 + k] = hn[3 + k] + dcy * hn[6 + k];
+    h[6 + k] = hn[6 + k];
+  }
+}
+
+// Scales h so its largest entry has magnitude 1; false if h is zero or not finite.
+inline bool NormaliseMaxAbs(double h[9]) {
+  double largest = 0;
+  for (int i = 0; i < 9; ++i) largest = std::max(largest, std::abs(h[i]));
+  if (!(largest > 0) || !std::isfinite(largest)) return false;
+  const double inv = 1.0 / largest;
+  for (int i = 0; i < 9; ++i) h[i] *= inv;
+  return true;
+}
+
+// Four distinct indices in [0, n), uniform over ordered 4-tuples, from one 64-bit draw for
+// n < 2^16: Lemire's multiply-shift on the range n(n-1)(n-2)(n-3), whose high part is the
+// mixed-radix number of four digits and whose low part feeds the exact rejection test
+// (Brackett-Rozinsky & Lemire 2024, "Batched ranged random integer generation"; a rejection
+// has probability below 2^-32). Larger n take four Rng::UniformInt draws. Digit k is uniform
+// in [0, n - k) and skips the k indices taken before it.
+class FourIndexSampler {
+ public:
+  explicit FourIndexSampler(uint32_t n) : n_(n), batched_(n < (1u << 16)) {
+    const uint64_t wide = n;
+    const uint64_t range = wide * (wide - 1) * (wide - 2) * (wide - 3);
+    if (batched_) reject_below_ = (0 - range) % range;  // 2^64 mod range
+  }
+
+  void Draw(Rng& rng, uint32_t idx[4]) const {
+    uint32_t digit[4];
+    if (batched_) {
+      uint64_t low;
+      do {
+        low = (static_cast<uint64_t>(rng.NextU32()) << 32) | rng.NextU32();
+        for (int k = 0; k < 4; ++k) {
+          const unsigned __int128 product = static_cast<unsigned __int128>(low) * (n_ - k);
+          digit[k] = static_cast<uint32_t>(product >> 64);
+          low = static_cast<uint64_t>(product);
+        }
+      } while (low < reject_below_);
+    } else {
+      for (int k = 0; k < 4; ++k) digit[k] = rng.UniformInt(n_ - k);
+    }
+    // Each digit is bumped past every taken index at or below it, smallest taken first.
+    const uint32_t i0 = digit[0];
+    const uint32_t i1 = digit[1] + (digit[1] >= i0 ? 1 : 0);
+    const uint32_t a = std::min(i0, i1), b = std::max(i0, i1);
+    uint32_t i2 = digit[2] + (digit[2] >= a ? 1 : 0);
+    i2 += i2 >= b ? 1 : 0;
+    const uint32_t lo = std::min(a, i2), hi = std::max(b, i2);
+    const uint32_t mid = i0 + i1 + i2 - lo - hi;
+    uint32_t i3 = digit[3] + (digit[3] >= lo ? 1 : 0);
+    i3 += i3 >= mid ? 1 : 0;
+    i3 += i3 >= hi ? 1 : 0;
+    idx[0] = i0;
+    idx[1] = i1;
+    idx[2] = i2;
+    idx[3] = i3;
+  }
+
+ private:
+  uint32_t n_;
+  bool batched_;
+  uint64_t reject_below_ = 0;
+};
+
+// Eight samples of four match indices each; sample b goes to vector lane b.
+constexpr int kBatch = 8;
+using SampleBatch = uint32_t[kBatch][4];
+
+using Floats4 = float __attribute__((vector_size(16)));
+
+// Gathers point k of every sample of a batch into lanes, from the matches as an array of
+// (src x, src y, dst x, dst y) quadruples (src = reference, dst = query): one 16-byte load per
+// point, then a 4x4 transpose within each 128-bit half. Built in registers: vector loads of
+// scalar stores would stall on store forwarding.
+[[gnu::always_inline]] inline void GatherPoints(const SampleBatch& batch, const float* quads,
+                                                Floats8 sx[4], Floats8 sy[4], Floats8 dx[4],
+                                                Floats8 dy[4]) {
+  for (int k = 0; k < 4; ++k) {
+    Floats8 rows[4];  // rows[j] = quadruple of sample j | quadruple of sample j + 4
+    for (int j = 0; j < 4; ++j) {
+      Floats4 low, high;
+      std::memcpy(&low, quads + 4 * batch[j][k], sizeof low);
+      std::memcpy(&high, quads + 4 * batch[j + 4][k], sizeof high);
+      rows[j] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+    }
+    const Floats8 t0 = __builtin_shufflevector(rows[0], rows[1], 0, 8, 1, 9, 4, 12, 5, 13);
+    const Floats8 t1 = __builtin_shufflevector(rows[2], rows[3], 0, 8, 1, 9, 4, 12, 5, 13);
+    const Floats8 t2 = __builtin_shufflevector(rows[0], rows[1], 2, 10, 3, 11, 6, 14, 7, 15);
+    const Floats8 t3 = __builtin_shufflevector(rows[2], rows[3], 2, 10, 3, 11, 6, 14, 7, 15);
+    sx[k] = __builtin_shufflevector(t0, t1, 0, 1, 8, 9, 4, 5, 12, 13);
+    sy[k] = __builtin_shufflevector(t0, t1, 2, 3, 10, 11, 6, 7, 14, 15);
+    dx[k] = __builtin_shufflevector(t2, t3, 0, 1, 8, 9, 4, 5, 12, 13);
+    dy[k] = __builtin_shufflevector(t2, t3, 2, 3, 10, 11, 6, 7, 14, 15);
+  }
+}
+
+// The hypotheses of a SampleBatch.
+struct HypothesisBatch {
+  float h[9][kBatch];     // hypothesis of each lane, max |h| = 1
+  int32_t valid[kBatch];  // 0 if the sample is degenerate
+};
+
+// consistent[b] = 0 if sample b keeps the orientation of some of its four point triplets but
+// flips others: no homography without a point at infinity between the images does that
+// (OpenCV's HomographyEstimatorCallback::checkSubset applies the same test). Most random
+// samples fail it, so it runs on every draw and only the survivors are solved. Float is
+// enough: a sign can only come out wrong for a nearly collinear triplet, rejected later anyway.
+// Cloned for AVX2 with run-time dispatch; no FMA, so both clones give the same floats.
+__attribute__((target_clones("avx2", "default"))) void CheckOrientations(
+    const SampleBatch& batch, const float* quads, int32_t consistent[kBatch]) {
+  Floats8 sx[4], sy[4], dx[4], dy[4];
+  GatherPoints(batch, quads, sx, sy, dx, dy);
+  Floats8 src_area[4], dst_area[4];
+  TripletAreas(sx, sy, src_area);
+  TripletAreas(dx, dy, dst_area);
+  Floats8 products[4];
+  for (int k = 0; k < 4; ++k) products[k] = src_area[k] * dst_area[k];
+  const Ints8 result =
+      ((products[0] < 0) & (products[1] < 0) & (products[2] < 0) & (products[3] < 0)) |
+      ((products[0] >= 0) & (products[1] >= 0) & (products[2] >= 0) & (products[3] >= 0));
+  std::memcpy(consistent, &result, sizeof result);
+}
+
+// Solves the eight samples of a batch in float, one per lane (cloned like CheckOrientations).
+// A lane is invalid if three of its points are (nearly) collinear in either image or if its
+// closed-form solution is zero or not finite.
+__attribute__((target_clones("avx2", "default"))) void SolveBatch(const SampleBatch& batch,
+                                                                   const float* quads,
+                                                                   HypothesisBatch* out) {
+  Floats8 sx[4], sy[4], dx[4], dy[4];
+  GatherPoints(batch, quads, sx, sy, dx, dy);
+  Floats8 src_area[4], dst_area[4];
+  TripletAreas(sx, sy, src_area);
+  TripletAreas(dx, dy, dst_area);
+  Ints8 src_general, dst_general;
+  GeneralPosition(sx, sy, src_area, &src_general);
+  GeneralPosition(dx, dy, dst_area, &dst_general);
+  Floats8 h[9];
+  ClosedFormHomography(sx, sy, dx, dy, h);
+  Floats8 largest = {};
+  for (int i = 0; i < 9; ++i) {
+    const Floats8 magnitude = h[i] < 0 ? -h[i] : h[i];
+    largest = magnitude > largest ? magnitude : largest;
+  }
+  const Ints8 finite = (largest > 0) & (largest <= std::numeric_limits<float>::max());
+  const Floats8 one = {1, 1, 1, 1, 1, 1, 1, 1};
+  const Floats8 inv = 1.0f / (finite ? largest : one);
+  for (int i = 0; i < 9; ++i) h[i] *= inv;
+  std::memcpy(out->h, h, sizeof h);
+  const Ints8 valid = src_general & dst_general & finite;
+  std::memcpy(out->valid, &valid, sizeof valid);
+}
+
+[[gnu::always_inline]] inline int32_t HorizontalSum(const Ints8& v) {
+  Ints8 sum = v + __builtin_shuffle(v, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
+  sum += __builtin_shuffle(sum, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
+  sum += __builtin_shuffle(sum, Ints8{1, 0, 3, 2, 5, 4, 7, 6});
+  return sum[0];
+}
+
+// Adds to *negative_count, lane by lane, minus one for each of the eight matches from `start`
+// that is an inlier of h and whose lane is set in `keep`. Division-free:
+// |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0).
+[[gnu::always_inline]] inline void CountEight(const Floats8 h[9], const float* ref_x,
+                                              const float* ref_y, const float* query_x,
+                                              const float* query_y, int start,
+                                              const Floats8& threshold_sq, const Ints8& keep,
+                                              Ints8* negative_count) {
+  Floats8 x, y, qx, qy;
+  std::memcpy(&x, ref_x + start, sizeof x);
+  std::memcpy(&y, ref_y + start, sizeof y);
+  std::memcpy(&qx, query_x + start, sizeof qx);
+  std::memcpy(&qy, query_y + start, sizeof qy);
+  const Floats8 w = h[6] * x + h[7] * y + h[8];
+  const Floats8 du = h[0] * x + h[1] * y + h[2] - qx * w;
+  const Floats8 dv = h[3] * x + h[4] * y + h[5] - qy * w;
+  *negative_count += (du * du + dv * dv < threshold_sq * (w * w)) & keep;
+}
+
+// Inlier count of h over all matches, or some count <= bar once it cannot exceed bar (which
+// leaves the result of the RANSAC loop unchanged). Eight matches per step; for a count that is
+// not a multiple of 8 the last step reloads the final eight and masks those already counted.
+__attribute__((target_clones("avx2", "default"))) int CountInliers(
+    const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
+    const float* query_y, int count, float threshold_sq, int bar) {
+  if (count < 8) {
+    int inliers = 0;
+    for (int i = 0; i < count; ++i) {
+      const float x = ref_x[i], y = ref_y[i];
+      const float w = h[6] * x + h[7] * y + h[8];
+      const float du = h[0] * x + h[1] * y + h[2] - query_x[i] * w;
+      const float dv = h[3] * x + h[4] * y + h[5] - query_y[i] * w;
+      inliers += (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
+    }
+    return inliers;
+  }
+  Floats8 hv[9];
+  for (int k = 0; k < 9; ++k) hv[k] = Floats8{} + h[k];
+  const Floats8 threshold = Floats8{} + threshold_sq;
+  const Ints8 all = {-1, -1, -1, -1, -1, -1, -1, -1};
+  Ints8 negative_count = {};
+  const int whole = count - count % 8;
+  // The count cannot fall to the bar before count - bar matches are seen: no check until then,
+  // then a check after every step.
+  const int first_check = count - bar;
+  int i = 0;
+  for (; i < whole && i + 8 < first_check; i += 8) {
+    CountEight(hv, ref_x, ref_y, query_x, query_y, i, threshold, all, &negative_count);
+  }
+  for (; i < whole; i += 8) {
+    CountEight(hv, ref_x, ref_y, query_x, query_y, i, threshold, all, &negative_count);
+    const int inliers = -HorizontalSum(negative_count);
+    if (inliers + (count - i - 8) <= bar) return inliers;
+  }
+  if (whole < count) {
+    const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    CountEight(hv, ref_x, ref_y, query_x, query_y, count - 8, threshold,
+               lane >= 8 - count % 8, &negative_count);
+  }
+  return -HorizontalSum(negative_count);
+}
+
+void MarkInliers(const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
+                 const float* query_y, int count, float threshold_sq, uint8_t* mask) {
+  for (int i = 0; i < count; ++i) {
+    const float x = ref_x[i], y = ref_y[i];
+    const float w = h[6] * x + h[7] * y + h[8];
+    const float du = h[0] * x + h[1] * y + h[2] - query_x[i] * w;
+    const float dv = h[3] * x + h[4] * y + h[5] - query_y[i] * w;
+    mask[i] = (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
   }
 }
 
@@ -160,94 +419,8 @@ void Denormalise(const double hn[9], const Normalisation& src, const Normalisati
   }
 }
 
-// Scales h so its largest entry has magnitude 1; false if h is zero or not finite.
-inline bool NormaliseMaxAbs(double h[9]) {
-  double largest = 0;
-  for (int i = 0; i < 9; ++i) largest = std::max(largest, std::abs(h[i]));
-  if (!(largest > 0) || !std::isfinite(largest)) return false;
-  const double inv = 1.0 / largest;
-  for (int i = 0; i < 9; ++i) h[i] *= inv;
-  return true;
-}
-
-// Closed-form 4-point homography src -> dst on coordinates centred on each set's centroid,
-// scaled to max |h| = 1; the caller has checked that both quads are in general position.
-// Scaling as well would not help: the closed form is a polynomial in the coordinates, and
-// floating-point relative error is scale-invariant.
-inline bool ClosedFormHomography(const double sx[4], const double sy[4], const double dx[4],
-                                 const double dy[4], double h[9]) {
-  const double scx = 0.25 * (sx[0] + sx[1] + sx[2] + sx[3]);
-  const double scy = 0.25 * (sy[0] + sy[1] + sy[2] + sy[3]);
-  const double dcx = 0.25 * (dx[0] + dx[1] + dx[2] + dx[3]);
-  const double dcy = 0.25 * (dy[0] + dy[1] + dy[2] + dy[3]);
-  double nsx[4], nsy[4], ndx[4], ndy[4];
-  for (int i = 0; i < 4; ++i) {
-    nsx[i] = sx[i] - scx;
-    nsy[i] = sy[i] - scy;
-    ndx[i] = dx[i] - dcx;
-    ndy[i] = dy[i] - dcy;
-  }
-  double square_to_src[9], square_to_dst[9], src_to_square[9], hn[9];
-  SquareToQuad(nsx, nsy, square_to_src);
-  SquareToQuad(ndx, ndy, square_to_dst);
-  Adjugate(square_to_src, src_to_square);
-  Multiply3(square_to_dst, src_to_square, hn);
-  // H = T(dst centroid) · Hn · T(-src centroid).
-  for (int r = 0; r < 3; ++r) hn[3 * r + 2] -= scx * hn[3 * r] + scy * hn[3 * r + 1];
-  for (int k = 0; k < 3; ++k) {
-    h[k] = hn[k] + dcx * hn[6 + k];
-    h[3 + k] = hn[3 + k] + dcy * hn[6 + k];
-    h[6 + k] = hn[6 + k];
-  }
-  return NormaliseMaxAbs(h);
-}
-
-// Matches per block of the inlier count; after each block the count gives up if it can no
-// longer beat the bar, which leaves the result of the RANSAC loop unchanged.
-constexpr int kInlierBlock = 64;
-
-// Inlier count of h over all matches, or some count <= bar once it cannot exceed bar. The block
-// loop is division-free so GCC vectorises it at -O3:
-// |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0). Cloned for AVX2 with a
-// run-time dispatch (the build has no -march); lane width does not change the float results.
-__attribute__((target_clones("avx2", "default"))) int CountInliers(
-    const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
-    const float* query_y, int count, float threshold_sq, int bar) {
-  const float h0 = h[0], h1 = h[1], h2 = h[2], h3 = h[3], h4 = h[4], h5 = h[5], h6 = h[6],
-              h7 = h[7], h8 = h[8];
-  int inliers = 0;
-  for (int begin = 0; begin < count; begin += kInlierBlock) {
-    const int end = std::min(count, begin + kInlierBlock);
-    int block_inliers = 0;
-    for (int i = begin; i < end; ++i) {
-      const float x = ref_x[i], y = ref_y[i];
-      const float w = h6 * x + h7 * y + h8;
-      const float du = h0 * x + h1 * y + h2 - query_x[i] * w;
-      const float dv = h3 * x + h4 * y + h5 - query_y[i] * w;
-      block_inliers += (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
-    }
-    inliers += block_inliers;
-    if (inliers + (count - end) <= bar) return inliers;
-  }
-  return inliers;
-}
-
-void MarkInliers(const float h[9], const float* ref_x, const float* ref_y, const float* query_x,
-                 const float* query_y, int count, float threshold_sq, uint8_t* mask) {
-  for (int i = 0; i < count; ++i) {
-    const float x = ref_x[i], y = ref_y[i];
-    const float w = h[6] * x + h[7] * y + h[8];
-    const float du = h[0] * x + h[1] * y + h[2] - query_x[i] * w;
-    const float dv = h[3] * x + h[4] * y + h[5] - query_y[i] * w;
-    mask[i] = (du * du + dv * dv < threshold_sq * (w * w)) ? 1 : 0;
-  }
-}
-
-void ToFloat(const double h[9], float f[9]) {
-  for (int i = 0; i < 9; ++i) f[i] = static_cast<float>(h[i]);
-}
-
-Eigen::Matrix3d ToResultMatrix(const double h[9]) {
+template <typename Real>
+Eigen::Matrix3d ToResultMatrix(const Real h[9]) {
   Eigen::Matrix3d m;
   m << h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], h[8];
   if (std::abs(m(2, 2)) > 1e-12 * m.cwiseAbs().maxCoeff()) m /= m(2, 2);
@@ -283,8 +456,12 @@ bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::M
   double src_area[4], dst_area[4];
   TripletAreas(sx, sy, src_area);
   TripletAreas(dx, dy, dst_area);
-  if (!GeneralPosition(sx, sy, src_area) || !GeneralPosition(dx, dy, dst_area)) return false;
-  if (!ClosedFormHomography(sx, sy, dx, dy, m)) return false;
+  bool src_general = false, dst_general = false;
+  GeneralPosition(sx, sy, src_area, &src_general);
+  GeneralPosition(dx, dy, dst_area, &dst_general);
+  if (!src_general || !dst_general) return false;
+  ClosedFormHomography(sx, sy, dx, dy, m);
+  if (!NormaliseMaxAbs(m)) return false;
   *h = ToResultMatrix(m);
   return true;
 }
@@ -371,76 +548,88 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
   }
   const float threshold_sq =
       static_cast<float>(options.inlier_threshold_px * options.inlier_threshold_px);
+  std::unique_ptr<float[]> quads(new float[4 * static_cast<size_t>(count)]);
+  for (int i = 0; i < count; ++i) {
+    quads[4 * i] = ref_x[i];
+    quads[4 * i + 1] = ref_y[i];
+    quads[4 * i + 2] = query_x[i];
+    quads[4 * i + 3] = query_y[i];
+  }
   Rng rng(seed);
-  const uint32_t n = static_cast<uint32_t>(count);
+  const FourIndexSampler sampler(static_cast<uint32_t>(count));
   // With exactly 4 matches every sample is the same set: one draw decides.
   const int64_t draw_budget =
       count == 4 ? 1
                  : static_cast<int64_t>(options.trials) *
                        (options.redraw_degenerate_samples ? kMaxDrawsPerTrial : 1);
-  double best[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  float best[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   int best_inliers = 0;
   std::vector<uint8_t> lo_mask;
   int hypotheses = 0;
-  SampleBatch batch;
-  int lane = 0, batch_size = 0;  // next lane to use, lanes drawn
-  for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget; ++draws) {
-    if (lane == batch_size) {
-      batch_size = static_cast<int>(std::min<int64_t>(kBatch, draw_budget - draws));
-      DrawBatch(rng, n, batch_size, ref_x, ref_y, query_x, query_y, &batch);
-      lane = 0;
-    }
-    const int b = lane++;
-    if (!batch.consistent[b]) continue;
-    double sx[4], sy[4], dx[4], dy[4], src_area[4], dst_area[4], h[9];
-    for (int k = 0; k < 4; ++k) {
-      sx[k] = batch.sx[k][b];
-      sy[k] = batch.sy[k][b];
-      dx[k] = batch.dx[k][b];
-      dy[k] = batch.dy[k][b];
-    }
-    TripletAreas(sx, sy, src_area);
-    TripletAreas(dx, dy, dst_area);
-    if (!GeneralPosition(sx, sy, src_area) || !GeneralPosition(dx, dy, dst_area) ||
-        !ClosedFormHomography(sx, sy, dx, dy, h)) {
-      continue;
-    }
-    ++hypotheses;
-    float hf[9];
-    ToFloat(h, hf);
-    const int inliers =
-        CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
-    if (inliers <= best_inliers) continue;
-    best_inliers = inliers;
-    std::copy(h, h + 9, best);
-    if (options.local_optimisation_refits <= 0 || inliers <= 4) continue;
-    lo_mask.resize(count);
-    MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
-    for (int refit = 0; refit < options.local_optimisation_refits; ++refit) {
-      Eigen::Matrix3d fit;
-      if (!HomographyLeastSquares(ref_x, ref_y, query_x, query_y, lo_mask.data(), count, &fit)) {
-        break;
-      }
-      double hr[9];
-      for (int k = 0; k < 9; ++k) hr[k] = fit(k / 3, k % 3);
-      if (!NormaliseMaxAbs(hr)) break;
-      ToFloat(hr, hf);
-      const int refit_inliers =
+  // Evaluates the first `size` lanes of `pending` in order, until `trials` hypotheses are in.
+  const auto evaluate = [&](const SampleBatch& pending, int size) {
+    HypothesisBatch solved;
+    SolveBatch(pending, quads.get(), &solved);
+    for (int b = 0; b < size && hypotheses < options.trials; ++b) {
+      if (!solved.valid[b]) continue;
+      ++hypotheses;
+      float hf[9];
+      for (int k = 0; k < 9; ++k) hf[k] = solved.h[k][b];
+      const int inliers =
           CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
-      if (refit_inliers <= best_inliers) break;
-      best_inliers = refit_inliers;
-      std::copy(hr, hr + 9, best);
+      if (inliers <= best_inliers) continue;
+      best_inliers = inliers;
+      std::copy(hf, hf + 9, best);
+      if (options.local_optimisation_refits <= 0 || inliers <= 4) continue;
+      lo_mask.resize(count);
       MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
+      for (int refit = 0; refit < options.local_optimisation_refits; ++refit) {
+        Eigen::Matrix3d fit;
+        if (!HomographyLeastSquares(ref_x, ref_y, query_x, query_y, lo_mask.data(), count,
+                                    &fit)) {
+          break;
+        }
+        double hr[9];
+        for (int k = 0; k < 9; ++k) hr[k] = fit(k / 3, k % 3);
+        if (!NormaliseMaxAbs(hr)) break;
+        for (int k = 0; k < 9; ++k) hf[k] = static_cast<float>(hr[k]);
+        const int refit_inliers =
+            CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
+        if (refit_inliers <= best_inliers) break;
+        best_inliers = refit_inliers;
+        std::copy(hf, hf + 9, best);
+        MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
+      }
+    }
+  };
+  // Samples are drawn eight at a time; those with consistent orientations are queued, in draw
+  // order, and solved and scored eight at a time. Draws past the last hypothesis needed are
+  // discarded, so the result is that of taking the samples one by one.
+  SampleBatch drawn = {}, pending = {};  // unused lanes keep index 0, a valid match
+  int32_t consistent[kBatch];
+  int queued = 0;
+  for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget;) {
+    const int size = static_cast<int>(std::min<int64_t>(kBatch, draw_budget - draws));
+    draws += size;
+    for (int b = 0; b < size; ++b) sampler.Draw(rng, drawn[b]);
+    CheckOrientations(drawn, quads.get(), consistent);
+    for (int b = 0; b < size; ++b) {
+      // Branch-free queueing: every sample is copied, only consistent ones advance the queue.
+      std::memcpy(pending[queued], drawn[b], sizeof drawn[b]);
+      queued -= consistent[b];  // a consistent lane holds -1
+      if (queued == kBatch) {
+        evaluate(pending, kBatch);
+        queued = 0;
+      }
     }
   }
+  if (queued > 0) evaluate(pending, queued);
   if (best_h != nullptr) *best_h = ToResultMatrix(best);
   if (inlier_mask != nullptr) {
     if (best_inliers == 0) {
       std::fill(inlier_mask, inlier_mask + count, uint8_t{0});
     } else {
-      float hf[9];
-      ToFloat(best, hf);
-      MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, inlier_mask);
+      MarkInliers(best, ref_x, ref_y, query_x, query_y, count, threshold_sq, inlier_mask);
     }
   }
   return best_inliers;

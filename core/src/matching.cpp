@@ -12,18 +12,49 @@
 namespace hoilcd {
 namespace {
 
-// Grid density: about this many points per cell (measured fastest among 0.5, 1 and 2).
+// Grid density: about this many points per cell.
 constexpr float kPointsPerCell = 1.0f;
 // Upper bound on cells per axis, so a few far-off points cannot blow up the grid.
 constexpr int kMaxCellsPerAxis = 1024;
+// The coordinate and id arrays run this far past the last point, so that eight-lane loads
+// starting at any point stay inside them.
+constexpr int kPadding = 8;
+
+// Eight lanes (GCC vector extensions; a default-target build lowers them to SSE halves).
+using Floats8 = float __attribute__((vector_size(32)));
+using Ints8 = int32_t __attribute__((vector_size(32)));
+
+// Smallest lane of v: lanes fold onto themselves through three shuffles.
+[[gnu::always_inline]] inline float LaneMin(const Floats8& v) {
+  Floats8 m = v;
+  Floats8 other = __builtin_shuffle(m, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
+  m = other < m ? other : m;
+  other = __builtin_shuffle(m, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
+  m = other < m ? other : m;
+  other = __builtin_shuffle(m, Ints8{1, 0, 3, 2, 5, 4, 7, 6});
+  m = other < m ? other : m;
+  return m[0];
+}
+
+[[gnu::always_inline]] inline int32_t LaneMin(const Ints8& v) {
+  Ints8 m = v;
+  Ints8 other = __builtin_shuffle(m, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
+  m = other < m ? other : m;
+  other = __builtin_shuffle(m, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
+  m = other < m ? other : m;
+  other = __builtin_shuffle(m, Ints8{1, 0, 3, 2, 5, 4, 7, 6});
+  m = other < m ? other : m;
+  return m[0];
+}
 
 // Nearest neighbours, remembering for each reference j the query it was found mutual with
 // (reverse[j]; -2 before). A reference whose first candidate was not mutual stays -2 and is
 // checked again for the next query that finds it; at most one query can be mutual with it.
-void MutualNearestNeighboursCached(const Point2* query_points, const PointGrid& query_grid,
-                                   const Point2* reference_points,
-                                   const PointGrid& reference_grid, std::vector<int>* reverse,
-                                   std::vector<Correspondence>* matches) {
+// Cloned for AVX2 with run-time dispatch, with the grid queries inlined into each clone.
+__attribute__((target_clones("avx2", "default"), flatten)) void MutualNearestNeighboursCached(
+    const Point2* query_points, const PointGrid& query_grid,
+    const Point2* reference_points, const PointGrid& reference_grid, std::vector<int>* reverse,
+    std::vector<Correspondence>* matches) {
   matches->clear();
   reverse->assign(reference_grid.size(), -2);
   if (query_grid.size() == 0 || reference_grid.size() == 0) return;
@@ -92,17 +123,19 @@ PointGrid::PointGrid(const Point2* points, int count) {
               1e-5f * (std::abs(origin_x_) + std::abs(origin_y_) + (nx_ + ny_) * cell_px_);
   // Counting sort of the points by cell; stable, so each cell lists its points by index.
   std::vector<int> cell_of(count);
-  cell_start_.assign(static_cast<size_t>(nx_) * ny_ + 1, 0);
+  stride_ = nx_ + 2;
+  cell_start_.assign(static_cast<size_t>(stride_) * (ny_ + 2) + 1, 0);
   for (int i = 0; i < count; ++i) {
     const int cx = std::min(nx_ - 1, static_cast<int>((points[i].x - origin_x_) * inv_cell_));
     const int cy = std::min(ny_ - 1, static_cast<int>((points[i].y - origin_y_) * inv_cell_));
-    cell_of[i] = cy * nx_ + cx;
+    cell_of[i] = Slot(cx, cy);
     ++cell_start_[cell_of[i] + 1];
   }
   for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-  xs_.resize(count);
-  ys_.resize(count);
-  ids_.resize(count);
+  count_ = count;
+  xs_.assign(count + kPadding, 0.0f);
+  ys_.assign(count + kPadding, 0.0f);
+  ids_.assign(count + kPadding, 0);
   std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (int i = 0; i < count; ++i) {
     const int slot = fill[cell_of[i]]++;
@@ -113,7 +146,47 @@ PointGrid::PointGrid(const Point2* points, int count) {
 }
 
 int PointGrid::Nearest(Point2 p) const {
-  if (ids_.empty()) return -1;
+  if (count_ == 0) return -1;
+  // Cell of p, clamped into the grid (p may lie outside the bounding box of the set).
+  const float fx = std::clamp((p.x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1));
+  const float fy = std::clamp((p.y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1));
+  const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
+  // The 3x3 block around the cell (border cells are empty), eight points at a time: the cells
+  // of one row of the block are consecutive in storage, so a row is one range. Each lane keeps
+  // its least (squared distance, index) pair. A row of more than eight points goes to rings.
+  const Floats8 px = Floats8{} + p.x, py = Floats8{} + p.y;
+  const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  Floats8 best_d = Floats8{} + std::numeric_limits<float>::infinity();
+  Ints8 best_id = Ints8{} + std::numeric_limits<int32_t>::max();
+  for (int y = cy - 1; y <= cy + 1; ++y) {
+    const int begin = cell_start_[Slot(cx - 1, y)], end = cell_start_[Slot(cx + 1, y) + 1];
+    if (end - begin > 8) return NearestByRings(p);
+    Floats8 xs, ys;
+    Ints8 ids;
+    std::memcpy(&xs, xs_.data() + begin, sizeof xs);
+    std::memcpy(&ys, ys_.data() + begin, sizeof ys);
+    std::memcpy(&ids, ids_.data() + begin, sizeof ids);
+    const Floats8 dx = xs - px, dy = ys - py;
+    const Floats8 d = dx * dx + dy * dy;
+    const Ints8 better = (lane < end - begin) & ((d < best_d) | ((d == best_d) & (ids < best_id)));
+    best_d = better ? d : best_d;
+    best_id = better ? ids : best_id;
+  }
+  const float nearest_d = LaneMin(best_d);
+  const int nearest = LaneMin(best_d == nearest_d ? best_id : Ints8{} + std::numeric_limits<int32_t>::max());
+  // Every point outside the block lies beyond one of the block's sides that are inside the grid.
+  float bound = std::numeric_limits<float>::infinity();
+  if (cx - 1 > 0) bound = std::min(bound, p.x - (origin_x_ + (cx - 1) * cell_px_));
+  if (cx + 1 < nx_ - 1) bound = std::min(bound, origin_x_ + (cx + 2) * cell_px_ - p.x);
+  if (cy - 1 > 0) bound = std::min(bound, p.y - (origin_y_ + (cy - 1) * cell_px_));
+  if (cy + 1 < ny_ - 1) bound = std::min(bound, origin_y_ + (cy + 2) * cell_px_ - p.y);
+  if (bound == std::numeric_limits<float>::infinity()) return nearest;
+  bound -= slack_px_;
+  if (bound > 0 && nearest_d < bound * bound) return nearest;
+  return NearestByRings(p);
+}
+
+int PointGrid::NearestByRings(Point2 p) const {
   // Cell of p, clamped into the grid (p may lie outside the bounding box of the set).
   const float fx = std::clamp((p.x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1));
   const float fy = std::clamp((p.y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1));
@@ -134,7 +207,7 @@ int PointGrid::Nearest(Point2 p) const {
   };
   // The cells x0..x1 of one row are consecutive in storage, so a row span is one range.
   auto scan_row = [&](int y, int x0, int x1) {
-    scan(cell_start_[y * nx_ + x0], cell_start_[y * nx_ + x1 + 1]);
+    scan(cell_start_[Slot(x0, y)], cell_start_[Slot(x1, y) + 1]);
   };
   // Ring 1 is the 3x3 block around the cell (scanned as three row spans); ring r > 1 adds the
   // top and bottom rows of the (2r+1)² block and the cells at its sides.
@@ -170,7 +243,7 @@ int PointGrid::Nearest(Point2 p) const {
 }
 
 bool PointGrid::AnyNearer(Point2 p, float d2, int id) const {
-  if (ids_.empty()) return false;
+  if (count_ == 0) return false;
   const float radius = std::sqrt(d2) + slack_px_;
   const auto cell_x = [&](float x) {
     return static_cast<int>(std::clamp((x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1)));
@@ -180,15 +253,24 @@ bool PointGrid::AnyNearer(Point2 p, float d2, int id) const {
   };
   const int x0 = cell_x(p.x - radius), x1 = cell_x(p.x + radius);
   const int y0 = cell_y(p.y - radius), y1 = cell_y(p.y + radius);
+  const Floats8 px = Floats8{} + p.x, py = Floats8{} + p.y, bar = Floats8{} + d2;
+  const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  const Ints8 own = Ints8{} + id;
+  Ints8 nearer = {};
   for (int y = y0; y <= y1; ++y) {
-    const int end = cell_start_[y * nx_ + x1 + 1];
-    for (int k = cell_start_[y * nx_ + x0]; k < end; ++k) {
-      const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
-      const float d = dx * dx + dy * dy;
-      if (d < d2 || (d == d2 && ids_[k] < id)) return true;
+    const int end = cell_start_[Slot(x1, y) + 1];
+    for (int k = cell_start_[Slot(x0, y)]; k < end; k += 8) {
+      Floats8 xs, ys;
+      Ints8 ids;
+      std::memcpy(&xs, xs_.data() + k, sizeof xs);
+      std::memcpy(&ys, ys_.data() + k, sizeof ys);
+      std::memcpy(&ids, ids_.data() + k, sizeof ids);
+      const Floats8 dx = xs - px, dy = ys - py;
+      const Floats8 d = dx * dx + dy * dy;
+      nearer |= (lane < end - k) & ((d < bar) | ((d == bar) & (ids < own)));
     }
   }
-  return false;
+  return LaneMin(nearer) != 0;
 }
 
 void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,
@@ -241,20 +323,22 @@ int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
   MutualNearestNeighboursCached(query_points, query_grid, reference_points, reference_grid,
                                 &reverse_nearest_, &matches_);
   const double tolerance_px = match_options.vertical_tolerance * match_options.image_height_px;
-  ref_x_.clear();
-  ref_y_.clear();
-  query_x_.clear();
-  query_y_.clear();
+  const size_t capacity = matches_.size();
+  ref_x_.resize(capacity);
+  ref_y_.resize(capacity);
+  query_x_.resize(capacity);
+  query_y_.resize(capacity);
+  size_t kept = 0;
   for (const Correspondence& m : matches_) {
     const Point2 q = query_points[m.query], r = reference_points[m.reference];
-    if (!WithinVerticalTolerance(q.y, r.y, tolerance_px)) continue;
-    ref_x_.push_back(r.x);
-    ref_y_.push_back(r.y);
-    query_x_.push_back(q.x);
-    query_y_.push_back(q.y);
+    ref_x_[kept] = r.x;
+    ref_y_[kept] = r.y;
+    query_x_[kept] = q.x;
+    query_y_[kept] = q.y;
+    kept += WithinVerticalTolerance(q.y, r.y, tolerance_px) ? 1 : 0;
   }
   return RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(),
-                             static_cast<int>(ref_x_.size()), ransac_options, pair_seed, nullptr,
+                             static_cast<int>(kept), ransac_options, pair_seed, nullptr,
                              nullptr);
 }
 

@@ -22,12 +22,13 @@ struct MatchOptions {
 };
 
 // A uniform bucket grid over one point set for exact nearest-neighbour queries in about O(1)
-// per query. Points are stored reordered by cell (structure of arrays) for locality.
+// per query. Points are stored reordered by cell (structure of arrays) for locality, and
+// scanned eight at a time.
 class PointGrid {
  public:
   PointGrid() = default;
   PointGrid(const Point2* points, int count);
-  int size() const { return static_cast<int>(ids_.size()); }
+  int size() const { return count_; }
   // Index of the point nearest to p (squared Euclidean distance in float; ties go to the lower
   // index); -1 when the grid is empty.
   int Nearest(Point2 p) const;
@@ -37,14 +38,23 @@ class PointGrid {
   bool AnyNearer(Point2 p, float d2, int id) const;
 
  private:
-  std::vector<float> xs_, ys_;       // point coordinates in cell order, px
-  std::vector<int> ids_;             // original index of each stored point
-  std::vector<int> cell_start_;      // points of cell c are [cell_start_[c], cell_start_[c+1])
+  // Nearest() by rings of cells around p's cell, for when the 3x3 block cannot decide.
+  int NearestByRings(Point2 p) const;
+  // Index into cell_start_ of cell (x, y), for x in [-1, nx_] and y in [-1, ny_]: the grid has
+  // a border of empty cells, so a 3x3 block never needs clipping.
+  int Slot(int x, int y) const { return (y + 1) * stride_ + x + 1; }
+
+  int count_ = 0;                    // number of points
+  std::vector<float> xs_, ys_;       // point coordinates in cell order (padded), px
+  std::vector<int> ids_;             // original index of each stored point (padded)
+  std::vector<int> cell_start_;      // points of the cell at slot s are
+                                     // [cell_start_[s], cell_start_[s+1])
   float origin_x_ = 0, origin_y_ = 0;  // lower corner of the grid, px
   float cell_px_ = 1, inv_cell_ = 1;   // cell side, px, and its inverse
   float slack_px_ = 0;                 // cell-assignment rounding can put a point this far
                                        // outside its cell's nominal box, px
   int nx_ = 0, ny_ = 0;                // cells per row and per column
+  int stride_ = 2;                     // slots per row, nx_ + 2
 };
 
 // Mutual nearest neighbours on 2-D coordinates (bucket grid, not an O(n*m) scan), ties broken by
