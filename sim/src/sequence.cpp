@@ -1,6 +1,7 @@
 #include "hoilcd/sim/sequence.h"
 
 #include <chrono>
+#include <future>
 #include <filesystem>
 #include <optional>
 
@@ -123,9 +124,14 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   std::vector<FramePersons> persons(frames);
   ProgressReporter progress("render", frames, "frames");
   int sensor_frame = -1;  // last frame the sensor model has seen
+  std::future<void> writing;  // the frame being encoded and written, if any
+  auto finish_writing = [&writing] {
+    if (writing.valid()) writing.get();  // rethrows a write error here
+  };
   int since_checkpoint = 0;
   for (int f = 0; f < frames; ++f) {
     if (options.cancel && options.cancel->load()) {
+      finish_writing();
       WriteFileAtomic(manifest_path, manifest.ToJson());
       throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
     }
@@ -156,26 +162,34 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     const cv::Mat ideal = sensor.IdealTemperature(buffers.radiance);
     persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance)};
 
-    WriteDatasetFile(dir, FramePath("thermal", f, "png"),
-                     EncodePng(ToDisplay8Bit(temperature, sensor_options.display_min_c,
-                                             sensor_options.display_max_c)),
-                     &manifest);
-    WriteDatasetFile(dir, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(temperature)),
-                     &manifest);
-    WriteDatasetFile(dir, FramePath("exr", f, "exr"),
-                     EncodeExr({{"T", temperature},
-                                {"T_true", ideal},
-                                {"Z", buffers.depth_m},
-                                {"id", ToFloat(buffers.instance)},
-                                {"class", ToFloat(buffers.class_id)}}),
-                     &manifest);
-    ++result.frames_rendered;
-    progress.Update();
-    if (++since_checkpoint >= options.checkpoint_every_frames) {
+    // Encoding and writing (two PNGs and an EXR, most of a frame's cost) overlap with rendering
+    // the next frame. One frame at most is in flight and only its writer touches the manifest
+    // meanwhile, so a checkpoint (taken after it finished) lists only complete files.
+    finish_writing();
+    if (since_checkpoint >= options.checkpoint_every_frames) {
       WriteFileAtomic(manifest_path, manifest.ToJson());
       since_checkpoint = 0;
     }
+    writing = std::async(std::launch::async, [&, f, temperature, ideal, buffers] {
+      WriteDatasetFile(dir, FramePath("thermal", f, "png"),
+                       EncodePng(ToDisplay8Bit(temperature, sensor_options.display_min_c,
+                                               sensor_options.display_max_c)),
+                       &manifest);
+      WriteDatasetFile(dir, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(temperature)),
+                       &manifest);
+      WriteDatasetFile(dir, FramePath("exr", f, "exr"),
+                       EncodeExr({{"T", temperature},
+                                  {"T_true", ideal},
+                                  {"Z", buffers.depth_m},
+                                  {"id", ToFloat(buffers.instance)},
+                                  {"class", ToFloat(buffers.class_id)}}),
+                       &manifest);
+    });
+    ++result.frames_rendered;
+    ++since_checkpoint;
+    progress.Update();
   }
+  finish_writing();
   progress.Done();
 
   // Side files, then the manifest that declares the dataset complete.
