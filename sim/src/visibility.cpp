@@ -74,15 +74,43 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
         c.v_px = uv.y();
         const bool inside = uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() < W - 0.5 && uv.y() < H - 0.5;
         if (inside) {
-          // Visible when the first surface along the ray is within 5 cm of the contact.
+          // Visible when the line of sight reaches the contact region: the first surface along
+          // the ray is the person's own body within 15 cm of the contact (a forearm resting on
+          // the table, seen from above), or anything within 5 cm of it (the contact itself).
           const Eigen::Vector3f to = w.cast<float>() - origin;
           const RayHit hit = world.caster().Intersect(origin, to.normalized());
-          c.visible = hit.hit() && hit.distance_m >= to.norm() - 0.05f;
+          const float gap = to.norm() - hit.distance_m;
+          c.visible = hit.hit() && (gap <= 0.05f || (hit.instance == instance && gap <= 0.15f));
         }
       } else {
         c.u_px = c.v_px = -1;
       }
       record.contacts.push_back(c);
+    }
+    // Image-space contacts: where the bottom of the visible person meets a table or chair in
+    // the image, i.e. what DLCD's HOI points recover. Up to kImageContacts evenly spaced columns.
+    std::vector<ContactRecord> edge;
+    for (int x = x0; x <= x1; ++x) {
+      for (int y = y1; y >= y0; --y) {
+        if (instance_ids.at<int>(y, x) != instance) continue;
+        const int below = y + 1 < H ? instance_ids.at<int>(y + 1, x) : -1;
+        if (below >= 0) {
+          const InstanceRole role = world.instance(below).role;
+          if (role == InstanceRole::kTable || role == InstanceRole::kChair) {
+            ContactRecord c;
+            c.name = role == InstanceRole::kTable ? "table_edge" : "chair_edge";
+            c.u_px = x;
+            c.v_px = y;
+            c.visible = true;
+            edge.push_back(c);
+          }
+        }
+        break;
+      }
+    }
+    constexpr size_t kImageContacts = 8;
+    for (size_t k = 0; k < std::min(kImageContacts, edge.size()); ++k) {
+      record.contacts.push_back(edge[(2 * k + 1) * edge.size() / (2 * std::min(kImageContacts, edge.size()))]);
     }
     out.push_back(std::move(record));
   }

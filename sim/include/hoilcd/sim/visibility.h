@@ -1,6 +1,8 @@
 // Ground truth about people in a rendered frame (persons.json): visible box, visible pixel
-// fraction against the person rendered alone, occlusion fraction, and the projected
-// human–object contact points with their visibility.
+// fraction against the person rendered alone, occlusion fraction, the projected 3-D
+// human–object contact points of the asset (seat, table, floor) with their visibility, and
+// image-space contacts ("table_edge", "chair_edge": where the bottom of the visible person meets
+// a table or chair in the image, the ground truth for DLCD's HOI points).
 #pragma once
 
 #include <opencv2/core.hpp>
