@@ -108,7 +108,7 @@ std::string BenchOptions::Check() const {
   for (const std::string& problem :
        {protocol.Check(), match.Check(), ransac.Check(), keypoints.Check(), detector.Check(),
         tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), sequence.Check(),
-        temporal.Check()}) {
+        temporal.Check(), tracking_metrics.Check()}) {
     if (!problem.empty()) return problem;
   }
   if (lo_refits < 1) return "lo_refits must be positive";
@@ -195,7 +195,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   result.mean_keypoints_per_frame = n ? kp / n : 0;
   result.mean_hoi_points_per_frame = n ? hp / n : 0;
   if (need_dlcd) {
-    result.tracking = ComputeTrackingMetrics(dataset.persons(), tracks);
+    result.tracking = ComputeTrackingMetrics(dataset.persons(), tracks, options.tracking_metrics);
     result.tracking_evaluated = true;
   }
 

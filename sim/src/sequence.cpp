@@ -64,6 +64,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
                                      OdometryOptionsFromScene(scene), world.obstacles(),
                                      scene.frame_rate_hz, scene.seed);
   HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
+  world.PlanCrowd(run.samples);
   const SensorOptions sensor_options = SensorOptionsFromScene(scene);
   SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz,
                      scene.seed, &table, options.threads);
@@ -201,7 +202,11 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
                      s.odometry.y_m, s.odometry.theta_rad});
   }
   std::vector<DatasetEvent> events;
+  for (const DatasetEvent& e : world.events())
+    if (e.frame < frames) events.push_back(e);
   for (int f : sensor.FfcFrames(frames)) events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+  std::stable_sort(events.begin(), events.end(),
+                   [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
   WriteDatasetFile(dir, "poses.csv", PosesToCsv(poses), &manifest);
   WriteDatasetFile(dir, "poses_tum.txt", PosesToTum(poses, run.samples.empty() ? 0.0 : run.samples[0].camera.roll_rad),
                    &manifest);

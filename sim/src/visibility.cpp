@@ -13,7 +13,8 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
   const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
   const int W = intrinsics.width, H = intrinsics.height;
   std::vector<PersonRecord> out;
-  for (const SeatedPerson& person : world.people()) {
+  for (const Person& person : world.people()) {
+    if (!person.present) continue;
     const int instance = person.instance;
     const Eigen::Matrix4f& world_from_object = world.caster().transform_of(instance);
     const Asset& asset = *world.instance(instance).asset;
@@ -28,16 +29,16 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
         x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
       }
     }
-    if (visible == 0) continue;
-
     // Pixels the person would cover alone: cast against its instance only, within the
     // projection of its bounding box.
     double u_min = W, u_max = -1, v_min = H, v_max = -1;
     const Eigen::AlignedBox3f& b = asset.bounds_m;
+    bool in_front = false;
     for (int corner = 0; corner < 8; ++corner) {
       const Eigen::Vector3f c = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner));
       const Eigen::Vector3d w = (world_from_object * c.homogeneous()).head<3>().cast<double>();
       Eigen::Vector3d p = cam_from_world * w;
+      in_front |= p.z() > 0.05;
       p.z() = std::max(p.z(), 0.05);
       const Eigen::Vector2d uv = intrinsics.Project(p);
       u_min = std::min(u_min, uv.x()), u_max = std::max(u_max, uv.x());
@@ -45,12 +46,21 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
     }
     const int ua = std::max(0, static_cast<int>(std::floor(u_min))), ub = std::min(W - 1, static_cast<int>(std::ceil(u_max)));
     const int va = std::max(0, static_cast<int>(std::floor(v_min))), vb = std::min(H - 1, static_cast<int>(std::ceil(v_max)));
-    int alone = 0;
+    if (!in_front && visible == 0) continue;
+    int alone = 0, ax0 = W, ay0 = H, ax1 = -1, ay1 = -1;
     for (int y = va; y <= vb; ++y) {
       for (int x = ua; x <= ub; ++x) {
         const Eigen::Vector3f d = (R * intrinsics.Unproject(x, y).cast<float>()).normalized();
-        if (world.caster().IntersectInstance(instance, origin, d).hit()) ++alone;
+        if (!world.caster().IntersectInstance(instance, origin, d).hit()) continue;
+        ++alone;
+        ax0 = std::min(ax0, x), ax1 = std::max(ax1, x), ay0 = std::min(ay0, y), ay1 = std::max(ay1, y);
       }
+    }
+    // In view but hidden behind something: listed with visible fraction 0 and the box it would
+    // cover alone, so occlusion statistics do not lose the people occluded completely.
+    if (visible == 0) {
+      if (alone == 0) continue;
+      x0 = ax0, x1 = ax1, y0 = ay0, y1 = ay1;
     }
     alone = std::max(alone, visible);
 
@@ -60,7 +70,7 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
                                static_cast<float>(x1 - x0 + 1), static_cast<float>(y1 - y0 + 1));
     record.visible_fraction = static_cast<double>(visible) / alone;
     record.occlusion_fraction = 1.0 - record.visible_fraction;
-    record.seated = true;
+    record.seated = person.seated;
     record.posture = person.posture;
     for (const ContactPoint& contact : asset.contacts) {
       const Eigen::Vector3d w =

@@ -51,6 +51,13 @@ Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen:
 
 }  // namespace
 
+// Where instances not in the scene right now wait: below the floor, which no camera ray crosses.
+const Eigen::Matrix4f kHidden = [] {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m(2, 3) = -100.0f;
+  return m;
+}();
+
 Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad, double scale) {
   Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
   m.topLeftCorner<3, 3>() =
@@ -65,6 +72,13 @@ World::World(const Scene& scene, const BandRadianceTable& table)
       room_size_m_(scene.room_size_m) {
   environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.environment_temperature_c));
   const nlohmann::json& crowd = scene.crowd;
+  crowd_ = crowd;
+  seed_ = scene.seed;
+  frame_rate_hz_ = scene.frame_rate_hz;
+  duration_s_ = scene.frames / scene.frame_rate_hz;
+  seat_warmth_c_ = scene.seat_warmth_c;
+  heat_print_tau_s_ = crowd.at("heat_print_time_constant_s").get<double>();
+  posture_interval_s_ = crowd.at("posture_change_interval_s").get<double>();
   breathing_amplitude_m_ = crowd.at("breathing_amplitude_m").get<double>();
   breathing_period_s_ = crowd.at("breathing_period_s").get<double>();
   sway_amplitude_rad_ = crowd.at("sway_amplitude_deg").get<double>() * kDegToRad;
@@ -189,7 +203,6 @@ void World::BuildRoom(const Scene& scene) {
 void World::BuildFurnitureAndPeople(const Scene& scene) {
   const Asset& table_asset = assets_.Get(scene.table_asset);
   const Asset& chair_asset = assets_.Get(scene.chair_asset);
-  const nlohmann::json& crowd = scene.crowd;
   bool three_per_side = scene.people_per_table > 4;
   for (const SeatingSpec& s : scene.seating) three_per_side |= (s.seat % 3 == 2);
   const int per_side = three_per_side ? 3 : 2;
@@ -228,84 +241,242 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
         const Eigen::Vector2d p = spec.center_m + rot * Eigen::Vector2d(along, across);
         const double seat_yaw = yaw + (side == 0 ? M_PI / 2 : -M_PI / 2);
         const Eigen::Vector3d seat_pos(p.x(), p.y(), 0.0);
-        const bool occupied = std::any_of(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
-          return s.table == t && s.seat == seat;
-        });
         const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
         const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
                                 chair_name, 0.0);
-        if (occupied) {  // a seat someone sits on is warmed by their body
-          for (InstanceMaterial& m : instances_[chair].materials) {
-            if (!m.specular) {
-              m.temperature_c += static_cast<float>(scene.seat_warmth_c);
-              m.temperature_top_c = m.temperature_c;
-              Finish(&m);
-            }
-          }
-        }
         obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
-        if (!occupied) continue;
-        const SeatingSpec& who = *std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
+        Seat record;
+        record.table = t;
+        record.seat = seat;
+        record.chair_instance = chair;
+        record.world_from_seat = PlacementTransform(seat_pos, seat_yaw);
+        record.chair_materials = instances_[chair].materials;
+        seats_.push_back(record);
+        const auto who = std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
           return s.table == t && s.seat == seat;
         });
-        SeatedPerson person;
-        person.person_id = static_cast<int>(people_.size());
-        person.table = t;
-        person.seat = seat;
-        Rng rng = KeyedRng(scene.seed, "crowd.person", person.person_id);
-        person.posture = who.posture == "random" ? ChoosePosture(crowd.at("posture_weights"), &rng) : who.posture;
-        person.height_scale = std::clamp(1.0 + crowd.at("height_scale_sd").get<double>() * rng.Normal(), 0.8, 1.2);
-        person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
-        person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
-        person.sway_period_s = crowd.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
-        // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
-        auto varied = [&](const char* mean, const char* sd) {
-          return crowd.at(mean).get<double>() +
-                 crowd.at(sd).get<double>() * std::clamp(rng.Normal(), -2.0, 2.0);
-        };
-        const double skin_c = varied("skin_temperature_c", "skin_temperature_sd_c");
-        const double clothing_c = varied("clothing_temperature_c", "clothing_temperature_sd_c");
-        const double hair_c = crowd.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
-        const Asset& body = assets_.Get("person_" + person.posture);
-        person.world_from_seat = PlacementTransform(seat_pos, seat_yaw);
-        person.instance = Place(body, PlacementTransform(seat_pos, seat_yaw, person.height_scale),
-                                InstanceRole::kPerson, "person " + std::to_string(person.person_id), 0.0);
-        InstanceInfo& info = instances_[person.instance];
-        info.person_id = person.person_id;
-        for (size_t m = 0; m < body.materials.size(); ++m) {
-          const std::string& region = body.materials[m].region;
-          InstanceMaterial& im = info.materials[m];
-          // Region temperatures follow the person; the asset's own value sets the offset
-          // between e.g. upper and lower clothing.
-          const double asset_clothing = body.MaterialIndex("clothing_upper") >= 0
-              ? body.materials[body.MaterialIndex("clothing_upper")].temperature_c : 28.5;
-          if (region == "skin") im.temperature_c = static_cast<float>(skin_c);
-          if (region == "hair") im.temperature_c = static_cast<float>(hair_c);
-          if (region.rfind("clothing", 0) == 0) {
-            im.temperature_c = static_cast<float>(clothing_c + body.materials[m].temperature_c - asset_clothing);
-          }
-          im.temperature_top_c = im.temperature_c;
-          Finish(&im);
-        }
-        people_.push_back(person);
+        if (who != seating.end()) AddSeatedPerson(t, seat, who->posture, 0.0, 1e30);
       }
     }
   }
 }
 
-void World::SetTime(double time_s) {
-  for (const SeatedPerson& p : people_) {
-    const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
-    const double breath = breathing_amplitude_m_ *
-                          std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
-    // Breathing lifts the upper body a few millimetres: a vertical stretch about the floor.
-    Eigen::Matrix4f local = Eigen::Matrix4f::Identity();
-    local.topLeftCorner<3, 3>() =
-        Eigen::AngleAxisf(static_cast<float>(sway), Eigen::Vector3f::UnitZ()).toRotationMatrix() *
-        static_cast<float>(p.height_scale);
-    local(2, 2) *= static_cast<float>(1.0 + breath / 1.3);
-    caster_->SetInstanceTransform(p.instance, p.world_from_seat * local);
+void World::SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c,
+                                  double hair_c) {
+  InstanceInfo& info = instances_[instance];
+  // Region temperatures follow the person; the asset's own values set the offsets between
+  // regions (lower clothing is a little cooler than upper, shoes cooler still).
+  const int upper = body.MaterialIndex("clothing_upper");
+  const double asset_clothing = upper >= 0 ? body.materials[upper].temperature_c : 28.5;
+  for (size_t m = 0; m < body.materials.size(); ++m) {
+    const std::string& region = body.materials[m].region;
+    InstanceMaterial& im = info.materials[m];
+    if (region == "skin") im.temperature_c = static_cast<float>(skin_c);
+    if (region == "hair") im.temperature_c = static_cast<float>(hair_c);
+    if (region.rfind("clothing", 0) == 0) {
+      im.temperature_c = static_cast<float>(clothing_c + body.materials[m].temperature_c - asset_clothing);
+    }
+    im.temperature_top_c = im.temperature_c;
+    Finish(&im);
   }
+}
+
+size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s,
+                              double leave_s) {
+  const auto seat_it = std::find_if(seats_.begin(), seats_.end(),
+                                    [&](const Seat& s) { return s.table == table && s.seat == seat; });
+  HOILCD_CHECK(seat_it != seats_.end());
+  int id = 0;
+  for (const Person& p : people_) id = std::max(id, p.person_id + 1);
+  Person person;
+  person.person_id = id;
+  person.table = table;
+  person.seat = seat;
+  person.arrive_s = arrive_s;
+  person.leave_s = leave_s;
+  person.world_from_seat = seat_it->world_from_seat;
+  Rng rng = KeyedRng(seed_, "crowd.person", id);
+  const nlohmann::json& weights = crowd_.at("posture_weights");
+  std::string current = posture == "random" ? ChoosePosture(weights, &rng) : posture;
+  person.postures.emplace_back(arrive_s, current);
+  // People shift posture now and then (exponential intervals): the upper body changes, the
+  // contact with chair and table stays, which is what makes HOI points landmarks.
+  if (posture_interval_s_ > 0) {
+    Rng changes = KeyedRng(seed_, "crowd.posture_change", id);
+    for (double t = arrive_s;;) {
+      t += -posture_interval_s_ * std::log(1.0 - changes.Uniform());
+      if (t >= std::min(leave_s, duration_s_)) break;
+      std::string next = current;
+      for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, &changes);
+      if (next == current) continue;
+      person.postures.emplace_back(t, next);
+      current = next;
+    }
+  }
+  person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng.Normal(), 0.8, 1.2);
+  person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
+  person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
+  person.sway_period_s = crowd_.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
+  // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
+  auto varied = [&](const char* mean, const char* sd) {
+    return crowd_.at(mean).get<double>() + crowd_.at(sd).get<double>() * std::clamp(rng.Normal(), -2.0, 2.0);
+  };
+  const double skin_c = varied("skin_temperature_c", "skin_temperature_sd_c");
+  const double clothing_c = varied("clothing_temperature_c", "clothing_temperature_sd_c");
+  const double hair_c = crowd_.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
+  for (const auto& [from, name] : person.postures) {
+    if (person.instances.count(name)) continue;
+    const Asset& body = assets_.Get("person_" + name);
+    const int instance = Place(body, kHidden, InstanceRole::kPerson, "person " + std::to_string(id), 0.0);
+    instances_[instance].person_id = id;
+    SetPersonTemperatures(instance, body, skin_c, clothing_c, hair_c);
+    person.instances[name] = instance;
+  }
+  people_.push_back(person);
+  return people_.size() - 1;
+}
+
+void World::PlanCrowd(const std::vector<RobotSample>& samples) {
+  route_.clear();
+  for (const RobotSample& s : samples) route_.push_back({s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad});
+  const double p = crowd_.at("turnover_probability").get<double>();
+  auto frame_of = [&](double t) { return static_cast<int>(std::lround(t * frame_rate_hz_)); };
+  auto seat_name = [](int table, int seat) { return std::to_string(table) + "." + std::to_string(seat); };
+  // Seat turnover at every lap boundary the robot crosses.
+  for (int lap = 1; p > 0 && !samples.empty() && lap <= static_cast<int>(samples.back().lap); ++lap) {
+    const auto crossing = std::find_if(samples.begin(), samples.end(), [&](const RobotSample& s) { return s.lap >= lap; });
+    const double t = crossing->time_s;
+    const int frame = crossing->frame;
+    (void)frame_of;
+    std::vector<size_t> sitting;
+    for (size_t i = 0; i < people_.size(); ++i) {
+      if (people_[i].seated && people_[i].arrive_s <= t && people_[i].leave_s > t) sitting.push_back(i);
+    }
+    auto occupied = [&](const Seat& seat) {
+      return std::any_of(people_.begin(), people_.end(), [&](const Person& q) {
+        return q.seated && q.table == seat.table && q.seat == seat.seat && q.arrive_s <= t && q.leave_s > t;
+      });
+    };
+    for (size_t i : sitting) {
+      Rng rng = KeyedRng(seed_, "crowd.turnover", lap, people_[i].person_id);
+      const double u = rng.Uniform();
+      if (u < p) {  // leaves the room
+        people_[i].leave_s = t;
+        events_.push_back({frame, "leave", people_[i].person_id, seat_name(people_[i].table, people_[i].seat), ""});
+      } else if (u < 1.5 * p) {  // moves to a free seat, if there is one
+        std::vector<const Seat*> free;
+        for (const Seat& seat : seats_)
+          if (!occupied(seat)) free.push_back(&seat);
+        if (free.empty()) continue;
+        const Seat& to = *free[rng.UniformInt(static_cast<uint32_t>(free.size()))];
+        Person moved = people_[i];
+        people_[i].leave_s = t;
+        const std::string from = seat_name(moved.table, moved.seat);
+        const size_t index = AddSeatedPerson(to.table, to.seat, "random", t, moved.leave_s);
+        people_[index].person_id = moved.person_id;  // the same person, on another seat
+        for (const auto& [name, instance] : people_[index].instances) instances_[instance].person_id = moved.person_id;
+        events_.push_back({frame, "swap", moved.person_id, seat_name(to.table, to.seat), "from seat " + from});
+      }
+    }
+    for (const Seat& seat : seats_) {
+      if (occupied(seat)) continue;
+      Rng rng = KeyedRng(seed_, "crowd.arrival", lap, seat.table * 16 + seat.seat);
+      if (rng.Uniform() >= p) continue;
+      const size_t index = AddSeatedPerson(seat.table, seat.seat, "random", t, 1e30);
+      events_.push_back({frame, "arrive", people_[index].person_id, seat_name(seat.table, seat.seat), ""});
+    }
+  }
+  // Walkers walk the robot's route a few seconds ahead of it: between the camera and the
+  // seated people (the occlusion knob), never in the robot's way.
+  const int walkers = crowd_.at("walkers").get<int>();
+  const Asset& standing = assets_.Get("person_standing");
+  for (int w = 0; w < walkers; ++w) {
+    int id = 0;
+    for (const Person& q : people_) id = std::max(id, q.person_id + 1);
+    Rng rng = KeyedRng(seed_, "crowd.walker", w);
+    Person walker;
+    walker.person_id = id;
+    walker.seated = false;
+    walker.postures.emplace_back(0.0, "standing");
+    walker.lead_s = rng.Uniform(3.0, 7.0);
+    walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
+    walker.lead_period_s = rng.Uniform(15.0, 30.0);
+    walker.lead_phase_rad = rng.Uniform(0, 2 * M_PI);
+    walker.lateral_m = rng.Uniform(0.0, 0.04);  // to the left: the tables are on the right of a clockwise lap
+    walker.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng.Normal(), 0.85, 1.15);
+    const int instance = Place(standing, kHidden, InstanceRole::kPerson, "walker " + std::to_string(id), 0.0);
+    instances_[instance].person_id = id;
+    SetPersonTemperatures(instance, standing,
+                          crowd_.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
+                          crowd_.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
+                          crowd_.at("hair_temperature_c").get<double>());
+    walker.instances["standing"] = instance;
+    people_.push_back(walker);
+  }
+  std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
+    return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
+  });
+}
+
+void World::UpdateSeatWarmth(double time_s) {
+  for (const Seat& seat : seats_) {
+    // Body heat while someone sits; afterwards the seat cools exponentially (a heat print).
+    double warmth = 0;
+    for (const Person& p : people_) {
+      if (!p.seated || p.table != seat.table || p.seat != seat.seat || p.arrive_s > time_s) continue;
+      warmth = std::max(warmth, p.leave_s > time_s
+                                    ? seat_warmth_c_
+                                    : seat_warmth_c_ * std::exp(-(time_s - p.leave_s) / heat_print_tau_s_));
+    }
+    std::vector<InstanceMaterial>& materials = instances_[seat.chair_instance].materials;
+    for (size_t m = 0; m < materials.size(); ++m) {
+      if (seat.chair_materials[m].specular) continue;  // metal legs do not hold body heat
+      materials[m].temperature_c = seat.chair_materials[m].temperature_c + static_cast<float>(warmth);
+      materials[m].temperature_top_c = materials[m].temperature_c;
+      Finish(&materials[m]);
+    }
+  }
+}
+
+void World::SetTime(double time_s) {
+  for (Person& p : people_) {
+    p.present = time_s >= p.arrive_s && time_s < p.leave_s;
+    p.posture.clear();
+    for (const auto& [from, name] : p.postures)
+      if (from <= time_s) p.posture = name;
+    p.instance = p.present ? p.instances.at(p.posture) : -1;
+    Eigen::Matrix4f world_from_body = kHidden;
+    if (p.present && p.seated) {
+      const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
+      const double breath = breathing_amplitude_m_ *
+                            std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
+      // Breathing lifts the upper body a few millimetres: a vertical stretch about the floor.
+      Eigen::Matrix4f local = Eigen::Matrix4f::Identity();
+      local.topLeftCorner<3, 3>() =
+          Eigen::AngleAxisf(static_cast<float>(sway), Eigen::Vector3f::UnitZ()).toRotationMatrix() *
+          static_cast<float>(p.height_scale);
+      local(2, 2) *= static_cast<float>(1.0 + breath / 1.3);
+      world_from_body = p.world_from_seat * local;
+    } else if (p.present && !route_.empty()) {
+      // Where the robot will be lead seconds from now, with a small bob of the gait.
+      const double lead = p.lead_s + p.lead_amplitude_s * std::sin(2 * M_PI * time_s / p.lead_period_s + p.lead_phase_rad);
+      const double t = std::clamp(time_s + lead, route_.front()[0], route_.back()[0]);
+      const auto after = std::lower_bound(route_.begin(), route_.end(), t,
+                                          [](const std::array<double, 4>& r, double v) { return r[0] < v; });
+      const std::array<double, 4>& b = after == route_.end() ? route_.back() : *after;
+      const std::array<double, 4>& a = after == route_.begin() || after == route_.end() ? b : *(after - 1);
+      const double f = b[0] > a[0] ? (t - a[0]) / (b[0] - a[0]) : 0.0;
+      const double heading = a[3] + f * std::remainder(b[3] - a[3], 2 * M_PI);
+      const Eigen::Vector3d position(a[1] + f * (b[1] - a[1]) - p.lateral_m * std::sin(heading),
+                                     a[2] + f * (b[2] - a[2]) + p.lateral_m * std::cos(heading),
+                                     0.02 * std::abs(std::sin(2 * M_PI * 0.9 * time_s + p.lead_phase_rad)));
+      world_from_body = PlacementTransform(position, heading, p.height_scale);
+    }
+    for (const auto& [name, instance] : p.instances) {
+      caster_->SetInstanceTransform(instance, instance == p.instance ? world_from_body : kHidden);
+    }
+  }
+  UpdateSeatWarmth(time_s);
   caster_->Commit();
 }
 

@@ -117,7 +117,7 @@ TEST(Sequence, GroundTruthFilesDescribeTheFrames) {
   }
   for (const FramePersons& f : d.persons()) {
     for (const PersonRecord& p : f.persons) {
-      EXPECT_GT(p.visible_fraction, 0.0);
+      EXPECT_GE(p.visible_fraction, 0.0);
       EXPECT_LE(p.visible_fraction, 1.0);
       EXPECT_NEAR(p.occlusion_fraction, 1.0 - p.visible_fraction, 1e-9);
       EXPECT_GE(p.box_px.x, 0);

@@ -23,6 +23,14 @@
 
 namespace hoilcd {
 
+// Tracking is scored on people at least 20 % visible; those hidden more are neither missed nor
+// false positives (a thermal detector cannot see through a person or a chair back).
+inline TrackingMetricsOptions DefaultTrackingMetricsOptions() {
+  TrackingMetricsOptions o;
+  o.min_visible_fraction = 0.2;
+  return o;
+}
+
 struct BenchOptions {
   std::vector<std::string> methods;      // names from methods.h (empty: DefaultMethods())
   ProtocolOptions protocol;
@@ -38,6 +46,7 @@ struct BenchOptions {
   SeqSlamOptions sequence;               // sequence matching of thumb-seq
   TemporalConsistencyOptions temporal;
   double rrf_k = 0.0;                    // reciprocal rank fusion constant (paper: 0)
+  TrackingMetricsOptions tracking_metrics = DefaultTrackingMetricsOptions();
   int threads = 0;                       // 0 = every core
   std::string Check() const;
 };

@@ -14,8 +14,9 @@
 
 namespace hoilcd {
 
-// instance_ids: CV_32S per-pixel World instance ids of the frame. Lists every person with at
-// least one visible pixel, in person-id order.
+// instance_ids: CV_32S per-pixel World instance ids of the frame. Lists every person present
+// and in view, in person-id order: with their visible-pixel box, or, when something hides them
+// completely, with visible fraction 0 and the box they would cover alone.
 std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
                                          const CameraPose& pose, const cv::Mat& instance_ids);
 

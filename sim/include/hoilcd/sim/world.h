@@ -3,11 +3,13 @@
 // their seats and contact points, and the 2-D obstacles the robot must avoid.
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/asset.h"
 #include "hoilcd/sim/radiometry.h"
 #include "hoilcd/sim/ray_caster.h"
@@ -40,28 +42,53 @@ struct InstanceInfo {
   const TriangleMesh* mesh = nullptr;   // the prototype's mesh (triangle -> material index)
 };
 
-struct SeatedPerson {
+// One person over the whole sequence (ids are stable and never reused). A seated person sits
+// on one seat from arrive_s to leave_s and changes posture from time to time; a walker walks the
+// robot's route a few seconds ahead of it. SetTime() updates `present`, `instance` (the instance
+// showing the current posture) and `posture`.
+struct Person {
   int person_id = 0;
-  int instance = -1;
-  int table = 0, seat = 0;
-  std::string posture;
-  Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();  // rest pose
+  bool seated = true;
+  int table = -1, seat = -1;                 // seated people
+  double arrive_s = 0, leave_s = 1e30;       // present in [arrive_s, leave_s)
+  std::vector<std::pair<double, std::string>> postures;  // (from time s, posture), ascending
+  std::map<std::string, int> instances;      // posture -> instance showing it
+  Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
   double height_scale = 1;
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
+  double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers
+  double lateral_m = 0;                      // walkers: offset to the left of the route
+  // State at the current time.
+  bool present = false;
+  int instance = -1;
+  std::string posture;
 };
+
+// For compatibility with code that thinks of everyone as seated.
+using SeatedPerson = Person;
 
 class World {
  public:
   World(const Scene& scene, const BandRadianceTable& table);
 
-  // Moves people (breathing, sway) to time t and recommits the ray caster.
+  // Plans what depends on the robot's run: seat turnover at each lap boundary (people leave,
+  // arrive, change seats; events recorded) and walkers walking the route ahead of the robot.
+  // Call once, before SetTime, with the run's per-frame samples.
+  void PlanCrowd(const std::vector<RobotSample>& samples);
+
+  // Moves people (posture, breathing, sway, walking), warms and cools seats, to time t, and
+  // recommits the ray caster.
   void SetTime(double time_s);
+
+  // arrive / leave / swap events of PlanCrowd, in frame order.
+  const std::vector<DatasetEvent>& events() const { return events_; }
 
   const RayCaster& caster() const { return *caster_; }
   const InstanceInfo& instance(int id) const { return instances_[id]; }
   int num_instances() const { return static_cast<int>(instances_.size()); }
   const std::map<std::string, int>& classes() const { return classes_; }
-  const std::vector<SeatedPerson>& people() const { return people_; }
+  // Everyone who appears in the sequence; `present` says who is in the room at the current time.
+  const std::vector<Person>& people() const { return people_; }
   const std::vector<Obstacle2D>& obstacles() const { return obstacles_; }
   double room_height_m() const { return room_size_m_.z(); }
   // Band radiance of the room's surroundings, for diffuse reflection (L_env).
@@ -75,6 +102,17 @@ class World {
   void BuildRoom(const Scene& scene);
   void BuildFurnitureAndPeople(const Scene& scene);
   void Finish(InstanceMaterial* m) const;
+  // Adds a seated person (instances for every posture they will take) and returns its index.
+  size_t AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s, double leave_s);
+  void SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c, double hair_c);
+  void UpdateSeatWarmth(double time_s);
+
+  struct Seat {
+    int table = 0, seat = 0;
+    int chair_instance = -1;
+    Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
+    std::vector<InstanceMaterial> chair_materials;  // at room temperature
+  };
 
   const BandRadianceTable& table_;
   AssetLibrary assets_;
@@ -83,7 +121,14 @@ class World {
   std::vector<InstanceInfo> instances_;
   TriangleMesh room_mesh_;
   std::map<std::string, int> classes_;
-  std::vector<SeatedPerson> people_;
+  std::vector<Person> people_;
+  std::vector<Seat> seats_;
+  std::vector<std::array<double, 4>> route_;  // robot base per frame: time s, x m, y m, theta rad
+  std::vector<DatasetEvent> events_;
+  uint64_t seed_ = 1;
+  double frame_rate_hz_ = 25, duration_s_ = 80;
+  nlohmann::json crowd_;
+  double seat_warmth_c_ = 2, heat_print_tau_s_ = 120, posture_interval_s_ = 0;
   std::vector<Obstacle2D> obstacles_;
   Eigen::Vector3d room_size_m_;
   float environment_radiance_ = 0;

@@ -1,0 +1,181 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/sim/scene_options.h"
+#include "hoilcd/sim/sequence.h"
+#include "hoilcd/sim/renderer.h"
+#include "hoilcd/sim/visibility.h"
+#include "hoilcd/sim/world.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene PaperRoom(const std::vector<std::string>& overrides) {
+  return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides);
+}
+
+RobotRun Drive(const Scene& scene, const World& world) {
+  return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
+                       OdometryOptionsFromScene(scene), world.obstacles(), scene.frame_rate_hz, scene.seed);
+}
+
+int ChairInstance(const World& world, int table, int seat) {
+  const std::string name = "chair " + std::to_string(table) + "." + std::to_string(seat);
+  for (int i = 0; i < world.num_instances(); ++i)
+    if (world.instance(i).name == name) return i;
+  return -1;
+}
+
+float SeatTemperature(const World& world, int chair) {
+  for (const InstanceMaterial& m : world.instance(chair).materials)
+    if (!m.specular) return m.temperature_c;
+  return 0;
+}
+
+TEST(Crowd, TurnoverAtLapBoundariesLeavesCoolingHeatPrints) {
+  const Scene scene = PaperRoom({"crowd.turnover_probability=0.4"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = Drive(scene, world);
+  world.PlanCrowd(run.samples);
+  ASSERT_FALSE(world.events().empty());
+  int leaves = 0, arrivals = 0;
+  for (const DatasetEvent& e : world.events()) {
+    // Every event happens on the frame the robot starts a new lap.
+    const RobotSample& s = run.samples.at(e.frame);
+    EXPECT_GE(s.lap, 1.0);
+    EXPECT_LT(run.samples.at(e.frame - 1).lap, std::floor(s.lap)) << e.type;
+    leaves += e.type == "leave";
+    arrivals += e.type == "arrive";
+  }
+  EXPECT_GT(leaves, 0);
+  EXPECT_GT(arrivals, 0);
+  // A seat that someone left and nobody took is warmer than the room right after, and cools.
+  bool checked = false;
+  for (const DatasetEvent& e : world.events()) {
+    if (e.type != "leave") continue;
+    const double t = run.samples[e.frame].time_s;
+    const int table_index = std::stoi(e.seat), seat = std::stoi(e.seat.substr(e.seat.find('.') + 1));
+    bool retaken = false;
+    for (const Person& p : world.people()) retaken |= p.seated && p.table == table_index && p.seat == seat && p.arrive_s >= t;
+    if (retaken) continue;
+    const int chair = ChairInstance(world, table_index, seat);
+    world.SetTime(t - 0.1);
+    const float occupied = SeatTemperature(world, chair);
+    world.SetTime(t + 1.0);
+    const float just_left = SeatTemperature(world, chair);
+    world.SetTime(t + 600.0);
+    const float later = SeatTemperature(world, chair);
+    EXPECT_GT(occupied, 23.5f);
+    EXPECT_GT(just_left, 23.5f);
+    EXPECT_LT(later, just_left - 1.5f);
+    checked = true;
+    break;
+  }
+  EXPECT_TRUE(checked) << "no left seat stayed free";
+}
+
+TEST(Crowd, SeatedPeopleChangePostureButKeepTheirIdAndSeat) {
+  const Scene scene = PaperRoom({"crowd.posture_change_interval_s=5"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  std::map<int, std::set<std::string>> postures;
+  std::map<int, std::pair<int, int>> seat_of;
+  for (double t = 0; t < 60; t += 1.0) {
+    world.SetTime(t);
+    for (const Person& p : world.people()) {
+      if (!p.present) continue;
+      postures[p.person_id].insert(p.posture);
+      EXPECT_EQ(world.instance(p.instance).person_id, p.person_id);
+      const auto seat = std::make_pair(p.table, p.seat);
+      EXPECT_EQ(seat_of.emplace(p.person_id, seat).first->second, seat);
+    }
+  }
+  EXPECT_EQ(postures.size(), 24u);
+  int changed = 0;
+  for (const auto& [id, set] : postures) changed += set.size() > 1;
+  EXPECT_GT(changed, 12);
+}
+
+TEST(Crowd, WalkersStayOnTheRouteAheadOfTheRobotAndClearOfFurniture) {
+  const Scene scene = PaperRoom({"crowd.walkers=6"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = Drive(scene, world);
+  world.PlanCrowd(run.samples);
+  int walkers = 0;
+  for (size_t f = 0; f < run.samples.size(); f += 25) {
+    world.SetTime(run.samples[f].time_s);
+    for (const Person& p : world.people()) {
+      if (p.seated) continue;
+      ASSERT_TRUE(p.present);
+      const Eigen::Vector2d at = world.caster().transform_of(p.instance).topRightCorner<2, 1>().cast<double>();
+      for (const Obstacle2D& o : world.obstacles()) {
+        if (o.name.rfind("chair", 0) != 0 && o.name.rfind("table", 0) != 0) continue;
+        EXPECT_GT(DistanceToObstacle(at, o), 0.3) << o.name << " at frame " << f;
+      }
+      const Eigen::Vector2d robot(run.samples[f].base.x_m, run.samples[f].base.y_m);
+      if (f + 200 < run.samples.size()) {
+        EXPECT_GT((at - robot).norm(), 0.6) << "frame " << f;
+      }
+      ++walkers;
+    }
+  }
+  EXPECT_GT(walkers, 0);
+}
+
+// Mean occlusion fraction of the seated people in view over the first lap (every 10th frame).
+double MeanOcclusion(const std::vector<std::string>& overrides) {
+  const Scene scene = PaperRoom(overrides);
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = Drive(scene, world);
+  world.PlanCrowd(run.samples);
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 0));
+  double sum = 0;
+  int n = 0;
+  for (size_t f = 0; f < 1000; f += 10) {
+    world.SetTime(run.samples[f].time_s);
+    const FrameBuffers frame = renderer.Render(run.samples[f].camera);
+    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance)) {
+      if (!p.seated) continue;
+      sum += p.occlusion_fraction;
+      ++n;
+    }
+  }
+  return n ? sum / n : 0.0;
+}
+
+TEST(Crowd, OcclusionOfSeatedPeopleRisesWithWalkers) {
+  const double none = MeanOcclusion({"crowd.walkers=0"});
+  const double many = MeanOcclusion({"crowd.walkers=6"});
+  EXPECT_GT(many, none + 0.02) << "walkers 0: " << none << ", walkers 6: " << many;
+  std::printf("mean occlusion of seated people: walkers 0: %.3f, walkers 6: %.3f\n", none, many);
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(Crowd, PaperRouteKeepsClearOfTheRealFurnitureFootprints) {
+  const Scene scene = PaperRoom({});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = Drive(scene, world);
+  for (size_t i = 0; i < world.obstacles().size(); ++i) {
+    const std::string& name = world.obstacles()[i].name;
+    if (name.rfind("chair", 0) != 0 && name.rfind("table", 0) != 0) continue;
+    EXPECT_GE(run.obstacle_distance_m[i], 0.3) << name;
+  }
+}
+
+}  // namespace
+}  // namespace hoilcd
