@@ -231,6 +231,10 @@ std::string PaperFindingSummary(const BenchResult& result) {
   if (result.mean_hoi_points_per_frame == 0) {
     out << ". DLCD found no HOI points at all (no people detected), so it has nothing to match: its "
            "ranks are pure ties.";
+  } else if (result.ground_truth_person_views == 0) {
+    out << ". The scene has no people, so every one of DLCD's HOI points (" << Fixed(result.mean_hoi_points_per_frame, 1)
+        << " a frame) comes from a warm object mistaken for a person: its score measures the detector's false "
+           "positives, not human-object interaction.";
   }
   return out.str();
 }

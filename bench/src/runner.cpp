@@ -194,6 +194,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   for (const FrameFeatures& f : result.features) kp += f.keypoints.size(), hp += f.hoi.size();
   result.mean_keypoints_per_frame = n ? kp / n : 0;
   result.mean_hoi_points_per_frame = n ? hp / n : 0;
+  for (const FramePersons& f : dataset.persons()) result.ground_truth_person_views += static_cast<int64_t>(f.persons.size());
   if (need_dlcd) {
     result.tracking = ComputeTrackingMetrics(dataset.persons(), tracks, options.tracking_metrics);
     result.tracking_evaluated = true;

@@ -71,6 +71,7 @@ struct BenchResult {
   bool tracking_evaluated = false;
   double mean_hoi_points_per_frame = 0;
   double mean_keypoints_per_frame = 0;
+  int64_t ground_truth_person_views = 0;   // person records in persons.json (all frames)
   double seconds = 0;                      // wall time of RunBench
   const MethodRun* Find(const std::string& name) const;
 };
