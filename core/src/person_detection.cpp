@@ -39,6 +39,8 @@ std::string PersonDetectorOptions::Check() const {
        max_hot_fraction);
   need(max_fill_ratio > 0 && max_fill_ratio <= 1, "max_fill_ratio must be in (0, 1]",
        max_fill_ratio);
+  need(max_flat_top_fraction > 0 && max_flat_top_fraction <= 1, "max_flat_top_fraction must be in (0, 1]",
+       max_flat_top_fraction);
   need(max_solidity > 0 && max_solidity <= 1, "max_solidity must be in (0, 1]", max_solidity);
   need(score_area_px > 0, "score_area_px must be > 0", score_area_px);
   need(typical_aspect_hw > 0, "typical_aspect_hw must be > 0", typical_aspect_hw);
@@ -222,6 +224,22 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
       const double solidity = part.area / static_cast<double>(cv::countNonZero(hull_mask));
       const double fill = part.area / static_cast<double>(part.box.area());
       if (fill >= options.max_fill_ratio && solidity >= options.max_solidity) continue;
+      if (part.box.y > 0) {  // a straight top edge is a screen, not a head
+        std::vector<int> tops;
+        for (int x = 0; x < part_mask.cols; ++x) {
+          for (int y = 0; y < part_mask.rows; ++y) {
+            if (part_mask.at<uint8_t>(y, x)) {
+              tops.push_back(y);
+              break;
+            }
+          }
+        }
+        std::vector<int> sorted = tops;
+        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+        const int median_top = sorted[sorted.size() / 2];
+        const auto flat = std::count_if(tops.begin(), tops.end(), [&](int y) { return std::abs(y - median_top) <= 1; });
+        if (static_cast<double>(flat) > options.max_flat_top_fraction * tops.size()) continue;
+      }
 
       result.mask(part.box).setTo(255, part_mask);
       result.detections.push_back(

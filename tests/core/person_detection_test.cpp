@@ -182,3 +182,24 @@ TEST(PersonDetectorOptions, CheckNamesTheBadField) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(PersonDetection, AWarmMonitorWithAStraightTopIsNotAPerson) {
+  // A 30 °C monitor back (a rectangle on a stand, a hot cup merged at its foot) on a 22 °C room.
+  cv::Mat t(192, 256, CV_32F, cv::Scalar(22.0f));
+  cv::rectangle(t, cv::Rect(100, 60, 40, 28), cv::Scalar(29.6f), cv::FILLED);
+  cv::rectangle(t, cv::Rect(116, 88, 8, 14), cv::Scalar(29.0f), cv::FILLED);
+  cv::circle(t, cv::Point(132, 98), 4, cv::Scalar(45.0f), cv::FILLED);
+  EXPECT_TRUE(DetectPersons(cv::Mat(), t, PersonDetectorOptions{}).detections.empty());
+  PersonDetectorOptions without_rule;
+  without_rule.max_flat_top_fraction = 1.0;  // the other rules alone take it for a person
+  EXPECT_EQ(DetectPersons(cv::Mat(), t, without_rule).detections.size(), 1u);
+  // The same blob with a round head on top is a person.
+  cv::circle(t, cv::Point(120, 52), 10, cv::Scalar(33.0f), cv::FILLED);
+  EXPECT_EQ(DetectPersons(cv::Mat(), t, PersonDetectorOptions{}).detections.size(), 1u);
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -36,6 +36,10 @@ struct PersonDetectorOptions {
   double max_hot_fraction = 0.7;    // parts with more pixels >= hot_c are laptops, cups, radiators
   double max_fill_ratio = 0.9;      // area / box area; rectangles fill more ...
   double max_solidity = 0.97;       // ... and are convex (area / hull area): both => object
+  // Fraction of a part's columns whose top pixel lies within 1 px of the median top row: screens
+  // and monitors have straight top edges (0.8-1.0 on rendered paper-room frames), people round
+  // heads and shoulders (95 % below 0.62). Parts touching the image top are exempt.
+  double max_flat_top_fraction = 0.7;
   // Score = geometric mean of an area, a shape and a temperature score.
   double score_area_px = 400;       // px^2, area at which the area score is 1 - 1/e
   double typical_aspect_hw = 1.8;   // height/width of a seated person, shape score 1
