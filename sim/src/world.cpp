@@ -99,6 +99,33 @@ World::World(const Scene& scene, const BandRadianceTable& table)
                                        o.position_m, yaw));
     }
   }
+  // People standing still (chatting by a wall): present all the time, obstacles for the robot.
+  const Asset& standing = assets_.Get("person_standing");
+  for (const nlohmann::json& spec : crowd.at("standing")) {
+    int id = 0;
+    for (const Person& q : people_) id = std::max(id, q.person_id + 1);
+    Rng rng = KeyedRng(seed_, "crowd.standing", id);
+    Person person;
+    person.person_id = id;
+    person.seated = false;
+    person.postures.emplace_back(0.0, "standing");
+    const Eigen::Vector3d at(spec.at("position_m").at(0).get<double>(), spec.at("position_m").at(1).get<double>(), 0.0);
+    person.world_from_seat = PlacementTransform(at, spec.at("yaw_deg").get<double>() * kDegToRad);
+    person.height_scale = std::clamp(1.0 + crowd.at("height_scale_sd").get<double>() * rng.Normal(), 0.85, 1.15);
+    person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
+    person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
+    person.sway_period_s = crowd.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
+    person.lead_s = -1;  // marks a person standing still (no route to follow)
+    const int instance = Place(standing, kHidden, InstanceRole::kPerson, "standing " + std::to_string(id), 0.0);
+    instances_[instance].person_id = id;
+    SetPersonTemperatures(instance, standing,
+                          crowd.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
+                          crowd.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
+                          crowd.at("hair_temperature_c").get<double>());
+    person.instances["standing"] = instance;
+    people_.push_back(person);
+    obstacles_.push_back(Obstacle2D::Circle("standing person " + std::to_string(id), at.head<2>(), 0.3));
+  }
   SetTime(0.0);
 }
 
@@ -446,7 +473,7 @@ void World::SetTime(double time_s) {
       if (from <= time_s) p.posture = name;
     p.instance = p.present ? p.instances.at(p.posture) : -1;
     Eigen::Matrix4f world_from_body = kHidden;
-    if (p.present && p.seated) {
+    if (p.present && (p.seated || p.lead_s < 0)) {  // seated, or standing still
       const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
       const double breath = breathing_amplitude_m_ *
                             std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);

@@ -179,3 +179,42 @@ TEST(Crowd, PaperRouteKeepsClearOfTheRealFurnitureFootprints) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(Crowd, StandingPeopleAreSeenAndTheRobotMustNotRunIntoThem) {
+  // A deeper room leaves space by the north wall for two people chatting.
+  const Scene scene = PaperRoom({"room.size_m=[7.0, 4.0, 2.6]",
+                                 "crowd.standing=[{\"position_m\": [3.0, 3.5], \"yaw_deg\": 0},"
+                                 " {\"position_m\": [3.6, 3.5], \"yaw_deg\": 180}]"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = Drive(scene, world);
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 0));
+  std::set<int> standing_seen;
+  for (size_t f = 0; f < 1000; f += 10) {
+    world.SetTime(run.samples[f].time_s);
+    const FrameBuffers frame = renderer.Render(run.samples[f].camera);
+    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance)) {
+      if (!p.seated && p.visible_fraction > 0.5) {
+        EXPECT_EQ(p.posture, "standing");
+        standing_seen.insert(p.id);
+      }
+    }
+  }
+  EXPECT_EQ(standing_seen.size(), 2u);
+  // Standing on the route is a collision the robot simulation reports by name.
+  const Scene blocked = PaperRoom({"crowd.standing=[{\"position_m\": [3.0, 2.62]}]"});
+  World blocked_world(blocked, table);
+  try {
+    Drive(blocked, blocked_world);
+    FAIL() << "the robot drove through a standing person";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("standing person"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hoilcd

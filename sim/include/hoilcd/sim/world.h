@@ -56,7 +56,7 @@ struct Person {
   Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
   double height_scale = 1;
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
-  double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers
+  double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
   double lateral_m = 0;                      // walkers: offset to the left of the route
   // State at the current time.
   bool present = false;
