@@ -100,31 +100,16 @@ World::World(const Scene& scene, const BandRadianceTable& table)
     }
   }
   // People standing still (chatting by a wall): present all the time, obstacles for the robot.
-  const Asset& standing = assets_.Get("person_standing");
   for (const nlohmann::json& spec : crowd.at("standing")) {
-    int id = 0;
-    for (const Person& q : people_) id = std::max(id, q.person_id + 1);
-    Rng rng = KeyedRng(seed_, "crowd.standing", id);
-    Person person;
-    person.person_id = id;
-    person.seated = false;
-    person.postures.emplace_back(0.0, "standing");
+    Rng rng = KeyedRng(seed_, "crowd.standing", static_cast<uint64_t>(people_.size()));
+    Person& person = AddStandingPerson("standing", &rng);
     const Eigen::Vector3d at(spec.at("position_m").at(0).get<double>(), spec.at("position_m").at(1).get<double>(), 0.0);
     person.world_from_seat = PlacementTransform(at, spec.at("yaw_deg").get<double>() * kDegToRad);
-    person.height_scale = std::clamp(1.0 + crowd.at("height_scale_sd").get<double>() * rng.Normal(), 0.85, 1.15);
     person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
     person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
     person.sway_period_s = crowd.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
     person.lead_s = -1;  // marks a person standing still (no route to follow)
-    const int instance = Place(standing, kHidden, InstanceRole::kPerson, "standing " + std::to_string(id), 0.0);
-    instances_[instance].person_id = id;
-    SetPersonTemperatures(instance, standing,
-                          crowd.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
-                          crowd.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
-                          crowd.at("hair_temperature_c").get<double>());
-    person.instances["standing"] = instance;
-    people_.push_back(person);
-    obstacles_.push_back(Obstacle2D::Circle("standing person " + std::to_string(id), at.head<2>(), 0.3));
+    obstacles_.push_back(Obstacle2D::Circle("standing person " + std::to_string(person.person_id), at.head<2>(), 0.3));
   }
   SetTime(0.0);
 }
@@ -416,33 +401,38 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   // Walkers walk the robot's route a few seconds ahead of it: between the camera and the
   // seated people (the occlusion knob), never in the robot's way.
   const int walkers = crowd_.at("walkers").get<int>();
-  const Asset& standing = assets_.Get("person_standing");
   for (int w = 0; w < walkers; ++w) {
-    int id = 0;
-    for (const Person& q : people_) id = std::max(id, q.person_id + 1);
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
-    Person walker;
-    walker.person_id = id;
-    walker.seated = false;
-    walker.postures.emplace_back(0.0, "standing");
+    Person& walker = AddStandingPerson("walker", &rng);
     walker.lead_s = rng.Uniform(3.0, 7.0);
     walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
     walker.lead_phase_rad = rng.Uniform(0, 2 * M_PI);
     walker.lateral_m = rng.Uniform(0.0, 0.04);  // to the left: the tables are on the right of a clockwise lap
-    walker.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng.Normal(), 0.85, 1.15);
-    const int instance = Place(standing, kHidden, InstanceRole::kPerson, "walker " + std::to_string(id), 0.0);
-    instances_[instance].person_id = id;
-    SetPersonTemperatures(instance, standing,
-                          crowd_.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
-                          crowd_.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0),
-                          crowd_.at("hair_temperature_c").get<double>());
-    walker.instances["standing"] = instance;
-    people_.push_back(walker);
   }
   std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
     return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
   });
+}
+
+Person& World::AddStandingPerson(const std::string& kind, Rng* rng) {
+  int id = 0;
+  for (const Person& q : people_) id = std::max(id, q.person_id + 1);
+  const Asset& body = assets_.Get("person_standing");
+  Person person;
+  person.person_id = id;
+  person.seated = false;
+  person.postures.emplace_back(0.0, "standing");
+  person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng->Normal(), 0.85, 1.15);
+  const int instance = Place(body, kHidden, InstanceRole::kPerson, kind + " " + std::to_string(id), 0.0);
+  instances_[instance].person_id = id;
+  SetPersonTemperatures(instance, body,
+                        crowd_.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+                        crowd_.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+                        crowd_.at("hair_temperature_c").get<double>());
+  person.instances["standing"] = instance;
+  people_.push_back(person);
+  return people_.back();
 }
 
 void World::UpdateSeatWarmth(double time_s) {

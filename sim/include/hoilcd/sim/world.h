@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/random.h"
 #include "hoilcd/sim/asset.h"
 #include "hoilcd/sim/radiometry.h"
 #include "hoilcd/sim/ray_caster.h"
@@ -104,6 +105,8 @@ class World {
   void Finish(InstanceMaterial* m) const;
   // Adds a seated person (instances for every posture they will take) and returns its index.
   size_t AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s, double leave_s);
+  // Adds a person standing (walker or standing still) with varied size and temperatures.
+  Person& AddStandingPerson(const std::string& kind, Rng* rng);
   void SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c, double hair_c);
   void UpdateSeatWarmth(double time_s);
 
