@@ -154,13 +154,13 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
   const cv::Scalar colour = hoi ? cv::Scalar(255, 255, 0) : cv::Scalar(0, 255, 0);
   row.push_back({dataset.Thermal(q.frame), "query " + std::to_string(q.frame), {}, colour});
   row.push_back({dataset.Thermal(q.frame), run.name + " features", features(q.frame), colour});
-  const std::string tie = rec.top1_tie_size > 1 ? ", tied with " + std::to_string(rec.top1_tie_size - 1) : "";
+  const std::string tie = rec.top1_tie_size > 1 ? " (" + std::to_string(rec.top1_tie_size) + " tied)" : "";
   row.push_back({dataset.Thermal(rec.top1_frame),
-                 "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " (true)" : " (false)") +
-                     " score " + Fixed(rec.top1_score, 0) + tie,
+                 "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " ok" : " wrong") +
+                     " s=" + Fixed(rec.top1_score, 0) + tie,
                  features(rec.top1_frame), colour});
   row.push_back({best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
-                 best_true >= 0 ? "true match " + std::to_string(best_true) + " score " + Fixed(best_score, 0)
+                 best_true >= 0 ? "true match " + std::to_string(best_true) + " s=" + Fixed(best_score, 0)
                                 : "no true match",
                  best_true >= 0 ? features(best_true) : std::vector<cv::Point2f>{}, colour});
   return row;
@@ -307,9 +307,18 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   for (const char* name : {"dlcd", "slcd"}) {
     const MethodRun* run = result.Find(name);
     if (!run) continue;
+    // Queries whose frame has features for this method show the matching (like the paper's
+    // figure 6); a wall with no features makes a dull example.
+    const bool hoi = std::string(name) == "dlcd";
     std::vector<size_t> scored;
-    for (size_t i = 0; i < result.queries.size(); ++i)
-      if (run->metrics.queries[i].scored) scored.push_back(i);
+    for (size_t i = 0; i < result.queries.size(); ++i) {
+      const FrameFeatures& f = result.features[result.queries[i].frame];
+      if (run->metrics.queries[i].scored && !(hoi ? f.hoi.empty() : f.keypoints.empty())) scored.push_back(i);
+    }
+    if (scored.empty()) {
+      for (size_t i = 0; i < result.queries.size(); ++i)
+        if (run->metrics.queries[i].scored) scored.push_back(i);
+    }
     if (scored.empty()) continue;
     std::vector<std::vector<MatchTile>> rows;
     for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
