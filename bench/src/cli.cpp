@@ -244,14 +244,15 @@ int RunCommandLine(int argc, char** argv) {
   SweepArgs sweep_args;
   BenchArgs sweep_bench;
   CLI::App* sweep = app.add_subcommand(
-      "sweep",
-      "run a scene over the cross product of listed values x seeds 1..N, keep every run's report, "
-      "summarise (mean, std, min, max over seeds) and plot each metric against each swept value.\n"
-      "  --shard I/N runs only every N-th run starting at I (0 <= I < N) of the sorted run list, for\n"
-      "  job arrays; OUT/sweep.json marks the shard. --merge DIR... -o OUT combines shard outputs\n"
-      "  (nothing is rendered) and fails naming any run that is missing or present twice. With\n"
-      "  SCENE and the shards' --set/--seeds/bench flags, a merge also checks the shards ran exactly\n"
-      "  that sweep; without SCENE, the sweep is read from the shards (they must agree).");
+      "sweep", "run a scene over the cross product of --set values x seeds; summary table and plots");
+  sweep->footer(
+      "Every run's report is kept; the summary gives mean, std, min and max over seeds and a plot of\n"
+      "each metric against each swept value.\n"
+      "--shard I/N runs only every N-th run starting at I (0 <= I < N) of the sorted run list, for\n"
+      "job arrays; OUT/sweep.json marks the shard. --merge DIR... -o OUT combines shard outputs\n"
+      "(nothing is rendered) and fails naming any run that is missing or present twice. With\n"
+      "SCENE and the shards' --set/--seeds/bench flags, a merge also checks the shards ran exactly\n"
+      "that sweep; without SCENE, the sweep is read from the shards (they must agree).");
   sweep->add_option("scene", sweep_args.scene, "scene file (JSON); optional with --merge");
   sweep->add_option("--set", sweep_args.sets,
                     "KEY=V1,V2,...: values to sweep (split on top-level commas, so [1,2] is one value); repeatable, "
