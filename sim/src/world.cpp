@@ -335,7 +335,10 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
   };
   const double skin_c = varied("skin_temperature_c", "skin_temperature_sd_c");
   const double clothing_c = varied("clothing_temperature_c", "clothing_temperature_sd_c");
-  const double hair_c = crowd_.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
+  // Skin exposure varies: some people have little hair, and their scalp reads as skin.
+  const bool bald = rng.Uniform() < crowd_.at("bald_fraction").get<double>();
+  const double hair_c = bald ? skin_c - 1.0
+                             : crowd_.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
   for (const auto& [from, name] : person.postures) {
     if (person.instances.count(name)) continue;
     const Asset& body = assets_.Get("person_" + name);

@@ -218,3 +218,25 @@ TEST(Crowd, StandingPeopleAreSeenAndTheRobotMustNotRunIntoThem) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(Crowd, SomePeopleShowSkinWhereOthersHaveHair) {
+  const Scene scene = PaperRoom({"crowd.bald_fraction=0.5"});
+  const BandRadianceTable table;
+  const World world(scene, table);
+  int bald = 0, haired = 0;
+  for (const Person& p : world.people()) {
+    const InstanceInfo& info = world.instance(p.instances.begin()->second);
+    const int hair = info.asset->MaterialIndex("hair"), skin = info.asset->MaterialIndex("skin");
+    ASSERT_GE(hair, 0);
+    const float difference = info.materials[skin].temperature_c - info.materials[hair].temperature_c;
+    (std::abs(difference - 1.0f) < 1e-3f ? bald : haired) += 1;
+  }
+  EXPECT_GT(bald, 3);
+  EXPECT_GT(haired, 3);
+}
+
+}  // namespace
+}  // namespace hoilcd
