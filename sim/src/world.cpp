@@ -407,7 +407,7 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   for (int w = 0; w < walkers; ++w) {
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
     Person& walker = AddStandingPerson("walker", &rng);
-    walker.lead_s = rng.Uniform(3.0, 7.0);
+    walker.lead_s = rng.Uniform(4.0, 9.0);  // 1.7-3.9 m ahead at cruise speed
     walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
     walker.lead_phase_rad = rng.Uniform(0, 2 * M_PI);
