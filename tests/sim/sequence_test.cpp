@@ -52,9 +52,10 @@ TEST(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
   const Scene scene = PaperRoom();
   const DatasetManifest whole = Render(scene, TempDir("whole"), 6, 0);
   const std::string dir = TempDir("resumed");
-  Render(scene, dir, 3, 0);
-  // Damage one finished frame: the resumed run must notice and render it again.
+  Render(scene, dir, 4, 0);
+  // Damage two finished frames apart: the resumed run must notice and render both again.
   WriteFileAtomic(dir + "/thermal/000001.png", "not a png");
+  WriteFileAtomic(dir + "/exr/000003.exr", "not an exr");
   SequenceOptions options;
   options.output_dir = dir;
   options.frames = 6;

@@ -104,7 +104,9 @@ class World {
   void BuildFurnitureAndPeople(const Scene& scene);
   void Finish(InstanceMaterial* m) const;
   // Adds a seated person (instances for every posture they will take) and returns its index.
-  size_t AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s, double leave_s);
+  // person_id < 0: a new person; else that person (same appearance) on another seat.
+  size_t AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s, double leave_s,
+                         int person_id = -1);
   // Adds a person standing (walker or standing still) with varied size and temperatures.
   Person& AddStandingPerson(const std::string& kind, Rng* rng);
   void SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c, double hair_c);
