@@ -25,6 +25,9 @@ std::string Fixed(double v, int digits = 3) {
 }
 
 const char* kNotes[] = {
+    "Precision-recall and R@100%P cover the scored queries, those with a true match in their "
+    "database (revisits); queries without one are counted as skipped and cannot add false "
+    "positives here.",
     "Ranks with tied scores are expected values over a uniformly random order of the tied group "
     "(many database frames share 0 inliers); no rank depends on database order.",
     "SLCD uses Shi-Tomasi (GFTT) corners with SuperPoint-like settings (4 px NMS, 4 px border, up "

@@ -284,9 +284,18 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   s.frame_rate_hz = doc["frame_rate_hz"].get<double>();
 
   const fs::path scene_dir = fs::absolute(fs::path(file)).parent_path();
-  const std::string assets_dir = doc["assets_dir"].get<std::string>();
-  s.assets_dir = assets_dir.empty() ? std::string(HOILCD_SOURCE_DIR) + "/assets"
-                                    : (scene_dir / assets_dir).lexically_normal().string();
+  // Paths relative to the scene file are made absolute in the resolved document, so a
+  // dataset's scene.json (written elsewhere) still finds the same assets.
+  std::string assets_dir = doc["assets_dir"].get<std::string>();
+  if (!assets_dir.empty()) {
+    assets_dir = (scene_dir / assets_dir).lexically_normal().string();
+    doc["assets_dir"] = assets_dir;
+  }
+  s.assets_dir = assets_dir.empty() ? std::string(HOILCD_SOURCE_DIR) + "/assets" : assets_dir;
+  for (const char* key : {"table_asset", "chair_asset"}) {
+    doc["furniture"][key] = ResolveAssetRef(doc["furniture"][key].get<std::string>(), scene_dir);
+  }
+  for (json& o : doc["objects"]) o["asset"] = ResolveAssetRef(o["asset"].get<std::string>(), scene_dir);
 
   const json& room = doc["room"];
   s.room_size_m = Vec3(room["size_m"]);
