@@ -168,7 +168,7 @@ TEST(Crowd, OcclusionOfSeatedPeopleRisesWithWalkers) {
 namespace hoilcd {
 namespace {
 
-TEST(Crowd, PaperRouteKeepsClearOfTheRealFurnitureFootprints) {
+TEST(Crowd, PaperRouteDrivesTwoClockwiseLapsClearOfTheRealFurniture) {
   const Scene scene = PaperRoom({});
   const BandRadianceTable table;
   World world(scene, table);
@@ -177,6 +177,20 @@ TEST(Crowd, PaperRouteKeepsClearOfTheRealFurnitureFootprints) {
     const std::string& name = world.obstacles()[i].name;
     if (name.rfind("chair", 0) != 0 && name.rfind("table", 0) != 0) continue;
     EXPECT_GE(run.obstacle_distance_m[i], 0.3) << name;
+  }
+  // The scene's own route and robot (not the robot module's defaults): about two clockwise laps
+  // in 1996 frames, inside the room, within the steering limit.
+  ASSERT_EQ(run.samples.size(), 1996u);
+  EXPECT_GE(run.laps, 1.8);
+  EXPECT_LE(run.laps, 2.2);
+  EXPECT_LT(run.heading_change_rad, -1.5 * 2 * M_PI);
+  const TricycleOptions robot = TricycleOptionsFromScene(scene);
+  EXPECT_LE(run.max_curvature_per_m, std::tan(robot.max_steer_deg * M_PI / 180) / robot.wheelbase_m + 1e-9);
+  for (const RobotSample& s : run.samples) {
+    EXPECT_GT(s.base.x_m, 0.2);
+    EXPECT_LT(s.base.x_m, 6.8);
+    EXPECT_GT(s.base.y_m, 0.2);
+    EXPECT_LT(s.base.y_m, 2.8);
   }
 }
 
