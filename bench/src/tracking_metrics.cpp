@@ -54,6 +54,7 @@ std::string TrackingMetricsOptions::Check() const {
   if (!(min_visible_fraction >= 0 && min_visible_fraction <= 1)) {
     return "min_visible_fraction must be in [0, 1]";
   }
+  if (!(min_box_height_px >= 0)) return "min_box_height_px must not be negative";
   if (!(hoi_tolerance_px >= 0)) return "hoi_tolerance_px must not be negative";
   return "";
 }
@@ -133,7 +134,8 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
 
     // Ignored persons take their matching predictions with them.
     const auto is_ignored = [&](const PersonRecord* p) {
-      return p->visible_fraction < options.min_visible_fraction;
+      return p->visible_fraction < options.min_visible_fraction ||
+             p->box_px.height < options.min_box_height_px;
     };
     if (std::any_of(persons.begin(), persons.end(), is_ignored)) {
       std::vector<uint8_t> drop_track(tracks.size(), 0);

@@ -30,6 +30,13 @@ std::string PersonDetectorOptions::Check() const {
   need(min_peak_ratio >= 0 && min_peak_ratio <= 1, "min_peak_ratio must be in [0, 1]",
        min_peak_ratio);
   need(min_split_width_px >= 1, "min_split_width_px must be >= 1", min_split_width_px);
+  need(std::isfinite(head_min_c), "head_min_c must be finite", head_min_c);
+  need(min_head_area_px >= 1, "min_head_area_px must be >= 1", min_head_area_px);
+  need(head_zone_ratio > 0 && head_zone_ratio <= 1, "head_zone_ratio must be in (0, 1]",
+       head_zone_ratio);
+  need(merge_min_overlap > 0 && merge_min_overlap <= 1, "merge_min_overlap must be in (0, 1]",
+       merge_min_overlap);
+  need(min_fragment_area_px >= 1, "min_fragment_area_px must be >= 1", min_fragment_area_px);
   need(min_area_px >= 1, "min_area_px must be >= 1", min_area_px);
   need(min_height_px >= 1, "min_height_px must be >= 1", min_height_px);
   need(min_aspect_hw > 0 && min_aspect_hw < max_aspect_hw,
@@ -117,14 +124,103 @@ cv::Mat Ellipse(int diameter_px) {
   return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(diameter_px, diameter_px));
 }
 
-struct PartStats {
-  int area = 0;
+struct Part {
   cv::Rect box;  // tight, integer pixels
+  std::vector<cv::Point> pixels;
   std::vector<float> temperatures_c;
+  bool has_head = false;
 };
 
-double Score(const PartStats& part, double median_c, const PersonDetectorOptions& options) {
-  const double area_score = 1.0 - std::exp(-part.area / options.score_area_px);
+struct ColumnSpan {
+  int x0 = 0, x1 = 0;  // [x0, x1) within the blob
+};
+
+// Skin-temperature components in the upper part of the blob, merged where they share columns
+// (a face and an ear, or two heads one behind the other that columns cannot separate anyway).
+std::vector<ColumnSpan> FindHeads(const cv::Mat& labels, int label, const cv::Rect& blob,
+                                  const cv::Mat& temperature_c,
+                                  const PersonDetectorOptions& options) {
+  const cv::Mat skin = (labels(blob) == label) & (temperature_c(blob) >= options.head_min_c) &
+                       (temperature_c(blob) <= options.max_median_c);
+  cv::Mat skin_labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(skin, skin_labels, stats, centroids, 8, CV_32S);
+  std::vector<ColumnSpan> heads;
+  for (int k = 1; k < n; ++k) {
+    if (stats.at<int>(k, cv::CC_STAT_AREA) < options.min_head_area_px) continue;
+    if (stats.at<int>(k, cv::CC_STAT_TOP) > options.head_zone_ratio * blob.height) continue;
+    const int x0 = stats.at<int>(k, cv::CC_STAT_LEFT);
+    heads.push_back({x0, x0 + stats.at<int>(k, cv::CC_STAT_WIDTH)});
+  }
+  std::sort(heads.begin(), heads.end(),
+            [](const ColumnSpan& a, const ColumnSpan& b) { return a.x0 < b.x0; });
+  std::vector<ColumnSpan> merged;
+  for (const ColumnSpan& h : heads) {
+    if (!merged.empty()) {
+      ColumnSpan& last = merged.back();
+      const int overlap = std::min(last.x1, h.x1) - std::max(last.x0, h.x0);
+      if (2 * overlap >= std::min(last.x1 - last.x0, h.x1 - h.x0)) {
+        last.x1 = std::max(last.x1, h.x1);
+        continue;
+      }
+    }
+    merged.push_back(h);
+  }
+  return merged;
+}
+
+// Between neighbouring heads: the middle of the gap between them, or of their centres when
+// they overlap a little.
+std::vector<int> SplitBetweenHeads(const std::vector<ColumnSpan>& heads) {
+  std::vector<int> splits;
+  for (size_t k = 0; k + 1 < heads.size(); ++k) {
+    const ColumnSpan& a = heads[k];
+    const ColumnSpan& b = heads[k + 1];
+    const int m = b.x0 >= a.x1 ? (a.x1 + b.x0 + 1) / 2 : (a.x0 + a.x1 + b.x0 + b.x1 + 2) / 4;
+    if (splits.empty() || m > splits.back()) splits.push_back(m);
+  }
+  return splits;
+}
+
+double Median(std::vector<float> values) {
+  auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// Warm objects: too hot overall, mostly above clothing temperature, or a filled convex
+// rectangle (laptop, screen, radiator).
+bool IsObject(const Part& part, double median_c, const PersonDetectorOptions& options) {
+  if (median_c > options.max_median_c) return true;
+  // 1e-3 degC absorbs the rounding of 255 -> u8_max_c in the 8-bit conversion.
+  const auto hot = std::count_if(part.temperatures_c.begin(), part.temperatures_c.end(),
+                                 [&](float t) { return t >= options.hot_c - 1e-3; });
+  const double area = static_cast<double>(part.pixels.size());
+  if (static_cast<double>(hot) > options.max_hot_fraction * area) return true;
+  std::vector<cv::Point> hull;
+  cv::convexHull(part.pixels, hull);
+  for (cv::Point& q : hull) q -= part.box.tl();
+  cv::Mat hull_mask = cv::Mat::zeros(part.box.size(), CV_8U);
+  cv::fillConvexPoly(hull_mask, hull, cv::Scalar(255));
+  const double solidity = area / cv::countNonZero(hull_mask);
+  const double fill = area / part.box.area();
+  if (fill >= options.max_fill_ratio && solidity >= options.max_solidity) return true;
+  // A straight top edge is a screen, not a head (parts touching the image top are exempt).
+  if (part.has_head || part.box.y == 0 || part.box.width < 1) return false;
+  std::vector<int> tops(part.box.width, std::numeric_limits<int>::max());
+  for (const cv::Point& q : part.pixels) {
+    int& top = tops[q.x - part.box.x];
+    top = std::min(top, q.y);
+  }
+  std::vector<int> sorted = tops;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const int median_top = sorted[sorted.size() / 2];
+  const auto flat = std::count_if(tops.begin(), tops.end(), [&](int y) { return std::abs(y - median_top) <= 1; });
+  return static_cast<double>(flat) > options.max_flat_top_fraction * tops.size();
+}
+
+double Score(const Part& part, double median_c, const PersonDetectorOptions& options) {
+  const double area = static_cast<double>(part.pixels.size());
+  const double area_score = 1.0 - std::exp(-area / options.score_area_px);
   const double aspect = static_cast<double>(part.box.height) / part.box.width;
   const double log_ratio = std::log(aspect / options.typical_aspect_hw) / options.aspect_sigma_log;
   const double shape_score = std::exp(-0.5 * log_ratio * log_ratio);
@@ -134,6 +230,25 @@ double Score(const PartStats& part, double median_c, const PersonDetectorOptions
   const double temperature_score = std::exp(-0.5 * z * z);
   const double score = std::cbrt(area_score * shape_score * temperature_score);
   return std::clamp(score, 1e-3, 1.0);
+}
+
+// The part with a head that a headless part joins: it must lie lower (its top below the head
+// part's top) and share enough of its columns; the largest overlap wins. -1 when none.
+int HostOf(const Part& headless, const std::vector<Part>& parts,
+           const PersonDetectorOptions& options) {
+  int host = -1, best_overlap = 0;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const Part& p = parts[k];
+    if (!p.has_head || headless.box.y <= p.box.y) continue;
+    const int overlap = std::min(p.box.br().x, headless.box.br().x) -
+                        std::max(p.box.x, headless.box.x);
+    if (overlap < options.merge_min_overlap * headless.box.width) continue;
+    if (overlap > best_overlap) {
+      best_overlap = overlap;
+      host = static_cast<int>(k);
+    }
+  }
+  return host;
 }
 
 }  // namespace
@@ -167,84 +282,79 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
   cv::Mat labels, stats, centroids;
   const int num_labels =
       cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
-  PersonDetections result;
-  result.mask = cv::Mat::zeros(mask.size(), CV_8U);
+  // Blobs, split into column parts; warm objects and specks dropped.
+  std::vector<Part> parts;
   for (int label = 1; label < num_labels; ++label) {
     const cv::Rect blob(
         stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
         stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
-    if (stats.at<int>(label, cv::CC_STAT_AREA) < options.min_area_px) continue;
-    std::vector<double> counts(blob.width, 0.0);
-    for (int y = blob.y; y < blob.br().y; ++y) {
-      const int* row = labels.ptr<int>(y);
-      for (int x = blob.x; x < blob.br().x; ++x) counts[x - blob.x] += row[x] == label;
+    if (stats.at<int>(label, cv::CC_STAT_AREA) < options.min_fragment_area_px) continue;
+    const std::vector<ColumnSpan> heads =
+        FindHeads(labels, label, blob, temperature_c, options);
+    std::vector<int> bounds;
+    if (heads.size() >= 2) {
+      bounds = SplitBetweenHeads(heads);
+    } else if (heads.empty()) {
+      std::vector<double> counts(blob.width, 0.0);
+      for (int y = blob.y; y < blob.br().y; ++y) {
+        const int* row = labels.ptr<int>(y);
+        for (int x = blob.x; x < blob.br().x; ++x) counts[x - blob.x] += row[x] == label;
+      }
+      bounds = FindSplitColumns(counts, options);
     }
-    std::vector<int> bounds = FindSplitColumns(counts, options);
     bounds.insert(bounds.begin(), 0);
     bounds.push_back(blob.width);
 
     for (size_t k = 0; k + 1 < bounds.size(); ++k) {
       const int x0 = blob.x + bounds[k], x1 = blob.x + bounds[k + 1];
-      PartStats part;
-      int min_x = x1, max_x = x0 - 1, min_y = blob.br().y, max_y = blob.y - 1;
+      Part part;
       for (int y = blob.y; y < blob.br().y; ++y) {
         const int* row = labels.ptr<int>(y);
         const float* t_row = temperature_c.ptr<float>(y);
         for (int x = x0; x < x1; ++x) {
           if (row[x] != label) continue;
-          ++part.area;
-          min_x = std::min(min_x, x);
-          max_x = std::max(max_x, x);
-          min_y = std::min(min_y, y);
-          max_y = std::max(max_y, y);
+          part.pixels.emplace_back(x, y);
           part.temperatures_c.push_back(t_row[x]);
         }
       }
-      if (part.area < options.min_area_px) continue;
-      part.box = cv::Rect(min_x, min_y, max_x - min_x + 1, max_y - min_y + 1);
-      if (part.box.height < options.min_height_px) continue;
-      const double aspect = static_cast<double>(part.box.height) / part.box.width;
-      if (aspect < options.min_aspect_hw || aspect > options.max_aspect_hw) continue;
-      auto middle = part.temperatures_c.begin() + part.temperatures_c.size() / 2;
-      std::nth_element(part.temperatures_c.begin(), middle, part.temperatures_c.end());
-      const double median_c = *middle;
-      if (median_c > options.max_median_c) continue;
-      // 1e-3 degC absorbs the rounding of 255 -> u8_max_c in the 8-bit conversion.
-      const auto hot = std::count_if(part.temperatures_c.begin(), part.temperatures_c.end(),
-                                     [&](float t) { return t >= options.hot_c - 1e-3; });
-      if (static_cast<double>(hot) > options.max_hot_fraction * part.area) continue;
-
-      // Rectangular and convex together means a manufactured object (laptop, screen, radiator).
-      const cv::Mat part_mask = (labels(part.box) == label);
-      std::vector<cv::Point> points, hull;
-      cv::findNonZero(part_mask, points);
-      cv::convexHull(points, hull);
-      cv::Mat hull_mask = cv::Mat::zeros(part.box.size(), CV_8U);
-      cv::fillConvexPoly(hull_mask, hull, cv::Scalar(255));
-      const double solidity = part.area / static_cast<double>(cv::countNonZero(hull_mask));
-      const double fill = part.area / static_cast<double>(part.box.area());
-      if (fill >= options.max_fill_ratio && solidity >= options.max_solidity) continue;
-      if (part.box.y > 0) {  // a straight top edge is a screen, not a head
-        std::vector<int> tops;
-        for (int x = 0; x < part_mask.cols; ++x) {
-          for (int y = 0; y < part_mask.rows; ++y) {
-            if (part_mask.at<uint8_t>(y, x)) {
-              tops.push_back(y);
-              break;
-            }
-          }
-        }
-        std::vector<int> sorted = tops;
-        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        const int median_top = sorted[sorted.size() / 2];
-        const auto flat = std::count_if(tops.begin(), tops.end(), [&](int y) { return std::abs(y - median_top) <= 1; });
-        if (static_cast<double>(flat) > options.max_flat_top_fraction * tops.size()) continue;
+      if (static_cast<int>(part.pixels.size()) < options.min_fragment_area_px) continue;
+      part.box = cv::boundingRect(part.pixels);
+      for (const ColumnSpan& h : heads) {
+        part.has_head |= blob.x + h.x0 < x1 && blob.x + h.x1 > x0;
       }
-
-      result.mask(part.box).setTo(255, part_mask);
-      result.detections.push_back(
-          {cv::Rect2f(part.box), static_cast<float>(Score(part, median_c, options))});
+      if (IsObject(part, Median(part.temperatures_c), options)) continue;
+      parts.push_back(std::move(part));
     }
+  }
+
+  // Headless parts join the part with a head above them (in order, so a chain cannot form).
+  std::vector<int> host(parts.size(), -1);
+  for (size_t k = 0; k < parts.size(); ++k) {
+    if (!parts[k].has_head) host[k] = HostOf(parts[k], parts, options);
+  }
+  for (size_t k = 0; k < parts.size(); ++k) {
+    if (host[k] < 0) continue;
+    Part& into = parts[host[k]];
+    into.box |= parts[k].box;
+    into.pixels.insert(into.pixels.end(), parts[k].pixels.begin(), parts[k].pixels.end());
+    into.temperatures_c.insert(into.temperatures_c.end(), parts[k].temperatures_c.begin(),
+                               parts[k].temperatures_c.end());
+  }
+
+  PersonDetections result;
+  result.mask = cv::Mat::zeros(mask.size(), CV_8U);
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const Part& part = parts[k];
+    if (host[k] >= 0) continue;
+    if (static_cast<int>(part.pixels.size()) < options.min_area_px) continue;
+    if (part.box.height < options.min_height_px) continue;
+    const double aspect = static_cast<double>(part.box.height) / part.box.width;
+    if (aspect < options.min_aspect_hw || aspect > options.max_aspect_hw) continue;
+    const double median_c = Median(part.temperatures_c);
+    if (median_c > options.max_median_c) continue;
+    for (const cv::Point& q : part.pixels) result.mask.at<uint8_t>(q) = 255;
+    result.detections.push_back(
+        {cv::Rect2f(part.box), static_cast<float>(Score(part, median_c, options))});
   }
   return result;
 }

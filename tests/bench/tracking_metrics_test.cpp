@@ -95,6 +95,28 @@ TEST(TrackingMetrics, MissesFalseAlarmsAndIgnoredPersonsAreCounted) {
   EXPECT_EQ(counted.true_positives, 3);
 }
 
+TEST(TrackingMetrics, PersonsWithALowVisibleBoxAreIgnoredWithTheirTracks) {
+  // Person 1 is 30 px high, person 2 is cut to 12 px: at a 13 px minimum person 2 and the track
+  // on it are ignored; at 12 px it counts.
+  PersonRecord low = Person(2);
+  low.box_px.height = 12;
+  TrackedBox on_low = Track(20, 2);
+  on_low.box.height = 12;
+  const std::vector<FramePersons> truth = {{0, {Person(1), low}}};
+  const std::vector<FrameTracks> tracks = {{0, {Track(10, 1), on_low, Track(99, 5)}}};
+  TrackingMetricsOptions options;
+  options.min_box_height_px = 13;
+  const TrackingMetrics ignored = ComputeTrackingMetrics(truth, tracks, options);
+  EXPECT_EQ(ignored.gt_boxes, 1);
+  EXPECT_EQ(ignored.predicted_boxes, 2);
+  EXPECT_EQ(ignored.true_positives, 1);
+  EXPECT_EQ(ignored.false_positives, 1);
+  options.min_box_height_px = 12;
+  const TrackingMetrics counted = ComputeTrackingMetrics(truth, tracks, options);
+  EXPECT_EQ(counted.gt_boxes, 2);
+  EXPECT_EQ(counted.true_positives, 2);
+}
+
 TEST(TrackingMetrics, HoiErrorIsTheDistanceToTheNearestPointOfTheMatchedTrack) {
   PersonRecord p = Person(1);
   p.contacts = {{"seat", 45, 38, true}, {"hand", 50, 20, true}, {"foot", 0, 0, false}};
@@ -114,6 +136,9 @@ TEST(TrackingMetricsOptions, CheckNamesWhatIsWrong) {
   EXPECT_EQ(options.Check(), "");
   options.iou_threshold = 0;
   EXPECT_NE(options.Check().find("iou_threshold"), std::string::npos);
+  options = {};
+  options.min_box_height_px = -1;
+  EXPECT_NE(options.Check().find("min_box_height_px"), std::string::npos);
 }
 
 }  // namespace

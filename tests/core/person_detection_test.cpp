@@ -128,6 +128,51 @@ TEST(DetectPersons, SmallerPeopleScoreLower) {
   EXPECT_GT(result.detections[1].score, 0.0f);
 }
 
+TEST(DetectPersons, OverlappingPeopleAreSplitBetweenTheirHeads) {
+  // A far person (torso 70-110) half hidden by a near one (torso 95-140): the column profile has
+  // no valley, the two faces tell them apart.
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 70, 50, 40, 45);
+  DrawPerson(frame_c, 95, 62, 45, 48);
+  AddNoise(frame_c, 4);
+  const PersonDetections result = DetectPersons(cv::Mat(), frame_c, {});
+  ASSERT_EQ(result.detections.size(), 2u);
+  const cv::Rect2f left = result.detections[0].box, right = result.detections[1].box;
+  // Heads span columns 83-97 and 110-124: the cut falls in the gap between them.
+  EXPECT_NEAR(left.x, 70, 1);
+  EXPECT_NEAR(right.x, 104, 2);
+  EXPECT_NEAR(right.x + right.width, 140, 1);
+  EXPECT_NEAR(left.y, 50 - 16, 2);
+  EXPECT_NEAR(right.y, 62 - 16, 2);
+  // Without temperatures above 30 degC there are no heads and the blob stays whole.
+  EXPECT_EQ(DetectPersons(ToDisplayU8(frame_c), cv::Mat(), {}).detections.size(), 1u);
+}
+
+TEST(DetectPersons, LegsBelowATableJoinThePersonAbove) {
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 100, 60, 34, 40);  // down to the table edge at row 100
+  // Legs below the table; not a rectangle, which would be rejected as an object on its own.
+  cv::ellipse(frame_c, cv::Point(117, 145), cv::Size(9, 15), 0, 0, 360, cv::Scalar(kClothingC),
+              cv::FILLED);
+  AddNoise(frame_c, 5);
+  const PersonDetections result = DetectPersons(cv::Mat(), frame_c, {});
+  ASSERT_EQ(result.detections.size(), 1u);
+  EXPECT_NEAR(result.detections[0].box.y, 60 - 16, 2);
+  EXPECT_NEAR(result.detections[0].box.y + result.detections[0].box.height, 160, 1);
+  EXPECT_EQ(result.mask.at<uint8_t>(145, 115), 255);
+}
+
+TEST(DetectPersons, APersonWithOneHeadIsNotSplitAtAGapBesideTheArm) {
+  // A cold slit between torso and arm makes a deep column valley; one face means one person.
+  cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
+  DrawPerson(frame_c, 100, 60, 40, 50);
+  cv::rectangle(frame_c, cv::Rect(129, 75, 3, 35), cv::Scalar(kRoomC), cv::FILLED);
+  AddNoise(frame_c, 6);
+  const PersonDetections result = DetectPersons(cv::Mat(), frame_c, {});
+  ASSERT_EQ(result.detections.size(), 1u);
+  EXPECT_NEAR(result.detections[0].box.width, 40, 1);
+}
+
 TEST(DetectPersons, RejectsMismatchedInputs) {
   EXPECT_THROW(DetectPersons(cv::Mat(), cv::Mat(), {}), std::logic_error);
   EXPECT_THROW(DetectPersons(cv::Mat(10, 10, CV_32F), cv::Mat(), {}), std::logic_error);
@@ -177,6 +222,9 @@ TEST(PersonDetectorOptions, CheckNamesTheBadField) {
   bad = {};
   bad.split_valley_ratio = 1.5;
   EXPECT_NE(bad.Check().find("split_valley_ratio"), std::string::npos);
+  bad = {};
+  bad.merge_min_overlap = 0;
+  EXPECT_NE(bad.Check().find("merge_min_overlap"), std::string::npos);
   EXPECT_THROW(DetectPersons(cv::Mat(), SceneC(), bad), std::logic_error);
 }
 

@@ -23,11 +23,13 @@
 
 namespace hoilcd {
 
-// Tracking is scored on people at least 20 % visible; those hidden more are neither missed nor
-// false positives (a thermal detector cannot see through a person or a chair back).
+// Tracking is scored on people at least 20 % visible with a visible box at least 16 px high;
+// others are neither missed nor false positives (a thermal detector cannot see through a person
+// or a chair back, nor find a sliver at the image edge).
 inline TrackingMetricsOptions DefaultTrackingMetricsOptions() {
   TrackingMetricsOptions o;
   o.min_visible_fraction = 0.2;
+  o.min_box_height_px = 16;  // slivers at the image edge are fully "visible" but undetectable
   return o;
 }
 

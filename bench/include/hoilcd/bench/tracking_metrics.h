@@ -28,6 +28,8 @@ struct TrackingMetricsOptions {
   double iou_threshold = 0.5;       // IoU (0..1) a prediction needs with a person to match it
   double min_visible_fraction = 0;  // 0..1; less visible persons are ignored: never missed, and a
                                     // prediction on one is not a false positive
+  double min_box_height_px = 0;     // px; persons whose visible box is lower are ignored likewise
+                                    // (slivers at the image edge or between others)
   double hoi_tolerance_px = 3;      // px, a contact this close to its nearest HOI point is a hit
   // Empty when valid, else what is wrong.
   std::string Check() const;

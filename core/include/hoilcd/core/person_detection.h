@@ -1,6 +1,14 @@
 // Person detection in thermal frames for the dynamic-landmark loop closure (DLCD): threshold at
 // clothing temperature, clean up, split blobs where seated neighbours touch, reject warm objects
 // by shape and temperature, and score each person in (0, 1] for ByteTrack.
+//
+// Tuning: the rules were first written on synthetic shapes, then tuned on 400 rendered frames of
+// scenes/paper_room.json (hoilcd render --frames 400), scored against persons.json ignoring
+// persons under 20 % visible or with a visible box under 16 px high. There, people sit in rows
+// behind a table: their torsos overlap without a column valley, and the table hides their laps
+// while legs show below it. Splitting between skin-temperature faces (radiometric frames only)
+// and joining headless parts below a person raised detection precision/recall at IoU 0.5 from
+// 0.34/0.31 to 0.76/0.53. Threshold, clean-up and rejection values were already near their best.
 #pragma once
 
 #include <string>
@@ -26,8 +34,17 @@ struct PersonDetectorOptions {
   double valley_tolerance_ratio = 0.1;  // of the lower peak; valley floor cut in its middle
   double min_peak_ratio = 0.5;      // a peak is a person only if >= this fraction of the blob's max
   int min_split_width_px = 8;       // px, every part of a split is at least this wide
+  // Head seeds (radiometric frames only: the 8-bit frame saturates below skin temperature). A
+  // blob with two or more heads is split between them; with one it is not split at all.
+  double head_min_c = 31.0;         // degC, skin (32-35) is hotter, hair and clothing are cooler
+  int min_head_area_px = 10;        // px^2, smaller skin spots are ignored
+  double head_zone_ratio = 0.8;     // a head's top lies in this upper fraction of its blob
+  // Parts without a head below a part with one (legs under a table, a forearm cut off by an
+  // occluder) join it when they overlap its columns.
+  double merge_min_overlap = 0.5;   // of the headless part's width, column overlap to join
+  int min_fragment_area_px = 6;     // px^2, smaller parts are dropped before merging
   // Rejection of non-people (each part after splitting).
-  int min_area_px = 60;             // px^2, smaller parts are noise or cups
+  int min_area_px = 60;             // px^2, smaller (merged) parts are noise or cups
   int min_height_px = 12;           // px, lower parts are ignored
   double min_aspect_hw = 0.6;       // height/width, flatter parts are laptops, radiators, tables
   double max_aspect_hw = 5.0;       // height/width, taller parts are pipes or door frames
