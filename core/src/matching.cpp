@@ -24,21 +24,11 @@ constexpr int kPadding = 8;
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = int32_t __attribute__((vector_size(32)));
 
-// Smallest lane of v: lanes fold onto themselves through three shuffles.
-[[gnu::always_inline]] inline float LaneMin(const Floats8& v) {
-  Floats8 m = v;
-  Floats8 other = __builtin_shuffle(m, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
-  m = other < m ? other : m;
-  other = __builtin_shuffle(m, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
-  m = other < m ? other : m;
-  other = __builtin_shuffle(m, Ints8{1, 0, 3, 2, 5, 4, 7, 6});
-  m = other < m ? other : m;
-  return m[0];
-}
-
-[[gnu::always_inline]] inline int32_t LaneMin(const Ints8& v) {
-  Ints8 m = v;
-  Ints8 other = __builtin_shuffle(m, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
+// Smallest lane of v (Floats8 or Ints8): lanes fold onto themselves through three shuffles.
+template <typename Vector>
+[[gnu::always_inline]] inline auto LaneMin(const Vector& v) {
+  Vector m = v;
+  Vector other = __builtin_shuffle(m, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
   m = other < m ? other : m;
   other = __builtin_shuffle(m, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
   m = other < m ? other : m;
