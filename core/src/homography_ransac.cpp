@@ -1,5 +1,9 @@
 #include "hoilcd/core/homography_ransac.h"
 
+// The 256-bit vector helpers are always inlined into their AVX2 / default clones, so no vector
+// crosses a call boundary whose ABI could differ between the clones.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -20,6 +24,8 @@ namespace {
 constexpr double kMinSampleSine = 1e-3;
 // With redraw_degenerate_samples, at most trials * this many samples are drawn in all.
 constexpr int64_t kMaxDrawsPerTrial = 10;
+// Upper bound on RansacOptions::trials: the sample counters (4 per draw) stay below 2^32.
+constexpr int kMaxTrials = 10'000'000;
 
 // Signed doubled areas of the point triplets (0,1,2), (0,1,3), (0,2,3), (1,2,3) of a sample.
 // With a, b, c = p1, p2, p3 minus p0, the area of (1,2,3) is b×c + a×b - a×c.
@@ -176,61 +182,99 @@ inline bool NormaliseMaxAbs(double h[9]) {
   return true;
 }
 
-// Four distinct indices in [0, n), uniform over ordered 4-tuples, from one 64-bit draw for
-// n < 2^16: Lemire's multiply-shift on the range n(n-1)(n-2)(n-3), whose high part is the
-// mixed-radix number of four digits and whose low part feeds the exact rejection test
-// (Brackett-Rozinsky & Lemire 2024, "Batched ranged random integer generation"; a rejection
-// has probability below 2^-32). Larger n take four Rng::UniformInt draws. Digit k is uniform
-// in [0, n - k) and skips the k indices taken before it.
-class FourIndexSampler {
- public:
-  explicit FourIndexSampler(uint32_t n) : n_(n), batched_(n < (1u << 16)) {
-    const uint64_t wide = n;
-    const uint64_t range = wide * (wide - 1) * (wide - 2) * (wide - 3);
-    if (batched_) reject_below_ = (0 - range) % range;  // 2^64 mod range
-  }
-
-  void Draw(Rng& rng, uint32_t idx[4]) const {
-    uint32_t digit[4];
-    if (batched_) {
-      uint64_t low;
-      do {
-        low = (static_cast<uint64_t>(rng.NextU32()) << 32) | rng.NextU32();
-        for (int k = 0; k < 4; ++k) {
-          const unsigned __int128 product = static_cast<unsigned __int128>(low) * (n_ - k);
-          digit[k] = static_cast<uint32_t>(product >> 64);
-          low = static_cast<uint64_t>(product);
-        }
-      } while (low < reject_below_);
-    } else {
-      for (int k = 0; k < 4; ++k) digit[k] = rng.UniformInt(n_ - k);
+// Sampling. Draw d of a RANSAC call is four distinct match indices, uniform over ordered
+// 4-tuples: digit k is uniform in [0, n - k) by Lemire's multiply-shift on the 32-bit word
+// CounterWord(key, 4 d + k) with the exact rejection test, and is bumped past the k indices
+// taken before it. A rejected word (probability below n / 2^32) is replaced by the same counter's
+// word under the key MixBits(key + attempt). Counter-based, so eight draws run in vector lanes
+// and give what one-by-one draws give (RansacSample is the scalar form, tested for uniformity).
+struct DigitBounds {
+  uint32_t range[4];      // n - k
+  uint32_t reject_below[4];  // 2^32 mod (n - k): low words below this are rejected
+  explicit DigitBounds(uint32_t n) {
+    for (int k = 0; k < 4; ++k) {
+      range[k] = n - static_cast<uint32_t>(k);
+      reject_below[k] = (0u - range[k]) % range[k];
     }
-    // Each digit is bumped past every taken index at or below it, smallest taken first.
-    const uint32_t i0 = digit[0];
-    const uint32_t i1 = digit[1] + (digit[1] >= i0 ? 1 : 0);
-    const uint32_t a = std::min(i0, i1), b = std::max(i0, i1);
-    uint32_t i2 = digit[2] + (digit[2] >= a ? 1 : 0);
-    i2 += i2 >= b ? 1 : 0;
-    const uint32_t lo = std::min(a, i2), hi = std::max(b, i2);
-    const uint32_t mid = i0 + i1 + i2 - lo - hi;
-    uint32_t i3 = digit[3] + (digit[3] >= lo ? 1 : 0);
-    i3 += i3 >= mid ? 1 : 0;
-    i3 += i3 >= hi ? 1 : 0;
-    idx[0] = i0;
-    idx[1] = i1;
-    idx[2] = i2;
-    idx[3] = i3;
   }
-
- private:
-  uint32_t n_;
-  bool batched_;
-  uint64_t reject_below_ = 0;
 };
 
-// Eight samples of four match indices each; sample b goes to vector lane b.
+// Digit k of draw `draw`, one lane at a time (also the fix-up for rejected vector lanes).
+uint32_t SampleDigit(uint64_t key, uint32_t draw, int k, const DigitBounds& bounds) {
+  const uint32_t counter = 4 * draw + static_cast<uint32_t>(k);
+  for (uint64_t attempt = 0;; ++attempt) {
+    const uint64_t attempt_key = attempt == 0 ? key : MixBits(key + attempt);
+    const uint64_t product = static_cast<uint64_t>(CounterWord(attempt_key, counter)) * bounds.range[k];
+    if (static_cast<uint32_t>(product) >= bounds.reject_below[k]) {
+      return static_cast<uint32_t>(product >> 32);
+    }
+  }
+}
+
+// Digits (digit[k] in [0, n - k)) to four distinct indices: each digit is bumped past every
+// taken index at or below it, smallest taken first. Written once for uint32_t and Uints8.
+template <typename U32>
+[[gnu::always_inline]] inline void DistinctFromDigits(const U32 digit[4], U32 idx[4]) {
+  const U32 i0 = digit[0];
+  const U32 i1 = digit[1] >= i0 ? digit[1] + 1 : digit[1];
+  const U32 a = i0 < i1 ? i0 : i1, b = i0 < i1 ? i1 : i0;
+  U32 i2 = digit[2] >= a ? digit[2] + 1 : digit[2];
+  i2 = i2 >= b ? i2 + 1 : i2;
+  const U32 lo = a < i2 ? a : i2, hi = b < i2 ? i2 : b;
+  const U32 mid = i0 + i1 + i2 - lo - hi;
+  U32 i3 = digit[3] >= lo ? digit[3] + 1 : digit[3];
+  i3 = i3 >= mid ? i3 + 1 : i3;
+  i3 = i3 >= hi ? i3 + 1 : i3;
+  idx[0] = i0;
+  idx[1] = i1;
+  idx[2] = i2;
+  idx[3] = i3;
+}
+
+// Eight samples of four match indices each: batch[k][b] is index k of sample b (vector lane b).
 constexpr int kBatch = 8;
-using SampleBatch = uint32_t[kBatch][4];
+using SampleBatch = uint32_t[4][kBatch];
+using Uints8 = uint32_t __attribute__((vector_size(32)));
+using Uint64s4 = uint64_t __attribute__((vector_size(32)));
+using Uints4 = uint32_t __attribute__((vector_size(16)));
+
+// Draws first_draw .. first_draw + 7 into the lanes of *batch.
+[[gnu::always_inline]] inline void DrawBatch(uint64_t key, uint32_t first_draw,
+                                             const DigitBounds& bounds, SampleBatch* batch) {
+  const Uints8 draw = Uints8{0, 1, 2, 3, 4, 5, 6, 7} + first_draw;
+  Uints8 digit[4];
+  Uints8 rejected = {};  // lanes with a rejected word in some digit
+  for (int k = 0; k < 4; ++k) {
+    const Uints8 word = CounterWord<Uints8>(key, 4 * draw + static_cast<uint32_t>(k));
+    // 32 x 32 -> 64-bit products, four lanes at a time.
+    const Uint64s4 low_half =
+        __builtin_convertvector(__builtin_shufflevector(word, word, 0, 1, 2, 3), Uint64s4) *
+        bounds.range[k];
+    const Uint64s4 high_half =
+        __builtin_convertvector(__builtin_shufflevector(word, word, 4, 5, 6, 7), Uint64s4) *
+        bounds.range[k];
+    const Uints4 digit_low = __builtin_convertvector(low_half >> 32, Uints4);
+    const Uints4 digit_high = __builtin_convertvector(high_half >> 32, Uints4);
+    const Uints4 rest_low = __builtin_convertvector(low_half, Uints4);
+    const Uints4 rest_high = __builtin_convertvector(high_half, Uints4);
+    digit[k] = __builtin_shufflevector(digit_low, digit_high, 0, 1, 2, 3, 4, 5, 6, 7);
+    const Uints8 rest = __builtin_shufflevector(rest_low, rest_high, 0, 1, 2, 3, 4, 5, 6, 7);
+    rejected |= rest < bounds.reject_below[k];
+  }
+  // Rejections are rare (probability below n / 2^32 per digit): one test for the whole batch.
+  Uints8 folded = rejected | __builtin_shufflevector(rejected, rejected, 4, 5, 6, 7, 0, 1, 2, 3);
+  folded |= __builtin_shufflevector(folded, folded, 2, 3, 0, 1, 6, 7, 4, 5);
+  folded |= __builtin_shufflevector(folded, folded, 1, 0, 3, 2, 5, 4, 7, 6);
+  if (__builtin_expect(folded[0] != 0, 0)) {
+    for (int b = 0; b < kBatch; ++b) {
+      if (!rejected[b]) continue;
+      for (int k = 0; k < 4; ++k) digit[k][b] = SampleDigit(key, first_draw + b, k, bounds);
+    }
+  }
+  Uints8 idx[4];
+  DistinctFromDigits(digit, idx);
+  std::memcpy(batch, idx, sizeof idx);
+}
 
 using Floats4 = float __attribute__((vector_size(16)));
 
@@ -245,8 +289,8 @@ using Floats4 = float __attribute__((vector_size(16)));
     Floats8 rows[4];  // rows[j] = quadruple of sample j | quadruple of sample j + 4
     for (int j = 0; j < 4; ++j) {
       Floats4 low, high;
-      std::memcpy(&low, quads + 4 * batch[j][k], sizeof low);
-      std::memcpy(&high, quads + 4 * batch[j + 4][k], sizeof high);
+      std::memcpy(&low, quads + 4 * batch[k][j], sizeof low);
+      std::memcpy(&high, quads + 4 * batch[k][j + 4], sizeof high);
       rows[j] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
     }
     const Floats8 t0 = __builtin_shufflevector(rows[0], rows[1], 0, 8, 1, 9, 4, 12, 5, 13);
@@ -271,9 +315,13 @@ struct HypothesisBatch {
 // (OpenCV's HomographyEstimatorCallback::checkSubset applies the same test). Most random
 // samples fail it, so it runs on every draw and only the survivors are solved. Float is
 // enough: a sign can only come out wrong for a nearly collinear triplet, rejected later anyway.
+// Draws the batch first (draws first_draw .. first_draw + 7).
 // Cloned for AVX2 with run-time dispatch; no FMA, so both clones give the same floats.
-__attribute__((target_clones("avx2", "default"))) void CheckOrientations(
-    const SampleBatch& batch, const float* quads, int32_t consistent[kBatch]) {
+__attribute__((target_clones("avx2", "default"))) void DrawAndCheckOrientations(
+    uint64_t key, uint32_t first_draw, const DigitBounds& bounds, const float* quads,
+    SampleBatch* drawn, int32_t consistent[kBatch]) {
+  DrawBatch(key, first_draw, bounds, drawn);
+  const SampleBatch& batch = *drawn;
   Floats8 sx[4], sy[4], dx[4], dy[4];
   GatherPoints(batch, quads, sx, sy, dx, dy);
   Floats8 src_area[4], dst_area[4];
@@ -431,7 +479,9 @@ Eigen::Matrix3d ToResultMatrix(const Real h[9]) {
 
 std::string RansacOptions::Check() const {
   std::ostringstream out;
-  if (trials < 1) out << "trials must be >= 1 (got " << trials << "); ";
+  if (trials < 1 || trials > kMaxTrials) {
+    out << "trials must be in [1, " << kMaxTrials << "] (got " << trials << "); ";
+  }
   if (!(inlier_threshold_px > 0) || !std::isfinite(inlier_threshold_px)) {
     out << "inlier_threshold_px must be a positive number of pixels (got " << inlier_threshold_px
         << "); ";
@@ -442,6 +492,14 @@ std::string RansacOptions::Check() const {
   std::string text = out.str();
   if (!text.empty()) text.resize(text.size() - 2);
   return text;
+}
+
+void RansacSample(uint64_t seed, uint32_t draw, uint32_t n, uint32_t idx[4]) {
+  HOILCD_CHECK_MSG(n >= 4, "a sample needs n >= 4 matches (got " << n << ")");
+  const DigitBounds bounds(n);
+  uint32_t digit[4];
+  for (int k = 0; k < 4; ++k) digit[k] = SampleDigit(seed, draw, k, bounds);
+  DistinctFromDigits(digit, idx);
 }
 
 bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::Matrix3d* h) {
@@ -555,8 +613,7 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
     quads[4 * i + 2] = query_x[i];
     quads[4 * i + 3] = query_y[i];
   }
-  Rng rng(seed);
-  const FourIndexSampler sampler(static_cast<uint32_t>(count));
+  const DigitBounds bounds(static_cast<uint32_t>(count));
   // With exactly 4 matches every sample is the same set: one draw decides.
   const int64_t draw_budget =
       count == 4 ? 1
@@ -605,17 +662,17 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
   // Samples are drawn eight at a time; those with consistent orientations are queued, in draw
   // order, and solved and scored eight at a time. Draws past the last hypothesis needed are
   // discarded, so the result is that of taking the samples one by one.
-  SampleBatch drawn = {}, pending = {};  // unused lanes keep index 0, a valid match
+  SampleBatch drawn, pending = {};  // unused lanes of pending keep index 0, a valid match
   int32_t consistent[kBatch];
   int queued = 0;
   for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget;) {
     const int size = static_cast<int>(std::min<int64_t>(kBatch, draw_budget - draws));
+    DrawAndCheckOrientations(seed, static_cast<uint32_t>(draws), bounds, quads.get(), &drawn,
+                             consistent);
     draws += size;
-    for (int b = 0; b < size; ++b) sampler.Draw(rng, drawn[b]);
-    CheckOrientations(drawn, quads.get(), consistent);
     for (int b = 0; b < size; ++b) {
       // Branch-free queueing: every sample is copied, only consistent ones advance the queue.
-      std::memcpy(pending[queued], drawn[b], sizeof drawn[b]);
+      for (int k = 0; k < 4; ++k) pending[k][queued] = drawn[k][b];
       queued -= consistent[b];  // a consistent lane holds -1
       if (queued == kBatch) {
         evaluate(pending, kBatch);

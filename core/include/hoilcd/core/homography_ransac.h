@@ -41,7 +41,7 @@ struct HomographyResult {
 };
 
 // Homography maps reference points to query points; fewer than 4 matches => 0 inliers.
-// Deterministic given seed: samples are 4 distinct indices drawn from Rng(seed). A sample is
+// Deterministic given seed: sample d (d = 0, 1, ...) is RansacSample(seed, d, matches). A sample is
 // degenerate if three of its points are (nearly) collinear in either image or if it keeps the
 // orientation of some point triplets but not of others (as OpenCV's checkSubset).
 HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
@@ -54,6 +54,11 @@ HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
 int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x,
                         const float* query_y, int count, const RansacOptions& options,
                         uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask);
+
+// Draw `draw` of the RANSAC stream `seed` over n >= 4 matches: four distinct indices in [0, n),
+// uniform over ordered 4-tuples, from the counter-based words CounterWord(seed, 4 draw + k)
+// (random.h). The loop draws eight samples at once in vector lanes with the same result.
+void RansacSample(uint64_t seed, uint32_t draw, uint32_t n, uint32_t idx[4]);
 
 // 4-point DLT on normalised homogeneous coordinates, solved in closed form (for 4 points the DLT
 // null vector is unique and equals the unit-square-to-quad composition); maps src[i] to dst[i].

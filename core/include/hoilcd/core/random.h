@@ -35,6 +35,28 @@ constexpr uint64_t HashCombine(uint64_t h, uint64_t next, Rest... rest) {
                      static_cast<uint64_t>(rest)...);
 }
 
+// Chris Wellons' lowbias32: a 32-bit bijection with low avalanche bias, written once for
+// uint32_t and GCC vectors of uint32_t (the operators apply lane by lane).
+template <typename U32>
+[[gnu::always_inline]] inline U32 LowBias32(U32 x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return x;
+}
+
+// Counter-based form of a keyed stream, for code that draws in vector lanes (RANSAC samples):
+// word `counter` of the stream whose key is a HashCombine / PairSeed value. Each lane of a
+// vector `counter` gets the word the scalar call gives for that lane's counter, so results do
+// not depend on how draws are batched.
+template <typename U32>
+[[gnu::always_inline]] inline U32 CounterWord(uint64_t key, U32 counter) {
+  const U32 mixed = LowBias32<U32>(counter ^ static_cast<uint32_t>(key));
+  return LowBias32<U32>(mixed + static_cast<uint32_t>(key >> 32));
+}
+
 // PCG32 (O'Neill 2014): small state, good statistics, cheap to construct per key.
 class Rng {
  public:
