@@ -20,6 +20,14 @@ constexpr int kMaxCellsPerAxis = 1024;
 // starting at any point stay inside them.
 constexpr int kPadding = 8;
 
+// Candidate lattice: cells per grid cell side (finer cells have fewer candidates each), and
+// the margin of lattice cells around the bounding box of the points.
+constexpr int kLatticeCellsPerGridCell = 2;
+constexpr int kLatticeMarginCells = 4;
+// Candidate slots per lattice cell; a cell with more candidates is marked crowded (its first
+// slot holds kCrowdedCell) and searched in the grid instead (a few % of cells).
+constexpr int kLatticeWidth = 4;
+constexpr uint16_t kCrowdedCell = 0xffff;
 // Eight lanes (GCC vector extensions; a default-target build lowers them to SSE halves).
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = int32_t __attribute__((vector_size(32)));
@@ -53,11 +61,9 @@ __attribute__((target_clones("avx2", "default"), flatten)) void MutualNearestNei
     const int j = reference_grid.Nearest(q);
     int& back = (*reverse)[j];
     if (back == -2) {
-      // The pair is mutual unless a query point is nearer to r_j than q_i: a search limited to
-      // q_i's distance, cheaper than a full nearest-neighbour query.
-      const Point2 r = reference_points[j];
-      const float dx = r.x - q.x, dy = r.y - q.y;
-      if (query_grid.AnyNearer(r, dx * dx + dy * dy, i)) continue;
+      // The pair is mutual if q_i is the query point nearest to r_j (same float distances and
+      // tie rule in both directions).
+      if (query_grid.Nearest(reference_points[j]) != i) continue;
       back = i;
     }
     if (back == i) matches->push_back({i, j});
@@ -133,9 +139,109 @@ PointGrid::PointGrid(const Point2* points, int count) {
     ys_[slot] = points[i].y;
     ids_[slot] = i;
   }
+  BuildLattice();
 }
 
 int PointGrid::Nearest(Point2 p) const {
+  if (count_ == 0) return -1;
+  const float fx = (p.x - lattice_origin_x_) * lattice_inv_;
+  const float fy = (p.y - lattice_origin_y_) * lattice_inv_;
+  if (!(fx >= 0 && fy >= 0 && fx < static_cast<float>(lattice_nx_) &&
+        fy < static_cast<float>(lattice_ny_))) {
+    return NearestInGrid(p);
+  }
+  const int cell = static_cast<int>(fy) * lattice_nx_ + static_cast<int>(fx);
+  const uint16_t* slots = lattice_slots_.data() + kLatticeWidth * cell;
+  if (slots[0] == kCrowdedCell) return NearestInGrid(p);
+  // Same float distances and (distance, index) order as the grid search; branch-free over the
+  // fixed number of candidate slots (unused ones repeat the first).
+  uint64_t best_key = std::numeric_limits<uint64_t>::max();
+  for (int c = 0; c < kLatticeWidth; ++c) {
+    const int k = slots[c];
+    const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
+    const float d = dx * dx + dy * dy;
+    uint32_t bits;
+    std::memcpy(&bits, &d, sizeof bits);
+    best_key = std::min(best_key, (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(ids_[k]));
+  }
+  return static_cast<int>(best_key & 0xffffffffu);
+}
+
+void PointGrid::BuildLattice() {
+  if (count_ == 0 || count_ >= kCrowdedCell) return;
+  lattice_px_ = cell_px_ / kLatticeCellsPerGridCell;
+  lattice_inv_ = 1.0f / lattice_px_;
+  lattice_origin_x_ = origin_x_ - kLatticeMarginCells * lattice_px_;
+  lattice_origin_y_ = origin_y_ - kLatticeMarginCells * lattice_px_;
+  lattice_nx_ = nx_ * kLatticeCellsPerGridCell + 2 * kLatticeMarginCells;
+  lattice_ny_ = ny_ * kLatticeCellsPerGridCell + 2 * kLatticeMarginCells;
+  // Positions in a cell round into it from up to `slack` outside its nominal box.
+  const float slack = slack_px_ + 1e-5f * (std::abs(lattice_origin_x_) + std::abs(lattice_origin_y_) +
+                                           (lattice_nx_ + lattice_ny_) * lattice_px_);
+  lattice_slots_.assign(static_cast<size_t>(kLatticeWidth) * lattice_nx_ * lattice_ny_, 0);
+  std::vector<int> slot_of_id(count_), near;
+  for (int slot = 0; slot < count_; ++slot) slot_of_id[ids_[slot]] = slot;
+  for (int y = 0; y < lattice_ny_; ++y) {
+    for (int x = 0; x < lattice_nx_; ++x) {
+      const float x0 = lattice_origin_x_ + x * lattice_px_ - slack;
+      const float x1 = lattice_origin_x_ + (x + 1) * lattice_px_ + slack;
+      const float y0 = lattice_origin_y_ + y * lattice_px_ - slack;
+      const float y1 = lattice_origin_y_ + (y + 1) * lattice_px_ + slack;
+      // Every position in the box is within `reach` of the point nearest to the box centre, so
+      // its nearest point lies within `reach` of the box: those are the candidates.
+      const Point2 centre(0.5f * (x0 + x1), 0.5f * (y0 + y1));
+      const int anchor_slot = slot_of_id[NearestInGrid(centre)];
+      const double far_x = std::max(std::abs(xs_[anchor_slot] - x0), std::abs(xs_[anchor_slot] - x1));
+      const double far_y = std::max(std::abs(ys_[anchor_slot] - y0), std::abs(ys_[anchor_slot] - y1));
+      const double reach = std::sqrt(far_x * far_x + far_y * far_y) * (1 + 1e-5) + slack;
+      const auto grid_x = [&](double v) {
+        return static_cast<int>(std::clamp((v - origin_x_) * inv_cell_, 0.0, nx_ - 1.0));
+      };
+      const auto grid_y = [&](double v) {
+        return static_cast<int>(std::clamp((v - origin_y_) * inv_cell_, 0.0, ny_ - 1.0));
+      };
+      const int gx0 = grid_x(x0 - reach - cell_px_), gx1 = grid_x(x1 + reach + cell_px_);
+      const int gy0 = grid_y(y0 - reach - cell_px_), gy1 = grid_y(y1 + reach + cell_px_);
+      near.clear();
+      for (int gy = gy0; gy <= gy1; ++gy) {
+        for (int k = cell_start_[Slot(gx0, gy)], end = cell_start_[Slot(gx1, gy) + 1]; k < end; ++k) {
+          const double dx = std::max({0.0, x0 - static_cast<double>(xs_[k]), xs_[k] - static_cast<double>(x1)});
+          const double dy = std::max({0.0, y0 - static_cast<double>(ys_[k]), ys_[k] - static_cast<double>(y1)});
+          if (dx * dx + dy * dy <= reach * reach) near.push_back(k);
+        }
+      }
+      // A point is no candidate if another one is nearer to all four corners of the box, hence
+      // (the set where one point is nearer than another being a half-plane) to all of it. The
+      // margin keeps float distances at a query ordered the same way.
+      const double corners[4][2] = {{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}};
+      const auto dominates = [&](int k, int j) {
+        for (const auto& c : corners) {
+          const double kx = xs_[k] - c[0], ky = ys_[k] - c[1];
+          const double jx = xs_[j] - c[0], jy = ys_[j] - c[1];
+          const double dk = kx * kx + ky * ky, dj = jx * jx + jy * jy;
+          if (!(dk < dj * (1 - 1e-4) - 1e-6)) return false;
+        }
+        return true;
+      };
+      uint16_t* slots = lattice_slots_.data() + kLatticeWidth * (y * lattice_nx_ + x);
+      int kept = 0;
+      for (int j : near) {
+        bool dominated = false;
+        for (int k : near) dominated = dominated || (k != j && dominates(k, j));
+        if (dominated) continue;
+        if (kept == kLatticeWidth) {
+          slots[0] = kCrowdedCell;
+          break;
+        }
+        slots[kept++] = static_cast<uint16_t>(j);
+      }
+      if (slots[0] == kCrowdedCell) continue;
+      for (int c = kept; c < kLatticeWidth; ++c) slots[c] = slots[0];
+    }
+  }
+}
+
+int PointGrid::NearestInGrid(Point2 p) const {
   if (count_ == 0) return -1;
   // Cell of p, clamped into the grid (p may lie outside the bounding box of the set).
   const float fx = std::clamp((p.x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1));
@@ -230,37 +336,6 @@ int PointGrid::NearestByRings(Point2 p) const {
     }
   }
   return static_cast<int>(best_key & 0xffffffffu);
-}
-
-bool PointGrid::AnyNearer(Point2 p, float d2, int id) const {
-  if (count_ == 0) return false;
-  const float radius = std::sqrt(d2) + slack_px_;
-  const auto cell_x = [&](float x) {
-    return static_cast<int>(std::clamp((x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1)));
-  };
-  const auto cell_y = [&](float y) {
-    return static_cast<int>(std::clamp((y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1)));
-  };
-  const int x0 = cell_x(p.x - radius), x1 = cell_x(p.x + radius);
-  const int y0 = cell_y(p.y - radius), y1 = cell_y(p.y + radius);
-  const Floats8 px = Floats8{} + p.x, py = Floats8{} + p.y, bar = Floats8{} + d2;
-  const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-  const Ints8 own = Ints8{} + id;
-  Ints8 nearer = {};
-  for (int y = y0; y <= y1; ++y) {
-    const int end = cell_start_[Slot(x1, y) + 1];
-    for (int k = cell_start_[Slot(x0, y)]; k < end; k += 8) {
-      Floats8 xs, ys;
-      Ints8 ids;
-      std::memcpy(&xs, xs_.data() + k, sizeof xs);
-      std::memcpy(&ys, ys_.data() + k, sizeof ys);
-      std::memcpy(&ids, ids_.data() + k, sizeof ids);
-      const Floats8 dx = xs - px, dy = ys - py;
-      const Floats8 d = dx * dx + dy * dy;
-      nearer |= (lane < end - k) & ((d < bar) | ((d == bar) & (ids < own)));
-    }
-  }
-  return LaneMin(nearer) != 0;
 }
 
 void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,

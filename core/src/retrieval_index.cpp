@@ -1,5 +1,6 @@
 #include "hoilcd/core/retrieval_index.h"
 
+#include <algorithm>
 #include <string>
 
 #include "hoilcd/core/error.h"
@@ -8,8 +9,11 @@
 namespace hoilcd {
 namespace {
 
-// Pairs per work chunk: large enough to amortise the hand-out, small enough to balance.
-constexpr int64_t kPairsPerChunk = 256;
+// Pairs are scored in tiles of this many queries x references, reference-major within a tile:
+// a reference's grid and candidate lattice (~15 KB for 200 points) are read from memory once
+// and reused from cache by the tile's queries, whose structures stay cached across the tile.
+constexpr int64_t kTileQueries = 16;
+constexpr int64_t kTileReferences = 32;
 
 }  // namespace
 
@@ -44,15 +48,27 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreAll(const std::vector<int>&
   std::vector<std::vector<float>> scores(queries.size(), std::vector<float>(database.size(), 0.0f));
   const int num_threads = ResolveThreadCount(threads);
   std::vector<PairScorer> scorers(num_threads);
-  ParallelForChunks(static_cast<int64_t>(queries.size()) * num_database, kPairsPerChunk,
-                    num_threads, [&](int64_t begin, int64_t end, int worker) {
+  const int64_t num_queries = static_cast<int64_t>(queries.size());
+  const int64_t query_tiles = (num_queries + kTileQueries - 1) / kTileQueries;
+  const int64_t reference_tiles = (num_database + kTileReferences - 1) / kTileReferences;
+  ParallelForChunks(query_tiles * reference_tiles, 1, num_threads,
+                    [&](int64_t begin, int64_t end, int worker) {
                       PairScorer& scorer = scorers[worker];
-                      for (int64_t pair = begin; pair < end; ++pair) {
-                        const int64_t qi = pair / num_database, di = pair % num_database;
-                        const int q = queries[qi], r = database[di];
-                        scores[qi][di] = static_cast<float>(scorer.Score(
-                            points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r],
-                            grids_[r], match_options, ransac_options, PairSeed(seed, q, r)));
+                      for (int64_t tile = begin; tile < end; ++tile) {
+                        const int64_t q0 = (tile / reference_tiles) * kTileQueries;
+                        const int64_t d0 = (tile % reference_tiles) * kTileReferences;
+                        const int64_t q1 = std::min(num_queries, q0 + kTileQueries);
+                        const int64_t d1 = std::min(num_database, d0 + kTileReferences);
+                        for (int64_t di = d0; di < d1; ++di) {
+                          const int r = database[di];
+                          for (int64_t qi = q0; qi < q1; ++qi) {
+                            const int q = queries[qi];
+                            scores[qi][di] = static_cast<float>(scorer.Score(
+                                points_.data() + offsets_[q], grids_[q],
+                                points_.data() + offsets_[r], grids_[r], match_options,
+                                ransac_options, PairSeed(seed, q, r)));
+                          }
+                        }
                       }
                     });
   return scores;

@@ -64,6 +64,34 @@ std::vector<Point2> MakePoints(Rng& rng, int n, Layout layout) {
   return points;
 }
 
+TEST(PointGrid, NearestEqualsBruteForceInsideAndOutsideTheCandidateLattice) {
+  Rng rng = KeyedRng(2, "test.grid.nearest");
+  const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow,
+                            Layout::kIntegerLattice, Layout::kFarApart};
+  int queries = 0;
+  for (int t = 0; t < 200; ++t) {
+    const int n = 1 + static_cast<int>(rng.UniformInt(400));
+    const std::vector<Point2> set = MakePoints(rng, n, layouts[t % 5]);
+    const PointGrid grid(set.data(), n);
+    // Random positions around the image, on whole and half pixels (cell borders of integer
+    // layouts), at the points themselves and far away.
+    std::vector<Point2> probes;
+    for (int i = 0; i < 300; ++i) {
+      probes.emplace_back(rng.Uniform(-40, 296), rng.Uniform(-40, 232));
+      probes.emplace_back(static_cast<float>(rng.UniformInt(26)) * 0.5f - 0.5f,
+                          static_cast<float>(rng.UniformInt(20)) * 0.5f - 0.5f);
+    }
+    for (const Point2& p : set) probes.push_back(p);
+    probes.emplace_back(1e4f, -1e4f);
+    for (const Point2& p : probes) {
+      ASSERT_EQ(grid.Nearest(p), BruteNearest(set, p))
+          << "problem " << t << " at (" << p.x << ", " << p.y << ")";
+      ++queries;
+    }
+  }
+  EXPECT_GT(queries, 100000);
+}
+
 TEST(MutualNearestNeighbours, EqualsBruteForceAndEveryKeptPairIsMutual) {
   Rng rng = KeyedRng(1, "test.mnn");
   const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow,

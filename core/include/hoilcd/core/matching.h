@@ -23,7 +23,9 @@ struct MatchOptions {
 
 // A uniform bucket grid over one point set for exact nearest-neighbour queries in about O(1)
 // per query. Points are stored reordered by cell (structure of arrays) for locality, and
-// scanned eight at a time.
+// scanned eight at a time. A finer candidate lattice over the set's bounding box (plus a margin)
+// lists, per lattice cell, every point that can be nearest to some position in it, so a query
+// there compares one to three points; queries outside it search the grid.
 class PointGrid {
  public:
   PointGrid() = default;
@@ -32,14 +34,14 @@ class PointGrid {
   // Index of the point nearest to p (squared Euclidean distance in float; ties go to the lower
   // index); -1 when the grid is empty.
   int Nearest(Point2 p) const;
-  // True if some point other than `id` is nearer to p than squared distance d2 (float, as in
-  // Nearest), or as near with a lower index: that is, if `id` is not Nearest(p) when id's own
-  // squared distance to p is d2. Scans only the cells within sqrt(d2) of p.
-  bool AnyNearer(Point2 p, float d2, int id) const;
 
  private:
   // Nearest() by rings of cells around p's cell, for when the 3x3 block cannot decide.
   int NearestByRings(Point2 p) const;
+  // Nearest() from the 3x3 block of grid cells around p (or by rings).
+  int NearestInGrid(Point2 p) const;
+  // Fills the candidate lattice (after the grid is built).
+  void BuildLattice();
   // Index into cell_start_ of cell (x, y), for x in [-1, nx_] and y in [-1, ny_]: the grid has
   // a border of empty cells, so a 3x3 block never needs clipping.
   int Slot(int x, int y) const { return (y + 1) * stride_ + x + 1; }
@@ -55,6 +57,13 @@ class PointGrid {
                                        // outside its cell's nominal box, px
   int nx_ = 0, ny_ = 0;                // cells per row and per column
   int stride_ = 2;                     // slots per row, nx_ + 2
+  // Candidate lattice: cell (x, y) spans lattice_origin + [x, x+1) * lattice_px_, and its
+  // candidates are the stored points (indices into xs_/ys_/ids_) in a fixed number of slots at
+  // lattice_slots_[width * (y * lattice_nx_ + x)]. Empty when not built.
+  float lattice_origin_x_ = 0, lattice_origin_y_ = 0;
+  float lattice_px_ = 1, lattice_inv_ = 1;
+  int lattice_nx_ = 0, lattice_ny_ = 0;
+  std::vector<uint16_t> lattice_slots_;
 };
 
 // Mutual nearest neighbours on 2-D coordinates (bucket grid, not an O(n*m) scan), ties broken by
