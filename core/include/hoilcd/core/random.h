@@ -48,13 +48,14 @@ template <typename U32>
 }
 
 // Counter-based form of a keyed stream, for code that draws in vector lanes (RANSAC samples):
-// word `counter` of the stream whose key is a HashCombine / PairSeed value. Each lane of a
-// vector `counter` gets the word the scalar call gives for that lane's counter, so results do
-// not depend on how draws are batched.
+// word `counter` of the stream of `key` (any 64-bit value: it is mixed first, so keys 0, 1,
+// 2, ... give unrelated streams). Each lane of a vector `counter` gets the word the scalar call
+// gives for that lane's counter, so results do not depend on how draws are batched.
 template <typename U32>
 [[gnu::always_inline]] inline U32 CounterWord(uint64_t key, U32 counter) {
-  const U32 mixed = LowBias32<U32>(counter ^ static_cast<uint32_t>(key));
-  return LowBias32<U32>(mixed + static_cast<uint32_t>(key >> 32));
+  const uint64_t mixed_key = MixBits(key ^ 0x6a09e667f3bcc909ULL);
+  const U32 mixed = LowBias32<U32>(counter ^ static_cast<uint32_t>(mixed_key));
+  return LowBias32<U32>(mixed + static_cast<uint32_t>(mixed_key >> 32));
 }
 
 // PCG32 (O'Neill 2014): small state, good statistics, cheap to construct per key.
