@@ -1,7 +1,7 @@
-#include "hoilcd/core/random.h"
-
-// The 256-bit vector of the lane test is only passed to an always-inline function.
+// The 256-bit vector of the lane test only passes through always-inline functions.
 #pragma GCC diagnostic ignored "-Wpsabi"
+
+#include "hoilcd/core/random.h"
 
 #include <gtest/gtest.h>
 
