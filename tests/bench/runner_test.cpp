@@ -70,7 +70,13 @@ TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
                            "trajectory_fusion.png"}) {
     EXPECT_TRUE(fs::exists(report + "/" + file)) << file;
   }
-  EXPECT_NE(ReadFileBytes(report + "/report.md").find("no HOI points"), std::string::npos);
+  const std::string markdown = ReadFileBytes(report + "/report.md");
+  EXPECT_NE(markdown.find("no HOI points"), std::string::npos);
+  EXPECT_NE(markdown.find("No person detected in any frame"), std::string::npos);
+  EXPECT_NE(markdown.find("the ground truth has no people either"), std::string::npos);
+  EXPECT_NE(markdown.find("The ground truth has no people to track; the front end reported 0"),
+            std::string::npos);
+  EXPECT_EQ(markdown.find("show none (walls in the turns"), std::string::npos);
   const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(report + "/report.json"));
   for (const char* key : {"mrr", "recall_at_1", "recall_at_5", "recall_at_10", "pr_auc", "recall_at_100p",
                           "ms_per_query", "queries_scored", "queries_skipped"}) {
