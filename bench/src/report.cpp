@@ -179,9 +179,21 @@ std::string DiagnosisMarkdown(const BenchResult& result) {
     if (!q.scored) continue;
     (result.features[q.frame].hoi.empty() ? without : with) += 1;
   }
-  md << "## Diagnosis\n\n" << with << " scored queries show detected people (DLCD has HOI points), " << without
-     << " show none (walls in the turns, or people not detected).\n\n"
-     << "| method | MRR, queries with HOI points | MRR, queries without |\n|---|---|---|\n";
+  md << "## Diagnosis\n\n";
+  if (result.mean_hoi_points_per_frame == 0) {
+    md << "No person detected in any frame: DLCD has no HOI points, every query scores 0 and its "
+          "MRR is that of a random order of the database. "
+       << (result.ground_truth_person_views == 0
+               ? "Correct here: the ground truth has no people either."
+               : "The ground truth has people (" +
+                     std::to_string(result.ground_truth_person_views) +
+                     " person views): the detector missed them all.")
+       << "\n\n";
+  } else {
+    md << with << " scored queries show detected people (DLCD has HOI points), " << without
+       << " show none (walls in the turns, or people not detected).\n\n";
+  }
+  md << "| method | MRR, queries with HOI points | MRR, queries without |\n|---|---|---|\n";
   for (const MethodRun& run : result.runs) {
     double sum_with = 0, sum_without = 0;
     for (const QueryRecord& q : run.metrics.queries) {
@@ -232,8 +244,9 @@ std::string PaperFindingSummary(const BenchResult& result) {
         << Fixed(better - 0.01) << (fm >= better - 0.01 ? " (holds)" : " (does NOT hold)");
   }
   if (result.mean_hoi_points_per_frame == 0) {
-    out << ". DLCD found no HOI points at all (no people detected), so it has nothing to match: its "
-           "ranks are pure ties.";
+    out << ". DLCD found no HOI points at all (no person detected in any frame"
+        << (result.ground_truth_person_views == 0 ? ", and the scene has no people" : "")
+        << "), so it has nothing to match: every query scores 0 and its ranks are pure ties.";
   } else if (result.ground_truth_person_views == 0) {
     out << ". The scene has no people, so every one of DLCD's HOI points (" << Fixed(result.mean_hoi_points_per_frame, 1)
         << " a frame) comes from a warm object mistaken for a person: its score measures the detector's false "
@@ -355,7 +368,15 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   }
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result);
-  if (result.tracking_evaluated) {
+  if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
+    // Precision, recall and MOTA are 0/0 here; say what happened instead.
+    const TrackingMetrics& t = result.tracking;
+    md << "## Person tracking (DLCD front end vs ground truth)\n\n"
+       << "The ground truth has no people to track; the front end reported " << t.predicted_boxes
+       << " person boxes" << (t.predicted_boxes > 0 ? ", all false positives" : "")
+       << ". Mean HOI points per frame " << Fixed(result.mean_hoi_points_per_frame, 1)
+       << ", keypoints per frame " << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
+  } else if (result.tracking_evaluated) {
     const TrackingMetrics& t = result.tracking;
     md << "## Person tracking (DLCD front end vs ground truth)\n\n"
        << "precision " << Fixed(t.precision) << ", recall " << Fixed(t.recall) << ", MOTA " << Fixed(t.mota)

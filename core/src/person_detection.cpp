@@ -48,6 +48,13 @@ std::string PersonDetectorOptions::Check() const {
        max_fill_ratio);
   need(max_flat_top_fraction > 0 && max_flat_top_fraction <= 1, "max_flat_top_fraction must be in (0, 1]",
        max_flat_top_fraction);
+  need(min_top_skin_px >= 0, "min_top_skin_px must be >= 0", min_top_skin_px);
+  need(top_skin_zone_ratio > 0 && top_skin_zone_ratio <= 1, "top_skin_zone_ratio must be in (0, 1]",
+       top_skin_zone_ratio);
+  need(clothing_max_c > clothing_min_c, "clothing_max_c must exceed clothing_min_c",
+       clothing_max_c);
+  need(min_clothing_fraction >= 0 && min_clothing_fraction <= 1,
+       "min_clothing_fraction must be in [0, 1]", min_clothing_fraction);
   need(max_solidity > 0 && max_solidity <= 1, "max_solidity must be in (0, 1]", max_solidity);
   need(score_area_px > 0, "score_area_px must be > 0", score_area_px);
   need(typical_aspect_hw > 0, "typical_aspect_hw must be > 0", typical_aspect_hw);
@@ -218,6 +225,21 @@ bool IsObject(const Part& part, double median_c, const PersonDetectorOptions& op
   return static_cast<double>(flat) > options.max_flat_top_fraction * tops.size();
 }
 
+// A face, neck or ears near the top of the part's box, or (a person seen from behind) mostly
+// clothing; parts cut off by the image top may have lost their head and pass too.
+bool LooksHuman(const Part& part, const PersonDetectorOptions& options) {
+  if (part.box.y == 0) return true;
+  const double zone_end_y = part.box.y + options.top_skin_zone_ratio * part.box.height;
+  int skin = 0, clothing = 0;
+  for (size_t k = 0; k < part.pixels.size(); ++k) {
+    const float t = part.temperatures_c[k];
+    skin += part.pixels[k].y < zone_end_y && t >= options.head_min_c && t <= options.max_median_c;
+    clothing += t >= options.clothing_min_c && t <= options.clothing_max_c;
+  }
+  return skin >= options.min_top_skin_px ||
+         clothing >= options.min_clothing_fraction * static_cast<double>(part.pixels.size());
+}
+
 double Score(const Part& part, double median_c, const PersonDetectorOptions& options) {
   const double area = static_cast<double>(part.pixels.size());
   const double area_score = 1.0 - std::exp(-area / options.score_area_px);
@@ -352,6 +374,7 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
     if (aspect < options.min_aspect_hw || aspect > options.max_aspect_hw) continue;
     const double median_c = Median(part.temperatures_c);
     if (median_c > options.max_median_c) continue;
+    if (!radiometric_c.empty() && !LooksHuman(part, options)) continue;
     for (const cv::Point& q : part.pixels) result.mask.at<uint8_t>(q) = 255;
     result.detections.push_back(
         {cv::Rect2f(part.box), static_cast<float>(Score(part, median_c, options))});

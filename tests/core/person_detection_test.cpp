@@ -225,6 +225,15 @@ TEST(PersonDetectorOptions, CheckNamesTheBadField) {
   bad = {};
   bad.merge_min_overlap = 0;
   EXPECT_NE(bad.Check().find("merge_min_overlap"), std::string::npos);
+  bad = {};
+  bad.top_skin_zone_ratio = 0;
+  EXPECT_NE(bad.Check().find("top_skin_zone_ratio"), std::string::npos);
+  bad = {};
+  bad.min_top_skin_px = -1;
+  EXPECT_NE(bad.Check().find("min_top_skin_px"), std::string::npos);
+  bad = {};
+  bad.clothing_max_c = 26;
+  EXPECT_NE(bad.Check().find("clothing_max_c"), std::string::npos);
   EXPECT_THROW(DetectPersons(cv::Mat(), SceneC(), bad), std::logic_error);
 }
 
@@ -242,11 +251,56 @@ TEST(PersonDetection, AWarmMonitorWithAStraightTopIsNotAPerson) {
   cv::circle(t, cv::Point(132, 98), 4, cv::Scalar(45.0f), cv::FILLED);
   EXPECT_TRUE(DetectPersons(cv::Mat(), t, PersonDetectorOptions{}).detections.empty());
   PersonDetectorOptions without_rule;
-  without_rule.max_flat_top_fraction = 1.0;  // the other rules alone take it for a person
+  without_rule.max_flat_top_fraction = 1.0;  // neither skin nor clothing: rejected too
+  EXPECT_TRUE(DetectPersons(cv::Mat(), t, without_rule).detections.empty());
+  without_rule.min_top_skin_px = 0;  // the other rules alone take it for a person
   EXPECT_EQ(DetectPersons(cv::Mat(), t, without_rule).detections.size(), 1u);
   // The same blob with a round head on top is a person.
   cv::circle(t, cv::Point(120, 52), 10, cv::Scalar(33.0f), cv::FILLED);
   EXPECT_EQ(DetectPersons(cv::Mat(), t, PersonDetectorOptions{}).detections.size(), 1u);
+}
+
+// A laptop on a table seen from the side, as in rendered empty-room frames: the opened lid a
+// slanted bar (30 degC, reads 29.6 through emissivity 0.9), the base a strip under it (32 degC,
+// reads 31), a hot cup beside it, blurred by the optics.
+cv::Mat SideViewLaptopC() {
+  cv::Mat t(192, 256, CV_32F, cv::Scalar(kRoomC));
+  const std::vector<cv::Point> lid = {{100, 60}, {108, 60}, {117, 85}, {109, 85}};
+  cv::fillConvexPoly(t, lid, cv::Scalar(29.6));
+  cv::rectangle(t, cv::Rect(109, 84, 26, 3), cv::Scalar(31.0), cv::FILLED);
+  cv::circle(t, cv::Point(128, 81), 5, cv::Scalar(45.0), cv::FILLED);
+  cv::GaussianBlur(t, t, cv::Size(5, 5), 0.7);
+  AddNoise(t, 7);
+  return t;
+}
+
+TEST(PersonDetection, AWarmLaptopSeenFromTheSideIsNotAPerson) {
+  const cv::Mat t = SideViewLaptopC();
+  EXPECT_TRUE(DetectPersons(cv::Mat(), t, PersonDetectorOptions{}).detections.empty());
+  PersonDetectorOptions without_rule;
+  without_rule.min_top_skin_px = 0;  // the shape and temperature rules alone take it for a person
+  EXPECT_EQ(DetectPersons(cv::Mat(), t, without_rule).detections.size(), 1u);
+}
+
+TEST(PersonDetection, WithoutVisibleSkinAPersonIsMostlyClothing) {
+  // Seen from behind and close, the shoulders hide the head: a rounded torso, clothing only.
+  const auto torso = [](float temperature_c, int top) {
+    cv::Mat t(192, 256, CV_32F, cv::Scalar(kRoomC));
+    cv::ellipse(t, cv::Point(120, top + 60), cv::Size(30, 60), 0, 0, 360,
+                cv::Scalar(temperature_c), cv::FILLED);
+    AddNoise(t, 8);
+    return t;
+  };
+  EXPECT_EQ(DetectPersons(cv::Mat(), torso(kClothingC, 30), {}).detections.size(), 1u);
+  // The same shape at a laptop lid's or a monitor screen's temperature is an object ...
+  EXPECT_TRUE(DetectPersons(cv::Mat(), torso(29.5f, 30), {}).detections.empty());
+  EXPECT_TRUE(DetectPersons(cv::Mat(), torso(26.7f, 30), {}).detections.empty());
+  PersonDetectorOptions without_rule;
+  without_rule.min_top_skin_px = 0;
+  EXPECT_EQ(DetectPersons(cv::Mat(), torso(29.5f, 30), without_rule).detections.size(), 1u);
+  EXPECT_EQ(DetectPersons(cv::Mat(), torso(26.7f, 30), without_rule).detections.size(), 1u);
+  // ... unless the image top cuts it off, where a head may be missing.
+  EXPECT_EQ(DetectPersons(cv::Mat(), torso(29.5f, -50), {}).detections.size(), 1u);
 }
 
 }  // namespace

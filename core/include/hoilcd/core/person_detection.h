@@ -9,6 +9,13 @@
 // while legs show below it. Splitting between skin-temperature faces (radiometric frames only)
 // and joining headless parts below a person raised detection precision/recall at IoU 0.5 from
 // 0.34/0.31 to 0.76/0.53. Threshold, clean-up and rejection values were already near their best.
+//
+// The skin-or-clothing rule (min_top_skin_px ...) was written for scenes/empty_room.json, where
+// warm laptops and a monitor screen passed every shape rule in 410 of 1996 frames; with it none
+// does. Detection precision/recall (bench ComputeTrackingMetrics on raw detections, same frames
+// and filter) went from 0.670/0.440 to 0.676/0.440 on 400 paper-room frames and from 0.612/0.330
+// to 0.644/0.325 on all 1996, where DLCD's MRR fell from 0.497 to 0.486: legs seen alone below a
+// table (trousers read like a monitor screen) had given it stable floor contacts.
 #pragma once
 
 #include <string>
@@ -57,6 +64,18 @@ struct PersonDetectorOptions {
   // and monitors have straight top edges (0.8-1.0 on rendered paper-room frames), people round
   // heads and shoulders (95 % below 0.62). Parts touching the image top are exempt.
   double max_flat_top_fraction = 0.7;
+  // Radiometric frames only (the 8-bit frame saturates below skin temperature). A person shows
+  // skin (face, neck, ears: head_min_c to max_median_c) in the top zone of its box or, seen from
+  // behind with the head hidden by the shoulders, is mostly clothing. Warm objects are neither: on
+  // rendered paper-room frames upper clothing reads 27.3-28.8 degC, laptop lids 29.1-29.6, monitor
+  // screens 26.6-26.8, and a laptop base's 31 lies at its bottom. Trousers read 26.6-27.1, so legs
+  // seen alone under a table are dropped too (under a detected person they join it). Parts
+  // touching the image top are exempt (the head may be cut off).
+  int min_top_skin_px = 10;            // px^2, skin pixels needed in the top zone (0 = rule off)
+  double top_skin_zone_ratio = 0.33;   // upper fraction of the part's box height: the top zone
+  double clothing_min_c = 27.0;        // degC, lowest apparent temperature counted as clothing
+  double clothing_max_c = 29.0;        // degC, highest apparent temperature counted as clothing
+  double min_clothing_fraction = 0.6;  // of a part's pixels at clothing temperature, when no skin
   // Score = geometric mean of an area, a shape and a temperature score.
   double score_area_px = 400;       // px^2, area at which the area score is 1 - 1/e
   double typical_aspect_hw = 1.8;   // height/width of a seated person, shape score 1
