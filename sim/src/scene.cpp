@@ -318,6 +318,8 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   s.seat_setback_m = furniture["seat_setback_m"].get<double>();
   s.seat_spacing_4_m = furniture["seat_spacing_4_m"].get<double>();
   s.seat_spacing_6_m = furniture["seat_spacing_6_m"].get<double>();
+  s.chair_jitter_m = furniture["chair_jitter_m"].get<double>();
+  s.chair_jitter_deg = furniture["chair_jitter_deg"].get<double>();
   s.seat_warmth_c = furniture["seat_warmth_c"].get<double>();
 
   s.crowd = doc["crowd"];

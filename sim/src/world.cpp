@@ -220,6 +220,9 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
   const int per_side = three_per_side ? 3 : 2;
   const double spacing = three_per_side ? scene.seat_spacing_6_m : scene.seat_spacing_4_m;
   const double half_depth = table_asset.bounds_m.max().y();
+  // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
+  const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
+  const double chair_half_width = 0.5 * std::max(chair_size.x(), chair_size.y());
 
   // Who sits where: the explicit list, or people_per_table random seats per table.
   std::vector<SeatingSpec> seating = scene.seating;
@@ -248,10 +251,21 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     for (int side = 0; side < 2; ++side) {
       for (int k = 0; k < per_side; ++k) {
         const int seat = side * 3 + k;
-        const double along = (k - 0.5 * (per_side - 1)) * spacing;
-        const double across = (side == 0 ? -1.0 : 1.0) * (half_depth + scene.seat_setback_m);
+        // Chairs stand where people left them, not on a grid: without this, full tables in the
+        // point-symmetric paper room look the same from opposite ends of the loop. A chair moves
+        // along the table, is pushed in (never out, the robot drives close behind), and turns;
+        // the turn is paid for by pushing it in further, so its footprint reaches no further
+        // from the table than a straight chair's.
+        Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
+        const double turn = jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_deg * kDegToRad;
+        const double along = (k - 0.5 * (per_side - 1)) * spacing +
+                             jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_m;
+        const double pushed_in = 0.5 * jitter.Uniform() * scene.chair_jitter_m +
+                                 chair_half_width * std::abs(std::sin(turn));
+        const double across = (side == 0 ? -1.0 : 1.0) *
+                              (half_depth + scene.seat_setback_m - pushed_in);
         const Eigen::Vector2d p = spec.center_m + rot * Eigen::Vector2d(along, across);
-        const double seat_yaw = yaw + (side == 0 ? M_PI / 2 : -M_PI / 2);
+        const double seat_yaw = yaw + (side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
         const Eigen::Vector3d seat_pos(p.x(), p.y(), 0.0);
         const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
         const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,

@@ -79,6 +79,7 @@ struct Scene {
   std::vector<TableSpec> tables;
   std::string table_asset, chair_asset;
   double seat_setback_m = 0.2, seat_spacing_4_m = 0.45, seat_spacing_6_m = 0.3;
+  double chair_jitter_m = 0.05, chair_jitter_deg = 12;  // irregular chair placement
   double seat_warmth_c = 6;
 
   nlohmann::json crowd;             // crowd parameters (read by the crowd module)
