@@ -12,7 +12,7 @@ namespace {
 // Pairs are scored in tiles of this many queries x references, reference-major within a tile:
 // a reference's grid and candidate lattice (~15 KB for 200 points) are read from memory once
 // and reused from cache by the tile's queries, whose structures stay cached across the tile.
-constexpr int64_t kTileQueries = 16;
+constexpr int64_t kTileQueries = 32;
 constexpr int64_t kTileReferences = 32;
 
 }  // namespace
