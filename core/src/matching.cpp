@@ -28,6 +28,12 @@ constexpr int kLatticeMarginCells = 4;
 // slot holds kCrowdedCell) and searched in the grid instead (a few % of cells).
 constexpr int kLatticeWidth = 4;
 constexpr uint16_t kCrowdedCell = 0xffff;
+// Build limits: a cell whose candidate search reaches further than this many lattice cells, or
+// finds more than this many points, is marked crowded; sets reaching further than this from the
+// origin get no lattice.
+constexpr float kMaxReachCells = 8;
+constexpr size_t kMaxNearCandidates = 48;
+constexpr float kMaxLatticeCoordinate = 1e15f;
 // Eight lanes (GCC vector extensions; a default-target build lowers them to SSE halves).
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = int32_t __attribute__((vector_size(32)));
@@ -106,8 +112,9 @@ PointGrid::PointGrid(const Point2* points, int count) {
   if (extent > 0) {
     // Thin sets (a row of points) get cells sized as if the short side were extent/count.
     const float floor_side = extent / static_cast<float>(count);
-    const float area = std::max(width, floor_side) * std::max(height, floor_side);
-    cell_px_ = std::sqrt(area * kPointsPerCell / static_cast<float>(count));
+    // In double: the product of two large extents overflows float.
+    const double area = static_cast<double>(std::max(width, floor_side)) * std::max(height, floor_side);
+    cell_px_ = static_cast<float>(std::sqrt(area * kPointsPerCell / count));
     cell_px_ = std::max(cell_px_, extent / static_cast<float>(kMaxCellsPerAxis));
   } else {
     cell_px_ = 1.0f;
@@ -169,6 +176,11 @@ int PointGrid::Nearest(Point2 p) const {
 
 void PointGrid::BuildLattice() {
   if (count_ == 0 || count_ >= kCrowdedCell) return;
+  // Far from the origin, squared float distances could overflow; the grid alone stays exact.
+  const float far_corner = std::max({std::abs(origin_x_), std::abs(origin_y_),
+                                     std::abs(origin_x_ + nx_ * cell_px_),
+                                     std::abs(origin_y_ + ny_ * cell_px_)});
+  if (!(far_corner <= kMaxLatticeCoordinate)) return;
   lattice_px_ = cell_px_ / kLatticeCellsPerGridCell;
   lattice_inv_ = 1.0f / lattice_px_;
   lattice_origin_x_ = origin_x_ - kLatticeMarginCells * lattice_px_;
@@ -200,6 +212,13 @@ void PointGrid::BuildLattice() {
       const auto grid_y = [&](double v) {
         return static_cast<int>(std::clamp((v - origin_y_) * inv_cell_, 0.0, ny_ - 1.0));
       };
+      uint16_t* slots = lattice_slots_.data() + kLatticeWidth * (y * lattice_nx_ + x);
+      // A cell far from every point (an outlier's margin) would gather many candidates: the
+      // grid answers its queries instead, which keeps the build linear in the point count.
+      if (reach > kMaxReachCells * lattice_px_) {
+        slots[0] = kCrowdedCell;
+        continue;
+      }
       const int gx0 = grid_x(x0 - reach - cell_px_), gx1 = grid_x(x1 + reach + cell_px_);
       const int gy0 = grid_y(y0 - reach - cell_px_), gy1 = grid_y(y1 + reach + cell_px_);
       near.clear();
@@ -223,7 +242,10 @@ void PointGrid::BuildLattice() {
         }
         return true;
       };
-      uint16_t* slots = lattice_slots_.data() + kLatticeWidth * (y * lattice_nx_ + x);
+      if (near.size() > kMaxNearCandidates) {
+        slots[0] = kCrowdedCell;
+        continue;
+      }
       int kept = 0;
       for (int j : near) {
         bool dominated = false;

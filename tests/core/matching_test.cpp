@@ -92,6 +92,28 @@ TEST(PointGrid, NearestEqualsBruteForceInsideAndOutsideTheCandidateLattice) {
   EXPECT_GT(queries, 100000);
 }
 
+TEST(PointGrid, ClusterWithAFarOutlierAndHugeCoordinatesStayExact) {
+  Rng rng = KeyedRng(3, "test.grid.outlier");
+  // A dense cluster and one far point: most lattice cells lie in the outlier's margin.
+  std::vector<Point2> cluster;
+  for (int i = 0; i < 3000; ++i) cluster.emplace_back(rng.Uniform(0, 10), rng.Uniform(0, 10));
+  cluster.emplace_back(1e5f, 1e5f);
+  const PointGrid grid(cluster.data(), static_cast<int>(cluster.size()));
+  for (int i = 0; i < 2000; ++i) {
+    const Point2 p(static_cast<float>(rng.Uniform(-20, 30)), static_cast<float>(rng.Uniform(-20, 30)));
+    ASSERT_EQ(grid.Nearest(p), BruteNearest(cluster, p));
+  }
+  for (const Point2 p : {Point2(5e4f, 5e4f), Point2(1e5f, 0.0f), Point2(2e5f, 2e5f)}) {
+    EXPECT_EQ(grid.Nearest(p), BruteNearest(cluster, p));
+  }
+  // Finite coordinates whose products overflow float.
+  const std::vector<Point2> huge = {{0, 0}, {2e19f, 2e19f}, {-3e18f, 7e18f}};
+  const PointGrid huge_grid(huge.data(), static_cast<int>(huge.size()));
+  for (const Point2 p : {Point2(1e19f, 1e19f), Point2(0, 1), Point2(-1e18f, 6e18f)}) {
+    EXPECT_EQ(huge_grid.Nearest(p), BruteNearest(huge, p));
+  }
+}
+
 TEST(MutualNearestNeighbours, EqualsBruteForceAndEveryKeptPairIsMutual) {
   Rng rng = KeyedRng(1, "test.mnn");
   const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow,

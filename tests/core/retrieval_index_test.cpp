@@ -52,12 +52,15 @@ TEST(RetrievalIndex, StoresEachFramesPointsInAddOrder) {
 }
 
 TEST(RetrievalIndex, ScoreAllEqualsScorePairPerPairAndIsIdenticalAtOneAndTwoThreads) {
-  const std::vector<std::vector<Point2>> frames = MakeFrames(24);
+  // 40 queries x 70 references: more than one 32 x 32 tile each way, with partial tiles, so
+  // both threads get work and tile edges are crossed.
+  const std::vector<std::vector<Point2>> frames = MakeFrames(70);
   RetrievalIndex index;
   for (const auto& frame : frames) index.Add(frame);
-  const std::vector<int> queries = {13, 0, 6, 21, 9, 14, 20, 1};
+  std::vector<int> queries;
+  for (int i = 0; i < 40; ++i) queries.push_back((i * 37 + 13) % 70);
   std::vector<int> database;
-  for (int f = 0; f < 24; f += 1) database.push_back(f);
+  for (int f = 0; f < 70; f += 1) database.push_back(f);
   const MatchOptions match_options;
   RansacOptions ransac_options;
   ransac_options.local_optimisation_refits = 1;

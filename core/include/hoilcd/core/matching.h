@@ -24,8 +24,9 @@ struct MatchOptions {
 // A uniform bucket grid over one point set for exact nearest-neighbour queries in about O(1)
 // per query. Points are stored reordered by cell (structure of arrays) for locality, and
 // scanned eight at a time. A finer candidate lattice over the set's bounding box (plus a margin)
-// lists, per lattice cell, every point that can be nearest to some position in it, so a query
-// there compares one to three points; queries outside it search the grid.
+// lists, per lattice cell, every point that can be nearest to some position in it (in four
+// fixed slots), so a query there compares four points without branches; queries outside it, in
+// cells with more candidates, or in sets far from the origin search the grid.
 class PointGrid {
  public:
   PointGrid() = default;
