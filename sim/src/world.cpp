@@ -49,6 +49,25 @@ Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen:
   return o;
 }
 
+// Separating-axis test of two rectangle footprints (touching counts as overlapping).
+bool RectanglesOverlap(const Obstacle2D& a, const Obstacle2D& b) {
+  const Eigen::Vector2d d = b.center_m - a.center_m;
+  for (const Obstacle2D* owner : {&a, &b}) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const double angle = owner->yaw_rad + axis * M_PI / 2;
+      const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+      double reach = 0;
+      for (const Obstacle2D* r : {&a, &b}) {
+        const Eigen::Vector2d u(std::cos(r->yaw_rad), std::sin(r->yaw_rad));
+        const Eigen::Vector2d v(-u.y(), u.x());
+        reach += r->half_size_m.x() * std::abs(n.dot(u)) + r->half_size_m.y() * std::abs(n.dot(v));
+      }
+      if (std::abs(n.dot(d)) > reach) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 // Where instances not in the scene right now wait: below the floor, which no camera ray crosses.
@@ -241,48 +260,94 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     }
   }
 
+  // Chairs stand where people left them, not on a grid: without this, full tables in the
+  // point-symmetric paper room look the same from opposite ends of the loop. A chair moves along
+  // the table, is pushed in (never pulled out: the robot drives close behind), and turns; the turn
+  // is paid for by pushing it in further, so its footprint reaches no further from the table
+  // than a straight chair's. Chairs whose moved footprints would overlap another chair's get
+  // their moves halved until none does (the straight layout is kept as it is).
+  struct ChairPlan {
+    int table, seat, side, k;
+    double turn, shift, push;  // full jitter: rad, m along the table, m pushed in
+    double scale = 1;          // fraction of the jitter applied
+  };
+  std::vector<ChairPlan> chairs;
+  for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
+    for (int side = 0; side < 2; ++side) {
+      for (int k = 0; k < per_side; ++k) {
+        const int seat = side * 3 + k;
+        Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
+        ChairPlan plan{t, seat, side, k, 0, 0, 0};
+        plan.turn = jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_deg * kDegToRad;
+        plan.shift = jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_m;
+        plan.push = 0.5 * jitter.Uniform() * scene.chair_jitter_m;
+        chairs.push_back(plan);
+      }
+    }
+  }
+  const auto chair_pose = [&](const ChairPlan& c, Eigen::Vector3d* position, double* seat_yaw) {
+    const TableSpec& spec = scene.tables[c.table];
+    const double yaw = spec.yaw_deg * kDegToRad;
+    const double turn = c.scale * c.turn;
+    const double along = (c.k - 0.5 * (per_side - 1)) * spacing + c.scale * c.shift;
+    const double pushed_in = c.scale * c.push + chair_half_width * std::abs(std::sin(turn));
+    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth + scene.seat_setback_m - pushed_in);
+    const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
+    *position = Eigen::Vector3d(p.x(), p.y(), 0.0);
+    *seat_yaw = yaw + (c.side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
+  };
+  const auto footprint = [&](const ChairPlan& c) {
+    Eigen::Vector3d position;
+    double seat_yaw;
+    chair_pose(c, &position, &seat_yaw);
+    return FootprintOf("", chair_asset, position, seat_yaw);
+  };
+  constexpr int kHalvings = 6;
+  for (int round = 0; round <= kHalvings; ++round) {
+    std::vector<bool> overlapping(chairs.size(), false);
+    bool any = false;
+    for (size_t i = 0; i < chairs.size(); ++i) {
+      for (size_t j = i + 1; j < chairs.size(); ++j) {
+        if (chairs[i].scale == 0 && chairs[j].scale == 0) continue;
+        if (RectanglesOverlap(footprint(chairs[i]), footprint(chairs[j]))) {
+          overlapping[i] = overlapping[j] = any = true;
+        }
+      }
+    }
+    if (!any) break;
+    for (size_t i = 0; i < chairs.size(); ++i) {
+      if (overlapping[i]) chairs[i].scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].scale;
+    }
+  }
+
+  size_t next_chair = 0;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
     const TableSpec& spec = scene.tables[t];
     const double yaw = spec.yaw_deg * kDegToRad;
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
     Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
-    const Eigen::Rotation2Dd rot(yaw);
-    for (int side = 0; side < 2; ++side) {
-      for (int k = 0; k < per_side; ++k) {
-        const int seat = side * 3 + k;
-        // Chairs stand where people left them, not on a grid: without this, full tables in the
-        // point-symmetric paper room look the same from opposite ends of the loop. A chair moves
-        // along the table, is pushed in (never out, the robot drives close behind), and turns;
-        // the turn is paid for by pushing it in further, so its footprint reaches no further
-        // from the table than a straight chair's.
-        Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
-        const double turn = jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_deg * kDegToRad;
-        const double along = (k - 0.5 * (per_side - 1)) * spacing +
-                             jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_m;
-        const double pushed_in = 0.5 * jitter.Uniform() * scene.chair_jitter_m +
-                                 chair_half_width * std::abs(std::sin(turn));
-        const double across = (side == 0 ? -1.0 : 1.0) *
-                              (half_depth + scene.seat_setback_m - pushed_in);
-        const Eigen::Vector2d p = spec.center_m + rot * Eigen::Vector2d(along, across);
-        const double seat_yaw = yaw + (side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
-        const Eigen::Vector3d seat_pos(p.x(), p.y(), 0.0);
-        const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
-        const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
-                                chair_name, 0.0);
-        obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
-        Seat record;
-        record.table = t;
-        record.seat = seat;
-        record.chair_instance = chair;
-        record.world_from_seat = PlacementTransform(seat_pos, seat_yaw);
-        record.chair_materials = instances_[chair].materials;
-        seats_.push_back(record);
-        const auto who = std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
-          return s.table == t && s.seat == seat;
-        });
-        if (who != seating.end()) AddSeatedPerson(t, seat, who->posture, 0.0, 1e30);
-      }
+    for (int n = 0; n < 2 * per_side; ++n) {
+      const ChairPlan& plan = chairs[next_chair++];
+      const int seat = plan.seat;
+      Eigen::Vector3d seat_pos;
+      double seat_yaw;
+      chair_pose(plan, &seat_pos, &seat_yaw);
+      const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
+      const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
+                              chair_name, 0.0);
+      obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
+      Seat record;
+      record.table = t;
+      record.seat = seat;
+      record.chair_instance = chair;
+      record.world_from_seat = PlacementTransform(seat_pos, seat_yaw);
+      record.chair_materials = instances_[chair].materials;
+      seats_.push_back(record);
+      const auto who = std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
+        return s.table == t && s.seat == seat;
+      });
+      if (who != seating.end()) AddSeatedPerson(t, seat, who->posture, 0.0, 1e30);
     }
   }
 }

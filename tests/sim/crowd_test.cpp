@@ -102,6 +102,46 @@ TEST(Crowd, SeatedPeopleChangePostureButKeepTheirIdAndSeat) {
   EXPECT_GT(changed, 12);
 }
 
+// True if p lies strictly inside rectangle o (shrunk by 1 mm, so touching does not count).
+bool InsideRectangle(const Eigen::Vector2d& p, const Obstacle2D& o) {
+  const Eigen::Vector2d local = Eigen::Rotation2Dd(-o.yaw_rad) * (p - o.center_m);
+  return std::abs(local.x()) < o.half_size_m.x() - 1e-3 && std::abs(local.y()) < o.half_size_m.y() - 1e-3;
+}
+
+TEST(Crowd, IrregularChairsNeverOverlapEachOtherAndAreReallyIrregular) {
+  const BandRadianceTable table;
+  for (const char* room : {"paper_room", "crowded_room"}) {
+    for (int seed = 1; seed <= 4; ++seed) {
+      const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + room + ".json",
+                                    {"seed=" + std::to_string(seed), "frames=10"});
+      World world(scene, table);
+      std::vector<Obstacle2D> chairs;
+      for (const Obstacle2D& o : world.obstacles()) {
+        if (o.name.rfind("chair", 0) == 0) chairs.push_back(o);
+      }
+      ASSERT_GE(chairs.size(), 24u) << room;
+      int turned = 0;
+      for (size_t i = 0; i < chairs.size(); ++i) {
+        const double off_axis = std::remainder(chairs[i].yaw_rad, M_PI / 2);
+        turned += std::abs(off_axis) > 1 * M_PI / 180 ? 1 : 0;
+        // A 9 x 9 lattice of points over chair i must stay out of every other chair.
+        for (int a = 0; a <= 8; ++a) {
+          for (int b = 0; b <= 8; ++b) {
+            const Eigen::Vector2d local((a / 4.0 - 1) * chairs[i].half_size_m.x(),
+                                        (b / 4.0 - 1) * chairs[i].half_size_m.y());
+            const Eigen::Vector2d p = chairs[i].center_m + Eigen::Rotation2Dd(chairs[i].yaw_rad) * local;
+            for (size_t j = 0; j < chairs.size(); ++j) {
+              if (j != i) ASSERT_FALSE(InsideRectangle(p, chairs[j])) << room << " seed " << seed << ": "
+                                                                      << chairs[i].name << " in " << chairs[j].name;
+            }
+          }
+        }
+      }
+      EXPECT_GT(turned, static_cast<int>(chairs.size()) / 2) << room << " seed " << seed;
+    }
+  }
+}
+
 TEST(Crowd, WalkersStayOnTheRouteAheadOfTheRobotAndClearOfFurniture) {
   const Scene scene = PaperRoom({"crowd.walkers=6"});
   const BandRadianceTable table;
