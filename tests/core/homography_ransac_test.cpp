@@ -328,6 +328,9 @@ TEST(RansacOptions, CheckNamesEachInvalidFieldAndEstimateRejectsThem) {
   EXPECT_NE(message.find("inlier_threshold_px"), std::string::npos);
   EXPECT_NE(message.find("local_optimisation_refits"), std::string::npos);
   EXPECT_THROW(EstimateHomographyRansac({}, {}, {}, bad, 1), std::logic_error);
+  RansacOptions too_many;
+  too_many.trials = 20'000'000;  // sample counters would pass 2^32
+  EXPECT_NE(too_many.Check().find("trials must be in [1, 10000000]"), std::string::npos);
 }
 
 TEST(EstimateHomographyRansac, OutOfRangeMatchIsRejected) {

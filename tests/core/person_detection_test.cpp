@@ -234,6 +234,11 @@ TEST(PersonDetectorOptions, CheckNamesTheBadField) {
   bad = {};
   bad.clothing_max_c = 26;
   EXPECT_NE(bad.Check().find("clothing_max_c"), std::string::npos);
+  for (double fraction : {-0.1, 1.5}) {
+    PersonDetectorOptions wrong;
+    wrong.min_clothing_fraction = fraction;
+    EXPECT_NE(wrong.Check().find("min_clothing_fraction"), std::string::npos) << fraction;
+  }
   EXPECT_THROW(DetectPersons(cv::Mat(), SceneC(), bad), std::logic_error);
 }
 
