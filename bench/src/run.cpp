@@ -30,15 +30,28 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   out.dataset_dir = folder + "/dataset";
   out.report_dir = options.report_dir.empty() ? folder + "/report" : options.report_dir;
 
-  // Reuse the cached dataset only when it is complete, intact and of this very scene.
+  // Reuse the cached dataset only when it is complete, intact, of this very scene and rendered
+  // by this simulator. One rendered by another simulator (or with an unreadable manifest) is
+  // stale: it is the cache's own, so it is deleted and rendered anew.
   bool cached = false;
   std::error_code ec;
-  if (std::filesystem::exists(out.dataset_dir + "/manifest.json", ec)) {
+  const std::string manifest_path = out.dataset_dir + "/manifest.json";
+  if (std::filesystem::exists(manifest_path, ec)) {
+    std::string version;
     try {
-      const Dataset existing = Dataset::Open(out.dataset_dir, /*verify_checksums=*/true);
-      cached = existing.manifest().scene_hash == scene.hash && existing.num_frames() == scene.frames;
+      version = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path).hoilcd_version;
     } catch (const InputError&) {
-      cached = false;  // partial or damaged: RenderSequence resumes or re-renders what is bad
+    }
+    if (version != SimulatorVersion()) {
+      std::filesystem::remove_all(out.dataset_dir, ec);
+      if (ec) throw InputError(out.dataset_dir, "cannot remove a stale cached dataset (" + ec.message() + ")");
+    } else {
+      try {
+        const Dataset existing = Dataset::Open(out.dataset_dir, /*verify_checksums=*/true);
+        cached = existing.manifest().scene_hash == scene.hash && existing.num_frames() == scene.frames;
+      } catch (const InputError&) {
+        cached = false;  // partial or damaged: RenderSequence resumes or re-renders what is bad
+      }
     }
   }
   if (!cached) {

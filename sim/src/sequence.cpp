@@ -52,6 +52,11 @@ std::string SequenceOptions::Check() const {
   return "";
 }
 
+// Bump when a change alters rendered bytes (2: irregular chairs).
+constexpr int kSimulatorRevision = 2;
+
+std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
+
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("render", problem);
   const auto start = std::chrono::steady_clock::now();
@@ -80,6 +85,12 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   std::error_code ec;
   if (fs::exists(manifest_path, ec)) {
     DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
+    if (old.hoilcd_version != SimulatorVersion()) {
+      throw InputError(dir, "holds a dataset rendered by hoilcd " + old.hoilcd_version + " (this is " +
+                                SimulatorVersion() +
+                                "), whose frames would not match new ones; delete it or choose another "
+                                "output folder");
+    }
     if (old.scene_hash != scene.hash || old.seed != scene.seed) {
       throw InputError(dir, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
                                 ", seed " + std::to_string(old.seed) +
@@ -99,7 +110,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     }
   }
 
-  manifest.hoilcd_version = HOILCD_VERSION;
+  manifest.hoilcd_version = SimulatorVersion();
   manifest.scene_hash = scene.hash;
   manifest.seed = scene.seed;
   manifest.intrinsics = intrinsics;

@@ -131,8 +131,9 @@ TEST(Crowd, IrregularChairsNeverOverlapEachOtherAndAreReallyIrregular) {
                                         (b / 4.0 - 1) * chairs[i].half_size_m.y());
             const Eigen::Vector2d p = chairs[i].center_m + Eigen::Rotation2Dd(chairs[i].yaw_rad) * local;
             for (size_t j = 0; j < chairs.size(); ++j) {
-              if (j != i) ASSERT_FALSE(InsideRectangle(p, chairs[j])) << room << " seed " << seed << ": "
-                                                                      << chairs[i].name << " in " << chairs[j].name;
+              if (j == i) continue;
+              ASSERT_FALSE(InsideRectangle(p, chairs[j]))
+                  << room << " seed " << seed << ": " << chairs[i].name << " in " << chairs[j].name;
             }
           }
         }

@@ -34,6 +34,12 @@ class RenderInterrupted : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What renders this build's datasets (the manifest's hoilcd_version): the hoilcd version plus a
+// simulator revision that is bumped whenever a change alters rendered bytes, so a resume or a
+// dataset cache never mixes or reuses frames of another simulator.
+std::string SimulatorVersion();
+
+// Throws InputError when the folder holds a dataset of another scene, seed or simulator version.
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options);
 
 }  // namespace hoilcd

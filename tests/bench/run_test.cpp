@@ -1,0 +1,62 @@
+#include "hoilcd/bench/run.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/core/error.h"
+#include "hoilcd/sim/sequence.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rewrites the hoilcd_version of a dataset's manifest, as an older build would have written it.
+void MarkRenderedBy(const std::string& dataset_dir, const std::string& version) {
+  const std::string path = dataset_dir + "/manifest.json";
+  nlohmann::json manifest = nlohmann::json::parse(ReadFileBytes(path));
+  manifest["hoilcd_version"] = version;
+  std::ofstream(path) << manifest.dump(2);
+}
+
+TEST(RunScene, ReusesItsCacheButRendersAgainWhenAnotherSimulatorMadeIt) {
+  const fs::path cache = fs::temp_directory_path() / "hoilcd_run_test_cache";
+  fs::remove_all(cache);
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {});
+  BenchOptions bench;
+  bench.methods = {"slcd"};
+  RunOptions options;
+  options.cache_dir = cache.string();
+  options.threads = 2;
+
+  const RunOutcome first = RunScene(scene, bench, options);
+  EXPECT_FALSE(first.timing.render_cached);
+  EXPECT_TRUE(RunScene(scene, bench, options).timing.render_cached);
+
+  MarkRenderedBy(first.dataset_dir, "0.0.1+sim0");
+  const RunOutcome stale = RunScene(scene, bench, options);
+  EXPECT_FALSE(stale.timing.render_cached);
+  EXPECT_EQ(Dataset::Open(stale.dataset_dir).manifest().hoilcd_version, SimulatorVersion());
+  EXPECT_TRUE(RunScene(scene, bench, options).timing.render_cached);
+
+  // `hoilcd render` into a folder another simulator wrote refuses, naming both versions.
+  MarkRenderedBy(first.dataset_dir, "0.0.1+sim0");
+  SequenceOptions render;
+  render.output_dir = first.dataset_dir;
+  try {
+    RenderSequence(scene, render);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rendered by hoilcd 0.0.1+sim0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(SimulatorVersion()), std::string::npos) << e.what();
+  }
+  fs::remove_all(cache);
+}
+
+}  // namespace
+}  // namespace hoilcd
