@@ -53,6 +53,23 @@ TEST(Runner, EveryMethodIsScoredOnEveryQueryAndResultsDoNotDependOnThreads) {
   EXPECT_GT(one.Find("thumb")->metrics.mrr, 0.3);
 }
 
+TEST(Runner, TheReportExplainsExactlyThePartsOfThePaperFindingThatFail) {
+  const Dataset dataset = TinyDataset("people_finding");
+  BenchOptions options;
+  options.methods = ParseMethodList("paper");
+  const BenchResult result = RunBench(dataset, options);
+  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_finding").string();
+  fs::remove_all(report);
+  WriteReport(result, dataset, options, ReportTiming{}, report);
+  const std::string markdown = ReadFileBytes(report + "/report.md");
+  const double s = result.Find("slcd")->metrics.mrr, d = result.Find("dlcd")->metrics.mrr;
+  const double f = result.Find("fusion")->metrics.mrr;
+  EXPECT_EQ(markdown.find("Why DLCD does not beat SLCD here") != std::string::npos, d <= s) << s << " " << d;
+  EXPECT_EQ(markdown.find("Why fusion falls below") != std::string::npos, f < std::max(s, d) - 0.01)
+      << s << " " << d << " " << f;
+  fs::remove_all(report);
+}
+
 TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
   const Dataset dataset = TinyDataset("empty", {"crowd.people_per_table=0"});
   BenchOptions options;
