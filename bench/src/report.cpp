@@ -253,13 +253,8 @@ std::string DiagnosisMarkdown(const BenchResult& result) {
   }
   md << "| method | MRR, queries with HOI points | MRR, queries without |\n|---|---|---|\n";
   for (const MethodRun& run : result.runs) {
-    double sum_with = 0, sum_without = 0;
-    for (const QueryRecord& q : run.metrics.queries) {
-      if (!q.scored) continue;
-      (result.features[q.frame].hoi.empty() ? sum_without : sum_with) += q.reciprocal_rank;
-    }
-    md << "| " << run.name << " | " << Fixed(with ? sum_with / with : NAN) << " | "
-       << Fixed(without ? sum_without / without : NAN) << " |\n";
+    md << "| " << run.name << " | " << Fixed(MrrWhere(result, run, true)) << " | "
+       << Fixed(MrrWhere(result, run, false)) << " |\n";
   }
   md << "\n" << FindingExplanation(result);
   return md.str();

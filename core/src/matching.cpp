@@ -163,14 +163,7 @@ int PointGrid::Nearest(Point2 p) const {
   // Same float distances and (distance, index) order as the grid search; branch-free over the
   // fixed number of candidate slots (unused ones repeat the first).
   uint64_t best_key = std::numeric_limits<uint64_t>::max();
-  for (int c = 0; c < kLatticeWidth; ++c) {
-    const int k = slots[c];
-    const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
-    const float d = dx * dx + dy * dy;
-    uint32_t bits;
-    std::memcpy(&bits, &d, sizeof bits);
-    best_key = std::min(best_key, (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(ids_[k]));
-  }
+  for (int c = 0; c < kLatticeWidth; ++c) best_key = std::min(best_key, DistanceKey(slots[c], p));
   return static_cast<int>(best_key & 0xffffffffu);
 }
 
@@ -309,19 +302,10 @@ int PointGrid::NearestByRings(Point2 p) const {
   const float fx = std::clamp((p.x - origin_x_) * inv_cell_, 0.0f, static_cast<float>(nx_ - 1));
   const float fy = std::clamp((p.y - origin_y_) * inv_cell_, 0.0f, static_cast<float>(ny_ - 1));
   const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
-  // Candidates compare by one 64-bit key, (squared distance bits, index): the bits of a
-  // non-negative float order like the float, so the minimum key is the nearest point with ties
-  // going to the lower index, found without unpredictable branches.
+  // Candidates compare by DistanceKey, without unpredictable branches.
   uint64_t best_key = std::numeric_limits<uint64_t>::max();
   auto scan = [&](int begin, int end) {
-    for (int k = begin; k < end; ++k) {
-      const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
-      uint32_t bits;
-      const float d = dx * dx + dy * dy;
-      std::memcpy(&bits, &d, sizeof bits);
-      best_key = std::min(best_key, (static_cast<uint64_t>(bits) << 32) |
-                                        static_cast<uint32_t>(ids_[k]));
-    }
+    for (int k = begin; k < end; ++k) best_key = std::min(best_key, DistanceKey(k, p));
   };
   // The cells x0..x1 of one row are consecutive in storage, so a row span is one range.
   auto scan_row = [&](int y, int x0, int x1) {

@@ -22,6 +22,13 @@ void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f
 }
 
 // Posture asset for a seated person, chosen by the scene's weights (keyed by person).
+// Phases and period of a person's sway and breathing, drawn from their own stream.
+void DrawIdleMotion(const nlohmann::json& crowd, Rng* rng, Person* person) {
+  person->sway_phase_rad = rng->Uniform(0, 2 * M_PI);
+  person->breathing_phase_rad = rng->Uniform(0, 2 * M_PI);
+  person->sway_period_s = crowd.at("sway_period_s").get<double>() * rng->Uniform(0.7, 1.3);
+}
+
 std::string ChoosePosture(const nlohmann::json& weights, Rng* rng) {
   static const char* kPostures[] = {"seated_upright", "seated_leaning", "seated_arms_on_table"};
   double total = 0;
@@ -124,9 +131,7 @@ World::World(const Scene& scene, const BandRadianceTable& table)
     Person& person = AddStandingPerson("standing", &rng);
     const Eigen::Vector3d at(spec.at("position_m").at(0).get<double>(), spec.at("position_m").at(1).get<double>(), 0.0);
     person.world_from_seat = PlacementTransform(at, spec.at("yaw_deg").get<double>() * kDegToRad);
-    person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
-    person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
-    person.sway_period_s = crowd.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
+    DrawIdleMotion(crowd, &rng, &person);
     person.lead_s = -1;  // marks a person standing still (no route to follow)
     obstacles_.push_back(Obstacle2D::Circle("standing person " + std::to_string(person.person_id), at.head<2>(), 0.3));
   }
@@ -304,12 +309,14 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
   };
   constexpr int kHalvings = 6;
   for (int round = 0; round <= kHalvings; ++round) {
+    std::vector<Obstacle2D> footprints;
+    for (const ChairPlan& c : chairs) footprints.push_back(footprint(c));
     std::vector<bool> overlapping(chairs.size(), false);
     bool any = false;
     for (size_t i = 0; i < chairs.size(); ++i) {
       for (size_t j = i + 1; j < chairs.size(); ++j) {
         if (chairs[i].scale == 0 && chairs[j].scale == 0) continue;
-        if (RectanglesOverlap(footprint(chairs[i]), footprint(chairs[j]))) {
+        if (RectanglesOverlap(footprints[i], footprints[j])) {
           overlapping[i] = overlapping[j] = any = true;
         }
       }
@@ -377,11 +384,7 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
   const auto seat_it = std::find_if(seats_.begin(), seats_.end(),
                                     [&](const Seat& s) { return s.table == table && s.seat == seat; });
   HOILCD_CHECK(seat_it != seats_.end());
-  int id = person_id;
-  if (id < 0) {
-    for (const Person& p : people_) id = std::max(id, p.person_id + 1);
-    id = std::max(id, 0);
-  }
+  const int id = person_id >= 0 ? person_id : NextPersonId();
   Person person;
   person.person_id = id;
   person.table = table;
@@ -408,9 +411,7 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
     }
   }
   person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng.Normal(), 0.8, 1.2);
-  person.sway_phase_rad = rng.Uniform(0, 2 * M_PI);
-  person.breathing_phase_rad = rng.Uniform(0, 2 * M_PI);
-  person.sway_period_s = crowd_.at("sway_period_s").get<double>() * rng.Uniform(0.7, 1.3);
+  DrawIdleMotion(crowd_, &rng, &person);
   // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
   auto varied = [&](const char* mean, const char* sd) {
     return crowd_.at(mean).get<double>() + crowd_.at(sd).get<double>() * std::clamp(rng.Normal(), -2.0, 2.0);
@@ -499,9 +500,14 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   });
 }
 
-Person& World::AddStandingPerson(const std::string& kind, Rng* rng) {
+int World::NextPersonId() const {
   int id = 0;
-  for (const Person& q : people_) id = std::max(id, q.person_id + 1);
+  for (const Person& p : people_) id = std::max(id, p.person_id + 1);
+  return id;
+}
+
+Person& World::AddStandingPerson(const std::string& kind, Rng* rng) {
+  const int id = NextPersonId();
   const Asset& body = assets_.Get("person_standing");
   Person person;
   person.person_id = id;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,16 @@ class PointGrid {
   int NearestInGrid(Point2 p) const;
   // Fills the candidate lattice (after the grid is built).
   void BuildLattice();
+  // (squared distance bits, original index) of stored point k from p: the bits of a
+  // non-negative float order like the float, so the least key is the nearest point with ties
+  // going to the lower index.
+  uint64_t DistanceKey(int k, Point2 p) const {
+    const float dx = xs_[k] - p.x, dy = ys_[k] - p.y;
+    const float d = dx * dx + dy * dy;
+    uint32_t bits;
+    std::memcpy(&bits, &d, sizeof bits);
+    return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(ids_[k]);
+  }
   // Index into cell_start_ of cell (x, y), for x in [-1, nx_] and y in [-1, ny_]: the grid has
   // a border of empty cells, so a 3x3 block never needs clipping.
   int Slot(int x, int y) const { return (y + 1) * stride_ + x + 1; }

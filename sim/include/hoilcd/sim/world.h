@@ -109,6 +109,8 @@ class World {
                          int person_id = -1);
   // Adds a person standing (walker or standing still) with varied size and temperatures.
   Person& AddStandingPerson(const std::string& kind, Rng* rng);
+  // The id a new person gets: one past the largest so far (0 for the first).
+  int NextPersonId() const;
   void SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c, double hair_c);
   void UpdateSeatWarmth(double time_s);
 
