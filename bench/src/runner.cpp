@@ -6,6 +6,7 @@
 #include <set>
 #include <set>
 
+#include "hoilcd/bench/manifest_options.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/parallel.h"
@@ -124,13 +125,12 @@ const MethodRun* BenchResult::Find(const std::string& name) const {
 }
 
 BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
-  BenchOptions options = options_in;
+  BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
   const auto start = Clock::now();
   const int n = dataset.num_frames();
   const uint64_t seed = dataset.manifest().seed;
-  options.match.image_height_px = dataset.manifest().intrinsics.height;
   const std::vector<std::string>& methods = options.methods;
 
   BenchResult result;
