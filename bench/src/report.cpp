@@ -449,7 +449,6 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | " << Fixed(m.recall_at_5)
        << " | " << Fixed(m.pr_auc) << " | " << Fixed(run.metrics.mrr) << " |\n";
   }
-  md << "\n## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result);
   if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
@@ -470,6 +469,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
        << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
+  md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
