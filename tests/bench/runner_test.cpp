@@ -12,16 +12,17 @@
 #include "hoilcd/sim/sensor.h"
 #include "hoilcd/sim/sequence.h"
 #include "hoilcd/sim/world.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Renders the tiny test room once per variant into a temp folder and opens it.
-Dataset TinyDataset(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_runner_test_" + name);
-  fs::remove_all(dir);
+// Renders the tiny test room once per variant into a folder of the test and opens it.
+Dataset TinyDataset(const test::TestDir& temp, const std::string& name,
+                    const std::vector<std::string>& overrides = {}) {
+  const fs::path dir = temp.path() / name;
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", overrides);
   SequenceOptions options;
   options.output_dir = dir.string();
@@ -30,7 +31,8 @@ Dataset TinyDataset(const std::string& name, const std::vector<std::string>& ove
 }
 
 TEST(Runner, EveryMethodIsScoredOnEveryQueryAndResultsDoNotDependOnThreads) {
-  const Dataset dataset = TinyDataset("people");
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "people");
   BenchOptions options;
   options.methods = DefaultMethods();
   options.threads = 1;
@@ -54,12 +56,12 @@ TEST(Runner, EveryMethodIsScoredOnEveryQueryAndResultsDoNotDependOnThreads) {
 }
 
 TEST(Runner, TheReportExplainsExactlyThePartsOfThePaperFindingThatFail) {
-  const Dataset dataset = TinyDataset("people_finding");
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "people_finding");
   BenchOptions options;
   options.methods = ParseMethodList("paper");
   const BenchResult result = RunBench(dataset, options);
-  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_finding").string();
-  fs::remove_all(report);
+  const std::string report = temp / "finding";
   WriteReport(result, dataset, options, ReportTiming{}, report);
   const std::string markdown = ReadFileBytes(report + "/report.md");
   const double s = result.Find("slcd")->metrics.mrr, d = result.Find("dlcd")->metrics.mrr;
@@ -67,11 +69,11 @@ TEST(Runner, TheReportExplainsExactlyThePartsOfThePaperFindingThatFail) {
   EXPECT_EQ(markdown.find("Why DLCD does not beat SLCD here") != std::string::npos, d <= s) << s << " " << d;
   EXPECT_EQ(markdown.find("Why fusion falls below") != std::string::npos, f < std::max(s, d) - 0.01)
       << s << " " << d << " " << f;
-  fs::remove_all(report);
 }
 
 TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
-  const Dataset dataset = TinyDataset("empty", {"crowd.people_per_table=0"});
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "empty", {"crowd.people_per_table=0"});
   BenchOptions options;
   options.methods = ParseMethodList("paper");
   const BenchResult result = RunBench(dataset, options);
@@ -80,8 +82,7 @@ TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
     for (double s : scores) EXPECT_EQ(s, 0.0);
   }
   EXPECT_NE(PaperFindingSummary(result).find("no HOI points"), std::string::npos);
-  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_report").string();
-  fs::remove_all(report);
+  const std::string report = temp / "report";
   WriteReport(result, dataset, options, ReportTiming{}, report);
   for (const char* file : {"report.json", "queries.csv", "report.md", "pr_curves.png", "mrr_per_lap.png",
                            "trajectory_fusion.png"}) {
@@ -170,16 +171,34 @@ namespace hoilcd {
 namespace {
 
 TEST(Runner, ASequenceShorterThanALapHasNoScoredQueriesAndStillReports) {
-  const Dataset dataset = TinyDataset("short", {"frames=60"});
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
   BenchOptions options;
   options.methods = ParseMethodList("paper");
   const BenchResult result = RunBench(dataset, options);
   EXPECT_EQ(result.Find("slcd")->metrics.queries_scored, 0);
-  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_short_report").string();
-  fs::remove_all(report);
+  const std::string report = temp / "short_report";
   EXPECT_NO_THROW(WriteReport(result, dataset, options, ReportTiming{}, report));
   EXPECT_TRUE(fs::exists(report + "/report.md"));
   EXPECT_FALSE(fs::exists(report + "/mrr_per_lap.png"));
+}
+
+TEST(Report, OverwritesOnlyAnEarlierHoilcdReportNeverAUsersFolder) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
+  BenchOptions options;
+  options.methods = {"slcd"};
+  const BenchResult result = RunBench(dataset, options);
+  WriteReport(result, dataset, options, ReportTiming{}, temp / "report");
+  EXPECT_NO_THROW(WriteReport(result, dataset, options, ReportTiming{}, temp / "report"));
+  WriteFileAtomic(temp / "mine/report.md", "my own notes");
+  try {
+    WriteReport(result, dataset, options, ReportTiming{}, temp / "mine");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no earlier hoilcd report"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadFileBytes(temp / "mine/report.md"), "my own notes");
 }
 
 }  // namespace
