@@ -283,8 +283,14 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
     const json* node = doc;
     std::stringstream tokens(key.substr(1));
     std::string token;
-    while (node && std::getline(tokens, token, '/')) {
-      if (node->is_array() && token != "-") {
+    while (std::getline(tokens, token, '/')) {
+      // Past the end of the document a numeric token would create an array of that size.
+      if ((node == nullptr || node->is_null()) && !token.empty() &&
+          (token == "-" || token.find_first_not_of("0123456789") == std::string::npos)) {
+        throw InputError(where, "an existing array at " + (prefix.empty() ? "/" : prefix.to_string()) +
+                                    " to index with '" + token + "'");
+      }
+      if (node && node->is_array() && token != "-") {
         if (token.empty() || token.size() > 9 || token.find_first_not_of("0123456789") != std::string::npos ||
             std::stoul(token) >= node->size()) {
           throw InputError(where, "an index below " + std::to_string(node->size()) + " at " +
@@ -292,7 +298,7 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
         }
       }
       prefix /= token;
-      node = doc->contains(prefix) ? &(*doc)[prefix] : nullptr;
+      node = node && doc->contains(prefix) ? &(*doc)[prefix] : nullptr;
     }
     (*doc)[pointer] = value;
   } catch (const json::exception& e) {

@@ -221,5 +221,12 @@ TEST(Scene, NumberTooLargeForADoubleIsAnInputErrorNamingTheFile) {
   }
 }
 
+TEST(Scene, AnIndexPastTheEndOfTheDocumentIsAnInputErrorNotAHugeArray) {
+  // Found by fuzz_scene: a numeric token under a missing key made nlohmann allocate an array
+  // of that many elements.
+  const auto problems = ProblemsOf(json::object(), {"nothing.111111111111111=1"});
+  EXPECT_TRUE(HasProblem(problems, "--set nothing.111111111111111=1", "an existing array at /nothing"));
+}
+
 }  // namespace
 }  // namespace hoilcd
