@@ -62,12 +62,13 @@ std::string EncodeExr(const ExrChannels& channels) {
 
 namespace {
 
-constexpr int kMaxExrSidePx = 16384;  // far above any thermal camera
+constexpr int kMaxExrSidePx = 4096;  // far above any thermal camera
 
 // OpenEXR 3.1 allocates an attribute's declared size before reading it: a 439-byte file that
 // declares a huge attribute takes seconds and gigabytes (found by fuzz_dataset). Hand-written
 // walk of the documented header layout (magic, version, then per header "name\0type\0" int32
-// size and value, ending in \0): every attribute must fit in the file before OpenEXR reads it.
+// size and value, ending in \0): every attribute must fit in the file, and the data window
+// (which sizes OpenEXR's line buffers) must be a frame's size, before OpenEXR reads it.
 bool HeaderFitsInFile(const std::string& bytes) {
   if (bytes.size() < 8 || bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0) return false;
   const bool multipart = (static_cast<unsigned char>(bytes[5]) & 0x10) != 0;
@@ -87,11 +88,21 @@ bool HeaderFitsInFile(const std::string& bytes) {
       continue;
     }
     header_empty = false;
+    auto int32_at = [&](size_t where) {
+      uint32_t value = 0;
+      for (int i = 3; i >= 0; --i) value = (value << 8) | static_cast<unsigned char>(bytes[where + i]);
+      return value;
+    };
+    const size_t name_at = at;
     if (!skip_name() || !skip_name() || bytes.size() - at < 4) return false;
-    uint32_t size = 0;
-    for (int i = 3; i >= 0; --i) size = (size << 8) | static_cast<unsigned char>(bytes[at + i]);
+    const uint32_t size = int32_at(at);
     at += 4;
     if (size > bytes.size() - at) return false;
+    if (bytes.compare(name_at, 11, std::string("dataWindow\0", 11)) == 0 && size == 16) {
+      const int64_t width = int64_t{static_cast<int32_t>(int32_at(at + 8))} - static_cast<int32_t>(int32_at(at)) + 1;
+      const int64_t height = int64_t{static_cast<int32_t>(int32_at(at + 12))} - static_cast<int32_t>(int32_at(at + 4)) + 1;
+      if (width < 1 || height < 1 || width > kMaxExrSidePx || height > kMaxExrSidePx) return false;
+    }
     at += size;
   }
   return false;
@@ -101,7 +112,8 @@ bool HeaderFitsInFile(const std::string& bytes) {
 
 ExrChannels ReadExr(const std::string& path) {
   if (!HeaderFitsInFile(ReadFileBytes(path))) {
-    throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end)");
+    throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end, or the "
+                           "data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
   }
   try {
     Imf::InputFile file(path.c_str(), 1);

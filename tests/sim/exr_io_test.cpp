@@ -36,5 +36,22 @@ TEST(Exr, AttributeDeclaredLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
   }
 }
 
+TEST(Exr, DataWindowFarLargerThanAFrameIsRefusedBeforeOpenExrAllocatesLineBuffers) {
+  const test::TestDir temp;
+  cv::Mat t(6, 8, CV_32F, cv::Scalar(21.0f));
+  std::string bytes = EncodeExr({{"T", t}});
+  // Widen the data window (box2i xMin yMin xMax yMax) to 2^30 columns.
+  const size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4;
+  ASSERT_LT(at, bytes.size());
+  bytes.replace(at + 8, 4, std::string("\x00\x00\x00\x40", 4));
+  WriteFileAtomic(temp / "wide.exr", bytes);
+  try {
+    ReadExr(temp / "wide.exr");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("data window"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hoilcd
