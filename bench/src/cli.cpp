@@ -24,6 +24,8 @@
 namespace hoilcd {
 namespace {
 
+constexpr int kMaxThreads = 1024;  // --threads cap: far above any machine, far below int overflow
+
 std::atomic<bool> g_interrupted{false};
 
 extern "C" void OnInterrupt(int) {
@@ -233,7 +235,7 @@ int RunCommandLine(int argc, char** argv) {
   render->add_option("--frames", render_options.frames, "render only the first N frames (0: all)")
       ->check(CLI::NonNegativeNumber);
   render->add_option("--threads", render_options.threads, "worker threads (0: every core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, kMaxThreads));
 
   std::string bench_dir, bench_report;
   int bench_threads = 0;
@@ -241,7 +243,7 @@ int RunCommandLine(int argc, char** argv) {
   CLI::App* bench = app.add_subcommand("bench", "evaluate loop-closure methods on a dataset folder");
   bench->add_option("dataset", bench_dir, "dataset folder written by hoilcd render")->required();
   bench->add_option("-o,--output", bench_report, "report folder (default DATASET/report)");
-  bench->add_option("--threads", bench_threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
+  bench->add_option("--threads", bench_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
   AddBenchFlags(bench, &bench_args);
 
   SceneArgs run_scene;
@@ -251,7 +253,7 @@ int RunCommandLine(int argc, char** argv) {
   AddSceneFlags(run, &run_scene, false);
   run->add_option("--cache", run_options.cache_dir, "folder of cached datasets and reports");
   run->add_option("-o,--output", run_options.report_dir, "report folder (default CACHE/<scene>-<hash>/report)");
-  run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
+  run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
   AddBenchFlags(run, &run_args);
 
   std::string inspect_dir, inspect_output;
@@ -293,7 +295,7 @@ int RunCommandLine(int argc, char** argv) {
   sweep->add_option("--shard", sweep_args.shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
       ->type_name("I/N");
   sweep->add_option("--merge", sweep_args.merge, "combine these sweep output folders into OUT")->type_name("DIR...");
-  sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
+  sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
   AddBenchFlags(sweep, &sweep_bench);
 
   try {

@@ -313,8 +313,26 @@ std::string PaperFindingSummary(const BenchResult& result) {
   return out.str();
 }
 
+// A report overwrites files only in a folder that is new, empty or holds an earlier hoilcd
+// report (report.json with hoilcd's keys); anything else is the user's folder.
+void CheckReportFolder(const std::string& dir) {
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec) || std::filesystem::is_empty(dir, ec)) return;
+  const std::string earlier = dir + "/report.json";
+  nlohmann::json report;
+  if (std::filesystem::is_regular_file(earlier, ec)) {
+    report = nlohmann::json::parse(ReadFileBytes(earlier), nullptr, /*allow_exceptions=*/false);
+  }
+  if (!(report.is_object() && report.contains("hoilcd_version") && report.contains("methods") &&
+        report.contains("dataset"))) {
+    throw InputError(dir, "exists, is not empty and holds no earlier hoilcd report (report.json); "
+                          "refusing to overwrite files in it: choose a new or empty report folder");
+  }
+}
+
 void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                  const ReportTiming& timing, const std::string& dir) {
+  CheckReportFolder(dir);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");

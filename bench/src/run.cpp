@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/dataset_folder.h"
 #include "hoilcd/sim/sequence.h"
 
 namespace hoilcd {
@@ -32,7 +33,8 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
 
   // Reuse the cached dataset only when it is complete, intact, of this very scene and rendered
   // by this simulator. One rendered by another simulator (or with an unreadable manifest) is
-  // stale: it is the cache's own, so it is deleted and rendered anew.
+  // stale: its files are deleted by their exact names and it is rendered anew. Anything else in
+  // the folder is the user's: it is kept, and named in an error.
   bool cached = false;
   std::error_code ec;
   const std::string manifest_path = out.dataset_dir + "/manifest.json";
@@ -43,8 +45,11 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
     } catch (const InputError&) {
     }
     if (version != SimulatorVersion()) {
-      std::filesystem::remove_all(out.dataset_dir, ec);
-      if (ec) throw InputError(out.dataset_dir, "cannot remove a stale cached dataset (" + ec.message() + ")");
+      const std::vector<std::string> left = RemoveDatasetFiles(out.dataset_dir);
+      if (!left.empty()) {
+        throw InputError(out.dataset_dir, "held a stale cached dataset (now deleted) beside files hoilcd did not "
+                                          "write (" + JoinFileList(left) + "); move them away and run again");
+      }
     } else {
       try {
         const Dataset existing = Dataset::Open(out.dataset_dir, /*verify_checksums=*/true);

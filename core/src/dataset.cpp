@@ -31,6 +31,7 @@ constexpr const char* kChecksumPrefix = "xxh3-128:";
 constexpr const char* kPosesHeader =
     "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,odo_y,odo_theta";
 constexpr int kPosesColumns = 14;
+constexpr const char* kManifestChecksumKey = "manifest_checksum";
 
 std::string JoinPath(const std::string& dir, const std::string& relative) {
   return (fs::path(dir) / relative).string();
@@ -57,7 +58,7 @@ class JsonReader {
   json Parse(const std::string& text) {
     try {
       return json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse errors and number overflow (1e400)
       throw InputError(path_, std::string("invalid JSON: ") + e.what());
     }
   }
@@ -234,6 +235,7 @@ std::string DatasetManifest::ToJson() const {
   j["classes"] = classes;
   j["files"] = files;
   j["complete"] = complete;
+  j[kManifestChecksumKey] = ChecksumOf(j.dump(2));  // of the manifest without this key
   return j.dump(2) + "\n";
 }
 
@@ -245,7 +247,18 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
   if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
   reader.CheckKeys(j, "", {"hoilcd_version", "scene_hash", "seed", "intrinsics", "frame_rate_hz",
                            "frame_count", "window_min_c", "window_max_c", "classes", "files",
-                           "complete"});
+                           "complete", kManifestChecksumKey});
+  std::string checksum;
+  reader.Read(j, "", kManifestChecksumKey, &checksum);
+  if (!checksum.empty()) {
+    json unsigned_part = j;
+    unsigned_part.erase(kManifestChecksumKey);
+    if (ChecksumOf(unsigned_part.dump(2)) != checksum) {
+      reader.Add(std::string("/") + kManifestChecksumKey,
+                 "does not match the manifest's content: manifest.json was edited or corrupted; "
+                 "re-render the dataset");
+    }
+  }
   reader.Read(j, "", "hoilcd_version", &m.hoilcd_version);
   reader.Read(j, "", "scene_hash", &m.scene_hash);
   reader.Read(j, "", "seed", &m.seed);
@@ -563,6 +576,13 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
   for (const char* side : {"scene.json", "poses.csv", "persons.json", "events.json"}) {
     if (!m.files.count(side)) problems.Add(manifest_path + ": /files", std::string("no ") + side);
   }
+  // Bound the per-frame loop below by what is listed, not by frame_count alone.
+  if (m.frame_count > m.FramesWritten()) {
+    problems.Add(manifest_path + ": /frame_count",
+                 "is " + std::to_string(m.frame_count) + " but /files lists " +
+                     std::to_string(m.FramesWritten()) + " thermal frames");
+    problems.ThrowIfAny();
+  }
   for (int frame = 0; frame < m.frame_count; ++frame) {
     for (const char* folder : {"thermal/", "radiometric/"}) {
       const std::string name = folder + FrameFileName(frame, "png");
@@ -625,9 +645,40 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
 }
 
 namespace {
-cv::Mat ReadPng(const std::string& path, int expected_type, const CameraIntrinsics& k) {
-  const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (image.empty()) throw InputError(path, "cannot read PNG (missing or not a PNG)");
+// Width and height from a PNG's IHDR chunk, read before decoding so that a small file that
+// inflates to a huge image is refused first (OpenCV offers no header-only read). Hand-written:
+// the PNG signature and IHDR layout are fixed by the PNG specification, 24 bytes in all.
+bool PngSize(const std::string& bytes, uint32_t* width, uint32_t* height) {
+  static constexpr unsigned char kSignature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 24 || std::memcmp(bytes.data(), kSignature, 8) != 0 ||
+      bytes.compare(12, 4, "IHDR") != 0) {
+    return false;
+  }
+  auto big_endian = [&](size_t at) {
+    uint32_t value = 0;
+    for (size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return value;
+  };
+  *width = big_endian(16);
+  *height = big_endian(20);
+  return true;
+}
+
+}  // namespace
+
+cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int expected_type,
+                       const CameraIntrinsics& k) {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  if (!PngSize(bytes, &width, &height)) throw InputError(path, "cannot read PNG (not a PNG)");
+  if (width != static_cast<uint32_t>(k.width) || height != static_cast<uint32_t>(k.height)) {
+    throw InputError(path, "expected " + std::to_string(k.width) + "x" +
+                               std::to_string(k.height) + " px as in manifest.json, the PNG is " +
+                               std::to_string(width) + "x" + std::to_string(height));
+  }
+  const cv::Mat image =
+      cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
+  if (image.empty()) throw InputError(path, "cannot read PNG (damaged)");
   if (image.type() != expected_type) {
     throw InputError(path, expected_type == CV_8UC1 ? "expected an 8-bit single-channel PNG"
                                                     : "expected a 16-bit single-channel PNG");
@@ -637,6 +688,11 @@ cv::Mat ReadPng(const std::string& path, int expected_type, const CameraIntrinsi
                                std::to_string(k.height) + " px as in manifest.json");
   }
   return image;
+}
+
+namespace {
+cv::Mat ReadPng(const std::string& path, int expected_type, const CameraIntrinsics& k) {
+  return DecodeFramePng(ReadFileBytes(path), path, expected_type, k);
 }
 }  // namespace
 

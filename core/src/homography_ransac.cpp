@@ -366,9 +366,9 @@ __attribute__((target_clones("avx2", "default"))) void SolveBatch(const SampleBa
 }
 
 [[gnu::always_inline]] inline int32_t HorizontalSum(const Ints8& v) {
-  Ints8 sum = v + __builtin_shuffle(v, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
-  sum += __builtin_shuffle(sum, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
-  sum += __builtin_shuffle(sum, Ints8{1, 0, 3, 2, 5, 4, 7, 6});
+  Ints8 sum = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
+  sum += __builtin_shufflevector(sum, sum, 2, 3, 0, 1, 6, 7, 4, 5);
+  sum += __builtin_shufflevector(sum, sum, 1, 0, 3, 2, 5, 4, 7, 6);
   return sum[0];
 }
 

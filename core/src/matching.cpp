@@ -34,7 +34,8 @@ constexpr uint16_t kCrowdedCell = 0xffff;
 constexpr float kMaxReachCells = 8;
 constexpr size_t kMaxNearCandidates = 48;
 constexpr float kMaxLatticeCoordinate = 1e15f;
-// Eight lanes (GCC vector extensions; a default-target build lowers them to SSE halves).
+// Eight lanes (GCC vector extensions, which clang shares; a default-target build lowers them to
+// SSE halves).
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = int32_t __attribute__((vector_size(32)));
 
@@ -42,20 +43,28 @@ using Ints8 = int32_t __attribute__((vector_size(32)));
 template <typename Vector>
 [[gnu::always_inline]] inline auto LaneMin(const Vector& v) {
   Vector m = v;
-  Vector other = __builtin_shuffle(m, Ints8{4, 5, 6, 7, 0, 1, 2, 3});
+  Vector other = __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
   m = other < m ? other : m;
-  other = __builtin_shuffle(m, Ints8{2, 3, 0, 1, 6, 7, 4, 5});
+  other = __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
   m = other < m ? other : m;
-  other = __builtin_shuffle(m, Ints8{1, 0, 3, 2, 5, 4, 7, 6});
+  other = __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
   m = other < m ? other : m;
   return m[0];
 }
+
+// Clang cannot combine flatten with target_clones: there the clones call the grid queries
+// instead of inlining them (the same arithmetic, so the same results).
+#if defined(__clang__)
+#define HOILCD_CLONES_FLATTENED __attribute__((target_clones("avx2", "default")))
+#else
+#define HOILCD_CLONES_FLATTENED __attribute__((target_clones("avx2", "default"), flatten))
+#endif
 
 // Nearest neighbours, remembering for each reference j the query it was found mutual with
 // (reverse[j]; -2 before). A reference whose first candidate was not mutual stays -2 and is
 // checked again for the next query that finds it; at most one query can be mutual with it.
 // Cloned for AVX2 with run-time dispatch, with the grid queries inlined into each clone.
-__attribute__((target_clones("avx2", "default"), flatten)) void MutualNearestNeighboursCached(
+HOILCD_CLONES_FLATTENED void MutualNearestNeighboursCached(
     const Point2* query_points, const PointGrid& query_grid,
     const Point2* reference_points, const PointGrid& reference_grid, std::vector<int>* reverse,
     std::vector<Correspondence>* matches) {

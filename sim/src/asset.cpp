@@ -8,6 +8,11 @@
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -22,6 +27,63 @@ namespace fs = std::filesystem;
 constexpr double kMinTemperatureC = -50;
 constexpr double kMaxTemperatureC = 200;
 constexpr int kMaxNodeDepth = 256;  // deeper than any real file; stops cyclic node graphs
+constexpr size_t kMaxBufferBytes = size_t{1} << 30;  // 1 GiB: far above any room asset
+
+// tinygltf's file callbacks, confined to the glTF file's own folder: a buffer uri may name only a
+// regular file inside it (no "../" or absolute path out of it, no FIFO or device that blocks).
+struct BufferFolder {
+  fs::path root;  // canonical folder of the glTF file
+};
+
+bool BufferFileExists(const std::string& path, void*) {
+  std::error_code error;
+  return fs::exists(path, error);
+}
+
+// No expansion: tinygltf's default runs wordexp() on uris ("~", "$VAR").
+std::string KeepPath(const std::string& path, void*) { return path; }
+
+bool RefuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "writing is not supported";
+  return false;
+}
+
+bool ReadBufferFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                    void* user_data) {
+  const fs::path& root = static_cast<const BufferFolder*>(user_data)->root;
+  std::error_code error;
+  const fs::path real = fs::weakly_canonical(path, error);
+  if (error || std::mismatch(root.begin(), root.end(), real.begin(), real.end()).first != root.end()) {
+    *err = "a buffer file inside the glTF file's folder " + root.string();
+    return false;
+  }
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
+  const int fd = ::open(real.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    *err = std::string("cannot open: ") + std::strerror(errno);
+    return false;
+  }
+  struct stat info {};
+  bool ok = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+  if (!ok) *err = "not a regular file";
+  if (ok && static_cast<uint64_t>(info.st_size) > kMaxBufferBytes) {
+    ok = false;
+    *err = "larger than " + std::to_string(kMaxBufferBytes >> 20) + " MiB";
+  }
+  if (ok) {
+    out->resize(static_cast<size_t>(info.st_size));
+    size_t done = 0;
+    while (ok && done < out->size()) {
+      const ssize_t n = ::read(fd, out->data() + done, out->size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      ok = n > 0;
+      if (ok) done += static_cast<size_t>(n);
+      else *err = n == 0 ? "file shrank while reading" : std::string("read error: ") + std::strerror(errno);
+    }
+  }
+  ::close(fd);
+  return ok;
+}
 
 // glTF (+Y up, front +Z) to hoilcd asset frame (z up, x forward): a cyclic axis permutation.
 Eigen::Vector3f ToAssetFrame(const Eigen::Vector3d& p_gltf) {
@@ -300,16 +362,22 @@ class GltfReader {
       Fail(where, "has an invalid type, component type or byte stride");
       return false;
     }
+    // Every size below comes from the file: compare by subtraction so nothing can wrap.
     const size_t element = static_cast<size_t>(component) * static_cast<size_t>(components);
-    const size_t begin = buffer_view.byteOffset + accessor.byteOffset;
-    const size_t end = accessor.count == 0
-                           ? begin
-                           : begin + static_cast<size_t>(stride) * (accessor.count - 1) + element;
-    if (buffer_view.byteOffset + buffer_view.byteLength > data.size() ||
-        end > buffer_view.byteOffset + buffer_view.byteLength) {
+    const size_t view_offset = buffer_view.byteOffset;
+    const size_t view_length = buffer_view.byteLength;
+    bool inside = view_offset <= data.size() && view_length <= data.size() - view_offset &&
+                  accessor.byteOffset <= view_length;
+    if (inside && accessor.count > 0) {
+      const size_t available = view_length - accessor.byteOffset;
+      inside = element <= available &&
+               accessor.count - 1 <= (available - element) / static_cast<size_t>(stride);
+    }
+    if (!inside) {
       Fail(where, "reads past the end of its buffer view or buffer");
       return false;
     }
+    const size_t begin = view_offset + accessor.byteOffset;
     view.first = data.data() + begin;
     view.stride = static_cast<size_t>(stride);
     view.count = accessor.count;
@@ -446,6 +514,9 @@ Asset LoadAsset(const std::string& path) {
   }
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  std::error_code error_code;
+  BufferFolder folder{fs::weakly_canonical(fs::absolute(path), error_code).parent_path()};
+  loader.SetFsCallbacks({BufferFileExists, KeepPath, ReadBufferFile, RefuseWrite, &folder});
   std::string errors;
   std::string warnings;
   const bool binary = fs::path(path).extension() == ".glb";

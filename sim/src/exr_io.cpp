@@ -10,6 +10,7 @@
 
 #include <cstring>
 
+#include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 
 namespace hoilcd {
@@ -59,16 +60,75 @@ std::string EncodeExr(const ExrChannels& channels) {
   return std::move(stream.data());
 }
 
+namespace {
+
+constexpr int kMaxExrSidePx = 4096;  // far above any thermal camera
+
+// OpenEXR 3.1 allocates an attribute's declared size before reading it: a 439-byte file that
+// declares a huge attribute takes seconds and gigabytes (found by fuzz_dataset). Hand-written
+// walk of the documented header layout (magic, version, then per header "name\0type\0" int32
+// size and value, ending in \0): every attribute must fit in the file, and the data window
+// (which sizes OpenEXR's line buffers) must be a frame's size, before OpenEXR reads it.
+bool HeaderFitsInFile(const std::string& bytes) {
+  if (bytes.size() < 8 || bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0) return false;
+  const bool multipart = (static_cast<unsigned char>(bytes[5]) & 0x10) != 0;
+  size_t at = 8;
+  bool header_empty = true;
+  auto skip_name = [&] {
+    const size_t end = bytes.find('\0', at);
+    if (end == std::string::npos || end - at > 255) return false;
+    at = end + 1;
+    return true;
+  };
+  while (at < bytes.size()) {
+    if (bytes[at] == '\0') {  // end of a header; a multi-part list ends with an empty one
+      ++at;
+      if (!multipart || header_empty) return true;
+      header_empty = true;
+      continue;
+    }
+    header_empty = false;
+    auto int32_at = [&](size_t where) {
+      uint32_t value = 0;
+      for (int i = 3; i >= 0; --i) value = (value << 8) | static_cast<unsigned char>(bytes[where + i]);
+      return value;
+    };
+    const size_t name_at = at;
+    if (!skip_name() || !skip_name() || bytes.size() - at < 4) return false;
+    const uint32_t size = int32_at(at);
+    at += 4;
+    if (size > bytes.size() - at) return false;
+    if (bytes.compare(name_at, 11, std::string("dataWindow\0", 11)) == 0 && size == 16) {
+      const int64_t width = int64_t{static_cast<int32_t>(int32_at(at + 8))} - static_cast<int32_t>(int32_at(at)) + 1;
+      const int64_t height = int64_t{static_cast<int32_t>(int32_at(at + 12))} - static_cast<int32_t>(int32_at(at + 4)) + 1;
+      if (width < 1 || height < 1 || width > kMaxExrSidePx || height > kMaxExrSidePx) return false;
+    }
+    at += size;
+  }
+  return false;
+}
+
+}  // namespace
+
 ExrChannels ReadExr(const std::string& path) {
+  if (!HeaderFitsInFile(ReadFileBytes(path))) {
+    throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end, or the "
+                           "data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
+  }
   try {
     Imf::InputFile file(path.c_str(), 1);
     const Imath::Box2i dw = file.header().dataWindow();
-    const int width = dw.max.x - dw.min.x + 1;
-    const int height = dw.max.y - dw.min.y + 1;
+    const int64_t width = int64_t{dw.max.x} - dw.min.x + 1;
+    const int64_t height = int64_t{dw.max.y} - dw.min.y + 1;
+    if (width < 1 || height < 1 || width > kMaxExrSidePx || height > kMaxExrSidePx) {
+      throw InputError(path, "expected an image of 1 to " + std::to_string(kMaxExrSidePx) +
+                                 " px per side, the data window is " + std::to_string(width) + "x" +
+                                 std::to_string(height));
+    }
     ExrChannels out;
     Imf::FrameBuffer fb;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
-      out.emplace_back(it.name(), cv::Mat(height, width, CV_32F));
+      out.emplace_back(it.name(), cv::Mat(static_cast<int>(height), static_cast<int>(width), CV_32F));
     }
     for (auto& [name, mat] : out) {
       char* base = mat.ptr<char>() - (dw.min.x + static_cast<ptrdiff_t>(dw.min.y) * width) * 4;

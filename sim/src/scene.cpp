@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <valijson/adapters/nlohmann_json_adapter.hpp>
@@ -11,6 +12,7 @@
 #include <valijson/validator.hpp>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/sim/asset.h"
 #include "scene_schema_text.h"
 
 namespace hoilcd {
@@ -81,6 +83,15 @@ std::string Describe(const std::string& pointer, const std::string& description)
     return "unknown key '" + key + "'" + (expected.empty() ? "" : " (expected one of: " + expected + ")");
   }
   std::string out = description;
+  if (description.find("'type' constraint") != std::string::npos) {
+    if (const json* node = SchemaAt(pointer); node && node->contains("type")) {
+      static const std::map<std::string, std::string> kExpected = {
+          {"number", "a number"}, {"integer", "a whole number"}, {"string", "a string"},
+          {"boolean", "true or false"}, {"array", "an array"}, {"object", "an object"}};
+      const std::string type = (*node)["type"].is_string() ? (*node)["type"].get<std::string>() : "";
+      if (kExpected.count(type)) out = "expected " + kExpected.at(type);
+    }
+  }
   if (const json* node = SchemaAt(pointer); node && node->contains("description")) {
     out += " (" + (*node)["description"].get<std::string>() + ")";
   }
@@ -97,6 +108,31 @@ void NormaliseNumbers(json* doc, const json& schema) {
     }
   } else if (doc->is_array() && schema.contains("items") && schema["items"].is_object()) {
     for (json& item : *doc) NormaliseNumbers(&item, schema["items"]);
+  }
+}
+
+// The schema's "required" properties, checked on the document as written: FillDefaults would
+// otherwise supply them (a table without center_m would silently stand at the default).
+void CheckRequired(const json& doc, const json& schema, const std::string& pointer,
+                   const std::string& file, ProblemCollector* problems) {
+  if (doc.is_object()) {
+    if (schema.contains("required")) {
+      for (const json& key : schema["required"]) {
+        if (!doc.contains(key.get<std::string>())) {
+          problems->Add(file + ": " + (pointer.empty() ? "/" : pointer),
+                        "missing required property '" + key.get<std::string>() + "'");
+        }
+      }
+    }
+    if (schema.contains("properties")) {
+      for (const auto& [key, sub] : schema["properties"].items()) {
+        if (doc.contains(key)) CheckRequired(doc[key], sub, pointer + "/" + key, file, problems);
+      }
+    }
+  } else if (doc.is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (size_t i = 0; i < doc.size(); ++i) {
+      CheckRequired(doc[i], schema["items"], pointer + "/" + std::to_string(i), file, problems);
+    }
   }
 }
 
@@ -162,6 +198,48 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
       problems->Add(at + "/height_m", "the window top below the ceiling");
     }
   }
+  // Interval 0 is "never"; a tiny one would make a posture change per nanosecond.
+  const double posture_interval_s = scene.crowd.at("posture_change_interval_s").get<double>();
+  if (posture_interval_s != 0 && posture_interval_s < 1) {
+    problems->Add(f + ": /crowd/posture_change_interval_s", "0 (never) or at least 1 s");
+  }
+  auto inside_room = [&](const Eigen::Vector3d& p) {
+    return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room_size_m.x() &&
+           p.y() <= scene.room_size_m.y() && p.z() <= scene.room_size_m.z();
+  };
+  const std::string room_box = "x in [0, " + std::to_string(scene.room_size_m.x()) + "], y in [0, " +
+                               std::to_string(scene.room_size_m.y()) + "], z in [0, " +
+                               std::to_string(scene.room_size_m.z()) + "]";
+  const json& objects = scene.resolved.at("objects");
+  const AssetLibrary assets(scene.assets_dir);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const std::string at = f + ": /objects/" + std::to_string(i);
+    if (!inside_room(Vec3(objects[i].at("position_m")))) {
+      problems->Add(at + "/position_m", "a position inside the room (" + room_box + ")");
+    }
+    const std::string path = assets.Resolve(objects[i].at("asset").get<std::string>());
+    std::error_code ec;
+    if (objects[i].at("enabled").get<bool>() && !fs::is_regular_file(path, ec)) {
+      problems->Add(at + "/asset", "an asset name in " + scene.assets_dir + " or a .gltf/.glb file; " + path +
+                                       " does not exist");
+    }
+  }
+  for (const char* key : {"table_asset", "chair_asset"}) {
+    const std::string path = assets.Resolve(scene.resolved.at("furniture").at(key).get<std::string>());
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      problems->Add(f + ": /furniture/" + key, "an asset name in " + scene.assets_dir +
+                                                   " or a .gltf/.glb file; " + path + " does not exist");
+    }
+  }
+  const json& standing = scene.crowd.at("standing");
+  for (size_t i = 0; i < standing.size(); ++i) {
+    const Eigen::Vector2d p = Vec2(standing[i].at("position_m"));
+    if (!inside_room({p.x(), p.y(), 0})) {
+      problems->Add(f + ": /crowd/standing/" + std::to_string(i) + "/position_m",
+                    "a position inside the room (" + room_box + ")");
+    }
+  }
   const json& waypoints = scene.route.at("waypoints_m");
   for (size_t i = 0; i < waypoints.size(); ++i) {
     const Eigen::Vector2d p = Vec2(waypoints[i]);
@@ -205,8 +283,14 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
     const json* node = doc;
     std::stringstream tokens(key.substr(1));
     std::string token;
-    while (node && std::getline(tokens, token, '/')) {
-      if (node->is_array() && token != "-") {
+    while (std::getline(tokens, token, '/')) {
+      // Past the end of the document a numeric token would create an array of that size.
+      if ((node == nullptr || node->is_null()) && !token.empty() &&
+          (token == "-" || token.find_first_not_of("0123456789") == std::string::npos)) {
+        throw InputError(where, "an existing array at " + (prefix.empty() ? "/" : prefix.to_string()) +
+                                    " to index with '" + token + "'");
+      }
+      if (node && node->is_array() && token != "-") {
         if (token.empty() || token.size() > 9 || token.find_first_not_of("0123456789") != std::string::npos ||
             std::stoul(token) >= node->size()) {
           throw InputError(where, "an index below " + std::to_string(node->size()) + " at " +
@@ -214,7 +298,7 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
         }
       }
       prefix /= token;
-      node = doc->contains(prefix) ? &(*doc)[prefix] : nullptr;
+      node = node && doc->contains(prefix) ? &(*doc)[prefix] : nullptr;
     }
     (*doc)[pointer] = value;
   } catch (const json::exception& e) {
@@ -267,11 +351,12 @@ void FillSceneDefaults(json* doc) {
 
 Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
+  ProblemCollector problems;
+  CheckRequired(doc, SchemaJson(), "", file, &problems);
   // Defaults first, so an override of one element of a default array (objects.0.enabled)
   // changes that element instead of replacing the whole array.
   FillDefaults(&doc, SchemaJson());
   for (const std::string& o : overrides) ApplyOverride(&doc, o);
-  ProblemCollector problems;
   for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
   problems.ThrowIfAny();
   FillSceneDefaults(&doc);
@@ -345,6 +430,16 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   return s;
 }
 
+InputError LocatedInScene(const Scene& scene, const InputError& error) {
+  std::vector<Problem> problems = error.problems();
+  for (Problem& p : problems) {
+    if (!p.where.empty() && p.where.find(':') == std::string::npos && p.where.front() != '/') {
+      p.where = scene.file + ": /" + p.where;
+    }
+  }
+  return InputError(std::move(problems));
+}
+
 Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open the scene file (does it exist and is it readable?)");
@@ -353,7 +448,7 @@ Scene LoadScene(const std::string& path, const std::vector<std::string>& overrid
   json doc;
   try {
     doc = json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors and number overflow (1e400)
     throw InputError(path, std::string("valid JSON (") + e.what() + ")");
   }
   return SceneFromJson(std::move(doc), path, overrides);

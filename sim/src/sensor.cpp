@@ -35,8 +35,8 @@ std::string SensorOptions::Check() const {
           "shutter_temperature_c", "in [-50, 150] °C", shutter_temperature_c);
   require(drift_k_per_min >= 0.0 && drift_k_per_min <= 60.0, "drift_k_per_min",
           "in [0, 60] K/min", drift_k_per_min);
-  require(ffc_interval_s == 0.0 || ffc_interval_s >= 1.0, "ffc_interval_s",
-          "0 (never) or at least 1 s", ffc_interval_s);
+  require(ffc_interval_s == 0.0 || (ffc_interval_s >= 1.0 && ffc_interval_s <= 86400.0),
+          "ffc_interval_s", "0 (never) or in [1, 86400] s", ffc_interval_s);
   require(time_constant_s > 0.0 && time_constant_s <= 1.0, "time_constant_s", "in (0, 1] s",
           time_constant_s);
   require(quantisation_step_k > 0.0 && quantisation_step_k <= 10.0, "quantisation_step_k",

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/dataset_folder.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/renderer.h"
@@ -67,9 +68,14 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   const BandRadianceTable table;
   World world(scene, table);
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
-  const RobotRun run = SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                                     OdometryOptionsFromScene(scene), world.obstacles(),
-                                     scene.frame_rate_hz, scene.seed);
+  const RobotRun run = [&] {
+    try {
+      return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
+                           OdometryOptionsFromScene(scene), world.obstacles(), scene.frame_rate_hz, scene.seed);
+    } catch (const InputError& e) {
+      throw LocatedInScene(scene, e);  // route and robot checks name the scene file
+    }
+  }();
   HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
   world.PlanCrowd(run.samples);
   const SensorOptions sensor_options = SensorOptionsFromScene(scene);
@@ -98,18 +104,16 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
                                 "); choose another output folder or delete this one");
     }
     manifest = old;
-  } else if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) {
-    throw InputError(dir, "exists, is not empty and is not a hoilcd dataset; refusing to write into it");
+  } else if (const std::vector<std::string> foreign = ForeignFiles(dir); !foreign.empty()) {
+    // Only temp files of a run killed before its first manifest may be there.
+    throw InputError(dir, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(foreign) +
+                              "); refusing to write into it");
   }
   fs::create_directories(dir, ec);
   if (ec) throw InputError(dir, "cannot create the output folder (" + ec.message() + ")");
   // A killed run may leave temp files of atomic writes ("NAME.tmp.PID"); they were never
-  // renamed into place, so nothing refers to them.
-  for (const auto& entry : fs::recursive_directory_iterator(dir, ec)) {
-    if (entry.is_regular_file() && entry.path().filename().string().find(".tmp.") != std::string::npos) {
-      fs::remove(entry.path(), ec);
-    }
-  }
+  // renamed into place, so nothing refers to them. Only those exact names are removed.
+  RemoveDatasetTempFiles(dir);
 
   manifest.hoilcd_version = SimulatorVersion();
   manifest.scene_hash = scene.hash;

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/error.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -314,9 +315,8 @@ TEST(MatchMosaic, UpscalesWithNearestNeighbour) {
 }
 
 TEST(WritePng, WritesADecodablePngAndNoTemporaryFile) {
-  const std::filesystem::path folder =
-      std::filesystem::path(::testing::TempDir()) / "hoilcd_plot_test";
-  std::filesystem::create_directories(folder);
+  const test::TestDir temp;
+  const std::filesystem::path& folder = temp.path();
   const std::string path = (folder / "plot.png").string();
   const cv::Mat image = LinePlot({MakeSeries("a", {0.0, 1.0}, {0.0, 1.0})}, PlotOptions{});
   WritePng(path, image);
@@ -324,7 +324,6 @@ TEST(WritePng, WritesADecodablePngAndNoTemporaryFile) {
   ASSERT_EQ(read.size(), image.size());
   EXPECT_EQ(cv::norm(read, image, cv::NORM_INF), 0.0);
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
-  std::filesystem::remove_all(folder);
 }
 
 TEST(WritePng, MissingFolderIsAnInputErrorNamingThePath) {

@@ -3,13 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
-#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/sequence.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -19,14 +18,14 @@ namespace fs = std::filesystem;
 // Rewrites the hoilcd_version of a dataset's manifest, as an older build would have written it.
 void MarkRenderedBy(const std::string& dataset_dir, const std::string& version) {
   const std::string path = dataset_dir + "/manifest.json";
-  nlohmann::json manifest = nlohmann::json::parse(ReadFileBytes(path));
-  manifest["hoilcd_version"] = version;
-  std::ofstream(path) << manifest.dump(2);
+  DatasetManifest manifest = DatasetManifest::FromJson(ReadFileBytes(path), path);
+  manifest.hoilcd_version = version;
+  WriteFileAtomic(path, manifest.ToJson());
 }
 
 TEST(RunScene, ReusesItsCacheButRendersAgainWhenAnotherSimulatorMadeIt) {
-  const fs::path cache = fs::temp_directory_path() / "hoilcd_run_test_cache";
-  fs::remove_all(cache);
+  const test::TestDir temp;
+  const fs::path cache = temp.path() / "cache";
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {});
   BenchOptions bench;
   bench.methods = {"slcd"};
@@ -55,7 +54,30 @@ TEST(RunScene, ReusesItsCacheButRendersAgainWhenAnotherSimulatorMadeIt) {
     EXPECT_NE(std::string(e.what()).find("rendered by hoilcd 0.0.1+sim0"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find(SimulatorVersion()), std::string::npos) << e.what();
   }
-  fs::remove_all(cache);
+}
+
+TEST(RunScene, StaleCacheWithAnUnreadableManifestKeepsAndNamesTheUsersFiles) {
+  const test::TestDir temp;
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {});
+  BenchOptions bench;
+  bench.methods = {"slcd"};
+  RunOptions options;
+  options.cache_dir = temp.str();
+  options.threads = 2;
+  const RunOutcome first = RunScene(scene, bench, options);
+  WriteFileAtomic(first.dataset_dir + "/manifest.json", "{ damaged");
+  WriteFileAtomic(first.dataset_dir + "/notes.txt", "mine");
+  try {
+    RunScene(scene, bench, options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("(notes.txt)"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadFileBytes(first.dataset_dir + "/notes.txt"), "mine");
+  EXPECT_FALSE(fs::exists(first.dataset_dir + "/thermal/000000.png"));
+  // Once the user's file is moved away, the cache renders again.
+  fs::remove(first.dataset_dir + "/notes.txt");
+  EXPECT_FALSE(RunScene(scene, bench, options).timing.render_cached);
 }
 
 }  // namespace

@@ -14,16 +14,17 @@
 #include "hoilcd/sim/sensor.h"
 #include "hoilcd/sim/sequence.h"
 #include "hoilcd/sim/world.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Renders the tiny test room once per variant into a temp folder and opens it.
-Dataset TinyDataset(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_runner_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
+// Renders the tiny test room once per variant into a folder of the test and opens it.
+Dataset TinyDataset(const test::TestDir& temp, const std::string& name,
+                    const std::vector<std::string>& overrides = {}) {
+  const fs::path dir = temp.path() / name;
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", overrides);
   SequenceOptions options;
   options.output_dir = dir.string();
@@ -32,7 +33,8 @@ Dataset TinyDataset(const std::string& name, const std::vector<std::string>& ove
 }
 
 TEST(Runner, EveryMethodIsScoredOnEveryQueryAndResultsDoNotDependOnThreads) {
-  const Dataset dataset = TinyDataset("people");
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "people");
   BenchOptions options;
   options.methods = DefaultMethods();
   options.threads = 1;
@@ -56,12 +58,12 @@ TEST(Runner, EveryMethodIsScoredOnEveryQueryAndResultsDoNotDependOnThreads) {
 }
 
 TEST(Runner, TheReportExplainsExactlyThePartsOfThePaperFindingThatFail) {
-  const Dataset dataset = TinyDataset("people_finding");
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "people_finding");
   BenchOptions options;
   options.methods = ParseMethodList("paper");
   const BenchResult result = RunBench(dataset, options);
-  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_finding").string();
-  fs::remove_all(report);
+  const std::string report = temp / "finding";
   WriteReport(result, dataset, options, ReportTiming{}, report);
   const std::string markdown = ReadFileBytes(report + "/report.md");
   const double s = result.Find("slcd")->metrics.mrr, d = result.Find("dlcd")->metrics.mrr;
@@ -69,11 +71,11 @@ TEST(Runner, TheReportExplainsExactlyThePartsOfThePaperFindingThatFail) {
   EXPECT_EQ(markdown.find("Why DLCD does not beat SLCD here") != std::string::npos, d <= s) << s << " " << d;
   EXPECT_EQ(markdown.find("Why fusion falls below") != std::string::npos, f < std::max(s, d) - 0.01)
       << s << " " << d << " " << f;
-  fs::remove_all(report);
 }
 
 TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
-  const Dataset dataset = TinyDataset("empty", {"crowd.people_per_table=0"});
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "empty", {"crowd.people_per_table=0"});
   BenchOptions options;
   options.methods = ParseMethodList("paper");
   const BenchResult result = RunBench(dataset, options);
@@ -82,8 +84,7 @@ TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
     for (double s : scores) EXPECT_EQ(s, 0.0);
   }
   EXPECT_NE(PaperFindingSummary(result).find("no HOI points"), std::string::npos);
-  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_report").string();
-  fs::remove_all(report);
+  const std::string report = temp / "report";
   WriteReport(result, dataset, options, ReportTiming{}, report);
   for (const char* file : {"report.json", "queries.csv", "report.md", "pr_curves.png", "mrr_per_lap.png",
                            "trajectory_fusion.png"}) {
@@ -175,9 +176,10 @@ namespace {
 // queries differently, and the same scores then measure differently; with every realism effect
 // off they agree exactly. Both choices report the other beside them.
 TEST(Runner, OdometricAndTrueGroundTruthDisagreeOnADriftingRobotAndAgreeOnAnIdealOne) {
+  const test::TestDir temp;
   BenchOptions options;
   options.methods = ParseMethodList("slcd,dlcd,thumb");
-  const Dataset drifting = TinyDataset("drifting");
+  const Dataset drifting = TinyDataset(temp, "drifting");
   const BenchResult by_odometry = RunBench(drifting, options);
   EXPECT_EQ(by_odometry.ground_truth, "odometry");
   EXPECT_EQ(by_odometry.other_ground_truth, "true");
@@ -189,8 +191,7 @@ TEST(Runner, OdometricAndTrueGroundTruthDisagreeOnADriftingRobotAndAgreeOnAnIdea
   const BenchResult by_truth = RunBench(drifting, options);
   EXPECT_EQ(by_truth.other_ground_truth, "odometry");
   EXPECT_GT(by_truth.label_disagreement.queries_differing, 0);
-  const std::string report = (fs::temp_directory_path() / ("hoilcd_runner_test_gt_report_" + std::to_string(::getpid()))).string();
-  fs::remove_all(report);
+  const std::string report = (temp.path() / "report").string();
   WriteReport(by_truth, drifting, options, ReportTiming{}, report);
   const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(report + "/report.json"));
   EXPECT_EQ(json["protocol"]["ground_truth"], "true");
@@ -201,27 +202,44 @@ TEST(Runner, OdometricAndTrueGroundTruthDisagreeOnADriftingRobotAndAgreeOnAnIdea
   const std::string markdown = ReadFileBytes(report + "/report.md");
   EXPECT_NE(markdown.find("### The same scores under odometry ground truth"), std::string::npos);
   EXPECT_NE(markdown.find("## Dataset (hoilcd inspect)"), std::string::npos);
-  fs::remove_all(report);
 
   options.protocol.ground_truth = "odometry";
   const Dataset ideal = TinyDataset(
-      "ideal", {"robot.navigation=ground_truth", "odometry.enabled=false", "robot.vibration.enabled=false"});
+      temp, "ideal", {"robot.navigation=ground_truth", "odometry.enabled=false", "robot.vibration.enabled=false"});
   const BenchResult agreeing = RunBench(ideal, options);
   EXPECT_EQ(agreeing.label_disagreement.pairs_differing, 0);
   for (const MethodRun& run : agreeing.runs) EXPECT_EQ(run.metrics.mrr, run.other_metrics.mrr) << run.name;
 }
 
 TEST(Runner, ASequenceShorterThanALapHasNoScoredQueriesAndStillReports) {
-  const Dataset dataset = TinyDataset("short", {"frames=60"});
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
   BenchOptions options;
   options.methods = ParseMethodList("paper");
   const BenchResult result = RunBench(dataset, options);
   EXPECT_EQ(result.Find("slcd")->metrics.queries_scored, 0);
-  const std::string report = (fs::temp_directory_path() / "hoilcd_runner_test_short_report").string();
-  fs::remove_all(report);
+  const std::string report = temp / "short_report";
   EXPECT_NO_THROW(WriteReport(result, dataset, options, ReportTiming{}, report));
   EXPECT_TRUE(fs::exists(report + "/report.md"));
   EXPECT_FALSE(fs::exists(report + "/mrr_per_lap.png"));
+}
+
+TEST(Report, OverwritesOnlyAnEarlierHoilcdReportNeverAUsersFolder) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
+  BenchOptions options;
+  options.methods = {"slcd"};
+  const BenchResult result = RunBench(dataset, options);
+  WriteReport(result, dataset, options, ReportTiming{}, temp / "report");
+  EXPECT_NO_THROW(WriteReport(result, dataset, options, ReportTiming{}, temp / "report"));
+  WriteFileAtomic(temp / "mine/report.md", "my own notes");
+  try {
+    WriteReport(result, dataset, options, ReportTiming{}, temp / "mine");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no earlier hoilcd report"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadFileBytes(temp / "mine/report.md"), "my own notes");
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -242,9 +243,8 @@ TEST_F(SweepEndToEnd, MergeRejectsAShardOfAnotherSweep) {
 }
 
 TEST(SweepPlanMaking, AValueTheSceneRejectsFailsBeforeRendering) {
-  const fs::path dir = fs::temp_directory_path() / "hoilcd_sweep_test_plan";
-  fs::remove_all(dir);
-  const std::string scene = WriteTinyScene(dir);
+  const test::TestDir temp;
+  const std::string scene = WriteTinyScene(temp.path());
   const std::string message =
       InputErrorOf([&] { MakeSweepPlan(scene, {"crowd.people_per_table=0,9"}, 1, BenchOptions{}); });
   EXPECT_NE(message.find("--set"), std::string::npos) << message;

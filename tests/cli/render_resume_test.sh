@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Killing a render halfway (SIGKILL, then Ctrl-C) and re-running the same command yields the
-# same bytes as an uninterrupted run, and no temp file survives.
+# same bytes as an uninterrupted run, and no temp file survives. So does a kill during the very
+# first manifest write (strace fault injection at the first rename, where strace can trace).
 set -euo pipefail
 hoilcd=$1
 scene=$2
@@ -42,4 +43,20 @@ for signal in KILL INT; do
     exit 1
   fi
 done
+# Killed at the first rename (the first manifest): only manifest.json.tmp.PID is left behind.
+dir="$work/killed_first_manifest"
+if strace -f -o /dev/null true 2> /dev/null; then
+  if strace -f -o /dev/null -e trace=rename,renameat,renameat2 -e inject=rename,renameat,renameat2:signal=SIGKILL:when=1 \
+      "$hoilcd" -q render "$scene" -o "$dir" --frames 2 2> /dev/null; then
+    echo "the injected kill at the first rename did not happen" >&2
+    exit 1
+  fi
+  left=$(cd "$dir" && find . -type f | sort)
+  case "$left" in ./manifest.json.tmp.*) ;; *) echo "unexpected leftovers: $left" >&2; exit 1 ;; esac
+  "$hoilcd" -q render "$scene" -o "$dir" --frames 2 > /dev/null \
+    || { echo "a folder holding only a killed first manifest write is not resumable" >&2; exit 1; }
+  [ -z "$(find "$dir" -name '*.tmp.*')" ] || { echo "temp file survived the resume" >&2; exit 1; }
+else
+  echo "strace cannot trace here: the first-manifest kill is covered by sim_sequence_test only"
+fi
 echo "1 passed, 0 failed"

@@ -30,6 +30,14 @@ fi
 grep -q "/crowd/people_per_table" "$work/out" || fail "bad --set not reported at its path: $(cat "$work/out")"
 [ ! -e "$work/x/manifest.json" ] || fail "a rejected render wrote a dataset"
 
+for flags in "render $source_dir/scenes/paper_room.json -o $work/t" "bench $work/t" "run" "sweep $source_dir/scenes/paper_room.json -o $work/t"; do
+  # shellcheck disable=SC2086  # flags are split on purpose
+  if "$hoilcd" $flags --threads 134217728 > "$work/out" 2>&1; then fail "--threads 134217728 accepted by ${flags%% *}"; fi
+  grep -q -- "--threads" "$work/out" || fail "--threads not named: $(cat "$work/out")"
+  grep -q "1024" "$work/out" || fail "allowed --threads range not given: $(cat "$work/out")"
+done
+[ ! -e "$work/t" ] || fail "a rejected --threads wrote something"
+
 if "$hoilcd" bench "$work/nothing" > "$work/out" 2>&1; then fail "bench of a missing dataset succeeded"; fi
 grep -q "nothing" "$work/out" || fail "missing dataset not named: $(cat "$work/out")"
 echo "1 passed, 0 failed"

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -372,6 +374,60 @@ TEST(EventsJson, RoundTripKeepsEveryFieldAndUnknownTypeIsAnError) {
                    "events.json");
   });
   EXPECT_NE(message.find("events.json: /events/0/type: expected one of arrive, leave, swap, ffc"),
+            std::string::npos) << message;
+}
+
+// Rewrites manifest.json through `edit`, then signs it again as hoilcd would (so that only the
+// edited value, not the manifest checksum, is under test).
+void EditManifest(const std::string& dir, const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json j = nlohmann::json::parse(ReadFileBytes(dir + "/manifest.json"));
+  edit(j);
+  j.erase("manifest_checksum");
+  j["manifest_checksum"] = ChecksumOf(j.dump(2));
+  WriteFileAtomic(dir + "/manifest.json", j.dump(2) + "\n");
+}
+
+TEST(Dataset, HugeFrameCountInTheManifestIsOneErrorNotAHang) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  EditManifest(dir.str(), [](nlohmann::json& j) { j["frame_count"] = 2147483647; });
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_NE(message.find("manifest.json: /frame_count: is 2147483647 but /files lists 3 thermal"),
+            std::string::npos) << message.substr(0, 500);
+}
+
+TEST(Dataset, HandEditedManifestFailsItsChecksum) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  std::string text = ReadFileBytes(dir / "manifest.json");
+  text.replace(text.find("\"frame_count\": 3"), 16, "\"frame_count\": 2");
+  WriteFileAtomic(dir / "manifest.json", text);
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_NE(message.find("/manifest_checksum: does not match the manifest's content"),
+            std::string::npos) << message;
+}
+
+TEST(Dataset, NumberTooLargeForADoubleIsAnInputErrorNamingTheFile) {
+  const std::string manifest = InputErrorOf([] { DatasetManifest::FromJson("{\"seed\": 1e400}", "DIR/manifest.json"); });
+  EXPECT_NE(manifest.find("DIR/manifest.json: invalid JSON"), std::string::npos) << manifest;
+  const std::string persons = InputErrorOf([] { PersonsFromJson("{\"frames\": [1e400]}", "DIR/persons.json"); });
+  EXPECT_NE(persons.find("DIR/persons.json: invalid JSON"), std::string::npos) << persons;
+  const std::string events = InputErrorOf([] { EventsFromJson("[-1e400]", "DIR/events.json"); });
+  EXPECT_NE(events.find("DIR/events.json: invalid JSON"), std::string::npos) << events;
+}
+
+TEST(Dataset, PngDeclaringAHugeImageIsRefusedBeforeDecoding) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  // A PNG whose header claims 30000 x 30000 px (OpenCV would allocate 900 MB to decode it).
+  std::string bytes = ReadFileBytes(dir / "thermal/000001.png");
+  for (size_t at : {size_t{16}, size_t{20}}) {
+    bytes.replace(at, 4, std::string("\x00\x00\x75\x30", 4));
+  }
+  WriteFileAtomic(dir / "thermal/000001.png", bytes);
+  const Dataset ds = Dataset::Open(dir.str(), /*verify_checksums=*/false);
+  const std::string message = InputErrorOf([&] { ds.Thermal(1); });
+  EXPECT_NE(message.find("expected 8x6 px as in manifest.json, the PNG is 30000x30000"),
             std::string::npos) << message;
 }
 

@@ -1,15 +1,18 @@
 #include "hoilcd/sim/asset.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "hoilcd/core/error.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -260,9 +263,8 @@ TEST(ShippedAssets, HotObjectsCarryTheirThermalProperties) {
 class GltfFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("hoilcd_asset_test_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    temp_ = std::make_unique<test::TestDir>();
+    dir_ = temp_->path() / "assets";
     fs::create_directories(dir_);
     const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     std::ofstream(dir_ / "tri.bin", std::ios::binary)
@@ -287,7 +289,7 @@ class GltfFileTest : public ::testing::Test {
         {"scenes", {{{"nodes", {0}}, {"extras", {{"class", "thing"}}}}}},
         {"scene", 0}};
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override { temp_.reset(); }
 
   std::string Write(const std::string& text, const std::string& name = "test.gltf") {
     const fs::path path = dir_ / name;
@@ -306,7 +308,8 @@ class GltfFileTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  std::unique_ptr<test::TestDir> temp_;
+  fs::path dir_;  // the glTF files' folder, inside temp_
   nlohmann::json gltf_;
 };
 
@@ -434,6 +437,39 @@ TEST_F(GltfFileTest, LibraryLoadsEachFileOnceAndResolvesNamesInItsSearchDir) {
 
 TEST(AssetLibrary, ShippedAssetDirHoldsTheShippedAssets) {
   EXPECT_TRUE(fs::exists(fs::path(ShippedAssetDir()) / "person_seated_upright.gltf"));
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST_F(GltfFileTest, AccessorCountThatWrapsTheBoundsArithmeticIsAnInputError) {
+  gltf_["accessors"][0]["count"] = (uint64_t{1} << 62) + 1;  // 12 * (count - 1) wraps to 0
+  const std::string message = LoadError(Write());
+  EXPECT_NE(message.find("/accessors/0"), std::string::npos) << message;
+  EXPECT_NE(message.find("reads past the end"), std::string::npos) << message;
+}
+
+TEST_F(GltfFileTest, BufferViewOffsetThatWrapsTheBoundsArithmeticIsAnInputError) {
+  gltf_["bufferViews"][0]["byteOffset"] = UINT64_MAX - 7;  // 2^64 - 8: offset + length wraps
+  const std::string message = LoadError(Write());
+  EXPECT_NE(message.find("reads past the end"), std::string::npos) << message;
+}
+
+TEST_F(GltfFileTest, BufferUriOutsideTheGltfFolderIsRefused) {
+  fs::copy_file(dir_ / "tri.bin", temp_->path() / "outside.bin");
+  gltf_["buffers"][0]["uri"] = "../outside.bin";
+  const std::string message = LoadError(Write());
+  EXPECT_NE(message.find("inside the glTF file's folder"), std::string::npos) << message;
+}
+
+TEST_F(GltfFileTest, BufferUriNamingAFifoIsRefusedWithoutWaiting) {
+  ASSERT_EQ(::mkfifo((dir_ / "pipe.bin").c_str(), 0600), 0);
+  gltf_["buffers"][0]["uri"] = "pipe.bin";
+  const std::string message = LoadError(Write());  // before the fix: blocked here forever
+  EXPECT_NE(message.find("not a regular file"), std::string::npos) << message;
 }
 
 }  // namespace

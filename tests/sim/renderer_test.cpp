@@ -10,6 +10,7 @@
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -77,7 +78,8 @@ TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
   // Assert on what a user reads: the frame's EXR channels T and class, written and read back.
   cv::Mat class_f;
   frame.class_id.convertTo(class_f, CV_32F);
-  const std::string exr_path = (std::filesystem::temp_directory_path() / "hoilcd_renderer_test.exr").string();
+  const test::TestDir temp;
+  const std::string exr_path = temp / "frame.exr";
   WriteFileAtomic(exr_path, EncodeExr({{"T", sensor.Apply(0, frame.radiance)}, {"class", class_f}}));
   cv::Mat t, class_id;
   for (const auto& [name, channel] : ReadExr(exr_path)) {

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test_dir.h"
+
 namespace hoilcd {
 namespace {
 
@@ -169,7 +171,8 @@ TEST(Scene, MissingAndMalformedFilesAreErrorsNamingTheFile) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.problems().at(0).where, "/nonexistent/scene.json");
   }
-  const std::string path = (std::filesystem::temp_directory_path() / "hoilcd_bad_scene.json").string();
+  const test::TestDir temp;
+  const std::string path = temp / "bad_scene.json";
   std::ofstream(path) << "{ \"frames\": 10, ";
   try {
     LoadScene(path);
@@ -180,7 +183,6 @@ TEST(Scene, MissingAndMalformedFilesAreErrorsNamingTheFile) {
   }
   std::ofstream(path) << "[1, 2]";
   EXPECT_THROW(LoadScene(path), InputError);
-  std::filesystem::remove(path);
 }
 
 TEST(Scene, HashDependsOnResolvedContentOnly) {
@@ -207,6 +209,64 @@ TEST(Scene, OverridingOneElementOfADefaultArrayKeepsTheOthers) {
 
 TEST(Scene, AnAbsurdArrayIndexInAnOverrideIsAnInputError) {
   EXPECT_THROW(SceneFromJson(json::object(), "x.json", {"route.waypoints_m.99999999999999999999=1"}), InputError);
+}
+
+TEST(Scene, RequiredPropertiesAreEnforcedBeforeDefaultsFillThemIn) {
+  const auto problems = ProblemsOf(json{
+      {"tables", {{{"yaw_deg", 0}}}},
+      {"objects", {{{"asset", "cup"}}}},
+      {"room", {{"windows", {{{"wall", "north"}}}}}},
+      {"crowd", {{"seating", {{{"table", 0}}}}, {"standing", {json::object()}}}}});
+  EXPECT_TRUE(HasProblem(problems, "test.json: /tables/0", "missing required property 'center_m'"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /objects/0", "missing required property 'position_m'"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /room/windows/0", "missing required property 'center_m'"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /crowd/seating/0", "missing required property 'seat'"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /crowd/standing/0", "missing required property 'position_m'"));
+}
+
+TEST(Scene, ValuesThatWouldHangTheSimulatorAreRejected) {
+  EXPECT_TRUE(HasProblem(ProblemsOf(json::object(), {"camera.ffc_interval_s=1e308"}),
+                         "test.json: /camera/ffc_interval_s", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json::object(), {"crowd.posture_change_interval_s=1e-9"}),
+                         "test.json: /crowd/posture_change_interval_s", "at least 1 s"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"objects", {{{"asset", "cup"}, {"position_m", {1e308, 1, 0.7}}}}}}),
+                         "test.json: /objects/0/position_m", "inside the room"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"crowd", {{"standing", {{{"position_m", {1, -1e308}}}}}}}}),
+                         "test.json: /crowd/standing/0/position_m", "inside the room"));
+}
+
+TEST(Scene, MissingAssetIsNamedAtItsJsonPath) {
+  const auto problems = ProblemsOf(json{{"objects", {{{"asset", "no_such_thing"}, {"position_m", {1, 1, 0.7}}}}},
+                                        {"furniture", {{"chair_asset", "missing_chair.gltf"}}}});
+  EXPECT_TRUE(HasProblem(problems, "test.json: /objects/0/asset", "no_such_thing.gltf does not exist"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /furniture/chair_asset", "missing_chair.gltf does not exist"));
+}
+
+TEST(Scene, TypeErrorsNameTheExpectedType) {
+  const auto problems = ProblemsOf(json{{"frames", "many"}, {"camera", {{"netd_k", "low"}}}, {"name", 3}});
+  EXPECT_TRUE(HasProblem(problems, "test.json: /frames", "expected a whole number"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /camera/netd_k", "expected a number"));
+  EXPECT_TRUE(HasProblem(problems, "test.json: /name", "expected a string"));
+}
+
+TEST(Scene, NumberTooLargeForADoubleIsAnInputErrorNamingTheFile) {
+  const test::TestDir temp;
+  const std::string path = temp / "overflow.json";
+  std::ofstream(path) << "{ \"frame_rate_hz\": 1e400 }";
+  try {
+    LoadScene(path);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems().at(0).where, path);
+    EXPECT_NE(e.problems().at(0).message.find("valid JSON"), std::string::npos);
+  }
+}
+
+TEST(Scene, AnIndexPastTheEndOfTheDocumentIsAnInputErrorNotAHugeArray) {
+  // Found by fuzz_scene: a numeric token under a missing key made nlohmann allocate an array
+  // of that many elements.
+  const auto problems = ProblemsOf(json::object(), {"nothing.111111111111111=1"});
+  EXPECT_TRUE(HasProblem(problems, "--set nothing.111111111111111=1", "an existing array at /nothing"));
 }
 
 }  // namespace

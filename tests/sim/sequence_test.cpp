@@ -8,17 +8,21 @@
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/exr_io.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_sequence_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  return dir.string();
-}
+// Each test's folders live under its own test::TestDir (pid + test name).
+class Sequence : public ::testing::Test {
+ protected:
+  std::string TempDir(const std::string& name) const { return root_ / name; }
+
+ private:
+  test::TestDir root_;
+};
 
 Scene PaperRoom(const std::vector<std::string>& overrides = {}) {
   return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides);
@@ -33,7 +37,7 @@ DatasetManifest Render(const Scene& scene, const std::string& dir, int frames, i
   return Dataset::Open(dir).manifest();
 }
 
-TEST(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
+TEST_F(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   const Scene scene = PaperRoom();
   const DatasetManifest one = Render(scene, TempDir("t1"), 4, 1);
   const DatasetManifest two = Render(scene, TempDir("t2"), 4, 2);
@@ -42,7 +46,7 @@ TEST(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   EXPECT_TRUE(one.complete);
 }
 
-TEST(Sequence, AnotherSeedChangesNoiseCrowdAndOdometry) {
+TEST_F(Sequence, AnotherSeedChangesNoiseCrowdAndOdometry) {
   const DatasetManifest a = Render(PaperRoom(), TempDir("s1"), 2, 0);
   const DatasetManifest b = Render(PaperRoom({"seed=2"}), TempDir("s2"), 2, 0);
   EXPECT_NE(a.files.at("thermal/000000.png"), b.files.at("thermal/000000.png"));
@@ -50,7 +54,7 @@ TEST(Sequence, AnotherSeedChangesNoiseCrowdAndOdometry) {
   EXPECT_NE(a.files.at("scene.json"), b.files.at("scene.json"));
 }
 
-TEST(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
+TEST_F(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
   const Scene scene = PaperRoom();
   const DatasetManifest whole = Render(scene, TempDir("whole"), 6, 0);
   const std::string dir = TempDir("resumed");
@@ -67,7 +71,7 @@ TEST(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
   EXPECT_EQ(Dataset::Open(dir).manifest().files, whole.files);
 }
 
-TEST(Sequence, CancelLeavesAResumableDatasetThatReadersRejectAsPartial) {
+TEST_F(Sequence, CancelLeavesAResumableDatasetThatReadersRejectAsPartial) {
   const Scene scene = PaperRoom();
   const std::string dir = TempDir("cancel");
   std::atomic<bool> cancel{true};
@@ -87,7 +91,7 @@ TEST(Sequence, CancelLeavesAResumableDatasetThatReadersRejectAsPartial) {
   EXPECT_NO_THROW(Dataset::Open(dir));
 }
 
-TEST(Sequence, RefusesToWriteIntoAFolderItDidNotMake) {
+TEST_F(Sequence, RefusesToWriteIntoAFolderItDidNotMake) {
   const std::string dir = TempDir("foreign");
   fs::create_directories(dir);
   WriteFileAtomic(dir + "/thesis.tex", "precious");
@@ -103,7 +107,7 @@ TEST(Sequence, RefusesToWriteIntoAFolderItDidNotMake) {
   EXPECT_THROW(RenderSequence(PaperRoom({"crowd.people_per_table=2"}), options), InputError);
 }
 
-TEST(Sequence, GroundTruthFilesDescribeTheFrames) {
+TEST_F(Sequence, GroundTruthFilesDescribeTheFrames) {
   const std::string dir = TempDir("gt");
   Render(PaperRoom(), dir, 3, 0);
   const Dataset d = Dataset::Open(dir);
@@ -132,7 +136,7 @@ TEST(Sequence, GroundTruthFilesDescribeTheFrames) {
 
 // The mount's vibration moves the camera that renders the frame, and poses.csv / poses_tum.txt say
 // where it was; the base's path does not depend on it.
-TEST(Sequence, CameraVibrationMovesTheRenderedViewAndIsWrittenToThePoses) {
+TEST_F(Sequence, CameraVibrationMovesTheRenderedViewAndIsWrittenToThePoses) {
   const std::string shaking_dir = TempDir("vibration_on"), rigid_dir = TempDir("vibration_off");
   Render(PaperRoom(), shaking_dir, 3, 0);
   Render(PaperRoom({"robot.vibration.enabled=false"}), rigid_dir, 3, 0);
@@ -145,6 +149,54 @@ TEST(Sequence, CameraVibrationMovesTheRenderedViewAndIsWrittenToThePoses) {
   EXPECT_EQ(b.cam_roll_rad, 0.0);
   EXPECT_NE(shaking.manifest().files.at("exr/000002.exr"), rigid.manifest().files.at("exr/000002.exr"));
   EXPECT_NE(shaking.manifest().files.at("poses_tum.txt"), rigid.manifest().files.at("poses_tum.txt"));
+}
+
+TEST_F(Sequence, ResumesAFolderWhereAKillLeftOnlyTheFirstManifestsTempFile) {
+  // What `strace -e inject=rename:signal=SIGKILL:when=1 hoilcd render` leaves behind.
+  const std::string dir = TempDir("first_manifest_killed");
+  fs::create_directories(dir);
+  WriteFileAtomic(dir + "/manifest.json.tmp.99999", "{\"hoilcd_version\"");
+  Render(PaperRoom(), dir, 1, 0);
+  EXPECT_FALSE(fs::exists(dir + "/manifest.json.tmp.99999"));
+}
+
+TEST_F(Sequence, ResumingDeletesOnlyItsOwnTempFiles) {
+  const std::string dir = TempDir("own_temp");
+  Render(PaperRoom(), dir, 1, 0);
+  WriteFileAtomic(dir + "/notes.tmp.txt", "mine");
+  WriteFileAtomic(dir + "/thermal/000001.png.tmp.4242", "half a frame");
+  Render(PaperRoom(), dir, 2, 0);
+  EXPECT_EQ(ReadFileBytes(dir + "/notes.tmp.txt"), "mine");
+  EXPECT_FALSE(fs::exists(dir + "/thermal/000001.png.tmp.4242"));
+}
+
+TEST_F(Sequence, RefusalNamesTheFilesThatAreNotItsOwn) {
+  const std::string dir = TempDir("named");
+  fs::create_directories(dir);
+  WriteFileAtomic(dir + "/thesis.tex", "precious");
+  WriteFileAtomic(dir + "/manifest.json.tmp.1", "");
+  SequenceOptions options;
+  options.output_dir = dir;
+  options.frames = 1;
+  try {
+    RenderSequence(PaperRoom(), options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("it holds thesis.tex)"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(Sequence, RouteProblemsFoundWhileSimulatingNameTheSceneFile) {
+  SequenceOptions options;
+  options.output_dir = TempDir("route");
+  options.frames = 1;
+  const Scene scene = PaperRoom({"route.corner_radius_m=5"});
+  try {
+    RenderSequence(scene, options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems().at(0).where, scene.file + ": /route") << e.what();
+  }
 }
 
 }  // namespace

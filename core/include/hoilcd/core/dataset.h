@@ -27,6 +27,12 @@ void WriteFileAtomic(const std::string& path, std::string_view bytes);
 // PNG bytes of a 1-channel CV_8U or CV_16U image; the same image always gives the same bytes.
 std::string EncodePng(const cv::Mat& image);
 
+// A frame PNG's pixels (path names errors). The header must say k.width x k.height before
+// anything is decoded (a small file can inflate to gigabytes), and the decoded type must be
+// expected_type (CV_8UC1 thermal, CV_16UC1 radiometric); InputError otherwise.
+cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int expected_type,
+                       const CameraIntrinsics& k);
+
 // "000123.png" for (123, "png"); a leading dot in the extension is accepted too.
 std::string FrameFileName(int frame, const char* extension);
 

@@ -95,6 +95,10 @@ struct Scene {
 // Throws InputError listing every problem as "FILE: /json/pointer: what was expected".
 Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides = {});
 
+// `error` with every problem given as a bare scene section ("route", "frame_rate_hz") located
+// in the scene file ("FILE: /route"): for checks made while simulating, not while loading.
+InputError LocatedInScene(const Scene& scene, const InputError& error);
+
 // The same from an in-memory document (file names messages).
 Scene SceneFromJson(nlohmann::json doc, const std::string& file,
                     const std::vector<std::string>& overrides = {});

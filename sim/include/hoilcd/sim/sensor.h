@@ -30,7 +30,7 @@ struct SensorOptions {
   double shutter_temperature_c = 25.0;   // FFC shutter temperature: gain errors vanish there, °C
   bool drift = true;                     // global offset ramp between flat-field corrections
   double drift_k_per_min = 0.2;          // 1-σ of the ramp's random slope per FFC interval, K/min
-  double ffc_interval_s = 60.0;          // time between flat-field corrections, s (0: never)
+  double ffc_interval_s = 60.0;          // time between flat-field corrections, s (0: never; max 86400)
   bool time_constant = true;             // bolometer thermal lag (motion smear)
   double time_constant_s = 0.010;        // bolometer thermal time constant, s
   bool quantisation = true;              // output rounded to a temperature step

@@ -1,0 +1,28 @@
+// Fuzzes the scene loader: JSON parsing, the schema validator, required properties, the
+// cross-field checks and --set overrides. Input: optional leading lines "--set KEY=VALUE", then
+// the scene JSON. Only InputError may come out; anything else (or a sanitizer report) is a bug.
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/sim/scene.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  std::string text(reinterpret_cast<const char*>(data), size);
+  std::vector<std::string> overrides;
+  while (text.rfind("--set ", 0) == 0) {
+    const size_t end = text.find('\n');
+    overrides.push_back(text.substr(6, end == std::string::npos ? std::string::npos : end - 6));
+    text = end == std::string::npos ? "" : text.substr(end + 1);
+  }
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (doc.is_discarded()) return 0;  // malformed JSON: LoadScene's own message (unit-tested)
+  try {
+    hoilcd::SceneFromJson(doc, "fuzz.json", overrides);
+  } catch (const hoilcd::InputError&) {
+  }
+  return 0;
+}

@@ -1,0 +1,57 @@
+#include "hoilcd/sim/exr_io.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hoilcd/core/dataset.h"
+#include "hoilcd/core/error.h"
+#include "test_dir.h"
+
+namespace hoilcd {
+namespace {
+
+TEST(Exr, WrittenChannelsReadBackExactly) {
+  const test::TestDir temp;
+  cv::Mat t(6, 8, CV_32F);
+  for (int i = 0; i < 48; ++i) t.at<float>(i / 8, i % 8) = 20.0f + 0.25f * i;
+  WriteFileAtomic(temp / "f.exr", EncodeExr({{"T", t}, {"Z", t * 2}}));
+  const ExrChannels back = ReadExr(temp / "f.exr");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(cv::norm(back[0].second, t, cv::NORM_INF), 0.0);
+}
+
+TEST(Exr, AttributeDeclaredLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+  const test::TestDir temp;
+  // Magic, version 2, one attribute "x" of type "fl" declaring 2^31 - 1 bytes (fuzz_dataset's
+  // finding: OpenEXR allocated the declared size, taking seconds and gigabytes).
+  const std::string bytes = std::string("\x76\x2f\x31\x01\x02\x00\x00\x00", 8) + std::string("x\0fl\0", 5) +
+                            std::string("\xff\xff\xff\x7f", 4) + "abc";
+  WriteFileAtomic(temp / "bad.exr", bytes);
+  try {
+    ReadExr(temp / "bad.exr");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("damaged header"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Exr, DataWindowFarLargerThanAFrameIsRefusedBeforeOpenExrAllocatesLineBuffers) {
+  const test::TestDir temp;
+  cv::Mat t(6, 8, CV_32F, cv::Scalar(21.0f));
+  std::string bytes = EncodeExr({{"T", t}});
+  // Widen the data window (box2i xMin yMin xMax yMax) to 2^30 columns.
+  const size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4;
+  ASSERT_LT(at, bytes.size());
+  bytes.replace(at + 8, 4, std::string("\x00\x00\x00\x40", 4));
+  WriteFileAtomic(temp / "wide.exr", bytes);
+  try {
+    ReadExr(temp / "wide.exr");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("data window"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hoilcd
