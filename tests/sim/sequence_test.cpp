@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <filesystem>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/exr_io.h"
+#include "hoilcd/sim/sensor.h"
+#include "hoilcd/sim/video.h"
 
 namespace hoilcd {
 namespace {
@@ -13,7 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_sequence_test_" + name);
+  const fs::path dir = fs::temp_directory_path() /
+                      ("hoilcd_sequence_test_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   return dir.string();
 }
@@ -36,7 +42,8 @@ TEST(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   const DatasetManifest one = Render(scene, TempDir("t1"), 4, 1);
   const DatasetManifest two = Render(scene, TempDir("t2"), 4, 2);
   EXPECT_EQ(one.files, two.files);
-  EXPECT_EQ(one.files.size(), 4u * 3 + 5);  // three files a frame + five side files
+  EXPECT_EQ(one.files.size(), 4u * 3 + 6);  // three files a frame + six side files
+  EXPECT_EQ(one.files.at("thermal.mp4"), two.files.at("thermal.mp4"));
   EXPECT_TRUE(one.complete);
 }
 
@@ -63,6 +70,93 @@ TEST(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
   EXPECT_EQ(r.frames_reused, 2);
   EXPECT_EQ(r.frames_rendered, 4);
   EXPECT_EQ(Dataset::Open(dir).manifest().files, whole.files);
+  // The whole run encoded thermal.mp4 while writing; the resumed one from the EXRs on disk.
+  EXPECT_EQ(Dataset::Open(dir).manifest().files.at("thermal.mp4"), whole.files.at("thermal.mp4"));
+}
+
+// What `ffprobe` says about the first video stream of `path` ("" when ffprobe is missing).
+std::string Ffprobe(const std::string& path) {
+  const std::string command =
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,width,height,r_frame_rate,nb_read_frames -of csv=p=0 '" + path + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return "";
+  std::string out;
+  char buffer[256];
+  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) out += buffer;
+  pclose(pipe);
+  return out;
+}
+
+TEST(Sequence, FfprobeReadsThermalMp4AsH264256x192At25FpsWithOneFramePerFrame) {
+  if (std::system("ffprobe -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffprobe (Debian ffmpeg) not installed";
+  const std::string dir = TempDir("ffprobe");
+  Render(PaperRoom(), dir, 7, 0);
+  EXPECT_EQ(Ffprobe(dir + "/thermal.mp4"), "h264,256,192,25/1,7\n");
+}
+
+TEST(Sequence, VideoModeThermalFramesAreTheDecodedVideoWithinTheDocumentedPsnr) {
+  const Scene scene = PaperRoom({"camera.video.enabled=true"});
+  const std::string whole_dir = TempDir("video_whole");
+  const DatasetManifest whole = Render(scene, whole_dir, 6, 0);
+  const Dataset d = Dataset::Open(whole_dir);
+  const DecodedVideo video = DecodeVideo(ReadFileBytes(whole_dir + "/thermal.mp4"), "thermal.mp4");
+  ASSERT_EQ(video.frames.size(), 6u);
+  for (int f = 0; f < 6; ++f) {
+    const cv::Mat read = d.Thermal(f);  // what every method reads
+    EXPECT_EQ(cv::norm(read, video.frames[f], cv::NORM_INF), 0.0) << f;
+    cv::Mat uncompressed;
+    for (const auto& [name, channel] : ReadExr(whole_dir + "/exr/" + FrameFileName(f, "exr"))) {
+      if (name == "T") uncompressed = ToDisplay8Bit(channel, 20.0, 30.0);
+    }
+    ASSERT_FALSE(uncompressed.empty());
+    EXPECT_GT(cv::norm(read, uncompressed, cv::NORM_INF), 0.0) << f;
+    // Documented range (schema, camera.video): CRF 23 keeps these frames at 35–50 dB.
+    const double psnr_db = cv::PSNR(read, uncompressed);
+    EXPECT_GT(psnr_db, 35.0) << f;
+    EXPECT_LT(psnr_db, 50.0) << f;
+  }
+  // Resuming a shorter video-mode render gives the same dataset, decoded frames included.
+  const std::string dir = TempDir("video_resumed");
+  Render(scene, dir, 4, 0);
+  EXPECT_EQ(Render(scene, dir, 6, 0).files, whole.files);
+}
+
+TEST(Sequence, FramesFrozenByAnFfcRepeatTheFrameBeforeAndAreListedInEvents) {
+  // At 10 Hz an FFC every second lands on frame 10; 0.3 s freezes frames 10–12.
+  const Scene scene = PaperRoom({"frame_rate_hz=10", "camera.ffc_interval_s=1", "camera.ffc_freeze_s=0.3"});
+  const std::string dir = TempDir("freeze");
+  const DatasetManifest m = Render(scene, dir, 14, 0);
+  for (const char* folder : {"thermal/", "radiometric/"}) {
+    for (int f = 10; f <= 12; ++f) {
+      EXPECT_EQ(m.files.at(folder + FrameFileName(f, "png")), m.files.at(folder + FrameFileName(9, "png")))
+          << folder << f;
+    }
+    EXPECT_NE(m.files.at(folder + FrameFileName(13, "png")), m.files.at(folder + FrameFileName(9, "png")));
+    EXPECT_NE(m.files.at(folder + FrameFileName(9, "png")), m.files.at(folder + FrameFileName(8, "png")));
+  }
+  std::vector<int> frozen;
+  const Dataset dataset = Dataset::Open(dir);
+  for (const DatasetEvent& e : dataset.events()) {
+    if (e.type == "freeze") frozen.push_back(e.frame);
+  }
+  EXPECT_EQ(frozen, (std::vector<int>{10, 11, 12}));
+}
+
+TEST(Sequence, MissingOrDamagedVideoLeavesTheDatasetReadableWithAWarning) {
+  const std::string dir = TempDir("bad_video");
+  Render(PaperRoom(), dir, 2, 0);
+  EXPECT_TRUE(Dataset::Open(dir).warnings().empty());
+  WriteFileAtomic(dir + "/thermal.mp4", "damaged");
+  Dataset damaged = Dataset::Open(dir);
+  ASSERT_EQ(damaged.warnings().size(), 1u);
+  EXPECT_NE(damaged.warnings()[0].find("thermal.mp4: checksum mismatch"), std::string::npos) << damaged.warnings()[0];
+  EXPECT_EQ(damaged.Thermal(1).cols, 256);
+  fs::remove(dir + "/thermal.mp4");
+  const Dataset missing = Dataset::Open(dir);
+  ASSERT_EQ(missing.warnings().size(), 1u);
+  EXPECT_NE(missing.warnings()[0].find("thermal.mp4: listed in manifest.json but missing"), std::string::npos)
+      << missing.warnings()[0];
 }
 
 TEST(Sequence, CancelLeavesAResumableDatasetThatReadersRejectAsPartial) {
