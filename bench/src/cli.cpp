@@ -63,6 +63,8 @@ int RunRender(const SceneArgs& args, const SequenceOptions& options) {
   std::printf("rendered %d frames (%d kept from an earlier run) into %s in %.1f s (%.1f frames/s)\n",
               r.frames_rendered, r.frames_reused, o.output_dir.c_str(), r.seconds,
               r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0);
+  std::printf("of which thermal.mp4: %.2f s (%.1f %% of the render)\n", r.video_seconds,
+              r.seconds > 0 ? 100.0 * r.video_seconds / r.seconds : 0.0);
   return 0;
 }
 
@@ -106,6 +108,7 @@ void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
 
 int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads) {
   const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true);
+  for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const BenchOptions options = ResolveBench(args, threads);
   const BenchResult result = RunBench(dataset, options);
   const std::string out = report_dir.empty() ? dir + "/report" : report_dir;
@@ -123,6 +126,7 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
   std::signal(SIGINT, OnInterrupt);
   run.cancel = &g_interrupted;
   const RunOutcome outcome = RunScene(scene, ResolveBench(args, run.threads), run);
+  for (const std::string& warning : outcome.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   PrintOutcome(outcome.result, outcome.report_dir);
   std::printf("end to end: %.1f s = render %.1f s%s + bench %.1f s (dataset %s)\n",
               outcome.timing.render_s + outcome.timing.bench_s, outcome.timing.render_s,

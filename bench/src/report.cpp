@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "hoilcd/bench/camera_output.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/plot.h"
 #include "hoilcd/sim/asset.h"
@@ -338,6 +339,8 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                         {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
   report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
                       {"bench_s", timing.bench_s}};
+  const CameraOutputStats camera_output = MeasureCameraOutput(dataset);
+  report["camera_output"] = CameraOutputToJson(camera_output);
   report["finding"] = PaperFindingSummary(result);
   report["notes"] = nlohmann::json::array();
   for (const char* note : kNotes) report["notes"].push_back(note);
@@ -439,6 +442,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
        << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
+  md << CameraOutputMarkdown(camera_output);
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
