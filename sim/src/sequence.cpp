@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/renderer.h"
@@ -256,9 +257,14 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     const DecodedVideo video = DecodeVideo(mp4, dir + "/thermal.mp4");
     HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames,
                      "decoded " << video.frames.size() << " of " << frames << " frames");
-    for (int f = 0; f < frames; ++f) {
-      WriteDatasetFile(dir, FramePath("thermal", f, "png"), EncodePng(video.frames[f]), &manifest);
-    }
+    // Written in parallel (each write waits for its fsync), listed in the manifest in order.
+    std::vector<std::string> checksums(frames);
+    ParallelFor(frames, ResolveThreadCount(options.threads), [&](int64_t f) {
+      const std::string bytes = EncodePng(video.frames[f]);
+      WriteFileAtomic(dir + "/" + FramePath("thermal", static_cast<int>(f), "png"), bytes);
+      checksums[f] = ChecksumOf(bytes);
+    });
+    for (int f = 0; f < frames; ++f) manifest.files[FramePath("thermal", f, "png")] = checksums[f];
   }
   video_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
 
