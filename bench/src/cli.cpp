@@ -18,6 +18,7 @@
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/scene.h"
+#include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
 
 namespace hoilcd {
@@ -48,6 +49,8 @@ int RunValidate(const SceneArgs& args) {
   std::ifstream in(args.path);
   if (!in) throw InputError(args.path, "cannot open the scene file (does it exist and is it readable?)");
   const Scene scene = LoadSceneArgs(args);
+  SensorOptionsFromScene(scene);  // the camera's cross-field checks (the schema checks each field)
+  VideoOptionsFromScene(scene);   // frame rate and size that thermal.mp4 can carry
   std::printf("%s: valid scene '%s' (%d frames at %g Hz, %zu tables, hash %s)\n", args.path.c_str(),
               scene.name.c_str(), scene.frames, scene.frame_rate_hz, scene.tables.size(),
               scene.hash.c_str());
