@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <utility>
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/exr_io.h"
@@ -24,14 +24,6 @@ double CornerMinusCentre(const cv::Mat& image, int size) {
   const double corners = (PatchMean(image, 0, 0, size) + PatchMean(image, w, 0, size) +
                           PatchMean(image, 0, h, size) + PatchMean(image, w, h, size)) / 4.0;
   return corners - PatchMean(image, w / 2, h / 2, size);
-}
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(digits);
-  out << v;
-  return out.str();
 }
 
 }  // namespace
@@ -84,7 +76,13 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
   bool thermal_is_video = video_ok;
   for (int f = 0; f < frames; f += step) {
     cv::Mat t, t_true;
-    for (const auto& [name, channel] : ReadExr(dataset.dir() + "/exr/" + FrameFileName(f, "exr"))) {
+    ExrChannels exr;
+    try {
+      exr = ReadExr(dataset.dir() + "/exr/" + FrameFileName(f, "exr"));
+    } catch (const InputError&) {
+      continue;  // the EXRs are optional for readers (Dataset::Open needs only the PNGs)
+    }
+    for (const auto& [name, channel] : exr) {
       if (name == "T") t = channel;
       if (name == "T_true") t_true = channel;
     }
@@ -118,40 +116,30 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
   return stats;
 }
 
-nlohmann::json CameraOutputToJson(const CameraOutputStats& s) {
-  return {{"video_mode", s.video_mode},
-          {"video_problem", s.video_problem},
-          {"video_frames", s.video_frames},
-          {"frames_compared", s.frames_compared},
-          {"frames_shading", s.frames_shading},
-          {"psnr_mean_db", s.psnr_mean_db},
-          {"psnr_min_db", s.psnr_min_db},
-          {"thermal_is_video", s.thermal_is_video},
-          {"shading_mean_k", s.shading_mean_k},
-          {"shading_p90_k", s.shading_p90_k},
-          {"freeze_events", s.freeze_events},
-          {"frozen_frames", s.frozen_frames}};
-}
-
-std::string CameraOutputMarkdown(const CameraOutputStats& s) {
-  std::ostringstream md;
-  md << "## Camera output\n\n";
-  md << "- video mode " << (s.video_mode ? "on: methods read the decoded thermal.mp4 frames"
-                                         : "off: thermal.mp4 is a preview; methods read uncompressed frames")
-     << (s.video_mode && !s.thermal_is_video ? " (**but the thermal PNGs are not the decoded frames**)" : "")
-     << "\n";
-  if (s.video_problem.empty()) {
-    md << "- thermal.mp4: " << s.video_frames << " frames; PSNR against the uncompressed 8-bit frames "
-       << Fixed(s.psnr_mean_db, 1) << " dB mean, " << Fixed(s.psnr_min_db, 1) << " dB worst (" << s.frames_compared
-       << " frames compared)\n";
-  } else {
-    md << "- thermal.mp4: **" << s.video_problem << "**\n";
-  }
-  md << "- lens shading (corner minus centre of T − T_true): " << Fixed(s.shading_mean_k, 3) << " K mean, "
-     << Fixed(s.shading_p90_k, 3) << " K 90th percentile\n"
-     << "- FFC freeze: " << s.freeze_events << " frames listed in events.json, " << s.frozen_frames
-     << " frames repeat the previous frame\n\n";
-  return md.str();
+InspectSection CameraOutputSection(const CameraOutputStats& s) {
+  auto number = [](std::string key, std::string label, double value, std::string unit) {
+    InspectFigure f;
+    f.key = std::move(key);
+    f.label = std::move(label);
+    f.value = value;
+    f.unit = std::move(unit);
+    return f;
+  };
+  InspectSection section{"camera_output", "Camera output (video, lens shading, FFC freezes)", {}};
+  section.figures = {
+      number("video_mode", "video mode (methods read the decoded video)", s.video_mode ? 1 : 0, ""),
+      number("video_readable", "thermal.mp4 decodes to one frame per frame", s.video_problem.empty() ? 1 : 0, ""),
+      number("video_frames", "video frames", s.video_frames, ""),
+      number("psnr_mean_db", "video vs uncompressed 8-bit frames, PSNR mean", s.psnr_mean_db, "dB"),
+      number("psnr_min_db", "video vs uncompressed 8-bit frames, PSNR worst", s.psnr_min_db, "dB"),
+      number("thermal_is_video", "thermal PNGs are the decoded video frames", s.thermal_is_video ? 1 : 0, ""),
+      number("frames_compared", "frames compared", s.frames_compared, ""),
+      number("shading_mean_k", "lens shading, corner minus centre of T - T_true, mean", s.shading_mean_k, "K"),
+      number("shading_p90_k", "lens shading, corner minus centre, 90th percentile", s.shading_p90_k, "K"),
+      number("freeze_events", "frames frozen by FFCs (events.json)", s.freeze_events, ""),
+      number("frozen_frames", "frames repeating the previous frame (radiometric)", s.frozen_frames, ""),
+  };
+  return section;
 }
 
 }  // namespace hoilcd

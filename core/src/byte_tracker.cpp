@@ -35,8 +35,29 @@ std::string ByteTrackOptions::Check() const {
 }
 
 std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
-                                             const std::vector<cv::Rect2f>& b) {
+                                             const std::vector<cv::Rect2f>& b,
+                                             IouConvention convention) {
   std::vector<std::vector<double>> cost(a.size(), std::vector<double>(b.size(), 1.0));
+  if (convention == IouConvention::kPlusOnePixel) {
+    // cython_bbox.bbox_overlaps on (x1, y1, x2, y2) = (x, y, x + w, y + h), in double as there.
+    const auto area = [](const cv::Rect2f& r) {
+      return (static_cast<double>(r.width) + 1) * (static_cast<double>(r.height) + 1);
+    };
+    for (size_t i = 0; i < a.size(); ++i) {
+      for (size_t j = 0; j < b.size(); ++j) {
+        const double iw = std::min(static_cast<double>(a[i].x) + a[i].width,
+                                   static_cast<double>(b[j].x) + b[j].width) -
+                          std::max<double>(a[i].x, b[j].x) + 1;
+        if (!(iw > 0)) continue;
+        const double ih = std::min(static_cast<double>(a[i].y) + a[i].height,
+                                   static_cast<double>(b[j].y) + b[j].height) -
+                          std::max<double>(a[i].y, b[j].y) + 1;
+        if (!(ih > 0)) continue;
+        cost[i][j] = 1.0 - iw * ih / (area(a[i]) + area(b[j]) - iw * ih);
+      }
+    }
+    return cost;
+  }
   for (size_t i = 0; i < a.size(); ++i) {
     for (size_t j = 0; j < b.size(); ++j) {
       const double inter = (a[i] & b[j]).area();
@@ -135,7 +156,8 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
 
   // First association: high-score detections against confirmed and lost tracks.
   std::vector<TrackPtr> refound;
-  std::vector<std::vector<double>> cost = IouDistance(Boxes(pool), Boxes(high));
+  const IouConvention iou = options_.iou_convention;
+  std::vector<std::vector<double>> cost = IouDistance(Boxes(pool), Boxes(high), iou);
   if (options_.fuse_score) FuseScore(cost, high);
   const Assignment first = Associate(cost, high.size(), options_.match_thresh);
   for (const auto& [i, j] : first.matches) {
@@ -148,7 +170,7 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   for (int i : first.unmatched_rows) {
     if (pool[i]->state == TrackState::kTracked) remaining.push_back(pool[i]);
   }
-  const Assignment second = Associate(IouDistance(Boxes(remaining), Boxes(low)), low.size(),
+  const Assignment second = Associate(IouDistance(Boxes(remaining), Boxes(low), iou), low.size(),
                                       options_.second_match_thresh);
   for (const auto& [i, j] : second.matches) update(*remaining[i], low[j]);
   std::vector<TrackPtr> newly_lost;
@@ -160,7 +182,7 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   // Unconfirmed tracks (seen once) against the high detections left over; unmatched ones die.
   std::vector<Detection> leftover;
   for (int j : first.unmatched_cols) leftover.push_back(high[j]);
-  cost = IouDistance(Boxes(unconfirmed), Boxes(leftover));
+  cost = IouDistance(Boxes(unconfirmed), Boxes(leftover), iou);
   if (options_.fuse_score) FuseScore(cost, leftover);
   const Assignment third = Associate(cost, leftover.size(), options_.unconfirmed_match_thresh);
   for (const auto& [i, j] : third.matches) update(*unconfirmed[i], leftover[j]);
@@ -200,7 +222,7 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   lost.insert(lost.end(), newly_lost.begin(), newly_lost.end());
 
   // Duplicates (a tracked and a lost track on the same box): keep the one tracked longer.
-  const std::vector<std::vector<double>> overlap = IouDistance(Boxes(tracked), Boxes(lost));
+  const std::vector<std::vector<double>> overlap = IouDistance(Boxes(tracked), Boxes(lost), iou);
   std::unordered_set<size_t> drop_tracked, drop_lost;
   for (size_t p = 0; p < tracked.size(); ++p) {
     for (size_t q = 0; q < lost.size(); ++q) {

@@ -18,7 +18,6 @@ std::string PersonDetectorOptions::Check() const {
     if (!ok) out << what << ", got " << value << "; ";
   };
   need(std::isfinite(threshold_c), "threshold_c must be finite", threshold_c);
-  need(threshold_u8 >= 0 && threshold_u8 <= 255, "threshold_u8 must be in [0, 255]", threshold_u8);
   need(u8_max_c > u8_min_c, "u8_max_c must exceed u8_min_c", u8_max_c);
   need(open_kernel_px >= 0, "open_kernel_px must be >= 0", open_kernel_px);
   need(close_kernel_px >= 0, "close_kernel_px must be >= 0", close_kernel_px);
@@ -290,7 +289,11 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
     mask = radiometric_c >= options.threshold_c;
     temperature_c = radiometric_c;
   } else {
-    mask = thermal_u8 >= options.threshold_u8;
+    // Level v shows u8_min_c + v * (u8_max_c - u8_min_c) / 255 degC: the first at or above
+    // threshold_c (256: none is).
+    const double level = std::ceil((options.threshold_c - options.u8_min_c) /
+                                   (options.u8_max_c - options.u8_min_c) * 255.0);
+    mask = thermal_u8 >= std::clamp(level, 0.0, 256.0);
     thermal_u8.convertTo(temperature_c, CV_32F, (options.u8_max_c - options.u8_min_c) / 255.0,
                          options.u8_min_c);
   }

@@ -79,6 +79,26 @@ TEST(DetectPersons, WorksOnTheEightBitImageAloneToo) {
   ExpectTheTwoTouchingPeople(DetectPersons(ToDisplayU8(SceneC()), cv::Mat(), {}));
 }
 
+TEST(DetectPersons, TheEightBitThresholdFollowsTheDisplayWindow) {
+  // The same scene shown in a 15-45 degC window: told that window, the detector thresholds at
+  // threshold_c and finds both people; told the default 20-30, its level would mean 34.5 degC.
+  cv::Mat u8;
+  SceneC().convertTo(u8, CV_8U, 255.0 / 30.0, -15.0 * 255.0 / 30.0);
+  PersonDetectorOptions wide;
+  wide.u8_min_c = 15;
+  wide.u8_max_c = 45;
+  ExpectTheTwoTouchingPeople(DetectPersons(u8, cv::Mat(), wide));
+  EXPECT_TRUE(DetectPersons(u8, cv::Mat(), {}).detections.empty());
+}
+
+TEST(DetectPersons, AThresholdAboveTheDisplayWindowFindsNobody) {
+  PersonDetectorOptions above;
+  above.threshold_c = 31;  // above 30 degC: no 8-bit level of the 20-30 window reaches it
+  const PersonDetections result = DetectPersons(ToDisplayU8(SceneC()), cv::Mat(), above);
+  EXPECT_TRUE(result.detections.empty());
+  EXPECT_EQ(cv::countNonZero(result.mask), 0);
+}
+
 TEST(DetectPersons, RadiometricFrameTakesPrecedenceOverTheEightBitOne) {
   const cv::Mat blank_u8(192, 256, CV_8U, cv::Scalar(0));
   ExpectTheTwoTouchingPeople(DetectPersons(blank_u8, SceneC(), {}));
@@ -214,8 +234,8 @@ TEST(FindSplitColumns, ThreeNeighboursGiveTwoSplits) {
 TEST(PersonDetectorOptions, CheckNamesTheBadField) {
   EXPECT_EQ(PersonDetectorOptions{}.Check(), "");
   PersonDetectorOptions bad;
-  bad.threshold_u8 = 300;
-  EXPECT_NE(bad.Check().find("threshold_u8"), std::string::npos);
+  bad.u8_max_c = bad.u8_min_c;
+  EXPECT_NE(bad.Check().find("u8_max_c"), std::string::npos);
   bad = {};
   bad.min_aspect_hw = 6;
   EXPECT_NE(bad.Check().find("min_aspect_hw"), std::string::npos);

@@ -18,8 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                      ("hoilcd_sequence_test_" + std::to_string(getpid()) + "_" + name);
+  const fs::path dir = fs::temp_directory_path() / ("hoilcd_sequence_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   return dir.string();
 }
@@ -123,24 +122,24 @@ TEST(Sequence, VideoModeThermalFramesAreTheDecodedVideoWithinTheDocumentedPsnr) 
 }
 
 TEST(Sequence, FramesFrozenByAnFfcRepeatTheFrameBeforeAndAreListedInEvents) {
-  // At 10 Hz an FFC every second lands on frame 10; 0.3 s freezes frames 10–12.
-  const Scene scene = PaperRoom({"frame_rate_hz=10", "camera.ffc_interval_s=1", "camera.ffc_freeze_s=0.3"});
+  // An FFC every second lands on frame 25; 0.12 s at 25 Hz freezes frames 25–27.
+  const Scene scene = PaperRoom({"camera.ffc_interval_s=1", "camera.ffc_freeze_s=0.12"});
   const std::string dir = TempDir("freeze");
-  const DatasetManifest m = Render(scene, dir, 14, 0);
+  const DatasetManifest m = Render(scene, dir, 29, 0);
   for (const char* folder : {"thermal/", "radiometric/"}) {
-    for (int f = 10; f <= 12; ++f) {
-      EXPECT_EQ(m.files.at(folder + FrameFileName(f, "png")), m.files.at(folder + FrameFileName(9, "png")))
+    for (int f = 25; f <= 27; ++f) {
+      EXPECT_EQ(m.files.at(folder + FrameFileName(f, "png")), m.files.at(folder + FrameFileName(24, "png")))
           << folder << f;
     }
-    EXPECT_NE(m.files.at(folder + FrameFileName(13, "png")), m.files.at(folder + FrameFileName(9, "png")));
-    EXPECT_NE(m.files.at(folder + FrameFileName(9, "png")), m.files.at(folder + FrameFileName(8, "png")));
+    EXPECT_NE(m.files.at(folder + FrameFileName(28, "png")), m.files.at(folder + FrameFileName(24, "png")));
+    EXPECT_NE(m.files.at(folder + FrameFileName(24, "png")), m.files.at(folder + FrameFileName(23, "png")));
   }
   std::vector<int> frozen;
   const Dataset dataset = Dataset::Open(dir);
   for (const DatasetEvent& e : dataset.events()) {
     if (e.type == "freeze") frozen.push_back(e.frame);
   }
-  EXPECT_EQ(frozen, (std::vector<int>{10, 11, 12}));
+  EXPECT_EQ(frozen, (std::vector<int>{25, 26, 27}));
 }
 
 TEST(Sequence, MissingOrDamagedVideoLeavesTheDatasetReadableWithAWarning) {
@@ -220,6 +219,23 @@ TEST(Sequence, GroundTruthFilesDescribeTheFrames) {
       EXPECT_FALSE(p.contacts.empty());
     }
   }
+}
+
+// The mount's vibration moves the camera that renders the frame, and poses.csv / poses_tum.txt say
+// where it was; the base's path does not depend on it.
+TEST(Sequence, CameraVibrationMovesTheRenderedViewAndIsWrittenToThePoses) {
+  const std::string shaking_dir = TempDir("vibration_on"), rigid_dir = TempDir("vibration_off");
+  Render(PaperRoom(), shaking_dir, 3, 0);
+  Render(PaperRoom({"robot.vibration.enabled=false"}), rigid_dir, 3, 0);
+  const Dataset shaking = Dataset::Open(shaking_dir), rigid = Dataset::Open(rigid_dir);
+  const PoseRecord &a = shaking.poses()[2], &b = rigid.poses()[2];
+  EXPECT_EQ(a.x_m, b.x_m);
+  EXPECT_EQ(a.theta_rad, b.theta_rad);
+  EXPECT_NE(a.cam_pitch_rad, b.cam_pitch_rad);
+  EXPECT_NE(a.cam_roll_rad, b.cam_roll_rad);
+  EXPECT_EQ(b.cam_roll_rad, 0.0);
+  EXPECT_NE(shaking.manifest().files.at("exr/000002.exr"), rigid.manifest().files.at("exr/000002.exr"));
+  EXPECT_NE(shaking.manifest().files.at("poses_tum.txt"), rigid.manifest().files.at("poses_tum.txt"));
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 // What the camera's own output did to a dataset, measured from the folder alone: the video
 // (thermal.mp4) against the uncompressed 8-bit frames (PSNR), the lens shading present in the
-// apparent temperatures, and the frames frozen by flat-field corrections. For inspect and report.
+// apparent temperatures, and the frames frozen by flat-field corrections: the camera_output
+// section of `hoilcd inspect` (and so of every bench report).
 #pragma once
 
 #include <string>
 
-#include <nlohmann/json.hpp>
-
+#include "hoilcd/bench/inspect.h"
 #include "hoilcd/core/dataset.h"
 
 namespace hoilcd {
@@ -33,11 +33,11 @@ struct CameraOutputStats {
 };
 
 // Reads thermal.mp4, a subset of the EXRs and PNGs, scene.json and the manifest. A missing or
-// undecodable thermal.mp4 is reported in video_problem, not thrown.
+// undecodable thermal.mp4 is reported in video_problem, and frames without an EXR are skipped,
+// not thrown.
 CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutputOptions& options = {});
 
-nlohmann::json CameraOutputToJson(const CameraOutputStats& stats);
-// A few lines of Markdown for the report and inspect.
-std::string CameraOutputMarkdown(const CameraOutputStats& stats);
+// The inspect section "camera_output" (booleans as 0/1).
+InspectSection CameraOutputSection(const CameraOutputStats& stats);
 
 }  // namespace hoilcd

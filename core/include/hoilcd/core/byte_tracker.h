@@ -4,10 +4,11 @@
 //
 // The official C++ ports (deploy/TensorRT, ncnn) differ from the Python reference: they skip the
 // score fusion of the IoU cost and the 0.1 floor under low-score detections. We follow Python.
-// Known, deliberate differences from Python: IoU is computed on continuous boxes (cython_bbox
-// adds 1 px to widths and heights); a lost track that expires is dropped at once (Python keeps
-// it in the lost pool for one more frame because it subtracts the removed list before extending
-// it); track ids count from 1 per tracker instead of per process.
+// IoU follows the reference's cython_bbox by default (1 px added to widths and heights); the
+// continuous convention is an option. Known, deliberate differences from Python: a lost track
+// that expires is dropped at once (Python keeps it in the lost pool for one more frame because
+// it subtracts the removed list before extending it); track ids count from 1 per tracker instead
+// of per process. tests/core/byte_tracker_reference_test.cpp replays detections through both.
 #pragma once
 
 #include <memory>
@@ -25,6 +26,10 @@ struct Detection {
   float score = 0;  // detector confidence in (0, 1]
 };
 
+// How IoU measures a box (x, y, w, h): as the continuous rectangle, or as cython_bbox.bbox_overlaps
+// does for the reference, inclusive pixel corners, i.e. w + 1 by h + 1.
+enum class IouConvention { kPlusOnePixel, kContinuous };
+
 struct ByteTrackOptions {
   double track_high_thresh = 0.5;  // score; above (strictly, as Python): first association
   double track_low_thresh = 0.1;   // score; strictly between low and high: second association
@@ -35,6 +40,7 @@ struct ByteTrackOptions {
   int track_buffer_frames = 30;  // frames at 30 Hz a lost track is kept (scaled by the rate)
   double frame_rate_hz = 25;     // Hz; lost tracks live int(rate / 30 * buffer) frames
   bool fuse_score = true;        // cost uses IoU * detection score (Python, not MOT20)
+  IouConvention iou_convention = IouConvention::kPlusOnePixel;  // the reference's (cython_bbox)
   std::string Check() const;
 };
 
@@ -46,7 +52,8 @@ struct Track {
 
 // 1 - IoU for every (a, b) pair: rows = a, cols = b.
 std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
-                                             const std::vector<cv::Rect2f>& b);
+                                             const std::vector<cv::Rect2f>& b,
+                                             IouConvention convention = IouConvention::kContinuous);
 
 class ByteTracker {
  public:

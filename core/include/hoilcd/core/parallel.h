@@ -1,6 +1,7 @@
-// Parallel loops over index ranges with a fixed thread count. Work is split into chunks handed
-// out dynamically; each worker has an id for per-thread scratch space. The first exception
-// thrown by any worker is rethrown on the calling thread after all workers stop.
+// Parallel loops over index ranges with a fixed thread count, on TBB: one task arena per thread
+// count, kept for the life of the process (TBB's workers are started once, not per call). Work
+// is split into chunks handed out dynamically; each worker has an id for per-thread scratch
+// space. The first exception thrown by any worker is rethrown on the calling thread.
 #pragma once
 
 #include <cstdint>
@@ -8,12 +9,17 @@
 
 namespace hoilcd {
 
-// 0 means "every core"; otherwise the number asked for (at least 1).
+// Upper bound of every thread count: larger requests are clamped to it, so no size derived
+// from a thread count can overflow.
+constexpr int kMaxThreads = 256;
+
+// 0 (or less) means "every core"; otherwise the number asked for, at most kMaxThreads.
 int ResolveThreadCount(int requested);
 
 // Calls fn(begin, end, worker) for disjoint chunks [begin, end) covering [0, count).
-// worker is in [0, num_threads). Chunk boundaries depend only on count and chunk_size,
-// never on timing, so results written per index are deterministic.
+// worker is in [0, ResolveThreadCount(num_threads)) and no two calls running at the same time
+// share one. Chunk boundaries depend only on count and chunk_size, never on timing, so results
+// written per index are deterministic.
 void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,
                        const std::function<void(int64_t, int64_t, int)>& fn);
 

@@ -29,10 +29,10 @@ namespace hoilcd {
 
 struct PersonDetectorOptions {
   // Thresholding and clean-up.
-  double threshold_c = 26.5;   // degC on the radiometric frame (people's clothing is 27-30)
-  int threshold_u8 = 166;      // 8-bit level used without a radiometric frame (26.5 degC in 20-30)
-  double u8_min_c = 20;        // degC shown as 0 in the 8-bit frame (for temperatures without one)
-  double u8_max_c = 30;        // degC shown as 255 in the 8-bit frame
+  double threshold_c = 26.5;   // degC (people's clothing is 27-30); on an 8-bit frame alone, the
+                               // first level at or above it in the window below
+  double u8_min_c = 20;        // degC shown as 0 in the 8-bit frame (the manifest's window_min_c)
+  double u8_max_c = 30;        // degC shown as 255 in the 8-bit frame (the manifest's window_max_c)
   int open_kernel_px = 3;      // px, elliptic opening diameter that removes speckle (0 = none)
   int close_kernel_px = 5;     // px, elliptic closing diameter that fills small holes (0 = none)
   // Splitting touching neighbours (column-projection valleys between heads).
