@@ -19,6 +19,7 @@
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/scene.h"
+#include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
 
 namespace hoilcd {
@@ -51,6 +52,8 @@ int RunValidate(const SceneArgs& args) {
   std::ifstream in(args.path);
   if (!in) throw InputError(args.path, "cannot open the scene file (does it exist and is it readable?)");
   const Scene scene = LoadSceneArgs(args);
+  SensorOptionsFromScene(scene);  // the camera's cross-field checks (the schema checks each field)
+  VideoOptionsFromScene(scene);   // frame rate and size that thermal.mp4 can carry
   std::printf("%s: valid scene '%s' (%d frames at %g Hz, %zu tables, hash %s)\n", args.path.c_str(),
               scene.name.c_str(), scene.frames, scene.frame_rate_hz, scene.tables.size(),
               scene.hash.c_str());
@@ -66,6 +69,8 @@ int RunRender(const SceneArgs& args, const SequenceOptions& options) {
   std::printf("rendered %d frames (%d kept from an earlier run) into %s in %.1f s (%.1f frames/s)\n",
               r.frames_rendered, r.frames_reused, o.output_dir.c_str(), r.seconds,
               r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0);
+  std::printf("of which thermal.mp4: %.2f s (%.1f %% of the render)\n", r.video_seconds,
+              r.seconds > 0 ? 100.0 * r.video_seconds / r.seconds : 0.0);
   return 0;
 }
 
@@ -112,6 +117,7 @@ void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
 
 int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads) {
   const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true);
+  for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const BenchOptions options = ResolveBench(args, threads);
   const BenchResult result = RunBench(dataset, options);
   const std::string out = report_dir.empty() ? dir + "/report" : report_dir;
@@ -129,6 +135,7 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
   std::signal(SIGINT, OnInterrupt);
   run.cancel = &g_interrupted;
   const RunOutcome outcome = RunScene(scene, ResolveBench(args, run.threads), run);
+  for (const std::string& warning : outcome.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   PrintOutcome(outcome.result, outcome.report_dir);
   std::printf("end to end: %.1f s = render %.1f s%s + bench %.1f s (dataset %s)\n",
               outcome.timing.render_s + outcome.timing.bench_s, outcome.timing.render_s,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "hoilcd/bench/camera_output.h"
 #include "hoilcd/core/error.h"
 
 namespace hoilcd {
@@ -240,6 +241,7 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   r.sections.push_back(CameraSection(dataset.poses()));
   r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
+  r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset)));
   return r;
 }
 

@@ -68,6 +68,7 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   }
   out.timing.render_cached = cached;
   const Dataset dataset = Dataset::Open(out.dataset_dir, /*verify_checksums=*/!cached);
+  out.warnings = dataset.warnings();
   BenchOptions b = bench;
   b.threads = options.threads;
   out.result = RunBench(dataset, b);

@@ -28,6 +28,7 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr const char* kChecksumPrefix = "xxh3-128:";
+constexpr const char* kVideoFile = "thermal.mp4";
 constexpr const char* kPosesHeader =
     "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,odo_y,odo_theta";
 constexpr int kPosesColumns = 14;
@@ -447,8 +448,9 @@ std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::str
       reader.Read(je[i], ep, "frame", &e.frame);
       reader.Read(je[i], ep, "type", &e.type);
       if (je[i].contains("type") && e.type != "arrive" && e.type != "leave" &&
-          e.type != "swap" && e.type != "ffc") {
-        reader.Add(ep + "/type", "expected one of arrive, leave, swap, ffc; got '" + e.type + "'");
+          e.type != "swap" && e.type != "ffc" && e.type != "freeze") {
+        reader.Add(ep + "/type",
+                   "expected one of arrive, leave, swap, ffc, freeze; got '" + e.type + "'");
       }
       reader.Read(je[i], ep, "person", &e.person);
       reader.Read(je[i], ep, "seat", &e.seat);
@@ -590,6 +592,10 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
     }
   }
   problems.ThrowIfAny();
+  if (!m.files.count(kVideoFile)) {
+    ds.warnings_.push_back(JoinPath(dir, kVideoFile) +
+                           ": not listed in manifest.json; the frames are read without it");
+  }
 
   if (verify_checksums) {
     const std::vector<std::pair<std::string, std::string>> listed(m.files.begin(),
@@ -610,7 +616,13 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
       }
     });
     for (size_t i = 0; i < listed.size(); ++i) {
-      if (!errors[i].empty()) problems.Add(JoinPath(dir, listed[i].first), errors[i]);
+      if (errors[i].empty()) continue;
+      if (listed[i].first == kVideoFile) {  // a preview of the frames: not needed to read them
+        ds.warnings_.push_back(JoinPath(dir, listed[i].first) + ": " + errors[i] +
+                               "; the frames are read without it");
+      } else {
+        problems.Add(JoinPath(dir, listed[i].first), errors[i]);
+      }
     }
     problems.ThrowIfAny();
   }

@@ -43,6 +43,13 @@ SensorOptions SensorOptionsFromScene(const Scene& scene) {
   o.drift = B(c, "drift");
   o.drift_k_per_min = D(c, "drift_k_per_min");
   o.ffc_interval_s = D(c, "ffc_interval_s");
+  o.lens_shading = B(c, "lens_shading");
+  o.housing_warming_k_per_min = D(c, "housing_warming_k_per_min");
+  o.vignetting_k_per_k = D(c, "vignetting_k_per_k");
+  o.narcissus_k_per_k = D(c, "narcissus_k_per_k");
+  o.narcissus_sigma = D(c, "narcissus_sigma");
+  o.ffc_freeze = B(c, "ffc_freeze");
+  o.ffc_freeze_s = D(c, "ffc_freeze_s");
   o.time_constant = B(c, "time_constant");
   o.time_constant_s = D(c, "time_constant_s");
   o.quantisation = B(c, "quantisation");
@@ -52,6 +59,21 @@ SensorOptions SensorOptionsFromScene(const Scene& scene) {
   o.display_min_c = D(c, "display_min_c");
   o.display_max_c = D(c, "display_max_c");
   Require(o.Check(), scene, "camera");
+  return o;
+}
+
+VideoOptions VideoOptionsFromScene(const Scene& scene) {
+  const nlohmann::json& v = scene.camera.at("video");
+  VideoOptions o;
+  o.enabled = B(v, "enabled");
+  o.crf = v.at("crf").get<int>();
+  o.bitrate_kbps = v.at("bitrate_kbps").get<int>();
+  o.gop_frames = v.at("gop_frames").get<int>();
+  o.preset = v.at("preset").get<std::string>();
+  Require(o.Check(), scene, "camera/video");
+  Require(VideoFrameRateProblem(scene.frame_rate_hz), scene, "frame_rate_hz");
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  Require(VideoFrameSizeProblem(intrinsics.width, intrinsics.height), scene, "camera");
   return o;
 }
 

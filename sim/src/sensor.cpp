@@ -1,5 +1,6 @@
 #include "hoilcd/sim/sensor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -37,6 +38,15 @@ std::string SensorOptions::Check() const {
           "in [0, 60] K/min", drift_k_per_min);
   require(ffc_interval_s == 0.0 || (ffc_interval_s >= 1.0 && ffc_interval_s <= 86400.0),
           "ffc_interval_s", "0 (never) or in [1, 86400] s", ffc_interval_s);
+  require(housing_warming_k_per_min >= 0.0 && housing_warming_k_per_min <= 10.0,
+          "housing_warming_k_per_min", "in [0, 10] K/min", housing_warming_k_per_min);
+  require(vignetting_k_per_k >= -5.0 && vignetting_k_per_k <= 5.0, "vignetting_k_per_k",
+          "in [-5, 5] K/K", vignetting_k_per_k);
+  require(narcissus_k_per_k >= -5.0 && narcissus_k_per_k <= 5.0, "narcissus_k_per_k",
+          "in [-5, 5] K/K", narcissus_k_per_k);
+  require(narcissus_sigma >= 0.05 && narcissus_sigma <= 2.0, "narcissus_sigma", "in [0.05, 2]",
+          narcissus_sigma);
+  require(ffc_freeze_s >= 0.0 && ffc_freeze_s <= 5.0, "ffc_freeze_s", "in [0, 5] s", ffc_freeze_s);
   require(time_constant_s > 0.0 && time_constant_s <= 1.0, "time_constant_s", "in (0, 1] s",
           time_constant_s);
   require(quantisation_step_k > 0.0 && quantisation_step_k <= 10.0, "quantisation_step_k",
@@ -94,6 +104,23 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
       offset[x] = static_cast<float>(responsivity_ * (offset_k + column_k[x]));
     }
   }
+
+  // Lens shading shape: ρ = 1 at the corner pixels' centres.
+  shading_shape_ = cv::Mat::zeros(height_, width_, CV_32F);
+  const double cx = 0.5 * (width_ - 1), cy = 0.5 * (height_ - 1);
+  const double half_diagonal_sq = std::max(cx * cx + cy * cy, 1e-12);
+  const double spot_edge = std::exp(-0.5 / (options_.narcissus_sigma * options_.narcissus_sigma));
+  for (int y = 0; y < height_; ++y) {
+    float* shape = shading_shape_.ptr<float>(y);
+    for (int x = 0; x < width_; ++x) {
+      const double rho_sq = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) / half_diagonal_sq;
+      const double spot =
+          (std::exp(-0.5 * rho_sq / (options_.narcissus_sigma * options_.narcissus_sigma)) -
+           spot_edge) / (1.0 - spot_edge);
+      shape[x] = static_cast<float>(options_.vignetting_k_per_k * rho_sq -
+                                    options_.narcissus_k_per_k * spot);
+    }
+  }
 }
 
 float SensorModel::ApparentCelsius(double signal) const {
@@ -137,6 +164,45 @@ double SensorModel::DriftK(int frame) const {
   return slope_k_per_s * since_ffc_s;
 }
 
+double SensorModel::HousingWarmingK(int frame) const {
+  if (!options_.lens_shading) return 0.0;
+  const double since_ffc_s = static_cast<double>(frame - FfcFrame(FfcIndex(frame))) / frame_rate_hz_;
+  return options_.housing_warming_k_per_min / 60.0 * since_ffc_s;
+}
+
+double SensorModel::ShadingK(int frame, int x, int y) const {
+  HOILCD_CHECK_MSG(x >= 0 && x < width_ && y >= 0 && y < height_, "pixel " << x << "," << y);
+  return HousingWarmingK(frame) * shading_shape_.at<float>(y, x);
+}
+
+double SensorModel::ShadingCornerToCentreK(int frame) const {
+  return HousingWarmingK(frame) * (options_.vignetting_k_per_k + options_.narcissus_k_per_k);
+}
+
+int SensorModel::FreezeFrames() const {
+  if (!options_.ffc_freeze || options_.ffc_interval_s <= 0.0) return 0;
+  const int64_t frames = std::llround(options_.ffc_freeze_s * frame_rate_hz_);
+  const int64_t shortest_interval =
+      static_cast<int64_t>(std::floor(options_.ffc_interval_s * frame_rate_hz_));
+  return static_cast<int>(std::max<int64_t>(0, std::min(frames, shortest_interval - 1)));
+}
+
+int SensorModel::ShownFrame(int frame) const {
+  const int freeze = FreezeFrames();
+  if (freeze == 0) return frame;
+  const int64_t index = FfcIndex(frame);
+  const int64_t ffc = FfcFrame(index);
+  if (index >= 1 && frame - ffc < freeze) return static_cast<int>(ffc - 1);
+  return frame;
+}
+
+int SensorModel::ReplayFrom(int frame) const {
+  if (frame <= 0) return 0;
+  const int shown = ShownFrame(frame);
+  // A frozen frame shows an earlier output, which itself depends on the frame before it.
+  return shown != frame ? std::max(0, shown - 1) : frame - 1;
+}
+
 double SensorModel::TemporalNoiseK(double temperature_c) const {
   if (!options_.temporal_noise) return 0.0;
   return options_.netd_k * responsivity_ / table_->SlopeFromKelvin(temperature_c + kZeroCelsiusK);
@@ -157,6 +223,12 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
     blurred = radiance.clone();
   }
   const cv::Mat& previous = previous_.empty() ? blurred : previous_;
+  if (ShownFrame(frame) != frame && !shown_.empty()) {  // FFC freeze: the shutter is shut
+    previous_ = blurred;
+    last_frame_ = frame;
+    return shown_.clone();
+  }
+  const double shading_signal = responsivity_ * HousingWarmingK(frame);
   const double drift_signal = responsivity_ * DriftK(frame);
   const double noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
   const double step_k = options_.quantisation_step_k;
@@ -168,12 +240,13 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
       const float* before = previous.ptr<float>(static_cast<int>(y));
       const float* gain = gain_.ptr<float>(static_cast<int>(y));
       const float* offset = offset_signal_.ptr<float>(static_cast<int>(y));
+      const float* shading = shading_shape_.ptr<float>(static_cast<int>(y));
       float* out = temperature.ptr<float>(static_cast<int>(y));
       for (int x = 0; x < width_; ++x) {
         double signal = now[x];
         if (options_.time_constant) signal = blend_ * now[x] + (1.0f - blend_) * before[x];
         if (options_.fixed_pattern) signal += gain[x] * (signal - shutter_radiance_) + offset[x];
-        signal += drift_signal;
+        signal += drift_signal + shading_signal * shading[x];
         if (options_.temporal_noise) {
           const int64_t pixel = y * width_ + x;
           signal += noise_signal * KeyedRng(seed_, "sensor.noise", frame, pixel).Normal();
@@ -186,6 +259,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   });
   previous_ = blurred;
   last_frame_ = frame;
+  shown_ = temperature.clone();
   return temperature;
 }
 

@@ -8,11 +8,13 @@
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
+#include "hoilcd/sim/video.h"
 #include "hoilcd/sim/visibility.h"
 
 namespace hoilcd {
@@ -37,6 +39,16 @@ bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int fram
   return true;
 }
 
+// The uncompressed 8-bit frame, as the render wrote it, from the EXR's T channel (float32, so
+// exactly the temperature the thermal PNG was made from).
+cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options) {
+  const std::string path = dir + "/" + FramePath("exr", frame, "exr");
+  for (const auto& [name, channel] : ReadExr(path)) {
+    if (name == "T") return ToDisplay8Bit(channel, sensor_options.display_min_c, sensor_options.display_max_c);
+  }
+  throw InputError(path, "no T channel");
+}
+
 cv::Mat ToFloat(const cv::Mat& m) {
   cv::Mat f;
   m.convertTo(f, CV_32F);
@@ -54,8 +66,8 @@ std::string SequenceOptions::Check() const {
 }
 
 // Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
-// camera vibration, cam_roll in poses.csv).
-constexpr int kSimulatorRevision = 3;
+// camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze).
+constexpr int kSimulatorRevision = 4;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
@@ -79,6 +91,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
   world.PlanCrowd(run.samples);
   const SensorOptions sensor_options = SensorOptionsFromScene(scene);
+  const VideoOptions video_options = VideoOptionsFromScene(scene);
   auto new_sensor = [&] {
     return std::make_unique<SensorModel>(sensor_options, intrinsics.width, intrinsics.height,
                                          scene.frame_rate_hz, scene.seed, &table, options.threads);
@@ -127,7 +140,11 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   manifest.complete = false;
 
   std::vector<bool> done(frames, false);
-  for (int f = 0; f < frames; ++f) done[f] = FrameDone(dir, manifest, f);
+  bool any_done = false;
+  for (int f = 0; f < frames; ++f) {
+    done[f] = FrameDone(dir, manifest, f);
+    any_done = any_done || done[f];
+  }
   // Drop listings of files that are not (or no longer) valid frames or side files.
   for (auto it = manifest.files.begin(); it != manifest.files.end();) {
     bool keep = false;
@@ -150,6 +167,15 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     if (writing.valid()) writing.get();  // rethrows a write error here
   };
   int since_checkpoint = 0;
+  // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
+  // written when every frame is rendered by this call, else at the end from the EXRs on disk.
+  // Both feed the encoder the same frames, so a resumed render gives the same file.
+  double video_s = 0.0;
+  std::unique_ptr<VideoEncoder> streaming_video;
+  if (!any_done) {
+    streaming_video = std::make_unique<VideoEncoder>(video_options, intrinsics.width, intrinsics.height,
+                                                     scene.frame_rate_hz);
+  }
   for (int f = 0; f < frames; ++f) {
     if (options.cancel && options.cancel->load()) {
       finish_writing();
@@ -172,11 +198,13 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
       continue;
     }
     if (f > 0 && sensor_frame != f - 1) {
-      // Resuming after kept frames: the bolometer remembers one frame, so a fresh model is
-      // primed with the previous frame (the sensor's resume contract).
+      // Resuming after kept frames: a fresh model replays the frames its state depends on (the
+      // previous frame; during an FFC freeze, back to the frame it shows): the resume contract.
       sensor = new_sensor();
-      world.SetTime(run.samples[f - 1].time_s);
-      sensor->Apply(f - 1, renderer.Render(run.samples[f - 1].camera).radiance);
+      for (int replay = sensor->ReplayFrom(f); replay < f; ++replay) {
+        world.SetTime(run.samples[replay].time_s);
+        sensor->Apply(replay, renderer.Render(run.samples[replay].camera).radiance);
+      }
       world.SetTime(sample.time_s);
     }
     const FrameBuffers buffers = renderer.Render(sample.camera);
@@ -194,10 +222,14 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
       since_checkpoint = 0;
     }
     writing = std::async(std::launch::async, [&, f, temperature, ideal, buffers] {
-      WriteDatasetFile(dir, FramePath("thermal", f, "png"),
-                       EncodePng(ToDisplay8Bit(temperature, sensor_options.display_min_c,
-                                               sensor_options.display_max_c)),
-                       &manifest);
+      const cv::Mat display =
+          ToDisplay8Bit(temperature, sensor_options.display_min_c, sensor_options.display_max_c);
+      WriteDatasetFile(dir, FramePath("thermal", f, "png"), EncodePng(display), &manifest);
+      if (streaming_video) {
+        const auto video_start = std::chrono::steady_clock::now();
+        streaming_video->Add(display);
+        video_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
+      }
       WriteDatasetFile(dir, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(temperature)),
                        &manifest);
       WriteDatasetFile(dir, FramePath("exr", f, "exr"),
@@ -215,12 +247,45 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   finish_writing();
   progress.Done();
 
+  // The video; in video mode its decoded frames become the thermal PNGs that methods read.
+  const auto video_start = std::chrono::steady_clock::now();
+  std::string mp4;
+  if (streaming_video && streaming_video->frames_added() == frames) {
+    mp4 = streaming_video->Finish();
+  } else {
+    VideoEncoder encoder(video_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz);
+    for (int f = 0; f < frames; ++f) encoder.Add(UncompressedFrame(dir, f, sensor_options));
+    mp4 = encoder.Finish();
+  }
+  WriteDatasetFile(dir, "thermal.mp4", mp4, &manifest);
+  if (video_options.enabled) {
+    const DecodedVideo video = DecodeVideo(mp4, dir + "/thermal.mp4");
+    HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames,
+                     "decoded " << video.frames.size() << " of " << frames << " frames");
+    // Written in parallel (each write waits for its fsync), listed in the manifest in order.
+    std::vector<std::string> checksums(frames);
+    ParallelFor(frames, ResolveThreadCount(options.threads), [&](int64_t f) {
+      const std::string bytes = EncodePng(video.frames[f]);
+      WriteFileAtomic(dir + "/" + FramePath("thermal", static_cast<int>(f), "png"), bytes);
+      checksums[f] = ChecksumOf(bytes);
+    });
+    for (int f = 0; f < frames; ++f) manifest.files[FramePath("thermal", f, "png")] = checksums[f];
+  }
+  video_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
+
   // Side files, then the manifest that declares the dataset complete.
   const std::vector<PoseRecord> poses = PoseRecordsOf(run, frames);
   std::vector<DatasetEvent> events;
   for (const DatasetEvent& e : world.events())
     if (e.frame < frames) events.push_back(e);
-  for (int f : sensor->FfcFrames(frames)) events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+  for (int f : sensor->FfcFrames(frames)) {
+    events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+    for (int frozen = f; frozen < frames && sensor->ShownFrame(frozen) != frozen; ++frozen) {
+      events.push_back({frozen, "freeze", -1, "",
+                        "output repeats frame " + std::to_string(sensor->ShownFrame(frozen)) +
+                            " (FFC shutter closed)"});
+    }
+  }
   std::stable_sort(events.begin(), events.end(),
                    [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
   WriteDatasetFile(dir, "poses.csv", PosesToCsv(poses), &manifest);
@@ -232,6 +297,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   manifest.complete = true;
   WriteFileAtomic(manifest_path, manifest.ToJson());
   result.complete = true;
+  result.video_seconds = video_s;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Killing a render halfway (SIGKILL, then Ctrl-C) and re-running the same command yields the
-# same bytes as an uninterrupted run, and no temp file survives. So does a kill during the very
-# first manifest write (strace fault injection at the first rename, where strace can trace).
+# same bytes as an uninterrupted run (thermal.mp4 included), and no temp file survives. So does a
+# kill during the very first manifest write (strace fault injection at the first rename, where
+# strace can trace). Extra arguments (e.g. --set camera.video.enabled=true) go to every render.
 set -euo pipefail
 hoilcd=$1
 scene=$2
+shift 2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 frames=45
 
-"$hoilcd" -q render "$scene" -o "$work/whole" --frames $frames
+"$hoilcd" -q render "$scene" -o "$work/whole" --frames $frames "$@"
 
 wait_for_frames() {  # dir count
   for _ in $(seq 1 1200); do
@@ -23,7 +25,7 @@ wait_for_frames() {  # dir count
 
 for signal in KILL INT; do
   dir="$work/killed_$signal"
-  "$hoilcd" -q render "$scene" -o "$dir" --frames $frames &
+  "$hoilcd" -q render "$scene" -o "$dir" --frames $frames "$@" &
   pid=$!
   wait_for_frames "$dir" 30  # past the first manifest checkpoint (every 25 frames)
   kill -s $signal $pid
@@ -33,7 +35,7 @@ for signal in KILL INT; do
     echo "Ctrl-C should exit with 130 (interrupted) or 0 (already done), got $status" >&2
     exit 1
   fi
-  resumed=$("$hoilcd" -q render "$scene" -o "$dir" --frames $frames)
+  resumed=$("$hoilcd" -q render "$scene" -o "$dir" --frames $frames "$@")
   case "$resumed" in
     *"(0 kept"*) [ "$signal" = INT ] || { echo "nothing was kept after SIG$signal: $resumed" >&2; exit 1; } ;;
   esac

@@ -37,6 +37,17 @@ for flags in "render $source_dir/scenes/paper_room.json -o $work/t" "bench $work
   grep -q "1024" "$work/out" || fail "allowed --threads range not given: $(cat "$work/out")"
 done
 [ ! -e "$work/t" ] || fail "a rejected --threads wrote something"
+# thermal.mp4 cannot carry every frame rate: validate and render both say so at its JSON path.
+echo '{ "frame_rate_hz": 25.123456 }' > "$work/rate.json"
+if "$hoilcd" validate "$work/rate.json" > "$work/out" 2>&1; then fail "an unsupported frame rate validated"; fi
+grep -q "$work/rate.json: /frame_rate_hz: thermal.mp4 needs a frame rate" "$work/out" || fail "no /frame_rate_hz problem: $(cat "$work/out")"
+if "$hoilcd" render "$work/rate.json" -o "$work/y" --frames 1 > "$work/out" 2>&1; then fail "an unsupported frame rate rendered"; fi
+grep -q "/frame_rate_hz" "$work/out" || fail "render did not name /frame_rate_hz: $(cat "$work/out")"
+[ ! -e "$work/y/manifest.json" ] || fail "a rejected render wrote a dataset"
+if "$hoilcd" validate "$source_dir/scenes/paper_room.json" --set camera.video.crf=52 > "$work/out" 2>&1; then
+  fail "an out-of-range CRF validated"
+fi
+grep -q "/camera/video/crf" "$work/out" || fail "bad CRF not reported at its path: $(cat "$work/out")"
 
 if "$hoilcd" bench "$work/nothing" > "$work/out" 2>&1; then fail "bench of a missing dataset succeeded"; fi
 grep -q "nothing" "$work/out" || fail "missing dataset not named: $(cat "$work/out")"

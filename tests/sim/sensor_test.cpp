@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace hoilcd {
@@ -21,6 +24,8 @@ SensorOptions AllOff() {
   options.drift = false;
   options.time_constant = false;
   options.quantisation = false;
+  options.lens_shading = false;
+  options.ffc_freeze = false;
   return options;
 }
 
@@ -246,6 +251,115 @@ TEST(SensorModel, SameSeedGivesSameBytesAtAnyThreadCountAndOtherSeedsDiffer) {
     const cv::Mat reference = one_thread.Apply(frame, radiance);
     EXPECT_TRUE(SameBytes(three_threads.Apply(frame, radiance), reference));
     EXPECT_FALSE(SameBytes(other_seed.Apply(frame, radiance), reference));
+  }
+}
+
+// Mean of a size×size patch of `image` centred on (x, y) (clamped to the image).
+double PatchMean(const cv::Mat& image, int x, int y, int size) {
+  const int x0 = std::clamp(x - size / 2, 0, image.cols - size);
+  const int y0 = std::clamp(y - size / 2, 0, image.rows - size);
+  return cv::mean(image(cv::Rect(x0, y0, size, size)))[0];
+}
+
+double CornerMinusCentre(const cv::Mat& image, int size) {
+  const int w = image.cols - 1, h = image.rows - 1;
+  const double corners = (PatchMean(image, 0, 0, size) + PatchMean(image, w, 0, size) +
+                          PatchMean(image, 0, h, size) + PatchMean(image, w, h, size)) / 4.0;
+  return corners - PatchMean(image, w / 2, h / 2, size);
+}
+
+TEST(SensorOptions, LensShadingAndFreezeFieldsAreChecked) {
+  const std::vector<std::pair<std::string, std::function<void(SensorOptions*)>>> cases = {
+      {"housing_warming_k_per_min", [](SensorOptions* o) { o->housing_warming_k_per_min = -1; }},
+      {"vignetting_k_per_k", [](SensorOptions* o) { o->vignetting_k_per_k = 9; }},
+      {"narcissus_k_per_k", [](SensorOptions* o) { o->narcissus_k_per_k = -9; }},
+      {"narcissus_sigma", [](SensorOptions* o) { o->narcissus_sigma = 0; }},
+      {"ffc_freeze_s", [](SensorOptions* o) { o->ffc_freeze_s = -0.5; }},
+  };
+  for (const auto& [field, spoil] : cases) {
+    SensorOptions options;
+    spoil(&options);
+    EXPECT_EQ(options.Check().find(field), 0u) << options.Check();
+  }
+}
+
+TEST(SensorModel, UniformWallCornerToCentreMatchesTheConfiguredShadingWithin10Percent) {
+  const BandRadianceTable table;
+  SensorOptions options;  // every effect on: noise and fixed pattern average out over patches
+  options.housing_warming_k_per_min = 1.0;
+  options.vignetting_k_per_k = 1.0;
+  options.narcissus_k_per_k = 0.5;
+  SensorModel model(options, kWidth, kHeight, kFrameRateHz, 3, &table);
+  const cv::Mat wall = Uniform(table, static_cast<float>(options.reference_temperature_c));
+  // 50 s after the FFC at frame 0 the housing has warmed 50/60 K: 0.83·(1.0 + 0.5) = 1.25 K.
+  const double configured = 50.0 / 60.0 * (1.0 + 0.5);
+  EXPECT_NEAR(model.ShadingCornerToCentreK(1250), configured, 1e-9);
+  double measured = 0.0;
+  for (int frame = 1250; frame < 1255; ++frame) measured += CornerMinusCentre(model.Apply(frame, wall), 4);
+  measured /= 5.0;
+  EXPECT_NEAR(measured, configured, 0.1 * configured);
+  // The shading grows with the housing temperature and the next FFC (frame 1500) resets it.
+  EXPECT_NEAR(model.ShadingCornerToCentreK(625), configured / 2.0, 1e-9);
+  EXPECT_EQ(model.ShadingCornerToCentreK(1500), 0.0);
+  SensorOptions off = options;
+  off.lens_shading = false;
+  SensorModel flat(off, kWidth, kHeight, kFrameRateHz, 3, &table);
+  EXPECT_LT(std::abs(CornerMinusCentre(flat.Apply(1250, wall), 4)), 0.1 * configured);
+}
+
+TEST(SensorModel, ShadingIsRadialWithWarmCornersAndADarkCentre) {
+  const BandRadianceTable table;
+  SensorOptions options = AllOff();
+  options.lens_shading = true;
+  SensorModel model(options, kWidth, kHeight, kFrameRateHz, 3, &table);
+  const int frame = 1000;
+  const double corner = model.ShadingK(frame, 0, 0);
+  EXPECT_NEAR(corner, model.ShadingK(frame, kWidth - 1, kHeight - 1), 1e-6);
+  EXPECT_NEAR(corner - model.ShadingK(frame, kWidth / 2, kHeight / 2),
+              model.ShadingCornerToCentreK(frame), 0.02 * model.ShadingCornerToCentreK(frame));
+  EXPECT_GT(model.ShadingK(frame, 40, kHeight / 2), model.ShadingK(frame, kWidth / 2, kHeight / 2));
+}
+
+TEST(SensorModel, FramesFrozenDuringAnFfcAreByteIdenticalToTheFrameBefore) {
+  const BandRadianceTable table;
+  SensorOptions options;
+  options.ffc_interval_s = 1.0;  // FFC at frame 25; 0.5 s at 25 Hz freezes 13 frames (25–37)
+  SensorModel model(options, kWidth, kHeight, kFrameRateHz, 4, &table);
+  ASSERT_EQ(model.FreezeFrames(), 13);
+  std::vector<cv::Mat> outputs;
+  for (int frame = 0; frame < 40; ++frame) outputs.push_back(model.Apply(frame, MovingScene(table, frame)));
+  for (int frame = 25; frame <= 37; ++frame) {
+    EXPECT_EQ(model.ShownFrame(frame), 24);
+    EXPECT_TRUE(SameBytes(outputs[frame], outputs[24])) << frame;
+  }
+  EXPECT_EQ(model.ShownFrame(38), 38);
+  EXPECT_FALSE(SameBytes(outputs[38], outputs[24]));
+  EXPECT_FALSE(SameBytes(outputs[24], outputs[23]));
+  SensorOptions no_freeze = options;
+  no_freeze.ffc_freeze = false;
+  EXPECT_EQ(SensorModel(no_freeze, kWidth, kHeight, kFrameRateHz, 4, &table).FreezeFrames(), 0);
+  // The freeze never reaches the next FFC: capped at one frame less than the interval.
+  SensorOptions long_freeze = options;
+  long_freeze.ffc_freeze_s = 5.0;
+  EXPECT_EQ(SensorModel(long_freeze, kWidth, kHeight, kFrameRateHz, 4, &table).FreezeFrames(), 24);
+}
+
+TEST(SensorModel, ResumingInsideAFreezeReplaysFromTheFrameItShows) {
+  const BandRadianceTable table;
+  SensorOptions options;
+  options.ffc_interval_s = 1.0;
+  SensorModel full_run(options, kWidth, kHeight, kFrameRateHz, 9, &table);
+  std::vector<cv::Mat> outputs;
+  for (int frame = 0; frame < 42; ++frame) outputs.push_back(full_run.Apply(frame, MovingScene(table, frame)));
+  for (int resume_at : {25, 26, 37, 38, 39}) {
+    SensorModel resumed(options, kWidth, kHeight, kFrameRateHz, 9, &table);
+    const int first = resumed.ReplayFrom(resume_at);
+    EXPECT_EQ(first, resume_at <= 37 ? 23 : resume_at - 1);
+    for (int frame = first; frame < resume_at; ++frame) resumed.Apply(frame, MovingScene(table, frame));
+    for (int frame = resume_at; frame < 42; ++frame) {
+      EXPECT_TRUE(SameBytes(resumed.Apply(frame, MovingScene(table, frame)), outputs[frame]))
+          << "resumed at " << resume_at << ", frame " << frame;
+    }
   }
 }
 

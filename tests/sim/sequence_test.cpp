@@ -4,11 +4,14 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/exr_io.h"
 #include "test_dir.h"
+#include "hoilcd/sim/sensor.h"
+#include "hoilcd/sim/video.h"
 
 namespace hoilcd {
 namespace {
@@ -42,7 +45,8 @@ TEST_F(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   const DatasetManifest one = Render(scene, TempDir("t1"), 4, 1);
   const DatasetManifest two = Render(scene, TempDir("t2"), 4, 2);
   EXPECT_EQ(one.files, two.files);
-  EXPECT_EQ(one.files.size(), 4u * 3 + 5);  // three files a frame + five side files
+  EXPECT_EQ(one.files.size(), 4u * 3 + 6);  // three files a frame + six side files
+  EXPECT_EQ(one.files.at("thermal.mp4"), two.files.at("thermal.mp4"));
   EXPECT_TRUE(one.complete);
 }
 
@@ -69,6 +73,93 @@ TEST_F(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
   EXPECT_EQ(r.frames_reused, 2);
   EXPECT_EQ(r.frames_rendered, 4);
   EXPECT_EQ(Dataset::Open(dir).manifest().files, whole.files);
+  // The whole run encoded thermal.mp4 while writing; the resumed one from the EXRs on disk.
+  EXPECT_EQ(Dataset::Open(dir).manifest().files.at("thermal.mp4"), whole.files.at("thermal.mp4"));
+}
+
+// What `ffprobe` says about the first video stream of `path` ("" when ffprobe is missing).
+std::string Ffprobe(const std::string& path) {
+  const std::string command =
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,width,height,r_frame_rate,nb_read_frames -of csv=p=0 '" + path + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return "";
+  std::string out;
+  char buffer[256];
+  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) out += buffer;
+  pclose(pipe);
+  return out;
+}
+
+TEST_F(Sequence, FfprobeReadsThermalMp4AsH264256x192At25FpsWithOneFramePerFrame) {
+  if (std::system("ffprobe -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffprobe (Debian ffmpeg) not installed";
+  const std::string dir = TempDir("ffprobe");
+  Render(PaperRoom(), dir, 7, 0);
+  EXPECT_EQ(Ffprobe(dir + "/thermal.mp4"), "h264,256,192,25/1,7\n");
+}
+
+TEST_F(Sequence, VideoModeThermalFramesAreTheDecodedVideoWithinTheDocumentedPsnr) {
+  const Scene scene = PaperRoom({"camera.video.enabled=true"});
+  const std::string whole_dir = TempDir("video_whole");
+  const DatasetManifest whole = Render(scene, whole_dir, 6, 0);
+  const Dataset d = Dataset::Open(whole_dir);
+  const DecodedVideo video = DecodeVideo(ReadFileBytes(whole_dir + "/thermal.mp4"), "thermal.mp4");
+  ASSERT_EQ(video.frames.size(), 6u);
+  for (int f = 0; f < 6; ++f) {
+    const cv::Mat read = d.Thermal(f);  // what every method reads
+    EXPECT_EQ(cv::norm(read, video.frames[f], cv::NORM_INF), 0.0) << f;
+    cv::Mat uncompressed;
+    for (const auto& [name, channel] : ReadExr(whole_dir + "/exr/" + FrameFileName(f, "exr"))) {
+      if (name == "T") uncompressed = ToDisplay8Bit(channel, 20.0, 30.0);
+    }
+    ASSERT_FALSE(uncompressed.empty());
+    EXPECT_GT(cv::norm(read, uncompressed, cv::NORM_INF), 0.0) << f;
+    // Documented range (schema, camera.video): CRF 23 keeps these frames at 35–50 dB.
+    const double psnr_db = cv::PSNR(read, uncompressed);
+    EXPECT_GT(psnr_db, 35.0) << f;
+    EXPECT_LT(psnr_db, 50.0) << f;
+  }
+  // Resuming a shorter video-mode render gives the same dataset, decoded frames included.
+  const std::string dir = TempDir("video_resumed");
+  Render(scene, dir, 4, 0);
+  EXPECT_EQ(Render(scene, dir, 6, 0).files, whole.files);
+}
+
+TEST_F(Sequence, FramesFrozenByAnFfcRepeatTheFrameBeforeAndAreListedInEvents) {
+  // An FFC every second lands on frame 25; 0.12 s at 25 Hz freezes frames 25–27.
+  const Scene scene = PaperRoom({"camera.ffc_interval_s=1", "camera.ffc_freeze_s=0.12"});
+  const std::string dir = TempDir("freeze");
+  const DatasetManifest m = Render(scene, dir, 29, 0);
+  for (const char* folder : {"thermal/", "radiometric/"}) {
+    for (int f = 25; f <= 27; ++f) {
+      EXPECT_EQ(m.files.at(folder + FrameFileName(f, "png")), m.files.at(folder + FrameFileName(24, "png")))
+          << folder << f;
+    }
+    EXPECT_NE(m.files.at(folder + FrameFileName(28, "png")), m.files.at(folder + FrameFileName(24, "png")));
+    EXPECT_NE(m.files.at(folder + FrameFileName(24, "png")), m.files.at(folder + FrameFileName(23, "png")));
+  }
+  std::vector<int> frozen;
+  const Dataset dataset = Dataset::Open(dir);
+  for (const DatasetEvent& e : dataset.events()) {
+    if (e.type == "freeze") frozen.push_back(e.frame);
+  }
+  EXPECT_EQ(frozen, (std::vector<int>{25, 26, 27}));
+}
+
+TEST_F(Sequence, MissingOrDamagedVideoLeavesTheDatasetReadableWithAWarning) {
+  const std::string dir = TempDir("bad_video");
+  Render(PaperRoom(), dir, 2, 0);
+  EXPECT_TRUE(Dataset::Open(dir).warnings().empty());
+  WriteFileAtomic(dir + "/thermal.mp4", "damaged");
+  Dataset damaged = Dataset::Open(dir);
+  ASSERT_EQ(damaged.warnings().size(), 1u);
+  EXPECT_NE(damaged.warnings()[0].find("thermal.mp4: checksum mismatch"), std::string::npos) << damaged.warnings()[0];
+  EXPECT_EQ(damaged.Thermal(1).cols, 256);
+  fs::remove(dir + "/thermal.mp4");
+  const Dataset missing = Dataset::Open(dir);
+  ASSERT_EQ(missing.warnings().size(), 1u);
+  EXPECT_NE(missing.warnings()[0].find("thermal.mp4: listed in manifest.json but missing"), std::string::npos)
+      << missing.warnings()[0];
 }
 
 TEST_F(Sequence, CancelLeavesAResumableDatasetThatReadersRejectAsPartial) {

@@ -50,7 +50,8 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
 // How the odometric and the true ground truth label the protocol's queries differently.
 InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol);
 
-// Every section, for a dataset folder.
+// Every section, for a dataset folder; the camera's output (video PSNR, lens shading, FFC
+// freezes) is the last, from camera_output.h.
 InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol = {});
 
 }  // namespace hoilcd

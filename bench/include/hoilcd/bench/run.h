@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/runner.h"
@@ -24,6 +25,7 @@ struct RunOutcome {
   std::string report_dir;
   BenchResult result;
   ReportTiming timing;
+  std::vector<std::string> warnings;  // the dataset's (Dataset::warnings), for the caller to print
 };
 
 // The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.

@@ -84,7 +84,7 @@ struct FramePersons {
 
 struct DatasetEvent {
   int frame = 0;
-  std::string type;  // "arrive" | "leave" | "swap" | "ffc"
+  std::string type;  // "arrive" | "leave" | "swap" | "ffc" | "freeze" (a frame repeating an earlier one)
   int person = -1;   // -1 when no person is involved (ffc)
   std::string seat;
   std::string detail;
@@ -120,7 +120,8 @@ class Dataset {
   // Parses manifest.json; a partial dataset is an InputError ("dataset is partial: N of M
   // frames; re-run hoilcd render to finish it"). With verify_checksums every listed file is
   // read and checked (mismatch or missing file: InputError naming it). Loads poses, persons
-  // and events.
+  // and events. A missing or damaged thermal.mp4 (a view of the frames, not their source) is
+  // not an error but a line in warnings().
   static Dataset Open(const std::string& dir, bool verify_checksums = true);
 
   const DatasetManifest& manifest() const { return manifest_; }
@@ -129,6 +130,8 @@ class Dataset {
   const std::vector<PoseRecord>& poses() const { return poses_; }
   const std::vector<FramePersons>& persons() const { return persons_; }
   const std::vector<DatasetEvent>& events() const { return events_; }
+  // Problems that do not stop reading (each "path: what"), for the caller to print.
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   cv::Mat Thermal(int frame) const;       // CV_8U from thermal/NNNNNN.png
   cv::Mat RadiometricC(int frame) const;  // CV_32F °C from radiometric/NNNNNN.png
@@ -140,6 +143,7 @@ class Dataset {
   std::vector<PoseRecord> poses_;
   std::vector<FramePersons> persons_;
   std::vector<DatasetEvent> events_;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace hoilcd

@@ -7,11 +7,14 @@
 #include "hoilcd/sim/robot.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/sensor.h"
+#include "hoilcd/sim/video.h"
 
 namespace hoilcd {
 
 CameraIntrinsics IntrinsicsFromScene(const Scene& scene);
 SensorOptions SensorOptionsFromScene(const Scene& scene);
+// Also checks that thermal.mp4 can carry the scene's frame rate and frame size.
+VideoOptions VideoOptionsFromScene(const Scene& scene);
 RenderOptions RenderOptionsFromScene(const Scene& scene, int threads);
 TricycleOptions TricycleOptionsFromScene(const Scene& scene);
 RouteOptions RouteOptionsFromScene(const Scene& scene);  // frames = scene.frames

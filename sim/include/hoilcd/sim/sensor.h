@@ -31,6 +31,13 @@ struct SensorOptions {
   bool drift = true;                     // global offset ramp between flat-field corrections
   double drift_k_per_min = 0.2;          // 1-σ of the ramp's random slope per FFC interval, K/min
   double ffc_interval_s = 60.0;          // time between flat-field corrections, s (0: never; max 86400)
+  bool lens_shading = true;              // radial shading that grows as the housing warms after an FFC
+  double housing_warming_k_per_min = 0.5;  // housing temperature rise after each FFC, K/min
+  double vignetting_k_per_k = 0.4;       // corner minus centre per K of housing warming, K/K
+  double narcissus_k_per_k = 0.2;        // depth of the centred dark spot per K of warming, K/K
+  double narcissus_sigma = 0.35;         // spot radius (1-σ) as a fraction of the half-diagonal
+  bool ffc_freeze = true;                // output repeats the last frame while the shutter is shut
+  double ffc_freeze_s = 0.5;             // freeze length at each FFC, s
   bool time_constant = true;             // bolometer thermal lag (motion smear)
   double time_constant_s = 0.010;        // bolometer thermal time constant, s
   bool quantisation = true;              // output rounded to a temperature step
@@ -54,11 +61,21 @@ struct SensorOptions {
 //      renderer may also pass a motion-blurred radiance for smear within a frame;
 //   3. fixed pattern: y + g_p·(y − L_shutter) + R·(o_p + c_column), R = dL/dT at the reference;
 //   4. drift: + R·d(k), d a linear ramp from 0 at each FFC with a keyed random slope;
-//   5. temporal noise: + R·NETD·n(k, p), n standard normal;
-//   6. conversion to apparent temperature with the emissivity setting, then quantisation.
-// Resuming at frame k: on a new model, call Apply(k−1, radiance_{k−1}) then Apply(k, ...); the
-// output from frame k on is byte-identical to an uninterrupted run. The first frame a model
-// sees is taken as steady (x_{k−1} = x_k).
+//   5. lens shading: + R·s(k, p), s(k, p) = ΔT_h(k)·(v·ρ² − n·spot(ρ)), ρ the distance from the
+//      image centre over the half-diagonal (0 centre, 1 corner), spot a Gaussian of 1-σ
+//      narcissus_sigma scaled to 1 at the centre and 0 at the corners, ΔT_h the housing warming
+//      since the last FFC. The FFC shutter sits behind the lens, so it flattens the image at the
+//      housing temperature of the moment; the lens and housing then warm and their stray
+//      radiation (vignetting: the corners see more barrel) and the detector's reflection off the
+//      lens (narcissus: a cold spot at the centre) grow until the next FFC. Corner minus centre
+//      is ShadingCornerToCentreK(k) = ΔT_h·(v + n);
+//   6. temporal noise: + R·NETD·n(k, p), n standard normal;
+//   7. conversion to apparent temperature with the emissivity setting, then quantisation;
+//   8. FFC freeze: for FreezeFrames() frames from each FFC frame on, the output is the output of
+//      the frame before the FFC (the bolometer state still follows the scene).
+// Resuming at frame k: on a new model, call Apply for every frame from ReplayFrom(k) to k−1 with
+// their radiance, then Apply(k, ...); the output from frame k on is byte-identical to an
+// uninterrupted run. The first frame a model sees is taken as steady (x_{k−1} = x_k).
 class SensorModel {
  public:
   // `table` must outlive the model. num_threads: 0 = every core; output does not depend on it.
@@ -80,6 +97,20 @@ class SensorModel {
   // Drift offset at `frame`, K (0 at each FFC frame; 0 when drift is off).
   double DriftK(int frame) const;
 
+  // Lens shading offset at `frame` and pixel (x, y), K (0 when lens shading is off).
+  double ShadingK(int frame, int x, int y) const;
+  // Corner minus centre of the lens shading at `frame`, K.
+  double ShadingCornerToCentreK(int frame) const;
+
+  // Frames frozen at each FFC: round(ffc_freeze_s·fps), at most one less than the frames
+  // between FFCs (0 when the freeze or the FFC is off).
+  int FreezeFrames() const;
+  // The frame whose output `frame` shows: itself, or the frame before the FFC during a freeze.
+  int ShownFrame(int frame) const;
+  // The first frame a new model must be given to resume at `frame` (see the class comment):
+  // frame − 1, or during a freeze the frame before the one shown.
+  int ReplayFrom(int frame) const;
+
   // Expected 1-σ temporal noise in apparent temperature for a scene at temperature_c, K
   // (NETD scaled by the responsivity ratio; 0 when temporal noise is off).
   double TemporalNoiseK(double temperature_c) const;
@@ -91,6 +122,8 @@ class SensorModel {
   // Index j of the FFC interval holding `frame` (FFC j at round(j·interval·fps), FFC 0 at 0).
   int64_t FfcIndex(int frame) const;
   int64_t FfcFrame(int64_t index) const;
+  // Housing temperature rise since the last FFC, K (0 when lens shading is off).
+  double HousingWarmingK(int frame) const;
 
   SensorOptions options_;
   int width_, height_;
@@ -105,6 +138,8 @@ class SensorModel {
   cv::Mat gain_;               // CV_32F per-pixel relative gain error
   cv::Mat offset_signal_;      // CV_32F per-pixel + column offset, radiance units
   cv::Mat previous_;           // blurred radiance of the last frame applied (empty: none yet)
+  cv::Mat shown_;              // output of the last frame not frozen (empty: none yet)
+  cv::Mat shading_shape_;      // CV_32F per-pixel v·ρ² − n·spot(ρ), K per K of housing warming
   int last_frame_ = -1;
 };
 

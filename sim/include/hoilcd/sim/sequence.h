@@ -1,7 +1,9 @@
 // Renders a whole recording session into a dataset folder (SPEC.md "Dataset folder"): the robot
 // drives its route, people move, each frame is ray cast, passed through the sensor model and
 // written atomically. Re-running the same command resumes: frames already written and listed
-// in the manifest with matching checksums are kept, the rest are rendered.
+// in the manifest with matching checksums are kept, the rest are rendered. thermal.mp4 is
+// written last, from the uncompressed 8-bit frames; in video mode (camera.video.enabled) the
+// thermal PNGs are then replaced by its decoded frames.
 #pragma once
 
 #include <atomic>
@@ -25,6 +27,7 @@ struct SequenceResult {
   int frames_rendered = 0;   // rendered by this call
   int frames_reused = 0;     // kept from an earlier, interrupted run
   double seconds = 0;        // wall time of this call
+  double video_seconds = 0;  // of which encoding (and in video mode decoding) thermal.mp4, s
   bool complete = false;
 };
 
