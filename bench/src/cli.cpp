@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "hoilcd/bench/coco_export.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/run.h"
@@ -269,6 +270,11 @@ int RunCommandLine(int argc, char** argv) {
   sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
   AddBenchFlags(sweep, &sweep_bench);
 
+  std::string coco_dataset, coco_output;
+  CLI::App* coco = app.add_subcommand("export-coco", "the dataset's person keypoints as COCO keypoints JSON");
+  coco->add_option("dataset", coco_dataset, "dataset folder written by hoilcd render")->required();
+  coco->add_option("-o,--output", coco_output, "folder for person_keypoints.json")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -281,6 +287,10 @@ int RunCommandLine(int argc, char** argv) {
     if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads);
     if (*run) return RunRunCommand(run_scene, run_args, run_options);
     if (*sweep) return RunSweepCommand(sweep_args, sweep_bench);
+    if (*coco) {
+      std::printf("wrote %s\n", ExportCoco(coco_dataset, coco_output).c_str());
+      return 0;
+    }
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

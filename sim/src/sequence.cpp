@@ -52,8 +52,8 @@ std::string SequenceOptions::Check() const {
   return "";
 }
 
-// Bump when a change alters rendered bytes (2: irregular chairs).
-constexpr int kSimulatorRevision = 2;
+// Bump when a change alters rendered bytes (2: irregular chairs, 3: articulated people).
+constexpr int kSimulatorRevision = 3;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
@@ -156,12 +156,12 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     if (done[f]) {
       // Kept from an earlier run: ground truth comes from its stored instance ids.
       const ExrChannels exr = ReadExr(dir + "/" + FramePath("exr", f, "exr"));
+      cv::Mat ids, depth;
       for (const auto& [name, channel] : exr) {
-        if (name != "id") continue;
-        cv::Mat ids;
-        channel.convertTo(ids, CV_32S);
-        persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, ids)};
+        if (name == "id") channel.convertTo(ids, CV_32S);
+        if (name == "Z") channel.convertTo(depth, CV_32F);
       }
+      if (!ids.empty()) persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, ids, depth)};
       ++result.frames_reused;
       progress.Update();
       continue;
@@ -178,7 +178,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     const cv::Mat temperature = sensor->Apply(f, buffers.radiance);
     sensor_frame = f;
     const cv::Mat ideal = sensor->IdealTemperature(buffers.radiance);
-    persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance)};
+    persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m)};
 
     // Encoding and writing (two PNGs and an EXR, most of a frame's cost) overlap with rendering
     // the next frame. One frame at most is in flight and only its writer touches the manifest
