@@ -177,4 +177,98 @@ BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const Act
   return p;
 }
 
+const std::array<const char*, 4> kWalkerBehaviours = {"ahead", "away", "approach", "stop_to_chat"};
+
+const WalkerSegment& WalkerPlan::At(double time_s) const {
+  for (const WalkerSegment& s : segments)
+    if (time_s < s.end_s) return s;
+  return segments.back();
+}
+
+double WalkerPlan::RouteTime(double time_s) const {
+  const WalkerSegment& s = At(time_s);
+  return s.u_start + s.rate * (time_s - s.start_s);
+}
+
+double WalkerPlan::Walked(double time_s) const {
+  double walked = 0;
+  for (const WalkerSegment& s : segments) {
+    walked += std::abs(s.rate) * (std::min(time_s, s.end_s) - s.start_s);
+    if (time_s < s.end_s) break;
+  }
+  return walked;
+}
+
+WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker,
+                      double duration_s, const std::vector<WalkerPlan>& others) {
+  Rng rng = KeyedRng(seed, "crowd.walker_plan", static_cast<uint64_t>(walker));
+  WalkerPlan plan;
+  double t = 0, lead = rng.Uniform(4.0, 9.0);
+  std::string previous;
+  while (t < duration_s + 1) {
+    // Behaviours possible from this lead; approach needs room to come closer.
+    double total = 0;
+    std::array<double, kWalkerBehaviours.size()> w{};
+    for (size_t i = 0; i < w.size(); ++i) {
+      const std::string b = kWalkerBehaviours[i];
+      const bool possible = (b != "approach" || lead >= 8) && (b != "stop_to_chat" || lead >= 6);
+      w[i] = possible ? weights.at(b) : 0.0;
+      total += w[i];
+    }
+    std::string behaviour = "ahead";
+    double pick = rng.Uniform() * total;
+    for (size_t i = 0; i < w.size() && total > 0; ++i) {
+      pick -= w[i];
+      if (pick < 0 && w[i] > 0) {
+        behaviour = kWalkerBehaviours[i];
+        break;
+      }
+    }
+    WalkerSegment seg;
+    seg.behaviour = behaviour;
+    seg.start_s = t;
+    seg.u_start = t + lead;
+    double length = 0;
+    if (behaviour == "ahead") {
+      seg.rate = rng.Uniform(0.9, 1.1);
+      length = rng.Uniform(6, 14);
+      if (seg.rate < 1) length = std::min(length, (lead - kMinWalkerLeadS) / (1 - seg.rate));
+    } else if (behaviour == "away") {
+      seg.rate = rng.Uniform(2.2, 2.8);          // ~1.1 m/s against the robot's ~0.45 m/s
+      length = (20 - lead) / (seg.rate - 1);     // until 20 s of route ahead: out of sight
+    } else if (behaviour == "approach") {
+      seg.rate = -rng.Uniform(1.2, 1.6);         // towards the robot at ~0.6 m/s
+      length = (lead - kMinWalkerLeadS - 0.5) / (1 - seg.rate);
+    } else {
+      seg.rate = 0;                              // standing, chatting with someone at a table
+      length = std::min(rng.Uniform(4, 9), lead - kMinWalkerLeadS - 0.5);
+    }
+    length = std::max(length, 0.5);
+    seg.end_s = t + length;
+    // Another walker within 1.2 s of route (~0.5 m) during the segment: out of the room instead.
+    bool clash = false;
+    for (double x = seg.start_s; x <= seg.end_s && !clash; x += 0.2) {
+      const double u = seg.u_start + seg.rate * (x - seg.start_s);
+      for (const WalkerPlan& other : others) {
+        const WalkerSegment& o = other.At(x);
+        clash |= o.behaviour != "gone" && std::abs(other.RouteTime(x) - u) < 1.2;
+      }
+    }
+    if (clash) seg.behaviour = "gone";
+    plan.segments.push_back(seg);
+    lead = seg.u_start + seg.rate * length - seg.end_s;
+    t = seg.end_s;
+    if (behaviour == "away" || clash) {
+      // Away (or gone): out of the room for a while, then back in view a few seconds ahead.
+      WalkerSegment gone{"gone", t, t + rng.Uniform(3, 8), 0, 1};
+      gone.u_start = t + lead;
+      plan.segments.push_back(gone);
+      t = gone.end_s;
+      lead = rng.Uniform(5.0, 10.0);
+    }
+    previous = behaviour;
+  }
+  return plan;
+}
+
 }  // namespace hoilcd

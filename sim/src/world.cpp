@@ -568,9 +568,14 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   // Walkers walk the robot's route a few seconds ahead of it: between the camera and the
   // seated people (the occlusion knob), never in the robot's way.
   const int walkers = crowd_.at("walkers").get<int>();
+  std::map<std::string, double> behaviour_weights;
+  for (const auto& [name, weight] : crowd_.at("walker_behaviours").items()) behaviour_weights[name] = weight.get<double>();
+  walker_plans_.clear();
   for (int w = 0; w < walkers; ++w) {
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
     Person& walker = AddStandingPerson("walker", &rng);
+    walker_plans_.push_back(PlanWalker(behaviour_weights, seed_, w, duration_s_, walker_plans_));
+    walker.walker = w;
     walker.lead_s = rng.Uniform(4.0, 9.0);  // 1.7-3.9 m ahead at cruise speed
     walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
@@ -663,33 +668,29 @@ BodyPose World::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
     pose.dof[kLumbarFlex] -= breath / 0.5;
     return pose;
   }
-  // A walker: where the robot will be lead seconds from now, the gait phase from the distance
-  // walked (so the feet do not slide) and its speed.
-  auto place = [&](double t, double* heading, double* distance) {
-    const double lead = p.lead_s + p.lead_amplitude_s * std::sin(2 * M_PI * t / p.lead_period_s + p.lead_phase_rad);
-    const double at = std::clamp(t + lead, route_.front()[0], route_.back()[0]);
-    const auto after = std::lower_bound(route_.begin(), route_.end(), at,
-                                        [](const std::array<double, 5>& r, double v) { return r[0] < v; });
-    const std::array<double, 5>& b = after == route_.end() ? route_.back() : *after;
-    const std::array<double, 5>& a = after == route_.begin() || after == route_.end() ? b : *(after - 1);
-    const double f = b[0] > a[0] ? (at - a[0]) / (b[0] - a[0]) : 0.0;
-    *heading = a[3] + f * std::remainder(b[3] - a[3], 2 * M_PI);
-    *distance = a[4] + f * (b[4] - a[4]);
-    return Eigen::Vector2d(a[1] + f * (b[1] - a[1]) - p.lateral_m * std::sin(*heading),
-                           a[2] + f * (b[2] - a[2]) + p.lateral_m * std::cos(*heading));
-  };
-  double heading = 0, distance = 0, heading_before = 0, distance_before = 0;
-  const Eigen::Vector2d at = place(time_s, &heading, &distance);
-  place(time_s - 0.2, &heading_before, &distance_before);
-  const double speed = std::max(0.0, (distance - distance_before) / 0.2);
-  // The stride of the walker's usual speed (the robot's cruise speed for walkers ahead of it), so
-  // the phase follows the distance walked and the feet do not slide.
-  const double stride_m = Skeleton::StrideAt(cruise_speed_m_s_) * p.height_scale;
-  const double phase = 2 * M_PI * distance / stride_m + p.lead_phase_rad;
+  // A walker: at its plan's place on the robot's route, the gait phase from the distance walked
+  // (so the feet do not slide), its stride from its speed.
+  const WalkerPlan& plan = walker_plans_.at(p.walker);
+  const WalkerSegment& segment = plan.At(time_s);
+  const double u = std::clamp(plan.RouteTime(time_s), route_.front()[0], route_.back()[0]);
+  const auto after = std::lower_bound(route_.begin(), route_.end(), u,
+                                      [](const std::array<double, 5>& r, double v) { return r[0] < v; });
+  const std::array<double, 5>& b = after == route_.end() ? route_.back() : *after;
+  const std::array<double, 5>& a = after == route_.begin() || after == route_.end() ? b : *(after - 1);
+  const double f = b[0] > a[0] ? (u - a[0]) / (b[0] - a[0]) : 0.0;
+  const double route_heading = a[3] + f * std::remainder(b[3] - a[3], 2 * M_PI);
+  const Eigen::Vector2d at(a[1] + f * (b[1] - a[1]) - p.lateral_m * std::sin(route_heading),
+                           a[2] + f * (b[2] - a[2]) + p.lateral_m * std::cos(route_heading));
+  // Facing: along the route, back towards the robot when approaching it, to the tables (on the
+  // right of a clockwise lap) when stopping to chat.
+  const double heading = route_heading + (segment.rate < 0 ? M_PI : 0.0) +
+                         (segment.behaviour == "stop_to_chat" ? -M_PI / 2 : 0.0);
   *world_from_person = PlacementTransform(Eigen::Vector3d(at.x(), at.y(), 0.0), heading, p.height_scale).cast<double>();
-  // Slowing to a stop, the steps shrink to standing.
-  const double stride_now = stride_m / p.height_scale * std::clamp(speed / (0.5 * cruise_speed_m_s_), 0.0, 1.0);
-  return speed > 0.03 ? skeleton_->Walking(phase, stride_now) : PresetPose("standing");
+  const double speed = std::abs(segment.rate) * cruise_speed_m_s_;
+  if (speed < 0.03) return PresetPose("standing");
+  const double stride_m = Skeleton::StrideAt(speed) * p.height_scale;
+  const double phase = 2 * M_PI * plan.Walked(time_s) * cruise_speed_m_s_ / stride_m + p.lead_phase_rad;
+  return skeleton_->Walking(phase, stride_m / p.height_scale);
 }
 
 void World::KeepClearOfTable(const Person& p, BodyPose* pose) const {
@@ -737,8 +738,9 @@ void World::SetTime(double time_s) {
     p.present = time_s >= p.arrive_s && time_s < p.leave_s;
     // A walker whose place on the route lies beyond the end of the sequence has walked off
     // (otherwise it would wait at the robot's final pose for the robot to drive into it).
-    if (!p.seated && p.lead_s >= 0 && (route_.empty() || time_s + p.lead_s + p.lead_amplitude_s > route_.back()[0])) {
-      p.present = false;
+    if (p.walker >= 0) {
+      const WalkerPlan& plan = walker_plans_.at(p.walker);
+      p.present = !route_.empty() && plan.At(time_s).behaviour != "gone" && plan.RouteTime(time_s) <= route_.back()[0];
     }
     p.posture.clear();
     for (const auto& [from, name] : p.postures)
@@ -753,7 +755,7 @@ void World::SetTime(double time_s) {
     }
     Eigen::Matrix4d world_from_person;
     BodyPose pose = PoseOf(p, time_s, &world_from_person);
-    if (!p.seated && p.lead_s >= 0) p.posture = "walking";
+    if (p.walker >= 0) p.posture = walker_plans_[p.walker].At(time_s).behaviour;
     Eigen::Matrix4d seat_from_cup = Eigen::Matrix4d::Identity();
     seat_from_cup.topRightCorner<3, 1>() = p.cup_at_m;
     const auto episode = std::find_if(p.activities.begin(), p.activities.end(), [&](const ActivityEpisode& e) {

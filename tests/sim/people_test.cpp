@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/exr_io.h"
@@ -232,6 +233,43 @@ TEST(People, UnknownActivitiesAndOutOfRangeDwellTimesAreErrorsNamingThePath) {
   EXPECT_EQ(options.Check(), "");
   options.activities["juggling"] = {1, 5};
   EXPECT_NE(options.Check().find("crowd.activities.juggling: unknown activity"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(People, WalkersKeepPaceWalkAwayApproachAndStopWithoutMeetingTheRobotOrEachOther) {
+  // Two walkers (approaching through a busier lane clashes with others: those bouts become "gone").
+  const Scene scene = PaperRoom({"crowd.walkers=2", "crowd.walker_behaviours.approach=3", "crowd.walker_behaviours.stop_to_chat=1"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = Drive(scene, world);
+  world.PlanCrowd(run.samples);
+  std::set<std::string> seen;
+  bool faced_robot = false;
+  for (size_t f = 0; f < run.samples.size(); f += 5) {
+    world.SetTime(run.samples[f].time_s);
+    const Eigen::Vector2d robot(run.samples[f].base.x_m, run.samples[f].base.y_m);
+    std::vector<Eigen::Vector2d> at;
+    for (const Person& p : world.people()) {
+      if (p.seated || !p.present) continue;
+      seen.insert(p.posture);
+      const Eigen::Vector2d hips = 0.5 * (p.keypoints_m[11] + p.keypoints_m[12]).head<2>();
+      EXPECT_GT((hips - robot).norm(), 0.6) << "frame " << f << ": " << p.posture;
+      for (const Eigen::Vector2d& other : at) EXPECT_GT((hips - other).norm(), 0.4) << "frame " << f;
+      at.push_back(hips);
+      if (p.posture == "approach") {
+        // Facing the robot: the nose is on the robot's side of the hips.
+        const Eigen::Vector2d nose = p.keypoints_m[0].head<2>();
+        faced_robot |= (nose - hips).dot(robot - hips) > 0;
+      }
+    }
+  }
+  for (const char* behaviour : {"ahead", "away", "approach", "stop_to_chat"}) EXPECT_TRUE(seen.count(behaviour)) << behaviour;
+  EXPECT_TRUE(faced_robot);
 }
 
 }  // namespace

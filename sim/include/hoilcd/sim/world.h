@@ -73,6 +73,7 @@ struct Person {
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
   double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
   double lateral_m = 0;                      // walkers: offset to the left of the route
+  int walker = -1;                           // walkers: index of their plan (crowd_motion.h)
   // State at the current time.
   bool present = false;
   std::string posture;                       // base posture ("seated_upright", "walking", ...)
@@ -161,6 +162,7 @@ class World {
   std::vector<Seat> seats_;
   std::vector<std::array<double, 5>> route_;  // robot base per frame: time s, x m, y m, theta rad, distance m
   std::vector<DatasetEvent> events_;
+  std::vector<WalkerPlan> walker_plans_;
   uint64_t seed_ = 1;
   double frame_rate_hz_ = 25, duration_s_ = 80;
   nlohmann::json crowd_;
