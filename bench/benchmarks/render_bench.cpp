@@ -8,7 +8,7 @@
 // same thread count and the same row chunks (ParallelForChunks, 8 rows). BM_Pipeline is (c), the
 // whole per-frame work of `hoilcd render` (World::SetTime, render, sensor, T_true, persons
 // ground truth, 8- and 16-bit PNG, EXR, checksums) without the disk; BM_PipelinePart times its
-// pieces on one thread. Counter x_bare = time / bare rtcIntersect1 time (wall; _cpu: process CPU
+// pieces on one thread; BM_WorldSetTime times moving the articulated people alone. Counter x_bare = time / bare rtcIntersect1 time (wall; _cpu: process CPU
 // time, all threads). A summary of ratios, frames per second and the projected time of the
 // scene's 1996 frames follows the table.
 // Run: build/bench/render_bench            (scene: HOILCD_SOURCE_DIR/scenes/paper_room.json)
@@ -344,7 +344,7 @@ void BM_Pipeline(benchmark::State& state) {
       const cv::Mat temperature = sensor.Apply(frame++, buffers.radiance);
       const cv::Mat ideal = sensor.IdealTemperature(buffers.radiance);
       const std::vector<PersonRecord> persons =
-          VisiblePersons(s.world, s.intrinsics, sample.camera, buffers.instance);
+          VisiblePersons(s.world, s.intrinsics, sample.camera, buffers.instance, buffers.depth_m);
       const std::string files[3] = {
           EncodePng(ToDisplay8Bit(temperature, options.display_min_c, options.display_max_c)),
           EncodePng(ToCentikelvin16(temperature)),
@@ -407,7 +407,7 @@ void BM_PipelinePart(benchmark::State& state, int part) {
                              {"class", ToFloat(buffers[i].class_id)}});
       } else {
         benchmark::DoNotOptimize(
-            VisiblePersons(s.world, s.intrinsics, s.samples[i].camera, buffers[i].instance));
+            VisiblePersons(s.world, s.intrinsics, s.samples[i].camera, buffers[i].instance, buffers[i].depth_m));
       }
       bytes += encoded.size();
       benchmark::DoNotOptimize(encoded.data());
@@ -422,7 +422,23 @@ void Threads(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond);
 }
 
+// Moving the people alone: World::SetTime at successive frame times (skeleton poses, activities,
+// gait, 16 part transforms per person, props, the top-level BVH rebuilt by Commit).
+void BM_WorldSetTime(benchmark::State& state) {
+  Setup& s = Shared();
+  double t = s.samples.front().time_s;
+  FrameClock clock;
+  for (auto _ : state) {
+    for (int i = 0; i < kPoses; ++i) {
+      t += 1.0 / s.scene.frame_rate_hz;
+      s.world.SetTime(t);
+    }
+  }
+  Finish(state, "settime", clock);
+}
+
 BENCHMARK(BM_FullVsBareInterleaved)->Apply(Threads)->MinTime(3.0);
+BENCHMARK(BM_WorldSetTime)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BareEmbree)->Apply(Threads);
 BENCHMARK(BM_BareEmbreePackets)->Apply(Threads);
 BENCHMARK(BM_RenderOnly)->Apply(Threads);

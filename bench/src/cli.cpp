@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "hoilcd/bench/inspect.h"
+#include "hoilcd/bench/coco_export.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/run.h"
@@ -305,6 +306,11 @@ int RunCommandLine(int argc, char** argv) {
   sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
   AddBenchFlags(sweep, &sweep_bench);
 
+  std::string coco_dataset, coco_output;
+  CLI::App* coco = app.add_subcommand("export-coco", "the dataset's person keypoints as COCO keypoints JSON");
+  coco->add_option("dataset", coco_dataset, "dataset folder written by hoilcd render")->required();
+  coco->add_option("-o,--output", coco_output, "folder for person_keypoints.json")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -318,6 +324,10 @@ int RunCommandLine(int argc, char** argv) {
     if (*run) return RunRunCommand(run_scene, run_args, run_options);
     if (*sweep) return RunSweepCommand(sweep_args, sweep_bench);
     if (*inspect) return RunInspectCommand(inspect_dir, inspect_protocol, inspect_json, inspect_output);
+    if (*coco) {
+      std::printf("wrote %s\n", ExportCoco(coco_dataset, coco_output).c_str());
+      return 0;
+    }
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

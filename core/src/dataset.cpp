@@ -339,13 +339,25 @@ std::string PersonsToJson(const std::vector<FramePersons>& frames) {
         contacts.push_back(
             {{"name", c.name}, {"u_px", c.u_px}, {"v_px", c.v_px}, {"visible", c.visible}});
       }
-      persons.push_back({{"id", p.id},
-                         {"box_px", {p.box_px.x, p.box_px.y, p.box_px.width, p.box_px.height}},
-                         {"visible_fraction", p.visible_fraction},
-                         {"occlusion_fraction", p.occlusion_fraction},
-                         {"seated", p.seated},
-                         {"posture", p.posture},
-                         {"contacts", contacts}});
+      json person = {{"id", p.id},
+                     {"box_px", {p.box_px.x, p.box_px.y, p.box_px.width, p.box_px.height}},
+                     {"visible_fraction", p.visible_fraction},
+                     {"occlusion_fraction", p.occlusion_fraction},
+                     {"seated", p.seated},
+                     {"posture", p.posture},
+                     {"contacts", contacts}};
+      if (!p.keypoints.empty()) {
+        json keypoints = json::array();
+        for (const KeypointRecord& k : p.keypoints) {
+          keypoints.push_back({{"name", k.name},
+                               {"world_m", {k.world_m[0], k.world_m[1], k.world_m[2]}},
+                               {"u_px", k.u_px},
+                               {"v_px", k.v_px},
+                               {"visible", k.visible}});
+        }
+        person["keypoints"] = keypoints;
+      }
+      persons.push_back(person);
     }
     out_frames.push_back({{"frame", f.frame}, {"persons", persons}});
   }
@@ -374,7 +386,7 @@ std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::st
           const std::string pp = fp + "/persons/" + std::to_string(k);
           if (!reader.ExpectObject(jp[k], pp)) continue;
           reader.CheckKeys(jp[k], pp, {"id", "box_px", "visible_fraction", "occlusion_fraction",
-                                       "seated", "posture", "contacts"});
+                                       "seated", "posture", "contacts", "keypoints"});
           PersonRecord p;
           reader.Read(jp[k], pp, "id", &p.id);
           const auto box = jp[k].find("box_px");
@@ -407,6 +419,29 @@ std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::st
               reader.Read(jc, cp, "v_px", &contact.v_px);
               reader.Read(jc, cp, "visible", &contact.visible);
               p.contacts.push_back(contact);
+            }
+          }
+          const auto keypoints = jp[k].find("keypoints");
+          if (keypoints != jp[k].end() && reader.ExpectArray(*keypoints, pp + "/keypoints")) {
+            for (size_t c = 0; c < keypoints->size(); ++c) {
+              const std::string kp = pp + "/keypoints/" + std::to_string(c);
+              const json& jk = (*keypoints)[c];
+              if (!reader.ExpectObject(jk, kp)) continue;
+              reader.CheckKeys(jk, kp, {"name", "world_m", "u_px", "v_px", "visible"});
+              KeypointRecord keypoint;
+              reader.Read(jk, kp, "name", &keypoint.name);
+              const auto world = jk.find("world_m");
+              if (world == jk.end() || !world->is_array() || world->size() != 3) {
+                reader.Add(kp + "/world_m", "expected [x, y, z] in metres");
+              } else {
+                for (int i = 0; i < 3; ++i) {
+                  reader.ReadValue((*world)[i], kp + "/world_m/" + std::to_string(i), &keypoint.world_m[i]);
+                }
+              }
+              reader.Read(jk, kp, "u_px", &keypoint.u_px);
+              reader.Read(jk, kp, "v_px", &keypoint.v_px);
+              reader.Read(jk, kp, "visible", &keypoint.visible);
+              p.keypoints.push_back(keypoint);
             }
           }
           f.persons.push_back(std::move(p));

@@ -1,5 +1,7 @@
 #include "hoilcd/sim/asset.h"
 
+#include <optional>
+
 // The one translation unit of hoilcd::sim that holds tinygltf's implementation. Assets carry no
 // textures, so tinygltf's stb image reading and writing are left out.
 #define TINYGLTF_IMPLEMENTATION
@@ -223,21 +225,40 @@ class GltfReader {
     for (const std::string& key : extras.Keys()) {
       const tinygltf::Value& value = extras.Get(key);
       const std::string where = pointer + "/" + key;
-      if (key == "class" || key == "posture") {
+      if (key == "class" || key == "posture" || key == "part" || key == "parent") {
         if (!value.IsString() || value.Get<std::string>().empty()) {
           Fail(where, "must be a non-empty string");
         } else {
-          (key == "class" ? asset.class_name : asset.posture) = value.Get<std::string>();
+          std::string& field = key == "class" ? asset.class_name
+                               : key == "posture" ? asset.posture
+                               : key == "part"    ? asset.part
+                                                  : asset.parent;
+          field = value.Get<std::string>();
         }
       } else if (key == "contacts") {
-        ReadContacts(asset, value, where);
+        ReadContacts(asset.contacts, value, where);
+      } else if (key == "keypoints") {
+        ReadContacts(asset.keypoints, value, where);
+      } else if (key == "joint") {
+        if (const std::optional<Eigen::Vector3f> p = ReadPosition(value, where)) asset.joint_m = *p;
       } else {
-        Fail(where, "unknown key (expected class, posture, contacts)");
+        Fail(where, "unknown key (expected class, posture, contacts, part, parent, joint, keypoints)");
       }
     }
   }
 
-  void ReadContacts(Asset& asset, const tinygltf::Value& contacts, const std::string& pointer) {
+  std::optional<Eigen::Vector3f> ReadPosition(const tinygltf::Value& value, const std::string& where) {
+    bool numbers = value.IsArray() && value.ArrayLen() == 3;
+    for (size_t k = 0; numbers && k < 3; ++k) numbers = value.Get(static_cast<int>(k)).IsNumber();
+    if (!numbers) {
+      Fail(where, "must be an array of 3 numbers (glTF metres)");
+      return std::nullopt;
+    }
+    return ToAssetFrame({value.Get(0).GetNumberAsDouble(), value.Get(1).GetNumberAsDouble(),
+                         value.Get(2).GetNumberAsDouble()});
+  }
+
+  void ReadContacts(std::vector<ContactPoint>& out, const tinygltf::Value& contacts, const std::string& pointer) {
     if (!contacts.IsArray()) {
       Fail(pointer, "must be an array of {name, position}");
       return;
@@ -261,18 +282,9 @@ class GltfReader {
             point.name = value.Get<std::string>();
           }
         } else if (key == "position") {
-          bool numbers = value.IsArray() && value.ArrayLen() == 3;
-          for (size_t k = 0; numbers && k < 3; ++k) {
-            numbers = value.Get(static_cast<int>(k)).IsNumber();
-          }
-          if (!numbers) {
-            ok = false;
-            Fail(where + "/position", "must be an array of 3 numbers (glTF metres)");
-          } else {
-            point.position_m =
-                ToAssetFrame({value.Get(0).GetNumberAsDouble(), value.Get(1).GetNumberAsDouble(),
-                              value.Get(2).GetNumberAsDouble()});
-          }
+          const std::optional<Eigen::Vector3f> p = ReadPosition(value, where + "/position");
+          if (p) point.position_m = *p;
+          ok = ok && p.has_value();
         } else {
           ok = false;
           Fail(where + "/" + key, "unknown key (expected name, position)");
@@ -282,7 +294,7 @@ class GltfReader {
         ok = false;
         Fail(where, "needs both name and position");
       }
-      if (ok) asset.contacts.push_back(point);
+      if (ok) out.push_back(point);
     }
   }
 

@@ -94,15 +94,16 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
           out.radiance.ptr<float>()[p] =
               Shade(hit, origin, directions[i], options_.specular_reflections);
           out.depth_m.ptr<float>()[p] = hit.hit() ? hit.distance_m * pixel_rays_[p].z() : 0.0f;
-          out.instance.ptr<int>()[p] = hit.instance;
-          int cls = 0, mat = -1;
+          int cls = 0, mat = -1, label = -1;
           if (hit.hit()) {
             const InstanceInfo& info = world_.instance(hit.instance);
             mat = static_cast<int>(info.mesh->triangle_material[hit.triangle]);
             cls = info.materials[mat].class_id;
+            label = info.label;  // a person's body parts all show the person's id
           }
+          out.instance.ptr<int>()[p] = label;
           out.class_id.ptr<int>()[p] = cls;
-          material.ptr<int>()[p] = hit.instance * 4096 + mat;
+          material.ptr<int>()[p] = label * 4096 + mat;
         }
       }
     }

@@ -66,8 +66,8 @@ std::string SequenceOptions::Check() const {
 }
 
 // Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
-// camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze).
-constexpr int kSimulatorRevision = 4;
+// camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people).
+constexpr int kSimulatorRevision = 5;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
@@ -187,12 +187,12 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     if (done[f]) {
       // Kept from an earlier run: ground truth comes from its stored instance ids.
       const ExrChannels exr = ReadExr(dir + "/" + FramePath("exr", f, "exr"));
+      cv::Mat ids, depth;
       for (const auto& [name, channel] : exr) {
-        if (name != "id") continue;
-        cv::Mat ids;
-        channel.convertTo(ids, CV_32S);
-        persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, ids)};
+        if (name == "id") channel.convertTo(ids, CV_32S);
+        if (name == "Z") channel.convertTo(depth, CV_32F);
       }
+      if (!ids.empty()) persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, ids, depth)};
       ++result.frames_reused;
       progress.Update();
       continue;
@@ -211,7 +211,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     const cv::Mat temperature = sensor->Apply(f, buffers.radiance);
     sensor_frame = f;
     const cv::Mat ideal = sensor->IdealTemperature(buffers.radiance);
-    persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance)};
+    persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m)};
 
     // Encoding and writing (two PNGs and an EXR, most of a frame's cost) overlap with rendering
     // the next frame. One frame at most is in flight and only its writer touches the manifest

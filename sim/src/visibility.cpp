@@ -1,12 +1,15 @@
 #include "hoilcd/sim/visibility.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace hoilcd {
 
 std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
-                                         const CameraPose& pose, const cv::Mat& instance_ids) {
+                                         const CameraPose& pose, const cv::Mat& instance_ids,
+                                         const cv::Mat& depth_m) {
   const Rigid3 world_from_cam = pose.WorldFromCam();
   const Rigid3 cam_from_world = world_from_cam.Inverse();
   const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
@@ -16,8 +19,6 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
   for (const Person& person : world.people()) {
     if (!person.present) continue;
     const int instance = person.instance;
-    const Eigen::Matrix4f& world_from_object = world.caster().transform_of(instance);
-    const Asset& asset = *world.instance(instance).asset;
 
     // Visible pixels and their box.
     int visible = 0, x0 = W, y0 = H, x1 = -1, y1 = -1;
@@ -29,29 +30,48 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
         x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
       }
     }
-    // Pixels the person would cover alone: cast against its instance only, within the
-    // projection of its bounding box.
-    double u_min = W, u_max = -1, v_min = H, v_max = -1;
-    const Eigen::AlignedBox3f& b = asset.bounds_m;
+    // Pixels the person would cover alone: cast against the body parts only, each within the
+    // projection of its own bounding box.
+    struct PartWindow {
+      int instance, ua, ub, va, vb;
+    };
+    std::vector<PartWindow> windows;
+    int ua = W, ub = -1, va = H, vb = -1;
     bool in_front = false;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3f c = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner));
-      const Eigen::Vector3d w = (world_from_object * c.homogeneous()).head<3>().cast<double>();
-      Eigen::Vector3d p = cam_from_world * w;
-      in_front |= p.z() > 0.05;
-      p.z() = std::max(p.z(), 0.05);
-      const Eigen::Vector2d uv = intrinsics.Project(p);
-      u_min = std::min(u_min, uv.x()), u_max = std::max(u_max, uv.x());
-      v_min = std::min(v_min, uv.y()), v_max = std::max(v_max, uv.y());
+    for (int part : person.parts) {
+      const Eigen::Matrix4f& world_from_object = world.caster().transform_of(part);
+      const Eigen::AlignedBox3f& b = world.instance(part).asset->bounds_m;
+      double u_min = W, u_max = -1, v_min = H, v_max = -1;
+      bool part_in_front = false;
+      for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3f c = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner));
+        const Eigen::Vector3d w = (world_from_object * c.homogeneous()).head<3>().cast<double>();
+        Eigen::Vector3d p = cam_from_world * w;
+        part_in_front |= p.z() > 0.05;
+        p.z() = std::max(p.z(), 0.05);
+        const Eigen::Vector2d uv = intrinsics.Project(p);
+        u_min = std::min(u_min, uv.x()), u_max = std::max(u_max, uv.x());
+        v_min = std::min(v_min, uv.y()), v_max = std::max(v_max, uv.y());
+      }
+      in_front |= part_in_front;
+      if (!part_in_front) continue;
+      PartWindow w{part, std::max(0, static_cast<int>(std::floor(u_min))), std::min(W - 1, static_cast<int>(std::ceil(u_max))),
+                   std::max(0, static_cast<int>(std::floor(v_min))), std::min(H - 1, static_cast<int>(std::ceil(v_max)))};
+      if (w.ua > w.ub || w.va > w.vb) continue;
+      windows.push_back(w);
+      ua = std::min(ua, w.ua), ub = std::max(ub, w.ub), va = std::min(va, w.va), vb = std::max(vb, w.vb);
     }
-    const int ua = std::max(0, static_cast<int>(std::floor(u_min))), ub = std::min(W - 1, static_cast<int>(std::ceil(u_max)));
-    const int va = std::max(0, static_cast<int>(std::floor(v_min))), vb = std::min(H - 1, static_cast<int>(std::ceil(v_max)));
     if (!in_front && visible == 0) continue;
     int alone = 0, ax0 = W, ay0 = H, ax1 = -1, ay1 = -1;
     for (int y = va; y <= vb; ++y) {
       for (int x = ua; x <= ub; ++x) {
         const Eigen::Vector3f d = (R * intrinsics.Unproject(x, y).cast<float>()).normalized();
-        if (!world.caster().IntersectInstance(instance, origin, d).hit()) continue;
+        bool hit = false;
+        for (const PartWindow& w : windows) {
+          if (x < w.ua || x > w.ub || y < w.va || y > w.vb) continue;
+          if ((hit = world.caster().IntersectInstance(w.instance, origin, d).hit())) break;
+        }
+        if (!hit) continue;
         ++alone;
         ax0 = std::min(ax0, x), ax1 = std::max(ax1, x), ay0 = std::min(ay0, y), ay1 = std::max(ay1, y);
       }
@@ -72,30 +92,54 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
     record.occlusion_fraction = 1.0 - record.visible_fraction;
     record.seated = person.seated;
     record.posture = person.posture;
-    for (const ContactPoint& contact : asset.contacts) {
-      const Eigen::Vector3d w =
-          (world_from_object * contact.position_m.homogeneous()).head<3>().cast<double>();
+    auto inside = [&](const Eigen::Vector2d& uv) {
+      return uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() < W - 0.5 && uv.y() < H - 0.5;
+    };
+    for (const auto& [name, w] : person.contacts_m) {
       const Eigen::Vector3d p = cam_from_world * w;
       ContactRecord c;
-      c.name = contact.name;
+      c.name = name;
       if (p.z() > 0.05) {
         const Eigen::Vector2d uv = intrinsics.Project(p);
         c.u_px = uv.x();
         c.v_px = uv.y();
-        const bool inside = uv.x() >= -0.5 && uv.y() >= -0.5 && uv.x() < W - 0.5 && uv.y() < H - 0.5;
-        if (inside) {
+        if (inside(uv)) {
           // Visible when the line of sight reaches the contact region: the first surface along
           // the ray is the person's own body within 15 cm of the contact (a forearm resting on
           // the table, seen from above), or anything within 5 cm of it (the contact itself).
           const Eigen::Vector3f to = w.cast<float>() - origin;
           const RayHit hit = world.caster().Intersect(origin, to.normalized());
           const float gap = to.norm() - hit.distance_m;
-          c.visible = hit.hit() && (gap <= 0.05f || (hit.instance == instance && gap <= 0.15f));
+          c.visible = hit.hit() && (gap <= 0.05f || (world.instance(hit.instance).label == instance && gap <= 0.15f));
         }
       } else {
         c.u_px = c.v_px = -1;
       }
       record.contacts.push_back(c);
+    }
+    // COCO keypoints; visible when inside the image and the depth buffer at its pixel is not
+    // closer than the person's own surface there (nothing else in front of the body).
+    for (int k = 0; k < kCocoKeypointCount; ++k) {
+      const Eigen::Vector3d& w = person.keypoints_m[k];
+      KeypointRecord kp;
+      kp.name = kCocoKeypointNames[k];
+      kp.world_m = {w.x(), w.y(), w.z()};
+      const Eigen::Vector3d p = cam_from_world * w;
+      if (p.z() > 0.05) {
+        const Eigen::Vector2d uv = intrinsics.Project(p);
+        kp.u_px = uv.x();
+        kp.v_px = uv.y();
+        if (inside(uv) && !depth_m.empty()) {
+          const int u = std::clamp(static_cast<int>(std::lround(uv.x())), 0, W - 1);
+          const int v = std::clamp(static_cast<int>(std::lround(uv.y())), 0, H - 1);
+          const Eigen::Vector3f ray = intrinsics.Unproject(u, v).cast<float>().normalized();
+          float own = std::numeric_limits<float>::infinity();
+          for (int part : person.parts) own = std::min(own, world.caster().IntersectInstance(part, origin, R * ray).distance_m);
+          const float z = depth_m.at<float>(v, u);
+          kp.visible = std::isfinite(own) && z >= own * ray.z() - 0.01f;
+        }
+      }
+      record.keypoints.push_back(kp);
     }
     // Image-space contacts: where the bottom of the visible person meets a table or chair in
     // the image, i.e. what DLCD's HOI points recover. Up to kImageContacts evenly spaced columns.

@@ -29,17 +29,33 @@ void DrawIdleMotion(const nlohmann::json& crowd, Rng* rng, Person* person) {
   person->sway_period_s = crowd.at("sway_period_s").get<double>() * rng->Uniform(0.7, 1.3);
 }
 
-std::string ChoosePosture(const nlohmann::json& weights, Rng* rng) {
-  static const char* kPostures[] = {"seated_upright", "seated_leaning", "seated_arms_on_table"};
+// A seated posture by the scene's weights; people with a laptop in front of them keep their
+// forearms off the table (they type on the laptop instead).
+std::string ChoosePosture(const nlohmann::json& weights, bool has_laptop, Rng* rng) {
+  static const char* kPostures[] = {"seated_upright", "seated_leaning_back", "seated_leaning", "seated_arms_on_table"};
+  auto weight = [&](const char* p) {
+    const bool on_table = std::string(p) == "seated_leaning" || std::string(p) == "seated_arms_on_table";
+    return has_laptop && on_table ? 0.0 : weights.at(p).get<double>();
+  };
   double total = 0;
-  for (const char* p : kPostures) total += weights.at(p).get<double>();
+  for (const char* p : kPostures) total += weight(p);
   if (total <= 0) return "seated_upright";
   double pick = rng->Uniform() * total;
   for (const char* p : kPostures) {
-    pick -= weights.at(p).get<double>();
-    if (pick < 0) return p;
+    pick -= weight(p);
+    if (pick < 0 && weight(p) > 0) return p;
   }
-  return kPostures[2];
+  return "seated_upright";
+}
+
+Eigen::Matrix4d Scaled(const Eigen::Matrix4f& world_from_frame, double scale) {
+  Eigen::Matrix4d m = world_from_frame.cast<double>();
+  m.topLeftCorner<3, 3>() *= scale;
+  return m;
+}
+
+Eigen::Vector3d Apply(const Eigen::Matrix4d& m, const Eigen::Vector3d& p) {
+  return m.topLeftCorner<3, 3>() * p + m.topRightCorner<3, 1>();
 }
 
 Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen::Vector3d& position,
@@ -96,6 +112,9 @@ Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw
 World::World(const Scene& scene, const BandRadianceTable& table)
     : table_(table), assets_(scene.assets_dir), caster_(std::make_unique<RayCaster>()),
       room_size_m_(scene.room_size_m) {
+  skeleton_ = std::make_unique<Skeleton>(assets_);
+  activity_options_ = ActivityOptions::FromCrowd(scene.crowd);
+  if (const std::string problem = activity_options_.Check(); !problem.empty()) throw InputError(scene.file, problem);
   environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.environment_temperature_c));
   const nlohmann::json& crowd = scene.crowd;
   crowd_ = crowd;
@@ -162,6 +181,7 @@ int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, I
   info.class_id = ClassId(asset.class_name.empty() ? "object" : asset.class_name);
   info.asset = &asset;
   info.mesh = &asset.mesh;
+  info.label = id;
   for (const ThermalMaterial& tm : asset.materials) {
     InstanceMaterial m;
     m.temperature_c = m.temperature_top_c = static_cast<float>(tm.temperature_c + temperature_offset_c);
@@ -333,6 +353,8 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     const double yaw = spec.yaw_deg * kDegToRad;
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
     Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
+    world_from_table_.push_back(PlacementTransform(center, yaw).cast<double>());
+    table_bounds_m_ = table_asset.bounds_m;
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
     for (int n = 0; n < 2 * per_side; ++n) {
       const ChairPlan& plan = chairs[next_chair++];
@@ -392,9 +414,14 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
   person.arrive_s = arrive_s;
   person.leave_s = leave_s;
   person.world_from_seat = seat_it->world_from_seat;
+  person.table_from_seat = world_from_table_.at(table).inverse() * person.world_from_seat.cast<double>();
   Rng rng = KeyedRng(seed_, "crowd.person", id);
+  // What is on the table in front of them (the same for the person wherever they sit).
+  Rng props = KeyedRng(seed_, "crowd.props", id);
+  const bool has_cup = props.Uniform() < activity_options_.cup_fraction;
+  const bool has_laptop = props.Uniform() < activity_options_.laptop_fraction;
   const nlohmann::json& weights = crowd_.at("posture_weights");
-  std::string current = posture == "random" ? ChoosePosture(weights, &rng) : posture;
+  std::string current = posture == "random" ? ChoosePosture(weights, has_laptop, &rng) : posture;
   person.postures.emplace_back(arrive_s, current);
   // People shift posture now and then (exponential intervals): the upper body changes, the
   // contact with chair and table stays, which is what makes HOI points landmarks.
@@ -404,12 +431,35 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
       t += -posture_interval_s_ * std::log(1.0 - changes.Uniform());
       if (t >= std::min(leave_s, duration_s_)) break;
       std::string next = current;
-      for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, &changes);
+      for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, has_laptop, &changes);
       if (next == current) continue;
       person.postures.emplace_back(t, next);
       current = next;
     }
   }
+  // Neighbours at the same table, as directions seen from this seat (for talking and glances).
+  std::vector<double> neighbours;
+  const Eigen::Matrix4d seat_from_world = person.world_from_seat.cast<double>().inverse();
+  for (const Seat& other : seats_) {
+    if (other.table != table || other.seat == seat) continue;
+    const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
+    neighbours.push_back(std::atan2(at.y(), at.x()));
+  }
+  // How far the table's near edge is (the poses and props assume 0.30 m; chairs stand irregularly).
+  {
+    const Eigen::Vector3d q = person.table_from_seat.topRightCorner<3, 1>();
+    const Eigen::Vector3d d = person.table_from_seat.topLeftCorner<3, 3>().col(0);
+    const double half_depth = 0.5 * (table_bounds_m_.max().y() - table_bounds_m_.min().y());
+    if (std::abs(d.y()) > 0.5) person.table_edge_m = std::clamp((std::abs(q.y()) - half_depth) / std::abs(d.y()), 0.1, 0.5);
+  }
+  // Elbow room: half the distance to the nearest seat beside this one (any table).
+  for (const Seat& other : seats_) {
+    if (other.table == table && other.seat == seat) continue;
+    const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
+    if (std::abs(at.x()) < 0.35) person.elbow_room_m = std::min(person.elbow_room_m, 0.5 * std::abs(at.y()));
+  }
+  person.activities = PlanActivities(activity_options_, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
+                                     has_cup, has_laptop, neighbours);
   person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng.Normal(), 0.8, 1.2);
   DrawIdleMotion(crowd_, &rng, &person);
   // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
@@ -422,21 +472,53 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
   const bool bald = rng.Uniform() < crowd_.at("bald_fraction").get<double>();
   const double hair_c = bald ? skin_c - 1.0
                              : crowd_.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
-  for (const auto& [from, name] : person.postures) {
-    if (person.instances.count(name)) continue;
-    const Asset& body = assets_.Get("person_" + name);
-    const int instance = Place(body, kHidden, InstanceRole::kPerson, "person " + std::to_string(id), 0.0);
-    instances_[instance].person_id = id;
-    SetPersonTemperatures(instance, body, skin_c, clothing_c, hair_c);
-    person.instances[name] = instance;
+  person.parts = AddBody(id, "person " + std::to_string(id), skin_c, clothing_c, hair_c);
+  person.instance = person.parts[0];
+  // Props: a cup to the right of the hands, a laptop (its user side towards the person) in the
+  // middle; positions in the seat frame, relative to the body's size.
+  const std::string where = " " + std::to_string(table) + "." + std::to_string(seat);
+  if (has_cup) {
+    person.cup_at_m = Eigen::Vector3d(person.table_edge_m + 0.17, -0.21, 0.74);
+    person.cup = Place(assets_.Get("cup"), kHidden, InstanceRole::kObject, "cup" + where, 0.0);
+  }
+  if (has_laptop) {
+    person.laptop_at_m = Eigen::Vector3d(person.table_edge_m + 0.22, 0.0, 0.74);
+    person.laptop = Place(assets_.Get("laptop"), kHidden, InstanceRole::kObject, "laptop" + where, 0.0);
   }
   people_.push_back(person);
   return people_.size() - 1;
 }
 
+std::array<int, Skeleton::kPartCount> World::AddBody(int person_id, const std::string& name, double skin_c,
+                                                      double clothing_c, double hair_c) {
+  std::array<int, Skeleton::kPartCount> parts{};
+  for (int i = 0; i < Skeleton::kPartCount; ++i) {
+    const Asset& part = skeleton_->part(i);
+    parts[i] = Place(part, kHidden, InstanceRole::kPerson, name, 0.0);
+    instances_[parts[i]].person_id = person_id;
+    instances_[parts[i]].label = parts[0];
+    SetPersonTemperatures(parts[i], part, skin_c, clothing_c, hair_c);
+  }
+  return parts;
+}
+
 void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   route_.clear();
-  for (const RobotSample& s : samples) route_.push_back({s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad});
+  double distance_m = 0;
+  for (const RobotSample& s : samples) {
+    if (!route_.empty()) distance_m += std::hypot(s.base.x_m - route_.back()[1], s.base.y_m - route_.back()[2]);
+    route_.push_back({s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, distance_m});
+  }
+  // The robot's cruise speed: the median speed while it moves.
+  std::vector<double> speeds;
+  for (size_t i = 1; i < route_.size(); ++i) {
+    const double v = (route_[i][4] - route_[i - 1][4]) / std::max(1e-9, route_[i][0] - route_[i - 1][0]);
+    if (v > 0.05) speeds.push_back(v);
+  }
+  if (!speeds.empty()) {
+    std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
+    cruise_speed_m_s_ = speeds[speeds.size() / 2];
+  }
   const double p = crowd_.at("turnover_probability").get<double>();
   auto frame_of = [&](double t) { return static_cast<int>(std::lround(t * frame_rate_hz_)); };
   auto seat_name = [](int table, int seat) { return std::to_string(table) + "." + std::to_string(seat); };
@@ -486,9 +568,14 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   // Walkers walk the robot's route a few seconds ahead of it: between the camera and the
   // seated people (the occlusion knob), never in the robot's way.
   const int walkers = crowd_.at("walkers").get<int>();
+  std::map<std::string, double> behaviour_weights;
+  for (const auto& [name, weight] : crowd_.at("walker_behaviours").items()) behaviour_weights[name] = weight.get<double>();
+  walker_plans_.clear();
   for (int w = 0; w < walkers; ++w) {
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
     Person& walker = AddStandingPerson("walker", &rng);
+    walker_plans_.push_back(PlanWalker(behaviour_weights, seed_, w, duration_s_, walker_plans_));
+    walker.walker = w;
     walker.lead_s = rng.Uniform(4.0, 9.0);  // 1.7-3.9 m ahead at cruise speed
     walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
@@ -508,19 +595,16 @@ int World::NextPersonId() const {
 
 Person& World::AddStandingPerson(const std::string& kind, Rng* rng) {
   const int id = NextPersonId();
-  const Asset& body = assets_.Get("person_standing");
   Person person;
   person.person_id = id;
   person.seated = false;
   person.postures.emplace_back(0.0, "standing");
   person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng->Normal(), 0.85, 1.15);
-  const int instance = Place(body, kHidden, InstanceRole::kPerson, kind + " " + std::to_string(id), 0.0);
-  instances_[instance].person_id = id;
-  SetPersonTemperatures(instance, body,
-                        crowd_.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
-                        crowd_.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
-                        crowd_.at("hair_temperature_c").get<double>());
-  person.instances["standing"] = instance;
+  person.parts = AddBody(id, kind + " " + std::to_string(id),
+                         crowd_.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+                         crowd_.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+                         crowd_.at("hair_temperature_c").get<double>());
+  person.instance = person.parts[0];
   people_.push_back(person);
   return people_.back();
 }
@@ -545,48 +629,185 @@ void World::UpdateSeatWarmth(double time_s) {
   }
 }
 
+// Where the robot is at time t (route sample interpolated), or the last sample.
+static Eigen::Vector2d RobotAt(const std::vector<std::array<double, 5>>& route, double time_s) {
+  if (route.empty()) return Eigen::Vector2d(-1e3, -1e3);
+  const auto after = std::lower_bound(route.begin(), route.end(), time_s,
+                                      [](const std::array<double, 5>& r, double v) { return r[0] < v; });
+  const std::array<double, 5>& r = after == route.end() ? route.back() : *after;
+  return Eigen::Vector2d(r[1], r[2]);
+}
+
+BodyPose World::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const {
+  const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
+  const double breath = breathing_amplitude_m_ * std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
+  if (p.seated || p.lead_s < 0) {  // seated, or standing still
+    // Seated bodies scale within the pose (hips stay on the seat, feet on the floor, hands
+    // reach the same table); standing bodies scale about the floor.
+    *world_from_person = Scaled(p.world_from_seat, p.seated ? 1.0 : p.height_scale);
+    // The base posture, blending from the previous one after a change.
+    size_t k = 0;
+    for (size_t i = 0; i < p.postures.size(); ++i)
+      if (p.postures[i].first <= time_s) k = i;
+    BodyPose pose = PresetPose(p.postures[k].second);
+    if (k > 0) {
+      const double w = SmoothStep((time_s - p.postures[k].first) / activity_options_.posture_blend_s);
+      pose = Blend(PresetPose(p.postures[k - 1].second), pose, w);
+    }
+    if (p.seated) {
+      // Hands resting on the table keep their distance from its near edge.
+      for (ArmPose& arm : pose.arm) {
+        if (arm.wrist_m.z() > 0.74) arm.wrist_m.x() += p.table_edge_m - 0.30;
+      }
+      pose.scale = p.height_scale;
+      skeleton_->SitOnSeat(&pose);
+    }
+    // Idle sway of the upper body and head; breathing lifts the chest (a small spine extension).
+    pose.dof[kLumbarTwist] += 0.5 * sway;
+    pose.dof[kNeckTwist] += sway;
+    pose.dof[kLumbarFlex] -= breath / 0.5;
+    return pose;
+  }
+  // A walker: at its plan's place on the robot's route, the gait phase from the distance walked
+  // (so the feet do not slide), its stride from its speed.
+  const WalkerPlan& plan = walker_plans_.at(p.walker);
+  const WalkerSegment& segment = plan.At(time_s);
+  const double u = std::clamp(plan.RouteTime(time_s), route_.front()[0], route_.back()[0]);
+  const auto after = std::lower_bound(route_.begin(), route_.end(), u,
+                                      [](const std::array<double, 5>& r, double v) { return r[0] < v; });
+  const std::array<double, 5>& b = after == route_.end() ? route_.back() : *after;
+  const std::array<double, 5>& a = after == route_.begin() || after == route_.end() ? b : *(after - 1);
+  const double f = b[0] > a[0] ? (u - a[0]) / (b[0] - a[0]) : 0.0;
+  const double route_heading = a[3] + f * std::remainder(b[3] - a[3], 2 * M_PI);
+  const Eigen::Vector2d at(a[1] + f * (b[1] - a[1]) - p.lateral_m * std::sin(route_heading),
+                           a[2] + f * (b[2] - a[2]) + p.lateral_m * std::cos(route_heading));
+  // Facing: along the route, back towards the robot when approaching it, to the tables (on the
+  // right of a clockwise lap) when stopping to chat.
+  const double heading = route_heading + (segment.rate < 0 ? M_PI : 0.0) +
+                         (segment.behaviour == "stop_to_chat" ? -M_PI / 2 : 0.0);
+  *world_from_person = PlacementTransform(Eigen::Vector3d(at.x(), at.y(), 0.0), heading, p.height_scale).cast<double>();
+  const double speed = std::abs(segment.rate) * cruise_speed_m_s_;
+  if (speed < 0.03) return PresetPose("standing");
+  const double stride_m = Skeleton::StrideAt(speed) * p.height_scale;
+  const double phase = 2 * M_PI * plan.Walked(time_s) * cruise_speed_m_s_ / stride_m + p.lead_phase_rad;
+  return skeleton_->Walking(phase, stride_m / p.height_scale);
+}
+
+void World::KeepClearOfTable(const Person& p, BodyPose* pose) const {
+  // The table top slab in the table frame, grown by a few millimetres of clearance.
+  constexpr double kClearanceM = 0.004;
+  const Eigen::Vector3f lo = table_bounds_m_.min(), hi = table_bounds_m_.max();
+  const double top = hi.z() + kClearanceM, bottom = hi.z() - 0.03 - kClearanceM;
+  // How deep the part's mesh reaches into the slab from above (0 if it does not).
+  auto depth = [&](const Eigen::Matrix4d& seat_from_part, int part) {
+    const Eigen::Matrix4d m = p.table_from_seat * seat_from_part;
+    double deepest = 0;
+    for (const Eigen::Vector3f& v : skeleton_->part(part).mesh.positions_m) {
+      const Eigen::Vector3d q = Apply(m, v.cast<double>());
+      if (q.x() > lo.x() - kClearanceM && q.x() < hi.x() + kClearanceM && q.y() > lo.y() - kClearanceM &&
+          q.y() < hi.y() + kClearanceM && q.z() < top && q.z() > bottom) {
+        deepest = std::max(deepest, top - q.z());
+      }
+    }
+    return deepest;
+  };
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    const auto parts = skeleton_->PartTransforms(*pose);
+    bool moved = false;
+    // Trunk and head against the table edge: lean less.
+    if (depth(parts[1], 1) > 0 || depth(parts[2], 2) > 0 || depth(parts[3], 3) > 0) {
+      pose->dof[kLumbarFlex] -= 3 * M_PI / 180;
+      moved = true;
+    }
+    // Arms on the table top: lift the wrist (and the elbow) by the depth.
+    for (int s = 0; s < 2; ++s) {
+      double lift = 0;
+      for (int k = 0; k < 3; ++k) lift = std::max(lift, depth(parts[4 + 6 * s + k], 4 + 6 * s + k));
+      if (lift > 0) {
+        pose->arm[s].wrist_m.z() += lift + 0.002;
+        pose->arm[s].elbow_hint.z() += 0.5;
+        moved = true;
+      }
+    }
+    if (!moved) return;
+  }
+}
+
 void World::SetTime(double time_s) {
   for (Person& p : people_) {
     p.present = time_s >= p.arrive_s && time_s < p.leave_s;
     // A walker whose place on the route lies beyond the end of the sequence has walked off
     // (otherwise it would wait at the robot's final pose for the robot to drive into it).
-    if (!p.seated && p.lead_s >= 0 && !route_.empty() &&
-        time_s + p.lead_s + p.lead_amplitude_s > route_.back()[0]) {
-      p.present = false;
+    if (p.walker >= 0) {
+      const WalkerPlan& plan = walker_plans_.at(p.walker);
+      p.present = !route_.empty() && plan.At(time_s).behaviour != "gone" && plan.RouteTime(time_s) <= route_.back()[0];
     }
     p.posture.clear();
     for (const auto& [from, name] : p.postures)
       if (from <= time_s) p.posture = name;
-    p.instance = p.present ? p.instances.at(p.posture) : -1;
-    Eigen::Matrix4f world_from_body = kHidden;
-    if (p.present && (p.seated || p.lead_s < 0)) {  // seated, or standing still
-      const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
-      const double breath = breathing_amplitude_m_ *
-                            std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
-      // Breathing lifts the upper body a few millimetres: a vertical stretch about the floor.
-      Eigen::Matrix4f local = Eigen::Matrix4f::Identity();
-      local.topLeftCorner<3, 3>() =
-          Eigen::AngleAxisf(static_cast<float>(sway), Eigen::Vector3f::UnitZ()).toRotationMatrix() *
-          static_cast<float>(p.height_scale);
-      local(2, 2) *= static_cast<float>(1.0 + breath / 1.3);
-      world_from_body = p.world_from_seat * local;
-    } else if (p.present && !route_.empty()) {
-      // Where the robot will be lead seconds from now, with a small bob of the gait.
-      const double lead = p.lead_s + p.lead_amplitude_s * std::sin(2 * M_PI * time_s / p.lead_period_s + p.lead_phase_rad);
-      const double t = std::clamp(time_s + lead, route_.front()[0], route_.back()[0]);
-      const auto after = std::lower_bound(route_.begin(), route_.end(), t,
-                                          [](const std::array<double, 4>& r, double v) { return r[0] < v; });
-      const std::array<double, 4>& b = after == route_.end() ? route_.back() : *after;
-      const std::array<double, 4>& a = after == route_.begin() || after == route_.end() ? b : *(after - 1);
-      const double f = b[0] > a[0] ? (t - a[0]) / (b[0] - a[0]) : 0.0;
-      const double heading = a[3] + f * std::remainder(b[3] - a[3], 2 * M_PI);
-      const Eigen::Vector3d position(a[1] + f * (b[1] - a[1]) - p.lateral_m * std::sin(heading),
-                                     a[2] + f * (b[2] - a[2]) + p.lateral_m * std::cos(heading),
-                                     0.02 * std::abs(std::sin(2 * M_PI * 0.9 * time_s + p.lead_phase_rad)));
-      world_from_body = PlacementTransform(position, heading, p.height_scale);
+    p.activity.clear();
+    p.contacts_m.clear();
+    if (!p.present) {
+      for (int part : p.parts) caster_->SetInstanceTransform(part, kHidden);
+      for (int prop : {p.cup, p.laptop})
+        if (prop >= 0) caster_->SetInstanceTransform(prop, kHidden);
+      continue;
     }
-    for (const auto& [name, instance] : p.instances) {
-      caster_->SetInstanceTransform(instance, instance == p.instance ? world_from_body : kHidden);
+    Eigen::Matrix4d world_from_person;
+    BodyPose pose = PoseOf(p, time_s, &world_from_person);
+    if (p.walker >= 0) p.posture = walker_plans_[p.walker].At(time_s).behaviour;
+    Eigen::Matrix4d seat_from_cup = Eigen::Matrix4d::Identity();
+    seat_from_cup.topRightCorner<3, 1>() = p.cup_at_m;
+    const auto episode = std::find_if(p.activities.begin(), p.activities.end(), [&](const ActivityEpisode& e) {
+      return e.start_s <= time_s && time_s < e.end_s;
+    });
+    if (episode != p.activities.end()) {
+      p.activity = episode->name;
+      const Eigen::Vector2d robot = RobotAt(route_, time_s);
+      const Eigen::Vector3d robot_in_seat =
+          Apply(world_from_person.inverse(), Eigen::Vector3d(robot.x(), robot.y(), 0.0));
+      pose = ApplyActivity(*skeleton_, pose, *episode, time_s, activity_options_.blend_s,
+                           {p.cup_at_m, p.laptop_at_m}, std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
+    }
+    if (p.seated) {
+      // Close neighbours: elbows tucked in and hands kept within the person's own half.
+      if (p.elbow_room_m < 0.30) {
+        for (int s = 0; s < 2; ++s) {
+          const double sign = s == 0 ? 1 : -1;
+          pose.arm[s].elbow_hint.y() = -sign * std::clamp((0.30 - p.elbow_room_m) * 5, 0.0, 0.6);  // towards the body
+          pose.arm[s].wrist_m.y() = sign * std::min(sign * pose.arm[s].wrist_m.y(), p.elbow_room_m - 0.1);
+        }
+      }
+      KeepClearOfTable(p, &pose);
+    }
+    pose = skeleton_->Limit(pose);
+    const auto parts = skeleton_->PartTransforms(pose);
+    for (int i = 0; i < Skeleton::kPartCount; ++i) {
+      caster_->SetInstanceTransform(p.parts[i], (world_from_person * parts[i]).cast<float>());
+    }
+    const auto keypoints = skeleton_->Keypoints(parts);
+    for (int k = 0; k < kCocoKeypointCount; ++k) p.keypoints_m[k] = Apply(world_from_person, keypoints[k]);
+    // Contacts with the chair, the table and the floor follow the moving parts.
+    if (p.seated) {
+      p.contacts_m.emplace_back("seat", Apply(world_from_person, Eigen::Vector3d(pose.pelvis_m.x() + 0.02, pose.pelvis_m.y(), 0.45)));
+      for (int s = 0; s < 2; ++s) {
+        const Eigen::Vector3d elbow = keypoints[7 + s], wrist = keypoints[9 + s];
+        if (wrist.z() > 0.80 || wrist.x() < 0.33) continue;  // forearm not on the table top
+        const Eigen::Vector3d mid = 0.5 * (elbow + wrist);
+        p.contacts_m.emplace_back("table", Apply(world_from_person, Eigen::Vector3d(std::max(0.33, mid.x()), mid.y(), 0.74)));
+      }
+    }
+    for (const auto& [name, at] : skeleton_->FootContacts(parts)) {
+      if (at.z() < 0.02) p.contacts_m.emplace_back(name, Apply(world_from_person, at));
+    }
+    // Props: the cup rests or travels with the hand; the laptop faces its user.
+    const Eigen::Matrix4d world_from_seat = p.world_from_seat.cast<double>();
+    if (p.cup >= 0) caster_->SetInstanceTransform(p.cup, (world_from_seat * seat_from_cup).cast<float>());
+    if (p.laptop >= 0) {
+      Eigen::Matrix4d seat_from_laptop = Eigen::Matrix4d::Identity();
+      seat_from_laptop.topLeftCorner<3, 3>() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      seat_from_laptop.topRightCorner<3, 1>() = p.laptop_at_m;
+      caster_->SetInstanceTransform(p.laptop, (world_from_seat * seat_from_laptop).cast<float>());
     }
   }
   UpdateSeatWarmth(time_s);

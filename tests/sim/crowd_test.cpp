@@ -185,7 +185,7 @@ double MeanOcclusion(const std::vector<std::string>& overrides) {
   for (size_t f = 0; f < 1000; f += 10) {
     world.SetTime(run.samples[f].time_s);
     const FrameBuffers frame = renderer.Render(run.samples[f].camera);
-    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance)) {
+    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance, frame.depth_m)) {
       if (!p.seated) continue;
       sum += p.occlusion_fraction;
       ++n;
@@ -258,7 +258,7 @@ TEST(Crowd, StandingPeopleAreSeenAndTheRobotMustNotRunIntoThem) {
   for (size_t f = 0; f < 1000; f += 10) {
     world.SetTime(run.samples[f].time_s);
     const FrameBuffers frame = renderer.Render(run.samples[f].camera);
-    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance)) {
+    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance, frame.depth_m)) {
       if (!p.seated && p.visible_fraction > 0.5) {
         EXPECT_EQ(p.posture, "standing");
         standing_seen.insert(p.id);
@@ -289,7 +289,7 @@ TEST(Crowd, SomePeopleShowSkinWhereOthersHaveHair) {
   const World world(scene, table);
   int bald = 0, haired = 0;
   for (const Person& p : world.people()) {
-    const InstanceInfo& info = world.instance(p.instances.begin()->second);
+    const InstanceInfo& info = world.instance(p.parts[3]);  // the head
     const int hair = info.asset->MaterialIndex("hair"), skin = info.asset->MaterialIndex("skin");
     ASSERT_GE(hair, 0);
     const float difference = info.materials[skin].temperature_c - info.materials[hair].temperature_c;

@@ -209,6 +209,12 @@ struct AssetBuilder {
   std::vector<ThermalSpec> materials;
   std::vector<Shape> parts;  // one per material
   std::vector<Contact> contacts;
+  // Body parts of the articulated person only: part name, parent part ("" for the root), the
+  // joint the part turns about and its COCO keypoints, all in the rest pose's body frame.
+  std::string part;
+  std::string parent;
+  Vec3 joint = Vec3::Zero();
+  std::vector<Contact> keypoints;
 
   int Material(const ThermalSpec& spec) {
     for (size_t i = 0; i < materials.size(); ++i) {
@@ -471,6 +477,143 @@ AssetBuilder Person(const std::string& name, const Pose& pose) {
   return asset;
 }
 
+// The articulated person: one asset per rigid part, all modelled in the rest pose (standing,
+// arms hanging straight, the body frame of person_standing) so that the files stacked together
+// show the whole person. Each part carries the joint it turns about, its parent part and the
+// COCO keypoints it holds (inside the part's surface, so they project onto the person).
+struct RestSkeleton {
+  Vec3 pelvis{0, 0, 0.925};
+  Vec3 neck_base{-0.015, 0, 1.375};
+  Vec3 neck_top{-0.005, 0, 1.495};
+  Vec3 head_center{0.005, 0, 1.60};
+  Vec3 shoulder[2], elbow[2], wrist[2], hand_tip[2], hip[2], knee[2], ankle[2];
+  RestSkeleton() {
+    for (int side = 0; side < 2; ++side) {
+      const double sign = side == 0 ? 1.0 : -1.0;
+      shoulder[side] = pelvis + Vec3(-0.01, sign * kShoulderHalfWidth, kShoulderHeight);
+      elbow[side] = shoulder[side] + Vec3(0, sign * 0.015, -0.28);
+      wrist[side] = elbow[side] + Vec3(0, 0, -0.25);
+      hand_tip[side] = wrist[side] + Vec3(0, 0, -0.17);
+      hip[side] = Vec3(0, sign * 0.09, 0.92);
+      knee[side] = Vec3(0, sign * 0.09, 0.50);
+      ankle[side] = Vec3(0, sign * 0.09, 0.09);
+    }
+  }
+};
+
+AssetBuilder Part(const std::string& part, const std::string& parent, const Vec3& joint) {
+  AssetBuilder asset;
+  asset.name = "person_part_" + part;
+  asset.class_name = "person";
+  asset.part = part;
+  asset.parent = parent;
+  asset.joint = joint;
+  return asset;
+}
+
+std::vector<AssetBuilder> PersonParts() {
+  const RestSkeleton rest;
+  const Mat3 I = Mat3::Identity();
+  std::vector<AssetBuilder> parts;
+
+  AssetBuilder pelvis = Part("pelvis", "", rest.pelvis);
+  pelvis.Add(Ellipsoid(rest.pelvis + Vec3(-0.01, 0, 0), I, Vec3(0.115, 0.15, 0.10), 24, 12),
+             pelvis.Material(kClothingLower));
+  parts.push_back(pelvis);
+
+  AssetBuilder torso = Part("torso", "pelvis", rest.pelvis);
+  const TorsoSection sections[] = {
+      {0.02, 0.145, 0.100, -0.01},  {0.08, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
+      {0.26, 0.160, 0.110, 0.01},   {0.36, 0.175, 0.112, 0.01},   {0.42, 0.180, 0.100, 0.00},
+      {0.46, 0.170, 0.088, -0.005}, {0.485, 0.135, 0.075, -0.01}, {0.505, 0.080, 0.062, -0.01}};
+  std::vector<Ring> rings;
+  for (const TorsoSection& s : sections) {
+    rings.push_back({rest.pelvis + Vec3(s.forward, 0, s.height), Vec3(0, s.half_width, 0),
+                     Vec3(s.half_depth, 0, 0)});
+  }
+  const int upper = torso.Material(kClothingUpper);
+  torso.Add(Loft(rings, rest.pelvis + Vec3(-0.01, 0, -0.01), rest.pelvis + Vec3(-0.01, 0, 0.515), 32, 2.6),
+            upper);
+  for (int side = 0; side < 2; ++side) {
+    torso.Add(Ellipsoid(rest.shoulder[side] + Vec3(0, 0, -0.01), I, Vec3(0.06, 0.055, 0.055), 16, 10), upper);
+    torso.keypoints.push_back({side == 0 ? "left_shoulder" : "right_shoulder", rest.shoulder[side]});
+  }
+  parts.push_back(torso);
+
+  AssetBuilder neck = Part("neck", "torso", rest.neck_base);
+  neck.Add(Capsule(rest.neck_base, rest.neck_top, 0.062, 0.056, 20, 4), neck.Material(kSkin));
+  parts.push_back(neck);
+
+  AssetBuilder head = Part("head", "neck", rest.neck_top);
+  const int skin = head.Material(kSkin);
+  const int hair = head.Material(kHair);
+  const Vec3 head_radii(0.10, 0.083, 0.12);
+  const Vec3 c = rest.head_center;
+  head.Add(Ellipsoid(c, I, head_radii, 32, 20), [&](const Vec3& p, const Vec3&) {
+    const Vec3 local = p - c;
+    const double f = local.x() / head_radii.x();
+    const double u = local.z() / head_radii.z();
+    const bool is_hair = u > 0.45 || (f < 0.35 && u > 0.15) || (f < -0.15 && u > -0.55);
+    return is_hair ? hair : skin;
+  });
+  head.Add(Ellipsoid(c + Vec3(0.095, 0, -0.015), I, Vec3(0.025, 0.014, 0.032), 12, 8), skin);
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    head.Add(Ellipsoid(c + Vec3(-0.005, sign * 0.081, -0.005), I, Vec3(0.02, 0.012, 0.032), 10, 6), skin);
+  }
+  head.keypoints = {{"nose", c + Vec3(0.09, 0, -0.015)},
+                    {"left_eye", c + Vec3(0.075, 0.035, 0.025)},
+                    {"right_eye", c + Vec3(0.075, -0.035, 0.025)},
+                    {"left_ear", c + Vec3(-0.005, 0.075, -0.005)},
+                    {"right_ear", c + Vec3(-0.005, -0.075, -0.005)}};
+  parts.push_back(head);
+
+  for (int side = 0; side < 2; ++side) {
+    const std::string s = side == 0 ? "left" : "right";
+    const double sign = side == 0 ? 1.0 : -1.0;
+    AssetBuilder upper_arm = Part("upper_arm_" + s, "torso", rest.shoulder[side]);
+    upper_arm.Add(Capsule(rest.shoulder[side], rest.elbow[side], 0.052, 0.042),
+                  upper_arm.Material(kClothingUpper));
+    parts.push_back(upper_arm);
+
+    AssetBuilder lower_arm = Part("lower_arm_" + s, "upper_arm_" + s, rest.elbow[side]);
+    lower_arm.Add(Capsule(rest.elbow[side], rest.wrist[side], 0.041, 0.031), lower_arm.Material(kClothingUpper));
+    lower_arm.keypoints.push_back({s + "_elbow", rest.elbow[side]});
+    parts.push_back(lower_arm);
+
+    // The hand hangs with its back outwards (palm towards the thigh).
+    AssetBuilder hand = Part("hand_" + s, "lower_arm_" + s, rest.wrist[side]);
+    Mat3 hand_axes;
+    hand_axes.col(2) = Vec3(0, 0, -1);
+    hand_axes.col(0) = Vec3(0, sign, 0);
+    hand_axes.col(1) = hand_axes.col(2).cross(hand_axes.col(0));
+    hand.Add(Ellipsoid((rest.wrist[side] + rest.hand_tip[side]) / 2, hand_axes,
+                       Vec3(0.017, 0.043, (rest.hand_tip[side] - rest.wrist[side]).norm() / 2), 16, 10),
+             hand.Material(kSkin));
+    hand.keypoints.push_back({s + "_wrist", rest.wrist[side] + Vec3(0, 0, -0.01)});
+    parts.push_back(hand);
+
+    AssetBuilder thigh = Part("thigh_" + s, "pelvis", rest.hip[side]);
+    thigh.Add(Capsule(rest.hip[side], rest.knee[side], 0.08, 0.055), thigh.Material(kClothingLower));
+    thigh.keypoints.push_back({s + "_hip", rest.hip[side]});
+    parts.push_back(thigh);
+
+    AssetBuilder shin = Part("shin_" + s, "thigh_" + s, rest.knee[side]);
+    shin.Add(Capsule(rest.knee[side], rest.ankle[side], 0.05, 0.038), shin.Material(kClothingLower));
+    shin.keypoints.push_back({s + "_knee", rest.knee[side]});
+    parts.push_back(shin);
+
+    AssetBuilder foot = Part("foot_" + s, "shin_" + s, rest.ankle[side]);
+    foot.Add(Ellipsoid(Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.045), I,
+                       Vec3(0.135, 0.05, 0.045), 16, 10),
+             foot.Material(kShoes));
+    foot.keypoints.push_back({s + "_ankle", rest.ankle[side] + Vec3(0, 0, -0.03)});
+    foot.contacts.push_back({"floor", Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.0)});
+    parts.push_back(foot);
+  }
+  return parts;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Furniture and hot objects.
 
@@ -598,6 +741,7 @@ tinygltf::Value Vec3Value(const Vec3& p_hoilcd) {
 
 // Rounds to 0.1 mm so the JSON stays readable.
 double Round(double value) { return std::round(value * 1e4) / 1e4; }
+Vec3 Rounded(const Vec3& p) { return Vec3(Round(p.x()), Round(p.y()), Round(p.z())); }
 
 int AddBufferView(tinygltf::Model& model, const void* data, size_t size, int target) {
   std::vector<unsigned char>& bytes = model.buffers[0].data;
@@ -696,15 +840,20 @@ tinygltf::Model ToGltf(const AssetBuilder& asset) {
   scene.nodes.push_back(0);
   tinygltf::Value::Object extras{{"class", tinygltf::Value(asset.class_name)}};
   if (!asset.posture.empty()) extras["posture"] = tinygltf::Value(asset.posture);
-  if (!asset.contacts.empty()) {
-    tinygltf::Value::Array contacts;
-    for (const Contact& contact : asset.contacts) {
-      const Vec3 rounded(Round(contact.position.x()), Round(contact.position.y()),
-                         Round(contact.position.z()));
-      contacts.push_back(tinygltf::Value(tinygltf::Value::Object{
-          {"name", tinygltf::Value(contact.name)}, {"position", Vec3Value(rounded)}}));
+  auto points = [](const std::vector<Contact>& list) {
+    tinygltf::Value::Array out;
+    for (const Contact& contact : list) {
+      out.push_back(tinygltf::Value(tinygltf::Value::Object{
+          {"name", tinygltf::Value(contact.name)}, {"position", Vec3Value(Rounded(contact.position))}}));
     }
-    extras["contacts"] = tinygltf::Value(contacts);
+    return tinygltf::Value(out);
+  };
+  if (!asset.contacts.empty()) extras["contacts"] = points(asset.contacts);
+  if (!asset.part.empty()) {
+    extras["part"] = tinygltf::Value(asset.part);
+    if (!asset.parent.empty()) extras["parent"] = tinygltf::Value(asset.parent);
+    extras["joint"] = Vec3Value(Rounded(asset.joint));
+    if (!asset.keypoints.empty()) extras["keypoints"] = points(asset.keypoints);
   }
   scene.extras = tinygltf::Value(extras);
   model.scenes.push_back(scene);
@@ -726,7 +875,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out_dir = argv[1];
-  const std::vector<AssetBuilder> assets = {
+  std::vector<AssetBuilder> assets = {
       Person("person_seated_upright", SeatedUpright()),
       Person("person_seated_leaning", SeatedLeaning()),
       Person("person_seated_arms_on_table", SeatedArmsOnTable()),
@@ -737,6 +886,7 @@ int main(int argc, char** argv) {
       Laptop(),
       Monitor(),
       Radiator()};
+  for (AssetBuilder& part : PersonParts()) assets.push_back(std::move(part));
   tinygltf::TinyGLTF writer;
   for (const AssetBuilder& asset : assets) {
     const tinygltf::Model model = ToGltf(asset);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <opencv2/core.hpp>
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,6 +68,15 @@ struct ContactRecord {
   bool visible = false;  // not occluded and inside the image
 };
 
+// One of the 17 COCO keypoints of a person (COCO order and names).
+struct KeypointRecord {
+  std::string name;                  // "nose", "left_eye", ..., "right_ankle"
+  std::array<double, 3> world_m{};   // world frame, m
+  double u_px = -1;                  // image column (-1 when behind the camera)
+  double v_px = -1;                  // image row
+  bool visible = false;              // inside the image and not occluded (depth buffer)
+};
+
 struct PersonRecord {
   int id = -1;                        // person (instance) id, stable over the sequence
   cv::Rect2f box_px;                  // visible-pixel bounding box
@@ -75,6 +85,7 @@ struct PersonRecord {
   bool seated = false;
   std::string posture;                // "seated", "standing", ...
   std::vector<ContactRecord> contacts;
+  std::vector<KeypointRecord> keypoints;  // 17 COCO keypoints, or none (older datasets)
 };
 
 struct FramePersons {

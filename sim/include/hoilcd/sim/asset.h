@@ -47,6 +47,12 @@ struct Asset {
   // primitive has none.
   std::vector<ThermalMaterial> materials;
   std::vector<ContactPoint> contacts;
+  // Parts of the articulated person (person_part_*): the part's name, its parent part (empty for
+  // the root), the joint it turns about and the COCO keypoints it carries, in the asset frame.
+  std::string part;
+  std::string parent;
+  Eigen::Vector3f joint_m = Eigen::Vector3f::Zero();
+  std::vector<ContactPoint> keypoints;
   Eigen::AlignedBox3f bounds_m;  // of mesh.positions_m
 
   // Index of the first material with this region, -1 if none.

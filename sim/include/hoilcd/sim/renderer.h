@@ -23,7 +23,7 @@ struct RenderOptions {
 struct FrameBuffers {
   cv::Mat radiance;  // CV_32F, W·m⁻²·sr⁻¹ (8–14 µm band)
   cv::Mat depth_m;   // CV_32F, distance along the camera's z axis, m
-  cv::Mat instance;  // CV_32S, World instance id (-1: nothing)
+  cv::Mat instance;  // CV_32S, World instance label (a person's parts: the person's instance; -1: nothing)
   cv::Mat class_id;  // CV_32S, World class id
   int edge_pixels = 0;  // how many pixels were supersampled
 };

@@ -1,0 +1,94 @@
+// How seated people move between posture changes: a seeded stochastic process per person (keyed
+// by seed, person and time, never by thread) choosing among idle sway, head turns (towards a
+// neighbour or the robot), talking gestures, drinking from the cup in front of them and typing at
+// their laptop, with smooth ramps in and out; and the overlay of an activity on a body pose.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/sim/skeleton.h"
+
+namespace hoilcd {
+
+// The activities, in the order of crowd.activities in the scene schema.
+extern const std::array<const char*, 5> kActivityNames;
+
+struct ActivitySpec {
+  double weight = 1;    // relative frequency when a new activity is chosen, ≥ 0
+  double dwell_s = 5;   // mean duration (exponential, at least 1.5 s), s
+};
+
+struct ActivityOptions {
+  std::map<std::string, ActivitySpec> activities;  // by kActivityNames
+  double blend_s = 0.8;           // ramp into and out of an activity, s
+  double posture_blend_s = 1.5;   // a posture change takes this long, s
+  double cup_fraction = 0.5;      // seated people with a cup in front of them, 0-1
+  double laptop_fraction = 0.25;  // seated people with a laptop in front of them, 0-1
+  // "" when valid, else what is wrong (with the crowd.* JSON path).
+  std::string Check() const;
+  // From the resolved scene's `crowd` object (schema defaults filled in).
+  static ActivityOptions FromCrowd(const nlohmann::json& crowd);
+};
+
+struct ActivityEpisode {
+  std::string name;          // one of kActivityNames
+  double start_s = 0, end_s = 0;
+  bool toward_robot = false;     // head turns: look at the robot, else at gaze_yaw_rad
+  double gaze_yaw_rad = 0;       // seat frame, counter-clockwise from +x (talking, head turns)
+  int side = 1;                  // gesturing / drinking hand: 0 left, 1 right
+  double phase_rad = 0;          // phase of the gesture oscillations
+};
+
+// The episodes of one person from from_s to to_s (back to back; "idle" fills the gaps).
+// neighbour_yaw_rad: directions (seat frame) in which the person's neighbours sit.
+std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id,
+                                            double from_s, double to_s, bool has_cup, bool has_laptop,
+                                            const std::vector<double>& neighbour_yaw_rad);
+
+// Props a person handles, seat frame.
+struct Props {
+  Eigen::Vector3d cup_at_m = Eigen::Vector3d::Zero();     // cup's resting place (base centre)
+  Eigen::Vector3d laptop_at_m = Eigen::Vector3d::Zero();  // laptop's base centre
+};
+
+// The base pose with the episode's motion overlaid at time t (seat frame). robot_yaw_rad: where
+// the robot is, seen from the seat. seat_from_cup receives the cup's pose (resting or in hand).
+BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const ActivityEpisode& episode,
+                       double time_s, double blend_s, const Props& props, double robot_yaw_rad,
+                       Eigen::Matrix4d* seat_from_cup);
+
+// Walkers follow the robot's route, each at a route time u(t) (the place the robot passes at
+// time u) that always stays at least kMinWalkerLeadS ahead of the robot, so the robot never
+// reaches them; their behaviours differ in how u moves: "ahead" keeps pace (the old pattern),
+// "away" walks off faster than the robot, "approach" comes towards it (facing it) and turns
+// back, "stop_to_chat" stands facing the tables; "gone" (out of the room) between bouts and
+// wherever another walker is within 1.2 s of route.
+extern const std::array<const char*, 4> kWalkerBehaviours;
+constexpr double kMinWalkerLeadS = 3.0;
+
+struct WalkerSegment {
+  std::string behaviour;           // one of kWalkerBehaviours, or "gone"
+  double start_s = 0, end_s = 0;   // time
+  double u_start = 0, rate = 1;    // u(t) = u_start + rate (t - start_s)
+};
+
+struct WalkerPlan {
+  std::vector<WalkerSegment> segments;  // back to back from time 0
+  // The segment at time t (the last one beyond the end).
+  const WalkerSegment& At(double time_s) const;
+  double RouteTime(double time_s) const;
+  // Path length walked up to time t, in route seconds (|rate| integrated).
+  double Walked(double time_s) const;
+};
+
+// Plans one walker over [0, duration_s] by the behaviour weights (keyed by seed and walker),
+// avoiding the walkers planned before it.
+WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker,
+                      double duration_s, const std::vector<WalkerPlan>& others);
+
+}  // namespace hoilcd

@@ -1,0 +1,274 @@
+#include "hoilcd/sim/crowd_motion.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "hoilcd/core/random.h"
+
+namespace hoilcd {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kMinDwellS = 1.5;
+
+// Where the mouth is on the head part, rest body frame (in front of and below the head centre).
+const Vec3 kMouthRest(0.005 + 0.085, 0, 1.60 - 0.055);
+
+}  // namespace
+
+const std::array<const char*, 5> kActivityNames = {"idle", "head_turn", "talking", "drinking", "typing"};
+
+std::string ActivityOptions::Check() const {
+  for (const char* name : kActivityNames) {
+    const auto it = activities.find(name);
+    if (it == activities.end()) return std::string("crowd.activities.") + name + ": missing";
+    if (it->second.weight < 0) return std::string("crowd.activities.") + name + ".weight: expected ≥ 0";
+    if (it->second.dwell_s < kMinDwellS) {
+      return std::string("crowd.activities.") + name + ".dwell_s: expected ≥ 1.5 s";
+    }
+  }
+  for (const auto& [name, spec] : activities) {
+    if (std::find(kActivityNames.begin(), kActivityNames.end(), name) == kActivityNames.end()) {
+      return "crowd.activities." + name + ": unknown activity (expected idle, head_turn, talking, drinking, typing)";
+    }
+  }
+  if (blend_s <= 0 || blend_s > 5) return "crowd.activity_blend_s: expected in (0, 5] s";
+  if (posture_blend_s <= 0 || posture_blend_s > 10) return "crowd.posture_blend_s: expected in (0, 10] s";
+  if (cup_fraction < 0 || cup_fraction > 1) return "crowd.cup_fraction: expected in [0, 1]";
+  if (laptop_fraction < 0 || laptop_fraction > 1) return "crowd.laptop_fraction: expected in [0, 1]";
+  return "";
+}
+
+ActivityOptions ActivityOptions::FromCrowd(const nlohmann::json& crowd) {
+  ActivityOptions o;
+  for (const auto& [name, spec] : crowd.at("activities").items()) {
+    o.activities[name] = {spec.at("weight").get<double>(), spec.at("dwell_s").get<double>()};
+  }
+  o.blend_s = crowd.at("activity_blend_s").get<double>();
+  o.posture_blend_s = crowd.at("posture_blend_s").get<double>();
+  o.cup_fraction = crowd.at("cup_fraction").get<double>();
+  o.laptop_fraction = crowd.at("laptop_fraction").get<double>();
+  return o;
+}
+
+std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id,
+                                            double from_s, double to_s, bool has_cup, bool has_laptop,
+                                            const std::vector<double>& neighbour_yaw_rad) {
+  Rng rng = KeyedRng(seed, "crowd.activity", static_cast<uint64_t>(person_id), static_cast<uint64_t>(from_s * 1000));
+  std::vector<ActivityEpisode> out;
+  std::string previous;
+  for (double t = from_s; t < to_s;) {
+    // Weights of what this person can do now; never the same activity twice in a row.
+    double total = 0;
+    std::array<double, kActivityNames.size()> w{};
+    for (size_t i = 0; i < kActivityNames.size(); ++i) {
+      const std::string name = kActivityNames[i];
+      const bool possible = (name != "drinking" || has_cup) && (name != "typing" || has_laptop) && name != previous;
+      w[i] = possible ? options.activities.at(name).weight : 0.0;
+      total += w[i];
+    }
+    ActivityEpisode e;
+    e.name = "idle";
+    double pick = rng.Uniform() * total;
+    for (size_t i = 0; i < w.size() && total > 0; ++i) {
+      pick -= w[i];
+      if (pick < 0 && w[i] > 0) {
+        e.name = kActivityNames[i];
+        break;
+      }
+    }
+    const double dwell = options.activities.at(e.name).dwell_s;
+    e.start_s = t;
+    e.end_s = t + std::max(kMinDwellS, -dwell * std::log(1.0 - rng.Uniform()));
+    e.toward_robot = rng.Uniform() < 0.4;
+    e.gaze_yaw_rad = neighbour_yaw_rad.empty()
+                         ? rng.Uniform(-50, 50) * kDeg
+                         : neighbour_yaw_rad[rng.UniformInt(static_cast<uint32_t>(neighbour_yaw_rad.size()))];
+    e.side = e.name == "drinking" ? 1 : static_cast<int>(rng.UniformInt(2));
+    e.phase_rad = rng.Uniform(0, 2 * M_PI);
+    previous = e.name;
+    t = e.end_s;
+    out.push_back(e);
+  }
+  return out;
+}
+
+BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const ActivityEpisode& episode,
+                       double time_s, double blend_s, const Props& props, double robot_yaw_rad,
+                       Eigen::Matrix4d* seat_from_cup) {
+  Eigen::Matrix4d cup = Eigen::Matrix4d::Identity();
+  cup.topRightCorner<3, 1>() = props.cup_at_m;
+  *seat_from_cup = cup;
+  const double duration = episode.end_s - episode.start_s;
+  const double local = time_s - episode.start_s;
+  const double ramp = std::min(blend_s, 0.3 * duration);
+  const double envelope = SmoothStep(local / ramp) * SmoothStep((duration - local) / ramp);
+  BodyPose p = base;
+  const double t = time_s;
+  const double phase = episode.phase_rad;
+  if (episode.name == "head_turn" || episode.name == "talking") {
+    const double yaw = std::remainder(episode.toward_robot && episode.name == "head_turn" ? robot_yaw_rad
+                                                                                          : episode.gaze_yaw_rad,
+                                      2 * M_PI);
+    const double reach = std::clamp(yaw, -100 * kDeg, 100 * kDeg);  // beyond: look over the shoulder
+    p.dof[kNeckTwist] += envelope * 0.85 * reach;
+    p.dof[kLumbarTwist] += envelope * 0.12 * reach;
+    p.dof[kNeckFlex] += envelope * 3 * kDeg * std::sin(2 * M_PI * 0.3 * t + phase);
+  }
+  if (episode.name == "talking") {
+    // Nods and a gesturing hand (sum of incommensurate sines: no visible repetition).
+    p.dof[kHeadNod] += envelope * 5 * kDeg * std::sin(2 * M_PI * 0.8 * t + phase);
+    const int s = episode.side;
+    const double sign = s == 0 ? 1 : -1;
+    const Vec3 wobble(0.04 * std::sin(2 * M_PI * 1.1 * t + phase), 0.03 * std::sin(2 * M_PI * 0.7 * t + 2 * phase),
+                      0.05 * std::sin(2 * M_PI * 1.6 * t + 3 * phase));
+    ArmPose gesture{Vec3(0.22, sign * 0.22, 0.90) + wobble, Vec3(-0.2, sign, -1), Vec3(1, -sign * 0.2, 0.3),
+                    Vec3(-0.3, sign * 0.3, 1)};
+    BodyPose g = p;
+    g.arm[s] = gesture;
+    p = Blend(p, g, envelope);
+  }
+  if (episode.name == "typing") {
+    BodyPose g = p;
+    g.dof[kNeckFlex] += 14 * kDeg;
+    g.dof[kLumbarFlex] = std::max(g.dof[kLumbarFlex], 6 * kDeg);
+    for (int s = 0; s < 2; ++s) {
+      const double sign = s == 0 ? 1 : -1;
+      const double tap = 0.004 * std::sin(2 * M_PI * 3.1 * t + phase + s * 1.9) +
+                         0.003 * std::sin(2 * M_PI * 4.7 * t + 2 * phase);
+      g.arm[s] = {props.laptop_at_m + Vec3(-0.13, sign * 0.09, 0.045 + tap), Vec3(0, sign, -0.5),
+                  Vec3(1, -sign * 0.25, -0.08), Vec3(0, 0, 1)};
+    }
+    p = Blend(p, g, envelope);
+  }
+  if (episode.name == "drinking") {
+    // Reach for the cup, lift it to the mouth, sip, put it back, let go.
+    const int s = episode.side;
+    const double sign = s == 0 ? 1 : -1;
+    const double u = local / duration;
+    const Vec3 grip(-0.03, sign * 0.07, 0.04);  // wrist relative to the cup's base, beside the cup
+    const Vec3 mouth = skeleton.HeadPoint(base, kMouthRest);
+    const Vec3 cup_at_mouth = mouth + Vec3(0.06, -sign * 0.02, -0.075);
+    auto cup_base = [&](double w) -> Vec3 { return props.cup_at_m + SmoothStep(w) * (cup_at_mouth - props.cup_at_m); };
+    Vec3 cup_pos = props.cup_at_m;
+    double tilt = 0, hold = 0;
+    if (u < 0.2) {
+      hold = SmoothStep(u / 0.2);
+    } else if (u < 0.35) {
+      hold = 1, cup_pos = cup_base((u - 0.2) / 0.15);
+    } else if (u < 0.65) {
+      hold = 1, cup_pos = cup_at_mouth, tilt = 35 * kDeg * std::sin(M_PI * (u - 0.35) / 0.3);
+    } else if (u < 0.85) {
+      hold = 1, cup_pos = cup_base(1 - (u - 0.65) / 0.2);
+    } else {
+      hold = SmoothStep((1 - u) / 0.15);
+    }
+    BodyPose g = p;
+    g.arm[s] = {cup_pos + grip, Vec3(-0.3, sign, -1), Vec3(1, 0, 0.1), Vec3(0, sign, 0)};
+    g.dof[kNeckFlex] -= tilt * 0.4;
+    p = Blend(p, g, hold);
+    Eigen::Matrix4d held = Eigen::Matrix4d::Identity();
+    held.topLeftCorner<3, 3>() = Eigen::AngleAxisd(-tilt, Vec3::UnitY()).toRotationMatrix();
+    held.topRightCorner<3, 1>() = cup_pos;
+    *seat_from_cup = held;
+  }
+  return p;
+}
+
+const std::array<const char*, 4> kWalkerBehaviours = {"ahead", "away", "approach", "stop_to_chat"};
+
+const WalkerSegment& WalkerPlan::At(double time_s) const {
+  for (const WalkerSegment& s : segments)
+    if (time_s < s.end_s) return s;
+  return segments.back();
+}
+
+double WalkerPlan::RouteTime(double time_s) const {
+  const WalkerSegment& s = At(time_s);
+  return s.u_start + s.rate * (time_s - s.start_s);
+}
+
+double WalkerPlan::Walked(double time_s) const {
+  double walked = 0;
+  for (const WalkerSegment& s : segments) {
+    walked += std::abs(s.rate) * (std::min(time_s, s.end_s) - s.start_s);
+    if (time_s < s.end_s) break;
+  }
+  return walked;
+}
+
+WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker,
+                      double duration_s, const std::vector<WalkerPlan>& others) {
+  Rng rng = KeyedRng(seed, "crowd.walker_plan", static_cast<uint64_t>(walker));
+  WalkerPlan plan;
+  double t = 0, lead = rng.Uniform(4.0, 9.0);
+  std::string previous;
+  while (t < duration_s + 1) {
+    // Behaviours possible from this lead; approach needs room to come closer.
+    double total = 0;
+    std::array<double, kWalkerBehaviours.size()> w{};
+    for (size_t i = 0; i < w.size(); ++i) {
+      const std::string b = kWalkerBehaviours[i];
+      const bool possible = (b != "approach" || lead >= 8) && (b != "stop_to_chat" || lead >= 6);
+      w[i] = possible ? weights.at(b) : 0.0;
+      total += w[i];
+    }
+    std::string behaviour = "ahead";
+    double pick = rng.Uniform() * total;
+    for (size_t i = 0; i < w.size() && total > 0; ++i) {
+      pick -= w[i];
+      if (pick < 0 && w[i] > 0) {
+        behaviour = kWalkerBehaviours[i];
+        break;
+      }
+    }
+    WalkerSegment seg;
+    seg.behaviour = behaviour;
+    seg.start_s = t;
+    seg.u_start = t + lead;
+    double length = 0;
+    if (behaviour == "ahead") {
+      seg.rate = rng.Uniform(0.9, 1.1);
+      length = rng.Uniform(6, 14);
+      if (seg.rate < 1) length = std::min(length, (lead - kMinWalkerLeadS) / (1 - seg.rate));
+    } else if (behaviour == "away") {
+      seg.rate = rng.Uniform(2.2, 2.8);          // ~1.1 m/s against the robot's ~0.45 m/s
+      length = (20 - lead) / (seg.rate - 1);     // until 20 s of route ahead: out of sight
+    } else if (behaviour == "approach") {
+      seg.rate = -rng.Uniform(1.2, 1.6);         // towards the robot at ~0.6 m/s
+      length = (lead - kMinWalkerLeadS - 0.5) / (1 - seg.rate);
+    } else {
+      seg.rate = 0;                              // standing, chatting with someone at a table
+      length = std::min(rng.Uniform(4, 9), lead - kMinWalkerLeadS - 0.5);
+    }
+    length = std::max(length, 0.5);
+    seg.end_s = t + length;
+    // Another walker within 1.2 s of route (~0.5 m) during the segment: out of the room instead.
+    bool clash = false;
+    for (double x = seg.start_s; x <= seg.end_s && !clash; x += 0.2) {
+      const double u = seg.u_start + seg.rate * (x - seg.start_s);
+      for (const WalkerPlan& other : others) {
+        const WalkerSegment& o = other.At(x);
+        clash |= o.behaviour != "gone" && std::abs(other.RouteTime(x) - u) < 1.2;
+      }
+    }
+    if (clash) seg.behaviour = "gone";
+    plan.segments.push_back(seg);
+    lead = seg.u_start + seg.rate * length - seg.end_s;
+    t = seg.end_s;
+    if (behaviour == "away" || clash) {
+      // Away (or gone): out of the room for a while, then back in view a few seconds ahead.
+      WalkerSegment gone{"gone", t, t + rng.Uniform(3, 8), 0, 1};
+      gone.u_start = t + lead;
+      plan.segments.push_back(gone);
+      t = gone.end_s;
+      lead = rng.Uniform(5.0, 10.0);
+    }
+    previous = behaviour;
+  }
+  return plan;
+}
+
+}  // namespace hoilcd

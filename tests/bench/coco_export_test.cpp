@@ -1,0 +1,64 @@
+#include "hoilcd/bench/coco_export.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "hoilcd/core/error.h"
+#include "hoilcd/sim/scene.h"
+#include "hoilcd/sim/sequence.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string TempDir(const std::string& test) {
+  const fs::path dir = fs::temp_directory_path() / ("hoilcd_coco_test_" + std::to_string(getpid()) + "_" + test);
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+TEST(CocoExport, EveryListedPersonBecomesAnAnnotationWithSeventeenFlaggedKeypoints) {
+  const std::string dir = TempDir("export");
+  SequenceOptions options;
+  options.output_dir = dir + "/dataset";
+  options.frames = 3;
+  RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", {"crowd.walkers=1"}), options);
+  const std::string path = ExportCoco(dir + "/dataset", dir + "/coco");
+  const nlohmann::json coco = nlohmann::json::parse(ReadFileBytes(path));
+  const Dataset dataset = Dataset::Open(dir + "/dataset");
+  size_t listed = 0;
+  for (const FramePersons& f : dataset.persons()) listed += f.persons.size();
+  ASSERT_GT(listed, 0u);
+  EXPECT_EQ(coco["images"].size(), 3u);
+  ASSERT_EQ(coco["annotations"].size(), listed);
+  EXPECT_EQ(coco["categories"][0]["keypoints"].size(), 17u);
+  EXPECT_EQ(coco["categories"][0]["keypoints"][0], "nose");
+  int visible = 0;
+  for (const auto& a : coco["annotations"]) {
+    ASSERT_EQ(a["keypoints"].size(), 51u);
+    int labelled = 0;
+    for (int k = 0; k < 17; ++k) {
+      const int flag = a["keypoints"][3 * k + 2];
+      EXPECT_TRUE(flag == 0 || flag == 1 || flag == 2);
+      labelled += flag > 0;
+      visible += flag == 2;
+    }
+    EXPECT_EQ(a["num_keypoints"], labelled);
+  }
+  EXPECT_GT(visible, 0);
+  fs::remove_all(dir);
+}
+
+TEST(CocoExport, AFolderThatIsNotADatasetIsAnError) {
+  const std::string dir = TempDir("not_a_dataset");
+  fs::create_directories(dir);
+  EXPECT_THROW(ExportCoco(dir, dir + "/out"), InputError);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace hoilcd
