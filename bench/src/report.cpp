@@ -11,6 +11,7 @@
 
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/plot.h"
+#include "hoilcd/bench/slam_report.h"
 #include "hoilcd/sim/asset.h"
 #include "hoilcd/sim/scene.h"
 
@@ -334,6 +335,10 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     report["methods"][run.name] = m;
   }
   if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
+  if (result.slam_evaluated) {
+    report["slam"] = SlamSummaryJson(result.slam);
+    for (const MethodSlam& m : result.slam.methods) report["methods"][m.method]["slam"] = MethodSlamJson(m);
+  }
   report["features"] = {{"mean_keypoints_per_frame", result.mean_keypoints_per_frame},
                         {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
   report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
@@ -372,6 +377,9 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
       WritePng(dir + "/trajectory_" + std::string(name) + ".png", TrajectoryFigure(result, *run, dataset));
       figures.push_back("trajectory_" + std::string(name) + ".png");
     }
+  }
+  if (result.slam_evaluated) {
+    for (const std::string& f : WriteSlamFiles(result.slam, dataset.poses(), options.slam_options.slam, dir)) figures.push_back(f);
   }
   for (const char* name : {"dlcd", "slcd"}) {
     const MethodRun* run = result.Find(name);
@@ -439,6 +447,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
        << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
+  if (result.slam_evaluated) md << SlamMarkdown(result.slam);
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
