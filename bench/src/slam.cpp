@@ -86,6 +86,7 @@ std::string SlamOptions::Check() const {
   if (!(loop_sd_m > 0 && std::isfinite(loop_sd_m))) return "loop_sd_m must be positive";
   if (!(loop_yaw_sd_deg > 0 && std::isfinite(loop_yaw_sd_deg))) return "loop_yaw_sd_deg must be positive";
   if (!(rpe_delta_m > 0 && std::isfinite(rpe_delta_m))) return "rpe_delta_m must be positive";
+  if (keyframe_every < 1) return "keyframe_every must be at least 1";
   return "";
 }
 
@@ -167,19 +168,56 @@ std::vector<Pose2d> OdometryPoses(const std::vector<PoseRecord>& poses) {
   return out;
 }
 
+std::vector<int> Keyframes(int num_frames, int keyframe_every) {
+  HOILCD_CHECK(keyframe_every >= 1);
+  std::vector<int> frames;
+  for (int f = 0; f < num_frames; f += keyframe_every) frames.push_back(f);
+  if (num_frames > 0 && frames.back() != num_frames - 1) frames.push_back(num_frames - 1);
+  return frames;
+}
+
+std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
+                                            int keyframe_every) {
+  const std::vector<Pose2d> odometry = OdometryPoses(poses);
+  const std::vector<int> keyframes = Keyframes(static_cast<int>(poses.size()), keyframe_every);
+  HOILCD_CHECK(keyframes.size() == keyframe_poses.size());
+  std::vector<Pose2d> out;
+  for (size_t f = 0; f < poses.size(); ++f) {
+    const size_t k = f == poses.size() - 1 ? keyframes.size() - 1 : f / keyframe_every;
+    out.push_back(Compose(keyframe_poses[k], Between(odometry[keyframes[k]], odometry[f])));
+  }
+  return out;
+}
+
 PoseGraph BuildPoseGraph(const std::vector<PoseRecord>& poses, const std::vector<LoopClosure>& loops,
                          const OdometryNoise& noise, const SlamOptions& options) {
   PoseGraph graph;
-  graph.nodes = OdometryPoses(poses);
+  const std::vector<Pose2d> odometry = OdometryPoses(poses);
+  const int n = static_cast<int>(poses.size());
+  const std::vector<int> keyframes = Keyframes(n, options.keyframe_every);
+  for (int f : keyframes) graph.nodes.push_back(odometry[f]);
   for (size_t i = 1; i < graph.nodes.size(); ++i) {
     const Pose2d step = Between(graph.nodes[i - 1], graph.nodes[i]);
     graph.odometry.push_back({static_cast<int>(i - 1), static_cast<int>(i), step, noise.Information(step)});
   }
+  // Node of the keyframe nearest to frame f.
+  auto node_of = [&](int f) {
+    const int k = static_cast<int>(std::lround(static_cast<double>(f) / options.keyframe_every));
+    return std::min(k, static_cast<int>(keyframes.size()) - 1);
+  };
   const double yaw_sd = options.loop_yaw_sd_deg * kDegToRad;
   const Eigen::Matrix3d loop_information =
       Eigen::Vector3d(1 / std::pow(options.loop_sd_m, 2), 1 / std::pow(options.loop_sd_m, 2), 1 / (yaw_sd * yaw_sd))
           .asDiagonal();
-  for (const LoopClosure& l : loops) graph.loops.push_back({l.reference, l.query, Pose2d{}, loop_information});
+  for (const LoopClosure& l : loops) {
+    HOILCD_CHECK(l.query >= 0 && l.query < n && l.reference >= 0 && l.reference < n);
+    const int a = node_of(l.reference), b = node_of(l.query);
+    if (a == b) continue;  // within one keyframe spacing: says nothing the odometry does not
+    // keyframe_a⁻¹·keyframe_b = (keyframe_a⁻¹·reference)·(query⁻¹·keyframe_b), with query = reference.
+    const Pose2d measurement = Compose(Between(odometry[keyframes[a]], odometry[l.reference]),
+                                       Between(odometry[l.query], odometry[keyframes[b]]));
+    graph.loops.push_back({a, b, measurement, loop_information});
+  }
   return graph;
 }
 
@@ -211,7 +249,8 @@ SlamScore SolveSlam(const std::vector<PoseRecord>& poses, const std::vector<Loop
     s = ScoreOdometry(poses, options);
   } else {
     const PoseGraph graph = BuildPoseGraph(poses, loops, noise, options);
-    s = Score(poses, OptimisePoseGraph(graph, graph_options).poses, options);
+    s = Score(poses, FramePosesFromKeyframes(poses, OptimisePoseGraph(graph, graph_options).poses, options.keyframe_every),
+              options);
   }
   s.backend = backend;
   s.loops_accepted = static_cast<int>(loops.size());

@@ -112,7 +112,8 @@ std::vector<std::string> WriteSlamFiles(const SlamResult& slam, const std::vecto
     const SlamScore& s = m.Headline(slam.backend);
     WriteFileAtomic(dir + "/slam/" + m.method + "_tum.txt", PlanarTum(poses, s.poses));
     WriteFileAtomic(dir + "/slam/" + m.method + ".g2o",
-                    PoseGraphToG2o(BuildPoseGraph(poses, m.loops, slam.noise, options), OdometryPoses(poses)));
+                    PoseGraphToG2o(BuildPoseGraph(poses, m.loops, slam.noise, options),
+                                   BuildPoseGraph(poses, m.loops, slam.noise, options).nodes));
   }
   // Trajectories: truth, odometry, oracle and each method's optimised path (headline back end).
   std::vector<Series> series = {Path("true", truth, cv::Scalar(0, 0, 0)),

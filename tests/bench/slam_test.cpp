@@ -57,15 +57,17 @@ std::vector<Query> LapQueries(const std::vector<PoseRecord>& poses) {
   return BuildQueries(poses, protocol);
 }
 
-TEST(SlamTest, OracleLoopsHalveTheOdometryAteOnADriftingSequence) {
+TEST(SlamTest, OracleLoopsHalveTheOdometryAteOnADriftingSequenceWithAndWithoutKeyframes) {
   const auto poses = DriftingLaps(2);
   const auto queries = LapQueries(poses);
   const auto oracle = OracleLoops(queries, poses, kRadiusM);
   ASSERT_GT(oracle.size(), 50u);
-  const SlamOptions options;
+  SlamOptions options;
   const SlamScore odometry = ScoreOdometry(poses, options);
   ASSERT_GT(odometry.ate_rmse_m, 0.1);  // it really drifts
+  for (const int every : {1, 5})
   for (const std::string& backend : PoseGraphBackends()) {
+    options.keyframe_every = every;
     const SlamScore s = SolveSlam(poses, oracle, DriftNoise(), options, backend);
     EXPECT_LE(s.ate_rmse_m, 0.5 * odometry.ate_rmse_m) << backend;
     EXPECT_LT(s.rpe_rmse_m, odometry.rpe_rmse_m) << backend;
@@ -147,6 +149,21 @@ TEST(SlamTest, FullPrecisionThresholdIsNaNWhenTheBestMatchIsFalse) {
   EXPECT_TRUE(std::isnan(ThresholdAtFullPrecision(queries, scores, poses, kRadiusM)));
 }
 
+TEST(SlamTest, KeyframesCoverEveryFrameAndFramePosesFollowTheOdometry) {
+  EXPECT_EQ(Keyframes(11, 5), (std::vector<int>{0, 5, 10}));
+  EXPECT_EQ(Keyframes(12, 5), (std::vector<int>{0, 5, 10, 11}));
+  const auto poses = DriftingLaps(1);
+  const SlamOptions options;
+  const PoseGraph graph = BuildPoseGraph(poses, {}, DriftNoise(), options);
+  const std::vector<Pose2d> frames = FramePosesFromKeyframes(poses, graph.nodes, options.keyframe_every);
+  const std::vector<Pose2d> odometry = OdometryPoses(poses);
+  ASSERT_EQ(frames.size(), poses.size());
+  for (size_t f = 0; f < frames.size(); ++f) {
+    EXPECT_NEAR(frames[f].x_m, odometry[f].x_m, 1e-9);
+    EXPECT_NEAR(frames[f].y_m, odometry[f].y_m, 1e-9);
+  }
+}
+
 TEST(SlamTest, NoLoopLeavesTheOdometry) {
   const auto poses = DriftingLaps(2);
   const SlamOptions options;
@@ -206,6 +223,9 @@ TEST(SlamTest, BadSlamOptionsAreRejected) {
   o = SlamOptions{};
   o.rpe_delta_m = 0;
   EXPECT_NE(o.Check().find("rpe_delta_m"), std::string::npos);
+  o = SlamOptions{};
+  o.keyframe_every = 0;
+  EXPECT_NE(o.Check().find("keyframe_every"), std::string::npos);
   o = SlamOptions{};
   o.loop_threshold = INFINITY;
   EXPECT_NE(o.Check().find("finite"), std::string::npos);

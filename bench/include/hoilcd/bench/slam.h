@@ -41,6 +41,7 @@ struct SlamOptions {
   double loop_sd_m = 0.1;              // m, per-axis σ of an appearance loop: uniform over the 0.2 m radius disk (r/2)
   double loop_yaw_sd_deg = 20;         // deg, σ of the relative yaw of a loop (weak: revisits run the same way)
   double rpe_delta_m = 1.0;            // m, RPE pair spacing along the true path
+  int keyframe_every = 5;              // frames per graph node (paper_room: ~8 cm, well under the 0.2 m radius)
   std::string Check() const;
 };
 
@@ -74,10 +75,19 @@ std::vector<double> ThresholdCandidates(const std::vector<Query>& queries,
 std::vector<Pose2d> TruePoses(const std::vector<PoseRecord>& poses);
 std::vector<Pose2d> OdometryPoses(const std::vector<PoseRecord>& poses);
 
-// Nodes = odometry poses (one per frame), odometry edges between consecutive frames, one loop edge
-// (zero relative pose, loop_sd_m / loop_yaw_sd_deg) per loop, from the reference to the query.
+// Frames that are graph nodes: every keyframe_every-th frame and the last one.
+std::vector<int> Keyframes(int num_frames, int keyframe_every);
+
+// Nodes = odometry poses of the keyframes, odometry edges between consecutive keyframes, one loop
+// edge per loop from the reference's nearest keyframe to the query's: the appearance loop says
+// "query pose = reference pose" (σ loop_sd_m per axis, loop_yaw_sd_deg in yaw), carried to the
+// keyframes through the odometry between them.
 PoseGraph BuildPoseGraph(const std::vector<PoseRecord>& poses, const std::vector<LoopClosure>& loops,
                          const OdometryNoise& noise, const SlamOptions& options);
+
+// Every frame's pose from optimised keyframe poses: keyframe pose · odometry since the keyframe.
+std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
+                                            int keyframe_every);
 
 struct SlamScore {
   std::string backend;

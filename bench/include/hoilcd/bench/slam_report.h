@@ -20,7 +20,7 @@ nlohmann::json MethodSlamJson(const MethodSlam& method);
 // A report.md section: the per-method ATE table under every back end.
 std::string SlamMarkdown(const SlamResult& slam);
 
-// Writes DIR/slam/<method>.g2o (headline back end's input graph, nodes at the optimised poses),
+// Writes DIR/slam/<method>.g2o (the method's keyframe graph, nodes at their odometry poses),
 // DIR/slam/<method>_tum.txt, odometry_tum.txt, groundtruth_tum.txt, oracle_tum.txt, and
 // DIR/slam_trajectories.png, DIR/slam_ate_vs_threshold.png. Returns the figures' file names.
 std::vector<std::string> WriteSlamFiles(const SlamResult& slam, const std::vector<PoseRecord>& poses,

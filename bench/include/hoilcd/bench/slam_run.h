@@ -16,7 +16,7 @@ namespace hoilcd {
 struct SlamRunOptions {
   SlamOptions slam;                                   // back end, loop model, --loop-threshold
   std::map<std::string, double> calibrated_threshold; // method -> threshold at 100 % precision on the calibration run
-  int curve_points = 8;                               // thresholds on each ATE curve (count)
+  int curve_points = 6;                               // thresholds on each ATE curve (count)
   std::string Check() const;
 };
 
