@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/run.h"
@@ -82,6 +83,9 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
   cmd->add_option("--exclusion-window", args->options.protocol.exclusion_window_s,
                   "frames this close in time to a query are not in its database, s")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ground-truth", args->options.protocol.ground_truth,
+                  "whose positions label true matches: odometry (the paper's) or true (the true poses)")
+      ->check(CLI::IsMember({"odometry", "true"}));
   cmd->add_option("--heading-tolerance", args->options.protocol.heading_tolerance_deg,
                   "max heading difference of a true match, deg (negative: off)");
   cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
@@ -136,6 +140,15 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
               outcome.timing.render_s + outcome.timing.bench_s, outcome.timing.render_s,
               outcome.timing.render_cached ? " (cached)" : "", outcome.timing.bench_s,
               outcome.dataset_dir.c_str());
+  return 0;
+}
+
+int RunInspectCommand(const std::string& dir, const ProtocolOptions& protocol, bool json, const std::string& output) {
+  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/false);
+  const InspectReport report = InspectDataset(dataset, protocol);
+  const std::string json_text = report.ToJson().dump(2) + "\n";
+  if (!output.empty()) WriteFileAtomic(output, json_text);
+  std::printf("%s", json ? json_text.c_str() : ("dataset " + dir + "\n" + report.ToText()).c_str());
   return 0;
 }
 
@@ -250,6 +263,20 @@ int RunCommandLine(int argc, char** argv) {
   run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::NonNegativeNumber);
   AddBenchFlags(run, &run_args);
 
+  std::string inspect_dir, inspect_output;
+  bool inspect_json = false;
+  ProtocolOptions inspect_protocol;
+  CLI::App* inspect = app.add_subcommand(
+      "inspect", "what to check before trusting a dataset: laps, lap-to-lap path difference, odometry drift, "
+                 "camera jitter, people in view, occlusion, odometric vs true ground truth");
+  inspect->add_option("dataset", inspect_dir, "dataset folder written by hoilcd render")->required();
+  inspect->add_flag("--json", inspect_json, "print the figures as JSON instead of text");
+  inspect->add_option("-o,--output", inspect_output, "also write the figures as JSON to this file");
+  inspect->add_option("--protocol", inspect_protocol.protocol, "laps (database = first lap) or revisit")
+      ->check(CLI::IsMember({"laps", "revisit"}));
+  inspect->add_option("--radius", inspect_protocol.radius_m, "true-match radius, m (paper: 0.2)")
+      ->check(CLI::PositiveNumber);
+
   SweepArgs sweep_args;
   BenchArgs sweep_bench;
   CLI::App* sweep = app.add_subcommand(
@@ -290,6 +317,7 @@ int RunCommandLine(int argc, char** argv) {
     if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads);
     if (*run) return RunRunCommand(run_scene, run_args, run_options);
     if (*sweep) return RunSweepCommand(sweep_args, sweep_bench);
+    if (*inspect) return RunInspectCommand(inspect_dir, inspect_protocol, inspect_json, inspect_output);
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/plot.h"
 #include "hoilcd/bench/slam_report.h"
@@ -266,19 +267,23 @@ std::string DiagnosisMarkdown(const BenchResult& result) {
 std::string FormatResultTable(const BenchResult& result) {
   std::ostringstream out;
   char line[256];
-  std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s\n", "method", "MRR", "R@1", "R@5",
-                "PR-AUC", "R@100%P", "ms/query");
-  out << line;
+  const std::string other = "MRR(" + result.other_ground_truth + ")";
+  std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", "method", "MRR", "R@1", "R@5",
+                "PR-AUC", "R@100%P", "ms/query", other.c_str());
+  out << "ground truth: " << result.ground_truth << " positions (columns before the last)\n" << line;
   for (const MethodRun& run : result.runs) {
     const MethodMetrics& m = run.metrics;
-    std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s\n", run.name.c_str(),
+    std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", run.name.c_str(),
                   Fixed(m.mrr).c_str(), Fixed(m.recall_at_1).c_str(), Fixed(m.recall_at_5).c_str(),
-                  Fixed(m.pr_auc).c_str(), Fixed(m.recall_at_100p).c_str(), Fixed(m.ms_per_query, 2).c_str());
+                  Fixed(m.pr_auc).c_str(), Fixed(m.recall_at_100p).c_str(), Fixed(m.ms_per_query, 2).c_str(),
+                  Fixed(run.other_metrics.mrr).c_str());
     out << line;
   }
   if (!result.runs.empty()) {
     const MethodMetrics& m = result.runs.front().metrics;
-    out << m.queries_scored << " queries scored, " << m.queries_skipped << " skipped (no true match in their database)\n";
+    out << m.queries_scored << " queries scored, " << m.queries_skipped << " skipped (no true match in their database); "
+        << result.label_disagreement.queries_differing << " of " << result.label_disagreement.queries
+        << " queries have other true matches under " << result.other_ground_truth << " labels\n";
   }
   return out.str();
 }
@@ -321,6 +326,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   report["dataset"] = {{"dir", dataset.dir()}, {"scene_hash", manifest.scene_hash},
                        {"seed", manifest.seed}, {"frames", dataset.num_frames()}};
   report["protocol"] = {{"protocol", options.protocol.protocol}, {"radius_m", options.protocol.radius_m},
+                        {"ground_truth", options.protocol.ground_truth},
                         {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
                         {"exclusion_window_s", options.protocol.exclusion_window_s}};
   report["parameters"] = {{"vertical_tolerance", options.match.vertical_tolerance},
@@ -334,6 +340,17 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     m["description"] = FindMethod(run.name).description;
     report["methods"][run.name] = m;
   }
+  const LabelDisagreement& labels = result.label_disagreement;
+  report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
+                                  {"queries_differing", labels.queries_differing},
+                                  {"queries", labels.queries},
+                                  {"pairs_differing", labels.pairs_differing},
+                                  {"queries_with_match_only_under_chosen", labels.scored_only_in_a},
+                                  {"queries_with_match_only_under_other", labels.scored_only_in_b},
+                                  {"methods", nlohmann::json::object()}};
+  for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
+  const InspectReport inspect = InspectDataset(dataset, options.protocol);
+  report["inspect"] = inspect.ToJson();
   if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
   if (result.slam_evaluated) {
     report["slam"] = SlamSummaryJson(result.slam);
@@ -411,9 +428,11 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   md << "# hoilcd loop-closure report\n\n"
      << "Dataset `" << dataset.dir() << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
      << ", scene hash `" << manifest.scene_hash << "`), protocol `" << options.protocol.protocol
-     << "`, true match within " << options.protocol.radius_m << " m, exclusion window "
-     << options.protocol.exclusion_window_s << " s.\n\n"
-     << "## Results (shaped like the paper's Table 1)\n\n"
+     << "`, true match within " << options.protocol.radius_m << " m of the query's "
+     << (options.protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)"
+                                                      : "true position")
+     << ", exclusion window " << options.protocol.exclusion_window_s << " s.\n\n"
+     << "## Results (shaped like the paper's Table 1; " << options.protocol.ground_truth << " ground truth)\n\n"
      << "| method | MRR | R@1 | R@5 | R@10 | PR-AUC | R@100%P | ms/query (extract + match) |\n"
      << "|---|---|---|---|---|---|---|---|\n";
   for (const MethodRun& run : result.runs) {
@@ -426,6 +445,17 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   if (!result.runs.empty()) {
     md << "\n" << result.runs.front().metrics.queries_scored << " queries scored, "
        << result.runs.front().metrics.queries_skipped << " skipped (no true match in their database).\n";
+  }
+  md << "\n### The same scores under " << result.other_ground_truth << " ground truth\n\n"
+     << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
+     << labels.pairs_differing << " query-database pairs labelled differently; " << labels.scored_only_in_a
+     << " queries have a true match only under " << options.protocol.ground_truth << " labels, "
+     << labels.scored_only_in_b << " only under " << result.other_ground_truth << " labels).\n\n"
+     << "| method | MRR | R@1 | R@5 | PR-AUC | MRR (" << options.protocol.ground_truth << ") |\n|---|---|---|---|---|---|\n";
+  for (const MethodRun& run : result.runs) {
+    const MethodMetrics& m = run.other_metrics;
+    md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | " << Fixed(m.recall_at_5)
+       << " | " << Fixed(m.pr_auc) << " | " << Fixed(run.metrics.mrr) << " |\n";
   }
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result);
@@ -448,6 +478,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
   if (result.slam_evaluated) md << SlamMarkdown(result.slam);
+  md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")

@@ -29,6 +29,7 @@ bool Wants(const std::vector<std::string>& methods, const std::string& name) {
 // Per-query scores of a point-set method: each query against its own database, in parallel
 // inside RetrievalIndex; per-query matching time recorded.
 std::vector<std::vector<double>> ScoreQueries(const RetrievalIndex& index, const std::vector<Query>& queries,
+                                              const std::vector<bool>& to_score,
                                               const MatchOptions& match, const RansacOptions& ransac,
                                               uint64_t seed, int threads, const std::string& title,
                                               std::vector<double>* match_ms) {
@@ -38,7 +39,7 @@ std::vector<std::vector<double>> ScoreQueries(const RetrievalIndex& index, const
   for (size_t i = 0; i < queries.size(); ++i) {
     const Query& q = queries[i];
     const auto start = Clock::now();
-    if (q.NumTrueMatches() > 0 && !q.database.empty()) {
+    if (to_score[i] && !q.database.empty()) {
       const auto row = index.ScoreAll({q.frame}, q.database, match, ransac, seed, threads);
       scores[i].assign(row[0].begin(), row[0].end());
     } else {
@@ -135,6 +136,18 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
 
   BenchResult result;
   result.queries = BuildQueries(dataset.poses(), options.protocol);
+  const std::string other_ground_truth = OtherGroundTruth(options.protocol.ground_truth);
+  result.ground_truth = options.protocol.ground_truth;
+  result.other_ground_truth = other_ground_truth;
+  result.other_queries = RelabelQueries(result.queries, dataset.poses(), options.protocol, other_ground_truth);
+  result.label_disagreement = CompareLabels(result.queries, result.other_queries);
+  const std::vector<PoseRecord> label_poses = LabelPoses(dataset.poses(), options.protocol.ground_truth);
+  const std::vector<PoseRecord> other_label_poses = LabelPoses(dataset.poses(), other_ground_truth);
+  // A query is scored when it has a true match under either labelling, so both can be measured.
+  std::vector<bool> to_score(result.queries.size());
+  for (size_t i = 0; i < to_score.size(); ++i) {
+    to_score[i] = result.queries[i].NumTrueMatches() > 0 || result.other_queries[i].NumTrueMatches() > 0;
+  }
   result.features.resize(n);
 
   const bool need_slcd = Wants(methods, "slcd") || Wants(methods, "slcd-lo") ||
@@ -206,8 +219,10 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
                     const std::vector<double>& extract_ms, const std::vector<double>& match_ms) {
     MethodRun run;
     run.name = name;
-    run.metrics = ComputeMetrics(result.queries, scores, dataset.poses());
+    run.metrics = ComputeMetrics(result.queries, scores, label_poses);
     run.metrics.SetTiming(extract_ms, match_ms);
+    run.other_metrics = ComputeMetrics(result.other_queries, scores, other_label_poses);
+    run.other_metrics.SetTiming(extract_ms, match_ms);
     run.scores = std::move(scores);
     runs[name] = std::move(run);
     match_times[name] = match_ms;
@@ -228,7 +243,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
                                PointMethod{"dlcd", need_dlcd, &dlcd_index, &options.ransac, &dlcd_ms},
                                PointMethod{"dlcd-lo", Wants(methods, "dlcd-lo"), &dlcd_index, &lo, &dlcd_ms}}) {
     if (!m.wanted) continue;
-    auto s = ScoreQueries(*m.index, result.queries, options.match, *m.ransac, seed, options.threads, m.name, &match_ms);
+    auto s = ScoreQueries(*m.index, result.queries, to_score, options.match, *m.ransac, seed, options.threads, m.name, &match_ms);
     finish(m.name, std::move(s), PerQueryExtract(*m.extract_ms, result.queries), match_ms);
   }
   if (Wants(methods, "dlcd-track")) {
@@ -239,7 +254,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
       const Query& q = result.queries[i];
       const auto t = Clock::now();
       scores[i].assign(q.database.size(), 0.0);
-      if (q.NumTrueMatches() > 0) {
+      if (to_score[i]) {
         ParallelFor(static_cast<int64_t>(q.database.size()), options.threads, [&](int64_t j) {
           const int r = q.database[j];
           scores[i][j] = ScoreTrackAwarePair(hoi[q.frame], hoi[r], options.track_aware, options.ransac,

@@ -302,6 +302,7 @@ nlohmann::json SweepBenchJson(const BenchOptions& options) {
           {"radius_m", options.protocol.radius_m},
           {"exclusion_window_s", options.protocol.exclusion_window_s},
           {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
+          {"ground_truth", options.protocol.ground_truth},
           {"keypoint_detector", options.keypoints.detector},
           {"rrf_k", options.rrf_k}};
 }

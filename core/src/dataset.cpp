@@ -29,8 +29,8 @@ namespace fs = std::filesystem;
 
 constexpr const char* kChecksumPrefix = "xxh3-128:";
 constexpr const char* kPosesHeader =
-    "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,odo_x,odo_y,odo_theta";
-constexpr int kPosesColumns = 13;
+    "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,odo_y,odo_theta";
+constexpr int kPosesColumns = 14;
 
 std::string JoinPath(const std::string& dir, const std::string& relative) {
   return (fs::path(dir) / relative).string();
@@ -452,7 +452,8 @@ std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
   for (const PoseRecord& p : poses) {
     out += std::to_string(p.frame);
     for (double v : {p.time_s, p.x_m, p.y_m, p.theta_rad, p.cam_x_m, p.cam_y_m, p.cam_z_m,
-                     p.cam_yaw_rad, p.cam_pitch_rad, p.odo_x_m, p.odo_y_m, p.odo_theta_rad}) {
+                     p.cam_yaw_rad, p.cam_pitch_rad, p.cam_roll_rad, p.odo_x_m, p.odo_y_m,
+                     p.odo_theta_rad}) {
       out += ',';
       out += FormatDouble(v);
     }
@@ -464,7 +465,7 @@ std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
 std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string& path) {
   static const std::array<const char*, kPosesColumns> kNames = {
       "frame", "t",     "x",     "y",       "theta", "cam_x",    "cam_y",
-      "cam_z", "cam_yaw", "cam_pitch", "odo_x", "odo_y", "odo_theta"};
+      "cam_z", "cam_yaw", "cam_pitch", "cam_roll", "odo_x", "odo_y", "odo_theta"};
   std::vector<PoseRecord> poses;
   ProblemCollector problems;
   std::istringstream in(text);
@@ -492,7 +493,8 @@ std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string&
     PoseRecord p;
     double* const doubles[] = {&p.time_s,      &p.x_m,           &p.y_m,     &p.theta_rad,
                                &p.cam_x_m,     &p.cam_y_m,       &p.cam_z_m, &p.cam_yaw_rad,
-                               &p.cam_pitch_rad, &p.odo_x_m,     &p.odo_y_m, &p.odo_theta_rad};
+                               &p.cam_pitch_rad, &p.cam_roll_rad, &p.odo_x_m, &p.odo_y_m,
+                               &p.odo_theta_rad};
     bool ok = true;
     for (int c = 0; c < kPosesColumns; ++c) {
       const std::string& s = fields[c];
@@ -517,7 +519,7 @@ std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string&
   return poses;
 }
 
-std::string PosesToTum(const std::vector<PoseRecord>& poses, double cam_roll_rad) {
+std::string PosesToTum(const std::vector<PoseRecord>& poses) {
   std::string out = "# timestamp tx ty tz qx qy qz qw (world_from_cam, OpenCV camera frame)\n";
   for (const PoseRecord& p : poses) {
     CameraPose pose;
@@ -526,7 +528,7 @@ std::string PosesToTum(const std::vector<PoseRecord>& poses, double cam_roll_rad
     pose.z_m = p.cam_z_m;
     pose.yaw_rad = p.cam_yaw_rad;
     pose.pitch_rad = p.cam_pitch_rad;
-    pose.roll_rad = cam_roll_rad;
+    pose.roll_rad = p.cam_roll_rad;
     const Rigid3 world_from_cam = pose.WorldFromCam();
     const Eigen::Quaterniond& q = world_from_cam.rotation;
     const Eigen::Vector3d& t = world_from_cam.translation;

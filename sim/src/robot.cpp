@@ -228,21 +228,41 @@ class SpeedProfile {
   std::vector<double> limit_;
 };
 
-// Exact integration of the tricycle kinematics for constant wheel speed and steering angle.
-void Propagate(Pose2& pose, double speed_m_s, double steer_rad, double wheelbase_m, double dt_s) {
-  const double ds = speed_m_s * std::cos(steer_rad) * dt_s;
-  const double dtheta = speed_m_s * std::sin(steer_rad) / wheelbase_m * dt_s;
-  if (std::abs(dtheta) < 1e-9) {
-    const double mid = pose.theta_rad + 0.5 * dtheta;
-    pose.x_m += ds * std::cos(mid);
-    pose.y_m += ds * std::sin(mid);
+// Moves a pose along a circular arc: the base travels forward_m while the heading turns by
+// dtheta_rad (exact for a constant curvature within the step).
+void Advance(Pose2& pose, double forward_m, double dtheta_rad) {
+  if (std::abs(dtheta_rad) < 1e-9) {
+    const double mid = pose.theta_rad + 0.5 * dtheta_rad;
+    pose.x_m += forward_m * std::cos(mid);
+    pose.y_m += forward_m * std::sin(mid);
   } else {
-    const double r = ds / dtheta;
-    pose.x_m += r * (std::sin(pose.theta_rad + dtheta) - std::sin(pose.theta_rad));
-    pose.y_m += r * (std::cos(pose.theta_rad) - std::cos(pose.theta_rad + dtheta));
+    const double r = forward_m / dtheta_rad;
+    pose.x_m += r * (std::sin(pose.theta_rad + dtheta_rad) - std::sin(pose.theta_rad));
+    pose.y_m += r * (std::cos(pose.theta_rad) - std::cos(pose.theta_rad + dtheta_rad));
   }
-  pose.theta_rad += dtheta;
+  pose.theta_rad += dtheta_rad;
 }
+
+// One integration step of a tricycle: the front wheel rolls wheel_m at steering angle steer_rad.
+struct Motion {
+  double forward_m = 0;  // base travel
+  double dtheta_rad = 0;
+};
+Motion TricycleMotion(double wheel_m, double steer_rad, double wheelbase_m) {
+  return {wheel_m * std::cos(steer_rad), wheel_m * std::sin(steer_rad) / wheelbase_m};
+}
+
+// A damped second-order mount x'' = w^2 (target - x) - 2 z w x' + w^2 g n / sqrt(dt), integrated
+// semi-implicitly; g = sd * sqrt(4 z / w) gives the stationary sd `sd` for unit white noise n.
+struct MountAxis {
+  double x = 0, v = 0;
+  void Step(double target, double sd, double noise, double omega, double zeta, double dt) {
+    const double gain = sd * std::sqrt(4.0 * zeta / omega);
+    v += dt * (omega * omega * (target - x) - 2.0 * zeta * omega * v) +
+         omega * omega * gain * noise * std::sqrt(dt);
+    x += dt * v;
+  }
+};
 
 // The robot footprint as an oriented rectangle.
 struct Box {
@@ -347,6 +367,7 @@ std::string TricycleOptions::Check() const {
   if (!std::isfinite(camera_yaw_deg) || !std::isfinite(camera_roll_deg)) {
     return "camera_yaw_deg and camera_roll_deg must be finite";
   }
+  if (const std::string problem = vibration.Check(); !problem.empty()) return "vibration." + problem;
   return "";
 }
 
@@ -373,13 +394,45 @@ std::string RouteOptions::Check() const {
   return "";
 }
 
-std::string OdometryNoiseOptions::Check() const {
-  if (!(encoder_noise_frac >= 0 && encoder_noise_frac < 0.5)) {
-    return "encoder_noise_frac must be in [0, 0.5)";
+std::string OdometryErrorOptions::Check() const {
+  if (!(error_scale >= 0 && error_scale <= 100)) return "error_scale must be in [0, 100]";
+  if (!(std::abs(wheel_radius_error_frac) < 0.2)) {
+    return "wheel_radius_error_frac must be in (-0.2, 0.2)";
   }
-  if (!(steer_noise_deg >= 0 && steer_noise_deg < 10)) return "steer_noise_deg must be in [0, 10)";
-  if (!(std::abs(steer_bias_deg) < 10)) return "steer_bias_deg must be in (-10, 10)";
-  if (!(slip_frac >= 0 && slip_frac < 0.5)) return "slip_frac must be in [0, 0.5)";
+  if (!(std::abs(steer_offset_deg) < 10)) return "steer_offset_deg must be in (-10, 10)";
+  if (!(std::abs(wheelbase_error_frac) < 0.2)) return "wheelbase_error_frac must be in (-0.2, 0.2)";
+  if (!(encoder_counts_per_rev >= 1 && encoder_counts_per_rev <= 1e7)) {
+    return "encoder_counts_per_rev must be in [1, 1e7]";
+  }
+  if (!(wheel_radius_m > 0 && wheel_radius_m < 10)) return "wheel_radius_m must be in (0, 10)";
+  if (!(slip_per_accel_s2_m >= 0 && slip_per_accel_s2_m <= 1)) {
+    return "slip_per_accel_s2_m must be in [0, 1]";
+  }
+  if (!(turn_slip_per_lat_accel_s2_m >= 0 && turn_slip_per_lat_accel_s2_m <= 1)) {
+    return "turn_slip_per_lat_accel_s2_m must be in [0, 1]";
+  }
+  if (!(slip_noise_frac >= 0 && slip_noise_frac <= 10)) return "slip_noise_frac must be in [0, 10]";
+  if (!(heading_noise_deg_sqrt_m >= 0 && heading_noise_deg_sqrt_m <= 10)) {
+    return "heading_noise_deg_sqrt_m must be in [0, 10]";
+  }
+  return "";
+}
+
+std::string VibrationOptions::Check() const {
+  if (!(natural_frequency_hz > 0 && natural_frequency_hz <= 1000)) {
+    return "natural_frequency_hz must be in (0, 1000]";
+  }
+  if (!(damping_ratio > 0 && damping_ratio <= 10)) return "damping_ratio must be in (0, 10]";
+  if (!(roll_sd_deg >= 0 && roll_sd_deg <= 10)) return "roll_sd_deg must be in [0, 10]";
+  if (!(pitch_sd_deg >= 0 && pitch_sd_deg <= 10)) return "pitch_sd_deg must be in [0, 10]";
+  if (!(height_sd_m >= 0 && height_sd_m <= 0.1)) return "height_sd_m must be in [0, 0.1]";
+  if (!(reference_speed_m_s > 0)) return "reference_speed_m_s must be positive";
+  if (!(std::abs(pitch_per_accel_deg_s2_m) <= 20)) {
+    return "pitch_per_accel_deg_s2_m must be in [-20, 20]";
+  }
+  if (!(std::abs(roll_per_lat_accel_deg_s2_m) <= 20)) {
+    return "roll_per_lat_accel_deg_s2_m must be in [-20, 20]";
+  }
   return "";
 }
 
@@ -423,13 +476,17 @@ CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& o) {
 }
 
 RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
-                       const OdometryNoiseOptions& odometry,
+                       const OdometryErrorOptions& odometry,
                        const std::vector<Obstacle2D>& obstacles, double frame_rate_hz,
                        uint64_t seed) {
   ThrowIfBad("robot", robot.Check());
   ThrowIfBad("route", route.Check());
   ThrowIfBad("odometry", odometry.Check());
   ThrowIfBad("obstacles", CheckObstacles(obstacles));
+  if (std::abs(odometry.steer_offset_deg * odometry.error_scale) >= robot.max_steer_deg) {
+    throw InputError("odometry", "steer_offset_deg (times error_scale) must stay below the robot's "
+                                 "max_steer_deg " + FormatNumber(robot.max_steer_deg));
+  }
   if (!(frame_rate_hz > 0 && frame_rate_hz <= robot.integration_rate_hz)) {
     throw InputError("frame_rate_hz", "must be positive and at most integration_rate_hz");
   }
@@ -450,9 +507,18 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   const double max_steer_step = robot.max_steer_rate_deg_s * kDegToRad * dt;
   const double max_speed_step = robot.max_accel_m_s2 * dt;
   const double max_curvature = std::tan(max_steer) / robot.wheelbase_m;
-  const double slip_scale = 1.0 + odometry.slip_frac;
-  const double steer_bias = odometry.steer_bias_deg * kDegToRad;
-  const double steer_sd = odometry.steer_noise_deg * kDegToRad;
+  // The error model, scaled (OdometryErrorOptions).
+  const double k = odometry.enabled ? odometry.error_scale : 0.0;
+  const double true_radius_scale = 1.0 + k * odometry.wheel_radius_error_frac;
+  const double steer_offset = k * odometry.steer_offset_deg * kDegToRad;
+  const double true_wheelbase = robot.wheelbase_m * (1.0 + k * odometry.wheelbase_error_frac);
+  const double slip_per_accel = k * odometry.slip_per_accel_s2_m;
+  const double turn_slip_per_lat_accel = k * odometry.turn_slip_per_lat_accel_s2_m;
+  const double heading_noise = k * odometry.heading_noise_deg_sqrt_m * kDegToRad;
+  const double metres_per_count = 2.0 * M_PI * odometry.wheel_radius_m / odometry.encoder_counts_per_rev;
+  const bool steer_on_odometry = robot.navigation == TricycleOptions::Navigation::kOdometry;
+  const VibrationOptions& vib = robot.vibration;
+  const double vib_omega = 2.0 * M_PI * vib.natural_frequency_hz;
   // Generous bound on the simulated time, so a route the robot cannot follow fails loudly.
   const double planned_m = route.frames > 0 ? 0.0 : route.laps * path.loop_m() + path.lead_m();
   const double max_time_s = route.frames > 0 ? route.frames / frame_rate_hz
@@ -467,17 +533,25 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   Pose2 truth{start.x(), start.y(), std::atan2(heading.y(), heading.x())};
   Pose2 odo = truth;
   const double theta0 = truth.theta_rad;
-  double speed = 0, steer = 0, s = 0, travelled_m = 0;
+  double speed = 0, steer = 0, s = 0, s_true = 0, travelled_m = 0, route_deviation_m = 0;
+  double wheel_turns_m = 0;  // drive-wheel rotation times the nominal radius, unquantised
+  int64_t counts = 0;        // encoder counts so far
+  MountAxis roll, pitch, height;
 
   auto check_pose = [&](const Pose2& pose, double time_s) {
     const Box footprint = FootprintBox(pose, robot);
     const Eigen::Vector2d base(pose.x_m, pose.y_m);
     for (size_t j = 0; j < obstacles.size(); ++j) {
       if (FootprintHits(footprint, obstacles[j])) {
-        char when[64];
-        std::snprintf(when, sizeof(when), "%.2f", time_s);
-        throw InputError("route",
-                         "robot collides with '" + obstacles[j].name + "' at t = " + when + " s");
+        char when[160];
+        std::snprintf(when, sizeof(when),
+                      "at frame %d (t = %.2f s), its true path %.2f m from the route and %.2f m from "
+                      "its odometry",
+                      static_cast<int>(std::floor(time_s * frame_rate_hz + 1e-9)), time_s,
+                      route_deviation_m, std::hypot(odo.x_m - pose.x_m, odo.y_m - pose.y_m));
+        throw InputError("route", "robot collides with '" + obstacles[j].name + "' " + when +
+                                      "; lower the odometry error (odometry.error_scale) or widen "
+                                      "the route (route.waypoints_m further from the furniture)");
       }
       const double d = DistanceToObstacle(base, obstacles[j]);
       run.obstacle_distance_m[j] = std::min(run.obstacle_distance_m[j], d);
@@ -496,14 +570,18 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
       throw InputError("route",
                        "robot did not finish the route within " + FormatNumber(max_time_s) + " s");
     }
-    // Pure pursuit on the rounded route.
+    // Pure pursuit on the rounded route, from the pose the robot steers on.
+    const Pose2& nav = steer_on_odometry ? odo : truth;
     double tracking_error = 0;
-    s = path.Project({truth.x_m, truth.y_m}, std::max(0.0, s - kSearchBackM),
+    s = path.Project({nav.x_m, nav.y_m}, std::max(0.0, s - kSearchBackM),
                      s + kSearchAheadM + route.lookahead_m, &tracking_error);
     run.max_tracking_error_m = std::max(run.max_tracking_error_m, tracking_error);
+    s_true = path.Project({truth.x_m, truth.y_m}, std::max(0.0, s_true - kSearchBackM),
+                          s_true + kSearchAheadM + route.lookahead_m, &route_deviation_m);
+    run.max_route_deviation_m = std::max(run.max_route_deviation_m, route_deviation_m);
     const Eigen::Vector2d target = path.Point(s + route.lookahead_m);
-    const double c = std::cos(truth.theta_rad), sn = std::sin(truth.theta_rad);
-    const Eigen::Vector2d rel = target - Eigen::Vector2d(truth.x_m, truth.y_m);
+    const double c = std::cos(nav.theta_rad), sn = std::sin(nav.theta_rad);
+    const Eigen::Vector2d rel = target - Eigen::Vector2d(nav.x_m, nav.y_m);
     const double lateral = -sn * rel.x() + c * rel.y();
     const double curvature = std::clamp(2.0 * lateral / std::max(rel.squaredNorm(), 1e-12),
                                         -max_curvature, max_curvature);
@@ -513,38 +591,71 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
                        -max_steer, max_steer);
     const double base_limit = std::min(profile.At(s), profile.At(s + route.lookahead_m));
     const double speed_cmd = std::min(robot.max_speed_m_s, base_limit / std::cos(steer));
+    const double previous_speed = speed;
     speed = std::clamp(speed + std::clamp(speed_cmd - speed, -max_speed_step, max_speed_step), 0.0,
                        robot.max_speed_m_s);
+    const double accel = (speed - previous_speed) / dt;
 
-    // What the odometry measures during this step.
-    double odo_speed = speed, odo_steer = steer;
-    if (odometry.enabled) {
-      Rng rng = KeyedRng(seed, "robot.odometry", step);
-      odo_speed = speed * slip_scale * (1.0 + odometry.encoder_noise_frac * rng.Normal());
-      odo_steer = steer + steer_bias + steer_sd * rng.Normal();
+    // What the encoders report this step (steer and speed are servoed on them) ...
+    const double wheel_m = speed * dt;
+    wheel_turns_m += wheel_m;
+    const int64_t new_counts = static_cast<int64_t>(std::floor(wheel_turns_m / metres_per_count));
+    const double odo_wheel_m = odometry.enabled ? (new_counts - counts) * metres_per_count : wheel_m;
+    counts = new_counts;
+    const Motion odo_step = TricycleMotion(odo_wheel_m, steer, robot.wheelbase_m);
+    // ... and how the robot truly moves.
+    Rng rng = KeyedRng(seed, "robot.odometry", step);
+    const double n1 = rng.Normal(), n2 = rng.Normal(), n3 = rng.Normal();
+    const double slip = slip_per_accel * accel * (1.0 + odometry.slip_noise_frac * n1);
+    const double true_wheel_m = wheel_m * true_radius_scale * (1.0 - slip);
+    const double true_steer = steer + steer_offset;
+    Motion true_step = TricycleMotion(true_wheel_m, true_steer, true_wheelbase);
+    const double base_speed = speed * std::cos(true_steer);
+    const double lateral_accel = base_speed * base_speed * std::tan(true_steer) / true_wheelbase;
+    true_step.dtheta_rad *= 1.0 - std::min(1.0, turn_slip_per_lat_accel * std::abs(lateral_accel) *
+                                                    (1.0 + odometry.slip_noise_frac * n2));
+    true_step.dtheta_rad += heading_noise * std::sqrt(std::abs(true_step.forward_m)) * n3;
+    if (!odometry.enabled) true_step = odo_step;
+
+    // Camera mount: roughness grows with speed; acceleration pitches, lateral acceleration rolls.
+    if (vib.enabled) {
+      Rng vrng = KeyedRng(seed, "robot.vibration", step);
+      const double level = base_speed / vib.reference_speed_m_s;
+      const double z = vib.damping_ratio;
+      roll.Step(vib.roll_per_lat_accel_deg_s2_m * kDegToRad * lateral_accel,
+                level * vib.roll_sd_deg * kDegToRad, vrng.Normal(), vib_omega, z, dt);
+      pitch.Step(-vib.pitch_per_accel_deg_s2_m * kDegToRad * accel,
+                 level * vib.pitch_sd_deg * kDegToRad, vrng.Normal(), vib_omega, z, dt);
+      height.Step(0.0, level * vib.height_sd_m, vrng.Normal(), vib_omega, z, dt);
     }
 
-    // Frames falling inside [t, t + dt) are sampled by integrating part of this step.
+    // Frames falling inside [t, t + dt) are sampled by interpolating this step's motion.
     bool done = false;
     while (true) {
       const double frame_t = frame / frame_rate_hz;
       if (frame_t >= t + dt - 1e-12 * (1.0 + t)) break;
-      const double part = std::max(0.0, frame_t - t);
+      const double part = std::max(0.0, frame_t - t) / dt;
       RobotSample sample;
       sample.frame = frame;
       sample.time_s = frame_t;
       Pose2 base = truth;
-      Propagate(base, speed, steer, robot.wheelbase_m, part);
+      Advance(base, part * true_step.forward_m, part * true_step.dtheta_rad);
       Pose2 odo_now = odo;
-      Propagate(odo_now, odo_speed, odo_steer, robot.wheelbase_m, part);
+      Advance(odo_now, part * odo_step.forward_m, part * odo_step.dtheta_rad);
+      const Pose2& nav_now = steer_on_odometry ? odo_now : base;
       double ignored = 0;
-      const double s_frame = path.Project({base.x_m, base.y_m}, std::max(0.0, s - kSearchBackM),
-                                          s + kSearchAheadM, &ignored);
+      const double s_frame = path.Project({nav_now.x_m, nav_now.y_m},
+                                          std::max(0.0, s - kSearchBackM), s + kSearchAheadM,
+                                          &ignored);
       sample.lap = s_frame / path.loop_m();
       sample.camera = CameraPoseFromBase(base, robot);
+      sample.vibration = {roll.x, pitch.x, height.x};
+      sample.camera.roll_rad += roll.x;
+      sample.camera.pitch_rad += pitch.x;
+      sample.camera.z_m += height.x;
       sample.speed_m_s = speed;
       sample.steer_rad = steer;
-      run.path_length_m = travelled_m + speed * std::cos(steer) * part;
+      run.path_length_m = travelled_m + part * true_step.forward_m;
       run.heading_change_rad = base.theta_rad - theta0;
       run.laps = sample.lap;
       base.theta_rad = WrapAngle(base.theta_rad);
@@ -558,12 +669,25 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
     }
     if (done) break;
 
-    Propagate(truth, speed, steer, robot.wheelbase_m, dt);
-    Propagate(odo, odo_speed, odo_steer, robot.wheelbase_m, dt);
-    travelled_m += speed * std::cos(steer) * dt;
+    Advance(truth, true_step.forward_m, true_step.dtheta_rad);
+    Advance(odo, odo_step.forward_m, odo_step.dtheta_rad);
+    travelled_m += true_step.forward_m;
     check_pose(truth, t + dt);
   }
   return run;
+}
+
+std::vector<PoseRecord> PoseRecordsOf(const RobotRun& run, int frames) {
+  const size_t n = frames < 0 ? run.samples.size() : std::min(run.samples.size(), static_cast<size_t>(frames));
+  std::vector<PoseRecord> poses;
+  poses.reserve(n);
+  for (size_t f = 0; f < n; ++f) {
+    const RobotSample& s = run.samples[f];
+    poses.push_back({s.frame, s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, s.camera.x_m,
+                     s.camera.y_m, s.camera.z_m, s.camera.yaw_rad, s.camera.pitch_rad,
+                     s.camera.roll_rad, s.odometry.x_m, s.odometry.y_m, s.odometry.theta_rad});
+  }
+  return poses;
 }
 
 }  // namespace hoilcd

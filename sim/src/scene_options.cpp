@@ -1,13 +1,25 @@
 #include "hoilcd/sim/scene_options.h"
 
+#include <cmath>
+
 namespace hoilcd {
 namespace {
 double D(const nlohmann::json& j, const char* key) { return j.at(key).get<double>(); }
 bool B(const nlohmann::json& j, const char* key) { return j.at(key).get<bool>(); }
 
-// Options structs report problems as strings; in a scene they are input errors.
+// Options structs report problems as strings whose first word names the field ("a.b must ...");
+// in a scene they are input errors at that field's JSON pointer when the scene has that field.
 void Require(const std::string& problem, const Scene& scene, const char* section) {
-  if (!problem.empty()) throw InputError(scene.file + ": /" + section, problem);
+  if (problem.empty()) return;
+  std::string pointer = std::string("/") + section;
+  std::string field_pointer = pointer + "/" + problem.substr(0, problem.find(' '));
+  for (char& c : field_pointer) c = c == '.' ? '/' : c;
+  try {
+    if (scene.resolved.contains(nlohmann::json::json_pointer(field_pointer))) pointer = field_pointer;
+  } catch (const nlohmann::json::exception&) {
+    // Not a valid pointer: the message does not start with a field name.
+  }
+  throw InputError(scene.file + ": " + pointer, problem);
 }
 }  // namespace
 
@@ -72,6 +84,19 @@ TricycleOptions TricycleOptionsFromScene(const Scene& scene) {
   o.camera_pitch_deg = D(r, "camera_pitch_deg");
   o.camera_yaw_deg = D(r, "camera_yaw_deg");
   o.camera_roll_deg = D(r, "camera_roll_deg");
+  o.navigation = r.at("navigation").get<std::string>() == "ground_truth"
+                     ? TricycleOptions::Navigation::kGroundTruth
+                     : TricycleOptions::Navigation::kOdometry;
+  const nlohmann::json& v = r.at("vibration");
+  o.vibration.enabled = B(v, "enabled");
+  o.vibration.natural_frequency_hz = D(v, "natural_frequency_hz");
+  o.vibration.damping_ratio = D(v, "damping_ratio");
+  o.vibration.roll_sd_deg = D(v, "roll_sd_deg");
+  o.vibration.pitch_sd_deg = D(v, "pitch_sd_deg");
+  o.vibration.height_sd_m = D(v, "height_sd_m");
+  o.vibration.reference_speed_m_s = D(v, "reference_speed_m_s");
+  o.vibration.pitch_per_accel_deg_s2_m = D(v, "pitch_per_accel_deg_s2_m");
+  o.vibration.roll_per_lat_accel_deg_s2_m = D(v, "roll_per_lat_accel_deg_s2_m");
   Require(o.Check(), scene, "robot");
   return o;
 }
@@ -92,15 +117,28 @@ RouteOptions RouteOptionsFromScene(const Scene& scene) {
   return o;
 }
 
-OdometryNoiseOptions OdometryOptionsFromScene(const Scene& scene) {
+OdometryErrorOptions OdometryOptionsFromScene(const Scene& scene) {
   const nlohmann::json& r = scene.odometry;
-  OdometryNoiseOptions o;
+  OdometryErrorOptions o;
   o.enabled = B(r, "enabled");
-  o.encoder_noise_frac = D(r, "encoder_noise_frac");
-  o.steer_noise_deg = D(r, "steer_noise_deg");
-  o.steer_bias_deg = D(r, "steer_bias_deg");
-  o.slip_frac = D(r, "slip_frac");
+  o.error_scale = D(r, "error_scale");
+  o.wheel_radius_error_frac = D(r, "wheel_radius_error_frac");
+  o.steer_offset_deg = D(r, "steer_offset_deg");
+  o.wheelbase_error_frac = D(r, "wheelbase_error_frac");
+  o.encoder_counts_per_rev = D(r, "encoder_counts_per_rev");
+  o.wheel_radius_m = D(r, "wheel_radius_m");
+  o.slip_per_accel_s2_m = D(r, "slip_per_accel_s2_m");
+  o.turn_slip_per_lat_accel_s2_m = D(r, "turn_slip_per_lat_accel_s2_m");
+  o.slip_noise_frac = D(r, "slip_noise_frac");
+  o.heading_noise_deg_sqrt_m = D(r, "heading_noise_deg_sqrt_m");
   Require(o.Check(), scene, "odometry");
+  // A steering offset is only meaningful inside the steering range.
+  const double max_steer_deg = D(scene.robot, "max_steer_deg");
+  if (std::abs(o.steer_offset_deg * o.error_scale) >= max_steer_deg) {
+    throw InputError(scene.file + ": /odometry/steer_offset_deg",
+                     "steer_offset_deg times error_scale must stay below /robot/max_steer_deg (" +
+                         std::to_string(max_steer_deg) + " deg)");
+  }
   return o;
 }
 

@@ -52,8 +52,9 @@ std::string SequenceOptions::Check() const {
   return "";
 }
 
-// Bump when a change alters rendered bytes (2: irregular chairs).
-constexpr int kSimulatorRevision = 2;
+// Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
+// camera vibration, cam_roll in poses.csv).
+constexpr int kSimulatorRevision = 3;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
@@ -211,13 +212,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   progress.Done();
 
   // Side files, then the manifest that declares the dataset complete.
-  std::vector<PoseRecord> poses;
-  for (int f = 0; f < frames; ++f) {
-    const RobotSample& s = run.samples[f];
-    poses.push_back({s.frame, s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, s.camera.x_m,
-                     s.camera.y_m, s.camera.z_m, s.camera.yaw_rad, s.camera.pitch_rad, s.odometry.x_m,
-                     s.odometry.y_m, s.odometry.theta_rad});
-  }
+  const std::vector<PoseRecord> poses = PoseRecordsOf(run, frames);
   std::vector<DatasetEvent> events;
   for (const DatasetEvent& e : world.events())
     if (e.frame < frames) events.push_back(e);
@@ -225,7 +220,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   std::stable_sort(events.begin(), events.end(),
                    [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
   WriteDatasetFile(dir, "poses.csv", PosesToCsv(poses), &manifest);
-  WriteDatasetFile(dir, "poses_tum.txt", PosesToTum(poses, run.samples.empty() ? 0.0 : run.samples[0].camera.roll_rad),
+  WriteDatasetFile(dir, "poses_tum.txt", PosesToTum(poses),
                    &manifest);
   WriteDatasetFile(dir, "persons.json", PersonsToJson(persons), &manifest);
   WriteDatasetFile(dir, "events.json", EventsToJson(events), &manifest);

@@ -23,6 +23,9 @@ std::vector<PoseRecord> CirclePoses(int laps, bool clockwise = true) {
     p.x_m = 3.0 + std::cos(angle);
     p.y_m = 1.5 + std::sin(angle);
     p.theta_rad = std::remainder(angle + sign * M_PI / 2, 2 * M_PI);
+    p.odo_x_m = p.x_m;  // perfect odometry unless a test says otherwise
+    p.odo_y_m = p.y_m;
+    p.odo_theta_rad = p.theta_rad;
     poses.push_back(p);
   }
   return poses;
@@ -133,6 +136,69 @@ TEST(BuildQueries, RevisitMakesEveryFrameAQueryAgainstOlderFramesOnly) {
   EXPECT_EQ(q.database.back(), 139);
   EXPECT_EQ(TrueFrames(q), (std::vector<int>{47, 48, 49, 50, 51, 52, 53}));
   EXPECT_EQ(queries[60].NumTrueMatches(), 0);  // first lap: nothing older is near
+}
+
+// Odometry that drifted 0.15 m along +x during the second lap: the odometric labels of a query
+// then point at other first-lap frames than the true ones.
+std::vector<PoseRecord> DriftedSecondLap() {
+  std::vector<PoseRecord> poses = CirclePoses(2);
+  for (PoseRecord& p : poses)
+    if (p.frame >= kFramesPerLap) p.odo_x_m += 0.15;
+  return poses;
+}
+
+TEST(GroundTruth, OdometryLabelsComeFromOdometricPositionsTrueLabelsFromTruePoses) {
+  ProtocolOptions by_odometry, by_truth;
+  by_truth.ground_truth = "true";
+  const std::vector<PoseRecord> poses = DriftedSecondLap();
+  EXPECT_EQ(TrueFrames(BuildQueries(poses, by_truth)[50]), (std::vector<int>{47, 48, 49, 50, 51, 52, 53}));
+  // Frame 150 sits at angle -pi (x = 2, y = 1.5); its odometry says x = 2.15, closer to the
+  // first-lap frames on either side of 50 whose x is larger.
+  const std::vector<int> odometric = TrueFrames(BuildQueries(poses, by_odometry)[50]);
+  EXPECT_NE(odometric, TrueFrames(BuildQueries(poses, by_truth)[50]));
+  EXPECT_FALSE(odometric.empty());
+  for (int f : odometric) {
+    EXPECT_LE(std::hypot(poses[f].odo_x_m - poses[150].odo_x_m, poses[f].odo_y_m - poses[150].odo_y_m), 0.2);
+  }
+}
+
+TEST(GroundTruth, RelabelKeepsQueriesAndDatabasesAndCompareCountsTheDifferences) {
+  ProtocolOptions options;
+  const std::vector<PoseRecord> poses = DriftedSecondLap();
+  const std::vector<Query> by_odometry = BuildQueries(poses, options);
+  const std::vector<Query> by_truth = RelabelQueries(by_odometry, poses, options, "true");
+  ASSERT_EQ(by_truth.size(), by_odometry.size());
+  for (size_t i = 0; i < by_truth.size(); ++i) {
+    EXPECT_EQ(by_truth[i].frame, by_odometry[i].frame);
+    EXPECT_EQ(by_truth[i].database, by_odometry[i].database);
+  }
+  const LabelDisagreement d = CompareLabels(by_odometry, by_truth);
+  EXPECT_EQ(d.queries, 100);
+  EXPECT_GT(d.queries_differing, 50);
+  EXPECT_GT(d.pairs_differing, d.queries_differing);
+  const LabelDisagreement same = CompareLabels(by_truth, by_truth);
+  EXPECT_EQ(same.queries_differing, 0);
+  EXPECT_EQ(same.pairs_differing, 0);
+  // Perfect odometry: both labellings agree.
+  const std::vector<PoseRecord> perfect = CirclePoses(2);
+  const std::vector<Query> q = BuildQueries(perfect, options);
+  EXPECT_EQ(CompareLabels(q, RelabelQueries(q, perfect, options, "true")).pairs_differing, 0);
+}
+
+TEST(GroundTruth, LabelPosesSwapsInTheOdometryAndOtherGroundTruthFlips) {
+  const std::vector<PoseRecord> poses = DriftedSecondLap();
+  const std::vector<PoseRecord> odometric = LabelPoses(poses, "odometry");
+  EXPECT_EQ(odometric[150].x_m, poses[150].odo_x_m);
+  EXPECT_EQ(odometric[150].theta_rad, poses[150].odo_theta_rad);
+  EXPECT_EQ(LabelPoses(poses, "true")[150].x_m, poses[150].x_m);
+  EXPECT_EQ(OtherGroundTruth("odometry"), "true");
+  EXPECT_EQ(OtherGroundTruth("true"), "odometry");
+}
+
+TEST(GroundTruth, UnknownChoiceIsNamedByCheck) {
+  ProtocolOptions options;
+  options.ground_truth = "gps";
+  EXPECT_EQ(options.Check(), "ground_truth must be 'odometry' or 'true', got 'gps'");
 }
 
 }  // namespace

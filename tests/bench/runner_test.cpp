@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "hoilcd/bench/methods.h"
@@ -20,7 +22,7 @@ namespace fs = std::filesystem;
 
 // Renders the tiny test room once per variant into a temp folder and opens it.
 Dataset TinyDataset(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_runner_test_" + name);
+  const fs::path dir = fs::temp_directory_path() / ("hoilcd_runner_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", overrides);
   SequenceOptions options;
@@ -168,6 +170,46 @@ TEST(Runner, UnknownMethodsAreInputErrorsNamingThem) {
 
 namespace hoilcd {
 namespace {
+
+// The paper's ground truth (odometric positions) and the true poses label a drifting robot's
+// queries differently, and the same scores then measure differently; with every realism effect
+// off they agree exactly. Both choices report the other beside them.
+TEST(Runner, OdometricAndTrueGroundTruthDisagreeOnADriftingRobotAndAgreeOnAnIdealOne) {
+  BenchOptions options;
+  options.methods = ParseMethodList("slcd,dlcd,thumb");
+  const Dataset drifting = TinyDataset("drifting");
+  const BenchResult by_odometry = RunBench(drifting, options);
+  EXPECT_EQ(by_odometry.ground_truth, "odometry");
+  EXPECT_EQ(by_odometry.other_ground_truth, "true");
+  EXPECT_GT(by_odometry.label_disagreement.queries_differing, 0);
+  bool some_mrr_differs = false;
+  for (const MethodRun& run : by_odometry.runs) some_mrr_differs |= run.metrics.mrr != run.other_metrics.mrr;
+  EXPECT_TRUE(some_mrr_differs);
+  options.protocol.ground_truth = "true";
+  const BenchResult by_truth = RunBench(drifting, options);
+  EXPECT_EQ(by_truth.other_ground_truth, "odometry");
+  EXPECT_GT(by_truth.label_disagreement.queries_differing, 0);
+  const std::string report = (fs::temp_directory_path() / ("hoilcd_runner_test_gt_report_" + std::to_string(::getpid()))).string();
+  fs::remove_all(report);
+  WriteReport(by_truth, drifting, options, ReportTiming{}, report);
+  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(report + "/report.json"));
+  EXPECT_EQ(json["protocol"]["ground_truth"], "true");
+  EXPECT_EQ(json["other_ground_truth"]["ground_truth"], "odometry");
+  EXPECT_TRUE(json["other_ground_truth"]["methods"]["dlcd"].contains("mrr"));
+  EXPECT_GT(json["other_ground_truth"]["queries_differing"].get<int>(), 0);
+  EXPECT_TRUE(json["inspect"]["trajectory"].contains("lap_difference_median_m"));
+  const std::string markdown = ReadFileBytes(report + "/report.md");
+  EXPECT_NE(markdown.find("### The same scores under odometry ground truth"), std::string::npos);
+  EXPECT_NE(markdown.find("## Dataset (hoilcd inspect)"), std::string::npos);
+  fs::remove_all(report);
+
+  options.protocol.ground_truth = "odometry";
+  const Dataset ideal = TinyDataset(
+      "ideal", {"robot.navigation=ground_truth", "odometry.enabled=false", "robot.vibration.enabled=false"});
+  const BenchResult agreeing = RunBench(ideal, options);
+  EXPECT_EQ(agreeing.label_disagreement.pairs_differing, 0);
+  for (const MethodRun& run : agreeing.runs) EXPECT_EQ(run.metrics.mrr, run.other_metrics.mrr) << run.name;
+}
 
 TEST(Runner, ASequenceShorterThanALapHasNoScoredQueriesAndStillReports) {
   const Dataset dataset = TinyDataset("short", {"frames=60"});

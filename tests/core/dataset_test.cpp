@@ -58,6 +58,7 @@ std::vector<PoseRecord> SamplePoses(int count) {
     p.cam_z_m = 0.8;
     p.cam_yaw_rad = p.theta_rad;
     p.cam_pitch_rad = 0.05;
+    p.cam_roll_rad = -0.01 * i;
     p.odo_x_m = p.x_m + 1e-3 * i;
     p.odo_y_m = p.y_m - 2e-3 * i;
     p.odo_theta_rad = p.theta_rad + 1e-4;
@@ -255,7 +256,7 @@ TEST(PosesCsv, RoundTripIsExact) {
   const std::vector<PoseRecord> poses = SamplePoses(5);
   const std::string csv = PosesToCsv(poses);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,odo_x,odo_y,odo_theta");
+            "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,odo_y,odo_theta");
   const std::vector<PoseRecord> back = PosesFromCsv(csv, "poses.csv");
   ASSERT_EQ(back.size(), poses.size());
   for (size_t i = 0; i < poses.size(); ++i) {
@@ -264,6 +265,7 @@ TEST(PosesCsv, RoundTripIsExact) {
     EXPECT_EQ(back[i].x_m, poses[i].x_m);
     EXPECT_EQ(back[i].y_m, poses[i].y_m);
     EXPECT_EQ(back[i].cam_pitch_rad, poses[i].cam_pitch_rad);
+    EXPECT_EQ(back[i].cam_roll_rad, poses[i].cam_roll_rad);
     EXPECT_EQ(back[i].odo_theta_rad, poses[i].odo_theta_rad);
   }
   EXPECT_EQ(PosesToCsv(back), csv);
@@ -275,13 +277,13 @@ TEST(PosesCsv, MalformedLinesNameFileLineAndColumn) {
   std::istringstream in(csv);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   lines[2].replace(lines[2].find(',', lines[2].find(',') + 1) + 1, 0, "x");  // line 3, column x
-  lines[3] += ",7";                                                          // line 4: 14 columns
+  lines[3] += ",7";                                                          // line 4: 15 columns
   std::string broken;
   for (const std::string& line : lines) broken += line + "\n";
   const std::string message = InputErrorOf([&] { PosesFromCsv(broken, "D/poses.csv"); });
   EXPECT_NE(message.find("D/poses.csv:3: column 3 'x': expected a finite number, got 'x"),
             std::string::npos) << message;
-  EXPECT_NE(message.find("D/poses.csv:4: expected 13 columns, got 14"), std::string::npos)
+  EXPECT_NE(message.find("D/poses.csv:4: expected 14 columns, got 15"), std::string::npos)
       << message;
   const std::string header_message = InputErrorOf([] { PosesFromCsv("frame,t\n", "p.csv"); });
   EXPECT_NE(header_message.find("p.csv:1: expected header"), std::string::npos);
@@ -294,7 +296,7 @@ TEST(PosesTum, WritesWorldFromCamWithCameraLookingAlongHeading) {
   poses[0].cam_y_m = 1;
   poses[0].cam_z_m = 0.8;
   poses[0].cam_yaw_rad = M_PI / 2;
-  const std::string tum = PosesToTum(poses, 0.0);
+  const std::string tum = PosesToTum(poses);
   std::istringstream in(tum.substr(tum.find('\n') + 1));
   double t, tx, ty, tz, qx, qy, qz, qw;
   in >> t >> tx >> ty >> tz >> qx >> qy >> qz >> qw;
@@ -304,6 +306,25 @@ TEST(PosesTum, WritesWorldFromCamWithCameraLookingAlongHeading) {
   EXPECT_EQ(tz, 0.8);
   const Eigen::Vector3d forward = Eigen::Quaterniond(qw, qx, qy, qz) * Eigen::Vector3d::UnitZ();
   EXPECT_NEAR((forward - Eigen::Vector3d::UnitY()).norm(), 0, 1e-12);  // yaw 90°: looks along +y
+}
+
+// Each row carries the full orientation: roll turns the image about the optical axis, so the
+// camera's x axis (image right) leaves the horizontal plane by the roll angle.
+TEST(PosesTum, CarriesEachRowsRollAboutTheOpticalAxis) {
+  std::vector<PoseRecord> poses(2);
+  poses[1].cam_roll_rad = 0.02;
+  const std::string tum = PosesToTum(poses);
+  std::istringstream in(tum.substr(tum.find('\n') + 1));
+  std::vector<Eigen::Quaterniond> q;
+  for (int row = 0; row < 2; ++row) {
+    double t, tx, ty, tz, qx, qy, qz, qw;
+    in >> t >> tx >> ty >> tz >> qx >> qy >> qz >> qw;
+    ASSERT_FALSE(in.fail());
+    q.emplace_back(qw, qx, qy, qz);
+  }
+  EXPECT_NEAR((q[0] * Eigen::Vector3d::UnitZ() - q[1] * Eigen::Vector3d::UnitZ()).norm(), 0, 1e-12);
+  EXPECT_NEAR(std::abs((q[0] * Eigen::Vector3d::UnitX()).z()), 0, 1e-12);
+  EXPECT_NEAR(std::abs((q[1] * Eigen::Vector3d::UnitX()).z()), std::sin(0.02), 1e-12);
 }
 
 TEST(PersonsJson, RoundTripKeepsEveryField) {

@@ -1,4 +1,5 @@
 #include "hoilcd/sim/scene.h"
+#include "hoilcd/sim/scene_options.h"
 
 #include <gtest/gtest.h>
 
@@ -87,6 +88,46 @@ TEST(Scene, CrossFieldProblemsNameTheirPaths) {
                          "test.json: /crowd/seating/0/table", "below 6"));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"route", {{"waypoints_m", {{0.5, 0.5}, {8.0, 0.5}}}}}}),
                          "test.json: /route/waypoints_m/1", "inside the room"));
+}
+
+TEST(Scene, RobotErrorModelAndVibrationProblemsNameTheirPaths) {
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"odometry", {{"slip_noise_frac", -1}}}}),
+                         "test.json: /odometry/slip_noise_frac", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"odometry", {{"heading_noise_deg_sqrt_m", -0.1}}}}),
+                         "test.json: /odometry/heading_noise_deg_sqrt_m", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"navigation", "gps"}}}}), "test.json: /robot/navigation", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"vibration", {{"damping_ratio", 0}}}}}}),
+                         "test.json: /robot/vibration/damping_ratio", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"vibration", {{"shake", 1}}}}}}),
+                         "test.json: /robot/vibration", "unknown key 'shake'"));
+}
+
+// A steering offset beyond the steering limit passes the schema's own ranges but not the robot.
+TEST(SceneOptions, SteeringOffsetBeyondTheSteeringLimitNamesItsPointer) {
+  const Scene scene = SceneFromJson(json{{"robot", {{"max_steer_deg", 8}}},
+                                         {"odometry", {{"steer_offset_deg", 5}, {"error_scale", 2}}}},
+                                    "test.json");
+  try {
+    OdometryOptionsFromScene(scene);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].where, "test.json: /odometry/steer_offset_deg");
+    EXPECT_NE(e.problems()[0].message.find("must stay below /robot/max_steer_deg"), std::string::npos);
+  }
+}
+
+TEST(SceneOptions, AnOptionsCheckNamesTheFieldsPointer) {
+  const Scene scene = SceneFromJson(json{{"robot", {{"vibration", {{"reference_speed_m_s", 1e-300}}}}}}, "test.json");
+  TricycleOptions robot = TricycleOptionsFromScene(scene);  // valid: tiny but positive
+  EXPECT_GT(robot.vibration.reference_speed_m_s, 0);
+  const Scene bad = SceneFromJson(json{{"robot", {{"base_to_rear_m", 0.5}}}}, "test.json");
+  try {
+    TricycleOptionsFromScene(bad);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems()[0].where, "test.json: /robot/base_to_rear_m");
+  }
 }
 
 TEST(Scene, OverridesSetValuesByDottedPathOrPointer) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "hoilcd/core/dataset.h"
@@ -13,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_sequence_test_" + name);
+  const fs::path dir = fs::temp_directory_path() / ("hoilcd_sequence_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   return dir.string();
 }
@@ -126,6 +128,23 @@ TEST(Sequence, GroundTruthFilesDescribeTheFrames) {
       EXPECT_FALSE(p.contacts.empty());
     }
   }
+}
+
+// The mount's vibration moves the camera that renders the frame, and poses.csv / poses_tum.txt say
+// where it was; the base's path does not depend on it.
+TEST(Sequence, CameraVibrationMovesTheRenderedViewAndIsWrittenToThePoses) {
+  const std::string shaking_dir = TempDir("vibration_on"), rigid_dir = TempDir("vibration_off");
+  Render(PaperRoom(), shaking_dir, 3, 0);
+  Render(PaperRoom({"robot.vibration.enabled=false"}), rigid_dir, 3, 0);
+  const Dataset shaking = Dataset::Open(shaking_dir), rigid = Dataset::Open(rigid_dir);
+  const PoseRecord &a = shaking.poses()[2], &b = rigid.poses()[2];
+  EXPECT_EQ(a.x_m, b.x_m);
+  EXPECT_EQ(a.theta_rad, b.theta_rad);
+  EXPECT_NE(a.cam_pitch_rad, b.cam_pitch_rad);
+  EXPECT_NE(a.cam_roll_rad, b.cam_roll_rad);
+  EXPECT_EQ(b.cam_roll_rad, 0.0);
+  EXPECT_NE(shaking.manifest().files.at("exr/000002.exr"), rigid.manifest().files.at("exr/000002.exr"));
+  EXPECT_NE(shaking.manifest().files.at("poses_tum.txt"), rigid.manifest().files.at("poses_tum.txt"));
 }
 
 }  // namespace

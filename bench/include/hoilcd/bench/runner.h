@@ -64,12 +64,17 @@ struct FrameFeatures {
 
 struct MethodRun {
   std::string name;
-  MethodMetrics metrics;
+  MethodMetrics metrics;        // under the chosen ground truth (protocol.ground_truth)
+  MethodMetrics other_metrics;  // the same scores under the other ground truth
   std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
 };
 
 struct BenchResult {
-  std::vector<Query> queries;
+  std::vector<Query> queries;              // labelled with protocol.ground_truth
+  std::string ground_truth;                // protocol.ground_truth: "odometry" or "true"
+  std::string other_ground_truth;          // the other one
+  std::vector<Query> other_queries;        // the same queries labelled with other_ground_truth
+  LabelDisagreement label_disagreement;    // queries vs other_queries
   std::vector<MethodRun> runs;             // in the order asked for
   std::vector<FrameFeatures> features;     // per frame
   TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)

@@ -96,16 +96,17 @@ struct PoseRecord {
   double x_m = 0, y_m = 0, theta_rad = 0;            // robot base, ground truth
   double cam_x_m = 0, cam_y_m = 0, cam_z_m = 0;      // camera, ground truth
   double cam_yaw_rad = 0, cam_pitch_rad = 0;         // camera, ground truth (REP 103)
+  double cam_roll_rad = 0;                           // camera roll about its optical axis
   double odo_x_m = 0, odo_y_m = 0, odo_theta_rad = 0;  // noisy wheel odometry
 };
 
-// poses.csv: a header line "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,odo_x,odo_y,
-// odo_theta" then one row per frame; numbers are written so that they read back exactly.
+// poses.csv: a header line "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,
+// odo_y,odo_theta" then one row per frame; numbers are written so that they read back exactly.
 std::string PosesToCsv(const std::vector<PoseRecord>& poses);
 // Errors name "path:line" and the column.
 std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string& path);
 // TUM trajectory "t tx ty tz qx qy qz qw" of world_from_cam (OpenCV camera frame).
-std::string PosesToTum(const std::vector<PoseRecord>& poses, double cam_roll_rad);
+std::string PosesToTum(const std::vector<PoseRecord>& poses);
 
 // A dataset folder opened for reading.
 class Dataset {

@@ -1,6 +1,7 @@
 // Tricycle-drive robot (steered, driven front wheel; two passive rear wheels) following a closed
-// waypoint route by pure pursuit, sampled at the camera rate: ground-truth base and camera poses,
-// noisy wheel odometry, and footprint collision checks against 2-D obstacles (SPEC.md 5.1).
+// waypoint route by pure pursuit on its own wheel odometry (as the paper's robot did), sampled at
+// the camera rate: true base and camera poses (with mount vibration), the odometry, and footprint
+// collision checks against 2-D obstacles (SPEC.md 5.1). Error model: docs/robot.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "hoilcd/core/camera.h"
+#include "hoilcd/core/dataset.h"
 
 namespace hoilcd {
 
@@ -16,6 +18,26 @@ namespace hoilcd {
 // counter-clockwise positive, 0 = along world +x).
 struct Pose2 {
   double x_m = 0, y_m = 0, theta_rad = 0;
+};
+
+// Camera mount vibration: roll, pitch and height of the camera each follow a damped second-order
+// mount (natural frequency, damping ratio) driven by floor roughness (white noise whose level
+// grows linearly with speed, scaled so the stationary sd at reference_speed_m_s is the given
+// value) and pulled by the robot's acceleration (longitudinal -> pitch, lateral -> roll).
+// Noise from KeyedRng(seed, "robot.vibration", integration step): keyed by time, not thread.
+struct VibrationOptions {
+  bool enabled = true;                     // false: the camera is rigidly mounted
+  double natural_frequency_hz = 4.0;       // Hz, mast resonance
+  double damping_ratio = 0.3;              // dimensionless, of the mount
+  double roll_sd_deg = 0.3;                // deg, roughness-driven roll sd at the reference speed
+  double pitch_sd_deg = 0.4;               // deg, roughness-driven pitch sd at the reference speed
+  double height_sd_m = 0.002;              // m, roughness-driven height sd at the reference speed
+  double reference_speed_m_s = 0.43;       // m/s, speed at which the sds above hold
+  double pitch_per_accel_deg_s2_m = 1.0;   // deg of nose-up pitch per m/s^2 of acceleration
+  double roll_per_lat_accel_deg_s2_m = 1.0;  // deg of outward roll per m/s^2 lateral accel.
+
+  // Empty string when valid, else what is wrong (the first word names the field).
+  std::string Check() const;
 };
 
 // Kinematic limits, footprint and camera mount. Kinematics: x' = v cos(d) cos(theta),
@@ -37,6 +59,11 @@ struct TricycleOptions {
   double camera_pitch_deg = 5.0;        // deg, camera pitch; positive looks down (REP 103)
   double camera_yaw_deg = 0.0;          // deg, camera yaw relative to the body, counter-clockwise
   double camera_roll_deg = 0.0;         // deg, camera roll about its optical axis
+  VibrationOptions vibration;           // camera mount vibration
+  // What the path follower steers on: kOdometry (the pose integrated from the wheel encoders and
+  // the steering encoder, like the paper's robot) or kGroundTruth (the true pose: an ideal robot).
+  enum class Navigation { kOdometry, kGroundTruth };
+  Navigation navigation = Navigation::kOdometry;
 
   // Smallest radius the base can turn on: L / tan(max_steer).
   double MinTurnRadiusM() const;
@@ -65,20 +92,33 @@ struct RouteOptions {
   std::string Check() const;
 };
 
-// What the wheel odometry measures. Per integration step: wheel travel is scaled by
-// (1 + slip_frac) * (1 + encoder_noise_frac * n1) and the steering angle reads
-// d + steer_bias_deg + steer_noise_deg * n2, with n1, n2 standard normal from
-// KeyedRng(seed, "robot.odometry", step). Odometry integrates those with the true kinematics.
-struct OdometryNoiseOptions {
-  double encoder_noise_frac = 0.01;  // relative sd of wheel travel per integration step
-  double steer_noise_deg = 0.2;      // deg, sd of white steering-angle noise per step
-  double steer_bias_deg = 0.05;      // deg, constant steering-angle measurement bias
-  double slip_frac = 0.005;          // fraction by which the driven wheel over-reports travel
-  bool enabled = true;               // false: odometry equals ground truth
+// How the true motion differs from what the encoders report (docs/robot.md derives the defaults
+// from published figures). The drive motor is servoed on the wheel encoder and the steering motor
+// on the steering encoder, so the commanded motion is what odometry integrates (with the nominal
+// wheel radius and wheelbase); the true motion is
+//   travel = encoder rotation * r_true * (1 - slip),  slip = k_a * a * (1 + slip_noise * n1)
+//   steer  = measured steering + steer_offset
+//   turn   = travel * tan(steer) / L_true * (1 - k_t * |a_lat| * (1 + slip_noise * n2))
+//            + heading_noise * sqrt(travel) * n3
+// with n1..n3 standard normal from KeyedRng(seed, "robot.odometry", integration step). The encoder
+// counts are quantised (counts_per_rev). error_scale multiplies every error term.
+struct OdometryErrorOptions {
+  bool enabled = true;                         // false: the true motion is the measured motion
+  double error_scale = 1.0;                    // multiplies every error below (0: perfect)
+  double wheel_radius_error_frac = 0.001;      // true / nominal driven-wheel radius - 1
+  double steer_offset_deg = 0.01;              // deg, true steering angle minus the measured one
+  double wheelbase_error_frac = 0.002;         // true / nominal wheelbase - 1
+  double encoder_counts_per_rev = 2048;        // drive-wheel encoder counts per revolution
+  double wheel_radius_m = 0.05;                // m, nominal driven-wheel radius
+  double slip_per_accel_s2_m = 0.01;           // longitudinal slip per m/s^2 of acceleration
+  double turn_slip_per_lat_accel_s2_m = 0.01;  // yaw-rate shortfall per m/s^2 of lateral accel.
+  double slip_noise_frac = 0.5;                // relative sd of both slips
+  double heading_noise_deg_sqrt_m = 0.03;      // deg/sqrt(m), random heading walk (floor)
 
-  // Empty string when valid, else what is wrong.
+  // Empty string when valid, else what is wrong (the first word names the field).
   std::string Check() const;
 };
+
 
 // A 2-D obstacle footprint on the floor: an oriented rectangle or a circle.
 struct Obstacle2D {
@@ -101,12 +141,18 @@ double DistanceToObstacle(const Eigen::Vector2d& point_m, const Obstacle2D& obst
 // The camera's world pose for a base pose (rigid front mount from the options).
 CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& options);
 
+// The camera's deviation from its rigid mount (vibration).
+struct MountMotion {
+  double roll_rad = 0, pitch_rad = 0, height_m = 0;
+};
+
 struct RobotSample {
   int frame = 0;
   double time_s = 0;     // s, frame / frame_rate_hz
   Pose2 base;            // ground truth; theta wrapped to (-pi, pi]
-  CameraPose camera;     // ground truth camera pose
-  Pose2 odometry;        // noisy wheel odometry; theta wrapped to (-pi, pi]
+  CameraPose camera;     // ground truth camera pose, vibration included
+  MountMotion vibration; // the camera's deviation from its rigid mount
+  Pose2 odometry;        // wheel odometry; theta wrapped to (-pi, pi]
   double speed_m_s = 0;  // m/s, front-wheel speed
   double steer_rad = 0;  // rad, steering angle
   double lap = 0;        // laps completed: distance along the rounded route / its length
@@ -118,7 +164,8 @@ struct RobotRun {
   std::string closest_obstacle;        // name of the obstacle reaching that minimum
   std::vector<double> obstacle_distance_m;  // m, per obstacle (input order): its minimum
   double max_curvature_per_m = 0;           // 1/m, largest |commanded curvature|
-  double max_tracking_error_m = 0;  // m, largest distance of the base from the rounded route
+  double max_tracking_error_m = 0;  // m, largest distance of the steered-on pose from the route
+  double max_route_deviation_m = 0;  // m, largest distance of the true base from the route
   double path_length_m = 0;         // m, distance travelled by the base
   double heading_change_rad = 0;    // rad, total signed heading change (-2 pi per clockwise lap)
   double laps = 0;                  // laps completed at the last sample
@@ -126,11 +173,15 @@ struct RobotRun {
 
 // Simulates from t = 0; frame k is at t = k / frame_rate_hz. The robot starts at rest on the first
 // waypoint, heading towards the second. If route.frames == 0 it runs until `laps` laps are done
-// (the first frame reaching them is the last). Throws InputError on invalid or infeasible options
-// and on any footprint overlap with an obstacle at an integration step.
+// (the first frame reaching them is the last; laps as the robot believes them). Throws InputError
+// on invalid or infeasible options and on any footprint overlap with an obstacle at an integration
+// step (naming the frame, the obstacle and the drift from the route).
 RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
-                       const OdometryNoiseOptions& odometry,
+                       const OdometryErrorOptions& odometry,
                        const std::vector<Obstacle2D>& obstacles, double frame_rate_hz,
                        uint64_t seed);
+
+// The dataset's poses.csv rows for the first `frames` samples (all when frames < 0).
+std::vector<PoseRecord> PoseRecordsOf(const RobotRun& run, int frames = -1);
 
 }  // namespace hoilcd

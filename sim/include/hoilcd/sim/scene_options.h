@@ -15,6 +15,6 @@ SensorOptions SensorOptionsFromScene(const Scene& scene);
 RenderOptions RenderOptionsFromScene(const Scene& scene, int threads);
 TricycleOptions TricycleOptionsFromScene(const Scene& scene);
 RouteOptions RouteOptionsFromScene(const Scene& scene);  // frames = scene.frames
-OdometryNoiseOptions OdometryOptionsFromScene(const Scene& scene);
+OdometryErrorOptions OdometryOptionsFromScene(const Scene& scene);
 
 }  // namespace hoilcd
