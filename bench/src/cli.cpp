@@ -100,6 +100,14 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
       ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
   cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--slam,!--no-slam", args->options.slam,
+                "each method's loops in a pose graph: ATE/RPE per back end (default: on in run, off in bench)");
+  cmd->add_option("--slam-backend", args->options.slam_options.slam.graph.backend,
+                  "headline pose-graph back end: plain, cauchy or dcs (all three are reported)")
+      ->check(CLI::IsMember(PoseGraphBackends()));
+  cmd->add_option("--loop-threshold", args->options.slam_options.slam.loop_threshold,
+                  "accept a method's top-1 match as a loop when its score is at least this (default: the "
+                  "threshold of 100 % precision on the calibration sequence)");
 }
 
 BenchOptions ResolveBench(const BenchArgs& args, int threads) {
@@ -256,6 +264,7 @@ int RunCommandLine(int argc, char** argv) {
 
   SceneArgs run_scene;
   BenchArgs run_args;
+  run_args.options.slam = true;  // hoilcd run reports the SLAM consequence by default
   RunOptions run_options;
   CLI::App* run = app.add_subcommand("run", "render a scene (or reuse its cached dataset), benchmark it, report");
   AddSceneFlags(run, &run_scene, false);

@@ -12,6 +12,7 @@
 #include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/plot.h"
+#include "hoilcd/bench/slam_report.h"
 #include "hoilcd/sim/asset.h"
 #include "hoilcd/sim/scene.h"
 
@@ -369,6 +370,10 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   const InspectReport inspect = InspectDataset(dataset, options.protocol);
   report["inspect"] = inspect.ToJson();
   if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
+  if (result.slam_evaluated) {
+    report["slam"] = SlamSummaryJson(result.slam);
+    for (const MethodSlam& m : result.slam.methods) report["methods"][m.method]["slam"] = MethodSlamJson(m);
+  }
   report["features"] = {{"mean_keypoints_per_frame", result.mean_keypoints_per_frame},
                         {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
   report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
@@ -407,6 +412,9 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
       WritePng(dir + "/trajectory_" + std::string(name) + ".png", TrajectoryFigure(result, *run, dataset));
       figures.push_back("trajectory_" + std::string(name) + ".png");
     }
+  }
+  if (result.slam_evaluated) {
+    for (const std::string& f : WriteSlamFiles(result.slam, dataset.poses(), options.slam_options.slam, dir)) figures.push_back(f);
   }
   for (const char* name : {"dlcd", "slcd"}) {
     const MethodRun* run = result.Find(name);
@@ -487,6 +495,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
        << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
+  if (result.slam_evaluated) md << SlamMarkdown(result.slam);
   md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";

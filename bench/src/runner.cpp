@@ -110,7 +110,7 @@ std::string BenchOptions::Check() const {
   for (const std::string& problem :
        {protocol.Check(), match.Check(), ransac.Check(), keypoints.Check(), detector.Check(),
         tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), sequence.Check(),
-        temporal.Check(), tracking_metrics.Check()}) {
+        temporal.Check(), tracking_metrics.Check(), slam_options.Check()}) {
     if (!problem.empty()) return problem;
   }
   if (lo_refits < 1) return "lo_refits must be positive";
@@ -306,6 +306,14 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     }
   }
   for (const std::string& name : methods) result.runs.push_back(std::move(runs.at(name)));
+  if (options.slam) {
+    std::vector<NamedScores> named;
+    for (const MethodRun& r : result.runs) named.push_back({r.name, &r.scores});
+    result.slam = RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json",
+                          dataset.manifest().frame_rate_hz, options.protocol.radius_m, result.queries, named,
+                          options.slam_options);
+    result.slam_evaluated = true;
+  }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

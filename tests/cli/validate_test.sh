@@ -51,4 +51,15 @@ grep -q "/camera/video/crf" "$work/out" || fail "bad CRF not reported at its pat
 
 if "$hoilcd" bench "$work/nothing" > "$work/out" 2>&1; then fail "bench of a missing dataset succeeded"; fi
 grep -q "nothing" "$work/out" || fail "missing dataset not named: $(cat "$work/out")"
+# SLAM flags: a back end that does not exist is refused by the parser; a threshold that is not finite is
+# bad input, refused before anything is rendered.
+rc=0
+"$hoilcd" run "$source_dir/tests/data/tiny_room.json" --cache "$work/runs" --slam-backend gauss > "$work/out" 2>&1 || rc=$?
+[ "$rc" -ne 0 ] || fail "an unknown --slam-backend ran: $(cat "$work/out")"
+grep -q "slam-backend" "$work/out" || fail "bad --slam-backend not named: $(cat "$work/out")"
+if "$hoilcd" run "$source_dir/tests/data/tiny_room.json" --cache "$work/runs" --loop-threshold inf > "$work/out" 2>&1; then
+  fail "an infinite --loop-threshold ran"
+fi
+grep -q "loop threshold must be finite" "$work/out" || fail "infinite --loop-threshold not explained: $(cat "$work/out")"
+[ ! -e "$work/runs" ] || fail "a refused run rendered"
 echo "1 passed, 0 failed"

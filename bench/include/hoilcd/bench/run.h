@@ -17,6 +17,9 @@ struct RunOptions {
   std::string report_dir;           // default CACHE/<scene>-<hash>/report
   int threads = 0;                  // 0 = every core
   const std::atomic<bool>* cancel = nullptr;
+  // SLAM loop thresholds (when bench.slam and no --loop-threshold): each method's 100 %-precision
+  // threshold on the scene rendered with seed + calibration_seed_offset (cached like any run).
+  uint64_t calibration_seed_offset = 1000;
   std::string Check() const;
 };
 
@@ -26,6 +29,8 @@ struct RunOutcome {
   BenchResult result;
   ReportTiming timing;
   std::vector<std::string> warnings;  // the dataset's (Dataset::warnings), for the caller to print
+  std::string calibration_dir;  // dataset the loop thresholds came from (empty: none)
+  double calibration_s = 0;     // render + bench time of the calibration sequence
 };
 
 // The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.

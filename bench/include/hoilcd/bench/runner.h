@@ -9,6 +9,7 @@
 
 #include "hoilcd/bench/metrics.h"
 #include "hoilcd/bench/protocol.h"
+#include "hoilcd/bench/slam_run.h"
 #include "hoilcd/bench/tracking_metrics.h"
 #include "hoilcd/core/byte_tracker.h"
 #include "hoilcd/core/dataset.h"
@@ -50,6 +51,8 @@ struct BenchOptions {
   double rrf_k = 0.0;                    // reciprocal rank fusion constant (paper: 0)
   TrackingMetricsOptions tracking_metrics = DefaultTrackingMetricsOptions();
   int threads = 0;                       // 0 = every core
+  bool slam = false;                     // run the SLAM back end over every method's loops (slam_run.h)
+  SlamRunOptions slam_options;
   std::string Check() const;
 };
 
@@ -79,6 +82,8 @@ struct BenchResult {
   double mean_hoi_points_per_frame = 0;
   double mean_keypoints_per_frame = 0;
   int64_t ground_truth_person_views = 0;   // person records in persons.json (all frames)
+  SlamResult slam;                         // when BenchOptions::slam
+  bool slam_evaluated = false;
   double seconds = 0;                      // wall time of RunBench
   const MethodRun* Find(const std::string& name) const;
 };

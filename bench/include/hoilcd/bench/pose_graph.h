@@ -1,0 +1,66 @@
+// An SE(2) pose graph optimised with Ceres Solver: one node per frame, odometry edges between
+// consecutive frames and loop edges from accepted loop closures. Back ends differ only in how loop
+// edges are weighted: plain least squares, a Cauchy robust loss, or Dynamic Covariance Scaling
+// (Agarwal et al. 2013), which scales a loop's information by min(1, 2Φ/(Φ+χ²))².
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hoilcd {
+
+struct Pose2d {
+  double x_m = 0, y_m = 0, theta_rad = 0;
+};
+
+// b expressed in a's frame (a⁻¹·b), angle wrapped to (-π, π].
+Pose2d Between(const Pose2d& a, const Pose2d& b);
+// a·delta.
+Pose2d Compose(const Pose2d& a, const Pose2d& delta);
+
+// A relative-pose constraint: pose `to` seen from pose `from` is `measurement`.
+struct PoseEdge {
+  int from = 0, to = 0;
+  Pose2d measurement;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  // (x m, y m, θ rad)⁻², symmetric PD
+};
+
+struct PoseGraph {
+  std::vector<Pose2d> nodes;        // initial estimates; node 0 is held fixed (gauge)
+  std::vector<PoseEdge> odometry;   // sequential, always trusted (squared loss)
+  std::vector<PoseEdge> loops;      // weighted by the back end
+  // Empty when usable, else what is wrong (no node, an edge naming a missing node or itself, a
+  // non-finite measurement, an information matrix that is not symmetric positive definite, a
+  // node no edge connects to node 0).
+  std::string Check() const;
+};
+
+struct PoseGraphOptions {
+  std::string backend = "dcs";    // "plain" | "cauchy" | "dcs"
+  double cauchy_scale = 1.0;      // χ (Mahalanobis, dimensionless) where the Cauchy loss bends
+  double dcs_phi = 1.0;           // Φ of Dynamic Covariance Scaling, χ² (dimensionless)
+  int max_iterations = 100;       // Levenberg–Marquardt iterations
+  std::string Check() const;
+};
+
+// The back ends, in report order.
+const std::vector<std::string>& PoseGraphBackends();
+
+struct PoseGraphSolution {
+  std::vector<Pose2d> poses;
+  int iterations = 0;
+  double final_cost = 0;
+  std::vector<double> loop_weights;  // per loop edge: effective weight ρ'(χ²) in [0, 1]
+};
+
+// Optimises the graph. InputError("pose graph", ...) when Check() fails or the solver does not
+// return finite poses; never returns NaN.
+PoseGraphSolution OptimisePoseGraph(const PoseGraph& graph, const PoseGraphOptions& options);
+
+// The graph in g2o's text format (VERTEX_SE2 / EDGE_SE2 with the upper triangle of the
+// information matrix), nodes at `poses` (pass graph.nodes for the initial estimate).
+std::string PoseGraphToG2o(const PoseGraph& graph, const std::vector<Pose2d>& poses);
+
+}  // namespace hoilcd
