@@ -53,8 +53,8 @@ std::string SequenceOptions::Check() const {
 }
 
 // Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
-// camera vibration, cam_roll in poses.csv).
-constexpr int kSimulatorRevision = 3;
+// camera vibration, cam_roll in poses.csv; 4: robot steers on localised odometry by default).
+constexpr int kSimulatorRevision = 4;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
