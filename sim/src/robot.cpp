@@ -595,9 +595,13 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
                       "its odometry",
                       static_cast<int>(std::floor(time_s * frame_rate_hz + 1e-9)), time_s,
                       route_deviation_m, std::hypot(odo.x_m - pose.x_m, odo.y_m - pose.y_m));
-        throw InputError("route", "robot collides with '" + obstacles[j].name + "' " + when +
-                                      "; lower the odometry error (odometry.error_scale) or widen "
-                                      "the route (route.waypoints_m further from the furniture)" +
+        const std::string lower =
+            localized ? "lower the localisation error (robot.localization.position_sd_m, "
+                        "robot.localization.heading_sd_deg)"
+                      : "lower the odometry error (odometry.error_scale)";
+        throw InputError("route", "robot collides with '" + obstacles[j].name + "' " + when + "; " +
+                                      lower + " or widen the route (route.waypoints_m further "
+                                      "from the furniture)" +
                                       (robot.navigation == TricycleOptions::Navigation::kOdometry
                                            ? ", or let the robot localise (robot.navigation "
                                              "\"localized\")"

@@ -448,7 +448,9 @@ TEST(Collision, RouteThroughAnObstacleRaisesAnErrorNamingItAndTheTime) {
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("robot collides with 'pillar' at frame "), std::string::npos) << what;
-    EXPECT_NE(what.find("lower the odometry error (odometry.error_scale) or widen the route"),
+    // The default robot localises: the suggestion names the localisation error.
+    EXPECT_NE(what.find("lower the localisation error (robot.localization.position_sd_m, "
+                        "robot.localization.heading_sd_deg) or widen the route"),
               std::string::npos)
         << what;
     // The route reaches x = 3.5 on the north side after about 2.2 + 3 m, i.e. some 12 s.
@@ -580,6 +582,9 @@ TEST(DefaultScene, PureOdometryNavigationStillStopsWithTheNamedCollision) {
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("robot collides with 'south wall'"), std::string::npos) << what;
+    EXPECT_NE(what.find("lower the odometry error (odometry.error_scale) or widen the route"),
+              std::string::npos)
+        << what;
     EXPECT_NE(what.find("let the robot localise (robot.navigation \"localized\")"), std::string::npos) << what;
   }
 }
