@@ -21,6 +21,9 @@ constexpr double kBrakeFraction = 0.8;
 // Window of the closest-point search around the previous position along the route.
 constexpr double kSearchBackM = 0.1;
 constexpr double kSearchAheadM = 0.6;
+// A localisation fix's error is truncated at this many sds per component (a bounded error: a
+// localiser that is further off is lost, which the model does not simulate).
+constexpr double kFixBoundSd = 2.0;
 
 double WrapAngle(double a) {
   a = std::remainder(a, 2.0 * M_PI);
@@ -264,6 +267,33 @@ struct MountAxis {
   }
 };
 
+// The error of successive localisation fixes: a first-order Gauss-Markov process per component
+// (x, y, heading), stationary from the first fix, each applied value truncated at kFixBoundSd sd.
+class FixError {
+ public:
+  FixError(const LocalizationOptions& o, uint64_t seed)
+      : position_sd_m_(o.position_sd_m),
+        heading_sd_rad_(o.heading_sd_deg * kDegToRad),
+        keep_(o.correlation_s > 0 ? std::exp(-o.interval_s / o.correlation_s) : 0.0),
+        seed_(seed) {}
+
+  // The error of fix number `index` (0, 1, 2, ... in order).
+  Pose2 Next(uint64_t index) {
+    Rng rng = KeyedRng(seed_, "robot.localization", index);
+    const double fresh = index == 0 ? 1.0 : std::sqrt(1.0 - keep_ * keep_);
+    const double keep = index == 0 ? 0.0 : keep_;
+    for (double& n : state_) n = keep * n + fresh * rng.Normal();
+    auto bounded = [](double n) { return std::clamp(n, -kFixBoundSd, kFixBoundSd); };
+    return {position_sd_m_ * bounded(state_[0]), position_sd_m_ * bounded(state_[1]),
+            heading_sd_rad_ * bounded(state_[2])};
+  }
+
+ private:
+  double position_sd_m_, heading_sd_rad_, keep_;
+  uint64_t seed_;
+  double state_[3] = {0, 0, 0};  // unit-variance processes
+};
+
 // The robot footprint as an oriented rectangle.
 struct Box {
   Eigen::Vector2d center;
@@ -368,6 +398,17 @@ std::string TricycleOptions::Check() const {
     return "camera_yaw_deg and camera_roll_deg must be finite";
   }
   if (const std::string problem = vibration.Check(); !problem.empty()) return "vibration." + problem;
+  if (const std::string problem = localization.Check(); !problem.empty()) {
+    return "localization." + problem;
+  }
+  return "";
+}
+
+std::string LocalizationOptions::Check() const {
+  if (!(interval_s > 0 && interval_s <= 3600)) return "interval_s must be in (0, 3600]";
+  if (!(position_sd_m >= 0 && position_sd_m <= 1)) return "position_sd_m must be in [0, 1]";
+  if (!(heading_sd_deg >= 0 && heading_sd_deg <= 30)) return "heading_sd_deg must be in [0, 30]";
+  if (!(correlation_s >= 0 && correlation_s <= 3600)) return "correlation_s must be in [0, 3600]";
   return "";
 }
 
@@ -516,7 +557,10 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   const double turn_slip_per_lat_accel = k * odometry.turn_slip_per_lat_accel_s2_m;
   const double heading_noise = k * odometry.heading_noise_deg_sqrt_m * kDegToRad;
   const double metres_per_count = 2.0 * M_PI * odometry.wheel_radius_m / odometry.encoder_counts_per_rev;
-  const bool steer_on_odometry = robot.navigation == TricycleOptions::Navigation::kOdometry;
+  const bool steer_on_truth = robot.navigation == TricycleOptions::Navigation::kGroundTruth;
+  const bool localized = robot.navigation == TricycleOptions::Navigation::kLocalized;
+  const double fix_interval_s = robot.localization.interval_s;
+  FixError fix_error(robot.localization, seed);
   const VibrationOptions& vib = robot.vibration;
   const double vib_omega = 2.0 * M_PI * vib.natural_frequency_hz;
   // Generous bound on the simulated time, so a route the robot cannot follow fails loudly.
@@ -532,6 +576,8 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   const Eigen::Vector2d heading = route.waypoints_m[1] - start;
   Pose2 truth{start.x(), start.y(), std::atan2(heading.y(), heading.x())};
   Pose2 odo = truth;
+  Pose2 belief = truth;  // what the robot steers on when localized: odometry between fixes
+  int fixes = 0;
   const double theta0 = truth.theta_rad;
   double speed = 0, steer = 0, s = 0, s_true = 0, travelled_m = 0, route_deviation_m = 0;
   double wheel_turns_m = 0;  // drive-wheel rotation times the nominal radius, unquantised
@@ -549,9 +595,17 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
                       "its odometry",
                       static_cast<int>(std::floor(time_s * frame_rate_hz + 1e-9)), time_s,
                       route_deviation_m, std::hypot(odo.x_m - pose.x_m, odo.y_m - pose.y_m));
-        throw InputError("route", "robot collides with '" + obstacles[j].name + "' " + when +
-                                      "; lower the odometry error (odometry.error_scale) or widen "
-                                      "the route (route.waypoints_m further from the furniture)");
+        const std::string lower =
+            localized ? "lower the localisation error (robot.localization.position_sd_m, "
+                        "robot.localization.heading_sd_deg)"
+                      : "lower the odometry error (odometry.error_scale)";
+        throw InputError("route", "robot collides with '" + obstacles[j].name + "' " + when + "; " +
+                                      lower + " or widen the route (route.waypoints_m further "
+                                      "from the furniture)" +
+                                      (robot.navigation == TricycleOptions::Navigation::kOdometry
+                                           ? ", or let the robot localise (robot.navigation "
+                                             "\"localized\")"
+                                           : ""));
       }
       const double d = DistanceToObstacle(base, obstacles[j]);
       run.obstacle_distance_m[j] = std::min(run.obstacle_distance_m[j], d);
@@ -570,8 +624,14 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
       throw InputError("route",
                        "robot did not finish the route within " + FormatNumber(max_time_s) + " s");
     }
+    // A localisation fix replaces the belief with the true pose plus the fix error.
+    if (localized && t >= (fixes + 1) * fix_interval_s - 1e-9 * dt) {
+      const Pose2 e = fix_error.Next(static_cast<uint64_t>(fixes));
+      belief = {truth.x_m + e.x_m, truth.y_m + e.y_m, truth.theta_rad + e.theta_rad};
+      ++fixes;
+    }
     // Pure pursuit on the rounded route, from the pose the robot steers on.
-    const Pose2& nav = steer_on_odometry ? odo : truth;
+    const Pose2& nav = steer_on_truth ? truth : localized ? belief : odo;
     double tracking_error = 0;
     s = path.Project({nav.x_m, nav.y_m}, std::max(0.0, s - kSearchBackM),
                      s + kSearchAheadM + route.lookahead_m, &tracking_error);
@@ -642,12 +702,15 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
       Advance(base, part * true_step.forward_m, part * true_step.dtheta_rad);
       Pose2 odo_now = odo;
       Advance(odo_now, part * odo_step.forward_m, part * odo_step.dtheta_rad);
-      const Pose2& nav_now = steer_on_odometry ? odo_now : base;
+      Pose2 belief_now = belief;
+      Advance(belief_now, part * odo_step.forward_m, part * odo_step.dtheta_rad);
+      const Pose2& nav_now = steer_on_truth ? base : localized ? belief_now : odo_now;
       double ignored = 0;
       const double s_frame = path.Project({nav_now.x_m, nav_now.y_m},
                                           std::max(0.0, s - kSearchBackM), s + kSearchAheadM,
                                           &ignored);
-      sample.lap = s_frame / path.loop_m();
+      // Laps completed never run backwards (a localisation fix may move the belief back a little).
+      sample.lap = std::max(s_frame / path.loop_m(), run.samples.empty() ? 0.0 : run.samples.back().lap);
       sample.camera = CameraPoseFromBase(base, robot);
       sample.vibration = {roll.x, pitch.x, height.x};
       sample.camera.roll_rad += roll.x;
@@ -671,9 +734,11 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
 
     Advance(truth, true_step.forward_m, true_step.dtheta_rad);
     Advance(odo, odo_step.forward_m, odo_step.dtheta_rad);
+    Advance(belief, odo_step.forward_m, odo_step.dtheta_rad);
     travelled_m += true_step.forward_m;
     check_pose(truth, t + dt);
   }
+  run.localization_fixes = fixes;
   return run;
 }
 

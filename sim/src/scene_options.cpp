@@ -106,9 +106,15 @@ TricycleOptions TricycleOptionsFromScene(const Scene& scene) {
   o.camera_pitch_deg = D(r, "camera_pitch_deg");
   o.camera_yaw_deg = D(r, "camera_yaw_deg");
   o.camera_roll_deg = D(r, "camera_roll_deg");
-  o.navigation = r.at("navigation").get<std::string>() == "ground_truth"
-                     ? TricycleOptions::Navigation::kGroundTruth
-                     : TricycleOptions::Navigation::kOdometry;
+  const std::string navigation = r.at("navigation").get<std::string>();
+  o.navigation = navigation == "ground_truth" ? TricycleOptions::Navigation::kGroundTruth
+                 : navigation == "odometry"   ? TricycleOptions::Navigation::kOdometry
+                                              : TricycleOptions::Navigation::kLocalized;
+  const nlohmann::json& l = r.at("localization");
+  o.localization.interval_s = D(l, "interval_s");
+  o.localization.position_sd_m = D(l, "position_sd_m");
+  o.localization.heading_sd_deg = D(l, "heading_sd_deg");
+  o.localization.correlation_s = D(l, "correlation_s");
   const nlohmann::json& v = r.at("vibration");
   o.vibration.enabled = B(v, "enabled");
   o.vibration.natural_frequency_hz = D(v, "natural_frequency_hz");

@@ -139,7 +139,8 @@ std::vector<cv::Mat> RenderRadiometricFrames(const Scene& scene, const std::vect
 // clothing temperatures: not people.
 TEST(Runner, EmptyPaperRoomFramesWithWarmLaptopsAndAMonitorHaveNoPersonDetections) {
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/empty_room.json");
-  const std::vector<int> frames = {219, 265, 690, 798, 846, 1700};
+  // Re-picked for simulator revision 4 (the localising robot drives a slightly different path).
+  const std::vector<int> frames = {210, 283, 705, 786, 843, 1685};
   const std::vector<cv::Mat> frames_c = RenderRadiometricFrames(scene, frames);
   const PersonDetectorOptions detector = BenchOptions{}.detector;
   PersonDetectorOptions without_skin_rule = detector;

@@ -102,6 +102,32 @@ TEST(Scene, RobotErrorModelAndVibrationProblemsNameTheirPaths) {
                          "test.json: /robot/vibration/damping_ratio", ""));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"vibration", {{"shake", 1}}}}}}),
                          "test.json: /robot/vibration", "unknown key 'shake'"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"interval_s", 0}}}}}}),
+                         "test.json: /robot/localization/interval_s", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"position_sd_m", -0.01}}}}}}),
+                         "test.json: /robot/localization/position_sd_m", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"heading_sd_deg", 31}}}}}}),
+                         "test.json: /robot/localization/heading_sd_deg", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"correlation_s", -1}}}}}}),
+                         "test.json: /robot/localization/correlation_s", ""));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"gps", 1}}}}}}),
+                         "test.json: /robot/localization", "unknown key 'gps'"));
+}
+
+// Every navigation name reaches the options; the shipped default is localised.
+TEST(SceneOptions, NavigationNamesMapToTheirModesAndLocalizedIsTheDefault) {
+  EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json::object(), "test.json")).navigation,
+            TricycleOptions::Navigation::kLocalized);
+  EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json{{"robot", {{"navigation", "odometry"}}}}, "test.json")).navigation,
+            TricycleOptions::Navigation::kOdometry);
+  EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json{{"robot", {{"navigation", "ground_truth"}}}}, "test.json")).navigation,
+            TricycleOptions::Navigation::kGroundTruth);
+  const TricycleOptions robot = TricycleOptionsFromScene(
+      SceneFromJson(json{{"robot", {{"localization", {{"interval_s", 2}, {"heading_sd_deg", 0.5}}}}}}, "test.json"));
+  EXPECT_EQ(robot.localization.interval_s, 2);
+  EXPECT_EQ(robot.localization.heading_sd_deg, 0.5);
+  EXPECT_EQ(robot.localization.position_sd_m, LocalizationOptions().position_sd_m);  // schema default = struct default
+  EXPECT_EQ(robot.localization.correlation_s, LocalizationOptions().correlation_s);
 }
 
 // A steering offset beyond the steering limit passes the schema's own ranges but not the robot.

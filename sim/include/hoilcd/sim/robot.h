@@ -1,5 +1,6 @@
 // Tricycle-drive robot (steered, driven front wheel; two passive rear wheels) following a closed
-// waypoint route by pure pursuit on its own wheel odometry (as the paper's robot did), sampled at
+// waypoint route by pure pursuit on the pose it believes (wheel odometry, by default corrected by
+// periodic localisation fixes with a bounded error), sampled at
 // the camera rate: true base and camera poses (with mount vibration), the odometry, and footprint
 // collision checks against 2-D obstacles (SPEC.md 5.1). Error model: docs/robot.md.
 #pragma once
@@ -40,6 +41,23 @@ struct VibrationOptions {
   std::string Check() const;
 };
 
+// Localisation model for navigation kLocalized: every interval_s the robot replaces the pose it
+// steers on with a fix from a map-based localiser (AMCL or lidar scan matching), the true pose
+// plus an error; between fixes it advances that belief with its wheel odometry. The fix error is
+// a first-order Gauss-Markov process (correlation time correlation_s: a localiser's error changes
+// slowly with the scene it matches), each component truncated at 2 sd so it stays bounded; draws
+// from KeyedRng(seed, "robot.localization", fix index). Independent of odometry.error_scale.
+// Defaults and their sources: docs/robot.md.
+struct LocalizationOptions {
+  double interval_s = 0.5;       // s, time between localisation fixes
+  double position_sd_m = 0.035;  // m, sd of a fix's error along x and along y
+  double heading_sd_deg = 1.0;   // deg, sd of a fix's heading error
+  double correlation_s = 5.0;    // s, correlation time of the fix error (0: independent fixes)
+
+  // Empty string when valid, else what is wrong (the first word names the field).
+  std::string Check() const;
+};
+
 // Kinematic limits, footprint and camera mount. Kinematics: x' = v cos(d) cos(theta),
 // y' = v cos(d) sin(theta), theta' = v sin(d) / L, with v the front-wheel speed and d the
 // steering angle; the base's path curvature is tan(d) / L.
@@ -60,10 +78,13 @@ struct TricycleOptions {
   double camera_yaw_deg = 0.0;          // deg, camera yaw relative to the body, counter-clockwise
   double camera_roll_deg = 0.0;         // deg, camera roll about its optical axis
   VibrationOptions vibration;           // camera mount vibration
-  // What the path follower steers on: kOdometry (the pose integrated from the wheel encoders and
-  // the steering encoder, like the paper's robot) or kGroundTruth (the true pose: an ideal robot).
-  enum class Navigation { kOdometry, kGroundTruth };
-  Navigation navigation = Navigation::kOdometry;
+  // What the path follower steers on: kLocalized (wheel odometry corrected by periodic
+  // localisation fixes, `localization`), kOdometry (pure dead reckoning from the wheel and
+  // steering encoders) or kGroundTruth (the true pose: an ideal robot). The recorded odometry is
+  // the raw wheel odometry in every mode.
+  enum class Navigation { kLocalized, kOdometry, kGroundTruth };
+  Navigation navigation = Navigation::kLocalized;
+  LocalizationOptions localization;     // fixes used by kLocalized
 
   // Smallest radius the base can turn on: L / tan(max_steer).
   double MinTurnRadiusM() const;
@@ -165,6 +186,7 @@ struct RobotRun {
   std::vector<double> obstacle_distance_m;  // m, per obstacle (input order): its minimum
   double max_curvature_per_m = 0;           // 1/m, largest |commanded curvature|
   double max_tracking_error_m = 0;  // m, largest distance of the steered-on pose from the route
+  int localization_fixes = 0;       // number of localisation fixes applied (kLocalized)
   double max_route_deviation_m = 0;  // m, largest distance of the true base from the route
   double path_length_m = 0;         // m, distance travelled by the base
   double heading_change_rad = 0;    // rad, total signed heading change (-2 pi per clockwise lap)
