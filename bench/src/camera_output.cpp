@@ -117,14 +117,7 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
 }
 
 InspectSection CameraOutputSection(const CameraOutputStats& s) {
-  auto number = [](std::string key, std::string label, double value, std::string unit) {
-    InspectFigure f;
-    f.key = std::move(key);
-    f.label = std::move(label);
-    f.value = value;
-    f.unit = std::move(unit);
-    return f;
-  };
+  const auto number = NumberFigure;
   InspectSection section{"camera_output", "Camera output (video, lens shading, FFC freezes)", {}};
   section.figures = {
       number("video_mode", "video mode (methods read the decoded video)", s.video_mode ? 1 : 0, ""),

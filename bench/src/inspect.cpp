@@ -48,12 +48,7 @@ double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, con
 }
 
 InspectFigure Number(std::string key, std::string label, double value, std::string unit) {
-  InspectFigure f;
-  f.key = std::move(key);
-  f.label = std::move(label);
-  f.value = value;
-  f.unit = std::move(unit);
-  return f;
+  return NumberFigure(std::move(key), std::move(label), value, std::move(unit));
 }
 
 std::string FormatValue(const InspectFigure& f) {
@@ -77,6 +72,15 @@ std::string FormatHistogram(const InspectFigure& f) {
 }
 
 }  // namespace
+
+InspectFigure NumberFigure(std::string key, std::string label, double value, std::string unit) {
+  InspectFigure f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.value = value;
+  f.unit = std::move(unit);
+  return f;
+}
 
 const InspectFigure* InspectSection::Find(const std::string& k) const {
   for (const InspectFigure& f : figures)

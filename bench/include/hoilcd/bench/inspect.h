@@ -23,6 +23,9 @@ struct InspectFigure {
   std::vector<int64_t> counts;    // histogram counts; empty for a plain number
 };
 
+// A plain-number figure.
+InspectFigure NumberFigure(std::string key, std::string label, double value, std::string unit);
+
 struct InspectSection {
   std::string key;    // JSON key of the section ("trajectory", "camera", ...)
   std::string title;  // printed title
