@@ -44,9 +44,7 @@ struct Setup {
       : scene(LoadScene(std::string(HOILCD_SOURCE_DIR) + "/scenes/paper_room.json")),
         world(scene, table),
         intrinsics(IntrinsicsFromScene(scene)) {
-    const RobotRun run = SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                                       OdometryOptionsFromScene(scene), world.obstacles(),
-                                       scene.frame_rate_hz, scene.seed);
+    const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
     for (int i = 0; i < kPoses; ++i) {
       samples.push_back(run.samples[(2 * i + 1) * scene.frames / (2 * kPoses)]);
     }

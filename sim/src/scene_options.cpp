@@ -170,4 +170,13 @@ OdometryErrorOptions OdometryOptionsFromScene(const Scene& scene) {
   return o;
 }
 
+RobotRun SimulateSceneRobot(const Scene& scene, const std::vector<Obstacle2D>& obstacles) {
+  try {
+    return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
+                         OdometryOptionsFromScene(scene), obstacles, scene.frame_rate_hz, scene.seed);
+  } catch (const InputError& e) {
+    throw LocatedInScene(scene, e);
+  }
+}
+
 }  // namespace hoilcd

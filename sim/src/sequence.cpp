@@ -81,14 +81,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
   const BandRadianceTable table;
   World world(scene, table);
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
-  const RobotRun run = [&] {
-    try {
-      return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                           OdometryOptionsFromScene(scene), world.obstacles(), scene.frame_rate_hz, scene.seed);
-    } catch (const InputError& e) {
-      throw LocatedInScene(scene, e);  // route and robot checks name the scene file
-    }
-  }();
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
   world.PlanCrowd(run.samples);
   const SensorOptions sensor_options = SensorOptionsFromScene(scene);

@@ -106,9 +106,7 @@ std::vector<PoseRecord> ScenePoses(const std::string& scene_name, const std::vec
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + scene_name, overrides);
   const BandRadianceTable table;
   const World world(scene, table);
-  return PoseRecordsOf(SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                                     OdometryOptionsFromScene(scene), world.obstacles(), scene.frame_rate_hz,
-                                     scene.seed));
+  return PoseRecordsOf(SimulateSceneRobot(scene, world.obstacles()));
 }
 
 // The documented bands (docs/robot.md) of the paper room's defaults, for the seeds the README uses.

@@ -112,9 +112,7 @@ TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
 std::vector<cv::Mat> RenderRadiometricFrames(const Scene& scene, const std::vector<int>& frames) {
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                                     OdometryOptionsFromScene(scene), world.obstacles(),
-                                     scene.frame_rate_hz, scene.seed);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
   FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 0));

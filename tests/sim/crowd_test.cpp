@@ -19,11 +19,6 @@ Scene PaperRoom(const std::vector<std::string>& overrides) {
   return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides);
 }
 
-RobotRun Drive(const Scene& scene, const World& world) {
-  return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                       OdometryOptionsFromScene(scene), world.obstacles(), scene.frame_rate_hz, scene.seed);
-}
-
 int ChairInstance(const World& world, int table, int seat) {
   const std::string name = "chair " + std::to_string(table) + "." + std::to_string(seat);
   for (int i = 0; i < world.num_instances(); ++i)
@@ -41,7 +36,7 @@ TEST(Crowd, TurnoverAtLapBoundariesLeavesCoolingHeatPrints) {
   const Scene scene = PaperRoom({"crowd.turnover_probability=0.4"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   ASSERT_FALSE(world.events().empty());
   int leaves = 0, arrivals = 0;
@@ -149,7 +144,7 @@ TEST(Crowd, WalkersStayOnTheRouteAheadOfTheRobotAndClearOfFurniture) {
   const Scene scene = PaperRoom({"crowd.walkers=6", "robot.navigation=ground_truth"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   int walkers = 0;
   for (size_t f = 0; f < run.samples.size(); f += 25) {
@@ -176,7 +171,7 @@ double MeanOcclusion(const std::vector<std::string>& overrides) {
   const Scene scene = PaperRoom(overrides);
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
   FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 0));
@@ -216,7 +211,7 @@ TEST(Crowd, PaperRouteDrivesTwoClockwiseLapsClearOfTheRealFurniture) {
   const Scene scene = PaperRoom({"robot.navigation=ground_truth"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   for (size_t i = 0; i < world.obstacles().size(); ++i) {
     const std::string& name = world.obstacles()[i].name;
     if (name.rfind("chair", 0) != 0 && name.rfind("table", 0) != 0) continue;
@@ -251,7 +246,7 @@ TEST(Crowd, StandingPeopleAreSeenAndTheRobotMustNotRunIntoThem) {
                                  " {\"position_m\": [3.6, 3.5], \"yaw_deg\": 180}]"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
   FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 0));
   std::set<int> standing_seen;
@@ -270,7 +265,7 @@ TEST(Crowd, StandingPeopleAreSeenAndTheRobotMustNotRunIntoThem) {
   const Scene blocked = PaperRoom({"crowd.standing=[{\"position_m\": [3.0, 2.62]}]"});
   World blocked_world(blocked, table);
   try {
-    Drive(blocked, blocked_world);
+    SimulateSceneRobot(blocked, blocked_world.obstacles());
     FAIL() << "the robot drove through a standing person";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("standing person"), std::string::npos) << e.what();

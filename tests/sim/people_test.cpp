@@ -1,7 +1,6 @@
 // Articulated people in the world: keypoints in the frames, motion of seated people and walkers,
 // no body passing through furniture or another body, determinism.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -14,25 +13,14 @@
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
 #include "hoilcd/sim/world.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
-namespace fs = std::filesystem;
-
-std::string TempDir(const std::string& test) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_people_test_" + std::to_string(getpid()) + "_" + test);
-  fs::remove_all(dir);
-  return dir.string();
-}
 
 Scene PaperRoom(const std::vector<std::string>& overrides) {
   return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides);
-}
-
-RobotRun Drive(const Scene& scene, const World& world) {
-  return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                       OdometryOptionsFromScene(scene), world.obstacles(), scene.frame_rate_hz, scene.seed);
 }
 
 // Standard deviation of a 3-D point cloud (root of the summed variances), m.
@@ -49,7 +37,7 @@ TEST(People, InThirtySecondsMostSeatedPeopleMoveHeadOrHandAndWalkersSwingTheirAn
   const Scene scene = PaperRoom({"crowd.walkers=2"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   std::map<int, std::array<std::vector<Eigen::Vector3d>, 3>> seated;  // nose, left and right wrist
   std::map<int, std::vector<double>> ankle_gap;                       // walkers: ankle to ankle, m
@@ -102,7 +90,7 @@ TEST(People, BodiesNeverPassThroughTableTopsChairBacksOrEachOther) {
   const Scene scene = PaperRoom({"crowd.walkers=2", "crowd.posture_change_interval_s=8"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   const Eigen::Matrix3d back_axes = Eigen::AngleAxisd(-8 * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
   int checked = 0;
@@ -157,7 +145,8 @@ TEST(People, BodiesNeverPassThroughTableTopsChairBacksOrEachOther) {
 
 TEST(People, VisibleKeypointsLandOnTheirPersonsInstanceInTheExr) {
   const Scene scene = PaperRoom({"crowd.walkers=2"});
-  const std::string dir = TempDir("keypoints");
+  const test::TestDir temp;
+  const std::string dir = temp / "keypoints";
   SequenceOptions options;
   options.output_dir = dir;
   options.frames = 40;
@@ -165,7 +154,7 @@ TEST(People, VisibleKeypointsLandOnTheirPersonsInstanceInTheExr) {
   // The person -> instance label map of the same scene.
   const BandRadianceTable table;
   World world(scene, table);
-  world.PlanCrowd(Drive(scene, world).samples);
+  world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
   std::map<int, int> instance_of;
   for (const Person& p : world.people()) instance_of[p.person_id] = p.instance;
 
@@ -193,7 +182,6 @@ TEST(People, VisibleKeypointsLandOnTheirPersonsInstanceInTheExr) {
   ASSERT_GT(listed, 40);
   ASSERT_GT(visible, 200);
   EXPECT_GE(on_person, 0.95 * visible) << on_person << " of " << visible;
-  fs::remove_all(dir);
 }
 
 TEST(People, MotionIsTheSameForTheSameSeedAndDiffersForAnother) {
@@ -201,7 +189,7 @@ TEST(People, MotionIsTheSameForTheSameSeedAndDiffersForAnother) {
     const Scene scene = PaperRoom({"seed=" + seed, "crowd.walkers=1"});
     const BandRadianceTable table;
     World world(scene, table);
-    world.PlanCrowd(Drive(scene, world).samples);
+    world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
     std::vector<double> out;
     for (double t = 0; t < 20; t += 0.5) {
       world.SetTime(t);
@@ -246,7 +234,7 @@ TEST(People, WalkersKeepPaceWalkAwayApproachAndStopWithoutMeetingTheRobotOrEachO
   const Scene scene = PaperRoom({"crowd.walkers=2", "crowd.walker_behaviours.approach=3", "crowd.walker_behaviours.stop_to_chat=1"});
   const BandRadianceTable table;
   World world(scene, table);
-  const RobotRun run = Drive(scene, world);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   world.PlanCrowd(run.samples);
   std::set<std::string> seen;
   bool faced_robot = false;

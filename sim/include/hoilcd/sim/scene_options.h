@@ -18,6 +18,10 @@ VideoOptions VideoOptionsFromScene(const Scene& scene);
 RenderOptions RenderOptionsFromScene(const Scene& scene, int threads);
 TricycleOptions TricycleOptionsFromScene(const Scene& scene);
 RouteOptions RouteOptionsFromScene(const Scene& scene);  // frames = scene.frames
+
+// The robot run a scene's sequence drives among `obstacles` (the World's); route and robot
+// problems are InputErrors that name the scene file.
+RobotRun SimulateSceneRobot(const Scene& scene, const std::vector<Obstacle2D>& obstacles);
 OdometryErrorOptions OdometryOptionsFromScene(const Scene& scene);
 
 }  // namespace hoilcd
