@@ -1,28 +1,25 @@
 #include "hoilcd/bench/camera_output.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
 #include "hoilcd/sim/sensor.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
-namespace fs = std::filesystem;
 
-std::string RenderInto(const std::string& name, const std::vector<std::string>& overrides, int frames) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("hoilcd_camera_output_test_" + std::to_string(getpid()) + "_" + name);
-  fs::remove_all(dir);
+// Renders the first `frames` of the paper room into `temp`/dataset; returns that folder.
+std::string RenderInto(const test::TestDir& temp, const std::vector<std::string>& overrides, int frames) {
   SequenceOptions options;
-  options.output_dir = dir.string();
+  options.output_dir = temp / "dataset";
   options.frames = frames;
   RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides), options);
-  return dir.string();
+  return options.output_dir;
 }
 
 TEST(CameraOutput, VideoModeOffMeasuresThePreviewAndFreezesAndShading) {
@@ -30,7 +27,8 @@ TEST(CameraOutput, VideoModeOffMeasuresThePreviewAndFreezesAndShading) {
   const std::vector<std::string> overrides = {"camera.ffc_interval_s=1", "camera.ffc_freeze_s=0.12",
                                               "camera.housing_warming_k_per_min=10",
                                               "camera.vignetting_k_per_k=1"};
-  const std::string dir = RenderInto("off", overrides, 30);
+  const test::TestDir temp;
+  const std::string dir = RenderInto(temp, overrides, 30);
   const Dataset dataset = Dataset::Open(dir);
   const CameraOutputStats s = MeasureCameraOutput(dataset);
   EXPECT_FALSE(s.video_mode);
@@ -68,7 +66,8 @@ TEST(CameraOutput, VideoModeOffMeasuresThePreviewAndFreezesAndShading) {
 }
 
 TEST(CameraOutput, VideoModeOnReadsDecodedFramesAndABrokenVideoIsReportedNotThrown) {
-  const std::string dir = RenderInto("on", {"camera.video.enabled=true"}, 4);
+  const test::TestDir temp;
+  const std::string dir = RenderInto(temp, {"camera.video.enabled=true"}, 4);
   const CameraOutputStats s = MeasureCameraOutput(Dataset::Open(dir));
   EXPECT_TRUE(s.video_mode);
   EXPECT_TRUE(s.thermal_is_video);

@@ -1,7 +1,6 @@
 #include "hoilcd/bench/coco_export.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -9,20 +8,15 @@
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/sequence.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
-namespace fs = std::filesystem;
-
-std::string TempDir(const std::string& test) {
-  const fs::path dir = fs::temp_directory_path() / ("hoilcd_coco_test_" + std::to_string(getpid()) + "_" + test);
-  fs::remove_all(dir);
-  return dir.string();
-}
 
 TEST(CocoExport, EveryListedPersonBecomesAnAnnotationWithSeventeenFlaggedKeypoints) {
-  const std::string dir = TempDir("export");
+  const test::TestDir temp;
+  const std::string dir = temp.str();
   SequenceOptions options;
   options.output_dir = dir + "/dataset";
   options.frames = 3;
@@ -50,14 +44,12 @@ TEST(CocoExport, EveryListedPersonBecomesAnAnnotationWithSeventeenFlaggedKeypoin
     EXPECT_EQ(a["num_keypoints"], labelled);
   }
   EXPECT_GT(visible, 0);
-  fs::remove_all(dir);
 }
 
 TEST(CocoExport, AFolderThatIsNotADatasetIsAnError) {
-  const std::string dir = TempDir("not_a_dataset");
-  fs::create_directories(dir);
+  const test::TestDir temp;
+  const std::string dir = temp.str();
   EXPECT_THROW(ExportCoco(dir, dir + "/out"), InputError);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -23,15 +23,28 @@ void MarkRenderedBy(const std::string& dataset_dir, const std::string& version) 
   WriteFileAtomic(path, manifest.ToJson());
 }
 
+Scene TinyRoom() { return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {}); }
+
+BenchOptions SlcdOnly() {
+  BenchOptions bench;
+  bench.methods = {"slcd"};
+  return bench;
+}
+
+// A run that caches its datasets in `cache_dir`, on two threads.
+RunOptions CachedIn(const std::string& cache_dir) {
+  RunOptions options;
+  options.cache_dir = cache_dir;
+  options.threads = 2;
+  return options;
+}
+
 TEST(RunScene, ReusesItsCacheButRendersAgainWhenAnotherSimulatorMadeIt) {
   const test::TestDir temp;
   const fs::path cache = temp.path() / "cache";
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {});
-  BenchOptions bench;
-  bench.methods = {"slcd"};
-  RunOptions options;
-  options.cache_dir = cache.string();
-  options.threads = 2;
+  const Scene scene = TinyRoom();
+  const BenchOptions bench = SlcdOnly();
+  const RunOptions options = CachedIn(cache.string());
 
   const RunOutcome first = RunScene(scene, bench, options);
   EXPECT_FALSE(first.timing.render_cached);
@@ -58,12 +71,9 @@ TEST(RunScene, ReusesItsCacheButRendersAgainWhenAnotherSimulatorMadeIt) {
 
 TEST(RunScene, StaleCacheWithAnUnreadableManifestKeepsAndNamesTheUsersFiles) {
   const test::TestDir temp;
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {});
-  BenchOptions bench;
-  bench.methods = {"slcd"};
-  RunOptions options;
-  options.cache_dir = temp.str();
-  options.threads = 2;
+  const Scene scene = TinyRoom();
+  const BenchOptions bench = SlcdOnly();
+  const RunOptions options = CachedIn(temp.str());
   const RunOutcome first = RunScene(scene, bench, options);
   WriteFileAtomic(first.dataset_dir + "/manifest.json", "{ damaged");
   WriteFileAtomic(first.dataset_dir + "/notes.txt", "mine");

@@ -58,6 +58,18 @@ std::vector<Query> LapQueries(const std::vector<PoseRecord>& poses) {
   return BuildQueries(poses, protocol);
 }
 
+// One score per (query, database entry): score(query, index into its database).
+template <typename ScoreFn>
+std::vector<std::vector<double>> ScoreEach(const std::vector<Query>& queries, ScoreFn score) {
+  std::vector<std::vector<double>> scores;
+  for (const Query& q : queries) {
+    std::vector<double> row(q.database.size());
+    for (size_t j = 0; j < q.database.size(); ++j) row[j] = score(q, j);
+    scores.push_back(std::move(row));
+  }
+  return scores;
+}
+
 TEST(SlamTest, OracleLoopsHalveTheOdometryAteOnADriftingSequenceWithAndWithoutKeyframes) {
   const auto poses = DriftingLaps(2);
   const auto queries = LapQueries(poses);
@@ -111,17 +123,13 @@ TEST(SlamTest, OneFalseLoopWrecksPlainLeastSquaresButNotTheRobustBackEnd) {
 TEST(SlamTest, AcceptLoopsTakesTopOneAboveTheThresholdAndJudgesItByTruePosition) {
   const auto poses = DriftingLaps(2);
   const auto queries = LapQueries(poses);
-  std::vector<std::vector<double>> scores;
-  for (const Query& q : queries) {
-    std::vector<double> s(q.database.size(), 0.0);
-    // True match scores 10 on even queries; on odd ones a false frame scores 5.
-    for (size_t j = 0; j < q.database.size(); ++j) {
-      const bool near = BaseDistanceM(poses[q.frame], poses[q.database[j]]) <= kRadiusM;
-      if (q.frame % 2 == 0 && near) s[j] = 10;
-      if (q.frame % 2 == 1 && !near && s.size() > 0 && j == 0) s[j] = 5;
-    }
-    scores.push_back(s);
-  }
+  // True match scores 10 on even queries; on odd ones a false frame scores 5.
+  const auto scores = ScoreEach(queries, [&](const Query& q, size_t j) {
+    const bool near = BaseDistanceM(poses[q.frame], poses[q.database[j]]) <= kRadiusM;
+    if (q.frame % 2 == 0 && near) return 10.0;
+    if (q.frame % 2 == 1 && !near && j == 0) return 5.0;
+    return 0.0;
+  });
   const auto all = AcceptLoops(queries, scores, 0.0, poses, kRadiusM);
   const auto strict = AcceptLoops(queries, scores, 6.0, poses, kRadiusM);
   ASSERT_FALSE(strict.empty());
@@ -140,13 +148,9 @@ TEST(SlamTest, AcceptLoopsTakesTopOneAboveTheThresholdAndJudgesItByTruePosition)
 TEST(SlamTest, FullPrecisionThresholdIsNaNWhenTheBestMatchIsFalse) {
   const auto poses = DriftingLaps(2);
   const auto queries = LapQueries(poses);
-  std::vector<std::vector<double>> scores;
-  for (const Query& q : queries) {
-    std::vector<double> s(q.database.size(), 0.0);
-    for (size_t j = 0; j < q.database.size(); ++j)
-      if (BaseDistanceM(poses[q.frame], poses[q.database[j]]) > 1.0) s[j] = 1;
-    scores.push_back(s);
-  }
+  const auto scores = ScoreEach(queries, [&](const Query& q, size_t j) {
+    return BaseDistanceM(poses[q.frame], poses[q.database[j]]) > 1.0 ? 1.0 : 0.0;
+  });
   EXPECT_TRUE(std::isnan(ThresholdAtFullPrecision(queries, scores, poses, kRadiusM)));
 }
 
