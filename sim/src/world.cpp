@@ -437,13 +437,16 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
       current = next;
     }
   }
-  // Neighbours at the same table, as directions seen from this seat (for talking and glances).
+  // The other seats seen from this one: neighbours at the same table, as directions (for
+  // talking and glances); elbow room, half the distance to the nearest seat beside this one
+  // (any table).
   std::vector<double> neighbours;
   const Eigen::Matrix4d seat_from_world = person.world_from_seat.cast<double>().inverse();
   for (const Seat& other : seats_) {
-    if (other.table != table || other.seat == seat) continue;
+    if (other.table == table && other.seat == seat) continue;
     const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
-    neighbours.push_back(std::atan2(at.y(), at.x()));
+    if (other.table == table) neighbours.push_back(std::atan2(at.y(), at.x()));
+    if (std::abs(at.x()) < 0.35) person.elbow_room_m = std::min(person.elbow_room_m, 0.5 * std::abs(at.y()));
   }
   // How far the table's near edge is (the poses and props assume 0.30 m; chairs stand irregularly).
   {
@@ -451,12 +454,6 @@ size_t World::AddSeatedPerson(int table, int seat, const std::string& posture, d
     const Eigen::Vector3d d = person.table_from_seat.topLeftCorner<3, 3>().col(0);
     const double half_depth = 0.5 * (table_bounds_m_.max().y() - table_bounds_m_.min().y());
     if (std::abs(d.y()) > 0.5) person.table_edge_m = std::clamp((std::abs(q.y()) - half_depth) / std::abs(d.y()), 0.1, 0.5);
-  }
-  // Elbow room: half the distance to the nearest seat beside this one (any table).
-  for (const Seat& other : seats_) {
-    if (other.table == table && other.seat == seat) continue;
-    const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
-    if (std::abs(at.x()) < 0.35) person.elbow_room_m = std::min(person.elbow_room_m, 0.5 * std::abs(at.y()));
   }
   person.activities = PlanActivities(activity_options_, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
                                      has_cup, has_laptop, neighbours);

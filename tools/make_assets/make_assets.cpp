@@ -511,6 +511,17 @@ AssetBuilder Part(const std::string& part, const std::string& parent, const Vec3
   return asset;
 }
 
+// A limb part: one capsule from its joint to the next joint, in one material; `keypoint` (when
+// not empty) names the COCO keypoint at the joint.
+AssetBuilder LimbPart(const std::string& part, const std::string& parent, const Vec3& joint, const Vec3& end,
+                      double joint_radius_m, double end_radius_m, const ThermalSpec& material,
+                      const std::string& keypoint) {
+  AssetBuilder limb = Part(part, parent, joint);
+  limb.Add(Capsule(joint, end, joint_radius_m, end_radius_m), limb.Material(material));
+  if (!keypoint.empty()) limb.keypoints.push_back({keypoint, joint});
+  return limb;
+}
+
 std::vector<AssetBuilder> PersonParts() {
   const RestSkeleton rest;
   const Mat3 I = Mat3::Identity();
@@ -571,15 +582,10 @@ std::vector<AssetBuilder> PersonParts() {
   for (int side = 0; side < 2; ++side) {
     const std::string s = side == 0 ? "left" : "right";
     const double sign = side == 0 ? 1.0 : -1.0;
-    AssetBuilder upper_arm = Part("upper_arm_" + s, "torso", rest.shoulder[side]);
-    upper_arm.Add(Capsule(rest.shoulder[side], rest.elbow[side], 0.052, 0.042),
-                  upper_arm.Material(kClothingUpper));
-    parts.push_back(upper_arm);
-
-    AssetBuilder lower_arm = Part("lower_arm_" + s, "upper_arm_" + s, rest.elbow[side]);
-    lower_arm.Add(Capsule(rest.elbow[side], rest.wrist[side], 0.041, 0.031), lower_arm.Material(kClothingUpper));
-    lower_arm.keypoints.push_back({s + "_elbow", rest.elbow[side]});
-    parts.push_back(lower_arm);
+    parts.push_back(LimbPart("upper_arm_" + s, "torso", rest.shoulder[side], rest.elbow[side], 0.052, 0.042,
+                             kClothingUpper, ""));
+    parts.push_back(LimbPart("lower_arm_" + s, "upper_arm_" + s, rest.elbow[side], rest.wrist[side], 0.041,
+                             0.031, kClothingUpper, s + "_elbow"));
 
     // The hand hangs with its back outwards (palm towards the thigh).
     AssetBuilder hand = Part("hand_" + s, "lower_arm_" + s, rest.wrist[side]);
@@ -593,15 +599,10 @@ std::vector<AssetBuilder> PersonParts() {
     hand.keypoints.push_back({s + "_wrist", rest.wrist[side] + Vec3(0, 0, -0.01)});
     parts.push_back(hand);
 
-    AssetBuilder thigh = Part("thigh_" + s, "pelvis", rest.hip[side]);
-    thigh.Add(Capsule(rest.hip[side], rest.knee[side], 0.08, 0.055), thigh.Material(kClothingLower));
-    thigh.keypoints.push_back({s + "_hip", rest.hip[side]});
-    parts.push_back(thigh);
-
-    AssetBuilder shin = Part("shin_" + s, "thigh_" + s, rest.knee[side]);
-    shin.Add(Capsule(rest.knee[side], rest.ankle[side], 0.05, 0.038), shin.Material(kClothingLower));
-    shin.keypoints.push_back({s + "_knee", rest.knee[side]});
-    parts.push_back(shin);
+    parts.push_back(LimbPart("thigh_" + s, "pelvis", rest.hip[side], rest.knee[side], 0.08, 0.055,
+                             kClothingLower, s + "_hip"));
+    parts.push_back(LimbPart("shin_" + s, "thigh_" + s, rest.knee[side], rest.ankle[side], 0.05, 0.038,
+                             kClothingLower, s + "_knee"));
 
     AssetBuilder foot = Part("foot_" + s, "shin_" + s, rest.ankle[side]);
     foot.Add(Ellipsoid(Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.045), I,
