@@ -347,6 +347,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     }
   }
 
+  table_bounds_m_ = table_asset.bounds_m;  // every table is the same asset
   size_t next_chair = 0;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
     const TableSpec& spec = scene.tables[t];
@@ -354,7 +355,6 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
     Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
     world_from_table_.push_back(PlacementTransform(center, yaw).cast<double>());
-    table_bounds_m_ = table_asset.bounds_m;
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
     for (int n = 0; n < 2 * per_side; ++n) {
       const ChairPlan& plan = chairs[next_chair++];
