@@ -47,10 +47,6 @@ double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, con
   return (a + t * ab - p).norm();
 }
 
-InspectFigure Number(std::string key, std::string label, double value, std::string unit) {
-  return NumberFigure(std::move(key), std::move(label), value, std::move(unit));
-}
-
 std::string FormatValue(const InspectFigure& f) {
   char text[64];
   if (f.unit.empty() && f.value == std::round(f.value)) {
@@ -156,15 +152,15 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses) {
   const double end_heading_deg =
       poses.empty() ? 0 : std::remainder(poses.back().odo_theta_rad - poses.back().theta_rad, 2 * M_PI) * kRadToDeg;
   s.figures = {
-      Number("frames", "frames", static_cast<double>(poses.size()), ""),
-      Number("laps", "laps started (true heading)", laps.empty() ? 0 : laps.back() + 1, ""),
-      Number("path_length_m", "true distance driven", path_m, "m"),
-      Number("lap_difference_median_m", "lap-to-lap true path difference, median", Quantile(lap_difference_m, 0.5), "m"),
-      Number("lap_difference_p90_m", "lap-to-lap true path difference, p90", Quantile(lap_difference_m, 0.9), "m"),
-      Number("odometry_drift_end_m", "odometry drift at the end", end_drift_m, "m"),
-      Number("odometry_drift_max_m", "odometry drift, max", max_drift_m, "m"),
-      Number("odometry_drift_end_pct", "odometry drift at the end, % of distance", path_m > 0 ? 100 * end_drift_m / path_m : 0, "%"),
-      Number("odometry_heading_error_end_deg", "odometry heading error at the end", end_heading_deg, "deg"),
+      NumberFigure("frames", "frames", static_cast<double>(poses.size()), ""),
+      NumberFigure("laps", "laps started (true heading)", laps.empty() ? 0 : laps.back() + 1, ""),
+      NumberFigure("path_length_m", "true distance driven", path_m, "m"),
+      NumberFigure("lap_difference_median_m", "lap-to-lap true path difference, median", Quantile(lap_difference_m, 0.5), "m"),
+      NumberFigure("lap_difference_p90_m", "lap-to-lap true path difference, p90", Quantile(lap_difference_m, 0.9), "m"),
+      NumberFigure("odometry_drift_end_m", "odometry drift at the end", end_drift_m, "m"),
+      NumberFigure("odometry_drift_max_m", "odometry drift, max", max_drift_m, "m"),
+      NumberFigure("odometry_drift_end_pct", "odometry drift at the end, % of distance", path_m > 0 ? 100 * end_drift_m / path_m : 0, "%"),
+      NumberFigure("odometry_heading_error_end_deg", "odometry heading error at the end", end_heading_deg, "deg"),
   };
   return s;
 }
@@ -178,11 +174,11 @@ InspectSection CameraSection(const std::vector<PoseRecord>& poses) {
     height_m.push_back(p.cam_z_m);
   }
   s.figures = {
-      Number("roll_std_deg", "roll std", StdDev(roll_deg), "deg"),
-      Number("pitch_std_deg", "pitch std", StdDev(pitch_deg), "deg"),
-      Number("height_std_m", "height std", StdDev(height_m), "m"),
-      Number("roll_frame_to_frame_rms_deg", "roll change frame to frame, RMS", RmsFrameToFrame(roll_deg), "deg"),
-      Number("pitch_frame_to_frame_rms_deg", "pitch change frame to frame, RMS", RmsFrameToFrame(pitch_deg), "deg"),
+      NumberFigure("roll_std_deg", "roll std", StdDev(roll_deg), "deg"),
+      NumberFigure("pitch_std_deg", "pitch std", StdDev(pitch_deg), "deg"),
+      NumberFigure("height_std_m", "height std", StdDev(height_m), "m"),
+      NumberFigure("roll_frame_to_frame_rms_deg", "roll change frame to frame, RMS", RmsFrameToFrame(roll_deg), "deg"),
+      NumberFigure("pitch_frame_to_frame_rms_deg", "pitch change frame to frame, RMS", RmsFrameToFrame(pitch_deg), "deg"),
   };
   return s;
 }
@@ -207,9 +203,9 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
   mean = per_frame.empty() ? 0 : mean / per_frame.size();
   const auto [lo, hi] = std::minmax_element(per_frame.begin(), per_frame.end());
   s.figures = {
-      Number("per_frame_mean", "people in view per frame, mean", mean, ""),
-      Number("per_frame_min", "people in view per frame, min", per_frame.empty() ? 0 : *lo, ""),
-      Number("per_frame_max", "people in view per frame, max", per_frame.empty() ? 0 : *hi, ""),
+      NumberFigure("per_frame_mean", "people in view per frame, mean", mean, ""),
+      NumberFigure("per_frame_min", "people in view per frame, min", per_frame.empty() ? 0 : *lo, ""),
+      NumberFigure("per_frame_max", "people in view per frame, max", per_frame.empty() ? 0 : *hi, ""),
       occlusion,
   };
   return s;
@@ -228,12 +224,12 @@ InspectSection LabelSection(const std::vector<PoseRecord>& poses, const Protocol
     scored_truth += by_truth[i].NumTrueMatches() > 0;
   }
   s.figures = {
-      Number("queries", "queries (" + protocol.protocol + " protocol, laps from odometry)", d.queries, ""),
-      Number("queries_with_match_odometry", "queries with a true match, odometry labels", scored_odometry, ""),
-      Number("queries_with_match_true", "queries with a true match, true labels", scored_truth, ""),
-      Number("queries_differing", "queries whose true matches differ", d.queries_differing, ""),
-      Number("queries_differing_pct", "queries whose true matches differ, %", d.queries ? 100.0 * d.queries_differing / d.queries : 0, "%"),
-      Number("pairs_differing", "query-database pairs labelled differently", static_cast<double>(d.pairs_differing), ""),
+      NumberFigure("queries", "queries (" + protocol.protocol + " protocol, laps from odometry)", d.queries, ""),
+      NumberFigure("queries_with_match_odometry", "queries with a true match, odometry labels", scored_odometry, ""),
+      NumberFigure("queries_with_match_true", "queries with a true match, true labels", scored_truth, ""),
+      NumberFigure("queries_differing", "queries whose true matches differ", d.queries_differing, ""),
+      NumberFigure("queries_differing_pct", "queries whose true matches differ, %", d.queries ? 100.0 * d.queries_differing / d.queries : 0, "%"),
+      NumberFigure("pairs_differing", "query-database pairs labelled differently", static_cast<double>(d.pairs_differing), ""),
   };
   return s;
 }

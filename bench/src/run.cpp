@@ -29,13 +29,15 @@ std::string RunFolder(const Scene& scene, const std::string& cache_dir) {
 namespace {
 
 // Renders `scene` into dataset_dir unless a complete, intact dataset of this very scene is cached
-// there. Returns whether it was cached; *render_s gets the rendering time.
-bool EnsureDataset(const Scene& scene, const std::string& dataset_dir, const RunOptions& options, double* render_s) {
+// there, and returns it opened (checksums verified once). *cached says whether it was cached;
+// *render_s gets the rendering time.
+Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const RunOptions& options, bool* cached,
+                      double* render_s) {
   // Reuse the cached dataset only when it is complete, intact, of this very scene and rendered
   // by this simulator. One rendered by another simulator (or with an unreadable manifest) is
   // stale: its files are deleted by their exact names and it is rendered anew. Anything else in
   // the folder is the user's: it is kept, and named in an error.
-  bool cached = false;
+  *cached = false;
   std::error_code ec;
   const std::string manifest_path = dataset_dir + "/manifest.json";
   if (std::filesystem::exists(manifest_path, ec)) {
@@ -52,21 +54,22 @@ bool EnsureDataset(const Scene& scene, const std::string& dataset_dir, const Run
       }
     } else {
       try {
-        const Dataset existing = Dataset::Open(dataset_dir, /*verify_checksums=*/true);
-        cached = existing.manifest().scene_hash == scene.hash && existing.num_frames() == scene.frames;
+        Dataset existing = Dataset::Open(dataset_dir, /*verify_checksums=*/true);
+        if (existing.manifest().scene_hash == scene.hash && existing.num_frames() == scene.frames) {
+          *cached = true;
+          return existing;
+        }
       } catch (const InputError&) {
-        cached = false;  // partial or damaged: RenderSequence resumes or re-renders what is bad
+        // partial or damaged: RenderSequence resumes or re-renders what is bad
       }
     }
   }
-  if (!cached) {
-    SequenceOptions render;
-    render.output_dir = dataset_dir;
-    render.threads = options.threads;
-    render.cancel = options.cancel;
-    *render_s = RenderSequence(scene, render).seconds;
-  }
-  return cached;
+  SequenceOptions render;
+  render.output_dir = dataset_dir;
+  render.threads = options.threads;
+  render.cancel = options.cancel;
+  *render_s = RenderSequence(scene, render).seconds;
+  return Dataset::Open(dataset_dir, /*verify_checksums=*/true);
 }
 
 // Each method's threshold at 100 % precision on the calibration sequence (NaN: none reaches it).
@@ -77,9 +80,9 @@ std::map<std::string, double> CalibrateLoopThresholds(const Scene& scene, const 
   doc["seed"] = scene.seed + options.calibration_seed_offset;
   const Scene calibration = SceneFromJson(doc, scene.file + " (calibration seed)");
   out->calibration_dir = RunFolder(calibration, options.cache_dir) + "/dataset";
+  bool cached = false;
   double render_s = 0;
-  const bool cached = EnsureDataset(calibration, out->calibration_dir, options, &render_s);
-  const Dataset dataset = Dataset::Open(out->calibration_dir, /*verify_checksums=*/!cached);
+  const Dataset dataset = EnsureDataset(calibration, out->calibration_dir, options, &cached, &render_s);
   BenchOptions b = bench;
   b.slam = false;
   const BenchResult result = RunBench(dataset, b);
@@ -101,11 +104,8 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   out.dataset_dir = folder + "/dataset";
   out.report_dir = options.report_dir.empty() ? folder + "/report" : options.report_dir;
 
-  double render_s = 0;
-  const bool cached = EnsureDataset(scene, out.dataset_dir, options, &render_s);
-  out.timing.render_s = render_s;
-  out.timing.render_cached = cached;
-  const Dataset dataset = Dataset::Open(out.dataset_dir, /*verify_checksums=*/!cached);
+  const Dataset dataset =
+      EnsureDataset(scene, out.dataset_dir, options, &out.timing.render_cached, &out.timing.render_s);
   out.warnings = dataset.warnings();
   BenchOptions b = bench;
   b.threads = options.threads;
