@@ -117,20 +117,19 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
 }
 
 InspectSection CameraOutputSection(const CameraOutputStats& s) {
-  const auto number = NumberFigure;
   InspectSection section{"camera_output", "Camera output (video, lens shading, FFC freezes)", {}};
   section.figures = {
-      number("video_mode", "video mode (methods read the decoded video)", s.video_mode ? 1 : 0, ""),
-      number("video_readable", "thermal.mp4 decodes to one frame per frame", s.video_problem.empty() ? 1 : 0, ""),
-      number("video_frames", "video frames", s.video_frames, ""),
-      number("psnr_mean_db", "video vs uncompressed 8-bit frames, PSNR mean", s.psnr_mean_db, "dB"),
-      number("psnr_min_db", "video vs uncompressed 8-bit frames, PSNR worst", s.psnr_min_db, "dB"),
-      number("thermal_is_video", "thermal PNGs are the decoded video frames", s.thermal_is_video ? 1 : 0, ""),
-      number("frames_compared", "frames compared", s.frames_compared, ""),
-      number("shading_mean_k", "lens shading, corner minus centre of T - T_true, mean", s.shading_mean_k, "K"),
-      number("shading_p90_k", "lens shading, corner minus centre, 90th percentile", s.shading_p90_k, "K"),
-      number("freeze_events", "frames frozen by FFCs (events.json)", s.freeze_events, ""),
-      number("frozen_frames", "frames repeating the previous frame (radiometric)", s.frozen_frames, ""),
+      NumberFigure("video_mode", "video mode (methods read the decoded video)", s.video_mode ? 1 : 0, ""),
+      NumberFigure("video_readable", "thermal.mp4 decodes to one frame per frame", s.video_problem.empty() ? 1 : 0, ""),
+      NumberFigure("video_frames", "video frames", s.video_frames, ""),
+      NumberFigure("psnr_mean_db", "video vs uncompressed 8-bit frames, PSNR mean", s.psnr_mean_db, "dB"),
+      NumberFigure("psnr_min_db", "video vs uncompressed 8-bit frames, PSNR worst", s.psnr_min_db, "dB"),
+      NumberFigure("thermal_is_video", "thermal PNGs are the decoded video frames", s.thermal_is_video ? 1 : 0, ""),
+      NumberFigure("frames_compared", "frames compared", s.frames_compared, ""),
+      NumberFigure("shading_mean_k", "lens shading, corner minus centre of T - T_true, mean", s.shading_mean_k, "K"),
+      NumberFigure("shading_p90_k", "lens shading, corner minus centre, 90th percentile", s.shading_p90_k, "K"),
+      NumberFigure("freeze_events", "frames frozen by FFCs (events.json)", s.freeze_events, ""),
+      NumberFigure("frozen_frames", "frames repeating the previous frame (radiometric)", s.frozen_frames, ""),
   };
   return section;
 }
