@@ -111,15 +111,16 @@ std::vector<std::string> WriteSlamFiles(const SlamResult& slam, const std::vecto
   for (const MethodSlam& m : slam.methods) {
     const SlamScore& s = m.Headline(slam.backend);
     WriteFileAtomic(dir + "/slam/" + m.method + "_tum.txt", PlanarTum(poses, s.poses));
-    WriteFileAtomic(dir + "/slam/" + m.method + ".g2o",
-                    PoseGraphToG2o(BuildPoseGraph(poses, m.loops, slam.noise, options),
-                                   BuildPoseGraph(poses, m.loops, slam.noise, options).nodes));
+    const PoseGraph graph = BuildPoseGraph(poses, m.loops, slam.noise, options);
+    WriteFileAtomic(dir + "/slam/" + m.method + ".g2o", PoseGraphToG2o(graph, graph.nodes));
   }
-  // Trajectories: truth, odometry, oracle and each method's optimised path (headline back end).
+  // Trajectories: truth, odometry and the optimised path (headline back end) of each method that
+  // accepted a loop; the others' paths are the odometry's and would only hide it.
   std::vector<Series> series = {Path("true", truth, cv::Scalar(0, 0, 0)),
                                 Path("odometry", slam.odometry.poses, cv::Scalar(160, 160, 160))};
   for (size_t i = 0; i < slam.methods.size(); ++i) {
-    series.push_back(Path(slam.methods[i].method, slam.methods[i].Headline(slam.backend).poses, PaletteColour(i)));
+    const SlamScore& s = slam.methods[i].Headline(slam.backend);
+    if (s.loops_accepted > 0) series.push_back(Path(slam.methods[i].method, s.poses, PaletteColour(i)));
   }
   PlotOptions o;
   o.title = "Trajectories after pose-graph optimisation (" + slam.backend + ")";
