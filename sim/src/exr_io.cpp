@@ -9,6 +9,8 @@
 #include <ImfCompression.h>
 
 #include <cstring>
+#include <map>
+#include <string_view>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
@@ -69,6 +71,38 @@ constexpr int kMaxExrSidePx = 4096;  // far above any thermal camera
 // walk of the documented header layout (magic, version, then per header "name\0type\0" int32
 // size and value, ending in \0): every attribute must fit in the file, and the data window
 // (which sizes OpenEXR's line buffers) must be a frame's size, before OpenEXR reads it.
+// OpenEXR reads a known attribute type by its own layout, not by the size the file declares, so
+// a size that disagrees with the value puts every later attribute at the wrong offset (and a
+// garbage size then allocates gigabytes). True when `value` is exactly what OpenEXR will read.
+bool ValueMatchesType(const std::string& type, std::string_view value) {
+  static const std::map<std::string, size_t> kFixedSize = {
+      {"box2i", 16}, {"box2f", 16}, {"compression", 1}, {"double", 8}, {"envmap", 1},
+      {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72},
+      {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},
+      {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24},
+      {"chromaticities", 32}, {"deepImageState", 1}};
+  if (const auto fixed = kFixedSize.find(type); fixed != kFixedSize.end()) return value.size() == fixed->second;
+  if (type == "chlist") {  // entries "name\0" + 16 bytes, ended by an empty name
+    size_t at = 0;
+    while (at < value.size() && value[at] != '\0') {
+      const size_t end = value.find('\0', at);
+      if (end == std::string_view::npos || end - at > 255 || value.size() - (end + 1) < 16) return false;
+      at = end + 1 + 16;
+    }
+    return at + 1 == value.size();
+  }
+  if (type == "preview") {  // width, height, then width * height RGBA bytes
+    if (value.size() < 8) return false;
+    uint64_t width = 0, height = 0;
+    for (int i = 3; i >= 0; --i) {
+      width = (width << 8) | static_cast<unsigned char>(value[i]);
+      height = (height << 8) | static_cast<unsigned char>(value[4 + i]);
+    }
+    return value.size() - 8 == width * height * 4;  // each factor < 2^32: no overflow in 64 bits
+  }
+  return true;  // strings, vectors and unknown (opaque) types are read by the declared size
+}
+
 bool HeaderFitsInFile(const std::string& bytes) {
   if (bytes.size() < 8 || bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0) return false;
   const bool multipart = (static_cast<unsigned char>(bytes[5]) & 0x10) != 0;
@@ -94,10 +128,14 @@ bool HeaderFitsInFile(const std::string& bytes) {
       return value;
     };
     const size_t name_at = at;
-    if (!skip_name() || !skip_name() || bytes.size() - at < 4) return false;
+    if (!skip_name()) return false;
+    const size_t type_at = at;
+    if (!skip_name() || bytes.size() - at < 4) return false;
+    const std::string type = bytes.substr(type_at, at - 1 - type_at);
     const uint32_t size = int32_at(at);
     at += 4;
     if (size > bytes.size() - at) return false;
+    if (!ValueMatchesType(type, std::string_view(bytes).substr(at, size))) return false;
     if (bytes.compare(name_at, 11, std::string("dataWindow\0", 11)) == 0 && size == 16) {
       const int64_t width = int64_t{static_cast<int32_t>(int32_at(at + 8))} - static_cast<int32_t>(int32_at(at)) + 1;
       const int64_t height = int64_t{static_cast<int32_t>(int32_at(at + 12))} - static_cast<int32_t>(int32_at(at + 4)) + 1;
@@ -112,8 +150,8 @@ bool HeaderFitsInFile(const std::string& bytes) {
 
 ExrChannels ReadExr(const std::string& path) {
   if (!HeaderFitsInFile(ReadFileBytes(path))) {
-    throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end, or the "
-                           "data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
+    throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end or "
+                           "disagrees with its type's size, or the data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
   }
   try {
     Imf::InputFile file(path.c_str(), 1);

@@ -53,5 +53,23 @@ TEST(Exr, DataWindowFarLargerThanAFrameIsRefusedBeforeOpenExrAllocatesLineBuffer
   }
 }
 
+TEST(Exr, ChannelListWhoseDeclaredSizeDisagreesWithItsEntriesIsRefused) {
+  const test::TestDir temp;
+  // OpenEXR reads a chlist entry by entry and ignores the declared size, so a shorter size puts
+  // the next attributes at other offsets than ours (fuzz_dataset's long run found one that then
+  // allocated gigabytes for a garbage "attribute"). Shrink the declared size by 18 bytes.
+  std::string bytes = EncodeExr({{"T", cv::Mat(6, 8, CV_32F, cv::Scalar(21.0f))}});
+  const size_t at = bytes.find(std::string("channels\0chlist\0", 16)) + 16;
+  ASSERT_LT(at + 4, bytes.size());
+  bytes[at] = static_cast<char>(static_cast<unsigned char>(bytes[at]) - 18);
+  WriteFileAtomic(temp / "desync.exr", bytes);
+  try {
+    ReadExr(temp / "desync.exr");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("disagrees with its type's size"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hoilcd
