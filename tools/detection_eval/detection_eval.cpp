@@ -1,7 +1,9 @@
 // detection_eval: how well DLCD's person detector and tracker find the people of a dataset, against
 // persons.json, with the reasons for each miss. The front end reads what bench reads (decoded
 // frames in video mode), people are scored as bench scores them (>= 20 % visible, box >= 16 px).
-// Usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [DETECTOR_OPTION=VALUE...]
+// Usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [DETECTOR_OPTION=VALUE...] [--draw=DIR]
+// (--draw: DIR/NNNNNN.png per frame with people, temperatures 20-37 degC and the detector's mask,
+// ground-truth boxes green, detections red, scaled 3x)
 // (options: the numeric PersonDetectorOptions fields listed in kNumericOptions below)
 #include <algorithm>
 #include <cstdio>
@@ -15,6 +17,9 @@
 #include "hoilcd/bench/tracking_metrics.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/exr_io.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace hoilcd {
 namespace {
@@ -75,10 +80,12 @@ int Main(int argc, char** argv) {
   }
   const Dataset dataset = Dataset::Open(argv[1], /*verify_checksums=*/false);
   std::vector<int> range;
+  std::string draw_dir;
   BenchOptions options = WithManifest(BenchOptions{}, dataset.manifest());
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg.find('=') != std::string::npos) SetOption(&options.detector, arg);
+    if (arg.rfind("--draw=", 0) == 0) draw_dir = arg.substr(7);
+    else if (arg.find('=') != std::string::npos) SetOption(&options.detector, arg);
     else range.push_back(std::stoi(arg));
   }
   if (const std::string problem = options.detector.Check(); !problem.empty()) throw InputError("detector", problem);
@@ -165,6 +172,23 @@ int Main(int argc, char** argv) {
       }
       if (best_iou >= scoring.iou_threshold || best_any >= scoring.iou_threshold) continue;
       false_positives[best_any >= 0.1 ? "overlaps a person at IoU 0.1-0.5 (merge, part)" : "on no person (object)"]++;
+    }
+    if (!draw_dir.empty() && !scored.empty()) {
+      cv::Mat grey, colour, mask;
+      temperature.convertTo(grey, CV_8U, 255.0 / 17.0, -20.0 * 255.0 / 17.0);
+      cv::applyColorMap(grey, colour, cv::COLORMAP_INFERNO);
+      cv::cvtColor(front_end.last_detections().mask, mask, cv::COLOR_GRAY2BGR);
+      cv::Mat both;
+      cv::vconcat(colour, mask, both);
+      cv::resize(both, both, cv::Size(), 3, 3, cv::INTER_NEAREST);
+      for (int half = 0; half < 2; ++half) {
+        const cv::Point2f shift(0, half * temperature.rows);
+        for (const PersonRecord* p : scored)
+          cv::rectangle(both, cv::Rect((p->box_px.tl() + shift) * 3, cv::Size2f(p->box_px.width * 3, p->box_px.height * 3)), {0, 255, 0}, 1);
+        for (const TrackedBox& b : d.tracks)
+          cv::rectangle(both, cv::Rect((b.box.tl() + shift) * 3, cv::Size2f(b.box.width * 3, b.box.height * 3)), {0, 0, 255}, 1);
+      }
+      cv::imwrite(draw_dir + "/" + FrameFileName(f, "png"), both);
     }
     detected.push_back(d);
     tracked.push_back(t);
