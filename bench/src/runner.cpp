@@ -6,6 +6,7 @@
 #include <set>
 #include <set>
 
+#include "hoilcd/bench/front_end_input.h"
 #include "hoilcd/bench/manifest_options.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/core/error.h"
@@ -168,8 +169,10 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     ProgressReporter progress("features", n, "frames");
     std::vector<cv::Mat> thumb_frames;
     DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
+    const bool video_mode = IsVideoMode(dataset);
     for (int f = 0; f < n; ++f) {
-      const cv::Mat thermal = dataset.Thermal(f);
+      const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, need_dlcd);
+      const cv::Mat& thermal = input.thermal_u8;
       if (need_slcd) {
         const auto t = Clock::now();
         result.features[f].keypoints = DetectKeypoints(thermal, options.keypoints);
@@ -177,9 +180,8 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
         slcd_index.Add(result.features[f].keypoints);
       }
       if (need_dlcd) {
-        const cv::Mat radiometric = dataset.RadiometricC(f);
         const auto t = Clock::now();
-        hoi[f] = front_end.Process(thermal, radiometric);
+        hoi[f] = front_end.Process(thermal, input.radiometric_c);
         dlcd_ms[f] = MsSince(t);
         result.features[f].hoi = hoi[f];
         std::vector<Point2> points;
