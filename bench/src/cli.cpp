@@ -15,6 +15,7 @@
 #include "hoilcd/bench/gate.h"
 #include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/mot_export.h"
+#include "hoilcd/bench/method_params.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/run.h"
@@ -104,6 +105,10 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
   cmd->add_option("--methods", args->methods,
                   "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
   AddProtocolFlags(cmd, &args->options.protocol);
+  cmd->add_option("--param", args->options.params,
+                  "a parameter of one method or front end, e.g. slcd.ransac_trials=50, fusion.k=60, "
+                  "persons.threshold_c=27 (repeatable; hoilcd params lists them)")
+      ->type_name("NAME=VALUE");
   cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
       ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
   cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
@@ -156,6 +161,7 @@ BenchOptions ResolveBench(const BenchArgs& args, int threads) {
   BenchOptions o = args.options;
   o.methods = args.methods.empty() ? DefaultMethods() : ParseMethodList(args.methods);
   o.threads = threads;
+  CheckParams(o.params);
   if (const std::string problem = o.Check(); !problem.empty()) throw InputError("bench options", problem);
   return o;
 }
@@ -413,6 +419,8 @@ int RunCommandLine(int argc, char** argv) {
   coco->add_option("dataset", coco_dataset, "dataset folder written by hoilcd render")->required();
   coco->add_option("-o,--output", coco_output, "folder for person_keypoints.json")->required();
 
+  CLI::App* params = app.add_subcommand("params", "list the --param NAMEs of every method and front end");
+
   std::string mot_dataset, mot_output;
   CLI::App* mot = app.add_subcommand(
       "export-mot", "ground-truth person boxes and the DLCD front end's tracks in MOTChallenge format (TrackEval)");
@@ -433,6 +441,10 @@ int RunCommandLine(int argc, char** argv) {
     if (*render) return RunRender(render_args, render_options);
     if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads, dump_scores, bench_gate);
     if (*run) return RunRunCommand(run_scene, run_args, run_options, run_gate);
+    if (*params) {
+      std::printf("%s", FormatParams().c_str());
+      return 0;
+    }
     if (*evaluate) {
       return RunEvaluateCommand(evaluate_dir, evaluate_scores, evaluate_name, evaluate_protocol, evaluate_output,
                                 evaluate_gate);

@@ -353,6 +353,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                           {"lo_refits", options.lo_refits},
                           {"keypoint_detector", options.keypoints.detector},
                           {"rrf_k", options.rrf_k}};
+  if (!options.params.empty()) report["parameters"]["param"] = options.params;  // --param NAME=VALUE
   for (const MethodRun& run : result.runs) {
     nlohmann::json m = run.metrics.ToJson();
     m["description"] = FindMethod(run.name).Description();

@@ -8,6 +8,7 @@
 #include "hoilcd/bench/evaluate.h"
 #include "hoilcd/bench/front_ends.h"
 #include "hoilcd/bench/loop_closure_method.h"
+#include "hoilcd/bench/method_params.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/core/error.h"
 
@@ -39,6 +40,11 @@ std::string BenchOptions::Check() const {
         tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), sequence.Check(),
         temporal.Check(), tracking_metrics.Check(), slam_options.Check()}) {
     if (!problem.empty()) return problem;
+  }
+  try {
+    CheckParams(params);
+  } catch (const InputError& e) {
+    return e.problems().front().message;
   }
   if (lo_refits < 1) return "lo_refits must be positive";
   if (rrf_k < 0) return "rrf_k must be non-negative";
@@ -75,12 +81,14 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     const std::set<FrontEnd> f = m->FrontEnds();
     needed.insert(f.begin(), f.end());
   }
+  BenchOptions front = options;
+  for (FrontEnd f : needed) front = WithParams(front, FrontEndName(f), &FrontEndParams(f));
   FrontEndOptions front_options;
-  front_options.keypoints = options.keypoints;
-  front_options.detector = options.detector;
-  front_options.tracker = options.tracker;
-  front_options.hoi = options.hoi;
-  front_options.thumbnail = options.thumbnail;
+  front_options.keypoints = front.keypoints;
+  front_options.detector = front.detector;
+  front_options.tracker = front.tracker;
+  front_options.hoi = front.hoi;
+  front_options.thumbnail = front.thumbnail;
   front_options.threads = options.threads;
   const FrontEndOutput front_ends = RunFrontEnds(dataset, needed, front_options);
   result.features.resize(n);
@@ -100,8 +108,11 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
 
   // Step 3: every method's scores, inputs before the methods that combine them.
   std::map<std::string, MethodScores> scored;
-  const MethodContext context{dataset, options, labelling, front_ends, scored, dataset.manifest().seed, options.threads};
-  for (const LoopClosureMethod* m : order) scored[m->Name()] = m->Score(context);
+  for (const LoopClosureMethod* m : order) {
+    const BenchOptions own = WithParams(options, m->Name(), m->Params());  // its --param values
+    const MethodContext context{dataset, own, labelling, front_ends, scored, dataset.manifest().seed, options.threads};
+    scored[m->Name()] = m->Score(context);
+  }
 
   // Step 4: metrics of the asked methods under both labellings.
   for (const std::string& name : options.methods) {

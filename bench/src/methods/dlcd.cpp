@@ -15,6 +15,7 @@ class Dlcd : public LoopClosureMethod {
   bool FromPaper() const override { return true; }
   ShownFeatures Features() const override { return ShownFeatures::kHoiPoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kPersons}; }
+  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(false); }
   MethodScores Score(const MethodContext& c) const override {
     return ScorePointSets(c, Name(), c.front_ends.hoi_index, c.options.ransac, c.front_ends.persons_ms);
   }

@@ -11,6 +11,7 @@ class DlcdLo : public LoopClosureMethod {
   std::string Description() const override { return "DLCD with locally optimised RANSAC"; }
   ShownFeatures Features() const override { return ShownFeatures::kHoiPoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kPersons}; }
+  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(true); }
   MethodScores Score(const MethodContext& c) const override {
     return ScorePointSets(c, Name(), c.front_ends.hoi_index, LocallyOptimised(c.options), c.front_ends.persons_ms);
   }

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "hoilcd/bench/loop_closure_method.h"
+#include "hoilcd/bench/method_params.h"
 #include "hoilcd/bench/runner.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
@@ -19,6 +20,18 @@ class DlcdTrack : public LoopClosureMethod {
   }
   ShownFeatures Features() const override { return ShownFeatures::kHoiPoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kPersons}; }
+  const OptionTable<BenchOptions>* Params() const override {
+    static const OptionTable<TrackAwareOptions> track =
+        OptionTable<TrackAwareOptions>()
+            .Add("min_points_per_person", &TrackAwareOptions::min_points_per_person, 3, "",
+                 OptionRange::Any().AtLeast(1), "persons with fewer HOI points are ignored")
+            .Add("max_pair_cost", &TrackAwareOptions::max_pair_cost, 80.0, "px", OptionRange::Any().Above(0),
+                 "persons whose pair cost exceeds this stay unpaired");
+    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>()
+                                                       .Flatten(&BenchOptions::ransac, RansacParams())
+                                                       .Flatten(&BenchOptions::track_aware, track);
+    return &table;
+  }
   MethodScores Score(const MethodContext& c) const override {
     using Clock = std::chrono::steady_clock;
     const std::vector<Query>& queries = c.queries();

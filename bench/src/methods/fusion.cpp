@@ -14,6 +14,11 @@ class Fusion : public LoopClosureMethod {
   std::string Description() const override { return "reciprocal rank fusion of SLCD and DLCD (k = 0)"; }
   bool FromPaper() const override { return true; }
   std::vector<std::string> Inputs() const override { return {"slcd", "dlcd"}; }
+  const OptionTable<BenchOptions>* Params() const override {
+    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>().Add(
+        "k", &BenchOptions::rrf_k, 0.0, "", OptionRange::Any().AtLeast(0), "reciprocal rank fusion constant (paper: 0)");
+    return &table;
+  }
   MethodScores Score(const MethodContext& c) const override {
     using Clock = std::chrono::steady_clock;
     const MethodScores& s = c.Input("slcd");

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "hoilcd/bench/method_params.h"
 #include "hoilcd/bench/runner.h"
 #include "hoilcd/core/progress.h"
 
@@ -30,6 +31,15 @@ MethodScores ScorePointSets(const MethodContext& context, const std::string& tit
   progress.Done();
   out.extract_ms = context.PerQuery(extract_ms_per_frame);
   return out;
+}
+
+const OptionTable<BenchOptions>& PointSetParams(bool lo) {
+  static const OptionTable<BenchOptions> plain =
+      OptionTable<BenchOptions>().Flatten(&BenchOptions::ransac, RansacParams()).Flatten(&BenchOptions::match, MatchParams());
+  static const OptionTable<BenchOptions> with_lo = OptionTable<BenchOptions>(plain).Add(
+      "lo_refits", &BenchOptions::lo_refits, 2, "", OptionRange::Any().AtLeast(1),
+      "least-squares refits of the homography on its inliers");
+  return lo ? with_lo : plain;
 }
 
 RansacOptions LocallyOptimised(const BenchOptions& options) {

@@ -13,6 +13,9 @@ namespace hoilcd {
 MethodScores ScorePointSets(const MethodContext& context, const std::string& title, const RetrievalIndex& index,
                             const RansacOptions& ransac, const std::vector<double>& extract_ms_per_frame);
 
+// --param fields of SLCD and DLCD (RANSAC, vertical filter) and, with lo, of their -lo variants.
+const OptionTable<BenchOptions>& PointSetParams(bool lo);
+
 // The bench's RANSAC with the -lo variants' least-squares refits.
 RansacOptions LocallyOptimised(const BenchOptions& options);
 

@@ -15,6 +15,7 @@ class Slcd : public LoopClosureMethod {
   bool FromPaper() const override { return true; }
   ShownFeatures Features() const override { return ShownFeatures::kKeypoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kKeypoints}; }
+  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(false); }
   MethodScores Score(const MethodContext& c) const override {
     return ScorePointSets(c, Name(), c.front_ends.keypoint_index, c.options.ransac, c.front_ends.keypoints_ms);
   }

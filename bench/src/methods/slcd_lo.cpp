@@ -13,6 +13,7 @@ class SlcdLo : public LoopClosureMethod {
   }
   ShownFeatures Features() const override { return ShownFeatures::kKeypoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kKeypoints}; }
+  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(true); }
   MethodScores Score(const MethodContext& c) const override {
     return ScorePointSets(c, Name(), c.front_ends.keypoint_index, LocallyOptimised(c.options), c.front_ends.keypoints_ms);
   }

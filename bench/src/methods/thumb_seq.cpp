@@ -13,6 +13,17 @@ class ThumbSeq : public LoopClosureMethod {
   std::string Name() const override { return "thumb-seq"; }
   std::string Description() const override { return "thumbnail correlation with SeqSLAM sequence matching"; }
   std::vector<std::string> Inputs() const override { return {"thumb"}; }
+  const OptionTable<BenchOptions>* Params() const override {
+    static const OptionTable<SeqSlamOptions> sequence =
+        OptionTable<SeqSlamOptions>()
+            .Add("sequence_length", &SeqSlamOptions::sequence_length, 10, "frames", OptionRange::Any().AtLeast(1),
+                 "frames along each trajectory, the end point included")
+            .Add("velocity_steps", &SeqSlamOptions::velocity_steps, 5, "", OptionRange::Any().AtLeast(1),
+                 "trajectories tried between the slowest and fastest velocity");
+    static const OptionTable<BenchOptions> table =
+        OptionTable<BenchOptions>().Flatten(&BenchOptions::sequence, sequence);
+    return &table;
+  }
   MethodScores Score(const MethodContext& c) const override {
     using Clock = std::chrono::steady_clock;
     const MethodScores& thumb = c.Input("thumb");

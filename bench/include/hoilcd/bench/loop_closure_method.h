@@ -14,6 +14,7 @@
 #include "hoilcd/bench/evaluate.h"
 #include "hoilcd/bench/front_ends.h"
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/option_table.h"
 
 namespace hoilcd {
 
@@ -55,6 +56,9 @@ class LoopClosureMethod {
   virtual ShownFeatures Features() const { return ShownFeatures::kNone; }
   virtual std::set<FrontEnd> FrontEnds() const { return {}; }
   virtual std::vector<std::string> Inputs() const { return {}; }  // scored before this one
+  // The fields of BenchOptions this method reads that --param NAME.FIELD=VALUE may set for it
+  // alone (method_params.h); null: none.
+  virtual const OptionTable<BenchOptions>* Params() const { return nullptr; }
   virtual MethodScores Score(const MethodContext& context) const = 0;
 };
 

@@ -37,6 +37,8 @@ inline TrackingMetricsOptions DefaultTrackingMetricsOptions() {
 
 struct BenchOptions {
   std::vector<std::string> methods;      // names from methods.h (empty: DefaultMethods())
+  // --param NAME=VALUE: "<method>.<field>" or "<front end>.<field>" (method_params.h).
+  std::vector<std::string> params;
   ProtocolOptions protocol;
   MatchOptions match;
   RansacOptions ransac;
