@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "hoilcd/bench/front_end_input.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/sensor.h"
@@ -40,10 +41,7 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
   const DatasetManifest& m = dataset.manifest();
   const int frames = dataset.num_frames();
   CameraOutputStats stats;
-  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, false);
-  const nlohmann::json::json_pointer enabled("/camera/video/enabled");
-  stats.video_mode = !scene.is_discarded() && scene.contains(enabled) && scene[enabled].is_boolean() &&
-                     scene[enabled].get<bool>();
+  stats.video_mode = IsVideoMode(dataset);
 
   std::vector<bool> frozen(static_cast<size_t>(frames), false);
   for (const DatasetEvent& e : dataset.events()) {

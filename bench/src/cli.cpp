@@ -222,10 +222,18 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
   const RunOutcome outcome = RunScene(scene, ResolveBench(args, run.threads), run);
   for (const std::string& warning : outcome.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   PrintOutcome(outcome.result, outcome.report_dir);
-  std::printf("end to end: %.1f s = render %.1f s%s + bench %.1f s (dataset %s)\n",
-              outcome.timing.render_s + outcome.timing.bench_s, outcome.timing.render_s,
-              outcome.timing.render_cached ? " (cached)" : "", outcome.timing.bench_s,
-              outcome.dataset_dir.c_str());
+  const ReportTiming& t = outcome.timing;
+  std::string calibration;
+  if (!outcome.calibration_dir.empty()) {
+    char text[160];
+    std::snprintf(text, sizeof(text), " + SLAM calibration %.1f s (dataset %s, thresholds %s)", t.calibration_s,
+                  t.calibration_render_cached ? "cached" : "rendered",
+                  t.calibration_bench_cached ? "cached" : "benched");
+    calibration = text;
+  }
+  std::printf("end to end: %.1f s = render %.1f s%s + bench %.1f s%s (dataset %s)\n",
+              t.render_s + t.bench_s + t.calibration_s, t.render_s, t.render_cached ? " (cached)" : "", t.bench_s,
+              calibration.c_str(), outcome.dataset_dir.c_str());
   return ApplyGate(gate, ReadReportJson(outcome.report_dir + "/report.json"));
 }
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "hoilcd/bench/front_end_input.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 
@@ -18,11 +19,11 @@ void RunPersonFrontEnd(const Dataset& dataset, const FrontEndOptions& options, F
   out->persons_ms.assign(n, 0.0);
   DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
   ProgressReporter progress("persons", n, "frames");
+  const bool video_mode = IsVideoMode(dataset);
   for (int f = 0; f < n; ++f) {
-    const cv::Mat thermal = dataset.Thermal(f);
-    const cv::Mat radiometric = dataset.RadiometricC(f);
+    const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, /*detector=*/true);
     const auto t = Clock::now();
-    out->hoi[f] = front_end.Process(thermal, radiometric);
+    out->hoi[f] = front_end.Process(input.thermal_u8, input.radiometric_c);
     out->persons_ms[f] = MsSince(t);
     std::vector<Point2> points;
     for (const HoiFeature& h : out->hoi[f]) points.push_back(h.point);
@@ -56,8 +57,9 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
     out.thumbnails_ms.assign(n, 0.0);
     std::vector<std::vector<float>> descriptors(n);
     ProgressReporter progress("features", n, "frames");
+    const bool video_mode = IsVideoMode(dataset);
     ParallelFor(n, options.threads, [&](int64_t f) {
-      const cv::Mat thermal = dataset.Thermal(static_cast<int>(f));
+      const cv::Mat thermal = ReadFrontEndInput(dataset, static_cast<int>(f), video_mode, /*detector=*/false).thermal_u8;
       if (keypoints) {
         const auto t = Clock::now();
         out.keypoints[f] = DetectKeypoints(thermal, options.keypoints);

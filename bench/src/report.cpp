@@ -378,7 +378,9 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   report["features"] = {{"mean_keypoints_per_frame", result.mean_keypoints_per_frame},
                         {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
   report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
-                      {"bench_s", timing.bench_s}};
+                      {"bench_s", timing.bench_s}, {"calibration_s", timing.calibration_s},
+                      {"calibration_render_cached", timing.calibration_render_cached},
+                      {"calibration_bench_cached", timing.calibration_bench_cached}};
   report["finding"] = PaperFindingSummary(result);
   report["notes"] = nlohmann::json::array();
   for (const char* note : kNotes) report["notes"].push_back(note);

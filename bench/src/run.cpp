@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
@@ -72,27 +75,88 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
   return Dataset::Open(dataset_dir, /*verify_checksums=*/true);
 }
 
+// What the calibration's thresholds depend on: the calibration dataset (its manifest lists the
+// checksum of every file, the scene hash and the simulator revision), the program that benches it
+// (the methods' code and every option default: its own bytes, so any rebuild that changes them
+// invalidates the cache) and the bench options `hoilcd run` and `hoilcd sweep` let a user set.
+std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& bench) {
+  std::string program;
+  try {
+    program = ChecksumOf(ReadFileBytes("/proc/self/exe"));
+  } catch (const InputError&) {
+    return "";  // the program cannot be identified: never reuse a cached result
+  }
+  nlohmann::json key = {
+      {"dataset", ChecksumOf(ReadFileBytes(dataset_dir + "/manifest.json"))},
+      {"program", program},
+      {"version", HOILCD_VERSION},
+      {"methods", bench.methods},
+      {"protocol", {bench.protocol.protocol, bench.protocol.radius_m, bench.protocol.ground_truth,
+                    bench.protocol.heading_tolerance_deg, bench.protocol.exclusion_window_s}},
+      {"keypoint_detector", bench.keypoints.detector},
+      {"rrf_k", bench.rrf_k},
+      {"lo_refits", bench.lo_refits}};
+  return ChecksumOf(key.dump());
+}
+
+// The thresholds cached under `key` in `path`, or nothing (absent, unreadable, another key).
+std::optional<std::map<std::string, double>> ReadCachedThresholds(const std::string& path, const std::string& key) {
+  std::error_code ec;
+  if (key.empty() || !std::filesystem::exists(path, ec)) return std::nullopt;
+  const nlohmann::json doc = nlohmann::json::parse(ReadFileBytes(path), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object() || doc.value("key", "") != key || !doc.contains("thresholds") ||
+      !doc["thresholds"].is_object()) {
+    return std::nullopt;
+  }
+  std::map<std::string, double> thresholds;
+  for (const auto& [name, value] : doc["thresholds"].items()) {
+    if (value.is_number()) {
+      thresholds[name] = value.get<double>();
+    } else if (value.is_null()) {
+      thresholds[name] = std::nan("");  // no threshold reaches 100 % precision
+    } else {
+      return std::nullopt;
+    }
+  }
+  return thresholds;
+}
+
 // Each method's threshold at 100 % precision on the calibration sequence (NaN: none reaches it).
+// The calibration dataset is cached like any run's, and so are its thresholds (calibration.json
+// beside the dataset, under CalibrationKey).
 std::map<std::string, double> CalibrateLoopThresholds(const Scene& scene, const BenchOptions& bench,
                                                       const RunOptions& options, RunOutcome* out) {
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json doc = scene.resolved;
   doc["seed"] = scene.seed + options.calibration_seed_offset;
   const Scene calibration = SceneFromJson(doc, scene.file + " (calibration seed)");
-  out->calibration_dir = RunFolder(calibration, options.cache_dir) + "/dataset";
-  bool cached = false;
+  const std::string folder = RunFolder(calibration, options.cache_dir);
+  out->calibration_dir = folder + "/dataset";
   double render_s = 0;
-  const Dataset dataset = EnsureDataset(calibration, out->calibration_dir, options, &cached, &render_s);
-  BenchOptions b = bench;
-  b.slam = false;
-  const BenchResult result = RunBench(dataset, b);
-  std::map<std::string, double> thresholds;
-  for (const MethodRun& run : result.runs) {
-    thresholds[run.name] =
-        ThresholdAtFullPrecision(result.queries, run.scores, dataset.poses(), bench.protocol.radius_m);
+  const Dataset dataset =
+      EnsureDataset(calibration, out->calibration_dir, options, &out->timing.calibration_render_cached, &render_s);
+  const std::string key = CalibrationKey(out->calibration_dir, bench);
+  const std::string cache_path = folder + "/calibration.json";
+  std::optional<std::map<std::string, double>> thresholds = ReadCachedThresholds(cache_path, key);
+  out->timing.calibration_bench_cached = thresholds.has_value();
+  if (!thresholds) {
+    BenchOptions b = bench;
+    b.slam = false;
+    const BenchResult result = RunBench(dataset, b);
+    thresholds.emplace();
+    nlohmann::json saved = nlohmann::json::object();
+    for (const MethodRun& run : result.runs) {
+      const double t =
+          ThresholdAtFullPrecision(result.queries, run.scores, dataset.poses(), bench.protocol.radius_m);
+      (*thresholds)[run.name] = t;
+      saved[run.name] = std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
+    }
+    if (!key.empty()) {
+      WriteFileAtomic(cache_path, nlohmann::json{{"key", key}, {"thresholds", saved}}.dump(2) + "\n");
+    }
   }
-  out->calibration_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return thresholds;
+  out->timing.calibration_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return *thresholds;
 }
 
 }  // namespace

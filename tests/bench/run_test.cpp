@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <map>
 
 
 #include "hoilcd/core/dataset.h"
@@ -88,6 +90,61 @@ TEST(RunScene, StaleCacheWithAnUnreadableManifestKeepsAndNamesTheUsersFiles) {
   // Once the user's file is moved away, the cache renders again.
   fs::remove(first.dataset_dir + "/notes.txt");
   EXPECT_FALSE(RunScene(scene, bench, options).timing.render_cached);
+}
+
+
+// Each method's loop threshold as the SLAM section used it (NaN when none), by method.
+std::map<std::string, double> ThresholdsOf(const RunOutcome& outcome) {
+  std::map<std::string, double> out;
+  for (const MethodSlam& m : outcome.result.slam.methods) out[m.method] = m.threshold;
+  return out;
+}
+
+void ExpectSameThresholds(const std::map<std::string, double>& a, const std::map<std::string, double>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [name, t] : a) {
+    ASSERT_EQ(b.count(name), 1u) << name;
+    if (std::isnan(t)) {
+      EXPECT_TRUE(std::isnan(b.at(name))) << name;
+    } else {
+      EXPECT_EQ(t, b.at(name)) << name;
+    }
+  }
+}
+
+TEST(RunScene, TheSlamCalibrationIsCachedDatasetAndThresholdsAndRedoneWhenItsInputsChange) {
+  const test::TestDir temp;
+  const Scene scene = TinyRoom();
+  BenchOptions bench;
+  bench.methods = {"slcd", "thumb"};
+  bench.slam = true;
+  const RunOptions options = CachedIn(temp.str());
+  const RunOutcome first = RunScene(scene, bench, options);
+  ASSERT_FALSE(first.calibration_dir.empty());
+  EXPECT_FALSE(first.timing.calibration_render_cached);
+  EXPECT_FALSE(first.timing.calibration_bench_cached);
+  EXPECT_GT(first.timing.calibration_s, 0.0);
+  for (const MethodSlam& m : first.result.slam.methods) EXPECT_EQ(m.threshold_source, "calibration") << m.method;
+
+  const RunOutcome second = RunScene(scene, bench, options);
+  EXPECT_TRUE(second.timing.calibration_render_cached);
+  EXPECT_TRUE(second.timing.calibration_bench_cached);
+  ExpectSameThresholds(ThresholdsOf(first), ThresholdsOf(second));
+
+  // A damaged cache file is benched again and rewritten, never trusted or fatal.
+  const std::string cache = fs::path(first.calibration_dir).parent_path() / "calibration.json";
+  WriteFileAtomic(cache, "{ damaged");
+  const RunOutcome repaired = RunScene(scene, bench, options);
+  EXPECT_FALSE(repaired.timing.calibration_bench_cached);
+  ExpectSameThresholds(ThresholdsOf(first), ThresholdsOf(repaired));
+  EXPECT_TRUE(RunScene(scene, bench, options).timing.calibration_bench_cached);
+
+  // Another true-match radius changes what 100 % precision means: benched again, not reused.
+  BenchOptions wider = bench;
+  wider.protocol.radius_m = 0.3;
+  const RunOutcome other = RunScene(scene, wider, options);
+  EXPECT_TRUE(other.timing.calibration_render_cached);
+  EXPECT_FALSE(other.timing.calibration_bench_cached);
 }
 
 }  // namespace

@@ -18,7 +18,9 @@ struct RunOptions {
   int threads = 0;                  // 0 = every core
   const std::atomic<bool>* cancel = nullptr;
   // SLAM loop thresholds (when bench.slam and no --loop-threshold): each method's 100 %-precision
-  // threshold on the scene rendered with seed + calibration_seed_offset (cached like any run).
+  // threshold on the scene rendered with seed + calibration_seed_offset. Its dataset is cached
+  // like any run's and its thresholds in calibration.json beside it, keyed by that dataset's
+  // manifest, the hoilcd program's own bytes and the bench options a user can set.
   uint64_t calibration_seed_offset = 1000;
   std::string Check() const;
 };
@@ -30,7 +32,6 @@ struct RunOutcome {
   ReportTiming timing;
   std::vector<std::string> warnings;  // the dataset's (Dataset::warnings), for the caller to print
   std::string calibration_dir;  // dataset the loop thresholds came from (empty: none)
-  double calibration_s = 0;     // render + bench time of the calibration sequence
 };
 
 // The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.
