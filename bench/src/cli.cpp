@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "hoilcd/bench/diagnosis.h"
 #include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/coco_export.h"
 #include "hoilcd/bench/methods.h"
