@@ -257,6 +257,8 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
                       {"bench_s", timing.bench_s}};
   report["finding"] = PaperFindingSummary(result);
+  const Diagnosis diagnosis = Diagnose(result);
+  if (diagnosis.evaluated) report["diagnosis"] = diagnosis.ToJson();
   report["notes"] = nlohmann::json::array();
   for (const char* note : kNotes) report["notes"].push_back(note);
   WriteFileAtomic(dir + "/report.json", report.dump(2));
@@ -354,7 +356,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
        << " | " << Fixed(m.pr_auc) << " | " << Fixed(run.metrics.mrr) << " |\n";
   }
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
-     << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result);
+     << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
   if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
     // Precision, recall and MOTA are 0/0 here; say what happened instead.
     const TrackingMetrics& t = result.tracking;
