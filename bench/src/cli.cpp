@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "hoilcd/bench/coco_export.h"
+#include "hoilcd/bench/diagnosis.h"
 #include "hoilcd/bench/evaluate.h"
 #include "hoilcd/bench/gate.h"
 #include "hoilcd/bench/inspect.h"
