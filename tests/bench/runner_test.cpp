@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "hoilcd/bench/diagnosis.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/sim/renderer.h"

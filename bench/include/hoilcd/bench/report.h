@@ -22,9 +22,6 @@ struct ReportTiming {
 // The terminal table: method, MRR, R@1, R@5, PR-AUC, R@100%P, ms/query.
 std::string FormatResultTable(const BenchResult& result);
 
-// Whether the paper's finding holds (DLCD > SLCD, fusion >= the better minus 0.01), in words.
-std::string PaperFindingSummary(const BenchResult& result);
-
 // Writes the report folder (created if missing; files written atomically).
 void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                  const ReportTiming& timing, const std::string& dir);

@@ -1,0 +1,66 @@
+#include "hoilcd/bench/method_params.h"
+
+#include <gtest/gtest.h>
+
+#include "hoilcd/bench/methods.h"
+#include "hoilcd/sim/sequence.h"
+#include "test_dir.h"
+
+namespace hoilcd {
+namespace {
+
+std::string ParamError(const std::string& param) {
+  try {
+    CheckParams({param});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MethodParams, EveryBadParamIsAnErrorNamingItAndWhatWasExpected) {
+  EXPECT_EQ(ParamError("slcd.ransac_trials=50"), "");
+  EXPECT_EQ(ParamError("fusion.k=60"), "");
+  EXPECT_EQ(ParamError("persons.threshold_c=27"), "");
+  EXPECT_EQ(ParamError("keypoints.detector=orb"), "");
+  EXPECT_NE(ParamError("ransac_trials=50").find("--param: 'ransac_trials=50': expected NAME=VALUE with NAME = <method"),
+            std::string::npos);
+  EXPECT_NE(ParamError("slcd.ransac_trials").find("'slcd.ransac_trials': expected NAME=VALUE"), std::string::npos);
+  EXPECT_NE(ParamError("superglue.k=1").find("'superglue.k=1': expected NAME=VALUE with NAME = <method or front end>"
+                                             ".<field>, the method or front end one of: slcd, dlcd"),
+            std::string::npos);
+  EXPECT_NE(ParamError("slcd.trials=5").find("'slcd.trials=5': expected an option name (one of: ransac_trials"),
+            std::string::npos) << ParamError("slcd.trials=5");
+  EXPECT_NE(ParamError("slcd.ransac_trials=many").find("'slcd.ransac_trials=many': expected a whole number"),
+            std::string::npos) << ParamError("slcd.ransac_trials=many");
+  EXPECT_NE(ParamError("slcd.ransac_trials=0").find("'slcd.ransac_trials=0': ransac_trials"), std::string::npos)
+      << ParamError("slcd.ransac_trials=0");
+  EXPECT_NE(ParamError("thumb.x=1").find("method thumb has no parameters"), std::string::npos);
+  EXPECT_NE(ParamError("keypoints.detector=superpoint").find("'keypoints.detector=superpoint'"), std::string::npos);
+  EXPECT_FALSE(FormatParams().empty());
+}
+
+TEST(MethodParams, AParamChangesOnlyItsOwnMethodOrFrontEnd) {
+  const test::TestDir temp;
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json");
+  SequenceOptions render;
+  render.output_dir = temp / "dataset";
+  RenderSequence(scene, render);
+  const Dataset dataset = Dataset::Open(render.output_dir);
+  BenchOptions options;
+  options.methods = {"thumb", "thumb-seq"};
+  const BenchResult plain = RunBench(dataset, options);
+  options.params = {"thumb-seq.sequence_length=3"};
+  const BenchResult seq = RunBench(dataset, options);
+  EXPECT_EQ(seq.runs[0].scores, plain.runs[0].scores);  // thumb untouched
+  EXPECT_NE(seq.runs[1].scores, plain.runs[1].scores);
+  options.params = {"thumbnails.width_px=16", "thumbnails.height_px=12"};
+  const BenchResult small = RunBench(dataset, options);
+  EXPECT_NE(small.runs[0].scores, plain.runs[0].scores);  // the front end changed for both
+  EXPECT_NE(small.runs[1].scores, plain.runs[1].scores);
+  options.params = {"thumb-seq.sequence_length=0"};
+  EXPECT_THROW(RunBench(dataset, options), InputError);
+}
+
+}  // namespace
+}  // namespace hoilcd
