@@ -19,6 +19,7 @@
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
+#include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
@@ -139,7 +140,7 @@ int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::st
 
 int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions run) {
   SceneArgs a = scene_args;
-  if (a.path.empty()) a.path = std::string(HOILCD_SOURCE_DIR) + "/scenes/paper_room.json";
+  if (a.path.empty()) a.path = DataDir() + "/scenes/paper_room.json";
   const Scene scene = LoadSceneArgs(a);
   std::signal(SIGINT, OnInterrupt);
   run.cancel = &g_interrupted;
