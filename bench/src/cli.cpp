@@ -5,12 +5,16 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/coco_export.h"
+#include "hoilcd/bench/evaluate.h"
+#include "hoilcd/bench/gate.h"
+#include "hoilcd/bench/inspect.h"
+#include "hoilcd/bench/mot_export.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/run.h"
@@ -82,21 +86,25 @@ struct BenchArgs {
   BenchOptions options;
 };
 
+// Flags of the evaluation protocol (bench, run, sweep, evaluate).
+void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
+  cmd->add_option("--protocol", protocol->protocol, "laps (database = first lap) or revisit")
+      ->check(CLI::IsMember({"laps", "revisit"}));
+  cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (paper: 0.2)")->check(CLI::PositiveNumber);
+  cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
+                  "frames this close in time to a query are not in its database, s")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ground-truth", protocol->ground_truth,
+                  "whose positions label true matches: odometry (the paper's) or true (the true poses)")
+      ->check(CLI::IsMember({"odometry", "true"}));
+  cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
+                  "max heading difference of a true match, deg (negative: off)");
+}
+
 void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
   cmd->add_option("--methods", args->methods,
                   "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
-  cmd->add_option("--protocol", args->options.protocol.protocol, "laps (database = first lap) or revisit")
-      ->check(CLI::IsMember({"laps", "revisit"}));
-  cmd->add_option("--radius", args->options.protocol.radius_m, "true-match radius, m (paper: 0.2)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--exclusion-window", args->options.protocol.exclusion_window_s,
-                  "frames this close in time to a query are not in its database, s")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--ground-truth", args->options.protocol.ground_truth,
-                  "whose positions label true matches: odometry (the paper's) or true (the true poses)")
-      ->check(CLI::IsMember({"odometry", "true"}));
-  cmd->add_option("--heading-tolerance", args->options.protocol.heading_tolerance_deg,
-                  "max heading difference of a true match, deg (negative: off)");
+  AddProtocolFlags(cmd, &args->options.protocol);
   cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
       ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
   cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
@@ -109,6 +117,40 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
   cmd->add_option("--loop-threshold", args->options.slam_options.slam.loop_threshold,
                   "accept a method's top-1 match as a loop when its score is at least this (default: the "
                   "threshold of 100 % precision on the calibration sequence)");
+}
+
+// The CI gate's flags (bench, run, evaluate).
+struct GateArgs {
+  std::string baseline;
+  double max_drop = 0;
+  std::string junit;
+};
+
+void AddGateFlags(CLI::App* cmd, GateArgs* args) {
+  CLI::Option* baseline = cmd->add_option("--baseline", args->baseline,
+                  "earlier report.json: exit 3 when a headline metric (MRR, R@1) of a method in both dropped by "
+                  "more than --max-drop");
+  cmd->add_option("--max-drop", args->max_drop, "largest allowed drop of MRR or R@1 against --baseline (default 0)")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(baseline);
+  cmd->add_option("--junit", args->junit, "write JUnit XML here (one test case per method)");
+}
+
+// Compares `report` with the baseline and writes JUnit XML, as asked; the exit code (0, or 3 on
+// any regression).
+int ApplyGate(const GateArgs& args, const nlohmann::json& report) {
+  std::vector<Regression> regressions;
+  if (!args.baseline.empty()) {
+    const nlohmann::json baseline = ReadReportJson(args.baseline);
+    for (const std::string& m : MethodsOnlyInBaseline(baseline, report)) {
+      std::printf("baseline: method %s is not in this run (not compared)\n", m.c_str());
+    }
+    regressions = CompareToBaseline(baseline, report, args.max_drop);
+    for (const Regression& r : regressions) std::printf("%s\n", r.ToString(args.max_drop).c_str());
+    if (regressions.empty()) std::printf("baseline %s: no headline metric dropped by more than %g\n", args.baseline.c_str(), args.max_drop);
+  }
+  if (!args.junit.empty()) WriteFileAtomic(args.junit, JUnitXml(report, regressions, args.max_drop));
+  return regressions.empty() ? 0 : 3;
 }
 
 BenchOptions ResolveBench(const BenchArgs& args, int threads) {
@@ -125,23 +167,51 @@ void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
   std::printf("report: %s/report.md\n", report_dir.c_str());
 }
 
-int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads) {
+int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads,
+                    const std::string& dump_scores, const GateArgs& gate) {
   const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true);
   for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const BenchOptions options = ResolveBench(args, threads);
+  if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work
   const BenchResult result = RunBench(dataset, options);
   const std::string out = report_dir.empty() ? dir + "/report" : report_dir;
   ReportTiming timing;
   timing.bench_s = result.seconds;
   WriteReport(result, dataset, options, timing, out);
+  if (!dump_scores.empty()) {
+    for (const MethodRun& run : result.runs) {
+      WriteFileAtomic(dump_scores + "/" + run.name + ".csv", ScoresToCsv(result.queries, run.scores));
+    }
+  }
   PrintOutcome(result, out);
-  return 0;
+  return ApplyGate(gate, ReadReportJson(out + "/report.json"));
 }
 
-int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions run) {
+int RunEvaluateCommand(const std::string& dir, const std::string& scores_path, std::string name,
+                       const ProtocolOptions& protocol, const std::string& output, const GateArgs& gate) {
+  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/false);
+  for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  if (!gate.baseline.empty()) ReadReportJson(gate.baseline);
+  if (name.empty()) name = std::filesystem::path(scores_path).stem().string();
+  if (name.empty()) throw InputError("--name", "a method name (the scores file name has none)");
+  const MethodReport report = Evaluate(dataset, ReadScoresFile(scores_path, dataset.num_frames()), name, protocol);
+  const nlohmann::json json = EvaluateReportJson(dataset, protocol, report, "scores from " + scores_path);
+  const MethodMetrics& m = report.metrics;
+  std::printf("%s (%s ground truth): MRR %.4f, R@1 %.4f, R@5 %.4f, PR-AUC %.4f; %d queries scored, %d skipped\n",
+              name.c_str(), protocol.ground_truth.c_str(), m.mrr, m.recall_at_1, m.recall_at_5, m.pr_auc,
+              m.queries_scored, m.queries_skipped);
+  if (!output.empty()) {
+    WriteFileAtomic(output, json.dump(2) + "\n");
+    std::printf("report: %s\n", output.c_str());
+  }
+  return ApplyGate(gate, json);
+}
+
+int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions run, const GateArgs& gate) {
   SceneArgs a = scene_args;
   if (a.path.empty()) a.path = DataDir() + "/scenes/paper_room.json";
   const Scene scene = LoadSceneArgs(a);
+  if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work
   std::signal(SIGINT, OnInterrupt);
   run.cancel = &g_interrupted;
   const RunOutcome outcome = RunScene(scene, ResolveBench(args, run.threads), run);
@@ -151,7 +221,7 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
               outcome.timing.render_s + outcome.timing.bench_s, outcome.timing.render_s,
               outcome.timing.render_cached ? " (cached)" : "", outcome.timing.bench_s,
               outcome.dataset_dir.c_str());
-  return 0;
+  return ApplyGate(gate, ReadReportJson(outcome.report_dir + "/report.json"));
 }
 
 int RunInspectCommand(const std::string& dir, const ProtocolOptions& protocol, bool json, const std::string& output) {
@@ -261,7 +331,13 @@ int RunCommandLine(int argc, char** argv) {
   bench->add_option("dataset", bench_dir, "dataset folder written by hoilcd render")->required();
   bench->add_option("-o,--output", bench_report, "report folder (default DATASET/report)");
   bench->add_option("--threads", bench_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
+  std::string dump_scores;
+  bench->add_option("--dump-scores", dump_scores,
+                    "write each method's scores as DIR/<method>.csv (query,reference,score), for hoilcd evaluate")
+      ->type_name("DIR");
   AddBenchFlags(bench, &bench_args);
+  GateArgs bench_gate;
+  AddGateFlags(bench, &bench_gate);
 
   SceneArgs run_scene;
   BenchArgs run_args;
@@ -273,6 +349,23 @@ int RunCommandLine(int argc, char** argv) {
   run->add_option("-o,--output", run_options.report_dir, "report folder (default CACHE/<scene>-<hash>/report)");
   run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
   AddBenchFlags(run, &run_args);
+  GateArgs run_gate;
+  AddGateFlags(run, &run_gate);
+
+  std::string evaluate_dir, evaluate_scores, evaluate_name, evaluate_output;
+  ProtocolOptions evaluate_protocol;
+  GateArgs evaluate_gate;
+  CLI::App* evaluate = app.add_subcommand(
+      "evaluate", "apply the benchmark's protocol, labels and metrics to scores of a method hoilcd did not run");
+  evaluate->add_option("dataset", evaluate_dir, "dataset folder written by hoilcd render")->required();
+  evaluate->add_option("--scores", evaluate_scores,
+                       "CSV with header query,reference,score (frame indices; pairs left out are unscored) or "
+                       ".npy dense frames x frames float32/float64 matrix (NaN = unscored)")
+      ->required();
+  evaluate->add_option("--name", evaluate_name, "method name in the report (default: the scores file's name)");
+  evaluate->add_option("-o,--output", evaluate_output, "write a report.json of this method here");
+  AddProtocolFlags(evaluate, &evaluate_protocol);
+  AddGateFlags(evaluate, &evaluate_gate);
 
   std::string inspect_dir, inspect_output;
   bool inspect_json = false;
@@ -321,6 +414,15 @@ int RunCommandLine(int argc, char** argv) {
   coco->add_option("dataset", coco_dataset, "dataset folder written by hoilcd render")->required();
   coco->add_option("-o,--output", coco_output, "folder for person_keypoints.json")->required();
 
+  std::string mot_dataset, mot_output;
+  CLI::App* mot = app.add_subcommand(
+      "export-mot", "ground-truth person boxes and the DLCD front end's tracks in MOTChallenge format (TrackEval)");
+  mot->add_option("dataset", mot_dataset, "dataset folder written by hoilcd render")->required();
+  mot->add_option("-o,--output", mot_output, "folder for gt/ and trackers/ (TrackEval's GT_FOLDER/TRACKERS_FOLDER)")
+      ->required();
+  int mot_threads = 0;
+  mot->add_option("--threads", mot_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -330,8 +432,21 @@ int RunCommandLine(int argc, char** argv) {
   try {
     if (*validate) return RunValidate(validate_args);
     if (*render) return RunRender(render_args, render_options);
-    if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads);
-    if (*run) return RunRunCommand(run_scene, run_args, run_options);
+    if (*bench) return RunBenchCommand(bench_dir, bench_args, bench_report, bench_threads, dump_scores, bench_gate);
+    if (*run) return RunRunCommand(run_scene, run_args, run_options, run_gate);
+    if (*evaluate) {
+      return RunEvaluateCommand(evaluate_dir, evaluate_scores, evaluate_name, evaluate_protocol, evaluate_output,
+                                evaluate_gate);
+    }
+    if (*mot) {
+      const Dataset dataset = Dataset::Open(mot_dataset, /*verify_checksums=*/true);
+      BenchOptions options;
+      options.threads = mot_threads;
+      const MotExport e = ExportMot(dataset, options, mot_output);
+      std::printf("wrote %s and %s (sequence %s; TrackEval: --BENCHMARK HOILCD --SPLIT_TO_EVAL train)\n",
+                  e.ground_truth.c_str(), e.tracks.c_str(), e.sequence.c_str());
+      return 0;
+    }
     if (*sweep) return RunSweepCommand(sweep_args, sweep_bench);
     if (*inspect) return RunInspectCommand(inspect_dir, inspect_protocol, inspect_json, inspect_output);
     if (*coco) {

@@ -7,32 +7,14 @@
 
 namespace hoilcd {
 
-const std::vector<MethodInfo>& MethodCatalog() {
-  static const std::vector<MethodInfo> catalog = {
-      {"slcd", "static landmarks: GFTT corner coordinates, MNN + vertical filter + RANSAC homography inliers", true},
-      {"dlcd", "dynamic landmarks: HOI points (bottom contour of tracked people) + the same matching", true},
-      {"fusion", "reciprocal rank fusion of SLCD and DLCD (k = 0)", true},
-      {"slcd-lo", "SLCD with locally optimised RANSAC (least-squares refits on the inliers)", false},
-      {"dlcd-lo", "DLCD with locally optimised RANSAC", false},
-      {"dlcd-track", "track-aware DLCD: correspondences between the HOI contours of paired people", false},
-      {"fusion-tc", "fusion with temporal consistency (consecutive queries must agree)", false},
-      {"thumb", "global baseline: patch-normalised thumbnail correlation (SeqSLAM-style)", false},
-      {"thumb-seq", "thumbnail correlation with SeqSLAM sequence matching", false},
-  };
-  return catalog;
-}
-
-const MethodInfo& FindMethod(const std::string& name) {
-  const auto& catalog = MethodCatalog();
-  const auto it = std::find_if(catalog.begin(), catalog.end(),
-                               [&](const MethodInfo& m) { return m.name == name; });
-  HOILCD_CHECK_MSG(it != catalog.end(), "unknown method " << name);
-  return *it;
+bool IsMethod(const std::string& name) {
+  const auto& methods = RegisteredMethods();
+  return std::any_of(methods.begin(), methods.end(), [&](const auto& m) { return m->Name() == name; });
 }
 
 std::vector<std::string> DefaultMethods() {
   std::vector<std::string> out;
-  for (const MethodInfo& m : MethodCatalog()) out.push_back(m.name);
+  for (const auto& m : RegisteredMethods()) out.push_back(m->Name());
   return out;
 }
 
@@ -48,18 +30,17 @@ std::vector<std::string> ParseMethodList(const std::string& csv) {
     name.erase(name.find_last_not_of(" \t") + 1);
     if (name.empty()) continue;
     if (name == "all") {
-      for (const MethodInfo& m : MethodCatalog()) add(m.name);
+      for (const auto& m : RegisteredMethods()) add(m->Name());
       continue;
     }
     if (name == "paper") {
-      for (const MethodInfo& m : MethodCatalog())
-        if (m.from_paper) add(m.name);
+      for (const auto& m : RegisteredMethods())
+        if (m->FromPaper()) add(m->Name());
       continue;
     }
-    const auto& catalog = MethodCatalog();
-    if (std::none_of(catalog.begin(), catalog.end(), [&](const MethodInfo& m) { return m.name == name; })) {
+    if (!IsMethod(name)) {
       std::string known;
-      for (const MethodInfo& m : catalog) known += (known.empty() ? "" : ", ") + m.name;
+      for (const auto& m : RegisteredMethods()) known += (known.empty() ? "" : ", ") + m->Name();
       throw InputError("--methods", "unknown method '" + name + "' (known: " + known + ", paper, all)");
     }
     add(name);

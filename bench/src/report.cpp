@@ -355,7 +355,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                           {"rrf_k", options.rrf_k}};
   for (const MethodRun& run : result.runs) {
     nlohmann::json m = run.metrics.ToJson();
-    m["description"] = FindMethod(run.name).description;
+    m["description"] = FindMethod(run.name).Description();
     report["methods"][run.name] = m;
   }
   const LabelDisagreement& labels = result.label_disagreement;
@@ -498,7 +498,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   if (result.slam_evaluated) md << SlamMarkdown(result.slam);
   md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
-  for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).description << "\n";
+  for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << "\n";
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
      << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
   for (const char* note : kNotes) md << "- " << note << "\n";

@@ -93,6 +93,13 @@ void ThumbnailIndex::Add(const cv::Mat& thermal_u8) {
   descriptors_.push_back(ThumbnailDescriptor(thermal_u8, options_));
 }
 
+void ThumbnailIndex::AddDescriptor(std::vector<float> descriptor) {
+  HOILCD_CHECK_MSG(descriptor.size() == static_cast<size_t>(options_.width_px) * options_.height_px,
+                   "descriptor of " << descriptor.size() << " values for a " << options_.width_px << "x"
+                                    << options_.height_px << " thumbnail");
+  descriptors_.push_back(std::move(descriptor));
+}
+
 const std::vector<float>& ThumbnailIndex::descriptor(int frame) const {
   HOILCD_CHECK_MSG(frame >= 0 && frame < size(), "frame " << frame << " not in the index");
   return descriptors_[static_cast<size_t>(frame)];

@@ -81,7 +81,7 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
       report["protocol"] = {{"protocol", protocol}, {"ground_truth", ground_truth}, {"radius_m", radius_m}};
       for (const MethodRun& run : result.runs) {
         nlohmann::json m = run.metrics.ToJson();
-        m["description"] = FindMethod(run.name).description;
+        m["description"] = FindMethod(run.name).Description();
         report["methods"][run.name] = m;
       }
       report_json = report.dump();

@@ -1,27 +1,25 @@
-// The loop-closure methods a user can name with --methods: the paper's SLCD, DLCD and their
-// fusion, and the beyond-the-paper variants reported beside them. Names are validated here.
+// The method names a user can give with --methods: every registered LoopClosureMethod
+// (loop_closure_method.h), "paper" for the paper's and "all" for every one. Names are validated here.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "hoilcd/bench/loop_closure_method.h"
+
 namespace hoilcd {
 
-struct MethodInfo {
-  std::string name;         // as given to --methods
-  std::string description;  // one line for the report
-  bool from_paper = false;  // one of the paper's Table 1 methods
-};
+// The registered method called `name`; HOILCD_CHECK on unknown names.
+const LoopClosureMethod& FindMethod(const std::string& name);
 
-// Every method hoilcd knows, in report order.
-const std::vector<MethodInfo>& MethodCatalog();
-const MethodInfo& FindMethod(const std::string& name);  // HOILCD_CHECK on unknown names
+// Whether a method of that name is registered.
+bool IsMethod(const std::string& name);
 
 // "slcd,dlcd,fusion" -> names, validated; "paper" = the paper's three, "all" = every method.
 // Throws InputError("--methods", ...) naming the unknown method and the known ones.
 std::vector<std::string> ParseMethodList(const std::string& csv);
 
-// The default of `hoilcd bench` and `hoilcd run`: the paper's methods plus the extras.
+// The default of `hoilcd bench` and `hoilcd run`: every registered method, in report order.
 std::vector<std::string> DefaultMethods();
 
 }  // namespace hoilcd

@@ -1,6 +1,7 @@
-// Runs loop-closure methods over a dataset folder: features of every frame once, every query
-// scored against its database (protocol.h), metrics per method, person-tracking quality of
-// DLCD's front end against the ground truth. The report module writes what this returns.
+// Runs loop-closure methods over a dataset folder in named steps: label the protocol's queries,
+// run the front ends the chosen methods need (front_ends.h), score every method
+// (loop_closure_method.h), compute metrics (evaluate.h); plus the person-tracking quality of the
+// DLCD front end against the ground truth. The report module writes what this returns.
 #pragma once
 
 #include <map>

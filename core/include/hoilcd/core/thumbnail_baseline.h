@@ -34,6 +34,8 @@ class ThumbnailIndex {
   explicit ThumbnailIndex(ThumbnailOptions options = {});
   // Frame ids are 0..size-1 in Add order.
   void Add(const cv::Mat& thermal_u8);
+  // A descriptor made by ThumbnailDescriptor with this index's options (e.g. computed in parallel).
+  void AddDescriptor(std::vector<float> descriptor);
   int size() const { return static_cast<int>(descriptors_.size()); }
   const std::vector<float>& descriptor(int frame) const;
 
