@@ -5,4 +5,5 @@ bench() runs the built-in loop-closure methods; evaluate() scores your own metho
 matrix with the benchmark's protocol, labels and metrics. Bad input raises hoilcd.InputError
 (a ValueError) with the same message the hoilcd command prints.
 """
-from ._hoilcd import InputError, Dataset, render, bench, data_dir, __version__  # noqa: F401
+from ._hoilcd import (InputError, Dataset, render, bench, evaluate, methods, data_dir,  # noqa: F401
+                      __version__)

@@ -98,6 +98,8 @@ void BindDataset(py::module_& m) {
       .def("__repr__", [](const Dataset& d) {
         return "hoilcd.Dataset('" + d.dir() + "', " + std::to_string(d.num_frames()) + " frames)";
       });
+  // Functions taking a Dataset take its folder's path as well.
+  py::implicitly_convertible<py::str, Dataset>();
 }
 
 }  // namespace hoilcd::python
