@@ -11,7 +11,7 @@
 // pieces on one thread; BM_WorldSetTime times moving the articulated people alone. Counter x_bare = time / bare rtcIntersect1 time (wall; _cpu: process CPU
 // time, all threads). A summary of ratios, frames per second and the projected time of the
 // scene's 1996 frames follows the table.
-// Run: build/bench/render_bench            (scene: HOILCD_SOURCE_DIR/scenes/paper_room.json)
+// Run: build/bench/render_bench            (scene: DataDir()/scenes/paper_room.json)
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 
@@ -26,6 +26,7 @@
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/parallel.h"
+#include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/scene.h"
@@ -41,7 +42,7 @@ constexpr int kPoses = 20;  // camera poses per iteration, evenly spread over th
 // Everything the benchmarks share, built once: the scene, its World and the route's poses.
 struct Setup {
   Setup()
-      : scene(LoadScene(std::string(HOILCD_SOURCE_DIR) + "/scenes/paper_room.json")),
+      : scene(LoadScene(DataDir() + "/scenes/paper_room.json")),
         world(scene, table),
         intrinsics(IntrinsicsFromScene(scene)) {
     const RobotRun run = SimulateSceneRobot(scene, world.obstacles());

@@ -25,6 +25,7 @@
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
+#include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
@@ -215,7 +216,7 @@ int RunEvaluateCommand(const std::string& dir, const std::string& scores_path, s
 
 int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions run, const GateArgs& gate) {
   SceneArgs a = scene_args;
-  if (a.path.empty()) a.path = std::string(HOILCD_SOURCE_DIR) + "/scenes/paper_room.json";
+  if (a.path.empty()) a.path = DataDir() + "/scenes/paper_room.json";
   const Scene scene = LoadSceneArgs(a);
   if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work
   std::signal(SIGINT, OnInterrupt);

@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/sim/data_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -546,7 +547,7 @@ Asset LoadAsset(const std::string& path) {
   return asset;
 }
 
-std::string ShippedAssetDir() { return std::string(HOILCD_SOURCE_DIR) + "/assets"; }
+std::string ShippedAssetDir() { return DataDir() + "/assets"; }
 
 AssetLibrary::AssetLibrary(std::string search_dir) : search_dir_(std::move(search_dir)) {}
 

@@ -376,7 +376,7 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
     assets_dir = (scene_dir / assets_dir).lexically_normal().string();
     doc["assets_dir"] = assets_dir;
   }
-  s.assets_dir = assets_dir.empty() ? std::string(HOILCD_SOURCE_DIR) + "/assets" : assets_dir;
+  s.assets_dir = assets_dir.empty() ? ShippedAssetDir() : assets_dir;
   for (const char* key : {"table_asset", "chair_asset"}) {
     doc["furniture"][key] = ResolveAssetRef(doc["furniture"][key].get<std::string>(), scene_dir);
   }

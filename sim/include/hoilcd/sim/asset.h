@@ -68,7 +68,7 @@ struct Asset {
 // outside (0, 1]). Materials without extras get the ThermalMaterial defaults, silently.
 Asset LoadAsset(const std::string& path);
 
-// The assets shipped with hoilcd (the source tree's assets/ folder).
+// The assets shipped with hoilcd: DataDir()/assets (data_dir.h).
 std::string ShippedAssetDir();
 
 // Caches assets by path so a scene that places 24 people loads each file once. Thread-safe;
