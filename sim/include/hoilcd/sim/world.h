@@ -18,6 +18,7 @@
 #include "hoilcd/sim/robot.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/skeleton.h"
+#include "hoilcd/sim/walker_planner.h"
 
 namespace hoilcd {
 
@@ -49,8 +50,8 @@ struct InstanceInfo {
 
 // One person over the whole sequence (ids are stable and never reused). A seated person sits
 // on one seat from arrive_s to leave_s, changes posture from time to time (blending smoothly)
-// and goes through activities (crowd_motion.h); a walker walks the robot's route a few seconds
-// ahead of it. Every person is an articulated body: one instance per skeleton part, moved by
+// and goes through activities (crowd_motion.h); a walker follows its plan (walker_planner.h).
+// Every person is an articulated body: one instance per skeleton part, moved by
 // per-part transforms. SetTime() updates `present`, `posture`, `activity`, the keypoints and
 // contacts.
 struct Person {
@@ -73,7 +74,7 @@ struct Person {
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
   double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
   double lateral_m = 0;                      // walkers: offset to the left of the route
-  int walker = -1;                           // walkers: index of their plan (crowd_motion.h)
+  int walker = -1;                           // walkers: index of their plan (walker_planner.h)
   // State at the current time.
   bool present = false;
   std::string posture;                       // base posture ("seated_upright", "walking", ...)
@@ -90,8 +91,9 @@ class World {
   World(const Scene& scene, const BandRadianceTable& table);
 
   // Plans what depends on the robot's run: seat turnover at each lap boundary (people leave,
-  // arrive, change seats; events recorded) and walkers walking the route ahead of the robot.
-  // Call once, before SetTime, with the run's per-frame samples.
+  // arrive, change seats; events recorded) and the walkers' bouts around the robot. Call once,
+  // before SetTime, with the run's per-frame samples. Throws InputError naming /route/waypoints_m
+  // when walkers are asked for but a walker's body cannot follow the route clear of furniture.
   void PlanCrowd(const std::vector<RobotSample>& samples);
 
   // Moves people (posture, breathing, sway, walking), warms and cools seats, to time t, and
@@ -160,7 +162,7 @@ class World {
   std::map<std::string, int> classes_;
   std::vector<Person> people_;
   std::vector<Seat> seats_;
-  std::vector<std::array<double, 5>> route_;  // robot base per frame: time s, x m, y m, theta rad, distance m
+  RobotTrack robot_;                          // the robot's run (PlanCrowd)
   std::vector<DatasetEvent> events_;
   std::vector<WalkerPlan> walker_plans_;
   uint64_t seed_ = 1;
@@ -171,7 +173,7 @@ class World {
   Eigen::Vector3d room_size_m_;
   float environment_radiance_ = 0;
   double breathing_amplitude_m_ = 0, breathing_period_s_ = 4, sway_amplitude_rad_ = 0;
-  double cruise_speed_m_s_ = 0.45;  // the robot's median speed while moving (PlanCrowd)
+  std::string scene_file_;         // named in errors found by PlanCrowd
 };
 
 // World transform of an asset placed at position with a yaw about z (and uniform scale).
