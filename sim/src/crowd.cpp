@@ -60,6 +60,7 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
   if (const std::string problem = activity_options_.Check(); !problem.empty()) throw InputError(scene.file, problem);
   const nlohmann::json& crowd = scene.crowd;
   crowd_ = crowd;
+  scene_file_ = scene.file;
   seed_ = scene.seed;
   frame_rate_hz_ = scene.frame_rate_hz;
   duration_s_ = scene.frames / scene.frame_rate_hz;
@@ -236,23 +237,8 @@ std::array<int, Skeleton::kPartCount> Crowd::AddBody(int person_id, const std::s
   return parts;
 }
 
-void Crowd::Plan(const std::vector<RobotSample>& samples) {
-  route_.clear();
-  double distance_m = 0;
-  for (const RobotSample& s : samples) {
-    if (!route_.empty()) distance_m += std::hypot(s.base.x_m - route_.back()[1], s.base.y_m - route_.back()[2]);
-    route_.push_back({s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, distance_m});
-  }
-  // The robot's cruise speed: the median speed while it moves.
-  std::vector<double> speeds;
-  for (size_t i = 1; i < route_.size(); ++i) {
-    const double v = (route_[i][4] - route_[i - 1][4]) / std::max(1e-9, route_[i][0] - route_[i - 1][0]);
-    if (v > 0.05) speeds.push_back(v);
-  }
-  if (!speeds.empty()) {
-    std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
-    cruise_speed_m_s_ = speeds[speeds.size() / 2];
-  }
+void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles) {
+  robot_ = RobotTrack(samples);
   const double p = crowd_.at("turnover_probability").get<double>();
   auto frame_of = [&](double t) { return static_cast<int>(std::lround(t * frame_rate_hz_)); };
   auto seat_name = [](int table, int seat) { return std::to_string(table) + "." + std::to_string(seat); };
@@ -299,8 +285,8 @@ void Crowd::Plan(const std::vector<RobotSample>& samples) {
       events_.push_back({frame, "arrive", people_[index].person_id, seat_name(seat.table, seat.seat), ""});
     }
   }
-  // Walkers walk the robot's route a few seconds ahead of it: between the camera and the
-  // seated people (the occlusion knob), never in the robot's way.
+  // Walkers: bouts on the robot's route ahead of it (between the camera and the seated people:
+  // the occlusion knob), across its path and past it, clear of furniture, the robot and each other.
   const int walkers = crowd_.at("walkers").get<int>();
   std::map<std::string, double> behaviour_weights;
   for (const auto& [name, weight] : crowd_.at("walker_behaviours").items()) behaviour_weights[name] = weight.get<double>();
@@ -308,13 +294,25 @@ void Crowd::Plan(const std::vector<RobotSample>& samples) {
   for (int w = 0; w < walkers; ++w) {
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
     Person& walker = AddStandingPerson("walker", &rng);
-    walker_plans_.push_back(PlanWalker(behaviour_weights, seed_, w, duration_s_, walker_plans_));
     walker.walker = w;
-    walker.lead_s = rng.Uniform(4.0, 9.0);  // 1.7-3.9 m ahead at cruise speed
+    walker.lead_s = rng.Uniform(4.0, 9.0);
     walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
     walker.lead_phase_rad = rng.Uniform(0, 2 * M_PI);
     walker.lateral_m = rng.Uniform(0.0, 0.04);  // to the left: the tables are on the right of a clockwise lap
+    const auto space = std::make_shared<const FreeSpace>(obstacles, kWalkerRadiusM * walker.height_scale);
+    for (const RobotSample& s : samples) {
+      const Eigen::Vector2d at(s.base.x_m, s.base.y_m);
+      if (space->FreeAlong(at, Eigen::Vector2d(-std::sin(s.base.theta_rad), std::cos(s.base.theta_rad)), kWalkerMaxSidestepM)) continue;
+      std::string nearest;
+      const double clearance = space->Clearance(at, &nearest);
+      throw InputError(scene_file_, "/route/waypoints_m: walkers (crowd.walkers) follow the robot's route, which passes " +
+                                        std::to_string(clearance + space->radius_m()).substr(0, 5) + " m from " + nearest +
+                                        " at t = " + std::to_string(s.time_s).substr(0, 6) + " s with no room to step aside; a walker's body needs " +
+                                        std::to_string(space->radius_m()).substr(0, 5) +
+                                        " m: move the route away from it or set crowd.walkers to 0");
+    }
+    walker_plans_.push_back(PlanWalker(behaviour_weights, seed_, w, duration_s_, space, robot_, walker_plans_));
   }
   std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
     return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
@@ -363,15 +361,6 @@ void Crowd::UpdateSeatWarmth(double time_s) {
   }
 }
 
-// Where the robot is at time t (route sample interpolated), or the last sample.
-static Eigen::Vector2d RobotAt(const std::vector<std::array<double, 5>>& route, double time_s) {
-  if (route.empty()) return Eigen::Vector2d(-1e3, -1e3);
-  const auto after = std::lower_bound(route.begin(), route.end(), time_s,
-                                      [](const std::array<double, 5>& r, double v) { return r[0] < v; });
-  const std::array<double, 5>& r = after == route.end() ? route.back() : *after;
-  return Eigen::Vector2d(r[1], r[2]);
-}
-
 BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const {
   const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
   const double breath = breathing_amplitude_m_ * std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
@@ -402,28 +391,15 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
     pose.dof[kLumbarFlex] -= breath / 0.5;
     return pose;
   }
-  // A walker: at its plan's place on the robot's route, the gait phase from the distance walked
-  // (so the feet do not slide), its stride from its speed.
+  // A walker: where its plan puts it, the gait phase from the distance walked (so the feet do
+  // not slide), its stride from its speed.
   const WalkerPlan& plan = walker_plans_.at(p.walker);
-  const WalkerSegment& segment = plan.At(time_s);
-  const double u = std::clamp(plan.RouteTime(time_s), route_.front()[0], route_.back()[0]);
-  const auto after = std::lower_bound(route_.begin(), route_.end(), u,
-                                      [](const std::array<double, 5>& r, double v) { return r[0] < v; });
-  const std::array<double, 5>& b = after == route_.end() ? route_.back() : *after;
-  const std::array<double, 5>& a = after == route_.begin() || after == route_.end() ? b : *(after - 1);
-  const double f = b[0] > a[0] ? (u - a[0]) / (b[0] - a[0]) : 0.0;
-  const double route_heading = a[3] + f * std::remainder(b[3] - a[3], 2 * M_PI);
-  const Eigen::Vector2d at(a[1] + f * (b[1] - a[1]) - p.lateral_m * std::sin(route_heading),
-                           a[2] + f * (b[2] - a[2]) + p.lateral_m * std::cos(route_heading));
-  // Facing: along the route, back towards the robot when approaching it, to the tables (on the
-  // right of a clockwise lap) when stopping to chat.
-  const double heading = route_heading + (segment.rate < 0 ? M_PI : 0.0) +
-                         (segment.behaviour == "stop_to_chat" ? -M_PI / 2 : 0.0);
-  *world_from_person = PlacementTransform(Eigen::Vector3d(at.x(), at.y(), 0.0), heading, p.height_scale).cast<double>();
-  const double speed = std::abs(segment.rate) * cruise_speed_m_s_;
-  if (speed < 0.03) return PresetPose("standing");
-  const double stride_m = Skeleton::StrideAt(speed) * p.height_scale;
-  const double phase = 2 * M_PI * plan.Walked(time_s) * cruise_speed_m_s_ / stride_m + p.lead_phase_rad;
+  const WalkerPlacement place = PlaceWalker(plan, robot_, time_s, p.lateral_m);
+  *world_from_person =
+      PlacementTransform(Eigen::Vector3d(place.at_m.x(), place.at_m.y(), 0.0), place.heading_rad, p.height_scale).cast<double>();
+  if (place.speed_m_s < 0.03) return PresetPose("standing");
+  const double stride_m = Skeleton::StrideAt(place.speed_m_s) * p.height_scale;
+  const double phase = 2 * M_PI * plan.Walked(time_s) * robot_.cruise_speed_m_s() / stride_m + p.lead_phase_rad;
   return skeleton_->Walking(phase, stride_m / p.height_scale);
 }
 
@@ -472,10 +448,7 @@ void Crowd::SetTime(double time_s) {
     p.present = time_s >= p.arrive_s && time_s < p.leave_s;
     // A walker whose place on the route lies beyond the end of the sequence has walked off
     // (otherwise it would wait at the robot's final pose for the robot to drive into it).
-    if (p.walker >= 0) {
-      const WalkerPlan& plan = walker_plans_.at(p.walker);
-      p.present = !route_.empty() && plan.At(time_s).behaviour != "gone" && plan.RouteTime(time_s) <= route_.back()[0];
-    }
+    if (p.walker >= 0) p.present = PlaceWalker(walker_plans_.at(p.walker), robot_, time_s).present;
     p.posture.clear();
     for (const auto& [from, name] : p.postures)
       if (from <= time_s) p.posture = name;
@@ -497,7 +470,7 @@ void Crowd::SetTime(double time_s) {
     });
     if (episode != p.activities.end()) {
       p.activity = episode->name;
-      const Eigen::Vector2d robot = RobotAt(route_, time_s);
+      const Eigen::Vector2d robot = robot_.At(time_s);
       const Eigen::Vector3d robot_in_seat =
           Apply(world_from_person.inverse(), Eigen::Vector3d(robot.x(), robot.y(), 0.0));
       pose = ApplyActivity(*skeleton_, pose, *episode, time_s, activity_options_.blend_s,

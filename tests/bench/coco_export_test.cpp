@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/sequence.h"
@@ -44,6 +45,33 @@ TEST(CocoExport, EveryListedPersonBecomesAnAnnotationWithSeventeenFlaggedKeypoin
     EXPECT_EQ(a["num_keypoints"], labelled);
   }
   EXPECT_GT(visible, 0);
+}
+
+TEST(CocoExport, ADatasetWithoutKeypointsIsAnErrorNamingPersonsJsonAndTheFrame) {
+  const test::TestDir temp;
+  const std::string dir = temp / "dataset";
+  SequenceOptions options;
+  options.output_dir = dir;
+  options.frames = 2;
+  RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", {}), options);
+  // As a dataset rendered before keypoints existed: persons without them, checksums consistent.
+  std::vector<FramePersons> frames = Dataset::Open(dir).persons();
+  ASSERT_FALSE(frames.empty());
+  ASSERT_FALSE(frames[0].persons.empty());
+  for (FramePersons& f : frames)
+    for (PersonRecord& p : f.persons) p.keypoints.clear();
+  DatasetManifest manifest = DatasetManifest::FromJson(ReadFileBytes(dir + "/manifest.json"), dir + "/manifest.json");
+  WriteDatasetFile(dir, "persons.json", PersonsToJson(frames), &manifest);
+  WriteFileAtomic(dir + "/manifest.json", manifest.ToJson());
+  try {
+    ExportCoco(dir, temp / "coco");
+    FAIL() << "a dataset without keypoints was exported";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(dir + "/persons.json"), std::string::npos) << message;
+    EXPECT_NE(message.find("frame 0, person " + std::to_string(frames[0].persons[0].id)), std::string::npos) << message;
+    EXPECT_NE(message.find("expected the 17 COCO keypoints"), std::string::npos) << message;
+  }
 }
 
 TEST(CocoExport, AFolderThatIsNotADatasetIsAnError) {

@@ -404,6 +404,41 @@ TEST_F(GltfFileTest, BadExtrasValuesAreAllReportedWithTheirPaths) {
   }
 }
 
+TEST_F(GltfFileTest, BadPartParentJointAndKeypointExtrasAreReportedWithTheirPaths) {
+  gltf_["scenes"][0]["extras"]["part"] = "";
+  gltf_["scenes"][0]["extras"]["parent"] = 3;
+  gltf_["scenes"][0]["extras"]["joint"] = {0, 1};
+  gltf_["scenes"][0]["extras"]["keypoints"] = {{{"name", "nose"}}, {{"name", ""}, {"position", {0, 0, 0}}}, 7};
+  gltf_["scenes"][0]["extras"]["bone"] = "x";
+  const std::string message = LoadError(Write());
+  for (const char* expected : {"/scenes/0/extras/part: must be a non-empty string",
+                               "/scenes/0/extras/parent: must be a non-empty string",
+                               "/scenes/0/extras/joint: must be an array of 3 numbers",
+                               "/scenes/0/extras/keypoints/0: needs both name and position",
+                               "/scenes/0/extras/keypoints/1/name: must be a non-empty string",
+                               "/scenes/0/extras/keypoints/2: must be an object",
+                               "/scenes/0/extras/bone: unknown key (expected class, posture, contacts, part, parent, joint, keypoints)"}) {
+    EXPECT_NE(message.find(expected), std::string::npos) << expected << " in: " << message;
+  }
+  gltf_["scenes"][0]["extras"] = {{"class", "person"}, {"keypoints", "nose"}};
+  const std::string not_array = LoadError(Write());
+  EXPECT_NE(not_array.find("/scenes/0/extras/keypoints: must be an array of {name, position}"), std::string::npos) << not_array;
+}
+
+TEST_F(GltfFileTest, PartParentJointAndKeypointsAreReadInTheAssetFrame) {
+  gltf_["scenes"][0]["extras"]["part"] = "head";
+  gltf_["scenes"][0]["extras"]["parent"] = "neck";
+  gltf_["scenes"][0]["extras"]["joint"] = {0.1, 1.5, 0.0};
+  gltf_["scenes"][0]["extras"]["keypoints"] = {{{"name", "nose"}, {"position", {0.0, 1.6, 0.1}}}};
+  const Asset asset = LoadAsset(Write());
+  EXPECT_EQ(asset.part, "head");
+  EXPECT_EQ(asset.parent, "neck");
+  EXPECT_TRUE(asset.joint_m.isApprox(Eigen::Vector3f(0.0f, 0.1f, 1.5f))) << asset.joint_m.transpose();
+  ASSERT_EQ(asset.keypoints.size(), 1u);
+  EXPECT_EQ(asset.keypoints[0].name, "nose");
+  EXPECT_TRUE(asset.keypoints[0].position_m.isApprox(Eigen::Vector3f(0.1f, 0.0f, 1.6f)));
+}
+
 TEST_F(GltfFileTest, NonTrianglePrimitiveIsAnInputError) {
   gltf_["meshes"][0]["primitives"][0]["mode"] = 1;  // LINES
   const std::string message = LoadError(Write());

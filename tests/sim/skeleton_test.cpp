@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/error.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -105,6 +110,49 @@ TEST(Skeleton, AnUnknownPresetIsAnError) {
   EXPECT_THROW(PresetPose("seated_sideways"), InputError);
   EXPECT_FALSE(IsPresetPose("seated_sideways"));
 }
+
+// Copies the shipped person_part_* assets into dir, changing the scene extras of one part.
+void CopyPartsWith(const std::filesystem::path& dir, const std::string& part,
+                   const std::function<void(nlohmann::json*)>& edit) {
+  for (const std::string& name : Skeleton::PartNames()) {
+    const std::string file = "person_part_" + name + ".gltf";
+    nlohmann::json gltf = nlohmann::json::parse(std::ifstream(std::filesystem::path(ShippedAssetDir()) / file));
+    if (name == part) edit(&gltf["scenes"][0]["extras"]);
+    std::ofstream(dir / file) << gltf.dump();
+  }
+}
+
+// The message of the InputError building a skeleton from dir throws, or "".
+std::string SkeletonError(const std::filesystem::path& dir) {
+  try {
+    AssetLibrary assets(dir.string());
+    Skeleton skeleton(assets);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Skeleton, APartWithTheWrongParentIsAnErrorNamingItsFileAndWhatWasExpected) {
+  const test::TestDir temp;
+  CopyPartsWith(temp.path(), "neck", [](nlohmann::json* extras) { (*extras)["parent"] = "pelvis"; });
+  const std::string message = SkeletonError(temp.path());
+  EXPECT_NE(message.find((temp.path() / "person_part_neck.gltf").string() + ": /scenes/0/extras"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("expected part \"neck\" with parent \"torso\", found part \"neck\" with parent \"pelvis\""),
+            std::string::npos)
+      << message;
+}
+
+TEST(Skeleton, AMissingCocoKeypointIsAnErrorNamingTheKeypoint) {
+  const test::TestDir temp;
+  CopyPartsWith(temp.path(), "head", [](nlohmann::json* extras) { (*extras)["keypoints"].erase(0); });  // the nose
+  const std::string message = SkeletonError(temp.path());
+  EXPECT_NE(message.find("person_part_pelvis.gltf"), std::string::npos) << message;
+  EXPECT_NE(message.find("no person_part_* asset carries the COCO keypoint \"nose\""), std::string::npos) << message;
+}
+
+TEST(Skeleton, TheShippedPartsBuildASkeleton) { EXPECT_EQ(SkeletonError(ShippedAssetDir()), ""); }
 
 }  // namespace
 }  // namespace hoilcd

@@ -1,6 +1,6 @@
 // The people of a scene over the whole sequence: seated people (seats, postures, activities,
 // props, seat turnover and the warmth they leave on their chairs), people standing still and
-// walkers on the robot's route, posed at a time as articulated bodies. The World owns one Crowd
+// walkers (planned by walker_planner.h), posed at a time as articulated bodies. The World owns one Crowd
 // and lends it the instance services of the ray caster through CrowdStage.
 #pragma once
 
@@ -20,13 +20,14 @@
 #include "hoilcd/sim/robot.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/skeleton.h"
+#include "hoilcd/sim/walker_planner.h"
 
 namespace hoilcd {
 
 // One person over the whole sequence (ids are stable and never reused). A seated person sits
 // on one seat from arrive_s to leave_s, changes posture from time to time (blending smoothly)
-// and goes through activities (crowd_motion.h); a walker walks the robot's route a few seconds
-// ahead of it. Every person is an articulated body: one instance per skeleton part, moved by
+// and goes through activities (crowd_motion.h); a walker follows its plan (walker_planner.h).
+// Every person is an articulated body: one instance per skeleton part, moved by
 // per-part transforms. SetTime() updates `present`, `posture`, `activity`, the keypoints and
 // contacts.
 struct Person {
@@ -49,7 +50,7 @@ struct Person {
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
   double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
   double lateral_m = 0;                      // walkers: offset to the left of the route
-  int walker = -1;                           // walkers: index of their plan (crowd_motion.h)
+  int walker = -1;                           // walkers: index of their plan (walker_planner.h)
   // State at the current time.
   bool present = false;
   std::string posture;                       // base posture ("seated_upright", "walking", ...)
@@ -92,8 +93,9 @@ class Crowd {
   std::vector<Obstacle2D> AddStandingPeople(const Scene& scene);
 
   // Plans what depends on the robot's run: seat turnover at each lap boundary (people leave,
-  // arrive, change seats; events recorded) and walkers walking the route ahead of the robot.
-  void Plan(const std::vector<RobotSample>& samples);
+  // arrive, change seats; events recorded) and the walkers' bouts in the free space the
+  // obstacles leave (InputError naming /route/waypoints_m if a walker cannot follow the route).
+  void Plan(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles);
 
   // Moves people (posture, breathing, sway, walking) and warms and cools seats, to time t.
   void SetTime(double time_s);
@@ -133,7 +135,7 @@ class Crowd {
   Eigen::AlignedBox3f table_bounds_m_;             // the table asset's bounds (top at max z)
   std::vector<Person> people_;
   std::vector<Seat> seats_;
-  std::vector<std::array<double, 5>> route_;  // robot base per frame: time s, x m, y m, theta rad, distance m
+  RobotTrack robot_;                          // the robot's run (Plan)
   std::vector<DatasetEvent> events_;
   std::vector<WalkerPlan> walker_plans_;
   uint64_t seed_ = 1;
@@ -141,7 +143,7 @@ class Crowd {
   nlohmann::json crowd_;
   double seat_warmth_c_ = 2, heat_print_tau_s_ = 120, posture_interval_s_ = 0;
   double breathing_amplitude_m_ = 0, breathing_period_s_ = 4, sway_amplitude_rad_ = 0;
-  double cruise_speed_m_s_ = 0.45;  // the robot's median speed while moving (Plan)
+  std::string scene_file_;  // named in errors found by Plan
 };
 
 }  // namespace hoilcd

@@ -62,33 +62,4 @@ BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const Act
                        double time_s, double blend_s, const Props& props, double robot_yaw_rad,
                        Eigen::Matrix4d* seat_from_cup);
 
-// Walkers follow the robot's route, each at a route time u(t) (the place the robot passes at
-// time u) that always stays at least kMinWalkerLeadS ahead of the robot, so the robot never
-// reaches them; their behaviours differ in how u moves: "ahead" keeps pace (the old pattern),
-// "away" walks off faster than the robot, "approach" comes towards it (facing it) and turns
-// back, "stop_to_chat" stands facing the tables; "gone" (out of the room) between bouts and
-// wherever another walker is within 1.2 s of route.
-extern const std::array<const char*, 4> kWalkerBehaviours;
-constexpr double kMinWalkerLeadS = 3.0;
-
-struct WalkerSegment {
-  std::string behaviour;           // one of kWalkerBehaviours, or "gone"
-  double start_s = 0, end_s = 0;   // time
-  double u_start = 0, rate = 1;    // u(t) = u_start + rate (t - start_s)
-};
-
-struct WalkerPlan {
-  std::vector<WalkerSegment> segments;  // back to back from time 0
-  // The segment at time t (the last one beyond the end).
-  const WalkerSegment& At(double time_s) const;
-  double RouteTime(double time_s) const;
-  // Path length walked up to time t, in route seconds (|rate| integrated).
-  double Walked(double time_s) const;
-};
-
-// Plans one walker over [0, duration_s] by the behaviour weights (keyed by seed and walker),
-// avoiding the walkers planned before it.
-WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker,
-                      double duration_s, const std::vector<WalkerPlan>& others);
-
 }  // namespace hoilcd

@@ -25,9 +25,10 @@ class World : private CrowdStage {
   World(const Scene& scene, const BandRadianceTable& table);
 
   // Plans what depends on the robot's run: seat turnover at each lap boundary (people leave,
-  // arrive, change seats; events recorded) and walkers walking the route ahead of the robot.
-  // Call once, before SetTime, with the run's per-frame samples.
-  void PlanCrowd(const std::vector<RobotSample>& samples) { crowd_->Plan(samples); }
+  // arrive, change seats; events recorded) and the walkers' bouts around the robot. Call once,
+  // before SetTime, with the run's per-frame samples. Throws InputError naming /route/waypoints_m
+  // when walkers are asked for but a walker's body cannot follow the route clear of furniture.
+  void PlanCrowd(const std::vector<RobotSample>& samples) { crowd_->Plan(samples, obstacles_); }
 
   // Moves people (posture, breathing, sway, walking), warms and cools seats, to time t, and
   // recommits the ray caster.

@@ -1,0 +1,173 @@
+// Walkers' free space and plans: shortest free paths round footprints, and walkers who cross the
+// robot's path and overtake it without ever overlapping furniture, each other or the robot.
+#include "hoilcd/sim/walker_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "hoilcd/sim/scene_options.h"
+#include "hoilcd/sim/world.h"
+
+namespace hoilcd {
+namespace {
+
+Scene LoadShipped(const std::string& name, const std::vector<std::string>& overrides) {
+  return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + name + ".json", overrides);
+}
+
+TEST(FreeSpace, ShortestPathGoesRoundAGrownBoxAndKeepsItsRadius) {
+  const FreeSpace space({Obstacle2D::Rectangle("box", {2, 0}, {1, 2})}, 0.25);
+  const Eigen::Vector2d a(0, 0), b(4, 0);
+  EXPECT_FALSE(space.SegmentFree(a, b));
+  const std::vector<Eigen::Vector2d> path = space.ShortestPath(a, b);
+  ASSERT_GE(path.size(), 3u);
+  EXPECT_EQ(path.front(), a);
+  EXPECT_EQ(path.back(), b);
+  double length = 0;
+  for (size_t i = 1; i < path.size(); ++i) {
+    EXPECT_TRUE(space.SegmentFree(path[i - 1], path[i])) << i;
+    length += (path[i] - path[i - 1]).norm();
+  }
+  // Over the box's grown corner (1 m + 0.25 m + margin above the axis): ~4.8 m, never the 4 m chord.
+  EXPECT_GT(length, 4.6);
+  EXPECT_LT(length, 5.2);
+  EXPECT_LT(space.Clearance({2, 1.1}), 0);
+  EXPECT_NEAR(space.Clearance({2, 1.5}), 0.25, 1e-12);
+}
+
+TEST(FreeSpace, NoPathIntoAWalledCorner) {
+  // A 0.4 m gap between two boxes does not let a 0.25 m radius through.
+  const FreeSpace space({Obstacle2D::Rectangle("left", {0, 0}, {1, 4}), Obstacle2D::Rectangle("right", {1.4, 0}, {1, 4}),
+                         Obstacle2D::Rectangle("back", {0.7, 2.3}, {3, 0.6})},
+                        0.25);
+  EXPECT_TRUE(space.ShortestPath({0.7, -3}, {0.7, 1.5}).empty());
+  EXPECT_FALSE(space.ShortestPath({0.7, -3}, {3, -3}).empty());
+}
+
+// Segments ab and cd cross.
+bool Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  auto side = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+    const Eigen::Vector2d u = q - p, v = r - p;
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+}
+
+TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureEachOtherOrIt) {
+  const Scene scene = LoadShipped("open_room", {"crowd.walkers=4"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  world.PlanCrowd(run.samples);
+  struct Track {
+    std::vector<size_t> frames;
+    std::vector<Eigen::Vector2d> at;
+  };
+  std::map<int, std::map<std::string, std::vector<Track>>> bouts;  // walker -> behaviour -> bouts
+  std::map<int, std::string> last;
+  int checked = 0;
+  for (size_t f = 0; f < run.samples.size(); ++f) {
+    world.SetTime(run.samples[f].time_s);
+    const Eigen::Vector2d robot(run.samples[f].base.x_m, run.samples[f].base.y_m);
+    std::vector<std::pair<Eigen::Vector2d, double>> walkers;  // centre, radius
+    for (const Person& p : world.people()) {
+      if (p.seated || p.walker < 0) continue;
+      if (!p.present) {
+        last[p.person_id] = "";
+        continue;
+      }
+      // The footprint: a circle about the pelvis (between the hips).
+      const Eigen::Vector2d at = 0.5 * (p.keypoints_m[11] + p.keypoints_m[12]).head<2>();
+      const double radius = kWalkerRadiusM * p.height_scale;
+      for (const Obstacle2D& o : world.obstacles()) {
+        if (o.name.rfind("chair", 0) != 0 && o.name.rfind("table", 0) != 0) continue;
+        ASSERT_GE(DistanceToObstacle(at, o), radius - 0.01) << "frame " << f << ": walker " << p.person_id << " ("
+                                                              << p.posture << ") in " << o.name;
+      }
+      for (const auto& [other, other_radius] : walkers) {
+        ASSERT_GE((at - other).norm(), radius + other_radius - 0.01) << "frame " << f << ": walker " << p.person_id;
+      }
+      ASSERT_GE((at - robot).norm(), kWalkerRobotClearanceM - 0.01) << "frame " << f << ": walker " << p.person_id << " ("
+                                                                    << p.posture << ") and the robot";
+      walkers.emplace_back(at, radius);
+      if (last[p.person_id] != p.posture) bouts[p.person_id][p.posture].emplace_back();
+      last[p.person_id] = p.posture;
+      bouts[p.person_id][p.posture].back().frames.push_back(f);
+      bouts[p.person_id][p.posture].back().at.push_back(at);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+  int crossings = 0, overtakings = 0;
+  for (const auto& [id, by_behaviour] : bouts) {
+    for (const auto& [behaviour, tracks] : by_behaviour) {
+      for (const Track& track : tracks) {
+        if (behaviour == "cross") {
+          // The walker's track crosses the robot's path where the robot comes later (at least 2 s).
+          bool crossed = false;
+          for (size_t i = 1; i < track.at.size() && !crossed; ++i) {
+            for (size_t g = track.frames[i] + 50; g + 1 < run.samples.size() && g < track.frames[i] + 750 && !crossed; ++g) {
+              crossed = Cross(track.at[i - 1], track.at[i], {run.samples[g].base.x_m, run.samples[g].base.y_m},
+                              {run.samples[g + 1].base.x_m, run.samples[g + 1].base.y_m});
+            }
+          }
+          crossings += crossed;
+        }
+        if (behaviour == "overtake") {
+          // Behind the robot (against its heading) at the start, ahead of it at the end.
+          auto ahead = [&](size_t k) {
+            const RobotSample& r = run.samples[track.frames[k]];
+            return (track.at[k] - Eigen::Vector2d(r.base.x_m, r.base.y_m)).dot(Eigen::Vector2d(std::cos(r.base.theta_rad), std::sin(r.base.theta_rad)));
+          };
+          overtakings += ahead(0) < -0.5 && ahead(track.at.size() - 1) > 0.5;
+        }
+      }
+    }
+  }
+  EXPECT_GE(crossings, 1);
+  EXPECT_GE(overtakings, 1);
+}
+
+TEST(Walkers, PlansAreTheSameForTheSameSeed) {
+  auto positions = [] {
+    const Scene scene = LoadShipped("open_room", {"crowd.walkers=3"});
+    const BandRadianceTable table;
+    World world(scene, table);
+    world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
+    std::vector<double> out;
+    for (double t = 0; t < 90; t += 0.7) {
+      world.SetTime(t);
+      for (const Person& p : world.people())
+        if (p.walker >= 0 && p.present) out.push_back(p.keypoints_m[0].x() + 10 * p.keypoints_m[15].y());
+    }
+    return out;
+  };
+  const std::vector<double> a = positions(), b = positions();
+  EXPECT_GT(a.size(), 50u);
+  EXPECT_EQ(a, b);
+}
+
+TEST(Walkers, ARouteAWalkersBodyCannotFollowIsAnErrorNamingTheRoute) {
+  // Chairs pushed out to 0.495 m from the wall: the robot (0.34 m wide) drives 0.3 m from the
+  // wall (on its true path), but a walker needs 0.25 m on either side of its centre.
+  const Scene scene = LoadShipped("paper_room", {"crowd.walkers=1", "furniture.seat_setback_m=0.38", "furniture.chair_jitter_m=0",
+                                                 "route.waypoints_m=[[0.3,0.3],[0.3,2.7],[6.7,2.7],[6.7,0.3]]", "robot.navigation=ground_truth", "crowd.height_scale_sd=0"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  try {
+    world.PlanCrowd(run.samples);
+    FAIL() << "walkers were planned on a route too narrow for them";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("paper_room.json: /route/waypoints_m: walkers (crowd.walkers) follow the robot's route"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("no room to step aside"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace hoilcd
