@@ -9,8 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "hoilcd/bench/chart.h"
 #include "hoilcd/bench/methods.h"
-#include "hoilcd/bench/plot.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/sim/scene.h"
