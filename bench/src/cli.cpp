@@ -22,6 +22,7 @@
 #include "hoilcd/bench/run.h"
 #include "hoilcd/bench/runner.h"
 #include "hoilcd/bench/sweep.h"
+#include "hoilcd/bench/sweep_summary.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"

@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "hoilcd/bench/diagnosis.h"
+#include "hoilcd/bench/figures.h"
 #include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/methods.h"
-#include "hoilcd/bench/plot.h"
 #include "hoilcd/bench/slam_report.h"
 #include "hoilcd/core/text.h"
 #include "hoilcd/sim/asset.h"

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "hoilcd/bench/plot.h"
+#include "hoilcd/bench/chart.h"
 #include "hoilcd/core/dataset.h"
 
 namespace hoilcd {

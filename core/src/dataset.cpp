@@ -203,13 +203,19 @@ void WriteFileAtomic(const std::string& path, std::string_view bytes) {
 }
 
 std::string EncodePng(const cv::Mat& image) {
-  HOILCD_CHECK_MSG(image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
-                   "EncodePng takes a 1-channel CV_8U or CV_16U image");
+  HOILCD_CHECK_MSG((image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U)) ||
+                       image.type() == CV_8UC3,
+                   "EncodePng takes a 1-channel CV_8U or CV_16U image or a CV_8UC3 one");
   std::vector<uchar> buffer;
   // zlib level 1: 4-5x less CPU than the default 6 for 2-4 % larger frames (bench/README.md
   // "Rendering"); PNG encoding was the render pipeline's bottleneck.
   HOILCD_CHECK(cv::imencode(".png", image, buffer, {cv::IMWRITE_PNG_COMPRESSION, 1}));
   return std::string(buffer.begin(), buffer.end());
+}
+
+void WritePng(const std::string& path, const cv::Mat& image) {
+  HOILCD_CHECK_MSG(!image.empty(), "WritePng of an empty image to " << path);
+  WriteFileAtomic(path, EncodePng(image));
 }
 
 std::string FrameFileName(int frame, const char* extension) {

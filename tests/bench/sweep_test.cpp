@@ -1,4 +1,5 @@
 #include "hoilcd/bench/sweep.h"
+#include "hoilcd/bench/sweep_summary.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

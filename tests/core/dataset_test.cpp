@@ -131,7 +131,38 @@ TEST(EncodePng, IsDeterministicAndDecodesToTheSamePixels) {
       cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(decoded.type(), CV_16UC1);
   EXPECT_EQ(cv::countNonZero(decoded != image16), 0);
-  EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_8UC3)), std::logic_error);
+  EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_8UC4)), std::logic_error);
+  EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_32FC1)), std::logic_error);
+}
+
+TEST(WritePng, WritesADecodableBgrPngAndNoTemporaryFile) {
+  TempDir dir;
+  const std::string path = dir / "plot.png";
+  cv::Mat image(5, 7, CV_8UC3);
+  cv::randu(image, 0, 256);
+  WritePng(path, image);
+  const cv::Mat read = cv::imread(path, cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(read.type(), CV_8UC3);
+  EXPECT_EQ(cv::norm(read, image, cv::NORM_INF), 0.0);
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir.str())) {
+    ++entries;
+    EXPECT_EQ(entry.path().filename(), "plot.png");
+  }
+  EXPECT_EQ(entries, 1);
+}
+
+TEST(WritePng, UnwritableFolderIsAnInputErrorNamingThePath) {
+  TempDir dir;
+  WriteFileAtomic(dir / "file", "a file, not a folder");
+  const std::string path = dir / "file/plot.png";
+  try {
+    WritePng(path, cv::Mat(4, 4, CV_8UC3, cv::Scalar::all(0)));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].where, path);
+  }
 }
 
 TEST(WriteFileAtomic, ReplacesContentCreatesDirectoriesAndLeavesNoTempFile) {

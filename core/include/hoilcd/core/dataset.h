@@ -25,8 +25,12 @@ std::string ReadFileBytes(const std::string& path);
 // see a half-written file. Creates parent directories. InputError(path, ...) on failure.
 void WriteFileAtomic(const std::string& path, std::string_view bytes);
 
-// PNG bytes of a 1-channel CV_8U or CV_16U image; the same image always gives the same bytes.
+// PNG bytes of a 1-channel CV_8U or CV_16U image or a BGR CV_8UC3 one (figures); the same image
+// always gives the same bytes.
 std::string EncodePng(const cv::Mat& image);
+
+// EncodePng(image) written with WriteFileAtomic: the one atomic PNG writer (frames, figures).
+void WritePng(const std::string& path, const cv::Mat& image);
 
 // A frame PNG's pixels (path names errors). The header must say k.width x k.height before
 // anything is decoded (a small file can inflate to gigabytes), and the decoded type must be

@@ -1,16 +1,12 @@
-#include "hoilcd/bench/plot.h"
+#include "hoilcd/bench/chart.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
-#include <system_error>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/error.h"
@@ -18,33 +14,16 @@
 // Axes, ticks and legends are drawn here with OpenCV primitives: cv::plot::Plot2d (opencv_contrib)
 // draws a single series without tick labels or legend, and no plotting library is a dependency.
 namespace hoilcd {
+namespace chart {
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
-constexpr int kShift = 4;  // fixed-point fraction bits for sub-pixel drawing
-constexpr double kSubPixels = 1 << kShift;
 constexpr int kInkLevel = 35;        // grey level of frame, ticks and text
 constexpr int kGridLevel = 228;      // grey level of grid lines
 constexpr int kTickLengthPx = 5;
 constexpr int kLineThicknessPx = 2;
 constexpr double kMarkerRadiusPx = 4.5;
-constexpr double kDotRadiusPx = 3.0;  // trajectory dots
 constexpr double kLegendMarginPx = 10.0;
-
-cv::Scalar Grey(int level) { return cv::Scalar(level, level, level); }
-cv::Scalar White() { return Grey(255); }
-
-// Closed data interval; starts empty and grows with Add.
-struct Range {
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-  void Add(double v) {
-    if (!std::isfinite(v)) return;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  double Span() const { return hi - lo; }
-};
 
 // An interval that can be drawn: [0, 1] when empty, widened around a single value.
 Range Drawable(Range r) {
@@ -54,11 +33,6 @@ Range Drawable(Range r) {
     return {r.lo - half, r.hi + half};
   }
   return r;
-}
-
-Range FromOption(const std::optional<std::pair<double, double>>& option, Range data) {
-  if (option) return {option->first, option->second};
-  return Drawable(data);
 }
 
 double NiceStep(double lo, double hi, int max_count) {
@@ -95,21 +69,6 @@ std::string FormatTick(double value, double step) {
   return text.data();
 }
 
-cv::Size TextSize(const std::string& text, double scale) {
-  int baseline = 0;
-  return cv::getTextSize(text, kFont, scale, 1, &baseline);
-}
-
-// Text whose box (cap height, no descender) is placed so that the point at fractions
-// (h_align, v_align) of it lands on anchor: (0, 0) top-left, (0.5, 0.5) centre, (1, 1) bottom-right.
-void PutText(cv::Mat& image, const std::string& text, cv::Point2d anchor, double h_align,
-             double v_align, double scale, const cv::Scalar& colour) {
-  const cv::Size size = TextSize(text, scale);
-  const cv::Point origin(cvRound(anchor.x - h_align * size.width),
-                         cvRound(anchor.y + (1.0 - v_align) * size.height));
-  cv::putText(image, text, origin, kFont, scale, colour, 1, cv::LINE_AA);
-}
-
 // Text rotated a quarter turn counter-clockwise, centred on `centre`, dark on the white margin.
 void PutTextVertical(cv::Mat& image, const std::string& text, cv::Point centre, double scale) {
   int baseline = 0;
@@ -127,48 +86,6 @@ void PutTextVertical(cv::Mat& image, const std::string& text, cv::Point centre, 
   cv::min(target, rotated(visible - wanted.tl()), target);
 }
 
-// Pixel coordinates in fixed point, kept far inside int range.
-cv::Point Fixed(cv::Point2d p) {
-  const double limit = 1e6 * kSubPixels;
-  return {cvRound(std::clamp(p.x * kSubPixels, -limit, limit)),
-          cvRound(std::clamp(p.y * kSubPixels, -limit, limit))};
-}
-
-// Nearest whole pixel, kept far inside int range.
-cv::Point Pixel(cv::Point2d p) {
-  const double limit = 1e6;
-  return {cvRound(std::clamp(p.x, -limit, limit)), cvRound(std::clamp(p.y, -limit, limit))};
-}
-
-bool Finite(cv::Point2d p) { return std::isfinite(p.x) && std::isfinite(p.y); }
-
-// Anti-aliased segment clipped to the image first, so points far outside the range draw right.
-void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour,
-             int thickness) {
-  if (!Finite(a) || !Finite(b)) return;
-  const double limit = 1e15;
-  auto to_long = [&](cv::Point2d p) {
-    return cv::Point2l(std::llround(std::clamp(p.x * kSubPixels, -limit, limit)),
-                       std::llround(std::clamp(p.y * kSubPixels, -limit, limit)));
-  };
-  cv::Point2l pa = to_long(a);
-  cv::Point2l pb = to_long(b);
-  const int64_t margin = 8 * (1 << kShift);  // keep thick line ends whole at the border
-  const cv::Point2l offset(margin, margin);
-  pa += offset;
-  pb += offset;
-  if (!cv::clipLine(cv::Size2l(image.cols * (1 << kShift) + 2 * margin,
-                               image.rows * (1 << kShift) + 2 * margin),
-                    pa, pb)) {
-    return;
-  }
-  pa -= offset;
-  pb -= offset;
-  cv::line(image, cv::Point(static_cast<int>(pa.x), static_cast<int>(pa.y)),
-           cv::Point(static_cast<int>(pb.x), static_cast<int>(pb.y)), colour, thickness,
-           cv::LINE_AA, kShift);
-}
-
 // Filled marker; shape 0 circle, 1 square, 2 triangle up, 3 diamond, 4 triangle down (cycling).
 void Marker(cv::Mat& image, cv::Point2d centre, int shape, double radius,
             const cv::Scalar& colour) {
@@ -184,39 +101,14 @@ void Marker(cv::Mat& image, cv::Point2d centre, int shape, double radius,
   }};
   const int kind = shape % 5;
   if (kind == 0) {
-    cv::circle(image, Fixed(centre), cvRound(radius * kSubPixels), colour, cv::FILLED,
+    cv::circle(image, SubPixel(centre), cvRound(radius * kSubPixels), colour, cv::FILLED,
                cv::LINE_AA, kShift);
     return;
   }
   std::vector<cv::Point> polygon;
-  for (const cv::Point2d& v : kShapes[kind - 1]) polygon.push_back(Fixed(centre + v * radius));
+  for (const cv::Point2d& v : kShapes[kind - 1]) polygon.push_back(SubPixel(centre + v * radius));
   cv::fillConvexPoly(image, polygon, colour, cv::LINE_AA, kShift);
 }
-
-// Axes: where the data intervals land in the image, and the ticks along them.
-struct Axes {
-  cv::Rect frame;  // axes box, image pixels
-  Range x, y;      // shown data intervals
-  double inset_px = 0.0;  // the intervals map to the frame shrunk by this on every side
-  std::vector<double> x_ticks, y_ticks;
-  std::vector<std::string> x_tick_labels, y_tick_labels;
-  int y_tick_labels_width_px = 0;
-
-  // Pixel position inside the frame (frame-local, sub-pixel).
-  cv::Point2d ToLocal(double xv, double yv) const {
-    const double w = frame.width - 1 - 2 * inset_px;
-    const double h = frame.height - 1 - 2 * inset_px;
-    return {inset_px + (xv - x.lo) / x.Span() * w,
-            frame.height - 1 - inset_px - (yv - y.lo) / y.Span() * h};
-  }
-};
-
-struct AxesSpec {
-  Range x, y;                                    // drawable data intervals
-  std::vector<std::string> categories;          // if set: x ticks at 0..n-1 with these labels
-  double inset_px = 8.0;                         // see Axes::inset_px
-  bool equal_aspect = false;
-};
 
 std::vector<std::string> TickLabels(const std::vector<double>& ticks, double span) {
   const double step = ticks.size() >= 2 ? ticks[1] - ticks[0] : span;
@@ -329,14 +221,6 @@ void DrawFrame(cv::Mat& canvas, const Axes& a, const PlotOptions& o) {
   }
 }
 
-struct LegendItem {
-  std::string label;
-  cv::Scalar colour;
-  bool line = false;     // a short line sample
-  int marker = -1;       // marker shape, -1: none
-  bool swatch = false;   // a filled box (bars)
-};
-
 cv::Size LegendSize(const std::vector<LegendItem>& items, double font_scale) {
   int widest = 0;
   for (const LegendItem& item : items) widest = std::max(widest, TextSize(item.label, font_scale).width);
@@ -392,8 +276,6 @@ int DrawLegend(cv::Mat& canvas, const Axes& a, const std::vector<LegendItem>& it
   return best_covered;
 }
 
-using DrawData = std::function<void(cv::Mat& frame_roi, const Axes& axes)>;
-
 cv::Mat RenderOnce(const PlotOptions& o, const AxesSpec& spec, bool vertical_grid,
                    const std::vector<LegendItem>& legend, const DrawData& draw_data,
                    cv::Rect* plot_area_px, int* legend_covered_px) {
@@ -411,22 +293,6 @@ cv::Mat RenderOnce(const PlotOptions& o, const AxesSpec& spec, bool vertical_gri
   *legend_covered_px = o.legend ? DrawLegend(canvas, axes, legend, data_mask, o.font_scale) : 0;
   if (plot_area_px != nullptr) *plot_area_px = axes.frame;
   return canvas;
-}
-
-// Draws the figure; when the legend would hide data, the y range is automatic and the legend
-// is small next to the plot, draws it again with room for the legend at the top.
-cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
-               const std::vector<LegendItem>& legend, const DrawData& draw_data,
-               cv::Rect* plot_area_px) {
-  HOILCD_CHECK_MSG(o.Check().empty(), o.Check());
-  int covered = 0;
-  cv::Mat canvas = RenderOnce(o, spec, vertical_grid, legend, draw_data, plot_area_px, &covered);
-  if (covered == 0 || o.y_range || !o.legend || legend.empty()) return canvas;
-  const double needed_px = LegendSize(legend, o.font_scale).height + 2 * kLegendMarginPx;
-  const double usable_px = o.height_px * 0.8;
-  if (needed_px > 0.45 * usable_px) return canvas;
-  spec.y.hi = spec.y.lo + spec.y.Span() / (1.0 - needed_px / usable_px);
-  return RenderOnce(o, spec, vertical_grid, legend, draw_data, plot_area_px, &covered);
 }
 
 bool HasSpread(const Series& s) { return !s.y_low.empty(); }
@@ -466,8 +332,8 @@ void DrawBand(cv::Mat& roi, const Axes& a, const Series& s, const cv::Scalar& co
       close_run();
       continue;
     }
-    runs.back().push_back(Fixed(high));
-    lower.push_back(Fixed(low));
+    runs.back().push_back(SubPixel(high));
+    lower.push_back(SubPixel(low));
   }
   close_run();
   runs.pop_back();
@@ -477,43 +343,92 @@ void DrawBand(cv::Mat& roi, const Axes& a, const Series& s, const cv::Scalar& co
   cv::addWeighted(overlay, 0.22, roi, 0.78, 0.0, roi);
 }
 
-cv::Mat ToColour(const cv::Mat& image) {
-  HOILCD_CHECK_MSG(image.channels() == 1 || image.type() == CV_8UC3,
-                   "match tile must be single-channel or CV_8UC3, got type " << image.type());
-  if (image.channels() == 3) return image;
-  cv::Mat gray = image;
-  if (image.depth() != CV_8U) cv::normalize(image, gray, 0, 255, cv::NORM_MINMAX, CV_8U);
-  cv::Mat colour;
-  cv::applyColorMap(gray, colour, cv::COLORMAP_INFERNO);
-  return colour;
-}
-
-cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptions& o) {
-  cv::Mat shown;
-  if (tile.image.empty()) {
-    shown = cv::Mat(empty_size, CV_8UC3, Grey(200));
-  } else {
-    cv::resize(ToColour(tile.image), shown, cv::Size(), o.scale, o.scale, cv::INTER_NEAREST);
-  }
-  const double radius = std::max(2.5, 1.5 * o.scale);
-  for (const cv::Point2f& p : tile.points) {
-    const cv::Point2d centre((p.x + 0.5) * o.scale - 0.5, (p.y + 0.5) * o.scale - 0.5);
-    cv::circle(shown, Fixed(centre), cvRound(radius * kSubPixels), tile.point_colour, cv::FILLED,
-               cv::LINE_AA, kShift);
-  }
-  if (!tile.caption.empty()) {
-    const cv::Size text = TextSize(tile.caption, o.font_scale);
-    const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) &
-                         cv::Rect(0, 0, shown.cols, shown.rows);
-    cv::Mat backing = shown(box);
-    cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0,
-                    backing);
-    PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, o.font_scale, White());
-  }
-  return shown;
-}
-
 }  // namespace
+
+cv::Scalar Grey(int level) { return cv::Scalar(level, level, level); }
+cv::Scalar White() { return Grey(255); }
+
+Range FromOption(const std::optional<std::pair<double, double>>& option, Range data) {
+  if (option) return {option->first, option->second};
+  return Drawable(data);
+}
+
+cv::Size TextSize(const std::string& text, double scale) {
+  int baseline = 0;
+  return cv::getTextSize(text, kFont, scale, 1, &baseline);
+}
+
+// Text whose box (cap height, no descender) is placed so that the point at fractions
+// (h_align, v_align) of it lands on anchor: (0, 0) top-left, (0.5, 0.5) centre, (1, 1) bottom-right.
+void PutText(cv::Mat& image, const std::string& text, cv::Point2d anchor, double h_align,
+             double v_align, double scale, const cv::Scalar& colour) {
+  const cv::Size size = TextSize(text, scale);
+  const cv::Point origin(cvRound(anchor.x - h_align * size.width),
+                         cvRound(anchor.y + (1.0 - v_align) * size.height));
+  cv::putText(image, text, origin, kFont, scale, colour, 1, cv::LINE_AA);
+}
+
+// Pixel coordinates in fixed point, kept far inside int range.
+cv::Point SubPixel(cv::Point2d p) {
+  const double limit = 1e6 * kSubPixels;
+  return {cvRound(std::clamp(p.x * kSubPixels, -limit, limit)),
+          cvRound(std::clamp(p.y * kSubPixels, -limit, limit))};
+}
+
+// Nearest whole pixel, kept far inside int range.
+cv::Point Pixel(cv::Point2d p) {
+  const double limit = 1e6;
+  return {cvRound(std::clamp(p.x, -limit, limit)), cvRound(std::clamp(p.y, -limit, limit))};
+}
+
+bool Finite(cv::Point2d p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+// Anti-aliased segment clipped to the image first, so points far outside the range draw right.
+void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour,
+             int thickness) {
+  if (!Finite(a) || !Finite(b)) return;
+  const double limit = 1e15;
+  auto to_long = [&](cv::Point2d p) {
+    return cv::Point2l(std::llround(std::clamp(p.x * kSubPixels, -limit, limit)),
+                       std::llround(std::clamp(p.y * kSubPixels, -limit, limit)));
+  };
+  cv::Point2l pa = to_long(a);
+  cv::Point2l pb = to_long(b);
+  const int64_t margin = 8 * (1 << kShift);  // keep thick line ends whole at the border
+  const cv::Point2l offset(margin, margin);
+  pa += offset;
+  pb += offset;
+  if (!cv::clipLine(cv::Size2l(image.cols * (1 << kShift) + 2 * margin,
+                               image.rows * (1 << kShift) + 2 * margin),
+                    pa, pb)) {
+    return;
+  }
+  pa -= offset;
+  pb -= offset;
+  cv::line(image, cv::Point(static_cast<int>(pa.x), static_cast<int>(pa.y)),
+           cv::Point(static_cast<int>(pb.x), static_cast<int>(pb.y)), colour, thickness,
+           cv::LINE_AA, kShift);
+}
+
+// Draws the figure; when the legend would hide data, the y range is automatic and the legend
+// is small next to the plot, draws it again with room for the legend at the top.
+cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
+               const std::vector<LegendItem>& legend, const DrawData& draw_data,
+               cv::Rect* plot_area_px) {
+  HOILCD_CHECK_MSG(o.Check().empty(), o.Check());
+  int covered = 0;
+  cv::Mat canvas = RenderOnce(o, spec, vertical_grid, legend, draw_data, plot_area_px, &covered);
+  if (covered == 0 || o.y_range || !o.legend || legend.empty()) return canvas;
+  const double needed_px = LegendSize(legend, o.font_scale).height + 2 * kLegendMarginPx;
+  const double usable_px = o.height_px * 0.8;
+  if (needed_px > 0.45 * usable_px) return canvas;
+  spec.y.hi = spec.y.lo + spec.y.Span() / (1.0 - needed_px / usable_px);
+  return RenderOnce(o, spec, vertical_grid, legend, draw_data, plot_area_px, &covered);
+}
+
+}  // namespace chart
+
+using namespace chart;  // the building blocks above, for the charts below
 
 cv::Scalar PaletteColour(std::size_t index) {
   static const std::array<cv::Scalar, 8> kOkabeIto = {{
@@ -666,130 +581,6 @@ cv::Mat BarPlot(const std::vector<std::string>& groups, const std::vector<Series
     }
   };
   return Render(options, spec, false, legend, draw, plot_area_px);
-}
-
-cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
-                       const std::vector<TrajectoryLink>& links,
-                       const std::vector<cv::Rect2d>& obstacles_m,
-                       const std::vector<LegendEntry>& legend, const PlotOptions& options,
-                       cv::Rect* plot_area_px) {
-  Range x, y;
-  for (const TrajectoryPoint& p : points) {
-    x.Add(p.x_m);
-    y.Add(p.y_m);
-  }
-  for (const TrajectoryLink& l : links) {
-    for (const cv::Point2d& p : {l.from_m, l.to_m}) {
-      x.Add(p.x);
-      y.Add(p.y);
-    }
-  }
-  for (const cv::Rect2d& r : obstacles_m) {
-    x.Add(r.x);
-    x.Add(r.x + r.width);
-    y.Add(r.y);
-    y.Add(r.y + r.height);
-  }
-  std::vector<LegendItem> items;
-  for (const LegendEntry& e : legend) items.push_back({e.label, e.colour, false, 0, false});
-  AxesSpec spec;
-  spec.x = FromOption(options.x_range, x);
-  spec.y = FromOption(options.y_range, y);
-  spec.equal_aspect = true;
-  spec.inset_px = 10.0;
-  const DrawData draw = [&](cv::Mat& roi, const Axes& a) {
-    for (const cv::Rect2d& r : obstacles_m) {
-      const cv::Point2d p0 = a.ToLocal(r.x, r.y + r.height);
-      const cv::Point2d p1 = a.ToLocal(r.x + r.width, r.y);
-      if (!Finite(p0) || !Finite(p1)) continue;
-      const cv::Rect box(Pixel(p0), Pixel(p1));
-      cv::rectangle(roi, box, Grey(218), cv::FILLED);
-      cv::rectangle(roi, box, Grey(160), 1);
-    }
-    for (const TrajectoryPoint& p : points) {
-      const cv::Point2d c = a.ToLocal(p.x_m, p.y_m);
-      if (!Finite(c)) continue;
-      cv::circle(roi, Fixed(c), cvRound(kDotRadiusPx * kSubPixels), p.colour, cv::FILLED,
-                 cv::LINE_AA, kShift);
-    }
-    if (links.empty()) return;
-    cv::Mat overlay = roi.clone();
-    for (const TrajectoryLink& l : links) {
-      Segment(overlay, a.ToLocal(l.from_m.x, l.from_m.y), a.ToLocal(l.to_m.x, l.to_m.y),
-              l.colour, 1);
-    }
-    cv::addWeighted(overlay, 0.6, roi, 0.4, 0.0, roi);
-  };
-  PlotOptions equal = options;
-  equal.equal_aspect = true;
-  return Render(equal, spec, true, items, draw, plot_area_px);
-}
-
-std::string MosaicOptions::Check() const {
-  if (scale < 1 || scale > 16) return "scale must be in [1, 16]";
-  if (gap_px < 0 || gap_px > 100) return "gap_px must be in [0, 100]";
-  if (!(font_scale >= 0.3 && font_scale <= 2.0)) return "font_scale must be in [0.3, 2]";
-  return "";
-}
-
-cv::Mat MatchMosaic(const std::vector<std::vector<MatchTile>>& rows, const MosaicOptions& options) {
-  HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
-  std::vector<std::vector<cv::Mat>> rendered(rows.size());
-  int width = 0;
-  int height = 0;
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    cv::Size largest(0, 0);
-    for (const MatchTile& tile : rows[r]) {
-      largest.width = std::max(largest.width, tile.image.cols * options.scale);
-      largest.height = std::max(largest.height, tile.image.rows * options.scale);
-    }
-    if (largest.area() == 0) largest = cv::Size(64, 48) * options.scale;
-    int row_width = 0;
-    int row_height = 0;
-    for (const MatchTile& tile : rows[r]) {
-      rendered[r].push_back(RenderTile(tile, largest, options));
-      row_width += rendered[r].back().cols + (row_width > 0 ? options.gap_px : 0);
-      row_height = std::max(row_height, rendered[r].back().rows);
-    }
-    width = std::max(width, row_width);
-    height += row_height + (r > 0 ? options.gap_px : 0);
-  }
-  cv::Mat mosaic(std::max(1, height), std::max(1, width), CV_8UC3, White());
-  int top = 0;
-  for (const std::vector<cv::Mat>& row : rendered) {
-    int left = 0;
-    int row_height = 0;
-    for (const cv::Mat& tile : row) {
-      tile.copyTo(mosaic(cv::Rect(left, top, tile.cols, tile.rows)));
-      left += tile.cols + options.gap_px;
-      row_height = std::max(row_height, tile.rows);
-    }
-    top += row_height + options.gap_px;
-  }
-  return mosaic;
-}
-
-void WritePng(const std::string& path, const cv::Mat& image) {
-  HOILCD_CHECK_MSG(!image.empty(), "WritePng of an empty image to " << path);
-  std::vector<uchar> bytes;
-  HOILCD_CHECK_MSG(cv::imencode(".png", image, bytes), "PNG encoding failed for " << path);
-  const std::string temporary = path + ".tmp";
-  std::error_code ignored;
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::filesystem::remove(temporary, ignored);
-      throw InputError(path, "cannot write the file (does its folder exist and is it writable?)");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, ignored);
-    throw InputError(path, "cannot write the file: " + error.message());
-  }
 }
 
 }  // namespace hoilcd

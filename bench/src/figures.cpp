@@ -1,0 +1,156 @@
+#include "hoilcd/bench/figures.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "hoilcd/core/error.h"
+
+namespace hoilcd {
+namespace {
+
+using namespace chart;  // axes, text and sub-pixel drawing shared with the charts
+
+constexpr double kDotRadiusPx = 3.0;  // trajectory dots
+
+cv::Mat ToColour(const cv::Mat& image) {
+  HOILCD_CHECK_MSG(image.channels() == 1 || image.type() == CV_8UC3,
+                   "match tile must be single-channel or CV_8UC3, got type " << image.type());
+  if (image.channels() == 3) return image;
+  cv::Mat gray = image;
+  if (image.depth() != CV_8U) cv::normalize(image, gray, 0, 255, cv::NORM_MINMAX, CV_8U);
+  cv::Mat colour;
+  cv::applyColorMap(gray, colour, cv::COLORMAP_INFERNO);
+  return colour;
+}
+
+cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptions& o) {
+  cv::Mat shown;
+  if (tile.image.empty()) {
+    shown = cv::Mat(empty_size, CV_8UC3, Grey(200));
+  } else {
+    cv::resize(ToColour(tile.image), shown, cv::Size(), o.scale, o.scale, cv::INTER_NEAREST);
+  }
+  const double radius = std::max(2.5, 1.5 * o.scale);
+  for (const cv::Point2f& p : tile.points) {
+    const cv::Point2d centre((p.x + 0.5) * o.scale - 0.5, (p.y + 0.5) * o.scale - 0.5);
+    cv::circle(shown, SubPixel(centre), cvRound(radius * kSubPixels), tile.point_colour, cv::FILLED,
+               cv::LINE_AA, kShift);
+  }
+  if (!tile.caption.empty()) {
+    const cv::Size text = TextSize(tile.caption, o.font_scale);
+    const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) &
+                         cv::Rect(0, 0, shown.cols, shown.rows);
+    cv::Mat backing = shown(box);
+    cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0,
+                    backing);
+    PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, o.font_scale, White());
+  }
+  return shown;
+}
+
+}  // namespace
+
+cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
+                       const std::vector<TrajectoryLink>& links,
+                       const std::vector<cv::Rect2d>& obstacles_m,
+                       const std::vector<LegendEntry>& legend, const PlotOptions& options,
+                       cv::Rect* plot_area_px) {
+  Range x, y;
+  for (const TrajectoryPoint& p : points) {
+    x.Add(p.x_m);
+    y.Add(p.y_m);
+  }
+  for (const TrajectoryLink& l : links) {
+    for (const cv::Point2d& p : {l.from_m, l.to_m}) {
+      x.Add(p.x);
+      y.Add(p.y);
+    }
+  }
+  for (const cv::Rect2d& r : obstacles_m) {
+    x.Add(r.x);
+    x.Add(r.x + r.width);
+    y.Add(r.y);
+    y.Add(r.y + r.height);
+  }
+  std::vector<LegendItem> items;
+  for (const LegendEntry& e : legend) items.push_back({e.label, e.colour, false, 0, false});
+  AxesSpec spec;
+  spec.x = FromOption(options.x_range, x);
+  spec.y = FromOption(options.y_range, y);
+  spec.equal_aspect = true;
+  spec.inset_px = 10.0;
+  const DrawData draw = [&](cv::Mat& roi, const Axes& a) {
+    for (const cv::Rect2d& r : obstacles_m) {
+      const cv::Point2d p0 = a.ToLocal(r.x, r.y + r.height);
+      const cv::Point2d p1 = a.ToLocal(r.x + r.width, r.y);
+      if (!Finite(p0) || !Finite(p1)) continue;
+      const cv::Rect box(Pixel(p0), Pixel(p1));
+      cv::rectangle(roi, box, Grey(218), cv::FILLED);
+      cv::rectangle(roi, box, Grey(160), 1);
+    }
+    for (const TrajectoryPoint& p : points) {
+      const cv::Point2d c = a.ToLocal(p.x_m, p.y_m);
+      if (!Finite(c)) continue;
+      cv::circle(roi, SubPixel(c), cvRound(kDotRadiusPx * kSubPixels), p.colour, cv::FILLED,
+                 cv::LINE_AA, kShift);
+    }
+    if (links.empty()) return;
+    cv::Mat overlay = roi.clone();
+    for (const TrajectoryLink& l : links) {
+      Segment(overlay, a.ToLocal(l.from_m.x, l.from_m.y), a.ToLocal(l.to_m.x, l.to_m.y),
+              l.colour, 1);
+    }
+    cv::addWeighted(overlay, 0.6, roi, 0.4, 0.0, roi);
+  };
+  PlotOptions equal = options;
+  equal.equal_aspect = true;
+  return Render(equal, spec, true, items, draw, plot_area_px);
+}
+
+std::string MosaicOptions::Check() const {
+  if (scale < 1 || scale > 16) return "scale must be in [1, 16]";
+  if (gap_px < 0 || gap_px > 100) return "gap_px must be in [0, 100]";
+  if (!(font_scale >= 0.3 && font_scale <= 2.0)) return "font_scale must be in [0.3, 2]";
+  return "";
+}
+
+cv::Mat MatchMosaic(const std::vector<std::vector<MatchTile>>& rows, const MosaicOptions& options) {
+  HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
+  std::vector<std::vector<cv::Mat>> rendered(rows.size());
+  int width = 0;
+  int height = 0;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    cv::Size largest(0, 0);
+    for (const MatchTile& tile : rows[r]) {
+      largest.width = std::max(largest.width, tile.image.cols * options.scale);
+      largest.height = std::max(largest.height, tile.image.rows * options.scale);
+    }
+    if (largest.area() == 0) largest = cv::Size(64, 48) * options.scale;
+    int row_width = 0;
+    int row_height = 0;
+    for (const MatchTile& tile : rows[r]) {
+      rendered[r].push_back(RenderTile(tile, largest, options));
+      row_width += rendered[r].back().cols + (row_width > 0 ? options.gap_px : 0);
+      row_height = std::max(row_height, rendered[r].back().rows);
+    }
+    width = std::max(width, row_width);
+    height += row_height + (r > 0 ? options.gap_px : 0);
+  }
+  cv::Mat mosaic(std::max(1, height), std::max(1, width), CV_8UC3, White());
+  int top = 0;
+  for (const std::vector<cv::Mat>& row : rendered) {
+    int left = 0;
+    int row_height = 0;
+    for (const cv::Mat& tile : row) {
+      tile.copyTo(mosaic(cv::Rect(left, top, tile.cols, tile.rows)));
+      left += tile.cols + options.gap_px;
+      row_height = std::max(row_height, tile.rows);
+    }
+    top += row_height + options.gap_px;
+  }
+  return mosaic;
+}
+
+}  // namespace hoilcd
