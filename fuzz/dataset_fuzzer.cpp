@@ -24,7 +24,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       case 3: hoilcd::EventsFromJson(text, "events.json"); break;
       case 4: hoilcd::DecodeFramePng(text, "thermal.png", CV_8UC1, intrinsics); break;
       case 5: hoilcd::DecodeFramePng(text, "radiometric.png", CV_16UC1, intrinsics); break;
-      default: hoilcd::ReadExr(hoilcd::fuzz::WriteScratchFile("frame.exr", data + 1, size - 1)); break;
+      default:  // the seed corpus frame is 16x12
+        hoilcd::ReadExr(hoilcd::fuzz::WriteScratchFile("frame.exr", data + 1, size - 1), cv::Size(16, 12));
+        break;
     }
   } catch (const hoilcd::InputError&) {
   }

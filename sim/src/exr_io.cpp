@@ -65,6 +65,7 @@ std::string EncodeExr(const ExrChannels& channels) {
 namespace {
 
 constexpr int kMaxExrSidePx = 4096;  // far above any thermal camera
+constexpr int kMaxExrChannels = 16;   // hoilcd writes 5
 
 // OpenEXR 3.1 allocates an attribute's declared size before reading it: a 439-byte file that
 // declares a huge attribute takes seconds and gigabytes (found by fuzz_dataset). Hand-written
@@ -148,7 +149,7 @@ bool HeaderFitsInFile(const std::string& bytes) {
 
 }  // namespace
 
-ExrChannels ReadExr(const std::string& path) {
+ExrChannels ReadExr(const std::string& path, cv::Size size) {
   if (!HeaderFitsInFile(ReadFileBytes(path))) {
     throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end or "
                            "disagrees with its type's size, or the data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
@@ -158,10 +159,16 @@ ExrChannels ReadExr(const std::string& path) {
     const Imath::Box2i dw = file.header().dataWindow();
     const int64_t width = int64_t{dw.max.x} - dw.min.x + 1;
     const int64_t height = int64_t{dw.max.y} - dw.min.y + 1;
-    if (width < 1 || height < 1 || width > kMaxExrSidePx || height > kMaxExrSidePx) {
-      throw InputError(path, "expected an image of 1 to " + std::to_string(kMaxExrSidePx) +
-                                 " px per side, the data window is " + std::to_string(width) + "x" +
+    if (width != size.width || height != size.height) {
+      throw InputError(path, "expected a " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                                 " px frame, the data window is " + std::to_string(width) + "x" +
                                  std::to_string(height));
+    }
+    int channels = 0;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) ++channels;
+    if (channels > kMaxExrChannels) {
+      throw InputError(path, "expected at most " + std::to_string(kMaxExrChannels) + " channels, found " +
+                                 std::to_string(channels));
     }
     ExrChannels out;
     Imf::FrameBuffer fb;

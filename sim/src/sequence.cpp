@@ -41,9 +41,9 @@ bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int fram
 
 // The uncompressed 8-bit frame, as the render wrote it, from the EXR's T channel (float32, so
 // exactly the temperature the thermal PNG was made from).
-cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options) {
+cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options, cv::Size size) {
   const std::string path = dir + "/" + FramePath("exr", frame, "exr");
-  for (const auto& [name, channel] : ReadExr(path)) {
+  for (const auto& [name, channel] : ReadExr(path, size)) {
     if (name == "T") return ToDisplay8Bit(channel, sensor_options.display_min_c, sensor_options.display_max_c);
   }
   throw InputError(path, "no T channel");
@@ -181,7 +181,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     world.SetTime(sample.time_s);
     if (done[f]) {
       // Kept from an earlier run: ground truth comes from its stored instance ids.
-      const ExrChannels exr = ReadExr(dir + "/" + FramePath("exr", f, "exr"));
+      const ExrChannels exr = ReadExr(dir + "/" + FramePath("exr", f, "exr"), {intrinsics.width, intrinsics.height});
       cv::Mat ids, depth;
       for (const auto& [name, channel] : exr) {
         if (name == "id") channel.convertTo(ids, CV_32S);
@@ -249,7 +249,7 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
     mp4 = streaming_video->Finish();
   } else {
     VideoEncoder encoder(video_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz);
-    for (int f = 0; f < frames; ++f) encoder.Add(UncompressedFrame(dir, f, sensor_options));
+    for (int f = 0; f < frames; ++f) encoder.Add(UncompressedFrame(dir, f, sensor_options, {intrinsics.width, intrinsics.height}));
     mp4 = encoder.Finish();
   }
   WriteDatasetFile(dir, "thermal.mp4", mp4, &manifest);

@@ -16,7 +16,7 @@ TEST(Exr, WrittenChannelsReadBackExactly) {
   cv::Mat t(6, 8, CV_32F);
   for (int i = 0; i < 48; ++i) t.at<float>(i / 8, i % 8) = 20.0f + 0.25f * i;
   WriteFileAtomic(temp / "f.exr", EncodeExr({{"T", t}, {"Z", t * 2}}));
-  const ExrChannels back = ReadExr(temp / "f.exr");
+  const ExrChannels back = ReadExr(temp / "f.exr", t.size());
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(cv::norm(back[0].second, t, cv::NORM_INF), 0.0);
 }
@@ -29,7 +29,7 @@ TEST(Exr, AttributeDeclaredLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
                             std::string("\xff\xff\xff\x7f", 4) + "abc";
   WriteFileAtomic(temp / "bad.exr", bytes);
   try {
-    ReadExr(temp / "bad.exr");
+    ReadExr(temp / "bad.exr", cv::Size(8, 6));
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("damaged header"), std::string::npos) << e.what();
@@ -46,7 +46,7 @@ TEST(Exr, DataWindowFarLargerThanAFrameIsRefusedBeforeOpenExrAllocatesLineBuffer
   bytes.replace(at + 8, 4, std::string("\x00\x00\x00\x40", 4));
   WriteFileAtomic(temp / "wide.exr", bytes);
   try {
-    ReadExr(temp / "wide.exr");
+    ReadExr(temp / "wide.exr", cv::Size(8, 6));
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("data window"), std::string::npos) << e.what();
@@ -64,10 +64,35 @@ TEST(Exr, ChannelListWhoseDeclaredSizeDisagreesWithItsEntriesIsRefused) {
   bytes[at] = static_cast<char>(static_cast<unsigned char>(bytes[at]) - 18);
   WriteFileAtomic(temp / "desync.exr", bytes);
   try {
-    ReadExr(temp / "desync.exr");
+    ReadExr(temp / "desync.exr", cv::Size(8, 6));
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("disagrees with its type's size"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Exr, FrameOfAnotherSizeThanTheDatasetsIsRefusedNamingBoth) {
+  const test::TestDir temp;
+  WriteFileAtomic(temp / "f.exr", EncodeExr({{"T", cv::Mat(6, 8, CV_32F, cv::Scalar(21.0f))}}));
+  try {
+    ReadExr(temp / "f.exr", cv::Size(256, 192));
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected a 256x192 px frame, the data window is 8x6"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Exr, MoreChannelsThanAFrameCanHaveAreRefused) {
+  const test::TestDir temp;
+  ExrChannels many;
+  for (int i = 0; i < 17; ++i) many.emplace_back("c" + std::to_string(i), cv::Mat(6, 8, CV_32F, cv::Scalar(i)));
+  WriteFileAtomic(temp / "many.exr", EncodeExr(many));
+  try {
+    ReadExr(temp / "many.exr", cv::Size(8, 6));
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected at most 16 channels, found 17"), std::string::npos) << e.what();
   }
 }
 

@@ -82,7 +82,7 @@ TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
   const std::string exr_path = temp / "frame.exr";
   WriteFileAtomic(exr_path, EncodeExr({{"T", sensor.Apply(0, frame.radiance)}, {"class", class_f}}));
   cv::Mat t, class_id;
-  for (const auto& [name, channel] : ReadExr(exr_path)) {
+  for (const auto& [name, channel] : ReadExr(exr_path, frame.radiance.size())) {
     if (name == "T") t = channel;
     if (name == "class") channel.convertTo(class_id, CV_32S);
   }

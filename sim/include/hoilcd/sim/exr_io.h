@@ -14,7 +14,9 @@ using ExrChannels = std::vector<std::pair<std::string, cv::Mat>>;
 // Encodes channels as a ZIP-compressed float32 EXR in memory (for atomic writes and checksums).
 std::string EncodeExr(const ExrChannels& channels);
 
-// Reads every channel of an EXR file as CV_32F; throws InputError naming the file.
-ExrChannels ReadExr(const std::string& path);
+// Reads every channel of an EXR frame of exactly `size` (the dataset's intrinsics) as CV_32F;
+// any other data window, or more channels than a frame can have, is an InputError naming the file
+// (a crafted header cannot make the reader allocate more than one frame's channels).
+ExrChannels ReadExr(const std::string& path, cv::Size size);
 
 }  // namespace hoilcd
