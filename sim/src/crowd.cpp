@@ -10,19 +10,19 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 
 // Phases and period of a person's sway and breathing, drawn from their own stream.
-void DrawIdleMotion(const nlohmann::json& crowd, Rng* rng, Person* person) {
+void DrawIdleMotion(const CrowdOptions& crowd, Rng* rng, Person* person) {
   person->sway_phase_rad = rng->Uniform(0, 2 * M_PI);
   person->breathing_phase_rad = rng->Uniform(0, 2 * M_PI);
-  person->sway_period_s = crowd.at("sway_period_s").get<double>() * rng->Uniform(0.7, 1.3);
+  person->sway_period_s = crowd.sway_period_s * rng->Uniform(0.7, 1.3);
 }
 
 // A seated posture by the scene's weights; people with a laptop in front of them keep their
 // forearms off the table (they type on the laptop instead).
-std::string ChoosePosture(const nlohmann::json& weights, bool has_laptop, Rng* rng) {
+std::string ChoosePosture(const PostureWeights& weights, bool has_laptop, Rng* rng) {
   static const char* kPostures[] = {"seated_upright", "seated_leaning_back", "seated_leaning", "seated_arms_on_table"};
   auto weight = [&](const char* p) {
     const bool on_table = std::string(p) == "seated_leaning" || std::string(p) == "seated_arms_on_table";
-    return has_laptop && on_table ? 0.0 : weights.at(p).get<double>();
+    return has_laptop && on_table ? 0.0 : weights.Of(p);
   };
   double total = 0;
   for (const char* p : kPostures) total += weight(p);
@@ -54,26 +54,88 @@ const Eigen::Matrix4f kHidden = [] {
 
 }  // namespace
 
+double PostureWeights::Of(const std::string& posture) const {
+  if (posture == "seated_upright") return seated_upright;
+  if (posture == "seated_leaning") return seated_leaning;
+  if (posture == "seated_arms_on_table") return seated_arms_on_table;
+  HOILCD_CHECK_MSG(posture == "seated_leaning_back", posture);
+  return seated_leaning_back;
+}
+
+std::map<std::string, double> WalkerWeights::ByName() const {
+  return {{"ahead", ahead},   {"away", away},   {"approach", approach}, {"stop_to_chat", stop_to_chat},
+          {"cross", cross},   {"overtake", overtake}};
+}
+
+CrowdOptions::CrowdOptions() { Table().FillDefaults(this); }
+
+const OptionTable<CrowdOptions>& CrowdOptions::Table() {
+  using O = CrowdOptions;
+  using R = OptionRange;
+  using P = PostureWeights;
+  using W = WalkerWeights;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("people_per_table", &O::people_per_table, 4, "", R::Closed(0, 6), "people seated per table when seating is empty")
+          .External("seating", "explicit seats: [{table, seat, posture}]; empty: people_per_table random seats per table")
+          .Nest("posture_weights", &O::posture_weights,
+                OptionTable<P>()
+                    .Add("seated_upright", &P::seated_upright, 1.0, "", R().AtLeast(0), "relative weight")
+                    .Add("seated_leaning", &P::seated_leaning, 1.0, "", R().AtLeast(0), "relative weight")
+                    .Add("seated_arms_on_table", &P::seated_arms_on_table, 1.0, "", R().AtLeast(0), "relative weight")
+                    .Add("seated_leaning_back", &P::seated_leaning_back, 0.5, "", R().AtLeast(0), "relative weight"))
+          .Add("skin_temperature_c", &O::skin_temperature_c, 34.0, "°C", R::Closed(-50, 200), "mean skin temperature")
+          .Add("skin_temperature_sd_c", &O::skin_temperature_sd_c, 0.5, "°C", R::Closed(0, 5), "skin temperature sd between people")
+          .Add("clothing_temperature_c", &O::clothing_temperature_c, 28.5, "°C", R::Closed(-50, 200),
+               "mean upper clothing temperature")
+          .Add("clothing_temperature_sd_c", &O::clothing_temperature_sd_c, 0.5, "°C", R::Closed(0, 5),
+               "clothing temperature sd between people")
+          .Add("hair_temperature_c", &O::hair_temperature_c, 30.0, "°C", R::Closed(-50, 200), "mean hair temperature")
+          .Add("height_scale_sd", &O::height_scale_sd, 0.04, "", R::Closed(0, 0.3), "sd of body size between people, fraction")
+          .Add("breathing_amplitude_m", &O::breathing_amplitude_m, 0.004, "m", R::Closed(0, 0.05), "chest rise when breathing")
+          .Add("breathing_period_s", &O::breathing_period_s, 4.0, "s", R().Above(0), "breathing period")
+          .Add("sway_amplitude_deg", &O::sway_amplitude_deg, 3.0, "deg", R::Closed(0, 30), "idle sway of the upper body")
+          .Add("sway_period_s", &O::sway_period_s, 7.0, "s", R().Above(0), "mean sway period")
+          .Add("posture_change_interval_s", &O::posture_change_interval_s, 30.0, "s", R().AtLeast(0),
+               "mean time between posture changes (0: never)")
+          // Interval 0 is "never"; a tiny one would make a posture change per nanosecond.
+          .Rule("posture_change_interval_s",
+                [](const O& o) {
+                  return o.posture_change_interval_s == 0 || o.posture_change_interval_s >= 1 ? ""
+                                                                                               : "0 (never) or at least 1 s";
+                })
+          .Flatten(&O::activity, ActivityOptions::Table())
+          .Add("turnover_probability", &O::turnover_probability, 0.0, "", R::Closed(0, 1),
+               "chance per person and lap boundary of leaving (half of it: changing seats)")
+          .Add("heat_print_time_constant_s", &O::heat_print_time_constant_s, 120.0, "s", R().AtLeast(0.001),
+               "how fast a seat cools after its person leaves")
+          .Add("walkers", &O::walkers, 0, "", R::Closed(0, 8), "people walking the robot's route ahead of it")
+          .Nest("walker_behaviours", &O::walker_behaviours,
+                OptionTable<W>()
+                    .Add("ahead", &W::ahead, 1.0, "", R::Closed(0, 1000), "relative weight: keeps pace ahead")
+                    .Add("away", &W::away, 0.3, "", R::Closed(0, 1000), "relative weight: walks off faster")
+                    .Add("approach", &W::approach, 0.3, "", R::Closed(0, 1000), "relative weight: comes towards the robot")
+                    .Add("stop_to_chat", &W::stop_to_chat, 0.3, "", R::Closed(0, 1000), "relative weight: stands facing the tables")
+                    .Add("cross", &W::cross, 0.0, "", R::Closed(0, 1000), "relative weight: crosses the robot's path")
+                    .Add("overtake", &W::overtake, 0.0, "", R::Closed(0, 1000), "relative weight: passes the robot from behind"))
+          .External("standing", "people standing still: [{position_m, yaw_deg}]")
+          .Add("bald_fraction", &O::bald_fraction, 0.15, "", R::Closed(0, 1), "people whose scalp reads as skin");
+  return table;
+}
+
 Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
     : assets_(*assets), stage_(*stage), skeleton_(std::make_unique<Skeleton>(*assets)) {
-  activity_options_ = ActivityOptions::FromCrowd(scene.crowd);
-  if (const std::string problem = activity_options_.Check(); !problem.empty()) throw InputError(scene.file, problem);
-  const nlohmann::json& crowd = scene.crowd;
-  crowd_ = crowd;
+  options_ = scene.crowd;
   scene_file_ = scene.file;
   seed_ = scene.seed;
   frame_rate_hz_ = scene.frame_rate_hz;
   duration_s_ = scene.frames / scene.frame_rate_hz;
   seat_warmth_c_ = scene.seat_warmth_c;
-  heat_print_tau_s_ = crowd.at("heat_print_time_constant_s").get<double>();
-  posture_interval_s_ = crowd.at("posture_change_interval_s").get<double>();
-  breathing_amplitude_m_ = crowd.at("breathing_amplitude_m").get<double>();
-  breathing_period_s_ = crowd.at("breathing_period_s").get<double>();
-  sway_amplitude_rad_ = crowd.at("sway_amplitude_deg").get<double>() * kDegToRad;
+  sway_amplitude_rad_ = options_.sway_amplitude_deg * kDegToRad;
 }
 
 std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side) {
-  std::vector<SeatingSpec> seating = scene.seating;
+  std::vector<SeatingSpec> seating = scene.crowd.seating;
   if (!seating.empty()) return seating;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
     std::vector<int> seats;
@@ -83,7 +145,7 @@ std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side)
     for (int i = static_cast<int>(seats.size()) - 1; i > 0; --i) {
       std::swap(seats[i], seats[rng.UniformInt(static_cast<uint32_t>(i + 1))]);
     }
-    seats.resize(std::min<size_t>(seats.size(), scene.people_per_table));
+    seats.resize(std::min<size_t>(seats.size(), scene.crowd.people_per_table));
     std::sort(seats.begin(), seats.end());
     for (int s : seats) seating.push_back({t, s, "random"});
   }
@@ -107,12 +169,12 @@ void Crowd::AddSeat(int table, int seat, int chair_instance, const Eigen::Matrix
 
 std::vector<Obstacle2D> Crowd::AddStandingPeople(const Scene& scene) {
   std::vector<Obstacle2D> obstacles;
-  for (const nlohmann::json& spec : scene.crowd.at("standing")) {
+  for (const StandingSpec& spec : scene.crowd.standing) {
     Rng rng = KeyedRng(seed_, "crowd.standing", static_cast<uint64_t>(people_.size()));
     Person& person = AddStandingPerson("standing", &rng);
-    const Eigen::Vector3d at(spec.at("position_m").at(0).get<double>(), spec.at("position_m").at(1).get<double>(), 0.0);
-    person.world_from_seat = PlacementTransform(at, spec.at("yaw_deg").get<double>() * kDegToRad);
-    DrawIdleMotion(crowd_, &rng, &person);
+    const Eigen::Vector3d at(spec.position_m.x(), spec.position_m.y(), 0.0);
+    person.world_from_seat = PlacementTransform(at, spec.yaw_deg * kDegToRad);
+    DrawIdleMotion(options_, &rng, &person);
     person.lead_s = -1;  // marks a person standing still (no route to follow)
     obstacles.push_back(Obstacle2D::Circle("standing person " + std::to_string(person.person_id), at.head<2>(), 0.3));
   }
@@ -156,17 +218,17 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
   Rng rng = KeyedRng(seed_, "crowd.person", id);
   // What is on the table in front of them (the same for the person wherever they sit).
   Rng props = KeyedRng(seed_, "crowd.props", id);
-  const bool has_cup = props.Uniform() < activity_options_.cup_fraction;
-  const bool has_laptop = props.Uniform() < activity_options_.laptop_fraction;
-  const nlohmann::json& weights = crowd_.at("posture_weights");
+  const bool has_cup = props.Uniform() < options_.activity.cup_fraction;
+  const bool has_laptop = props.Uniform() < options_.activity.laptop_fraction;
+  const PostureWeights& weights = options_.posture_weights;
   std::string current = posture == "random" ? ChoosePosture(weights, has_laptop, &rng) : posture;
   person.postures.emplace_back(arrive_s, current);
   // People shift posture now and then (exponential intervals): the upper body changes, the
   // contact with chair and table stays, which is what makes HOI points landmarks.
-  if (posture_interval_s_ > 0) {
+  if (options_.posture_change_interval_s > 0) {
     Rng changes = KeyedRng(seed_, "crowd.posture_change", id);
     for (double t = arrive_s;;) {
-      t += -posture_interval_s_ * std::log(1.0 - changes.Uniform());
+      t += -options_.posture_change_interval_s * std::log(1.0 - changes.Uniform());
       if (t >= std::min(leave_s, duration_s_)) break;
       std::string next = current;
       for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, has_laptop, &changes);
@@ -193,20 +255,18 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
     const double half_depth = 0.5 * (table_bounds_m_.max().y() - table_bounds_m_.min().y());
     if (std::abs(d.y()) > 0.5) person.table_edge_m = std::clamp((std::abs(q.y()) - half_depth) / std::abs(d.y()), 0.1, 0.5);
   }
-  person.activities = PlanActivities(activity_options_, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
+  person.activities = PlanActivities(options_.activity, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
                                      has_cup, has_laptop, neighbours);
-  person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng.Normal(), 0.8, 1.2);
-  DrawIdleMotion(crowd_, &rng, &person);
+  person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng.Normal(), 0.8, 1.2);
+  DrawIdleMotion(options_, &rng, &person);
   // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
-  auto varied = [&](const char* mean, const char* sd) {
-    return crowd_.at(mean).get<double>() + crowd_.at(sd).get<double>() * std::clamp(rng.Normal(), -2.0, 2.0);
-  };
-  const double skin_c = varied("skin_temperature_c", "skin_temperature_sd_c");
-  const double clothing_c = varied("clothing_temperature_c", "clothing_temperature_sd_c");
+  auto varied = [&](double mean, double sd) { return mean + sd * std::clamp(rng.Normal(), -2.0, 2.0); };
+  const double skin_c = varied(options_.skin_temperature_c, options_.skin_temperature_sd_c);
+  const double clothing_c = varied(options_.clothing_temperature_c, options_.clothing_temperature_sd_c);
   // Skin exposure varies: some people have little hair, and their scalp reads as skin.
-  const bool bald = rng.Uniform() < crowd_.at("bald_fraction").get<double>();
+  const bool bald = rng.Uniform() < options_.bald_fraction;
   const double hair_c = bald ? skin_c - 1.0
-                             : crowd_.at("hair_temperature_c").get<double>() + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
+                             : options_.hair_temperature_c + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
   person.parts = AddBody(id, "person " + std::to_string(id), skin_c, clothing_c, hair_c);
   person.instance = person.parts[0];
   // Props: a cup to the right of the hands, a laptop (its user side towards the person) in the
@@ -239,7 +299,7 @@ std::array<int, Skeleton::kPartCount> Crowd::AddBody(int person_id, const std::s
 
 void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles) {
   robot_ = RobotTrack(samples);
-  const double p = crowd_.at("turnover_probability").get<double>();
+  const double p = options_.turnover_probability;
   auto frame_of = [&](double t) { return static_cast<int>(std::lround(t * frame_rate_hz_)); };
   auto seat_name = [](int table, int seat) { return std::to_string(table) + "." + std::to_string(seat); };
   // Seat turnover at every lap boundary the robot crosses.
@@ -287,9 +347,8 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
   }
   // Walkers: bouts on the robot's route ahead of it (between the camera and the seated people:
   // the occlusion knob), across its path and past it, clear of furniture, the robot and each other.
-  const int walkers = crowd_.at("walkers").get<int>();
-  std::map<std::string, double> behaviour_weights;
-  for (const auto& [name, weight] : crowd_.at("walker_behaviours").items()) behaviour_weights[name] = weight.get<double>();
+  const int walkers = options_.walkers;
+  const std::map<std::string, double> behaviour_weights = options_.walker_behaviours.ByName();
   walker_plans_.clear();
   for (int w = 0; w < walkers; ++w) {
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
@@ -331,11 +390,11 @@ Person& Crowd::AddStandingPerson(const std::string& kind, Rng* rng) {
   person.person_id = id;
   person.seated = false;
   person.postures.emplace_back(0.0, "standing");
-  person.height_scale = std::clamp(1.0 + crowd_.at("height_scale_sd").get<double>() * rng->Normal(), 0.85, 1.15);
+  person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng->Normal(), 0.85, 1.15);
   person.parts = AddBody(id, kind + " " + std::to_string(id),
-                         crowd_.at("skin_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
-                         crowd_.at("clothing_temperature_c").get<double>() + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
-                         crowd_.at("hair_temperature_c").get<double>());
+                         options_.skin_temperature_c + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+                         options_.clothing_temperature_c + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+                         options_.hair_temperature_c);
   person.instance = person.parts[0];
   people_.push_back(person);
   return people_.back();
@@ -349,7 +408,7 @@ void Crowd::UpdateSeatWarmth(double time_s) {
       if (!p.seated || p.table != seat.table || p.seat != seat.seat || p.arrive_s > time_s) continue;
       warmth = std::max(warmth, p.leave_s > time_s
                                     ? seat_warmth_c_
-                                    : seat_warmth_c_ * std::exp(-(time_s - p.leave_s) / heat_print_tau_s_));
+                                    : seat_warmth_c_ * std::exp(-(time_s - p.leave_s) / options_.heat_print_time_constant_s));
     }
     std::vector<InstanceMaterial>& materials = stage_.MutableInstance(seat.chair_instance).materials;
     for (size_t m = 0; m < materials.size(); ++m) {
@@ -363,7 +422,7 @@ void Crowd::UpdateSeatWarmth(double time_s) {
 
 BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const {
   const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
-  const double breath = breathing_amplitude_m_ * std::sin(2 * M_PI * time_s / breathing_period_s_ + p.breathing_phase_rad);
+  const double breath = options_.breathing_amplitude_m * std::sin(2 * M_PI * time_s / options_.breathing_period_s + p.breathing_phase_rad);
   if (p.seated || p.lead_s < 0) {  // seated, or standing still
     // Seated bodies scale within the pose (hips stay on the seat, feet on the floor, hands
     // reach the same table); standing bodies scale about the floor.
@@ -374,7 +433,7 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
       if (p.postures[i].first <= time_s) k = i;
     BodyPose pose = PresetPose(p.postures[k].second);
     if (k > 0) {
-      const double w = SmoothStep((time_s - p.postures[k].first) / activity_options_.posture_blend_s);
+      const double w = SmoothStep((time_s - p.postures[k].first) / options_.activity.posture_blend_s);
       pose = Blend(PresetPose(p.postures[k - 1].second), pose, w);
     }
     if (p.seated) {
@@ -473,7 +532,7 @@ void Crowd::SetTime(double time_s) {
       const Eigen::Vector2d robot = robot_.At(time_s);
       const Eigen::Vector3d robot_in_seat =
           Apply(world_from_person.inverse(), Eigen::Vector3d(robot.x(), robot.y(), 0.0));
-      pose = ApplyActivity(*skeleton_, pose, *episode, time_s, activity_options_.blend_s,
+      pose = ApplyActivity(*skeleton_, pose, *episode, time_s, options_.activity.blend_s,
                            {p.cup_at_m, p.laptop_at_m}, std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
     }
     if (p.seated) {

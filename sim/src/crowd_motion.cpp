@@ -20,38 +20,46 @@ const Vec3 kMouthRest(0.005 + 0.085, 0, 1.60 - 0.055);
 
 const std::array<const char*, 5> kActivityNames = {"idle", "head_turn", "talking", "drinking", "typing"};
 
-std::string ActivityOptions::Check() const {
-  for (const char* name : kActivityNames) {
-    const auto it = activities.find(name);
-    if (it == activities.end()) return std::string("crowd.activities.") + name + ": missing";
-    if (it->second.weight < 0) return std::string("crowd.activities.") + name + ".weight: expected ≥ 0";
-    if (it->second.dwell_s < kMinDwellS) {
-      return std::string("crowd.activities.") + name + ".dwell_s: expected ≥ 1.5 s";
+ActivityOptions::ActivityOptions() { Table().FillDefaults(this); }
+
+const OptionTable<ActivityOptions>& ActivityOptions::Table() {
+  using O = ActivityOptions;
+  using R = OptionRange;
+  using Activities = std::map<std::string, ActivitySpec>;
+  static const OptionTable<O> table = [] {
+    // One entry per activity, each with its own defaults (crowd.activities.<name>).
+    const std::array<ActivitySpec, kActivityNames.size()> defaults = {{{2.0, 6.0}, {1.5, 2.5}, {1.5, 8.0}, {0.6, 5.0}, {3.0, 20.0}}};
+    OptionTable<Activities> activities;
+    for (size_t i = 0; i < kActivityNames.size(); ++i) {
+      const std::string name = kActivityNames[i];
+      activities.Nest<ActivitySpec>(kActivityNames[i], [name](Activities* a) { return &(*a)[name]; },
+                                    OptionTable<ActivitySpec>()
+                                        .Add("weight", &ActivitySpec::weight, defaults[i].weight, "", R::Closed(0, 1000),
+                                             "relative frequency when a new activity is chosen")
+                                        .Add("dwell_s", &ActivitySpec::dwell_s, defaults[i].dwell_s, "s",
+                                             R::Closed(kMinDwellS, 600), "mean duration (exponential)"));
     }
-  }
-  for (const auto& [name, spec] : activities) {
-    if (std::find(kActivityNames.begin(), kActivityNames.end(), name) == kActivityNames.end()) {
-      return "crowd.activities." + name + ": unknown activity (expected idle, head_turn, talking, drinking, typing)";
-    }
-  }
-  if (blend_s <= 0 || blend_s > 5) return "crowd.activity_blend_s: expected in (0, 5] s";
-  if (posture_blend_s <= 0 || posture_blend_s > 10) return "crowd.posture_blend_s: expected in (0, 10] s";
-  if (cup_fraction < 0 || cup_fraction > 1) return "crowd.cup_fraction: expected in [0, 1]";
-  if (laptop_fraction < 0 || laptop_fraction > 1) return "crowd.laptop_fraction: expected in [0, 1]";
-  return "";
+    return OptionTable<O>()
+        .Nest("activities", &O::activities, activities)
+        .Rule("activities",
+              [](const O& o) -> std::string {
+                for (const auto& [name, spec] : o.activities) {
+                  if (std::find(kActivityNames.begin(), kActivityNames.end(), name) == kActivityNames.end()) {
+                    return "unknown activity '" + name + "' (expected idle, head_turn, talking, drinking, typing)";
+                  }
+                }
+                return "";
+              })
+        .Add("activity_blend_s", &O::blend_s, 0.8, "s", R().Above(0).AtMost(5), "ramp into and out of an activity")
+        .Add("posture_blend_s", &O::posture_blend_s, 1.5, "s", R().Above(0).AtMost(10), "a posture change takes this long")
+        .Add("cup_fraction", &O::cup_fraction, 0.5, "", R::Closed(0, 1), "seated people with a cup in front of them")
+        .Add("laptop_fraction", &O::laptop_fraction, 0.25, "", R::Closed(0, 1),
+             "seated people with a laptop in front of them");
+  }();
+  return table;
 }
 
-ActivityOptions ActivityOptions::FromCrowd(const nlohmann::json& crowd) {
-  ActivityOptions o;
-  for (const auto& [name, spec] : crowd.at("activities").items()) {
-    o.activities[name] = {spec.at("weight").get<double>(), spec.at("dwell_s").get<double>()};
-  }
-  o.blend_s = crowd.at("activity_blend_s").get<double>();
-  o.posture_blend_s = crowd.at("posture_blend_s").get<double>();
-  o.cup_fraction = crowd.at("cup_fraction").get<double>();
-  o.laptop_fraction = crowd.at("laptop_fraction").get<double>();
-  return o;
-}
+std::string ActivityOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id,
                                             double from_s, double to_s, bool has_cup, bool has_laptop,

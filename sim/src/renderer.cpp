@@ -7,19 +7,30 @@
 
 namespace hoilcd {
 
-std::string RenderOptions::Check() const {
-  if (edge_samples_per_axis < 1 || edge_samples_per_axis > 8) {
-    return "edge_samples_per_axis must be in 1..8";
-  }
-  if (threads < 0) return "threads must be 0 (every core) or positive";
-  return "";
+RenderOptions::RenderOptions() { Table().FillDefaults(this); }
+
+const OptionTable<RenderOptions>& RenderOptions::Table() {
+  using O = RenderOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("edge_supersampling", &O::edge_supersampling, true, "supersample pixels on object, material and depth edges")
+          .Add("edge_samples_per_axis", &O::edge_samples_per_axis, 2, "", OptionRange::Closed(1, 8),
+               "n x n stratified samples in an edge pixel")
+          .Add("specular_reflections", &O::specular_reflections, true, "one traced reflection on specular surfaces")
+          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: every core)")
+          .CodeOnly();
+  return table;
 }
+
+std::string RenderOptions::Check() const { return Table().FirstProblem(*this); }
 
 FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrinsics,
                              RenderOptions options)
     : world_(world), intrinsics_(intrinsics), options_(options) {
-  HOILCD_CHECK_MSG(options_.Check().empty(), options_.Check());
-  HOILCD_CHECK_MSG(intrinsics_.Check().empty(), intrinsics_.Check());
+  const std::string problem = options_.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const std::string intrinsics_problem = intrinsics_.Check();
+  HOILCD_CHECK_MSG(intrinsics_problem.empty(), intrinsics_problem);
   // The intrinsics are fixed, so the pixel-centre rays are computed once per renderer.
   pixel_rays_.reserve(static_cast<size_t>(intrinsics_.width) * intrinsics_.height);
   for (int y = 0; y < intrinsics_.height; ++y) {

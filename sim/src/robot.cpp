@@ -376,106 +376,154 @@ double TricycleOptions::MinTurnRadiusM() const {
   return wheelbase_m / std::tan(max_steer_deg * kDegToRad);
 }
 
-std::string TricycleOptions::Check() const {
-  if (!(wheelbase_m > 0)) return "wheelbase_m must be positive";
-  if (!(max_steer_deg > 0 && max_steer_deg < 89)) return "max_steer_deg must be in (0, 89)";
-  if (!(max_steer_rate_deg_s > 0)) return "max_steer_rate_deg_s must be positive";
-  if (!(max_speed_m_s > 0)) return "max_speed_m_s must be positive";
-  if (!(max_accel_m_s2 > 0)) return "max_accel_m_s2 must be positive";
-  if (!(integration_rate_hz >= 1 && integration_rate_hz <= 100000)) {
-    return "integration_rate_hz must be in [1, 100000]";
-  }
-  if (!(length_m > 0) || !(width_m > 0)) return "length_m and width_m must be positive";
-  if (!(base_to_rear_m >= 0 && base_to_rear_m < length_m)) {
-    return "base_to_rear_m must be in [0, length_m)";
-  }
-  if (!std::isfinite(camera_forward_m) || !std::isfinite(camera_lateral_m) ||
-      !std::isfinite(camera_height_m)) {
-    return "camera offsets must be finite";
-  }
-  if (!(std::abs(camera_pitch_deg) < 90)) return "camera_pitch_deg must be in (-90, 90)";
-  if (!std::isfinite(camera_yaw_deg) || !std::isfinite(camera_roll_deg)) {
-    return "camera_yaw_deg and camera_roll_deg must be finite";
-  }
-  if (const std::string problem = vibration.Check(); !problem.empty()) return "vibration." + problem;
-  if (const std::string problem = localization.Check(); !problem.empty()) {
-    return "localization." + problem;
-  }
-  return "";
+VibrationOptions::VibrationOptions() { Table().FillDefaults(this); }
+
+const OptionTable<VibrationOptions>& VibrationOptions::Table() {
+  using O = VibrationOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("enabled", &O::enabled, true, "false: the camera is rigidly mounted")
+          .Add("natural_frequency_hz", &O::natural_frequency_hz, 4.0, "Hz", R().Above(0).AtMost(1000), "mast resonance")
+          .Add("damping_ratio", &O::damping_ratio, 0.3, "", R().Above(0).AtMost(10), "damping ratio of the mount")
+          .Add("roll_sd_deg", &O::roll_sd_deg, 0.3, "deg", R::Closed(0, 10), "roughness-driven roll sd at the reference speed")
+          .Add("pitch_sd_deg", &O::pitch_sd_deg, 0.4, "deg", R::Closed(0, 10), "roughness-driven pitch sd at the reference speed")
+          .Add("height_sd_m", &O::height_sd_m, 0.002, "m", R::Closed(0, 0.1), "roughness-driven height sd at the reference speed")
+          .Add("reference_speed_m_s", &O::reference_speed_m_s, 0.43, "m/s", R().Above(0), "speed at which the sds above hold")
+          .Add("pitch_per_accel_deg_s2_m", &O::pitch_per_accel_deg_s2_m, 1.0, "deg per m/s^2", R::Closed(-20, 20),
+               "nose-up pitch per unit of acceleration")
+          .Add("roll_per_lat_accel_deg_s2_m", &O::roll_per_lat_accel_deg_s2_m, 1.0, "deg per m/s^2", R::Closed(-20, 20),
+               "outward roll per unit of lateral acceleration");
+  return table;
 }
 
-std::string LocalizationOptions::Check() const {
-  if (!(interval_s > 0 && interval_s <= 3600)) return "interval_s must be in (0, 3600]";
-  if (!(position_sd_m >= 0 && position_sd_m <= 1)) return "position_sd_m must be in [0, 1]";
-  if (!(heading_sd_deg >= 0 && heading_sd_deg <= 30)) return "heading_sd_deg must be in [0, 30]";
-  if (!(correlation_s >= 0 && correlation_s <= 3600)) return "correlation_s must be in [0, 3600]";
-  return "";
+std::string VibrationOptions::Check() const { return Table().FirstProblem(*this); }
+
+LocalizationOptions::LocalizationOptions() { Table().FillDefaults(this); }
+
+const OptionTable<LocalizationOptions>& LocalizationOptions::Table() {
+  using O = LocalizationOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("interval_s", &O::interval_s, 0.5, "s", R().Above(0).AtMost(3600), "time between localisation fixes")
+          .Add("position_sd_m", &O::position_sd_m, 0.035, "m", R::Closed(0, 1), "sd of a fix's error along x and along y")
+          .Add("heading_sd_deg", &O::heading_sd_deg, 1.0, "deg", R::Closed(0, 30), "sd of a fix's heading error")
+          .Add("correlation_s", &O::correlation_s, 5.0, "s", R::Closed(0, 3600),
+               "correlation time of the fix error (0: independent fixes)");
+  return table;
 }
+
+std::string LocalizationOptions::Check() const { return Table().FirstProblem(*this); }
+
+TricycleOptions::TricycleOptions() { Table().FillDefaults(this); }
+
+const OptionTable<TricycleOptions>& TricycleOptions::Table() {
+  using O = TricycleOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("wheelbase_m", &O::wheelbase_m, 0.30, "m", R().Above(0), "rear axle to front wheel (L)")
+          .Add("max_steer_deg", &O::max_steer_deg, 60.0, "deg", R().Above(0).Below(89), "|steering angle| limit")
+          .Add("max_steer_rate_deg_s", &O::max_steer_rate_deg_s, 120.0, "deg/s", R().Above(0), "steering rate limit")
+          .Add("max_speed_m_s", &O::max_speed_m_s, 0.6, "m/s", R().Above(0), "front-wheel speed limit")
+          .Add("max_accel_m_s2", &O::max_accel_m_s2, 0.5, "m/s^2", R().Above(0),
+               "front-wheel acceleration and deceleration limit")
+          .Add("integration_rate_hz", &O::integration_rate_hz, 200.0, "Hz", R::Closed(1, 100000),
+               "internal control and integration rate")
+          .Add("length_m", &O::length_m, 0.42, "m", R().Above(0), "footprint length along the body x axis")
+          .Add("width_m", &O::width_m, 0.34, "m", R().Above(0), "footprint width")
+          .Add("base_to_rear_m", &O::base_to_rear_m, 0.08, "m", R().AtLeast(0), "footprint rear edge behind the base origin")
+          .Rule("base_to_rear_m", [](const O& o) { return o.base_to_rear_m < o.length_m ? "" : "must be below length_m"; })
+          .Add("camera_forward_m", &O::camera_forward_m, 0.20, "m", R::Any(), "camera ahead of the base origin")
+          .Add("camera_lateral_m", &O::camera_lateral_m, 0.0, "m", R::Any(), "camera to the left of the base origin")
+          .Add("camera_height_m", &O::camera_height_m, 0.95, "m", R().Above(0), "camera above the floor")
+          .Add("camera_pitch_deg", &O::camera_pitch_deg, 8.0, "deg", R::Closed(-89, 89),
+               "camera pitch; positive looks down (REP 103)")
+          .Add("camera_yaw_deg", &O::camera_yaw_deg, 0.0, "deg", R::Closed(-180, 180),
+               "camera yaw relative to the body, counter-clockwise")
+          .Add("camera_roll_deg", &O::camera_roll_deg, 0.0, "deg", R::Closed(-180, 180), "camera roll about its optical axis")
+          .AddEnum("navigation", &O::navigation, Navigation::kLocalized,
+                   {{"localized", Navigation::kLocalized},
+                    {"odometry", Navigation::kOdometry},
+                    {"ground_truth", Navigation::kGroundTruth}},
+                   "what the path follower steers on: localised odometry, dead reckoning or the true pose")
+          .Nest("localization", &O::localization, LocalizationOptions::Table())
+          .Nest("vibration", &O::vibration, VibrationOptions::Table());
+  return table;
+}
+
+std::string TricycleOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<Eigen::Vector2d> PaperRoomWaypoints() {
   return {{0.40, 0.40}, {0.40, 2.60}, {6.60, 2.60}, {6.60, 0.40}};
 }
 
-std::string RouteOptions::Check() const {
-  if (waypoints_m.size() < 3) {
-    return "waypoints_m needs at least 3 points, has " + std::to_string(waypoints_m.size());
-  }
-  for (size_t i = 0; i < waypoints_m.size(); ++i) {
-    if (!waypoints_m[i].allFinite()) return "waypoint " + std::to_string(i) + " is not finite";
-    if ((waypoints_m[(i + 1) % waypoints_m.size()] - waypoints_m[i]).norm() < 1e-6) {
-      return "waypoint " + std::to_string(i) + " repeats the next one";
-    }
-  }
-  if (frames < 0) return "frames must be >= 0";
-  if (frames == 0 && !(laps > 0 && laps <= 1000)) return "laps must be in (0, 1000]";
-  if (!(cruise_speed_m_s > 0)) return "cruise_speed_m_s must be positive";
-  if (!(lookahead_m > 0)) return "lookahead_m must be positive";
-  if (!(max_lateral_accel_m_s2 > 0)) return "max_lateral_accel_m_s2 must be positive";
-  if (!(corner_radius_m > 0)) return "corner_radius_m must be positive";
-  return "";
+RouteOptions::RouteOptions() : waypoints_m(PaperRoomWaypoints()) { Table().FillDefaults(this); }
+
+const OptionTable<RouteOptions>& RouteOptions::Table() {
+  using O = RouteOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .External("waypoints_m", "m, the route's polygon corners [x, y], in driving order")
+          .Rule("waypoints_m",
+                [](const O& o) -> std::string {
+                  if (o.waypoints_m.size() < 3) {
+                    return "needs at least 3 points, has " + std::to_string(o.waypoints_m.size());
+                  }
+                  for (size_t i = 0; i < o.waypoints_m.size(); ++i) {
+                    if (!o.waypoints_m[i].allFinite()) return "waypoint " + std::to_string(i) + " is not finite";
+                    if ((o.waypoints_m[(i + 1) % o.waypoints_m.size()] - o.waypoints_m[i]).norm() < 1e-6) {
+                      return "waypoint " + std::to_string(i) + " repeats the next one";
+                    }
+                  }
+                  return "";
+                })
+          .Add("laps", &O::laps, 2.0, "", R().Above(0).AtMost(1000), "laps to drive when frames is 0")
+          .CodeOnly()
+          .Add("frames", &O::frames, 0, "", R().AtLeast(0), "frames to simulate; > 0 overrides laps (the scene's frames)")
+          .CodeOnly()
+          .Add("cruise_speed_m_s", &O::cruise_speed_m_s, 0.43, "m/s", R().Above(0), "speed of the base on straight stretches")
+          .Add("lookahead_m", &O::lookahead_m, 0.20, "m", R().Above(0), "pure-pursuit lookahead along the path")
+          .Add("max_lateral_accel_m_s2", &O::max_lateral_accel_m_s2, 0.35, "m/s^2", R().Above(0),
+               "bounds the speed in turns: v^2 * curvature")
+          .Add("corner_radius_m", &O::corner_radius_m, 0.30, "m", R().Above(0),
+               "radius of the arcs rounding the polygon corners");
+  return table;
 }
 
-std::string OdometryErrorOptions::Check() const {
-  if (!(error_scale >= 0 && error_scale <= 100)) return "error_scale must be in [0, 100]";
-  if (!(std::abs(wheel_radius_error_frac) < 0.2)) {
-    return "wheel_radius_error_frac must be in (-0.2, 0.2)";
-  }
-  if (!(std::abs(steer_offset_deg) < 10)) return "steer_offset_deg must be in (-10, 10)";
-  if (!(std::abs(wheelbase_error_frac) < 0.2)) return "wheelbase_error_frac must be in (-0.2, 0.2)";
-  if (!(encoder_counts_per_rev >= 1 && encoder_counts_per_rev <= 1e7)) {
-    return "encoder_counts_per_rev must be in [1, 1e7]";
-  }
-  if (!(wheel_radius_m > 0 && wheel_radius_m < 10)) return "wheel_radius_m must be in (0, 10)";
-  if (!(slip_per_accel_s2_m >= 0 && slip_per_accel_s2_m <= 1)) {
-    return "slip_per_accel_s2_m must be in [0, 1]";
-  }
-  if (!(turn_slip_per_lat_accel_s2_m >= 0 && turn_slip_per_lat_accel_s2_m <= 1)) {
-    return "turn_slip_per_lat_accel_s2_m must be in [0, 1]";
-  }
-  if (!(slip_noise_frac >= 0 && slip_noise_frac <= 10)) return "slip_noise_frac must be in [0, 10]";
-  if (!(heading_noise_deg_sqrt_m >= 0 && heading_noise_deg_sqrt_m <= 10)) {
-    return "heading_noise_deg_sqrt_m must be in [0, 10]";
-  }
-  return "";
+std::string RouteOptions::Check() const { return Table().FirstProblem(*this); }
+
+OdometryErrorOptions::OdometryErrorOptions() { Table().FillDefaults(this); }
+
+const OptionTable<OdometryErrorOptions>& OdometryErrorOptions::Table() {
+  using O = OdometryErrorOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("enabled", &O::enabled, true, "false: the true motion is the measured motion")
+          .Add("error_scale", &O::error_scale, 1.0, "", R::Closed(0, 100), "multiplies every error below (0: perfect)")
+          .Add("wheel_radius_error_frac", &O::wheel_radius_error_frac, 0.001, "", R().Above(-0.2).Below(0.2),
+               "true / nominal driven-wheel radius - 1")
+          .Add("steer_offset_deg", &O::steer_offset_deg, 0.01, "deg", R().Above(-10).Below(10),
+               "true steering angle minus the measured one")
+          .Add("wheelbase_error_frac", &O::wheelbase_error_frac, 0.002, "", R().Above(-0.2).Below(0.2),
+               "true / nominal wheelbase - 1")
+          .Add("encoder_counts_per_rev", &O::encoder_counts_per_rev, 2048, "", R::Closed(1, 1e7),
+               "drive-wheel encoder counts per revolution")
+          .Add("wheel_radius_m", &O::wheel_radius_m, 0.05, "m", R().Above(0).Below(10), "nominal driven-wheel radius")
+          .Add("slip_per_accel_s2_m", &O::slip_per_accel_s2_m, 0.01, "per m/s^2", R::Closed(0, 1),
+               "longitudinal slip per unit of acceleration")
+          .Add("turn_slip_per_lat_accel_s2_m", &O::turn_slip_per_lat_accel_s2_m, 0.01, "per m/s^2", R::Closed(0, 1),
+               "yaw-rate shortfall per unit of lateral acceleration")
+          .Add("slip_noise_frac", &O::slip_noise_frac, 0.5, "", R::Closed(0, 10), "relative sd of both slips")
+          .Add("heading_noise_deg_sqrt_m", &O::heading_noise_deg_sqrt_m, 0.03, "deg/sqrt(m)", R::Closed(0, 10),
+               "random heading walk (floor)");
+  return table;
 }
 
-std::string VibrationOptions::Check() const {
-  if (!(natural_frequency_hz > 0 && natural_frequency_hz <= 1000)) {
-    return "natural_frequency_hz must be in (0, 1000]";
-  }
-  if (!(damping_ratio > 0 && damping_ratio <= 10)) return "damping_ratio must be in (0, 10]";
-  if (!(roll_sd_deg >= 0 && roll_sd_deg <= 10)) return "roll_sd_deg must be in [0, 10]";
-  if (!(pitch_sd_deg >= 0 && pitch_sd_deg <= 10)) return "pitch_sd_deg must be in [0, 10]";
-  if (!(height_sd_m >= 0 && height_sd_m <= 0.1)) return "height_sd_m must be in [0, 0.1]";
-  if (!(reference_speed_m_s > 0)) return "reference_speed_m_s must be positive";
-  if (!(std::abs(pitch_per_accel_deg_s2_m) <= 20)) {
-    return "pitch_per_accel_deg_s2_m must be in [-20, 20]";
-  }
-  if (!(std::abs(roll_per_lat_accel_deg_s2_m) <= 20)) {
-    return "roll_per_lat_accel_deg_s2_m must be in [-20, 20]";
-  }
-  return "";
-}
+std::string OdometryErrorOptions::Check() const { return Table().FirstProblem(*this); }
 
 Obstacle2D Obstacle2D::Rectangle(std::string name, const Eigen::Vector2d& center_m,
                                  const Eigen::Vector2d& size_m, double yaw_rad) {

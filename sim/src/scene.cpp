@@ -167,10 +167,6 @@ Eigen::Vector3d Vec3(const json& j) {
 // Cross-field checks the schema cannot express.
 void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
   const std::string& f = scene.file;
-  if (scene.resolved["camera"]["display_max_c"].get<double>() <=
-      scene.resolved["camera"]["display_min_c"].get<double>()) {
-    problems->Add(f + ": /camera/display_max_c", "must be greater than /camera/display_min_c");
-  }
   for (size_t i = 0; i < scene.tables.size(); ++i) {
     const Eigen::Vector2d& c = scene.tables[i].center_m;
     if (c.x() < 0 || c.y() < 0 || c.x() > scene.room_size_m.x() || c.y() > scene.room_size_m.y()) {
@@ -179,8 +175,8 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
                         "], y in [0, " + std::to_string(scene.room_size_m.y()) + "])");
     }
   }
-  for (size_t i = 0; i < scene.seating.size(); ++i) {
-    if (scene.seating[i].table >= static_cast<int>(scene.tables.size())) {
+  for (size_t i = 0; i < scene.crowd.seating.size(); ++i) {
+    if (scene.crowd.seating[i].table >= static_cast<int>(scene.tables.size())) {
       problems->Add(f + ": /crowd/seating/" + std::to_string(i) + "/table",
                     "a table index below " + std::to_string(scene.tables.size()));
     }
@@ -197,11 +193,6 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
     if (w.bottom_m + w.height_m > scene.room_size_m.z()) {
       problems->Add(at + "/height_m", "the window top below the ceiling");
     }
-  }
-  // Interval 0 is "never"; a tiny one would make a posture change per nanosecond.
-  const double posture_interval_s = scene.crowd.at("posture_change_interval_s").get<double>();
-  if (posture_interval_s != 0 && posture_interval_s < 1) {
-    problems->Add(f + ": /crowd/posture_change_interval_s", "0 (never) or at least 1 s");
   }
   auto inside_room = [&](const Eigen::Vector3d& p) {
     return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room_size_m.x() &&
@@ -232,17 +223,17 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
                                                    " or a .gltf/.glb file; " + path + " does not exist");
     }
   }
-  const json& standing = scene.crowd.at("standing");
+  const std::vector<StandingSpec>& standing = scene.crowd.standing;
   for (size_t i = 0; i < standing.size(); ++i) {
-    const Eigen::Vector2d p = Vec2(standing[i].at("position_m"));
+    const Eigen::Vector2d& p = standing[i].position_m;
     if (!inside_room({p.x(), p.y(), 0})) {
       problems->Add(f + ": /crowd/standing/" + std::to_string(i) + "/position_m",
                     "a position inside the room (" + room_box + ")");
     }
   }
-  const json& waypoints = scene.route.at("waypoints_m");
+  const std::vector<Eigen::Vector2d>& waypoints = scene.route.waypoints_m;
   for (size_t i = 0; i < waypoints.size(); ++i) {
-    const Eigen::Vector2d p = Vec2(waypoints[i]);
+    const Eigen::Vector2d& p = waypoints[i];
     if (p.x() < 0 || p.y() < 0 || p.x() > scene.room_size_m.x() || p.y() > scene.room_size_m.y()) {
       problems->Add(f + ": /route/waypoints_m/" + std::to_string(i), "a waypoint inside the room");
     }
@@ -407,24 +398,34 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   s.chair_jitter_deg = furniture["chair_jitter_deg"].get<double>();
   s.seat_warmth_c = furniture["seat_warmth_c"].get<double>();
 
-  s.crowd = doc["crowd"];
-  s.people_per_table = s.crowd["people_per_table"].get<int>();
-  for (const json& p : s.crowd["seating"]) {
-    s.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
-  }
   for (const json& o : doc["objects"]) {
     ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
                     o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
     if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
   }
-  s.camera = doc["camera"];
-  s.robot = doc["robot"];
-  s.route = doc["route"];
-  s.odometry = doc["odometry"];
+  // The module options, each read and checked by its option table (every problem at its pointer).
+  ProblemCollector consistency;
+  CameraOptions::Table().Read(doc["camera"], file + ": /camera", &s.camera, &consistency);
+  s.camera.sensor.reflected_temperature_c = s.environment_temperature_c;
+  TricycleOptions::Table().Read(doc["robot"], file + ": /robot", &s.robot, &consistency);
+  RouteOptions::Table().Read(doc["route"], file + ": /route", &s.route, &consistency);
+  s.route.waypoints_m.clear();
+  for (const json& p : doc["route"]["waypoints_m"]) s.route.waypoints_m.push_back(Vec2(p));
+  s.route.frames = s.frames;
+  OdometryErrorOptions::Table().Read(doc["odometry"], file + ": /odometry", &s.odometry, &consistency);
+  CrowdOptions::Table().Read(doc["crowd"], file + ": /crowd", &s.crowd, &consistency);
+  for (const json& p : doc["crowd"]["seating"]) {
+    s.crowd.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
+  }
+  for (const json& p : doc["crowd"]["standing"]) s.crowd.standing.push_back({Vec2(p["position_m"]), p["yaw_deg"].get<double>()});
+  CameraOptions::Table().Check(s.camera, file + ": /camera", &consistency);
+  TricycleOptions::Table().Check(s.robot, file + ": /robot", &consistency);
+  RouteOptions::Table().Check(s.route, file + ": /route", &consistency);
+  OdometryErrorOptions::Table().Check(s.odometry, file + ": /odometry", &consistency);
+  CrowdOptions::Table().Check(s.crowd, file + ": /crowd", &consistency);
   s.resolved = doc;
   s.hash = ChecksumOf(doc.dump());
 
-  ProblemCollector consistency;
   CheckConsistency(s, &consistency);
   consistency.ThrowIfAny();
   return s;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <utility>
 
 #include <opencv2/imgproc.hpp>
@@ -18,49 +17,64 @@ constexpr int64_t kRowsPerChunk = 16;
 
 }  // namespace
 
-std::string SensorOptions::Check() const {
-  std::ostringstream out;
-  auto require = [&out](bool ok, const char* field, const char* expected, double value) {
-    if (!ok && out.tellp() == 0) out << field << " must be " << expected << " (got " << value << ")";
-  };
-  require(psf_sigma_px > 0.0 && psf_sigma_px <= 10.0, "psf_sigma_px", "in (0, 10] px",
-          psf_sigma_px);
-  require(netd_k >= 0.0 && netd_k <= 10.0, "netd_k", "in [0, 10] K", netd_k);
-  require(fpn_offset_k >= 0.0 && fpn_offset_k <= 10.0, "fpn_offset_k", "in [0, 10] K",
-          fpn_offset_k);
-  require(fpn_gain_sigma >= 0.0 && fpn_gain_sigma <= 0.2, "fpn_gain_sigma", "in [0, 0.2]",
-          fpn_gain_sigma);
-  require(column_stripe_k >= 0.0 && column_stripe_k <= 10.0, "column_stripe_k", "in [0, 10] K",
-          column_stripe_k);
-  require(shutter_temperature_c >= -50.0 && shutter_temperature_c <= 150.0,
-          "shutter_temperature_c", "in [-50, 150] °C", shutter_temperature_c);
-  require(drift_k_per_min >= 0.0 && drift_k_per_min <= 60.0, "drift_k_per_min",
-          "in [0, 60] K/min", drift_k_per_min);
-  require(ffc_interval_s == 0.0 || (ffc_interval_s >= 1.0 && ffc_interval_s <= 86400.0),
-          "ffc_interval_s", "0 (never) or in [1, 86400] s", ffc_interval_s);
-  require(housing_warming_k_per_min >= 0.0 && housing_warming_k_per_min <= 10.0,
-          "housing_warming_k_per_min", "in [0, 10] K/min", housing_warming_k_per_min);
-  require(vignetting_k_per_k >= -5.0 && vignetting_k_per_k <= 5.0, "vignetting_k_per_k",
-          "in [-5, 5] K/K", vignetting_k_per_k);
-  require(narcissus_k_per_k >= -5.0 && narcissus_k_per_k <= 5.0, "narcissus_k_per_k",
-          "in [-5, 5] K/K", narcissus_k_per_k);
-  require(narcissus_sigma >= 0.05 && narcissus_sigma <= 2.0, "narcissus_sigma", "in [0.05, 2]",
-          narcissus_sigma);
-  require(ffc_freeze_s >= 0.0 && ffc_freeze_s <= 5.0, "ffc_freeze_s", "in [0, 5] s", ffc_freeze_s);
-  require(time_constant_s > 0.0 && time_constant_s <= 1.0, "time_constant_s", "in (0, 1] s",
-          time_constant_s);
-  require(quantisation_step_k > 0.0 && quantisation_step_k <= 10.0, "quantisation_step_k",
-          "in (0, 10] K", quantisation_step_k);
-  require(reference_temperature_c >= -50.0 && reference_temperature_c <= 150.0,
-          "reference_temperature_c", "in [-50, 150] °C", reference_temperature_c);
-  require(emissivity_setting >= 0.01 && emissivity_setting <= 1.0, "emissivity_setting",
-          "in [0.01, 1]", emissivity_setting);
-  require(reflected_temperature_c >= -50.0 && reflected_temperature_c <= 150.0,
-          "reflected_temperature_c", "in [-50, 150] °C", reflected_temperature_c);
-  require(display_max_c > display_min_c, "display_max_c", "greater than display_min_c",
-          display_max_c);
-  return out.str();
+SensorOptions::SensorOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SensorOptions>& SensorOptions::Table() {
+  using O = SensorOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("optics_blur", &O::optics_blur, true, "Gaussian point-spread function on the radiance")
+          .Add("psf_sigma_px", &O::psf_sigma_px, 0.5, "px", R().Above(0).AtMost(5),
+               "PSF standard deviation (0.5 px: FWHM 1.18 px)")
+          .Add("temporal_noise", &O::temporal_noise, true, "white noise, new every frame")
+          .Add("netd_k", &O::netd_k, 0.040, "K", R::Closed(0, 1), "noise-equivalent temperature difference (1-sigma)")
+          .Add("fixed_pattern", &O::fixed_pattern, true, "residual non-uniformity after factory calibration")
+          .Add("fpn_offset_k", &O::fpn_offset_k, 0.05, "K", R::Closed(0, 2), "per-pixel offset (1-sigma)")
+          .Add("fpn_gain_sigma", &O::fpn_gain_sigma, 0.002, "", R::Closed(0, 0.2), "per-pixel relative gain error (1-sigma)")
+          .Add("column_stripe_k", &O::column_stripe_k, 0.03, "K", R::Closed(0, 2), "per-column offset (1-sigma)")
+          .Add("shutter_temperature_c", &O::shutter_temperature_c, 25.0, "°C", R::Closed(-50, 150),
+               "FFC shutter temperature: gain errors vanish there")
+          .CodeOnly()
+          .Add("drift", &O::drift, true, "global offset ramp between flat-field corrections")
+          .Add("drift_k_per_min", &O::drift_k_per_min, 0.2, "K/min", R::Closed(0, 10),
+               "1-sigma of the ramp's random slope per FFC interval")
+          .Add("ffc_interval_s", &O::ffc_interval_s, 60.0, "s", R::Closed(0, 86400),
+               "time between flat-field corrections (0: never)")
+          .Rule("ffc_interval_s",
+                [](const O& o) { return o.ffc_interval_s == 0 || o.ffc_interval_s >= 1 ? "" : "must be 0 (never) or at least 1 s"; })
+          .Add("lens_shading", &O::lens_shading, true, "radial shading that grows as the housing warms after an FFC")
+          .Add("housing_warming_k_per_min", &O::housing_warming_k_per_min, 0.5, "K/min", R::Closed(0, 10),
+               "housing temperature rise after each FFC")
+          .Add("vignetting_k_per_k", &O::vignetting_k_per_k, 0.4, "K/K", R::Closed(-5, 5),
+               "corner minus centre per K of housing warming")
+          .Add("narcissus_k_per_k", &O::narcissus_k_per_k, 0.2, "K/K", R::Closed(-5, 5),
+               "depth of the centred dark spot per K of housing warming")
+          .Add("narcissus_sigma", &O::narcissus_sigma, 0.35, "", R::Closed(0.05, 2),
+               "spot radius (1-sigma) as a fraction of the half-diagonal")
+          .Add("ffc_freeze", &O::ffc_freeze, true, "output repeats the last frame while the shutter is shut")
+          .Add("ffc_freeze_s", &O::ffc_freeze_s, 0.5, "s", R::Closed(0, 5), "freeze length at each FFC")
+          .Add("time_constant", &O::time_constant, true, "bolometer thermal lag (motion smear)")
+          .Add("time_constant_s", &O::time_constant_s, 0.010, "s", R().Above(0).AtMost(1),
+               "bolometer thermal time constant")
+          .Add("quantisation", &O::quantisation, true, "output rounded to a temperature step")
+          .Add("quantisation_step_k", &O::quantisation_step_k, 0.01, "K", R().Above(0).AtMost(1), "output temperature step")
+          .Add("reference_temperature_c", &O::reference_temperature_c, 26.85, "°C", R::Closed(-50, 150),
+               "scene temperature at which the K figures hold (NETD convention, 300 K)")
+          .CodeOnly()
+          .Add("emissivity_setting", &O::emissivity_setting, 1.0, "", R::Closed(0.01, 1),
+               "emissivity the camera assumes when converting to temperature")
+          .Add("reflected_temperature_c", &O::reflected_temperature_c, 22.0, "°C", R::Closed(-50, 150),
+               "reflected temperature assumed when the emissivity setting is below 1 (the scene's room temperature)")
+          .CodeOnly()
+          .Add("display_min_c", &O::display_min_c, 20.0, "°C", R::Closed(-50, 200), "8-bit display window: maps to 0")
+          .Add("display_max_c", &O::display_max_c, 30.0, "°C", R::Closed(-50, 200), "8-bit display window: maps to 255")
+          .Rule("display_max_c",
+                [](const O& o) { return o.display_max_c > o.display_min_c ? "" : "must be greater than display_min_c"; });
+  return table;
 }
+
+std::string SensorOptions::Check() const { return Table().FirstProblem(*this); }
 
 SensorModel::SensorModel(SensorOptions options, int width, int height, double frame_rate_hz,
                          uint64_t seed, const BandRadianceTable* table, int num_threads)

@@ -121,22 +121,23 @@ AVRational FrameRate(double frame_rate_hz) { return av_d2q(frame_rate_hz, 100000
 
 }  // namespace
 
-std::string VideoOptions::Check() const {
-  std::ostringstream out;
-  if (crf < 0 || crf > 51) {
-    out << "crf must be in [0, 51] (got " << crf << ")";
-  } else if (bitrate_kbps < 0 || bitrate_kbps > 100000) {
-    out << "bitrate_kbps must be 0 (constant quality) or in [1, 100000] kbit/s (got "
-        << bitrate_kbps << ")";
-  } else if (gop_frames < 1 || gop_frames > 600) {
-    out << "gop_frames must be in [1, 600] (got " << gop_frames << ")";
-  } else if (std::find(std::begin(kPresets), std::end(kPresets), preset) == std::end(kPresets)) {
-    out << "preset must be one of ultrafast, superfast, veryfast, faster, fast, medium, slow, "
-           "slower, veryslow (got '"
-        << preset << "')";
-  }
-  return out.str();
+VideoOptions::VideoOptions() { Table().FillDefaults(this); }
+
+const OptionTable<VideoOptions>& VideoOptions::Table() {
+  using O = VideoOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("enabled", &O::enabled, false, "video mode: the thermal PNGs are the decoded frames of thermal.mp4")
+          .Add("crf", &O::crf, 23, "", OptionRange::Closed(0, 51), "x264 constant rate factor (used when bitrate_kbps is 0)")
+          .Add("bitrate_kbps", &O::bitrate_kbps, 0, "kbit/s", OptionRange::Closed(0, 100000),
+               "target average bitrate (0: constant quality, crf)")
+          .Add("gop_frames", &O::gop_frames, 25, "frames", OptionRange::Closed(1, 600), "frames between keyframes")
+          .Add("preset", &O::preset, "veryfast", std::vector<std::string>(std::begin(kPresets), std::end(kPresets)),
+               "x264 speed/quality preset");
+  return table;
 }
+
+std::string VideoOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::string VideoFrameRateProblem(double frame_rate_hz) {
   const AVRational rate = FrameRate(frame_rate_hz);

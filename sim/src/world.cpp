@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "hoilcd/core/random.h"
 
@@ -203,8 +202,8 @@ void World::BuildRoom(const Scene& scene) {
 void World::BuildFurnitureAndPeople(const Scene& scene) {
   const Asset& table_asset = assets_.Get(scene.table_asset);
   const Asset& chair_asset = assets_.Get(scene.chair_asset);
-  bool three_per_side = scene.people_per_table > 4;
-  for (const SeatingSpec& s : scene.seating) three_per_side |= (s.seat % 3 == 2);
+  bool three_per_side = scene.crowd.people_per_table > 4;
+  for (const SeatingSpec& s : scene.crowd.seating) three_per_side |= (s.seat % 3 == 2);
   const int per_side = three_per_side ? 3 : 2;
   const double spacing = three_per_side ? scene.seat_spacing_6_m : scene.seat_spacing_4_m;
   const double half_depth = table_asset.bounds_m.max().y();

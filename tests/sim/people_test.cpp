@@ -217,10 +217,10 @@ TEST(People, UnknownActivitiesAndOutOfRangeDwellTimesAreErrorsNamingThePath) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/crowd/activities/drinking/dwell_s"), std::string::npos) << e.what();
   }
-  ActivityOptions options = ActivityOptions::FromCrowd(PaperRoom({}).crowd);
+  ActivityOptions options = PaperRoom({}).crowd.activity;
   EXPECT_EQ(options.Check(), "");
   options.activities["juggling"] = {1, 5};
-  EXPECT_NE(options.Check().find("crowd.activities.juggling: unknown activity"), std::string::npos);
+  EXPECT_EQ(options.Check().rfind("activities: unknown activity 'juggling'", 0), 0u) << options.Check();
 }
 
 }  // namespace

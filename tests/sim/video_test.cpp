@@ -88,7 +88,7 @@ TEST(VideoOptions, BadFieldsAreNamed) {
   VideoOptions o;
   EXPECT_EQ(o.Check(), "");
   o.crf = 52;
-  EXPECT_EQ(o.Check().find("crf must be in [0, 51]"), 0u) << o.Check();
+  EXPECT_EQ(o.Check(), "crf: must be in [0, 51] (got 52)");
   o = VideoOptions();
   o.bitrate_kbps = -5;
   EXPECT_EQ(o.Check().find("bitrate_kbps"), 0u);
@@ -97,7 +97,7 @@ TEST(VideoOptions, BadFieldsAreNamed) {
   EXPECT_EQ(o.Check().find("gop_frames"), 0u);
   o = VideoOptions();
   o.preset = "warp";
-  EXPECT_EQ(o.Check().find("preset must be one of"), 0u);
+  EXPECT_EQ(o.Check().find("preset: must be one of"), 0u) << o.Check();
 }
 
 TEST(VideoOptions, FrameRatesAnMp4CannotCarryAreRejected) {

@@ -156,6 +156,12 @@ class OptionTable : public OptionTableBase {
     AddNested(name, At(member), table);
     return *this;
   }
+  // The same for an S that `at` finds in T (an entry of a map member, say).
+  template <typename S>
+  OptionTable& Nest(const char* name, std::function<S*(T*)> at, const OptionTable<S>& table) {
+    AddNested(name, [at = std::move(at)](void* p) -> void* { return at(static_cast<T*>(p)); }, table);
+    return *this;
+  }
   // A member struct S whose fields sit in this same JSON object.
   template <typename S>
   OptionTable& Flatten(S T::*member, const OptionTable<S>& table) {

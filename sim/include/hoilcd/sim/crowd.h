@@ -10,12 +10,11 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/random.h"
 #include "hoilcd/sim/asset.h"
 #include "hoilcd/sim/crowd_motion.h"
+#include "hoilcd/sim/crowd_options.h"
 #include "hoilcd/sim/instance.h"
 #include "hoilcd/sim/robot.h"
 #include "hoilcd/sim/scene.h"
@@ -130,7 +129,6 @@ class Crowd {
   AssetLibrary& assets_;
   CrowdStage& stage_;
   std::unique_ptr<Skeleton> skeleton_;
-  ActivityOptions activity_options_;
   std::vector<Eigen::Matrix4d> world_from_table_;  // per table
   Eigen::AlignedBox3f table_bounds_m_;             // the table asset's bounds (top at max z)
   std::vector<Person> people_;
@@ -140,9 +138,9 @@ class Crowd {
   std::vector<WalkerPlan> walker_plans_;
   uint64_t seed_ = 1;
   double frame_rate_hz_ = 25, duration_s_ = 80;
-  nlohmann::json crowd_;
-  double seat_warmth_c_ = 2, heat_print_tau_s_ = 120, posture_interval_s_ = 0;
-  double breathing_amplitude_m_ = 0, breathing_period_s_ = 4, sway_amplitude_rad_ = 0;
+  CrowdOptions options_;
+  double seat_warmth_c_ = 2;
+  double sway_amplitude_rad_ = 0;
   std::string scene_file_;  // named in errors found by Plan
 };
 

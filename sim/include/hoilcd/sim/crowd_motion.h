@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hoilcd/core/option_table.h"
 #include "hoilcd/sim/skeleton.h"
 
 namespace hoilcd {
@@ -25,14 +26,16 @@ struct ActivitySpec {
 
 struct ActivityOptions {
   std::map<std::string, ActivitySpec> activities;  // by kActivityNames
-  double blend_s = 0.8;           // ramp into and out of an activity, s
-  double posture_blend_s = 1.5;   // a posture change takes this long, s
-  double cup_fraction = 0.5;      // seated people with a cup in front of them, 0-1
-  double laptop_fraction = 0.25;  // seated people with a laptop in front of them, 0-1
-  // "" when valid, else what is wrong (with the crowd.* JSON path).
+  double blend_s;          // ramp into and out of an activity, s
+  double posture_blend_s;  // a posture change takes this long, s
+  double cup_fraction;     // seated people with a cup in front of them, 0-1
+  double laptop_fraction;  // seated people with a laptop in front of them, 0-1
+
+  ActivityOptions();  // the registered defaults
+  // Every field once: JSON name (in the scene's /crowd), unit, default, range, description.
+  static const OptionTable<ActivityOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
-  // From the resolved scene's `crowd` object (schema defaults filled in).
-  static ActivityOptions FromCrowd(const nlohmann::json& crowd);
 };
 
 struct ActivityEpisode {

@@ -8,17 +8,10 @@
 #include <vector>
 
 #include "hoilcd/core/camera.h"
+#include "hoilcd/sim/render_options.h"
 #include "hoilcd/sim/world.h"
 
 namespace hoilcd {
-
-struct RenderOptions {
-  bool edge_supersampling = true;    // supersample pixels on object/material/depth edges
-  int edge_samples_per_axis = 2;     // n×n stratified samples in an edge pixel
-  bool specular_reflections = true;  // one traced reflection on specular surfaces
-  int threads = 0;                   // 0 = every core
-  std::string Check() const;
-};
 
 struct FrameBuffers {
   cv::Mat radiance;  // CV_32F, W·m⁻²·sr⁻¹ (8–14 µm band)

@@ -12,6 +12,7 @@
 
 #include "hoilcd/core/camera.h"
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/option_table.h"
 
 namespace hoilcd {
 
@@ -27,17 +28,20 @@ struct Pose2 {
 // value) and pulled by the robot's acceleration (longitudinal -> pitch, lateral -> roll).
 // Noise from KeyedRng(seed, "robot.vibration", integration step): keyed by time, not thread.
 struct VibrationOptions {
-  bool enabled = true;                     // false: the camera is rigidly mounted
-  double natural_frequency_hz = 4.0;       // Hz, mast resonance
-  double damping_ratio = 0.3;              // dimensionless, of the mount
-  double roll_sd_deg = 0.3;                // deg, roughness-driven roll sd at the reference speed
-  double pitch_sd_deg = 0.4;               // deg, roughness-driven pitch sd at the reference speed
-  double height_sd_m = 0.002;              // m, roughness-driven height sd at the reference speed
-  double reference_speed_m_s = 0.43;       // m/s, speed at which the sds above hold
-  double pitch_per_accel_deg_s2_m = 1.0;   // deg of nose-up pitch per m/s^2 of acceleration
-  double roll_per_lat_accel_deg_s2_m = 1.0;  // deg of outward roll per m/s^2 lateral accel.
+  bool enabled;                     // false: the camera is rigidly mounted
+  double natural_frequency_hz;       // Hz, mast resonance
+  double damping_ratio;              // dimensionless, of the mount
+  double roll_sd_deg;                // deg, roughness-driven roll sd at the reference speed
+  double pitch_sd_deg;               // deg, roughness-driven pitch sd at the reference speed
+  double height_sd_m;              // m, roughness-driven height sd at the reference speed
+  double reference_speed_m_s;       // m/s, speed at which the sds above hold
+  double pitch_per_accel_deg_s2_m;   // deg of nose-up pitch per m/s^2 of acceleration
+  double roll_per_lat_accel_deg_s2_m;  // deg of outward roll per m/s^2 lateral accel.
 
-  // Empty string when valid, else what is wrong (the first word names the field).
+  VibrationOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /robot/vibration), unit, default, range, description.
+  static const OptionTable<VibrationOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 
@@ -49,12 +53,15 @@ struct VibrationOptions {
 // from KeyedRng(seed, "robot.localization", fix index). Independent of odometry.error_scale.
 // Defaults and their sources: docs/robot.md.
 struct LocalizationOptions {
-  double interval_s = 0.5;       // s, time between localisation fixes
-  double position_sd_m = 0.035;  // m, sd of a fix's error along x and along y
-  double heading_sd_deg = 1.0;   // deg, sd of a fix's heading error
-  double correlation_s = 5.0;    // s, correlation time of the fix error (0: independent fixes)
+  double interval_s;       // s, time between localisation fixes
+  double position_sd_m;  // m, sd of a fix's error along x and along y
+  double heading_sd_deg;   // deg, sd of a fix's heading error
+  double correlation_s;    // s, correlation time of the fix error (0: independent fixes)
 
-  // Empty string when valid, else what is wrong (the first word names the field).
+  LocalizationOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /robot/localization), unit, default, range, description.
+  static const OptionTable<LocalizationOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 
@@ -62,33 +69,36 @@ struct LocalizationOptions {
 // y' = v cos(d) sin(theta), theta' = v sin(d) / L, with v the front-wheel speed and d the
 // steering angle; the base's path curvature is tan(d) / L.
 struct TricycleOptions {
-  double wheelbase_m = 0.30;            // m, rear axle to front wheel (L)
-  double max_steer_deg = 60.0;          // deg, |steering angle| limit
-  double max_steer_rate_deg_s = 120.0;  // deg/s, steering rate limit
-  double max_speed_m_s = 0.6;           // m/s, front-wheel speed limit
-  double max_accel_m_s2 = 0.5;          // m/s^2, front-wheel acceleration and deceleration limit
-  double integration_rate_hz = 200.0;   // Hz, internal control and integration rate
-  double length_m = 0.42;               // m, footprint length along the body x axis
-  double width_m = 0.34;                // m, footprint width
-  double base_to_rear_m = 0.08;         // m, footprint rear edge behind the base origin
-  double camera_forward_m = 0.20;       // m, camera ahead of the base origin
-  double camera_lateral_m = 0.0;        // m, camera to the left of the base origin
-  double camera_height_m = 0.55;        // m, camera above the floor
-  double camera_pitch_deg = 5.0;        // deg, camera pitch; positive looks down (REP 103)
-  double camera_yaw_deg = 0.0;          // deg, camera yaw relative to the body, counter-clockwise
-  double camera_roll_deg = 0.0;         // deg, camera roll about its optical axis
+  double wheelbase_m;            // m, rear axle to front wheel (L)
+  double max_steer_deg;          // deg, |steering angle| limit
+  double max_steer_rate_deg_s;  // deg/s, steering rate limit
+  double max_speed_m_s;           // m/s, front-wheel speed limit
+  double max_accel_m_s2;          // m/s^2, front-wheel acceleration and deceleration limit
+  double integration_rate_hz;   // Hz, internal control and integration rate
+  double length_m;               // m, footprint length along the body x axis
+  double width_m;                // m, footprint width
+  double base_to_rear_m;         // m, footprint rear edge behind the base origin
+  double camera_forward_m;       // m, camera ahead of the base origin
+  double camera_lateral_m;        // m, camera to the left of the base origin
+  double camera_height_m;        // m, camera above the floor
+  double camera_pitch_deg;        // deg, camera pitch; positive looks down (REP 103)
+  double camera_yaw_deg;          // deg, camera yaw relative to the body, counter-clockwise
+  double camera_roll_deg;         // deg, camera roll about its optical axis
   VibrationOptions vibration;           // camera mount vibration
   // What the path follower steers on: kLocalized (wheel odometry corrected by periodic
   // localisation fixes, `localization`), kOdometry (pure dead reckoning from the wheel and
   // steering encoders) or kGroundTruth (the true pose: an ideal robot). The recorded odometry is
   // the raw wheel odometry in every mode.
   enum class Navigation { kLocalized, kOdometry, kGroundTruth };
-  Navigation navigation = Navigation::kLocalized;
+  Navigation navigation;
   LocalizationOptions localization;     // fixes used by kLocalized
 
   // Smallest radius the base can turn on: L / tan(max_steer).
   double MinTurnRadiusM() const;
-  // Empty string when valid, else what is wrong.
+  TricycleOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /robot), unit, default, range, description.
+  static const OptionTable<TricycleOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 
@@ -100,17 +110,20 @@ std::vector<Eigen::Vector2d> PaperRoomWaypoints();
 // The defaults drive 1.99 laps of the paper room in 1996 frames at 25 Hz, keeping the base at
 // least 0.32 m from the furniture (tests/sim/robot_test.cpp).
 struct RouteOptions {
-  std::vector<Eigen::Vector2d> waypoints_m = PaperRoomWaypoints();  // m, polygon corners, in order
-  double laps = 2.0;                     // laps to drive when frames == 0
-  int frames = 0;                        // frames to simulate; > 0 overrides laps
-  double cruise_speed_m_s = 0.43;        // m/s, speed of the base on straight stretches
-  double lookahead_m = 0.20;             // m, pure-pursuit lookahead along the path
-  double max_lateral_accel_m_s2 = 0.35;  // m/s^2, bounds speed in turns: v^2 * curvature
-  double corner_radius_m = 0.30;         // m, radius of the arcs rounding the polygon corners
+  std::vector<Eigen::Vector2d> waypoints_m;  // m, polygon corners, in order
+  double laps;                     // laps to drive when frames == 0
+  int frames;                        // frames to simulate; > 0 overrides laps
+  double cruise_speed_m_s;        // m/s, speed of the base on straight stretches
+  double lookahead_m;             // m, pure-pursuit lookahead along the path
+  double max_lateral_accel_m_s2;  // m/s^2, bounds speed in turns: v^2 * curvature
+  double corner_radius_m;         // m, radius of the arcs rounding the polygon corners
 
-  // Empty string when valid, else what is wrong (limits shared with the robot are checked by
-  // SimulateRobot).
+  RouteOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /route), unit, default, range, description.
+  static const OptionTable<RouteOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
+  // (Limits shared with the robot are checked by SimulateRobot.)
 };
 
 // How the true motion differs from what the encoders report (docs/robot.md derives the defaults
@@ -124,19 +137,22 @@ struct RouteOptions {
 // with n1..n3 standard normal from KeyedRng(seed, "robot.odometry", integration step). The encoder
 // counts are quantised (counts_per_rev). error_scale multiplies every error term.
 struct OdometryErrorOptions {
-  bool enabled = true;                         // false: the true motion is the measured motion
-  double error_scale = 1.0;                    // multiplies every error below (0: perfect)
-  double wheel_radius_error_frac = 0.001;      // true / nominal driven-wheel radius - 1
-  double steer_offset_deg = 0.01;              // deg, true steering angle minus the measured one
-  double wheelbase_error_frac = 0.002;         // true / nominal wheelbase - 1
-  double encoder_counts_per_rev = 2048;        // drive-wheel encoder counts per revolution
-  double wheel_radius_m = 0.05;                // m, nominal driven-wheel radius
-  double slip_per_accel_s2_m = 0.01;           // longitudinal slip per m/s^2 of acceleration
-  double turn_slip_per_lat_accel_s2_m = 0.01;  // yaw-rate shortfall per m/s^2 of lateral accel.
-  double slip_noise_frac = 0.5;                // relative sd of both slips
-  double heading_noise_deg_sqrt_m = 0.03;      // deg/sqrt(m), random heading walk (floor)
+  bool enabled;                         // false: the true motion is the measured motion
+  double error_scale;                    // multiplies every error below (0: perfect)
+  double wheel_radius_error_frac;      // true / nominal driven-wheel radius - 1
+  double steer_offset_deg;              // deg, true steering angle minus the measured one
+  double wheelbase_error_frac;         // true / nominal wheelbase - 1
+  double encoder_counts_per_rev;        // drive-wheel encoder counts per revolution
+  double wheel_radius_m;                // m, nominal driven-wheel radius
+  double slip_per_accel_s2_m;           // longitudinal slip per m/s^2 of acceleration
+  double turn_slip_per_lat_accel_s2_m;  // yaw-rate shortfall per m/s^2 of lateral accel.
+  double slip_noise_frac;                // relative sd of both slips
+  double heading_noise_deg_sqrt_m;      // deg/sqrt(m), random heading walk (floor)
 
-  // Empty string when valid, else what is wrong (the first word names the field).
+  OdometryErrorOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /odometry), unit, default, range, description.
+  static const OptionTable<OdometryErrorOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/sim/camera_options.h"
+#include "hoilcd/sim/crowd_options.h"
+#include "hoilcd/sim/robot.h"
 
 namespace hoilcd {
 
@@ -41,12 +44,6 @@ struct WindowSpec {
 struct TableSpec {
   Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
   double yaw_deg = 0;
-};
-
-struct SeatingSpec {
-  int table = 0;
-  int seat = 0;
-  std::string posture;  // "random" or a posture asset name
 };
 
 struct ObjectSpec {
@@ -82,13 +79,13 @@ struct Scene {
   double chair_jitter_m = 0.05, chair_jitter_deg = 12;  // irregular chair placement
   double seat_warmth_c = 6;
 
-  nlohmann::json crowd;             // crowd parameters (read by the crowd module)
-  std::vector<SeatingSpec> seating;
-  int people_per_table = 4;
+  CrowdOptions crowd;               // /crowd
 
   std::vector<ObjectSpec> objects;  // distractor switches already applied
-  nlohmann::json camera;            // camera + sensor parameters
-  nlohmann::json robot, route, odometry;
+  CameraOptions camera;             // /camera: image, sensor, renderer, video
+  TricycleOptions robot;            // /robot
+  RouteOptions route;               // /route (frames = the scene's frames)
+  OdometryErrorOptions odometry;    // /odometry
 };
 
 // Reads, overrides, validates (all problems at once), fills defaults, and types a scene file.

@@ -10,45 +10,49 @@
 
 #include <opencv2/core.hpp>
 
+#include "hoilcd/core/option_table.h"
 #include "hoilcd/sim/radiometry.h"
 
 namespace hoilcd {
 
-// Every effect has a switch. Figures in kelvin are specified at reference_temperature_c (the
+// Every effect has a switch (defaults and ranges: Table() in sensor.cpp). Figures in kelvin are specified at reference_temperature_c (the
 // NETD convention, 300 K) and applied in the signal (radiance) domain through the camera's
 // responsivity dL/dT there, as a real detector does: on colder surfaces the same signal noise
 // reads as slightly more temperature noise, on hotter ones as less.
 struct SensorOptions {
-  bool optics_blur = true;               // Gaussian point-spread function on the radiance
-  double psf_sigma_px = 0.5;             // PSF standard deviation, px (FWHM 1.18 px)
-  bool temporal_noise = true;            // white noise, new every frame
-  double netd_k = 0.040;                 // noise-equivalent temperature difference (1-σ), K
-  bool fixed_pattern = true;             // residual non-uniformity after factory calibration
-  double fpn_offset_k = 0.05;            // per-pixel offset (1-σ), K
-  double fpn_gain_sigma = 0.002;         // per-pixel relative gain error (1-σ), fraction
-  double column_stripe_k = 0.03;         // per-column offset (1-σ), K
-  double shutter_temperature_c = 25.0;   // FFC shutter temperature: gain errors vanish there, °C
-  bool drift = true;                     // global offset ramp between flat-field corrections
-  double drift_k_per_min = 0.2;          // 1-σ of the ramp's random slope per FFC interval, K/min
-  double ffc_interval_s = 60.0;          // time between flat-field corrections, s (0: never; max 86400)
-  bool lens_shading = true;              // radial shading that grows as the housing warms after an FFC
-  double housing_warming_k_per_min = 0.5;  // housing temperature rise after each FFC, K/min
-  double vignetting_k_per_k = 0.4;       // corner minus centre per K of housing warming, K/K
-  double narcissus_k_per_k = 0.2;        // depth of the centred dark spot per K of warming, K/K
-  double narcissus_sigma = 0.35;         // spot radius (1-σ) as a fraction of the half-diagonal
-  bool ffc_freeze = true;                // output repeats the last frame while the shutter is shut
-  double ffc_freeze_s = 0.5;             // freeze length at each FFC, s
-  bool time_constant = true;             // bolometer thermal lag (motion smear)
-  double time_constant_s = 0.010;        // bolometer thermal time constant, s
-  bool quantisation = true;              // output rounded to a temperature step
-  double quantisation_step_k = 0.01;     // output temperature step, K
-  double reference_temperature_c = 26.85;  // scene temperature at which K figures hold, °C
-  double emissivity_setting = 1.0;       // emissivity the camera assumes when converting, 0–1
-  double reflected_temperature_c = 22.0;   // reflected temperature assumed when ε setting < 1, °C
-  double display_min_c = 20.0;           // 8-bit display window: maps to 0, °C
-  double display_max_c = 30.0;           // 8-bit display window: maps to 255, °C
+  bool optics_blur;               // Gaussian point-spread function on the radiance
+  double psf_sigma_px;             // PSF standard deviation, px (FWHM 1.18 px)
+  bool temporal_noise;            // white noise, new every frame
+  double netd_k;                 // noise-equivalent temperature difference (1-σ), K
+  bool fixed_pattern;             // residual non-uniformity after factory calibration
+  double fpn_offset_k;            // per-pixel offset (1-σ), K
+  double fpn_gain_sigma;         // per-pixel relative gain error (1-σ), fraction
+  double column_stripe_k;         // per-column offset (1-σ), K
+  double shutter_temperature_c;   // FFC shutter temperature: gain errors vanish there, °C
+  bool drift;                     // global offset ramp between flat-field corrections
+  double drift_k_per_min;          // 1-σ of the ramp's random slope per FFC interval, K/min
+  double ffc_interval_s;          // time between flat-field corrections, s (0: never)
+  bool lens_shading;              // radial shading that grows as the housing warms after an FFC
+  double housing_warming_k_per_min;  // housing temperature rise after each FFC, K/min
+  double vignetting_k_per_k;       // corner minus centre per K of housing warming, K/K
+  double narcissus_k_per_k;        // depth of the centred dark spot per K of warming, K/K
+  double narcissus_sigma;         // spot radius (1-σ) as a fraction of the half-diagonal
+  bool ffc_freeze;                // output repeats the last frame while the shutter is shut
+  double ffc_freeze_s;             // freeze length at each FFC, s
+  bool time_constant;             // bolometer thermal lag (motion smear)
+  double time_constant_s;        // bolometer thermal time constant, s
+  bool quantisation;              // output rounded to a temperature step
+  double quantisation_step_k;     // output temperature step, K
+  double reference_temperature_c;  // scene temperature at which K figures hold, °C
+  double emissivity_setting;       // emissivity the camera assumes when converting, 0–1
+  double reflected_temperature_c;   // reflected temperature assumed when ε setting < 1, °C
+  double display_min_c;           // 8-bit display window: maps to 0, °C
+  double display_max_c;           // 8-bit display window: maps to 255, °C
 
-  // "" when valid, else what is wrong (field name and expected range).
+  SensorOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /camera), unit, default, range, description.
+  static const OptionTable<SensorOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

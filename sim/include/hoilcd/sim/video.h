@@ -10,18 +10,23 @@
 
 #include <opencv2/core.hpp>
 
+#include "hoilcd/core/option_table.h"
+
 namespace hoilcd {
 
 // Defaults resemble a handheld thermal camera's recording (HIKMICRO Pocket2 / FLIR-style MP4):
 // a real-time embedded encoder, keyframe every second, no B-frames, moderate quality.
 struct VideoOptions {
-  bool enabled = false;             // video mode: the thermal PNGs are the decoded video frames
-  int crf = 23;                     // x264 constant rate factor, 0–51 (used when bitrate_kbps is 0)
-  int bitrate_kbps = 0;             // target average bitrate, kbit/s (0: constant quality, crf)
-  int gop_frames = 25;              // frames between keyframes (1 s at 25 Hz), 1–600
-  std::string preset = "veryfast";  // x264 speed/quality preset (ultrafast … veryslow)
+  bool enabled;          // video mode: the thermal PNGs are the decoded video frames
+  int crf;               // x264 constant rate factor (used when bitrate_kbps is 0)
+  int bitrate_kbps;      // target average bitrate, kbit/s (0: constant quality, crf)
+  int gop_frames;        // frames between keyframes (25: 1 s at 25 Hz)
+  std::string preset;    // x264 speed/quality preset (ultrafast … veryslow)
 
-  // "" when valid, else what is wrong (field name and expected range).
+  VideoOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /camera/video), unit, default, range, description.
+  static const OptionTable<VideoOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 
