@@ -20,6 +20,7 @@
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/parallel.h"
+#include "hoilcd/core/text.h"
 
 namespace hoilcd {
 namespace {
@@ -36,13 +37,6 @@ constexpr const char* kManifestChecksumKey = "manifest_checksum";
 
 std::string JoinPath(const std::string& dir, const std::string& relative) {
   return (fs::path(dir) / relative).string();
-}
-
-// Shortest decimal text that reads back as exactly the same double.
-std::string FormatDouble(double value) {
-  std::array<char, 32> buffer;
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
 }
 
 // Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
@@ -511,7 +505,7 @@ std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
                      p.cam_yaw_rad, p.cam_pitch_rad, p.cam_roll_rad, p.odo_x_m, p.odo_y_m,
                      p.odo_theta_rad}) {
       out += ',';
-      out += FormatDouble(v);
+      out += ShortestDouble(v);
     }
     out += '\n';
   }
@@ -588,10 +582,10 @@ std::string PosesToTum(const std::vector<PoseRecord>& poses) {
     const Rigid3 world_from_cam = pose.WorldFromCam();
     const Eigen::Quaterniond& q = world_from_cam.rotation;
     const Eigen::Vector3d& t = world_from_cam.translation;
-    out += FormatDouble(p.time_s);
+    out += ShortestDouble(p.time_s);
     for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) {
       out += ' ';
-      out += FormatDouble(v);
+      out += ShortestDouble(v);
     }
     out += '\n';
   }
