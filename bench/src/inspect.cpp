@@ -7,31 +7,12 @@
 
 #include "hoilcd/bench/camera_output.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/stats.h"
 
 namespace hoilcd {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
-
-// The q-quantile (0..1) by linear interpolation between order statistics; 0 for no values.
-double Quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const double at = q * (values.size() - 1);
-  const size_t lo = static_cast<size_t>(std::floor(at));
-  const size_t hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (at - lo) * (values[hi] - values[lo]);
-}
-
-double StdDev(const std::vector<double>& values) {
-  if (values.size() < 2) return 0;
-  double mean = 0;
-  for (double v : values) mean += v;
-  mean /= values.size();
-  double sum = 0;
-  for (double v : values) sum += (v - mean) * (v - mean);
-  return std::sqrt(sum / (values.size() - 1));
-}
 
 double RmsFrameToFrame(const std::vector<double>& values) {
   if (values.size() < 2) return 0;

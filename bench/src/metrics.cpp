@@ -5,37 +5,13 @@
 #include <charconv>
 #include <numeric>
 
+#include "hoilcd/bench/json_number.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/stats.h"
+#include "hoilcd/core/text.h"
 
 namespace hoilcd {
 namespace {
-
-double Mean(const std::vector<double>& values) {
-  if (values.empty()) return NAN;
-  return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  if (values.size() % 2 == 1) return values[mid];
-  const double upper = values[mid];
-  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
-}
-
-// Shortest text that reads back as the same double; NaN as an empty field.
-std::string CsvNumber(double value) {
-  if (std::isnan(value)) return "";
-  std::array<char, 32> buffer;
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
-
-// JSON has no NaN: an undefined value is null.
-nlohmann::json JsonNumber(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
 
 }  // namespace
 

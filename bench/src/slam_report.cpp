@@ -5,24 +5,16 @@
 #include <sstream>
 
 #include "hoilcd/bench/chart.h"
+#include "hoilcd/bench/json_number.h"
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/text.h"
 
 namespace hoilcd {
 namespace {
 
-// JSON has no NaN: a missing figure is null.
-nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 nlohmann::json ScoreJson(const SlamScore& s) {
-  return {{"ate_rmse_m", Number(s.ate_rmse_m)}, {"rpe_rmse_m", Number(s.rpe_rmse_m)},
+  return {{"ate_rmse_m", JsonNumber(s.ate_rmse_m)}, {"rpe_rmse_m", JsonNumber(s.rpe_rmse_m)},
           {"loops_accepted", s.loops_accepted}, {"false_loops", s.false_loops}};
-}
-
-std::string Fixed(double v, int digits = 3) {
-  if (!std::isfinite(v)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.*f", digits, v);
-  return text;
 }
 
 Series Path(const std::string& label, const std::vector<Pose2d>& poses, cv::Scalar colour) {
@@ -54,7 +46,7 @@ nlohmann::json SlamSummaryJson(const SlamResult& slam) {
 
 nlohmann::json MethodSlamJson(const MethodSlam& m) {
   nlohmann::json j;
-  j["loop_threshold"] = Number(m.threshold);
+  j["loop_threshold"] = JsonNumber(m.threshold);
   j["threshold_source"] = m.threshold_source;
   for (const SlamScore& s : m.backends) j[s.backend] = ScoreJson(s);
   j["ate_vs_threshold"] = {{"threshold", m.curve_threshold}, {"loops_accepted", m.curve_loops},

@@ -12,6 +12,7 @@
 #include "hoilcd/bench/chart.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/stats.h"
 #include "hoilcd/core/text.h"
 
 namespace hoilcd {
@@ -28,13 +29,6 @@ std::string CsvField(const std::string& s) {
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-std::string CsvNumber(double v) {
-  if (!std::isfinite(v)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6g", v);
-  return buf;
 }
 
 double JsonMetric(const nlohmann::json& method, const std::string& key) {
@@ -59,22 +53,16 @@ nlohmann::json Identity(const SweepPlan& plan) {
 }  // namespace
 
 SweepStats SweepStats::Of(const std::vector<double>& values) {
+  std::vector<double> finite;
+  for (double v : values)
+    if (std::isfinite(v)) finite.push_back(v);
   SweepStats s;
-  double sum = 0;
-  for (double v : values) {
-    if (!std::isfinite(v)) continue;
-    ++s.count;
-    sum += v;
-    s.min = s.count == 1 ? v : std::min(s.min, v);
-    s.max = s.count == 1 ? v : std::max(s.max, v);
-  }
-  if (s.count == 0) return s;
-  s.mean = sum / s.count;
-  double squares = 0;
-  for (double v : values) {
-    if (std::isfinite(v)) squares += (v - s.mean) * (v - s.mean);
-  }
-  s.std = s.count > 1 ? std::sqrt(squares / (s.count - 1)) : 0.0;
+  s.count = static_cast<int>(finite.size());
+  if (finite.empty()) return s;
+  s.mean = Mean(finite);
+  s.std = StdDev(finite);
+  s.min = *std::min_element(finite.begin(), finite.end());
+  s.max = *std::max_element(finite.begin(), finite.end());
   return s;
 }
 
@@ -203,7 +191,7 @@ std::string SweepSummary::ToCsv() const {
     for (const auto& [key, value] : row.settings) out << CsvField(value) << ",";
     out << row.method << "," << row.seeds.size();
     for (const SweepStats& s : row.stats) {
-      out << "," << CsvNumber(s.mean) << "," << CsvNumber(s.std) << "," << CsvNumber(s.min) << "," << CsvNumber(s.max);
+      out << "," << CsvNumber(s.mean, 6) << "," << CsvNumber(s.std, 6) << "," << CsvNumber(s.min, 6) << "," << CsvNumber(s.max, 6);
     }
     out << "\n";
   }

@@ -4,8 +4,10 @@
 #include <map>
 #include <set>
 
+#include "hoilcd/bench/json_number.h"
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/lapjv.h"
+#include "hoilcd/core/stats.h"
 
 namespace hoilcd {
 namespace {
@@ -33,18 +35,6 @@ std::vector<std::pair<int, int>> MatchByIoU(const std::vector<cv::Rect2f>& perso
     if (cost[i][j] < kCostLimit) matches.emplace_back(i, j);
   }
   return matches;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  if (values.size() % 2 == 1) return values[mid];
-  return 0.5 * (values[mid] + *std::max_element(values.begin(), values.begin() + mid));
-}
-
-nlohmann::json JsonNumber(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
 }  // namespace

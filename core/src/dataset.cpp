@@ -1,9 +1,5 @@
 #include "hoilcd/core/dataset.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-#include <xxhash.h>
-
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -11,15 +7,14 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <initializer_list>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/json_reader.h"
 #include "hoilcd/core/parallel.h"
+#include "hoilcd/core/text.h"
 
 namespace hoilcd {
 namespace {
@@ -27,7 +22,6 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-constexpr const char* kChecksumPrefix = "xxh3-128:";
 constexpr const char* kVideoFile = "thermal.mp4";
 constexpr const char* kPosesHeader =
     "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,odo_y,odo_theta";
@@ -37,99 +31,6 @@ constexpr const char* kManifestChecksumKey = "manifest_checksum";
 std::string JoinPath(const std::string& dir, const std::string& relative) {
   return (fs::path(dir) / relative).string();
 }
-
-// Shortest decimal text that reads back as exactly the same double.
-std::string FormatDouble(double value) {
-  std::array<char, 32> buffer;
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
-
-// Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
-class JsonReader {
- public:
-  explicit JsonReader(std::string path) : path_(std::move(path)) {}
-
-  ProblemCollector& problems() { return problems_; }
-
-  void Add(const std::string& pointer, std::string message) {
-    problems_.Add(path_ + ": " + (pointer.empty() ? "/" : pointer), std::move(message));
-  }
-
-  json Parse(const std::string& text) {
-    try {
-      return json::parse(text);
-    } catch (const json::exception& e) {  // parse errors and number overflow (1e400)
-      throw InputError(path_, std::string("invalid JSON: ") + e.what());
-    }
-  }
-
-  bool ExpectObject(const json& value, const std::string& pointer) {
-    if (value.is_object()) return true;
-    Add(pointer, "expected an object");
-    return false;
-  }
-
-  bool ExpectArray(const json& value, const std::string& pointer) {
-    if (value.is_array()) return true;
-    Add(pointer, "expected an array");
-    return false;
-  }
-
-  // Unknown keys are errors, so typos fail loudly.
-  void CheckKeys(const json& object, const std::string& pointer,
-                 std::initializer_list<const char*> allowed) {
-    for (const auto& item : object.items()) {
-      bool known = false;
-      for (const char* key : allowed) known = known || item.key() == key;
-      if (!known) Add(pointer + "/" + item.key(), "unknown key");
-    }
-  }
-
-  template <typename T>
-  void Read(const json& object, const std::string& pointer, const char* key, T* out) {
-    const std::string where = pointer + "/" + key;
-    const auto it = object.find(key);
-    if (it == object.end()) {
-      Add(where, "missing");
-      return;
-    }
-    ReadValue(*it, where, out);
-  }
-
-  void ReadValue(const json& value, const std::string& where, std::string* out) {
-    if (value.is_string()) *out = value.get<std::string>();
-    else Add(where, "expected a string");
-  }
-  void ReadValue(const json& value, const std::string& where, double* out) {
-    if (value.is_number()) *out = value.get<double>();
-    else Add(where, "expected a number");
-  }
-  void ReadValue(const json& value, const std::string& where, float* out) {
-    if (value.is_number()) *out = value.get<float>();
-    else Add(where, "expected a number");
-  }
-  void ReadValue(const json& value, const std::string& where, int* out) {
-    if (value.is_number_integer() && value.get<int64_t>() >= INT32_MIN &&
-        value.get<int64_t>() <= INT32_MAX) {
-      *out = value.get<int>();
-    } else {
-      Add(where, "expected a 32-bit integer");
-    }
-  }
-  void ReadValue(const json& value, const std::string& where, uint64_t* out) {
-    if (value.is_number_unsigned()) *out = value.get<uint64_t>();
-    else Add(where, "expected a non-negative integer");
-  }
-  void ReadValue(const json& value, const std::string& where, bool* out) {
-    if (value.is_boolean()) *out = value.get<bool>();
-    else Add(where, "expected true or false");
-  }
-
- private:
-  std::string path_;
-  ProblemCollector problems_;
-};
 
 bool IsSafeRelativePath(const std::string& relative) {
   const fs::path p(relative);
@@ -141,82 +42,6 @@ bool IsSafeRelativePath(const std::string& relative) {
 }
 
 }  // namespace
-
-std::string ChecksumOf(std::string_view bytes) {
-  const XXH128_hash_t hash = XXH3_128bits(bytes.data(), bytes.size());
-  XXH128_canonical_t canonical;
-  XXH128_canonicalFromHash(&canonical, hash);
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out = kChecksumPrefix;
-  for (unsigned char byte : canonical.digest) {
-    out += kHex[byte >> 4];
-    out += kHex[byte & 15];
-  }
-  return out;
-}
-
-std::string ReadFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot read file (missing or not readable)");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path, "cannot read file (I/O error)");
-  return bytes;
-}
-
-void WriteFileAtomic(const std::string& path, std::string_view bytes) {
-  const fs::path target(path);
-  if (target.has_parent_path()) {
-    std::error_code ec;
-    fs::create_directories(target.parent_path(), ec);
-    if (ec) throw InputError(path, "cannot create directory: " + ec.message());
-  }
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError(path, std::string("cannot write file: ") + std::strerror(errno));
-  auto fail = [&](const char* what) {
-    const int err = errno;
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw InputError(path, std::string(what) + std::strerror(err));
-  };
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("cannot write file: ");
-    }
-    done += static_cast<size_t>(n);
-  }
-  if (::fsync(fd) != 0) fail("cannot flush file to disk: ");
-  if (::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    throw InputError(path, std::string("cannot write file: ") + std::strerror(err));
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    throw InputError(path, std::string("cannot rename temporary file into place: ") +
-                               std::strerror(err));
-  }
-}
-
-std::string EncodePng(const cv::Mat& image) {
-  HOILCD_CHECK_MSG((image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U)) ||
-                       image.type() == CV_8UC3,
-                   "EncodePng takes a 1-channel CV_8U or CV_16U image or a CV_8UC3 one");
-  std::vector<uchar> buffer;
-  // zlib level 1: 4-5x less CPU than the default 6 for 2-4 % larger frames (bench/README.md
-  // "Rendering"); PNG encoding was the render pipeline's bottleneck.
-  HOILCD_CHECK(cv::imencode(".png", image, buffer, {cv::IMWRITE_PNG_COMPRESSION, 1}));
-  return std::string(buffer.begin(), buffer.end());
-}
-
-void WritePng(const std::string& path, const cv::Mat& image) {
-  HOILCD_CHECK_MSG(!image.empty(), "WritePng of an empty image to " << path);
-  WriteFileAtomic(path, EncodePng(image));
-}
 
 std::string FrameFileName(int frame, const char* extension) {
   HOILCD_CHECK(frame >= 0 && extension != nullptr);
@@ -511,7 +336,7 @@ std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
                      p.cam_yaw_rad, p.cam_pitch_rad, p.cam_roll_rad, p.odo_x_m, p.odo_y_m,
                      p.odo_theta_rad}) {
       out += ',';
-      out += FormatDouble(v);
+      out += ShortestDouble(v);
     }
     out += '\n';
   }
@@ -588,10 +413,10 @@ std::string PosesToTum(const std::vector<PoseRecord>& poses) {
     const Rigid3 world_from_cam = pose.WorldFromCam();
     const Eigen::Quaterniond& q = world_from_cam.rotation;
     const Eigen::Vector3d& t = world_from_cam.translation;
-    out += FormatDouble(p.time_s);
+    out += ShortestDouble(p.time_s);
     for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) {
       out += ' ';
-      out += FormatDouble(v);
+      out += ShortestDouble(v);
     }
     out += '\n';
   }

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/stats.h"
 
 namespace hoilcd {
 
@@ -187,12 +188,6 @@ std::vector<int> SplitBetweenHeads(const std::vector<ColumnSpan>& heads) {
   return splits;
 }
 
-double Median(std::vector<float> values) {
-  auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // Warm objects: too hot overall, mostly above clothing temperature, or a filled convex
 // rectangle (laptop, screen, radiator).
 bool IsObject(const Part& part, double median_c, const PersonDetectorOptions& options) {
@@ -347,7 +342,7 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
       for (const ColumnSpan& h : heads) {
         part.has_head |= blob.x + h.x0 < x1 && blob.x + h.x1 > x0;
       }
-      if (IsObject(part, Median(part.temperatures_c), options)) continue;
+      if (IsObject(part, Median(std::vector<double>(part.temperatures_c.begin(), part.temperatures_c.end())), options)) continue;
       parts.push_back(std::move(part));
     }
   }
@@ -375,7 +370,7 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
     if (part.box.height < options.min_height_px) continue;
     const double aspect = static_cast<double>(part.box.height) / part.box.width;
     if (aspect < options.min_aspect_hw || aspect > options.max_aspect_hw) continue;
-    const double median_c = Median(part.temperatures_c);
+    const double median_c = Median(std::vector<double>(part.temperatures_c.begin(), part.temperatures_c.end()));
     if (median_c > options.max_median_c) continue;
     if (!radiometric_c.empty() && !LooksHuman(part, options)) continue;
     for (const cv::Point& q : part.pixels) result.mask.at<uint8_t>(q) = 255;

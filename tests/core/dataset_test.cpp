@@ -108,82 +108,9 @@ DatasetManifest WriteTinyDataset(const std::string& dir, int frames, bool comple
   return m;
 }
 
-TEST(Checksum, HasPrefixAnd32HexDigitsAndChangesWithOneByte) {
-  const std::string a = ChecksumOf("hello");
-  ASSERT_EQ(a.size(), 9u + 32u);
-  EXPECT_EQ(a.substr(0, 9), "xxh3-128:");
-  EXPECT_EQ(a.find_first_not_of("0123456789abcdef", 9), std::string::npos);
-  EXPECT_EQ(a, ChecksumOf("hello"));
-  EXPECT_NE(a, ChecksumOf("hellp"));
-}
-
 TEST(FrameFileName, ZeroPadsToSixDigitsWithOrWithoutDot) {
   EXPECT_EQ(FrameFileName(123, "png"), "000123.png");
   EXPECT_EQ(FrameFileName(0, ".exr"), "000000.exr");
-}
-
-TEST(EncodePng, IsDeterministicAndDecodesToTheSamePixels) {
-  cv::Mat image16(6, 8, CV_16UC1);
-  for (int i = 0; i < 48; ++i) image16.at<uint16_t>(i / 8, i % 8) = 29000 + 37 * i;
-  const std::string bytes = EncodePng(image16);
-  EXPECT_EQ(bytes, EncodePng(image16.clone()));
-  const cv::Mat decoded =
-      cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
-  ASSERT_EQ(decoded.type(), CV_16UC1);
-  EXPECT_EQ(cv::countNonZero(decoded != image16), 0);
-  EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_8UC4)), std::logic_error);
-  EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_32FC1)), std::logic_error);
-}
-
-TEST(WritePng, WritesADecodableBgrPngAndNoTemporaryFile) {
-  TempDir dir;
-  const std::string path = dir / "plot.png";
-  cv::Mat image(5, 7, CV_8UC3);
-  cv::randu(image, 0, 256);
-  WritePng(path, image);
-  const cv::Mat read = cv::imread(path, cv::IMREAD_UNCHANGED);
-  ASSERT_EQ(read.type(), CV_8UC3);
-  EXPECT_EQ(cv::norm(read, image, cv::NORM_INF), 0.0);
-  int entries = 0;
-  for (const auto& entry : fs::directory_iterator(dir.str())) {
-    ++entries;
-    EXPECT_EQ(entry.path().filename(), "plot.png");
-  }
-  EXPECT_EQ(entries, 1);
-}
-
-TEST(WritePng, UnwritableFolderIsAnInputErrorNamingThePath) {
-  TempDir dir;
-  WriteFileAtomic(dir / "file", "a file, not a folder");
-  const std::string path = dir / "file/plot.png";
-  try {
-    WritePng(path, cv::Mat(4, 4, CV_8UC3, cv::Scalar::all(0)));
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    ASSERT_EQ(e.problems().size(), 1u);
-    EXPECT_EQ(e.problems()[0].where, path);
-  }
-}
-
-TEST(WriteFileAtomic, ReplacesContentCreatesDirectoriesAndLeavesNoTempFile) {
-  TempDir dir;
-  const std::string path = dir / "a/b/file.txt";
-  WriteFileAtomic(path, "first version, longer");
-  EXPECT_EQ(ReadFileBytes(path), "first version, longer");
-  WriteFileAtomic(path, "second");
-  EXPECT_EQ(ReadFileBytes(path), "second");
-  int entries = 0;
-  for (const auto& entry : fs::directory_iterator(dir / "a/b")) {
-    ++entries;
-    EXPECT_EQ(entry.path().filename(), "file.txt");
-  }
-  EXPECT_EQ(entries, 1);
-}
-
-TEST(ReadFileBytes, MissingFileIsAnInputErrorNamingIt) {
-  TempDir dir;
-  const std::string message = InputErrorOf([&] { ReadFileBytes(dir / "nope.bin"); });
-  EXPECT_NE(message.find("nope.bin: cannot read"), std::string::npos) << message;
 }
 
 TEST(DatasetManifest, JsonRoundTripKeepsEveryField) {

@@ -1,5 +1,5 @@
 // Number formatting shared by reports, sweeps and dataset files, defined once: fixed decimals
-// for tables and prose.
+// for tables and prose, the shortest exact text for files, CSV fields.
 #pragma once
 
 #include <string>
@@ -8,5 +8,12 @@ namespace hoilcd {
 
 // `value` with `digits` decimals ("%.*f"); "-" when it is not finite (a missing figure).
 std::string Fixed(double value, int digits = 3);
+
+// The shortest decimal text that reads back as exactly the same double (std::to_chars).
+std::string ShortestDouble(double value);
+
+// A CSV field: "" when `value` is not finite (a missing figure), else ShortestDouble(value), or
+// with significant_digits > 0 that many significant digits ("%.*g").
+std::string CsvNumber(double value, int significant_digits = 0);
 
 }  // namespace hoilcd

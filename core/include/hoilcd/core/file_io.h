@@ -1,0 +1,28 @@
+// Generic file I/O: whole-file reads, atomic writes (a reader never sees a half-written file),
+// content checksums, and PNG encoding with the one atomic PNG writer.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <string_view>
+
+namespace hoilcd {
+
+// "xxh3-128:<32 lowercase hex digits>" (XXH3 128-bit, canonical big-endian byte order).
+std::string ChecksumOf(std::string_view bytes);
+
+// Whole file as bytes; InputError(path, "cannot read ...") if missing or unreadable.
+std::string ReadFileBytes(const std::string& path);
+
+// Writes to "<path>.tmp.<pid>" in the same directory, fsyncs, renames over path: readers never
+// see a half-written file. Creates parent directories. InputError(path, ...) on failure.
+void WriteFileAtomic(const std::string& path, std::string_view bytes);
+
+// PNG bytes of a 1-channel CV_8U or CV_16U image or a BGR CV_8UC3 one (figures); the same image
+// always gives the same bytes.
+std::string EncodePng(const cv::Mat& image);
+
+// EncodePng(image) written with WriteFileAtomic: the one atomic PNG writer (frames, figures).
+void WritePng(const std::string& path, const cv::Mat& image);
+
+}  // namespace hoilcd
