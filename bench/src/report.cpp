@@ -132,7 +132,7 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
                                 const Dataset& dataset) {
   const Query& q = result.queries[query_index];
   const QueryRecord& rec = run.metrics.queries[query_index];
-  const bool hoi = run.name.rfind("dlcd", 0) == 0;
+  const bool hoi = FindMethod(run.name).Features() == ShownFeatures::kHoiPoints;
   auto features = [&](int frame) {
     std::vector<cv::Point2f> pts;
     if (hoi) {
@@ -290,21 +290,27 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
     figures.push_back("mrr_per_lap.png");
   }
-  for (const char* name : {"fusion", "dlcd", "slcd"}) {
+  // Figures of the paper's methods, last registered first (fusion, dlcd, slcd).
+  std::vector<const LoopClosureMethod*> paper;
+  for (const auto& m : RegisteredMethods())
+    if (m->FromPaper()) paper.insert(paper.begin(), m.get());
+  for (const LoopClosureMethod* m : paper) {
+    const std::string name = m->Name();
     if (const MethodRun* run = result.Find(name)) {
-      WritePng(dir + "/trajectory_" + std::string(name) + ".png", TrajectoryFigure(result, *run, dataset));
-      figures.push_back("trajectory_" + std::string(name) + ".png");
+      WritePng(dir + "/trajectory_" + name + ".png", TrajectoryFigure(result, *run, dataset));
+      figures.push_back("trajectory_" + name + ".png");
     }
   }
   if (result.slam_evaluated) {
     for (const std::string& f : WriteSlamFiles(result.slam, dataset.poses(), options.slam_options.slam, dir)) figures.push_back(f);
   }
-  for (const char* name : {"dlcd", "slcd"}) {
+  for (const LoopClosureMethod* m : paper) {
+    const std::string name = m->Name();
     const MethodRun* run = result.Find(name);
-    if (!run) continue;
+    if (!run || m->Features() == ShownFeatures::kNone) continue;
     // Queries whose frame has features for this method show the matching (like the paper's
     // figure 6); a wall with no features makes a dull example.
-    const bool hoi = std::string(name) == "dlcd";
+    const bool hoi = m->Features() == ShownFeatures::kHoiPoints;
     std::vector<size_t> scored;
     for (size_t i = 0; i < result.queries.size(); ++i) {
       const FrameFeatures& f = result.features[result.queries[i].frame];
@@ -321,8 +327,8 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
     }
     MosaicOptions mosaic;
     mosaic.scale = 1;  // four rows of four 256x192 tiles; x2 makes multi-megabyte PNGs
-    WritePng(dir + "/matches_" + std::string(name) + ".png", MatchMosaic(rows, mosaic));
-    figures.push_back("matches_" + std::string(name) + ".png");
+    WritePng(dir + "/matches_" + name + ".png", MatchMosaic(rows, mosaic));
+    figures.push_back("matches_" + name + ".png");
   }
 
   std::ostringstream md;
