@@ -130,9 +130,11 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   if (options.slam) {
     std::vector<NamedScores> named;
     for (const MethodRun& r : result.runs) named.push_back({r.name, &r.scores});
+    SlamRunOptions slam_options = options.slam_options;
+    slam_options.threads = options.threads;
     result.slam = RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json",
                           dataset.manifest().frame_rate_hz, options.protocol.radius_m, result.queries, named,
-                          options.slam_options);
+                          slam_options);
     result.slam_evaluated = true;
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

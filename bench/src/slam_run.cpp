@@ -6,12 +6,14 @@
 #include <cstdio>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 
 namespace hoilcd {
 
 std::string SlamRunOptions::Check() const {
   if (const std::string p = slam.Check(); !p.empty()) return p;
   if (curve_points < 2) return "curve_points must be at least 2";
+  if (threads < 0) return "threads must be 0 (every core) or positive";
   return "";
 }
 
@@ -36,8 +38,13 @@ SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scen
   if (out.oracle_loops.empty()) out.notes.push_back("the sequence has no true loop: the oracle is the odometry");
   for (const std::string& b : PoseGraphBackends()) out.oracle.push_back(SolveSlam(poses, out.oracle_loops, out.noise, slam, b));
 
-  for (const NamedScores& m : methods) {
-    MethodSlam ms;
+  // Each method's graphs are independent (one single-threaded Ceres solve each): methods run in
+  // parallel, each writing only its own slot, so the result does not depend on the thread count.
+  out.methods.resize(methods.size());
+  std::vector<std::string> method_notes(methods.size());
+  ParallelFor(static_cast<int64_t>(methods.size()), options.threads, [&](int64_t i) {
+    const NamedScores& m = methods[static_cast<size_t>(i)];
+    MethodSlam& ms = out.methods[static_cast<size_t>(i)];
     ms.method = m.name;
     if (!std::isnan(slam.loop_threshold)) {
       ms.threshold = slam.loop_threshold, ms.threshold_source = "--loop-threshold";
@@ -52,7 +59,7 @@ SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scen
       char text[200];
       std::snprintf(text, sizeof(text), "%s: threshold %g (%s) accepts no loop; its trajectory is the odometry",
                     m.name.c_str(), ms.threshold, ms.threshold_source.c_str());
-      out.notes.push_back(text);
+      method_notes[static_cast<size_t>(i)] = text;
     }
     for (const std::string& b : PoseGraphBackends()) ms.backends.push_back(SolveSlam(poses, ms.loops, out.noise, slam, b));
     for (double t : ThresholdCandidates(queries, *m.scores, options.curve_points)) {
@@ -61,8 +68,9 @@ SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scen
       ms.curve_loops.push_back(static_cast<int>(loops.size()));
       ms.curve_ate_m.push_back(SolveSlam(poses, loops, out.noise, slam, out.backend).ate_rmse_m);
     }
-    out.methods.push_back(std::move(ms));
-  }
+  });
+  for (const std::string& note : method_notes)
+    if (!note.empty()) out.notes.push_back(note);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -1,7 +1,8 @@
 // detection_eval: how well DLCD's person detector and tracker find the people of a dataset, against
 // persons.json, with the reasons for each miss. The front end reads what bench reads (decoded
 // frames in video mode), people are scored as bench scores them (>= 20 % visible, box >= 16 px).
-// Usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [DETECTOR_OPTION=VALUE...] [--draw=DIR]
+// Usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [DETECTOR_OPTION=VALUE...] [--draw=DIR] [--u8]
+// (--u8: read the 8-bit frames only, as in video mode, even when the dataset is not in video mode)
 // (--draw: DIR/NNNNNN.png per frame with people, temperatures 20-37 degC and the detector's mask,
 // ground-truth boxes green, detections red, scaled 3x)
 // (options: the numeric PersonDetectorOptions fields listed in kNumericOptions below)
@@ -81,10 +82,12 @@ int Main(int argc, char** argv) {
   const Dataset dataset = Dataset::Open(argv[1], /*verify_checksums=*/false);
   std::vector<int> range;
   std::string draw_dir;
+  bool u8_only = false;
   BenchOptions options = WithManifest(BenchOptions{}, dataset.manifest());
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg.rfind("--draw=", 0) == 0) draw_dir = arg.substr(7);
+    else if (arg == "--u8") u8_only = true;
     else if (arg.find('=') != std::string::npos) SetOption(&options.detector, arg);
     else range.push_back(std::stoi(arg));
   }
@@ -92,7 +95,7 @@ int Main(int argc, char** argv) {
   const int first = range.size() > 0 ? range[0] : 0;
   const int end = range.size() > 1 ? std::min(range[1], dataset.num_frames()) : dataset.num_frames();
   const TrackingMetricsOptions& scoring = options.tracking_metrics;
-  const bool video_mode = IsVideoMode(dataset);
+  const bool video_mode = u8_only || IsVideoMode(dataset);
   const int person_class = dataset.manifest().classes.at("person");
   DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
 
@@ -195,7 +198,7 @@ int Main(int argc, char** argv) {
   }
   const TrackingMetrics det = ComputeTrackingMetrics(truth, detected, scoring);
   const TrackingMetrics trk = ComputeTrackingMetrics(truth, tracked, scoring);
-  std::printf("frames %d-%d of %s (%s)\n", first, end - 1, argv[1], video_mode ? "video mode: decoded frames" : "radiometric");
+  std::printf("frames %d-%d of %s (%s)\n", first, end - 1, argv[1], video_mode ? "8-bit frames only" : "radiometric");
   std::printf("scored people %d; mean fraction of their pixels >= threshold_c %.3f\n", scored_people,
               scored_people ? warm_fraction_sum / scored_people : 0.0);
   std::printf("detections: precision %.3f recall %.3f (TP %d FP %d FN %d)\n", det.precision, det.recall,

@@ -17,6 +17,7 @@ struct SlamRunOptions {
   SlamOptions slam;                                   // back end, loop model, --loop-threshold
   std::map<std::string, double> calibrated_threshold; // method -> threshold at 100 % precision on the calibration run
   int curve_points = 6;                               // thresholds on each ATE curve (count)
+  int threads = 0;                                    // methods solved at once (0: every core)
   std::string Check() const;
 };
 
