@@ -345,6 +345,18 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
       events_.push_back({frame, "arrive", people_[index].person_id, seat_name(seat.table, seat.seat), ""});
     }
   }
+  // Elbow room on each side, now that every seat and sitter is known (people are added
+  // seat by seat, so AddSeatedPerson sees only the seats before theirs).
+  for (Person& person : people_) {
+    if (!person.seated) continue;
+    const Eigen::Matrix4d seat_from_world = person.world_from_seat.cast<double>().inverse();
+    for (const Seat& other : seats_) {
+      const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
+      if (std::abs(at.x()) >= 0.35 || std::abs(at.y()) < 1e-6) continue;  // not beside them, or their own seat
+      double& side = person.side_room_m[at.y() > 0 ? 0 : 1];
+      side = std::min(side, 0.5 * std::abs(at.y()));
+    }
+  }
   // Walkers: bouts on the robot's route ahead of it (between the camera and the seated people:
   // the occlusion knob), across its path and past it, clear of furniture, the robot and each other.
   const int walkers = options_.walkers;
@@ -462,6 +474,29 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
   return skeleton_->Walking(phase, stride_m / p.height_scale);
 }
 
+void Crowd::KeepOwnElbowRoom(const Person& p, BodyPose* pose) const {
+  // Forearms are 3.5-4 cm thick in radius: their axes keep that far (and 1 cm more, for chairs
+  // turned a few degrees) inside the person's half of the gap, so neighbours keep 7 cm apart.
+  constexpr double kForearmRadiusM = 0.046;
+  for (int s = 0; s < 2; ++s) {
+    const double sign = s == 0 ? 1 : -1;
+    const double limit = p.side_room_m[s] - kForearmRadiusM;
+    if (limit > 0.35) continue;  // nobody close on this side
+    ArmPose& arm = pose->arm[s];
+    arm.wrist_m.y() = sign * std::min(sign * arm.wrist_m.y(), limit - 0.02);
+    // Elbows: turned in, more the closer the neighbour, until the elbow is inside the limit.
+    arm.elbow_hint.y() = -sign * std::clamp((0.30 - p.side_room_m[s]) * 5, 0.0, 0.6);
+    for (int iteration = 0; iteration < 8; ++iteration) {
+      const auto keypoints = skeleton_->Keypoints(skeleton_->PartTransforms(skeleton_->Limit(*pose)));
+      const double out = std::max(sign * keypoints[7 + s].y(), sign * keypoints[9 + s].y()) - limit;
+      if (out <= 0) break;
+      arm.elbow_hint.y() -= sign * 0.5;
+      arm.elbow_hint.x() += 0.3;  // elbow forward, in front of the chest
+      arm.wrist_m.y() -= sign * std::min(out, 0.03);
+    }
+  }
+}
+
 void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
   // The table top slab in the table frame, grown by a few millimetres of clearance.
   constexpr double kClearanceM = 0.004;
@@ -532,18 +567,14 @@ void Crowd::SetTime(double time_s) {
       const Eigen::Vector2d robot = robot_.At(time_s);
       const Eigen::Vector3d robot_in_seat =
           Apply(world_from_person.inverse(), Eigen::Vector3d(robot.x(), robot.y(), 0.0));
-      pose = ApplyActivity(*skeleton_, pose, *episode, time_s, options_.activity.blend_s,
+      // Talking: the gesturing hand on the side with more room.
+      ActivityEpisode e = *episode;
+      if (e.name == "talking" && p.side_room_m[e.side] < p.side_room_m[1 - e.side]) e.side = 1 - e.side;
+      pose = ApplyActivity(*skeleton_, pose, e, time_s, options_.activity.blend_s,
                            {p.cup_at_m, p.laptop_at_m}, std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
     }
     if (p.seated) {
-      // Close neighbours: elbows tucked in and hands kept within the person's own half.
-      if (p.elbow_room_m < 0.30) {
-        for (int s = 0; s < 2; ++s) {
-          const double sign = s == 0 ? 1 : -1;
-          pose.arm[s].elbow_hint.y() = -sign * std::clamp((0.30 - p.elbow_room_m) * 5, 0.0, 0.6);  // towards the body
-          pose.arm[s].wrist_m.y() = sign * std::min(sign * pose.arm[s].wrist_m.y(), p.elbow_room_m - 0.1);
-        }
-      }
+      KeepOwnElbowRoom(p, &pose);
       KeepClearOfTable(p, &pose);
     }
     pose = skeleton_->Limit(pose);

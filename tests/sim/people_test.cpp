@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -118,8 +119,8 @@ TEST(People, BodiesNeverPassThroughTableTopsChairBacksOrEachOther) {
     // Between people: keypoints sit on the axes of limbs 7.5-12 cm thick, so bodies that do not
     // pass through each other keep them 7.5 cm apart. Neighbours on chairs 0.42-0.45 m apart sit
     // shoulder to shoulder (bodies are 0.48 m wide there): shoulders may press 3 cm into each
-    // other's sleeves. Elbows and wrists of such close neighbours can still meet (elbows are
-    // tucked in, but not yet planned against the neighbour's arms): not checked here.
+    // other's sleeves. Arms are checked as limb segments in
+    // People.NeighboursArmsNeverMeetOnCrowdedTablesWhileTheyTalkAndDrink.
     for (size_t a = 0; a < bodies.size(); ++a) {
       for (size_t b = a + 1; b < bodies.size(); ++b) {
         for (int ia = 0; ia < kCocoKeypointCount; ++ia) {
@@ -141,6 +142,67 @@ TEST(People, BodiesNeverPassThroughTableTopsChairBacksOrEachOther) {
     ++checked;
   }
   EXPECT_EQ(checked, 50);
+}
+
+// Distance from point p to the segment ab, m.
+double ToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double f = std::clamp((p - a).dot(d) / std::max(1e-12, d.squaredNorm()), 0.0, 1.0);
+  return (a + f * d - p).norm();
+}
+
+// Distance between segments ab and cd, m (sampled along ab at 1 cm).
+double SegmentToSegment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                        const Eigen::Vector3d& d) {
+  double best = 1e9;
+  const int steps = std::max(1, static_cast<int>((b - a).norm() / 0.01));
+  for (int i = 0; i <= steps; ++i) best = std::min(best, ToSegment(a + (b - a) * (double(i) / steps), c, d));
+  return best;
+}
+
+TEST(People, NeighboursArmsNeverMeetOnCrowdedTablesWhileTheyTalkAndDrink) {
+  // Six to a table 0.45 m apart, talking and drinking often: the arms of neighbours (upper and
+  // lower arm as segments shoulder-elbow-wrist) never meet.
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/crowded_room.json",
+                                {"crowd.activities.talking.weight=3", "crowd.activities.drinking.weight=2"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  world.PlanCrowd(run.samples);
+  int pairs = 0;
+  for (size_t f = 0; f < run.samples.size(); f += 10) {
+    world.SetTime(run.samples[f].time_s);
+    std::vector<const Person*> seated;
+    for (const Person& p : world.people())
+      if (p.present && p.seated) seated.push_back(&p);
+    for (size_t a = 0; a < seated.size(); ++a) {
+      for (size_t b = a + 1; b < seated.size(); ++b) {
+        const Person &pa = *seated[a], &pb = *seated[b];
+        if (pa.table != pb.table || (pa.seat < 3) != (pb.seat < 3)) continue;  // neighbours: same side of a table
+        ++pairs;
+        for (int sa = 0; sa < 2; ++sa) {
+          for (int sb = 0; sb < 2; ++sb) {
+            const auto& ka = pa.keypoints_m;
+            const auto& kb = pb.keypoints_m;
+            // Upper arms from half way down (shoulder caps of neighbours this close press together,
+            // as People.BodiesNeverPassThrough... allows) to the elbow.
+            const double upper = SegmentToSegment(0.5 * (ka[5 + sa] + ka[7 + sa]), ka[7 + sa], 0.5 * (kb[5 + sb] + kb[7 + sb]), kb[7 + sb]);
+            const double lower = SegmentToSegment(ka[7 + sa], ka[9 + sa], kb[7 + sb], kb[9 + sb]);
+            const double cross = std::min(SegmentToSegment(ka[5 + sa], ka[7 + sa], kb[7 + sb], kb[9 + sb]),
+                                          SegmentToSegment(ka[7 + sa], ka[9 + sa], kb[5 + sb], kb[7 + sb]));
+            // Upper and lower arms (3.5-4.5 cm radius) keep 7 cm between their axes.
+            ASSERT_TRUE(std::min({upper, lower, cross}) > 0.07)
+                << "frame " << f << ": " << (sa ? "right" : "left") << " arm of person " << pa.person_id << " (seat "
+                << pa.table << "." << pa.seat << ", " << pa.posture << ", " << pa.activity << ") and "
+                << (sb ? "right" : "left") << " arm of person " << pb.person_id << " (seat " << pb.table << "." << pb.seat
+                << ", " << pb.posture << ", " << pb.activity << "): upper " << upper << ", lower " << lower << ", across "
+                << cross << " m";
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(pairs, 1000);
 }
 
 TEST(People, VisibleKeypointsLandOnTheirPersonsInstanceInTheExr) {

@@ -50,6 +50,15 @@ TEST_F(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   EXPECT_TRUE(one.complete);
 }
 
+TEST_F(Sequence, WalkersPlannedInFreeSpaceGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/open_room.json", {"crowd.walkers=4"});
+  const DatasetManifest one = Render(scene, TempDir("w1"), 3, 1);
+  const DatasetManifest two = Render(scene, TempDir("w2"), 3, 2);
+  EXPECT_EQ(one.files, two.files);
+  // A walker is in view (keeping pace ahead of the robot).
+  EXPECT_NE(ReadFileBytes(TempDir("w1") + "/persons.json").find("\"ahead\""), std::string::npos);
+}
+
 TEST_F(Sequence, AnotherSeedChangesNoiseCrowdAndOdometry) {
   const DatasetManifest a = Render(PaperRoom(), TempDir("s1"), 2, 0);
   const DatasetManifest b = Render(PaperRoom({"seed=2"}), TempDir("s2"), 2, 0);

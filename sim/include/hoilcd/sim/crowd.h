@@ -44,6 +44,7 @@ struct Person {
   Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
   Eigen::Matrix4d table_from_seat = Eigen::Matrix4d::Identity();  // seated: their table's frame
   double elbow_room_m = 1;                   // seated: half the gap to the nearest seat beside them
+  std::array<double, 2> side_room_m{1, 1};   // seated: the same on the left (+y) and on the right
   double table_edge_m = 0.30;                // seated: seat centre to the table's near edge, m
   double height_scale = 1;
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
@@ -120,6 +121,10 @@ class Crowd {
   // Keeps a seated person out of their table's top: arms are lifted onto it, the trunk leans
   // less where it would meet the edge (the chairs stand irregularly, so fixed poses cannot).
   void KeepClearOfTable(const Person& p, BodyPose* pose) const;
+  // Keeps a seated person's elbows and wrists within their own half of the gap to the seat
+  // beside them on each side (so neighbours' arms never meet), and gestures with the hand on the
+  // roomier side.
+  void KeepOwnElbowRoom(const Person& p, BodyPose* pose) const;
   // The pose (person frame) and world_from_person of a present person at time t.
   BodyPose PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const;
   // The id a new person gets: one past the largest so far (0 for the first).
