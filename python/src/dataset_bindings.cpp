@@ -52,7 +52,8 @@ py::list PersonsOfFrame(const Dataset& dataset, int frame) {
 }
 
 py::dict ExrToDict(const Dataset& dataset, int frame) {
-  const ExrChannels channels = ReadExr(dataset.dir() + "/exr/" + FrameFileName(frame, "exr"));
+  const ExrChannels channels = ReadExr(dataset.dir() + "/exr/" + FrameFileName(frame, "exr"),
+                                          {dataset.manifest().intrinsics.width, dataset.manifest().intrinsics.height});
   py::dict out;
   for (const auto& [name, image] : channels) out[py::str(name)] = ImageToArray<float>(image);
   return out;
