@@ -50,11 +50,35 @@ cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptio
   return shown;
 }
 
+// Each footprint as a convex polygon in metres: a rectangle's 4 corners, a circle's 32 points.
+std::vector<std::vector<cv::Point2d>> FootprintOutlines(const std::vector<FootprintRecord>& footprints) {
+  std::vector<std::vector<cv::Point2d>> out;
+  for (const FootprintRecord& f : footprints) {
+    std::vector<cv::Point2d> outline;
+    const cv::Point2d c(f.centre_m[0], f.centre_m[1]);
+    if (f.kind == "circle") {
+      for (int i = 0; i < 32; ++i) {
+        const double t = 2.0 * CV_PI * i / 32;
+        outline.push_back(c + f.radius_m * cv::Point2d(std::cos(t), std::sin(t)));
+      }
+    } else {
+      const double yaw = f.yaw_deg * CV_PI / 180.0;
+      const cv::Point2d u(std::cos(yaw), std::sin(yaw)), v(-std::sin(yaw), std::cos(yaw));
+      static constexpr int kCorners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (const auto& corner : kCorners) {
+        outline.push_back(c + corner[0] * f.half_size_m[0] * u + corner[1] * f.half_size_m[1] * v);
+      }
+    }
+    out.push_back(std::move(outline));
+  }
+  return out;
+}
+
 }  // namespace
 
 cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
                        const std::vector<TrajectoryLink>& links,
-                       const std::vector<cv::Rect2d>& obstacles_m,
+                       const std::vector<FootprintRecord>& footprints,
                        const std::vector<LegendEntry>& legend, const PlotOptions& options,
                        cv::Rect* plot_area_px) {
   Range x, y;
@@ -68,11 +92,12 @@ cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
       y.Add(p.y);
     }
   }
-  for (const cv::Rect2d& r : obstacles_m) {
-    x.Add(r.x);
-    x.Add(r.x + r.width);
-    y.Add(r.y);
-    y.Add(r.y + r.height);
+  const std::vector<std::vector<cv::Point2d>> outlines = FootprintOutlines(footprints);
+  for (const std::vector<cv::Point2d>& outline : outlines) {
+    for (const cv::Point2d& p : outline) {
+      x.Add(p.x);
+      y.Add(p.y);
+    }
   }
   std::vector<LegendItem> items;
   for (const LegendEntry& e : legend) items.push_back({e.label, e.colour, false, 0, false});
@@ -82,13 +107,15 @@ cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
   spec.equal_aspect = true;
   spec.inset_px = 10.0;
   const DrawData draw = [&](cv::Mat& roi, const Axes& a) {
-    for (const cv::Rect2d& r : obstacles_m) {
-      const cv::Point2d p0 = a.ToLocal(r.x, r.y + r.height);
-      const cv::Point2d p1 = a.ToLocal(r.x + r.width, r.y);
-      if (!Finite(p0) || !Finite(p1)) continue;
-      const cv::Rect box(Pixel(p0), Pixel(p1));
-      cv::rectangle(roi, box, Grey(218), cv::FILLED);
-      cv::rectangle(roi, box, Grey(160), 1);
+    for (const std::vector<cv::Point2d>& outline : outlines) {
+      std::vector<cv::Point> polygon;
+      for (const cv::Point2d& p : outline) {
+        const cv::Point2d local = a.ToLocal(p.x, p.y);
+        if (Finite(local)) polygon.push_back(Pixel(local));
+      }
+      if (polygon.size() != outline.size()) continue;
+      cv::fillConvexPoly(roi, polygon, Grey(218));
+      cv::polylines(roi, std::vector<std::vector<cv::Point>>{polygon}, true, Grey(160), 1);
     }
     for (const TrajectoryPoint& p : points) {
       const cv::Point2d c = a.ToLocal(p.x_m, p.y_m);

@@ -14,9 +14,8 @@
 #include "hoilcd/bench/inspect.h"
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/slam_report.h"
+#include "hoilcd/core/error.h"
 #include "hoilcd/core/text.h"
-#include "hoilcd/sim/asset.h"
-#include "hoilcd/sim/scene.h"
 
 namespace hoilcd {
 namespace {
@@ -35,26 +34,6 @@ const char* kNotes[] = {
     "Fusion ranks tied scores by their average position before reciprocal rank fusion, so fused "
     "scores do not depend on database order either.",
 };
-
-// Footprints of the tables in the dataset's scene (for the trajectory figure).
-std::vector<cv::Rect2d> TableFootprints(const Dataset& dataset) {
-  std::vector<cv::Rect2d> out;
-  try {
-    const Scene scene = SceneFromJson(nlohmann::json::parse(dataset.scene_json()), dataset.dir() + "/scene.json");
-    AssetLibrary assets(scene.assets_dir);
-    const Asset& table = assets.Get(scene.table_asset);
-    const Eigen::Vector3f lo = table.bounds_m.min(), hi = table.bounds_m.max();
-    for (const TableSpec& t : scene.tables) {
-      const bool turned = std::fmod(std::abs(t.yaw_deg), 180.0) > 45.0 && std::fmod(std::abs(t.yaw_deg), 180.0) < 135.0;
-      const double w = turned ? hi.y() - lo.y() : hi.x() - lo.x();
-      const double h = turned ? hi.x() - lo.x() : hi.y() - lo.y();
-      out.emplace_back(t.center_m.x() - w / 2, t.center_m.y() - h / 2, w, h);
-    }
-  } catch (const InputError&) {
-    // The figure is still useful without furniture (e.g. a scene whose assets moved).
-  }
-  return out;
-}
 
 cv::Mat PrFigure(const BenchResult& result) {
   std::vector<Series> series;
@@ -121,7 +100,7 @@ cv::Mat TrajectoryFigure(const BenchResult& result, const MethodRun& run, const 
   o.title = "Trajectory, top-1 of " + run.name;
   o.x_label = "x (m)";
   o.y_label = "y (m)";
-  return TrajectoryPlot(points, links, TableFootprints(dataset),
+  return TrajectoryPlot(points, links, dataset.footprints(),
                         {{"correct top-1", green}, {"wrong top-1 (line to it)", red},
                          {"no true match", grey}, {"database only", database}},
                         o);
@@ -392,6 +371,10 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
      << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
   for (const char* note : kNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";
+  if (dataset.footprints().empty()) {
+    md << "The dataset has no footprints.json (written before it existed): the trajectory figures "
+          "show no obstacles.\n\n";
+  }
   for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";
   WriteFileAtomic(dir + "/report.md", md.str());
 }

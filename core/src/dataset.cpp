@@ -328,6 +328,71 @@ std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::str
   return events;
 }
 
+std::string FootprintsToJson(const std::vector<FootprintRecord>& footprints) {
+  json out = json::array();
+  for (const FootprintRecord& f : footprints) {
+    out.push_back({{"name", f.name},
+                   {"kind", f.kind},
+                   {"centre_m", f.centre_m},
+                   {"half_size_m", f.half_size_m},
+                   {"yaw_deg", f.yaw_deg},
+                   {"radius_m", f.radius_m}});
+  }
+  return json{{"footprints", out}}.dump(1) + "\n";
+}
+
+namespace {
+// A two-number array such as [x, y] (JsonReader reads scalars only).
+void ReadPair(JsonReader& reader, const json& object, const std::string& pointer, const char* key,
+              std::array<double, 2>* out) {
+  const std::string where = pointer + "/" + key;
+  if (!object.contains(key)) {
+    reader.Add(where, "missing");
+    return;
+  }
+  const json& v = object.at(key);
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+    reader.Add(where, "expected an array of 2 numbers");
+    return;
+  }
+  *out = {v[0].get<double>(), v[1].get<double>()};
+}
+}  // namespace
+
+std::vector<FootprintRecord> FootprintsFromJson(const std::string& text, const std::string& path) {
+  JsonReader reader(path);
+  const json j = reader.Parse(text);
+  std::vector<FootprintRecord> footprints;
+  if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
+  reader.CheckKeys(j, "", {"footprints"});
+  if (!j.contains("footprints")) reader.Add("/footprints", "missing");
+  if (j.contains("footprints") && reader.ExpectArray(j["footprints"], "/footprints")) {
+    const json& jf = j["footprints"];
+    for (size_t i = 0; i < jf.size(); ++i) {
+      const std::string fp = "/footprints/" + std::to_string(i);
+      if (!reader.ExpectObject(jf[i], fp)) continue;
+      reader.CheckKeys(jf[i], fp, {"name", "kind", "centre_m", "half_size_m", "yaw_deg", "radius_m"});
+      FootprintRecord f;
+      reader.Read(jf[i], fp, "name", &f.name);
+      reader.Read(jf[i], fp, "kind", &f.kind);
+      if (jf[i].contains("kind") && f.kind != "rectangle" && f.kind != "circle") {
+        reader.Add(fp + "/kind", "expected rectangle or circle; got '" + f.kind + "'");
+      }
+      ReadPair(reader, jf[i], fp, "centre_m", &f.centre_m);
+      ReadPair(reader, jf[i], fp, "half_size_m", &f.half_size_m);
+      reader.Read(jf[i], fp, "yaw_deg", &f.yaw_deg);
+      reader.Read(jf[i], fp, "radius_m", &f.radius_m);
+      if (f.half_size_m[0] < 0 || f.half_size_m[1] < 0) {
+        reader.Add(fp + "/half_size_m", "expected sizes >= 0 m");
+      }
+      if (f.radius_m < 0) reader.Add(fp + "/radius_m", "expected a radius >= 0 m");
+      footprints.push_back(std::move(f));
+    }
+  }
+  reader.problems().ThrowIfAny();
+  return footprints;
+}
+
 std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
   std::string out = std::string(kPosesHeader) + "\n";
   for (const PoseRecord& p : poses) {
@@ -518,6 +583,10 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
       throw InputError(events_path, "frame " + std::to_string(e.frame) + " outside 0.." +
                                         std::to_string(m.frame_count - 1));
     }
+  }
+  if (m.files.count("footprints.json")) {  // absent from datasets written before it existed
+    const std::string footprints_path = JoinPath(dir, "footprints.json");
+    ds.footprints_ = FootprintsFromJson(ReadFileBytes(footprints_path), footprints_path);
   }
   return ds;
 }

@@ -536,6 +536,25 @@ Obstacle2D Obstacle2D::Rectangle(std::string name, const Eigen::Vector2d& center
   return ob;
 }
 
+std::vector<FootprintRecord> FootprintRecordsOf(const std::vector<Obstacle2D>& obstacles) {
+  std::vector<FootprintRecord> out;
+  for (const Obstacle2D& o : obstacles) {
+    FootprintRecord f;
+    f.name = o.name;
+    f.centre_m = {o.center_m.x(), o.center_m.y()};
+    if (o.shape == Obstacle2D::Shape::kCircle) {
+      f.kind = "circle";
+      f.radius_m = o.radius_m;
+    } else {
+      f.kind = "rectangle";
+      f.half_size_m = {o.half_size_m.x(), o.half_size_m.y()};
+      f.yaw_deg = o.yaw_rad / kDegToRad;
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 Obstacle2D Obstacle2D::Circle(std::string name, const Eigen::Vector2d& center_m, double radius_m) {
   Obstacle2D ob;
   ob.name = std::move(name);

@@ -289,6 +289,8 @@ SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options
                    &manifest);
   WriteDatasetFile(dir, "persons.json", PersonsToJson(persons), &manifest);
   WriteDatasetFile(dir, "events.json", EventsToJson(events), &manifest);
+  WriteDatasetFile(dir, "footprints.json", FootprintsToJson(FootprintRecordsOf(world.obstacles())),
+                   &manifest);
   WriteDatasetFile(dir, "scene.json", scene.resolved.dump(2), &manifest);
   manifest.complete = true;
   WriteFileAtomic(manifest_path, manifest.ToJson());

@@ -43,7 +43,11 @@ TEST(TrajectoryPlot, MetresHaveEqualLengthOnBothAxes) {
   for (const cv::Point2d corner : {cv::Point2d(0, 0), cv::Point2d(1, 0), cv::Point2d(0, 1), cv::Point2d(1, 1)}) {
     points.push_back({corner.x, corner.y + 2.0, kMagenta});
   }
-  const std::vector<cv::Rect2d> obstacles = {{3.0, 1.0, 1.0, 1.0}};
+  FootprintRecord box;
+  box.name = "table";
+  box.centre_m = {3.5, 1.5};
+  box.half_size_m = {0.5, 0.5};
+  const std::vector<FootprintRecord> obstacles = {box};
   PlotOptions o;
   o.width_px = 500;
   o.height_px = 500;

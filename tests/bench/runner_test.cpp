@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "hoilcd/bench/diagnosis.h"
 #include "hoilcd/bench/methods.h"
@@ -222,6 +225,39 @@ TEST(Runner, ASequenceShorterThanALapHasNoScoredQueriesAndStillReports) {
   EXPECT_NO_THROW(WriteReport(result, dataset, options, ReportTiming{}, report));
   EXPECT_TRUE(fs::exists(report + "/report.md"));
   EXPECT_FALSE(fs::exists(report + "/mrr_per_lap.png"));
+}
+
+// Pixels of the footprints' fill colour (grey 218) in a trajectory figure.
+int FootprintPixels(const std::string& png) {
+  cv::Mat mask;
+  cv::inRange(cv::imread(png), cv::Scalar(218, 218, 218), cv::Scalar(218, 218, 218), mask);
+  return cv::countNonZero(mask);
+}
+
+TEST(Report, DrawsTheDatasetsFootprintsAndAnOldDatasetWithoutThemDrawsNoneAndSaysSo) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
+  ASSERT_FALSE(dataset.footprints().empty());
+  BenchOptions options;
+  options.methods = {"slcd"};
+  const BenchResult result = RunBench(dataset, options);
+  WriteReport(result, dataset, options, ReportTiming{}, temp / "with");
+  const std::string kLine = "The dataset has no footprints.json";
+  EXPECT_EQ(ReadFileBytes(temp / "with/report.md").find(kLine), std::string::npos);
+
+  // The same folder as a dataset written before footprints.json existed.
+  const std::string manifest_path = (temp.path() / "short/manifest.json").string();
+  DatasetManifest manifest = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
+  ASSERT_EQ(manifest.files.erase("footprints.json"), 1u);
+  fs::remove(temp.path() / "short/footprints.json");
+  WriteFileAtomic(manifest_path, manifest.ToJson());
+  const Dataset old = Dataset::Open((temp.path() / "short").string());
+  EXPECT_TRUE(old.footprints().empty());
+  EXPECT_NO_THROW(WriteReport(result, old, options, ReportTiming{}, temp / "without"));
+  EXPECT_NE(ReadFileBytes(temp / "without/report.md").find(kLine), std::string::npos);
+  // Filled footprints cover many pixels; without them only anti-aliased dot edges may share the colour.
+  EXPECT_GT(FootprintPixels(temp / "with/trajectory_slcd.png"),
+            FootprintPixels(temp / "without/trajectory_slcd.png") + 500);
 }
 
 TEST(Report, OverwritesOnlyAnEarlierHoilcdReportNeverAUsersFolder) {

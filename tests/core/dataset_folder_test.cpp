@@ -20,7 +20,7 @@ void Touch(const test::TestDir& dir, const std::string& relative) {
 
 TEST(DatasetFolder, OwnNamesAreExactlyTheFilesHoilcdWrites) {
   for (const char* own : {"manifest.json", "scene.json", "poses.csv", "poses_tum.txt", "persons.json",
-                          "events.json", "thermal/000000.png", "radiometric/001995.png",
+                          "events.json", "footprints.json", "thermal/000000.png", "radiometric/001995.png",
                           "exr/1234567.exr"}) {
     EXPECT_TRUE(IsDatasetFileName(own)) << own;
   }

@@ -335,6 +335,78 @@ TEST(EventsJson, RoundTripKeepsEveryFieldAndUnknownTypeIsAnError) {
             std::string::npos) << message;
 }
 
+std::vector<FootprintRecord> SampleFootprints() {
+  FootprintRecord table;
+  table.name = "table 0";
+  table.centre_m = {1.25, 0.1 + 0.2};  // not exactly representable: must read back exactly
+  table.half_size_m = {0.6, 0.4};
+  table.yaw_deg = 90;
+  FootprintRecord person;
+  person.name = "standing person 4";
+  person.kind = "circle";
+  person.centre_m = {5.5, 2.75};
+  person.radius_m = 0.3;
+  return {table, person};
+}
+
+TEST(FootprintsJson, RoundTripKeepsEveryFieldExactly) {
+  const std::string text = FootprintsToJson(SampleFootprints());
+  const std::vector<FootprintRecord> back = FootprintsFromJson(text, "footprints.json");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].name, "table 0");
+  EXPECT_EQ(back[0].kind, "rectangle");
+  EXPECT_EQ(back[0].centre_m[1], 0.1 + 0.2);
+  EXPECT_EQ(back[0].half_size_m[0], 0.6);
+  EXPECT_EQ(back[0].yaw_deg, 90);
+  EXPECT_EQ(back[1].kind, "circle");
+  EXPECT_EQ(back[1].radius_m, 0.3);
+  EXPECT_EQ(FootprintsToJson(back), text);
+}
+
+TEST(FootprintsJson, MalformedEntriesAreReportedWithFileAndPointer) {
+  const std::string message = InputErrorOf([] {
+    FootprintsFromJson(R"({"footprints":[
+      {"name":"a","kind":"triangle","centre_m":[0,0],"half_size_m":[1,1],"yaw_deg":0,"radius_m":0},
+      {"name":"b","kind":"circle","centre_m":[0],"half_size_m":[0,0],"yaw_deg":0,"radius_m":-1},
+      {"name":"c","kind":"rectangle","half_size_m":[0,-2],"yaw_deg":"0","radius_m":0,"colour":1}]})",
+                       "DIR/footprints.json");
+  });
+  for (const char* expected :
+       {"DIR/footprints.json: /footprints/0/kind: expected rectangle or circle; got 'triangle'",
+        "DIR/footprints.json: /footprints/1/centre_m: expected an array of 2 numbers",
+        "DIR/footprints.json: /footprints/1/radius_m: expected a radius >= 0 m",
+        "DIR/footprints.json: /footprints/2/centre_m: missing",
+        "DIR/footprints.json: /footprints/2/half_size_m: expected sizes >= 0 m",
+        "DIR/footprints.json: /footprints/2/yaw_deg: expected a number",
+        "DIR/footprints.json: /footprints/2/colour: unknown key"}) {
+    EXPECT_NE(message.find(expected), std::string::npos) << expected << "\n" << message;
+  }
+  const std::string missing = InputErrorOf([] { FootprintsFromJson("{}", "DIR/footprints.json"); });
+  EXPECT_NE(missing.find("DIR/footprints.json: /footprints: missing"), std::string::npos) << missing;
+}
+
+TEST(Dataset, FolderWithoutFootprintsJsonReadsWithNoFootprints) {
+  TempDir dir;
+  WriteTinyDataset(dir.str(), 3, true);  // as written before footprints.json existed
+  EXPECT_TRUE(Dataset::Open(dir.str()).footprints().empty());
+}
+
+TEST(Dataset, ListedFootprintsJsonIsReadAndAMalformedOneIsAnErrorNamingIt) {
+  TempDir dir;
+  DatasetManifest m = WriteTinyDataset(dir.str(), 3, true);
+  WriteDatasetFile(dir.str(), "footprints.json", FootprintsToJson(SampleFootprints()), &m);
+  WriteFileAtomic(dir / "manifest.json", m.ToJson());
+  const Dataset ds = Dataset::Open(dir.str());
+  ASSERT_EQ(ds.footprints().size(), 2u);
+  EXPECT_EQ(ds.footprints()[1].name, "standing person 4");
+
+  WriteDatasetFile(dir.str(), "footprints.json", R"({"footprints":[{"name":"x"}]})", &m);
+  WriteFileAtomic(dir / "manifest.json", m.ToJson());
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
+  EXPECT_NE(message.find(dir / "footprints.json" + ": /footprints/0/kind: missing"),
+            std::string::npos) << message;
+}
+
 // Rewrites manifest.json through `edit`, then signs it again as hoilcd would (so that only the
 // edited value, not the manifest checksum, is under test).
 void EditManifest(const std::string& dir, const std::function<void(nlohmann::json&)>& edit) {

@@ -45,8 +45,9 @@ TEST_F(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   const DatasetManifest one = Render(scene, TempDir("t1"), 4, 1);
   const DatasetManifest two = Render(scene, TempDir("t2"), 4, 2);
   EXPECT_EQ(one.files, two.files);
-  EXPECT_EQ(one.files.size(), 4u * 3 + 6);  // three files a frame + six side files
+  EXPECT_EQ(one.files.size(), 4u * 3 + 7);  // three files a frame + seven side files
   EXPECT_EQ(one.files.at("thermal.mp4"), two.files.at("thermal.mp4"));
+  EXPECT_EQ(one.files.count("footprints.json"), 1u);
   EXPECT_TRUE(one.complete);
 }
 

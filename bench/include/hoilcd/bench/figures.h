@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "hoilcd/bench/chart.h"
+#include "hoilcd/core/dataset.h"
 
 namespace hoilcd {
 
@@ -30,11 +31,11 @@ struct LegendEntry {
 };
 
 // Top view of the trajectory, always with equal aspect (options.equal_aspect is implied):
-// obstacles as grey boxes (x, y = lower-left corner in metres; width, height in metres), the
+// obstacle footprints (the dataset's footprints.json) as grey oriented rectangles and circles, the
 // positions as coloured dots, then the links as thin half-transparent lines.
 cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
                        const std::vector<TrajectoryLink>& links,
-                       const std::vector<cv::Rect2d>& obstacles_m,
+                       const std::vector<FootprintRecord>& footprints,
                        const std::vector<LegendEntry>& legend, const PlotOptions& options,
                        cv::Rect* plot_area_px = nullptr);
 

@@ -94,6 +94,22 @@ std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::st
 std::string EventsToJson(const std::vector<DatasetEvent>& events);
 std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::string& path);
 
+// A 2-D obstacle footprint on the floor (the World's obstacles, for drawing them without the
+// scene): an oriented rectangle or a circle, world frame.
+struct FootprintRecord {
+  std::string name;                  // e.g. "table 0", "south wall", "standing person 3"
+  std::string kind = "rectangle";    // "rectangle" | "circle"
+  std::array<double, 2> centre_m{};  // m, world x, y of the centre
+  std::array<double, 2> half_size_m{};  // m, rectangle half extents along its local x, y (0 for circles)
+  double yaw_deg = 0;                // deg, rectangle orientation (0 for circles)
+  double radius_m = 0;               // m, circle radius (0 for rectangles)
+};
+
+// footprints.json: {"footprints": [{"name", "kind", "centre_m", "half_size_m", "yaw_deg",
+// "radius_m"}, ...]}; numbers read back exactly. Errors name the file and the JSON pointer.
+std::string FootprintsToJson(const std::vector<FootprintRecord>& footprints);
+std::vector<FootprintRecord> FootprintsFromJson(const std::string& text, const std::string& path);
+
 // Ground truth and wheel odometry for one frame (a row of poses.csv).
 struct PoseRecord {
   int frame = 0;
@@ -129,6 +145,8 @@ class Dataset {
   const std::vector<PoseRecord>& poses() const { return poses_; }
   const std::vector<FramePersons>& persons() const { return persons_; }
   const std::vector<DatasetEvent>& events() const { return events_; }
+  // The obstacle footprints from footprints.json; empty for datasets written before it existed.
+  const std::vector<FootprintRecord>& footprints() const { return footprints_; }
   // Problems that do not stop reading (each "path: what"), for the caller to print.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -142,6 +160,7 @@ class Dataset {
   std::vector<PoseRecord> poses_;
   std::vector<FramePersons> persons_;
   std::vector<DatasetEvent> events_;
+  std::vector<FootprintRecord> footprints_;
   std::vector<std::string> warnings_;
 };
 

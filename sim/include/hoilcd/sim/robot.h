@@ -172,6 +172,9 @@ struct Obstacle2D {
   static Obstacle2D Circle(std::string name, const Eigen::Vector2d& center_m, double radius_m);
 };
 
+// The footprints as the dataset records them (footprints.json), in input order.
+std::vector<FootprintRecord> FootprintRecordsOf(const std::vector<Obstacle2D>& obstacles);
+
 // Euclidean distance from a point to the obstacle's footprint (0 inside).
 double DistanceToObstacle(const Eigen::Vector2d& point_m, const Obstacle2D& obstacle);
 
