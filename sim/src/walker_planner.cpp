@@ -291,7 +291,8 @@ std::vector<Eigen::Vector2d> FreeSpace::ShortestPath(const Eigen::Vector2d& a, c
   cost[static_cast<size_t>(source)] = 0;
   queue.emplace(0.0, source);
   while (!queue.empty()) {
-    const auto [c, i] = queue.top();
+    const double c = queue.top().first;  // named locals, not a structured binding: C++17 lambdas
+    const int i = queue.top().second;    // cannot capture bindings (clang refuses; the fuzz build)
     queue.pop();
     if (c > cost[static_cast<size_t>(i)]) continue;
     if (i == target) break;
