@@ -12,6 +12,7 @@
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
+#include "input_error_of.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -19,16 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The message of the InputError that fn throws ("" if it throws none).
-template <typename Fn>
-std::string InputErrorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::InputErrorOf;
 
 TEST(SweepValues, SplitOnlyOnTopLevelCommas) {
   EXPECT_EQ(SplitTopLevelCommas("0,1, 2", "--set"), (std::vector<std::string>{"0", "1", "2"}));

@@ -1,7 +1,6 @@
 #include "hoilcd/core/dataset.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <functional>
@@ -11,40 +10,15 @@
 #include <sstream>
 
 #include "hoilcd/core/error.h"
+#include "input_error_of.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh, empty directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("hoilcd_dataset_test_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string str() const { return path_.string(); }
-  std::string operator/(const std::string& relative) const { return (path_ / relative).string(); }
-
- private:
-  fs::path path_;
-};
-
-// Catches the InputError thrown by fn and returns what() (empty if nothing was thrown).
-template <typename Fn>
-std::string InputErrorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::InputErrorOf;
 
 std::vector<PoseRecord> SamplePoses(int count) {
   std::vector<PoseRecord> poses;
@@ -153,7 +127,7 @@ TEST(DatasetManifest, UnknownKeyWrongTypeAndEscapingPathAreReportedWithPointers)
 }
 
 TEST(Dataset, OpensATinyCompleteFolderAndReadsEverything) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   const Dataset ds = Dataset::Open(dir.str());
   EXPECT_EQ(ds.num_frames(), 3);
@@ -176,7 +150,7 @@ TEST(Dataset, OpensATinyCompleteFolderAndReadsEverything) {
 }
 
 TEST(Dataset, CorruptedFrameIsAnErrorNamingThatFile) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   const std::string frame = dir / "thermal/000001.png";
   std::string bytes = ReadFileBytes(frame);
@@ -189,7 +163,7 @@ TEST(Dataset, CorruptedFrameIsAnErrorNamingThatFile) {
 }
 
 TEST(Dataset, MissingListedFileIsAnErrorNamingThatFile) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   fs::remove(dir / "radiometric/000002.png");
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
@@ -198,14 +172,14 @@ TEST(Dataset, MissingListedFileIsAnErrorNamingThatFile) {
 }
 
 TEST(Dataset, MissingManifestSaysItIsNotADatasetFolder) {
-  TempDir dir;
+  test::TestDir dir;
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
   EXPECT_NE(message.find("manifest.json: no manifest.json: not a hoilcd dataset folder"),
             std::string::npos) << message;
 }
 
 TEST(Dataset, PartialDatasetSaysHowManyFramesAndToRerunRender) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, false);
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
   EXPECT_EQ(message,
@@ -386,13 +360,13 @@ TEST(FootprintsJson, MalformedEntriesAreReportedWithFileAndPointer) {
 }
 
 TEST(Dataset, FolderWithoutFootprintsJsonReadsWithNoFootprints) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);  // as written before footprints.json existed
   EXPECT_TRUE(Dataset::Open(dir.str()).footprints().empty());
 }
 
 TEST(Dataset, ListedFootprintsJsonIsReadAndAMalformedOneIsAnErrorNamingIt) {
-  TempDir dir;
+  test::TestDir dir;
   DatasetManifest m = WriteTinyDataset(dir.str(), 3, true);
   WriteDatasetFile(dir.str(), "footprints.json", FootprintsToJson(SampleFootprints()), &m);
   WriteFileAtomic(dir / "manifest.json", m.ToJson());
@@ -418,7 +392,7 @@ void EditManifest(const std::string& dir, const std::function<void(nlohmann::jso
 }
 
 TEST(Dataset, HugeFrameCountInTheManifestIsOneErrorNotAHang) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   EditManifest(dir.str(), [](nlohmann::json& j) { j["frame_count"] = 2147483647; });
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
@@ -427,7 +401,7 @@ TEST(Dataset, HugeFrameCountInTheManifestIsOneErrorNotAHang) {
 }
 
 TEST(Dataset, HandEditedManifestFailsItsChecksum) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   std::string text = ReadFileBytes(dir / "manifest.json");
   text.replace(text.find("\"frame_count\": 3"), 16, "\"frame_count\": 2");
@@ -447,7 +421,7 @@ TEST(Dataset, NumberTooLargeForADoubleIsAnInputErrorNamingTheFile) {
 }
 
 TEST(Dataset, PngDeclaringAHugeImageIsRefusedBeforeDecoding) {
-  TempDir dir;
+  test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   // A PNG whose header claims 30000 x 30000 px (OpenCV would allocate 900 MB to decode it).
   std::string bytes = ReadFileBytes(dir / "thermal/000001.png");

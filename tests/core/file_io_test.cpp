@@ -1,47 +1,21 @@
 #include "hoilcd/core/file_io.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
 #include "hoilcd/core/error.h"
+#include "input_error_of.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh, empty directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("hoilcd_file_io_test_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string str() const { return path_.string(); }
-  std::string operator/(const std::string& relative) const { return (path_ / relative).string(); }
-
- private:
-  fs::path path_;
-};
-
-// Catches the InputError thrown by fn and returns what() (empty if nothing was thrown).
-template <typename Fn>
-std::string InputErrorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::InputErrorOf;
 
 TEST(Checksum, HasPrefixAnd32HexDigitsAndChangesWithOneByte) {
   const std::string a = ChecksumOf("hello");
@@ -66,7 +40,7 @@ TEST(EncodePng, IsDeterministicAndDecodesToTheSamePixels) {
 }
 
 TEST(WritePng, WritesADecodableBgrPngAndNoTemporaryFile) {
-  TempDir dir;
+  test::TestDir dir;
   const std::string path = dir / "plot.png";
   cv::Mat image(5, 7, CV_8UC3);
   cv::randu(image, 0, 256);
@@ -83,7 +57,7 @@ TEST(WritePng, WritesADecodableBgrPngAndNoTemporaryFile) {
 }
 
 TEST(WritePng, UnwritableFolderIsAnInputErrorNamingThePath) {
-  TempDir dir;
+  test::TestDir dir;
   WriteFileAtomic(dir / "file", "a file, not a folder");
   const std::string path = dir / "file/plot.png";
   try {
@@ -96,7 +70,7 @@ TEST(WritePng, UnwritableFolderIsAnInputErrorNamingThePath) {
 }
 
 TEST(WriteFileAtomic, ReplacesContentCreatesDirectoriesAndLeavesNoTempFile) {
-  TempDir dir;
+  test::TestDir dir;
   const std::string path = dir / "a/b/file.txt";
   WriteFileAtomic(path, "first version, longer");
   EXPECT_EQ(ReadFileBytes(path), "first version, longer");
@@ -111,7 +85,7 @@ TEST(WriteFileAtomic, ReplacesContentCreatesDirectoriesAndLeavesNoTempFile) {
 }
 
 TEST(ReadFileBytes, MissingFileIsAnInputErrorNamingIt) {
-  TempDir dir;
+  test::TestDir dir;
   const std::string message = InputErrorOf([&] { ReadFileBytes(dir / "nope.bin"); });
   EXPECT_NE(message.find("nope.bin: cannot read"), std::string::npos) << message;
 }
