@@ -6,17 +6,12 @@
 #include "hoilcd/bench/runner.h"
 #include "hoilcd/sim/sequence.h"
 #include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
 
-Dataset TinyDataset(const test::TestDir& temp) {
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json");
-  SequenceOptions options;
-  options.output_dir = temp / "dataset";
-  RenderSequence(scene, options);
-  return Dataset::Open(options.output_dir);
-}
+Dataset TinyDataset(const test::TestDir& temp) { return test::TinyRoomDataset(temp / "dataset"); }
 
 // A method from outside the built-ins: scores 1 for true matches, 0 otherwise.
 class Oracle : public LoopClosureMethod {

@@ -5,6 +5,7 @@
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/sim/sequence.h"
 #include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
@@ -42,11 +43,7 @@ TEST(MethodParams, EveryBadParamIsAnErrorNamingItAndWhatWasExpected) {
 
 TEST(MethodParams, AParamChangesOnlyItsOwnMethodOrFrontEnd) {
   const test::TestDir temp;
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json");
-  SequenceOptions render;
-  render.output_dir = temp / "dataset";
-  RenderSequence(scene, render);
-  const Dataset dataset = Dataset::Open(render.output_dir);
+  const Dataset dataset = test::TinyRoomDataset(temp / "dataset");
   BenchOptions options;
   options.methods = {"thumb", "thumb-seq"};
   const BenchResult plain = RunBench(dataset, options);

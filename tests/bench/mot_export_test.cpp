@@ -7,6 +7,7 @@
 
 #include "hoilcd/sim/sequence.h"
 #include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
@@ -36,11 +37,7 @@ TEST(MotExport, TrackerRowsCarryTheTrackIdAndTheMotPlaceholders) {
 
 TEST(MotExport, ADatasetExportsTrackEvalsLayoutWithOneGroundTruthRowPerPersonRecord) {
   const test::TestDir temp;
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json");
-  SequenceOptions render;
-  render.output_dir = temp / "dataset";
-  RenderSequence(scene, render);
-  const Dataset dataset = Dataset::Open(render.output_dir);
+  const Dataset dataset = test::TinyRoomDataset(temp / "dataset");
   const MotExport e = ExportMot(dataset, BenchOptions{}, temp / "mot");
   size_t records = 0;
   for (const FramePersons& f : dataset.persons()) records += f.persons.size();

@@ -13,6 +13,7 @@
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/sequence.h"
 #include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
@@ -24,13 +25,7 @@ int Hoilcd(std::vector<std::string> args) {
   return RunCommandLine(static_cast<int>(argv.size()), argv.data());
 }
 
-std::string RenderTiny(const test::TestDir& temp) {
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json");
-  SequenceOptions options;
-  options.output_dir = temp / "dataset";
-  RenderSequence(scene, options);
-  return options.output_dir;
-}
+std::string RenderTiny(const test::TestDir& temp) { return test::RenderTinyRoom(temp / "dataset"); }
 
 nlohmann::json Json(const std::string& path) { return nlohmann::json::parse(ReadFileBytes(path)); }
 

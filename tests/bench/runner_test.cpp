@@ -19,6 +19,7 @@
 #include "hoilcd/sim/sequence.h"
 #include "hoilcd/sim/world.h"
 #include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
@@ -28,12 +29,7 @@ namespace fs = std::filesystem;
 // Renders the tiny test room once per variant into a folder of the test and opens it.
 Dataset TinyDataset(const test::TestDir& temp, const std::string& name,
                     const std::vector<std::string>& overrides = {}) {
-  const fs::path dir = temp.path() / name;
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", overrides);
-  SequenceOptions options;
-  options.output_dir = dir.string();
-  RenderSequence(scene, options);
-  return Dataset::Open(dir.string());
+  return test::TinyRoomDataset(temp / name, overrides);
 }
 
 TEST(Runner, EveryMethodIsScoredOnEveryQueryAndResultsDoNotDependOnThreads) {

@@ -1,7 +1,6 @@
 #include "hoilcd/bench/slam_run.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,32 +9,19 @@
 #include "hoilcd/bench/report.h"
 #include "hoilcd/bench/runner.h"
 #include "hoilcd/core/error.h"
-#include "hoilcd/sim/sequence.h"
+#include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TestDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() /
-                       ("hoilcd_slam_run_test_" + std::to_string(getpid()) + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-Dataset TinyDataset(const fs::path& dir) {
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json", {});
-  SequenceOptions options;
-  options.output_dir = (dir / "dataset").string();
-  RenderSequence(scene, options);
-  return Dataset::Open(options.output_dir);
-}
+Dataset TinyDataset(const fs::path& dir) { return test::TinyRoomDataset((dir / "dataset").string()); }
 
 TEST(SlamRun, BenchWithSlamReportsEveryBackEndWritesGraphAndTrajectoriesAndIgnoresThreadCount) {
-  const fs::path dir = TestDir();
+  const test::TestDir temp;
+  const fs::path dir = temp.path();
   const Dataset dataset = TinyDataset(dir);
   BenchOptions options;
   options.methods = {"slcd", "thumb"};
