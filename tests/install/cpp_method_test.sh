@@ -8,21 +8,14 @@ cmake=$1
 build=$2
 example=$3
 scene=$4
-work="${TMPDIR:-/tmp}/hoilcd_$$_install_cpp_method"
-rm -rf "$work"
-mkdir -p "$work"
-trap 'rm -rf "$work"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-unset HOILCD_DATA_DIR
-
-"$cmake" --install "$build" --prefix "$work/prefix" > "$work/install.log" || { cat "$work/install.log"; fail "install"; }
-mv "$work/prefix" "$work/moved"
-"$cmake" -S "$example" -B "$work/example-build" -DCMAKE_PREFIX_PATH="$work/moved" > "$work/example.log" 2>&1 \
+source "$(dirname "${BASH_SOURCE[0]}")/moved_prefix.sh"
+moved_prefix "$cmake" "$build" install_cpp_method
+"$cmake" -S "$example" -B "$work/example-build" -DCMAKE_PREFIX_PATH="$moved" > "$work/example.log" 2>&1 \
   || { cat "$work/example.log"; fail "configuring the example"; }
 "$cmake" --build "$work/example-build" >> "$work/example.log" 2>&1 || { cat "$work/example.log"; fail "building the example"; }
 
 # 300 frames of tiny_room reach into its second lap, so the laps protocol has queries.
-"$work/moved/bin/hoilcd" -q render "$scene" -o "$work/dataset" --frames 300 --threads 2 > /dev/null
+"$moved/bin/hoilcd" -q render "$scene" -o "$work/dataset" --frames 300 --threads 2 > /dev/null
 "$work/example-build/column_profile_bench" "$work/dataset" "$work/report" > "$work/out" 2>&1 \
   || { cat "$work/out"; fail "the example failed"; }
 grep -Eq '^column-profile: MRR 0\.[0-9]{4}, R@1 [01]\.[0-9]{4} over [1-9][0-9]* queries$' "$work/out" \

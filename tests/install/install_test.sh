@@ -13,16 +13,8 @@ build=$2
 consumer=$3
 source_dir=$4
 python=${5:-}
-work="${TMPDIR:-/tmp}/hoilcd_$$_install_relocatable"
-rm -rf "$work"
-mkdir -p "$work"
-trap 'rm -rf "$work"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-unset HOILCD_DATA_DIR
-
-"$cmake" --install "$build" --prefix "$work/prefix" > "$work/install.log" || { cat "$work/install.log"; fail "install"; }
-mv "$work/prefix" "$work/moved"
-moved="$work/moved"
+source "$(dirname "${BASH_SOURCE[0]}")/moved_prefix.sh"
+moved_prefix "$cmake" "$build" install_relocatable
 for f in bin/hoilcd lib/cmake/hoilcd/hoilcdConfig.cmake lib/cmake/hoilcd/hoilcdConfigVersion.cmake \
          lib/cmake/hoilcd/hoilcdTargets.cmake include/hoilcd/core/dataset.h include/hoilcd/sim/scene.h \
          include/hoilcd/bench/runner.h share/hoilcd/scenes/paper_room.json share/hoilcd/scenes/scene.schema.json \
