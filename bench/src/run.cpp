@@ -78,7 +78,8 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
 // What the calibration's thresholds depend on: the calibration dataset (its manifest lists the
 // checksum of every file, the scene hash and the simulator revision), the program that benches it
 // (the methods' code and every option default: its own bytes, so any rebuild that changes them
-// invalidates the cache) and the bench options `hoilcd run` and `hoilcd sweep` let a user set.
+// invalidates the cache) and the bench options `hoilcd run` and `hoilcd sweep` let a user set,
+// --param included.
 std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& bench) {
   std::string program;
   try {
@@ -91,6 +92,7 @@ std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& b
       {"program", program},
       {"version", HOILCD_VERSION},
       {"methods", bench.methods},
+      {"params", bench.params},
       {"protocol", {bench.protocol.protocol, bench.protocol.radius_m, bench.protocol.ground_truth,
                     bench.protocol.heading_tolerance_deg, bench.protocol.exclusion_window_s}},
       {"keypoint_detector", bench.keypoints.detector},

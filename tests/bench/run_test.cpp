@@ -145,6 +145,12 @@ TEST(RunScene, TheSlamCalibrationIsCachedDatasetAndThresholdsAndRedoneWhenItsInp
   const RunOutcome other = RunScene(scene, wider, options);
   EXPECT_TRUE(other.timing.calibration_render_cached);
   EXPECT_FALSE(other.timing.calibration_bench_cached);
+
+  // So does a method parameter (--param): fewer RANSAC trials score every pair differently.
+  RunScene(scene, bench, options);  // the cache holds `bench`'s thresholds again
+  BenchOptions fewer_trials = bench;
+  fewer_trials.params = {"slcd.ransac_trials=10"};
+  EXPECT_FALSE(RunScene(scene, fewer_trials, options).timing.calibration_bench_cached);
 }
 
 }  // namespace
