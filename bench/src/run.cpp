@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hoilcd/bench/methods.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
 #include "hoilcd/sim/sequence.h"
@@ -18,6 +19,20 @@ std::string RunOptions::Check() const {
   if (cache_dir.empty()) return "cache_dir must not be empty";
   if (threads < 0) return "threads must be 0 (every core) or positive";
   return "";
+}
+
+nlohmann::json BenchSettingsJson(const BenchOptions& options) {
+  const std::vector<std::string> methods = options.methods.empty() ? DefaultMethods() : options.methods;
+  return {{"methods", methods},
+          {"protocol", options.protocol.protocol},
+          {"radius_m", options.protocol.radius_m},
+          {"exclusion_window_s", options.protocol.exclusion_window_s},
+          {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
+          {"ground_truth", options.protocol.ground_truth},
+          {"keypoint_detector", options.keypoints.detector},
+          {"rrf_k", options.rrf_k},
+          {"lo_refits", options.lo_refits},
+          {"params", options.params}};
 }
 
 std::string RunFolder(const Scene& scene, const std::string& cache_dir) {
@@ -78,8 +93,7 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
 // What the calibration's thresholds depend on: the calibration dataset (its manifest lists the
 // checksum of every file, the scene hash and the simulator revision), the program that benches it
 // (the methods' code and every option default: its own bytes, so any rebuild that changes them
-// invalidates the cache) and the bench options `hoilcd run` and `hoilcd sweep` let a user set,
-// --param included.
+// invalidates the cache) and the bench settings a user can set (BenchSettingsJson).
 std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& bench) {
   std::string program;
   try {
@@ -91,13 +105,7 @@ std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& b
       {"dataset", ChecksumOf(ReadFileBytes(dataset_dir + "/manifest.json"))},
       {"program", program},
       {"version", HOILCD_VERSION},
-      {"methods", bench.methods},
-      {"params", bench.params},
-      {"protocol", {bench.protocol.protocol, bench.protocol.radius_m, bench.protocol.ground_truth,
-                    bench.protocol.heading_tolerance_deg, bench.protocol.exclusion_window_s}},
-      {"keypoint_detector", bench.keypoints.detector},
-      {"rrf_k", bench.rrf_k},
-      {"lo_refits", bench.lo_refits}};
+      {"bench", BenchSettingsJson(bench)}};
   return ChecksumOf(key.dump());
 }
 

@@ -252,18 +252,6 @@ SweepPlan SweepPlan::FromJson(const nlohmann::json& j, const std::string& where)
   }
 }
 
-nlohmann::json SweepBenchJson(const BenchOptions& options) {
-  const std::vector<std::string> methods = options.methods.empty() ? DefaultMethods() : options.methods;
-  return {{"methods", methods},
-          {"protocol", options.protocol.protocol},
-          {"radius_m", options.protocol.radius_m},
-          {"exclusion_window_s", options.protocol.exclusion_window_s},
-          {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
-          {"ground_truth", options.protocol.ground_truth},
-          {"keypoint_detector", options.keypoints.detector},
-          {"rrf_k", options.rrf_k}};
-}
-
 SweepPlan MakeSweepPlan(const std::string& scene_path, const std::vector<std::string>& sets, int seeds,
                         const BenchOptions& bench) {
   if (seeds < 1) throw InputError("--seeds", "must be at least 1 (seeds 1..N are run)");
@@ -273,7 +261,7 @@ SweepPlan MakeSweepPlan(const std::string& scene_path, const std::vector<std::st
   plan.scene_name = base.name;
   plan.scene_hash = base.hash;
   plan.seeds = seeds;
-  plan.bench = SweepBenchJson(bench);
+  plan.bench = BenchSettingsJson(bench);
   for (const std::string& set : sets) plan.axes.push_back(ParseSweepAxis(set));
   if (const std::string problem = plan.Check(); !problem.empty()) throw InputError("--set", problem);
   for (const Settings& s : plan.Combinations()) {
@@ -297,7 +285,7 @@ void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptio
               const SweepRunCallback& before_run) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("sweep", problem);
   if (const std::string problem = plan.Check(); !problem.empty()) throw InputError("sweep", problem);
-  HOILCD_CHECK_MSG(SweepBenchJson(bench) == plan.bench, "the plan was made with other bench options");
+  HOILCD_CHECK_MSG(BenchSettingsJson(bench) == plan.bench, "the plan was made with other bench options");
   std::error_code ec;
   fs::create_directories(options.output_dir + "/runs", ec);
   if (ec) throw InputError(options.output_dir, "cannot create the sweep folder (" + ec.message() + ")");

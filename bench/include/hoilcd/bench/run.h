@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct RunOutcome {
 
 // The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.
 std::string RunFolder(const Scene& scene, const std::string& cache_dir);
+
+// The bench settings a user can set that change metrics (methods, protocol, keypoint detector,
+// fusion constant, -lo refits, --param), as JSON: what a sweep plan records and what keys the
+// SLAM calibration's cache.
+nlohmann::json BenchSettingsJson(const BenchOptions& options);
 
 RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options);
 

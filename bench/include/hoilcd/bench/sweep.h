@@ -59,7 +59,7 @@ struct SweepPlan {
   std::string scene_hash;       // hash of the scene without the sweep's overrides
   std::vector<SweepAxis> axes;  // in --set order
   int seeds = 1;                // seeds 1..seeds
-  nlohmann::json bench;         // methods and protocol settings (SweepBenchJson)
+  nlohmann::json bench;         // methods and protocol settings (BenchSettingsJson)
 
   // Value combinations of the axes in cross-product order (first axis slowest).
   std::vector<std::vector<std::pair<std::string, std::string>>> Combinations() const;
@@ -71,9 +71,6 @@ struct SweepPlan {
   nlohmann::json ToJson() const;
   static SweepPlan FromJson(const nlohmann::json& j, const std::string& where);
 };
-
-// The settings of `options` that change metrics (methods, protocol, detector, fusion constant).
-nlohmann::json SweepBenchJson(const BenchOptions& options);
 
 // Loads the scene, parses every --set, and loads each combination once so a bad value fails
 // before anything renders. Throws InputError naming the flag or the scene path.
