@@ -76,7 +76,7 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
     cv::Mat t, t_true;
     ExrChannels exr;
     try {
-      exr = ReadExr(dataset.dir() + "/exr/" + FrameFileName(f, "exr"), {dataset.manifest().intrinsics.width, dataset.manifest().intrinsics.height});
+      exr = ReadDatasetExr(dataset, f);
     } catch (const InputError&) {
       continue;  // the EXRs are optional for readers (Dataset::Open needs only the PNGs)
     }

@@ -52,8 +52,7 @@ py::list PersonsOfFrame(const Dataset& dataset, int frame) {
 }
 
 py::dict ExrToDict(const Dataset& dataset, int frame) {
-  const ExrChannels channels = ReadExr(dataset.dir() + "/exr/" + FrameFileName(frame, "exr"),
-                                          {dataset.manifest().intrinsics.width, dataset.manifest().intrinsics.height});
+  const ExrChannels channels = ReadDatasetExr(dataset, frame);
   py::dict out;
   for (const auto& [name, image] : channels) out[py::str(name)] = ImageToArray<float>(image);
   return out;

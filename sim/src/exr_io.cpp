@@ -189,4 +189,9 @@ ExrChannels ReadExr(const std::string& path, cv::Size size) {
   }
 }
 
+ExrChannels ReadDatasetExr(const Dataset& dataset, int frame) {
+  const CameraIntrinsics& size = dataset.manifest().intrinsics;
+  return ReadExr(dataset.dir() + "/exr/" + FrameFileName(frame, "exr"), {size.width, size.height});
+}
+
 }  // namespace hoilcd

@@ -224,7 +224,7 @@ TEST(People, VisibleKeypointsLandOnTheirPersonsInstanceInTheExr) {
   int visible = 0, on_person = 0, listed = 0;
   for (const FramePersons& frame : dataset.persons()) {
     cv::Mat ids;
-    for (const auto& [name, channel] : ReadExr(dir + "/exr/" + FrameFileName(frame.frame, "exr"), {256, 192})) {
+    for (const auto& [name, channel] : ReadDatasetExr(dataset, frame.frame)) {
       if (name == "id") channel.convertTo(ids, CV_32S);
     }
     ASSERT_FALSE(ids.empty());

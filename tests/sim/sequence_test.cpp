@@ -119,7 +119,7 @@ TEST_F(Sequence, VideoModeThermalFramesAreTheDecodedVideoWithinTheDocumentedPsnr
     const cv::Mat read = d.Thermal(f);  // what every method reads
     EXPECT_EQ(cv::norm(read, video.frames[f], cv::NORM_INF), 0.0) << f;
     cv::Mat uncompressed;
-    for (const auto& [name, channel] : ReadExr(whole_dir + "/exr/" + FrameFileName(f, "exr"), read.size())) {
+    for (const auto& [name, channel] : ReadDatasetExr(d, f)) {
       if (name == "T") uncompressed = ToDisplay8Bit(channel, 20.0, 30.0);
     }
     ASSERT_FALSE(uncompressed.empty());
@@ -217,7 +217,7 @@ TEST_F(Sequence, GroundTruthFilesDescribeTheFrames) {
   EXPECT_EQ(d.manifest().intrinsics.width, 256);
   EXPECT_TRUE(d.manifest().classes.count("person"));
   ASSERT_EQ(d.persons().size(), 3u);
-  const ExrChannels exr = ReadExr(dir + "/exr/000000.exr", {256, 192});
+  const ExrChannels exr = ReadDatasetExr(d, 0);
   std::vector<std::string> names;
   for (const auto& [name, channel] : exr) names.push_back(name);
   for (const char* c : {"T", "T_true", "Z", "id", "class"}) {

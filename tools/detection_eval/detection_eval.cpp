@@ -128,7 +128,7 @@ int Main(int argc, char** argv) {
     ExrChannels exr;
     cv::Mat ids, classes, temperature = dataset.RadiometricC(f);
     if (!scored.empty()) {
-      exr = ReadExr(dataset.dir() + "/exr/" + FrameFileName(f, "exr"), {dataset.manifest().intrinsics.width, dataset.manifest().intrinsics.height});
+      exr = ReadDatasetExr(dataset, f);
       for (auto& [name, channel] : exr) {
         if (name == "id") ids = channel;
         if (name == "class") classes = channel;

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "hoilcd/core/dataset.h"
+
 namespace hoilcd {
 
 // Named single-channel CV_32F images of equal size.
@@ -18,5 +20,8 @@ std::string EncodeExr(const ExrChannels& channels);
 // any other data window, or more channels than a frame can have, is an InputError naming the file
 // (a crafted header cannot make the reader allocate more than one frame's channels).
 ExrChannels ReadExr(const std::string& path, cv::Size size);
+
+// Frame `frame`'s EXR in a dataset folder (exr/NNNNNN.exr), at the manifest's frame size.
+ExrChannels ReadDatasetExr(const Dataset& dataset, int frame);
 
 }  // namespace hoilcd
