@@ -130,7 +130,7 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
   seed_ = scene.seed;
   frame_rate_hz_ = scene.frame_rate_hz;
   duration_s_ = scene.frames / scene.frame_rate_hz;
-  seat_warmth_c_ = scene.seat_warmth_c;
+  seat_warmth_c_ = scene.furniture.seat_warmth_c;
   sway_amplitude_rad_ = options_.sway_amplitude_deg * kDegToRad;
 }
 

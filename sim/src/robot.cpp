@@ -456,7 +456,7 @@ const OptionTable<TricycleOptions>& TricycleOptions::Table() {
 std::string TricycleOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<Eigen::Vector2d> PaperRoomWaypoints() {
-  return {{0.40, 0.40}, {0.40, 2.60}, {6.60, 2.60}, {6.60, 0.40}};
+  return {{0.38, 0.38}, {0.38, 2.62}, {6.62, 2.62}, {6.62, 0.38}};
 }
 
 RouteOptions::RouteOptions() : waypoints_m(PaperRoomWaypoints()) { Table().FillDefaults(this); }

@@ -154,11 +154,6 @@ std::string ResolveAssetRef(const std::string& ref, const fs::path& scene_dir) {
   return (scene_dir / ref).lexically_normal().string();
 }
 
-SurfaceSpec ReadSurface(const json& j) {
-  return {j.at("temperature_c").get<double>(), j.at("emissivity").get<double>(),
-          j.at("specular").get<bool>()};
-}
-
 Eigen::Vector2d Vec2(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
 Eigen::Vector3d Vec3(const json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
@@ -169,10 +164,10 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
   const std::string& f = scene.file;
   for (size_t i = 0; i < scene.tables.size(); ++i) {
     const Eigen::Vector2d& c = scene.tables[i].center_m;
-    if (c.x() < 0 || c.y() < 0 || c.x() > scene.room_size_m.x() || c.y() > scene.room_size_m.y()) {
+    if (c.x() < 0 || c.y() < 0 || c.x() > scene.room.size_m.x() || c.y() > scene.room.size_m.y()) {
       problems->Add(f + ": /tables/" + std::to_string(i) + "/center_m",
-                    "a position inside the room (x in [0, " + std::to_string(scene.room_size_m.x()) +
-                        "], y in [0, " + std::to_string(scene.room_size_m.y()) + "])");
+                    "a position inside the room (x in [0, " + std::to_string(scene.room.size_m.x()) +
+                        "], y in [0, " + std::to_string(scene.room.size_m.y()) + "])");
     }
   }
   for (size_t i = 0; i < scene.crowd.seating.size(); ++i) {
@@ -181,26 +176,26 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
                     "a table index below " + std::to_string(scene.tables.size()));
     }
   }
-  for (size_t i = 0; i < scene.windows.size(); ++i) {
-    const WindowSpec& w = scene.windows[i];
-    const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room_size_m.x()
-                                                                         : scene.room_size_m.y();
+  for (size_t i = 0; i < scene.room.windows.size(); ++i) {
+    const WindowSpec& w = scene.room.windows[i];
+    const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room.size_m.x()
+                                                                         : scene.room.size_m.y();
     const std::string at = f + ": /room/windows/" + std::to_string(i);
     if (w.center_m - 0.5 * w.width_m < 0 || w.center_m + 0.5 * w.width_m > wall_length) {
       problems->Add(at + "/center_m", "the window to fit along its wall (length " +
                                           std::to_string(wall_length) + " m)");
     }
-    if (w.bottom_m + w.height_m > scene.room_size_m.z()) {
+    if (w.bottom_m + w.height_m > scene.room.size_m.z()) {
       problems->Add(at + "/height_m", "the window top below the ceiling");
     }
   }
   auto inside_room = [&](const Eigen::Vector3d& p) {
-    return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room_size_m.x() &&
-           p.y() <= scene.room_size_m.y() && p.z() <= scene.room_size_m.z();
+    return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room.size_m.x() &&
+           p.y() <= scene.room.size_m.y() && p.z() <= scene.room.size_m.z();
   };
-  const std::string room_box = "x in [0, " + std::to_string(scene.room_size_m.x()) + "], y in [0, " +
-                               std::to_string(scene.room_size_m.y()) + "], z in [0, " +
-                               std::to_string(scene.room_size_m.z()) + "]";
+  const std::string room_box = "x in [0, " + std::to_string(scene.room.size_m.x()) + "], y in [0, " +
+                               std::to_string(scene.room.size_m.y()) + "], z in [0, " +
+                               std::to_string(scene.room.size_m.z()) + "]";
   const json& objects = scene.resolved.at("objects");
   const AssetLibrary assets(scene.assets_dir);
   for (size_t i = 0; i < objects.size(); ++i) {
@@ -234,7 +229,7 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
   const std::vector<Eigen::Vector2d>& waypoints = scene.route.waypoints_m;
   for (size_t i = 0; i < waypoints.size(); ++i) {
     const Eigen::Vector2d& p = waypoints[i];
-    if (p.x() < 0 || p.y() < 0 || p.x() > scene.room_size_m.x() || p.y() > scene.room_size_m.y()) {
+    if (p.x() < 0 || p.y() < 0 || p.x() > scene.room.size_m.x() || p.y() > scene.room.size_m.y()) {
       problems->Add(f + ": /route/waypoints_m/" + std::to_string(i), "a waypoint inside the room");
     }
   }
@@ -373,40 +368,26 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   }
   for (json& o : doc["objects"]) o["asset"] = ResolveAssetRef(o["asset"].get<std::string>(), scene_dir);
 
-  const json& room = doc["room"];
-  s.room_size_m = Vec3(room["size_m"]);
-  s.environment_temperature_c = room["environment_temperature_c"].get<double>();
-  s.floor = ReadSurface(room["floor"]);
-  s.ceiling = ReadSurface(room["ceiling"]);
-  s.wall_temperature_bottom_c = room["walls"]["temperature_bottom_c"].get<double>();
-  s.wall_temperature_top_c = room["walls"]["temperature_top_c"].get<double>();
-  s.walls = {s.wall_temperature_bottom_c, room["walls"]["emissivity"].get<double>(),
-             room["walls"]["specular"].get<bool>()};
-  for (const json& w : room["windows"]) {
-    s.windows.push_back({w["wall"].get<std::string>(), w["center_m"].get<double>(),
-                         w["bottom_m"].get<double>(), w["width_m"].get<double>(),
-                         w["height_m"].get<double>(), ReadSurface(w)});
+  // The module options, each read and checked by its option table (every problem at its pointer).
+  ProblemCollector consistency;
+  RoomOptions::Table().Read(doc["room"], file + ": /room", &s.room, &consistency);
+  s.room.size_m = Vec3(doc["room"]["size_m"]);
+  s.room.windows.clear();
+  for (size_t i = 0; i < doc["room"]["windows"].size(); ++i) {
+    WindowSpec w;
+    WindowSpec::Table().Read(doc["room"]["windows"][i], file + ": /room/windows/" + std::to_string(i), &w, &consistency);
+    s.room.windows.push_back(w);
   }
   for (const json& t : doc["tables"]) s.tables.push_back({Vec2(t["center_m"]), t["yaw_deg"].get<double>()});
-  const json& furniture = doc["furniture"];
-  s.table_asset = ResolveAssetRef(furniture["table_asset"].get<std::string>(), scene_dir);
-  s.chair_asset = ResolveAssetRef(furniture["chair_asset"].get<std::string>(), scene_dir);
-  s.seat_setback_m = furniture["seat_setback_m"].get<double>();
-  s.seat_spacing_4_m = furniture["seat_spacing_4_m"].get<double>();
-  s.seat_spacing_6_m = furniture["seat_spacing_6_m"].get<double>();
-  s.chair_jitter_m = furniture["chair_jitter_m"].get<double>();
-  s.chair_jitter_deg = furniture["chair_jitter_deg"].get<double>();
-  s.seat_warmth_c = furniture["seat_warmth_c"].get<double>();
+  FurnitureOptions::Table().Read(doc["furniture"], file + ": /furniture", &s.furniture, &consistency);
 
   for (const json& o : doc["objects"]) {
     ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
                     o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
     if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
   }
-  // The module options, each read and checked by its option table (every problem at its pointer).
-  ProblemCollector consistency;
   CameraOptions::Table().Read(doc["camera"], file + ": /camera", &s.camera, &consistency);
-  s.camera.sensor.reflected_temperature_c = s.environment_temperature_c;
+  s.camera.sensor.reflected_temperature_c = s.room.environment_temperature_c;
   TricycleOptions::Table().Read(doc["robot"], file + ": /robot", &s.robot, &consistency);
   RouteOptions::Table().Read(doc["route"], file + ": /route", &s.route, &consistency);
   s.route.waypoints_m.clear();
@@ -418,6 +399,11 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
     s.crowd.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
   }
   for (const json& p : doc["crowd"]["standing"]) s.crowd.standing.push_back({Vec2(p["position_m"]), p["yaw_deg"].get<double>()});
+  RoomOptions::Table().Check(s.room, file + ": /room", &consistency);
+  for (size_t i = 0; i < s.room.windows.size(); ++i) {
+    WindowSpec::Table().Check(s.room.windows[i], file + ": /room/windows/" + std::to_string(i), &consistency);
+  }
+  FurnitureOptions::Table().Check(s.furniture, file + ": /furniture", &consistency);
   CameraOptions::Table().Check(s.camera, file + ": /camera", &consistency);
   TricycleOptions::Table().Check(s.robot, file + ": /robot", &consistency);
   RouteOptions::Table().Check(s.route, file + ": /route", &consistency);

@@ -66,9 +66,9 @@ Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw
 
 World::World(const Scene& scene, const BandRadianceTable& table)
     : table_(table), assets_(scene.assets_dir), caster_(std::make_unique<RayCaster>()),
-      room_size_m_(scene.room_size_m) {
+      room_size_m_(scene.room.size_m) {
   crowd_ = std::make_unique<Crowd>(scene, &assets_, static_cast<CrowdStage*>(this));
-  environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.environment_temperature_c));
+  environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.room.environment_temperature_c));
   for (const char* name : {"none", "floor", "ceiling", "wall", "window", "table", "chair", "person",
                            "cup", "laptop", "monitor", "radiator"}) {
     ClassId(name);
@@ -149,8 +149,8 @@ void World::BuildRoom(const Scene& scene) {
   AddQuad(&room_mesh_, V(0, 0, 0), V(0, Y, 0), V(0, Y, Z), V(0, 0, Z), 2);  // west
   AddQuad(&room_mesh_, V(X, 0, 0), V(X, 0, Z), V(X, Y, Z), V(X, Y, 0), 2);  // east
   const float inset = 0.002f;  // windows sit just inside the wall plane
-  for (size_t i = 0; i < scene.windows.size(); ++i) {
-    const WindowSpec& w = scene.windows[i];
+  for (size_t i = 0; i < scene.room.windows.size(); ++i) {
+    const WindowSpec& w = scene.room.windows[i];
     const auto a = static_cast<float>(w.center_m - 0.5 * w.width_m);
     const auto b = static_cast<float>(w.center_m + 0.5 * w.width_m);
     const auto z0 = static_cast<float>(w.bottom_m), z1 = static_cast<float>(w.bottom_m + w.height_m);
@@ -167,22 +167,26 @@ void World::BuildRoom(const Scene& scene) {
   info.name = "room";
   info.class_id = ClassId("wall");
   info.mesh = &room_mesh_;
-  auto surface = [&](const SurfaceSpec& s, double top_c, const char* cls) {
+  // bottom_c at the floor, top_c at the ceiling (equal but for the walls).
+  auto surface = [&](double bottom_c, double top_c, double emissivity, bool specular, const char* cls) {
     InstanceMaterial m;
     m.class_id = ClassId(cls);
-    m.temperature_c = static_cast<float>(s.temperature_c);
+    m.temperature_c = static_cast<float>(bottom_c);
     m.temperature_top_c = static_cast<float>(top_c);
-    m.emissivity = static_cast<float>(s.emissivity);
-    m.specular = s.specular;
+    m.emissivity = static_cast<float>(emissivity);
+    m.specular = specular;
     Finish(&m);
     return m;
   };
-  info.materials.push_back(surface(scene.floor, scene.floor.temperature_c, "floor"));
-  info.materials.push_back(surface(scene.ceiling, scene.ceiling.temperature_c, "ceiling"));
-  info.materials.push_back(surface(scene.walls, scene.wall_temperature_top_c, "wall"));
-  for (const WindowSpec& w : scene.windows) {
-    info.materials.push_back(surface(w.surface, w.surface.temperature_c, "window"));
-  }
+  auto plain = [&](const SurfaceSpec& s, const char* cls) {
+    return surface(s.temperature_c, s.temperature_c, s.emissivity, s.specular, cls);
+  };
+  const WallOptions& walls = scene.room.walls;
+  info.materials.push_back(plain(scene.room.floor, "floor"));
+  info.materials.push_back(plain(scene.room.ceiling, "ceiling"));
+  info.materials.push_back(
+      surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
+  for (const WindowSpec& w : scene.room.windows) info.materials.push_back(plain(w.surface, "window"));
   instances_.push_back(std::move(info));
   const double t = 0.05;  // walls as thin obstacles just outside the room
   auto wall = [&](const std::string& name, double cx, double cy, double hx, double hy) {
@@ -200,12 +204,12 @@ void World::BuildRoom(const Scene& scene) {
 }
 
 void World::BuildFurnitureAndPeople(const Scene& scene) {
-  const Asset& table_asset = assets_.Get(scene.table_asset);
-  const Asset& chair_asset = assets_.Get(scene.chair_asset);
+  const Asset& table_asset = assets_.Get(scene.furniture.table_asset);
+  const Asset& chair_asset = assets_.Get(scene.furniture.chair_asset);
   bool three_per_side = scene.crowd.people_per_table > 4;
   for (const SeatingSpec& s : scene.crowd.seating) three_per_side |= (s.seat % 3 == 2);
   const int per_side = three_per_side ? 3 : 2;
-  const double spacing = three_per_side ? scene.seat_spacing_6_m : scene.seat_spacing_4_m;
+  const double spacing = three_per_side ? scene.furniture.seat_spacing_6_m : scene.furniture.seat_spacing_4_m;
   const double half_depth = table_asset.bounds_m.max().y();
   // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
   const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
@@ -231,9 +235,9 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
         const int seat = side * 3 + k;
         Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
         ChairPlan plan{t, seat, side, k, 0, 0, 0};
-        plan.turn = jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_deg * kDegToRad;
-        plan.shift = jitter.Uniform(-1.0, 1.0) * scene.chair_jitter_m;
-        plan.push = 0.5 * jitter.Uniform() * scene.chair_jitter_m;
+        plan.turn = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_deg * kDegToRad;
+        plan.shift = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_m;
+        plan.push = 0.5 * jitter.Uniform() * scene.furniture.chair_jitter_m;
         chairs.push_back(plan);
       }
     }
@@ -244,7 +248,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     const double turn = c.scale * c.turn;
     const double along = (c.k - 0.5 * (per_side - 1)) * spacing + c.scale * c.shift;
     const double pushed_in = c.scale * c.push + chair_half_width * std::abs(std::sin(turn));
-    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth + scene.seat_setback_m - pushed_in);
+    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth + scene.furniture.seat_setback_m - pushed_in);
     const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
     *position = Eigen::Vector3d(p.x(), p.y(), 0.0);
     *seat_yaw = yaw + (c.side == 0 ? M_PI / 2 : -M_PI / 2) + turn;

@@ -2,6 +2,7 @@
 // defaults, minimum/maximum (and whether each is exclusive), string choices. Any drift fails here.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -90,7 +91,12 @@ std::vector<std::string> Disagreements(const json& schema, const std::string& po
       out.push_back(where + ": type " + kType.at(o.kind) + " in C++, " + node->value("type", "?") + " in the schema");
     }
     const json cpp_default = json::parse(o.default_json);
-    if (!node->contains("default")) {
+    const bool required = object->contains("required") && (*object)["required"].is_array() &&
+                          std::find((*object)["required"].begin(), (*object)["required"].end(), o.name) !=
+                              (*object)["required"].end();
+    if (required) {
+      // A required key has no schema default; the table's only fills a struct made in code.
+    } else if (!node->contains("default")) {
       out.push_back(where + ": no default in the schema (C++: " + o.default_json + ")");
     } else if (cpp_default.is_number() ? (*node)["default"].get<double>() != cpp_default.get<double>()
                                        : (*node)["default"] != cpp_default) {
@@ -131,10 +137,42 @@ TEST(OptionSchema, EverySimOptionTableAgreesWithTheSceneSchema) {
       {"/route", RouteOptions::Table().List()},
       {"/odometry", OdometryErrorOptions::Table().List()},
       {"/crowd", CrowdOptions::Table().List()},
+      {"/room", RoomOptions::Table().List()},
+      {"/furniture", FurnitureOptions::Table().List()},
   };
   for (const auto& [pointer, options] : tables) {
     const std::vector<std::string> problems = Disagreements(Schema(), pointer, options);
     EXPECT_TRUE(problems.empty()) << Lines(problems);
+  }
+}
+
+// Array elements have a table too: one window of /room/windows against the schema's items.
+TEST(OptionSchema, TheWindowTableAgreesWithTheSchemasWindowItems) {
+  const json items = Schema()["properties"]["room"]["properties"]["windows"]["items"];
+  const json wrapped = {{"properties", {{"window", items}}}};
+  const std::vector<std::string> problems = Disagreements(wrapped, "/window", WindowSpec::Table().List());
+  EXPECT_TRUE(problems.empty()) << Lines(problems);
+}
+
+// Defaults that are arrays (read by hand, so outside the tables) agree with the schema too.
+TEST(OptionSchema, ArrayDefaultsAgreeWithTheSchema) {
+  const json& properties = Schema()["properties"];
+  json waypoints = json::array();
+  for (const Eigen::Vector2d& p : RouteOptions().waypoints_m) waypoints.push_back({p.x(), p.y()});
+  EXPECT_EQ(waypoints, properties["route"]["properties"]["waypoints_m"]["default"]);
+  const RoomOptions room;
+  EXPECT_EQ(json({room.size_m.x(), room.size_m.y(), room.size_m.z()}),
+            properties["room"]["properties"]["size_m"]["default"]);
+  const json window_default = properties["room"]["properties"]["windows"]["default"];
+  ASSERT_EQ(room.windows.size(), window_default.size());
+  for (size_t i = 0; i < room.windows.size(); ++i) {
+    const WindowSpec& w = room.windows[i];
+    const json& d = window_default[i];
+    EXPECT_EQ(w.wall, d["wall"]);
+    EXPECT_EQ(w.center_m, d["center_m"].get<double>());
+    EXPECT_EQ(w.bottom_m, d["bottom_m"].get<double>());
+    EXPECT_EQ(w.width_m, d["width_m"].get<double>());
+    EXPECT_EQ(w.height_m, d["height_m"].get<double>());
   }
 }
 

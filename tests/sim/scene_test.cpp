@@ -47,8 +47,8 @@ TEST(Scene, EmptyDocumentIsThePaperRoomByDefaults) {
   EXPECT_DOUBLE_EQ(s.frame_rate_hz, 25.0);
   EXPECT_EQ(s.tables.size(), 6u);
   EXPECT_EQ(s.crowd.people_per_table, 4);
-  EXPECT_DOUBLE_EQ(s.room_size_m.x(), 7.0);
-  EXPECT_DOUBLE_EQ(s.room_size_m.y(), 3.0);
+  EXPECT_DOUBLE_EQ(s.room.size_m.x(), 7.0);
+  EXPECT_DOUBLE_EQ(s.room.size_m.y(), 3.0);
   EXPECT_EQ(s.camera.width_px, 256);
   EXPECT_EQ(s.camera.height_px, 192);
   // The resolved document has every default filled in.

@@ -12,6 +12,7 @@
 #include "hoilcd/sim/camera_options.h"
 #include "hoilcd/sim/crowd_options.h"
 #include "hoilcd/sim/robot.h"
+#include "hoilcd/sim/room_options.h"
 
 namespace hoilcd {
 
@@ -28,18 +29,6 @@ std::vector<Problem> ValidateScene(const nlohmann::json& doc, const std::string&
 
 // Inserts schema defaults for every absent property, recursively.
 void FillSceneDefaults(nlohmann::json* doc);
-
-struct SurfaceSpec {
-  double temperature_c = 22;
-  double emissivity = 0.92;
-  bool specular = false;
-};
-
-struct WindowSpec {
-  std::string wall;  // north | south | east | west
-  double center_m = 0, bottom_m = 0, width_m = 0, height_m = 0;
-  SurfaceSpec surface;
-};
 
 struct TableSpec {
   Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
@@ -66,18 +55,9 @@ struct Scene {
   int frames = 1996;
   double frame_rate_hz = 25;
 
-  Eigen::Vector3d room_size_m{7.0, 3.0, 2.6};
-  double environment_temperature_c = 22;
-  SurfaceSpec floor, ceiling;
-  double wall_temperature_bottom_c = 21, wall_temperature_top_c = 23.5;
-  SurfaceSpec walls;
-  std::vector<WindowSpec> windows;
-
+  RoomOptions room;                 // /room
   std::vector<TableSpec> tables;
-  std::string table_asset, chair_asset;
-  double seat_setback_m = 0.2, seat_spacing_4_m = 0.45, seat_spacing_6_m = 0.3;
-  double chair_jitter_m = 0.05, chair_jitter_deg = 12;  // irregular chair placement
-  double seat_warmth_c = 6;
+  FurnitureOptions furniture;       // /furniture (asset names resolved to paths)
 
   CrowdOptions crowd;               // /crowd
 
