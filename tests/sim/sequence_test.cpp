@@ -287,6 +287,23 @@ TEST_F(Sequence, RefusalNamesTheFilesThatAreNotItsOwn) {
   }
 }
 
+TEST(SequenceOptions, CheckNamesEveryWrongFlagAndRenderRejectsThem) {
+  SequenceOptions options;
+  EXPECT_EQ(options.checkpoint_every_frames, 25);
+  EXPECT_NE(options.Check().find("output_dir: an output folder is required"), std::string::npos) << options.Check();
+  options.output_dir = "out";
+  EXPECT_EQ(options.Check(), "");
+  options.frames = -1;
+  EXPECT_NE(options.Check().find("frames: must be at least 0"), std::string::npos) << options.Check();
+  options.frames = 0;
+  options.checkpoint_every_frames = 0;
+  EXPECT_NE(options.Check().find("checkpoint_every_frames: must be at least 1"), std::string::npos) << options.Check();
+  options.checkpoint_every_frames = 25;
+  options.threads = -2;
+  EXPECT_NE(options.Check().find("threads: must be at least 0"), std::string::npos) << options.Check();
+  EXPECT_THROW(RenderSequence(PaperRoom(), options), InputError);
+}
+
 TEST_F(Sequence, RouteProblemsFoundWhileSimulatingNameTheSceneFile) {
   SequenceOptions options;
   options.output_dir = TempDir("route");
