@@ -88,9 +88,10 @@ std::string EncodePng(const cv::Mat& image) {
                        image.type() == CV_8UC3,
                    "EncodePng takes a 1-channel CV_8U or CV_16U image or a CV_8UC3 one");
   std::vector<uchar> buffer;
-  // zlib level 1: 4-5x less CPU than the default 6 for 2-4 % larger frames (bench/README.md
-  // "Rendering"); PNG encoding was the render pipeline's bottleneck.
-  HOILCD_CHECK(cv::imencode(".png", image, buffer, {cv::IMWRITE_PNG_COMPRESSION, 1}));
+  // OpenCV's default parameters (zlib level 1 with the RLE strategy): 2.6x less CPU than level 1
+  // with the default strategy, for 8-bit frames 10 % smaller, 16-bit 2 % larger
+  // (build/bench/exr_png_bench, bench/README.md "Dataset writing").
+  HOILCD_CHECK(cv::imencode(".png", image, buffer));
   return std::string(buffer.begin(), buffer.end());
 }
 

@@ -49,12 +49,6 @@ cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions
   throw InputError(path, "no T channel");
 }
 
-cv::Mat ToFloat(const cv::Mat& m) {
-  cv::Mat f;
-  m.convertTo(f, CV_32F);
-  return f;
-}
-
 }  // namespace
 
 SequenceOptions::SequenceOptions() { Table().FillDefaults(this); }
@@ -79,8 +73,10 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people;
 // 6: the robot steers on localised odometry by default; 7: walkers planned in free space, clear of
 // each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
-// half of the gap to each neighbour, gestures on the roomier side).
-constexpr int kSimulatorRevision = 8;
+// half of the gap to each neighbour, gestures on the roomier side; 9: EXR RLE-compressed with Z
+// half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
+// parameters).
+constexpr int kSimulatorRevision = 9;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
@@ -92,6 +88,7 @@ struct RenderedFrame {
   cv::Mat temperature;  // °C, after the sensor model
   cv::Mat ideal;        // °C, before sensor noise (T_true)
   FrameBuffers buffers;
+  ExrChannels exr;      // the EXR's channels (FrameExrChannels)
 };
 
 // One call of RenderSequence, in named steps: OpenOrResume, then per frame ReuseFrame or
@@ -243,7 +240,12 @@ class SequenceRender {
     out.temperature = sensor_->Apply(f, out.buffers.radiance);
     sensor_frame_ = f;
     out.ideal = sensor_->IdealTemperature(out.buffers.radiance);
-    persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, out.buffers.instance, out.buffers.depth_m)};
+    out.exr = FrameExrChannels(out.temperature, out.ideal, out.buffers.depth_m, out.buffers.instance,
+                               out.buffers.class_id);
+    // The depth as the EXR stores it (half), so a resumed frame's ground truth is the same.
+    cv::Mat stored_depth_m;
+    out.exr[2].second.convertTo(stored_depth_m, CV_32F);
+    persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, out.buffers.instance, stored_depth_m)};
     return out;
   }
 
@@ -269,13 +271,7 @@ class SequenceRender {
     }
     WriteDatasetFile(dir_, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(frame.temperature)),
                      &manifest_);
-    WriteDatasetFile(dir_, FramePath("exr", f, "exr"),
-                     EncodeExr({{"T", frame.temperature},
-                                {"T_true", frame.ideal},
-                                {"Z", frame.buffers.depth_m},
-                                {"id", ToFloat(frame.buffers.instance)},
-                                {"class", ToFloat(frame.buffers.class_id)}}),
-                     &manifest_);
+    WriteDatasetFile(dir_, FramePath("exr", f, "exr"), EncodeExr(frame.exr), &manifest_);
   }
 
   // The manifest as it stands lists only complete files: a resume point.
