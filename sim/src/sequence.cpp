@@ -1,16 +1,15 @@
 #include "hoilcd/sim/sequence.h"
 
 #include <chrono>
-#include <future>
-#include <memory>
 #include <filesystem>
-#include <optional>
+#include <memory>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/exr_io.h"
+#include "hoilcd/sim/frame_writer.h"
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
@@ -82,17 +81,9 @@ std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + s
 
 namespace {
 
-// One frame as rendered, before it is encoded and written.
-struct RenderedFrame {
-  int frame = 0;
-  cv::Mat temperature;  // °C, after the sensor model
-  cv::Mat ideal;        // °C, before sensor noise (T_true)
-  FrameBuffers buffers;
-  ExrChannels exr;      // the EXR's channels (FrameExrChannels)
-};
-
 // One call of RenderSequence, in named steps: OpenOrResume, then per frame ReuseFrame or
-// RenderFrame + WriteFrame (with a Checkpoint every few frames), then Finish.
+// RenderFrame + WriteFrame (with a Checkpoint every few frames), then Finish. Frames are encoded
+// and written by a FrameWriter on every core while the next ones render.
 class SequenceRender {
  public:
   SequenceRender(const Scene& scene, const SequenceOptions& options)
@@ -124,9 +115,15 @@ class SequenceRender {
       streaming_video_ = std::make_unique<VideoEncoder>(video_options_, intrinsics_.width, intrinsics_.height,
                                                         scene_.frame_rate_hz);
     }
+    FrameWriterOptions writer_options;
+    writer_options.dir = dir_;
+    writer_options.display_min_c = sensor_options_.display_min_c;
+    writer_options.display_max_c = sensor_options_.display_max_c;
+    writer_options.workers = ResolveThreadCount(options_.threads);
+    writer_ = std::make_unique<FrameWriter>(writer_options, &manifest_, streaming_video_.get());
     for (int f = 0; f < frames_; ++f) {
       if (options_.cancel && options_.cancel->load()) {
-        FinishWriting();
+        writer_->Finish();
         WriteFileAtomic(manifest_path_, manifest_.ToJson());
         throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
       }
@@ -138,7 +135,8 @@ class SequenceRender {
       }
       progress.Update();
     }
-    FinishWriting();
+    writer_->Finish();
+    result_.video_seconds += writer_->video_seconds();
     progress.Done();
     Finish();
     return result_;
@@ -222,7 +220,7 @@ class SequenceRender {
 
   // Ray casts frame f (the world is at its time), applies the sensor model and finds the
   // visible people.
-  RenderedFrame RenderFrame(int f) {
+  FrameImages RenderFrame(int f) {
     const RobotSample& sample = run_.samples[f];
     if (f > 0 && sensor_frame_ != f - 1) {
       // Resuming after kept frames: a fresh model replays the frames its state depends on (the
@@ -234,54 +232,29 @@ class SequenceRender {
       }
       world_.SetTime(sample.time_s);
     }
-    RenderedFrame out;
+    const FrameBuffers buffers = renderer_->Render(sample.camera);
+    FrameImages out;
     out.frame = f;
-    out.buffers = renderer_->Render(sample.camera);
-    out.temperature = sensor_->Apply(f, out.buffers.radiance);
+    out.temperature_c = sensor_->Apply(f, buffers.radiance);
     sensor_frame_ = f;
-    out.ideal = sensor_->IdealTemperature(out.buffers.radiance);
-    out.exr = FrameExrChannels(out.temperature, out.ideal, out.buffers.depth_m, out.buffers.instance,
-                               out.buffers.class_id);
+    out.exr = FrameExrChannels(out.temperature_c, sensor_->IdealTemperature(buffers.radiance), buffers.depth_m,
+                               buffers.instance, buffers.class_id);
     // The depth as the EXR stores it (half), so a resumed frame's ground truth is the same.
     cv::Mat stored_depth_m;
     out.exr[2].second.convertTo(stored_depth_m, CV_32F);
-    persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, out.buffers.instance, stored_depth_m)};
+    persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, stored_depth_m)};
     return out;
   }
 
-  // Encoding and writing (two PNGs and an EXR, most of a frame's cost) overlap with rendering
-  // the next frame. One frame at most is in flight and only its writer touches the manifest
-  // meanwhile, so a checkpoint (taken after it finished) lists only complete files.
-  void WriteFrame(RenderedFrame frame) {
-    FinishWriting();
-    if (since_checkpoint_ >= options_.checkpoint_every_frames) Checkpoint();
-    writing_ = std::async(std::launch::async, [this, frame = std::move(frame)] { EncodeAndWrite(frame); });
+  // Hands the frame to the writer (waiting only while its queue is full); every
+  // checkpoint_every_frames frames, a resume point.
+  void WriteFrame(FrameImages frame) {
+    writer_->Submit(std::move(frame));
     ++result_.frames_rendered;
-    ++since_checkpoint_;
-  }
-
-  void EncodeAndWrite(const RenderedFrame& frame) {
-    const int f = frame.frame;
-    const cv::Mat display = ToDisplay8Bit(frame.temperature, sensor_options_.display_min_c, sensor_options_.display_max_c);
-    WriteDatasetFile(dir_, FramePath("thermal", f, "png"), EncodePng(display), &manifest_);
-    if (streaming_video_) {
-      const auto video_start = std::chrono::steady_clock::now();
-      streaming_video_->Add(display);
-      video_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
+    if (++since_checkpoint_ >= options_.checkpoint_every_frames) {
+      writer_->Checkpoint();
+      since_checkpoint_ = 0;
     }
-    WriteDatasetFile(dir_, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(frame.temperature)),
-                     &manifest_);
-    WriteDatasetFile(dir_, FramePath("exr", f, "exr"), EncodeExr(frame.exr), &manifest_);
-  }
-
-  // The manifest as it stands lists only complete files: a resume point.
-  void Checkpoint() {
-    WriteFileAtomic(manifest_path_, manifest_.ToJson());
-    since_checkpoint_ = 0;
-  }
-
-  void FinishWriting() {
-    if (writing_.valid()) writing_.get();  // rethrows a write error here
   }
 
   // The video; in video mode its decoded frames become the thermal PNGs that methods read.
@@ -302,13 +275,15 @@ class SequenceRender {
       const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4");
       HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames_,
                        "decoded " << video.frames.size() << " of " << frames_ << " frames");
-      // Written in parallel (each write waits for its fsync), listed in the manifest in order.
-      std::vector<std::string> checksums(frames_);
+      // Written in parallel, synced as one batch, listed in the manifest in order.
+      std::vector<std::string> checksums(frames_), paths(frames_);
       ParallelFor(frames_, ResolveThreadCount(options_.threads), [&](int64_t f) {
         const std::string bytes = EncodePng(video.frames[f]);
-        WriteFileAtomic(dir_ + "/" + FramePath("thermal", static_cast<int>(f), "png"), bytes);
+        paths[f] = dir_ + "/" + FramePath("thermal", static_cast<int>(f), "png");
+        WriteFileAtomicUnsynced(paths[f], bytes);
         checksums[f] = ChecksumOf(bytes);
       });
+      SyncFiles(paths);
       for (int f = 0; f < frames_; ++f) manifest_.files[FramePath("thermal", f, "png")] = checksums[f];
     }
     video_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
@@ -340,7 +315,7 @@ class SequenceRender {
     manifest_.complete = true;
     WriteFileAtomic(manifest_path_, manifest_.ToJson());
     result_.complete = true;
-    result_.video_seconds = video_s_;
+    result_.video_seconds += video_s_;
   }
 
   const Scene& scene_;
@@ -364,10 +339,10 @@ class SequenceRender {
   int sensor_frame_ = -1;       // last frame the sensor model has seen
   int since_checkpoint_ = 0;
   std::unique_ptr<VideoEncoder> streaming_video_;
-  double video_s_ = 0.0;
+  double video_s_ = 0.0;  // thermal.mp4 outside the writer
   SequenceResult result_;
-  // Last, so it is destroyed (waiting for the frame in flight) before anything that frame uses.
-  std::future<void> writing_;  // the frame being encoded and written, if any
+  // Last, so it is destroyed (stopping its workers) before the manifest and video it writes to.
+  std::unique_ptr<FrameWriter> writer_;
 };
 
 }  // namespace
