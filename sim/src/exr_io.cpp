@@ -39,27 +39,59 @@ class StringOStream : public Imf::OStream {
 
 }  // namespace
 
-std::string EncodeExr(const ExrChannels& channels) {
+namespace {
+
+Imf::Compression ToImf(ExrCompression c) {
+  switch (c) {
+    case ExrCompression::kNone: return Imf::NO_COMPRESSION;
+    case ExrCompression::kRle: return Imf::RLE_COMPRESSION;
+    case ExrCompression::kZips: return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::kZip: return Imf::ZIP_COMPRESSION;
+    case ExrCompression::kPiz: return Imf::PIZ_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
+
+Imf::PixelType PixelTypeOf(const cv::Mat& mat) {
+  if (mat.type() == CV_16F) return Imf::HALF;
+  if (mat.type() == CV_32S) return Imf::UINT;
+  HOILCD_CHECK_MSG(mat.type() == CV_32F, "EncodeExr takes CV_32F, CV_16F or CV_32S channels");
+  return Imf::FLOAT;
+}
+
+}  // namespace
+
+std::string EncodeExr(const ExrChannels& channels, const ExrWriteOptions& options) {
   HOILCD_CHECK(!channels.empty());
+  HOILCD_CHECK(options.zip_level >= 1 && options.zip_level <= 9);
   const int width = channels.front().second.cols;
   const int height = channels.front().second.rows;
   Imf::Header header(width, height);
-  header.compression() = Imf::ZIP_COMPRESSION;
+  header.compression() = ToImf(options.compression);
+  header.zipCompressionLevel() = options.zip_level;
   Imf::FrameBuffer fb;
   for (const auto& [name, mat] : channels) {
-    HOILCD_CHECK(mat.type() == CV_32F && mat.cols == width && mat.rows == height &&
-                 mat.isContinuous());
-    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    fb.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(mat.ptr<char>()), sizeof(float),
-                               sizeof(float) * width));
+    HOILCD_CHECK(mat.channels() == 1 && mat.cols == width && mat.rows == height && mat.isContinuous());
+    const Imf::PixelType type = PixelTypeOf(mat);
+    header.channels().insert(name, Imf::Channel(type));
+    fb.insert(name, Imf::Slice(type, const_cast<char*>(mat.ptr<char>()), mat.elemSize(), mat.elemSize() * width));
   }
   StringOStream stream;
   {
-    Imf::OutputFile file(stream, header, 1);
+    Imf::OutputFile file(stream, header, 1);  // one thread: frames are encoded in parallel instead
     file.setFrameBuffer(fb);
     file.writePixels(height);
   }
   return std::move(stream.data());
+}
+
+ExrChannels FrameExrChannels(const cv::Mat& temperature_c, const cv::Mat& ideal_c, const cv::Mat& depth_m,
+                             const cv::Mat& instance, const cv::Mat& class_id) {
+  HOILCD_CHECK(temperature_c.type() == CV_32F && ideal_c.type() == CV_32F && depth_m.type() == CV_32F &&
+               instance.type() == CV_32S && class_id.type() == CV_32S);
+  cv::Mat depth_half;
+  depth_m.convertTo(depth_half, CV_16F);
+  return {{"T", temperature_c}, {"T_true", ideal_c}, {"Z", depth_half}, {"id", instance}, {"class", class_id}};
 }
 
 namespace {
@@ -170,17 +202,22 @@ ExrChannels ReadExr(const std::string& path, cv::Size size) {
       throw InputError(path, "expected at most " + std::to_string(kMaxExrChannels) + " channels, found " +
                                  std::to_string(channels));
     }
+    // UINT channels are read into int32 (EncodeExr's bits) and then converted, the rest as FLOAT.
     ExrChannels out;
     Imf::FrameBuffer fb;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
-      out.emplace_back(it.name(), cv::Mat(static_cast<int>(height), static_cast<int>(width), CV_32F));
+      const bool uint = it.channel().type == Imf::UINT;
+      out.emplace_back(it.name(), cv::Mat(static_cast<int>(height), static_cast<int>(width), uint ? CV_32S : CV_32F));
     }
     for (auto& [name, mat] : out) {
       char* base = mat.ptr<char>() - (dw.min.x + static_cast<ptrdiff_t>(dw.min.y) * width) * 4;
-      fb.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * width));
+      fb.insert(name, Imf::Slice(mat.type() == CV_32S ? Imf::UINT : Imf::FLOAT, base, 4, 4 * width));
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
+    for (auto& [name, mat] : out) {
+      if (mat.type() == CV_32S) mat.convertTo(mat, CV_32F);
+    }
     return out;
   } catch (const InputError&) {
     throw;

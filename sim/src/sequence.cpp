@@ -1,16 +1,15 @@
 #include "hoilcd/sim/sequence.h"
 
 #include <chrono>
-#include <future>
-#include <memory>
 #include <filesystem>
-#include <optional>
+#include <memory>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/exr_io.h"
+#include "hoilcd/sim/frame_writer.h"
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sensor.h"
@@ -49,253 +48,309 @@ cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions
   throw InputError(path, "no T channel");
 }
 
-cv::Mat ToFloat(const cv::Mat& m) {
-  cv::Mat f;
-  m.convertTo(f, CV_32F);
-  return f;
-}
-
 }  // namespace
 
-std::string SequenceOptions::Check() const {
-  if (output_dir.empty()) return "an output folder is required";
-  if (frames < 0) return "frames must be 0 (all) or positive";
-  if (threads < 0) return "threads must be 0 (every core) or positive";
-  if (checkpoint_every_frames < 1) return "checkpoint_every_frames must be positive";
-  return "";
+SequenceOptions::SequenceOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SequenceOptions>& SequenceOptions::Table() {
+  using O = SequenceOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("output_dir", &O::output_dir, "", {}, "dataset folder (created if missing)")
+          .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "an output folder is required" : ""; })
+          .Add("frames", &O::frames, 0, "frames", OptionRange().AtLeast(0),
+               "render only the first N frames (0: the scene's count)")
+          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: every core)")
+          .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
+               "the manifest is rewritten this often (resume granularity)");
+  return table;
 }
+
+std::string SequenceOptions::Check() const { return Table().FirstProblem(*this); }
 
 // Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
 // camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people;
 // 6: the robot steers on localised odometry by default; 7: walkers planned in free space, clear of
 // each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
-// half of the gap to each neighbour, gestures on the roomier side).
-constexpr int kSimulatorRevision = 8;
+// half of the gap to each neighbour, gestures on the roomier side; 9: EXR RLE-compressed with Z
+// half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
+// parameters).
+constexpr int kSimulatorRevision = 9;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
+
+namespace {
+
+// One call of RenderSequence, in named steps: OpenOrResume, then per frame ReuseFrame or
+// RenderFrame + WriteFrame (with a Checkpoint every few frames), then Finish. Frames are encoded
+// and written by a FrameWriter on every core while the next ones render.
+class SequenceRender {
+ public:
+  SequenceRender(const Scene& scene, const SequenceOptions& options)
+      : scene_(scene),
+        options_(options),
+        dir_(options.output_dir),
+        manifest_path_(options.output_dir + "/manifest.json"),
+        frames_(options.frames > 0 ? std::min(options.frames, scene.frames) : scene.frames),
+        world_(scene, table_),
+        intrinsics_(IntrinsicsFromScene(scene)),
+        run_(SimulateSceneRobot(scene, world_.obstacles())) {
+    HOILCD_CHECK(static_cast<int>(run_.samples.size()) >= frames_);
+    world_.PlanCrowd(run_.samples);
+    sensor_options_ = SensorOptionsFromScene(scene);
+    video_options_ = VideoOptionsFromScene(scene);
+    sensor_ = NewSensor();
+    renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, RenderOptionsFromScene(scene, options.threads));
+  }
+
+  SequenceResult Run() {
+    OpenOrResume();
+    result_.frames_total = frames_;
+    persons_.resize(frames_);
+    ProgressReporter progress("render", frames_, "frames");
+    // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
+    // written when every frame is rendered by this call, else at the end from the EXRs on disk.
+    // Both feed the encoder the same frames, so a resumed render gives the same file.
+    if (!any_done_) {
+      streaming_video_ = std::make_unique<VideoEncoder>(video_options_, intrinsics_.width, intrinsics_.height,
+                                                        scene_.frame_rate_hz);
+    }
+    FrameWriterOptions writer_options;
+    writer_options.dir = dir_;
+    writer_options.display_min_c = sensor_options_.display_min_c;
+    writer_options.display_max_c = sensor_options_.display_max_c;
+    writer_options.workers = ResolveThreadCount(options_.threads);
+    writer_ = std::make_unique<FrameWriter>(writer_options, &manifest_, streaming_video_.get());
+    for (int f = 0; f < frames_; ++f) {
+      if (options_.cancel && options_.cancel->load()) {
+        writer_->Finish();
+        WriteFileAtomic(manifest_path_, manifest_.ToJson());
+        throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
+      }
+      world_.SetTime(run_.samples[f].time_s);
+      if (done_[f]) {
+        ReuseFrame(f);
+      } else {
+        WriteFrame(RenderFrame(f));
+      }
+      progress.Update();
+    }
+    writer_->Finish();
+    result_.video_seconds += writer_->video_seconds();
+    progress.Done();
+    Finish();
+    return result_;
+  }
+
+ private:
+  std::unique_ptr<SensorModel> NewSensor() const {
+    return std::make_unique<SensorModel>(sensor_options_, intrinsics_.width, intrinsics_.height,
+                                         scene_.frame_rate_hz, scene_.seed, &table_, options_.threads);
+  }
+
+  // An existing folder must be an earlier run of this very scene; anything else is the user's.
+  // Marks the frames an earlier run finished (done_) and writes the first manifest.
+  void OpenOrResume() {
+    std::error_code ec;
+    if (fs::exists(manifest_path_, ec)) {
+      DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path_), manifest_path_);
+      if (old.hoilcd_version != SimulatorVersion()) {
+        throw InputError(dir_, "holds a dataset rendered by hoilcd " + old.hoilcd_version + " (this is " +
+                                   SimulatorVersion() +
+                                   "), whose frames would not match new ones; delete it or choose another "
+                                   "output folder");
+      }
+      if (old.scene_hash != scene_.hash || old.seed != scene_.seed) {
+        throw InputError(dir_, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
+                                   ", seed " + std::to_string(old.seed) +
+                                   "); choose another output folder or delete this one");
+      }
+      manifest_ = old;
+    } else if (const std::vector<std::string> foreign = ForeignFiles(dir_); !foreign.empty()) {
+      // Only temp files of a run killed before its first manifest may be there.
+      throw InputError(dir_, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(foreign) +
+                                 "); refusing to write into it");
+    }
+    fs::create_directories(dir_, ec);
+    if (ec) throw InputError(dir_, "cannot create the output folder (" + ec.message() + ")");
+    // A killed run may leave temp files of atomic writes ("NAME.tmp.PID"); they were never
+    // renamed into place, so nothing refers to them. Only those exact names are removed.
+    RemoveDatasetTempFiles(dir_);
+
+    manifest_.hoilcd_version = SimulatorVersion();
+    manifest_.scene_hash = scene_.hash;
+    manifest_.seed = scene_.seed;
+    manifest_.intrinsics = intrinsics_;
+    manifest_.frame_rate_hz = scene_.frame_rate_hz;
+    manifest_.frame_count = frames_;
+    manifest_.window_min_c = sensor_options_.display_min_c;
+    manifest_.window_max_c = sensor_options_.display_max_c;
+    manifest_.classes = world_.classes();
+    manifest_.complete = false;
+
+    done_.assign(frames_, false);
+    for (int f = 0; f < frames_; ++f) {
+      done_[f] = FrameDone(dir_, manifest_, f);
+      any_done_ = any_done_ || done_[f];
+    }
+    // Drop listings of files that are not (or no longer) valid frames or side files.
+    for (auto it = manifest_.files.begin(); it != manifest_.files.end();) {
+      bool keep = false;
+      for (int f = 0; f < frames_ && !keep; ++f) {
+        keep = done_[f] && (it->first == FramePath("thermal", f, "png") ||
+                            it->first == FramePath("radiometric", f, "png") ||
+                            it->first == FramePath("exr", f, "exr"));
+      }
+      it = keep ? std::next(it) : manifest_.files.erase(it);
+    }
+    WriteFileAtomic(manifest_path_, manifest_.ToJson());
+  }
+
+  // Kept from an earlier run: ground truth comes from its stored instance ids.
+  void ReuseFrame(int f) {
+    const ExrChannels exr = ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height});
+    cv::Mat ids, depth;
+    for (const auto& [name, channel] : exr) {
+      if (name == "id") channel.convertTo(ids, CV_32S);
+      if (name == "Z") channel.convertTo(depth, CV_32F);
+    }
+    if (!ids.empty()) persons_[f] = {f, VisiblePersons(world_, intrinsics_, run_.samples[f].camera, ids, depth)};
+    ++result_.frames_reused;
+  }
+
+  // Ray casts frame f (the world is at its time), applies the sensor model and finds the
+  // visible people.
+  FrameImages RenderFrame(int f) {
+    const RobotSample& sample = run_.samples[f];
+    if (f > 0 && sensor_frame_ != f - 1) {
+      // Resuming after kept frames: a fresh model replays the frames its state depends on (the
+      // previous frame; during an FFC freeze, back to the frame it shows): the resume contract.
+      sensor_ = NewSensor();
+      for (int replay = sensor_->ReplayFrom(f); replay < f; ++replay) {
+        world_.SetTime(run_.samples[replay].time_s);
+        sensor_->Apply(replay, renderer_->Render(run_.samples[replay].camera).radiance);
+      }
+      world_.SetTime(sample.time_s);
+    }
+    const FrameBuffers buffers = renderer_->Render(sample.camera);
+    FrameImages out;
+    out.frame = f;
+    out.temperature_c = sensor_->Apply(f, buffers.radiance);
+    sensor_frame_ = f;
+    out.exr = FrameExrChannels(out.temperature_c, sensor_->IdealTemperature(buffers.radiance), buffers.depth_m,
+                               buffers.instance, buffers.class_id);
+    // The depth as the EXR stores it (half), so a resumed frame's ground truth is the same.
+    cv::Mat stored_depth_m;
+    out.exr[2].second.convertTo(stored_depth_m, CV_32F);
+    persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, stored_depth_m)};
+    return out;
+  }
+
+  // Hands the frame to the writer (waiting only while its queue is full); every
+  // checkpoint_every_frames frames, a resume point.
+  void WriteFrame(FrameImages frame) {
+    writer_->Submit(std::move(frame));
+    ++result_.frames_rendered;
+    if (++since_checkpoint_ >= options_.checkpoint_every_frames) {
+      writer_->Checkpoint();
+      since_checkpoint_ = 0;
+    }
+  }
+
+  // The video; in video mode its decoded frames become the thermal PNGs that methods read.
+  void WriteVideo() {
+    const auto video_start = std::chrono::steady_clock::now();
+    std::string mp4;
+    if (streaming_video_ && streaming_video_->frames_added() == frames_) {
+      mp4 = streaming_video_->Finish();
+    } else {
+      VideoEncoder encoder(video_options_, intrinsics_.width, intrinsics_.height, scene_.frame_rate_hz);
+      for (int f = 0; f < frames_; ++f) {
+        encoder.Add(UncompressedFrame(dir_, f, sensor_options_, {intrinsics_.width, intrinsics_.height}));
+      }
+      mp4 = encoder.Finish();
+    }
+    WriteDatasetFile(dir_, "thermal.mp4", mp4, &manifest_);
+    if (video_options_.enabled) {
+      const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4");
+      HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames_,
+                       "decoded " << video.frames.size() << " of " << frames_ << " frames");
+      // Written in parallel, synced as one batch, listed in the manifest in order.
+      std::vector<std::string> checksums(frames_), paths(frames_);
+      ParallelFor(frames_, ResolveThreadCount(options_.threads), [&](int64_t f) {
+        const std::string bytes = EncodePng(video.frames[f]);
+        paths[f] = dir_ + "/" + FramePath("thermal", static_cast<int>(f), "png");
+        WriteFileAtomicUnsynced(paths[f], bytes);
+        checksums[f] = ChecksumOf(bytes);
+      });
+      SyncFiles(paths);
+      for (int f = 0; f < frames_; ++f) manifest_.files[FramePath("thermal", f, "png")] = checksums[f];
+    }
+    video_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
+  }
+
+  // thermal.mp4, the side files, then the manifest that declares the dataset complete.
+  void Finish() {
+    WriteVideo();
+    const std::vector<PoseRecord> poses = PoseRecordsOf(run_, frames_);
+    std::vector<DatasetEvent> events;
+    for (const DatasetEvent& e : world_.events())
+      if (e.frame < frames_) events.push_back(e);
+    for (int f : sensor_->FfcFrames(frames_)) {
+      events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+      for (int frozen = f; frozen < frames_ && sensor_->ShownFrame(frozen) != frozen; ++frozen) {
+        events.push_back({frozen, "freeze", -1, "",
+                          "output repeats frame " + std::to_string(sensor_->ShownFrame(frozen)) +
+                              " (FFC shutter closed)"});
+      }
+    }
+    std::stable_sort(events.begin(), events.end(),
+                     [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
+    WriteDatasetFile(dir_, "poses.csv", PosesToCsv(poses), &manifest_);
+    WriteDatasetFile(dir_, "poses_tum.txt", PosesToTum(poses), &manifest_);
+    WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_), &manifest_);
+    WriteDatasetFile(dir_, "events.json", EventsToJson(events), &manifest_);
+    WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(FootprintRecordsOf(world_.obstacles())), &manifest_);
+    WriteDatasetFile(dir_, "scene.json", scene_.resolved.dump(2), &manifest_);
+    manifest_.complete = true;
+    WriteFileAtomic(manifest_path_, manifest_.ToJson());
+    result_.complete = true;
+    result_.video_seconds += video_s_;
+  }
+
+  const Scene& scene_;
+  const SequenceOptions& options_;
+  const std::string dir_;
+  const std::string manifest_path_;
+  const int frames_;
+  const BandRadianceTable table_;
+  World world_;
+  const CameraIntrinsics intrinsics_;
+  const RobotRun run_;
+  SensorOptions sensor_options_;
+  VideoOptions video_options_;
+  std::unique_ptr<SensorModel> sensor_;
+  std::unique_ptr<FrameRenderer> renderer_;
+
+  DatasetManifest manifest_;
+  std::vector<bool> done_;  // frames kept from an earlier run
+  bool any_done_ = false;
+  std::vector<FramePersons> persons_;
+  int sensor_frame_ = -1;       // last frame the sensor model has seen
+  int since_checkpoint_ = 0;
+  std::unique_ptr<VideoEncoder> streaming_video_;
+  double video_s_ = 0.0;  // thermal.mp4 outside the writer
+  SequenceResult result_;
+  // Last, so it is destroyed (stopping its workers) before the manifest and video it writes to.
+  std::unique_ptr<FrameWriter> writer_;
+};
+
+}  // namespace
 
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("render", problem);
   const auto start = std::chrono::steady_clock::now();
-  const std::string& dir = options.output_dir;
-  const int frames = options.frames > 0 ? std::min(options.frames, scene.frames) : scene.frames;
-
-  const BandRadianceTable table;
-  World world(scene, table);
-  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
-  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
-  HOILCD_CHECK(static_cast<int>(run.samples.size()) >= frames);
-  world.PlanCrowd(run.samples);
-  const SensorOptions sensor_options = SensorOptionsFromScene(scene);
-  const VideoOptions video_options = VideoOptionsFromScene(scene);
-  auto new_sensor = [&] {
-    return std::make_unique<SensorModel>(sensor_options, intrinsics.width, intrinsics.height,
-                                         scene.frame_rate_hz, scene.seed, &table, options.threads);
-  };
-  std::unique_ptr<SensorModel> sensor = new_sensor();
-  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, options.threads));
-
-  // An existing folder must be an earlier run of this very scene; anything else is the user's.
-  DatasetManifest manifest;
-  const std::string manifest_path = dir + "/manifest.json";
-  std::error_code ec;
-  if (fs::exists(manifest_path, ec)) {
-    DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
-    if (old.hoilcd_version != SimulatorVersion()) {
-      throw InputError(dir, "holds a dataset rendered by hoilcd " + old.hoilcd_version + " (this is " +
-                                SimulatorVersion() +
-                                "), whose frames would not match new ones; delete it or choose another "
-                                "output folder");
-    }
-    if (old.scene_hash != scene.hash || old.seed != scene.seed) {
-      throw InputError(dir, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
-                                ", seed " + std::to_string(old.seed) +
-                                "); choose another output folder or delete this one");
-    }
-    manifest = old;
-  } else if (const std::vector<std::string> foreign = ForeignFiles(dir); !foreign.empty()) {
-    // Only temp files of a run killed before its first manifest may be there.
-    throw InputError(dir, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(foreign) +
-                              "); refusing to write into it");
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create the output folder (" + ec.message() + ")");
-  // A killed run may leave temp files of atomic writes ("NAME.tmp.PID"); they were never
-  // renamed into place, so nothing refers to them. Only those exact names are removed.
-  RemoveDatasetTempFiles(dir);
-
-  manifest.hoilcd_version = SimulatorVersion();
-  manifest.scene_hash = scene.hash;
-  manifest.seed = scene.seed;
-  manifest.intrinsics = intrinsics;
-  manifest.frame_rate_hz = scene.frame_rate_hz;
-  manifest.frame_count = frames;
-  manifest.window_min_c = sensor_options.display_min_c;
-  manifest.window_max_c = sensor_options.display_max_c;
-  manifest.classes = world.classes();
-  manifest.complete = false;
-
-  std::vector<bool> done(frames, false);
-  bool any_done = false;
-  for (int f = 0; f < frames; ++f) {
-    done[f] = FrameDone(dir, manifest, f);
-    any_done = any_done || done[f];
-  }
-  // Drop listings of files that are not (or no longer) valid frames or side files.
-  for (auto it = manifest.files.begin(); it != manifest.files.end();) {
-    bool keep = false;
-    for (int f = 0; f < frames && !keep; ++f) {
-      keep = done[f] && (it->first == FramePath("thermal", f, "png") ||
-                         it->first == FramePath("radiometric", f, "png") ||
-                         it->first == FramePath("exr", f, "exr"));
-    }
-    it = keep ? std::next(it) : manifest.files.erase(it);
-  }
-  WriteFileAtomic(manifest_path, manifest.ToJson());
-
-  SequenceResult result;
-  result.frames_total = frames;
-  std::vector<FramePersons> persons(frames);
-  ProgressReporter progress("render", frames, "frames");
-  int sensor_frame = -1;  // last frame the sensor model has seen
-  std::future<void> writing;  // the frame being encoded and written, if any
-  auto finish_writing = [&writing] {
-    if (writing.valid()) writing.get();  // rethrows a write error here
-  };
-  int since_checkpoint = 0;
-  // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
-  // written when every frame is rendered by this call, else at the end from the EXRs on disk.
-  // Both feed the encoder the same frames, so a resumed render gives the same file.
-  double video_s = 0.0;
-  std::unique_ptr<VideoEncoder> streaming_video;
-  if (!any_done) {
-    streaming_video = std::make_unique<VideoEncoder>(video_options, intrinsics.width, intrinsics.height,
-                                                     scene.frame_rate_hz);
-  }
-  for (int f = 0; f < frames; ++f) {
-    if (options.cancel && options.cancel->load()) {
-      finish_writing();
-      WriteFileAtomic(manifest_path, manifest.ToJson());
-      throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
-    }
-    const RobotSample& sample = run.samples[f];
-    world.SetTime(sample.time_s);
-    if (done[f]) {
-      // Kept from an earlier run: ground truth comes from its stored instance ids.
-      const ExrChannels exr = ReadExr(dir + "/" + FramePath("exr", f, "exr"), {intrinsics.width, intrinsics.height});
-      cv::Mat ids, depth;
-      for (const auto& [name, channel] : exr) {
-        if (name == "id") channel.convertTo(ids, CV_32S);
-        if (name == "Z") channel.convertTo(depth, CV_32F);
-      }
-      if (!ids.empty()) persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, ids, depth)};
-      ++result.frames_reused;
-      progress.Update();
-      continue;
-    }
-    if (f > 0 && sensor_frame != f - 1) {
-      // Resuming after kept frames: a fresh model replays the frames its state depends on (the
-      // previous frame; during an FFC freeze, back to the frame it shows): the resume contract.
-      sensor = new_sensor();
-      for (int replay = sensor->ReplayFrom(f); replay < f; ++replay) {
-        world.SetTime(run.samples[replay].time_s);
-        sensor->Apply(replay, renderer.Render(run.samples[replay].camera).radiance);
-      }
-      world.SetTime(sample.time_s);
-    }
-    const FrameBuffers buffers = renderer.Render(sample.camera);
-    const cv::Mat temperature = sensor->Apply(f, buffers.radiance);
-    sensor_frame = f;
-    const cv::Mat ideal = sensor->IdealTemperature(buffers.radiance);
-    persons[f] = {f, VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m)};
-
-    // Encoding and writing (two PNGs and an EXR, most of a frame's cost) overlap with rendering
-    // the next frame. One frame at most is in flight and only its writer touches the manifest
-    // meanwhile, so a checkpoint (taken after it finished) lists only complete files.
-    finish_writing();
-    if (since_checkpoint >= options.checkpoint_every_frames) {
-      WriteFileAtomic(manifest_path, manifest.ToJson());
-      since_checkpoint = 0;
-    }
-    writing = std::async(std::launch::async, [&, f, temperature, ideal, buffers] {
-      const cv::Mat display =
-          ToDisplay8Bit(temperature, sensor_options.display_min_c, sensor_options.display_max_c);
-      WriteDatasetFile(dir, FramePath("thermal", f, "png"), EncodePng(display), &manifest);
-      if (streaming_video) {
-        const auto video_start = std::chrono::steady_clock::now();
-        streaming_video->Add(display);
-        video_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
-      }
-      WriteDatasetFile(dir, FramePath("radiometric", f, "png"), EncodePng(ToCentikelvin16(temperature)),
-                       &manifest);
-      WriteDatasetFile(dir, FramePath("exr", f, "exr"),
-                       EncodeExr({{"T", temperature},
-                                  {"T_true", ideal},
-                                  {"Z", buffers.depth_m},
-                                  {"id", ToFloat(buffers.instance)},
-                                  {"class", ToFloat(buffers.class_id)}}),
-                       &manifest);
-    });
-    ++result.frames_rendered;
-    ++since_checkpoint;
-    progress.Update();
-  }
-  finish_writing();
-  progress.Done();
-
-  // The video; in video mode its decoded frames become the thermal PNGs that methods read.
-  const auto video_start = std::chrono::steady_clock::now();
-  std::string mp4;
-  if (streaming_video && streaming_video->frames_added() == frames) {
-    mp4 = streaming_video->Finish();
-  } else {
-    VideoEncoder encoder(video_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz);
-    for (int f = 0; f < frames; ++f) encoder.Add(UncompressedFrame(dir, f, sensor_options, {intrinsics.width, intrinsics.height}));
-    mp4 = encoder.Finish();
-  }
-  WriteDatasetFile(dir, "thermal.mp4", mp4, &manifest);
-  if (video_options.enabled) {
-    const DecodedVideo video = DecodeVideo(mp4, dir + "/thermal.mp4");
-    HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames,
-                     "decoded " << video.frames.size() << " of " << frames << " frames");
-    // Written in parallel (each write waits for its fsync), listed in the manifest in order.
-    std::vector<std::string> checksums(frames);
-    ParallelFor(frames, ResolveThreadCount(options.threads), [&](int64_t f) {
-      const std::string bytes = EncodePng(video.frames[f]);
-      WriteFileAtomic(dir + "/" + FramePath("thermal", static_cast<int>(f), "png"), bytes);
-      checksums[f] = ChecksumOf(bytes);
-    });
-    for (int f = 0; f < frames; ++f) manifest.files[FramePath("thermal", f, "png")] = checksums[f];
-  }
-  video_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
-
-  // Side files, then the manifest that declares the dataset complete.
-  const std::vector<PoseRecord> poses = PoseRecordsOf(run, frames);
-  std::vector<DatasetEvent> events;
-  for (const DatasetEvent& e : world.events())
-    if (e.frame < frames) events.push_back(e);
-  for (int f : sensor->FfcFrames(frames)) {
-    events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
-    for (int frozen = f; frozen < frames && sensor->ShownFrame(frozen) != frozen; ++frozen) {
-      events.push_back({frozen, "freeze", -1, "",
-                        "output repeats frame " + std::to_string(sensor->ShownFrame(frozen)) +
-                            " (FFC shutter closed)"});
-    }
-  }
-  std::stable_sort(events.begin(), events.end(),
-                   [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
-  WriteDatasetFile(dir, "poses.csv", PosesToCsv(poses), &manifest);
-  WriteDatasetFile(dir, "poses_tum.txt", PosesToTum(poses),
-                   &manifest);
-  WriteDatasetFile(dir, "persons.json", PersonsToJson(persons), &manifest);
-  WriteDatasetFile(dir, "events.json", EventsToJson(events), &manifest);
-  WriteDatasetFile(dir, "footprints.json", FootprintsToJson(FootprintRecordsOf(world.obstacles())),
-                   &manifest);
-  WriteDatasetFile(dir, "scene.json", scene.resolved.dump(2), &manifest);
-  manifest.complete = true;
-  WriteFileAtomic(manifest_path, manifest.ToJson());
-  result.complete = true;
-  result.video_seconds = video_s;
+  SequenceResult result = SequenceRender(scene, options).Run();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
@@ -82,6 +83,22 @@ TEST(WriteFileAtomic, ReplacesContentCreatesDirectoriesAndLeavesNoTempFile) {
     EXPECT_EQ(entry.path().filename(), "file.txt");
   }
   EXPECT_EQ(entries, 1);
+}
+
+TEST(WriteFileAtomicUnsynced, ReplacesContentLeavesNoTempFileAndSyncFilesFlushesItAndItsFolder) {
+  test::TestDir dir;
+  const std::string path = dir / "frames/000001.png";
+  WriteFileAtomicUnsynced(path, "old");
+  WriteFileAtomicUnsynced(path, "new");
+  EXPECT_EQ(ReadFileBytes(path), "new");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "frames"), fs::directory_iterator()), 1);
+  EXPECT_NO_THROW(SyncFiles({path, dir / "frames/000001.png"}));
+}
+
+TEST(SyncFiles, AMissingFileIsAnInputErrorNamingIt) {
+  test::TestDir dir;
+  const std::string message = InputErrorOf([&] { SyncFiles({dir / "gone.exr"}); });
+  EXPECT_NE(message.find("gone.exr: cannot open to flush it to disk"), std::string::npos) << message;
 }
 
 TEST(ReadFileBytes, MissingFileIsAnInputErrorNamingIt) {

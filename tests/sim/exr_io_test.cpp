@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 
 #include "hoilcd/core/dataset.h"
@@ -19,6 +20,57 @@ TEST(Exr, WrittenChannelsReadBackExactly) {
   const ExrChannels back = ReadExr(temp / "f.exr", t.size());
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(cv::norm(back[0].second, t, cv::NORM_INF), 0.0);
+}
+
+TEST(Exr, EveryCompressionAndPixelTypeReadsBackAsTheDatasetStoredIt) {
+  const test::TestDir temp;
+  cv::Mat t(6, 8, CV_32F), ids(6, 8, CV_32S), depth(6, 8, CV_32F);
+  for (int i = 0; i < 48; ++i) {
+    t.at<float>(i / 8, i % 8) = 20.0f + 0.013f * i;
+    ids.at<int>(i / 8, i % 8) = i % 5 == 0 ? -1 : 1000 + i;  // -1: nothing
+    depth.at<float>(i / 8, i % 8) = 0.5f + 0.1517f * i;
+  }
+  const ExrChannels frame = FrameExrChannels(t, t, depth, ids, ids);
+  for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips, ExrCompression::kZip,
+                           ExrCompression::kPiz}) {
+    WriteFileAtomic(temp / "f.exr", EncodeExr(frame, {c, 1}));
+    const ExrChannels back = ReadExr(temp / "f.exr", t.size());
+    ASSERT_EQ(back.size(), 5u);
+    for (const auto& [name, image] : back) {
+      ASSERT_EQ(image.type(), CV_32F) << name;
+      cv::Mat expected;
+      if (name == "T" || name == "T_true") expected = t;
+      if (name == "id" || name == "class") ids.convertTo(expected, CV_32F);
+      if (name == "Z") frame[2].second.convertTo(expected, CV_32F);  // the half the file holds
+      EXPECT_EQ(cv::norm(image, expected, cv::NORM_INF), 0.0) << name << " compression " << static_cast<int>(c);
+    }
+  }
+}
+
+TEST(Exr, DepthStoredAsHalfIsWithinTwoMillimetresBelowEightMetres) {
+  cv::Mat depth(1, 4000, CV_32F);
+  for (int i = 0; i < depth.cols; ++i) depth.at<float>(0, i) = 0.002f * i;  // 0 to 8 m
+  const cv::Mat zero = cv::Mat::zeros(1, 4000, CV_32S);
+  cv::Mat back;
+  FrameExrChannels(depth, depth, depth, zero, zero)[2].second.convertTo(back, CV_32F);
+  EXPECT_LE(cv::norm(back, depth, cv::NORM_INF), 1.0 / 512 + 1e-6);  // 2^-9 m: half's spacing in [4, 8) m, halved
+}
+
+// A frame as the dataset writes it passes OpenEXR's own tools (Debian openexr, which has no
+// exrcheck): exrinfo reads the header, exrmaketiled decodes every pixel of every channel.
+TEST(Exr, DatasetFramePassesOpenExrsOwnTools) {
+  if (std::system("command -v exrinfo exrmaketiled > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "exrinfo, exrmaketiled (Debian openexr) not installed";
+  }
+  const test::TestDir temp;
+  cv::Mat t(192, 256, CV_32F), ids(192, 256, CV_32S, cv::Scalar(-1));
+  cv::randu(t, 18.0f, 36.0f);
+  WriteFileAtomic(temp / "f.exr", EncodeExr(FrameExrChannels(t, t, t, ids, ids)));
+  EXPECT_EQ(std::system(("exrinfo -v '" + (temp / "f.exr") + "' > /dev/null").c_str()), 0);
+  EXPECT_EQ(std::system(("exrmaketiled '" + (temp / "f.exr") + "' '" + (temp / "tiled.exr") + "' > /dev/null").c_str()), 0);
+  // The check can fail: a truncated frame does not pass.
+  WriteFileAtomic(temp / "cut.exr", ReadFileBytes(temp / "f.exr").substr(0, 3000));
+  EXPECT_NE(std::system(("exrmaketiled '" + (temp / "cut.exr") + "' '" + (temp / "tiled2.exr") + "' 2> /dev/null").c_str()), 0);
 }
 
 TEST(Exr, AttributeDeclaredLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {

@@ -108,6 +108,19 @@ TEST_F(Sequence, FfprobeReadsThermalMp4AsH264256x192At25FpsWithOneFramePerFrame)
   EXPECT_EQ(Ffprobe(dir + "/thermal.mp4"), "h264,256,192,25/1,7\n");
 }
 
+// The frame PNGs (OpenCV's default parameters) pass pngcheck, a checker independent of libpng.
+TEST_F(Sequence, FramePngsPassPngcheck) {
+  if (std::system("command -v pngcheck > /dev/null 2>&1") != 0) GTEST_SKIP() << "pngcheck (Debian pngcheck) not installed";
+  const std::string dir = TempDir("pngcheck");
+  Render(PaperRoom(), dir, 2, 0);
+  for (const char* folder : {"thermal", "radiometric"}) {
+    const std::string png = dir + "/" + folder + "/000001.png";
+    EXPECT_EQ(std::system(("pngcheck -q '" + png + "' > /dev/null").c_str()), 0) << png;
+  }
+  WriteFileAtomic(dir + "/cut.png", ReadFileBytes(dir + "/thermal/000001.png").substr(0, 500));
+  EXPECT_NE(std::system(("pngcheck -q '" + dir + "/cut.png' > /dev/null").c_str()), 0);
+}
+
 TEST_F(Sequence, VideoModeThermalFramesAreTheDecodedVideoWithinTheDocumentedPsnr) {
   const Scene scene = PaperRoom({"camera.video.enabled=true"});
   const std::string whole_dir = TempDir("video_whole");
@@ -285,6 +298,23 @@ TEST_F(Sequence, RefusalNamesTheFilesThatAreNotItsOwn) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("it holds thesis.tex)"), std::string::npos) << e.what();
   }
+}
+
+TEST(SequenceOptions, CheckNamesEveryWrongFlagAndRenderRejectsThem) {
+  SequenceOptions options;
+  EXPECT_EQ(options.checkpoint_every_frames, 25);
+  EXPECT_NE(options.Check().find("output_dir: an output folder is required"), std::string::npos) << options.Check();
+  options.output_dir = "out";
+  EXPECT_EQ(options.Check(), "");
+  options.frames = -1;
+  EXPECT_NE(options.Check().find("frames: must be at least 0"), std::string::npos) << options.Check();
+  options.frames = 0;
+  options.checkpoint_every_frames = 0;
+  EXPECT_NE(options.Check().find("checkpoint_every_frames: must be at least 1"), std::string::npos) << options.Check();
+  options.checkpoint_every_frames = 25;
+  options.threads = -2;
+  EXPECT_NE(options.Check().find("threads: must be at least 0"), std::string::npos) << options.Check();
+  EXPECT_THROW(RenderSequence(PaperRoom(), options), InputError);
 }
 
 TEST_F(Sequence, RouteProblemsFoundWhileSimulatingNameTheSceneFile) {

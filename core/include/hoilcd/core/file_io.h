@@ -1,10 +1,12 @@
-// Generic file I/O: whole-file reads, atomic writes (a reader never sees a half-written file),
-// content checksums, and PNG encoding with the one atomic PNG writer.
+// Generic file I/O: whole-file reads, atomic writes (a reader never sees a half-written file)
+// with an fsync per file or batched, content checksums, and PNG encoding with the one atomic
+// PNG writer.
 #pragma once
 
 #include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace hoilcd {
 
@@ -17,6 +19,15 @@ std::string ReadFileBytes(const std::string& path);
 // Writes to "<path>.tmp.<pid>" in the same directory, fsyncs, renames over path: readers never
 // see a half-written file. Creates parent directories. InputError(path, ...) on failure.
 void WriteFileAtomic(const std::string& path, std::string_view bytes);
+
+// The same without the fsync: readers still never see a half-written file, and a killed process
+// loses nothing, but after a power loss the file may be empty or missing until SyncFiles has
+// flushed it. For many files whose listing (a manifest) is written after one SyncFiles of them.
+void WriteFileAtomicUnsynced(const std::string& path, std::string_view bytes);
+
+// fsyncs every file, then each distinct folder holding one (so their renames are durable).
+// InputError(path, ...) on failure.
+void SyncFiles(const std::vector<std::string>& paths);
 
 // PNG bytes of a 1-channel CV_8U or CV_16U image or a BGR CV_8UC3 one (figures); the same image
 // always gives the same bytes.

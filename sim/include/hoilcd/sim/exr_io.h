@@ -1,4 +1,5 @@
-// Multi-channel float32 OpenEXR frames (T, T_true, Z, id, class) for the dataset folder.
+// Multi-channel OpenEXR frames (T, T_true, Z, id, class) for the dataset folder: encoded in memory
+// (for atomic writes and checksums) and read back as float images.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -10,13 +11,29 @@
 
 namespace hoilcd {
 
-// Named single-channel CV_32F images of equal size.
+// Named single-channel images of equal size.
 using ExrChannels = std::vector<std::pair<std::string, cv::Mat>>;
 
-// Encodes channels as a ZIP-compressed float32 EXR in memory (for atomic writes and checksums).
-std::string EncodeExr(const ExrChannels& channels);
+// OpenEXR's lossless compressions (bench/benchmarks/exr_png_bench.cpp measures them).
+enum class ExrCompression { kNone, kRle, kZips, kZip, kPiz };
 
-// Reads every channel of an EXR frame of exactly `size` (the dataset's intrinsics) as CV_32F;
+struct ExrWriteOptions {
+  // The dataset's: RLE encodes a frame 4x faster than ZIP level 1 at 2.2x its size (docs/SPEC.md).
+  ExrCompression compression = ExrCompression::kRle;
+  int zip_level = 4;  // zlib level 1-9, for kZip and kZips (4: OpenEXR's default)
+};
+
+// Encodes channels as an EXR in memory. The pixel type follows each image's type: CV_32F ->
+// FLOAT, CV_16F -> HALF, CV_32S -> UINT holding the int32's bits (-1 is 4294967295).
+std::string EncodeExr(const ExrChannels& channels, const ExrWriteOptions& options = {});
+
+// A frame's channels as the dataset stores them (docs/SPEC.md): T and T_true float32 (°C), Z half
+// (m), id and class uint (CV_32S images; -1, "nothing", is stored as 4294967295).
+ExrChannels FrameExrChannels(const cv::Mat& temperature_c, const cv::Mat& ideal_c, const cv::Mat& depth_m,
+                             const cv::Mat& instance, const cv::Mat& class_id);
+
+// Reads every channel of an EXR frame of exactly `size` (the dataset's intrinsics) as CV_32F
+// (UINT channels as the int32 EncodeExr wrote, so -1 reads back as -1);
 // any other data window, or more channels than a frame can have, is an InputError naming the file
 // (a crafted header cannot make the reader allocate more than one frame's channels).
 ExrChannels ReadExr(const std::string& path, cv::Size size);

@@ -9,16 +9,23 @@
 #include <atomic>
 #include <string>
 
+#include "hoilcd/core/option_table.h"
 #include "hoilcd/sim/scene.h"
 
 namespace hoilcd {
 
+// How one `hoilcd render` runs (command-line flags, not scene values).
 struct SequenceOptions {
-  std::string output_dir;               // dataset folder (created if missing)
-  int frames = 0;                       // render only the first N frames (0 = the scene's count)
-  int threads = 0;                      // 0 = every core
-  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame
-  int checkpoint_every_frames = 25;     // manifest rewritten this often (resume granularity)
+  std::string output_dir;        // dataset folder (created if missing)
+  int frames;                    // frames: render only the first N (0 = the scene's count)
+  int threads;                   // worker threads (0 = every core)
+  int checkpoint_every_frames;   // frames: the manifest is rewritten this often (resume granularity)
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame; not in the table
+
+  SequenceOptions();  // the registered defaults
+  // Every field once: name, unit, default, range, description.
+  static const OptionTable<SequenceOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 
