@@ -36,6 +36,9 @@ FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrins
   for (int y = 0; y < intrinsics_.height; ++y) {
     for (int x = 0; x < intrinsics_.width; ++x) pixel_rays_.push_back(CameraRay(x, y));
   }
+  const int workers = ResolveThreadCount(options_.threads);
+  edge_pixels_.resize(workers);
+  edge_sums_.resize(workers);
 }
 
 Eigen::Vector3f FrameRenderer::CameraRay(double u, double v) const {
@@ -69,26 +72,104 @@ float FrameRenderer::Radiance(const Eigen::Vector3f& origin, const Eigen::Vector
   return Shade(*hit, origin, direction, options_.specular_reflections);
 }
 
+void FrameRenderer::ShadePacket(const Eigen::Vector3f* origins, int origin_stride,
+                                const Eigen::Vector3f* directions, int count,
+                                const RayHitPacket& hits, bool allow_reflection,
+                                float* radiance) const {
+  // As Shade, lane by lane, with the reflection rays of the packet gathered and cast together.
+  const float environment = world_.environment_radiance();
+  const RayCaster& caster = world_.caster();
+  const InstanceMaterial* materials[kRayPacketSize];
+  float blackbody[kRayPacketSize];
+  Eigen::Vector3f reflection_origins[kRayPacketSize], reflection_directions[kRayPacketSize];
+  int reflection_lanes[kRayPacketSize];
+  int reflections = 0;
+  for (int i = 0; i < count; ++i) {
+    if (hits.instance[i] < 0) continue;
+    const Eigen::Vector3f& origin = origins[i * origin_stride];
+    const Eigen::Vector3f& direction = directions[i];
+    const InstanceInfo& info = world_.instance(hits.instance[i]);
+    const InstanceMaterial& m = info.materials[info.mesh->triangle_material[hits.triangle[i]]];
+    materials[i] = &m;
+    const Eigen::Vector3f point = origin + hits.distance_m[i] * direction;
+    const float h = std::clamp(point.z() / static_cast<float>(world_.room_height_m()), 0.0f, 1.0f);
+    blackbody[i] = m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom);
+    if (m.specular && allow_reflection && m.emissivity < 1.0f) {
+      const Eigen::Vector3f n = caster.Hit(hits, i, direction).normal_world;
+      reflection_directions[reflections] = direction - 2.0f * direction.dot(n) * n;
+      reflection_origins[reflections] = point + 1e-3f * n;
+      reflection_lanes[reflections++] = i;
+    }
+  }
+  float reflected[kRayPacketSize];
+  std::fill(reflected, reflected + count, environment);
+  if (reflections > 0) {
+    RayHitPacket second;
+    caster.IntersectPacket(reflection_origins, reflection_directions, reflections, &second);
+    float second_radiance[kRayPacketSize];
+    ShadePacket(reflection_origins, 1, reflection_directions, reflections, second,
+                /*allow_reflection=*/false, second_radiance);
+    for (int k = 0; k < reflections; ++k) reflected[reflection_lanes[k]] = second_radiance[k];
+  }
+  for (int i = 0; i < count; ++i) {
+    if (hits.instance[i] < 0) {
+      radiance[i] = environment;
+      continue;
+    }
+    const InstanceMaterial& m = *materials[i];
+    radiance[i] = m.emissivity * blackbody[i] + (1.0f - m.emissivity) * reflected[i];
+  }
+}
+
 FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
+  FrameBuffers out;
+  Render(pose, &out);
+  return out;
+}
+
+namespace {
+
+// Gives *image the size and type, reusing its buffer unless another cv::Mat shares it.
+void Reuse(int rows, int cols, int type, cv::Mat* image) {
+  if (image->u != nullptr && image->u->refcount > 1) image->release();
+  image->create(rows, cols, type);
+}
+
+}  // namespace
+
+void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
+  HOILCD_CHECK_MSG(!rendering_.exchange(true),
+                   "FrameRenderer::Render called while it renders another frame; use one renderer per thread");
+  struct Done {
+    std::atomic<bool>& flag;
+    ~Done() { flag = false; }
+  } done{rendering_};
   const int W = intrinsics_.width, H = intrinsics_.height;
   const Rigid3 world_from_cam = pose.WorldFromCam();
   const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
   const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
   const RayCaster& caster = world_.caster();
-  FrameBuffers out;
-  out.radiance.create(H, W, CV_32F);
-  out.depth_m.create(H, W, CV_32F);
-  out.instance.create(H, W, CV_32S);
-  out.class_id.create(H, W, CV_32S);
-  cv::Mat material(H, W, CV_32S);  // instance * 4096 + material, to find edges
+  Reuse(H, W, CV_32F, &out->radiance);
+  Reuse(H, W, CV_32F, &out->depth_m);
+  Reuse(H, W, CV_32S, &out->instance);
+  Reuse(H, W, CV_32S, &out->class_id);
+  out->edge_pixels = 0;
+  material_.create(H, W, CV_32S);  // instance * 4096 + material, to find edges
+  float* radiance_px = out->radiance.ptr<float>();
+  float* depth_px = out->depth_m.ptr<float>();
+  int* instance_px = out->instance.ptr<int>();
+  int* class_px = out->class_id.ptr<int>();
+  int* material_px = material_.ptr<int>();
 
   // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels.
   constexpr int kBlock = 4;
-  static_assert(kBlock * kBlock == RayCaster::kPacketSize, "one packet per pixel block");
-  ParallelForChunks(H, 8, options_.threads, [&](int64_t y0, int64_t y1, int) {
-    Eigen::Vector3f directions[RayCaster::kPacketSize];
-    RayHit hits[RayCaster::kPacketSize];
-    int pixels[RayCaster::kPacketSize];
+  constexpr int64_t kRowsPerChunk = 8;
+  static_assert(kBlock * kBlock == kRayPacketSize, "one packet per pixel block");
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int) {
+    Eigen::Vector3f directions[kRayPacketSize];
+    RayHitPacket hits;
+    float radiance[kRayPacketSize];
+    int pixels[kRayPacketSize];
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
         int count = 0;
@@ -98,68 +179,67 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
             directions[count++] = R * pixel_rays_[y * W + x];
           }
         }
-        caster.IntersectPacket(origin, directions, count, hits);
+        caster.IntersectPacket(origin, directions, count, &hits);
+        ShadePacket(&origin, 0, directions, count, hits, options_.specular_reflections, radiance);
         for (int i = 0; i < count; ++i) {
-          const RayHit& hit = hits[i];
           const int p = pixels[i];
-          out.radiance.ptr<float>()[p] =
-              Shade(hit, origin, directions[i], options_.specular_reflections);
-          out.depth_m.ptr<float>()[p] = hit.hit() ? hit.distance_m * pixel_rays_[p].z() : 0.0f;
+          const int instance = hits.instance[i];
+          radiance_px[p] = radiance[i];
+          depth_px[p] = instance >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
           int cls = 0, mat = -1, label = -1;
-          if (hit.hit()) {
-            const InstanceInfo& info = world_.instance(hit.instance);
-            mat = static_cast<int>(info.mesh->triangle_material[hit.triangle]);
+          if (instance >= 0) {
+            const InstanceInfo& info = world_.instance(instance);
+            mat = static_cast<int>(info.mesh->triangle_material[hits.triangle[i]]);
             cls = info.materials[mat].class_id;
             label = info.label;  // a person's body parts all show the person's id
           }
-          out.instance.ptr<int>()[p] = label;
-          out.class_id.ptr<int>()[p] = cls;
-          material.ptr<int>()[p] = label * 4096 + mat;
+          instance_px[p] = label;
+          class_px[p] = cls;
+          material_px[p] = label * 4096 + mat;
         }
       }
     }
   });
-  if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return out;
+  if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return;
 
   // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
-  // samples; smooth depth changes within one surface need none.
-  cv::Mat edge(H, W, CV_8U);
-  for (int y = 0; y < H; ++y) {
-    const int* row = material.ptr<int>(y);
-    const int* above = material.ptr<int>(std::max(y - 1, 0));
-    const int* below = material.ptr<int>(std::min(y + 1, H - 1));
-    uint8_t* flag = edge.ptr<uint8_t>(y);
-    for (int x = 0; x < W; ++x) {
-      const int m = row[x];
-      flag[x] = above[x] != m || below[x] != m || (x > 0 && row[x - 1] != m) ||
-                (x + 1 < W && row[x + 1] != m);
-    }
-  }
-  out.edge_pixels = cv::countNonZero(edge);
+  // samples; smooth depth changes within one surface need none. Each chunk finds its own edge
+  // pixels (pass 1 has labelled every row) block by block (4×4, so that a packet's rays stay
+  // close), casts their samples in packets and sums each pixel's samples in the order of one ray
+  // at a time.
   const int n = options_.edge_samples_per_axis;
-  ParallelForChunks(H, 8, options_.threads, [&](int64_t y0, int64_t y1, int) {
-    // The chunk's edge pixels block by block (4×4, so that a packet's rays stay close), their
-    // samples cast in packets; each pixel's samples are summed in the order of one ray at a time.
-    std::vector<int> edge_pixels;
+  std::atomic<int> edge_count{0};
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
+    std::vector<int>& edge_pixels = edge_pixels_[worker];
+    std::vector<double>& sums = edge_sums_[worker];
+    edge_pixels.clear();
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
         for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
+          const int* row = material_px + y * W;
+          const int* above = material_px + std::max(y - 1, 0) * W;
+          const int* below = material_px + std::min(y + 1, H - 1) * W;
           for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
-            if (edge.at<uint8_t>(y, x)) edge_pixels.push_back(y * W + x);
+            const int m = row[x];
+            if (above[x] != m || below[x] != m || (x > 0 && row[x - 1] != m) ||
+                (x + 1 < W && row[x + 1] != m)) {
+              edge_pixels.push_back(y * W + x);
+            }
           }
         }
       }
     }
-    std::vector<double> sums(edge_pixels.size(), 0.0);
-    Eigen::Vector3f directions[RayCaster::kPacketSize];
-    RayHit hits[RayCaster::kPacketSize];
-    int slots[RayCaster::kPacketSize];
+    edge_count += static_cast<int>(edge_pixels.size());
+    sums.assign(edge_pixels.size(), 0.0);
+    Eigen::Vector3f directions[kRayPacketSize];
+    RayHitPacket hits;
+    float radiance[kRayPacketSize];
+    int slots[kRayPacketSize];
     int count = 0;
     auto flush = [&] {
-      caster.IntersectPacket(origin, directions, count, hits);
-      for (int i = 0; i < count; ++i) {
-        sums[slots[i]] += Shade(hits[i], origin, directions[i], options_.specular_reflections);
-      }
+      caster.IntersectPacket(origin, directions, count, &hits);
+      ShadePacket(&origin, 0, directions, count, hits, options_.specular_reflections, radiance);
+      for (int i = 0; i < count; ++i) sums[slots[i]] += radiance[i];
       count = 0;
     };
     for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
@@ -168,16 +248,16 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
         for (int sx = 0; sx < n; ++sx) {
           slots[count] = static_cast<int>(slot);
           directions[count++] = R * CameraRay(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n);
-          if (count == RayCaster::kPacketSize) flush();
+          if (count == kRayPacketSize) flush();
         }
       }
     }
     if (count > 0) flush();
     for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
-      out.radiance.ptr<float>()[edge_pixels[slot]] = static_cast<float>(sums[slot] / (n * n));
+      radiance_px[edge_pixels[slot]] = static_cast<float>(sums[slot] / (n * n));
     }
   });
-  return out;
+  out->edge_pixels = edge_count;
 }
 
 }  // namespace hoilcd

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -21,14 +22,26 @@ struct FrameBuffers {
   int edge_pixels = 0;  // how many pixels were supersampled
 };
 
+// Render casts primary and edge-sample rays as 16-ray packets (4×4 pixel blocks) and the
+// reflections of each packet as one packet, on the persistent pool of parallel.h. Its scratch
+// buffers are kept between frames, so one renderer renders one frame at a time (a second
+// concurrent call is an error); use a renderer per thread to render frames side by side.
 class FrameRenderer {
  public:
   FrameRenderer(const World& world, const CameraIntrinsics& intrinsics, RenderOptions options);
   FrameBuffers Render(const CameraPose& pose) const;
+  // The same into *out, reusing its images where they have the frame's size and type and no
+  // other cv::Mat shares them (no allocation per frame).
+  void Render(const CameraPose& pose, FrameBuffers* out) const;
   // Radiance along one world ray (used by Render and by tests).
   float Radiance(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, RayHit* hit) const;
 
  private:
+  // Radiance of `count` rays of one packet (origins: one per ray, or stride 0), with the
+  // reflections of its specular hits cast as one more packet: per ray what Shade returns.
+  void ShadePacket(const Eigen::Vector3f* origins, int origin_stride,
+                   const Eigen::Vector3f* directions, int count, const RayHitPacket& hits,
+                   bool allow_reflection, float* radiance) const;
   float Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               bool allow_reflection) const;
 
@@ -39,6 +52,12 @@ class FrameRenderer {
   CameraIntrinsics intrinsics_;
   RenderOptions options_;
   std::vector<Eigen::Vector3f> pixel_rays_;  // CameraRay of every pixel centre, row-major
+  // Scratch kept between frames: instance·4096 + material per pixel (edge finding), and per
+  // worker the edge pixels of a chunk and their sample sums.
+  mutable cv::Mat material_;
+  mutable std::vector<std::vector<int>> edge_pixels_;
+  mutable std::vector<std::vector<double>> edge_sums_;
+  mutable std::atomic<bool> rendering_{false};
 };
 
 }  // namespace hoilcd
