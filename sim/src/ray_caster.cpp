@@ -82,17 +82,10 @@ void CastPacketK(RTCScene scene, RTCIntersectContext* context, const Eigen::Vect
                  EmbreePacket<K>* packet) {
   alignas(64) int valid[K];
   EmbreePacket<K>& rh = *packet;
+  // Field by field, so that the constant fields fill in vector stores; lanes past `count` are
+  // invalid and repeat the last ray.
   for (int i = 0; i < K; ++i) {
-    const int lane = std::min(i, count - 1);
-    const Eigen::Vector3f& d = directions[lane];
-    const Eigen::Vector3f& origin = origins[lane * origin_stride];
     valid[i] = i < count ? -1 : 0;
-    rh.ray.org_x[i] = origin.x();
-    rh.ray.org_y[i] = origin.y();
-    rh.ray.org_z[i] = origin.z();
-    rh.ray.dir_x[i] = d.x();
-    rh.ray.dir_y[i] = d.y();
-    rh.ray.dir_z[i] = d.z();
     rh.ray.tnear[i] = 0.0f;
     rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
     rh.ray.mask[i] = 0xFFFFFFFFu;
@@ -102,6 +95,17 @@ void CastPacketK(RTCScene scene, RTCIntersectContext* context, const Eigen::Vect
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  for (int i = 0; i < K; ++i) {
+    const int lane = std::min(i, count - 1);
+    const Eigen::Vector3f& d = directions[lane];
+    const Eigen::Vector3f& origin = origins[lane * origin_stride];
+    rh.ray.org_x[i] = origin.x();
+    rh.ray.org_y[i] = origin.y();
+    rh.ray.org_z[i] = origin.z();
+    rh.ray.dir_x[i] = d.x();
+    rh.ray.dir_y[i] = d.y();
+    rh.ray.dir_z[i] = d.z();
   }
   IntersectK(valid, scene, context, &rh);
 }

@@ -37,8 +37,7 @@ FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrins
     for (int x = 0; x < intrinsics_.width; ++x) pixel_rays_.push_back(CameraRay(x, y));
   }
   const int workers = ResolveThreadCount(options_.threads);
-  edge_pixels_.resize(workers);
-  edge_sums_.resize(workers);
+  scratch_.resize(workers);
 }
 
 Eigen::Vector3f FrameRenderer::CameraRay(double u, double v) const {
@@ -72,53 +71,57 @@ float FrameRenderer::Radiance(const Eigen::Vector3f& origin, const Eigen::Vector
   return Shade(*hit, origin, direction, options_.specular_reflections);
 }
 
-void FrameRenderer::ShadePacket(const Eigen::Vector3f* origins, int origin_stride,
-                                const Eigen::Vector3f* directions, int count,
-                                const RayHitPacket& hits, bool allow_reflection,
-                                float* radiance) const {
-  // As Shade, lane by lane, with the reflection rays of the packet gathered and cast together.
+void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
+                                int count, const RayHitPacket& hits, float* out, const int* slots,
+                                std::vector<PendingReflection>* pending) const {
+  // As Shade, lane by lane; the same float operations in the same order.
   const float environment = world_.environment_radiance();
-  const RayCaster& caster = world_.caster();
-  const InstanceMaterial* materials[kRayPacketSize];
-  float blackbody[kRayPacketSize];
-  Eigen::Vector3f reflection_origins[kRayPacketSize], reflection_directions[kRayPacketSize];
-  int reflection_lanes[kRayPacketSize];
-  int reflections = 0;
+  const float room_height_m = static_cast<float>(world_.room_height_m());
   for (int i = 0; i < count; ++i) {
-    if (hits.instance[i] < 0) continue;
-    const Eigen::Vector3f& origin = origins[i * origin_stride];
+    float& radiance = out[slots[i]];
+    if (hits.instance[i] < 0) {
+      radiance = environment;
+      continue;
+    }
     const Eigen::Vector3f& direction = directions[i];
     const InstanceInfo& info = world_.instance(hits.instance[i]);
     const InstanceMaterial& m = info.materials[info.mesh->triangle_material[hits.triangle[i]]];
-    materials[i] = &m;
     const Eigen::Vector3f point = origin + hits.distance_m[i] * direction;
-    const float h = std::clamp(point.z() / static_cast<float>(world_.room_height_m()), 0.0f, 1.0f);
-    blackbody[i] = m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom);
-    if (m.specular && allow_reflection && m.emissivity < 1.0f) {
-      const Eigen::Vector3f n = caster.Hit(hits, i, direction).normal_world;
-      reflection_directions[reflections] = direction - 2.0f * direction.dot(n) * n;
-      reflection_origins[reflections] = point + 1e-3f * n;
-      reflection_lanes[reflections++] = i;
-    }
-  }
-  float reflected[kRayPacketSize];
-  std::fill(reflected, reflected + count, environment);
-  if (reflections > 0) {
-    RayHitPacket second;
-    caster.IntersectPacket(reflection_origins, reflection_directions, reflections, &second);
-    float second_radiance[kRayPacketSize];
-    ShadePacket(reflection_origins, 1, reflection_directions, reflections, second,
-                /*allow_reflection=*/false, second_radiance);
-    for (int k = 0; k < reflections; ++k) reflected[reflection_lanes[k]] = second_radiance[k];
-  }
-  for (int i = 0; i < count; ++i) {
-    if (hits.instance[i] < 0) {
-      radiance[i] = environment;
+    const float h = std::clamp(point.z() / room_height_m, 0.0f, 1.0f);
+    const float blackbody = m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom);
+    if (pending != nullptr && m.specular && m.emissivity < 1.0f) {
+      const Eigen::Vector3f n = world_.caster().Hit(hits, i, direction).normal_world;
+      pending->push_back({&radiance, m.emissivity, blackbody, point + 1e-3f * n,
+                          direction - 2.0f * direction.dot(n) * n});
       continue;
     }
-    const InstanceMaterial& m = *materials[i];
-    radiance[i] = m.emissivity * blackbody[i] + (1.0f - m.emissivity) * reflected[i];
+    radiance = m.emissivity * blackbody + (1.0f - m.emissivity) * environment;
   }
+}
+
+void FrameRenderer::CastReflections(std::vector<PendingReflection>* pending) const {
+  Eigen::Vector3f origins[kRayPacketSize], directions[kRayPacketSize];
+  RayHitPacket hits, one;
+  float reflected = 0.0f;
+  const int slot = 0;
+  for (size_t begin = 0; begin < pending->size(); begin += kRayPacketSize) {
+    const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, pending->size() - begin));
+    for (int i = 0; i < count; ++i) {
+      origins[i] = (*pending)[begin + i].origin;
+      directions[i] = (*pending)[begin + i].direction;
+    }
+    world_.caster().IntersectPacket(origins, directions, count, &hits);
+    for (int i = 0; i < count; ++i) {
+      // Shade(second, o, r, allow_reflection = false) of each reflection ray.
+      one.instance[0] = hits.instance[i];
+      one.triangle[0] = hits.triangle[i];
+      one.distance_m[0] = hits.distance_m[i];
+      ShadePacket(origins[i], &directions[i], 1, one, &reflected, &slot, nullptr);
+      const PendingReflection& p = (*pending)[begin + i];
+      *p.radiance = p.emissivity * p.blackbody + (1.0f - p.emissivity) * reflected;
+    }
+  }
+  pending->clear();
 }
 
 FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
@@ -160,15 +163,18 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
   int* instance_px = out->instance.ptr<int>();
   int* class_px = out->class_id.ptr<int>();
   int* material_px = material_.ptr<int>();
+  std::vector<PendingReflection>* no_reflections = nullptr;
+  const bool reflect = options_.specular_reflections;
 
-  // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels.
+  // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels; the
+  // chunk's reflection rays after its last packet.
   constexpr int kBlock = 4;
   constexpr int64_t kRowsPerChunk = 8;
   static_assert(kBlock * kBlock == kRayPacketSize, "one packet per pixel block");
-  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int) {
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
+    std::vector<PendingReflection>* pending = reflect ? &scratch_[worker].pending : no_reflections;
     Eigen::Vector3f directions[kRayPacketSize];
     RayHitPacket hits;
-    float radiance[kRayPacketSize];
     int pixels[kRayPacketSize];
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
@@ -180,11 +186,10 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
           }
         }
         caster.IntersectPacket(origin, directions, count, &hits);
-        ShadePacket(&origin, 0, directions, count, hits, options_.specular_reflections, radiance);
+        ShadePacket(origin, directions, count, hits, radiance_px, pixels, pending);
         for (int i = 0; i < count; ++i) {
           const int p = pixels[i];
           const int instance = hits.instance[i];
-          radiance_px[p] = radiance[i];
           depth_px[p] = instance >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
           int cls = 0, mat = -1, label = -1;
           if (instance >= 0) {
@@ -199,19 +204,21 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
         }
       }
     }
+    if (pending != nullptr) CastReflections(pending);
   });
   if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return;
 
   // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
   // samples; smooth depth changes within one surface need none. Each chunk finds its own edge
   // pixels (pass 1 has labelled every row) block by block (4×4, so that a packet's rays stay
-  // close), casts their samples in packets and sums each pixel's samples in the order of one ray
-  // at a time.
+  // close), casts their samples in packets, then their reflections, and sums each pixel's
+  // samples in the order of one ray at a time.
   const int n = options_.edge_samples_per_axis;
   std::atomic<int> edge_count{0};
   ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
-    std::vector<int>& edge_pixels = edge_pixels_[worker];
-    std::vector<double>& sums = edge_sums_[worker];
+    Scratch& scratch = scratch_[worker];
+    std::vector<PendingReflection>* pending = reflect ? &scratch.pending : no_reflections;
+    std::vector<int>& edge_pixels = scratch.edge_pixels;
     edge_pixels.clear();
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
@@ -230,31 +237,36 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
       }
     }
     edge_count += static_cast<int>(edge_pixels.size());
-    sums.assign(edge_pixels.size(), 0.0);
+    // Sample k of edge pixel `slot` at samples[slot·n² + k]; pending reflections point into it,
+    // so it is sized once, before any packet.
+    std::vector<float>& samples = scratch.samples;
+    samples.resize(edge_pixels.size() * n * n);
     Eigen::Vector3f directions[kRayPacketSize];
     RayHitPacket hits;
-    float radiance[kRayPacketSize];
     int slots[kRayPacketSize];
     int count = 0;
     auto flush = [&] {
       caster.IntersectPacket(origin, directions, count, &hits);
-      ShadePacket(&origin, 0, directions, count, hits, options_.specular_reflections, radiance);
-      for (int i = 0; i < count; ++i) sums[slots[i]] += radiance[i];
+      ShadePacket(origin, directions, count, hits, samples.data(), slots, pending);
       count = 0;
     };
-    for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
-      const int x = edge_pixels[slot] % W, y = edge_pixels[slot] / W;
+    int sample = 0;
+    for (const int pixel : edge_pixels) {
+      const int x = pixel % W, y = pixel / W;
       for (int sy = 0; sy < n; ++sy) {
         for (int sx = 0; sx < n; ++sx) {
-          slots[count] = static_cast<int>(slot);
+          slots[count] = sample++;
           directions[count++] = R * CameraRay(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n);
           if (count == kRayPacketSize) flush();
         }
       }
     }
     if (count > 0) flush();
+    if (pending != nullptr) CastReflections(pending);
     for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
-      radiance_px[edge_pixels[slot]] = static_cast<float>(sums[slot] / (n * n));
+      double sum = 0.0;
+      for (int k = 0; k < n * n; ++k) sum += samples[slot * n * n + k];
+      radiance_px[edge_pixels[slot]] = static_cast<float>(sum / (n * n));
     }
   });
   out->edge_pixels = edge_count;

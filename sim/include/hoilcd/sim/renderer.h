@@ -37,11 +37,25 @@ class FrameRenderer {
   float Radiance(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, RayHit* hit) const;
 
  private:
-  // Radiance of `count` rays of one packet (origins: one per ray, or stride 0), with the
-  // reflections of its specular hits cast as one more packet: per ray what Shade returns.
-  void ShadePacket(const Eigen::Vector3f* origins, int origin_stride,
-                   const Eigen::Vector3f* directions, int count, const RayHitPacket& hits,
-                   bool allow_reflection, float* radiance) const;
+  // A specular hit whose radiance waits for its reflection ray.
+  struct PendingReflection {
+    float* radiance;  // where the finished radiance goes
+    float emissivity, blackbody;
+    Eigen::Vector3f origin, direction;  // the reflection ray
+  };
+  // Per worker, kept between frames.
+  struct Scratch {
+    std::vector<int> edge_pixels;        // a chunk's edge pixels, 4×4 block by block
+    std::vector<float> samples;          // their samples' radiance, n×n per pixel
+    std::vector<PendingReflection> pending;
+  };
+  // Radiance of `count` rays from `origin` of one packet into out[slots[i]]: per ray what Shade
+  // returns, except that with `pending` specular hits are appended to it (their radiance written
+  // by CastReflections), so that a chunk's reflections are cast as full packets.
+  void ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
+                   const RayHitPacket& hits, float* out, const int* slots,
+                   std::vector<PendingReflection>* pending) const;
+  void CastReflections(std::vector<PendingReflection>* pending) const;
   float Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               bool allow_reflection) const;
 
@@ -52,11 +66,9 @@ class FrameRenderer {
   CameraIntrinsics intrinsics_;
   RenderOptions options_;
   std::vector<Eigen::Vector3f> pixel_rays_;  // CameraRay of every pixel centre, row-major
-  // Scratch kept between frames: instance·4096 + material per pixel (edge finding), and per
-  // worker the edge pixels of a chunk and their sample sums.
+  // Scratch kept between frames: instance·4096 + material per pixel (edge finding), per worker.
   mutable cv::Mat material_;
-  mutable std::vector<std::vector<int>> edge_pixels_;
-  mutable std::vector<std::vector<double>> edge_sums_;
+  mutable std::vector<Scratch> scratch_;
   mutable std::atomic<bool> rendering_{false};
 };
 
