@@ -282,15 +282,15 @@ void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vect
 
 void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
                                 int count, RayHitPacket* hits) const {
-  CastSoa(&origin, 0, directions, count, /*coherent=*/true, hits);
+  CastSoa(impl_->top->scene, &origin, 0, directions, count, /*coherent=*/true, hits);
 }
 
 void RayCaster::IntersectPacket(const Eigen::Vector3f* origins, const Eigen::Vector3f* directions,
                                 int count, RayHitPacket* hits) const {
-  CastSoa(origins, 1, directions, count, /*coherent=*/false, hits);
+  CastSoa(impl_->top->scene, origins, 1, directions, count, /*coherent=*/false, hits);
 }
 
-void RayCaster::CastSoa(const Eigen::Vector3f* origins, int origin_stride,
+void RayCaster::CastSoa(RTCScene scene, const Eigen::Vector3f* origins, int origin_stride,
                         const Eigen::Vector3f* directions, int count, bool coherent,
                         RayHitPacket* hits) const {
   HOILCD_CHECK(count >= 1 && count <= kPacketSize);
@@ -310,7 +310,7 @@ void RayCaster::CastSoa(const Eigen::Vector3f* origins, int origin_stride,
   };
   if (impl_->packet_width == 16) {
     alignas(64) RTCRayHit16 rh;
-    CastPacketK<16>(impl_->top->scene, &context, origins, origin_stride, directions, count, &rh);
+    CastPacketK<16>(scene, &context, origins, origin_stride, directions, count, &rh);
     for (int i = 0; i < count; ++i) {
       take(i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i],
            rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
@@ -319,7 +319,7 @@ void RayCaster::CastSoa(const Eigen::Vector3f* origins, int origin_stride,
     for (int begin = 0; begin < count; begin += 8) {
       alignas(64) RTCRayHit8 rh;
       const int n = std::min(8, count - begin);
-      CastPacketK<8>(impl_->top->scene, &context, origins + begin * origin_stride, origin_stride,
+      CastPacketK<8>(scene, &context, origins + begin * origin_stride, origin_stride,
                      directions + begin, n, &rh);
       for (int i = 0; i < n; ++i) {
         take(begin + i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i],
@@ -330,7 +330,7 @@ void RayCaster::CastSoa(const Eigen::Vector3f* origins, int origin_stride,
     for (int i = 0; i < count; ++i) {
       RTCRayHit rh = MakeRay(origins[i * origin_stride], directions[i], 0.0f,
                              std::numeric_limits<float>::infinity());
-      rtcIntersect1(impl_->top->scene, &context, &rh);
+      rtcIntersect1(scene, &context, &rh);
       take(i, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.Ng_x,
            rh.hit.Ng_y, rh.hit.Ng_z);
     }
@@ -360,6 +360,23 @@ RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,
   RTCRayHit rh = MakeRay(o, d, 0.0f, std::numeric_limits<float>::infinity());
   rtcIntersect1(impl_->prototypes[impl_->instance_prototype[instance]]->scene, &context, &rh);
   return impl_->Finish(rh, direction, instance);
+}
+
+void RayCaster::IntersectInstancePacket(int instance, const Eigen::Vector3f& origin,
+                                        const Eigen::Vector3f* directions, int count,
+                                        RayHitPacket* hits) const {
+  HOILCD_CHECK(count >= 1 && count <= kPacketSize);
+  // In the prototype's frame, as IntersectInstance (t stays the world distance along the ray).
+  const Eigen::Matrix4f& inv = impl_->instance_inverse.at(instance);
+  const Eigen::Vector3f o = inv.topLeftCorner<3, 3>() * origin + inv.topRightCorner<3, 1>();
+  Eigen::Vector3f d[kPacketSize];
+  for (int i = 0; i < count; ++i) d[i] = inv.topLeftCorner<3, 3>() * directions[i];
+  CastSoa(impl_->prototypes[impl_->instance_prototype[instance]]->scene, &o, 0, d, count,
+          /*coherent=*/true, hits);
+  for (int i = 0; i < count; ++i) {
+    // The prototype scene has no instance level: a hit is a valid triangle.
+    hits->instance[i] = hits->triangle[i] >= 0 ? instance : -1;
+  }
 }
 
 }  // namespace hoilcd

@@ -75,14 +75,19 @@ class RayCaster {
   // Closest hit against one instance alone (ignoring everything else): for visibility ratios.
   RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin,
                            const Eigen::Vector3f& direction) const;
+  // The same for a packet of `count` (1..kPacketSize) rays from one origin (coherent).
+  void IntersectInstancePacket(int instance, const Eigen::Vector3f& origin,
+                               const Eigen::Vector3f* directions, int count,
+                               RayHitPacket* hits) const;
 
   // The top-level Embree scene (valid after Commit()), for callers that cast rays with Embree
   // directly, e.g. the bare-Embree baseline of bench/benchmarks/render_bench.cpp.
   RTCSceneTy* embree_scene() const;
 
  private:
-  void CastSoa(const Eigen::Vector3f* origins, int origin_stride, const Eigen::Vector3f* directions,
-               int count, bool coherent, RayHitPacket* hits) const;
+  void CastSoa(RTCSceneTy* scene, const Eigen::Vector3f* origins, int origin_stride,
+               const Eigen::Vector3f* directions, int count, bool coherent,
+               RayHitPacket* hits) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
