@@ -73,7 +73,8 @@ float FrameRenderer::Radiance(const Eigen::Vector3f& origin, const Eigen::Vector
 
 void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
                                 int count, const RayHitPacket& hits, float* out, const int* slots,
-                                std::vector<PendingReflection>* pending) const {
+                                std::vector<PendingReflection>* pending, int* labels,
+                                int* class_ids, int* materials) const {
   // As Shade, lane by lane; the same float operations in the same order.
   const float environment = world_.environment_radiance();
   const float room_height_m = static_cast<float>(world_.room_height_m());
@@ -81,11 +82,22 @@ void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vect
     float& radiance = out[slots[i]];
     if (hits.instance[i] < 0) {
       radiance = environment;
+      if (labels != nullptr) {
+        labels[slots[i]] = -1;
+        class_ids[slots[i]] = 0;
+        materials[slots[i]] = -4096 - 1;
+      }
       continue;
     }
     const Eigen::Vector3f& direction = directions[i];
     const InstanceInfo& info = world_.instance(hits.instance[i]);
-    const InstanceMaterial& m = info.materials[info.mesh->triangle_material[hits.triangle[i]]];
+    const int material = static_cast<int>(info.mesh->triangle_material[hits.triangle[i]]);
+    const InstanceMaterial& m = info.materials[material];
+    if (labels != nullptr) {
+      labels[slots[i]] = info.label;  // a person's body parts all show the person's id
+      class_ids[slots[i]] = m.class_id;
+      materials[slots[i]] = info.label * 4096 + material;
+    }
     const Eigen::Vector3f point = origin + hits.distance_m[i] * direction;
     const float h = std::clamp(point.z() / room_height_m, 0.0f, 1.0f);
     const float blackbody = m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom);
@@ -186,21 +198,11 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
           }
         }
         caster.IntersectPacket(origin, directions, count, &hits);
-        ShadePacket(origin, directions, count, hits, radiance_px, pixels, pending);
+        ShadePacket(origin, directions, count, hits, radiance_px, pixels, pending, instance_px,
+                    class_px, material_px);
         for (int i = 0; i < count; ++i) {
           const int p = pixels[i];
-          const int instance = hits.instance[i];
-          depth_px[p] = instance >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
-          int cls = 0, mat = -1, label = -1;
-          if (instance >= 0) {
-            const InstanceInfo& info = world_.instance(instance);
-            mat = static_cast<int>(info.mesh->triangle_material[hits.triangle[i]]);
-            cls = info.materials[mat].class_id;
-            label = info.label;  // a person's body parts all show the person's id
-          }
-          instance_px[p] = label;
-          class_px[p] = cls;
-          material_px[p] = label * 4096 + mat;
+          depth_px[p] = hits.instance[i] >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
         }
       }
     }
@@ -219,19 +221,23 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
     Scratch& scratch = scratch_[worker];
     std::vector<PendingReflection>* pending = reflect ? &scratch.pending : no_reflections;
     std::vector<int>& edge_pixels = scratch.edge_pixels;
+    std::vector<uint8_t>& flags = scratch.edge_flags;
     edge_pixels.clear();
+    flags.resize(static_cast<size_t>(y1 - y0) * W);
+    for (int64_t y = y0; y < y1; ++y) {  // branch-free, so that it runs in vector lanes
+      const int* row = material_px + y * W;
+      const int* above = material_px + std::max<int64_t>(y - 1, 0) * W;
+      const int* below = material_px + std::min<int64_t>(y + 1, H - 1) * W;
+      uint8_t* flag = flags.data() + (y - y0) * W;
+      for (int x = 0; x < W; ++x) flag[x] = (above[x] != row[x]) | (below[x] != row[x]);
+      for (int x = 1; x < W; ++x) flag[x] |= row[x - 1] != row[x];
+      for (int x = 0; x + 1 < W; ++x) flag[x] |= row[x + 1] != row[x];
+    }
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
         for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
-          const int* row = material_px + y * W;
-          const int* above = material_px + std::max(y - 1, 0) * W;
-          const int* below = material_px + std::min(y + 1, H - 1) * W;
           for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
-            const int m = row[x];
-            if (above[x] != m || below[x] != m || (x > 0 && row[x - 1] != m) ||
-                (x + 1 < W && row[x + 1] != m)) {
-              edge_pixels.push_back(y * W + x);
-            }
+            if (flags[(y - y0) * W + x]) edge_pixels.push_back(y * W + x);
           }
         }
       }

@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 #include <atomic>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -46,15 +47,19 @@ class FrameRenderer {
   // Per worker, kept between frames.
   struct Scratch {
     std::vector<int> edge_pixels;        // a chunk's edge pixels, 4×4 block by block
+    std::vector<uint8_t> edge_flags;     // the chunk's pixels: 1 on an edge
     std::vector<float> samples;          // their samples' radiance, n×n per pixel
     std::vector<PendingReflection> pending;
   };
   // Radiance of `count` rays from `origin` of one packet into out[slots[i]]: per ray what Shade
   // returns, except that with `pending` specular hits are appended to it (their radiance written
   // by CastReflections), so that a chunk's reflections are cast as full packets.
+  // With `labels`, also the hit's instance label, class id and label·4096 + material (or -1,
+  // 0, -1 on a miss) at labels[slots[i]], class_ids[...], materials[...].
   void ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
                    const RayHitPacket& hits, float* out, const int* slots,
-                   std::vector<PendingReflection>* pending) const;
+                   std::vector<PendingReflection>* pending, int* labels = nullptr,
+                   int* class_ids = nullptr, int* materials = nullptr) const;
   void CastReflections(std::vector<PendingReflection>* pending) const;
   float Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               bool allow_reflection) const;
