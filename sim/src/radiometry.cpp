@@ -106,15 +106,35 @@ double BandRadianceTable::RadianceFromKelvin(double t_k) const {
   return radiance_[i] + f * (radiance_[i + 1] - radiance_[i]);
 }
 
+namespace {
+
+// The inversion of KelvinFromRadiance, inlined into both of its forms.
+[[gnu::always_inline]] inline double InvertTable(double radiance, const double* table, int segments,
+                                                 const int* first_segment, int bins, double inverse_bin,
+                                                 double t_min_k, double step_k) {
+  const double l = std::clamp(radiance, table[0], table[segments]);
+  const int bin = std::min(static_cast<int>((l - table[0]) / inverse_bin), bins - 1);
+  int i = first_segment[bin];
+  while (i < segments - 1 && table[i + 1] <= l) ++i;
+  const double f = (l - table[i]) / (table[i + 1] - table[i]);
+  return t_min_k + (i + f) * step_k;
+}
+
+}  // namespace
+
 double BandRadianceTable::KelvinFromRadiance(double radiance) const {
+  return InvertTable(radiance, radiance_.data(), static_cast<int>(radiance_.size()) - 1,
+                     first_segment_.data(), static_cast<int>(first_segment_.size()), inverse_bin_,
+                     t_min_k_, step_k_);
+}
+
+void BandRadianceTable::KelvinFromRadiance(const double* radiance, int count, double* kelvin) const {
   const int segments = static_cast<int>(radiance_.size()) - 1;
-  const double l = std::clamp(radiance, radiance_.front(), radiance_.back());
   const int bins = static_cast<int>(first_segment_.size());
-  const int bin = std::min(static_cast<int>((l - radiance_.front()) / inverse_bin_), bins - 1);
-  int i = first_segment_[bin];
-  while (i < segments - 1 && radiance_[i + 1] <= l) ++i;
-  const double f = (l - radiance_[i]) / (radiance_[i + 1] - radiance_[i]);
-  return t_min_k_ + (i + f) * step_k_;
+  for (int k = 0; k < count; ++k) {
+    kelvin[k] = InvertTable(radiance[k], radiance_.data(), segments, first_segment_.data(), bins,
+                            inverse_bin_, t_min_k_, step_k_);
+  }
 }
 
 float BandRadianceTable::RadianceFromCelsius(float temperature_c) const {

@@ -73,22 +73,19 @@ void IntersectK(const int* valid, RTCScene scene, RTCIntersectContext* context, 
   rtcIntersect16(valid, scene, context, rh);
 }
 template <int K>
-using RayHitPacket = std::conditional_t<K == 8, RTCRayHit8, RTCRayHit16>;
+using EmbreePacket = std::conditional_t<K == 8, RTCRayHit8, RTCRayHit16>;
 
+// origins: one per ray, or (origin_stride 0) one for all.
 template <int K>
-void CastPacket(RTCScene scene, RTCIntersectContext* context, const Eigen::Vector3f& origin,
-                const Eigen::Vector3f* directions, int count, RTCRayHit* out) {
+void CastPacketK(RTCScene scene, RTCIntersectContext* context, const Eigen::Vector3f* origins,
+                 int origin_stride, const Eigen::Vector3f* directions, int count,
+                 EmbreePacket<K>* packet) {
   alignas(64) int valid[K];
-  alignas(64) RayHitPacket<K> rh;
+  EmbreePacket<K>& rh = *packet;
+  // Field by field, so that the constant fields fill in vector stores; lanes past `count` are
+  // invalid and repeat the last ray.
   for (int i = 0; i < K; ++i) {
-    const Eigen::Vector3f& d = directions[std::min(i, count - 1)];
     valid[i] = i < count ? -1 : 0;
-    rh.ray.org_x[i] = origin.x();
-    rh.ray.org_y[i] = origin.y();
-    rh.ray.org_z[i] = origin.z();
-    rh.ray.dir_x[i] = d.x();
-    rh.ray.dir_y[i] = d.y();
-    rh.ray.dir_z[i] = d.z();
     rh.ray.tnear[i] = 0.0f;
     rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
     rh.ray.mask[i] = 0xFFFFFFFFu;
@@ -99,7 +96,25 @@ void CastPacket(RTCScene scene, RTCIntersectContext* context, const Eigen::Vecto
     rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
+  for (int i = 0; i < K; ++i) {
+    const int lane = std::min(i, count - 1);
+    const Eigen::Vector3f& d = directions[lane];
+    const Eigen::Vector3f& origin = origins[lane * origin_stride];
+    rh.ray.org_x[i] = origin.x();
+    rh.ray.org_y[i] = origin.y();
+    rh.ray.org_z[i] = origin.z();
+    rh.ray.dir_x[i] = d.x();
+    rh.ray.dir_y[i] = d.y();
+    rh.ray.dir_z[i] = d.z();
+  }
   IntersectK(valid, scene, context, &rh);
+}
+
+template <int K>
+void CastPacket(RTCScene scene, RTCIntersectContext* context, const Eigen::Vector3f& origin,
+                const Eigen::Vector3f* directions, int count, RTCRayHit* out) {
+  alignas(64) EmbreePacket<K> rh;
+  CastPacketK<K>(scene, context, &origin, 0, directions, count, &rh);
   for (int i = 0; i < count; ++i) {
     out[i].ray.tfar = rh.ray.tfar[i];
     out[i].hit.geomID = rh.hit.geomID[i];
@@ -265,6 +280,75 @@ void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vect
   for (int i = 0; i < count; ++i) hits[i] = impl_->Finish(single[i], directions[i], -1);
 }
 
+void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
+                                int count, RayHitPacket* hits) const {
+  CastSoa(impl_->top->scene, &origin, 0, directions, count, /*coherent=*/true, hits);
+}
+
+void RayCaster::IntersectPacket(const Eigen::Vector3f* origins, const Eigen::Vector3f* directions,
+                                int count, RayHitPacket* hits) const {
+  CastSoa(impl_->top->scene, origins, 1, directions, count, /*coherent=*/false, hits);
+}
+
+void RayCaster::CastSoa(RTCScene scene, const Eigen::Vector3f* origins, int origin_stride,
+                        const Eigen::Vector3f* directions, int count, bool coherent,
+                        RayHitPacket* hits) const {
+  HOILCD_CHECK(count >= 1 && count <= kPacketSize);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  // Embree's hits straight into the packet's arrays, misses marked as Finish marks them.
+  auto take = [hits](int i, float tfar, unsigned geom, unsigned prim, unsigned inst, float nx,
+                      float ny, float nz) {
+    const bool hit = geom != RTC_INVALID_GEOMETRY_ID;
+    hits->distance_m[i] = hit ? tfar : std::numeric_limits<float>::infinity();
+    hits->instance[i] = hit ? static_cast<int>(inst) : -1;
+    hits->triangle[i] = hit ? static_cast<int>(prim) : -1;
+    hits->normal_object[0][i] = nx;
+    hits->normal_object[1][i] = ny;
+    hits->normal_object[2][i] = nz;
+  };
+  if (impl_->packet_width == 16) {
+    alignas(64) RTCRayHit16 rh;
+    CastPacketK<16>(scene, &context, origins, origin_stride, directions, count, &rh);
+    for (int i = 0; i < count; ++i) {
+      take(i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i],
+           rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+    }
+  } else if (impl_->packet_width == 8) {
+    for (int begin = 0; begin < count; begin += 8) {
+      alignas(64) RTCRayHit8 rh;
+      const int n = std::min(8, count - begin);
+      CastPacketK<8>(scene, &context, origins + begin * origin_stride, origin_stride,
+                     directions + begin, n, &rh);
+      for (int i = 0; i < n; ++i) {
+        take(begin + i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i],
+             rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+      }
+    }
+  } else {
+    for (int i = 0; i < count; ++i) {
+      RTCRayHit rh = MakeRay(origins[i * origin_stride], directions[i], 0.0f,
+                             std::numeric_limits<float>::infinity());
+      rtcIntersect1(scene, &context, &rh);
+      take(i, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.Ng_x,
+           rh.hit.Ng_y, rh.hit.Ng_z);
+    }
+  }
+}
+
+RayHit RayCaster::Hit(const RayHitPacket& hits, int i, const Eigen::Vector3f& direction) const {
+  RTCRayHit rh;
+  rh.ray.tfar = hits.distance_m[i];
+  rh.hit.geomID = hits.instance[i] >= 0 ? 0u : RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = static_cast<unsigned>(hits.triangle[i]);
+  rh.hit.instID[0] = static_cast<unsigned>(hits.instance[i]);
+  rh.hit.Ng_x = hits.normal_object[0][i];
+  rh.hit.Ng_y = hits.normal_object[1][i];
+  rh.hit.Ng_z = hits.normal_object[2][i];
+  return impl_->Finish(rh, direction, -1);
+}
+
 RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,
                                     const Eigen::Vector3f& direction) const {
   const Eigen::Matrix4f& inv = impl_->instance_inverse.at(instance);
@@ -276,6 +360,23 @@ RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,
   RTCRayHit rh = MakeRay(o, d, 0.0f, std::numeric_limits<float>::infinity());
   rtcIntersect1(impl_->prototypes[impl_->instance_prototype[instance]]->scene, &context, &rh);
   return impl_->Finish(rh, direction, instance);
+}
+
+void RayCaster::IntersectInstancePacket(int instance, const Eigen::Vector3f& origin,
+                                        const Eigen::Vector3f* directions, int count,
+                                        RayHitPacket* hits) const {
+  HOILCD_CHECK(count >= 1 && count <= kPacketSize);
+  // In the prototype's frame, as IntersectInstance (t stays the world distance along the ray).
+  const Eigen::Matrix4f& inv = impl_->instance_inverse.at(instance);
+  const Eigen::Vector3f o = inv.topLeftCorner<3, 3>() * origin + inv.topRightCorner<3, 1>();
+  Eigen::Vector3f d[kPacketSize];
+  for (int i = 0; i < count; ++i) d[i] = inv.topLeftCorner<3, 3>() * directions[i];
+  CastSoa(impl_->prototypes[impl_->instance_prototype[instance]]->scene, &o, 0, d, count,
+          /*coherent=*/true, hits);
+  for (int i = 0; i < count; ++i) {
+    // The prototype scene has no instance level: a hit is a valid triangle.
+    hits->instance[i] = hits->triangle[i] >= 0 ? instance : -1;
+  }
 }
 
 }  // namespace hoilcd

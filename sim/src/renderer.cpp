@@ -36,6 +36,8 @@ FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrins
   for (int y = 0; y < intrinsics_.height; ++y) {
     for (int x = 0; x < intrinsics_.width; ++x) pixel_rays_.push_back(CameraRay(x, y));
   }
+  const int workers = ResolveThreadCount(options_.threads);
+  scratch_.resize(workers);
 }
 
 Eigen::Vector3f FrameRenderer::CameraRay(double u, double v) const {
@@ -69,26 +71,123 @@ float FrameRenderer::Radiance(const Eigen::Vector3f& origin, const Eigen::Vector
   return Shade(*hit, origin, direction, options_.specular_reflections);
 }
 
+void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
+                                int count, const RayHitPacket& hits, float* out, const int* slots,
+                                std::vector<PendingReflection>* pending, int* labels,
+                                int* class_ids, int* materials) const {
+  // As Shade, lane by lane; the same float operations in the same order.
+  const float environment = world_.environment_radiance();
+  const float room_height_m = static_cast<float>(world_.room_height_m());
+  for (int i = 0; i < count; ++i) {
+    float& radiance = out[slots[i]];
+    if (hits.instance[i] < 0) {
+      radiance = environment;
+      if (labels != nullptr) {
+        labels[slots[i]] = -1;
+        class_ids[slots[i]] = 0;
+        materials[slots[i]] = -4096 - 1;
+      }
+      continue;
+    }
+    const Eigen::Vector3f& direction = directions[i];
+    const InstanceInfo& info = world_.instance(hits.instance[i]);
+    const int material = static_cast<int>(info.mesh->triangle_material[hits.triangle[i]]);
+    const InstanceMaterial& m = info.materials[material];
+    if (labels != nullptr) {
+      labels[slots[i]] = info.label;  // a person's body parts all show the person's id
+      class_ids[slots[i]] = m.class_id;
+      materials[slots[i]] = info.label * 4096 + material;
+    }
+    const Eigen::Vector3f point = origin + hits.distance_m[i] * direction;
+    const float h = std::clamp(point.z() / room_height_m, 0.0f, 1.0f);
+    const float blackbody = m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom);
+    if (pending != nullptr && m.specular && m.emissivity < 1.0f) {
+      const Eigen::Vector3f n = world_.caster().Hit(hits, i, direction).normal_world;
+      pending->push_back({&radiance, m.emissivity, blackbody, point + 1e-3f * n,
+                          direction - 2.0f * direction.dot(n) * n});
+      continue;
+    }
+    radiance = m.emissivity * blackbody + (1.0f - m.emissivity) * environment;
+  }
+}
+
+void FrameRenderer::CastReflections(std::vector<PendingReflection>* pending) const {
+  Eigen::Vector3f origins[kRayPacketSize], directions[kRayPacketSize];
+  RayHitPacket hits, one;
+  float reflected = 0.0f;
+  const int slot = 0;
+  for (size_t begin = 0; begin < pending->size(); begin += kRayPacketSize) {
+    const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, pending->size() - begin));
+    for (int i = 0; i < count; ++i) {
+      origins[i] = (*pending)[begin + i].origin;
+      directions[i] = (*pending)[begin + i].direction;
+    }
+    world_.caster().IntersectPacket(origins, directions, count, &hits);
+    for (int i = 0; i < count; ++i) {
+      // Shade(second, o, r, allow_reflection = false) of each reflection ray.
+      one.instance[0] = hits.instance[i];
+      one.triangle[0] = hits.triangle[i];
+      one.distance_m[0] = hits.distance_m[i];
+      ShadePacket(origins[i], &directions[i], 1, one, &reflected, &slot, nullptr);
+      const PendingReflection& p = (*pending)[begin + i];
+      *p.radiance = p.emissivity * p.blackbody + (1.0f - p.emissivity) * reflected;
+    }
+  }
+  pending->clear();
+}
+
 FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
+  FrameBuffers out;
+  Render(pose, &out);
+  return out;
+}
+
+namespace {
+
+// Gives *image the size and type, reusing its buffer unless another cv::Mat shares it.
+void Reuse(int rows, int cols, int type, cv::Mat* image) {
+  if (image->u != nullptr && image->u->refcount > 1) image->release();
+  image->create(rows, cols, type);
+}
+
+}  // namespace
+
+void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
+  HOILCD_CHECK_MSG(!rendering_.exchange(true),
+                   "FrameRenderer::Render called while it renders another frame; use one renderer per thread");
+  struct Done {
+    std::atomic<bool>& flag;
+    ~Done() { flag = false; }
+  } done{rendering_};
   const int W = intrinsics_.width, H = intrinsics_.height;
   const Rigid3 world_from_cam = pose.WorldFromCam();
   const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
   const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
   const RayCaster& caster = world_.caster();
-  FrameBuffers out;
-  out.radiance.create(H, W, CV_32F);
-  out.depth_m.create(H, W, CV_32F);
-  out.instance.create(H, W, CV_32S);
-  out.class_id.create(H, W, CV_32S);
-  cv::Mat material(H, W, CV_32S);  // instance * 4096 + material, to find edges
+  Reuse(H, W, CV_32F, &out->radiance);
+  Reuse(H, W, CV_32F, &out->depth_m);
+  Reuse(H, W, CV_32S, &out->instance);
+  Reuse(H, W, CV_32S, &out->class_id);
+  out->edge_pixels = 0;
+  material_.create(H, W, CV_32S);  // instance * 4096 + material, to find edges
+  float* radiance_px = out->radiance.ptr<float>();
+  float* depth_px = out->depth_m.ptr<float>();
+  int* instance_px = out->instance.ptr<int>();
+  int* class_px = out->class_id.ptr<int>();
+  int* material_px = material_.ptr<int>();
+  std::vector<PendingReflection>* no_reflections = nullptr;
+  const bool reflect = options_.specular_reflections;
 
-  // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels.
+  // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels; the
+  // chunk's reflection rays after its last packet.
   constexpr int kBlock = 4;
-  static_assert(kBlock * kBlock == RayCaster::kPacketSize, "one packet per pixel block");
-  ParallelForChunks(H, 8, options_.threads, [&](int64_t y0, int64_t y1, int) {
-    Eigen::Vector3f directions[RayCaster::kPacketSize];
-    RayHit hits[RayCaster::kPacketSize];
-    int pixels[RayCaster::kPacketSize];
+  constexpr int64_t kRowsPerChunk = 8;
+  static_assert(kBlock * kBlock == kRayPacketSize, "one packet per pixel block");
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
+    std::vector<PendingReflection>* pending = reflect ? &scratch_[worker].pending : no_reflections;
+    Eigen::Vector3f directions[kRayPacketSize];
+    RayHitPacket hits;
+    int pixels[kRayPacketSize];
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
         int count = 0;
@@ -98,86 +197,85 @@ FrameBuffers FrameRenderer::Render(const CameraPose& pose) const {
             directions[count++] = R * pixel_rays_[y * W + x];
           }
         }
-        caster.IntersectPacket(origin, directions, count, hits);
+        caster.IntersectPacket(origin, directions, count, &hits);
+        ShadePacket(origin, directions, count, hits, radiance_px, pixels, pending, instance_px,
+                    class_px, material_px);
         for (int i = 0; i < count; ++i) {
-          const RayHit& hit = hits[i];
           const int p = pixels[i];
-          out.radiance.ptr<float>()[p] =
-              Shade(hit, origin, directions[i], options_.specular_reflections);
-          out.depth_m.ptr<float>()[p] = hit.hit() ? hit.distance_m * pixel_rays_[p].z() : 0.0f;
-          int cls = 0, mat = -1, label = -1;
-          if (hit.hit()) {
-            const InstanceInfo& info = world_.instance(hit.instance);
-            mat = static_cast<int>(info.mesh->triangle_material[hit.triangle]);
-            cls = info.materials[mat].class_id;
-            label = info.label;  // a person's body parts all show the person's id
-          }
-          out.instance.ptr<int>()[p] = label;
-          out.class_id.ptr<int>()[p] = cls;
-          material.ptr<int>()[p] = label * 4096 + mat;
+          depth_px[p] = hits.instance[i] >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
         }
       }
     }
+    if (pending != nullptr) CastReflections(pending);
   });
-  if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return out;
+  if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return;
 
   // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
-  // samples; smooth depth changes within one surface need none.
-  cv::Mat edge(H, W, CV_8U);
-  for (int y = 0; y < H; ++y) {
-    const int* row = material.ptr<int>(y);
-    const int* above = material.ptr<int>(std::max(y - 1, 0));
-    const int* below = material.ptr<int>(std::min(y + 1, H - 1));
-    uint8_t* flag = edge.ptr<uint8_t>(y);
-    for (int x = 0; x < W; ++x) {
-      const int m = row[x];
-      flag[x] = above[x] != m || below[x] != m || (x > 0 && row[x - 1] != m) ||
-                (x + 1 < W && row[x + 1] != m);
-    }
-  }
-  out.edge_pixels = cv::countNonZero(edge);
+  // samples; smooth depth changes within one surface need none. Each chunk finds its own edge
+  // pixels (pass 1 has labelled every row) block by block (4×4, so that a packet's rays stay
+  // close), casts their samples in packets, then their reflections, and sums each pixel's
+  // samples in the order of one ray at a time.
   const int n = options_.edge_samples_per_axis;
-  ParallelForChunks(H, 8, options_.threads, [&](int64_t y0, int64_t y1, int) {
-    // The chunk's edge pixels block by block (4×4, so that a packet's rays stay close), their
-    // samples cast in packets; each pixel's samples are summed in the order of one ray at a time.
-    std::vector<int> edge_pixels;
+  std::atomic<int> edge_count{0};
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
+    Scratch& scratch = scratch_[worker];
+    std::vector<PendingReflection>* pending = reflect ? &scratch.pending : no_reflections;
+    std::vector<int>& edge_pixels = scratch.edge_pixels;
+    std::vector<uint8_t>& flags = scratch.edge_flags;
+    edge_pixels.clear();
+    flags.resize(static_cast<size_t>(y1 - y0) * W);
+    for (int64_t y = y0; y < y1; ++y) {  // branch-free, so that it runs in vector lanes
+      const int* row = material_px + y * W;
+      const int* above = material_px + std::max<int64_t>(y - 1, 0) * W;
+      const int* below = material_px + std::min<int64_t>(y + 1, H - 1) * W;
+      uint8_t* flag = flags.data() + (y - y0) * W;
+      for (int x = 0; x < W; ++x) flag[x] = (above[x] != row[x]) | (below[x] != row[x]);
+      for (int x = 1; x < W; ++x) flag[x] |= row[x - 1] != row[x];
+      for (int x = 0; x + 1 < W; ++x) flag[x] |= row[x + 1] != row[x];
+    }
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
         for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
           for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
-            if (edge.at<uint8_t>(y, x)) edge_pixels.push_back(y * W + x);
+            if (flags[(y - y0) * W + x]) edge_pixels.push_back(y * W + x);
           }
         }
       }
     }
-    std::vector<double> sums(edge_pixels.size(), 0.0);
-    Eigen::Vector3f directions[RayCaster::kPacketSize];
-    RayHit hits[RayCaster::kPacketSize];
-    int slots[RayCaster::kPacketSize];
+    edge_count += static_cast<int>(edge_pixels.size());
+    // Sample k of edge pixel `slot` at samples[slot·n² + k]; pending reflections point into it,
+    // so it is sized once, before any packet.
+    std::vector<float>& samples = scratch.samples;
+    samples.resize(edge_pixels.size() * n * n);
+    Eigen::Vector3f directions[kRayPacketSize];
+    RayHitPacket hits;
+    int slots[kRayPacketSize];
     int count = 0;
     auto flush = [&] {
-      caster.IntersectPacket(origin, directions, count, hits);
-      for (int i = 0; i < count; ++i) {
-        sums[slots[i]] += Shade(hits[i], origin, directions[i], options_.specular_reflections);
-      }
+      caster.IntersectPacket(origin, directions, count, &hits);
+      ShadePacket(origin, directions, count, hits, samples.data(), slots, pending);
       count = 0;
     };
-    for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
-      const int x = edge_pixels[slot] % W, y = edge_pixels[slot] / W;
+    int sample = 0;
+    for (const int pixel : edge_pixels) {
+      const int x = pixel % W, y = pixel / W;
       for (int sy = 0; sy < n; ++sy) {
         for (int sx = 0; sx < n; ++sx) {
-          slots[count] = static_cast<int>(slot);
+          slots[count] = sample++;
           directions[count++] = R * CameraRay(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n);
-          if (count == RayCaster::kPacketSize) flush();
+          if (count == kRayPacketSize) flush();
         }
       }
     }
     if (count > 0) flush();
+    if (pending != nullptr) CastReflections(pending);
     for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
-      out.radiance.ptr<float>()[edge_pixels[slot]] = static_cast<float>(sums[slot] / (n * n));
+      double sum = 0.0;
+      for (int k = 0; k < n * n; ++k) sum += samples[slot * n * n + k];
+      radiance_px[edge_pixels[slot]] = static_cast<float>(sum / (n * n));
     }
   });
-  return out;
+  out->edge_pixels = edge_count;
 }
 
 }  // namespace hoilcd

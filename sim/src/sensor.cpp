@@ -15,6 +15,18 @@ namespace {
 
 constexpr int64_t kRowsPerChunk = 16;
 
+// std::round (halves away from zero) without a libm call: the truncation and the remainder
+// are exact below 2^52, where every double is an integer anyway.
+inline double RoundHalfAway(double x) {
+  if (!(std::abs(x) < 4503599627370496.0)) return std::round(x);
+  const double t = static_cast<double>(static_cast<int64_t>(x));
+  const double rest = x - t;
+  // Selects rather than branches (the remainder is random per pixel); exact as t is an integer
+  // below 2^52. copysign: round gives −0 for x in (−0.5, −0].
+  const double up = rest >= 0.5 ? 1.0 : 0.0, down = rest <= -0.5 ? 1.0 : 0.0;
+  return std::copysign(t + up - down, x);
+}
+
 }  // namespace
 
 SensorOptions::SensorOptions() { Table().FillDefaults(this); }
@@ -84,7 +96,9 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
       frame_rate_hz_(frame_rate_hz),
       seed_(seed),
       table_(table),
-      num_threads_(ResolveThreadCount(num_threads)) {
+      num_threads_(ResolveThreadCount(num_threads)),
+      noise_scratch_(static_cast<size_t>(num_threads_) * std::max(width, 0)),
+      signal_scratch_(static_cast<size_t>(num_threads_) * std::max(width, 0)) {
   const std::string problem = options_.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
   HOILCD_CHECK(table_ != nullptr);
@@ -229,16 +243,18 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   HOILCD_CHECK_MSG(frame >= 0, "frame " << frame);
   HOILCD_CHECK_MSG(last_frame_ < 0 || frame == last_frame_ + 1,
                    "frame " << frame << " after frame " << last_frame_ << " (frames go in order)");
-  cv::Mat blurred;
+  // The blurred radiance goes into the spare buffer (no allocation after the first frames);
+  // it becomes previous_ at the end and the old previous_ the next spare.
+  cv::Mat& blurred = spare_;
   if (options_.optics_blur) {
     cv::GaussianBlur(radiance, blurred, cv::Size(0, 0), options_.psf_sigma_px,
                      options_.psf_sigma_px, cv::BORDER_REFLECT);
   } else {
-    blurred = radiance.clone();
+    radiance.copyTo(blurred);
   }
   const cv::Mat& previous = previous_.empty() ? blurred : previous_;
   if (ShownFrame(frame) != frame && !shown_.empty()) {  // FFC freeze: the shutter is shut
-    previous_ = blurred;
+    std::swap(previous_, spare_);
     last_frame_ = frame;
     return shown_.clone();
   }
@@ -246,9 +262,21 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   const double drift_signal = responsivity_ * DriftK(frame);
   const double noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
   const double step_k = options_.quantisation_step_k;
+  const double shutter_radiance = shutter_radiance_;
+  const bool time_constant = options_.time_constant, fixed_pattern = options_.fixed_pattern;
+  const bool temporal_noise = options_.temporal_noise, quantisation = options_.quantisation;
+  const float blend = blend_;
+  // ApparentCelsius's emissivity correction, in the same arithmetic.
+  const bool grey = options_.emissivity_setting < 1.0;
+  const double emissivity = options_.emissivity_setting;
+  const double reflected_part = (1.0 - options_.emissivity_setting) * reflected_radiance_;
+  const uint64_t noise_key =
+      HashCombine(seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
 
   cv::Mat temperature(height_, width_, CV_32F);
-  ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int) {
+  ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int worker) {
+    float* noise = noise_scratch_.data() + static_cast<size_t>(worker) * width_;
+    double* signal = signal_scratch_.data() + static_cast<size_t>(worker) * width_;
     for (int64_t y = begin; y < end; ++y) {
       const float* now = blurred.ptr<float>(static_cast<int>(y));
       const float* before = previous.ptr<float>(static_cast<int>(y));
@@ -256,24 +284,29 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
       const float* offset = offset_signal_.ptr<float>(static_cast<int>(y));
       const float* shading = shading_shape_.ptr<float>(static_cast<int>(y));
       float* out = temperature.ptr<float>(static_cast<int>(y));
+      if (temporal_noise) KeyedNormals(noise_key, y * width_, width_, noise);
+      // Steps 2-6 in the signal domain, branch-free per pixel so that the loop runs in lanes.
       for (int x = 0; x < width_; ++x) {
-        double signal = now[x];
-        if (options_.time_constant) signal = blend_ * now[x] + (1.0f - blend_) * before[x];
-        if (options_.fixed_pattern) signal += gain[x] * (signal - shutter_radiance_) + offset[x];
-        signal += drift_signal + shading_signal * shading[x];
-        if (options_.temporal_noise) {
-          const int64_t pixel = y * width_ + x;
-          signal += noise_signal * KeyedRng(seed_, "sensor.noise", frame, pixel).Normal();
-        }
-        float t_c = ApparentCelsius(signal);
-        if (options_.quantisation) t_c = static_cast<float>(std::round(t_c / step_k) * step_k);
+        double s = now[x];
+        if (time_constant) s = blend * now[x] + (1.0f - blend) * before[x];
+        if (fixed_pattern) s += gain[x] * (s - shutter_radiance) + offset[x];
+        s += drift_signal + shading_signal * shading[x];
+        if (temporal_noise) s += noise_signal * noise[x];
+        if (grey) s = (s - reflected_part) / emissivity;
+        signal[x] = s;
+      }
+      // Step 7: the table inversion (a gather per pixel), then the quantisation.
+      table_->KelvinFromRadiance(signal, width_, signal);
+      for (int x = 0; x < width_; ++x) {
+        float t_c = static_cast<float>(signal[x] - kZeroCelsiusK);
+        if (quantisation) t_c = static_cast<float>(RoundHalfAway(t_c / step_k) * step_k);
         out[x] = t_c;
       }
     }
   });
-  previous_ = blurred;
+  std::swap(previous_, spare_);
   last_frame_ = frame;
-  shown_ = temperature.clone();
+  temperature.copyTo(shown_);
   return temperature;
 }
 

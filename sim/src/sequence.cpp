@@ -74,8 +74,8 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
 // half of the gap to each neighbour, gestures on the roomier side; 9: EXR RLE-compressed with Z
 // half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
-// parameters).
-constexpr int kSimulatorRevision = 9;
+// parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals).
+constexpr int kSimulatorRevision = 10;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace hoilcd {
@@ -16,22 +17,32 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
   const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
   const int W = intrinsics.width, H = intrinsics.height;
   std::vector<PersonRecord> out;
+  // Every person's visible pixels and their box, in one pass over the instance ids.
+  struct Seen {
+    int pixels = 0, x0, y0, x1 = -1, y1 = -1;
+  };
+  int max_label = -1;
+  for (const Person& person : world.people()) max_label = std::max(max_label, person.instance);
+  std::vector<Seen> seen(max_label + 1, Seen{0, W, H, -1, -1});
+  for (int y = 0; y < H; ++y) {
+    const int* row = instance_ids.ptr<int>(y);
+    for (int x = 0; x < W; ++x) {
+      const int label = row[x];
+      if (label < 0 || label > max_label) continue;
+      Seen& s = seen[label];
+      ++s.pixels;
+      s.x0 = std::min(s.x0, x), s.x1 = std::max(s.x1, x), s.y0 = std::min(s.y0, y), s.y1 = std::max(s.y1, y);
+    }
+  }
+  std::vector<uint8_t> alone_mask;  // per pixel of a person's window: 1 where they cover it alone
   for (const Person& person : world.people()) {
     if (!person.present) continue;
     const int instance = person.instance;
-
-    // Visible pixels and their box.
-    int visible = 0, x0 = W, y0 = H, x1 = -1, y1 = -1;
-    for (int y = 0; y < H; ++y) {
-      const int* row = instance_ids.ptr<int>(y);
-      for (int x = 0; x < W; ++x) {
-        if (row[x] != instance) continue;
-        ++visible;
-        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-      }
-    }
-    // Pixels the person would cover alone: cast against the body parts only, each within the
-    // projection of its own bounding box.
+    int visible = seen[instance].pixels, x0 = seen[instance].x0, y0 = seen[instance].y0,
+        x1 = seen[instance].x1, y1 = seen[instance].y1;
+    // Pixels the person would cover alone: their visible pixels, and those of the rest of each
+    // body part's window (the projection of its bounding box) that a ray against the part alone
+    // hits, cast as packets of 4×4 pixels.
     struct PartWindow {
       int instance, ua, ub, va, vb;
     };
@@ -62,18 +73,42 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
       ua = std::min(ua, w.ua), ub = std::max(ub, w.ub), va = std::min(va, w.va), vb = std::max(vb, w.vb);
     }
     if (!in_front && visible == 0) continue;
-    int alone = 0, ax0 = W, ay0 = H, ax1 = -1, ay1 = -1;
-    for (int y = va; y <= vb; ++y) {
-      for (int x = ua; x <= ub; ++x) {
-        const Eigen::Vector3f d = (R * intrinsics.Unproject(x, y).cast<float>()).normalized();
-        bool hit = false;
-        for (const PartWindow& w : windows) {
-          if (x < w.ua || x > w.ub || y < w.va || y > w.vb) continue;
-          if ((hit = world.caster().IntersectInstance(w.instance, origin, d).hit())) break;
+    int alone = visible, ax0 = W, ay0 = H, ax1 = -1, ay1 = -1;
+    if (!windows.empty()) {
+      const int mask_w = ub - ua + 1;
+      alone_mask.assign(static_cast<size_t>(mask_w) * (vb - va + 1), 0);
+      for (int y = std::max(va, y0); y <= std::min(vb, y1); ++y) {
+        const int* row = instance_ids.ptr<int>(y);
+        for (int x = std::max(ua, x0); x <= std::min(ub, x1); ++x) {
+          if (row[x] == instance) alone_mask[(y - va) * mask_w + x - ua] = 1;
         }
-        if (!hit) continue;
-        ++alone;
-        ax0 = std::min(ax0, x), ax1 = std::max(ax1, x), ay0 = std::min(ay0, y), ay1 = std::max(ay1, y);
+      }
+      Eigen::Vector3f directions[kRayPacketSize];
+      int pixels[kRayPacketSize];
+      RayHitPacket hits;
+      for (const PartWindow& w : windows) {
+        for (int by = w.va; by <= w.vb; by += 4) {
+          for (int bx = w.ua; bx <= w.ub; bx += 4) {
+            int count = 0;
+            for (int y = by; y <= std::min(by + 3, w.vb); ++y) {
+              for (int x = bx; x <= std::min(bx + 3, w.ub); ++x) {
+                const int m = (y - va) * mask_w + x - ua;
+                if (alone_mask[m]) continue;
+                pixels[count] = m;
+                directions[count++] = (R * intrinsics.Unproject(x, y).cast<float>()).normalized();
+              }
+            }
+            if (count == 0) continue;
+            world.caster().IntersectInstancePacket(w.instance, origin, directions, count, &hits);
+            for (int i = 0; i < count; ++i) {
+              if (hits.instance[i] < 0) continue;
+              alone_mask[pixels[i]] = 1;
+              ++alone;
+              const int x = pixels[i] % mask_w + ua, y = pixels[i] / mask_w + va;
+              ax0 = std::min(ax0, x), ax1 = std::max(ax1, x), ay0 = std::min(ay0, y), ay1 = std::max(ay1, y);
+            }
+          }
+        }
       }
     }
     // In view but hidden behind something: listed with visible fraction 0 and the box it would

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace hoilcd {
@@ -65,6 +66,44 @@ TEST(CounterWord, VectorLanesEqualScalarCalls) {
   const Uints8 counters = {0, 1, 2, 3, 1000, 77777, 0xfffffffe, 0xffffffff};
   const Uints8 words = CounterWord<Uints8>(42, counters);
   for (int lane = 0; lane < 8; ++lane) EXPECT_EQ(words[lane], CounterWord<uint32_t>(42, counters[lane]));
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+TEST(KeyedNormals, EachValueDependsOnlyOnKeyAndIndexNotOnHowTheRangeIsSplit) {
+  std::vector<float> whole(1000);
+  KeyedNormals(99, 10, 1000, whole.data());
+  for (const auto& [first, count] : std::vector<std::pair<int, int>>{{10, 1}, {11, 3}, {137, 200}, {500, 510}}) {
+    std::vector<float> part(count);
+    KeyedNormals(99, first, count, part.data());
+    for (int i = 0; i < count; ++i) ASSERT_EQ(part[i], whole[first - 10 + i]) << first << "+" << i;
+  }
+  std::vector<float> other(1000);
+  KeyedNormals(100, 10, 1000, other.data());
+  EXPECT_NE(other, whole);
+}
+
+TEST(KeyedNormals, AreStandardNormalAndTheCosineAndSineOfAPairAreUncorrelated) {
+  const int n = 400000;
+  std::vector<float> x(n);
+  KeyedNormals(7, 0, n, x.data());
+  double sum = 0, sum2 = 0, sum4 = 0, pair = 0;
+  int beyond_two_sigma = 0;
+  for (int i = 0; i < n; ++i) {
+    ASSERT_TRUE(std::isfinite(x[i]));
+    sum += x[i], sum2 += x[i] * x[i], sum4 += std::pow(x[i], 4);
+    beyond_two_sigma += std::abs(x[i]) > 2.0f;
+    if (i % 2 == 1) pair += static_cast<double>(x[i]) * x[i - 1];
+  }
+  EXPECT_NEAR(sum / n, 0.0, 0.01);
+  EXPECT_NEAR(sum2 / n, 1.0, 0.01);
+  EXPECT_NEAR(sum4 / n, 3.0, 0.1);  // a normal's fourth moment
+  EXPECT_NEAR(static_cast<double>(beyond_two_sigma) / n, 0.0455, 0.002);
+  EXPECT_NEAR(pair / (n / 2), 0.0, 0.01);
 }
 
 }  // namespace

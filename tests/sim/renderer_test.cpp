@@ -68,6 +68,78 @@ TEST_F(PaperRoomView, RenderIsIdenticalAtOneAndTwoThreads) {
   EXPECT_GT(a.edge_pixels, 100);
 }
 
+TEST_F(PaperRoomView, PacketCastsHitWhatSingleRaysHitWithAndWithoutTheRestOfTheScene) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RayCaster& caster = world.caster();
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  const Rigid3 world_from_cam = CorridorPose().WorldFromCam();
+  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
+  const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
+  // The instance seen in the middle of the image, cast against alone.
+  const RayHit centre = caster.Intersect(origin, R * Eigen::Vector3f::UnitZ());
+  ASSERT_TRUE(centre.hit());
+  const int part = centre.instance;
+  int hits = 0, part_hits = 0;
+  for (int by = 0; by < intrinsics.height; by += 4) {
+    for (int bx = 0; bx < intrinsics.width; bx += 4) {
+      Eigen::Vector3f directions[kRayPacketSize], origins[kRayPacketSize];
+      for (int i = 0; i < kRayPacketSize; ++i) {
+        directions[i] = (R * intrinsics.Unproject(bx + i % 4, by + i / 4).cast<float>()).normalized();
+        origins[i] = origin + 0.01f * i * directions[i];
+      }
+      const int count = 1 + (bx / 4) % kRayPacketSize;  // partial packets too
+      RayHitPacket packet, from_origins, alone;
+      caster.IntersectPacket(origin, directions, count, &packet);
+      caster.IntersectPacket(origins, directions, count, &from_origins);
+      caster.IntersectInstancePacket(part, origin, directions, count, &alone);
+      for (int i = 0; i < count; ++i) {
+        const RayHit single = caster.Intersect(origin, directions[i]);
+        ASSERT_EQ(packet.instance[i], single.instance);
+        ASSERT_EQ(packet.triangle[i], single.triangle);
+        ASSERT_EQ(packet.distance_m[i], single.distance_m);
+        const RayHit full = caster.Hit(packet, i, directions[i]);
+        ASSERT_EQ(full.normal_world, single.normal_world);
+        const RayHit shifted = caster.Intersect(origins[i], directions[i]);
+        ASSERT_EQ(from_origins.instance[i], shifted.instance);
+        ASSERT_EQ(from_origins.distance_m[i], shifted.distance_m);
+        const RayHit part_alone = caster.IntersectInstance(part, origin, directions[i]);
+        ASSERT_EQ(alone.instance[i], part_alone.instance);
+        ASSERT_EQ(alone.distance_m[i], part_alone.distance_m);
+        hits += single.hit();
+        part_hits += part_alone.hit();
+      }
+    }
+  }
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(part_hits, 0);
+}
+
+TEST_F(PaperRoomView, RenderIntoBuffersReusesThemUnlessSharedAndGivesTheSameFrame) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  FrameRenderer renderer(world, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 2));
+  const FrameBuffers reference = renderer.Render(CorridorPose());
+  FrameBuffers buffers;
+  CameraPose other = CorridorPose();
+  other.yaw_rad = 1.0;
+  renderer.Render(other, &buffers);
+  const uchar* radiance_data = buffers.radiance.data;
+  const cv::Mat kept = buffers.depth_m;  // shared: must not be overwritten
+  const cv::Mat kept_copy = kept.clone();
+  renderer.Render(CorridorPose(), &buffers);
+  EXPECT_EQ(buffers.radiance.data, radiance_data);
+  EXPECT_NE(buffers.depth_m.data, kept.data);
+  EXPECT_EQ(cv::norm(kept, kept_copy, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(buffers.radiance, reference.radiance, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(buffers.depth_m, reference.depth_m, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(buffers.instance, reference.instance, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(buffers.class_id, reference.class_id, cv::NORM_INF), 0.0);
+  EXPECT_EQ(buffers.edge_pixels, reference.edge_pixels);
+}
+
 TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
   const BandRadianceTable table;

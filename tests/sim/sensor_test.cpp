@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <utility>
@@ -169,6 +170,29 @@ TEST(SensorModel, GainErrorVanishesAtShutterTemperatureAndGrowsAwayFromIt) {
   EXPECT_LT(at_shutter[0], 1e-4);
   // 1 % gain spread on a 10 K contrast: about 0.1 K.
   EXPECT_NEAR(hot[0], 0.1, 0.02);
+}
+
+TEST(SensorModel, QuantisationRoundsAsStdRoundBitForBitAroundZeroCelsius) {
+  const BandRadianceTable table;
+  SensorOptions options = AllOff();
+  options.quantisation = true;
+  SensorModel model(options, kWidth, kHeight, kFrameRateHz, 5, &table);
+  // −2 °C .. +2 °C in steps far below the 0.01 K quantisation step, so many values fall just
+  // beside a rounding boundary and some round to −0.
+  cv::Mat radiance(kHeight, kWidth, CV_32F);
+  for (int p = 0; p < kWidth * kHeight; ++p) {
+    radiance.ptr<float>()[p] = table.RadianceFromCelsius(-2.0f + 4.0f * p / (kWidth * kHeight));
+  }
+  const cv::Mat ideal = model.IdealTemperature(radiance);
+  const cv::Mat quantised = model.Apply(0, radiance);
+  int negative_zeros = 0;
+  for (int p = 0; p < kWidth * kHeight; ++p) {
+    const float expected = static_cast<float>(std::round(ideal.ptr<float>()[p] / 0.01) * 0.01);
+    const float got = quantised.ptr<float>()[p];
+    ASSERT_EQ(std::memcmp(&expected, &got, sizeof got), 0) << p << ": " << expected << " vs " << got;
+    negative_zeros += got == 0.0f && std::signbit(got);
+  }
+  EXPECT_GT(negative_zeros, 0);
 }
 
 TEST(SensorModel, TimeConstantBlendsOneFrameOfAStep) {

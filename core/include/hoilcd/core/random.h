@@ -58,6 +58,13 @@ template <typename U32>
   return LowBias32<U32>(mixed + static_cast<uint32_t>(mixed_key >> 32));
 }
 
+// Standard normals out[0..count) for indices first .. first + count − 1 of the stream `key`:
+// index i takes the counter words 2·⌊i/2⌋ and 2·⌊i/2⌋ + 1 as a uniform pair (24 bits each) and
+// Box–Muller in float gives cos (even i) or sin (odd i), so each pair of words yields two normals.
+// For per-pixel noise drawn a row at a time in vector lanes (Eigen's log/sin/cos); each value
+// depends only on key and i, never on how a range is split (first may be odd).
+void KeyedNormals(uint64_t key, int64_t first, int count, float* out);
+
 // PCG32 (O'Neill 2014): small state, good statistics, cheap to construct per key.
 class Rng {
  public:

@@ -33,6 +33,8 @@ class BandRadianceTable {
   float CelsiusFromRadiance(float radiance) const;       // fast inverse, per pixel
   double RadianceFromKelvin(double t_k) const;
   double KelvinFromRadiance(double radiance) const;
+  // kelvin[i] = KelvinFromRadiance(radiance[i]) for i < count, without a call per value.
+  void KelvinFromRadiance(const double* radiance, int count, double* kelvin) const;
   // dL/dT at t_k (W·m⁻²·sr⁻¹·K⁻¹), from the series by central difference: the camera's
   // responsivity, which converts figures given in kelvin (NETD, offsets) to radiance.
   double SlopeFromKelvin(double t_k) const;

@@ -22,6 +22,18 @@ struct RayHit {
   bool hit() const { return instance >= 0; }
 };
 
+constexpr int kRayPacketSize = 16;
+
+// Closest hits of a packet of rays, structure of arrays, without RayHit's world normal (a matrix
+// product and a square root per hit that a renderer needs only on specular surfaces; RayCaster::
+// Hit completes one lane). Lanes at and beyond the packet's count are undefined.
+struct RayHitPacket {
+  float distance_m[kRayPacketSize];  // infinity on a miss
+  int instance[kRayPacketSize];      // -1 on a miss
+  int triangle[kRayPacketSize];
+  float normal_object[3][kRayPacketSize];  // geometric normal in the prototype's frame, not unit
+};
+
 class RayCaster {
  public:
   RayCaster();
@@ -49,18 +61,34 @@ class RayCaster {
   // native 16- / 8-wide packets): much faster than single rays when the directions are close,
   // e.g. a 4×4 block of pixels. hits[i] is what Intersect(origin, directions[i]) returns (up to
   // the packet kernel's rounding). Thread-safe after Commit().
-  static constexpr int kPacketSize = 16;
+  static constexpr int kPacketSize = kRayPacketSize;
   void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
                        RayHit* hits) const;
+  // The same into a RayHitPacket (no per-hit normal).
+  void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
+                       RayHitPacket* hits) const;
+  // Rays with an origin each (e.g. reflections off one surface; cast without the coherent flag).
+  void IntersectPacket(const Eigen::Vector3f* origins, const Eigen::Vector3f* directions, int count,
+                       RayHitPacket* hits) const;
+  // Lane i of a packet as Intersect returns it, normal included.
+  RayHit Hit(const RayHitPacket& hits, int i, const Eigen::Vector3f& direction) const;
   // Closest hit against one instance alone (ignoring everything else): for visibility ratios.
   RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin,
                            const Eigen::Vector3f& direction) const;
+  // The same for a packet of `count` (1..kPacketSize) rays from one origin (coherent).
+  void IntersectInstancePacket(int instance, const Eigen::Vector3f& origin,
+                               const Eigen::Vector3f* directions, int count,
+                               RayHitPacket* hits) const;
 
   // The top-level Embree scene (valid after Commit()), for callers that cast rays with Embree
   // directly, e.g. the bare-Embree baseline of bench/benchmarks/render_bench.cpp.
   RTCSceneTy* embree_scene() const;
 
  private:
+  void CastSoa(RTCSceneTy* scene, const Eigen::Vector3f* origins, int origin_stride,
+               const Eigen::Vector3f* directions, int count, bool coherent,
+               RayHitPacket* hits) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -73,7 +73,8 @@ struct SensorOptions {
 //      radiation (vignetting: the corners see more barrel) and the detector's reflection off the
 //      lens (narcissus: a cold spot at the centre) grow until the next FFC. Corner minus centre
 //      is ShadingCornerToCentreK(k) = ΔT_h·(v + n);
-//   6. temporal noise: + R·NETD·n(k, p), n standard normal;
+//   6. temporal noise: + R·NETD·n(k, p), n standard normal: value p of KeyedNormals for the
+//      key HashCombine(seed, HashString("sensor.noise"), k) (random.h; p = y·width + x);
 //   7. conversion to apparent temperature with the emissivity setting, then quantisation;
 //   8. FFC freeze: for FreezeFrames() frames from each FFC frame on, the output is the output of
 //      the frame before the FFC (the bolometer state still follows the scene).
@@ -141,7 +142,10 @@ class SensorModel {
   float blend_;                // a = 1 − exp(−Δt/τ)
   cv::Mat gain_;               // CV_32F per-pixel relative gain error
   cv::Mat offset_signal_;      // CV_32F per-pixel + column offset, radiance units
+  std::vector<float> noise_scratch_;    // per worker: one row of temporal noise
+  std::vector<double> signal_scratch_;  // per worker: one row of signal
   cv::Mat previous_;           // blurred radiance of the last frame applied (empty: none yet)
+  cv::Mat spare_;              // the buffer the next frame's blurred radiance goes into
   cv::Mat shown_;              // output of the last frame not frozen (empty: none yet)
   cv::Mat shading_shape_;      // CV_32F per-pixel v·ρ² − n·spot(ρ), K per K of housing warming
   int last_frame_ = -1;

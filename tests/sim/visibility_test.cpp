@@ -1,0 +1,68 @@
+#include "hoilcd/sim/visibility.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "hoilcd/sim/renderer.h"
+#include "hoilcd/sim/scene.h"
+#include "hoilcd/sim/scene_options.h"
+
+namespace hoilcd {
+namespace {
+
+// Pixels a person covers alone, by the definition: one single ray per pixel of the image
+// against each body part alone (IntersectInstance), no windows, no packets.
+int AlonePixelsBySingleRays(const World& world, const CameraIntrinsics& intrinsics,
+                            const CameraPose& pose, const Person& person) {
+  const Rigid3 world_from_cam = pose.WorldFromCam();
+  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
+  const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
+  int alone = 0;
+  for (int y = 0; y < intrinsics.height; ++y) {
+    for (int x = 0; x < intrinsics.width; ++x) {
+      const Eigen::Vector3f d = (R * intrinsics.Unproject(x, y).cast<float>()).normalized();
+      for (int part : person.parts) {
+        if (world.caster().IntersectInstance(part, origin, d).hit()) {
+          ++alone;
+          break;
+        }
+      }
+    }
+  }
+  return alone;
+}
+
+TEST(VisiblePersons, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCoversAloneBySingleRays) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  world.PlanCrowd(run.samples);
+  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 2));
+  int checked = 0, occluded = 0;
+  for (const int f : {300, 1200, 1900}) {
+    world.SetTime(run.samples[f].time_s);
+    const CameraPose& pose = run.samples[f].camera;
+    const FrameBuffers frame = renderer.Render(pose);
+    for (const PersonRecord& record : VisiblePersons(world, intrinsics, pose, frame.instance, frame.depth_m)) {
+      const auto person = std::find_if(world.people().begin(), world.people().end(),
+                                       [&](const Person& p) { return p.person_id == record.id; });
+      ASSERT_NE(person, world.people().end());
+      const int visible = cv::countNonZero(frame.instance == person->instance);
+      const int alone = std::max(visible, AlonePixelsBySingleRays(world, intrinsics, pose, *person));
+      ASSERT_GT(alone, 0);
+      EXPECT_DOUBLE_EQ(record.visible_fraction, static_cast<double>(visible) / alone)
+          << "frame " << f << " person " << record.id;
+      ++checked;
+      occluded += record.visible_fraction < 1.0;
+    }
+  }
+  EXPECT_GT(checked, 10);
+  EXPECT_GT(occluded, 3);
+}
+
+}  // namespace
+}  // namespace hoilcd
