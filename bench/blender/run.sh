@@ -18,4 +18,4 @@ if ! blender -b --factory-startup --python-exit-code 2 --python "$here/thermal_r
   grep -v '^Fra:' "$log" >&2
   exit 1
 fi
-grep -E '^blender .* fps$|thermal_room.py:' "$log" || true
+grep -E '^blender .* fps$|^thermal_room.py: ' "$log" || true

@@ -19,7 +19,7 @@ import bpy
 import numpy
 
 # Debian 12's Blender 3.4 glTF importer still uses numpy.bool, which Debian's numpy 1.24 removed.
-if not hasattr(numpy, "bool"):
+if "bool" not in vars(numpy):
     numpy.bool = bool
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -198,18 +198,20 @@ def main():
     out_dir = tempfile.mkdtemp(prefix="hoilcd-blender-")
     s.render.image_settings.file_format = "BMP"
     s.render.filepath = os.path.join(out_dir, "f")
-    times = []
-    bpy.app.handlers.render_pre.append(lambda *_: times.append(time.perf_counter()))
+    times, cpu = [], []  # wall and process CPU (all threads) at each frame's start
+    bpy.app.handlers.render_pre.append(lambda *_: (times.append(time.perf_counter()), cpu.append(time.process_time())))
     s.frame_start, s.frame_end = 1, args.warmup + args.frames
     bpy.ops.render.render(animation=True)
     times.append(time.perf_counter())
+    cpu.append(time.process_time())
     shutil.rmtree(out_dir)
     seconds = times[-1] - times[args.warmup]
+    cpu_seconds = cpu[-1] - cpu[args.warmup]
     tris = sum(len(o.data.polygons) for o in s.objects if o.type == "MESH" and not o.hide_render)
     print("blender %s cycles cpu: %d frames %dx%d, %d thread(s), 1 sample, no denoise, %d people, "
-          "%d polygons: %.2f s, %.1f fps" % (bpy.app.version_string, args.frames, camera["width_px"],
-                                            camera["height_px"], args.threads, seats, tris, seconds,
-                                            args.frames / seconds))
+          "%d polygons: %.2f s (%.1f ms per frame, process CPU %.1f ms), %.1f fps" % (
+              bpy.app.version_string, args.frames, camera["width_px"], camera["height_px"], args.threads, seats,
+              tris, seconds, 1e3 * seconds / args.frames, 1e3 * cpu_seconds / args.frames, args.frames / seconds))
 
 
 main()
