@@ -1,5 +1,6 @@
 #include "hoilcd/bench/front_ends.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "hoilcd/bench/front_end_input.h"
@@ -12,32 +13,49 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-// DLCD's front end over the sequence, in frame order (the tracker carries state).
+// Frames per block of the person front end: detection runs over a block in parallel, then the
+// tracker over it in order; a block's masks (48 kB each at 256x192) are all that is held.
+constexpr int kPersonBlockFrames = 64;
+
+// DLCD's front end over the sequence: decoding and person detection per frame in parallel, then
+// ByteTrack and the HOI points in frame order (the tracker carries state), block by block.
 void RunPersonFrontEnd(const Dataset& dataset, const FrontEndOptions& options, FrontEndOutput* out) {
   const int n = dataset.num_frames();
   out->hoi.assign(n, {});
   out->persons_ms.assign(n, 0.0);
-  DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
+  ByteTracker tracker(options.tracker);
+  std::vector<PersonDetections> detections(kPersonBlockFrames);
   ProgressReporter progress("persons", n, "frames");
   const bool video_mode = IsVideoMode(dataset);
-  for (int f = 0; f < n; ++f) {
-    const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, /*detector=*/true);
-    const auto t = Clock::now();
-    out->hoi[f] = front_end.Process(input.thermal_u8, input.radiometric_c);
-    out->persons_ms[f] = MsSince(t);
-    std::vector<Point2> points;
-    for (const HoiFeature& h : out->hoi[f]) points.push_back(h.point);
-    out->hoi_index.Add(points);
-    FrameTracks ft;
-    ft.frame = f;
-    for (const Track& track : front_end.last_tracks()) {
-      TrackedBox box{track.id, track.box, {}};
-      for (const HoiFeature& h : out->hoi[f])
-        if (h.track_id == track.id) box.hoi_points_px.push_back(h.point);
-      ft.tracks.push_back(box);
+  for (int block = 0; block < n; block += kPersonBlockFrames) {
+    const int size = std::min(kPersonBlockFrames, n - block);
+    ParallelFor(size, options.threads, [&](int64_t i) {
+      const int f = block + static_cast<int>(i);
+      const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, /*detector=*/true);
+      const auto t = Clock::now();
+      detections[i] = DetectPersons(input.thermal_u8, input.radiometric_c, options.detector);
+      out->persons_ms[f] = MsSince(t);
+    });
+    for (int i = 0; i < size; ++i) {
+      const int f = block + i;
+      const auto t = Clock::now();
+      const std::vector<Track> tracks = tracker.Update(detections[i].detections);
+      out->hoi[f] = ExtractHoiFeatures(detections[i].mask, tracks, options.hoi);
+      out->persons_ms[f] += MsSince(t);
+      std::vector<Point2> points;
+      for (const HoiFeature& h : out->hoi[f]) points.push_back(h.point);
+      out->hoi_index.Add(points);
+      FrameTracks ft;
+      ft.frame = f;
+      for (const Track& track : tracks) {
+        TrackedBox box{track.id, track.box, {}};
+        for (const HoiFeature& h : out->hoi[f])
+          if (h.track_id == track.id) box.hoi_points_px.push_back(h.point);
+        ft.tracks.push_back(box);
+      }
+      out->tracks.push_back(ft);
+      progress.Update();
     }
-    out->tracks.push_back(ft);
-    progress.Update();
   }
   progress.Done();
 }

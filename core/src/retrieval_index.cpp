@@ -1,6 +1,8 @@
 #include "hoilcd/core/retrieval_index.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <string>
 
 #include "hoilcd/core/error.h"
@@ -71,6 +73,68 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreAll(const std::vector<int>&
                         }
                       }
                     });
+  return scores;
+}
+
+std::vector<std::vector<float>> RetrievalIndex::ScoreDatabases(const std::vector<int>& queries,
+                                                               const std::vector<std::vector<int>>& databases,
+                                                               const MatchOptions& match_options,
+                                                               const RansacOptions& ransac_options, uint64_t seed,
+                                                               int threads, std::vector<int64_t>* time_ns,
+                                                               ProgressReporter* progress) const {
+  const std::string match_problem = match_options.Check();
+  HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
+  const std::string ransac_problem = ransac_options.Check();
+  HOILCD_CHECK_MSG(ransac_problem.empty(), ransac_problem);
+  HOILCD_CHECK_MSG(databases.size() == queries.size(),
+                   databases.size() << " databases for " << queries.size() << " queries");
+  for (size_t i = 0; i < queries.size(); ++i) {
+    HOILCD_CHECK_MSG(queries[i] >= 0 && queries[i] < size(), "frame " << queries[i] << " not in [0, " << size() << ")");
+    for (size_t j = 0; j < databases[i].size(); ++j) {
+      const int r = databases[i][j];
+      HOILCD_CHECK_MSG(r >= 0 && r < size(), "frame " << r << " not in [0, " << size() << ")");
+      HOILCD_CHECK_MSG(j == 0 || databases[i][j - 1] < r, "database " << i << " is not ascending");
+    }
+  }
+  std::vector<std::vector<float>> scores(queries.size());
+  for (size_t i = 0; i < queries.size(); ++i) scores[i].assign(databases[i].size(), 0.0f);
+  std::vector<std::atomic<int64_t>> spent_ns(queries.size());
+  const int num_threads = ResolveThreadCount(threads);
+  std::vector<PairScorer> scorers(num_threads);
+  // Tiles: kTileQueries consecutive queries x kTileReferences consecutive frame ids; each query
+  // scores the part of its database inside the tile's frame range.
+  const int64_t num_queries = static_cast<int64_t>(queries.size());
+  const int64_t query_tiles = (num_queries + kTileQueries - 1) / kTileQueries;
+  const int64_t frame_tiles = (size() + kTileReferences - 1) / kTileReferences;
+  ParallelForChunks(query_tiles * frame_tiles, 1, num_threads, [&](int64_t begin, int64_t end, int worker) {
+    PairScorer& scorer = scorers[worker];
+    for (int64_t tile = begin; tile < end; ++tile) {
+      const int64_t q0 = (tile / frame_tiles) * kTileQueries;
+      const int r0 = static_cast<int>((tile % frame_tiles) * kTileReferences);
+      const int r1 = static_cast<int>(std::min<int64_t>(size(), r0 + kTileReferences));
+      for (int64_t qi = q0; qi < std::min(num_queries, q0 + kTileQueries); ++qi) {
+        const std::vector<int>& database = databases[qi];
+        const auto first = std::lower_bound(database.begin(), database.end(), r0);
+        const auto last = std::lower_bound(first, database.end(), r1);
+        if (first == last) continue;
+        const auto start = std::chrono::steady_clock::now();
+        const int q = queries[qi];
+        for (auto it = first; it != last; ++it) {
+          const int r = *it;
+          scores[qi][it - database.begin()] = static_cast<float>(
+              scorer.Score(points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r], grids_[r],
+                           match_options, ransac_options, PairSeed(seed, q, r)));
+        }
+        spent_ns[qi] += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+                            .count();
+        if (progress != nullptr) progress->Update(last - first);
+      }
+    }
+  });
+  if (time_ns != nullptr) {
+    time_ns->resize(queries.size());
+    for (size_t i = 0; i < queries.size(); ++i) (*time_ns)[i] = spent_ns[i];
+  }
   return scores;
 }
 

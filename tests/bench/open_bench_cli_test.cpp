@@ -2,6 +2,7 @@
 // method's metrics exactly; the CI gate's exit codes; evaluate's errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -46,6 +47,23 @@ TEST(OpenBenchCli, DumpedScoresThroughEvaluateReproduceEveryMethodsMetricsExactl
     EXPECT_EQ(Json(out)["other_ground_truth"]["methods"][method]["mrr"],
               report["other_ground_truth"]["methods"][method]["mrr"]) << method;
   }
+}
+
+TEST(OpenBenchCli, DumpedScoresOfEveryMethodAreByteIdenticalAtOneAndTwoThreads) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  for (const char* threads : {"1", "2"}) {
+    ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "all", "-o", temp / (std::string("report") + threads),
+                      "--dump-scores", temp / (std::string("scores") + threads), "--threads", threads}),
+              0);
+  }
+  for (const std::string& method : DefaultMethods()) {
+    const std::string one = ReadFileBytes(temp / ("scores1/" + method + ".csv"));
+    EXPECT_GT(std::count(one.begin(), one.end(), '\n'), 10) << method;
+    EXPECT_EQ(one, ReadFileBytes(temp / ("scores2/" + method + ".csv"))) << method;
+  }
+  const nlohmann::json a = Json(temp / "report1/report.json"), b = Json(temp / "report2/report.json");
+  EXPECT_EQ(a["tracking"], b["tracking"]);
 }
 
 TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnReport) {

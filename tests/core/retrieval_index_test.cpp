@@ -91,5 +91,50 @@ TEST(RetrievalIndex, ScoreAllRejectsUnknownFramesAndBadOptions) {
   EXPECT_TRUE(index.ScoreAll({}, {0}, {}, {}, 1, 1).empty());
 }
 
+TEST(RetrievalIndex, ScoreDatabasesEqualsScoreAllPerQueryAtAnyThreadCount) {
+  // 70 frames: queries 40..69, each against its own ascending database (the frames before it
+  // minus a window, in steps that differ per query), crossing 32-frame tile edges.
+  const std::vector<std::vector<Point2>> frames = MakeFrames(70);
+  RetrievalIndex index;
+  for (const auto& frame : frames) index.Add(frame);
+  std::vector<int> queries;
+  std::vector<std::vector<int>> databases;
+  for (int q = 40; q < 70; ++q) {
+    queries.push_back(q);
+    databases.emplace_back();
+    for (int r = q % 3; r < q - 5; r += 1 + q % 2) databases.back().push_back(r);
+  }
+  databases[3].clear();  // an empty database scores nothing
+  const MatchOptions match;
+  const RansacOptions ransac;
+  std::vector<int64_t> time_ns;
+  ProgressReporter progress("test", 0, "pairs", /*quiet=*/true);
+  const auto one = index.ScoreDatabases(queries, databases, match, ransac, 9, 1, &time_ns, &progress);
+  ASSERT_EQ(one.size(), queries.size());
+  ASSERT_EQ(time_ns.size(), queries.size());
+  bool some_score = false;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const auto expected = databases[i].empty()
+                              ? std::vector<std::vector<float>>{{}}
+                              : index.ScoreAll({queries[i]}, databases[i], match, ransac, 9, 1);
+    EXPECT_EQ(one[i], expected[0]) << "query " << queries[i];
+    EXPECT_GE(time_ns[i], 0);
+    for (float v : one[i]) some_score |= v > 0;
+  }
+  EXPECT_TRUE(some_score);
+  for (int threads : {2, 3}) {
+    EXPECT_EQ(index.ScoreDatabases(queries, databases, match, ransac, 9, threads), one) << threads << " threads";
+  }
+}
+
+TEST(RetrievalIndex, ScoreDatabasesRejectsADatabaseThatIsNotAscendingOrAMissingOne) {
+  const std::vector<std::vector<Point2>> frames = MakeFrames(8);
+  RetrievalIndex index;
+  for (const auto& frame : frames) index.Add(frame);
+  EXPECT_THROW(index.ScoreDatabases({7}, {{1, 0}}, MatchOptions{}, RansacOptions{}, 1, 1), std::logic_error);
+  EXPECT_THROW(index.ScoreDatabases({7}, {{0, 8}}, MatchOptions{}, RansacOptions{}, 1, 1), std::logic_error);
+  EXPECT_THROW(index.ScoreDatabases({7, 6}, {{0}}, MatchOptions{}, RansacOptions{}, 1, 1), std::logic_error);
+}
+
 }  // namespace
 }  // namespace hoilcd

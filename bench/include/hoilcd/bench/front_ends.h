@@ -1,6 +1,7 @@
 // The front ends loop-closure methods share: per-frame extraction run once for every method that
 // needs it. Keypoints and thumbnails are per frame (in parallel, identical at any thread count);
-// the person front end (detector + ByteTrack + HOI points) carries tracker state, so runs in order.
+// the person front end detects people per frame in parallel, then runs ByteTrack and the HOI
+// points in frame order (the tracker carries state).
 #pragma once
 
 #include <set>

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hoilcd/core/matching.h"
+#include "hoilcd/core/progress.h"
 
 namespace hoilcd {
 
@@ -25,6 +26,19 @@ class RetrievalIndex {
                                            const MatchOptions& match_options,
                                            const RansacOptions& ransac_options, uint64_t seed,
                                            int threads) const;
+
+  // Each query against its own database: scores[i][j] = the ScoreAll score of frame queries[i]
+  // and frame databases[i][j]. databases[i] must be ascending. All pairs of all queries are
+  // one parallel loop over tiles of consecutive queries x frame ranges, so both threads stay
+  // busy however small one database is; identical at any thread count. When time_ns is given,
+  // (*time_ns)[i] gets the time spent on query i's pairs (summed over threads); progress, when
+  // given, is advanced by every pair scored.
+  std::vector<std::vector<float>> ScoreDatabases(const std::vector<int>& queries,
+                                                 const std::vector<std::vector<int>>& databases,
+                                                 const MatchOptions& match_options,
+                                                 const RansacOptions& ransac_options, uint64_t seed,
+                                                 int threads, std::vector<int64_t>* time_ns = nullptr,
+                                                 ProgressReporter* progress = nullptr) const;
 
  private:
   std::vector<Point2> points_;    // every frame's points, frame after frame
