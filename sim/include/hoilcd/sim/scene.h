@@ -41,6 +41,12 @@ struct WindowSpec {
   SurfaceSpec surface;
 };
 
+// A doorway walkers enter and leave by: its centre on a wall and its width.
+struct DoorSpec {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // on a wall (x = 0 or size_x, or y = 0 or size_y)
+  double width_m = 0.9;                                  // clear width, m
+};
+
 struct TableSpec {
   Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
   double yaw_deg = 0;
@@ -72,6 +78,7 @@ struct Scene {
   double wall_temperature_bottom_c = 21, wall_temperature_top_c = 23.5;
   SurfaceSpec walls;
   std::vector<WindowSpec> windows;
+  std::vector<DoorSpec> doors;      // never empty: the scene's, or one in the middle of each end wall
 
   std::vector<TableSpec> tables;
   std::string table_asset, chair_asset;
