@@ -69,8 +69,10 @@ std::string SequenceOptions::Check() const {
 // camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people;
 // 6: the robot steers on localised odometry by default; 7: walkers planned in free space, clear of
 // each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
-// half of the gap to each neighbour, gestures on the roomier side).
-constexpr int kSimulatorRevision = 8;
+// half of the gap to each neighbour, gestures on the roomier side; 9: walkers enter and leave
+// through the room's doors, seated people look at whichever neighbours sit at their table, chair
+// jitter never squeezes neighbours together).
+constexpr int kSimulatorRevision = 9;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 
