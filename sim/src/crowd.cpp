@@ -132,6 +132,15 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
   duration_s_ = scene.frames / scene.frame_rate_hz;
   seat_warmth_c_ = scene.furniture.seat_warmth_c;
   sway_amplitude_rad_ = options_.sway_amplitude_deg * kDegToRad;
+  // Each door faces into the room from the wall it is on (the nearest wall: the scene checked it
+  // lies on one).
+  const Eigen::Vector2d size = scene.room.size_m.head<2>();
+  for (const DoorSpec& d : scene.room.doors) {
+    const std::array<double, 4> gap = {d.position_m.x(), size.x() - d.position_m.x(), d.position_m.y(), size.y() - d.position_m.y()};
+    const std::array<Eigen::Vector2d, 4> inward = {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)};
+    const auto wall = std::min_element(gap.begin(), gap.end()) - gap.begin();
+    doors_.push_back({d.position_m, inward[static_cast<size_t>(wall)], d.width_m});
+  }
 }
 
 std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side) {
@@ -237,17 +246,6 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
       current = next;
     }
   }
-  // The other seats seen from this one: neighbours at the same table, as directions (for
-  // talking and glances); elbow room, half the distance to the nearest seat beside this one
-  // (any table).
-  std::vector<double> neighbours;
-  const Eigen::Matrix4d seat_from_world = person.world_from_seat.cast<double>().inverse();
-  for (const Seat& other : seats_) {
-    if (other.table == table && other.seat == seat) continue;
-    const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
-    if (other.table == table) neighbours.push_back(std::atan2(at.y(), at.x()));
-    if (std::abs(at.x()) < 0.35) person.elbow_room_m = std::min(person.elbow_room_m, 0.5 * std::abs(at.y()));
-  }
   // How far the table's near edge is (the poses and props assume 0.30 m; chairs stand irregularly).
   {
     const Eigen::Vector3d q = person.table_from_seat.topRightCorner<3, 1>();
@@ -255,8 +253,9 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
     const double half_depth = 0.5 * (table_bounds_m_.max().y() - table_bounds_m_.min().y());
     if (std::abs(d.y()) > 0.5) person.table_edge_m = std::clamp((std::abs(q.y()) - half_depth) / std::abs(d.y()), 0.1, 0.5);
   }
+  // Whom they look at is settled by AimGazes, once every seat and sitter is known.
   person.activities = PlanActivities(options_.activity, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
-                                     has_cup, has_laptop, neighbours);
+                                     has_cup, has_laptop);
   person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng.Normal(), 0.8, 1.2);
   DrawIdleMotion(options_, &rng, &person);
   // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
@@ -357,6 +356,22 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
       side = std::min(side, 0.5 * std::abs(at.y()));
     }
   }
+  // Glances and talk go to the people at the same table when each episode starts (directions in
+  // the person's seat frame), whichever of them sat down first.
+  for (Person& person : people_) {
+    if (!person.seated) continue;
+    const Eigen::Matrix4d seat_from_world = person.world_from_seat.cast<double>().inverse();
+    for (ActivityEpisode& episode : person.activities) {
+      std::vector<double> neighbours;
+      for (const Person& other : people_) {
+        if (!other.seated || other.table != person.table || other.person_id == person.person_id) continue;
+        if (other.arrive_s > episode.start_s || other.leave_s <= episode.start_s) continue;
+        const Eigen::Vector3d at = Apply(seat_from_world, other.world_from_seat.cast<double>().topRightCorner<3, 1>());
+        neighbours.push_back(std::atan2(at.y(), at.x()));
+      }
+      GazeAt(neighbours, &episode);
+    }
+  }
   // Walkers: bouts on the robot's route ahead of it (between the camera and the seated people:
   // the occlusion knob), across its path and past it, clear of furniture, the robot and each other.
   const int walkers = options_.walkers;
@@ -372,6 +387,15 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
     walker.lead_phase_rad = rng.Uniform(0, 2 * M_PI);
     walker.lateral_m = rng.Uniform(0.0, 0.04);  // to the left: the tables are on the right of a clockwise lap
     const auto space = std::make_shared<const FreeSpace>(obstacles, kWalkerRadiusM * walker.height_scale);
+    for (size_t d = 0; d < doors_.size(); ++d) {
+      std::string nearest;
+      const double clearance = space->Clearance(DoorThreshold(doors_[d], space->radius_m()), &nearest);
+      if (clearance >= 0) continue;
+      throw InputError(scene_file_, "/room/doors/" + std::to_string(d) + ": walkers (crowd.walkers) enter and leave the room here, but " +
+                                        nearest + " stands in the doorway; a walker's body needs " +
+                                        std::to_string(space->radius_m()).substr(0, 5) +
+                                        " m free around it just inside: move the door or " + nearest + ", or set crowd.walkers to 0");
+    }
     for (const RobotSample& s : samples) {
       const Eigen::Vector2d at(s.base.x_m, s.base.y_m);
       if (space->FreeAlong(at, Eigen::Vector2d(-std::sin(s.base.theta_rad), std::cos(s.base.theta_rad)), kWalkerMaxSidestepM)) continue;
@@ -383,7 +407,8 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
                                         std::to_string(space->radius_m()).substr(0, 5) +
                                         " m: move the route away from it or set crowd.walkers to 0");
     }
-    walker_plans_.push_back(PlanWalker(behaviour_weights, seed_, w, duration_s_, space, robot_, walker_plans_));
+    walker_plans_.push_back(
+        PlanWalker(behaviour_weights, seed_, w, duration_s_, space, robot_, walker_plans_, doors_, walker.lateral_m));
   }
   std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
     return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
@@ -465,7 +490,7 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
   // A walker: where its plan puts it, the gait phase from the distance walked (so the feet do
   // not slide), its stride from its speed.
   const WalkerPlan& plan = walker_plans_.at(p.walker);
-  const WalkerPlacement place = PlaceWalker(plan, robot_, time_s, p.lateral_m);
+  const WalkerPlacement place = PlaceWalker(plan, robot_, time_s);
   *world_from_person =
       PlacementTransform(Eigen::Vector3d(place.at_m.x(), place.at_m.y(), 0.0), place.heading_rad, p.height_scale).cast<double>();
   if (place.speed_m_s < 0.03) return PresetPose("standing");
@@ -540,8 +565,7 @@ void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
 void Crowd::SetTime(double time_s) {
   for (Person& p : people_) {
     p.present = time_s >= p.arrive_s && time_s < p.leave_s;
-    // A walker whose place on the route lies beyond the end of the sequence has walked off
-    // (otherwise it would wait at the robot's final pose for the robot to drive into it).
+    // Walkers are in the room (or in a doorway) while their plan says so.
     if (p.walker >= 0) p.present = PlaceWalker(walker_plans_.at(p.walker), robot_, time_s).present;
     p.posture.clear();
     for (const auto& [from, name] : p.postures)

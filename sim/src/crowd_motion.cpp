@@ -62,8 +62,7 @@ const OptionTable<ActivityOptions>& ActivityOptions::Table() {
 std::string ActivityOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id,
-                                            double from_s, double to_s, bool has_cup, bool has_laptop,
-                                            const std::vector<double>& neighbour_yaw_rad) {
+                                            double from_s, double to_s, bool has_cup, bool has_laptop) {
   Rng rng = KeyedRng(seed, "crowd.activity", static_cast<uint64_t>(person_id), static_cast<uint64_t>(from_s * 1000));
   std::vector<ActivityEpisode> out;
   std::string previous;
@@ -91,9 +90,9 @@ std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint
     e.start_s = t;
     e.end_s = t + std::max(kMinDwellS, -dwell * std::log(1.0 - rng.Uniform()));
     e.toward_robot = rng.Uniform() < 0.4;
-    e.gaze_yaw_rad = neighbour_yaw_rad.empty()
-                         ? rng.Uniform(-50, 50) * kDeg
-                         : neighbour_yaw_rad[rng.UniformInt(static_cast<uint32_t>(neighbour_yaw_rad.size()))];
+    e.neighbour_pick = rng.Uniform();
+    e.lone_gaze_yaw_rad = rng.Uniform(-50, 50) * kDeg;
+    e.gaze_yaw_rad = e.lone_gaze_yaw_rad;
     e.side = e.name == "drinking" ? 1 : static_cast<int>(rng.UniformInt(2));
     e.phase_rad = rng.Uniform(0, 2 * M_PI);
     previous = e.name;
@@ -101,6 +100,15 @@ std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint
     out.push_back(e);
   }
   return out;
+}
+
+void GazeAt(const std::vector<double>& neighbour_yaw_rad, ActivityEpisode* episode) {
+  if (neighbour_yaw_rad.empty()) {
+    episode->gaze_yaw_rad = episode->lone_gaze_yaw_rad;
+    return;
+  }
+  const auto n = neighbour_yaw_rad.size();
+  episode->gaze_yaw_rad = neighbour_yaw_rad[std::min(n - 1, static_cast<size_t>(episode->neighbour_pick * static_cast<double>(n)))];
 }
 
 BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const ActivityEpisode& episode,

@@ -61,7 +61,8 @@ const OptionTable<RoomOptions>& RoomOptions::Table() {
           .Nest("floor", &O::floor, SurfaceSpec::TableWith(21.5, 0.93, false))
           .Nest("ceiling", &O::ceiling, SurfaceSpec::TableWith(23.0, 0.91, false))
           .Nest("walls", &O::walls, WallOptions::Table())
-          .External("windows", "cold windows set into walls (glass: opaque and reflective in LWIR)");
+          .External("windows", "cold windows set into walls (glass: opaque and reflective in LWIR)")
+          .External("doors", "doorways walkers enter and leave by (none: one in the middle of each end wall)");
   return table;
 }
 

@@ -1,6 +1,7 @@
 #include "hoilcd/sim/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,6 +13,7 @@
 #include <valijson/validator.hpp>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/text.h"
 #include "hoilcd/sim/asset.h"
 #include "scene_schema_text.h"
 
@@ -187,6 +189,29 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
     }
     if (w.bottom_m + w.height_m > scene.room.size_m.z()) {
       problems->Add(at + "/height_m", "the window top below the ceiling");
+    }
+  }
+  // Doors: centred on a wall (within 1 cm) with the whole opening along it.
+  const double size_x = scene.room.size_m.x(), size_y = scene.room.size_m.y();
+  for (size_t i = 0; i < scene.room.doors.size(); ++i) {
+    const DoorSpec& d = scene.room.doors[i];
+    const std::string at = f + ": /room/doors/" + std::to_string(i);
+    const double x = d.position_m.x(), y = d.position_m.y();
+    constexpr double kOnWallM = 0.01;
+    const bool in_x = x >= -kOnWallM && x <= size_x + kOnWallM, in_y = y >= -kOnWallM && y <= size_y + kOnWallM;
+    const bool on_x_wall = in_y && (std::abs(x) <= kOnWallM || std::abs(x - size_x) <= kOnWallM);  // west, east
+    const bool on_y_wall = in_x && (std::abs(y) <= kOnWallM || std::abs(y - size_y) <= kOnWallM);  // south, north
+    if (!on_x_wall && !on_y_wall) {
+      problems->Add(at + "/position_m", "a point on one of the room's walls (x = 0 or " + ShortestDouble(size_x) +
+                                            ", or y = 0 or " + ShortestDouble(size_y) + ", within 1 cm); got (" +
+                                            ShortestDouble(x) + ", " + ShortestDouble(y) + ")");
+      continue;
+    }
+    const double along = on_x_wall ? y : x, length = on_x_wall ? size_y : size_x;
+    if (along - 0.5 * d.width_m < 0 || along + 0.5 * d.width_m > length) {
+      problems->Add(at + "/width_m", "the doorway (" + ShortestDouble(d.width_m) + " m wide, centred " + ShortestDouble(along) +
+                                         " m along its wall) to fit along its wall (length " + ShortestDouble(length) +
+                                         " m) without reaching a corner");
     }
   }
   auto inside_room = [&](const Eigen::Vector3d& p) {
@@ -378,6 +403,15 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
     WindowSpec::Table().Read(doc["room"]["windows"][i], file + ": /room/windows/" + std::to_string(i), &w, &consistency);
     s.room.windows.push_back(w);
   }
+  // No doors given: a 0.9 m door in the middle of each end wall (west and east, as a seminar
+  // room's front and back doors), written into the resolved scene so the dataset's scene.json
+  // names the doors walkers used.
+  if (doc["room"]["doors"].empty()) {
+    const double mid_y = 0.5 * s.room.size_m.y();
+    doc["room"]["doors"] = json::array({{{"position_m", {0.0, mid_y}}, {"width_m", 0.9}},
+                                        {{"position_m", {s.room.size_m.x(), mid_y}}, {"width_m", 0.9}}});
+  }
+  for (const json& d : doc["room"]["doors"]) s.room.doors.push_back({Vec2(d["position_m"]), d["width_m"].get<double>()});
   for (const json& t : doc["tables"]) s.tables.push_back({Vec2(t["center_m"]), t["yaw_deg"].get<double>()});
   FurnitureOptions::Table().Read(doc["furniture"], file + ": /furniture", &s.furniture, &consistency);
 

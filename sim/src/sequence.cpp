@@ -74,8 +74,10 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
 // half of the gap to each neighbour, gestures on the roomier side; 9: EXR RLE-compressed with Z
 // half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
-// parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals).
-constexpr int kSimulatorRevision = 10;
+// parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals; 11: walkers enter and
+// leave through the room's doors, seated people look at whichever neighbours sit at their table,
+// chair jitter never squeezes neighbours together).
+constexpr int kSimulatorRevision = 11;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

@@ -19,6 +19,10 @@ constexpr double kCornerMarginM = 0.02;
 constexpr double kCheckStepS = 0.1;
 // Extra gap kept between two walkers' footprints, m.
 constexpr double kWalkerGapM = 0.05;
+// A walker out of the room stays out at least this long before it comes back in, s.
+constexpr double kMinOutS = 1.0;
+// Outside a door a walker's body is this much beyond its radius behind the wall (hidden by it), m.
+constexpr double kBehindWallM = 0.2;
 
 // Distance from point p to the segment ab.
 double PointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
@@ -77,7 +81,7 @@ Vec2 PointAlong(const std::vector<Vec2>& path, double s) {
 bool ClearOfRobotAndWalkers(const WalkerSegment& segment, const WalkerPlan& plan, const RobotTrack& robot,
                             const std::vector<WalkerPlan>& others, bool check_robot) {
   const double radius_m = plan.radius_m;
-  const WalkerPlan single{{segment}, radius_m, plan.space};
+  const WalkerPlan single{{segment}, radius_m, plan.space, plan.lateral_m};
   for (double x = segment.start_s; x <= segment.end_s; x += kCheckStepS) {
     const WalkerPlacement me = PlaceWalker(single, robot, x);
     if (!me.present) continue;
@@ -171,9 +175,97 @@ std::optional<WalkerSegment> PlanOvertake(const FreeSpace& space, const RobotTra
   return std::nullopt;
 }
 
+
+// A route-following bout from time t with the robot `lead` seconds of route behind: its rate and
+// length drawn for the behaviour; never past the robot's last place on the route (the walker
+// would wait there for the robot to drive into it). nullopt when too little of the run is left.
+std::optional<WalkerSegment> PlanRouteBout(const std::string& behaviour, const RobotTrack& robot, double t, double lead,
+                                           Rng* rng) {
+  WalkerSegment seg;
+  seg.behaviour = behaviour;
+  seg.start_s = t;
+  seg.u_start = t + lead;
+  double length = 0;
+  if (behaviour == "ahead") {
+    seg.rate = rng->Uniform(0.9, 1.1);
+    length = rng->Uniform(6, 14);
+    if (seg.rate < 1) length = std::min(length, (lead - kMinWalkerLeadS) / (1 - seg.rate));
+  } else if (behaviour == "away") {
+    seg.rate = rng->Uniform(2.2, 2.8);       // ~1.1 m/s against the robot's ~0.45 m/s
+    length = (20 - lead) / (seg.rate - 1);   // until 20 s of route ahead: out of sight
+  } else if (behaviour == "approach") {
+    seg.rate = -rng->Uniform(1.2, 1.6);      // towards the robot at ~0.6 m/s
+    length = (lead - kMinWalkerLeadS - 0.5) / (1 - seg.rate);
+  } else {
+    seg.rate = 0;                            // standing, chatting with someone at a table
+    length = std::min(rng->Uniform(4, 9), lead - kMinWalkerLeadS - 0.5);
+  }
+  length = std::max(length, 0.5);
+  const double last_u = robot.end_s() - 0.1;
+  if (seg.rate > 0) length = std::min(length, (last_u - seg.u_start) / seg.rate);
+  if (seg.u_start > last_u || length < 0.5) return std::nullopt;
+  seg.end_s = t + length;
+  return seg;
+}
+
+// Where a walker stands outside a door: its whole body behind the wall.
+Vec2 BehindDoor(const Doorway& door, double radius_m) { return door.center_m - (radius_m + kBehindWallM) * door.inward; }
+
+// A walk through a door at speed_m_s between behind it and `inside` (in: arriving at `inside` at
+// time_s, starting no earlier than earliest_s; out: leaving `inside` at time_s), through the door
+// with the shortest free walk that keeps clear of the robot and the other walkers.
+std::optional<WalkerSegment> PlanDoorWalk(bool in, const Vec2& inside, double time_s, double earliest_s,
+                                          double speed_m_s, const std::vector<Doorway>& doors, const WalkerPlan& plan,
+                                          const RobotTrack& robot, const std::vector<WalkerPlan>& others) {
+  std::vector<std::pair<double, std::vector<Vec2>>> ways;  // length, path (in the walking order)
+  for (const Doorway& door : doors) {
+    const std::vector<Vec2> free = plan.space->ShortestPath(DoorThreshold(door, plan.radius_m), inside);
+    if (free.empty()) continue;
+    std::vector<Vec2> path{BehindDoor(door, plan.radius_m)};
+    path.insert(path.end(), free.begin(), free.end());
+    if (!in) std::reverse(path.begin(), path.end());
+    ways.emplace_back(PolylineLength(path), std::move(path));
+  }
+  std::stable_sort(ways.begin(), ways.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [length, path] : ways) {
+    WalkerSegment s;
+    s.behaviour = in ? "enter" : "leave";
+    s.start_s = in ? time_s - length / speed_m_s : time_s;
+    s.end_s = s.start_s + length / speed_m_s;
+    if (s.start_s < earliest_s) continue;
+    s.path_m = std::move(path);
+    s.speed_m_s = speed_m_s;
+    s.rate = speed_m_s / robot.cruise_speed_m_s();
+    if (ClearOfRobotAndWalkers(s, plan, robot, others, true)) return s;
+  }
+  return std::nullopt;
+}
+
+// A bout's first and last floor positions.
+Vec2 StartOf(const WalkerSegment& s, const WalkerPlan& plan, const RobotTrack& robot) {
+  return PlaceWalker(WalkerPlan{{s}, plan.radius_m, plan.space, plan.lateral_m}, robot, s.start_s).at_m;
+}
+Vec2 EndOf(const WalkerSegment& s, const WalkerPlan& plan, const RobotTrack& robot) {
+  return PlaceWalker(WalkerPlan{{s}, plan.radius_m, plan.space, plan.lateral_m}, robot, s.end_s - 1e-9).at_m;
+}
+
+// One behaviour drawn by weight (the first with weight when the draw falls past the end).
+size_t DrawBehaviour(const std::array<double, kWalkerBehaviourCount>& w, Rng* rng) {
+  double total = 0;
+  for (double x : w) total += x;
+  double pick = rng->Uniform() * total;
+  for (size_t i = 0; i < w.size(); ++i) {
+    pick -= w[i];
+    if (pick < 0 && w[i] > 0) return i;
+  }
+  for (size_t i = 0; i < w.size(); ++i)
+    if (w[i] > 0) return i;
+  return 0;
+}
+
 }  // namespace
 
-const std::array<const char*, 6> kWalkerBehaviours = {"ahead", "away", "approach", "stop_to_chat", "cross", "overtake"};
+const std::array<const char*, kWalkerBehaviourCount> kWalkerBehaviours = {"ahead", "away", "approach", "stop_to_chat", "cross", "overtake"};
 
 RobotTrack::RobotTrack(const std::vector<RobotSample>& samples) {
   double distance_m = 0;
@@ -340,7 +432,12 @@ double WalkerPlan::Walked(double time_s) const {
   return walked;
 }
 
-WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s, double lateral_m) {
+Eigen::Vector2d DoorThreshold(const Doorway& door, double radius_m) {
+  return door.center_m + (radius_m + kCornerMarginM + 0.01) * door.inward;
+}
+
+WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s) {
+  const double lateral_m = plan.lateral_m;
   WalkerPlacement out;
   const WalkerSegment& s = plan.At(time_s);
   if (robot.empty() || s.behaviour == "gone") return out;
@@ -355,7 +452,7 @@ WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, dou
     out.present = true;
     return out;
   }
-  out.present = plan.RouteTime(time_s) <= robot.end_s();  // beyond the end of the run: walked off
+  out.present = true;
   double route_heading = 0;
   out.at_m = OnRoute(s, plan.space.get(), robot, time_s, lateral_m, &route_heading);
   // Facing: along the route, back towards the robot when approaching it, to the tables (on the
@@ -371,99 +468,174 @@ WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, dou
 
 WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
                       std::shared_ptr<const FreeSpace> space, const RobotTrack& robot,
-                      const std::vector<WalkerPlan>& others) {
+                      const std::vector<WalkerPlan>& others, const std::vector<Doorway>& doors, double lateral_m) {
   Rng rng = KeyedRng(seed, "crowd.walker_plan", static_cast<uint64_t>(walker));
   WalkerPlan plan;
   plan.radius_m = space->radius_m();
   plan.space = space;
+  plan.lateral_m = lateral_m;
+  const double door_speed_m_s = rng.Uniform(1.0, 1.3);  // its pace in and out, an ordinary walk
   double t = 0, lead = rng.Uniform(4.0, 9.0);
-  // Out of the room for a while (3-8 s); back on the route 5-10 s ahead of the robot.
-  auto leave = [&] {
+  bool inside = false;
+  int start_attempts = 0;
+  // From where its last bout ends out through a door (checked; empty: the run ends first).
+  std::optional<std::vector<WalkerSegment>> way_out;
+  std::string wanted;                  // a bout drawn in the room that starts elsewhere: tried first
+  auto push_gone = [&](double until_s) {
+    if (until_s <= t) return;
     WalkerSegment gone;
     gone.behaviour = "gone";
     gone.start_s = t;
-    gone.end_s = t + rng.Uniform(3, 8);
-    gone.u_start = t + lead;
+    gone.end_s = until_s;
     plan.segments.push_back(gone);
-    t = gone.end_s;
-    lead = rng.Uniform(5.0, 10.0);
+    t = until_s;
   };
-  while (t < duration_s + 1) {
-    // Behaviours possible from this lead; approach needs room to come closer.
-    std::array<double, kWalkerBehaviours.size()> w{};
+  auto go_out = [&] {
+    plan.segments.insert(plan.segments.end(), way_out->begin(), way_out->end());
+    t = way_out->empty() ? duration_s + 1 : way_out->back().end_s;
+    way_out.reset();
+    inside = false;
+  };
+  // Behaviours possible from a lead; approach needs room to come closer.
+  auto possible = [&](double from_lead) {
+    std::array<double, kWalkerBehaviourCount> w{};
     for (size_t i = 0; i < w.size(); ++i) {
       const std::string b = kWalkerBehaviours[i];
-      const bool possible = (b != "approach" || lead >= 8) && (b != "stop_to_chat" || lead >= 6);
-      w[i] = possible ? weights.at(b) : 0.0;
+      w[i] = (b != "approach" || from_lead >= 8) && (b != "stop_to_chat" || from_lead >= 6) ? weights.at(b) : 0.0;
     }
-    WalkerSegment seg;
-    std::string behaviour;
-    for (;;) {
-      double total = 0;
-      for (double x : w) total += x;
-      behaviour = "ahead";
-      size_t chosen = 0;
-      double pick = rng.Uniform() * total;
-      for (size_t i = 0; i < w.size() && total > 0; ++i) {
-        pick -= w[i];
-        if (pick < 0 && w[i] > 0) {
-          behaviour = kWalkerBehaviours[i];
-          chosen = i;
-          break;
-        }
-      }
-      if (behaviour != "cross" && behaviour != "overtake") break;
-      // These start somewhere else than where the walker is: it leaves the room first.
-      const bool in_view = !plan.segments.empty() && plan.segments.back().behaviour != "gone";
-      const double from_s = t + (in_view ? 4.0 : 0.0);
-      std::optional<WalkerSegment> placed = behaviour == "cross" ? PlanCross(*space, robot, from_s, lead, &rng)
-                                                                 : PlanOvertake(*space, robot, from_s, &rng);
-      if (placed && ClearOfRobotAndWalkers(*placed, plan, robot, others, true)) {
-        if (in_view) {
-          WalkerSegment gone;
-          gone.behaviour = "gone";
-          gone.start_s = t;
-          gone.end_s = from_s;
-          plan.segments.push_back(gone);
-          t = from_s;
-        }
-        seg = *placed;
-        break;
-      }
-      w[chosen] = 0;  // no room for it here and now: draw among the others
+    return w;
+  };
+  // The way out after a bout: straight to a door, or first on along the route ahead of the robot
+  // (briskly, as "away") until a door can be reached without meeting it; none needed when the run
+  // is over by then.
+  auto exit_after = [&](const WalkerSegment& bout) -> std::optional<std::vector<WalkerSegment>> {
+    if (bout.end_s >= duration_s) return std::vector<WalkerSegment>{};
+    if (auto out = PlanDoorWalk(false, EndOf(bout, plan, robot), bout.end_s, bout.end_s, door_speed_m_s, doors, plan, robot, others))
+      return std::vector<WalkerSegment>{*out};
+    if (!bout.path_m.empty()) return std::nullopt;
+    WalkerSegment on;
+    on.behaviour = "away";
+    on.start_s = bout.end_s;
+    on.u_start = bout.u_start + bout.rate * (bout.end_s - bout.start_s);
+    on.rate = 2.4;  // ~1.1 m/s
+    for (double walk_s = 1; walk_s <= 30; walk_s += 1) {
+      on.end_s = on.start_s + walk_s;
+      if (on.end_s >= duration_s) return std::vector<WalkerSegment>{on};
+      if (on.u_start + on.rate * walk_s > robot.end_s() - 0.1 || !ClearOfRobotAndWalkers(on, plan, robot, others, false)) break;
+      if (auto out = PlanDoorWalk(false, EndOf(on, plan, robot), on.end_s, on.end_s, door_speed_m_s, doors, plan, robot, others))
+        return std::vector<WalkerSegment>{on, *out};
     }
-    if (seg.behaviour.empty()) {
-      seg.behaviour = behaviour;
-      seg.start_s = t;
-      seg.u_start = t + lead;
-      double length = 0;
-      if (behaviour == "ahead") {
-        seg.rate = rng.Uniform(0.9, 1.1);
-        length = rng.Uniform(6, 14);
-        if (seg.rate < 1) length = std::min(length, (lead - kMinWalkerLeadS) / (1 - seg.rate));
-      } else if (behaviour == "away") {
-        seg.rate = rng.Uniform(2.2, 2.8);       // ~1.1 m/s against the robot's ~0.45 m/s
-        length = (20 - lead) / (seg.rate - 1);  // until 20 s of route ahead: out of sight
-      } else if (behaviour == "approach") {
-        seg.rate = -rng.Uniform(1.2, 1.6);      // towards the robot at ~0.6 m/s
-        length = (lead - kMinWalkerLeadS - 0.5) / (1 - seg.rate);
-      } else {
-        seg.rate = 0;                           // standing, chatting with someone at a table
-        length = std::min(rng.Uniform(4, 9), lead - kMinWalkerLeadS - 0.5);
-      }
-      seg.end_s = t + std::max(length, 0.5);
-      // Another walker too close during the segment: out of the room instead.
-      if (!ClearOfRobotAndWalkers(seg, plan, robot, others, false)) seg.behaviour = "gone";
+    return std::nullopt;
+  };
+  // Takes the bout (walked into by `in` unless the run starts with it) if a way out from its end exists.
+  auto place = [&](const std::optional<WalkerSegment>& in, const WalkerSegment& bout) {
+    const std::optional<std::vector<WalkerSegment>> out = exit_after(bout);
+    if (!out) return false;
+    if (in) {
+      push_gone(in->start_s);
+      plan.segments.push_back(*in);
     }
-    const bool clash = seg.behaviour == "gone";
-    plan.segments.push_back(seg);
-    t = seg.end_s;
-    if (seg.behaviour == "cross") {
-      leave();
+    plan.segments.push_back(bout);
+    t = bout.end_s;
+    way_out = out;
+    inside = true;
+    lead = bout.u_start + bout.rate * (bout.end_s - bout.start_s) - bout.end_s;
+    if (bout.behaviour == "cross" || bout.behaviour == "away") go_out();
+    return true;
+  };
+  // Route times at which the robot passes closest to a door (within 1.5 m), ascending.
+  std::vector<double> door_passes;
+  {
+    auto nearest_door_m = [&](double u) {
+      double best = 1e9;
+      for (const Doorway& door : doors) best = std::min(best, (robot.At(u) - DoorThreshold(door, plan.radius_m)).norm());
+      return best;
+    };
+    for (double u = robot.start_s() + 0.1; u + 0.1 <= robot.end_s(); u += 0.1) {
+      const double d = nearest_door_m(u);
+      if (d < 1.5 && d <= nearest_door_m(u - 0.1) && d < nearest_door_m(u + 0.1)) door_passes.push_back(u);
+    }
+  }
+  while (t < duration_s + 1) {
+    if (inside) {
+      // In the room: another bout on the route from where it is, or out through a door.
+      const std::array<double, kWalkerBehaviourCount> w = possible(lead);
+      const std::string behaviour = kWalkerBehaviours[DrawBehaviour(w, &rng)];
+      if (behaviour == "cross" || behaviour == "overtake") {  // these start elsewhere
+        wanted = behaviour;
+        go_out();
+        continue;
+      }
+      const std::optional<WalkerSegment> bout = PlanRouteBout(behaviour, robot, t, lead, &rng);
+      std::optional<std::vector<WalkerSegment>> out;
+      if (bout && ClearOfRobotAndWalkers(*bout, plan, robot, others, false)) out = exit_after(*bout);
+      if (!out) {  // no room for it here and now: out through the door
+        go_out();
+        continue;
+      }
+      plan.segments.push_back(*bout);
+      way_out = out;
+      t = bout->end_s;
+      lead = bout->u_start + bout->rate * (bout->end_s - bout->start_s) - bout->end_s;
+      if (behaviour == "away") go_out();
       continue;
     }
-    lead = seg.u_start + seg.rate * (seg.end_s - seg.start_s) - seg.end_s;
-    if (behaviour == "away" || clash) leave();
+    // Out of the room (or at the start of the run, already in it): the next bout, walked into
+    // from a door; taken only when a way out from its end exists too.
+    const bool at_start = plan.segments.empty() && t == 0;
+    if (!at_start) lead = rng.Uniform(5.0, 10.0);
+    const double out_s = at_start ? 0.0 : t + kMinOutS + rng.Uniform(0.0, 2.0);  // walks in from then
+    std::array<double, kWalkerBehaviourCount> w = possible(lead);
+    bool placed = false;
+    while (!placed && std::any_of(w.begin(), w.end(), [](double x) { return x > 0; })) {
+      size_t chosen = DrawBehaviour(w, &rng);
+      if (!wanted.empty()) {
+        chosen = static_cast<size_t>(std::find(kWalkerBehaviours.begin(), kWalkerBehaviours.end(), wanted) - kWalkerBehaviours.begin());
+        wanted.clear();
+      }
+      const std::string behaviour = kWalkerBehaviours[chosen];
+      w[chosen] = 0;
+      const bool moves_by_robot = behaviour == "cross" || behaviour == "overtake";
+      // The bout starts when the walk in ends: planned at a guess of that time, then again at the
+      // time the walk in takes from out_s (twice: the bout's start moves with the robot).
+      double bout_s = at_start ? 0.0 : out_s + 3.0;
+      std::optional<WalkerSegment> bout, in;
+      for (int attempt = 0; attempt < 3; ++attempt) {
+        bout = behaviour == "cross"      ? PlanCross(*space, robot, bout_s, lead, &rng)
+               : behaviour == "overtake" ? PlanOvertake(*space, robot, bout_s, &rng)
+                                         : PlanRouteBout(behaviour, robot, bout_s, lead, &rng);
+        if (!bout || !ClearOfRobotAndWalkers(*bout, plan, robot, others, moves_by_robot)) {
+          bout.reset();
+          break;
+        }
+        if (at_start) break;
+        in = PlanDoorWalk(true, StartOf(*bout, plan, robot), bout_s, -1e30, door_speed_m_s, doors, plan, robot, others);
+        if (in && in->start_s >= t + kMinOutS && in->start_s <= out_s + 1.0) break;
+        bout_s = out_s + (in ? in->end_s - in->start_s : 2.0 + 2.0 * attempt);
+        in.reset();
+      }
+      if (!bout || (!at_start && !in)) continue;
+      placed = place(in, *bout);
+    }
+    // Else onto the route at the next door the robot has yet to pass, 4-10 s of route ahead of it:
+    // the walk in is short and the robot is behind it.
+    for (const double pass_u : door_passes) {
+      if (placed || at_start || pass_u < t + kMinOutS + kMinWalkerLeadS + 1.5) continue;
+      lead = std::min(rng.Uniform(4.0, 10.0), pass_u - t - kMinOutS - 0.5);
+      const double bout_s = pass_u - lead;
+      const std::optional<WalkerSegment> bout = PlanRouteBout("ahead", robot, bout_s, lead, &rng);
+      if (bout && ClearOfRobotAndWalkers(*bout, plan, robot, others, false)) {
+        const std::optional<WalkerSegment> in =
+            PlanDoorWalk(true, StartOf(*bout, plan, robot), bout_s, t + kMinOutS, door_speed_m_s, doors, plan, robot, others);
+        if (in) placed = place(in, *bout);
+      }
+      break;
+    }
+    if (!placed && at_start && ++start_attempts < 6) {
+      lead = rng.Uniform(4.0, 16.0);  // another place on the route to start the run at
+      continue;
+    }
+    if (!placed) push_gone(t + 1.0);  // no bout fits now: a little later
   }
   return plan;
 }

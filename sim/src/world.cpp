@@ -227,6 +227,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     int table, seat, side, k;
     double turn, shift, push;  // full jitter: rad, m along the table, m pushed in
     double scale = 1;          // fraction of the jitter applied
+    double shift_scale = 1;    // and of the shift along the table
   };
   std::vector<ChairPlan> chairs;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
@@ -246,7 +247,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     const TableSpec& spec = scene.tables[c.table];
     const double yaw = spec.yaw_deg * kDegToRad;
     const double turn = c.scale * c.turn;
-    const double along = (c.k - 0.5 * (per_side - 1)) * spacing + c.scale * c.shift;
+    const double along = (c.k - 0.5 * (per_side - 1)) * spacing + c.scale * c.shift_scale * c.shift;
     const double pushed_in = c.scale * c.push + chair_half_width * std::abs(std::sin(turn));
     const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth + scene.furniture.seat_setback_m - pushed_in);
     const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
@@ -259,15 +260,30 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     chair_pose(c, &position, &seat_yaw);
     return FootprintOf("", chair_asset, position, seat_yaw);
   };
+  const auto seat_at = [&](ChairPlan c, double scale) {
+    c.scale *= scale;
+    Eigen::Vector3d position;
+    double seat_yaw;
+    chair_pose(c, &position, &seat_yaw);
+    return Eigen::Vector2d(position.head<2>());
+  };
+  // Seats side by side (closer than kCloseSeatsM when straight) are not shifted more than 1 cm
+  // closer together (their shifts are halved until so): seated neighbours' shoulder joints are
+  // 0.38 m apart at body scale 1, so a crowded row (0.45 m) has nothing to give.
+  constexpr double kCloseSeatsM = 0.6, kSqueezeM = 0.01;
   constexpr int kHalvings = 6;
   for (int round = 0; round <= kHalvings; ++round) {
     std::vector<Obstacle2D> footprints;
     for (const ChairPlan& c : chairs) footprints.push_back(footprint(c));
-    std::vector<bool> overlapping(chairs.size(), false);
+    std::vector<bool> overlapping(chairs.size(), false), squeezed(chairs.size(), false);
     bool any = false;
     for (size_t i = 0; i < chairs.size(); ++i) {
       for (size_t j = i + 1; j < chairs.size(); ++j) {
         if (chairs[i].scale == 0 && chairs[j].scale == 0) continue;
+        const double straight_m = (seat_at(chairs[i], 0) - seat_at(chairs[j], 0)).norm();
+        if (straight_m < kCloseSeatsM && (seat_at(chairs[i], 1) - seat_at(chairs[j], 1)).norm() < straight_m - kSqueezeM) {
+          squeezed[i] = squeezed[j] = any = true;
+        }
         if (RectanglesOverlap(footprints[i], footprints[j])) {
           overlapping[i] = overlapping[j] = any = true;
         }
@@ -276,6 +292,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     if (!any) break;
     for (size_t i = 0; i < chairs.size(); ++i) {
       if (overlapping[i]) chairs[i].scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].scale;
+      if (squeezed[i]) chairs[i].shift_scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].shift_scale;
     }
   }
 

@@ -296,5 +296,29 @@ TEST(Scene, AnIndexPastTheEndOfTheDocumentIsAnInputErrorNotAHugeArray) {
   EXPECT_TRUE(HasProblem(problems, "--set nothing.111111111111111=1", "an existing array at /nothing"));
 }
 
+TEST(Scene, DoorsOffTheWallsOrTooWideOrNarrowAreErrorsNamingTheDoor) {
+  auto doors = [](const json& list) { return ProblemsOf(json{{"room", {{"doors", list}}}}); };
+  EXPECT_TRUE(HasProblem(doors({{{"position_m", {3.0, 1.5}}}}), "test.json: /room/doors/0/position_m",
+                         "a point on one of the room's walls (x = 0 or 7, or y = 0 or 3"));
+  EXPECT_TRUE(HasProblem(doors({{{"position_m", {7.0, 1.5}}}, {{"position_m", {7.5, 1.5}}}}),
+                         "test.json: /room/doors/1/position_m", "a point on one of the room's walls"));
+  EXPECT_TRUE(HasProblem(doors({{{"position_m", {7.0, 0.3}}, {"width_m", 0.9}}}), "test.json: /room/doors/0/width_m",
+                         "to fit along its wall (length 3 m) without reaching a corner"));
+  EXPECT_TRUE(HasProblem(doors({{{"position_m", {3.5, 0.0}}, {"width_m", 0.5}}}), "test.json: /room/doors/0/width_m", ""));
+  EXPECT_TRUE(HasProblem(doors({{{"position_m", {3.5, 0.0}}, {"width_m", 3.5}}}), "test.json: /room/doors/0/width_m", ""));
+  EXPECT_TRUE(HasProblem(doors({{{"width_m", 0.9}}}), "test.json: /room/doors/0", "missing required property 'position_m'"));
+  EXPECT_TRUE(doors({{{"position_m", {0.0, 1.5}}}, {{"position_m", {3.5, 3.0}}, {"width_m", 1.6}}}).empty());
+}
+
+TEST(Scene, WithoutDoorsTheRoomHasOneInTheMiddleOfEachEndWallNamedInTheResolvedScene) {
+  const Scene scene = SceneFromJson(json{{"room", {{"size_m", {8.0, 4.0, 2.6}}}}}, "test.json");
+  ASSERT_EQ(scene.room.doors.size(), 2u);
+  EXPECT_EQ(scene.room.doors[0].position_m, Eigen::Vector2d(0.0, 2.0));
+  EXPECT_EQ(scene.room.doors[1].position_m, Eigen::Vector2d(8.0, 2.0));
+  EXPECT_EQ(scene.room.doors[1].width_m, 0.9);
+  EXPECT_EQ(scene.resolved["room"]["doors"],
+            json::parse(R"([{"position_m": [0.0, 2.0], "width_m": 0.9}, {"position_m": [8.0, 2.0], "width_m": 0.9}])"));
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -9,6 +9,7 @@
 
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/world.h"
+#include "input_error_of.h"
 
 namespace hoilcd {
 namespace {
@@ -128,6 +129,82 @@ TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureE
   }
   EXPECT_GE(crossings, 1);
   EXPECT_GE(overtakings, 1);
+}
+
+// The door (index) whose opening p lies in: within its width along the wall, and not inside the
+// room beyond its threshold; -1 when none.
+int DoorOf(const Scene& scene, const Eigen::Vector2d& p, double radius_m) {
+  for (size_t d = 0; d < scene.room.doors.size(); ++d) {
+    const DoorSpec& door = scene.room.doors[d];
+    const bool x_wall = std::abs(door.position_m.x()) < 1e-9 || std::abs(door.position_m.x() - scene.room.size_m.x()) < 1e-9;
+    const double along = x_wall ? p.y() - door.position_m.y() : p.x() - door.position_m.x();
+    const double across = x_wall ? std::abs(p.x() - door.position_m.x()) : std::abs(p.y() - door.position_m.y());
+    if (std::abs(along) <= 0.5 * door.width_m && across <= radius_m + 0.25) return static_cast<int>(d);
+  }
+  return -1;
+}
+
+TEST(Walkers, AppearAndVanishOnlyInADoorwayAndLeaveTheRoomOnlyThroughOne) {
+  for (const char* room : {"open_room", "paper_room"}) {
+    const Scene scene = LoadShipped(room, {"crowd.walkers=4", "crowd.walker_behaviours.cross=1"});
+    const BandRadianceTable table;
+    World world(scene, table);
+    const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+    world.PlanCrowd(run.samples);
+    std::map<int, bool> was_present;
+    std::map<int, Eigen::Vector2d> last_at;
+    std::set<int> doors_used;
+    int appearances = 0, disappearances = 0;
+    std::set<std::string> postures;
+    for (size_t f = 0; f < run.samples.size(); ++f) {
+      world.SetTime(run.samples[f].time_s);
+      for (const Person& p : world.people()) {
+        if (p.walker < 0) continue;
+        const Eigen::Vector2d at = 0.5 * (p.keypoints_m[11] + p.keypoints_m[12]).head<2>();
+        const double radius = kWalkerRadiusM * p.height_scale;
+        if (p.present) {
+          postures.insert(p.posture);
+          // Anywhere outside the room's walls only in a doorway.
+          const bool in_room = at.x() >= 0 && at.y() >= 0 && at.x() <= scene.room.size_m.x() && at.y() <= scene.room.size_m.y();
+          ASSERT_TRUE(in_room || DoorOf(scene, at, radius) >= 0)
+              << room << " frame " << f << ": walker " << p.person_id << " (" << p.posture << ") outside the room at "
+              << at.transpose() << " away from every door";
+        }
+        if (f > 0 && p.present != was_present[p.person_id]) {
+          const Eigen::Vector2d where = p.present ? at : last_at[p.person_id];
+          const int door = DoorOf(scene, where, radius);
+          ASSERT_GE(door, 0) << room << " frame " << f << ": walker " << p.person_id << (p.present ? " appeared" : " vanished")
+                             << " at " << where.transpose() << ", not in a doorway";
+          // Behind the wall: the wall hides the body.
+          EXPECT_TRUE(where.x() < 0 || where.y() < 0 || where.x() > scene.room.size_m.x() || where.y() > scene.room.size_m.y())
+              << room << " frame " << f << ": walker " << p.person_id << " at " << where.transpose();
+          doors_used.insert(door);
+          (p.present ? appearances : disappearances) += 1;
+        }
+        was_present[p.person_id] = p.present;
+        last_at[p.person_id] = at;
+      }
+    }
+    EXPECT_GE(appearances, 4) << room;
+    EXPECT_GE(disappearances, 4) << room;
+    EXPECT_EQ(doors_used.size(), scene.room.doors.size()) << room;
+    EXPECT_TRUE(postures.count("enter") && postures.count("leave")) << room;
+  }
+}
+
+TEST(Walkers, FurnitureInADoorwayIsAnErrorNamingTheDoor) {
+  // Someone standing in the paper room's east door (x = 7, y = 1.5); the last table and the
+  // route moved west so that the robot passes them.
+  const Scene scene = LoadShipped("paper_room", {"crowd.walkers=1", R"(crowd.standing=[{"position_m": [6.98, 1.5]}])",
+                                                 "tables.5.center_m=[5.5,1.5]", "route.waypoints_m=[[0.38,0.38],[0.38,2.62],[6.3,2.62],[6.3,0.38]]"});
+  const BandRadianceTable table;
+  World world(scene, table);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  const std::string message = test::InputErrorOf([&] { world.PlanCrowd(run.samples); });
+  EXPECT_NE(message.find("paper_room.json: /room/doors/1: walkers (crowd.walkers) enter and leave the room here, but standing person"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("stands in the doorway"), std::string::npos) << message;
 }
 
 TEST(Walkers, PlansAreTheSameForTheSameSeed) {

@@ -43,7 +43,6 @@ struct Person {
   Eigen::Vector3d laptop_at_m = Eigen::Vector3d::Zero();  // laptop's place, seat frame
   Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
   Eigen::Matrix4d table_from_seat = Eigen::Matrix4d::Identity();  // seated: their table's frame
-  double elbow_room_m = 1;                   // seated: half the gap to the nearest seat beside them
   std::array<double, 2> side_room_m{1, 1};   // seated: the same on the left (+y) and on the right
   double table_edge_m = 0.30;                // seated: seat centre to the table's near edge, m
   double height_scale = 1;
@@ -94,7 +93,8 @@ class Crowd {
 
   // Plans what depends on the robot's run: seat turnover at each lap boundary (people leave,
   // arrive, change seats; events recorded) and the walkers' bouts in the free space the
-  // obstacles leave (InputError naming /route/waypoints_m if a walker cannot follow the route).
+  // obstacles leave (InputError naming /route/waypoints_m if a walker cannot follow the route,
+  // /room/doors/N if furniture stands in a doorway).
   void Plan(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles);
 
   // Moves people (posture, breathing, sway, walking) and warms and cools seats, to time t.
@@ -141,6 +141,7 @@ class Crowd {
   RobotTrack robot_;                          // the robot's run (Plan)
   std::vector<DatasetEvent> events_;
   std::vector<WalkerPlan> walker_plans_;
+  std::vector<Doorway> doors_;                // the room's doors (walkers come and go by them)
   uint64_t seed_ = 1;
   double frame_rate_hz_ = 25, duration_s_ = 80;
   CrowdOptions options_;

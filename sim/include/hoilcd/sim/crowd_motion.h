@@ -41,17 +41,25 @@ struct ActivityOptions {
 struct ActivityEpisode {
   std::string name;          // one of kActivityNames
   double start_s = 0, end_s = 0;
-  bool toward_robot = false;     // head turns: look at the robot, else at gaze_yaw_rad
-  double gaze_yaw_rad = 0;       // seat frame, counter-clockwise from +x (talking, head turns)
+  bool toward_robot = false;     // head turns: look at the robot, else at a neighbour
+  double neighbour_pick = 0;     // which neighbour (at the table when the episode starts), 0-1
+  double lone_gaze_yaw_rad = 0;  // with nobody else at the table: a glance this way, seat frame
+  double gaze_yaw_rad = 0;       // where they look (seat frame, counter-clockwise from +x; talking,
+                                 // head turns): set by the Crowd from the neighbours present
   int side = 1;                  // gesturing / drinking hand: 0 left, 1 right
   double phase_rad = 0;          // phase of the gesture oscillations
 };
 
-// The episodes of one person from from_s to to_s (back to back; "idle" fills the gaps).
-// neighbour_yaw_rad: directions (seat frame) in which the person's neighbours sit.
+// The episodes of one person from from_s to to_s (back to back; "idle" fills the gaps). Who
+// they look at is drawn as neighbour_pick; GazeAt turns it into a direction once the table's
+// people are known.
 std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id,
-                                            double from_s, double to_s, bool has_cup, bool has_laptop,
-                                            const std::vector<double>& neighbour_yaw_rad);
+                                            double from_s, double to_s, bool has_cup, bool has_laptop);
+
+// Sets episode.gaze_yaw_rad: towards the neighbour neighbour_pick selects among
+// neighbour_yaw_rad (directions, seat frame, of the people at the table when it starts), or
+// lone_gaze_yaw_rad when there is nobody.
+void GazeAt(const std::vector<double>& neighbour_yaw_rad, ActivityEpisode* episode);
 
 // Props a person handles, seat frame.
 struct Props {

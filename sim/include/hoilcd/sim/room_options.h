@@ -37,12 +37,20 @@ struct WindowSpec {
   static const OptionTable<WindowSpec>& Table();  // one element of /room/windows
 };
 
+// A doorway walkers enter and leave by: its centre on a wall and its width.
+struct DoorSpec {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // on a wall (x = 0 or size_x, or y = 0 or size_y)
+  double width_m = 0.9;                                  // clear width, m
+};
+
 struct RoomOptions {
   Eigen::Vector3d size_m;             // m, x (length), y (width), z (height)
   double environment_temperature_c;   // C, the air (and what surfaces reflect)
   SurfaceSpec floor, ceiling;
   WallOptions walls;
   std::vector<WindowSpec> windows;    // read by hand (an array); default: the schema's window
+  std::vector<DoorSpec> doors;        // read by hand; a loaded scene's is never empty (one in the
+                                      // middle of each end wall when the scene names none)
   RoomOptions();
   static const OptionTable<RoomOptions>& Table();
 };

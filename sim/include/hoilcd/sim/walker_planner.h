@@ -1,7 +1,8 @@
 // Where walkers go: the robot's run as they see it, the room's free space for a body (obstacle
 // footprints grown by the body radius, with a visibility graph over their corners searched by
-// Dijkstra for the shortest collision-free path), and each walker's plan of behaviour bouts, made
-// against the walkers planned before it (priority planning: no two footprints ever meet).
+// Dijkstra for the shortest collision-free path), and each walker's plan of behaviour bouts, each
+// walked into from a door and out through one, made against the walkers planned before it
+// (priority planning: no two footprints ever meet).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,8 +30,10 @@ constexpr double kMinWalkerLeadS = 3.0;
 // pace (the original pattern), "away" walks off faster than the robot, "approach" comes towards
 // it (facing it) and turns back, "stop_to_chat" stands facing the tables, "cross" walks across
 // the robot's path in front of it on a free path, "overtake" comes from behind and passes it
-// beside its route. "gone" (out of the room) fills the gaps between bouts.
-extern const std::array<const char*, 6> kWalkerBehaviours;
+// beside its route. Between bouts a walker walks in through a door ("enter") and out through one
+// ("leave") on free paths; "gone" (out of the room) fills the gaps.
+constexpr size_t kWalkerBehaviourCount = 6;
+extern const std::array<const char*, kWalkerBehaviourCount> kWalkerBehaviours;
 
 // The robot's run, one sample per frame.
 class RobotTrack {
@@ -79,12 +82,22 @@ class FreeSpace {
   std::vector<std::vector<std::pair<int, double>>> edges_;  // visible neighbours, length m
 };
 
+// A doorway as walkers use it: its centre on the wall, the wall's normal into the room, its width.
+struct Doorway {
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d inward = Eigen::Vector2d::UnitX();
+  double width_m = 0.9;
+};
+// Where a body of this radius stands in the doorway just inside the room, clear of the wall.
+Eigen::Vector2d DoorThreshold(const Doorway& door, double radius_m);
+
 struct WalkerSegment {
-  std::string behaviour;           // one of kWalkerBehaviours, or "gone"
+  std::string behaviour;           // one of kWalkerBehaviours, "enter", "leave" or "gone"
   double start_s = 0, end_s = 0;   // time
   double u_start = 0, rate = 1;    // on the route: route time u(t) = u_start + rate (t - start_s),
                                    // the place the robot passes at time u
-  std::vector<Eigen::Vector2d> path_m;  // "cross": walked from start_s at speed_m_s (not on the route)
+  std::vector<Eigen::Vector2d> path_m;  // "cross", "enter", "leave": walked from start_s at speed_m_s
+                                        // (not on the route; a door walk starts or ends outside)
   double speed_m_s = 0;
   double pass_offset_m = 0;        // "overtake": to the left of the route (< 0: right) while passing
 };
@@ -97,6 +110,7 @@ struct WalkerPlan {
   std::vector<WalkerSegment> segments;  // back to back from time 0
   double radius_m = kWalkerRadiusM;     // footprint
   std::shared_ptr<const FreeSpace> space;  // where its body fits (null: anywhere)
+  double lateral_m = 0;                 // on the route: this far to its left, m
   // The segment at time t (the last one beyond the end).
   const WalkerSegment& At(double time_s) const;
   double RouteTime(double time_s) const;
@@ -104,20 +118,23 @@ struct WalkerPlan {
   double Walked(double time_s) const;
 };
 
-// Where a walker is: floor position, facing (rad), walking speed (m/s); lateral_m shifts a
-// route-following walker to the left of the route (and it steps aside from furniture).
+// Where a walker is: floor position, facing (rad), walking speed (m/s); a route-following walker
+// keeps the plan's lateral_m to the left of the route (and steps aside from furniture).
 struct WalkerPlacement {
   Eigen::Vector2d at_m = Eigen::Vector2d::Zero();
   double heading_rad = 0, speed_m_s = 0;
-  bool present = false;  // in the room (not "gone", not past the end of the run)
+  bool present = false;  // in the room or in a doorway (not "gone")
 };
-WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s, double lateral_m = 0);
+WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s);
 
-// Plans one walker over [0, duration_s] by the behaviour weights (keyed by seed and walker),
-// in free space (its radius is the plan's), clear of the robot and of the walkers planned before
-// it. A bout that the room leaves no space for here and now ("cross", "overtake") is drawn again
-// among the others.
+// Plans one walker over [0, duration_s] by the behaviour weights (keyed by seed and walker), in
+// free space (its radius is the plan's), clear of the robot and of the walkers planned before it.
+// It starts the run in the room; later bouts begin with a walk in through one of the doors and
+// every stay ends with a walk out through one, so it appears and vanishes only behind a doorway.
+// A bout that the room leaves no space for here and now (no free way in or out, a clash) is drawn
+// again among the others.
 WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
-                      std::shared_ptr<const FreeSpace> space, const RobotTrack& robot, const std::vector<WalkerPlan>& others);
+                      std::shared_ptr<const FreeSpace> space, const RobotTrack& robot, const std::vector<WalkerPlan>& others,
+                      const std::vector<Doorway>& doors, double lateral_m);
 
 }  // namespace hoilcd
