@@ -339,6 +339,9 @@ int RunCommandLine(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   render->add_option("--threads", render_options.threads, "worker threads (0: every core)")
       ->check(CLI::Range(0, kMaxThreads));
+  render->add_option("--outputs", render_options.outputs,
+                     "comma-separated outputs to write: thermal, radiometric, exr, video, persons (default: all; "
+                     "the manifest lists them, and hoilcd bench needs thermal)");
 
   std::string bench_dir, bench_report;
   int bench_threads = 0;

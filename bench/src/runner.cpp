@@ -100,8 +100,12 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   }
   result.mean_keypoints_per_frame = n ? kp / n : 0;
   result.mean_hoi_points_per_frame = n ? hp / n : 0;
-  for (const FramePersons& f : dataset.persons()) result.ground_truth_person_views += static_cast<int64_t>(f.persons.size());
-  if (front_ends.Ran(FrontEnd::kPersons)) {
+  // People ground truth is optional (hoilcd render --outputs without persons): no tracking metrics then.
+  const bool has_persons = dataset.manifest().outputs.persons;
+  for (const FramePersons& f : has_persons ? dataset.persons() : std::vector<FramePersons>()) {
+    result.ground_truth_person_views += static_cast<int64_t>(f.persons.size());
+  }
+  if (has_persons && front_ends.Ran(FrontEnd::kPersons)) {
     result.tracking = ComputeTrackingMetrics(dataset.persons(), front_ends.tracks, options.tracking_metrics);
     result.tracking_evaluated = true;
   }

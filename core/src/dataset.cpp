@@ -1,5 +1,6 @@
 #include "hoilcd/core/dataset.h"
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -52,6 +53,55 @@ std::string FrameFileName(int frame, const char* extension) {
   return name + extension;
 }
 
+const std::vector<std::string>& DatasetOutputs::AllNames() {
+  static const std::vector<std::string> kNames = {"thermal", "radiometric", "exr", "video", "persons"};
+  return kNames;
+}
+
+bool DatasetOutputs::Has(const std::string& name) const {
+  if (name == "thermal") return thermal;
+  if (name == "radiometric") return radiometric;
+  if (name == "exr") return exr;
+  if (name == "video") return video;
+  if (name == "persons") return persons;
+  return false;
+}
+
+std::vector<std::string> DatasetOutputs::Names() const {
+  std::vector<std::string> names;
+  for (const std::string& name : AllNames()) {
+    if (Has(name)) names.push_back(name);
+  }
+  return names;
+}
+
+std::string DatasetOutputs::ToText() const {
+  std::string text;
+  for (const std::string& name : Names()) text += (text.empty() ? "" : ",") + name;
+  return text;
+}
+
+std::string DatasetOutputs::Parse(const std::string& text, DatasetOutputs* outputs) {
+  DatasetOutputs parsed{false, false, false, false, false};
+  bool* flags[] = {&parsed.thermal, &parsed.radiometric, &parsed.exr, &parsed.video, &parsed.persons};
+  std::stringstream in(text);
+  std::string name;
+  bool any = false;
+  while (std::getline(in, name, ',')) {
+    const auto at = std::find(AllNames().begin(), AllNames().end(), name);
+    if (at == AllNames().end()) {
+      return "unknown output '" + name + "' (expected a comma-separated list of thermal, radiometric, exr, video, persons)";
+    }
+    bool* flag = flags[at - AllNames().begin()];
+    if (*flag) return "output '" + name + "' is listed twice";
+    *flag = true;
+    any = true;
+  }
+  if (!any) return "expected at least one of thermal, radiometric, exr, video, persons";
+  *outputs = parsed;
+  return "";
+}
+
 std::string DatasetManifest::ToJson() const {
   json j;
   j["hoilcd_version"] = hoilcd_version;
@@ -66,6 +116,7 @@ std::string DatasetManifest::ToJson() const {
   j["window_max_c"] = window_max_c;
   j["classes"] = classes;
   j["files"] = files;
+  j["outputs"] = outputs.Names();
   j["complete"] = complete;
   j[kManifestChecksumKey] = ChecksumOf(j.dump(2));  // of the manifest without this key
   return j.dump(2) + "\n";
@@ -79,7 +130,7 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
   if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
   reader.CheckKeys(j, "", {"hoilcd_version", "scene_hash", "seed", "intrinsics", "frame_rate_hz",
                            "frame_count", "window_min_c", "window_max_c", "classes", "files",
-                           "complete", kManifestChecksumKey});
+                           "outputs", "complete", kManifestChecksumKey});
   std::string checksum;
   reader.Read(j, "", kManifestChecksumKey, &checksum);
   if (!checksum.empty()) {
@@ -138,15 +189,28 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
   } else if (!j.contains("files")) {
     reader.Add("/files", "missing");
   }
+  // Datasets written before --outputs existed have no "outputs": every output.
+  if (j.contains("outputs") && reader.ExpectArray(j["outputs"], "/outputs")) {
+    std::string text;
+    for (size_t i = 0; i < j["outputs"].size(); ++i) {
+      std::string name;
+      reader.ReadValue(j["outputs"][i], "/outputs/" + std::to_string(i), &name);
+      text += (i == 0 ? "" : ",") + name;
+    }
+    const std::string problem = DatasetOutputs::Parse(text, &m.outputs);
+    if (!problem.empty()) reader.Add("/outputs", problem);
+  }
   reader.Read(j, "", "complete", &m.complete);
   reader.problems().ThrowIfAny();
   return m;
 }
 
 int DatasetManifest::FramesWritten() const {
+  const char* folder = outputs.thermal ? "thermal/" : outputs.radiometric ? "radiometric/" : outputs.exr ? "exr/" : nullptr;
+  if (folder == nullptr) return frame_count;
   int count = 0;
-  for (auto it = files.lower_bound("thermal/"); it != files.end(); ++it) {
-    if (it->first.rfind("thermal/", 0) != 0) break;
+  for (auto it = files.lower_bound(folder); it != files.end(); ++it) {
+    if (it->first.rfind(folder, 0) != 0) break;
     ++count;
   }
   return count;
@@ -507,23 +571,25 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
 
   ProblemCollector problems;
   for (const char* side : {"scene.json", "poses.csv", "persons.json", "events.json"}) {
+    if (std::string(side) == "persons.json" && !m.outputs.persons) continue;
     if (!m.files.count(side)) problems.Add(manifest_path + ": /files", std::string("no ") + side);
   }
   // Bound the per-frame loop below by what is listed, not by frame_count alone.
   if (m.frame_count > m.FramesWritten()) {
     problems.Add(manifest_path + ": /frame_count",
                  "is " + std::to_string(m.frame_count) + " but /files lists " +
-                     std::to_string(m.FramesWritten()) + " thermal frames");
+                     std::to_string(m.FramesWritten()) + " " + m.outputs.Names().front() + " frames");
     problems.ThrowIfAny();
   }
   for (int frame = 0; frame < m.frame_count; ++frame) {
     for (const char* folder : {"thermal/", "radiometric/"}) {
+      if (!m.outputs.Has(std::string(folder).substr(0, std::string(folder).size() - 1))) continue;
       const std::string name = folder + FrameFileName(frame, "png");
       if (!m.files.count(name)) problems.Add(manifest_path + ": /files", "no " + name);
     }
   }
   problems.ThrowIfAny();
-  if (!m.files.count(kVideoFile)) {
+  if (m.outputs.video && !m.files.count(kVideoFile)) {
     ds.warnings_.push_back(JoinPath(dir, kVideoFile) +
                            ": not listed in manifest.json; the frames are read without it");
   }
@@ -569,7 +635,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
                                      std::to_string(m.frame_count - 1) + " in order");
   }
   const std::string persons_path = JoinPath(dir, "persons.json");
-  ds.persons_ = PersonsFromJson(ReadFileBytes(persons_path), persons_path);
+  if (m.outputs.persons) ds.persons_ = PersonsFromJson(ReadFileBytes(persons_path), persons_path);
   for (const FramePersons& f : ds.persons_) {
     if (f.frame < 0 || f.frame >= m.frame_count) {
       throw InputError(persons_path, "frame " + std::to_string(f.frame) + " outside 0.." +
@@ -643,13 +709,27 @@ cv::Mat ReadPng(const std::string& path, int expected_type, const CameraIntrinsi
 }
 }  // namespace
 
+void Dataset::RequireOutput(const std::string& output, const std::string& needed_for) const {
+  if (manifest_.outputs.Has(output)) return;
+  throw InputError(dir_, "has no " + output + " output, which " + needed_for +
+                             " needs: it was rendered with --outputs " + manifest_.outputs.ToText() +
+                             "; render it again with " + output + " among --outputs");
+}
+
+const std::vector<FramePersons>& Dataset::persons() const {
+  RequireOutput("persons", "the people ground truth (persons.json)");
+  return persons_;
+}
+
 cv::Mat Dataset::Thermal(int frame) const {
+  RequireOutput("thermal", "reading the 8-bit thermal frames");
   HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
   return ReadPng(JoinPath(dir_, "thermal/" + FrameFileName(frame, "png")), CV_8UC1,
                  manifest_.intrinsics);
 }
 
 cv::Mat Dataset::RadiometricC(int frame) const {
+  RequireOutput("radiometric", "reading the radiometric frames");
   HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
   const cv::Mat centikelvin = ReadPng(
       JoinPath(dir_, "radiometric/" + FrameFileName(frame, "png")), CV_16UC1,

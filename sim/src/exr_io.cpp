@@ -227,6 +227,7 @@ ExrChannels ReadExr(const std::string& path, cv::Size size) {
 }
 
 ExrChannels ReadDatasetExr(const Dataset& dataset, int frame) {
+  dataset.RequireOutput("exr", "reading the EXR frames");
   const CameraIntrinsics& size = dataset.manifest().intrinsics;
   return ReadExr(dataset.dir() + "/exr/" + FrameFileName(frame, "exr"), {size.width, size.height});
 }

@@ -62,11 +62,15 @@ void FrameWriter::Work() {
     std::exception_ptr error;
     if (!skip) {
       try {
-        display = ToDisplay8Bit(frame.temperature_c, options_.display_min_c, options_.display_max_c);
-        const std::pair<std::string, std::string> files[] = {
-            {"thermal/" + FrameFileName(f, "png"), EncodePng(display)},
-            {"radiometric/" + FrameFileName(f, "png"), EncodePng(ToCentikelvin16(frame.temperature_c))},
-            {"exr/" + FrameFileName(f, "exr"), EncodeExr(frame.exr)}};
+        std::vector<std::pair<std::string, std::string>> files;  // relative path, bytes
+        if (options_.thermal || video_ != nullptr) {
+          display = ToDisplay8Bit(frame.temperature_c, options_.display_min_c, options_.display_max_c);
+        }
+        if (options_.thermal) files.emplace_back("thermal/" + FrameFileName(f, "png"), EncodePng(display));
+        if (options_.radiometric) {
+          files.emplace_back("radiometric/" + FrameFileName(f, "png"), EncodePng(ToCentikelvin16(frame.temperature_c)));
+        }
+        if (options_.exr) files.emplace_back("exr/" + FrameFileName(f, "exr"), EncodeExr(frame.exr));
         for (const auto& [relative, bytes] : files) {
           WriteFileAtomicUnsynced(options_.dir + "/" + relative, bytes);
           written.emplace_back(relative, ChecksumOf(bytes));

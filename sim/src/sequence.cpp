@@ -1,5 +1,6 @@
 #include "hoilcd/sim/sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -25,10 +26,21 @@ std::string FramePath(const char* folder, int frame, const char* extension) {
   return std::string(folder) + "/" + FrameFileName(frame, extension);
 }
 
-// A frame counts as done when all three of its files are listed and match their checksums.
+// The per-frame files of frame f that `outputs` asks for.
+std::vector<std::string> FrameFiles(const DatasetOutputs& outputs, int frame) {
+  std::vector<std::string> files;
+  if (outputs.thermal) files.push_back(FramePath("thermal", frame, "png"));
+  if (outputs.radiometric) files.push_back(FramePath("radiometric", frame, "png"));
+  if (outputs.exr) files.push_back(FramePath("exr", frame, "exr"));
+  return files;
+}
+
+// A frame counts as done when each of its files is listed and matches its checksum (and it has
+// at least one: without per-frame outputs, every frame is rendered again).
 bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int frame) {
-  for (const std::string& rel : {FramePath("thermal", frame, "png"), FramePath("radiometric", frame, "png"),
-                                FramePath("exr", frame, "exr")}) {
+  const std::vector<std::string> files = FrameFiles(manifest.outputs, frame);
+  if (files.empty()) return false;
+  for (const std::string& rel : files) {
     const auto it = manifest.files.find(rel);
     if (it == manifest.files.end()) return false;
     std::error_code ec;
@@ -38,11 +50,17 @@ bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int fram
   return true;
 }
 
-// The uncompressed 8-bit frame, as the render wrote it, from the EXR's T channel (float32, so
-// exactly the temperature the thermal PNG was made from).
-cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options, cv::Size size) {
+// The uncompressed 8-bit frame, as the render wrote it: from the EXR's T channel (float32, so
+// exactly the temperature the thermal PNG was made from), else from the thermal PNG itself (the
+// caller makes sure it is still the uncompressed frame: not in video mode).
+cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options,
+                          const DatasetManifest& manifest) {
+  if (!manifest.outputs.exr) {
+    const std::string path = dir + "/" + FramePath("thermal", frame, "png");
+    return DecodeFramePng(ReadFileBytes(path), path, CV_8UC1, manifest.intrinsics);
+  }
   const std::string path = dir + "/" + FramePath("exr", frame, "exr");
-  for (const auto& [name, channel] : ReadExr(path, size)) {
+  for (const auto& [name, channel] : ReadExr(path, {manifest.intrinsics.width, manifest.intrinsics.height})) {
     if (name == "T") return ToDisplay8Bit(channel, sensor_options.display_min_c, sensor_options.display_max_c);
   }
   throw InputError(path, "no T channel");
@@ -62,7 +80,13 @@ const OptionTable<SequenceOptions>& SequenceOptions::Table() {
                "render only the first N frames (0: the scene's count)")
           .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: every core)")
           .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
-               "the manifest is rewritten this often (resume granularity)");
+               "the manifest is rewritten this often (resume granularity)")
+          .Add("outputs", &O::outputs, "thermal,radiometric,exr,video,persons", {},
+               "comma-separated outputs to write: thermal, radiometric, exr, video, persons")
+          .Rule("outputs", [](const O& o) {
+            DatasetOutputs parsed;
+            return DatasetOutputs::Parse(o.outputs, &parsed);
+          });
   return table;
 }
 
@@ -94,6 +118,7 @@ class SequenceRender {
         dir_(options.output_dir),
         manifest_path_(options.output_dir + "/manifest.json"),
         frames_(options.frames > 0 ? std::min(options.frames, scene.frames) : scene.frames),
+        outputs_(ParseOutputs(options.outputs)),
         world_(scene, table_),
         intrinsics_(IntrinsicsFromScene(scene)),
         run_(SimulateSceneRobot(scene, world_.obstacles())) {
@@ -101,6 +126,8 @@ class SequenceRender {
     world_.PlanCrowd(run_.samples);
     sensor_options_ = SensorOptionsFromScene(scene);
     video_options_ = VideoOptionsFromScene(scene);
+    // thermal.mp4 is encoded when it is an output, or to make video mode's thermal PNGs.
+    encode_video_ = outputs_.video || (video_options_.enabled && outputs_.thermal);
     sensor_ = NewSensor();
     renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, RenderOptionsFromScene(scene, options.threads));
   }
@@ -113,7 +140,7 @@ class SequenceRender {
     // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
     // written when every frame is rendered by this call, else at the end from the EXRs on disk.
     // Both feed the encoder the same frames, so a resumed render gives the same file.
-    if (!any_done_) {
+    if (encode_video_ && !any_done_) {
       streaming_video_ = std::make_unique<VideoEncoder>(video_options_, intrinsics_.width, intrinsics_.height,
                                                         scene_.frame_rate_hz);
     }
@@ -122,6 +149,9 @@ class SequenceRender {
     writer_options.display_min_c = sensor_options_.display_min_c;
     writer_options.display_max_c = sensor_options_.display_max_c;
     writer_options.workers = ResolveThreadCount(options_.threads);
+    writer_options.thermal = outputs_.thermal;
+    writer_options.radiometric = outputs_.radiometric;
+    writer_options.exr = outputs_.exr;
     writer_ = std::make_unique<FrameWriter>(writer_options, &manifest_, streaming_video_.get());
     for (int f = 0; f < frames_; ++f) {
       if (options_.cancel && options_.cancel->load()) {
@@ -145,6 +175,12 @@ class SequenceRender {
   }
 
  private:
+  static DatasetOutputs ParseOutputs(const std::string& text) {
+    DatasetOutputs outputs;
+    HOILCD_CHECK(DatasetOutputs::Parse(text, &outputs).empty());  // SequenceOptions::Check ran
+    return outputs;
+  }
+
   std::unique_ptr<SensorModel> NewSensor() const {
     return std::make_unique<SensorModel>(sensor_options_, intrinsics_.width, intrinsics_.height,
                                          scene_.frame_rate_hz, scene_.seed, &table_, options_.threads);
@@ -167,6 +203,11 @@ class SequenceRender {
                                    ", seed " + std::to_string(old.seed) +
                                    "); choose another output folder or delete this one");
       }
+      if (old.outputs != outputs_) {
+        throw InputError(dir_, "holds a dataset with --outputs " + old.outputs.ToText() + " (this render asks for " +
+                                   outputs_.ToText() + "); use the same --outputs, another output folder, or "
+                                   "delete this one");
+      }
       manifest_ = old;
     } else if (const std::vector<std::string> foreign = ForeignFiles(dir_); !foreign.empty()) {
       // Only temp files of a run killed before its first manifest may be there.
@@ -188,10 +229,14 @@ class SequenceRender {
     manifest_.window_min_c = sensor_options_.display_min_c;
     manifest_.window_max_c = sensor_options_.display_max_c;
     manifest_.classes = world_.classes();
+    manifest_.outputs = outputs_;
     manifest_.complete = false;
 
     done_.assign(frames_, false);
-    for (int f = 0; f < frames_; ++f) {
+    // The video of a resumed render is made from the kept frames' EXRs, else from their thermal
+    // PNGs outside video mode; with neither, every frame is rendered again.
+    const bool video_from_disk = outputs_.exr || (outputs_.thermal && !video_options_.enabled);
+    for (int f = 0; f < frames_ && (video_from_disk || !encode_video_); ++f) {
       done_[f] = FrameDone(dir_, manifest_, f);
       any_done_ = any_done_ || done_[f];
     }
@@ -199,25 +244,40 @@ class SequenceRender {
     for (auto it = manifest_.files.begin(); it != manifest_.files.end();) {
       bool keep = false;
       for (int f = 0; f < frames_ && !keep; ++f) {
-        keep = done_[f] && (it->first == FramePath("thermal", f, "png") ||
-                            it->first == FramePath("radiometric", f, "png") ||
-                            it->first == FramePath("exr", f, "exr"));
+        const std::vector<std::string> files = FrameFiles(outputs_, f);
+        keep = done_[f] && std::find(files.begin(), files.end(), it->first) != files.end();
       }
       it = keep ? std::next(it) : manifest_.files.erase(it);
     }
     WriteFileAtomic(manifest_path_, manifest_.ToJson());
   }
 
-  // Kept from an earlier run: ground truth comes from its stored instance ids.
+  // Kept from an earlier run: ground truth comes from its stored instance ids and depth, or
+  // without EXRs from the frame's ids and depth cast again (no sensor model needed).
   void ReuseFrame(int f) {
-    const ExrChannels exr = ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height});
+    ++result_.frames_reused;
+    if (!outputs_.persons) return;
     cv::Mat ids, depth;
-    for (const auto& [name, channel] : exr) {
-      if (name == "id") channel.convertTo(ids, CV_32S);
-      if (name == "Z") channel.convertTo(depth, CV_32F);
+    if (outputs_.exr) {
+      for (const auto& [name, channel] : ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height})) {
+        if (name == "id") channel.convertTo(ids, CV_32S);
+        if (name == "Z") channel.convertTo(depth, CV_32F);
+      }
+    } else {
+      const FrameBuffers buffers = renderer_->Render(run_.samples[f].camera);
+      ids = buffers.instance;
+      depth = StoredDepth(buffers.depth_m);
     }
     if (!ids.empty()) persons_[f] = {f, VisiblePersons(world_, intrinsics_, run_.samples[f].camera, ids, depth)};
-    ++result_.frames_reused;
+  }
+
+  // The depth as the EXR stores it (half), which the persons' ground truth reads, so that a
+  // resumed frame's ground truth is that of a fresh one.
+  static cv::Mat StoredDepth(const cv::Mat& depth_m) {
+    cv::Mat half, back;
+    depth_m.convertTo(half, CV_16F);
+    half.convertTo(back, CV_32F);
+    return back;
   }
 
   // Ray casts frame f (the world is at its time), applies the sensor model and finds the
@@ -239,12 +299,13 @@ class SequenceRender {
     out.frame = f;
     out.temperature_c = sensor_->Apply(f, buffers.radiance);
     sensor_frame_ = f;
-    out.exr = FrameExrChannels(out.temperature_c, sensor_->IdealTemperature(buffers.radiance), buffers.depth_m,
-                               buffers.instance, buffers.class_id);
-    // The depth as the EXR stores it (half), so a resumed frame's ground truth is the same.
-    cv::Mat stored_depth_m;
-    out.exr[2].second.convertTo(stored_depth_m, CV_32F);
-    persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, stored_depth_m)};
+    if (outputs_.exr) {
+      out.exr = FrameExrChannels(out.temperature_c, sensor_->IdealTemperature(buffers.radiance), buffers.depth_m,
+                                 buffers.instance, buffers.class_id);
+    }
+    if (outputs_.persons) {
+      persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, StoredDepth(buffers.depth_m))};
+    }
     return out;
   }
 
@@ -267,13 +328,11 @@ class SequenceRender {
       mp4 = streaming_video_->Finish();
     } else {
       VideoEncoder encoder(video_options_, intrinsics_.width, intrinsics_.height, scene_.frame_rate_hz);
-      for (int f = 0; f < frames_; ++f) {
-        encoder.Add(UncompressedFrame(dir_, f, sensor_options_, {intrinsics_.width, intrinsics_.height}));
-      }
+      for (int f = 0; f < frames_; ++f) encoder.Add(UncompressedFrame(dir_, f, sensor_options_, manifest_));
       mp4 = encoder.Finish();
     }
-    WriteDatasetFile(dir_, "thermal.mp4", mp4, &manifest_);
-    if (video_options_.enabled) {
+    if (outputs_.video) WriteDatasetFile(dir_, "thermal.mp4", mp4, &manifest_);
+    if (video_options_.enabled && outputs_.thermal) {
       const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4");
       HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames_,
                        "decoded " << video.frames.size() << " of " << frames_ << " frames");
@@ -293,7 +352,7 @@ class SequenceRender {
 
   // thermal.mp4, the side files, then the manifest that declares the dataset complete.
   void Finish() {
-    WriteVideo();
+    if (encode_video_) WriteVideo();
     const std::vector<PoseRecord> poses = PoseRecordsOf(run_, frames_);
     std::vector<DatasetEvent> events;
     for (const DatasetEvent& e : world_.events())
@@ -310,7 +369,7 @@ class SequenceRender {
                      [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
     WriteDatasetFile(dir_, "poses.csv", PosesToCsv(poses), &manifest_);
     WriteDatasetFile(dir_, "poses_tum.txt", PosesToTum(poses), &manifest_);
-    WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_), &manifest_);
+    if (outputs_.persons) WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_), &manifest_);
     WriteDatasetFile(dir_, "events.json", EventsToJson(events), &manifest_);
     WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(FootprintRecordsOf(world_.obstacles())), &manifest_);
     WriteDatasetFile(dir_, "scene.json", scene_.resolved.dump(2), &manifest_);
@@ -325,6 +384,7 @@ class SequenceRender {
   const std::string dir_;
   const std::string manifest_path_;
   const int frames_;
+  const DatasetOutputs outputs_;
   const BandRadianceTable table_;
   World world_;
   const CameraIntrinsics intrinsics_;
@@ -340,6 +400,7 @@ class SequenceRender {
   std::vector<FramePersons> persons_;
   int sensor_frame_ = -1;       // last frame the sensor model has seen
   int since_checkpoint_ = 0;
+  bool encode_video_ = true;  // thermal.mp4 is an output or makes video mode's thermal PNGs
   std::unique_ptr<VideoEncoder> streaming_video_;
   double video_s_ = 0.0;  // thermal.mp4 outside the writer
   SequenceResult result_;

@@ -154,6 +154,35 @@ TEST(Runner, EmptyPaperRoomFramesWithWarmLaptopsAndAMonitorHaveNoPersonDetection
   EXPECT_GE(frames_fooling_the_shape_rules, 5);
 }
 
+// A dataset rendered with --outputs lacking what a method reads: the bench names the output.
+TEST(Runner, ADatasetWithoutThermalFramesIsAnInputErrorNamingTheMissingOutput) {
+  const test::TestDir temp;
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json");
+  SequenceOptions render;
+  render.output_dir = temp / "no_thermal";
+  render.outputs = "radiometric,exr";
+  RenderSequence(scene, render);
+  const Dataset dataset = Dataset::Open(render.output_dir);
+  BenchOptions options;
+  options.methods = {"slcd"};
+  try {
+    RunBench(dataset, options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("has no thermal output"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--outputs radiometric,exr"), std::string::npos) << e.what();
+  }
+  // Without persons.json the methods still run (DLCD's detector reads the radiometric frames);
+  // only the tracking metrics are left out.
+  render.output_dir = temp / "no_persons";
+  render.outputs = "thermal,radiometric";
+  RenderSequence(scene, render);
+  options.methods = {"slcd", "dlcd"};
+  const BenchResult result = RunBench(Dataset::Open(render.output_dir), options);
+  EXPECT_FALSE(result.tracking_evaluated);
+  EXPECT_EQ(result.runs.size(), 2u);
+}
+
 TEST(Runner, UnknownMethodsAreInputErrorsNamingThem) {
   try {
     ParseMethodList("slcd,superglue");

@@ -110,6 +110,34 @@ TEST(DatasetManifest, JsonRoundTripKeepsEveryField) {
   EXPECT_EQ(back.FramesWritten(), 1);
 }
 
+TEST(DatasetManifest, OutputsRoundTripAreAllWhenAbsentAndBadOnesAreReportedAtTheirPointer) {
+  DatasetManifest m;
+  ASSERT_TRUE(DatasetOutputs::Parse("persons,thermal", &m.outputs).empty());
+  const DatasetManifest back = DatasetManifest::FromJson(m.ToJson(), "manifest.json");
+  EXPECT_EQ(back.outputs.ToText(), "thermal,persons");
+  EXPECT_FALSE(back.outputs.exr);
+  nlohmann::json j = nlohmann::json::parse(m.ToJson());
+  // The manifest as `j` with a valid checksum of its own.
+  const auto text = [&j] {
+    nlohmann::json unsigned_part = j;
+    unsigned_part.erase("manifest_checksum");
+    nlohmann::json signed_part = unsigned_part;
+    signed_part["manifest_checksum"] = ChecksumOf(unsigned_part.dump(2));
+    return signed_part.dump(2);
+  };
+  j.erase("outputs");
+  EXPECT_EQ(DatasetManifest::FromJson(text(), "m.json").outputs.ToText(), "thermal,radiometric,exr,video,persons");
+  j["outputs"] = {"thermal", "depth"};
+  EXPECT_NE(InputErrorOf([&] { DatasetManifest::FromJson(text(), "m.json"); }).find("m.json: /outputs: unknown output 'depth'"),
+            std::string::npos);
+  j["outputs"] = "thermal";
+  EXPECT_NE(InputErrorOf([&] { DatasetManifest::FromJson(text(), "m.json"); }).find("/outputs: expected an array"),
+            std::string::npos);
+  j["outputs"] = nlohmann::json::array();
+  EXPECT_NE(InputErrorOf([&] { DatasetManifest::FromJson(text(), "m.json"); }).find("/outputs: expected at least one"),
+            std::string::npos);
+}
+
 TEST(DatasetManifest, UnknownKeyWrongTypeAndEscapingPathAreReportedWithPointers) {
   DatasetManifest m;
   m.files = {{"../outside.png", ChecksumOf("x")}};

@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <utility>
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/sim/exr_io.h"
@@ -300,6 +302,61 @@ TEST_F(Sequence, RefusalNamesTheFilesThatAreNotItsOwn) {
   }
 }
 
+TEST_F(Sequence, OutputsLeaveOutWhatWasNotAskedForAndTheManifestAndReadersSaySo) {
+  const std::string dir = TempDir("thermal_video");
+  SequenceOptions options;
+  options.output_dir = dir;
+  options.frames = 3;
+  options.outputs = "video,thermal";
+  RenderSequence(PaperRoom(), options);
+  const Dataset d = Dataset::Open(dir);
+  EXPECT_EQ(d.manifest().outputs.ToText(), "thermal,video");
+  EXPECT_NE(ReadFileBytes(dir + "/manifest.json").find("\"outputs\": [\n    \"thermal\",\n    \"video\"\n  ]"),
+            std::string::npos);
+  EXPECT_EQ(d.manifest().files.size(), 3u + 6);  // three thermal PNGs, thermal.mp4, five side files
+  EXPECT_FALSE(fs::exists(dir + "/exr"));
+  EXPECT_FALSE(fs::exists(dir + "/radiometric"));
+  EXPECT_FALSE(fs::exists(dir + "/persons.json"));
+  EXPECT_EQ(d.Thermal(2).cols, 256);
+  for (const auto& [what, read] : std::vector<std::pair<std::string, std::function<void()>>>{
+           {"radiometric", [&] { d.RadiometricC(0); }},
+           {"persons", [&] { d.persons(); }},
+           {"exr", [&] { ReadDatasetExr(d, 0); }}}) {
+    try {
+      read();
+      ADD_FAILURE() << what << ": expected an InputError";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("has no " + what + " output"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("--outputs thermal,video"), std::string::npos) << e.what();
+    }
+  }
+  // Resuming with other outputs would mix datasets.
+  options.outputs = "thermal";
+  try {
+    RenderSequence(PaperRoom(), options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds a dataset with --outputs thermal,video"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(Sequence, ResumingWithoutExrsGivesTheSameBytesAsOneRun) {
+  // Kept frames' people come from casting them again, the video from their thermal PNGs.
+  const Scene scene = PaperRoom();
+  SequenceOptions options;
+  options.outputs = "thermal,video,persons";
+  options.output_dir = TempDir("whole");
+  options.frames = 5;
+  RenderSequence(scene, options);
+  options.output_dir = TempDir("resumed");
+  options.frames = 3;
+  RenderSequence(scene, options);
+  options.frames = 5;
+  const SequenceResult r = RenderSequence(scene, options);
+  EXPECT_EQ(r.frames_reused, 3);
+  EXPECT_EQ(Dataset::Open(TempDir("resumed")).manifest().files, Dataset::Open(TempDir("whole")).manifest().files);
+}
+
 TEST(SequenceOptions, CheckNamesEveryWrongFlagAndRenderRejectsThem) {
   SequenceOptions options;
   EXPECT_EQ(options.checkpoint_every_frames, 25);
@@ -314,6 +371,13 @@ TEST(SequenceOptions, CheckNamesEveryWrongFlagAndRenderRejectsThem) {
   options.checkpoint_every_frames = 25;
   options.threads = -2;
   EXPECT_NE(options.Check().find("threads: must be at least 0"), std::string::npos) << options.Check();
+  options.threads = 0;
+  options.outputs = "thermal,depth";
+  EXPECT_NE(options.Check().find("outputs: unknown output 'depth'"), std::string::npos) << options.Check();
+  options.outputs = "exr,exr";
+  EXPECT_NE(options.Check().find("output 'exr' is listed twice"), std::string::npos) << options.Check();
+  options.outputs = "";
+  EXPECT_NE(options.Check().find("expected at least one of"), std::string::npos) << options.Check();
   EXPECT_THROW(RenderSequence(PaperRoom(), options), InputError);
 }
 

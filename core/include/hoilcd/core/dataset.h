@@ -25,6 +25,27 @@ cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int ex
 // "000123.png" for (123, "png"); a leading dot in the extension is accepted too.
 std::string FrameFileName(int frame, const char* extension);
 
+// Which outputs a dataset has (`hoilcd render --outputs`, the manifest's "outputs"); poses,
+// events, footprints and scene.json are always written.
+struct DatasetOutputs {
+  bool thermal = true;      // thermal/NNNNNN.png
+  bool radiometric = true;  // radiometric/NNNNNN.png
+  bool exr = true;          // exr/NNNNNN.exr
+  bool video = true;        // thermal.mp4
+  bool persons = true;      // persons.json
+
+  // The names, in the order "thermal", "radiometric", "exr", "video", "persons".
+  static const std::vector<std::string>& AllNames();
+  std::vector<std::string> Names() const;  // the enabled ones, in that order
+  std::string ToText() const;              // Names() joined by commas
+  bool Has(const std::string& name) const;
+  // From a comma-separated list of names; "" when valid, else what is wrong (unknown or repeated
+  // name, empty list).
+  static std::string Parse(const std::string& text, DatasetOutputs* outputs);
+  bool operator==(const DatasetOutputs& other) const { return Names() == other.Names(); }
+  bool operator!=(const DatasetOutputs& other) const { return !(*this == other); }
+};
+
 struct DatasetManifest {
   std::string hoilcd_version;               // version of the hoilcd that wrote the dataset
   std::string scene_hash;                   // ChecksumOf(resolved scene JSON)
@@ -36,12 +57,14 @@ struct DatasetManifest {
   double window_max_c = 30;                 // °C, thermal PNG value 255
   std::map<std::string, int> classes;       // class name -> id used in the EXR 'class' channel
   std::map<std::string, std::string> files; // relative path -> checksum, every file written so far
+  DatasetOutputs outputs;                   // which outputs were written (absent in older manifests: all)
   bool complete = false;                    // true once every frame and side file is written
 
   std::string ToJson() const;
   // Every problem found (type errors, unknown keys) is reported with its JSON pointer.
   static DatasetManifest FromJson(const std::string& text, const std::string& path_for_errors);
-  // Frames whose thermal PNG is listed in `files`.
+  // Frames whose first per-frame output (thermal, radiometric or EXR, in that order) is listed
+  // in `files`; frame_count when the dataset has no per-frame output.
   int FramesWritten() const;
 };
 
@@ -143,15 +166,20 @@ class Dataset {
   const std::string& dir() const { return dir_; }
   int num_frames() const { return manifest_.frame_count; }
   const std::vector<PoseRecord>& poses() const { return poses_; }
-  const std::vector<FramePersons>& persons() const { return persons_; }
+  // persons.json; InputError naming the missing output when it was not rendered.
+  const std::vector<FramePersons>& persons() const;
   const std::vector<DatasetEvent>& events() const { return events_; }
   // The obstacle footprints from footprints.json; empty for datasets written before it existed.
   const std::vector<FootprintRecord>& footprints() const { return footprints_; }
   // Problems that do not stop reading (each "path: what"), for the caller to print.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
+  // InputError naming the missing output when the dataset was rendered without it.
   cv::Mat Thermal(int frame) const;       // CV_8U from thermal/NNNNNN.png
   cv::Mat RadiometricC(int frame) const;  // CV_32F °C from radiometric/NNNNNN.png
+  // Throws InputError (the dataset folder: which output is missing and how to render it) unless
+  // the dataset has `output` (a DatasetOutputs name); `needed_for` says what wanted it.
+  void RequireOutput(const std::string& output, const std::string& needed_for) const;
   std::string scene_json() const;         // contents of scene.json
 
  private:

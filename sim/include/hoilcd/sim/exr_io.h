@@ -38,7 +38,8 @@ ExrChannels FrameExrChannels(const cv::Mat& temperature_c, const cv::Mat& ideal_
 // (a crafted header cannot make the reader allocate more than one frame's channels).
 ExrChannels ReadExr(const std::string& path, cv::Size size);
 
-// Frame `frame`'s EXR in a dataset folder (exr/NNNNNN.exr), at the manifest's frame size.
+// Frame `frame`'s EXR in a dataset folder (exr/NNNNNN.exr), at the manifest's frame size;
+// InputError naming the missing output when the dataset was rendered without EXRs.
 ExrChannels ReadDatasetExr(const Dataset& dataset, int frame);
 
 }  // namespace hoilcd

@@ -39,6 +39,9 @@ struct FrameWriterOptions {
   double display_max_c = 30;   // °C, 8-bit value 255
   int workers = 1;             // encoder threads, at least 1
   int capacity = 0;            // frames in flight (queued or being written) at most; 0: 2 x workers
+  bool thermal = true;         // write thermal/NNNNNN.png
+  bool radiometric = true;     // write radiometric/NNNNNN.png
+  bool exr = true;             // write exr/NNNNNN.exr (FrameImages::exr)
 };
 
 class FrameWriter {

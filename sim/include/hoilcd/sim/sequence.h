@@ -20,6 +20,7 @@ struct SequenceOptions {
   int frames;                    // frames: render only the first N (0 = the scene's count)
   int threads;                   // worker threads (0 = every core)
   int checkpoint_every_frames;   // frames: the manifest is rewritten this often (resume granularity)
+  std::string outputs;           // comma-separated: thermal, radiometric, exr, video, persons (default all)
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame; not in the table
 
   SequenceOptions();  // the registered defaults
