@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bare_packets.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/sim/data_dir.h"
@@ -110,12 +111,6 @@ void Finish(benchmark::State& state, const std::string& kind, const FrameClock& 
 void FixWorldTime(Setup& s) { s.world.SetTime(s.samples.front().time_s); }
 
 // Hits of bare Embree casts (kept so the casts cannot be optimised away).
-struct BareHits {
-  explicit BareHits(int pixels) : distance(pixels), instance(pixels), triangle(pixels) {}
-  std::vector<float> distance;
-  std::vector<unsigned> instance, triangle;
-};
-
 // The renderer's primary rays, one rtcIntersect1 per pixel in a plain loop, rows split into the
 // renderer's chunks of 8.
 void CastBare(const Setup& s, const CameraPose& pose, int threads, BareHits* hits) {
@@ -144,49 +139,6 @@ void CastBare(const Setup& s, const CameraPose& pose, int threads, BareHits* hit
       hits->distance[i] = rh.ray.tfar;
       hits->instance[i] = rh.hit.instID[0];
       hits->triangle[i] = rh.hit.primID;
-    }
-  });
-  benchmark::DoNotOptimize(hits->distance.data());
-}
-
-// The same rays as 4×4-pixel packets with rtcIntersect16 (coherent), as the renderer casts
-// them: the strongest bare-Embree baseline.
-void CastBarePackets(const Setup& s, const CameraPose& pose, int threads, BareHits* hits) {
-  const int W = s.intrinsics.width, H = s.intrinsics.height;
-  RTCScene scene = s.world.caster().embree_scene();
-  const Rigid3 world_from_cam = pose.WorldFromCam();
-  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
-  const Eigen::Vector3f o = world_from_cam.translation.cast<float>();
-  ParallelForChunks(H, 8, threads, [&](int64_t y0, int64_t y1, int) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) int valid[16];
-    alignas(64) RTCRayHit16 rh;
-    for (int64_t by = y0; by < y1; by += 4) {
-      for (int bx = 0; bx < W; bx += 4) {
-        for (int k = 0; k < 16; ++k) {
-          const Eigen::Vector3f d = R * s.cam_directions[(by + k / 4) * W + bx + k % 4];
-          valid[k] = -1;
-          rh.ray.org_x[k] = o.x(), rh.ray.org_y[k] = o.y(), rh.ray.org_z[k] = o.z();
-          rh.ray.dir_x[k] = d.x(), rh.ray.dir_y[k] = d.y(), rh.ray.dir_z[k] = d.z();
-          rh.ray.tnear[k] = 0.0f;
-          rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-          rh.ray.mask[k] = 0xFFFFFFFFu;
-          rh.ray.flags[k] = 0;
-          rh.ray.time[k] = 0;
-          rh.ray.id[k] = 0;
-          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcIntersect16(valid, scene, &context, &rh);
-        for (int k = 0; k < 16; ++k) {
-          const int64_t i = (by + k / 4) * W + bx + k % 4;
-          hits->distance[i] = rh.ray.tfar[k];
-          hits->instance[i] = rh.hit.instID[0][k];
-          hits->triangle[i] = rh.hit.primID[k];
-        }
-      }
     }
   });
   benchmark::DoNotOptimize(hits->distance.data());
@@ -224,7 +176,7 @@ void BM_BareEmbreePackets(benchmark::State& state) {
   FrameClock clock;
   for (auto _ : state) {
     for (const RobotSample& sample : s.samples) {
-      CastBarePackets(s, sample.camera, static_cast<int>(state.range(0)), &hits);
+      CastBarePackets(s.world, s.intrinsics, s.cam_directions, sample.camera, static_cast<int>(state.range(0)), &hits);
     }
   }
   Finish(state, "bare_packets", clock);
@@ -252,7 +204,7 @@ void BM_FullVsBareInterleaved(benchmark::State& state) {
         const auto wall_start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
         if (part == kBare) CastBare(s, sample.camera, threads, &hits);
-        if (part == kPackets && native16) CastBarePackets(s, sample.camera, threads, &hits);
+        if (part == kPackets && native16) CastBarePackets(s.world, s.intrinsics, s.cam_directions, sample.camera, threads, &hits);
         if (part == kRender) radiance = renderer.Render(sample.camera).radiance;
         if (part == kSensor) benchmark::DoNotOptimize(sensor.Apply(frame++, radiance).data);
         wall[part] +=

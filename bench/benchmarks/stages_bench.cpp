@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "bare_packets.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/renderer.h"
@@ -71,52 +72,6 @@ void Time(Timer* timer, int64_t frames, Fn&& fn) {
   timer->frames += frames;
 }
 
-// The renderer's primary rays as 4x4-pixel rtcIntersect16 packets straight into Embree, hits
-// stored, no shading (as render_bench's bare baseline; repeated here so the two benchmarks do not
-// depend on each other).
-void CastBarePackets(const World& world, const CameraIntrinsics& intrinsics,
-                     const std::vector<Eigen::Vector3f>& cam_directions, const CameraPose& pose, int threads,
-                     std::vector<float>* distance) {
-  const int W = intrinsics.width, H = intrinsics.height;
-  RTCScene scene = world.caster().embree_scene();
-  const Rigid3 world_from_cam = pose.WorldFromCam();
-  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
-  const Eigen::Vector3f o = world_from_cam.translation.cast<float>();
-  ParallelForChunks(H, 8, threads, [&](int64_t y0, int64_t y1, int) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) int valid[16];
-    alignas(64) RTCRayHit16 rh;
-    for (int64_t by = y0; by < y1; by += 4) {
-      for (int bx = 0; bx < W; bx += 4) {
-        for (int k = 0; k < 16; ++k) {
-          const int64_t y = std::min<int64_t>(by + k / 4, H - 1);
-          const int x = std::min(bx + k % 4, W - 1);
-          const Eigen::Vector3f d = R * cam_directions[y * W + x];
-          valid[k] = -1;
-          rh.ray.org_x[k] = o.x(), rh.ray.org_y[k] = o.y(), rh.ray.org_z[k] = o.z();
-          rh.ray.dir_x[k] = d.x(), rh.ray.dir_y[k] = d.y(), rh.ray.dir_z[k] = d.z();
-          rh.ray.tnear[k] = 0.0f;
-          rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-          rh.ray.mask[k] = 0xFFFFFFFFu;
-          rh.ray.flags[k] = 0;
-          rh.ray.time[k] = 0;
-          rh.ray.id[k] = 0;
-          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcIntersect16(valid, scene, &context, &rh);
-        for (int k = 0; k < 16; ++k) {
-          const int64_t y = std::min<int64_t>(by + k / 4, H - 1);
-          (*distance)[y * W + std::min(bx + k % 4, W - 1)] = rh.ray.tfar[k];
-        }
-      }
-    }
-  });
-  benchmark::DoNotOptimize(distance->data());
-}
-
 // RenderSequence of the scene's first `frames` frames into a new folder under settings.out;
 // returns its wall time (the folder is removed).
 double WriteDataset(const Scene& scene, int frames, const std::string& name) {
@@ -152,7 +107,7 @@ void BM_Stages(benchmark::State& state) {
   }
   const FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, settings.threads));
   const SensorOptions sensor_options = SensorOptionsFromScene(scene);
-  std::vector<float> distance(cam_directions.size());
+  BareHits hits(static_cast<int>(cam_directions.size()));
   for (auto _ : state) {
     for (int round = 0; round < settings.rounds; ++round) {
       // Fresh sensors per round: the sensor's time constant and drift carry state frame to frame.
@@ -164,7 +119,7 @@ void BM_Stages(benchmark::State& state) {
         const RobotSample& sample = run.samples[f];
         world.SetTime(sample.time_s);
         Time(&g_timers[kBarePackets], 1,
-             [&] { CastBarePackets(world, intrinsics, cam_directions, sample.camera, settings.threads, &distance); });
+             [&] { CastBarePackets(world, intrinsics, cam_directions, sample.camera, settings.threads, &hits); });
         Time(&g_timers[kRender], 1, [&] { benchmark::DoNotOptimize(renderer.Render(sample.camera).radiance.data); });
         Time(&g_timers[kRenderSensor], 1, [&] {
           benchmark::DoNotOptimize(sensor.Apply(f, renderer.Render(sample.camera).radiance).data);
