@@ -256,7 +256,7 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
   // Whom they look at is settled by AimGazes, once every seat and sitter is known.
   person.activities = PlanActivities(options_.activity, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
                                      has_cup, has_laptop);
-  person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng.Normal(), 0.8, 1.2);
+  person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng.Normal(), kMinSeatedBodyScale, 1.2);
   DrawIdleMotion(options_, &rng, &person);
   // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
   auto varied = [&](double mean, double sd) { return mean + sd * std::clamp(rng.Normal(), -2.0, 2.0); };
@@ -355,6 +355,33 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
       double& side = person.side_room_m[at.y() > 0 ? 0 : 1];
       side = std::min(side, 0.5 * std::abs(at.y()));
     }
+  }
+  // Shoulders fit between seats: where two seats beside each other stand closer than their
+  // bodies' widths (as turned with their chairs) plus kSeatedShoulderGapM, bodies are no larger
+  // than fits. One cap for the scene, so people keep their size when they change seats; World
+  // refuses a seat spacing that leaves less than the smallest body.
+  const Eigen::Vector2d half = skeleton_->UpperBodyHalfExtentM();
+  double largest_scale = 1e30;
+  for (size_t a = 0; a < seats_.size(); ++a) {
+    for (size_t b = a + 1; b < seats_.size(); ++b) {
+      const Eigen::Matrix4d sa = seats_[a].world_from_seat.cast<double>(), sb = seats_[b].world_from_seat.cast<double>();
+      const Eigen::Vector3d at = Apply(sa.inverse(), sb.topRightCorner<3, 1>());
+      if (std::abs(at.x()) >= 0.35 || std::abs(at.y()) < 1e-6) continue;  // not beside each other
+      const Eigen::Vector2d u = (sb.topRightCorner<2, 1>() - sa.topRightCorner<2, 1>()).normalized();
+      // A body's reach along u. The torso's cross-section is a superellipse of exponent 2.6
+      // (tools/make_assets) with these half extents: its reach is the dual norm, exponent 2.6/1.6.
+      auto reach = [&](const Eigen::Matrix4d& seat) {
+        constexpr double kDual = 2.6 / 1.6;
+        return std::pow(std::pow(half.x() * std::abs(u.dot(seat.block<2, 1>(0, 0).normalized())), kDual) +
+                            std::pow(half.y() * std::abs(u.dot(seat.block<2, 1>(0, 1).normalized())), kDual),
+                        1 / kDual);
+      };
+      const double distance = (sb.topRightCorner<2, 1>() - sa.topRightCorner<2, 1>()).norm();
+      largest_scale = std::min(largest_scale, (distance - kSeatedShoulderGapM) / (reach(sa) + reach(sb)));
+    }
+  }
+  for (Person& person : people_) {
+    if (person.seated) person.height_scale = std::min(person.height_scale, largest_scale);
   }
   // Glances and talk go to the people at the same table when each episode starts (directions in
   // the person's seat frame), whichever of them sat down first.

@@ -79,7 +79,7 @@ const OptionTable<FurnitureOptions>& FurnitureOptions::Table() {
                "chair seat centre distance outside the table's long edge")
           .Add("seat_spacing_4_m", &O::seat_spacing_4_m, 0.45, "m", R::Closed(0, 3),
                "spacing of the 2 seats per side when people_per_table <= 4")
-          .Add("seat_spacing_6_m", &O::seat_spacing_6_m, 0.3, "m", R::Closed(0, 3),
+          .Add("seat_spacing_6_m", &O::seat_spacing_6_m, 0.45, "m", R::Closed(0, 3),
                "spacing of the 3 seats per side when people_per_table > 4")
           .Add("chair_jitter_m", &O::chair_jitter_m, 0.05, "m", R::Closed(0, 0.2),
                "each chair is shifted by up to this much along the table and pushed in by up to half of it")

@@ -100,8 +100,9 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
 // parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals; 11: walkers enter and
 // leave through the room's doors, seated people look at whichever neighbours sit at their table,
-// chair jitter never squeezes neighbours together).
-constexpr int kSimulatorRevision = 11;
+// chair jitter never squeezes neighbours together; 12: people 0.43 m across the shoulders instead
+// of 0.48, seated body sizes capped so that neighbours' shoulders never meet).
+constexpr int kSimulatorRevision = 12;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

@@ -209,9 +209,20 @@ Skeleton::Skeleton(AssetLibrary& assets) {
   }
 }
 
+Eigen::Vector2d Skeleton::UpperBodyHalfExtentM() const {
+  const Eigen::Vector2f axis = parts_[kPelvis]->joint_m.head<2>();
+  Eigen::Vector2d half = Eigen::Vector2d::Zero();
+  for (int part : {kTorso, SidePart(0, kUpperArm), SidePart(1, kUpperArm)}) {
+    const Eigen::AlignedBox3f& box = parts_[part]->bounds_m;  // the rest pose, body frame
+    const Eigen::Vector2f far = (box.max().head<2>() - axis).cwiseAbs().cwiseMax((box.min().head<2>() - axis).cwiseAbs());
+    half = half.cwiseMax(far.cast<double>());
+  }
+  return half;
+}
+
 Eigen::Vector3d Skeleton::Shoulder(const BodyPose& pose, int side) const {
-  const Mat4 torso = Translation(pose.pelvis_m) * Rotation(pose.dof[kLumbarTwist], Vec3::UnitZ()) *
-                     Rotation(pose.dof[kLumbarFlex], Vec3::UnitY()) * Rotation(-pose.dof[kLumbarBend], Vec3::UnitX());
+  const Mat4 torso = Translation(pose.pelvis_m) * Rotation(pose.dof[kLumbarFlex], Vec3::UnitY()) *
+                     Rotation(-pose.dof[kLumbarBend], Vec3::UnitX()) * Rotation(pose.dof[kLumbarTwist], Vec3::UnitZ());
   return Apply(torso, pose.scale * (RestJoint(SidePart(side, kUpperArm)) - RestJoint(kTorso)));
 }
 
@@ -273,8 +284,10 @@ std::array<Eigen::Matrix4d, Skeleton::kPartCount> Skeleton::PartTransforms(const
   auto child = [&](int parent, int part) -> Mat4 {
     return joint[parent] * Translation(J(part) - J(parent));
   };
-  joint[kTorso] = child(kPelvis, kTorso) * Rotation(q[kLumbarTwist], Vec3::UnitZ()) *
-                  Rotation(q[kLumbarFlex], Vec3::UnitY()) * Rotation(-q[kLumbarBend], Vec3::UnitX());
+  // The spine flexes and bends in the pelvis's planes and twists about its own axis: a twist
+  // turns the shoulders about a leaning trunk instead of swinging the lean sideways.
+  joint[kTorso] = child(kPelvis, kTorso) * Rotation(q[kLumbarFlex], Vec3::UnitY()) *
+                  Rotation(-q[kLumbarBend], Vec3::UnitX()) * Rotation(q[kLumbarTwist], Vec3::UnitZ());
   joint[kNeck] = child(kTorso, kNeck) * Rotation(q[kNeckTwist], Vec3::UnitZ()) *
                  Rotation(q[kNeckFlex], Vec3::UnitY()) * Rotation(-q[kNeckBend], Vec3::UnitX());
   joint[kHead] = child(kNeck, kHead) * Rotation(q[kHeadNod], Vec3::UnitY());

@@ -3,8 +3,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "hoilcd/core/random.h"
+#include "hoilcd/core/text.h"
 
 namespace hoilcd {
 namespace {
@@ -210,6 +212,17 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
   for (const SeatingSpec& s : scene.crowd.seating) three_per_side |= (s.seat % 3 == 2);
   const int per_side = three_per_side ? 3 : 2;
   const double spacing = three_per_side ? scene.furniture.seat_spacing_6_m : scene.furniture.seat_spacing_4_m;
+  // Seated bodies are capped in size to fit between neighbours (Crowd::Plan), down to the
+  // smallest body drawn; closer seats leave no room for anyone (1 cm more for chair jitter).
+  const double narrowest_m = 2 * kMinSeatedBodyScale * crowd_->skeleton().UpperBodyHalfExtentM().y() + kSeatedShoulderGapM + 0.01;
+  if (per_side > 1 && spacing < narrowest_m) {
+    std::ostringstream message;
+    message << (three_per_side ? "/furniture/seat_spacing_6_m" : "/furniture/seat_spacing_4_m") << ": seats "
+            << spacing << " m apart leave no room for a seated person (the narrowest body is "
+            << Fixed(narrowest_m - 0.01 - kSeatedShoulderGapM, 3) << " m across the shoulders); expected at least "
+            << Fixed(narrowest_m, 3) << " m";
+    throw InputError(scene.file, message.str());
+  }
   const double half_depth = table_asset.bounds_m.max().y();
   // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
   const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();

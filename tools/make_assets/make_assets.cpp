@@ -300,7 +300,9 @@ struct TorsoSection {
 };
 
 constexpr double kShoulderHeight = 0.44;  // shoulder joints above the pelvis along the spine
-constexpr double kShoulderHalfWidth = 0.185;
+// Shoulder joints 0.33 m apart and shoulder caps 5 cm thick: 0.43 m across the shoulders
+// (bideltoid breadth), between the adult means of women (~0.40 m) and men (~0.46 m).
+constexpr double kShoulderHalfWidth = 0.165;
 
 Vec3 Shoulder(const Pose& pose, int side) {
   const double sign = side == 0 ? 1.0 : -1.0;
@@ -321,8 +323,8 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
   // Torso: a superelliptic loft from the hips to the shoulders.
   const TorsoSection sections[] = {
       {-0.03, 0.145, 0.100, -0.01}, {0.05, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
-      {0.26, 0.160, 0.110, 0.01},   {0.36, 0.175, 0.112, 0.01},   {0.42, 0.180, 0.100, 0.00},
-      {0.46, 0.170, 0.088, -0.005}, {0.485, 0.135, 0.075, -0.01}, {0.505, 0.080, 0.062, -0.01}};
+      {0.26, 0.150, 0.110, 0.01},   {0.36, 0.162, 0.112, 0.01},   {0.42, 0.163, 0.100, 0.00},
+      {0.46, 0.155, 0.088, -0.005}, {0.485, 0.125, 0.075, -0.01}, {0.505, 0.075, 0.062, -0.01}};
   std::vector<Ring> rings;
   for (const TorsoSection& s : sections) {
     rings.push_back(
@@ -360,7 +362,7 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
   for (int side = 0; side < 2; ++side) {
     const Vec3 shoulder = Shoulder(pose, side);
     // Shoulder cap, upper arm, forearm (long sleeves), hand.
-    asset.Add(Ellipsoid(shoulder + t * Vec3(0, 0, -0.01), t, Vec3(0.06, 0.055, 0.055), 16, 10),
+    asset.Add(Ellipsoid(shoulder + t * Vec3(0, 0, -0.01), t, Vec3(0.06, 0.05, 0.055), 16, 10),
               upper);
     asset.Add(Capsule(shoulder, pose.elbow[side], 0.052, 0.042), upper);
     asset.Add(Capsule(pose.elbow[side], pose.wrist[side], 0.041, 0.031), upper);
@@ -535,8 +537,8 @@ std::vector<AssetBuilder> PersonParts() {
   AssetBuilder torso = Part("torso", "pelvis", rest.pelvis);
   const TorsoSection sections[] = {
       {0.02, 0.145, 0.100, -0.01},  {0.08, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
-      {0.26, 0.160, 0.110, 0.01},   {0.36, 0.175, 0.112, 0.01},   {0.42, 0.180, 0.100, 0.00},
-      {0.46, 0.170, 0.088, -0.005}, {0.485, 0.135, 0.075, -0.01}, {0.505, 0.080, 0.062, -0.01}};
+      {0.26, 0.150, 0.110, 0.01},   {0.36, 0.162, 0.112, 0.01},   {0.42, 0.163, 0.100, 0.00},
+      {0.46, 0.155, 0.088, -0.005}, {0.485, 0.125, 0.075, -0.01}, {0.505, 0.075, 0.062, -0.01}};
   std::vector<Ring> rings;
   for (const TorsoSection& s : sections) {
     rings.push_back({rest.pelvis + Vec3(s.forward, 0, s.height), Vec3(0, s.half_width, 0),
@@ -546,7 +548,7 @@ std::vector<AssetBuilder> PersonParts() {
   torso.Add(Loft(rings, rest.pelvis + Vec3(-0.01, 0, -0.01), rest.pelvis + Vec3(-0.01, 0, 0.515), 32, 2.6),
             upper);
   for (int side = 0; side < 2; ++side) {
-    torso.Add(Ellipsoid(rest.shoulder[side] + Vec3(0, 0, -0.01), I, Vec3(0.06, 0.055, 0.055), 16, 10), upper);
+    torso.Add(Ellipsoid(rest.shoulder[side] + Vec3(0, 0, -0.01), I, Vec3(0.06, 0.05, 0.055), 16, 10), upper);
     torso.keypoints.push_back({side == 0 ? "left_shoulder" : "right_shoulder", rest.shoulder[side]});
   }
   parts.push_back(torso);

@@ -58,6 +58,11 @@ struct Person {
   std::vector<std::pair<std::string, Eigen::Vector3d>> contacts_m;  // world frame: seat, floor, table
 };
 
+// Seated body sizes are drawn in [kMinSeatedBodyScale, 1.2] and capped so that neighbours'
+// shoulders keep kSeatedShoulderGapM apart at the scene's tightest seats.
+constexpr double kMinSeatedBodyScale = 0.8;
+constexpr double kSeatedShoulderGapM = 0.01;
+
 // What the crowd asks of the world it lives in (the World implements it).
 class CrowdStage {
  public:

@@ -84,6 +84,9 @@ class Skeleton {
   // Floor contacts of the feet (person frame).
   std::vector<std::pair<std::string, Eigen::Vector3d>> FootContacts(
       const std::array<Eigen::Matrix4d, kPartCount>& person_from_part) const;
+  // Half extents (x forward, y sideways) about the spine's axis of the torso, shoulders and
+  // hanging upper arms at scale 1 (m): the room a seated person takes beside them.
+  Eigen::Vector2d UpperBodyHalfExtentM() const;
   // A joint (rest position) of a part in the rest body frame.
   Eigen::Vector3d RestJoint(int part) const { return parts_[part]->joint_m.cast<double>(); }
   // Seated: the hips on the seat (top at seat_height_m) and the feet flat on the floor below
