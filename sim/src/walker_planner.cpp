@@ -436,17 +436,21 @@ Eigen::Vector2d DoorThreshold(const Doorway& door, double radius_m) {
   return door.center_m + (radius_m + kCornerMarginM + 0.01) * door.inward;
 }
 
-WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s) {
+namespace {
+
+// Where segment s puts the walker at time t, facing the way that segment goes.
+WalkerPlacement PlaceOnSegment(const WalkerPlan& plan, const WalkerSegment& s, const RobotTrack& robot,
+                               double time_s) {
   const double lateral_m = plan.lateral_m;
   WalkerPlacement out;
-  const WalkerSegment& s = plan.At(time_s);
   if (robot.empty() || s.behaviour == "gone") return out;
   if (!s.path_m.empty()) {
-    // On a free path: the facing from the path a little behind to a little ahead (rounds corners).
+    // On a free path: the facing from the path 0.3 m behind to 0.3 m ahead (rounds corners over a
+    // step or two).
     const double length = PolylineLength(s.path_m);
     const double along = std::clamp(s.speed_m_s * (time_s - s.start_s), 0.0, length);
     out.at_m = PointAlong(s.path_m, along);
-    const Vec2 d = PointAlong(s.path_m, along + 0.15) - PointAlong(s.path_m, along - 0.15);
+    const Vec2 d = PointAlong(s.path_m, along + 0.3) - PointAlong(s.path_m, along - 0.3);
     out.heading_rad = std::atan2(d.y(), d.x());
     out.speed_m_s = along < length ? s.speed_m_s : 0.0;
     out.present = true;
@@ -463,6 +467,30 @@ WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, dou
     if (d.norm() > 1e-6) out.heading_rad = std::atan2(d.y(), d.x());
   }
   out.speed_m_s = std::abs(s.rate) * robot.cruise_speed_m_s();
+  return out;
+}
+
+}  // namespace
+
+WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s) {
+  const WalkerSegment& s = plan.At(time_s);
+  WalkerPlacement out = PlaceOnSegment(plan, s, robot, time_s);
+  // Where one segment hands over to the next (a door walk joining the route, turning back
+  // towards the robot, stopping to chat), the walker turns from the facing it had at a brisk
+  // pace (180° in a second), easing in and out, instead of snapping round.
+  constexpr double kTurnRateRadS = M_PI;
+  if (!out.present || &s == &plan.segments.front()) return out;
+  const WalkerSegment& previous = *(&s - 1);
+  const WalkerPlacement before = PlaceOnSegment(plan, previous, robot, s.start_s);
+  if (!before.present) return out;
+  // The turn's direction is the shorter way at the hand-over; the facing it turns towards may go
+  // on changing (a corner of the route), and is followed continuously from there.
+  const double start_heading = PlaceOnSegment(plan, s, robot, s.start_s).heading_rad;
+  const double start_turn = std::remainder(start_heading - before.heading_rad, 2 * M_PI);
+  const double turn_s = std::abs(start_turn) / kTurnRateRadS;
+  if (time_s - s.start_s >= turn_s) return out;
+  const double turn = start_turn + std::remainder(out.heading_rad - start_heading, 2 * M_PI);
+  out.heading_rad = before.heading_rad + turn * SmoothStep((time_s - s.start_s) / turn_s);
   return out;
 }
 

@@ -192,6 +192,42 @@ TEST(Walkers, AppearAndVanishOnlyInADoorwayAndLeaveTheRoomOnlyThroughOne) {
   }
 }
 
+TEST(Walkers, TurnSmoothlyWhereADoorWalkJoinsTheRouteOrTheyTurnBack) {
+  // The facing (across the hips) of a walker in view never jumps: at most 20° between frames
+  // 40 ms apart (a brisk 180° turn takes a second; rounding a path's corner at walking pace
+  // turns ~15° a frame).
+  for (const char* room : {"open_room", "paper_room"}) {
+    const Scene scene = LoadShipped(room, {"crowd.walkers=4", "crowd.walker_behaviours.cross=1"});
+    const BandRadianceTable table;
+    World world(scene, table);
+    const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+    world.PlanCrowd(run.samples);
+    std::map<int, double> last_facing;
+    int turns_checked = 0;
+    for (size_t f = 0; f < run.samples.size(); ++f) {
+      world.SetTime(run.samples[f].time_s);
+      for (const Person& p : world.people()) {
+        if (p.walker < 0) continue;
+        if (!p.present) {
+          last_facing.erase(p.person_id);
+          continue;
+        }
+        const Eigen::Vector2d across = (p.keypoints_m[11] - p.keypoints_m[12]).head<2>();
+        const double facing = std::atan2(across.y(), across.x()) - M_PI / 2;
+        const auto last = last_facing.find(p.person_id);
+        if (last != last_facing.end()) {
+          const double turn_deg = std::abs(std::remainder(facing - last->second, 2 * M_PI)) * 180 / M_PI;
+          ASSERT_LE(turn_deg, 20.0) << room << " frame " << f << ": walker " << p.person_id << " (" << p.posture
+                                    << ") turned " << turn_deg << " deg in one frame";
+          turns_checked += turn_deg > 2;
+        }
+        last_facing[p.person_id] = facing;
+      }
+    }
+    EXPECT_GT(turns_checked, 100) << room;
+  }
+}
+
 TEST(Walkers, FurnitureInADoorwayIsAnErrorNamingTheDoor) {
   // Someone standing in the paper room's east door (x = 7, y = 1.5); the last table and the
   // route moved west so that the robot passes them.
