@@ -164,7 +164,7 @@ BenchOptions ResolveBench(const BenchArgs& args, int threads) {
   BenchOptions o = args.options;
   o.methods = args.methods.empty() ? DefaultMethods() : ParseMethodList(args.methods);
   o.threads = threads;
-  CheckParams(o.params);
+  CheckParams(o.params, o.methods);
   if (const std::string problem = o.Check(); !problem.empty()) throw InputError("bench options", problem);
   return o;
 }

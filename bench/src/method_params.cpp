@@ -105,7 +105,10 @@ const OptionTable<BenchOptions>& FrontEndParams(FrontEnd front_end) {
   return tables[static_cast<int>(front_end)];
 }
 
-void CheckParams(const std::vector<std::string>& params) {
+void CheckParams(const std::vector<std::string>& params, const std::vector<std::string>& methods) {
+  const std::vector<std::string> run = methods.empty() ? DefaultMethods() : methods;
+  std::string run_list;
+  for (const std::string& m : run) run_list += (run_list.empty() ? "" : ", ") + m;
   for (const std::string& param : params) {
     std::string scope, rest;
     if (!SplitParam(param, &scope, &rest)) {
@@ -119,6 +122,16 @@ void CheckParams(const std::vector<std::string>& params) {
     table->Check(set, "", &problems);
     if (!problems.empty()) {
       throw InputError("--param", "'" + param + "': " + problems.problems().front().ToString());
+    }
+    bool used = false;
+    for (const std::string& m : run) {
+      if (m == scope) used = true;
+      for (FrontEnd f : FindMethod(m).FrontEnds()) used |= FrontEndName(f) == scope;
+    }
+    if (!used) {
+      throw InputError("--param", "'" + param + "': " + (IsMethod(scope) ? "method " : "front end ") + scope +
+                                      (IsMethod(scope) ? " is not run" : " is used by none of the methods run") +
+                                      " (methods: " + run_list + "); add it to --methods or drop the parameter");
     }
   }
 }

@@ -42,7 +42,7 @@ std::string BenchOptions::Check() const {
     if (!problem.empty()) return problem;
   }
   try {
-    CheckParams(params);
+    CheckParams(params, methods);
   } catch (const InputError& e) {
     return e.problems().front().message;
   }

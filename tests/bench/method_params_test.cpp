@@ -10,9 +10,9 @@
 namespace hoilcd {
 namespace {
 
-std::string ParamError(const std::string& param) {
+std::string ParamError(const std::string& param, const std::vector<std::string>& methods = {}) {
   try {
-    CheckParams({param});
+    CheckParams({param}, methods);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -39,6 +39,22 @@ TEST(MethodParams, EveryBadParamIsAnErrorNamingItAndWhatWasExpected) {
   EXPECT_NE(ParamError("thumb.x=1").find("method thumb has no parameters"), std::string::npos);
   EXPECT_NE(ParamError("keypoints.detector=superpoint").find("'keypoints.detector=superpoint'"), std::string::npos);
   EXPECT_FALSE(FormatParams().empty());
+}
+
+TEST(MethodParams, AParamOfAMethodNotRunOrAFrontEndNoMethodUsesIsAnErrorNotIgnored) {
+  EXPECT_EQ(ParamError("slcd.ransac_trials=50", {"slcd", "thumb"}), "");
+  EXPECT_EQ(ParamError("keypoints.max_keypoints=500", {"slcd"}), "");
+  EXPECT_EQ(ParamError("persons.threshold_c=27", {"dlcd"}), "");
+  EXPECT_NE(ParamError("dlcd.ransac_trials=50", {"slcd", "thumb"})
+                .find("--param: 'dlcd.ransac_trials=50': method dlcd is not run (methods: slcd, thumb); add it to "
+                      "--methods or drop the parameter"),
+            std::string::npos)
+      << ParamError("dlcd.ransac_trials=50", {"slcd", "thumb"});
+  EXPECT_NE(ParamError("persons.threshold_c=27", {"slcd", "thumb"})
+                .find("'persons.threshold_c=27': front end persons is used by none of the methods run (methods: slcd, "
+                      "thumb)"),
+            std::string::npos)
+      << ParamError("persons.threshold_c=27", {"slcd", "thumb"});
 }
 
 TEST(MethodParams, AParamChangesOnlyItsOwnMethodOrFrontEnd) {

@@ -23,7 +23,9 @@ const OptionTable<MatchOptions>& MatchParams();    // vertical_tolerance
 
 // Throws InputError("--param", ...) naming the parameter: not NAME=VALUE, unknown method or
 // front end, unknown field, a value of the wrong type or out of its range.
-void CheckParams(const std::vector<std::string>& params);
+// `methods`: the methods run (empty: DefaultMethods()); also throws for a parameter of a method
+// not among them or of a front end none of them uses, which would be silently ignored.
+void CheckParams(const std::vector<std::string>& params, const std::vector<std::string>& methods);
 
 // `options` with every parameter of `scope` (a method or front end name) set through `table`;
 // with a null table, `options` unchanged (parameters of a scope without one fail CheckParams).
