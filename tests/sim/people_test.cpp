@@ -70,22 +70,21 @@ TEST(People, InThirtySecondsMostSeatedPeopleMoveHeadOrHandAndWalkersSwingTheirAn
 }
 
 // Vertices of person `p` (all parts) in world coordinates, with their part's name.
-std::vector<std::pair<Eigen::Vector3d, std::string>> BodyVertices(const World& world, const Person& p) {
-  std::vector<std::pair<Eigen::Vector3d, std::string>> out;
+std::vector<std::pair<Eigen::Vector3d, const char*>> BodyVertices(const World& world, const Person& p) {
+  std::vector<std::pair<Eigen::Vector3d, const char*>> out;
   for (int part : p.parts) {
     const Eigen::Matrix4d m = world.caster().transform_of(part).cast<double>();
     for (const Eigen::Vector3f& v : world.instance(part).mesh->positions_m) {
-      out.emplace_back(m.topLeftCorner<3, 3>() * v.cast<double>() + m.topRightCorner<3, 1>(), world.instance(part).asset->part);
+      out.emplace_back(m.topLeftCorner<3, 3>() * v.cast<double>() + m.topRightCorner<3, 1>(), world.instance(part).asset->part.c_str());
     }
   }
   return out;
 }
 
 // True if world point w lies inside the box (centre, half sizes, rotation) of an instance's frame.
-bool InsideBox(const Eigen::Matrix4d& world_from_object, const Eigen::Vector3d& center, const Eigen::Matrix3d& axes,
+bool InsideBox(const Eigen::Matrix4d& object_from_world, const Eigen::Vector3d& center, const Eigen::Matrix3d& axes,
                const Eigen::Vector3d& half, const Eigen::Vector3d& w, double shrink_m) {
-  const Eigen::Vector3d local = world_from_object.inverse().topLeftCorner<3, 3>() * w +
-                                world_from_object.inverse().topRightCorner<3, 1>();
+  const Eigen::Vector3d local = object_from_world.topLeftCorner<3, 3>() * w + object_from_world.topRightCorner<3, 1>();
   const Eigen::Vector3d in_box = axes.transpose() * (local - center);
   return (in_box.cwiseAbs() - half).maxCoeff() < -shrink_m;
 }
@@ -100,14 +99,14 @@ TEST(People, BodiesNeverPassThroughTableTopsChairBacksOrEachOther) {
   int checked = 0;
   for (int f = 0; f < 1500; f += 30) {
     world.SetTime(run.samples[f].time_s);
-    std::vector<std::pair<const Person*, std::vector<std::pair<Eigen::Vector3d, std::string>>>> bodies;
+    std::vector<std::pair<const Person*, std::vector<std::pair<Eigen::Vector3d, const char*>>>> bodies;
     for (const Person& p : world.people()) {
       if (p.present) bodies.emplace_back(&p, BodyVertices(world, p));
     }
     for (int i = 0; i < world.num_instances(); ++i) {
       const InstanceInfo& info = world.instance(i);
       if (info.role != InstanceRole::kTable && info.role != InstanceRole::kChair) continue;
-      const Eigen::Matrix4d m = world.caster().transform_of(i).cast<double>();
+      const Eigen::Matrix4d m = world.caster().transform_of(i).cast<double>().inverse();
       for (const auto& [person, vertices] : bodies) {
         for (const auto& [v, part] : vertices) {
           // The table top slab; the chair's backrest (people sit on the seat, so not the seat).
@@ -204,22 +203,23 @@ TEST(People, NeighboursArmsNeverMeetOnCrowdedTablesWhileTheyTalkAndDrink) {
   EXPECT_GT(pairs, 1000);
 }
 
-// An oriented box: centre and the three half axes (columns), world frame.
+// An oriented box, world frame: its centre, and the map that takes it to [-1, 1]^3 (the inverse
+// of its three half axes as columns).
 struct OrientedBox {
   Eigen::Vector3d center;
-  Eigen::Matrix3d half_axes;
+  Eigen::Matrix3d unit_from_world;
 };
 
 // The box around a body part's mesh (its asset bounds, carried by its instance transform).
 OrientedBox PartBox(const World& world, int instance) {
   const Eigen::Matrix4d m = world.caster().transform_of(instance).cast<double>();
   const Eigen::AlignedBox3d bounds = world.instance(instance).asset->bounds_m.cast<double>();
-  return {m.topLeftCorner<3, 3>() * bounds.center() + m.topRightCorner<3, 1>(),
-          m.topLeftCorner<3, 3>() * (0.5 * bounds.sizes()).asDiagonal()};
+  const Eigen::Matrix3d half_axes = m.topLeftCorner<3, 3>() * (0.5 * bounds.sizes()).asDiagonal();
+  return {m.topLeftCorner<3, 3>() * bounds.center() + m.topRightCorner<3, 1>(), half_axes.inverse()};
 }
 
 bool InsideBox(const OrientedBox& box, const Eigen::Vector3d& p) {
-  return (box.half_axes.inverse() * (p - box.center)).cwiseAbs().maxCoeff() <= 1;
+  return (box.unit_from_world * (p - box.center)).cwiseAbs().maxCoeff() <= 1;
 }
 
 // Does the ray o + t d (t > 0) cross triangle abc (Moller-Trumbore)?
