@@ -75,6 +75,7 @@ int RunRender(const SceneArgs& args, const SequenceOptions& options) {
   SequenceOptions o = options;
   o.cancel = &g_interrupted;
   const SequenceResult r = RenderSequence(scene, o);
+  for (const std::string& warning : r.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   std::printf("rendered %d frames (%d kept from an earlier run) into %s in %.1f s (%.1f frames/s)\n",
               r.frames_rendered, r.frames_reused, o.output_dir.c_str(), r.seconds,
               r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0);

@@ -48,9 +48,9 @@ namespace {
 
 // Renders `scene` into dataset_dir unless a complete, intact dataset of this very scene is cached
 // there, and returns it opened (checksums verified once). *cached says whether it was cached;
-// *render_s gets the rendering time.
+// *render_s gets the rendering time; the render's warnings (SequenceResult) go to *warnings.
 Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const RunOptions& options, bool* cached,
-                      double* render_s) {
+                      double* render_s, std::vector<std::string>* warnings) {
   // Reuse the cached dataset only when it is complete, intact, of this very scene and rendered
   // by this simulator. One rendered by another simulator (or with an unreadable manifest) is
   // stale: its files are deleted by their exact names and it is rendered anew. Anything else in
@@ -86,7 +86,9 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
   render.output_dir = dataset_dir;
   render.threads = options.threads;
   render.cancel = options.cancel;
-  *render_s = RenderSequence(scene, render).seconds;
+  const SequenceResult rendered = RenderSequence(scene, render);
+  warnings->insert(warnings->end(), rendered.warnings.begin(), rendered.warnings.end());
+  *render_s = rendered.seconds;
   // Not verified again: the render just checksummed every byte it wrote, and every frame it
   // kept from an interrupted run (re-reading ~0.9 GB cost 5-9 s per dataset on 2 cores).
   return Dataset::Open(dataset_dir, /*verify_checksums=*/false);
@@ -164,8 +166,9 @@ std::map<std::string, double> CalibrateLoopThresholds(const Scene& scene, const 
   out->timing.calibration_render_cached = out->timing.calibration_bench_cached = thresholds.has_value();
   if (!thresholds) {
     double render_s = 0;
-    const Dataset dataset =
-        EnsureDataset(calibration, out->calibration_dir, options, &out->timing.calibration_render_cached, &render_s);
+    std::vector<std::string> calibration_warnings;  // the test sequence's say the same
+    const Dataset dataset = EnsureDataset(calibration, out->calibration_dir, options,
+                                          &out->timing.calibration_render_cached, &render_s, &calibration_warnings);
     const std::string key = CalibrationKey(out->calibration_dir, bench);
     BenchOptions b = bench;
     b.slam = false;
@@ -195,9 +198,9 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   out.dataset_dir = folder + "/dataset";
   out.report_dir = options.report_dir.empty() ? folder + "/report" : options.report_dir;
 
-  const Dataset dataset =
-      EnsureDataset(scene, out.dataset_dir, options, &out.timing.render_cached, &out.timing.render_s);
-  out.warnings = dataset.warnings();
+  const Dataset dataset = EnsureDataset(scene, out.dataset_dir, options, &out.timing.render_cached,
+                                        &out.timing.render_s, &out.warnings);
+  out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
   BenchOptions b = bench;
   b.threads = options.threads;
   if (b.slam && std::isnan(b.slam_options.slam.loop_threshold)) {

@@ -437,6 +437,26 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
     walker_plans_.push_back(
         PlanWalker(behaviour_weights, seed_, w, duration_s_, space, robot_, walker_plans_, doors_, walker.lateral_m));
   }
+  // Walkers are planned one after another, each clear of the robot and of those before it: in
+  // narrow aisles the later ones find little or no time to walk. Say so rather than quietly
+  // rendering fewer walkers than asked for.
+  std::vector<int> idle;
+  for (int w = 0; w < walkers; ++w) {
+    double in_room_s = 0;
+    for (const WalkerSegment& s : walker_plans_[w].segments) {
+      if (s.behaviour != "gone") in_room_s += std::max(0.0, std::min(s.end_s, duration_s_) - std::max(s.start_s, 0.0));
+    }
+    if (in_room_s < 0.05 * duration_s_) idle.push_back(w + 1);
+  }
+  if (!idle.empty()) {
+    std::string which;
+    for (int w : idle) which += (which.empty() ? "" : ", ") + std::to_string(w);
+    warnings_.push_back(scene_file_ + ": crowd.walkers is " + std::to_string(walkers) + ", but walker" +
+                        (idle.size() > 1 ? "s " : " ") + which + (idle.size() > 1 ? " are" : " is") +
+                        " in the room for less than 5 % of the run: the aisles leave no clear time beside the robot "
+                        "and the walkers planned before " + (idle.size() > 1 ? "them" : "it") +
+                        ", so more walkers add little occlusion here");
+  }
   std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
     return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
   });

@@ -136,6 +136,7 @@ class SequenceRender {
   SequenceResult Run() {
     OpenOrResume();
     result_.frames_total = frames_;
+    result_.warnings = world_.warnings();
     persons_.resize(frames_);
     ProgressReporter progress("render", frames_, "frames");
     // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are

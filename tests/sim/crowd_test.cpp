@@ -232,6 +232,22 @@ double MeanOcclusion(const std::vector<std::string>& overrides) {
   return n ? sum / n : 0.0;
 }
 
+TEST(Crowd, WalkersWithNoRoomToWalkAreAWarningNamingThemNotASilentlySmallerCrowd) {
+  auto warnings = [](int walkers) {
+    const Scene scene = PaperRoom({"crowd.walkers=" + std::to_string(walkers)});
+    const BandRadianceTable table;
+    World world(scene, table);
+    world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
+    return world.warnings();
+  };
+  EXPECT_TRUE(warnings(2).empty());
+  // The paper room's 0.7 m aisles: walkers after the first few find no clear time to walk.
+  const std::vector<std::string> crowded = warnings(8);
+  ASSERT_EQ(crowded.size(), 1u);
+  EXPECT_NE(crowded[0].find("paper_room.json: crowd.walkers is 8, but walkers "), std::string::npos) << crowded[0];
+  EXPECT_NE(crowded[0].find(" are in the room for less than 5 % of the run"), std::string::npos) << crowded[0];
+}
+
 TEST(Crowd, OcclusionOfSeatedPeopleRisesWithWalkers) {
   const double none = MeanOcclusion({"crowd.walkers=0"});
   const double some = MeanOcclusion({"crowd.walkers=4"});

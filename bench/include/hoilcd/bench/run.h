@@ -31,7 +31,7 @@ struct RunOutcome {
   std::string report_dir;
   BenchResult result;
   ReportTiming timing;
-  std::vector<std::string> warnings;  // the dataset's (Dataset::warnings), for the caller to print
+  std::vector<std::string> warnings;  // the render's and the dataset's, for the caller to print
   std::string calibration_dir;  // dataset the loop thresholds came from (empty: none)
 };
 

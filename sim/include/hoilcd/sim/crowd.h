@@ -107,6 +107,8 @@ class Crowd {
 
   const std::vector<Person>& people() const { return people_; }
   const std::vector<DatasetEvent>& events() const { return events_; }
+  // What Plan could not give the scene (walkers with no room to walk), one sentence each.
+  const std::vector<std::string>& warnings() const { return warnings_; }
   const Skeleton& skeleton() const { return *skeleton_; }
 
  private:
@@ -145,6 +147,7 @@ class Crowd {
   std::vector<Seat> seats_;
   RobotTrack robot_;                          // the robot's run (Plan)
   std::vector<DatasetEvent> events_;
+  std::vector<std::string> warnings_;
   std::vector<WalkerPlan> walker_plans_;
   std::vector<Doorway> doors_;                // the room's doors (walkers come and go by them)
   uint64_t seed_ = 1;

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 #include "hoilcd/core/option_table.h"
 #include "hoilcd/sim/scene.h"
@@ -37,6 +38,7 @@ struct SequenceResult {
   double seconds = 0;        // wall time of this call
   double video_seconds = 0;  // of which encoding (and in video mode decoding) thermal.mp4, s
   bool complete = false;
+  std::vector<std::string> warnings;  // what the scene asked for and did not get (World::warnings)
 };
 
 // Thrown when SequenceOptions::cancel was set; the dataset is consistent and resumable.

@@ -36,6 +36,8 @@ class World : private CrowdStage {
 
   // arrive / leave / swap events of PlanCrowd, in frame order.
   const std::vector<DatasetEvent>& events() const { return crowd_->events(); }
+  // What PlanCrowd could not give the scene (Crowd::warnings).
+  const std::vector<std::string>& warnings() const { return crowd_->warnings(); }
 
   const RayCaster& caster() const { return *caster_; }
   const InstanceInfo& instance(int id) const { return instances_[id]; }
