@@ -10,6 +10,7 @@
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/world.h"
 #include "input_error_of.h"
+#include "planned_world.h"
 
 namespace hoilcd {
 namespace {
@@ -146,11 +147,10 @@ int DoorOf(const Scene& scene, const Eigen::Vector2d& p, double radius_m) {
 
 TEST(Walkers, AppearAndVanishOnlyInADoorwayAndLeaveTheRoomOnlyThroughOne) {
   for (const char* room : {"open_room", "paper_room"}) {
-    const Scene scene = LoadShipped(room, {"crowd.walkers=4", "crowd.walker_behaviours.cross=1"});
-    const BandRadianceTable table;
-    World world(scene, table);
-    const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
-    world.PlanCrowd(run.samples);
+    test::PlannedWorld planned(LoadShipped(room, {"crowd.walkers=4", "crowd.walker_behaviours.cross=1"}));
+    const Scene& scene = planned.scene;
+    World& world = planned.world;
+    const RobotRun& run = planned.run;
     std::map<int, bool> was_present;
     std::map<int, Eigen::Vector2d> last_at;
     std::set<int> doors_used;
@@ -197,11 +197,9 @@ TEST(Walkers, TurnSmoothlyWhereADoorWalkJoinsTheRouteOrTheyTurnBack) {
   // 40 ms apart (a brisk 180° turn takes a second; rounding a path's corner at walking pace
   // turns ~15° a frame).
   for (const char* room : {"open_room", "paper_room"}) {
-    const Scene scene = LoadShipped(room, {"crowd.walkers=4", "crowd.walker_behaviours.cross=1"});
-    const BandRadianceTable table;
-    World world(scene, table);
-    const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
-    world.PlanCrowd(run.samples);
+    test::PlannedWorld planned(LoadShipped(room, {"crowd.walkers=4", "crowd.walker_behaviours.cross=1"}));
+    World& world = planned.world;
+    const RobotRun& run = planned.run;
     std::map<int, double> last_facing;
     int turns_checked = 0;
     for (size_t f = 0; f < run.samples.size(); ++f) {
