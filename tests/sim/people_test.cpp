@@ -240,10 +240,11 @@ bool RayCrosses(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen:
 // True if world point w is inside the mesh of a body-part instance. A part is one or more closed
 // surfaces (a loft and two shoulder caps, say) that may overlap, so the ray parity is counted per
 // surface (connected set of triangles).
-bool InsidePart(const World& world, int instance, const Eigen::Vector3d& w) {
+// `surfaces` caches each mesh's surface of every triangle, for one world's meshes only.
+using SurfaceCache = std::map<const TriangleMesh*, std::vector<int>>;
+bool InsidePart(const World& world, int instance, const Eigen::Vector3d& w, SurfaceCache* surfaces) {
   const TriangleMesh& mesh = *world.instance(instance).mesh;
-  static std::map<const TriangleMesh*, std::vector<int>> surfaces;  // surface of each triangle
-  std::vector<int>& surface = surfaces[&mesh];
+  std::vector<int>& surface = (*surfaces)[&mesh];
   if (surface.empty()) {
     std::vector<int> root(mesh.positions_m.size());
     std::iota(root.begin(), root.end(), 0);
@@ -279,6 +280,7 @@ TEST(People, SeatedNeighboursNeverPassThroughEachOther) {
     World world(scene, table);
     const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
     world.PlanCrowd(run.samples);
+    SurfaceCache surfaces;  // keyed by mesh address: never kept past this world
     for (size_t f = 0; f < run.samples.size(); f += 40) {
       world.SetTime(run.samples[f].time_s);
       std::vector<const Person*> seated;
@@ -294,7 +296,7 @@ TEST(People, SeatedNeighboursNeverPassThroughEachOther) {
             for (const auto& [v, name] : vertices) {
               if (!InsideBox(box, v)) continue;
               ++near_vertices;
-              ASSERT_FALSE(InsidePart(world, part, v))
+              ASSERT_FALSE(InsidePart(world, part, v, &surfaces))
                   << file << " frame " << f << ": the " << name << " of person " << pa->person_id << " (seat "
                   << pa->table << "." << pa->seat << ", scale " << pa->height_scale << ", " << pa->activity
                   << ") is inside the " << world.instance(part).asset->part << " of person " << pb->person_id
