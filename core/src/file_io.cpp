@@ -1,14 +1,13 @@
 #include "hoilcd/core/file_io.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <xxhash.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <set>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
@@ -38,10 +37,32 @@ std::string ChecksumOf(std::string_view bytes) {
 }
 
 std::string ReadFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot read file (missing or not readable)");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path, "cannot read file (I/O error)");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path, "cannot read file (missing or not readable)");
+  struct stat st {};
+  // Sized by fstat, read in large blocks; the loop also reads files whose size stat does not
+  // know (/proc) or that grow while read.
+  std::string bytes(::fstat(fd, &st) == 0 && st.st_size > 0 ? static_cast<size_t>(st.st_size) + 1
+                                                             : size_t{1} << 16,
+                    '\0');
+  size_t size = 0;
+  for (;;) {
+    if (size == bytes.size()) bytes.resize(bytes.size() * 2);
+    const ssize_t got = ::read(fd, bytes.data() + size, bytes.size() - size);
+    if (got == 0) break;
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      const int error = errno;
+      ::close(fd);
+      // A folder opens but does not read (EISDIR): still "not readable" to the caller.
+      throw InputError(path, error == EISDIR ? "cannot read file (missing or not readable)"
+                                             : std::string("cannot read file (") +
+                                                   std::strerror(error) + ")");
+    }
+    size += static_cast<size_t>(got);
+  }
+  ::close(fd);
+  bytes.resize(size);
   return bytes;
 }
 

@@ -107,5 +107,23 @@ TEST(ReadFileBytes, MissingFileIsAnInputErrorNamingIt) {
   EXPECT_NE(message.find("nope.bin: cannot read"), std::string::npos) << message;
 }
 
+TEST(ReadFileBytes, ReadsEveryByteOfLargeEmptyAndUnsizedFiles) {
+  test::TestDir dir;
+  std::string large(3 * 65536 + 17, '\0');
+  for (size_t i = 0; i < large.size(); ++i) large[i] = static_cast<char>(i * 7919 % 251);
+  WriteFileAtomic(dir / "large.bin", large);
+  EXPECT_EQ(ReadFileBytes(dir / "large.bin"), large);
+  WriteFileAtomic(dir / "empty.bin", "");
+  EXPECT_EQ(ReadFileBytes(dir / "empty.bin"), "");
+  // /proc files report size 0 to stat but have content.
+  EXPECT_NE(ReadFileBytes("/proc/self/status").find("Name:"), std::string::npos);
+}
+
+TEST(ReadFileBytes, AFolderIsAnInputErrorNamingIt) {
+  test::TestDir dir;
+  const std::string message = InputErrorOf([&] { ReadFileBytes(dir.str()); });
+  EXPECT_NE(message.find(dir.str() + ": cannot read file"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace hoilcd
