@@ -128,12 +128,49 @@ double BandRadianceTable::KelvinFromRadiance(double radiance) const {
                      t_min_k_, step_k_);
 }
 
+namespace {
+
+// InvertTable over an array, in vector lanes: the bin look-up and the first kLaneSteps steps of
+// the segment walk are branch-free gathers; a value whose walk is longer (rare: bins are
+// narrower than segments above ~230 K) is marked in `unfinished` for the caller to redo one by
+// one. Same operations on the same segment, so the same bits as InvertTable. No FMA in either
+// clone, so both give the same doubles.
+constexpr int kLaneSteps = 2;
+
+__attribute__((target_clones("avx2", "default"))) void InvertTableLanes(
+    const double* __restrict radiance, int count, const double* __restrict table, int segments,
+    const int* __restrict first_segment, int bins, double inverse_bin, double t_min_k,
+    double step_k, double* __restrict kelvin, unsigned char* __restrict unfinished) {
+  for (int k = 0; k < count; ++k) {
+    const double l = std::clamp(radiance[k], table[0], table[segments]);
+    const int bin = std::min(static_cast<int>((l - table[0]) / inverse_bin), bins - 1);
+    int i = first_segment[bin];
+    for (int step = 0; step < kLaneSteps; ++step) i += (i < segments - 1) & (table[i + 1] <= l);
+    unfinished[k] = (i < segments - 1) & (table[i + 1] <= l);
+    const double f = (l - table[i]) / (table[i + 1] - table[i]);
+    kelvin[k] = t_min_k + (i + f) * step_k;
+  }
+}
+
+}  // namespace
+
 void BandRadianceTable::KelvinFromRadiance(const double* radiance, int count, double* kelvin) const {
   const int segments = static_cast<int>(radiance_.size()) - 1;
   const int bins = static_cast<int>(first_segment_.size());
-  for (int k = 0; k < count; ++k) {
-    kelvin[k] = InvertTable(radiance[k], radiance_.data(), segments, first_segment_.data(), bins,
-                            inverse_bin_, t_min_k_, step_k_);
+  constexpr int kBatch = 256;
+  double in[kBatch];
+  unsigned char unfinished[kBatch];
+  for (int begin = 0; begin < count; begin += kBatch) {
+    const int n = std::min(kBatch, count - begin);
+    std::copy(radiance + begin, radiance + begin + n, in);  // kelvin may be radiance
+    InvertTableLanes(in, n, radiance_.data(), segments, first_segment_.data(), bins, inverse_bin_,
+                     t_min_k_, step_k_, kelvin + begin, unfinished);
+    for (int k = 0; k < n; ++k) {
+      if (unfinished[k]) {
+        kelvin[begin + k] = InvertTable(in[k], radiance_.data(), segments, first_segment_.data(),
+                                        bins, inverse_bin_, t_min_k_, step_k_);
+      }
+    }
   }
 }
 

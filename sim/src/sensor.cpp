@@ -15,16 +15,51 @@ namespace {
 
 constexpr int64_t kRowsPerChunk = 16;
 
-// std::round (halves away from zero) without a libm call: the truncation and the remainder
-// are exact below 2^52, where every double is an integer anyway.
+// std::round (halves away from zero) in vector lanes: beyond 2^52 (and for NaN and ±inf) every
+// double is its own rounding; below, the truncation and the remainder are exact.
 inline double RoundHalfAway(double x) {
-  if (!(std::abs(x) < 4503599627370496.0)) return std::round(x);
-  const double t = static_cast<double>(static_cast<int64_t>(x));
-  const double rest = x - t;
+  const bool small = std::abs(x) < 4503599627370496.0;
+  const double v = small ? x : 0.0;
+  const double t = std::trunc(v);
+  const double rest = v - t;
   // Selects rather than branches (the remainder is random per pixel); exact as t is an integer
   // below 2^52. copysign: round gives −0 for x in (−0.5, −0].
   const double up = rest >= 0.5 ? 1.0 : 0.0, down = rest <= -0.5 ? 1.0 : 0.0;
-  return std::copysign(t + up - down, x);
+  return small ? std::copysign(t + up - down, v) : x;
+}
+
+// What Apply adds to a pixel's signal between the blur and the table inversion (steps 2-6).
+struct SignalEffects {
+  bool time_constant, fixed_pattern, temporal_noise, grey;
+  float blend;
+  double shutter_radiance, drift_signal, shading_signal, noise_signal, reflected_part, emissivity;
+};
+
+// Steps 2-6 for one row, branch-free per pixel so that the loop runs in vector lanes; the AVX2
+// clone has no FMA, so both clones give the same doubles.
+__attribute__((target_clones("avx2", "default"))) void SignalRow(
+    const SignalEffects& e, int width, const float* __restrict now, const float* __restrict before,
+    const float* __restrict gain, const float* __restrict offset, const float* __restrict shading,
+    const float* __restrict noise, double* __restrict signal) {
+  for (int x = 0; x < width; ++x) {
+    double s = now[x];
+    if (e.time_constant) s = e.blend * now[x] + (1.0f - e.blend) * before[x];
+    if (e.fixed_pattern) s += gain[x] * (s - e.shutter_radiance) + offset[x];
+    s += e.drift_signal + e.shading_signal * shading[x];
+    if (e.temporal_noise) s += e.noise_signal * noise[x];
+    if (e.grey) s = (s - e.reflected_part) / e.emissivity;
+    signal[x] = s;
+  }
+}
+
+// Step 8: kelvin to °C, rounded to the quantisation step when `step_k` > 0.
+__attribute__((target_clones("avx2", "default"))) void CelsiusRow(
+    int width, const double* __restrict kelvin, double step_k, float* __restrict out) {
+  for (int x = 0; x < width; ++x) {
+    float t_c = static_cast<float>(kelvin[x] - kZeroCelsiusK);
+    if (step_k > 0) t_c = static_cast<float>(RoundHalfAway(t_c / step_k) * step_k);
+    out[x] = t_c;
+  }
 }
 
 }  // namespace
@@ -258,18 +293,20 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
     last_frame_ = frame;
     return shown_.clone();
   }
-  const double shading_signal = responsivity_ * HousingWarmingK(frame);
-  const double drift_signal = responsivity_ * DriftK(frame);
-  const double noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
-  const double step_k = options_.quantisation_step_k;
-  const double shutter_radiance = shutter_radiance_;
-  const bool time_constant = options_.time_constant, fixed_pattern = options_.fixed_pattern;
-  const bool temporal_noise = options_.temporal_noise, quantisation = options_.quantisation;
-  const float blend = blend_;
+  SignalEffects effects;
+  effects.time_constant = options_.time_constant;
+  effects.fixed_pattern = options_.fixed_pattern;
+  effects.temporal_noise = options_.temporal_noise;
+  effects.blend = blend_;
+  effects.shutter_radiance = shutter_radiance_;
+  effects.drift_signal = responsivity_ * DriftK(frame);
+  effects.shading_signal = responsivity_ * HousingWarmingK(frame);
+  effects.noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
   // ApparentCelsius's emissivity correction, in the same arithmetic.
-  const bool grey = options_.emissivity_setting < 1.0;
-  const double emissivity = options_.emissivity_setting;
-  const double reflected_part = (1.0 - options_.emissivity_setting) * reflected_radiance_;
+  effects.grey = options_.emissivity_setting < 1.0;
+  effects.emissivity = options_.emissivity_setting;
+  effects.reflected_part = (1.0 - options_.emissivity_setting) * reflected_radiance_;
+  const double step_k = options_.quantisation ? options_.quantisation_step_k : 0.0;
   const uint64_t noise_key =
       HashCombine(seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
 
@@ -278,30 +315,13 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
     float* noise = noise_scratch_.data() + static_cast<size_t>(worker) * width_;
     double* signal = signal_scratch_.data() + static_cast<size_t>(worker) * width_;
     for (int64_t y = begin; y < end; ++y) {
-      const float* now = blurred.ptr<float>(static_cast<int>(y));
-      const float* before = previous.ptr<float>(static_cast<int>(y));
-      const float* gain = gain_.ptr<float>(static_cast<int>(y));
-      const float* offset = offset_signal_.ptr<float>(static_cast<int>(y));
-      const float* shading = shading_shape_.ptr<float>(static_cast<int>(y));
-      float* out = temperature.ptr<float>(static_cast<int>(y));
-      if (temporal_noise) KeyedNormals(noise_key, y * width_, width_, noise);
-      // Steps 2-6 in the signal domain, branch-free per pixel so that the loop runs in lanes.
-      for (int x = 0; x < width_; ++x) {
-        double s = now[x];
-        if (time_constant) s = blend * now[x] + (1.0f - blend) * before[x];
-        if (fixed_pattern) s += gain[x] * (s - shutter_radiance) + offset[x];
-        s += drift_signal + shading_signal * shading[x];
-        if (temporal_noise) s += noise_signal * noise[x];
-        if (grey) s = (s - reflected_part) / emissivity;
-        signal[x] = s;
-      }
+      const int row = static_cast<int>(y);
+      if (effects.temporal_noise) KeyedNormals(noise_key, y * width_, width_, noise);
+      SignalRow(effects, width_, blurred.ptr<float>(row), previous.ptr<float>(row), gain_.ptr<float>(row),
+                offset_signal_.ptr<float>(row), shading_shape_.ptr<float>(row), noise, signal);
       // Step 7: the table inversion (a gather per pixel), then the quantisation.
       table_->KelvinFromRadiance(signal, width_, signal);
-      for (int x = 0; x < width_; ++x) {
-        float t_c = static_cast<float>(signal[x] - kZeroCelsiusK);
-        if (quantisation) t_c = static_cast<float>(RoundHalfAway(t_c / step_k) * step_k);
-        out[x] = t_c;
-      }
+      CelsiusRow(width_, signal, step_k, temperature.ptr<float>(row));
     }
   });
   std::swap(previous_, spare_);

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <cstring>
+#include <vector>
 
 namespace hoilcd {
 namespace {
@@ -54,6 +57,33 @@ TEST(BandRadianceTable, InverseRoundTripsTemperatureAndRadiance) {
   }
   for (float t_c = -20.0f; t_c <= 70.0f; t_c += 0.173f) {
     ASSERT_NEAR(table.CelsiusFromRadiance(table.RadianceFromCelsius(t_c)), t_c, 2e-5f) << t_c;
+  }
+}
+
+TEST(BandRadianceTable, ArrayInverseGivesTheBitsOfTheOneValueInverse) {
+  // The LWIR default, and an MWIR table over a wide range whose inverse bins span many segments
+  // at its cold end (the array form's long-walk path).
+  for (const BandRadianceTable& table : {BandRadianceTable(), BandRadianceTable(3.0, 5.0, 150.0, 900.0)}) {
+    std::vector<double> radiance;
+    // Points on, just below and between the knots over the whole range, values outside it.
+    for (double t_k = table.t_min_k() - 10; t_k <= table.t_max_k() + 10; t_k += 0.0125) {
+      const double clamped = std::clamp(t_k, table.t_min_k(), table.t_max_k());
+      radiance.push_back(table.RadianceFromKelvin(t_k));
+      radiance.push_back(std::nextafter(radiance.back(), 0.0));
+      radiance.push_back(PlanckBandSeries(clamped, table.lambda_min_um(), table.lambda_max_um()));
+    }
+    for (double v : {0.0, -1.0, 1e-300, 1e6, -0.0}) radiance.push_back(v);
+    std::vector<double> kelvin(radiance.size());
+    table.KelvinFromRadiance(radiance.data(), static_cast<int>(radiance.size()), kelvin.data());
+    for (size_t i = 0; i < radiance.size(); ++i) {
+      const double one = table.KelvinFromRadiance(radiance[i]);
+      ASSERT_EQ(std::memcmp(&one, &kelvin[i], sizeof one), 0)
+          << table.lambda_min_um() << " um, " << radiance[i] << ": " << one << " vs " << kelvin[i];
+    }
+    // In place, as the sensor model calls it.
+    std::vector<double> in_place = radiance;
+    table.KelvinFromRadiance(in_place.data(), static_cast<int>(in_place.size()), in_place.data());
+    EXPECT_EQ(std::memcmp(in_place.data(), kelvin.data(), kelvin.size() * sizeof(double)), 0);
   }
 }
 
