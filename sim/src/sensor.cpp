@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -335,11 +336,21 @@ cv::Mat SensorModel::IdealTemperature(const cv::Mat& radiance) const {
                        radiance.rows == height_,
                    "radiance must be CV_32F " << width_ << "x" << height_);
   cv::Mat temperature(height_, width_, CV_32F);
+  // ApparentCelsius per pixel, a row at a time through the table's array inverse.
+  const bool grey = options_.emissivity_setting < 1.0;
+  const double emissivity = options_.emissivity_setting;
+  const double reflected_part = (1.0 - options_.emissivity_setting) * reflected_radiance_;
   ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int) {
+    std::vector<double> signal(static_cast<size_t>(width_));
     for (int64_t y = begin; y < end; ++y) {
       const float* in = radiance.ptr<float>(static_cast<int>(y));
-      float* out = temperature.ptr<float>(static_cast<int>(y));
-      for (int x = 0; x < width_; ++x) out[x] = ApparentCelsius(in[x]);
+      for (int x = 0; x < width_; ++x) {
+        double s = in[x];
+        if (grey) s = (s - reflected_part) / emissivity;
+        signal[x] = s;
+      }
+      table_->KelvinFromRadiance(signal.data(), width_, signal.data());
+      CelsiusRow(width_, signal.data(), /*step_k=*/0.0, temperature.ptr<float>(static_cast<int>(y)));
     }
   });
   return temperature;
