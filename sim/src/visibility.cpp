@@ -74,6 +74,7 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
     }
     if (!in_front && visible == 0) continue;
     int alone = visible, ax0 = W, ay0 = H, ax1 = -1, ay1 = -1;
+    RayHitPacket hits;
     if (!windows.empty()) {
       const int mask_w = ub - ua + 1;
       alone_mask.assign(static_cast<size_t>(mask_w) * (vb - va + 1), 0);
@@ -85,7 +86,6 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
       }
       Eigen::Vector3f directions[kRayPacketSize];
       int pixels[kRayPacketSize];
-      RayHitPacket hits;
       for (const PartWindow& w : windows) {
         for (int by = w.va; by <= w.vb; by += 4) {
           for (int bx = w.ua; bx <= w.ub; bx += 4) {
@@ -153,7 +153,12 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
       record.contacts.push_back(c);
     }
     // COCO keypoints; visible when inside the image and the depth buffer at its pixel is not
-    // closer than the person's own surface there (nothing else in front of the body).
+    // closer than the person's own surface there (nothing else in front of the body). The rays
+    // of a person's keypoints are cast against each body part as packets.
+    std::array<Eigen::Vector3f, kCocoKeypointCount> key_rays, key_directions;
+    std::array<float, kCocoKeypointCount> key_depth;
+    std::array<int, kCocoKeypointCount> key_index;
+    int key_count = 0;
     for (int k = 0; k < kCocoKeypointCount; ++k) {
       const Eigen::Vector3d& w = person.keypoints_m[k];
       KeypointRecord kp;
@@ -167,14 +172,26 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
         if (inside(uv) && !depth_m.empty()) {
           const int u = std::clamp(static_cast<int>(std::lround(uv.x())), 0, W - 1);
           const int v = std::clamp(static_cast<int>(std::lround(uv.y())), 0, H - 1);
-          const Eigen::Vector3f ray = intrinsics.Unproject(u, v).cast<float>().normalized();
-          float own = std::numeric_limits<float>::infinity();
-          for (int part : person.parts) own = std::min(own, world.caster().IntersectInstance(part, origin, R * ray).distance_m);
-          const float z = depth_m.at<float>(v, u);
-          kp.visible = std::isfinite(own) && z >= own * ray.z() - 0.01f;
+          key_rays[key_count] = intrinsics.Unproject(u, v).cast<float>().normalized();
+          key_directions[key_count] = R * key_rays[key_count];
+          key_depth[key_count] = depth_m.at<float>(v, u);
+          key_index[key_count++] = k;
         }
       }
       record.keypoints.push_back(kp);
+    }
+    std::array<float, kCocoKeypointCount> own;
+    own.fill(std::numeric_limits<float>::infinity());
+    for (int part : person.parts) {
+      for (int begin = 0; begin < key_count; begin += kRayPacketSize) {
+        const int count = std::min(kRayPacketSize, key_count - begin);
+        world.caster().IntersectInstancePacket(part, origin, key_directions.data() + begin, count, &hits);
+        for (int i = 0; i < count; ++i) own[begin + i] = std::min(own[begin + i], hits.distance_m[i]);
+      }
+    }
+    for (int i = 0; i < key_count; ++i) {
+      record.keypoints[key_index[i]].visible =
+          std::isfinite(own[i]) && key_depth[i] >= own[i] * key_rays[i].z() - 0.01f;
     }
     // Image-space contacts: where the bottom of the visible person meets a table or chair in
     // the image, i.e. what DLCD's HOI points recover. Up to kImageContacts evenly spaced columns.
