@@ -130,7 +130,7 @@ void BM_Stages(benchmark::State& state) {
           benchmark::DoNotOptimize(whole_sensor.Apply(f, buffers.radiance).data);
           benchmark::DoNotOptimize(whole_sensor.IdealTemperature(buffers.radiance).data);
           benchmark::DoNotOptimize(
-              VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m).data());
+              VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m, settings.threads).data());
         });
       }
       // Writing: N frames less 1 frame, so set-up (assets, BVH, the route) cancels out.

@@ -10,6 +10,7 @@
 #include "hoilcd/bench/loop_closure_method.h"
 #include "hoilcd/bench/method_params.h"
 #include "hoilcd/bench/methods.h"
+#include "hoilcd/core/allocator.h"
 #include "hoilcd/core/error.h"
 
 namespace hoilcd {
@@ -59,6 +60,7 @@ const MethodRun* BenchResult::Find(const std::string& name) const {
 }
 
 BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
+  KeepFreedMemoryForReuse();  // decoded frames and per-pair buffers come and go on every thread
   BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "hoilcd/core/allocator.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
 #include "hoilcd/core/parallel.h"
@@ -270,7 +271,7 @@ class SequenceRender {
       ids = buffers.instance;
       depth = StoredDepth(buffers.depth_m);
     }
-    if (!ids.empty()) persons_[f] = {f, VisiblePersons(world_, intrinsics_, run_.samples[f].camera, ids, depth)};
+    if (!ids.empty()) persons_[f] = {f, VisiblePersons(world_, intrinsics_, run_.samples[f].camera, ids, depth, options_.threads)};
   }
 
   // The depth as the EXR stores it (half), which the persons' ground truth reads, so that a
@@ -306,7 +307,8 @@ class SequenceRender {
                                  buffers.instance, buffers.class_id);
     }
     if (outputs_.persons) {
-      persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, StoredDepth(buffers.depth_m))};
+      persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, StoredDepth(buffers.depth_m),
+                                        options_.threads)};
     }
     return out;
   }
@@ -414,6 +416,7 @@ class SequenceRender {
 
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("render", problem);
+  KeepFreedMemoryForReuse();  // frames are allocated here and freed by the writer's threads
   const auto start = std::chrono::steady_clock::now();
   SequenceResult result = SequenceRender(scene, options).Run();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

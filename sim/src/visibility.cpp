@@ -5,12 +5,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+
+#include "hoilcd/core/parallel.h"
 
 namespace hoilcd {
 
 std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
                                          const CameraPose& pose, const cv::Mat& instance_ids,
-                                         const cv::Mat& depth_m) {
+                                         const cv::Mat& depth_m, int threads) {
   const Rigid3 world_from_cam = pose.WorldFromCam();
   const Rigid3 cam_from_world = world_from_cam.Inverse();
   const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
@@ -34,9 +37,13 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
       s.x0 = std::min(s.x0, x), s.x1 = std::max(s.x1, x), s.y0 = std::min(s.y0, y), s.y1 = std::max(s.y1, y);
     }
   }
-  std::vector<uint8_t> alone_mask;  // per pixel of a person's window: 1 where they cover it alone
-  for (const Person& person : world.people()) {
-    if (!person.present) continue;
+  // Each person on their own (in parallel): only their record and their own scratch change.
+  const std::vector<Person>& people = world.people();
+  std::vector<std::optional<PersonRecord>> records(people.size());
+  ParallelFor(static_cast<int64_t>(people.size()), threads, [&](int64_t person_index) {
+    const Person& person = people[person_index];
+    std::vector<uint8_t> alone_mask;  // per pixel of the person's window: 1 where they cover it alone
+    if (!person.present) return;
     const int instance = person.instance;
     int visible = seen[instance].pixels, x0 = seen[instance].x0, y0 = seen[instance].y0,
         x1 = seen[instance].x1, y1 = seen[instance].y1;
@@ -72,7 +79,7 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
       windows.push_back(w);
       ua = std::min(ua, w.ua), ub = std::max(ub, w.ub), va = std::min(va, w.va), vb = std::max(vb, w.vb);
     }
-    if (!in_front && visible == 0) continue;
+    if (!in_front && visible == 0) return;
     int alone = visible, ax0 = W, ay0 = H, ax1 = -1, ay1 = -1;
     RayHitPacket hits;
     if (!windows.empty()) {
@@ -114,7 +121,7 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
     // In view but hidden behind something: listed with visible fraction 0 and the box it would
     // cover alone, so occlusion statistics do not lose the people occluded completely.
     if (visible == 0) {
-      if (alone == 0) continue;
+      if (alone == 0) return;
       x0 = ax0, x1 = ax1, y0 = ay0, y1 = ay1;
     }
     alone = std::max(alone, visible);
@@ -218,7 +225,10 @@ std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrins
     for (size_t k = 0; k < std::min(kImageContacts, edge.size()); ++k) {
       record.contacts.push_back(edge[(2 * k + 1) * edge.size() / (2 * std::min(kImageContacts, edge.size()))]);
     }
-    out.push_back(std::move(record));
+    records[person_index] = std::move(record);
+  });
+  for (std::optional<PersonRecord>& record : records) {
+    if (record) out.push_back(std::move(*record));
   }
   return out;
 }

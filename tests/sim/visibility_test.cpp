@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/scene.h"
@@ -62,6 +65,51 @@ TEST(VisiblePersons, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCovers
   }
   EXPECT_GT(checked, 10);
   EXPECT_GT(occluded, 3);
+}
+
+TEST(VisiblePersons, KeypointVisibilityIsThatOfSingleRaysAndTheRecordsDoNotDependOnThreads) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  world.PlanCrowd(run.samples);
+  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 2));
+  int visible = 0, hidden = 0;
+  for (const int f : {150, 300, 700, 1200, 1500, 1900}) {
+    world.SetTime(run.samples[f].time_s);
+    const CameraPose& pose = run.samples[f].camera;
+    const FrameBuffers frame = renderer.Render(pose);
+    const std::vector<PersonRecord> one = VisiblePersons(world, intrinsics, pose, frame.instance, frame.depth_m, 1);
+    const std::vector<PersonRecord> two = VisiblePersons(world, intrinsics, pose, frame.instance, frame.depth_m, 2);
+    EXPECT_EQ(PersonsToJson({{f, one}}), PersonsToJson({{f, two}})) << "frame " << f;
+    // The definition, one ray per keypoint and body part: visible when nothing in the depth
+    // buffer is closer than the person's own surface along the keypoint pixel's ray.
+    const Rigid3 world_from_cam = pose.WorldFromCam();
+    const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
+    const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
+    for (const PersonRecord& record : one) {
+      const auto person = std::find_if(world.people().begin(), world.people().end(),
+                                       [&](const Person& p) { return p.person_id == record.id; });
+      ASSERT_NE(person, world.people().end());
+      for (const KeypointRecord& kp : record.keypoints) {
+        if (kp.u_px < -0.5 || kp.v_px < -0.5 || kp.u_px >= intrinsics.width - 0.5 || kp.v_px >= intrinsics.height - 0.5) {
+          EXPECT_FALSE(kp.visible);
+          continue;
+        }
+        const int u = std::clamp(static_cast<int>(std::lround(kp.u_px)), 0, intrinsics.width - 1);
+        const int v = std::clamp(static_cast<int>(std::lround(kp.v_px)), 0, intrinsics.height - 1);
+        const Eigen::Vector3f ray = intrinsics.Unproject(u, v).cast<float>().normalized();
+        float own = std::numeric_limits<float>::infinity();
+        for (int part : person->parts) own = std::min(own, world.caster().IntersectInstance(part, origin, R * ray).distance_m);
+        const bool expected = std::isfinite(own) && frame.depth_m.at<float>(v, u) >= own * ray.z() - 0.01f;
+        EXPECT_EQ(kp.visible, expected) << "frame " << f << " person " << record.id << " " << kp.name;
+        (expected ? visible : hidden)++;
+      }
+    }
+  }
+  EXPECT_GT(visible, 50) << hidden;
+  EXPECT_GT(hidden, 20) << visible;
 }
 
 }  // namespace

@@ -18,9 +18,10 @@ namespace hoilcd {
 // along the camera's z axis (FrameBuffers::depth_m; empty: no keypoint is marked visible). Lists
 // every person present and in view, in person-id order: with their visible-pixel box, or, when
 // something hides them completely, with visible fraction 0 and the box they would cover alone;
-// with their contacts and 17 COCO keypoints projected.
+// with their contacts and 17 COCO keypoints projected. People are looked at on `threads`
+// threads (0: every core); the result does not depend on it.
 std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
                                          const CameraPose& pose, const cv::Mat& instance_ids,
-                                         const cv::Mat& depth_m);
+                                         const cv::Mat& depth_m, int threads = 1);
 
 }  // namespace hoilcd
