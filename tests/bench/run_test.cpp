@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <map>
 
+#include <nlohmann/json.hpp>
+
 
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
@@ -151,6 +153,47 @@ TEST(RunScene, TheSlamCalibrationIsCachedDatasetAndThresholdsAndRedoneWhenItsInp
   BenchOptions fewer_trials = bench;
   fewer_trials.params = {"slcd.ransac_trials=10"};
   EXPECT_FALSE(RunScene(scene, fewer_trials, options).timing.calibration_bench_cached);
+}
+
+TEST(RunScene, TheCalibrationDatasetHoldsOnlyWhatTheBenchReadsAndAFullOneServesAsWell) {
+  const test::TestDir temp;
+  const Scene scene = TinyRoom();
+  BenchOptions bench;
+  bench.methods = {"slcd", "dlcd", "thumb"};
+  bench.slam = true;
+  const RunOptions options = CachedIn(temp.str());
+  const RunOutcome first = RunScene(scene, bench, options);
+  EXPECT_EQ(Dataset::Open(first.calibration_dir).manifest().outputs.ToText(), "thermal,radiometric,persons");
+  EXPECT_FALSE(fs::exists(first.calibration_dir + "/exr"));
+  EXPECT_FALSE(fs::exists(first.calibration_dir + "/thermal.mp4"));
+  EXPECT_EQ(Dataset::Open(first.dataset_dir).manifest().outputs.ToText(), "thermal,radiometric,exr,video,persons");
+
+  // The same calibration sequence rendered with every output (as before this change) is reused
+  // as it is, and gives the same thresholds.
+  nlohmann::json doc = scene.resolved;
+  doc["seed"] = scene.seed + options.calibration_seed_offset;
+  const Scene calibration = SceneFromJson(doc, "calibration");
+  fs::remove_all(fs::path(first.calibration_dir).parent_path());
+  SequenceOptions full;
+  full.output_dir = first.calibration_dir;
+  RenderSequence(calibration, full);
+  const RunOutcome second = RunScene(scene, bench, options);
+  EXPECT_TRUE(second.timing.calibration_render_cached);
+  EXPECT_FALSE(second.timing.calibration_bench_cached);
+  ExpectSameThresholds(ThresholdsOf(first), ThresholdsOf(second));
+
+  // A partial calibration dataset with other outputs is stale: rendered again, not an error.
+  fs::remove_all(fs::path(first.calibration_dir).parent_path());
+  full.frames = 3;
+  RenderSequence(calibration, full);
+  DatasetManifest partial = DatasetManifest::FromJson(ReadFileBytes(first.calibration_dir + "/manifest.json"), "m");
+  partial.complete = false;
+  partial.frame_count = calibration.frames;
+  WriteFileAtomic(first.calibration_dir + "/manifest.json", partial.ToJson());
+  const RunOutcome third = RunScene(scene, bench, options);
+  EXPECT_FALSE(third.timing.calibration_render_cached);
+  ExpectSameThresholds(ThresholdsOf(first), ThresholdsOf(third));
+  EXPECT_EQ(Dataset::Open(first.calibration_dir).manifest().outputs.ToText(), "thermal,radiometric,persons");
 }
 
 }  // namespace
