@@ -17,14 +17,16 @@ double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::
 // tracker over it in order; a block's masks (48 kB each at 256x192) are all that is held.
 constexpr int kPersonBlockFrames = 64;
 
-// DLCD's front end over the sequence: decoding and person detection per frame in parallel, then
-// ByteTrack and the HOI points in frame order (the tracker carries state), block by block.
+// DLCD's front end over the sequence, block by block: decoding and person detection per frame in
+// parallel, ByteTrack in frame order (the tracker carries state), then each frame's HOI points
+// from its tracks in parallel.
 void RunPersonFrontEnd(const Dataset& dataset, const FrontEndOptions& options, FrontEndOutput* out) {
   const int n = dataset.num_frames();
   out->hoi.assign(n, {});
   out->persons_ms.assign(n, 0.0);
   ByteTracker tracker(options.tracker);
   std::vector<PersonDetections> detections(kPersonBlockFrames);
+  std::vector<std::vector<Track>> tracks(kPersonBlockFrames);
   ProgressReporter progress("persons", n, "frames");
   const bool video_mode = IsVideoMode(dataset);
   for (int block = 0; block < n; block += kPersonBlockFrames) {
@@ -36,18 +38,25 @@ void RunPersonFrontEnd(const Dataset& dataset, const FrontEndOptions& options, F
       detections[i] = DetectPersons(input.thermal_u8, input.radiometric_c, options.detector);
       out->persons_ms[f] = MsSince(t);
     });
+    for (int i = 0; i < size; ++i) {  // the tracker in frame order
+      const auto t = Clock::now();
+      tracks[i] = tracker.Update(detections[i].detections);
+      out->persons_ms[block + i] += MsSince(t);
+    }
+    ParallelFor(size, options.threads, [&](int64_t i) {  // each frame's HOI points from its tracks
+      const int f = block + static_cast<int>(i);
+      const auto t = Clock::now();
+      out->hoi[f] = ExtractHoiFeatures(detections[i].mask, tracks[i], options.hoi);
+      out->persons_ms[f] += MsSince(t);
+    });
     for (int i = 0; i < size; ++i) {
       const int f = block + i;
-      const auto t = Clock::now();
-      const std::vector<Track> tracks = tracker.Update(detections[i].detections);
-      out->hoi[f] = ExtractHoiFeatures(detections[i].mask, tracks, options.hoi);
-      out->persons_ms[f] += MsSince(t);
       std::vector<Point2> points;
       for (const HoiFeature& h : out->hoi[f]) points.push_back(h.point);
       out->hoi_index.Add(points);
       FrameTracks ft;
       ft.frame = f;
-      for (const Track& track : tracks) {
+      for (const Track& track : tracks[i]) {
         TrackedBox box{track.id, track.box, {}};
         for (const HoiFeature& h : out->hoi[f])
           if (h.track_id == track.id) box.hoi_points_px.push_back(h.point);
