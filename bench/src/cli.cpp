@@ -178,7 +178,7 @@ void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
 
 int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads,
                     const std::string& dump_scores, const GateArgs& gate) {
-  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true);
+  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true, threads);
   for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const BenchOptions options = ResolveBench(args, threads);
   if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work

@@ -2,15 +2,19 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "hoilcd/core/error.h"
 #include "hoilcd/core/json_reader.h"
@@ -259,7 +263,161 @@ std::string PersonsToJson(const std::vector<FramePersons>& frames) {
   return json{{"frames", out_frames}}.dump(1) + "\n";
 }
 
-std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path) {
+namespace {
+
+// One element of persons.json's "frames" array, at JSON pointer fp; problems go to reader.
+FramePersons FramePersonsFromJson(const json& frame, const std::string& fp, JsonReader& reader) {
+  reader.CheckKeys(frame, fp, {"frame", "persons"});
+  FramePersons f;
+  reader.Read(frame, fp, "frame", &f.frame);
+  if (!frame.contains("persons")) reader.Add(fp + "/persons", "missing");
+  if (frame.contains("persons") && reader.ExpectArray(frame["persons"], fp + "/persons")) {
+    const json& jp = frame["persons"];
+    for (size_t k = 0; k < jp.size(); ++k) {
+      const std::string pp = fp + "/persons/" + std::to_string(k);
+      if (!reader.ExpectObject(jp[k], pp)) continue;
+      reader.CheckKeys(jp[k], pp, {"id", "box_px", "visible_fraction", "occlusion_fraction",
+                                   "seated", "posture", "contacts", "keypoints"});
+      PersonRecord p;
+      reader.Read(jp[k], pp, "id", &p.id);
+      const auto box = jp[k].find("box_px");
+      if (box == jp[k].end()) {
+        reader.Add(pp + "/box_px", "missing");
+      } else if (!box->is_array() || box->size() != 4) {
+        reader.Add(pp + "/box_px", "expected [x, y, width, height]");
+      } else {
+        reader.ReadValue((*box)[0], pp + "/box_px/0", &p.box_px.x);
+        reader.ReadValue((*box)[1], pp + "/box_px/1", &p.box_px.y);
+        reader.ReadValue((*box)[2], pp + "/box_px/2", &p.box_px.width);
+        reader.ReadValue((*box)[3], pp + "/box_px/3", &p.box_px.height);
+      }
+      reader.Read(jp[k], pp, "visible_fraction", &p.visible_fraction);
+      reader.Read(jp[k], pp, "occlusion_fraction", &p.occlusion_fraction);
+      reader.Read(jp[k], pp, "seated", &p.seated);
+      reader.Read(jp[k], pp, "posture", &p.posture);
+      const auto contacts = jp[k].find("contacts");
+      if (contacts == jp[k].end()) {
+        reader.Add(pp + "/contacts", "missing");
+      } else if (reader.ExpectArray(*contacts, pp + "/contacts")) {
+        for (size_t c = 0; c < contacts->size(); ++c) {
+          const std::string cp = pp + "/contacts/" + std::to_string(c);
+          const json& jc = (*contacts)[c];
+          if (!reader.ExpectObject(jc, cp)) continue;
+          reader.CheckKeys(jc, cp, {"name", "u_px", "v_px", "visible"});
+          ContactRecord contact;
+          reader.Read(jc, cp, "name", &contact.name);
+          reader.Read(jc, cp, "u_px", &contact.u_px);
+          reader.Read(jc, cp, "v_px", &contact.v_px);
+          reader.Read(jc, cp, "visible", &contact.visible);
+          p.contacts.push_back(contact);
+        }
+      }
+      const auto keypoints = jp[k].find("keypoints");
+      if (keypoints != jp[k].end() && reader.ExpectArray(*keypoints, pp + "/keypoints")) {
+        for (size_t c = 0; c < keypoints->size(); ++c) {
+          const std::string kp = pp + "/keypoints/" + std::to_string(c);
+          const json& jk = (*keypoints)[c];
+          if (!reader.ExpectObject(jk, kp)) continue;
+          reader.CheckKeys(jk, kp, {"name", "world_m", "u_px", "v_px", "visible"});
+          KeypointRecord keypoint;
+          reader.Read(jk, kp, "name", &keypoint.name);
+          const auto world = jk.find("world_m");
+          if (world == jk.end() || !world->is_array() || world->size() != 3) {
+            reader.Add(kp + "/world_m", "expected [x, y, z] in metres");
+          } else {
+            for (int i = 0; i < 3; ++i) {
+              reader.ReadValue((*world)[i], kp + "/world_m/" + std::to_string(i), &keypoint.world_m[i]);
+            }
+          }
+          reader.Read(jk, kp, "u_px", &keypoint.u_px);
+          reader.Read(jk, kp, "v_px", &keypoint.v_px);
+          reader.Read(jk, kp, "visible", &keypoint.visible);
+          p.keypoints.push_back(keypoint);
+        }
+      }
+      f.persons.push_back(std::move(p));
+    }
+  }
+  return f;
+}
+
+// Byte ranges of the elements of the "frames" array of a persons.json shaped as PersonsToJson
+// writes it ({"frames": [...]} and nothing else), or nothing for any other text. Hand-written:
+// it lets the elements be parsed in parallel, and JSON libraries give no element boundaries
+// without building the whole document first.
+std::optional<std::vector<std::pair<size_t, size_t>>> FrameElementRanges(const std::string& text) {
+  size_t i = 0;
+  auto skip_space = [&] {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\n' || text[i] == '\r' || text[i] == '\t')) ++i;
+  };
+  auto expect = [&](std::string_view token) {
+    skip_space();
+    if (text.compare(i, token.size(), token) != 0) return false;
+    i += token.size();
+    return true;
+  };
+  if (!expect("{") || !expect("\"frames\"") || !expect(":") || !expect("[")) return std::nullopt;
+  std::vector<std::pair<size_t, size_t>> ranges;
+  skip_space();
+  if (i < text.size() && text[i] == ']') {
+    ++i;
+  } else {
+    for (;;) {
+      skip_space();
+      const size_t begin = i;
+      int depth = 0;
+      bool in_string = false;
+      for (; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+          if (c == '\\') ++i;  // the escaped character
+          else if (c == '"') in_string = false;
+        } else if (c == '"') {
+          in_string = true;
+        } else if (c == '{' || c == '[') {
+          ++depth;
+        } else if (c == '}' || c == ']') {
+          if (depth == 0) break;
+          --depth;
+        } else if (c == ',' && depth == 0) {
+          break;
+        }
+      }
+      if (i >= text.size() || in_string || depth != 0 || i == begin) return std::nullopt;
+      ranges.emplace_back(begin, i);
+      if (text[i++] == ']') break;
+    }
+  }
+  if (!expect("}")) return std::nullopt;
+  skip_space();
+  if (i != text.size()) return std::nullopt;
+  return ranges;
+}
+
+}  // namespace
+
+std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path, int threads) {
+  // Fast path, for well-formed files: the frames parsed and read in parallel. Anything amiss
+  // falls through to reading the whole document, which names every problem.
+  if (const auto ranges = FrameElementRanges(text)) {
+    std::vector<FramePersons> frames(ranges->size());
+    std::atomic<bool> failed{false};
+    ParallelFor(static_cast<int64_t>(ranges->size()), threads, [&](int64_t k) {
+      if (failed) return;
+      const auto [begin, end] = (*ranges)[static_cast<size_t>(k)];
+      const json frame = json::parse(text.begin() + static_cast<std::ptrdiff_t>(begin),
+                                     text.begin() + static_cast<std::ptrdiff_t>(end), nullptr,
+                                     /*allow_exceptions=*/false);
+      JsonReader reader(path);
+      if (frame.is_discarded() || !frame.is_object()) {
+        failed = true;
+        return;
+      }
+      frames[static_cast<size_t>(k)] = FramePersonsFromJson(frame, "/frames/" + std::to_string(k), reader);
+      if (!reader.problems().empty()) failed = true;
+    });
+    if (!failed) return frames;
+  }
   JsonReader reader(path);
   const json j = reader.Parse(text);
   std::vector<FramePersons> frames;
@@ -271,78 +429,7 @@ std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::st
     for (size_t i = 0; i < jf.size(); ++i) {
       const std::string fp = "/frames/" + std::to_string(i);
       if (!reader.ExpectObject(jf[i], fp)) continue;
-      reader.CheckKeys(jf[i], fp, {"frame", "persons"});
-      FramePersons f;
-      reader.Read(jf[i], fp, "frame", &f.frame);
-      if (!jf[i].contains("persons")) reader.Add(fp + "/persons", "missing");
-      if (jf[i].contains("persons") && reader.ExpectArray(jf[i]["persons"], fp + "/persons")) {
-        const json& jp = jf[i]["persons"];
-        for (size_t k = 0; k < jp.size(); ++k) {
-          const std::string pp = fp + "/persons/" + std::to_string(k);
-          if (!reader.ExpectObject(jp[k], pp)) continue;
-          reader.CheckKeys(jp[k], pp, {"id", "box_px", "visible_fraction", "occlusion_fraction",
-                                       "seated", "posture", "contacts", "keypoints"});
-          PersonRecord p;
-          reader.Read(jp[k], pp, "id", &p.id);
-          const auto box = jp[k].find("box_px");
-          if (box == jp[k].end()) {
-            reader.Add(pp + "/box_px", "missing");
-          } else if (!box->is_array() || box->size() != 4) {
-            reader.Add(pp + "/box_px", "expected [x, y, width, height]");
-          } else {
-            reader.ReadValue((*box)[0], pp + "/box_px/0", &p.box_px.x);
-            reader.ReadValue((*box)[1], pp + "/box_px/1", &p.box_px.y);
-            reader.ReadValue((*box)[2], pp + "/box_px/2", &p.box_px.width);
-            reader.ReadValue((*box)[3], pp + "/box_px/3", &p.box_px.height);
-          }
-          reader.Read(jp[k], pp, "visible_fraction", &p.visible_fraction);
-          reader.Read(jp[k], pp, "occlusion_fraction", &p.occlusion_fraction);
-          reader.Read(jp[k], pp, "seated", &p.seated);
-          reader.Read(jp[k], pp, "posture", &p.posture);
-          const auto contacts = jp[k].find("contacts");
-          if (contacts == jp[k].end()) {
-            reader.Add(pp + "/contacts", "missing");
-          } else if (reader.ExpectArray(*contacts, pp + "/contacts")) {
-            for (size_t c = 0; c < contacts->size(); ++c) {
-              const std::string cp = pp + "/contacts/" + std::to_string(c);
-              const json& jc = (*contacts)[c];
-              if (!reader.ExpectObject(jc, cp)) continue;
-              reader.CheckKeys(jc, cp, {"name", "u_px", "v_px", "visible"});
-              ContactRecord contact;
-              reader.Read(jc, cp, "name", &contact.name);
-              reader.Read(jc, cp, "u_px", &contact.u_px);
-              reader.Read(jc, cp, "v_px", &contact.v_px);
-              reader.Read(jc, cp, "visible", &contact.visible);
-              p.contacts.push_back(contact);
-            }
-          }
-          const auto keypoints = jp[k].find("keypoints");
-          if (keypoints != jp[k].end() && reader.ExpectArray(*keypoints, pp + "/keypoints")) {
-            for (size_t c = 0; c < keypoints->size(); ++c) {
-              const std::string kp = pp + "/keypoints/" + std::to_string(c);
-              const json& jk = (*keypoints)[c];
-              if (!reader.ExpectObject(jk, kp)) continue;
-              reader.CheckKeys(jk, kp, {"name", "world_m", "u_px", "v_px", "visible"});
-              KeypointRecord keypoint;
-              reader.Read(jk, kp, "name", &keypoint.name);
-              const auto world = jk.find("world_m");
-              if (world == jk.end() || !world->is_array() || world->size() != 3) {
-                reader.Add(kp + "/world_m", "expected [x, y, z] in metres");
-              } else {
-                for (int i = 0; i < 3; ++i) {
-                  reader.ReadValue((*world)[i], kp + "/world_m/" + std::to_string(i), &keypoint.world_m[i]);
-                }
-              }
-              reader.Read(jk, kp, "u_px", &keypoint.u_px);
-              reader.Read(jk, kp, "v_px", &keypoint.v_px);
-              reader.Read(jk, kp, "visible", &keypoint.visible);
-              p.keypoints.push_back(keypoint);
-            }
-          }
-          f.persons.push_back(std::move(p));
-        }
-      }
-      frames.push_back(std::move(f));
+      frames.push_back(FramePersonsFromJson(jf[i], fp, reader));
     }
   }
   reader.problems().ThrowIfAny();
@@ -552,7 +639,7 @@ std::string PosesToTum(const std::vector<PoseRecord>& poses) {
   return out;
 }
 
-Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
+Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads) {
   Dataset ds;
   ds.dir_ = dir;
   const std::string manifest_path = JoinPath(dir, "manifest.json");
@@ -598,7 +685,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
     const std::vector<std::pair<std::string, std::string>> listed(m.files.begin(),
                                                                   m.files.end());
     std::vector<std::string> errors(listed.size());
-    ParallelFor(static_cast<int64_t>(listed.size()), ResolveThreadCount(0), [&](int64_t i) {
+    ParallelFor(static_cast<int64_t>(listed.size()), threads, [&](int64_t i) {
       const std::string path = JoinPath(dir, listed[i].first);
       std::string actual;
       try {
@@ -635,7 +722,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums) {
                                      std::to_string(m.frame_count - 1) + " in order");
   }
   const std::string persons_path = JoinPath(dir, "persons.json");
-  if (m.outputs.persons) ds.persons_ = PersonsFromJson(ReadFileBytes(persons_path), persons_path);
+  if (m.outputs.persons) ds.persons_ = PersonsFromJson(ReadFileBytes(persons_path), persons_path, threads);
   for (const FramePersons& f : ds.persons_) {
     if (f.frame < 0 || f.frame >= m.frame_count) {
       throw InputError(persons_path, "frame " + std::to_string(f.frame) + " outside 0.." +

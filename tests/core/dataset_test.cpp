@@ -307,6 +307,43 @@ TEST(PersonsJson, RoundTripKeepsEveryField) {
   EXPECT_EQ(PersonsToJson(back), text);
 }
 
+TEST(PersonsJson, FramesReadInParallelGiveTheWholeDocumentsResultAndItsErrors) {
+  // Many frames, with strings holding quotes, brackets and commas, in two layouts.
+  std::vector<FramePersons> persons;
+  for (int f = 0; f < 300; ++f) {
+    FramePersons frame = SamplePersons()[f % 3];
+    frame.frame = f;
+    for (PersonRecord& p : frame.persons) p.posture = "se\"a,t]{ed\\" + std::to_string(f);
+    persons.push_back(frame);
+  }
+  const std::string text = PersonsToJson(persons);
+  EXPECT_EQ(PersonsToJson(PersonsFromJson(text, "p.json")), text);
+  const std::string compact = nlohmann::json::parse(text).dump();
+  EXPECT_EQ(PersonsToJson(PersonsFromJson(compact, "p.json")), text);
+  EXPECT_EQ(PersonsFromJson("{\"frames\": []}", "p.json").size(), 0u);
+
+  // What is wrong in frame 150, or around the array, is named as when read whole.
+  nlohmann::json bad = nlohmann::json::parse(text);
+  bad["frames"][150]["persons"][0]["id"] = "seven";
+  std::string message = InputErrorOf([&] { PersonsFromJson(bad.dump(1), "p.json"); });
+  EXPECT_NE(message.find("p.json: /frames/150/persons/0/id"), std::string::npos) << message;
+  bad = nlohmann::json::parse(text);
+  bad["frames"][299]["extra"] = 1;
+  message = InputErrorOf([&] { PersonsFromJson(bad.dump(), "p.json"); });
+  EXPECT_NE(message.find("p.json: /frames/299/extra: unknown key"), std::string::npos) << message;
+  bad = nlohmann::json::parse(text);
+  bad["version"] = 2;
+  message = InputErrorOf([&] { PersonsFromJson(bad.dump(), "p.json"); });
+  EXPECT_NE(message.find("p.json: /version: unknown key"), std::string::npos) << message;
+  const std::vector<std::string> broken_texts = {text + "]", text.substr(0, text.size() / 2),
+                                                 "{\"frames\": [1e400]}", "{\"frames\": [{}, ]}",
+                                                 "{\"frames\": [\"]\"]}"};
+  for (const std::string& broken : broken_texts) {
+    message = InputErrorOf([&] { PersonsFromJson(broken, "p.json"); });
+    EXPECT_NE(message.find("p.json"), std::string::npos) << message;
+  }
+}
+
 TEST(PersonsJson, BadBoxIsReportedWithItsPointer) {
   const std::string message = InputErrorOf([] {
     PersonsFromJson(R"({"frames":[{"frame":0,"persons":[{"id":1,"box_px":[1,2,3],)"

@@ -113,7 +113,8 @@ struct DatasetEvent {
 };
 
 std::string PersonsToJson(const std::vector<FramePersons>& frames);
-std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path);
+// Frames are read on `threads` threads (0: every core); errors name "path: /json/pointer".
+std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path, int threads = 0);
 std::string EventsToJson(const std::vector<DatasetEvent>& events);
 std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::string& path);
 
@@ -159,8 +160,8 @@ class Dataset {
   // frames; re-run hoilcd render to finish it"). With verify_checksums every listed file is
   // read and checked (mismatch or missing file: InputError naming it). Loads poses, persons
   // and events. A missing or damaged thermal.mp4 (a view of the frames, not their source) is
-  // not an error but a line in warnings().
-  static Dataset Open(const std::string& dir, bool verify_checksums = true);
+  // not an error but a line in warnings(). Checks and reads on `threads` threads (0: every core).
+  static Dataset Open(const std::string& dir, bool verify_checksums = true, int threads = 0);
 
   const DatasetManifest& manifest() const { return manifest_; }
   const std::string& dir() const { return dir_; }
