@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "hoilcd/bench/front_end_input.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/sensor.h"
 #include "hoilcd/sim/video.h"
@@ -32,6 +34,7 @@ double CornerMinusCentre(const cv::Mat& image, int size) {
 std::string CameraOutputOptions::Check() const {
   if (max_frames_compared < 1) return "max_frames_compared must be positive";
   if (patch_px < 1 || patch_px > 64) return "patch_px must be in [1, 64]";
+  if (threads < 0) return "threads must be 0 (every core) or positive";
   return "";
 }
 
@@ -58,7 +61,7 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
   DecodedVideo video;
   const std::string video_path = dataset.dir() + "/thermal.mp4";
   try {
-    video = DecodeVideo(ReadFileBytes(video_path), video_path);
+    video = DecodeVideo(ReadFileBytes(video_path), video_path, options.threads);
     stats.video_frames = static_cast<int>(video.frames.size());
     if (stats.video_frames != frames) {
       stats.video_problem = video_path + ": " + std::to_string(stats.video_frames) + " video frames for " +
@@ -70,29 +73,50 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
   const bool video_ok = stats.video_problem.empty();
 
   const int step = std::max(1, (frames + options.max_frames_compared - 1) / options.max_frames_compared);
-  std::vector<double> psnr_db, shading_k;
-  bool thermal_is_video = video_ok;
-  for (int f = 0; f < frames; f += step) {
+  // The evenly spaced frames are compared in parallel, each into its own slot, then summed in
+  // frame order.
+  struct Sample {
+    bool compared = false, shaded = false, same_as_video = false;
+    double shading_k = 0, psnr_db = 0;
+  };
+  std::vector<int> sampled;
+  for (int f = 0; f < frames; f += step) sampled.push_back(f);
+  std::vector<Sample> samples(sampled.size());
+  ParallelFor(static_cast<int64_t>(sampled.size()), options.threads, [&](int64_t i) {
+    const int f = sampled[static_cast<size_t>(i)];
+    Sample& sample = samples[static_cast<size_t>(i)];
     cv::Mat t, t_true;
     ExrChannels exr;
     try {
       exr = ReadDatasetExr(dataset, f);
     } catch (const InputError&) {
-      continue;  // the EXRs are optional for readers (Dataset::Open needs only the PNGs)
+      return;  // the EXRs are optional for readers (Dataset::Open needs only the PNGs)
     }
     for (const auto& [name, channel] : exr) {
       if (name == "T") t = channel;
       if (name == "T_true") t_true = channel;
     }
-    if (t.empty() || t_true.empty()) continue;
-    ++stats.frames_compared;
+    if (t.empty() || t_true.empty()) return;
+    sample.compared = true;
     const int patch = std::min({options.patch_px, t.cols / 2, t.rows / 2});
     // A frozen frame's T is an earlier view of the scene than its T_true: no shading there.
-    if (!frozen[static_cast<size_t>(f)]) shading_k.push_back(CornerMinusCentre(t - t_true, patch));
+    sample.shaded = !frozen[static_cast<size_t>(f)];
+    if (sample.shaded) sample.shading_k = CornerMinusCentre(t - t_true, patch);
     if (video_ok) {
       const cv::Mat uncompressed = ToDisplay8Bit(t, m.window_min_c, m.window_max_c);
-      psnr_db.push_back(cv::PSNR(video.frames[f], uncompressed));
-      thermal_is_video = thermal_is_video && cv::norm(dataset.Thermal(f), video.frames[f], cv::NORM_INF) == 0.0;
+      sample.psnr_db = cv::PSNR(video.frames[f], uncompressed);
+      sample.same_as_video = cv::norm(dataset.Thermal(f), video.frames[f], cv::NORM_INF) == 0.0;
+    }
+  });
+  std::vector<double> psnr_db, shading_k;
+  bool thermal_is_video = video_ok;
+  for (const Sample& sample : samples) {
+    if (!sample.compared) continue;
+    ++stats.frames_compared;
+    if (sample.shaded) shading_k.push_back(sample.shading_k);
+    if (video_ok) {
+      psnr_db.push_back(sample.psnr_db);
+      thermal_is_video = thermal_is_video && sample.same_as_video;
     }
   }
   stats.frames_shading = static_cast<int>(shading_k.size());

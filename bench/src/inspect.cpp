@@ -215,14 +215,16 @@ InspectSection LabelSection(const std::vector<PoseRecord>& poses, const Protocol
   return s;
 }
 
-InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol) {
+InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol, int threads) {
   if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("inspect", problem);
   InspectReport r;
   r.sections.push_back(TrajectorySection(dataset.poses()));
   r.sections.push_back(CameraSection(dataset.poses()));
   r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
-  r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset)));
+  CameraOutputOptions camera;
+  camera.threads = threads;
+  r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset, camera)));
   return r;
 }
 

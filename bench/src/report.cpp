@@ -225,7 +225,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                                   {"queries_with_match_only_under_other", labels.scored_only_in_b},
                                   {"methods", nlohmann::json::object()}};
   for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
-  const InspectReport inspect = InspectDataset(dataset, options.protocol);
+  const InspectReport inspect = InspectDataset(dataset, options.protocol, options.threads);
   report["inspect"] = inspect.ToJson();
   if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
   if (result.slam_evaluated) {

@@ -17,6 +17,7 @@ extern "C" {
 }
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 
 namespace hoilcd {
 namespace {
@@ -285,7 +286,7 @@ std::string VideoEncoder::Finish() {
   return std::move(s.file.bytes);
 }
 
-DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for_errors) {
+DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for_errors, int threads) {
   QuietLibav();
   auto fail = [&](const std::string& what) {
     throw InputError(path_for_errors, "not a readable thermal video: " + what);
@@ -310,7 +311,8 @@ DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for
   HOILCD_CHECK_MSG(codec != nullptr, "out of memory");
   rc = avcodec_parameters_to_context(codec.get(), stream->codecpar);
   if (rc < 0) fail("bad codec parameters (" + AvError(rc) + ")");
-  codec->thread_count = 1;
+  codec->thread_count = ResolveThreadCount(threads);
+  codec->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
   rc = avcodec_open2(codec.get(), decoder, nullptr);
   if (rc < 0) fail("cannot open the decoder (" + AvError(rc) + ")");
 

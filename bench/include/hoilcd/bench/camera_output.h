@@ -14,6 +14,7 @@ namespace hoilcd {
 struct CameraOutputOptions {
   int max_frames_compared = 200;  // frames decoded and compared at most (evenly spaced), frames
   int patch_px = 8;               // side of the corner and centre patches for shading, px
+  int threads = 0;                // decoding and comparing threads (0: every core)
   std::string Check() const;
 };
 

@@ -54,7 +54,7 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
 InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol);
 
 // Every section, for a dataset folder; the camera's output (video PSNR, lens shading, FFC
-// freezes) is the last, from camera_output.h.
-InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol = {});
+// freezes) is the last, from camera_output.h, measured on `threads` threads (0: every core).
+InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol = {}, int threads = 0);
 
 }  // namespace hoilcd

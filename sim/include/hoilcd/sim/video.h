@@ -63,8 +63,9 @@ struct DecodedVideo {
   std::vector<cv::Mat> frames;  // CV_8UC1, in presentation order
 };
 
-// Decodes an MP4 (bytes as written by VideoEncoder) into 8-bit frames (the luma plane).
+// Decodes an MP4 (bytes as written by VideoEncoder) into 8-bit frames (the luma plane), on
+// `threads` decoder threads (0: every core; H.264 decoding is bit-exact at any count).
 // Throws InputError(path_for_errors, ...) when the bytes are not a readable video.
-DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for_errors);
+DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for_errors, int threads = 1);
 
 }  // namespace hoilcd
