@@ -57,6 +57,18 @@ TEST(Video, DecodesOneFrameOfTheGivenSizeAndRatePerEncodedFrame) {
   }
 }
 
+TEST(Video, DecodingOnSeveralThreadsGivesTheSameFrames) {
+  const std::string mp4 = Encode(VideoOptions(), 40);
+  const DecodedVideo one = DecodeVideo(mp4, "test.mp4", 1);
+  for (int threads : {2, 3, 0}) {
+    const DecodedVideo many = DecodeVideo(mp4, "test.mp4", threads);
+    ASSERT_EQ(many.frames.size(), one.frames.size()) << threads;
+    for (size_t f = 0; f < one.frames.size(); ++f) {
+      EXPECT_EQ(cv::norm(one.frames[f], many.frames[f], cv::NORM_INF), 0.0) << threads << " threads, frame " << f;
+    }
+  }
+}
+
 TEST(Video, SameFramesAndOptionsGiveTheSameBytes) {
   EXPECT_EQ(Encode(VideoOptions(), 12), Encode(VideoOptions(), 12));
   VideoOptions worse;
