@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "hoilcd/core/parallel.h"
 
@@ -236,8 +238,13 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
     for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
       for (int bx = 0; bx < W; bx += kBlock) {
         for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
+          const uint8_t* flag = flags.data() + (y - y0) * W;
+          uint32_t any = 0;  // most blocks have no edge: one 4-byte test for a block's row
+          if (bx + kBlock <= W) std::memcpy(&any, flag + bx, sizeof any);
+          else any = 1;
+          if (any == 0) continue;
           for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
-            if (flags[(y - y0) * W + x]) edge_pixels.push_back(y * W + x);
+            if (flag[x]) edge_pixels.push_back(y * W + x);
           }
         }
       }
