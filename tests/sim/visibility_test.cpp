@@ -11,6 +11,7 @@
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/scene.h"
 #include "hoilcd/sim/scene_options.h"
+#include "planned_world.h"
 
 namespace hoilcd {
 namespace {
@@ -37,14 +38,19 @@ int AlonePixelsBySingleRays(const World& world, const CameraIntrinsics& intrinsi
   return alone;
 }
 
+// paper_room's world with the robot's run and the crowd planned, and a renderer of it.
+struct PaperRoom {
+  test::PlannedWorld planned{LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json")};
+  CameraIntrinsics intrinsics = IntrinsicsFromScene(planned.scene);
+  FrameRenderer renderer{planned.world, intrinsics, RenderOptionsFromScene(planned.scene, 2)};
+};
+
 TEST(VisiblePersons, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCoversAloneBySingleRays) {
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
-  const BandRadianceTable table;
-  World world(scene, table);
-  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
-  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
-  world.PlanCrowd(run.samples);
-  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 2));
+  PaperRoom room;
+  World& world = room.planned.world;
+  const RobotRun& run = room.planned.run;
+  const CameraIntrinsics& intrinsics = room.intrinsics;
+  const FrameRenderer& renderer = room.renderer;
   int checked = 0, occluded = 0;
   for (const int f : {300, 1200, 1900}) {
     world.SetTime(run.samples[f].time_s);
@@ -68,13 +74,11 @@ TEST(VisiblePersons, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCovers
 }
 
 TEST(VisiblePersons, KeypointVisibilityIsThatOfSingleRaysAndTheRecordsDoNotDependOnThreads) {
-  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json");
-  const BandRadianceTable table;
-  World world(scene, table);
-  const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
-  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
-  world.PlanCrowd(run.samples);
-  FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 2));
+  PaperRoom room;
+  World& world = room.planned.world;
+  const RobotRun& run = room.planned.run;
+  const CameraIntrinsics& intrinsics = room.intrinsics;
+  const FrameRenderer& renderer = room.renderer;
   int visible = 0, hidden = 0;
   for (const int f : {150, 300, 700, 1200, 1500, 1900}) {
     world.SetTime(run.samples[f].time_s);
