@@ -228,39 +228,68 @@ void WriteDatasetFile(const std::string& dir, const std::string& relative_path,
   manifest->files[relative_path] = ChecksumOf(bytes);
 }
 
-std::string PersonsToJson(const std::vector<FramePersons>& frames) {
-  json out_frames = json::array();
-  for (const FramePersons& f : frames) {
-    json persons = json::array();
-    for (const PersonRecord& p : f.persons) {
-      json contacts = json::array();
-      for (const ContactRecord& c : p.contacts) {
-        contacts.push_back(
-            {{"name", c.name}, {"u_px", c.u_px}, {"v_px", c.v_px}, {"visible", c.visible}});
-      }
-      json person = {{"id", p.id},
-                     {"box_px", {p.box_px.x, p.box_px.y, p.box_px.width, p.box_px.height}},
-                     {"visible_fraction", p.visible_fraction},
-                     {"occlusion_fraction", p.occlusion_fraction},
-                     {"seated", p.seated},
-                     {"posture", p.posture},
-                     {"contacts", contacts}};
-      if (!p.keypoints.empty()) {
-        json keypoints = json::array();
-        for (const KeypointRecord& k : p.keypoints) {
-          keypoints.push_back({{"name", k.name},
-                               {"world_m", {k.world_m[0], k.world_m[1], k.world_m[2]}},
-                               {"u_px", k.u_px},
-                               {"v_px", k.v_px},
-                               {"visible", k.visible}});
-        }
-        person["keypoints"] = keypoints;
-      }
-      persons.push_back(person);
+namespace {
+
+json FramePersonsToJson(const FramePersons& f) {
+  json persons = json::array();
+  for (const PersonRecord& p : f.persons) {
+    json contacts = json::array();
+    for (const ContactRecord& c : p.contacts) {
+      contacts.push_back({{"name", c.name}, {"u_px", c.u_px}, {"v_px", c.v_px}, {"visible", c.visible}});
     }
-    out_frames.push_back({{"frame", f.frame}, {"persons", persons}});
+    json person = {{"id", p.id},
+                   {"box_px", {p.box_px.x, p.box_px.y, p.box_px.width, p.box_px.height}},
+                   {"visible_fraction", p.visible_fraction},
+                   {"occlusion_fraction", p.occlusion_fraction},
+                   {"seated", p.seated},
+                   {"posture", p.posture},
+                   {"contacts", contacts}};
+    if (!p.keypoints.empty()) {
+      json keypoints = json::array();
+      for (const KeypointRecord& k : p.keypoints) {
+        keypoints.push_back({{"name", k.name},
+                             {"world_m", {k.world_m[0], k.world_m[1], k.world_m[2]}},
+                             {"u_px", k.u_px},
+                             {"v_px", k.v_px},
+                             {"visible", k.visible}});
+      }
+      person["keypoints"] = keypoints;
+    }
+    persons.push_back(person);
   }
-  return json{{"frames", out_frames}}.dump(1) + "\n";
+  return {{"frame", f.frame}, {"persons", persons}};
+}
+
+}  // namespace
+
+std::string PersonsToJson(const std::vector<FramePersons>& frames, int threads) {
+  // The text of {"frames": [...]} dumped with indent 1, written frame by frame (in parallel):
+  // each frame is dumped on its own and indented by its depth, 2 (JSON strings hold no raw
+  // newline). The whole file was one JSON document in memory, the peak of a render.
+  if (frames.empty()) return "{\n \"frames\": []\n}\n";
+  std::vector<std::string> parts(frames.size());
+  ParallelFor(static_cast<int64_t>(frames.size()), threads, [&](int64_t i) {
+    const std::string text = FramePersonsToJson(frames[static_cast<size_t>(i)]).dump(1);
+    std::string& out = parts[static_cast<size_t>(i)];
+    out.reserve(text.size() + text.size() / 4);
+    out += "  ";
+    for (const char c : text) {
+      out += c;
+      if (c == '\n') out += "  ";
+    }
+  });
+  size_t size = 0;
+  for (const std::string& part : parts) size += part.size() + 2;
+  std::string out;
+  out.reserve(size + 32);
+  out += "{\n \"frames\": [\n";
+  for (size_t i = 0; i < parts.size(); ++i) {
+    out += parts[i];
+    out += i + 1 < parts.size() ? ",\n" : "\n";
+    std::string().swap(parts[i]);
+  }
+  out += " ]\n}\n";
+  return out;
 }
 
 namespace {

@@ -373,7 +373,7 @@ class SequenceRender {
                      [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
     WriteDatasetFile(dir_, "poses.csv", PosesToCsv(poses), &manifest_);
     WriteDatasetFile(dir_, "poses_tum.txt", PosesToTum(poses), &manifest_);
-    if (outputs_.persons) WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_), &manifest_);
+    if (outputs_.persons) WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_, options_.threads), &manifest_);
     WriteDatasetFile(dir_, "events.json", EventsToJson(events), &manifest_);
     WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(FootprintRecordsOf(world_.obstacles())), &manifest_);
     WriteDatasetFile(dir_, "scene.json", scene_.resolved.dump(2), &manifest_);

@@ -307,6 +307,26 @@ TEST(PersonsJson, RoundTripKeepsEveryField) {
   EXPECT_EQ(PersonsToJson(back), text);
 }
 
+TEST(PersonsJson, WrittenFrameByFrameIsTheWholeDocumentsIndentedDump) {
+  std::vector<FramePersons> persons;
+  for (int f = 0; f < 50; ++f) {
+    FramePersons frame = SamplePersons()[f % 3];
+    frame.frame = f;
+    for (PersonRecord& p : frame.persons) {
+      p.posture = "line\nbreak \"quoted\" " + std::to_string(f);
+      p.keypoints.push_back({"nose", {1.0 / 3, -2.5e-9, 7}, 12.25, -1, f % 2 == 0});
+    }
+    persons.push_back(frame);
+  }
+  const std::string text = PersonsToJson(persons, 1);
+  EXPECT_EQ(text, nlohmann::json::parse(text).dump(1) + "\n");  // what one document dumps
+  EXPECT_EQ(PersonsToJson(persons, 2), text);
+  const nlohmann::json no_frames = {{"frames", nlohmann::json::array()}};
+  EXPECT_EQ(PersonsToJson({}), no_frames.dump(1) + "\n");
+  const std::string one_empty_frame = PersonsToJson({FramePersons{4, {}}});
+  EXPECT_EQ(one_empty_frame, nlohmann::json::parse(one_empty_frame).dump(1) + "\n");
+}
+
 TEST(PersonsJson, FramesReadInParallelGiveTheWholeDocumentsResultAndItsErrors) {
   // Many frames, with strings holding quotes, brackets and commas, in two layouts.
   std::vector<FramePersons> persons;

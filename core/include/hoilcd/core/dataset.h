@@ -112,7 +112,8 @@ struct DatasetEvent {
   std::string detail;
 };
 
-std::string PersonsToJson(const std::vector<FramePersons>& frames);
+// The JSON text, frames formatted on `threads` threads (0: every core); the same at any count.
+std::string PersonsToJson(const std::vector<FramePersons>& frames, int threads = 0);
 // Frames are read on `threads` threads (0: every core); errors name "path: /json/pointer".
 std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::string& path, int threads = 0);
 std::string EventsToJson(const std::vector<DatasetEvent>& events);
