@@ -2,7 +2,7 @@
 // thread and free them on another (rendering, benching). By default glibc gives freed memory
 // at the top of a heap back to the kernel (madvise: a TLB shoot-down across cores, costly in a
 // VM) and the next frame faults every page in again: ~10 % of a render's CPU (perf). Freed
-// memory is kept for reuse instead; peak memory barely moves (paper_room: 500 vs 463 MiB).
+// memory is kept for reuse instead; peak memory barely moves (a paper_room render: +8 %).
 #pragma once
 
 namespace hoilcd {
