@@ -29,11 +29,25 @@ inline double RoundHalfAway(double x) {
   return small ? std::copysign(t + up - down, v) : x;
 }
 
+// The camera's emissivity setting undone: the signal of a grey surface of that emissivity,
+// reflecting the assumed reflected temperature, to the radiance of a black body (step 6).
+struct EmissivityCorrection {
+  bool grey;  // emissivity setting below 1 (else the identity)
+  double emissivity, reflected_part;
+  double operator()(double s) const { return grey ? (s - reflected_part) / emissivity : s; }
+};
+
+EmissivityCorrection CorrectionOf(const SensorOptions& options, double reflected_radiance) {
+  return {options.emissivity_setting < 1.0, options.emissivity_setting,
+          (1.0 - options.emissivity_setting) * reflected_radiance};
+}
+
 // What Apply adds to a pixel's signal between the blur and the table inversion (steps 2-6).
 struct SignalEffects {
-  bool time_constant, fixed_pattern, temporal_noise, grey;
+  bool time_constant, fixed_pattern, temporal_noise;
   float blend;
-  double shutter_radiance, drift_signal, shading_signal, noise_signal, reflected_part, emissivity;
+  double shutter_radiance, drift_signal, shading_signal, noise_signal;
+  EmissivityCorrection correct;
 };
 
 // Steps 2-6 for one row, branch-free per pixel so that the loop runs in vector lanes; the AVX2
@@ -48,8 +62,7 @@ __attribute__((target_clones("avx2", "default"))) void SignalRow(
     if (e.fixed_pattern) s += gain[x] * (s - e.shutter_radiance) + offset[x];
     s += e.drift_signal + e.shading_signal * shading[x];
     if (e.temporal_noise) s += e.noise_signal * noise[x];
-    if (e.grey) s = (s - e.reflected_part) / e.emissivity;
-    signal[x] = s;
+    signal[x] = e.correct(s);
   }
 }
 
@@ -187,14 +200,6 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
   }
 }
 
-float SensorModel::ApparentCelsius(double signal) const {
-  if (options_.emissivity_setting < 1.0) {
-    signal = (signal - (1.0 - options_.emissivity_setting) * reflected_radiance_) /
-             options_.emissivity_setting;
-  }
-  return static_cast<float>(table_->KelvinFromRadiance(signal) - kZeroCelsiusK);
-}
-
 int64_t SensorModel::FfcFrame(int64_t index) const {
   return std::llround(static_cast<double>(index) * options_.ffc_interval_s * frame_rate_hz_);
 }
@@ -303,10 +308,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   effects.drift_signal = responsivity_ * DriftK(frame);
   effects.shading_signal = responsivity_ * HousingWarmingK(frame);
   effects.noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
-  // ApparentCelsius's emissivity correction, in the same arithmetic.
-  effects.grey = options_.emissivity_setting < 1.0;
-  effects.emissivity = options_.emissivity_setting;
-  effects.reflected_part = (1.0 - options_.emissivity_setting) * reflected_radiance_;
+  effects.correct = CorrectionOf(options_, reflected_radiance_);
   const double step_k = options_.quantisation ? options_.quantisation_step_k : 0.0;
   const uint64_t noise_key =
       HashCombine(seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
@@ -336,19 +338,13 @@ cv::Mat SensorModel::IdealTemperature(const cv::Mat& radiance) const {
                        radiance.rows == height_,
                    "radiance must be CV_32F " << width_ << "x" << height_);
   cv::Mat temperature(height_, width_, CV_32F);
-  // ApparentCelsius per pixel, a row at a time through the table's array inverse.
-  const bool grey = options_.emissivity_setting < 1.0;
-  const double emissivity = options_.emissivity_setting;
-  const double reflected_part = (1.0 - options_.emissivity_setting) * reflected_radiance_;
+  // The emissivity correction and the table inversion, a row at a time.
+  const EmissivityCorrection correct = CorrectionOf(options_, reflected_radiance_);
   ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int) {
     std::vector<double> signal(static_cast<size_t>(width_));
     for (int64_t y = begin; y < end; ++y) {
       const float* in = radiance.ptr<float>(static_cast<int>(y));
-      for (int x = 0; x < width_; ++x) {
-        double s = in[x];
-        if (grey) s = (s - reflected_part) / emissivity;
-        signal[x] = s;
-      }
+      for (int x = 0; x < width_; ++x) signal[x] = correct(in[x]);
       table_->KelvinFromRadiance(signal.data(), width_, signal.data());
       CelsiusRow(width_, signal.data(), /*step_k=*/0.0, temperature.ptr<float>(static_cast<int>(y)));
     }

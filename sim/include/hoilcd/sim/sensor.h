@@ -123,7 +123,6 @@ class SensorModel {
   const SensorOptions& options() const { return options_; }
 
  private:
-  float ApparentCelsius(double signal) const;
   // Index j of the FFC interval holding `frame` (FFC j at round(j·interval·fps), FFC 0 at 0).
   int64_t FfcIndex(int frame) const;
   int64_t FfcFrame(int64_t index) const;
