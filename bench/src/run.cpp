@@ -46,13 +46,18 @@ std::string RunFolder(const Scene& scene, const std::string& cache_dir) {
 
 namespace {
 
-constexpr const char* kCalibrationOutputs = "thermal,radiometric,persons";
+// What the bench reads: the calibration sequence needs no EXRs and no video.
+DatasetOutputs CalibrationOutputs() {
+  DatasetOutputs outputs;
+  outputs.exr = outputs.video = false;
+  return outputs;
+}
 
-// Renders `scene` into dataset_dir with `outputs` (SequenceOptions::outputs; "" every output)
-// unless a complete, intact dataset of this very scene with at least those outputs is cached
-// there, and returns it opened (checksums verified once). *cached says whether it was cached;
-// *render_s gets the rendering time; the render's warnings (SequenceResult) go to *warnings.
-Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const std::string& outputs,
+// Renders `scene` into dataset_dir with `outputs` unless a complete, intact dataset of this very
+// scene with at least those outputs is cached there, and returns it opened (checksums verified
+// once). *cached says whether it was cached; *render_s gets the rendering time; the render's
+// warnings (SequenceResult) go to *warnings.
+Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const DatasetOutputs& outputs,
                       const RunOptions& options, bool* cached, double* render_s, std::vector<std::string>* warnings) {
   // Reuse the cached dataset only when it is complete, intact, of this very scene and rendered
   // by this simulator. One rendered by another simulator (or with an unreadable manifest) is
@@ -67,14 +72,12 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
       old = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
     } catch (const InputError&) {
     }
-    DatasetOutputs wanted;
-    if (!outputs.empty()) DatasetOutputs::Parse(outputs, &wanted);
     // A complete dataset serves when it has every output wanted; a partial one resumes only with
     // its own outputs. Otherwise it is stale too.
     bool has_outputs = old.has_value();
-    for (const std::string& name : wanted.Names()) has_outputs = has_outputs && old->outputs.Has(name);
+    for (const std::string& name : outputs.Names()) has_outputs = has_outputs && old->outputs.Has(name);
     if (!old || old->hoilcd_version != SimulatorVersion() || !has_outputs ||
-        (!old->complete && old->outputs != wanted)) {
+        (!old->complete && old->outputs != outputs)) {
       const std::vector<std::string> left = RemoveDatasetFiles(dataset_dir);
       if (!left.empty()) {
         throw InputError(dataset_dir, "held a stale cached dataset (now deleted) beside files hoilcd did not "
@@ -94,7 +97,7 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
   }
   SequenceOptions render;
   render.output_dir = dataset_dir;
-  if (!outputs.empty()) render.outputs = outputs;
+  render.outputs = outputs.ToText();
   render.threads = options.threads;
   render.cancel = options.cancel;
   const SequenceResult rendered = RenderSequence(scene, render);
@@ -180,7 +183,7 @@ std::map<std::string, double> CalibrateLoopThresholds(const Scene& scene, const 
     std::vector<std::string> calibration_warnings;  // the test sequence's say the same
     // Only what the bench reads: the thresholds come from the frames and persons, and the EXRs
     // and video (1.1 GB, a third of the render's CPU) would never be looked at.
-    const Dataset dataset = EnsureDataset(calibration, out->calibration_dir, kCalibrationOutputs, options,
+    const Dataset dataset = EnsureDataset(calibration, out->calibration_dir, CalibrationOutputs(), options,
                                           &out->timing.calibration_render_cached, &render_s, &calibration_warnings);
     const std::string key = CalibrationKey(out->calibration_dir, bench);
     BenchOptions b = bench;
@@ -211,7 +214,7 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   out.dataset_dir = folder + "/dataset";
   out.report_dir = options.report_dir.empty() ? folder + "/report" : options.report_dir;
 
-  const Dataset dataset = EnsureDataset(scene, out.dataset_dir, /*outputs=*/"", options, &out.timing.render_cached,
+  const Dataset dataset = EnsureDataset(scene, out.dataset_dir, DatasetOutputs(), options, &out.timing.render_cached,
                                         &out.timing.render_s, &out.warnings);
   out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
   BenchOptions b = bench;
