@@ -39,18 +39,16 @@ int AlonePixelsBySingleRays(const World& world, const CameraIntrinsics& intrinsi
 }
 
 // paper_room's world with the robot's run and the crowd planned, and a renderer of it.
-struct PaperRoom {
+class VisiblePersonsTest : public ::testing::Test {
+ protected:
   test::PlannedWorld planned{LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json")};
-  CameraIntrinsics intrinsics = IntrinsicsFromScene(planned.scene);
-  FrameRenderer renderer{planned.world, intrinsics, RenderOptionsFromScene(planned.scene, 2)};
+  World& world = planned.world;
+  const RobotRun& run = planned.run;
+  const CameraIntrinsics intrinsics = IntrinsicsFromScene(planned.scene);
+  const FrameRenderer renderer{world, intrinsics, RenderOptionsFromScene(planned.scene, 2)};
 };
 
-TEST(VisiblePersons, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCoversAloneBySingleRays) {
-  PaperRoom room;
-  World& world = room.planned.world;
-  const RobotRun& run = room.planned.run;
-  const CameraIntrinsics& intrinsics = room.intrinsics;
-  const FrameRenderer& renderer = room.renderer;
+TEST_F(VisiblePersonsTest, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCoversAloneBySingleRays) {
   int checked = 0, occluded = 0;
   for (const int f : {300, 1200, 1900}) {
     world.SetTime(run.samples[f].time_s);
@@ -73,12 +71,7 @@ TEST(VisiblePersons, VisibleFractionIsVisiblePixelsOverThePixelsEachPersonCovers
   EXPECT_GT(occluded, 3);
 }
 
-TEST(VisiblePersons, KeypointVisibilityIsThatOfSingleRaysAndTheRecordsDoNotDependOnThreads) {
-  PaperRoom room;
-  World& world = room.planned.world;
-  const RobotRun& run = room.planned.run;
-  const CameraIntrinsics& intrinsics = room.intrinsics;
-  const FrameRenderer& renderer = room.renderer;
+TEST_F(VisiblePersonsTest, KeypointVisibilityIsThatOfSingleRaysAndTheRecordsDoNotDependOnThreads) {
   int visible = 0, hidden = 0;
   for (const int f : {150, 300, 700, 1200, 1500, 1900}) {
     world.SetTime(run.samples[f].time_s);
