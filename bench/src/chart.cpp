@@ -431,7 +431,9 @@ cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
 using namespace chart;  // the building blocks above, for the charts below
 
 cv::Scalar PaletteColour(std::size_t index) {
-  static const std::array<cv::Scalar, 8> kOkabeIto = {{
+  // Okabe & Ito's eight colour-blind-safe colours, then four of Tol's "muted" scheme that differ
+  // from them (hoilcd bench runs nine methods; twelve series before a colour repeats).
+  static const std::array<cv::Scalar, 12> kPalette = {{
       {178, 114, 0},    // blue
       {0, 94, 213},     // vermillion
       {115, 158, 0},    // bluish green
@@ -440,8 +442,12 @@ cv::Scalar PaletteColour(std::size_t index) {
       {233, 180, 86},   // sky blue
       {0, 0, 0},        // black
       {66, 228, 240},   // yellow
+      {85, 34, 136},    // wine
+      {136, 34, 51},    // indigo
+      {51, 153, 153},   // olive
+      {51, 119, 17},    // green
   }};
-  return kOkabeIto[index % kOkabeIto.size()];
+  return kPalette[index % kPalette.size()];
 }
 
 std::vector<double> NiceTicks(double lo, double hi, int max_count) {

@@ -39,13 +39,19 @@ cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptio
                cv::LINE_AA, kShift);
   }
   if (!tile.caption.empty()) {
-    const cv::Size text = TextSize(tile.caption, o.font_scale);
+    // A caption wider than its tile is drawn smaller until it fits (5 px margin each side).
+    double font_scale = o.font_scale;
+    cv::Size text = TextSize(tile.caption, font_scale);
+    while (text.width + 10 > shown.cols && font_scale > 0.2) {
+      font_scale *= 0.9;
+      text = TextSize(tile.caption, font_scale);
+    }
     const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) &
                          cv::Rect(0, 0, shown.cols, shown.rows);
     cv::Mat backing = shown(box);
     cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0,
                     backing);
-    PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, o.font_scale, White());
+    PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, font_scale, White());
   }
   return shown;
 }

@@ -57,6 +57,16 @@ void ExpectNiceTicks(double lo, double hi, int max_count) {
   }
 }
 
+TEST(PaletteColour, TwelveSeriesGetClearlyDifferentColoursBeforeOneRepeats) {
+  // hoilcd bench plots nine methods in one chart; with eight colours the ninth took the first's.
+  for (size_t i = 0; i < 12; ++i) {
+    for (size_t j = i + 1; j < 12; ++j) {
+      EXPECT_GT(cv::norm(PaletteColour(i) - PaletteColour(j)), 60.0) << i << " vs " << j;
+    }
+  }
+  EXPECT_EQ(PaletteColour(12), PaletteColour(0));
+}
+
 TEST(NiceTicks, ZeroToOneGivesFifths) {
   const std::vector<double> ticks = NiceTicks(0.0, 1.0, 6);
   const std::vector<double> expected = {0.0, 0.2, 0.4, 0.6, 0.8, 1.0};

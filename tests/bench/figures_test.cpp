@@ -1,4 +1,5 @@
 #include "hoilcd/bench/figures.h"
+#include "hoilcd/bench/chart.h"
 
 #include <gtest/gtest.h>
 
@@ -120,6 +121,22 @@ TEST(MatchMosaic, UpscalesWithNearestNeighbour) {
       }
     }
   }
+}
+
+TEST(MatchMosaic, ACaptionWiderThanItsTileIsDrawnSmallerToFit) {
+  // Black 256 px tiles at scale 1, as in the report's match pictures: a top-1 caption with a
+  // tie note is wider than its tile at the default size and was cut off at the tile's edge.
+  const cv::Mat black(192, 256, CV_8UC3, cv::Scalar::all(0));
+  const std::string caption = "top-1 1234 wrong s=47 (12 tied)";
+  MosaicOptions o;
+  o.scale = 1;
+  o.gap_px = 0;
+  ASSERT_GT(chart::TextSize(caption, o.font_scale).width + 10, 256);
+  const cv::Mat mosaic = MatchMosaic({{MakeTile(black, caption), MakeTile(black, "")}}, o);
+  cv::Mat lit;
+  cv::inRange(mosaic, cv::Scalar::all(1), cv::Scalar::all(255), lit);
+  EXPECT_GT(cv::countNonZero(lit(cv::Rect(0, 0, 256, 192))), 100);   // the caption is drawn
+  EXPECT_EQ(cv::countNonZero(lit(cv::Rect(256 - 4, 0, 4 + 256, 192))), 0);  // inside its 5 px margin
 }
 
 }  // namespace
