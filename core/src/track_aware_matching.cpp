@@ -124,8 +124,13 @@ Assignment PairPersons(const std::vector<PersonContour>& query,
 std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<HoiFeature>& query,
                                                       const std::vector<HoiFeature>& reference,
                                                       const TrackAwareOptions& options) {
-  const std::vector<PersonContour> query_persons = GroupPersonContours(query, options);
-  const std::vector<PersonContour> reference_persons = GroupPersonContours(reference, options);
+  return TrackAwareCorrespondences(GroupPersonContours(query, options), GroupPersonContours(reference, options),
+                                   options);
+}
+
+std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<PersonContour>& query_persons,
+                                                      const std::vector<PersonContour>& reference_persons,
+                                                      const TrackAwareOptions& options) {
   std::vector<Correspondence> matches;
   if (query_persons.empty() || reference_persons.empty()) return matches;
   for (const auto& [a, b] : PairPersons(query_persons, reference_persons, options).matches) {
@@ -147,6 +152,14 @@ std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<HoiFeatu
   return matches;
 }
 
+TrackAwareFrame PrepareTrackAwareFrame(const std::vector<HoiFeature>& features, const TrackAwareOptions& options) {
+  TrackAwareFrame frame;
+  frame.points.reserve(features.size());
+  for (const HoiFeature& f : features) frame.points.push_back(f.point);
+  frame.persons = GroupPersonContours(features, options);
+  return frame;
+}
+
 uint64_t TrackAwarePairSeed(uint64_t seed, int query_id, int reference_id) {
   return HashCombine(seed, HashString("ransac.track_aware"), static_cast<uint64_t>(query_id),
                      static_cast<uint64_t>(reference_id));
@@ -156,15 +169,17 @@ int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
                         const std::vector<HoiFeature>& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id) {
+  return ScoreTrackAwarePair(PrepareTrackAwareFrame(query, options), PrepareTrackAwareFrame(reference, options),
+                             options, ransac_options, seed, query_id, reference_id);
+}
+
+int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
+                        const TrackAwareOptions& options, const RansacOptions& ransac_options,
+                        uint64_t seed, int query_id, int reference_id) {
   HOILCD_CHECK_MSG(ransac_options.Check().empty(), ransac_options.Check());
-  const std::vector<Correspondence> matches = TrackAwareCorrespondences(query, reference, options);
+  const std::vector<Correspondence> matches = TrackAwareCorrespondences(query.persons, reference.persons, options);
   if (matches.size() < 4) return 0;
-  std::vector<Point2> query_points, reference_points;
-  query_points.reserve(query.size());
-  reference_points.reserve(reference.size());
-  for (const HoiFeature& f : query) query_points.push_back(f.point);
-  for (const HoiFeature& f : reference) reference_points.push_back(f.point);
-  return EstimateHomographyRansac(query_points, reference_points, matches, ransac_options,
+  return EstimateHomographyRansac(query.points, reference.points, matches, ransac_options,
                                   TrackAwarePairSeed(seed, query_id, reference_id))
       .inliers;
 }

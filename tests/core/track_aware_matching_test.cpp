@@ -110,13 +110,37 @@ TEST(TrackAwareMatching, PersonsTooFarApartStayUnpaired) {
   EXPECT_GT(TrackAwareCorrespondences(query, reference, options).size(), 0u);
 }
 
+TEST(TrackAwareMatching, APreparedFrameScoresEveryReferenceAsIfPreparedForThatPairAlone) {
+  // dlcd-track prepares each frame once and scores it against many: one prepared query must give
+  // each reference the score of its pair from the raw features, in any order.
+  const TrackAwareOptions options;
+  const RansacOptions ransac;
+  const std::vector<HoiFeature> query = ThreePersons(1, Point2(0, 0));
+  std::vector<std::vector<HoiFeature>> references;
+  for (int k = 0; k < 6; ++k) references.push_back(ThreePersons(10 * k, Point2(3.0f * k - 7.0f, 0.5f * k)));
+  references[4].erase(references[4].begin(), references[4].begin() + 45);  // a person missing
+  const TrackAwareFrame prepared = PrepareTrackAwareFrame(query, options);
+  ASSERT_EQ(prepared.points.size(), query.size());
+  ASSERT_EQ(prepared.persons.size(), 3u);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int k = 5; k >= 0; --k) {
+      const int expected = ScoreTrackAwarePair(query, references[k], options, ransac, 9, 3, k);
+      EXPECT_GT(expected, 0) << k;
+      EXPECT_EQ(ScoreTrackAwarePair(prepared, PrepareTrackAwareFrame(references[k], options), options, ransac, 9, 3, k),
+                expected)
+          << k;
+    }
+  }
+}
+
 TEST(TrackAwareMatching, EmptyOrTinyInputsScoreZero) {
   const std::vector<HoiFeature> persons = ThreePersons(1, Point2(0, 0));
   const TrackAwareOptions options;
   const RansacOptions ransac;
-  EXPECT_EQ(ScoreTrackAwarePair({}, {}, options, ransac, 1, 0, 1), 0);
-  EXPECT_EQ(ScoreTrackAwarePair(persons, {}, options, ransac, 1, 0, 1), 0);
-  EXPECT_EQ(ScoreTrackAwarePair({}, persons, options, ransac, 1, 0, 1), 0);
+  const std::vector<HoiFeature> none;
+  EXPECT_EQ(ScoreTrackAwarePair(none, none, options, ransac, 1, 0, 1), 0);
+  EXPECT_EQ(ScoreTrackAwarePair(persons, none, options, ransac, 1, 0, 1), 0);
+  EXPECT_EQ(ScoreTrackAwarePair(none, persons, options, ransac, 1, 0, 1), 0);
   // Two points per person are below min_points_per_person: nobody to pair.
   const std::vector<HoiFeature> tiny = {{Point2(10, 10), 1}, {Point2(11, 10), 1}};
   EXPECT_TRUE(GroupPersonContours(tiny, options).empty());

@@ -54,6 +54,18 @@ Assignment PairPersons(const std::vector<PersonContour>& query,
 std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<HoiFeature>& query,
                                                       const std::vector<HoiFeature>& reference,
                                                       const TrackAwareOptions& options);
+// The same from contours already grouped (GroupPersonContours).
+std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<PersonContour>& query,
+                                                      const std::vector<PersonContour>& reference,
+                                                      const TrackAwareOptions& options);
+
+// A frame made ready for scoring against many others: its points and its persons' contours,
+// grouped once instead of once per pair.
+struct TrackAwareFrame {
+  std::vector<Point2> points;           // the features' points, in feature order
+  std::vector<PersonContour> persons;   // GroupPersonContours(features)
+};
+TrackAwareFrame PrepareTrackAwareFrame(const std::vector<HoiFeature>& features, const TrackAwareOptions& options);
 
 // The RANSAC stream of one pair: the key KeyedRng(seed, "ransac.track_aware", query_id,
 // reference_id) would use, so track-aware draws never coincide with the plain method's.
@@ -63,6 +75,10 @@ uint64_t TrackAwarePairSeed(uint64_t seed, int query_id, int reference_id);
 // the inlier count (0 for fewer than 4 correspondences, e.g. empty frames).
 int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
                         const std::vector<HoiFeature>& reference,
+                        const TrackAwareOptions& options, const RansacOptions& ransac_options,
+                        uint64_t seed, int query_id, int reference_id);
+// The same score from prepared frames (PrepareTrackAwareFrame with the same options).
+int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id);
 
