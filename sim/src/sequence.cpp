@@ -337,7 +337,7 @@ class SequenceRender {
     }
     if (outputs_.video) WriteDatasetFile(dir_, "thermal.mp4", mp4, &manifest_);
     if (video_options_.enabled && outputs_.thermal) {
-      const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4");
+      const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4", ResolveThreadCount(options_.threads));
       HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames_,
                        "decoded " << video.frames.size() << " of " << frames_ << " frames");
       // Written in parallel, synced as one batch, listed in the manifest in order.

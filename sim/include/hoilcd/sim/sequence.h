@@ -36,7 +36,7 @@ struct SequenceResult {
   int frames_rendered = 0;   // rendered by this call
   int frames_reused = 0;     // kept from an earlier, interrupted run
   double seconds = 0;        // wall time of this call
-  double video_seconds = 0;  // of which encoding (and in video mode decoding) thermal.mp4, s
+  double video_seconds = 0;  // encoding (and in video mode decoding) thermal.mp4, s; encoding overlaps rendering
   bool complete = false;
   std::vector<std::string> warnings;  // what the scene asked for and did not get (World::warnings)
 };
