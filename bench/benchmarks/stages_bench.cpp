@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bare_packets.h"
+#include "hoilcd/core/allocator.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/renderer.h"
@@ -95,6 +96,9 @@ void BM_Stages(benchmark::State& state) {
     state.SkipWithError("--frames must be in [2, the scene's frame count]");
     return;
   }
+  // As RenderSequence runs every stage: freed frame buffers kept for reuse, not returned to the
+  // kernel and faulted in again (before, only the stages after the first writing ran so).
+  KeepFreedMemoryForReuse();
   const BandRadianceTable table;
   World world(scene, table);
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
