@@ -49,11 +49,13 @@ void RunPersonFrontEnd(const Dataset& dataset, const FrontEndOptions& options, F
       out->hoi[f] = ExtractHoiFeatures(detections[i].mask, tracks[i], options.hoi);
       out->persons_ms[f] += MsSince(t);
     });
+    std::vector<std::vector<Point2>> points(size);
+    for (int i = 0; i < size; ++i) {
+      for (const HoiFeature& h : out->hoi[block + i]) points[i].push_back(h.point);
+    }
+    out->hoi_index.AddAll(points, options.threads);
     for (int i = 0; i < size; ++i) {
       const int f = block + i;
-      std::vector<Point2> points;
-      for (const HoiFeature& h : out->hoi[f]) points.push_back(h.point);
-      out->hoi_index.Add(points);
       FrameTracks ft;
       ft.frame = f;
       for (const Track& track : tracks[i]) {
@@ -100,10 +102,8 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
       progress.Update();
     });
     progress.Done();
-    for (int f = 0; f < n; ++f) {
-      if (keypoints) out.keypoint_index.Add(out.keypoints[f]);
-      if (thumbnails) out.thumbnails.AddDescriptor(std::move(descriptors[f]));
-    }
+    if (keypoints) out.keypoint_index.AddAll(out.keypoints, options.threads);
+    for (int f = 0; f < n && thumbnails; ++f) out.thumbnails.AddDescriptor(std::move(descriptors[f]));
   }
   if (out.Ran(FrontEnd::kPersons)) RunPersonFrontEnd(dataset, options, &out);
   return out;

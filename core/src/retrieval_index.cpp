@@ -19,10 +19,18 @@ constexpr int64_t kTileReferences = 32;
 
 }  // namespace
 
-void RetrievalIndex::Add(std::vector<Point2> points) {
-  grids_.emplace_back(points.data(), static_cast<int>(points.size()));
-  points_.insert(points_.end(), points.begin(), points.end());
-  offsets_.push_back(static_cast<int64_t>(points_.size()));
+void RetrievalIndex::Add(std::vector<Point2> points) { AddAll({std::move(points)}, 1); }
+
+void RetrievalIndex::AddAll(const std::vector<std::vector<Point2>>& frames, int threads) {
+  const size_t first = grids_.size();
+  grids_.resize(first + frames.size());
+  ParallelFor(static_cast<int64_t>(frames.size()), threads, [&](int64_t i) {
+    grids_[first + i] = PointGrid(frames[i].data(), static_cast<int>(frames[i].size()));
+  });
+  for (const std::vector<Point2>& points : frames) {
+    points_.insert(points_.end(), points.begin(), points.end());
+    offsets_.push_back(static_cast<int64_t>(points_.size()));
+  }
 }
 
 const Point2* RetrievalIndex::points(int frame, int* count) const {

@@ -51,6 +51,30 @@ TEST(RetrievalIndex, StoresEachFramesPointsInAddOrder) {
   EXPECT_THROW(index.points(9, &count), std::logic_error);
 }
 
+TEST(RetrievalIndex, AddingFramesTogetherInParallelGivesTheIndexOfAddingThemOneByOne) {
+  const std::vector<std::vector<Point2>> frames = MakeFrames(23);
+  RetrievalIndex one_by_one;
+  for (const std::vector<Point2>& f : frames) one_by_one.Add(f);
+  std::vector<int> all(frames.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const auto expected = one_by_one.ScoreAll(all, all, MatchOptions(), RansacOptions(), 7, 1);
+  for (int threads : {1, 2, 3}) {
+    RetrievalIndex together;
+    together.Add(frames[0]);  // appended after frames already there, in two calls
+    together.AddAll(std::vector<std::vector<Point2>>(frames.begin() + 1, frames.begin() + 10), threads);
+    together.AddAll(std::vector<std::vector<Point2>>(frames.begin() + 10, frames.end()), threads);
+    ASSERT_EQ(together.size(), one_by_one.size());
+    for (int f = 0; f < together.size(); ++f) {
+      int a = 0, b = 0;
+      const Point2* pa = together.points(f, &a);
+      const Point2* pb = one_by_one.points(f, &b);
+      ASSERT_EQ(a, b) << f;
+      for (int i = 0; i < a; ++i) EXPECT_EQ(pa[i], pb[i]) << f;
+    }
+    EXPECT_EQ(together.ScoreAll(all, all, MatchOptions(), RansacOptions(), 7, 1), expected) << threads;
+  }
+}
+
 TEST(RetrievalIndex, ScoreAllEqualsScorePairPerPairAndIsIdenticalAtOneAndTwoThreads) {
   // 40 queries x 70 references: more than one 32 x 32 tile each way, with partial tiles, so
   // both threads get work and tile edges are crossed.

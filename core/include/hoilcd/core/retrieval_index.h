@@ -15,6 +15,9 @@ class RetrievalIndex {
  public:
   // Frame ids are 0..size-1 in Add order. Coordinates must be finite.
   void Add(std::vector<Point2> points);
+  // Adds frames in order, building their grids in parallel (threads 0 = all cores): the same
+  // index as adding them one by one.
+  void AddAll(const std::vector<std::vector<Point2>>& frames, int threads);
   int size() const { return static_cast<int>(grids_.size()); }
   // The points of `frame`; *count receives how many.
   const Point2* points(int frame, int* count) const;
