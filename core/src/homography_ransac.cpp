@@ -478,18 +478,20 @@ Eigen::Matrix3d ToResultMatrix(const Real h[9]) {
 }  // namespace
 
 std::string RansacOptions::Check() const {
-  std::ostringstream out;
-  if (trials < 1 || trials > kMaxTrials) {
-    out << "trials must be in [1, " << kMaxTrials << "] (got " << trials << "); ";
-  }
+  // The message is built only for bad options: Check runs once per pair in some callers.
+  std::string text;
+  const auto problem = [&](const auto&... parts) {
+    std::ostringstream out;
+    (out << ... << parts);
+    text += out.str() + "; ";
+  };
+  if (trials < 1 || trials > kMaxTrials) problem("trials must be in [1, ", kMaxTrials, "] (got ", trials, ")");
   if (!(inlier_threshold_px > 0) || !std::isfinite(inlier_threshold_px)) {
-    out << "inlier_threshold_px must be a positive number of pixels (got " << inlier_threshold_px
-        << "); ";
+    problem("inlier_threshold_px must be a positive number of pixels (got ", inlier_threshold_px, ")");
   }
   if (local_optimisation_refits < 0) {
-    out << "local_optimisation_refits must be >= 0 (got " << local_optimisation_refits << "); ";
+    problem("local_optimisation_refits must be >= 0 (got ", local_optimisation_refits, ")");
   }
-  std::string text = out.str();
   if (!text.empty()) text.resize(text.size() - 2);
   return text;
 }
@@ -692,6 +694,30 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
   return best_inliers;
 }
 
+namespace {
+
+// The matched coordinates as structure of arrays: reference x, reference y, query x, query y,
+// matches.size() entries each.
+std::vector<float> MatchedCoordinates(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                                      const std::vector<Correspondence>& matches) {
+  const size_t count = matches.size();
+  std::vector<float> xy(4 * count);
+  for (size_t i = 0; i < count; ++i) {
+    const Correspondence& m = matches[i];
+    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
+                         m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
+                     "match " << i << " (" << m.query << ", " << m.reference
+                              << ") is out of range");
+    xy[i] = reference[m.reference].x;
+    xy[count + i] = reference[m.reference].y;
+    xy[2 * count + i] = query[m.query].x;
+    xy[3 * count + i] = query[m.query].y;
+  }
+  return xy;
+}
+
+}  // namespace
+
 HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
                                           const std::vector<Point2>& reference,
                                           const std::vector<Correspondence>& matches,
@@ -699,24 +725,23 @@ HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
   const std::string problem = options.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
   const int count = static_cast<int>(matches.size());
-  std::vector<float> ref_x(count), ref_y(count), query_x(count), query_y(count);
-  for (int i = 0; i < count; ++i) {
-    const Correspondence& m = matches[i];
-    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
-                         m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
-                     "match " << i << " (" << m.query << ", " << m.reference
-                              << ") is out of range");
-    ref_x[i] = reference[m.reference].x;
-    ref_y[i] = reference[m.reference].y;
-    query_x[i] = query[m.query].x;
-    query_y[i] = query[m.query].y;
-  }
+  const std::vector<float> xy = MatchedCoordinates(query, reference, matches);
   HomographyResult result;
   result.inlier_mask.resize(count);
-  result.inliers = RansacHomographySoa(ref_x.data(), ref_y.data(), query_x.data(), query_y.data(),
+  result.inliers = RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count,
                                        count, options, seed, &result.reference_to_query,
                                        result.inlier_mask.data());
   return result;
+}
+
+int CountRansacInliers(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                       const std::vector<Correspondence>& matches, const RansacOptions& options, uint64_t seed) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const int count = static_cast<int>(matches.size());
+  const std::vector<float> xy = MatchedCoordinates(query, reference, matches);
+  return RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count, count,
+                             options, seed, nullptr, nullptr);
 }
 
 }  // namespace hoilcd

@@ -169,7 +169,6 @@ int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
                         const std::vector<HoiFeature>& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id) {
-  HOILCD_CHECK_MSG(ransac_options.Check().empty(), ransac_options.Check());
   return ScoreTrackAwarePair(PrepareTrackAwareFrame(query, options), PrepareTrackAwareFrame(reference, options),
                              options, ransac_options, seed, query_id, reference_id);
 }
@@ -177,25 +176,11 @@ int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
 int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id) {
+  HOILCD_CHECK_MSG(ransac_options.Check().empty(), ransac_options.Check());  // for empty frames too
   const std::vector<Correspondence> matches = TrackAwareCorrespondences(query.persons, reference.persons, options);
   if (matches.size() < 4) return 0;
-  // EstimateHomographyRansac's loop without its per-call option check and result buffers: the
-  // same inlier count.
-  const size_t count = matches.size();
-  std::vector<float> xy(4 * count);  // reference x, reference y, query x, query y
-  for (size_t i = 0; i < count; ++i) {
-    const Correspondence& m = matches[i];
-    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.points.size()) && m.reference >= 0 &&
-                         m.reference < static_cast<int>(reference.points.size()),
-                     "frames prepared from other features than their contours index");
-    xy[i] = reference.points[m.reference].x;
-    xy[count + i] = reference.points[m.reference].y;
-    xy[2 * count + i] = query.points[m.query].x;
-    xy[3 * count + i] = query.points[m.query].y;
-  }
-  return RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count,
-                             static_cast<int>(count), ransac_options, TrackAwarePairSeed(seed, query_id, reference_id),
-                             nullptr, nullptr);
+  return CountRansacInliers(query.points, reference.points, matches, ransac_options,
+                            TrackAwarePairSeed(seed, query_id, reference_id));
 }
 
 }  // namespace hoilcd

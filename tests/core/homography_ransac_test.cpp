@@ -275,6 +275,25 @@ TEST(EstimateHomographyRansac, SameSeedGivesSameResultDifferentSeedsMayDiffer) {
   EXPECT_GT(differing, 0);
 }
 
+TEST(CountRansacInliers, IsTheEstimatesInlierCountAndRejectsWhatTheEstimateRejects) {
+  Rng rng = KeyedRng(9, "test.ransac");
+  RansacOptions lo;
+  lo.local_optimisation_refits = 2;
+  for (int t = 0; t < 30; ++t) {
+    const Problem p = MakeProblem(rng, 20 + 7 * t, 5 + 3 * t, 1.0);
+    for (const RansacOptions& options : {RansacOptions{}, lo}) {
+      EXPECT_EQ(CountRansacInliers(p.query, p.reference, p.matches, options, t),
+                EstimateHomographyRansac(p.query, p.reference, p.matches, options, t).inliers)
+          << t;
+    }
+  }
+  RansacOptions bad;
+  bad.trials = 0;
+  EXPECT_THROW(CountRansacInliers({}, {}, {}, bad, 1), std::logic_error);
+  const std::vector<Point2> points(4, Point2(1, 1));
+  EXPECT_THROW(CountRansacInliers(points, points, {{0, 4}}, {}, 1), std::logic_error);
+}
+
 TEST(EstimateHomographyRansac, LocalOptimisationNeverFindsFewerInliersThanPlainWithSameSeed) {
   Rng rng = KeyedRng(8, "test.ransac");
   RansacOptions lo;

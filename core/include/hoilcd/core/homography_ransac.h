@@ -49,6 +49,10 @@ HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
                                           const std::vector<Correspondence>& matches,
                                           const RansacOptions& options, uint64_t seed);
 
+// EstimateHomographyRansac(...).inliers, without the model and the inlier mask (for scoring).
+int CountRansacInliers(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                       const std::vector<Correspondence>& matches, const RansacOptions& options, uint64_t seed);
+
 // The same loop on matched coordinates as structure of arrays (count entries each); returns the
 // inlier count. best_h and inlier_mask (count entries) may be null. Options are not re-checked.
 int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x,

@@ -77,8 +77,7 @@ int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
                         const std::vector<HoiFeature>& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id);
-// The same score from prepared frames (PrepareTrackAwareFrame with the same options); the RANSAC
-// options are not re-checked, once per pair (as RansacHomographySoa): the caller checks them.
+// The same score from prepared frames (PrepareTrackAwareFrame with the same options).
 int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id);
