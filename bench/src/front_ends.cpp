@@ -103,7 +103,9 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
     });
     progress.Done();
     if (keypoints) out.keypoint_index.AddAll(out.keypoints, options.threads);
-    for (int f = 0; f < n && thumbnails; ++f) out.thumbnails.AddDescriptor(std::move(descriptors[f]));
+    if (thumbnails) {
+      for (int f = 0; f < n; ++f) out.thumbnails.AddDescriptor(std::move(descriptors[f]));
+    }
   }
   if (out.Ran(FrontEnd::kPersons)) RunPersonFrontEnd(dataset, options, &out);
   return out;

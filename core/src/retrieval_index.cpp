@@ -19,7 +19,7 @@ constexpr int64_t kTileReferences = 32;
 
 }  // namespace
 
-void RetrievalIndex::Add(std::vector<Point2> points) { AddAll({std::move(points)}, 1); }
+void RetrievalIndex::Add(const std::vector<Point2>& points) { AddAll({points}, 1); }
 
 void RetrievalIndex::AddAll(const std::vector<std::vector<Point2>>& frames, int threads) {
   const size_t first = grids_.size();

@@ -14,7 +14,7 @@ namespace hoilcd {
 class RetrievalIndex {
  public:
   // Frame ids are 0..size-1 in Add order. Coordinates must be finite.
-  void Add(std::vector<Point2> points);
+  void Add(const std::vector<Point2>& points);
   // Adds frames in order, building their grids in parallel (threads 0 = all cores): the same
   // index as adding them one by one.
   void AddAll(const std::vector<std::vector<Point2>>& frames, int threads);
