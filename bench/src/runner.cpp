@@ -112,12 +112,31 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     result.tracking_evaluated = true;
   }
 
-  // Step 3: every method's scores, inputs before the methods that combine them.
+  // Step 3: every method's scores, inputs before the methods that combine them; methods that
+  // share a pass (PassKey) are scored together when the first of them comes up.
   std::map<std::string, MethodScores> scored;
-  for (const LoopClosureMethod* m : order) {
-    const BenchOptions own = WithParams(options, m->Name(), m->Params());  // its --param values
-    const MethodContext context{dataset, own, labelling, front_ends, scored, dataset.manifest().seed, options.threads};
-    scored[m->Name()] = m->Score(context);
+  std::vector<BenchOptions> own;  // each method's options with its --param values
+  for (const LoopClosureMethod* m : order) own.push_back(WithParams(options, m->Name(), m->Params()));
+  const auto context_of = [&](size_t i) {
+    return MethodContext{dataset, own[i], labelling, front_ends, scored, dataset.manifest().seed, options.threads};
+  };
+  std::vector<std::string> pass_keys;
+  for (size_t i = 0; i < order.size(); ++i) {
+    pass_keys.push_back(order[i]->Inputs().empty() ? order[i]->PassKey(context_of(i)) : "");
+  }
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (scored.count(order[i]->Name())) continue;
+    std::vector<const LoopClosureMethod*> pass = {order[i]};
+    std::vector<MethodContext> contexts = {context_of(i)};
+    for (size_t j = i + 1; j < order.size() && !pass_keys[i].empty(); ++j) {
+      if (pass_keys[j] == pass_keys[i]) pass.push_back(order[j]), contexts.push_back(context_of(j));
+    }
+    std::vector<MethodScores> scores =
+        pass.size() == 1 ? std::vector<MethodScores>{order[i]->Score(contexts.front())}
+                         : order[i]->ScoreTogether(pass, contexts);
+    HOILCD_CHECK_MSG(scores.size() == pass.size(), order[i]->Name() << " scored " << scores.size() << " of "
+                                                                    << pass.size() << " methods in its pass");
+    for (size_t k = 0; k < pass.size(); ++k) scored[pass[k]->Name()] = std::move(scores[k]);
   }
 
   // Step 4: metrics of the asked methods under both labellings.

@@ -1,6 +1,7 @@
 #include "hoilcd/core/matching.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -396,10 +397,8 @@ uint64_t PairSeed(uint64_t seed, int query_id, int reference_id) {
                      static_cast<uint64_t>(reference_id));
 }
 
-int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
-                      const Point2* reference_points, const PointGrid& reference_grid,
-                      const MatchOptions& match_options, const RansacOptions& ransac_options,
-                      uint64_t pair_seed) {
+int PairScorer::Match(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+                      const PointGrid& reference_grid, const MatchOptions& match_options) {
   MutualNearestNeighboursCached(query_points, query_grid, reference_points, reference_grid,
                                 &reverse_nearest_, &matches_);
   const double tolerance_px = match_options.vertical_tolerance * match_options.image_height_px;
@@ -417,9 +416,39 @@ int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
     query_y_[kept] = q.y;
     kept += WithinVerticalTolerance(q.y, r.y, tolerance_px) ? 1 : 0;
   }
-  return RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(),
-                             static_cast<int>(kept), ransac_options, pair_seed, nullptr,
-                             nullptr);
+  return static_cast<int>(kept);
+}
+
+int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
+                      const Point2* reference_points, const PointGrid& reference_grid,
+                      const MatchOptions& match_options, const RansacOptions& ransac_options,
+                      uint64_t pair_seed) {
+  const int kept = Match(query_points, query_grid, reference_points, reference_grid, match_options);
+  return RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept,
+                             ransac_options, pair_seed, nullptr, nullptr);
+}
+
+void PairScorer::ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
+                               const Point2* reference_points, const PointGrid& reference_grid,
+                               const MatchOptions& match_options, const RansacOptions* variants, int count,
+                               uint64_t pair_seed, int* inliers, int64_t* ns) {
+  using Clock = std::chrono::steady_clock;
+  const auto Nanoseconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count();
+  };
+  const Clock::time_point start = ns != nullptr ? Clock::now() : Clock::time_point();
+  const int kept = Match(query_points, query_grid, reference_points, reference_grid, match_options);
+  Clock::time_point matched = ns != nullptr ? Clock::now() : Clock::time_point();
+  const int64_t matching_ns = Nanoseconds(start, matched);
+  for (int v = 0; v < count; ++v) {
+    inliers[v] = RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept,
+                                     variants[v], pair_seed, nullptr, nullptr);
+    if (ns != nullptr) {
+      const Clock::time_point done = Clock::now();
+      ns[v] = matching_ns + Nanoseconds(matched, done);
+      matched = done;
+    }
+  }
 }
 
 int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference,

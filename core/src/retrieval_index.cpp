@@ -90,10 +90,25 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreDatabases(const std::vector
                                                                const RansacOptions& ransac_options, uint64_t seed,
                                                                int threads, std::vector<int64_t>* time_ns,
                                                                ProgressReporter* progress) const {
+  std::vector<std::vector<int64_t>> variant_ns;
+  std::vector<std::vector<std::vector<float>>> scores =
+      ScoreDatabases(queries, databases, match_options, std::vector<RansacOptions>{ransac_options}, seed, threads,
+                     time_ns != nullptr ? &variant_ns : nullptr, progress);
+  if (time_ns != nullptr) *time_ns = std::move(variant_ns.front());
+  return std::move(scores.front());
+}
+
+std::vector<std::vector<std::vector<float>>> RetrievalIndex::ScoreDatabases(
+    const std::vector<int>& queries, const std::vector<std::vector<int>>& databases,
+    const MatchOptions& match_options, const std::vector<RansacOptions>& variants, uint64_t seed, int threads,
+    std::vector<std::vector<int64_t>>* time_ns, ProgressReporter* progress) const {
   const std::string match_problem = match_options.Check();
   HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
-  const std::string ransac_problem = ransac_options.Check();
-  HOILCD_CHECK_MSG(ransac_problem.empty(), ransac_problem);
+  HOILCD_CHECK_MSG(!variants.empty(), "no RANSAC variant to score under");
+  for (const RansacOptions& ransac : variants) {
+    const std::string ransac_problem = ransac.Check();
+    HOILCD_CHECK_MSG(ransac_problem.empty(), ransac_problem);
+  }
   HOILCD_CHECK_MSG(databases.size() == queries.size(),
                    databases.size() << " databases for " << queries.size() << " queries");
   for (size_t i = 0; i < queries.size(); ++i) {
@@ -104,9 +119,13 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreDatabases(const std::vector
       HOILCD_CHECK_MSG(j == 0 || databases[i][j - 1] < r, "database " << i << " is not ascending");
     }
   }
-  std::vector<std::vector<float>> scores(queries.size());
-  for (size_t i = 0; i < queries.size(); ++i) scores[i].assign(databases[i].size(), 0.0f);
-  std::vector<std::atomic<int64_t>> spent_ns(queries.size());
+  const int count = static_cast<int>(variants.size());
+  std::vector<std::vector<std::vector<float>>> scores(count, std::vector<std::vector<float>>(queries.size()));
+  for (int v = 0; v < count; ++v) {
+    for (size_t i = 0; i < queries.size(); ++i) scores[v][i].assign(databases[i].size(), 0.0f);
+  }
+  // spent_ns[i * count + v]: query i's time under variant v.
+  std::vector<std::atomic<int64_t>> spent_ns(queries.size() * count);
   const int num_threads = ResolveThreadCount(threads);
   std::vector<PairScorer> scorers(num_threads);
   // Tiles: kTileQueries consecutive queries x kTileReferences consecutive frame ids; each query
@@ -116,6 +135,8 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreDatabases(const std::vector
   const int64_t frame_tiles = (size() + kTileReferences - 1) / kTileReferences;
   ParallelForChunks(query_tiles * frame_tiles, 1, num_threads, [&](int64_t begin, int64_t end, int worker) {
     PairScorer& scorer = scorers[worker];
+    std::vector<int> inliers(count);
+    std::vector<int64_t> pair_ns(count), row_ns(count);
     for (int64_t tile = begin; tile < end; ++tile) {
       const int64_t q0 = (tile / frame_tiles) * kTileQueries;
       const int r0 = static_cast<int>((tile % frame_tiles) * kTileReferences);
@@ -125,23 +146,34 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreDatabases(const std::vector
         const auto first = std::lower_bound(database.begin(), database.end(), r0);
         const auto last = std::lower_bound(first, database.end(), r1);
         if (first == last) continue;
+        // One variant is timed by the row; several by the pair, the matching counted in each.
         const auto start = std::chrono::steady_clock::now();
+        std::fill(row_ns.begin(), row_ns.end(), 0);
         const int q = queries[qi];
         for (auto it = first; it != last; ++it) {
           const int r = *it;
-          scores[qi][it - database.begin()] = static_cast<float>(
-              scorer.Score(points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r], grids_[r],
-                           match_options, ransac_options, PairSeed(seed, q, r)));
+          scorer.ScoreVariants(points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r], grids_[r],
+                               match_options, variants.data(), count, PairSeed(seed, q, r), inliers.data(),
+                               count > 1 ? pair_ns.data() : nullptr);
+          for (int v = 0; v < count; ++v) {
+            scores[v][qi][it - database.begin()] = static_cast<float>(inliers[v]);
+            if (count > 1) row_ns[v] += pair_ns[v];
+          }
         }
-        spent_ns[qi] += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
-                            .count();
+        if (count == 1) {
+          row_ns[0] = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+                          .count();
+        }
+        for (int v = 0; v < count; ++v) spent_ns[qi * count + v] += row_ns[v];
         if (progress != nullptr) progress->Update(last - first);
       }
     }
   });
   if (time_ns != nullptr) {
-    time_ns->resize(queries.size());
-    for (size_t i = 0; i < queries.size(); ++i) (*time_ns)[i] = spent_ns[i];
+    time_ns->assign(count, std::vector<int64_t>(queries.size()));
+    for (size_t i = 0; i < queries.size(); ++i) {
+      for (int v = 0; v < count; ++v) (*time_ns)[v][i] = spent_ns[i * count + v];
+    }
   }
   return scores;
 }

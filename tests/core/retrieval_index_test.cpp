@@ -151,6 +151,41 @@ TEST(RetrievalIndex, ScoreDatabasesEqualsScoreAllPerQueryAtAnyThreadCount) {
   }
 }
 
+TEST(RetrievalIndex, ScoringUnderSeveralRansacVariantsInOnePassGivesEachVariantsOwnScores) {
+  const std::vector<std::vector<Point2>> frames = MakeFrames(70);
+  RetrievalIndex index;
+  index.AddAll(frames, 2);
+  std::vector<int> queries;
+  std::vector<std::vector<int>> databases;
+  for (int q = 36; q < 70; q += 2) {
+    queries.push_back(q);
+    databases.emplace_back();
+    for (int r = q % 4; r < q - 3; ++r) databases.back().push_back(r);
+  }
+  const MatchOptions match;
+  RansacOptions lo, few, strict;
+  lo.local_optimisation_refits = 2;
+  few.trials = 7;
+  strict.inlier_threshold_px = 1.0;
+  const std::vector<RansacOptions> variants = {RansacOptions(), lo, few, strict};
+  std::vector<std::vector<int64_t>> time_ns;
+  ProgressReporter progress("test", 0, "pairs", /*quiet=*/true);
+  const auto tables = index.ScoreDatabases(queries, databases, match, variants, 5, 2, &time_ns, &progress);
+  ASSERT_EQ(tables.size(), variants.size());
+  ASSERT_EQ(time_ns.size(), variants.size());
+  for (size_t v = 0; v < variants.size(); ++v) {
+    EXPECT_EQ(tables[v], index.ScoreDatabases(queries, databases, match, variants[v], 5, 1)) << "variant " << v;
+    ASSERT_EQ(time_ns[v].size(), queries.size());
+    for (int64_t ns : time_ns[v]) EXPECT_GT(ns, 0);  // every database has pairs
+  }
+  EXPECT_NE(tables[0], tables[2]);  // the variants differ, so the check above can tell them apart
+  EXPECT_NE(tables[0], tables[3]);
+  for (int threads : {1, 3}) {
+    EXPECT_EQ(index.ScoreDatabases(queries, databases, match, variants, 5, threads), tables) << threads << " threads";
+  }
+  EXPECT_THROW(index.ScoreDatabases(queries, databases, match, std::vector<RansacOptions>{}, 5, 1), std::logic_error);
+}
+
 TEST(RetrievalIndex, ScoreDatabasesRejectsADatabaseThatIsNotAscendingOrAMissingOne) {
   const std::vector<std::vector<Point2>> frames = MakeFrames(8);
   RetrievalIndex index;

@@ -6,19 +6,14 @@
 namespace hoilcd {
 namespace {
 
-class Dlcd : public LoopClosureMethod {
+class Dlcd : public PointSetMethod {
  public:
+  Dlcd() : PointSetMethod(FrontEnd::kPersons, /*lo=*/false) {}
   std::string Name() const override { return "dlcd"; }
   std::string Description() const override {
     return "dynamic landmarks: HOI points (bottom contour of tracked people) + the same matching";
   }
   bool FromPaper() const override { return true; }
-  ShownFeatures Features() const override { return ShownFeatures::kHoiPoints; }
-  std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kPersons}; }
-  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(false); }
-  MethodScores Score(const MethodContext& c) const override {
-    return ScorePointSets(c, Name(), c.front_ends.hoi_index, c.options.ransac, c.front_ends.persons_ms);
-  }
 };
 
 }  // namespace

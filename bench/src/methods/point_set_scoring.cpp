@@ -1,23 +1,77 @@
 #include "point_set_scoring.h"
 
+#include <cstdio>
+
 #include "hoilcd/bench/method_params.h"
 #include "hoilcd/bench/runner.h"
+#include "hoilcd/core/error.h"
 #include "hoilcd/core/progress.h"
 
 namespace hoilcd {
+namespace {
 
-MethodScores ScorePointSets(const MethodContext& context, const std::string& title, const RetrievalIndex& index,
-                            const RansacOptions& ransac, const std::vector<double>& extract_ms_per_frame) {
+const RetrievalIndex& IndexOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
+  return front_end == FrontEnd::kKeypoints ? front_ends.keypoint_index : front_ends.hoi_index;
+}
+
+const std::vector<double>& ExtractMsOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
+  return front_end == FrontEnd::kKeypoints ? front_ends.keypoints_ms : front_ends.persons_ms;
+}
+
+}  // namespace
+
+ShownFeatures PointSetMethod::Features() const {
+  return front_end_ == FrontEnd::kKeypoints ? ShownFeatures::kKeypoints : ShownFeatures::kHoiPoints;
+}
+
+const OptionTable<BenchOptions>* PointSetMethod::Params() const {
+  static const OptionTable<BenchOptions> plain =
+      OptionTable<BenchOptions>().Flatten(&BenchOptions::ransac, RansacParams()).Flatten(&BenchOptions::match, MatchParams());
+  static const OptionTable<BenchOptions> with_lo = OptionTable<BenchOptions>(plain).Add(
+      "lo_refits", &BenchOptions::lo_refits, 2, "", OptionRange::Any().AtLeast(1),
+      "least-squares refits of the homography on its inliers");
+  return lo_ ? &with_lo : &plain;
+}
+
+RansacOptions PointSetMethod::Ransac(const BenchOptions& options) const {
+  RansacOptions ransac = options.ransac;
+  if (lo_) ransac.local_optimisation_refits = options.lo_refits;
+  return ransac;
+}
+
+MethodScores PointSetMethod::Score(const MethodContext& context) const {
+  return ScoreTogether({this}, {context}).front();
+}
+
+// The index and the matching decide the MNN; the seed is the dataset's for every method.
+std::string PointSetMethod::PassKey(const MethodContext& context) const {
+  const MatchOptions& match = context.options.match;
+  char key[120];
+  std::snprintf(key, sizeof(key), "point-set %s vertical_tolerance=%.17g image_height_px=%d",
+                FrontEndName(front_end_).c_str(), match.vertical_tolerance, match.image_height_px);
+  return key;
+}
+
+std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
+                                                        const std::vector<MethodContext>& contexts) const {
+  HOILCD_CHECK_MSG(methods.size() == contexts.size() && !methods.empty() && methods.front() == this,
+                   "a scoring pass is called on its first method, with one context per method");
+  std::vector<RansacOptions> variants;
+  std::string title;
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const auto* method = dynamic_cast<const PointSetMethod*>(methods[m]);
+    HOILCD_CHECK_MSG(method != nullptr && method->PassKey(contexts[m]) == PassKey(contexts.front()),
+                     methods[m]->Name() << " cannot share " << Name() << "'s scoring pass");
+    variants.push_back(method->Ransac(contexts[m].options));
+    title += (m ? " + " : "") + methods[m]->Name();
+  }
+  const MethodContext& context = contexts.front();
   const std::vector<Query>& queries = context.queries();
-  MethodScores out;
-  out.scores.resize(queries.size());
-  out.match_ms.assign(queries.size(), 0.0);
   // Every scored query in one parallel call; skipped queries are not scored (all 0).
   std::vector<size_t> scored;
   std::vector<int> frames;
   std::vector<std::vector<int>> databases;
   for (size_t i = 0; i < queries.size(); ++i) {
-    out.scores[i].assign(queries[i].database.size(), 0.0);
     if (!context.labelling.to_score[i] || queries[i].database.empty()) continue;
     scored.push_back(i);
     frames.push_back(queries[i].frame);
@@ -26,31 +80,23 @@ MethodScores ScorePointSets(const MethodContext& context, const std::string& tit
   int64_t pairs = 0;
   for (const std::vector<int>& d : databases) pairs += static_cast<int64_t>(d.size());
   ProgressReporter progress(title, pairs, "pairs");
-  std::vector<int64_t> time_ns;
-  const auto rows = index.ScoreDatabases(frames, databases, context.options.match, ransac, context.seed,
-                                         context.threads, &time_ns, &progress);
-  for (size_t k = 0; k < scored.size(); ++k) {
-    out.scores[scored[k]].assign(rows[k].begin(), rows[k].end());
-    out.match_ms[scored[k]] = 1e-6 * static_cast<double>(time_ns[k]);
-  }
+  std::vector<std::vector<int64_t>> time_ns;
+  const auto tables = IndexOf(context.front_ends, front_end_)
+                          .ScoreDatabases(frames, databases, context.options.match, variants, context.seed,
+                                          context.threads, &time_ns, &progress);
   progress.Done();
-  out.extract_ms = context.PerQuery(extract_ms_per_frame);
+  std::vector<MethodScores> out(methods.size());
+  for (size_t m = 0; m < methods.size(); ++m) {
+    out[m].scores.resize(queries.size());
+    out[m].match_ms.assign(queries.size(), 0.0);
+    for (size_t i = 0; i < queries.size(); ++i) out[m].scores[i].assign(queries[i].database.size(), 0.0);
+    for (size_t k = 0; k < scored.size(); ++k) {
+      out[m].scores[scored[k]].assign(tables[m][k].begin(), tables[m][k].end());
+      out[m].match_ms[scored[k]] = 1e-6 * static_cast<double>(time_ns[m][k]);
+    }
+    out[m].extract_ms = contexts[m].PerQuery(ExtractMsOf(context.front_ends, front_end_));
+  }
   return out;
-}
-
-const OptionTable<BenchOptions>& PointSetParams(bool lo) {
-  static const OptionTable<BenchOptions> plain =
-      OptionTable<BenchOptions>().Flatten(&BenchOptions::ransac, RansacParams()).Flatten(&BenchOptions::match, MatchParams());
-  static const OptionTable<BenchOptions> with_lo = OptionTable<BenchOptions>(plain).Add(
-      "lo_refits", &BenchOptions::lo_refits, 2, "", OptionRange::Any().AtLeast(1),
-      "least-squares refits of the homography on its inliers");
-  return lo ? with_lo : plain;
-}
-
-RansacOptions LocallyOptimised(const BenchOptions& options) {
-  RansacOptions lo = options.ransac;
-  lo.local_optimisation_refits = options.lo_refits;
-  return lo;
 }
 
 }  // namespace hoilcd

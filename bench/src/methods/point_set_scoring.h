@@ -1,5 +1,7 @@
 // Shared by the point-set methods (SLCD, DLCD and their -lo variants): every query against its own
-// database through a RetrievalIndex (MNN -> vertical filter -> RANSAC inliers), timed per query.
+// database through a front end's RetrievalIndex (MNN -> vertical filter -> RANSAC inliers), timed
+// per query. Point-set methods on the same index with the same matching options share one pass:
+// each pair's MNN is found once, then every method's RANSAC runs on it.
 #pragma once
 
 #include <string>
@@ -10,13 +12,25 @@
 
 namespace hoilcd {
 
-MethodScores ScorePointSets(const MethodContext& context, const std::string& title, const RetrievalIndex& index,
-                            const RansacOptions& ransac, const std::vector<double>& extract_ms_per_frame);
+class PointSetMethod : public LoopClosureMethod {
+ public:
+  // front_end: kKeypoints (corner keypoints) or kPersons (HOI points); lo: LO-RANSAC refits
+  // (the -lo variants, BenchOptions::lo_refits).
+  PointSetMethod(FrontEnd front_end, bool lo) : front_end_(front_end), lo_(lo) {}
 
-// --param fields of SLCD and DLCD (RANSAC, vertical filter) and, with lo, of their -lo variants.
-const OptionTable<BenchOptions>& PointSetParams(bool lo);
+  ShownFeatures Features() const override;
+  std::set<FrontEnd> FrontEnds() const override { return {front_end_}; }
+  const OptionTable<BenchOptions>* Params() const override;
+  MethodScores Score(const MethodContext& context) const override;
+  std::string PassKey(const MethodContext& context) const override;
+  std::vector<MethodScores> ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
+                                          const std::vector<MethodContext>& contexts) const override;
 
-// The bench's RANSAC with the -lo variants' least-squares refits.
-RansacOptions LocallyOptimised(const BenchOptions& options);
+ private:
+  RansacOptions Ransac(const BenchOptions& options) const;
+
+  FrontEnd front_end_;
+  bool lo_;
+};
 
 }  // namespace hoilcd

@@ -6,19 +6,14 @@
 namespace hoilcd {
 namespace {
 
-class Slcd : public LoopClosureMethod {
+class Slcd : public PointSetMethod {
  public:
+  Slcd() : PointSetMethod(FrontEnd::kKeypoints, /*lo=*/false) {}
   std::string Name() const override { return "slcd"; }
   std::string Description() const override {
     return "static landmarks: GFTT corner coordinates, MNN + vertical filter + RANSAC homography inliers";
   }
   bool FromPaper() const override { return true; }
-  ShownFeatures Features() const override { return ShownFeatures::kKeypoints; }
-  std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kKeypoints}; }
-  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(false); }
-  MethodScores Score(const MethodContext& c) const override {
-    return ScorePointSets(c, Name(), c.front_ends.keypoint_index, c.options.ransac, c.front_ends.keypoints_ms);
-  }
 };
 
 }  // namespace

@@ -5,17 +5,12 @@
 namespace hoilcd {
 namespace {
 
-class SlcdLo : public LoopClosureMethod {
+class SlcdLo : public PointSetMethod {
  public:
+  SlcdLo() : PointSetMethod(FrontEnd::kKeypoints, /*lo=*/true) {}
   std::string Name() const override { return "slcd-lo"; }
   std::string Description() const override {
     return "SLCD with locally optimised RANSAC (least-squares refits on the inliers)";
-  }
-  ShownFeatures Features() const override { return ShownFeatures::kKeypoints; }
-  std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kKeypoints}; }
-  const OptionTable<BenchOptions>* Params() const override { return &PointSetParams(true); }
-  MethodScores Score(const MethodContext& c) const override {
-    return ScorePointSets(c, Name(), c.front_ends.keypoint_index, LocallyOptimised(c.options), c.front_ends.keypoints_ms);
   }
 };
 

@@ -60,6 +60,17 @@ class LoopClosureMethod {
   // alone (method_params.h); null: none.
   virtual const OptionTable<BenchOptions>* Params() const { return nullptr; }
   virtual MethodScores Score(const MethodContext& context) const = 0;
+
+  // Scoring in one pass with other methods. Methods without Inputs() whose PassKey (under their
+  // own options) is the same non-empty text are scored by one ScoreTogether call on the first of
+  // them in scoring order, with all of them and their contexts; it returns what each one's
+  // Score() would (scores and timing). The point-set methods share each pair's MNN this way.
+  virtual std::string PassKey(const MethodContext& context) const {
+    (void)context;
+    return "";
+  }
+  virtual std::vector<MethodScores> ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
+                                                  const std::vector<MethodContext>& contexts) const;
 };
 
 using MethodFactory = std::function<std::unique_ptr<LoopClosureMethod>()>;

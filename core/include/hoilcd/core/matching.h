@@ -111,11 +111,22 @@ class PairScorer {
             const Point2* reference_points, const PointGrid& reference_grid,
             const MatchOptions& match_options, const RansacOptions& ransac_options,
             uint64_t pair_seed);
+  // Score() under each of `count` RANSAC variants, the MNN and vertical filter done once for all:
+  // inliers[v] = Score(..., variants[v], pair_seed). When ns is not null, ns[v] gets the time of
+  // the matching plus variant v's RANSAC (what Score() under it alone takes), ns.
+  void ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
+                     const Point2* reference_points, const PointGrid& reference_grid,
+                     const MatchOptions& match_options, const RansacOptions* variants, int count,
+                     uint64_t pair_seed, int* inliers, int64_t* ns);
 
  private:
   std::vector<Correspondence> matches_;
   std::vector<int> reverse_nearest_;
   std::vector<float> ref_x_, ref_y_, query_x_, query_y_;
+
+  // MNN and the vertical filter into the coordinate arrays; returns how many matches are kept.
+  int Match(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+            const PointGrid& reference_grid, const MatchOptions& match_options);
 };
 
 }  // namespace hoilcd
