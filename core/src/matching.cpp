@@ -423,9 +423,10 @@ int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
                       const Point2* reference_points, const PointGrid& reference_grid,
                       const MatchOptions& match_options, const RansacOptions& ransac_options,
                       uint64_t pair_seed) {
-  const int kept = Match(query_points, query_grid, reference_points, reference_grid, match_options);
-  return RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept,
-                             ransac_options, pair_seed, nullptr, nullptr);
+  int inliers = 0;
+  ScoreVariants(query_points, query_grid, reference_points, reference_grid, match_options, &ransac_options, 1,
+                pair_seed, &inliers, nullptr);
+  return inliers;
 }
 
 void PairScorer::ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
