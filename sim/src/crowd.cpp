@@ -577,6 +577,19 @@ void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
   // How deep the part's mesh reaches into the slab from above (0 if it does not).
   auto depth = [&](const Eigen::Matrix4d& seat_from_part, int part) {
     const Eigen::Matrix4d m = p.table_from_seat * seat_from_part;
+    // The part's box, moved, bounds every moved vertex: clear of the slab, no vertex can be in it
+    // (the margin covers rounding, so the answer is the vertices' own).
+    const Eigen::AlignedBox3f& bounds = skeleton_->part(part).bounds_m;
+    Eigen::AlignedBox3d moved;
+    for (int corner = 0; corner < 8; ++corner) {
+      moved.extend(Apply(m, bounds.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner)).cast<double>()));
+    }
+    constexpr double kMarginM = 1e-6;
+    if (moved.max().x() + kMarginM < lo.x() - kClearanceM || moved.min().x() - kMarginM > hi.x() + kClearanceM ||
+        moved.max().y() + kMarginM < lo.y() - kClearanceM || moved.min().y() - kMarginM > hi.y() + kClearanceM ||
+        moved.min().z() - kMarginM > top || moved.max().z() + kMarginM < bottom) {
+      return 0.0;
+    }
     double deepest = 0;
     for (const Eigen::Vector3f& v : skeleton_->part(part).mesh.positions_m) {
       const Eigen::Vector3d q = Apply(m, v.cast<double>());
