@@ -432,23 +432,21 @@ int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
 void PairScorer::ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
                                const Point2* reference_points, const PointGrid& reference_grid,
                                const MatchOptions& match_options, const RansacOptions* variants, int count,
-                               uint64_t pair_seed, int* inliers, int64_t* ns) {
-  using Clock = std::chrono::steady_clock;
-  const auto Nanoseconds = [](Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count();
-  };
-  const Clock::time_point start = ns != nullptr ? Clock::now() : Clock::time_point();
+                               uint64_t pair_seed, int* inliers, int64_t* ransac_ns) {
   const int kept = Match(query_points, query_grid, reference_points, reference_grid, match_options);
-  Clock::time_point matched = ns != nullptr ? Clock::now() : Clock::time_point();
-  const int64_t matching_ns = Nanoseconds(start, matched);
+  // Below 4 matches RANSAC returns at once: not timed, so cheap pairs do not pay for the clock.
+  const bool timed = ransac_ns != nullptr && kept >= 4;
+  std::chrono::steady_clock::time_point last = timed ? std::chrono::steady_clock::now()
+                                                     : std::chrono::steady_clock::time_point();
   for (int v = 0; v < count; ++v) {
     inliers[v] = RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept,
                                      variants[v], pair_seed, nullptr, nullptr);
-    if (ns != nullptr) {
-      const Clock::time_point done = Clock::now();
-      ns[v] = matching_ns + Nanoseconds(matched, done);
-      matched = done;
-    }
+    if (ransac_ns == nullptr) continue;
+    ransac_ns[v] = 0;
+    if (!timed) continue;
+    const auto now = std::chrono::steady_clock::now();
+    ransac_ns[v] = std::chrono::duration_cast<std::chrono::nanoseconds>(now - last).count();
+    last = now;
   }
 }
 

@@ -112,12 +112,12 @@ class PairScorer {
             const MatchOptions& match_options, const RansacOptions& ransac_options,
             uint64_t pair_seed);
   // Score() under each of `count` RANSAC variants, the MNN and vertical filter done once for all:
-  // inliers[v] = Score(..., variants[v], pair_seed). When ns is not null, ns[v] gets the time of
-  // the matching plus variant v's RANSAC (what Score() under it alone takes), ns.
+  // inliers[v] = Score(..., variants[v], pair_seed). When ransac_ns is not null, ransac_ns[v] gets
+  // the time of variant v's RANSAC, ns (0 when fewer than 4 matches are kept: no RANSAC runs).
   void ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
                      const Point2* reference_points, const PointGrid& reference_grid,
                      const MatchOptions& match_options, const RansacOptions* variants, int count,
-                     uint64_t pair_seed, int* inliers, int64_t* ns);
+                     uint64_t pair_seed, int* inliers, int64_t* ransac_ns);
 
  private:
   std::vector<Correspondence> matches_;
