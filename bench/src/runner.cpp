@@ -166,16 +166,4 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   return result;
 }
 
-const MethodScores& MethodContext::Input(const std::string& name) const {
-  const auto it = scored.find(name);
-  HOILCD_CHECK_MSG(it != scored.end(), "method " << name << " was not scored before the method that reads it");
-  return it->second;
-}
-
-std::vector<double> MethodContext::PerQuery(const std::vector<double>& per_frame) const {
-  std::vector<double> out;
-  for (const Query& q : queries()) out.push_back(per_frame[q.frame]);
-  return out;
-}
-
 }  // namespace hoilcd

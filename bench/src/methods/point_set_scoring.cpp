@@ -56,16 +56,20 @@ std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const 
                                                         const std::vector<MethodContext>& contexts) const {
   HOILCD_CHECK_MSG(methods.size() == contexts.size() && !methods.empty() && methods.front() == this,
                    "a scoring pass is called on its first method, with one context per method");
+  // Only the first context's matching options, seed, threads, queries and front ends are used.
+  const MethodContext& context = contexts.front();
   std::vector<RansacOptions> variants;
   std::string title;
   for (size_t m = 0; m < methods.size(); ++m) {
     const auto* method = dynamic_cast<const PointSetMethod*>(methods[m]);
-    HOILCD_CHECK_MSG(method != nullptr && method->PassKey(contexts[m]) == PassKey(contexts.front()),
+    const MethodContext& c = contexts[m];
+    HOILCD_CHECK_MSG(method != nullptr && method->front_end_ == front_end_ && c.options.match == context.options.match &&
+                         c.seed == context.seed && c.threads == context.threads &&
+                         &c.labelling == &context.labelling && &c.front_ends == &context.front_ends,
                      methods[m]->Name() << " cannot share " << Name() << "'s scoring pass");
-    variants.push_back(method->Ransac(contexts[m].options));
+    variants.push_back(method->Ransac(c.options));
     title += (m ? " + " : "") + methods[m]->Name();
   }
-  const MethodContext& context = contexts.front();
   const std::vector<Query>& queries = context.queries();
   // Every scored query in one parallel call; skipped queries are not scored (all 0).
   std::vector<size_t> scored;

@@ -32,13 +32,6 @@ Registry& TheRegistry() {
 
 }  // namespace
 
-std::vector<MethodScores> LoopClosureMethod::ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
-                                                           const std::vector<MethodContext>& contexts) const {
-  HOILCD_CHECK_MSG(methods.size() == 1 && contexts.size() == 1 && methods.front() == this,
-                   Name() << " shares no scoring pass; it is scored alone");
-  return {Score(contexts.front())};
-}
-
 void RegisterMethod(const MethodFactory& factory) {
   Registry& r = TheRegistry();
   std::unique_ptr<LoopClosureMethod> method = factory();

@@ -64,7 +64,8 @@ class LoopClosureMethod {
   // Scoring in one pass with other methods. Methods without Inputs() whose PassKey (under their
   // own options) is the same non-empty text are scored by one ScoreTogether call on the first of
   // them in scoring order, with all of them and their contexts; it returns what each one's
-  // Score() would (scores and timing). The point-set methods share each pair's MNN this way.
+  // Score() would (scores and timing). A key names one family of classes that can score each
+  // other (prefix it with the family's name). The point-set methods share each pair's MNN this way.
   virtual std::string PassKey(const MethodContext& context) const {
     (void)context;
     return "";

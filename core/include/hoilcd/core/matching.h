@@ -22,6 +22,11 @@ struct MatchOptions {
   std::string Check() const;
 };
 
+inline bool operator==(const MatchOptions& a, const MatchOptions& b) {
+  return a.vertical_tolerance == b.vertical_tolerance && a.image_height_px == b.image_height_px;
+}
+inline bool operator!=(const MatchOptions& a, const MatchOptions& b) { return !(a == b); }
+
 // A uniform bucket grid over one point set for exact nearest-neighbour queries in about O(1)
 // per query. Points are stored reordered by cell (structure of arrays) for locality, and
 // scanned eight at a time. A finer candidate lattice over the set's bounding box (plus a margin)
