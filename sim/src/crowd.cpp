@@ -569,36 +569,40 @@ void Crowd::KeepOwnElbowRoom(const Person& p, BodyPose* pose) const {
   }
 }
 
+double DepthIntoSlab(const Asset& part, const Eigen::Matrix4d& table_from_part, const TableSlab& slab) {
+  // The moved box bounds every moved vertex (m is affine): clear of the slab, no vertex can be
+  // in it (the margin covers rounding, so the answer is the vertices' own).
+  Eigen::AlignedBox3d moved;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3f c = part.bounds_m.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner));
+    moved.extend(Apply(table_from_part, c.cast<double>()));
+  }
+  constexpr double kMarginM = 1e-6;
+  if (moved.max().x() + kMarginM < slab.x_min || moved.min().x() - kMarginM > slab.x_max ||
+      moved.max().y() + kMarginM < slab.y_min || moved.min().y() - kMarginM > slab.y_max ||
+      moved.max().z() + kMarginM < slab.z_min || moved.min().z() - kMarginM > slab.z_max) {
+    return 0;
+  }
+  double deepest = 0;
+  for (const Eigen::Vector3f& v : part.mesh.positions_m) {
+    const Eigen::Vector3d q = Apply(table_from_part, v.cast<double>());
+    if (q.x() > slab.x_min && q.x() < slab.x_max && q.y() > slab.y_min && q.y() < slab.y_max && q.z() < slab.z_max &&
+        q.z() > slab.z_min) {
+      deepest = std::max(deepest, slab.z_max - q.z());
+    }
+  }
+  return deepest;
+}
+
 void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
   // The table top slab in the table frame, grown by a few millimetres of clearance.
   constexpr double kClearanceM = 0.004;
   const Eigen::Vector3f lo = table_bounds_m_.min(), hi = table_bounds_m_.max();
-  const double top = hi.z() + kClearanceM, bottom = hi.z() - 0.03 - kClearanceM;
+  const TableSlab slab{lo.x() - kClearanceM, hi.x() + kClearanceM, lo.y() - kClearanceM, hi.y() + kClearanceM,
+                       hi.z() - 0.03 - kClearanceM, hi.z() + kClearanceM};
   // How deep the part's mesh reaches into the slab from above (0 if it does not).
   auto depth = [&](const Eigen::Matrix4d& seat_from_part, int part) {
-    const Eigen::Matrix4d m = p.table_from_seat * seat_from_part;
-    // The part's box, moved, bounds every moved vertex: clear of the slab, no vertex can be in it
-    // (the margin covers rounding, so the answer is the vertices' own).
-    const Eigen::AlignedBox3f& bounds = skeleton_->part(part).bounds_m;
-    Eigen::AlignedBox3d moved;
-    for (int corner = 0; corner < 8; ++corner) {
-      moved.extend(Apply(m, bounds.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner)).cast<double>()));
-    }
-    constexpr double kMarginM = 1e-6;
-    if (moved.max().x() + kMarginM < lo.x() - kClearanceM || moved.min().x() - kMarginM > hi.x() + kClearanceM ||
-        moved.max().y() + kMarginM < lo.y() - kClearanceM || moved.min().y() - kMarginM > hi.y() + kClearanceM ||
-        moved.min().z() - kMarginM > top || moved.max().z() + kMarginM < bottom) {
-      return 0.0;
-    }
-    double deepest = 0;
-    for (const Eigen::Vector3f& v : skeleton_->part(part).mesh.positions_m) {
-      const Eigen::Vector3d q = Apply(m, v.cast<double>());
-      if (q.x() > lo.x() - kClearanceM && q.x() < hi.x() + kClearanceM && q.y() > lo.y() - kClearanceM &&
-          q.y() < hi.y() + kClearanceM && q.z() < top && q.z() > bottom) {
-        deepest = std::max(deepest, top - q.z());
-      }
-    }
-    return deepest;
+    return DepthIntoSlab(skeleton_->part(part), p.table_from_seat * seat_from_part, slab);
   };
   for (int iteration = 0; iteration < 8; ++iteration) {
     const auto parts = skeleton_->PartTransforms(*pose);

@@ -6,8 +6,11 @@
 #include <set>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/random.h"
+#include "hoilcd/sim/crowd.h"
 #include "hoilcd/sim/scene_options.h"
 #include "hoilcd/sim/sequence.h"
+#include "hoilcd/sim/skeleton.h"
 #include "hoilcd/sim/renderer.h"
 #include "hoilcd/sim/visibility.h"
 #include "hoilcd/sim/world.h"
@@ -352,6 +355,47 @@ TEST(Crowd, SomePeopleShowSkinWhereOthersHaveHair) {
   }
   EXPECT_GT(bald, 3);
   EXPECT_GT(haired, 3);
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+// DepthIntoSlab answers from the part's moved bounding box only when no vertex can be in the
+// slab: over random placements of every body part in and around a table-top slab, it equals the
+// deepest vertex found one by one, and both the box's answer and the vertices' are exercised.
+TEST(Crowd, DepthIntoSlabEqualsTheDeepestVertexAndSkipsOnlyPartsClearOfTheSlab) {
+  AssetLibrary assets(ShippedAssetDir());
+  const Skeleton skeleton(assets);
+  const TableSlab slab{-0.004, 0.904, -0.004, 0.754, 0.706, 0.744};  // paper_room's table, grown 4 mm
+  Rng rng = KeyedRng(3, "test.slab");
+  int deep = 0, box_clear = 0;
+  for (int trial = 0; trial < 8000; ++trial) {
+    const Asset& part = skeleton.part(trial % Skeleton::kPartCount);
+    const Eigen::Vector3d axis = Eigen::Vector3d(rng.Normal(0, 1), rng.Normal(0, 1), rng.Normal(0, 1)).normalized();
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topLeftCorner<3, 3>() = Eigen::AngleAxisd(rng.Uniform(-M_PI, M_PI), axis).toRotationMatrix();
+    m.topRightCorner<3, 1>() = Eigen::Vector3d(rng.Uniform(-0.2, 1.1), rng.Uniform(-0.2, 0.95), rng.Uniform(0.45, 1.0));
+    double deepest = 0;
+    Eigen::AlignedBox3d moved;
+    for (const Eigen::Vector3f& v : part.mesh.positions_m) {
+      const Eigen::Vector3d q = m.topLeftCorner<3, 3>() * v.cast<double>() + m.topRightCorner<3, 1>();
+      moved.extend(q);
+      if (q.x() > slab.x_min && q.x() < slab.x_max && q.y() > slab.y_min && q.y() < slab.y_max &&
+          q.z() > slab.z_min && q.z() < slab.z_max) {
+        deepest = std::max(deepest, slab.z_max - q.z());
+      }
+    }
+    ASSERT_EQ(DepthIntoSlab(part, m, slab), deepest) << "trial " << trial << ", part " << part.part;
+    deep += deepest > 0;
+    const Eigen::AlignedBox3d slab_box(Eigen::Vector3d(slab.x_min, slab.y_min, slab.z_min),
+                                       Eigen::Vector3d(slab.x_max, slab.y_max, slab.z_max));
+    box_clear += !moved.intersects(slab_box);
+  }
+  EXPECT_GT(deep, 250) << box_clear;
+  EXPECT_GT(box_clear, 250) << deep;
 }
 
 }  // namespace

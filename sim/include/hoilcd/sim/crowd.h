@@ -158,4 +158,14 @@ class Crowd {
   std::string scene_file_;  // named in errors found by Plan
 };
 
+// An open box in a table's frame, m: the table top slab a seated person's parts keep out of.
+struct TableSlab {
+  double x_min, x_max, y_min, y_max, z_min, z_max;
+};
+
+// How deep `part`'s mesh, moved by table_from_part, reaches into `slab` from above: the largest
+// z_max - z over the moved vertices strictly inside it, 0 when none is. A part whose moved
+// bounding box is clear of the slab gets 0 without its vertices being moved.
+double DepthIntoSlab(const Asset& part, const Eigen::Matrix4d& table_from_part, const TableSlab& slab);
+
 }  // namespace hoilcd
