@@ -696,13 +696,16 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
 
 namespace {
 
-// The matched coordinates as structure of arrays: reference x, reference y, query x, query y,
-// matches.size() entries each.
-std::vector<float> MatchedCoordinates(const std::vector<Point2>& query, const std::vector<Point2>& reference,
-                                      const std::vector<Correspondence>& matches) {
-  const size_t count = matches.size();
-  std::vector<float> xy(4 * count);
-  for (size_t i = 0; i < count; ++i) {
+// Checks the options, gathers the matched coordinates as structure of arrays and runs
+// RansacHomographySoa on them (best_h and inlier_mask as there).
+int RansacOnMatches(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                    const std::vector<Correspondence>& matches, const RansacOptions& options, uint64_t seed,
+                    Eigen::Matrix3d* best_h, uint8_t* inlier_mask) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const int count = static_cast<int>(matches.size());
+  std::vector<float> xy(4 * static_cast<size_t>(count));  // reference x, reference y, query x, query y
+  for (int i = 0; i < count; ++i) {
     const Correspondence& m = matches[i];
     HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
                          m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
@@ -713,7 +716,8 @@ std::vector<float> MatchedCoordinates(const std::vector<Point2>& query, const st
     xy[2 * count + i] = query[m.query].x;
     xy[3 * count + i] = query[m.query].y;
   }
-  return xy;
+  return RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count, count,
+                             options, seed, best_h, inlier_mask);
 }
 
 }  // namespace
@@ -722,26 +726,16 @@ HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
                                           const std::vector<Point2>& reference,
                                           const std::vector<Correspondence>& matches,
                                           const RansacOptions& options, uint64_t seed) {
-  const std::string problem = options.Check();
-  HOILCD_CHECK_MSG(problem.empty(), problem);
-  const int count = static_cast<int>(matches.size());
-  const std::vector<float> xy = MatchedCoordinates(query, reference, matches);
   HomographyResult result;
-  result.inlier_mask.resize(count);
-  result.inliers = RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count,
-                                       count, options, seed, &result.reference_to_query,
-                                       result.inlier_mask.data());
+  result.inlier_mask.resize(matches.size());
+  result.inliers = RansacOnMatches(query, reference, matches, options, seed, &result.reference_to_query,
+                                   result.inlier_mask.data());
   return result;
 }
 
 int CountRansacInliers(const std::vector<Point2>& query, const std::vector<Point2>& reference,
                        const std::vector<Correspondence>& matches, const RansacOptions& options, uint64_t seed) {
-  const std::string problem = options.Check();
-  HOILCD_CHECK_MSG(problem.empty(), problem);
-  const int count = static_cast<int>(matches.size());
-  const std::vector<float> xy = MatchedCoordinates(query, reference, matches);
-  return RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count, count,
-                             options, seed, nullptr, nullptr);
+  return RansacOnMatches(query, reference, matches, options, seed, nullptr, nullptr);
 }
 
 }  // namespace hoilcd
