@@ -176,9 +176,8 @@ int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
 int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id) {
-  HOILCD_CHECK_MSG(ransac_options.Check().empty(), ransac_options.Check());  // for empty frames too
+  // CountRansacInliers checks the options (for pairs without matches too) and gives 0 below 4.
   const std::vector<Correspondence> matches = TrackAwareCorrespondences(query.persons, reference.persons, options);
-  if (matches.size() < 4) return 0;
   return CountRansacInliers(query.points, reference.points, matches, ransac_options,
                             TrackAwarePairSeed(seed, query_id, reference_id));
 }
