@@ -5,6 +5,7 @@
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -596,6 +597,163 @@ bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float*
   return true;
 }
 
+namespace {
+
+// Hypotheses kept between drawing and scoring: the default 100 trials fit in one chunk.
+constexpr int kChunk = 128;
+
+// Matches as (reference x, reference y, query x, query y) quadruples, the layout GatherPoints
+// reads; *quads is resized to 4 * count.
+void Quadruples(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+                std::vector<float>* quads) {
+  quads->resize(4 * static_cast<size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    (*quads)[4 * i] = ref_x[i];
+    (*quads)[4 * i + 1] = ref_y[i];
+    (*quads)[4 * i + 2] = query_x[i];
+    (*quads)[4 * i + 3] = query_y[i];
+  }
+}
+
+// The hypotheses of one RANSAC stream, in draw order: samples are drawn eight at a time, those
+// with consistent orientations are queued in draw order and solved eight at a time, and each
+// non-degenerate solution is a hypothesis, up to options.trials of them. The stream depends only
+// on the matches, the seed, trials and redraw_degenerate_samples: variants that differ only in
+// their threshold or refits score the same hypotheses.
+class HypothesisStream {
+ public:
+  HypothesisStream(const float* quads, int count, const RansacOptions& options, uint64_t seed)
+      : quads_(quads),
+        bounds_(static_cast<uint32_t>(count)),
+        seed_(seed),
+        trials_(options.trials),
+        // With exactly 4 matches every sample is the same set: one draw decides.
+        budget_(count == 4 ? 1
+                           : static_cast<int64_t>(options.trials) *
+                                 (options.redraw_degenerate_samples ? kMaxDrawsPerTrial : 1)) {}
+
+  // Writes the next hypotheses to out (9 floats each, max |h| = 1), at most max >= kBatch of
+  // them, and returns how many.
+  int Next(int max, float* out) {
+    int n = 0;
+    while (n + kBatch <= max && !Done()) {
+      if (draws_ >= budget_) {  // the last, partly filled queue
+        n += Solve(queued_, out + 9 * n);
+        queued_ = 0;
+        break;
+      }
+      const int size = static_cast<int>(std::min<int64_t>(kBatch, budget_ - draws_));
+      SampleBatch drawn;
+      int32_t consistent[kBatch];
+      DrawAndCheckOrientations(seed_, static_cast<uint32_t>(draws_), bounds_, quads_, &drawn, consistent);
+      draws_ += size;
+      for (int b = 0; b < size; ++b) {
+        // Branch-free queueing: every sample is copied, only consistent ones advance the queue.
+        for (int k = 0; k < 4; ++k) pending_[k][queued_] = drawn[k][b];
+        queued_ -= consistent[b];  // a consistent lane holds -1
+        if (queued_ == kBatch) {   // at most once per drawn batch, so n stays within max
+          n += Solve(kBatch, out + 9 * n);
+          queued_ = 0;
+        }
+      }
+    }
+    return n;
+  }
+
+  // No hypothesis is left: trials are in, or every draw is spent and solved.
+  bool Done() const { return produced_ >= trials_ || (draws_ >= budget_ && queued_ == 0); }
+
+ private:
+  // Solves the first `size` queued samples; writes the valid ones, up to the trials left.
+  int Solve(int size, float* out) {
+    HypothesisBatch solved;
+    SolveBatch(pending_, quads_, &solved);
+    int n = 0;
+    for (int b = 0; b < size && produced_ < trials_; ++b) {
+      if (!solved.valid[b]) continue;
+      for (int k = 0; k < 9; ++k) out[9 * n + k] = solved.h[k][b];
+      ++n;
+      ++produced_;
+    }
+    return n;
+  }
+
+  const float* quads_;
+  DigitBounds bounds_;
+  uint64_t seed_;
+  int trials_;
+  int64_t budget_;
+  int64_t draws_ = 0;
+  int produced_ = 0;
+  SampleBatch pending_ = {};  // unused lanes keep index 0, a valid match
+  int queued_ = 0;
+};
+
+// One variant's search over a stream: the best model so far and its inlier count, with the
+// LO-RANSAC refits of each new best model. lo_mask is scratch (kept between calls by its owner).
+class BestModelSearch {
+ public:
+  void Start(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+             const RansacOptions& options, std::vector<uint8_t>* lo_mask) {
+    ref_x_ = ref_x, ref_y_ = ref_y, query_x_ = query_x, query_y_ = query_y, count_ = count;
+    threshold_sq_ = static_cast<float>(options.inlier_threshold_px * options.inlier_threshold_px);
+    refits_ = options.local_optimisation_refits;
+    lo_mask_ = lo_mask;
+    const float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::copy(identity, identity + 9, best_);
+    best_inliers_ = 0;
+  }
+
+  // Scores n hypotheses (9 floats each) in order.
+  void Score(const float* hypotheses, int n) {
+    for (int i = 0; i < n; ++i) {
+      float hf[9];
+      std::copy(hypotheses + 9 * i, hypotheses + 9 * i + 9, hf);
+      const int inliers = CountInliers(hf, ref_x_, ref_y_, query_x_, query_y_, count_, threshold_sq_, best_inliers_);
+      if (inliers <= best_inliers_) continue;
+      best_inliers_ = inliers;
+      std::copy(hf, hf + 9, best_);
+      if (refits_ <= 0 || inliers <= 4) continue;
+      lo_mask_->resize(count_);
+      MarkInliers(hf, ref_x_, ref_y_, query_x_, query_y_, count_, threshold_sq_, lo_mask_->data());
+      for (int refit = 0; refit < refits_; ++refit) {
+        Eigen::Matrix3d fit;
+        if (!HomographyLeastSquares(ref_x_, ref_y_, query_x_, query_y_, lo_mask_->data(), count_, &fit)) break;
+        double hr[9];
+        for (int k = 0; k < 9; ++k) hr[k] = fit(k / 3, k % 3);
+        if (!NormaliseMaxAbs(hr)) break;
+        for (int k = 0; k < 9; ++k) hf[k] = static_cast<float>(hr[k]);
+        const int refit_inliers =
+            CountInliers(hf, ref_x_, ref_y_, query_x_, query_y_, count_, threshold_sq_, best_inliers_);
+        if (refit_inliers <= best_inliers_) break;
+        best_inliers_ = refit_inliers;
+        std::copy(hf, hf + 9, best_);
+        MarkInliers(hf, ref_x_, ref_y_, query_x_, query_y_, count_, threshold_sq_, lo_mask_->data());
+      }
+    }
+  }
+
+  int inliers() const { return best_inliers_; }
+  const float* best() const { return best_; }
+  float threshold_sq() const { return threshold_sq_; }
+
+ private:
+  const float *ref_x_ = nullptr, *ref_y_ = nullptr, *query_x_ = nullptr, *query_y_ = nullptr;
+  int count_ = 0;
+  float threshold_sq_ = 0;
+  int refits_ = 0;
+  std::vector<uint8_t>* lo_mask_ = nullptr;
+  float best_[9] = {};
+  int best_inliers_ = 0;
+};
+
+// Variants score one stream when they draw the same samples.
+bool SameStream(const RansacOptions& a, const RansacOptions& b) {
+  return a.trials == b.trials && a.redraw_degenerate_samples == b.redraw_degenerate_samples;
+}
+
+}  // namespace
+
 // Hand-written rather than cv::findHomography: the paper runs exactly N trials, while OpenCV
 // stops adaptively and refines the model afterwards.
 int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x,
@@ -606,92 +764,85 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
     if (inlier_mask != nullptr) std::fill(inlier_mask, inlier_mask + count, uint8_t{0});
     return 0;
   }
-  const float threshold_sq =
-      static_cast<float>(options.inlier_threshold_px * options.inlier_threshold_px);
-  std::unique_ptr<float[]> quads(new float[4 * static_cast<size_t>(count)]);
-  for (int i = 0; i < count; ++i) {
-    quads[4 * i] = ref_x[i];
-    quads[4 * i + 1] = ref_y[i];
-    quads[4 * i + 2] = query_x[i];
-    quads[4 * i + 3] = query_y[i];
-  }
-  const DigitBounds bounds(static_cast<uint32_t>(count));
-  // With exactly 4 matches every sample is the same set: one draw decides.
-  const int64_t draw_budget =
-      count == 4 ? 1
-                 : static_cast<int64_t>(options.trials) *
-                       (options.redraw_degenerate_samples ? kMaxDrawsPerTrial : 1);
-  float best[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  int best_inliers = 0;
+  std::vector<float> quads;
+  Quadruples(ref_x, ref_y, query_x, query_y, count, &quads);
+  HypothesisStream stream(quads.data(), count, options, seed);
   std::vector<uint8_t> lo_mask;
-  int hypotheses = 0;
-  // Evaluates the first `size` lanes of `pending` in order, until `trials` hypotheses are in.
-  const auto evaluate = [&](const SampleBatch& pending, int size) {
-    HypothesisBatch solved;
-    SolveBatch(pending, quads.get(), &solved);
-    for (int b = 0; b < size && hypotheses < options.trials; ++b) {
-      if (!solved.valid[b]) continue;
-      ++hypotheses;
-      float hf[9];
-      for (int k = 0; k < 9; ++k) hf[k] = solved.h[k][b];
-      const int inliers =
-          CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
-      if (inliers <= best_inliers) continue;
-      best_inliers = inliers;
-      std::copy(hf, hf + 9, best);
-      if (options.local_optimisation_refits <= 0 || inliers <= 4) continue;
-      lo_mask.resize(count);
-      MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
-      for (int refit = 0; refit < options.local_optimisation_refits; ++refit) {
-        Eigen::Matrix3d fit;
-        if (!HomographyLeastSquares(ref_x, ref_y, query_x, query_y, lo_mask.data(), count,
-                                    &fit)) {
-          break;
-        }
-        double hr[9];
-        for (int k = 0; k < 9; ++k) hr[k] = fit(k / 3, k % 3);
-        if (!NormaliseMaxAbs(hr)) break;
-        for (int k = 0; k < 9; ++k) hf[k] = static_cast<float>(hr[k]);
-        const int refit_inliers =
-            CountInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, best_inliers);
-        if (refit_inliers <= best_inliers) break;
-        best_inliers = refit_inliers;
-        std::copy(hf, hf + 9, best);
-        MarkInliers(hf, ref_x, ref_y, query_x, query_y, count, threshold_sq, lo_mask.data());
-      }
-    }
-  };
-  // Samples are drawn eight at a time; those with consistent orientations are queued, in draw
-  // order, and solved and scored eight at a time. Draws past the last hypothesis needed are
-  // discarded, so the result is that of taking the samples one by one.
-  SampleBatch drawn, pending = {};  // unused lanes of pending keep index 0, a valid match
-  int32_t consistent[kBatch];
-  int queued = 0;
-  for (int64_t draws = 0; hypotheses < options.trials && draws < draw_budget;) {
-    const int size = static_cast<int>(std::min<int64_t>(kBatch, draw_budget - draws));
-    DrawAndCheckOrientations(seed, static_cast<uint32_t>(draws), bounds, quads.get(), &drawn,
-                             consistent);
-    draws += size;
-    for (int b = 0; b < size; ++b) {
-      // Branch-free queueing: every sample is copied, only consistent ones advance the queue.
-      for (int k = 0; k < 4; ++k) pending[k][queued] = drawn[k][b];
-      queued -= consistent[b];  // a consistent lane holds -1
-      if (queued == kBatch) {
-        evaluate(pending, kBatch);
-        queued = 0;
-      }
-    }
+  BestModelSearch search;
+  search.Start(ref_x, ref_y, query_x, query_y, count, options, &lo_mask);
+  float hypotheses[9 * kChunk];
+  while (!stream.Done()) {
+    const int n = stream.Next(kChunk, hypotheses);
+    search.Score(hypotheses, n);
   }
-  if (queued > 0) evaluate(pending, queued);
-  if (best_h != nullptr) *best_h = ToResultMatrix(best);
+  if (best_h != nullptr) *best_h = ToResultMatrix(search.best());
   if (inlier_mask != nullptr) {
-    if (best_inliers == 0) {
+    if (search.inliers() == 0) {
       std::fill(inlier_mask, inlier_mask + count, uint8_t{0});
     } else {
-      MarkInliers(best, ref_x, ref_y, query_x, query_y, count, threshold_sq, inlier_mask);
+      MarkInliers(search.best(), ref_x, ref_y, query_x, query_y, count, search.threshold_sq(), inlier_mask);
     }
   }
-  return best_inliers;
+  return search.inliers();
+}
+
+void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y,
+                          int count, const RansacOptions* variants, int num_variants, uint64_t seed, int* inliers,
+                          int64_t* alone_ns, int64_t* total_ns) {
+  const bool timed = alone_ns != nullptr;
+  if (timed) {
+    std::fill(alone_ns, alone_ns + num_variants, int64_t{0});
+    *total_ns = 0;
+  }
+  if (count < 4) {
+    std::fill(inliers, inliers + num_variants, 0);
+    return;
+  }
+  HOILCD_CHECK_MSG(num_variants <= 64, "at most 64 RANSAC variants at once (got " << num_variants << ")");
+  using Clock = std::chrono::steady_clock;
+  const auto elapsed_ns = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count();
+  };
+  const Clock::time_point start = timed ? Clock::now() : Clock::time_point();
+  Clock::time_point last = start;  // the gathering below counts as the first stream's drawing
+  Quadruples(ref_x, ref_y, query_x, query_y, count, &quads_);
+  if (lo_masks_.size() < static_cast<size_t>(num_variants)) lo_masks_.resize(num_variants);
+  hypotheses_.resize(9 * kChunk);
+  // Groups of variants on one stream, in order: the first variant not yet scored and every later
+  // one on the same stream, at most kMaxSharing at once (a larger group draws its stream again).
+  constexpr int kMaxSharing = 8;
+  uint64_t scored = 0;  // bit v: variant v is done
+  for (int first = 0; first < num_variants; ++first) {
+    if (scored >> first & 1) continue;
+    int group[kMaxSharing], size = 0;
+    BestModelSearch searches[kMaxSharing];
+    for (int v = first; v < num_variants && size < kMaxSharing; ++v) {
+      if ((scored >> v & 1) || !SameStream(variants[first], variants[v])) continue;
+      scored |= uint64_t{1} << v;
+      searches[size].Start(ref_x, ref_y, query_x, query_y, count, variants[v], &lo_masks_[v]);
+      group[size++] = v;
+    }
+    HypothesisStream stream(quads_.data(), count, variants[first], seed);
+    while (!stream.Done()) {
+      const int n = stream.Next(kChunk, hypotheses_.data());
+      Clock::time_point now;
+      int64_t drawing_ns = 0;
+      if (timed) {
+        now = Clock::now();
+        drawing_ns = elapsed_ns(last, now);
+        last = now;
+      }
+      for (int g = 0; g < size; ++g) {
+        searches[g].Score(hypotheses_.data(), n);
+        if (!timed) continue;
+        now = Clock::now();
+        alone_ns[group[g]] += drawing_ns + elapsed_ns(last, now);
+        last = now;
+      }
+    }
+    for (int g = 0; g < size; ++g) inliers[group[g]] = searches[g].inliers();
+  }
+  if (timed) *total_ns = elapsed_ns(start, last);
 }
 
 namespace {

@@ -425,29 +425,17 @@ int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
                       uint64_t pair_seed) {
   int inliers = 0;
   ScoreVariants(query_points, query_grid, reference_points, reference_grid, match_options, &ransac_options, 1,
-                pair_seed, &inliers, nullptr);
+                pair_seed, &inliers, nullptr, nullptr);
   return inliers;
 }
 
 void PairScorer::ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
                                const Point2* reference_points, const PointGrid& reference_grid,
                                const MatchOptions& match_options, const RansacOptions* variants, int count,
-                               uint64_t pair_seed, int* inliers, int64_t* ransac_ns) {
+                               uint64_t pair_seed, int* inliers, int64_t* alone_ns, int64_t* total_ns) {
   const int kept = Match(query_points, query_grid, reference_points, reference_grid, match_options);
-  // Below 4 matches RANSAC returns at once: not timed, so cheap pairs do not pay for the clock.
-  const bool timed = ransac_ns != nullptr && kept >= 4;
-  std::chrono::steady_clock::time_point last = timed ? std::chrono::steady_clock::now()
-                                                     : std::chrono::steady_clock::time_point();
-  for (int v = 0; v < count; ++v) {
-    inliers[v] = RansacHomographySoa(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept,
-                                     variants[v], pair_seed, nullptr, nullptr);
-    if (ransac_ns == nullptr) continue;
-    ransac_ns[v] = 0;
-    if (!timed) continue;
-    const auto now = std::chrono::steady_clock::now();
-    ransac_ns[v] = std::chrono::duration_cast<std::chrono::nanoseconds>(now - last).count();
-    last = now;
-  }
+  ransac_.Count(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept, variants, count, pair_seed,
+                inliers, alone_ns, total_ns);
 }
 
 int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference,

@@ -136,7 +136,7 @@ std::vector<std::vector<std::vector<float>>> RetrievalIndex::ScoreDatabases(
   ParallelForChunks(query_tiles * frame_tiles, 1, num_threads, [&](int64_t begin, int64_t end, int worker) {
     PairScorer& scorer = scorers[worker];
     std::vector<int> inliers(count);
-    std::vector<int64_t> pair_ransac_ns(count), ransac_ns(count);
+    std::vector<int64_t> pair_alone_ns(count), alone_ns(count);
     for (int64_t tile = begin; tile < end; ++tile) {
       const int64_t q0 = (tile / frame_tiles) * kTileQueries;
       const int r0 = static_cast<int>((tile % frame_tiles) * kTileReferences);
@@ -146,27 +146,28 @@ std::vector<std::vector<std::vector<float>>> RetrievalIndex::ScoreDatabases(
         const auto first = std::lower_bound(database.begin(), database.end(), r0);
         const auto last = std::lower_bound(first, database.end(), r1);
         if (first == last) continue;
-        // The row is timed whole; with several variants each one's RANSAC is timed too, and a
-        // variant is charged the row less every variant's RANSAC plus its own: the matching and
-        // its own RANSAC, what it costs alone.
+        // The row is timed whole; with several variants their RANSAC is timed too, and a variant is
+        // charged the row less the RANSAC time plus what its own RANSAC costs alone (drawing the
+        // samples, which the variants share, and its own scoring): the matching and its RANSAC.
         const auto start = std::chrono::steady_clock::now();
-        std::fill(ransac_ns.begin(), ransac_ns.end(), 0);
+        std::fill(alone_ns.begin(), alone_ns.end(), 0);
+        int64_t ransac_ns = 0;
         const int q = queries[qi];
         for (auto it = first; it != last; ++it) {
           const int r = *it;
+          int64_t pair_ransac_ns = 0;
           scorer.ScoreVariants(points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r], grids_[r],
                                match_options, variants.data(), count, PairSeed(seed, q, r), inliers.data(),
-                               count > 1 ? pair_ransac_ns.data() : nullptr);
+                               count > 1 ? pair_alone_ns.data() : nullptr, count > 1 ? &pair_ransac_ns : nullptr);
+          ransac_ns += pair_ransac_ns;
           for (int v = 0; v < count; ++v) {
             scores[v][qi][it - database.begin()] = static_cast<float>(inliers[v]);
-            if (count > 1) ransac_ns[v] += pair_ransac_ns[v];
+            if (count > 1) alone_ns[v] += pair_alone_ns[v];
           }
         }
         const int64_t row_ns =
             std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
-        int64_t all_ransac_ns = 0;
-        for (int64_t ns : ransac_ns) all_ransac_ns += ns;
-        for (int v = 0; v < count; ++v) spent_ns[qi * count + v] += row_ns - all_ransac_ns + ransac_ns[v];
+        for (int v = 0; v < count; ++v) spent_ns[qi * count + v] += row_ns - ransac_ns + alone_ns[v];
         if (progress != nullptr) progress->Update(last - first);
       }
     }

@@ -294,6 +294,70 @@ TEST(CountRansacInliers, IsTheEstimatesInlierCountAndRejectsWhatTheEstimateRejec
   EXPECT_THROW(CountRansacInliers(points, points, {{0, 4}}, {}, 1), std::logic_error);
 }
 
+// Structure-of-arrays coordinates of a problem's matches, as RansacHomographySoa takes them.
+struct SoaMatches {
+  std::vector<float> ref_x, ref_y, query_x, query_y;
+  explicit SoaMatches(const Problem& p) {
+    for (const Correspondence& m : p.matches) {
+      ref_x.push_back(p.reference[m.reference].x);
+      ref_y.push_back(p.reference[m.reference].y);
+      query_x.push_back(p.query[m.query].x);
+      query_y.push_back(p.query[m.query].y);
+    }
+  }
+  int size() const { return static_cast<int>(ref_x.size()); }
+};
+
+TEST(RansacCounter, EachVariantCountsWhatItsOwnRansacCountsAndIsChargedItsDrawingAndScoring) {
+  // Variants on one stream (plain, LO, other thresholds), on streams of their own (more trials than
+  // one chunk of hypotheses, no redrawing, few trials), and a group larger than the eight that
+  // share one drawing at once.
+  std::vector<RansacOptions> variants(8);
+  variants[1].local_optimisation_refits = 2;
+  variants[2].inlier_threshold_px = 2.5;
+  variants[3].inlier_threshold_px = 2.5, variants[3].local_optimisation_refits = 1;
+  variants[4].trials = 300;
+  variants[5].trials = 300, variants[5].local_optimisation_refits = 3;
+  variants[6].redraw_degenerate_samples = false;
+  variants[7].trials = 7;
+  std::vector<RansacOptions> crowd(11);
+  for (size_t v = 0; v < crowd.size(); ++v) crowd[v].inlier_threshold_px = 1.0 + 0.5 * static_cast<double>(v);
+  Rng rng = KeyedRng(10, "test.ransac");
+  RansacCounter counter;
+  for (int t = 0; t < 40; ++t) {
+    const int n = t < 8 ? t : 9 + 6 * t;  // 0..7 matches first: none, too few, exactly 4, a handful
+    const Problem p = MakeProblem(rng, n, n * (t % 4) / 4, 1.0);
+    const SoaMatches m(p);
+    for (const std::vector<RansacOptions>* set : {&variants, &crowd}) {
+      const int count = static_cast<int>(set->size());
+      std::vector<int> inliers(count, -1), untimed(count, -1);
+      std::vector<int64_t> alone_ns(count, -1);
+      int64_t total_ns = -1;
+      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), set->data(),
+                    count, 1000 + t, inliers.data(), alone_ns.data(), &total_ns);
+      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), set->data(),
+                    count, 1000 + t, untimed.data(), nullptr, nullptr);
+      int64_t sum_ns = 0;
+      for (int v = 0; v < count; ++v) {
+        const int alone = RansacHomographySoa(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(),
+                                              m.size(), (*set)[v], 1000 + t, nullptr, nullptr);
+        EXPECT_EQ(inliers[v], alone) << "problem " << t << ", variant " << v;
+        EXPECT_EQ(untimed[v], alone) << "problem " << t << ", variant " << v;
+        EXPECT_GE(alone_ns[v], 0);
+        EXPECT_LE(alone_ns[v], total_ns) << "a variant alone costs at most the whole call";
+        sum_ns += alone_ns[v];
+      }
+      // Each stream's drawing is charged to every variant on it: the charges add up to at least
+      // the call; below 4 matches nothing runs and nothing is charged.
+      EXPECT_GE(sum_ns, total_ns);
+      if (n < 4) {
+        EXPECT_EQ(total_ns, 0);
+        EXPECT_EQ(sum_ns, 0);
+      }
+    }
+  }
+}
+
 TEST(EstimateHomographyRansac, LocalOptimisationNeverFindsFewerInliersThanPlainWithSameSeed) {
   Rng rng = KeyedRng(8, "test.ransac");
   RansacOptions lo;

@@ -59,6 +59,26 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
                         const float* query_y, int count, const RansacOptions& options,
                         uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask);
 
+// RansacHomographySoa's inlier counts under several variants of the options at once, reusing
+// scratch buffers between calls (one counter per thread). Variants with the same trials and
+// redraw_degenerate_samples draw the same samples, so those are drawn and solved once and the
+// hypotheses scored under each variant's threshold and refits: inliers[v] equals
+// RansacHomographySoa(..., variants[v], seed, nullptr, nullptr). Options are not re-checked; at
+// most 64 variants. When alone_ns is not null (then total_ns must not be), alone_ns[v] gets what
+// variant v costs alone (drawing and solving its samples, and its own scoring) and *total_ns the
+// whole call, in ns; both are 0 below 4 matches, where nothing is timed.
+class RansacCounter {
+ public:
+  void Count(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+             const RansacOptions* variants, int num_variants, uint64_t seed, int* inliers, int64_t* alone_ns,
+             int64_t* total_ns);
+
+ private:
+  std::vector<float> quads_;
+  std::vector<std::vector<uint8_t>> lo_masks_;  // one per variant
+  std::vector<float> hypotheses_;               // one chunk of a stream
+};
+
 // Draw `draw` of the RANSAC stream `seed` over n >= 4 matches: four distinct indices in [0, n),
 // uniform over ordered 4-tuples, from the counter-based words CounterWord(seed, 4 draw + k)
 // (random.h). The loop draws eight samples at once in vector lanes with the same result.

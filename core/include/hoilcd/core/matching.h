@@ -116,18 +116,20 @@ class PairScorer {
             const Point2* reference_points, const PointGrid& reference_grid,
             const MatchOptions& match_options, const RansacOptions& ransac_options,
             uint64_t pair_seed);
-  // Score() under each of `count` RANSAC variants, the MNN and vertical filter done once for all:
-  // inliers[v] = Score(..., variants[v], pair_seed). When ransac_ns is not null, ransac_ns[v] gets
-  // the time of variant v's RANSAC, ns (0 when fewer than 4 matches are kept: no RANSAC runs).
+  // Score() under each of `count` RANSAC variants, the MNN and vertical filter done once for all
+  // and the samples drawn once for variants that share them (RansacCounter): inliers[v] =
+  // Score(..., variants[v], pair_seed). alone_ns and total_ns as in RansacCounter::Count (both null:
+  // not timed; 0 when fewer than 4 matches are kept: no RANSAC runs).
   void ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
                      const Point2* reference_points, const PointGrid& reference_grid,
                      const MatchOptions& match_options, const RansacOptions* variants, int count,
-                     uint64_t pair_seed, int* inliers, int64_t* ransac_ns);
+                     uint64_t pair_seed, int* inliers, int64_t* alone_ns, int64_t* total_ns);
 
  private:
   std::vector<Correspondence> matches_;
   std::vector<int> reverse_nearest_;
   std::vector<float> ref_x_, ref_y_, query_x_, query_y_;
+  RansacCounter ransac_;
 
   // MNN and the vertical filter into the coordinate arrays; returns how many matches are kept.
   int Match(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
