@@ -116,12 +116,12 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
 std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& bench) {
   std::string program;
   try {
-    program = ChecksumOf(ReadFileBytes("/proc/self/exe"));
+    program = ChecksumOfFile("/proc/self/exe");
   } catch (const InputError&) {
     return "";  // the program cannot be identified: never reuse a cached result
   }
   nlohmann::json key = {
-      {"dataset", ChecksumOf(ReadFileBytes(dataset_dir + "/manifest.json"))},
+      {"dataset", ChecksumOfFile(dataset_dir + "/manifest.json")},
       {"program", program},
       {"version", HOILCD_VERSION},
       {"bench", BenchSettingsJson(bench)}};

@@ -718,7 +718,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
       const std::string path = JoinPath(dir, listed[i].first);
       std::string actual;
       try {
-        actual = ChecksumOf(ReadFileBytes(path));
+        actual = ChecksumOfFile(path);
       } catch (const InputError&) {
         errors[i] = "listed in manifest.json but missing or unreadable";
         return;

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
@@ -21,10 +22,8 @@ namespace fs = std::filesystem;
 
 constexpr const char* kChecksumPrefix = "xxh3-128:";
 
-}  // namespace
-
-std::string ChecksumOf(std::string_view bytes) {
-  const XXH128_hash_t hash = XXH3_128bits(bytes.data(), bytes.size());
+// The checksum text of a finished XXH3-128 hash.
+std::string ChecksumText(XXH128_hash_t hash) {
   XXH128_canonical_t canonical;
   XXH128_canonicalFromHash(&canonical, hash);
   static constexpr char kHex[] = "0123456789abcdef";
@@ -36,9 +35,48 @@ std::string ChecksumOf(std::string_view bytes) {
   return out;
 }
 
-std::string ReadFileBytes(const std::string& path) {
+int OpenForReading(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw InputError(path, "cannot read file (missing or not readable)");
+  return fd;
+}
+
+// Up to `size` bytes of fd into `into` (0 at the end of the file), retried on EINTR; on an error
+// closes fd and throws InputError(path, ...).
+size_t ReadSome(int fd, char* into, size_t size, const std::string& path) {
+  for (;;) {
+    const ssize_t got = ::read(fd, into, size);
+    if (got >= 0) return static_cast<size_t>(got);
+    if (errno == EINTR) continue;
+    const int error = errno;
+    ::close(fd);
+    // A folder opens but does not read (EISDIR): still "not readable" to the caller.
+    throw InputError(path, error == EISDIR ? "cannot read file (missing or not readable)"
+                                           : std::string("cannot read file (") + std::strerror(error) + ")");
+  }
+}
+
+}  // namespace
+
+std::string ChecksumOf(std::string_view bytes) { return ChecksumText(XXH3_128bits(bytes.data(), bytes.size())); }
+
+std::string ChecksumOfFile(const std::string& path) {
+  const int fd = OpenForReading(path);
+  const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(), XXH3_freeState);
+  HOILCD_CHECK(state != nullptr && XXH3_128bits_reset(state.get()) == XXH_OK);
+  // Block by block into one uninitialised buffer: a dataset's files (~1 GB) are never held whole,
+  // zeroed or faulted in anew.
+  constexpr size_t kBlock = size_t{1} << 18;
+  const std::unique_ptr<char[]> block(new char[kBlock]);
+  while (const size_t got = ReadSome(fd, block.get(), kBlock, path)) {
+    XXH3_128bits_update(state.get(), block.get(), got);
+  }
+  ::close(fd);
+  return ChecksumText(XXH3_128bits_digest(state.get()));
+}
+
+std::string ReadFileBytes(const std::string& path) {
+  const int fd = OpenForReading(path);
   struct stat st {};
   // Sized by fstat, read in large blocks; the loop also reads files whose size stat does not
   // know (/proc) or that grow while read.
@@ -48,18 +86,9 @@ std::string ReadFileBytes(const std::string& path) {
   size_t size = 0;
   for (;;) {
     if (size == bytes.size()) bytes.resize(bytes.size() * 2);
-    const ssize_t got = ::read(fd, bytes.data() + size, bytes.size() - size);
+    const size_t got = ReadSome(fd, bytes.data() + size, bytes.size() - size, path);
     if (got == 0) break;
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      const int error = errno;
-      ::close(fd);
-      // A folder opens but does not read (EISDIR): still "not readable" to the caller.
-      throw InputError(path, error == EISDIR ? "cannot read file (missing or not readable)"
-                                             : std::string("cannot read file (") +
-                                                   std::strerror(error) + ")");
-    }
-    size += static_cast<size_t>(got);
+    size += got;
   }
   ::close(fd);
   bytes.resize(size);

@@ -46,7 +46,7 @@ bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int fram
     if (it == manifest.files.end()) return false;
     std::error_code ec;
     if (!fs::exists(dir + "/" + rel, ec)) return false;
-    if (ChecksumOf(ReadFileBytes(dir + "/" + rel)) != it->second) return false;
+    if (ChecksumOfFile(dir + "/" + rel) != it->second) return false;
   }
   return true;
 }

@@ -45,8 +45,9 @@ std::vector<PoseRecord> SamplePoses(int count) {
 
 std::vector<FramePersons> SamplePersons() {
   PersonRecord a{7, cv::Rect2f(1.5f, 2.f, 3.25f, 4.f), 0.8, 0.2, true, "seated",
-                 {{"seat", 2.5, 5.75, true}, {"left_hand", 1.0, 3.0, false}}};
-  PersonRecord b{9, cv::Rect2f(0.f, 0.f, 2.f, 2.f), 0.1, 0.9, false, "standing", {}};
+                 {{"seat", 2.5, 5.75, true}, {"left_hand", 1.0, 3.0, false}},
+                 {}};
+  PersonRecord b{9, cv::Rect2f(0.f, 0.f, 2.f, 2.f), 0.1, 0.9, false, "standing", {}, {}};
   return {{0, {a}}, {1, {}}, {2, {a, b}}};
 }
 

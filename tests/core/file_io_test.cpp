@@ -125,5 +125,26 @@ TEST(ReadFileBytes, AFolderIsAnInputErrorNamingIt) {
   EXPECT_NE(message.find(dir.str() + ": cannot read file"), std::string::npos) << message;
 }
 
+TEST(ChecksumOfFile, IsTheChecksumOfTheWholeFileAtEverySizeAroundItsBlocks) {
+  test::TestDir dir;
+  constexpr size_t kBlock = size_t{1} << 18;  // the block it reads
+  for (size_t size : {size_t{0}, size_t{1}, size_t{240}, kBlock - 1, kBlock, kBlock + 1, 3 * kBlock + 17}) {
+    std::string bytes(size, '\0');
+    for (size_t i = 0; i < size; ++i) bytes[i] = static_cast<char>(i * 7919 % 251);
+    WriteFileAtomic(dir / "file.bin", bytes);
+    EXPECT_EQ(ChecksumOfFile(dir / "file.bin"), ChecksumOf(bytes)) << size << " bytes";
+  }
+  // /proc files report size 0 to stat but have content.
+  EXPECT_EQ(ChecksumOfFile("/proc/self/cmdline"), ChecksumOf(ReadFileBytes("/proc/self/cmdline")));
+}
+
+TEST(ChecksumOfFile, AMissingFileOrAFolderIsAnInputErrorNamingIt) {
+  test::TestDir dir;
+  std::string message = InputErrorOf([&] { ChecksumOfFile(dir / "nope.bin"); });
+  EXPECT_NE(message.find("nope.bin: cannot read file"), std::string::npos) << message;
+  message = InputErrorOf([&] { ChecksumOfFile(dir.str()); });
+  EXPECT_NE(message.find(dir.str() + ": cannot read file"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -13,6 +13,10 @@ namespace hoilcd {
 // "xxh3-128:<32 lowercase hex digits>" (XXH3 128-bit, canonical big-endian byte order).
 std::string ChecksumOf(std::string_view bytes);
 
+// ChecksumOf(ReadFileBytes(path)), read block by block (the file is never held whole); InputError
+// as ReadFileBytes.
+std::string ChecksumOfFile(const std::string& path);
+
 // Whole file as bytes; InputError(path, "cannot read ...") if missing or unreadable.
 std::string ReadFileBytes(const std::string& path);
 
