@@ -1,7 +1,6 @@
 #include "hoilcd/core/matching.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>

@@ -43,9 +43,10 @@ class RetrievalIndex {
                                                  int threads, std::vector<int64_t>* time_ns = nullptr,
                                                  ProgressReporter* progress = nullptr) const;
   // The same under each of several RANSAC variants in one pass, each pair's MNN and vertical
-  // filter found once for all: result[v] is ScoreDatabases(..., variants[v], ...). When time_ns
-  // is given, (*time_ns)[v][i] is what query i's pairs take under variant v alone (the matching
-  // plus its RANSAC, summed over threads).
+  // filter found once for all, and the RANSAC samples drawn once for the variants that share
+  // them (RansacCounter): result[v] is ScoreDatabases(..., variants[v], ...). When time_ns is
+  // given, (*time_ns)[v][i] is what query i's pairs take under variant v alone (the matching plus
+  // its RANSAC, summed over threads).
   std::vector<std::vector<std::vector<float>>> ScoreDatabases(
       const std::vector<int>& queries, const std::vector<std::vector<int>>& databases,
       const MatchOptions& match_options, const std::vector<RansacOptions>& variants, uint64_t seed, int threads,
