@@ -61,13 +61,13 @@ size_t ReadSome(int fd, char* into, size_t size, const std::string& path) {
 std::string ChecksumOf(std::string_view bytes) { return ChecksumText(XXH3_128bits(bytes.data(), bytes.size())); }
 
 std::string ChecksumOfFile(const std::string& path) {
-  const int fd = OpenForReading(path);
   const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(), XXH3_freeState);
   HOILCD_CHECK(state != nullptr && XXH3_128bits_reset(state.get()) == XXH_OK);
   // Block by block into one uninitialised buffer: a dataset's files (~1 GB) are never held whole,
   // zeroed or faulted in anew.
   constexpr size_t kBlock = size_t{1} << 18;
   const std::unique_ptr<char[]> block(new char[kBlock]);
+  const int fd = OpenForReading(path);  // opened last: nothing below throws but ReadSome, which closes it
   while (const size_t got = ReadSome(fd, block.get(), kBlock, path)) {
     XXH3_128bits_update(state.get(), block.get(), got);
   }

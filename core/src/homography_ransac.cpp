@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <memory>
 #include <sstream>
 
 #include <Eigen/Cholesky>
@@ -601,6 +600,7 @@ namespace {
 
 // Hypotheses kept between drawing and scoring: the default 100 trials fit in one chunk.
 constexpr int kChunk = 128;
+static_assert(kChunk >= kBatch, "HypothesisStream::Next needs room for a solved batch");
 
 // Matches as (reference x, reference y, query x, query y) quadruples, the layout GatherPoints
 // reads; *quads is resized to 4 * count.
@@ -790,6 +790,7 @@ void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* q
                           int count, const RansacOptions* variants, int num_variants, uint64_t seed, int* inliers,
                           int64_t* alone_ns, int64_t* total_ns) {
   const bool timed = alone_ns != nullptr;
+  HOILCD_CHECK_MSG(!timed || total_ns != nullptr, "alone_ns needs total_ns");
   if (timed) {
     std::fill(alone_ns, alone_ns + num_variants, int64_t{0});
     *total_ns = 0;
@@ -798,7 +799,6 @@ void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* q
     std::fill(inliers, inliers + num_variants, 0);
     return;
   }
-  HOILCD_CHECK_MSG(num_variants <= 64, "at most 64 RANSAC variants at once (got " << num_variants << ")");
   using Clock = std::chrono::steady_clock;
   const auto elapsed_ns = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count();
@@ -807,18 +807,18 @@ void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* q
   Clock::time_point last = start;  // the gathering below counts as the first stream's drawing
   Quadruples(ref_x, ref_y, query_x, query_y, count, &quads_);
   if (lo_masks_.size() < static_cast<size_t>(num_variants)) lo_masks_.resize(num_variants);
+  scored_.assign(num_variants, 0);  // 1 once a variant is in a group
   hypotheses_.resize(9 * kChunk);
   // Groups of variants on one stream, in order: the first variant not yet scored and every later
   // one on the same stream, at most kMaxSharing at once (a larger group draws its stream again).
   constexpr int kMaxSharing = 8;
-  uint64_t scored = 0;  // bit v: variant v is done
   for (int first = 0; first < num_variants; ++first) {
-    if (scored >> first & 1) continue;
+    if (scored_[first]) continue;
     int group[kMaxSharing], size = 0;
     BestModelSearch searches[kMaxSharing];
     for (int v = first; v < num_variants && size < kMaxSharing; ++v) {
-      if ((scored >> v & 1) || !SameStream(variants[first], variants[v])) continue;
-      scored |= uint64_t{1} << v;
+      if (scored_[v] || !SameStream(variants[first], variants[v])) continue;
+      scored_[v] = 1;
       searches[size].Start(ref_x, ref_y, query_x, query_y, count, variants[v], &lo_masks_[v]);
       group[size++] = v;
     }

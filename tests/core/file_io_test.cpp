@@ -141,9 +141,9 @@ TEST(ChecksumOfFile, IsTheChecksumOfTheWholeFileAtEverySizeAroundItsBlocks) {
 TEST(ChecksumOfFile, AMissingFileOrAFolderIsAnInputErrorNamingIt) {
   test::TestDir dir;
   std::string message = InputErrorOf([&] { ChecksumOfFile(dir / "nope.bin"); });
-  EXPECT_NE(message.find("nope.bin: cannot read file"), std::string::npos) << message;
+  EXPECT_NE(message.find("nope.bin: cannot read file (missing or not readable)"), std::string::npos) << message;
   message = InputErrorOf([&] { ChecksumOfFile(dir.str()); });
-  EXPECT_NE(message.find(dir.str() + ": cannot read file"), std::string::npos) << message;
+  EXPECT_NE(message.find(dir.str() + ": cannot read file (missing or not readable)"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -353,6 +353,9 @@ TEST(RansacCounter, EachVariantCountsWhatItsOwnRansacCountsAndIsChargedItsDrawin
       if (n < 4) {
         EXPECT_EQ(total_ns, 0);
         EXPECT_EQ(sum_ns, 0);
+      } else {
+        EXPECT_GT(total_ns, 0);
+        for (int v = 0; v < count; ++v) EXPECT_GT(alone_ns[v], 0) << "variant " << v;
       }
     }
   }

@@ -63,10 +63,11 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
 // scratch buffers between calls (one counter per thread). Variants with the same trials and
 // redraw_degenerate_samples draw the same samples, so those are drawn and solved once and the
 // hypotheses scored under each variant's threshold and refits: inliers[v] equals
-// RansacHomographySoa(..., variants[v], seed, nullptr, nullptr). Options are not re-checked; at
-// most 64 variants. When alone_ns is not null (then total_ns must not be), alone_ns[v] gets what
-// variant v costs alone (drawing and solving its samples, and its own scoring) and *total_ns the
-// whole call, in ns; both are 0 below 4 matches, where nothing is timed.
+// RansacHomographySoa(..., variants[v], seed, nullptr, nullptr). Options are not re-checked.
+// When alone_ns is not null (then total_ns must not be), alone_ns[v] gets what variant v costs
+// alone (drawing and solving its samples, and its own scoring; gathering the matches, ~1 % of a
+// call, is charged to the first stream's variants) and *total_ns the whole call, in ns; both are
+// 0 below 4 matches, where nothing is timed.
 class RansacCounter {
  public:
   void Count(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
@@ -77,6 +78,7 @@ class RansacCounter {
   std::vector<float> quads_;
   std::vector<std::vector<uint8_t>> lo_masks_;  // one per variant
   std::vector<float> hypotheses_;               // one chunk of a stream
+  std::vector<char> scored_;                    // per variant: already in a group
 };
 
 // Draw `draw` of the RANSAC stream `seed` over n >= 4 matches: four distinct indices in [0, n),
