@@ -61,7 +61,7 @@ CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutput
   DecodedVideo video;
   const std::string video_path = dataset.dir() + "/thermal.mp4";
   try {
-    video = DecodeVideo(ReadFileBytes(video_path), video_path, options.threads);
+    video = DecodeVideo(dataset.ReadFile("thermal.mp4"), video_path, options.threads);
     stats.video_frames = static_cast<int>(video.frames.size());
     if (stats.video_frames != frames) {
       stats.video_problem = video_path + ": " + std::to_string(stats.video_frames) + " video frames for " +

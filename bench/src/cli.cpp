@@ -179,7 +179,7 @@ void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
 
 int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::string& report_dir, int threads,
                     const std::string& dump_scores, const GateArgs& gate) {
-  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/true, threads);
+  const Dataset dataset = Dataset::Open(dir, Verify::kOnRead, threads);
   for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const BenchOptions options = ResolveBench(args, threads);
   if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work
@@ -199,7 +199,7 @@ int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::st
 
 int RunEvaluateCommand(const std::string& dir, const std::string& scores_path, std::string name,
                        const ProtocolOptions& protocol, const std::string& output, const GateArgs& gate) {
-  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/false);
+  const Dataset dataset = Dataset::Open(dir, Verify::kOnRead);
   for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   if (!gate.baseline.empty()) ReadReportJson(gate.baseline);
   if (name.empty()) name = std::filesystem::path(scores_path).stem().string();
@@ -243,7 +243,7 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
 }
 
 int RunInspectCommand(const std::string& dir, const ProtocolOptions& protocol, bool json, const std::string& output) {
-  const Dataset dataset = Dataset::Open(dir, /*verify_checksums=*/false);
+  const Dataset dataset = Dataset::Open(dir, Verify::kNothing);  // inspect looks at what is there
   const InspectReport report = InspectDataset(dataset, protocol);
   const std::string json_text = report.ToJson().dump(2) + "\n";
   if (!output.empty()) WriteFileAtomic(output, json_text);
@@ -466,7 +466,7 @@ int RunCommandLine(int argc, char** argv) {
                                 evaluate_gate);
     }
     if (*mot) {
-      const Dataset dataset = Dataset::Open(mot_dataset, /*verify_checksums=*/true);
+      const Dataset dataset = Dataset::Open(mot_dataset, Verify::kOnRead);
       BenchOptions options;
       options.threads = mot_threads;
       const MotExport e = ExportMot(dataset, options, mot_output);

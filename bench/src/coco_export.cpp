@@ -68,7 +68,7 @@ std::string CocoKeypointsJson(const Dataset& dataset) {
 }
 
 std::string ExportCoco(const std::string& dataset_dir, const std::string& out_dir) {
-  const Dataset dataset = Dataset::Open(dataset_dir);
+  const Dataset dataset = Dataset::Open(dataset_dir, Verify::kOnRead);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw InputError(out_dir, "cannot create the output folder (" + ec.message() + ")");

@@ -668,9 +668,17 @@ std::string PosesToTum(const std::vector<PoseRecord>& poses) {
   return out;
 }
 
-Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads) {
+namespace {
+std::string ChecksumMismatch(const std::string& listed, const std::string& actual) {
+  return "checksum mismatch (manifest.json says " + listed + ", file has " + actual +
+         "): the file was changed or corrupted; re-render the dataset";
+}
+}  // namespace
+
+Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
   Dataset ds;
   ds.dir_ = dir;
+  ds.verify_ = verify;
   const std::string manifest_path = JoinPath(dir, "manifest.json");
   if (!fs::is_regular_file(manifest_path)) {
     throw InputError(manifest_path,
@@ -710,7 +718,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
                            ": not listed in manifest.json; the frames are read without it");
   }
 
-  if (verify_checksums) {
+  if (verify == Verify::kEveryFile) {
     const std::vector<std::pair<std::string, std::string>> listed(m.files.begin(),
                                                                   m.files.end());
     std::vector<std::string> errors(listed.size());
@@ -723,10 +731,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
         errors[i] = "listed in manifest.json but missing or unreadable";
         return;
       }
-      if (actual != listed[i].second) {
-        errors[i] = "checksum mismatch (manifest.json says " + listed[i].second + ", file has " +
-                    actual + "): the file was changed or corrupted; re-render the dataset";
-      }
+      if (actual != listed[i].second) errors[i] = ChecksumMismatch(listed[i].second, actual);
     });
     for (size_t i = 0; i < listed.size(); ++i) {
       if (errors[i].empty()) continue;
@@ -741,7 +746,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
   }
 
   const std::string poses_path = JoinPath(dir, "poses.csv");
-  ds.poses_ = PosesFromCsv(ReadFileBytes(poses_path), poses_path);
+  ds.poses_ = PosesFromCsv(ds.ReadFile("poses.csv"), poses_path);
   bool frames_in_order = static_cast<int>(ds.poses_.size()) == m.frame_count;
   for (size_t i = 0; frames_in_order && i < ds.poses_.size(); ++i) {
     frames_in_order = ds.poses_[i].frame == static_cast<int>(i);
@@ -751,7 +756,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
                                      std::to_string(m.frame_count - 1) + " in order");
   }
   const std::string persons_path = JoinPath(dir, "persons.json");
-  if (m.outputs.persons) ds.persons_ = PersonsFromJson(ReadFileBytes(persons_path), persons_path, threads);
+  if (m.outputs.persons) ds.persons_ = PersonsFromJson(ds.ReadFile("persons.json"), persons_path, threads);
   for (const FramePersons& f : ds.persons_) {
     if (f.frame < 0 || f.frame >= m.frame_count) {
       throw InputError(persons_path, "frame " + std::to_string(f.frame) + " outside 0.." +
@@ -759,7 +764,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
     }
   }
   const std::string events_path = JoinPath(dir, "events.json");
-  ds.events_ = EventsFromJson(ReadFileBytes(events_path), events_path);
+  ds.events_ = EventsFromJson(ds.ReadFile("events.json"), events_path);
   for (const DatasetEvent& e : ds.events_) {
     if (e.frame < 0 || e.frame >= m.frame_count) {
       throw InputError(events_path, "frame " + std::to_string(e.frame) + " outside 0.." +
@@ -768,7 +773,7 @@ Dataset Dataset::Open(const std::string& dir, bool verify_checksums, int threads
   }
   if (m.files.count("footprints.json")) {  // absent from datasets written before it existed
     const std::string footprints_path = JoinPath(dir, "footprints.json");
-    ds.footprints_ = FootprintsFromJson(ReadFileBytes(footprints_path), footprints_path);
+    ds.footprints_ = FootprintsFromJson(ds.ReadFile("footprints.json"), footprints_path);
   }
   return ds;
 }
@@ -819,11 +824,18 @@ cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int ex
   return image;
 }
 
-namespace {
-cv::Mat ReadPng(const std::string& path, int expected_type, const CameraIntrinsics& k) {
-  return DecodeFramePng(ReadFileBytes(path), path, expected_type, k);
+std::string Dataset::ReadFile(const std::string& name) const {
+  const std::string path = JoinPath(dir_, name);
+  if (verify_ != Verify::kOnRead) return ReadFileBytes(path);
+  const auto listed = manifest_.files.find(name);
+  if (listed == manifest_.files.end()) {
+    throw InputError(path, "not listed in manifest.json, so its checksum cannot be checked");
+  }
+  std::string bytes = ReadFileBytes(path);
+  const std::string actual = ChecksumOf(bytes);
+  if (actual != listed->second) throw InputError(path, ChecksumMismatch(listed->second, actual));
+  return bytes;
 }
-}  // namespace
 
 void Dataset::RequireOutput(const std::string& output, const std::string& needed_for) const {
   if (manifest_.outputs.Has(output)) return;
@@ -840,21 +852,20 @@ const std::vector<FramePersons>& Dataset::persons() const {
 cv::Mat Dataset::Thermal(int frame) const {
   RequireOutput("thermal", "reading the 8-bit thermal frames");
   HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
-  return ReadPng(JoinPath(dir_, "thermal/" + FrameFileName(frame, "png")), CV_8UC1,
-                 manifest_.intrinsics);
+  const std::string name = "thermal/" + FrameFileName(frame, "png");
+  return DecodeFramePng(ReadFile(name), JoinPath(dir_, name), CV_8UC1, manifest_.intrinsics);
 }
 
 cv::Mat Dataset::RadiometricC(int frame) const {
   RequireOutput("radiometric", "reading the radiometric frames");
   HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
-  const cv::Mat centikelvin = ReadPng(
-      JoinPath(dir_, "radiometric/" + FrameFileName(frame, "png")), CV_16UC1,
-      manifest_.intrinsics);
+  const std::string name = "radiometric/" + FrameFileName(frame, "png");
+  const cv::Mat centikelvin = DecodeFramePng(ReadFile(name), JoinPath(dir_, name), CV_16UC1, manifest_.intrinsics);
   cv::Mat celsius;
   centikelvin.convertTo(celsius, CV_32F, 0.01, -273.15);
   return celsius;
 }
 
-std::string Dataset::scene_json() const { return ReadFileBytes(JoinPath(dir_, "scene.json")); }
+std::string Dataset::scene_json() const { return ReadFile("scene.json"); }
 
 }  // namespace hoilcd

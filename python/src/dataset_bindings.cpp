@@ -62,7 +62,7 @@ py::dict ExrToDict(const Dataset& dataset, int frame) {
 
 void BindDataset(py::module_& m) {
   py::class_<Dataset>(m, "Dataset", "A dataset folder written by hoilcd render, read as numpy arrays.")
-      .def(py::init([](const std::string& path, bool verify_checksums) { return Dataset::Open(path, verify_checksums); }),
+      .def(py::init([](const std::string& path, bool verify_checksums) { return Dataset::Open(path, verify_checksums ? Verify::kEveryFile : Verify::kNothing); }),
            py::arg("path"), py::arg("verify_checksums") = true,
            "Opens DIR (manifest.json, poses, persons, events); with verify_checksums every file's "
            "checksum is checked first. Raises InputError naming the file on a bad or partial dataset.")
@@ -86,9 +86,10 @@ void BindDataset(py::module_& m) {
       .def("radiometric",
            [](const Dataset& d, int64_t i) {
              const int frame = FrameIndex(d, i);
-             const std::string path = d.dir() + "/radiometric/" + FrameFileName(frame, "png");
+             d.RequireOutput("radiometric", "reading the radiometric frames");
+             const std::string name = "radiometric/" + FrameFileName(frame, "png");
              return ImageToArray<uint16_t>(
-                 DecodeFramePng(ReadFileBytes(path), path, CV_16UC1, d.manifest().intrinsics));
+                 DecodeFramePng(d.ReadFile(name), d.dir() + "/" + name, CV_16UC1, d.manifest().intrinsics));
            },
            py::arg("frame"), "the radiometric PNG as stored: H x W uint16, centikelvin (K x 100)")
       .def("exr", [](const Dataset& d, int64_t i) { return ExrToDict(d, FrameIndex(d, i)); }, py::arg("frame"),

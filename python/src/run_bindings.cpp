@@ -51,7 +51,7 @@ Dataset Render(const std::string& scene_path, const std::string& output, int fra
   py::gil_scoped_release unlocked;
   const Scene scene = LoadScene(scene_path, overrides);
   RenderSequence(scene, options);
-  return Dataset::Open(output, /*verify_checksums=*/false);
+  return Dataset::Open(output, Verify::kOnRead);
 }
 
 ProtocolOptions Protocol(const std::string& protocol, const std::string& ground_truth, double radius_m,

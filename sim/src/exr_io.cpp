@@ -8,8 +8,10 @@
 #include <ImfOutputFile.h>
 #include <ImfCompression.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
+#include <stdexcept>
 #include <string_view>
 
 #include "hoilcd/core/dataset.h"
@@ -179,15 +181,39 @@ bool HeaderFitsInFile(const std::string& bytes) {
   return false;
 }
 
+// OpenEXR reads through an IStream; this one reads the bytes already in memory (read once, and
+// checked against the manifest by Dataset::ReadFile before they are decoded).
+class StringIStream : public Imf::IStream {
+ public:
+  StringIStream(const std::string& bytes, const std::string& path) : Imf::IStream(path.c_str()), bytes_(bytes) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || static_cast<uint64_t>(n) > bytes_.size() - pos_) {
+      throw std::runtime_error("unexpected end of file");  // what Imf's own file stream says
+    }
+    std::memcpy(c, bytes_.data() + pos_, static_cast<size_t>(n));
+    pos_ += static_cast<uint64_t>(n);
+    return pos_ < bytes_.size();
+  }
+  uint64_t tellg() override { return pos_; }
+  void seekg(uint64_t pos) override { pos_ = std::min<uint64_t>(pos, bytes_.size()); }
+
+ private:
+  const std::string& bytes_;
+  uint64_t pos_ = 0;
+};
+
 }  // namespace
 
-ExrChannels ReadExr(const std::string& path, cv::Size size) {
-  if (!HeaderFitsInFile(ReadFileBytes(path))) {
+ExrChannels ReadExr(const std::string& path, cv::Size size) { return DecodeExr(ReadFileBytes(path), path, size); }
+
+ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Size size) {
+  if (!HeaderFitsInFile(bytes)) {
     throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end or "
                            "disagrees with its type's size, or the data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
   }
   try {
-    Imf::InputFile file(path.c_str(), 1);
+    StringIStream stream(bytes, path);
+    Imf::InputFile file(stream, 1);
     const Imath::Box2i dw = file.header().dataWindow();
     const int64_t width = int64_t{dw.max.x} - dw.min.x + 1;
     const int64_t height = int64_t{dw.max.y} - dw.min.y + 1;
@@ -229,7 +255,8 @@ ExrChannels ReadExr(const std::string& path, cv::Size size) {
 ExrChannels ReadDatasetExr(const Dataset& dataset, int frame) {
   dataset.RequireOutput("exr", "reading the EXR frames");
   const CameraIntrinsics& size = dataset.manifest().intrinsics;
-  return ReadExr(dataset.dir() + "/exr/" + FrameFileName(frame, "exr"), {size.width, size.height});
+  const std::string name = "exr/" + FrameFileName(frame, "exr");
+  return DecodeExr(dataset.ReadFile(name), dataset.dir() + "/" + name, {size.width, size.height});
 }
 
 }  // namespace hoilcd

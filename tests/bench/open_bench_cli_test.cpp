@@ -117,5 +117,25 @@ TEST(OpenBenchCli, EvaluateNamesTheBadScoresFileAndLineAndABadBaselineFailsBefor
   EXPECT_NE(err.find("--max-drop requires --baseline"), std::string::npos) << err;
 }
 
+// The bench checks each file against manifest.json as it reads it: a changed thermal frame stops
+// it with the file's name and writes no report; an EXR it never reads is never read.
+TEST(OpenBenchCli, BenchRefusesAChangedFrameItReadsAndIgnoresAChangedFileItDoesNotRead) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  const auto flip_a_byte = [](const std::string& path) {
+    std::string bytes = ReadFileBytes(path);
+    bytes[bytes.size() / 2] ^= 0x01;
+    WriteFileAtomic(path, bytes);
+  };
+  flip_a_byte(dataset + "/exr/000003.exr");
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "r1"}), 0);
+  flip_a_byte(dataset + "/thermal/000002.png");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "r2", "--threads", "2"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("error: " + dataset + "/thermal/000002.png: checksum mismatch"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "r2"));
+}
+
 }  // namespace
 }  // namespace hoilcd

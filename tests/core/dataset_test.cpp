@@ -188,7 +188,49 @@ TEST(Dataset, CorruptedFrameIsAnErrorNamingThatFile) {
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
   EXPECT_NE(message.find(frame + ": checksum mismatch"), std::string::npos) << message;
   EXPECT_EQ(message.find("000000.png"), std::string::npos) << message;
-  EXPECT_NO_THROW(Dataset::Open(dir.str(), /*verify_checksums=*/false));
+  EXPECT_NO_THROW(Dataset::Open(dir.str(), Verify::kNothing));
+}
+
+TEST(Dataset, VerifyOnReadChecksEachFileWhenItIsReadAndOnlyThen) {
+  test::TestDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  const std::string frame = dir / "thermal/000001.png";
+  std::string bytes = ReadFileBytes(frame);
+  bytes[bytes.size() / 2] ^= 0x01;
+  WriteFileAtomic(frame, bytes);
+  const Dataset ds = Dataset::Open(dir.str(), Verify::kOnRead);  // the damaged frame is not read yet
+  EXPECT_EQ(ds.Thermal(0).at<uint8_t>(0, 0), 1);
+  EXPECT_EQ(ds.Thermal(2).at<uint8_t>(0, 0), 21);
+  const std::string message = InputErrorOf([&] { ds.Thermal(1); });
+  EXPECT_EQ(message.rfind(frame + ": checksum mismatch (manifest.json says ", 0), 0u) << message;
+  EXPECT_NE(message.find("re-render the dataset"), std::string::npos) << message;
+  // Unchecked reads see the damaged bytes (here the PNG decoder's own error, not a checksum).
+  const std::string unchecked = InputErrorOf([&] { Dataset::Open(dir.str(), Verify::kNothing).Thermal(1); });
+  EXPECT_NE(unchecked.find(frame + ": "), std::string::npos) << unchecked;
+  EXPECT_EQ(unchecked.find("checksum"), std::string::npos) << unchecked;
+}
+
+TEST(Dataset, VerifyOnReadChecksTheSideFilesOpenReads) {
+  test::TestDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  std::string poses = ReadFileBytes(dir / "poses.csv");
+  const size_t digit = poses.find_last_of("0123456789");
+  poses[digit] = poses[digit] == '9' ? '8' : '9';  // still parses: only the checksum can tell
+  WriteFileAtomic(dir / "poses.csv", poses);
+  const std::string message = InputErrorOf([&] { Dataset::Open(dir.str(), Verify::kOnRead); });
+  EXPECT_EQ(message.rfind(dir / "poses.csv" + ": checksum mismatch", 0), 0u) << message;
+  EXPECT_NO_THROW(Dataset::Open(dir.str(), Verify::kNothing));
+}
+
+TEST(Dataset, VerifyOnReadRefusesAFileTheManifestDoesNotList) {
+  test::TestDir dir;
+  WriteTinyDataset(dir.str(), 3, true);
+  WriteFileAtomic(dir / "extra.txt", "x");
+  const Dataset checked = Dataset::Open(dir.str(), Verify::kOnRead);
+  EXPECT_EQ(InputErrorOf([&] { checked.ReadFile("extra.txt"); }),
+            dir / "extra.txt" + ": not listed in manifest.json, so its checksum cannot be checked");
+  EXPECT_EQ(Dataset::Open(dir.str(), Verify::kNothing).ReadFile("extra.txt"), "x");
+  EXPECT_EQ(checked.ReadFile("scene.json"), "{}\n");
 }
 
 TEST(Dataset, MissingListedFileIsAnErrorNamingThatFile) {
@@ -515,7 +557,7 @@ TEST(Dataset, PngDeclaringAHugeImageIsRefusedBeforeDecoding) {
     bytes.replace(at, 4, std::string("\x00\x00\x75\x30", 4));
   }
   WriteFileAtomic(dir / "thermal/000001.png", bytes);
-  const Dataset ds = Dataset::Open(dir.str(), /*verify_checksums=*/false);
+  const Dataset ds = Dataset::Open(dir.str(), Verify::kNothing);
   const std::string message = InputErrorOf([&] { ds.Thermal(1); });
   EXPECT_NE(message.find("expected 8x6 px as in manifest.json, the PNG is 30000x30000"),
             std::string::npos) << message;

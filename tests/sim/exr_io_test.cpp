@@ -123,6 +123,67 @@ TEST(Exr, ChannelListWhoseDeclaredSizeDisagreesWithItsEntriesIsRefused) {
   }
 }
 
+TEST(Exr, DecodingBytesInMemoryEqualsReadingTheFileAndATruncatedFileIsAnInputError) {
+  const test::TestDir temp;
+  cv::Mat t(6, 8, CV_32F), ids(6, 8, CV_32S, cv::Scalar(3));
+  cv::randu(t, 18.0f, 36.0f);
+  const std::string bytes = EncodeExr(FrameExrChannels(t, t, t, ids, ids));
+  WriteFileAtomic(temp / "f.exr", bytes);
+  const ExrChannels from_file = ReadExr(temp / "f.exr", t.size());
+  const ExrChannels from_bytes = DecodeExr(bytes, "mem.exr", t.size());
+  ASSERT_EQ(from_bytes.size(), from_file.size());
+  for (size_t c = 0; c < from_file.size(); ++c) {
+    EXPECT_EQ(from_bytes[c].first, from_file[c].first);
+    EXPECT_EQ(cv::norm(from_bytes[c].second, from_file[c].second, cv::NORM_INF), 0.0) << from_file[c].first;
+  }
+  // Every cut of the file, header or pixel data, is an InputError naming the path: no crash, no
+  // read past the bytes.
+  for (size_t length = 0; length < bytes.size(); length += 1 + length / 8) {
+    try {
+      DecodeExr(bytes.substr(0, length), "cut.exr", t.size());
+      ADD_FAILURE() << "a file cut to " << length << " of " << bytes.size() << " bytes was read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("cut.exr: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+// A dataset of one 8 x 6 px frame with an EXR, its manifest listing every file.
+void WriteOneFrameExrDataset(const std::string& dir, const cv::Mat& t) {
+  DatasetManifest m;
+  m.hoilcd_version = "test";
+  m.scene_hash = ChecksumOf("{}");
+  m.intrinsics = CameraIntrinsics::FromHorizontalFov(t.cols, t.rows, 50);
+  m.frame_count = 1;
+  m.outputs.thermal = m.outputs.radiometric = m.outputs.video = m.outputs.persons = false;
+  const cv::Mat ids(t.size(), CV_32S, cv::Scalar(-1));
+  WriteDatasetFile(dir, "scene.json", "{}\n", &m);
+  WriteDatasetFile(dir, "exr/000000.exr", EncodeExr(FrameExrChannels(t, t, t, ids, ids)), &m);
+  WriteDatasetFile(dir, "poses.csv", PosesToCsv({PoseRecord{}}), &m);
+  WriteDatasetFile(dir, "events.json", EventsToJson({}), &m);
+  m.complete = true;
+  WriteFileAtomic(dir + "/manifest.json", m.ToJson());
+}
+
+TEST(Exr, DatasetFrameReadWithVerifyOnReadIsCheckedAgainstTheManifest) {
+  const test::TestDir temp;
+  const cv::Mat t(6, 8, CV_32F, cv::Scalar(25.5f));
+  WriteOneFrameExrDataset(temp.str(), t);
+  EXPECT_EQ(ReadDatasetExr(Dataset::Open(temp.str(), Verify::kOnRead), 0)[0].second.at<float>(5, 7), 25.5f);
+  // One flipped bit in the last pixel block: Open does not read the EXR; reading it is an error.
+  std::string bytes = ReadFileBytes(temp / "exr/000000.exr");
+  bytes[bytes.size() - 2] ^= 0x10;
+  WriteFileAtomic(temp / "exr/000000.exr", bytes);
+  const Dataset ds = Dataset::Open(temp.str(), Verify::kOnRead);
+  try {
+    ReadDatasetExr(ds, 0);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(temp / "exr/000000.exr" + ": checksum mismatch", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(Dataset::Open(temp.str(), Verify::kEveryFile), InputError);
+}
+
 TEST(Exr, FrameOfAnotherSizeThanTheDatasetsIsRefusedNamingBoth) {
   const test::TestDir temp;
   WriteFileAtomic(temp / "f.exr", EncodeExr({{"T", cv::Mat(6, 8, CV_32F, cv::Scalar(21.0f))}}));

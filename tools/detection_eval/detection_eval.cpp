@@ -79,7 +79,7 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [OPTION=VALUE...]\n");
     return 2;
   }
-  const Dataset dataset = Dataset::Open(argv[1], /*verify_checksums=*/false);
+  const Dataset dataset = Dataset::Open(argv[1], Verify::kOnRead);
   std::vector<int> range;
   std::string draw_dir;
   bool u8_only = false;

@@ -154,15 +154,25 @@ std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string&
 // TUM trajectory "t tx ty tz qx qy qz qw" of world_from_cam (OpenCV camera frame).
 std::string PosesToTum(const std::vector<PoseRecord>& poses);
 
+// How Dataset::Open checks the files against manifest.json's checksums (a mismatch or a missing
+// file is an InputError naming it).
+enum class Verify {
+  kEveryFile,  // every listed file up front, in parallel, before anything is read
+  kOnRead,     // each file when it is read through the Dataset: poses, persons, events, scene and
+               // footprints in Open, a frame's PNG or EXR and thermal.mp4 when read (ReadFile).
+               // Files nobody reads (a bench never reads most EXRs) are never read at all.
+  kNothing,    // nothing: for readers that must see damaged bytes (decoder tests, fuzzing, inspect)
+};
+
 // A dataset folder opened for reading.
 class Dataset {
  public:
   // Parses manifest.json; a partial dataset is an InputError ("dataset is partial: N of M
-  // frames; re-run hoilcd render to finish it"). With verify_checksums every listed file is
-  // read and checked (mismatch or missing file: InputError naming it). Loads poses, persons
-  // and events. A missing or damaged thermal.mp4 (a view of the frames, not their source) is
-  // not an error but a line in warnings(). Checks and reads on `threads` threads (0: every core).
-  static Dataset Open(const std::string& dir, bool verify_checksums = true, int threads = 0);
+  // frames; re-run hoilcd render to finish it"). Checks files as `verify` says. Loads poses,
+  // persons and events. A missing or damaged thermal.mp4 (a view of the frames, not their
+  // source) is not an error but a line in warnings(). Checks and reads on `threads` threads
+  // (0: every core).
+  static Dataset Open(const std::string& dir, Verify verify = Verify::kEveryFile, int threads = 0);
 
   const DatasetManifest& manifest() const { return manifest_; }
   const std::string& dir() const { return dir_; }
@@ -183,9 +193,14 @@ class Dataset {
   // the dataset has `output` (a DatasetOutputs name); `needed_for` says what wanted it.
   void RequireOutput(const std::string& output, const std::string& needed_for) const;
   std::string scene_json() const;         // contents of scene.json
+  // The bytes of DIR/name (a path relative to the dataset folder, e.g. "exr/000012.exr"); with
+  // Verify::kOnRead checked against its manifest.json checksum (a file it does not list is an
+  // InputError too).
+  std::string ReadFile(const std::string& name) const;
 
  private:
   std::string dir_;
+  Verify verify_ = Verify::kEveryFile;
   DatasetManifest manifest_;
   std::vector<PoseRecord> poses_;
   std::vector<FramePersons> persons_;

@@ -37,9 +37,12 @@ ExrChannels FrameExrChannels(const cv::Mat& temperature_c, const cv::Mat& ideal_
 // any other data window, or more channels than a frame can have, is an InputError naming the file
 // (a crafted header cannot make the reader allocate more than one frame's channels).
 ExrChannels ReadExr(const std::string& path, cv::Size size);
+// The same for an EXR file's bytes already in memory; errors name `path`.
+ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Size size);
 
-// Frame `frame`'s EXR in a dataset folder (exr/NNNNNN.exr), at the manifest's frame size;
-// InputError naming the missing output when the dataset was rendered without EXRs.
+// Frame `frame`'s EXR in a dataset folder (exr/NNNNNN.exr, read through Dataset::ReadFile), at the
+// manifest's frame size; InputError naming the missing output when the dataset was rendered
+// without EXRs.
 ExrChannels ReadDatasetExr(const Dataset& dataset, int frame);
 
 }  // namespace hoilcd
