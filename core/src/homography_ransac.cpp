@@ -549,8 +549,10 @@ bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float*
   double rd = 0, qd = 0;
   for (int i = 0; i < count; ++i) {
     if (use != nullptr && !use[i]) continue;
-    rd += std::hypot(ref_x[i] - rcx, ref_y[i] - rcy);
-    qd += std::hypot(query_x[i] - qcx, query_y[i] - qcy);
+    // Not std::hypot: pixel offsets cannot overflow, and its care costs 5 % of a bench's RANSAC.
+    const double rx = ref_x[i] - rcx, ry = ref_y[i] - rcy, qx = query_x[i] - qcx, qy = query_y[i] - qcy;
+    rd += std::sqrt(rx * rx + ry * ry);
+    qd += std::sqrt(qx * qx + qy * qy);
   }
   if (!(rd > 0) || !(qd > 0)) return false;
   const Normalisation src{rcx, rcy, std::sqrt(2.0) * n / rd};

@@ -1,7 +1,7 @@
 // The front ends loop-closure methods share: per-frame extraction run once for every method that
-// needs it. Keypoints and thumbnails are per frame (in parallel, identical at any thread count);
-// the person front end detects people per frame in parallel, then runs ByteTrack and the HOI
-// points in frame order (the tracker carries state).
+// needs it, in one pass that reads and decodes each frame once. Keypoints, thumbnails and person
+// detection are per frame (in parallel, identical at any thread count); ByteTrack then runs in
+// frame order (the tracker carries state), block by block, and the HOI points per frame.
 #pragma once
 
 #include <set>
