@@ -1,8 +1,9 @@
 // The dataset's frame encoders on real paper_room frames (issue 16, "Output path"): CPU ms and
 // kB per frame of each OpenEXR compression (NONE, RLE, ZIPS, ZIP at zlib levels 1 and 4, PIZ)
 // for two channel layouts -- all float32 (datasets before sim revision 9) and the dataset's
-// (T, T_true float32; Z half; id, class uint) -- and of the 8- and 16-bit PNGs with OpenCV's
-// default parameters against zlib level 1 (what EncodePng used before). Frames: kFrames poses
+// (T, T_true float32; Z half; id, class uint) -- and of the 8- and 16-bit PNGs: hoilcd's
+// libdeflate encoder (EncodeGreyPng, sim revision >= 13), OpenCV's default parameters (revisions
+// 9-12) and zlib level 1 (before), then decoding them: DecodeGreyPng against OpenCV. Frames: kFrames poses
 // spread along the route, each rendered and passed through the sensor model once, up front.
 // After the table: the largest error of Z stored as half over those frames, in metres.
 // Run: build/bench/exr_png_bench            (scene: DataDir()/scenes/paper_room.json)
@@ -18,6 +19,8 @@
 #include <vector>
 
 #include "hoilcd/core/dataset.h"
+#include "hoilcd/core/error.h"
+#include "hoilcd/core/png.h"
 #include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/exr_io.h"
 #include "hoilcd/sim/renderer.h"
@@ -111,14 +114,23 @@ void BM_Exr(benchmark::State& state, ExrCompression compression, int zip_level, 
   Report(state, cpu_s, bytes);
 }
 
-// bits 8 or 16; level -1: OpenCV's default parameters, else IMWRITE_PNG_COMPRESSION level.
-void BM_Png(benchmark::State& state, int bits, int level) {
+// The frames as the dataset's 8- or 16-bit PNGs encode them.
+std::vector<cv::Mat> PngImages(int bits) {
   Setup& s = Shared();
   std::vector<cv::Mat> images;
   for (const Frame& f : s.frames) {
     images.push_back(bits == 8 ? ToDisplay8Bit(f.temperature, s.sensor_options.display_min_c, s.sensor_options.display_max_c)
                                : ToCentikelvin16(f.temperature));
   }
+  return images;
+}
+
+constexpr int kLibdeflate = -2;  // BM_Png's level for EncodeGreyPng
+
+// bits 8 or 16; level kLibdeflate: EncodeGreyPng; -1: OpenCV's default parameters, else
+// IMWRITE_PNG_COMPRESSION level.
+void BM_Png(benchmark::State& state, int bits, int level) {
+  const std::vector<cv::Mat> images = PngImages(bits);
   std::vector<int> params;
   if (level >= 0) params = {cv::IMWRITE_PNG_COMPRESSION, level};
   size_t bytes = 0;
@@ -126,11 +138,36 @@ void BM_Png(benchmark::State& state, int bits, int level) {
   for (auto _ : state) {
     for (const cv::Mat& image : images) {
       std::vector<uchar> png;
+      std::string grey;
       const double start = ThreadCpuSeconds();
-      cv::imencode(".png", image, png, params);
+      if (level == kLibdeflate) grey = EncodeGreyPng(image);
+      else cv::imencode(".png", image, png, params);
       cpu_s += ThreadCpuSeconds() - start;
+      if (level == kLibdeflate) png.assign(grey.begin(), grey.end());
       bytes += png.size();
       benchmark::DoNotOptimize(png.data());
+    }
+  }
+  Report(state, cpu_s, bytes);
+}
+
+// Decoding the frames' PNGs (written by EncodeGreyPng): DecodeGreyPng (`fast`) or OpenCV.
+void BM_PngDecode(benchmark::State& state, int bits, bool fast) {
+  std::vector<std::string> files;
+  for (const cv::Mat& image : PngImages(bits)) files.push_back(EncodeGreyPng(image));
+  const int type = bits == 8 ? CV_8UC1 : CV_16UC1;
+  const cv::Size image_size = Shared().frames.front().temperature.size();
+  size_t bytes = 0;
+  double cpu_s = 0;
+  for (auto _ : state) {
+    for (const std::string& file : files) {
+      cv::Mat image;
+      const double start = ThreadCpuSeconds();
+      if (fast) HOILCD_CHECK(DecodeGreyPng(file, image_size.width, image_size.height, type, &image));
+      else image = cv::imdecode(std::vector<uchar>(file.begin(), file.end()), cv::IMREAD_UNCHANGED);
+      cpu_s += ThreadCpuSeconds() - start;
+      bytes += file.size();
+      benchmark::DoNotOptimize(image.data);
     }
   }
   Report(state, cpu_s, bytes);
@@ -150,10 +187,16 @@ BENCHMARK_CAPTURE(BM_Exr, dataset_zips1, ExrCompression::kZips, 1, true)->Apply(
 BENCHMARK_CAPTURE(BM_Exr, dataset_zip1, ExrCompression::kZip, 1, true)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_zip4, ExrCompression::kZip, 4, true)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_piz, ExrCompression::kPiz, 1, true)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_Png, png8_libdeflate, 8, kLibdeflate)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Png, png8_default, 8, -1)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Png, png8_level1, 8, 1)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_Png, png16_libdeflate, 16, kLibdeflate)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Png, png16_default, 16, -1)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Png, png16_level1, 16, 1)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_PngDecode, png8_decode_libdeflate, 8, true)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_PngDecode, png8_decode_opencv, 8, false)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_PngDecode, png16_decode_libdeflate, 16, true)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_PngDecode, png16_decode_opencv, 16, false)->Apply(Unit);
 
 // The largest |Z as half - Z as float32| over the frames, and the depth range it was seen in.
 void PrintHalfDepthError() {

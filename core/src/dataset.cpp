@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/png.h"
 #include "hoilcd/core/json_reader.h"
 #include "hoilcd/core/parallel.h"
 #include "hoilcd/core/text.h"
@@ -810,8 +811,9 @@ cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int ex
                                std::to_string(k.height) + " px as in manifest.json, the PNG is " +
                                std::to_string(width) + "x" + std::to_string(height));
   }
-  const cv::Mat image =
-      cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
+  cv::Mat image;  // the dataset's own frames take the fast path; any other PNG goes to OpenCV
+  if (DecodeGreyPng(bytes, k.width, k.height, expected_type, &image)) return image;
+  image = cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
   if (image.empty()) throw InputError(path, "cannot read PNG (damaged)");
   if (image.type() != expected_type) {
     throw InputError(path, expected_type == CV_8UC1 ? "expected an 8-bit single-channel PNG"

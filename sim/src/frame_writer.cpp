@@ -112,7 +112,10 @@ void FrameWriter::RetireInOrder() {
 }
 
 void FrameWriter::Checkpoint() {
-  if (checkpoint_.valid()) checkpoint_.get();  // one at a time; rethrows its failure
+  if (checkpoint_.valid()) {
+    if (checkpoint_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;  // still syncing
+    checkpoint_.get();  // rethrows its failure
+  }
   std::vector<std::string> to_sync;
   DatasetManifest snapshot;
   {

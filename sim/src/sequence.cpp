@@ -102,8 +102,9 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals; 11: walkers enter and
 // leave through the room's doors, seated people look at whichever neighbours sit at their table,
 // chair jitter never squeezes neighbours together; 12: people 0.43 m across the shoulders instead
-// of 0.48, seated body sizes capped so that neighbours' shoulders never meet).
-constexpr int kSimulatorRevision = 12;
+// of 0.48, seated body sizes capped so that neighbours' shoulders never meet; 13: frame PNGs
+// deflated by libdeflate, every row Sub-filtered, one IDAT).
+constexpr int kSimulatorRevision = 13;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

@@ -33,8 +33,8 @@ void WriteFileAtomicUnsynced(const std::string& path, std::string_view bytes);
 // InputError(path, ...) on failure.
 void SyncFiles(const std::vector<std::string>& paths);
 
-// PNG bytes of a 1-channel CV_8U or CV_16U image or a BGR CV_8UC3 one (figures); the same image
-// always gives the same bytes.
+// PNG bytes of a 1-channel CV_8U or CV_16U image (EncodeGreyPng, core/png.h) or a BGR CV_8UC3
+// one (figures, through OpenCV); the same image always gives the same bytes.
 std::string EncodePng(const cv::Mat& image);
 
 // EncodePng(image) written with WriteFileAtomic: the one atomic PNG writer (frames, figures).

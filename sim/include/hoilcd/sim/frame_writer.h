@@ -57,7 +57,9 @@ class FrameWriter {
   // Queues a frame; blocks only while `capacity` frames are in flight. Rethrows a worker's error.
   void Submit(FrameImages frame);
   // A resume point: fsyncs the files written since the last one, then writes manifest.json
-  // listing every file written so far, on a background thread (one checkpoint at a time).
+  // listing every file written so far, on a background thread. One checkpoint at a time: while
+  // the last one is still syncing, this one is skipped (its files go to the next), so a slow disk
+  // never stalls the render. Rethrows a finished checkpoint's failure.
   void Checkpoint();
   // Waits for every frame and checkpoint and fsyncs what is left; the manifest is the caller's
   // again. Rethrows the first error of a worker or checkpoint.
