@@ -7,6 +7,7 @@
 namespace hoilcd {
 namespace {
 std::atomic<bool> g_quiet_default{false};
+thread_local std::string g_title_prefix;
 
 std::string FormatSeconds(double s) {
   char buf[32];
@@ -19,8 +20,14 @@ std::string FormatSeconds(double s) {
 
 void ProgressReporter::SetQuietByDefault(bool quiet) { g_quiet_default = quiet; }
 
+ProgressReporter::ThreadTitlePrefix::ThreadTitlePrefix(std::string prefix) : previous_(g_title_prefix) {
+  g_title_prefix = previous_ + prefix;
+}
+
+ProgressReporter::ThreadTitlePrefix::~ThreadTitlePrefix() { g_title_prefix = previous_; }
+
 ProgressReporter::ProgressReporter(std::string title, int64_t total, std::string unit, bool quiet)
-    : title_(std::move(title)),
+    : title_(g_title_prefix + title),
       unit_(std::move(unit)),
       total_(total),
       quiet_(quiet || g_quiet_default.load()),
@@ -66,7 +73,8 @@ void ProgressReporter::Print(bool final_line) {
     const int filled = total_ > 0 ? static_cast<int>(width * done / total_) : 0;
     std::string bar(filled, '#');
     bar.resize(width, '.');
-    std::snprintf(line, sizeof(line), "\r%s [%s] %lld/%lld %s  %.1f %s/s  %s %s", title_.c_str(),
+    // Cleared to the end of the line: another reporter's longer bar may have been drawn there.
+    std::snprintf(line, sizeof(line), "\r%s [%s] %lld/%lld %s  %.1f %s/s  %s %s\033[K", title_.c_str(),
                   bar.c_str(), static_cast<long long>(done), static_cast<long long>(total_),
                   unit_.c_str(), rate, unit_.c_str(), final_line ? "took" : "left",
                   FormatSeconds(final_line ? elapsed : left).c_str());

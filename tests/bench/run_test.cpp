@@ -197,5 +197,36 @@ TEST(RunScene, TheCalibrationDatasetHoldsOnlyWhatTheThresholdsNeedAndAFullOneSer
   EXPECT_EQ(Dataset::Open(first.calibration_dir).manifest().outputs.ToText(), "thermal,radiometric");
 }
 
+// The calibration renders and benches beside the scene's render: both datasets are byte for byte
+// those each render writes alone, and the thresholds those of its dataset benched alone.
+TEST(RunScene, TheCalibrationBesideTheRenderGivesTheBytesAndThresholdsOfEachAlone) {
+  const test::TestDir temp;
+  const Scene scene = TinyRoom();
+  BenchOptions bench;
+  bench.methods = {"slcd", "dlcd", "thumb"};
+  bench.slam = true;
+  const RunOptions options = CachedIn(temp / "cache");
+  const RunOutcome run = RunScene(scene, bench, options);
+
+  SequenceOptions alone;
+  alone.output_dir = temp / "alone";
+  alone.threads = 2;
+  RenderSequence(scene, alone);
+  EXPECT_EQ(Dataset::Open(run.dataset_dir).manifest().files, Dataset::Open(alone.output_dir).manifest().files);
+  nlohmann::json doc = scene.resolved;
+  doc["seed"] = scene.seed + options.calibration_seed_offset;
+  alone.output_dir = temp / "calibration_alone";
+  alone.outputs = "thermal,radiometric";
+  RenderSequence(SceneFromJson(doc, "calibration"), alone);
+  EXPECT_EQ(Dataset::Open(run.calibration_dir).manifest().files, Dataset::Open(alone.output_dir).manifest().files);
+
+  // Its thresholds benched again from the cached dataset, with no render beside them.
+  fs::remove(fs::path(run.calibration_dir).parent_path() / "calibration.json");
+  const RunOutcome again = RunScene(scene, bench, options);
+  EXPECT_TRUE(again.timing.render_cached);
+  EXPECT_FALSE(again.timing.calibration_bench_cached);
+  ExpectSameThresholds(ThresholdsOf(run), ThresholdsOf(again));
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -25,6 +25,19 @@ class ProgressReporter {
   // Process-wide default for quietness (set by `hoilcd --quiet`).
   static void SetQuietByDefault(bool quiet);
 
+  // While it lives, reporters made on this thread put `prefix` before their title: a pipeline
+  // run beside another ("calibration ") tells its lines apart.
+  class ThreadTitlePrefix {
+   public:
+    explicit ThreadTitlePrefix(std::string prefix);
+    ~ThreadTitlePrefix();
+    ThreadTitlePrefix(const ThreadTitlePrefix&) = delete;
+    ThreadTitlePrefix& operator=(const ThreadTitlePrefix&) = delete;
+
+   private:
+    std::string previous_;
+  };
+
  private:
   void Print(bool final_line);
 
