@@ -110,7 +110,7 @@ TEST_F(Sequence, FfprobeReadsThermalMp4AsH264256x192At25FpsWithOneFramePerFrame)
   EXPECT_EQ(Ffprobe(dir + "/thermal.mp4"), "h264,256,192,25/1,7\n");
 }
 
-// The frame PNGs (OpenCV's default parameters) pass pngcheck, a checker independent of libpng.
+// The frame PNGs (libdeflate, core/png.h) pass pngcheck, a checker independent of libpng.
 TEST_F(Sequence, FramePngsPassPngcheck) {
   if (std::system("command -v pngcheck > /dev/null 2>&1") != 0) GTEST_SKIP() << "pngcheck (Debian pngcheck) not installed";
   const std::string dir = TempDir("pngcheck");
