@@ -155,12 +155,18 @@ TEST(RunScene, TheSlamCalibrationIsCachedDatasetAndThresholdsAndRedoneWhenItsInp
   EXPECT_FALSE(RunScene(scene, fewer_trials, options).timing.calibration_bench_cached);
 }
 
-TEST(RunScene, TheCalibrationDatasetHoldsOnlyWhatTheThresholdsNeedAndAFullOneServesAsWell) {
-  const test::TestDir temp;
-  const Scene scene = TinyRoom();
+// slcd, dlcd and thumb with the SLAM section, so with the calibration.
+BenchOptions SlcdDlcdThumbWithSlam() {
   BenchOptions bench;
   bench.methods = {"slcd", "dlcd", "thumb"};
   bench.slam = true;
+  return bench;
+}
+
+TEST(RunScene, TheCalibrationDatasetHoldsOnlyWhatTheThresholdsNeedAndAFullOneServesAsWell) {
+  const test::TestDir temp;
+  const Scene scene = TinyRoom();
+  const BenchOptions bench = SlcdDlcdThumbWithSlam();
   const RunOptions options = CachedIn(temp.str());
   const RunOutcome first = RunScene(scene, bench, options);
   EXPECT_EQ(Dataset::Open(first.calibration_dir).manifest().outputs.ToText(), "thermal,radiometric");
@@ -202,9 +208,7 @@ TEST(RunScene, TheCalibrationDatasetHoldsOnlyWhatTheThresholdsNeedAndAFullOneSer
 TEST(RunScene, TheCalibrationBesideTheRenderGivesTheBytesAndThresholdsOfEachAlone) {
   const test::TestDir temp;
   const Scene scene = TinyRoom();
-  BenchOptions bench;
-  bench.methods = {"slcd", "dlcd", "thumb"};
-  bench.slam = true;
+  const BenchOptions bench = SlcdDlcdThumbWithSlam();
   const RunOptions options = CachedIn(temp / "cache");
   const RunOutcome run = RunScene(scene, bench, options);
 

@@ -178,13 +178,18 @@ TEST(Dataset, OpensATinyCompleteFolderAndReadsEverything) {
   EXPECT_THROW(ds.Thermal(3), std::logic_error);
 }
 
+// Damages a file the way a bad disk would: one bit of its middle byte flipped.
+void FlipMiddleBit(const std::string& path) {
+  std::string bytes = ReadFileBytes(path);
+  bytes[bytes.size() / 2] ^= 0x01;
+  WriteFileAtomic(path, bytes);
+}
+
 TEST(Dataset, CorruptedFrameIsAnErrorNamingThatFile) {
   test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   const std::string frame = dir / "thermal/000001.png";
-  std::string bytes = ReadFileBytes(frame);
-  bytes[bytes.size() / 2] ^= 0x01;
-  WriteFileAtomic(frame, bytes);
+  FlipMiddleBit(frame);
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
   EXPECT_NE(message.find(frame + ": checksum mismatch"), std::string::npos) << message;
   EXPECT_EQ(message.find("000000.png"), std::string::npos) << message;
@@ -195,9 +200,7 @@ TEST(Dataset, VerifyOnReadChecksEachFileWhenItIsReadAndOnlyThen) {
   test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);
   const std::string frame = dir / "thermal/000001.png";
-  std::string bytes = ReadFileBytes(frame);
-  bytes[bytes.size() / 2] ^= 0x01;
-  WriteFileAtomic(frame, bytes);
+  FlipMiddleBit(frame);
   const Dataset ds = Dataset::Open(dir.str(), Verify::kOnRead);  // the damaged frame is not read yet
   EXPECT_EQ(ds.Thermal(0).at<uint8_t>(0, 0), 1);
   EXPECT_EQ(ds.Thermal(2).at<uint8_t>(0, 0), 21);

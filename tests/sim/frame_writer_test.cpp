@@ -68,13 +68,18 @@ TEST(FrameWriter, SameBytesAndVideoWithOneOrFourWorkersAndAnyQueueLength) {
   }
 }
 
+// Options writing into `dir` on two workers, no video.
+FrameWriterOptions TwoWorkersIn(const std::string& dir) {
+  FrameWriterOptions options;
+  options.dir = dir;
+  options.workers = 2;
+  return options;
+}
+
 TEST(FrameWriter, CheckpointWritesAManifestListingOnlyFilesInPlace) {
   const test::TestDir temp;
   DatasetManifest manifest;
-  FrameWriterOptions options;
-  options.dir = temp / "ds";
-  options.workers = 2;
-  FrameWriter writer(options, &manifest, nullptr);
+  FrameWriter writer(TwoWorkersIn(temp / "ds"), &manifest, nullptr);
   for (int f = 0; f < 4; ++f) writer.Submit(MakeFrame(f));
   writer.Checkpoint();
   writer.Finish();  // waits for the checkpoint too
@@ -93,10 +98,7 @@ TEST(FrameWriter, CheckpointWritesAManifestListingOnlyFilesInPlace) {
 TEST(FrameWriter, CheckpointsAskedFasterThanTheDiskSyncsListOnlyFilesInPlace) {
   const test::TestDir temp;
   DatasetManifest manifest;
-  FrameWriterOptions options;
-  options.dir = temp / "ds";
-  options.workers = 2;
-  FrameWriter writer(options, &manifest, nullptr);
+  FrameWriter writer(TwoWorkersIn(temp / "ds"), &manifest, nullptr);
   for (int f = 0; f < kFrames; ++f) {
     writer.Submit(MakeFrame(f));
     writer.Checkpoint();
@@ -116,10 +118,7 @@ TEST(FrameWriter, AWriteErrorIsRethrownNamingTheFile) {
   const test::TestDir temp;
   WriteFileAtomic(temp / "ds/thermal", "a file where the thermal folder should be");
   DatasetManifest manifest;
-  FrameWriterOptions options;
-  options.dir = temp / "ds";
-  options.workers = 2;
-  FrameWriter writer(options, &manifest, nullptr);
+  FrameWriter writer(TwoWorkersIn(temp / "ds"), &manifest, nullptr);
   try {
     for (int f = 0; f < kFrames; ++f) writer.Submit(MakeFrame(f));
     writer.Finish();
