@@ -2,11 +2,16 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 
 namespace hoilcd {
 namespace {
 std::atomic<bool> g_quiet_default{false};
+// The reporters on the terminal line, in the order they first drew; guarded by the mutex.
+std::mutex g_terminal_mutex;
+std::vector<const ProgressReporter*> g_on_terminal;
 thread_local std::string g_title_prefix;
 
 std::string FormatSeconds(double s) {
@@ -49,7 +54,7 @@ void ProgressReporter::Update(int64_t done_increment) {
   const auto now = std::chrono::steady_clock::now();
   const double interval = tty_ ? 0.1 : 10.0;
   std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
-  if (!lock.owns_lock()) return;
+  if (!lock.owns_lock() || done_) return;  // done: off the terminal line for good
   if (std::chrono::duration<double>(now - last_print_).count() < interval) return;
   last_print_ = now;
   Print(false);
@@ -62,25 +67,43 @@ void ProgressReporter::Done() {
   if (!quiet_) Print(true);
 }
 
-void ProgressReporter::Print(bool final_line) {
+std::string ProgressReporter::Bar(int width, bool final_line) const {
   const int64_t done = count_.load();
   const double elapsed = ElapsedSeconds();
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   const double left = rate > 0 ? (total_ - done) / rate : -1.0;
-  char line[256];
+  const int filled = total_ > 0 ? static_cast<int>(width * std::min(done, total_) / total_) : 0;
+  std::string bar(static_cast<size_t>(filled), '#');
+  bar.resize(static_cast<size_t>(width), '.');
+  char text[256];
+  std::snprintf(text, sizeof(text), "%s [%s] %lld/%lld %s  %.1f %s/s  %s %s", title_.c_str(), bar.c_str(),
+                static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(),
+                final_line ? "took" : "left", FormatSeconds(final_line ? elapsed : left).c_str());
+  return text;
+}
+
+void ProgressReporter::Print(bool final_line) {
   if (tty_) {
-    const int width = 30;
-    const int filled = total_ > 0 ? static_cast<int>(width * done / total_) : 0;
-    std::string bar(filled, '#');
-    bar.resize(width, '.');
-    // Cleared to the end of the line: another reporter's longer bar may have been drawn there.
-    std::snprintf(line, sizeof(line), "\r%s [%s] %lld/%lld %s  %.1f %s/s  %s %s\033[K", title_.c_str(),
-                  bar.c_str(), static_cast<long long>(done), static_cast<long long>(total_),
-                  unit_.c_str(), rate, unit_.c_str(), final_line ? "took" : "left",
-                  FormatSeconds(final_line ? elapsed : left).c_str());
-    std::fputs(line, stderr);
-    if (final_line) std::fputs("\n", stderr);
+    // One terminal line for every reporter drawing at once: its own final line goes above it.
+    std::lock_guard<std::mutex> lock(g_terminal_mutex);
+    std::string line = "\r";
+    if (final_line) {
+      line += Bar(30, true) + "\033[K\n";
+      g_on_terminal.erase(std::remove(g_on_terminal.begin(), g_on_terminal.end(), this), g_on_terminal.end());
+    } else if (std::find(g_on_terminal.begin(), g_on_terminal.end(), this) == g_on_terminal.end()) {
+      g_on_terminal.push_back(this);
+    }
+    const int width = g_on_terminal.size() > 1 ? 12 : 30;
+    for (size_t i = 0; i < g_on_terminal.size(); ++i) {
+      line += (i ? " | " : "") + g_on_terminal[i]->Bar(width, false);
+    }
+    std::fputs((line + "\033[K").c_str(), stderr);
   } else {
+    const int64_t done = count_.load();
+    const double elapsed = ElapsedSeconds();
+    const double rate = elapsed > 0 ? done / elapsed : 0.0;
+    const double left = rate > 0 ? (total_ - done) / rate : -1.0;
+    char line[256];
     std::snprintf(line, sizeof(line), "%s: %lld/%lld %s, %.1f %s/s, %s %s\n", title_.c_str(),
                   static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate,
                   unit_.c_str(), final_line ? "took" : "left",

@@ -1,5 +1,6 @@
-// The one progress reporter: a bar with count, rate and time left on a terminal; plain
-// periodic lines when stderr is not a terminal; silent when quiet. Thread-safe Update().
+// The one progress reporter: a bar with count, rate and time left on a terminal (reporters
+// running at once, e.g. a render and the calibration beside it, share the line); plain periodic
+// lines when stderr is not a terminal; silent when quiet. Thread-safe Update().
 #pragma once
 
 #include <atomic>
@@ -40,6 +41,8 @@ class ProgressReporter {
 
  private:
   void Print(bool final_line);
+  // This reporter's bar, `width` characters wide, and figures (for the terminal line).
+  std::string Bar(int width, bool final_line) const;
 
   std::string title_;
   std::string unit_;
