@@ -79,8 +79,10 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
   std::vector<std::vector<Track>> tracks(persons ? kBlockFrames : 0);
   ProgressReporter progress("front ends", n, "frames");
   const bool video_mode = IsVideoMode(dataset);
-  for (int block = 0; block < n; block += kBlockFrames) {
-    const int size = std::min(kBlockFrames, n - block);
+  // Without the tracker there is nothing to do in order: one block, no barriers.
+  const int block_frames = persons ? kBlockFrames : std::max(n, 1);
+  for (int block = 0; block < n; block += block_frames) {
+    const int size = std::min(block_frames, n - block);
     ParallelFor(size, options.threads, [&](int64_t i) {
       const int f = block + static_cast<int>(i);
       const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, /*detector=*/persons);

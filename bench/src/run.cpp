@@ -1,5 +1,6 @@
 #include "hoilcd/bench/run.h"
 
+#include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -225,23 +226,41 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   // alone leaves ~10 % of the cores idle (serial steps, writer hand-offs, fsyncs), together
   // they fill them. Both are deterministic at any thread count, so the bytes are those of one
   // after the other. Its progress lines are titled "calibration ...".
+  const bool calibrate = b.slam && std::isnan(b.slam_options.slam.loop_threshold);
+  // With offset 0 the calibration sequence is the scene itself, in the same folder: after it.
+  const bool beside = calibrate && options.calibration_seed_offset != 0;
   RunOutcome calibrated;  // the calibration's fields of RunOutcome, filled on its thread (outlives it)
+  std::atomic<bool> stop_calibration{false};  // this side failed, or the user interrupted
+  RunOptions calibration_options = options;
+  calibration_options.cancel = &stop_calibration;
   std::future<std::map<std::string, double>> calibration;  // waited for even if the render throws
-  if (b.slam && std::isnan(b.slam_options.slam.loop_threshold)) {
-    calibration = std::async(std::launch::async, [&scene, &options, &calibrated, bench_copy = b] {
+  if (beside) {
+    calibration = std::async(std::launch::async, [&scene, &calibration_options, &calibrated, bench_copy = b] {
       const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
-      return CalibrateLoopThresholds(scene, bench_copy, options, &calibrated);
+      return CalibrateLoopThresholds(scene, bench_copy, calibration_options, &calibrated);
     });
   }
-  const Dataset dataset = EnsureDataset(scene, out.dataset_dir, DatasetOutputs(), options, &out.timing.render_cached,
-                                        &out.timing.render_s, &out.warnings);
+  const Dataset dataset = [&] {
+    try {
+      return EnsureDataset(scene, out.dataset_dir, DatasetOutputs(), options, &out.timing.render_cached,
+                           &out.timing.render_s, &out.warnings);
+    } catch (...) {
+      stop_calibration = true;  // its render stops after its current frame, so the error is not held back
+      throw;
+    }
+  }();
   out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
-  if (calibration.valid()) {
+  if (beside) {
+    while (calibration.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+      if (options.cancel != nullptr && options.cancel->load()) stop_calibration = true;  // Ctrl-C stops it too
+    }
     b.slam_options.calibrated_threshold = calibration.get();  // rethrows its error
     out.calibration_dir = calibrated.calibration_dir;
     out.timing.calibration_s = calibrated.timing.calibration_s;
     out.timing.calibration_render_cached = calibrated.timing.calibration_render_cached;
     out.timing.calibration_bench_cached = calibrated.timing.calibration_bench_cached;
+  } else if (calibrate) {
+    b.slam_options.calibrated_threshold = CalibrateLoopThresholds(scene, b, options, &out);
   }
   out.result = RunBench(dataset, b);
   out.timing.bench_s = out.result.seconds;

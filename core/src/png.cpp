@@ -184,11 +184,16 @@ bool DecodeGreyPng(std::string_view bytes, int width, int height, int type, cv::
   const size_t stride = static_cast<size_t>(width) * bpp;
   thread_local std::vector<unsigned char> raw;
   raw.resize((stride + 1) * static_cast<size_t>(height));
-  const void* deflated = idat_chunks == 1 ? static_cast<const void*>(only_idat) : gathered.data();
+  const auto* deflated = idat_chunks == 1 ? only_idat : reinterpret_cast<const unsigned char*>(gathered.data());
   const size_t deflated_length = idat_chunks == 1 ? only_idat_length : gathered.size();
-  // Without an actual-size argument libdeflate succeeds only on exactly raw.size() bytes.
-  if (libdeflate_zlib_decompress(ThreadDecompressor(), deflated, deflated_length, raw.data(), raw.size(), nullptr) !=
-      LIBDEFLATE_SUCCESS) {
+  // libdeflate ignores the zlib window size, which zlib (libpng's) enforces: a stream declaring a
+  // window under 32 kB is left to OpenCV, and so is one with bytes after its checksum.
+  if (deflated_length < 2 || (deflated[0] >> 4) != 7) return false;
+  size_t used = 0;
+  // Without an actual-output argument libdeflate succeeds only on exactly raw.size() bytes.
+  if (libdeflate_zlib_decompress_ex(ThreadDecompressor(), deflated, deflated_length, raw.data(), raw.size(), &used,
+                                    nullptr) != LIBDEFLATE_SUCCESS ||
+      used != deflated_length) {
     return false;
   }
   thread_local std::vector<unsigned char> zeros;

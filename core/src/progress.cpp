@@ -1,5 +1,6 @@
 #include "hoilcd/core/progress.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -94,10 +95,16 @@ void ProgressReporter::Print(bool final_line) {
       g_on_terminal.push_back(this);
     }
     const int width = g_on_terminal.size() > 1 ? 12 : 30;
+    std::string bars;
     for (size_t i = 0; i < g_on_terminal.size(); ++i) {
-      line += (i ? " | " : "") + g_on_terminal[i]->Bar(width, false);
+      bars += (i ? " | " : "") + g_on_terminal[i]->Bar(width, false);
     }
-    std::fputs((line + "\033[K").c_str(), stderr);
+    // Cut to the terminal's width: a wrapped line would leave a stale copy above at each redraw.
+    winsize size{};
+    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 && bars.size() >= size.ws_col) {
+      bars.resize(size.ws_col - 1);
+    }
+    std::fputs((line + bars + "\033[K").c_str(), stderr);
   } else {
     const int64_t done = count_.load();
     const double elapsed = ElapsedSeconds();

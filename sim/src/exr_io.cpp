@@ -8,7 +8,6 @@
 #include <ImfOutputFile.h>
 #include <ImfCompression.h>
 
-#include <algorithm>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -187,7 +186,7 @@ class StringIStream : public Imf::IStream {
  public:
   StringIStream(const std::string& bytes, const std::string& path) : Imf::IStream(path.c_str()), bytes_(bytes) {}
   bool read(char c[], int n) override {
-    if (n < 0 || static_cast<uint64_t>(n) > bytes_.size() - pos_) {
+    if (n < 0 || pos_ > bytes_.size() || static_cast<uint64_t>(n) > bytes_.size() - pos_) {
       throw std::runtime_error("unexpected end of file");  // what Imf's own file stream says
     }
     std::memcpy(c, bytes_.data() + pos_, static_cast<size_t>(n));
@@ -195,7 +194,7 @@ class StringIStream : public Imf::IStream {
     return pos_ < bytes_.size();
   }
   uint64_t tellg() override { return pos_; }
-  void seekg(uint64_t pos) override { pos_ = std::min<uint64_t>(pos, bytes_.size()); }
+  void seekg(uint64_t pos) override { pos_ = pos; }  // past the end: the next read throws
 
  private:
   const std::string& bytes_;

@@ -232,5 +232,26 @@ TEST(RunScene, TheCalibrationBesideTheRenderGivesTheBytesAndThresholdsOfEachAlon
   ExpectSameThresholds(ThresholdsOf(run), ThresholdsOf(again));
 }
 
+// A failing render does not wait for the calibration beside it: its render stops after its
+// current frame, and the error comes out at once.
+TEST(RunScene, AFailingRenderStopsTheCalibrationBesideIt) {
+  const test::TestDir temp;
+  const Scene scene = TinyRoom();
+  const RunOptions options = CachedIn(temp / "cache");
+  // A stale dataset beside a file hoilcd did not write: an InputError before any frame.
+  const std::string dataset_dir = RunFolder(scene, options.cache_dir) + "/dataset";
+  WriteFileAtomic(dataset_dir + "/manifest.json", "{ not a manifest");
+  WriteFileAtomic(dataset_dir + "/notes.txt", "mine");
+  EXPECT_THROW(RunScene(scene, SlcdDlcdThumbWithSlam(), options), InputError);
+  nlohmann::json doc = scene.resolved;
+  doc["seed"] = scene.seed + options.calibration_seed_offset;
+  const std::string calibration_manifest =
+      RunFolder(SceneFromJson(doc, "calibration"), options.cache_dir) + "/dataset/manifest.json";
+  if (fs::exists(calibration_manifest)) {  // stopped part-way: a resume point at most
+    EXPECT_FALSE(DatasetManifest::FromJson(ReadFileBytes(calibration_manifest), "manifest.json").complete);
+  }
+  EXPECT_EQ(ReadFileBytes(dataset_dir + "/notes.txt"), "mine");
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -50,6 +50,8 @@ class TestPngWriter {
   int interlace = 0;
   std::vector<std::pair<std::string, std::string>> extra_chunks;  // written after IHDR
   int idat_chunks = 1;
+  std::string zlib_header = "\x78\x01";  // a 32 kB window
+  std::string after_checksum;            // bytes after the zlib stream, inside the IDAT data
 
   std::string Write(const cv::Mat& image) const {
     const int bpp = image.depth() == CV_16U ? 2 : 1;
@@ -82,7 +84,7 @@ class TestPngWriter {
       }
       previous = row;
     }
-    std::string zlib = "\x78\x01";
+    std::string zlib = zlib_header;
     for (size_t at = 0; at < raw.size() || at == 0; at += 65535) {
       const size_t n = std::min<size_t>(65535, raw.size() - at);
       zlib += static_cast<char>(at + n >= raw.size() ? 1 : 0);
@@ -92,7 +94,7 @@ class TestPngWriter {
     }
     uint32_t s1 = 1, s2 = 0;
     for (unsigned char ch : raw) s1 = (s1 + ch) % 65521, s2 = (s2 + s1) % 65521;
-    zlib += BigEndian((s2 << 16) | s1);
+    zlib += BigEndian((s2 << 16) | s1) + after_checksum;
 
     std::string png("\x89PNG\r\n\x1a\n", 8);
     std::string ihdr = BigEndian(image.cols) + BigEndian(image.rows);
@@ -200,8 +202,18 @@ TEST(GreyPng, OtherSizesDepthsInterlacingAndChunksAreLeftToOpenCv) {
   EXPECT_FALSE(DecodeGreyPng(text_png, 8, 6, CV_8UC1, &out));
   EXPECT_FALSE(DecodeGreyPng(interlaced.Write(image), 8, 6, CV_8UC1, &out));
   EXPECT_TRUE(out.empty());
+  // zlib streams libdeflate would read but zlib might not: a window under 32 kB (zlib enforces
+  // it, libdeflate does not), bytes after the checksum.
+  TestPngWriter small_window, trailing;
+  small_window.zlib_header = "\x28\x15";  // CINFO 2: a 1 kB window (stored blocks fit any window)
+  trailing.after_checksum = "junk";
+  const std::string small_window_png = small_window.Write(image);
+  EXPECT_FALSE(DecodeGreyPng(small_window_png, 8, 6, CV_8UC1, &out));
+  EXPECT_FALSE(DecodeGreyPng(trailing.Write(image), 8, 6, CV_8UC1, &out));
+  EXPECT_TRUE(out.empty());
   const CameraIntrinsics k = CameraIntrinsics::FromHorizontalFov(8, 6, 50);
   EXPECT_TRUE(Same(DecodeFramePng(text_png, "text.png", CV_8UC1, k), image));
+  EXPECT_TRUE(Same(DecodeFramePng(small_window_png, "window.png", CV_8UC1, k), image));
 }
 
 TEST(GreyPng, EncodePngSendsGreyFramesHereAndColourToOpenCv) {
