@@ -7,7 +7,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <nlohmann/json.hpp>
@@ -779,32 +778,12 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
   return ds;
 }
 
-namespace {
-// Width and height from a PNG's IHDR chunk, read before decoding so that a small file that
-// inflates to a huge image is refused first (OpenCV offers no header-only read). Hand-written:
-// the PNG signature and IHDR layout are fixed by the PNG specification, 24 bytes in all.
-bool PngSize(const std::string& bytes, uint32_t* width, uint32_t* height) {
-  static constexpr unsigned char kSignature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < 24 || std::memcmp(bytes.data(), kSignature, 8) != 0 ||
-      bytes.compare(12, 4, "IHDR") != 0) {
-    return false;
-  }
-  auto big_endian = [&](size_t at) {
-    uint32_t value = 0;
-    for (size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<unsigned char>(bytes[at + i]);
-    return value;
-  };
-  *width = big_endian(16);
-  *height = big_endian(20);
-  return true;
-}
-
-}  // namespace
 
 cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int expected_type,
                        const CameraIntrinsics& k) {
   uint32_t width = 0;
   uint32_t height = 0;
+  // Read before decoding, so that a small file that inflates to a huge image is refused first.
   if (!PngSize(bytes, &width, &height)) throw InputError(path, "cannot read PNG (not a PNG)");
   if (width != static_cast<uint32_t>(k.width) || height != static_cast<uint32_t>(k.height)) {
     throw InputError(path, "expected " + std::to_string(k.width) + "x" +

@@ -99,6 +99,16 @@ bool Unfilter(int filter, int bpp, size_t stride, const unsigned char* previous,
 
 }  // namespace
 
+bool PngSize(std::string_view bytes, uint32_t* width, uint32_t* height) {
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+  if (bytes.size() < 24 || std::memcmp(p, kSignature, sizeof kSignature) != 0 || std::memcmp(p + 12, "IHDR", 4) != 0) {
+    return false;
+  }
+  *width = BigEndian32(p + 16);
+  *height = BigEndian32(p + 20);
+  return true;
+}
+
 std::string EncodeGreyPng(const cv::Mat& image) {
   HOILCD_CHECK_MSG(!image.empty() && image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
                    "EncodeGreyPng takes a non-empty 1-channel CV_8U or CV_16U image");

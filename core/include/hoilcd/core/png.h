@@ -6,10 +6,15 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
 namespace hoilcd {
+
+// Width and height from a PNG's signature and IHDR chunk (its first 24 bytes), without decoding
+// (OpenCV offers no header-only read); false if `bytes` does not start that way.
+bool PngSize(std::string_view bytes, uint32_t* width, uint32_t* height);
 
 // A 1-channel CV_8U or CV_16U image as a PNG: 8- or 16-bit greyscale, non-interlaced, every row
 // with the Sub filter, one IDAT deflated at libdeflate level 1. The same bytes for the same
