@@ -830,20 +830,24 @@ const std::vector<FramePersons>& Dataset::persons() const {
   return persons_;
 }
 
-cv::Mat Dataset::Thermal(int frame) const {
-  RequireOutput("thermal", "reading the 8-bit thermal frames");
+cv::Mat Dataset::FramePng(const std::string& output, int frame, int type, const std::string& needed_for) const {
+  RequireOutput(output, needed_for);
   HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
-  const std::string name = "thermal/" + FrameFileName(frame, "png");
-  return DecodeFramePng(ReadFile(name), JoinPath(dir_, name), CV_8UC1, manifest_.intrinsics);
+  const std::string name = output + "/" + FrameFileName(frame, "png");
+  return DecodeFramePng(ReadFile(name), JoinPath(dir_, name), type, manifest_.intrinsics);
+}
+
+cv::Mat Dataset::Thermal(int frame) const {
+  return FramePng("thermal", frame, CV_8UC1, "reading the 8-bit thermal frames");
+}
+
+cv::Mat Dataset::RadiometricCentikelvin(int frame) const {
+  return FramePng("radiometric", frame, CV_16UC1, "reading the radiometric frames");
 }
 
 cv::Mat Dataset::RadiometricC(int frame) const {
-  RequireOutput("radiometric", "reading the radiometric frames");
-  HOILCD_CHECK_MSG(frame >= 0 && frame < num_frames(), "frame " << frame);
-  const std::string name = "radiometric/" + FrameFileName(frame, "png");
-  const cv::Mat centikelvin = DecodeFramePng(ReadFile(name), JoinPath(dir_, name), CV_16UC1, manifest_.intrinsics);
   cv::Mat celsius;
-  centikelvin.convertTo(celsius, CV_32F, 0.01, -273.15);
+  RadiometricCentikelvin(frame).convertTo(celsius, CV_32F, 0.01, -273.15);
   return celsius;
 }
 

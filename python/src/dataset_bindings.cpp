@@ -84,13 +84,7 @@ void BindDataset(py::module_& m) {
            [](const Dataset& d, int64_t i) { return ImageToArray<float>(d.RadiometricC(FrameIndex(d, i))); },
            py::arg("frame"), "apparent temperature, °C (H x W float32, from the radiometric PNG)")
       .def("radiometric",
-           [](const Dataset& d, int64_t i) {
-             const int frame = FrameIndex(d, i);
-             d.RequireOutput("radiometric", "reading the radiometric frames");
-             const std::string name = "radiometric/" + FrameFileName(frame, "png");
-             return ImageToArray<uint16_t>(
-                 DecodeFramePng(d.ReadFile(name), d.dir() + "/" + name, CV_16UC1, d.manifest().intrinsics));
-           },
+           [](const Dataset& d, int64_t i) { return ImageToArray<uint16_t>(d.RadiometricCentikelvin(FrameIndex(d, i))); },
            py::arg("frame"), "the radiometric PNG as stored: H x W uint16, centikelvin (K x 100)")
       .def("exr", [](const Dataset& d, int64_t i) { return ExrToDict(d, FrameIndex(d, i)); }, py::arg("frame"),
            "the frame's EXR channels as {name: H x W float32}: T, T_true (°C), Z (m), id, class")

@@ -189,6 +189,7 @@ class Dataset {
   // InputError naming the missing output when the dataset was rendered without it.
   cv::Mat Thermal(int frame) const;       // CV_8U from thermal/NNNNNN.png
   cv::Mat RadiometricC(int frame) const;  // CV_32F °C from radiometric/NNNNNN.png
+  cv::Mat RadiometricCentikelvin(int frame) const;  // CV_16U as stored: K × 100
   // Throws InputError (the dataset folder: which output is missing and how to render it) unless
   // the dataset has `output` (a DatasetOutputs name); `needed_for` says what wanted it.
   void RequireOutput(const std::string& output, const std::string& needed_for) const;
@@ -199,6 +200,10 @@ class Dataset {
   std::string ReadFile(const std::string& name) const;
 
  private:
+  // Frame `frame` of the PNG output `output` ("thermal", "radiometric"), decoded as `type`;
+  // `needed_for` goes to RequireOutput.
+  cv::Mat FramePng(const std::string& output, int frame, int type, const std::string& needed_for) const;
+
   std::string dir_;
   Verify verify_ = Verify::kEveryFile;
   DatasetManifest manifest_;
