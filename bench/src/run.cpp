@@ -155,43 +155,51 @@ std::optional<std::map<std::string, double>> ReadCachedThresholds(const std::str
   return thresholds;
 }
 
+// What the SLAM calibration found, and how.
+struct Calibration {
+  std::map<std::string, double> thresholds;  // method -> threshold at 100 % precision (NaN: none)
+  std::string dataset_dir;
+  double seconds = 0;
+  bool render_cached = false, bench_cached = false;
+};
+
 // Each method's threshold at 100 % precision on the calibration sequence (NaN: none reaches it).
 // The calibration dataset is cached like any run's, and so are its thresholds (calibration.json
 // beside the dataset, under CalibrationKey).
-std::map<std::string, double> CalibrateLoopThresholds(const Scene& scene, const BenchOptions& bench,
-                                                      const RunOptions& options, RunOutcome* out) {
+Calibration CalibrateLoopThresholds(const Scene& scene, const BenchOptions& bench, const RunOptions& options) {
+  Calibration out;
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json doc = scene.resolved;
   doc["seed"] = scene.seed + options.calibration_seed_offset;
   const Scene calibration = SceneFromJson(doc, scene.file + " (calibration seed)");
   const std::string folder = RunFolder(calibration, options.cache_dir);
-  out->calibration_dir = folder + "/dataset";
+  out.dataset_dir = folder + "/dataset";
   const std::string cache_path = folder + "/calibration.json";
   // Thresholds cached for this very manifest (complete, this scene, this simulator) need no
   // dataset: they were benched from the files it lists, so its frames are not even read.
   std::optional<std::map<std::string, double>> thresholds;
-  const std::string manifest_path = out->calibration_dir + "/manifest.json";
+  const std::string manifest_path = out.dataset_dir + "/manifest.json";
   std::error_code ec;
   if (std::filesystem::exists(cache_path, ec) && std::filesystem::exists(manifest_path, ec)) {
     try {
       const DatasetManifest m = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
       if (m.complete && m.scene_hash == calibration.hash && m.hoilcd_version == SimulatorVersion() &&
           m.frame_count == calibration.frames) {
-        thresholds = ReadCachedThresholds(cache_path, CalibrationKey(out->calibration_dir, bench));
+        thresholds = ReadCachedThresholds(cache_path, CalibrationKey(out.dataset_dir, bench));
       }
     } catch (const InputError&) {
       // unreadable manifest: EnsureDataset below renders the calibration sequence again
     }
   }
-  out->timing.calibration_render_cached = out->timing.calibration_bench_cached = thresholds.has_value();
+  out.render_cached = out.bench_cached = thresholds.has_value();
   if (!thresholds) {
     double render_s = 0;
     std::vector<std::string> calibration_warnings;  // the test sequence's say the same
     // Only what the thresholds need (CalibrationOutputs): on paper_room the people's ground truth
     // alone would add 28 % to the render's CPU, the EXRs and video far more.
-    const Dataset dataset = EnsureDataset(calibration, out->calibration_dir, CalibrationOutputs(), options,
-                                          &out->timing.calibration_render_cached, &render_s, &calibration_warnings);
-    const std::string key = CalibrationKey(out->calibration_dir, bench);
+    const Dataset dataset = EnsureDataset(calibration, out.dataset_dir, CalibrationOutputs(), options,
+                                          &out.render_cached, &render_s, &calibration_warnings);
+    const std::string key = CalibrationKey(out.dataset_dir, bench);
     BenchOptions b = bench;
     b.slam = false;
     const BenchResult result = RunBench(dataset, b);
@@ -207,8 +215,9 @@ std::map<std::string, double> CalibrateLoopThresholds(const Scene& scene, const 
       WriteFileAtomic(cache_path, nlohmann::json{{"key", key}, {"thresholds", saved}}.dump(2) + "\n");
     }
   }
-  out->timing.calibration_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return *thresholds;
+  out.thresholds = std::move(*thresholds);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
 }
 
 }  // namespace
@@ -228,16 +237,15 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   // after the other. Its progress lines are titled "calibration ...".
   const bool calibrate = b.slam && std::isnan(b.slam_options.slam.loop_threshold);
   // With offset 0 the calibration sequence is the scene itself, in the same folder: after it.
-  const bool beside = calibrate && options.calibration_seed_offset != 0;
-  RunOutcome calibrated;  // the calibration's fields of RunOutcome, filled on its thread (outlives it)
+  const bool beside = options.calibration_seed_offset != 0;
   std::atomic<bool> stop_calibration{false};  // this side failed, or the user interrupted
   RunOptions calibration_options = options;
-  calibration_options.cancel = &stop_calibration;
-  std::future<std::map<std::string, double>> calibration;  // waited for even if the render throws
-  if (beside) {
-    calibration = std::async(std::launch::async, [&scene, &calibration_options, &calibrated, bench_copy = b] {
+  if (beside) calibration_options.cancel = &stop_calibration;
+  std::future<Calibration> calibration;  // waited for even if the render throws
+  if (calibrate) {
+    calibration = std::async(beside ? std::launch::async : std::launch::deferred, [&scene, &calibration_options, b] {
       const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
-      return CalibrateLoopThresholds(scene, bench_copy, calibration_options, &calibrated);
+      return CalibrateLoopThresholds(scene, b, calibration_options);
     });
   }
   const Dataset dataset = [&] {
@@ -250,17 +258,16 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
     }
   }();
   out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
-  if (beside) {
-    while (calibration.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+  if (calibration.valid()) {
+    while (calibration.wait_for(std::chrono::milliseconds(50)) == std::future_status::timeout) {
       if (options.cancel != nullptr && options.cancel->load()) stop_calibration = true;  // Ctrl-C stops it too
     }
-    b.slam_options.calibrated_threshold = calibration.get();  // rethrows its error
-    out.calibration_dir = calibrated.calibration_dir;
-    out.timing.calibration_s = calibrated.timing.calibration_s;
-    out.timing.calibration_render_cached = calibrated.timing.calibration_render_cached;
-    out.timing.calibration_bench_cached = calibrated.timing.calibration_bench_cached;
-  } else if (calibrate) {
-    b.slam_options.calibrated_threshold = CalibrateLoopThresholds(scene, b, options, &out);
+    const Calibration c = calibration.get();  // runs it now if deferred; rethrows its error
+    b.slam_options.calibrated_threshold = c.thresholds;
+    out.calibration_dir = c.dataset_dir;
+    out.timing.calibration_s = c.seconds;
+    out.timing.calibration_render_cached = c.render_cached;
+    out.timing.calibration_bench_cached = c.bench_cached;
   }
   out.result = RunBench(dataset, b);
   out.timing.bench_s = out.result.seconds;

@@ -253,5 +253,18 @@ TEST(RunScene, AFailingRenderStopsTheCalibrationBesideIt) {
   EXPECT_EQ(ReadFileBytes(dataset_dir + "/notes.txt"), "mine");
 }
 
+// With calibration_seed_offset 0 the calibration sequence is the scene itself: it is benched
+// after the render, from the same dataset, not rendered beside it into the same folder.
+TEST(RunScene, ACalibrationOfTheSceneItselfIsBenchedAfterItsRender) {
+  const test::TestDir temp;
+  RunOptions options = CachedIn(temp / "cache");
+  options.calibration_seed_offset = 0;
+  const RunOutcome run = RunScene(TinyRoom(), SlcdDlcdThumbWithSlam(), options);
+  EXPECT_EQ(run.calibration_dir, run.dataset_dir);
+  EXPECT_TRUE(run.timing.calibration_render_cached);
+  EXPECT_FALSE(run.timing.calibration_bench_cached);
+  for (const MethodSlam& m : run.result.slam.methods) EXPECT_EQ(m.threshold_source, "calibration") << m.method;
+}
+
 }  // namespace
 }  // namespace hoilcd
