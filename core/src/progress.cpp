@@ -68,18 +68,25 @@ void ProgressReporter::Done() {
   if (!quiet_) Print(true);
 }
 
-std::string ProgressReporter::Bar(int width, bool final_line) const {
+std::string ProgressReporter::Status(int bar_width, bool final_line) const {
   const int64_t done = count_.load();
   const double elapsed = ElapsedSeconds();
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   const double left = rate > 0 ? (total_ - done) / rate : -1.0;
-  const int filled = total_ > 0 ? static_cast<int>(width * std::min(done, total_) / total_) : 0;
-  std::string bar(static_cast<size_t>(filled), '#');
-  bar.resize(static_cast<size_t>(width), '.');
+  const std::string time = FormatSeconds(final_line ? elapsed : left);
+  const char* took = final_line ? "took" : "left";
   char text[256];
+  if (bar_width == 0) {
+    std::snprintf(text, sizeof(text), "%s: %lld/%lld %s, %.1f %s/s, %s %s", title_.c_str(), static_cast<long long>(done),
+                  static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(), took, time.c_str());
+    return text;
+  }
+  const int filled = total_ > 0 ? static_cast<int>(bar_width * std::min(done, total_) / total_) : 0;
+  std::string bar(static_cast<size_t>(filled), '#');
+  bar.resize(static_cast<size_t>(bar_width), '.');
   std::snprintf(text, sizeof(text), "%s [%s] %lld/%lld %s  %.1f %s/s  %s %s", title_.c_str(), bar.c_str(),
-                static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(),
-                final_line ? "took" : "left", FormatSeconds(final_line ? elapsed : left).c_str());
+                static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(), took,
+                time.c_str());
   return text;
 }
 
@@ -89,7 +96,7 @@ void ProgressReporter::Print(bool final_line) {
     std::lock_guard<std::mutex> lock(g_terminal_mutex);
     std::string line = "\r";
     if (final_line) {
-      line += Bar(30, true) + "\033[K\n";
+      line += Status(30, true) + "\033[K\n";
       g_on_terminal.erase(std::remove(g_on_terminal.begin(), g_on_terminal.end(), this), g_on_terminal.end());
     } else if (std::find(g_on_terminal.begin(), g_on_terminal.end(), this) == g_on_terminal.end()) {
       g_on_terminal.push_back(this);
@@ -97,7 +104,7 @@ void ProgressReporter::Print(bool final_line) {
     const int width = g_on_terminal.size() > 1 ? 12 : 30;
     std::string bars;
     for (size_t i = 0; i < g_on_terminal.size(); ++i) {
-      bars += (i ? " | " : "") + g_on_terminal[i]->Bar(width, false);
+      bars += (i ? " | " : "") + g_on_terminal[i]->Status(width, false);
     }
     // Cut to the terminal's width: a wrapped line would leave a stale copy above at each redraw.
     winsize size{};
@@ -106,16 +113,7 @@ void ProgressReporter::Print(bool final_line) {
     }
     std::fputs((line + bars + "\033[K").c_str(), stderr);
   } else {
-    const int64_t done = count_.load();
-    const double elapsed = ElapsedSeconds();
-    const double rate = elapsed > 0 ? done / elapsed : 0.0;
-    const double left = rate > 0 ? (total_ - done) / rate : -1.0;
-    char line[256];
-    std::snprintf(line, sizeof(line), "%s: %lld/%lld %s, %.1f %s/s, %s %s\n", title_.c_str(),
-                  static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate,
-                  unit_.c_str(), final_line ? "took" : "left",
-                  FormatSeconds(final_line ? elapsed : left).c_str());
-    std::fputs(line, stderr);
+    std::fputs((Status(0, final_line) + "\n").c_str(), stderr);
   }
   std::fflush(stderr);
 }

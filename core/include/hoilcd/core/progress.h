@@ -41,8 +41,9 @@ class ProgressReporter {
 
  private:
   void Print(bool final_line);
-  // This reporter's bar, `width` characters wide, and figures (for the terminal line).
-  std::string Bar(int width, bool final_line) const;
+  // Title, count, rate and time left (or taken, on the final line), with a bar `bar_width`
+  // characters wide for a terminal, or as a plain line when bar_width is 0.
+  std::string Status(int bar_width, bool final_line) const;
 
   std::string title_;
   std::string unit_;
