@@ -216,8 +216,10 @@ VideoEncoder::VideoEncoder(const VideoOptions& options, int width, int height,
   } else {
     av_opt_set_double(c.priv_data, "crf", options.crf, 0);
   }
-  // Fixed keyframe cadence (no scene-cut keyframes), as a camera records.
-  av_opt_set(c.priv_data, "x264-params", "scenecut=0", 0);
+  // Fixed keyframe cadence (no scene-cut keyframes), as a camera records. No macroblock tree:
+  // x264 0.164's AVX-512 macroblock tree reads uninitialised memory on small frames, so its
+  // bytes varied from run to run; without it they are the same from SSSE3 to AVX-512.
+  av_opt_set(c.priv_data, "x264-params", "scenecut=0:mbtree=0", 0);
   int rc = avcodec_open2(s.codec.get(), h264, nullptr);
   HOILCD_CHECK_MSG(rc >= 0, "avcodec_open2(libx264): " << AvError(rc));
 
