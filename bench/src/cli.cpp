@@ -184,11 +184,8 @@ int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::st
   for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const BenchOptions options = ResolveBench(args, threads);
   if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work
-  const BenchResult result = RunBench(dataset, options);
   const std::string out = report_dir.empty() ? dir + "/report" : report_dir;
-  ReportTiming timing;
-  timing.bench_s = result.seconds;
-  WriteReport(result, dataset, options, timing, out);
+  const BenchResult result = BenchAndWriteReport(dataset, options, ReportTiming(), out);
   if (!dump_scores.empty()) {
     for (const MethodRun& run : result.runs) {
       WriteFileAtomic(dump_scores + "/" + run.name + ".csv", ScoresToCsv(result.queries, run.scores));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
@@ -188,8 +189,11 @@ void CheckReportFolder(const std::string& dir) {
   }
 }
 
-void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
-                 const ReportTiming& timing, const std::string& dir) {
+namespace {
+
+// WriteReport with the dataset's checks already made (InspectDataset).
+void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                          const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
   CheckReportFolder(dir);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -225,7 +229,6 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                                   {"queries_with_match_only_under_other", labels.scored_only_in_b},
                                   {"methods", nlohmann::json::object()}};
   for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
-  const InspectReport inspect = InspectDataset(dataset, options.protocol, options.threads);
   report["inspect"] = inspect.ToJson();
   if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
   if (result.slam_evaluated) {
@@ -377,6 +380,28 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
   }
   for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";
   WriteFileAtomic(dir + "/report.md", md.str());
+}
+
+}  // namespace
+
+void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                 const ReportTiming& timing, const std::string& dir) {
+  CheckReportFolder(dir);  // before the checks' work
+  WriteReportInspected(result, dataset, options, timing, dir,
+                       InspectDataset(dataset, options.protocol, options.threads));
+}
+
+BenchResult BenchAndWriteReport(const Dataset& dataset, const BenchOptions& options, ReportTiming timing,
+                                const std::string& dir) {
+  CheckReportFolder(dir);  // a folder the report may not use fails before the work
+  // The report's dataset checks read only the dataset: they run beside the bench, on the core
+  // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it.
+  std::future<InspectReport> inspect =
+      std::async(std::launch::async, [&] { return InspectDataset(dataset, options.protocol, options.threads); });
+  BenchResult result = RunBench(dataset, options);  // if it throws, ~future waits for the checks
+  timing.bench_s = result.seconds;
+  WriteReportInspected(result, dataset, options, timing, dir, inspect.get());
+  return result;
 }
 
 }  // namespace hoilcd

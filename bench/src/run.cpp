@@ -269,9 +269,8 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
     out.timing.calibration_render_cached = c.render_cached;
     out.timing.calibration_bench_cached = c.bench_cached;
   }
-  out.result = RunBench(dataset, b);
+  out.result = BenchAndWriteReport(dataset, b, out.timing, out.report_dir);
   out.timing.bench_s = out.result.seconds;
-  WriteReport(out.result, dataset, b, out.timing, out.report_dir);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -296,6 +297,31 @@ TEST(Report, OverwritesOnlyAnEarlierHoilcdReportNeverAUsersFolder) {
   WriteFileAtomic(temp / "mine/report.md", "my own notes");
   try {
     WriteReport(result, dataset, options, ReportTiming{}, temp / "mine");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no earlier hoilcd report"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadFileBytes(temp / "mine/report.md"), "my own notes");
+}
+
+TEST(Report, BenchAndWriteReportWritesWhatTheBenchThenTheReportWriteAndRefusesAUsersFolderFirst) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
+  BenchOptions options;
+  options.methods = {"slcd"};
+  WriteReport(RunBench(dataset, options), dataset, options, ReportTiming{}, temp / "apart");
+  const BenchResult together = BenchAndWriteReport(dataset, options, ReportTiming{}, temp / "together");
+  const nlohmann::json a = nlohmann::json::parse(ReadFileBytes(temp / "apart/report.json"));
+  const nlohmann::json b = nlohmann::json::parse(ReadFileBytes(temp / "together/report.json"));
+  EXPECT_EQ(a["inspect"], b["inspect"]);  // the checks made beside the bench
+  EXPECT_EQ(a["methods"]["slcd"]["mrr"], b["methods"]["slcd"]["mrr"]);
+  EXPECT_DOUBLE_EQ(b["timing"]["bench_s"].get<double>(), together.seconds);
+
+  // A user's folder is refused before the bench: the unknown method would fail it otherwise.
+  WriteFileAtomic(temp / "mine/report.md", "my own notes");
+  options.methods = {"no-such-method"};
+  try {
+    BenchAndWriteReport(dataset, options, ReportTiming{}, temp / "mine");
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("holds no earlier hoilcd report"), std::string::npos) << e.what();

@@ -26,4 +26,9 @@ std::string FormatResultTable(const BenchResult& result);
 void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                  const ReportTiming& timing, const std::string& dir);
 
+// RunBench, then WriteReport (timing.bench_s set from the result), with the report's dataset
+// checks run beside the bench. A report folder that cannot be used fails before the bench.
+BenchResult BenchAndWriteReport(const Dataset& dataset, const BenchOptions& options, ReportTiming timing,
+                                const std::string& dir);
+
 }  // namespace hoilcd
