@@ -128,5 +128,22 @@ TEST(FrameWriter, AWriteErrorIsRethrownNamingTheFile) {
   }
 }
 
+// The video encoder's failure (here frames of another size than the video's) reaches Submit or
+// Finish, the frames after it are not encoded, and nothing hangs.
+TEST(FrameWriter, AVideoErrorIsRethrownAndStopsTheEncoding) {
+  const test::TestDir temp;
+  DatasetManifest manifest;
+  VideoEncoder video(VideoOptions(), 64, 48, 25.0);
+  FrameWriter writer(TwoWorkersIn(temp / "ds"), &manifest, &video);
+  try {
+    for (int f = 0; f < kFrames; ++f) writer.Submit(MakeFrame(f));
+    writer.Finish();
+    FAIL() << "expected the encoder's error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("expected CV_8UC1 64x48"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(video.frames_added(), 0);
+}
+
 }  // namespace
 }  // namespace hoilcd
