@@ -231,13 +231,13 @@ int RunRunCommand(const SceneArgs& scene_args, const BenchArgs& args, RunOptions
   std::string calibration;
   if (!outcome.calibration_dir.empty()) {
     char text[160];
-    std::snprintf(text, sizeof(text), " beside the SLAM calibration %.1f s (dataset %s, thresholds %s)", t.calibration_s,
+    std::snprintf(text, sizeof(text), "; the SLAM calibration beside them, %.1f s (dataset %s, thresholds %s)", t.calibration_s,
                   t.calibration_render_cached ? "cached" : "rendered",
                   t.calibration_bench_cached ? "cached" : "benched");
     calibration = text;
   }
-  std::printf("end to end: %.1f s: render %.1f s%s%s, then bench %.1f s and the report (dataset %s)\n", wall_s,
-              t.render_s, t.render_cached ? " (cached)" : "", calibration.c_str(), t.bench_s,
+  std::printf("end to end: %.1f s: render %.1f s%s, then bench %.1f s and the report%s (dataset %s)\n", wall_s,
+              t.render_s, t.render_cached ? " (cached)" : "", t.bench_s, calibration.c_str(),
               outcome.dataset_dir.c_str());
   return ApplyGate(gate, ReadReportJson(outcome.report_dir + "/report.json"));
 }

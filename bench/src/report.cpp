@@ -391,14 +391,20 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                        InspectDataset(dataset, options.protocol, options.threads));
 }
 
-BenchResult BenchAndWriteReport(const Dataset& dataset, const BenchOptions& options, ReportTiming timing,
-                                const std::string& dir) {
+BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming timing,
+                                const std::string& dir, const std::function<void(SlamRunOptions*, ReportTiming*)>& before_slam) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   // The report's dataset checks read only the dataset: they run beside the bench, on the core
   // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it.
   std::future<InspectReport> inspect =
       std::async(std::launch::async, [&] { return InspectDataset(dataset, options.protocol, options.threads); });
-  BenchResult result = RunBench(dataset, options);  // if it throws, ~future waits for the checks
+  BenchOptions scoring = options;
+  scoring.slam = false;
+  BenchResult result = RunBench(dataset, scoring);  // if it throws, ~future waits for the checks
+  if (options.slam) {
+    if (before_slam) before_slam(&options.slam_options, &timing);
+    AddSlam(dataset, options, &result);
+  }
   timing.bench_s = result.seconds;
   WriteReportInspected(result, dataset, options, timing, dir, inspect.get());
   return result;

@@ -1,10 +1,12 @@
 #include "hoilcd/bench/run.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <map>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/dataset_folder.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/sequence.h"
 
@@ -231,22 +234,30 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
 
   BenchOptions b = bench;
   b.threads = options.threads;
-  // The SLAM calibration (its own render and bench) runs beside this scene's render: each
-  // alone leaves ~10 % of the cores idle (serial steps, writer hand-offs, fsyncs), together
-  // they fill them. Both are deterministic at any thread count, so the bytes are those of one
-  // after the other. Its progress lines are titled "calibration ...".
+  // The SLAM calibration (its own render and bench) runs beside this scene's render and bench:
+  // each alone leaves cores idle (serial steps, writer hand-offs, fsyncs, ByteTrack); together
+  // they fill them. Its render runs on half the threads (fewer threads contend for the cores:
+  // ~0.7 s sooner on paper_room), and only the SLAM step at the end of this scene's bench waits
+  // for its thresholds, so a calibration that takes longer (this scene's dataset cached, say)
+  // runs beside the bench. Both are deterministic at any thread count, so the bytes are those
+  // of one after the other. Its progress lines are titled "calibration ...".
   const bool calibrate = b.slam && std::isnan(b.slam_options.slam.loop_threshold);
   // With offset 0 the calibration sequence is the scene itself, in the same folder: after it.
   const bool beside = options.calibration_seed_offset != 0;
   std::atomic<bool> stop_calibration{false};  // this side failed, or the user interrupted
   RunOptions calibration_options = options;
-  if (beside) calibration_options.cancel = &stop_calibration;
-  std::future<Calibration> calibration;  // waited for even if the render throws
+  BenchOptions calibration_bench = b;
+  if (beside) {
+    calibration_options.cancel = &stop_calibration;
+    calibration_options.threads = std::max(1, ResolveThreadCount(options.threads) / 2);
+  }
+  std::future<Calibration> calibration;  // waited for even if the render or bench throws
   if (calibrate) {
-    calibration = std::async(beside ? std::launch::async : std::launch::deferred, [&scene, &calibration_options, b] {
-      const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
-      return CalibrateLoopThresholds(scene, b, calibration_options);
-    });
+    calibration = std::async(beside ? std::launch::async : std::launch::deferred,
+                             [&scene, &calibration_options, calibration_bench] {
+                               const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
+                               return CalibrateLoopThresholds(scene, calibration_bench, calibration_options);
+                             });
   }
   const Dataset dataset = [&] {
     try {
@@ -258,18 +269,26 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
     }
   }();
   out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
-  if (calibration.valid()) {
+  // The SLAM step waits for the calibration; report.json's timing then has its figures.
+  const auto take_thresholds = [&](SlamRunOptions* slam, ReportTiming* timing) {
     while (calibration.wait_for(std::chrono::milliseconds(50)) == std::future_status::timeout) {
       if (options.cancel != nullptr && options.cancel->load()) stop_calibration = true;  // Ctrl-C stops it too
     }
     const Calibration c = calibration.get();  // runs it now if deferred; rethrows its error
-    b.slam_options.calibrated_threshold = c.thresholds;
+    slam->calibrated_threshold = c.thresholds;
     out.calibration_dir = c.dataset_dir;
-    out.timing.calibration_s = c.seconds;
-    out.timing.calibration_render_cached = c.render_cached;
-    out.timing.calibration_bench_cached = c.bench_cached;
+    timing->calibration_s = c.seconds;
+    timing->calibration_render_cached = c.render_cached;
+    timing->calibration_bench_cached = c.bench_cached;
+    out.timing = *timing;
+  };
+  try {
+    out.result = BenchAndWriteReport(dataset, b, out.timing, out.report_dir,
+                                     calibration.valid() ? std::function<void(SlamRunOptions*, ReportTiming*)>(take_thresholds) : nullptr);
+  } catch (...) {
+    stop_calibration = true;  // as for a failed render
+    throw;
   }
-  out.result = BenchAndWriteReport(dataset, b, out.timing, out.report_dir);
   out.timing.bench_s = out.result.seconds;
   return out;
 }

@@ -152,18 +152,22 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     run.scores = std::move(s.scores);
     result.runs.push_back(std::move(run));
   }
-  if (options.slam) {
-    std::vector<NamedScores> named;
-    for (const MethodRun& r : result.runs) named.push_back({r.name, &r.scores});
-    SlamRunOptions slam_options = options.slam_options;
-    slam_options.threads = options.threads;
-    result.slam = RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json",
-                          dataset.manifest().frame_rate_hz, options.protocol.radius_m, result.queries, named,
-                          slam_options);
-    result.slam_evaluated = true;
-  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.slam) AddSlam(dataset, options, &result);
   return result;
+}
+
+void AddSlam(const Dataset& dataset, const BenchOptions& options, BenchResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<NamedScores> named;
+  for (const MethodRun& r : result->runs) named.push_back({r.name, &r.scores});
+  SlamRunOptions slam_options = options.slam_options;
+  slam_options.threads = options.threads;
+  result->slam = RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json",
+                         dataset.manifest().frame_rate_hz, options.protocol.radius_m, result->queries, named,
+                         slam_options);
+  result->slam_evaluated = true;
+  result->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace hoilcd

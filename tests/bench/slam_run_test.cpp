@@ -95,5 +95,38 @@ TEST(SlamRun, PosesWithoutOdometryColumnsAreRejectedWhenTheDatasetIsRead) {
   }
 }
 
+// hoilcd run scores the methods, waits for its calibration, then adds the SLAM step: the same
+// as RunBench with slam on, and the thresholds given before the SLAM step are the ones used.
+TEST(SlamRun, TheSlamStepAddedAfterScoringEqualsTheBenchsOwnAndUsesThresholdsGivenBeforeIt) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp.path());
+  BenchOptions options;
+  options.methods = {"slcd", "thumb"};
+  options.slam = true;
+  const BenchResult whole = RunBench(dataset, options);
+  int hook_calls = 0;
+  const BenchResult added = BenchAndWriteReport(dataset, options, ReportTiming{}, (temp.path() / "report").string(),
+                                                [&](SlamRunOptions* slam, ReportTiming* timing) {
+                                                  ++hook_calls;
+                                                  slam->calibrated_threshold = {{"slcd", 0.5}};
+                                                  timing->calibration_s = 7;
+                                                });
+  EXPECT_EQ(hook_calls, 1);
+  ASSERT_TRUE(added.slam_evaluated);
+  ASSERT_EQ(added.slam.methods.size(), whole.slam.methods.size());
+  EXPECT_EQ(added.slam.methods[0].threshold, 0.5);
+  EXPECT_EQ(added.slam.methods[0].threshold_source, "calibration");
+  // thumb has no calibrated threshold: as in RunBench, from the test sequence.
+  EXPECT_EQ(added.slam.methods[1].threshold_source, "test sequence");
+  const double t_added = added.slam.methods[1].threshold, t_whole = whole.slam.methods[1].threshold;
+  EXPECT_TRUE(t_added == t_whole || (std::isnan(t_added) && std::isnan(t_whole))) << t_added << " " << t_whole;
+  for (size_t b = 0; b < PoseGraphBackends().size(); ++b) {
+    EXPECT_EQ(added.slam.methods[1].backends[b].ate_rmse_m, whole.slam.methods[1].backends[b].ate_rmse_m);
+  }
+  EXPECT_EQ(added.slam.odometry.ate_rmse_m, whole.slam.odometry.ate_rmse_m);
+  const nlohmann::json report = nlohmann::json::parse(ReadFileBytes((temp.path() / "report/report.json").string()));
+  EXPECT_EQ(report["timing"]["calibration_s"], 7);
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -3,6 +3,7 @@
 // trajectory coloured by top-1 correctness, MRR per lap, match pictures like figures 6–7).
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "hoilcd/bench/runner.h"
@@ -28,7 +29,10 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
 
 // RunBench, then WriteReport (timing.bench_s set from the result), with the report's dataset
 // checks run beside the bench. A report folder that cannot be used fails before the bench.
-BenchResult BenchAndWriteReport(const Dataset& dataset, const BenchOptions& options, ReportTiming timing,
-                                const std::string& dir);
+// `before_slam`, if given, runs once the methods are scored and before the SLAM step, and may
+// change its options and the timing (hoilcd run waits there for its calibration's thresholds).
+BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming timing,
+                                const std::string& dir,
+                                const std::function<void(SlamRunOptions*, ReportTiming*)>& before_slam = {});
 
 }  // namespace hoilcd

@@ -93,4 +93,8 @@ struct BenchResult {
 
 BenchResult RunBench(const Dataset& dataset, const BenchOptions& options);
 
+// RunBench's last step, on its own: the pose graphs of each method's loops (options.slam_options)
+// into result->slam. For a result scored with slam off; adds its time to result->seconds.
+void AddSlam(const Dataset& dataset, const BenchOptions& options, BenchResult* result);
+
 }  // namespace hoilcd
