@@ -185,7 +185,8 @@ int RunBenchCommand(const std::string& dir, const BenchArgs& args, const std::st
   const BenchOptions options = ResolveBench(args, threads);
   if (!gate.baseline.empty()) ReadReportJson(gate.baseline);  // a bad baseline fails before the work
   const std::string out = report_dir.empty() ? dir + "/report" : report_dir;
-  const BenchResult result = BenchAndWriteReport(dataset, options, ReportTiming(), out);
+  ReportTiming timing;
+  const BenchResult result = BenchAndWriteReport(dataset, options, &timing, out);
   if (!dump_scores.empty()) {
     for (const MethodRun& run : result.runs) {
       WriteFileAtomic(dump_scores + "/" + run.name + ".csv", ScoresToCsv(result.queries, run.scores));

@@ -192,9 +192,9 @@ void CheckReportFolder(const std::string& dir) {
 namespace {
 
 // WriteReport with the dataset's checks already made (InspectDataset).
+// Each caller has checked the folder (CheckReportFolder) before its own work.
 void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                           const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
-  CheckReportFolder(dir);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
@@ -391,8 +391,8 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                        InspectDataset(dataset, options.protocol, options.threads));
 }
 
-BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming timing,
-                                const std::string& dir, const std::function<void(SlamRunOptions*, ReportTiming*)>& before_slam) {
+BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
+                                const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   // The report's dataset checks read only the dataset: they run beside the bench, on the core
   // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it.
@@ -402,11 +402,11 @@ BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, Re
   scoring.slam = false;
   BenchResult result = RunBench(dataset, scoring);  // if it throws, ~future waits for the checks
   if (options.slam) {
-    if (before_slam) before_slam(&options.slam_options, &timing);
+    if (before_slam) before_slam(&options.slam_options);
     AddSlam(dataset, options, &result);
   }
-  timing.bench_s = result.seconds;
-  WriteReportInspected(result, dataset, options, timing, dir, inspect.get());
+  timing->bench_s = result.seconds;
+  WriteReportInspected(result, dataset, options, *timing, dir, inspect.get());
   return result;
 }
 

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <future>
 #include <map>
 #include <optional>
@@ -246,7 +245,6 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   const bool beside = options.calibration_seed_offset != 0;
   std::atomic<bool> stop_calibration{false};  // this side failed, or the user interrupted
   RunOptions calibration_options = options;
-  BenchOptions calibration_bench = b;
   if (beside) {
     calibration_options.cancel = &stop_calibration;
     calibration_options.threads = std::max(1, ResolveThreadCount(options.threads) / 2);
@@ -254,9 +252,9 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   std::future<Calibration> calibration;  // waited for even if the render or bench throws
   if (calibrate) {
     calibration = std::async(beside ? std::launch::async : std::launch::deferred,
-                             [&scene, &calibration_options, calibration_bench] {
+                             [&scene, &calibration_options, b] {
                                const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
-                               return CalibrateLoopThresholds(scene, calibration_bench, calibration_options);
+                               return CalibrateLoopThresholds(scene, b, calibration_options);
                              });
   }
   const Dataset dataset = [&] {
@@ -270,26 +268,24 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   }();
   out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
   // The SLAM step waits for the calibration; report.json's timing then has its figures.
-  const auto take_thresholds = [&](SlamRunOptions* slam, ReportTiming* timing) {
+  const auto take_thresholds = [&](SlamRunOptions* slam) {
+    if (!calibration.valid()) return;  // a fixed threshold, or SLAM off
     while (calibration.wait_for(std::chrono::milliseconds(50)) == std::future_status::timeout) {
       if (options.cancel != nullptr && options.cancel->load()) stop_calibration = true;  // Ctrl-C stops it too
     }
     const Calibration c = calibration.get();  // runs it now if deferred; rethrows its error
     slam->calibrated_threshold = c.thresholds;
     out.calibration_dir = c.dataset_dir;
-    timing->calibration_s = c.seconds;
-    timing->calibration_render_cached = c.render_cached;
-    timing->calibration_bench_cached = c.bench_cached;
-    out.timing = *timing;
+    out.timing.calibration_s = c.seconds;
+    out.timing.calibration_render_cached = c.render_cached;
+    out.timing.calibration_bench_cached = c.bench_cached;
   };
   try {
-    out.result = BenchAndWriteReport(dataset, b, out.timing, out.report_dir,
-                                     calibration.valid() ? std::function<void(SlamRunOptions*, ReportTiming*)>(take_thresholds) : nullptr);
+    out.result = BenchAndWriteReport(dataset, b, &out.timing, out.report_dir, take_thresholds);
   } catch (...) {
     stop_calibration = true;  // as for a failed render
     throw;
   }
-  out.timing.bench_s = out.result.seconds;
   return out;
 }
 

@@ -310,7 +310,8 @@ TEST(Report, BenchAndWriteReportWritesWhatTheBenchThenTheReportWriteAndRefusesAU
   BenchOptions options;
   options.methods = {"slcd"};
   WriteReport(RunBench(dataset, options), dataset, options, ReportTiming{}, temp / "apart");
-  const BenchResult together = BenchAndWriteReport(dataset, options, ReportTiming{}, temp / "together");
+  ReportTiming timing;
+  const BenchResult together = BenchAndWriteReport(dataset, options, &timing, temp / "together");
   const nlohmann::json a = nlohmann::json::parse(ReadFileBytes(temp / "apart/report.json"));
   const nlohmann::json b = nlohmann::json::parse(ReadFileBytes(temp / "together/report.json"));
   EXPECT_EQ(a["inspect"], b["inspect"]);  // the checks made beside the bench
@@ -321,7 +322,7 @@ TEST(Report, BenchAndWriteReportWritesWhatTheBenchThenTheReportWriteAndRefusesAU
   WriteFileAtomic(temp / "mine/report.md", "my own notes");
   options.methods = {"no-such-method"};
   try {
-    BenchAndWriteReport(dataset, options, ReportTiming{}, temp / "mine");
+    BenchAndWriteReport(dataset, options, &timing, temp / "mine");
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("holds no earlier hoilcd report"), std::string::npos) << e.what();

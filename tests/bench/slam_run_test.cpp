@@ -105,11 +105,12 @@ TEST(SlamRun, TheSlamStepAddedAfterScoringEqualsTheBenchsOwnAndUsesThresholdsGiv
   options.slam = true;
   const BenchResult whole = RunBench(dataset, options);
   int hook_calls = 0;
-  const BenchResult added = BenchAndWriteReport(dataset, options, ReportTiming{}, (temp.path() / "report").string(),
-                                                [&](SlamRunOptions* slam, ReportTiming* timing) {
+  ReportTiming timing;
+  const BenchResult added = BenchAndWriteReport(dataset, options, &timing, (temp.path() / "report").string(),
+                                                [&](SlamRunOptions* slam) {
                                                   ++hook_calls;
                                                   slam->calibrated_threshold = {{"slcd", 0.5}};
-                                                  timing->calibration_s = 7;
+                                                  timing.calibration_s = 7;
                                                 });
   EXPECT_EQ(hook_calls, 1);
   ASSERT_TRUE(added.slam_evaluated);

@@ -27,12 +27,11 @@ std::string FormatResultTable(const BenchResult& result);
 void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                  const ReportTiming& timing, const std::string& dir);
 
-// RunBench, then WriteReport (timing.bench_s set from the result), with the report's dataset
-// checks run beside the bench. A report folder that cannot be used fails before the bench.
-// `before_slam`, if given, runs once the methods are scored and before the SLAM step, and may
-// change its options and the timing (hoilcd run waits there for its calibration's thresholds).
-BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming timing,
-                                const std::string& dir,
-                                const std::function<void(SlamRunOptions*, ReportTiming*)>& before_slam = {});
+// RunBench, then WriteReport with *timing (its bench_s set from the result), with the report's
+// dataset checks run beside the bench. A report folder that cannot be used fails before the
+// bench. `before_slam`, if given, runs once the methods are scored and before the SLAM step, and
+// may change its options and *timing (hoilcd run waits there for its calibration's thresholds).
+BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
+                                const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam = {});
 
 }  // namespace hoilcd
