@@ -81,4 +81,6 @@ void ParallelFor(int64_t count, int num_threads, const std::function<void(int64_
   });
 }
 
+void RunOnCallingThread(const std::function<void()>& fn) { ArenaFor(1).execute(fn); }
+
 }  // namespace hoilcd

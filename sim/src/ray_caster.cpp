@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/sim/asset.h"
 
 namespace hoilcd {
@@ -236,7 +237,9 @@ void RayCaster::SetInstanceTransform(int instance, const Eigen::Matrix4f& world_
 }
 
 void RayCaster::Commit() {
-  rtcCommitScene(impl_->top->scene);
+  // The top level holds a few hundred instances: its build takes microseconds, while Embree's
+  // TBB workers, woken for it every frame, would then spin for far longer.
+  RunOnCallingThread([&] { rtcCommitScene(impl_->top->scene); });
   impl_->ThrowIfError();
 }
 

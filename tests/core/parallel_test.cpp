@@ -3,10 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <climits>
 #include <cstdint>
+#include <mutex>
+#include <set>
 #include <stdexcept>
+#include <thread>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "hoilcd/core/random.h"
 
@@ -108,6 +114,30 @@ TEST(ParallelFor, EmptyAndNegativeCountsCallNothing) {
   ParallelFor(0, 4, [&](int64_t) { ++calls; });
   ParallelForChunks(-5, 3, 4, [&](int64_t, int64_t, int) { ++calls; });
   EXPECT_EQ(calls, 0);
+}
+
+// What Embree's BVH build or an OpenCV filter does inside: a TBB loop of its own. Inside
+// RunOnCallingThread every iteration runs on the caller, even while our own loops keep workers.
+TEST(RunOnCallingThread, ALibrarysTbbLoopInsideRunsOnTheCallingThreadOnly) {
+  ParallelFor(64, 2, [](int64_t) {});  // workers exist and are awake
+  const std::thread::id caller = std::this_thread::get_id();
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  int iterations = 0;
+  RunOnCallingThread([&] {
+    tbb::parallel_for(0, 2'000, [&](int) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));  // long enough to share
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.insert(std::this_thread::get_id());
+      ++iterations;
+    });
+  });
+  EXPECT_EQ(iterations, 2'000);
+  EXPECT_EQ(seen, std::set<std::thread::id>{caller});
+}
+
+TEST(RunOnCallingThread, AnExceptionReachesTheCaller) {
+  EXPECT_THROW(RunOnCallingThread([] { throw std::runtime_error("inside"); }), std::runtime_error);
 }
 
 }  // namespace

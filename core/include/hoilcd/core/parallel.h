@@ -26,4 +26,9 @@ void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,
 // Calls fn(i) for every i in [0, count).
 void ParallelFor(int64_t count, int num_threads, const std::function<void(int64_t)>& fn);
 
+// Calls fn on the calling thread, in a TBB arena with no worker slots: the parallel loops that
+// libraries run on TBB inside fn (Embree's BVH builds, OpenCV) run there serially. For work too
+// small to share: woken workers would spin (sched_yield) long after it ends.
+void RunOnCallingThread(const std::function<void()>& fn);
+
 }  // namespace hoilcd
