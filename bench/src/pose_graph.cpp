@@ -170,6 +170,10 @@ PoseGraphSolution OptimisePoseGraph(const PoseGraph& graph, const PoseGraphOptio
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  // Eigen's sparse Cholesky, not CHOLMOD's: CHOLMOD factorises on OpenMP threads of its own,
+  // whatever num_threads says (350 k futex calls in one paper_room bench's SLAM step, twice its
+  // time); that bench's SLAM figures are the same with either.
+  solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   solver.max_num_iterations = options.max_iterations;
   solver.num_threads = 1;  // one thread: byte-identical results on any machine load
   solver.logging_type = ceres::SILENT;
