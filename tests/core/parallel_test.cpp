@@ -136,6 +136,31 @@ TEST(RunOnCallingThread, ALibrarysTbbLoopInsideRunsOnTheCallingThreadOnly) {
   EXPECT_EQ(seen, std::set<std::thread::id>{caller});
 }
 
+// Two renders side by side each build their BVHs inside it, at the same time.
+TEST(RunOnCallingThread, TwoCallersAtOnceEachRunOnTheirOwnThread) {
+  std::mutex mutex;
+  std::vector<std::set<std::thread::id>> seen(2);
+  std::vector<std::thread::id> callers(2);
+  std::atomic<int> inside{0};
+  const auto caller = [&](int k) {
+    callers[k] = std::this_thread::get_id();
+    RunOnCallingThread([&] {
+      ++inside;
+      while (inside.load() < 2) std::this_thread::yield();  // both are inside at once
+      tbb::parallel_for(0, 500, [&](int) {
+        std::this_thread::sleep_for(std::chrono::microseconds(20));
+        std::lock_guard<std::mutex> lock(mutex);
+        seen[k].insert(std::this_thread::get_id());
+      });
+    });
+  };
+  std::thread a(caller, 0), b(caller, 1);
+  a.join();
+  b.join();
+  EXPECT_EQ(seen[0], std::set<std::thread::id>{callers[0]});
+  EXPECT_EQ(seen[1], std::set<std::thread::id>{callers[1]});
+}
+
 TEST(RunOnCallingThread, AnExceptionReachesTheCaller) {
   EXPECT_THROW(RunOnCallingThread([] { throw std::runtime_error("inside"); }), std::runtime_error);
 }
