@@ -96,7 +96,8 @@ void Report(benchmark::State& state, double cpu_s, size_t bytes) {
   state.counters["kB_per_frame"] = bytes / 1e3 / frames;
 }
 
-void BM_Exr(benchmark::State& state, ExrCompression compression, int zip_level, bool dataset_layout) {
+void BM_Exr(benchmark::State& state, ExrCompression compression, int zip_level, bool dataset_layout,
+            bool openexr_rle = false) {
   Setup& s = Shared();
   std::vector<ExrChannels> channels;
   for (const Frame& f : s.frames) channels.push_back(dataset_layout ? DatasetLayout(f) : Float32Layout(f));
@@ -105,7 +106,7 @@ void BM_Exr(benchmark::State& state, ExrCompression compression, int zip_level, 
   for (auto _ : state) {
     for (const ExrChannels& c : channels) {
       const double start = ThreadCpuSeconds();
-      const std::string encoded = EncodeExr(c, {compression, zip_level});
+      const std::string encoded = EncodeExr(c, {compression, zip_level, openexr_rle});
       cpu_s += ThreadCpuSeconds() - start;
       bytes += encoded.size();
       benchmark::DoNotOptimize(encoded.data());
@@ -183,6 +184,7 @@ BENCHMARK_CAPTURE(BM_Exr, float32_zip4, ExrCompression::kZip, 4, false)->Apply(U
 BENCHMARK_CAPTURE(BM_Exr, float32_piz, ExrCompression::kPiz, 1, false)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_none, ExrCompression::kNone, 1, true)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_rle, ExrCompression::kRle, 1, true)->Apply(Unit);
+BENCHMARK_CAPTURE(BM_Exr, dataset_rle_by_openexr, ExrCompression::kRle, 1, true, true)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_zips1, ExrCompression::kZips, 1, true)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_zip1, ExrCompression::kZip, 1, true)->Apply(Unit);
 BENCHMARK_CAPTURE(BM_Exr, dataset_zip4, ExrCompression::kZip, 4, true)->Apply(Unit);

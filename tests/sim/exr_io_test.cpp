@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <random>
 #include <string>
 
 #include "hoilcd/core/dataset.h"
@@ -44,6 +45,51 @@ TEST(Exr, EveryCompressionAndPixelTypeReadsBackAsTheDatasetStoredIt) {
       if (name == "Z") frame[2].second.convertTo(expected, CV_32F);  // the half the file holds
       EXPECT_EQ(cv::norm(image, expected, cv::NORM_INF), 0.0) << name << " compression " << static_cast<int>(c);
     }
+  }
+}
+
+// The hand-laid RLE file is OpenEXR's, byte for byte: every run-length case (runs of 1 to 300
+// equal bytes, literal stretches up to and past 127, lines that do not shrink and are stored raw,
+// runs at a line's end), every pixel type, odd sizes, and channels given out of name order.
+TEST(Exr, HandLaidRleFramesAreOpenExrsByteForByte) {
+  std::mt19937 rng(20261203);
+  ExrWriteOptions library;
+  library.openexr_rle = true;
+  const auto check = [&](const ExrChannels& channels, const std::string& what) {
+    const std::string hand = EncodeExr(channels);
+    const std::string openexr = EncodeExr(channels, library);
+    ASSERT_EQ(hand.size(), openexr.size()) << what;
+    EXPECT_TRUE(hand == openexr) << what;
+  };
+  for (const cv::Size size : {cv::Size(256, 192), cv::Size(1, 1), cv::Size(7, 5), cv::Size(300, 3)}) {
+    const std::string at = " at " + std::to_string(size.width) + "x" + std::to_string(size.height);
+    cv::Mat noise(size, CV_32F), runs(size, CV_32F), ids(size, CV_32S), depth(size, CV_32F);
+    std::uniform_real_distribution<float> temperature(18.0f, 36.0f);
+    std::uniform_int_distribution<int> run_length(1, 300), id(-1, 40);
+    for (int i = 0; i < size.area(); ++i) noise.at<float>(i / size.width, i % size.width) = temperature(rng);
+    for (int i = 0; i < size.area();) {  // stretches of equal values of every length
+      const int length = run_length(rng);
+      const float value = temperature(rng);
+      const int label = id(rng);
+      for (int k = 0; k < length && i < size.area(); ++k, ++i) {
+        runs.at<float>(i / size.width, i % size.width) = value;
+        ids.at<int>(i / size.width, i % size.width) = label;
+        depth.at<float>(i / size.width, i % size.width) = 0.5f + 0.001f * static_cast<float>(i % 977);
+      }
+    }
+    check(FrameExrChannels(noise, runs, depth, ids, ids), "a frame" + at);
+    check({{"id", ids}, {"T", noise}, {"Z", FrameExrChannels(noise, noise, depth, ids, ids)[2].second}},
+          "channels out of name order" + at);
+    check({{"T", noise}}, "noise alone (stored raw)" + at);
+    check({{"T", cv::Mat::zeros(size, CV_32F)}, {"id", cv::Mat(size, CV_32S, cv::Scalar(-1))}}, "constants" + at);
+    cv::Mat bytes(size, CV_32S);  // random bytes: literal stretches of every length
+    for (int i = 0; i < size.area(); ++i) {
+      std::uniform_int_distribution<int> byte(0, 3);
+      int v = 0;
+      for (int k = 0; k < 4; ++k) v = (v << 8) | (byte(rng) == 0 ? 7 : static_cast<int>(rng() & 0xff));
+      bytes.at<int>(i / size.width, i % size.width) = v;
+    }
+    check({{"class", bytes}}, "mostly random bytes" + at);
   }
 }
 
