@@ -74,7 +74,20 @@ bool Unfilter(int filter, int bpp, size_t stride, const unsigned char* previous,
     case 0:
       return true;
     case 1:
-      for (size_t i = static_cast<size_t>(bpp); i < stride; ++i) row[i] = static_cast<unsigned char>(row[i] + row[i - bpp]);
+      // A running sum per byte of a pixel, kept in registers: through memory, each byte would
+      // wait for the store of the one before.
+      if (bpp == 1) {
+        unsigned char left = 0;
+        for (size_t i = 0; i < stride; ++i) row[i] = left = static_cast<unsigned char>(row[i] + left);
+      } else if (bpp == 2 && stride % 2 == 0) {
+        unsigned char high = 0, low = 0;
+        for (size_t i = 0; i < stride; i += 2) {
+          row[i] = high = static_cast<unsigned char>(row[i] + high);
+          row[i + 1] = low = static_cast<unsigned char>(row[i + 1] + low);
+        }
+      } else {
+        for (size_t i = static_cast<size_t>(bpp); i < stride; ++i) row[i] = static_cast<unsigned char>(row[i] + row[i - bpp]);
+      }
       return true;
     case 2:
       for (size_t i = 0; i < stride; ++i) row[i] = static_cast<unsigned char>(row[i] + previous[i]);
