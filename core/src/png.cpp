@@ -68,7 +68,8 @@ inline int Paeth(int a, int b, int c) {
   return pb <= pc ? b : c;
 }
 
-// Reverses the filter of one row in place (`previous` is the row above, unfiltered, or zeros).
+// Reverses the filter of one row in place (`previous` is the row above, unfiltered, or zeros);
+// bpp is 1 or 2 (8- or 16-bit grey), stride a multiple of it.
 bool Unfilter(int filter, int bpp, size_t stride, const unsigned char* previous, unsigned char* row) {
   switch (filter) {
     case 0:
@@ -79,14 +80,12 @@ bool Unfilter(int filter, int bpp, size_t stride, const unsigned char* previous,
       if (bpp == 1) {
         unsigned char left = 0;
         for (size_t i = 0; i < stride; ++i) row[i] = left = static_cast<unsigned char>(row[i] + left);
-      } else if (bpp == 2 && stride % 2 == 0) {
+      } else {
         unsigned char high = 0, low = 0;
         for (size_t i = 0; i < stride; i += 2) {
           row[i] = high = static_cast<unsigned char>(row[i] + high);
           row[i + 1] = low = static_cast<unsigned char>(row[i + 1] + low);
         }
-      } else {
-        for (size_t i = static_cast<size_t>(bpp); i < stride; ++i) row[i] = static_cast<unsigned char>(row[i] + row[i - bpp]);
       }
       return true;
     case 2:
