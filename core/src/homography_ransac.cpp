@@ -600,8 +600,9 @@ bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float*
 
 namespace {
 
-// Hypotheses kept between drawing and scoring: the default 100 trials fit in one chunk.
-constexpr int kChunk = 128;
+// Hypotheses kept between drawing and scoring. Small, so that a search that is complete (every
+// match an inlier) stops drawing soon: 16 saved ~7 % of the point-set methods' CPU over 128.
+constexpr int kChunk = 16;
 static_assert(kChunk >= kBatch, "HypothesisStream::Next needs room for a solved batch");
 
 // Matches as (reference x, reference y, query x, query y) quadruples, the layout GatherPoints
@@ -706,9 +707,9 @@ class BestModelSearch {
     best_inliers_ = 0;
   }
 
-  // Scores n hypotheses (9 floats each) in order.
+  // Scores n hypotheses (9 floats each) in order, up to the first that makes the search complete.
   void Score(const float* hypotheses, int n) {
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && !Complete(); ++i) {
       float hf[9];
       std::copy(hypotheses + 9 * i, hypotheses + 9 * i + 9, hf);
       const int inliers = CountInliers(hf, ref_x_, ref_y_, query_x_, query_y_, count_, threshold_sq_, best_inliers_);
@@ -736,6 +737,9 @@ class BestModelSearch {
   }
 
   int inliers() const { return best_inliers_; }
+  // Every match is an inlier of the best model: no later hypothesis or refit can beat it (a new
+  // best needs strictly more inliers), so the rest of the stream cannot change the result.
+  bool Complete() const { return best_inliers_ >= count_; }
   const float* best() const { return best_; }
   float threshold_sq() const { return threshold_sq_; }
 
@@ -773,7 +777,7 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
   BestModelSearch search;
   search.Start(ref_x, ref_y, query_x, query_y, count, options, &lo_mask);
   float hypotheses[9 * kChunk];
-  while (!stream.Done()) {
+  while (!stream.Done() && !search.Complete()) {
     const int n = stream.Next(kChunk, hypotheses);
     search.Score(hypotheses, n);
   }
@@ -793,6 +797,7 @@ void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* q
                           int64_t* alone_ns, int64_t* total_ns) {
   const bool timed = alone_ns != nullptr;
   HOILCD_CHECK_MSG(!timed || total_ns != nullptr, "alone_ns needs total_ns");
+  hypotheses_scored_ = 0;
   if (timed) {
     std::fill(alone_ns, alone_ns + num_variants, int64_t{0});
     *total_ns = 0;
@@ -825,8 +830,12 @@ void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* q
       group[size++] = v;
     }
     HypothesisStream stream(quads_.data(), count, variants[first], seed);
-    while (!stream.Done()) {
+    const auto complete = [&] {
+      return std::all_of(searches, searches + size, [](const BestModelSearch& s) { return s.Complete(); });
+    };
+    while (!stream.Done() && !complete()) {
       const int n = stream.Next(kChunk, hypotheses_.data());
+      hypotheses_scored_ += n;
       Clock::time_point now;
       int64_t drawing_ns = 0;
       if (timed) {

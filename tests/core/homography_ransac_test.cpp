@@ -361,6 +361,34 @@ TEST(RansacCounter, EachVariantCountsWhatItsOwnRansacCountsAndIsChargedItsDrawin
   }
 }
 
+TEST(RansacCounter, StopsDrawingOnceEveryMatchIsAnInlierAndNotBefore) {
+  std::vector<RansacOptions> variants(2);  // plain and LO on one stream
+  variants[1].local_optimisation_refits = 2;
+  Rng rng = KeyedRng(11, "test.ransac");
+  RansacCounter counter;
+  for (int t = 0; t < 20; ++t) {
+    const int n = 6 + 3 * t;
+    Problem p = MakeProblem(rng, n, n, 0.1);  // every match on the homography, to 0.1 px
+    for (const bool outlier : {false, true}) {
+      if (outlier) p.query.back().x += 40;  // one match far off: n - 1 inliers at best
+      const SoaMatches m(p);
+      int inliers[2] = {-1, -1};
+      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), variants.data(),
+                    2, 500 + t, inliers, nullptr, nullptr);
+      for (int v = 0; v < 2; ++v) {
+        EXPECT_EQ(inliers[v], outlier ? n - 1 : n) << "problem " << t << ", variant " << v;
+        EXPECT_EQ(inliers[v], RansacHomographySoa(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(),
+                                                  m.size(), variants[v], 500 + t, nullptr, nullptr));
+      }
+      if (outlier) {
+        EXPECT_EQ(counter.hypotheses_scored(), variants[0].trials) << "a search that cannot complete scores every trial";
+      } else {
+        EXPECT_LT(counter.hypotheses_scored(), variants[0].trials) << "problem " << t;
+      }
+    }
+  }
+}
+
 TEST(EstimateHomographyRansac, LocalOptimisationNeverFindsFewerInliersThanPlainWithSameSeed) {
   Rng rng = KeyedRng(8, "test.ransac");
   RansacOptions lo;

@@ -67,18 +67,22 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
 // When alone_ns is not null (then total_ns must not be), alone_ns[v] gets what variant v costs
 // alone (drawing and solving its samples, and its own scoring; gathering the matches, ~1 % of a
 // call, is charged to the first stream's variants) and *total_ns the whole call, in ns; both are
-// 0 below 4 matches, where nothing is timed.
+// 0 below 4 matches, where nothing is timed. A stream stops early once every match is an inlier
+// of each of its variants' best models: nothing later can change their results.
 class RansacCounter {
  public:
   void Count(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
              const RansacOptions* variants, int num_variants, uint64_t seed, int* inliers, int64_t* alone_ns,
              int64_t* total_ns);
+  // Hypotheses the last Count drew and solved, over all its streams.
+  int hypotheses_scored() const { return hypotheses_scored_; }
 
  private:
   std::vector<float> quads_;
   std::vector<std::vector<uint8_t>> lo_masks_;  // one per variant
   std::vector<float> hypotheses_;               // one chunk of a stream
   std::vector<char> scored_;                    // per variant: already in a group
+  int hypotheses_scored_ = 0;
 };
 
 // Draw `draw` of the RANSAC stream `seed` over n >= 4 matches: four distinct indices in [0, n),
