@@ -27,12 +27,14 @@ inline bool operator==(const MatchOptions& a, const MatchOptions& b) {
 }
 inline bool operator!=(const MatchOptions& a, const MatchOptions& b) { return !(a == b); }
 
-// A uniform bucket grid over one point set for exact nearest-neighbour queries in about O(1)
-// per query. Points are stored reordered by cell (structure of arrays) for locality, and
-// scanned eight at a time. A finer candidate lattice over the set's bounding box (plus a margin)
-// lists, per lattice cell, every point that can be nearest to some position in it (in four
-// fixed slots), so a query there compares four points without branches; queries outside it, in
-// cells with more candidates, or in sets far from the origin search the grid.
+// Exact nearest-neighbour queries on one point set in about O(1) each. Small sets (up to 96
+// points, as frames' keypoints and HOI points) are scanned whole, eight points at a time. Larger
+// ones get a uniform bucket grid: points stored reordered by cell (structure of arrays) for
+// locality and scanned eight at a time, plus a finer candidate lattice over the set's bounding
+// box (and a margin) that lists, per lattice cell, every point that can be nearest to some
+// position in it (four fixed slots, coordinates included), so a query there compares four points
+// at once without branches; queries outside it, in cells with more candidates, or in sets far
+// from the origin search the grid.
 class PointGrid {
  public:
   PointGrid() = default;
@@ -47,7 +49,9 @@ class PointGrid {
   int NearestByRings(Point2 p) const;
   // Nearest() from the 3x3 block of grid cells around p (or by rings).
   int NearestInGrid(Point2 p) const;
-  // Fills the candidate lattice (after the grid is built).
+  // Nearest() by comparing p with every point, eight at a time (small sets).
+  int NearestOfAll(Point2 p) const;
+  // Fills the candidate lattice (after the grid is built; not for small sets).
   void BuildLattice();
   // (squared distance bits, original index) of stored point k from p: the bits of a
   // non-negative float order like the float, so the least key is the nearest point with ties
@@ -75,12 +79,17 @@ class PointGrid {
   int nx_ = 0, ny_ = 0;                // cells per row and per column
   int stride_ = 2;                     // slots per row, nx_ + 2
   // Candidate lattice: cell (x, y) spans lattice_origin + [x, x+1) * lattice_px_, and its
-  // candidates are the stored points (indices into xs_/ys_/ids_) in a fixed number of slots at
-  // lattice_slots_[width * (y * lattice_nx_ + x)]. Empty when not built.
+  // candidates' coordinates and original indices sit in lattice_[y * lattice_nx_ + x], in four
+  // slots (unused ones repeat the first; id[0] < 0: crowded, search the grid). Empty when not
+  // built. The coordinates are copies, so a query reads one cell instead of following slots.
+  struct LatticeCell {
+    float x[4], y[4];
+    int32_t id[4];
+  };
   float lattice_origin_x_ = 0, lattice_origin_y_ = 0;
   float lattice_px_ = 1, lattice_inv_ = 1;
   int lattice_nx_ = 0, lattice_ny_ = 0;
-  std::vector<uint16_t> lattice_slots_;
+  std::vector<LatticeCell> lattice_;
 };
 
 // Mutual nearest neighbours on 2-D coordinates (bucket grid, not an O(n*m) scan), ties broken by
@@ -127,7 +136,7 @@ class PairScorer {
 
  private:
   std::vector<Correspondence> matches_;
-  std::vector<int> reverse_nearest_;
+  std::vector<int> nearest_;  // MNN scratch: each point's nearest in the other set
   std::vector<float> ref_x_, ref_y_, query_x_, query_y_;
   RansacCounter ransac_;
 
