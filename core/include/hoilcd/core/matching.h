@@ -92,8 +92,9 @@ class PointGrid {
   std::vector<LatticeCell> lattice_;
 };
 
-// Mutual nearest neighbours on 2-D coordinates (bucket grid, not an O(n*m) scan), ties broken by
-// lower index. Pairs are sorted by query index.
+// Mutual nearest neighbours on 2-D coordinates (PointGrid lookups: about O(n + m) for large sets,
+// vector scans of up to 96 points for small ones), ties broken by lower index. Pairs are sorted
+// by query index.
 std::vector<Correspondence> MutualNearestNeighbours(const std::vector<Point2>& query,
                                                     const std::vector<Point2>& reference);
 // The same on prebuilt grids; query_points/reference_points are the sets the grids were built on.
