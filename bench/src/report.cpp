@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
@@ -16,6 +17,7 @@
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/bench/slam_report.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/core/text.h"
 
 namespace hoilcd {
@@ -264,31 +266,27 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
   }
   WriteFileAtomic(dir + "/queries.csv", csv);
 
-  WritePng(dir + "/pr_curves.png", PrFigure(result));
-  std::vector<std::string> figures = {"pr_curves.png"};
+  // The figures, listed in the report's order, drawn and written in parallel (each its own file).
+  std::vector<std::pair<std::string, std::function<cv::Mat()>>> figure_jobs;
+  figure_jobs.emplace_back("pr_curves.png", [&] { return PrFigure(result); });
   const bool any_lap = std::any_of(result.runs.begin(), result.runs.end(),
                                    [](const MethodRun& r) { return !r.metrics.per_lap.empty(); });
   if (any_lap) {  // a sequence shorter than two laps has no scored lap to plot
-    WritePng(dir + "/mrr_per_lap.png", LapFigure(result));
-    figures.push_back("mrr_per_lap.png");
+    figure_jobs.emplace_back("mrr_per_lap.png", [&] { return LapFigure(result); });
   }
   // Figures of the paper's methods, last registered first (fusion, dlcd, slcd).
   std::vector<const LoopClosureMethod*> paper;
   for (const auto& m : RegisteredMethods())
     if (m->FromPaper()) paper.insert(paper.begin(), m.get());
   for (const LoopClosureMethod* m : paper) {
-    const std::string name = m->Name();
-    if (const MethodRun* run = result.Find(name)) {
-      WritePng(dir + "/trajectory_" + name + ".png", TrajectoryFigure(result, *run, dataset));
-      figures.push_back("trajectory_" + name + ".png");
+    if (const MethodRun* run = result.Find(m->Name())) {
+      figure_jobs.emplace_back("trajectory_" + m->Name() + ".png",
+                               [&result, run, &dataset] { return TrajectoryFigure(result, *run, dataset); });
     }
   }
-  if (result.slam_evaluated) {
-    for (const std::string& f : WriteSlamFiles(result.slam, dataset.poses(), options.slam_options.slam, dir)) figures.push_back(f);
-  }
+  const size_t slam_figures_at = figure_jobs.size();  // the SLAM files' names go here
   for (const LoopClosureMethod* m : paper) {
-    const std::string name = m->Name();
-    const MethodRun* run = result.Find(name);
+    const MethodRun* run = result.Find(m->Name());
     if (!run || m->Features() == ShownFeatures::kNone) continue;
     // Queries whose frame has features for this method show the matching (like the paper's
     // figure 6); a wall with no features makes a dull example.
@@ -303,15 +301,28 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
         if (run->metrics.queries[i].scored) scored.push_back(i);
     }
     if (scored.empty()) continue;
-    std::vector<std::vector<MatchTile>> rows;
-    for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
-      rows.push_back(MatchRow(result, *run, scored[(2 * k + 1) * scored.size() / 8], dataset));
-    }
-    MosaicOptions mosaic;
-    mosaic.scale = 1;  // four rows of four 256x192 tiles; x2 makes multi-megabyte PNGs
-    WritePng(dir + "/matches_" + name + ".png", MatchMosaic(rows, mosaic));
-    figures.push_back("matches_" + name + ".png");
+    figure_jobs.emplace_back("matches_" + m->Name() + ".png", [&result, run, &dataset, scored] {
+      std::vector<std::vector<MatchTile>> rows;
+      for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
+        rows.push_back(MatchRow(result, *run, scored[(2 * k + 1) * scored.size() / 8], dataset));
+      }
+      MosaicOptions mosaic;
+      mosaic.scale = 1;  // four rows of four 256x192 tiles; x2 makes multi-megabyte PNGs
+      return MatchMosaic(rows, mosaic);
+    });
   }
+  ParallelFor(static_cast<int64_t>(figure_jobs.size()), options.threads, [&](int64_t i) {
+    const auto& [name, draw] = figure_jobs[static_cast<size_t>(i)];
+    WritePng(dir + "/" + name, draw());
+  });
+  std::vector<std::string> figures;
+  for (size_t i = 0; i < slam_figures_at; ++i) figures.push_back(figure_jobs[i].first);
+  if (result.slam_evaluated) {
+    for (const std::string& f : WriteSlamFiles(result.slam, dataset.poses(), options.slam_options.slam, dir)) {
+      figures.push_back(f);
+    }
+  }
+  for (size_t i = slam_figures_at; i < figure_jobs.size(); ++i) figures.push_back(figure_jobs[i].first);
 
   std::ostringstream md;
   md << "# hoilcd loop-closure report\n\n"
@@ -395,9 +406,11 @@ BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, Re
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   // The report's dataset checks read only the dataset: they run beside the bench, on the core
-  // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it.
+  // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it. With one
+  // thread asked for there is no such core: they run after the bench, on the same thread.
+  const std::launch when = ResolveThreadCount(options.threads) > 1 ? std::launch::async : std::launch::deferred;
   std::future<InspectReport> inspect =
-      std::async(std::launch::async, [&] { return InspectDataset(dataset, options.protocol, options.threads); });
+      std::async(when, [&] { return InspectDataset(dataset, options.protocol, options.threads); });
   BenchOptions scoring = options;
   scoring.slam = false;
   BenchResult result = RunBench(dataset, scoring);  // if it throws, ~future waits for the checks

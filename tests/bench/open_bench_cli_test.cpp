@@ -3,11 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <thread>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core/utility.hpp>
 
 #include "hoilcd/bench/cli.h"
 #include "hoilcd/bench/methods.h"
@@ -29,6 +34,24 @@ int Hoilcd(std::vector<std::string> args) {
 std::string RenderTiny(const test::TestDir& temp) { return test::RenderTinyRoom(temp / "dataset"); }
 
 nlohmann::json Json(const std::string& path) { return nlohmann::json::parse(ReadFileBytes(path)); }
+
+// hoilcd's loops use the threads --threads gives them; OpenCV's own pool (an arena of every
+// core) would add a spinning worker to a --threads 1 bench.
+TEST(OpenBenchCli, TheCommandLineTurnsOpenCvsOwnThreadsOff) {
+  cv::setNumThreads(-1);  // OpenCV's default: every core
+  EXPECT_EQ(Hoilcd({"validate", std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json"}), 0);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  cv::parallel_for_(cv::Range(0, 500), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));  // long enough to share
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.insert(std::this_thread::get_id());
+    }
+  });
+  EXPECT_EQ(seen, std::set<std::thread::id>{caller});
+}
 
 TEST(OpenBenchCli, DumpedScoresThroughEvaluateReproduceEveryMethodsMetricsExactly) {
   const test::TestDir temp;

@@ -136,6 +136,22 @@ TEST(RunOnCallingThread, ALibrarysTbbLoopInsideRunsOnTheCallingThreadOnly) {
   EXPECT_EQ(seen, std::set<std::thread::id>{caller});
 }
 
+// --threads 1 means one thread, also for the libraries' loops inside hoilcd's.
+TEST(ParallelFor, OneThreadKeepsALibrarysTbbLoopInsideOnTheCallingThread) {
+  ParallelFor(64, 2, [](int64_t) {});  // workers exist and are awake
+  const std::thread::id caller = std::this_thread::get_id();
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  ParallelFor(4, 1, [&](int64_t) {
+    tbb::parallel_for(0, 500, [&](int) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));  // long enough to share
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.insert(std::this_thread::get_id());
+    });
+  });
+  EXPECT_EQ(seen, std::set<std::thread::id>{caller});
+}
+
 // Two renders side by side each build their BVHs inside it, at the same time.
 TEST(RunOnCallingThread, TwoCallersAtOnceEachRunOnTheirOwnThread) {
   std::mutex mutex;
