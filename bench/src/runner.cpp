@@ -12,6 +12,7 @@
 #include "hoilcd/bench/methods.h"
 #include "hoilcd/core/allocator.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 
 namespace hoilcd {
 namespace {
@@ -139,19 +140,19 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     for (size_t k = 0; k < pass.size(); ++k) scored[pass[k]->Name()] = std::move(scores[k]);
   }
 
-  // Step 4: metrics of the asked methods under both labellings.
-  for (const std::string& name : options.methods) {
-    MethodScores& s = scored.at(name);
-    const MethodReport report = EvaluateQueryScores(labelling, name, s.scores);
-    MethodRun run;
-    run.name = name;
+  // Step 4: metrics of the asked methods under both labellings, one method per task.
+  result.runs.resize(options.methods.size());
+  ParallelFor(static_cast<int64_t>(options.methods.size()), options.threads, [&](int64_t i) {
+    MethodRun& run = result.runs[static_cast<size_t>(i)];
+    run.name = options.methods[static_cast<size_t>(i)];
+    MethodScores& s = scored.at(run.name);
+    const MethodReport report = EvaluateQueryScores(labelling, run.name, s.scores);
     run.metrics = report.metrics;
     run.metrics.SetTiming(s.extract_ms, s.match_ms);
     run.other_metrics = report.other_metrics;
     run.other_metrics.SetTiming(s.extract_ms, s.match_ms);
     run.scores = std::move(s.scores);
-    result.runs.push_back(std::move(run));
-  }
+  });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.slam) AddSlam(dataset, options, &result);
   return result;
