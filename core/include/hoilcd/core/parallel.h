@@ -27,8 +27,9 @@ void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,
 void ParallelFor(int64_t count, int num_threads, const std::function<void(int64_t)>& fn);
 
 // Calls fn on the calling thread, in a TBB arena with no worker slots: the parallel loops that
-// libraries run on TBB inside fn (Embree's BVH builds, OpenCV) run there serially. For work too
-// small to share: woken workers would spin (sched_yield) long after it ends.
+// libraries run in the current TBB arena inside fn (Embree's BVH builds) run there serially. For
+// work too small to share: woken workers would spin (sched_yield) long after it ends. OpenCV
+// keeps an arena of its own, which this does not reach; the command line turns it off.
 void RunOnCallingThread(const std::function<void()>& fn);
 
 }  // namespace hoilcd
