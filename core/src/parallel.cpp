@@ -53,9 +53,9 @@ void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,
     fn(begin, begin + std::min(chunk_size, count - begin), worker);
   };
   if (threads <= 1) {
-    // In a one-slot arena, so that the libraries' own TBB loops inside fn (OpenCV's) stay on
-    // this thread too: in TBB's default arena they woke a worker per core, which then spun
-    // (a --threads 1 bench used 1.04-1.11 cores).
+    // In a one-slot arena, so that TBB loops inside fn (a library's, run in the current arena)
+    // stay on this thread too: in TBB's default arena they would wake a worker per core, which
+    // then spins. (OpenCV's keep an arena of their own; the command line turns them off.)
     RunOnCallingThread([&] {
       for (int64_t chunk = 0; chunk < num_chunks; ++chunk) run_chunk(chunk, 0);
     });
