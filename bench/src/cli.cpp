@@ -10,7 +10,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <opencv2/core/utility.hpp>
 
 #include "hoilcd/bench/coco_export.h"
 #include "hoilcd/bench/diagnosis.h"
@@ -27,6 +26,7 @@
 #include "hoilcd/bench/sweep_summary.h"
 #include "hoilcd/core/dataset.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/core/progress.h"
 #include "hoilcd/sim/data_dir.h"
 #include "hoilcd/sim/scene.h"
@@ -36,7 +36,7 @@
 namespace hoilcd {
 namespace {
 
-constexpr int kMaxThreads = 1024;  // --threads cap: far above any machine, far below int overflow
+constexpr int kMaxThreadsFlag = 1024;  // --threads accepts this much (ParallelFor clamps to kMaxThreads)
 
 std::atomic<bool> g_interrupted{false};
 
@@ -323,10 +323,7 @@ void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
 }  // namespace
 
 int RunCommandLine(int argc, char** argv) {
-  // hoilcd runs its own parallel loops (frames, pairs) on the threads --threads gives it.
-  // OpenCV's calls inside them would each run a parallel loop of their own on an arena of every
-  // core, which ignores --threads: a --threads 1 bench used 1.04-1.11 cores, a worker spinning.
-  cv::setNumThreads(0);
+  KeepOpenCvOnCallingThread();  // every command's loops run on its --threads
   CLI::App app{"hoilcd: synthetic thermal scene simulator and loop-closure benchmark"};
   app.set_version_flag("--version", HOILCD_VERSION);
   app.require_subcommand(1);
@@ -346,7 +343,7 @@ int RunCommandLine(int argc, char** argv) {
   render->add_option("--frames", render_options.frames, "render only the first N frames (0: all)")
       ->check(CLI::NonNegativeNumber);
   render->add_option("--threads", render_options.threads, "worker threads (0: every core)")
-      ->check(CLI::Range(0, kMaxThreads));
+      ->check(CLI::Range(0, kMaxThreadsFlag));
   render->add_option("--outputs", render_options.outputs,
                      "comma-separated outputs to write: thermal, radiometric, exr, video, persons (default: all; "
                      "the manifest lists them, and hoilcd bench needs thermal)");
@@ -357,7 +354,7 @@ int RunCommandLine(int argc, char** argv) {
   CLI::App* bench = app.add_subcommand("bench", "evaluate loop-closure methods on a dataset folder");
   bench->add_option("dataset", bench_dir, "dataset folder written by hoilcd render")->required();
   bench->add_option("-o,--output", bench_report, "report folder (default DATASET/report)");
-  bench->add_option("--threads", bench_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
+  bench->add_option("--threads", bench_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreadsFlag));
   std::string dump_scores;
   bench->add_option("--dump-scores", dump_scores,
                     "write each method's scores as DIR/<method>.csv (query,reference,score), for hoilcd evaluate")
@@ -374,7 +371,7 @@ int RunCommandLine(int argc, char** argv) {
   AddSceneFlags(run, &run_scene, false);
   run->add_option("--cache", run_options.cache_dir, "folder of cached datasets and reports");
   run->add_option("-o,--output", run_options.report_dir, "report folder (default CACHE/<scene>-<hash>/report)");
-  run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
+  run->add_option("--threads", run_options.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreadsFlag));
   AddBenchFlags(run, &run_args);
   GateArgs run_gate;
   AddGateFlags(run, &run_gate);
@@ -433,7 +430,7 @@ int RunCommandLine(int argc, char** argv) {
   sweep->add_option("--shard", sweep_args.shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
       ->type_name("I/N");
   sweep->add_option("--merge", sweep_args.merge, "combine these sweep output folders into OUT")->type_name("DIR...");
-  sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
+  sweep->add_option("--threads", sweep_args.run.threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreadsFlag));
   AddBenchFlags(sweep, &sweep_bench);
 
   std::string coco_dataset, coco_output;
@@ -450,7 +447,7 @@ int RunCommandLine(int argc, char** argv) {
   mot->add_option("-o,--output", mot_output, "folder for gt/ and trackers/ (TrackEval's GT_FOLDER/TRACKERS_FOLDER)")
       ->required();
   int mot_threads = 0;
-  mot->add_option("--threads", mot_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreads));
+  mot->add_option("--threads", mot_threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreadsFlag));
 
   try {
     app.parse(argc, argv);

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <thread>
 
+#include <opencv2/core/utility.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -55,7 +56,7 @@ void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,
   if (threads <= 1) {
     // In a one-slot arena, so that TBB loops inside fn (a library's, run in the current arena)
     // stay on this thread too: in TBB's default arena they would wake a worker per core, which
-    // then spins. (OpenCV's keep an arena of their own; the command line turns them off.)
+    // then spins. (OpenCV's keep an arena of their own: KeepOpenCvOnCallingThread.)
     RunOnCallingThread([&] {
       for (int64_t chunk = 0; chunk < num_chunks; ++chunk) run_chunk(chunk, 0);
     });
@@ -87,5 +88,7 @@ void ParallelFor(int64_t count, int num_threads, const std::function<void(int64_
 }
 
 void RunOnCallingThread(const std::function<void()>& fn) { ArenaFor(1).execute(fn); }
+
+void KeepOpenCvOnCallingThread() { cv::setNumThreads(0); }
 
 }  // namespace hoilcd

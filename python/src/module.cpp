@@ -4,6 +4,7 @@
 
 #include "bindings.h"
 #include "hoilcd/core/error.h"
+#include "hoilcd/core/parallel.h"
 #include "hoilcd/sim/data_dir.h"
 
 namespace py = pybind11;
@@ -11,6 +12,7 @@ namespace py = pybind11;
 PYBIND11_MODULE(_hoilcd, m) {
   m.doc() = "hoilcd: synthetic thermal scene simulator and loop-closure benchmark";
   m.attr("__version__") = HOILCD_VERSION;
+  hoilcd::KeepOpenCvOnCallingThread();  // render and bench run on their `threads`, as in the CLI
   // hoilcd's InputError (bad scene, dataset, scores or argument) keeps its message, which names
   // the file, JSON pointer or line and what was expected.
   py::register_exception<hoilcd::InputError>(m, "InputError", PyExc_ValueError);

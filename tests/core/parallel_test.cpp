@@ -116,7 +116,7 @@ TEST(ParallelFor, EmptyAndNegativeCountsCallNothing) {
   EXPECT_EQ(calls, 0);
 }
 
-// What Embree's BVH build or an OpenCV filter does inside: a TBB loop of its own. Inside
+// What Embree's BVH build does inside: a TBB loop in the current arena. Inside
 // RunOnCallingThread every iteration runs on the caller, even while our own loops keep workers.
 TEST(RunOnCallingThread, ALibrarysTbbLoopInsideRunsOnTheCallingThreadOnly) {
   ParallelFor(64, 2, [](int64_t) {});  // workers exist and are awake

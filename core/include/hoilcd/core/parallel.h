@@ -28,8 +28,16 @@ void ParallelFor(int64_t count, int num_threads, const std::function<void(int64_
 
 // Calls fn on the calling thread, in a TBB arena with no worker slots: the parallel loops that
 // libraries run in the current TBB arena inside fn (Embree's BVH builds) run there serially. For
-// work too small to share: woken workers would spin (sched_yield) long after it ends. OpenCV
-// keeps an arena of its own, which this does not reach; the command line turns it off.
+// work too small to share: woken workers would spin (sched_yield) long after it ends.
 void RunOnCallingThread(const std::function<void()>& fn);
+
+// Process-wide: OpenCV's calls run on the thread that makes them. hoilcd parallelises over frames
+// and pairs itself, on the threads asked for; OpenCV keeps a TBB arena of every core of its own,
+// which no hoilcd arena reaches, so its calls inside hoilcd's loops ignored the thread count (a
+// one-thread bench used 1.04-1.11 cores, a worker spinning). OpenCV replaces that arena without
+// a lock, so this is called where a process starts, before any thread uses OpenCV: by the
+// hoilcd command line and on import of the Python module (where it applies to the caller's own
+// OpenCV calls too).
+void KeepOpenCvOnCallingThread();
 
 }  // namespace hoilcd
