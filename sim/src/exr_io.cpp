@@ -158,7 +158,8 @@ size_t HeaderEnd(const std::string& bytes) {
 
 // The header OpenEXR writes for these channels at this size with RLE, made by OpenEXR itself
 // (from a frame of zeros) once per layout.
-std::string RleHeader(const ExrChannels& channels, int width, int height) {
+// The map's entries are never erased, so the reference stays valid.
+const std::string& RleHeader(const ExrChannels& channels, int width, int height) {
   std::string key = std::to_string(width) + "x" + std::to_string(height);
   for (const auto& [name, mat] : channels) key += "/" + name + ":" + std::to_string(mat.type());
   static std::mutex mutex;
@@ -231,7 +232,7 @@ std::string EncodeRleExr(const ExrChannels& channels, int width, int height) {
   size_t line_bytes = 0;
   for (const auto& [name, mat] : channels) line_bytes += mat.elemSize() * static_cast<size_t>(width);
 
-  const std::string header = RleHeader(channels, width, height);
+  const std::string& header = RleHeader(channels, width, height);
   const size_t table_at = header.size();
   const size_t block_capacity = 8 + line_bytes + line_bytes / 64 + 16;  // RunLengths adds <= n / 127 + 1
   std::string out(table_at + 8 * static_cast<size_t>(height) + static_cast<size_t>(height) * block_capacity, '\0');
