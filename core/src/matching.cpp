@@ -25,9 +25,8 @@ constexpr int kPadding = 8;
 constexpr int kLatticeCellsPerGridCell = 2;
 constexpr int kLatticeMarginCells = 4;
 // Candidate slots per lattice cell; a cell with more candidates is marked crowded and searched
-// in the grid instead (a few % of cells). kCrowdedCell marks it while the lattice is built.
+// in the grid instead (a few % of cells).
 constexpr int kLatticeWidth = 4;
-constexpr uint16_t kCrowdedCell = 0xffff;
 // Build limits: a cell whose candidate search reaches further than this many lattice cells, or
 // finds more than this many points, is marked crowded; sets reaching further than this from the
 // origin get no lattice.
@@ -204,7 +203,7 @@ int PointGrid::Nearest(Point2 p) const {
 }
 
 void PointGrid::BuildLattice() {
-  if (count_ <= kScanAllMax || count_ >= kCrowdedCell) return;
+  if (count_ <= kScanAllMax) return;
   // Far from the origin, squared float distances could overflow; the grid alone stays exact.
   const float far_corner = std::max({std::abs(origin_x_), std::abs(origin_y_),
                                      std::abs(origin_x_ + nx_ * cell_px_),
@@ -219,7 +218,8 @@ void PointGrid::BuildLattice() {
   // Positions in a cell round into it from up to `slack` outside its nominal box.
   const float slack = slack_px_ + 1e-5f * (std::abs(lattice_origin_x_) + std::abs(lattice_origin_y_) +
                                            (lattice_nx_ + lattice_ny_) * lattice_px_);
-  std::vector<uint16_t> lattice_slots(static_cast<size_t>(kLatticeWidth) * lattice_nx_ * lattice_ny_, 0);
+  static_assert(kLatticeWidth == 4, "LatticeCell holds four slots");
+  lattice_.assign(static_cast<size_t>(lattice_nx_) * lattice_ny_, LatticeCell{});
   std::vector<int> slot_of_id(count_), near;
   for (int slot = 0; slot < count_; ++slot) slot_of_id[ids_[slot]] = slot;
   for (int y = 0; y < lattice_ny_; ++y) {
@@ -241,11 +241,12 @@ void PointGrid::BuildLattice() {
       const auto grid_y = [&](double v) {
         return static_cast<int>(std::clamp((v - origin_y_) * inv_cell_, 0.0, ny_ - 1.0));
       };
-      uint16_t* slots = lattice_slots.data() + kLatticeWidth * (y * lattice_nx_ + x);
+      LatticeCell& cell = lattice_[static_cast<size_t>(y) * lattice_nx_ + x];
+      const auto crowded = [&cell] { cell.id[0] = -1; };
       // A cell far from every point (an outlier's margin) would gather many candidates: the
       // grid answers its queries instead, which keeps the build linear in the point count.
       if (reach > kMaxReachCells * lattice_px_) {
-        slots[0] = kCrowdedCell;
+        crowded();
         continue;
       }
       const int gx0 = grid_x(x0 - reach - cell_px_), gx1 = grid_x(x1 + reach + cell_px_);
@@ -272,34 +273,30 @@ void PointGrid::BuildLattice() {
         return true;
       };
       if (near.size() > kMaxNearCandidates) {
-        slots[0] = kCrowdedCell;
+        crowded();
         continue;
       }
-      int kept = 0;
+      int slots[kLatticeWidth], kept = 0;
+      bool too_many = false;
       for (int j : near) {
         bool dominated = false;
         for (int k : near) dominated = dominated || (k != j && dominates(k, j));
         if (dominated) continue;
         if (kept == kLatticeWidth) {
-          slots[0] = kCrowdedCell;
+          too_many = true;
           break;
         }
-        slots[kept++] = static_cast<uint16_t>(j);
+        slots[kept++] = j;
       }
-      if (slots[0] == kCrowdedCell) continue;
-      for (int c = kept; c < kLatticeWidth; ++c) slots[c] = slots[0];
+      if (too_many) {
+        crowded();
+        continue;
+      }
+      for (int c = 0; c < kLatticeWidth; ++c) {  // unused slots repeat the first
+        const int slot = slots[c < kept ? c : 0];
+        cell.x[c] = xs_[slot], cell.y[c] = ys_[slot], cell.id[c] = ids_[slot];
+      }
     }
-  }
-  static_assert(kLatticeWidth == 4, "LatticeCell holds four slots");
-  lattice_.resize(static_cast<size_t>(lattice_nx_) * lattice_ny_);
-  for (size_t cell = 0; cell < lattice_.size(); ++cell) {
-    const uint16_t* slots = lattice_slots.data() + kLatticeWidth * cell;
-    LatticeCell& c = lattice_[cell];
-    for (int k = 0; k < kLatticeWidth; ++k) {
-      const int slot = slots[0] == kCrowdedCell ? 0 : slots[k];
-      c.x[k] = xs_[slot], c.y[k] = ys_[slot], c.id[k] = ids_[slot];
-    }
-    if (slots[0] == kCrowdedCell) c.id[0] = -1;
   }
 }
 
