@@ -8,9 +8,9 @@
 #include <string>
 
 #include "fuzz_input.h"
-#include "hoilcd/core/dataset.h"
-#include "hoilcd/core/error.h"
-#include "hoilcd/sim/exr_io.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/dataset/exr_io.h"
+#include "hoilcd/core/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;

@@ -4,8 +4,8 @@
 #include <cstdint>
 
 #include "fuzz_input.h"
-#include "hoilcd/core/error.h"
-#include "hoilcd/sim/asset.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/sim/assets/asset.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = hoilcd::fuzz::WriteScratchFile("input.gltf", data, size);

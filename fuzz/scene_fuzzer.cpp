@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "hoilcd/core/error.h"
-#include "hoilcd/sim/scene.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/sim/scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);

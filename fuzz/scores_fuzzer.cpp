@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "hoilcd/bench/scores_file.h"
-#include "hoilcd/core/error.h"
+#include "hoilcd/bench/evaluation/scores_file.h"
+#include "hoilcd/core/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;

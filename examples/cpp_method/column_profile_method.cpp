@@ -4,7 +4,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
-#include "hoilcd/bench/runner.h"
+#include "hoilcd/bench/runner/runner.h"
 
 namespace {
 

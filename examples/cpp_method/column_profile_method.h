@@ -5,6 +5,6 @@
 
 #include <memory>
 
-#include "hoilcd/bench/loop_closure_method.h"
+#include "hoilcd/bench/methods/loop_closure_method.h"
 
 std::unique_ptr<hoilcd::LoopClosureMethod> MakeColumnProfileMethod();

@@ -6,10 +6,10 @@
 #include <exception>
 
 #include "column_profile_method.h"
-#include "hoilcd/bench/methods.h"
-#include "hoilcd/bench/report.h"
-#include "hoilcd/bench/runner.h"
-#include "hoilcd/core/error.h"
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/report.h"
+#include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/util/error.h"
 
 int main(int argc, char** argv) {
   if (argc < 2 || argc > 3) {

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "bindings.h"
-#include "hoilcd/core/dataset.h"
-#include "hoilcd/sim/exr_io.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/dataset/exr_io.h"
 
 namespace hoilcd::python {
 namespace {

@@ -3,9 +3,9 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
-#include "hoilcd/core/error.h"
-#include "hoilcd/core/parallel.h"
-#include "hoilcd/sim/data_dir.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/parallel.h"
+#include "hoilcd/sim/assets/data_dir.h"
 
 namespace py = pybind11;
 

@@ -5,23 +5,17 @@
 #include <optional>
 
 #include "bindings.h"
-#include "hoilcd/bench/evaluate.h"
-#include "hoilcd/bench/loop_closure_method.h"
-#include "hoilcd/bench/methods.h"
-#include "hoilcd/bench/report.h"
-#include "hoilcd/bench/runner.h"
-#include "hoilcd/core/dataset.h"
-#include "hoilcd/core/error.h"
-#include "hoilcd/sim/scene.h"
-#include "hoilcd/sim/sequence.h"
+#include "hoilcd/bench/evaluation/evaluate.h"
+#include "hoilcd/bench/methods/loop_closure_method.h"
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/report.h"
+#include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/sim/output/sequence.h"
+#include "hoilcd/sim/scene/scene.h"
 
 namespace hoilcd::python {
-
-py::object JsonToPython(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
-
-std::string PythonToJson(const py::handle& value) {
-  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
-}
 
 namespace {
 

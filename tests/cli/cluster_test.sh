@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/cluster/sweep.sbatch against stand-ins for sinfo and sbatch (no Slurm here): a request no
+# scripts/cluster/sweep.sbatch against stand-ins for sinfo and sbatch (no Slurm here): a request no
 # node can hold is refused before anything is submitted; a request that fits submits the shard
 # array and a merge that Slurm cancels if a shard fails, with logs under the sweep's folder;
 # each step passes the swept values, frames and cores from the environment to hoilcd.

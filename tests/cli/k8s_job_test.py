@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""bench/cluster/sweep-job.yaml tells the truth (no Kubernetes here, so the file itself is checked):
+"""scripts/cluster/sweep-job.yaml tells the truth (no Kubernetes here, so the file itself is checked):
 the shard Job's completions, parallelism and SHARDS agree, the merge lists the same shards with the
 same sweep flags, and --threads follows the pod's CPU limit through the downward API."""
 import sys

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "hoilcd/core/error.h"
+#include "hoilcd/core/util/error.h"
 
 namespace hoilcd::test {
 

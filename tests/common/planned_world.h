@@ -2,9 +2,9 @@
 // planned on that run (what RenderSequence does before its first frame).
 #pragma once
 
-#include "hoilcd/sim/scene.h"
-#include "hoilcd/sim/scene_options.h"
-#include "hoilcd/sim/world.h"
+#include "hoilcd/sim/scene/scene.h"
+#include "hoilcd/sim/scene/scene_options.h"
+#include "hoilcd/sim/world/world.h"
 
 namespace hoilcd::test {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "hoilcd/core/dataset.h"
-#include "hoilcd/sim/scene.h"
-#include "hoilcd/sim/sequence.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/sim/output/sequence.h"
+#include "hoilcd/sim/scene/scene.h"
 
 namespace hoilcd::test {
 

@@ -16,8 +16,8 @@ python=${5:-}
 source "$(dirname "${BASH_SOURCE[0]}")/moved_prefix.sh"
 moved_prefix "$cmake" "$build" install_relocatable
 for f in bin/hoilcd lib/cmake/hoilcd/hoilcdConfig.cmake lib/cmake/hoilcd/hoilcdConfigVersion.cmake \
-         lib/cmake/hoilcd/hoilcdTargets.cmake include/hoilcd/core/dataset.h include/hoilcd/sim/scene.h \
-         include/hoilcd/bench/runner.h share/hoilcd/scenes/paper_room.json share/hoilcd/scenes/scene.schema.json \
+         lib/cmake/hoilcd/hoilcdTargets.cmake include/hoilcd/core/dataset/dataset.h include/hoilcd/sim/scene/scene.h \
+         include/hoilcd/bench/runner/runner.h share/hoilcd/scenes/paper_room.json share/hoilcd/scenes/scene.schema.json \
          share/hoilcd/assets/chair.gltf; do
   [ -f "$moved/$f" ] || fail "the prefix lacks $f"
 done

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "hoilcd/bench/front_end_input.h"
-#include "hoilcd/bench/manifest_options.h"
-#include "hoilcd/bench/runner.h"
-#include "hoilcd/bench/tracking_metrics.h"
-#include "hoilcd/core/error.h"
-#include "hoilcd/sim/exr_io.h"
+#include "hoilcd/bench/evaluation/tracking_metrics.h"
+#include "hoilcd/bench/methods/front_end_input.h"
+#include "hoilcd/bench/methods/manifest_options.h"
+#include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/dataset/exr_io.h"
+#include "hoilcd/core/util/error.h"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>

@@ -1,8 +1,8 @@
 // Links hoilcd::core from an installed prefix: fuses two rankings and checksums a string.
 #include <cstdio>
 
-#include "hoilcd/core/dataset.h"
-#include "hoilcd/core/rank_fusion.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/place_recognition/rank_fusion.h"
 
 int main() {
   const std::vector<double> fused = hoilcd::ReciprocalRankFusion({{0, 1}, {1, 0}}, 2);

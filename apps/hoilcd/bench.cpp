@@ -1,0 +1,58 @@
+// hoilcd bench DATASET: run loop-closure methods on a dataset folder and write the report.
+#include <cstdio>
+#include <memory>
+
+#include "command.h"
+#include "hoilcd/bench/evaluation/scores_file.h"
+#include "hoilcd/bench/report/gate.h"
+#include "hoilcd/bench/report/report.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/file_io.h"
+#include "shared.h"
+
+namespace hoilcd {
+namespace {
+
+struct BenchCommandArgs {
+  std::string dataset;
+  std::string report_dir;
+  std::string dump_scores;
+  int threads = 0;
+  BenchArgs bench;
+  GateArgs gate;
+};
+
+int BenchCommand(const BenchCommandArgs& args) {
+  const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead, args.threads);
+  for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  const BenchOptions options = ResolveBench(args.bench, args.threads);
+  CheckBaseline(args.gate);
+  const std::string out = args.report_dir.empty() ? args.dataset + "/report" : args.report_dir;
+  ReportTiming timing;
+  const BenchResult result = BenchAndWriteReport(dataset, options, &timing, out);
+  if (!args.dump_scores.empty()) {
+    for (const MethodRun& run : result.runs) {
+      WriteFileAtomic(args.dump_scores + "/" + run.name + ".csv", ScoresToCsv(result.queries, run.scores));
+    }
+  }
+  PrintOutcome(result, out);
+  return ApplyGate(args.gate, ReadReportJson(out + "/report.json"));
+}
+
+}  // namespace
+
+Command AddBenchCommand(CLI::App* app) {
+  auto args = std::make_shared<BenchCommandArgs>();
+  CLI::App* cmd = app->add_subcommand("bench", "evaluate loop-closure methods on a dataset folder");
+  cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
+  cmd->add_option("-o,--output", args->report_dir, "report folder (default DATASET/report)");
+  AddThreadsFlag(cmd, &args->threads);
+  cmd->add_option("--dump-scores", args->dump_scores,
+                  "write each method's scores as DIR/<method>.csv (query,reference,score), for hoilcd evaluate")
+      ->type_name("DIR");
+  AddBenchFlags(cmd, &args->bench);
+  AddGateFlags(cmd, &args->gate);
+  return {cmd, [args] { return BenchCommand(*args); }};
+}
+
+}  // namespace hoilcd

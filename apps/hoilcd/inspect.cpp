@@ -1,0 +1,47 @@
+// hoilcd inspect DATASET: what a user checks before trusting a sequence.
+#include <cstdio>
+#include <memory>
+
+#include "command.h"
+#include "hoilcd/bench/report/inspect.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/file_io.h"
+#include "shared.h"
+
+namespace hoilcd {
+namespace {
+
+struct InspectArgs {
+  std::string dataset;
+  std::string output;
+  bool json = false;
+  ProtocolOptions protocol;
+};
+
+int InspectCommand(const InspectArgs& args) {
+  const Dataset dataset = Dataset::Open(args.dataset, Verify::kNothing);  // inspect looks at what is there
+  const InspectReport report = InspectDataset(dataset, args.protocol);
+  const std::string json_text = report.ToJson().dump(2) + "\n";
+  if (!args.output.empty()) WriteFileAtomic(args.output, json_text);
+  std::printf("%s", args.json ? json_text.c_str() : ("dataset " + args.dataset + "\n" + report.ToText()).c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command AddInspectCommand(CLI::App* app) {
+  auto args = std::make_shared<InspectArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "inspect", "what to check before trusting a dataset: laps, lap-to-lap path difference, odometry drift, "
+                 "camera jitter, people in view, occlusion, odometric vs true ground truth");
+  cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
+  cmd->add_flag("--json", args->json, "print the figures as JSON instead of text");
+  cmd->add_option("-o,--output", args->output, "also write the figures as JSON to this file");
+  cmd->add_option("--protocol", args->protocol.protocol, "laps (database = first lap) or revisit")
+      ->check(CLI::IsMember({"laps", "revisit"}));
+  cmd->add_option("--radius", args->protocol.radius_m, "true-match radius, m (paper: 0.2)")
+      ->check(CLI::PositiveNumber);
+  return {cmd, [args] { return InspectCommand(*args); }};
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,133 @@
+#include "shared.h"
+
+#include <csignal>
+#include <cstdio>
+
+#include "hoilcd/bench/methods/method_params.h"
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/diagnosis.h"
+#include "hoilcd/bench/report/gate.h"
+#include "hoilcd/bench/report/report.h"
+#include "hoilcd/bench/slam/pose_graph.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr int kMaxThreadsFlag = 1024;  // --threads accepts this much (ParallelFor clamps to kMaxThreads)
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void OnInterrupt(int) {
+  g_interrupted = true;
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+}  // namespace
+
+void AddThreadsFlag(CLI::App* cmd, int* threads) {
+  cmd->add_option("--threads", *threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreadsFlag));
+}
+
+void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
+  auto* opt = cmd->add_option("scene", args->path, "scene file (JSON, see scenes/scene.schema.json)");
+  if (scene_required) opt->required();
+  cmd->add_option("--set", args->overrides,
+                  "override a scene value by its path, e.g. --set crowd.people_per_table=2 (repeatable)")
+      ->type_name("KEY=VALUE");
+  cmd->add_option("--seed", args->seed, "override the scene's seed")->check(CLI::NonNegativeNumber);
+}
+
+Scene LoadSceneArgs(const SceneArgs& args) {
+  std::vector<std::string> overrides = args.overrides;
+  if (args.seed >= 0) overrides.push_back("seed=" + std::to_string(args.seed));
+  return LoadScene(args.path, overrides);
+}
+
+void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
+  cmd->add_option("--protocol", protocol->protocol, "laps (database = first lap) or revisit")
+      ->check(CLI::IsMember({"laps", "revisit"}));
+  cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (paper: 0.2)")->check(CLI::PositiveNumber);
+  cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
+                  "frames this close in time to a query are not in its database, s")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ground-truth", protocol->ground_truth,
+                  "whose positions label true matches: odometry (the paper's) or true (the true poses)")
+      ->check(CLI::IsMember({"odometry", "true"}));
+  cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
+                  "max heading difference of a true match, deg (negative: off)");
+}
+
+void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
+  cmd->add_option("--methods", args->methods,
+                  "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
+  AddProtocolFlags(cmd, &args->options.protocol);
+  cmd->add_option("--param", args->options.params,
+                  "a parameter of one method or front end, e.g. slcd.ransac_trials=50, fusion.k=60, "
+                  "persons.threshold_c=27 (repeatable; hoilcd params lists them)")
+      ->type_name("NAME=VALUE");
+  cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
+      ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
+  cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--slam,!--no-slam", args->options.slam,
+                "each method's loops in a pose graph: ATE/RPE per back end (default: on in run, off in bench)");
+  cmd->add_option("--slam-backend", args->options.slam_options.slam.graph.backend,
+                  "headline pose-graph back end: plain, cauchy or dcs (all three are reported)")
+      ->check(CLI::IsMember(PoseGraphBackends()));
+  cmd->add_option("--loop-threshold", args->options.slam_options.slam.loop_threshold,
+                  "accept a method's top-1 match as a loop when its score is at least this (default: the "
+                  "threshold of 100 % precision on the calibration sequence)");
+}
+
+BenchOptions ResolveBench(const BenchArgs& args, int threads) {
+  BenchOptions o = args.options;
+  o.methods = args.methods.empty() ? DefaultMethods() : ParseMethodList(args.methods);
+  o.threads = threads;
+  CheckParams(o.params, o.methods);
+  if (const std::string problem = o.Check(); !problem.empty()) throw InputError("bench options", problem);
+  return o;
+}
+
+void AddGateFlags(CLI::App* cmd, GateArgs* args) {
+  CLI::Option* baseline = cmd->add_option("--baseline", args->baseline,
+                  "earlier report.json: exit 3 when a headline metric (MRR, R@1) of a method in both dropped by "
+                  "more than --max-drop");
+  cmd->add_option("--max-drop", args->max_drop, "largest allowed drop of MRR or R@1 against --baseline (default 0)")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(baseline);
+  cmd->add_option("--junit", args->junit, "write JUnit XML here (one test case per method)");
+}
+
+void CheckBaseline(const GateArgs& args) {
+  if (!args.baseline.empty()) ReadReportJson(args.baseline);
+}
+
+int ApplyGate(const GateArgs& args, const nlohmann::json& report) {
+  std::vector<Regression> regressions;
+  if (!args.baseline.empty()) {
+    const nlohmann::json baseline = ReadReportJson(args.baseline);
+    for (const std::string& m : MethodsOnlyInBaseline(baseline, report)) {
+      std::printf("baseline: method %s is not in this run (not compared)\n", m.c_str());
+    }
+    regressions = CompareToBaseline(baseline, report, args.max_drop);
+    for (const Regression& r : regressions) std::printf("%s\n", r.ToString(args.max_drop).c_str());
+    if (regressions.empty()) std::printf("baseline %s: no headline metric dropped by more than %g\n", args.baseline.c_str(), args.max_drop);
+  }
+  if (!args.junit.empty()) WriteFileAtomic(args.junit, JUnitXml(report, regressions, args.max_drop));
+  return regressions.empty() ? 0 : 3;
+}
+
+std::atomic<bool>* CancelOnInterrupt() {
+  std::signal(SIGINT, OnInterrupt);
+  return &g_interrupted;
+}
+
+void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
+  std::printf("%s", FormatResultTable(result).c_str());
+  std::printf("%s\n", PaperFindingSummary(result).c_str());
+  std::printf("report: %s/report.md\n", report_dir.c_str());
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,62 @@
+// What several subcommands share, each declared once: the --threads flag, the scene flags, the
+// protocol and bench flags, the CI gate, Ctrl-C handling and the printed result table.
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "hoilcd/bench/methods/bench_options.h"
+#include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/sim/scene/scene.h"
+
+namespace hoilcd {
+
+// --threads N (0: every core) on `cmd`, into `threads`.
+void AddThreadsFlag(CLI::App* cmd, int* threads);
+
+// SCENE, --set KEY=VALUE and --seed.
+struct SceneArgs {
+  std::string path;
+  std::vector<std::string> overrides;
+  int64_t seed = -1;
+};
+void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required);
+Scene LoadSceneArgs(const SceneArgs& args);
+
+// The evaluation protocol's flags (bench, run, sweep, evaluate, inspect).
+void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol);
+
+// The methods and their options (bench, run, sweep).
+struct BenchArgs {
+  std::string methods;
+  BenchOptions options;
+};
+void AddBenchFlags(CLI::App* cmd, BenchArgs* args);
+// The options asked for, checked; InputError naming what is wrong.
+BenchOptions ResolveBench(const BenchArgs& args, int threads);
+
+// The CI gate (bench, run, evaluate).
+struct GateArgs {
+  std::string baseline;
+  double max_drop = 0;
+  std::string junit;
+};
+void AddGateFlags(CLI::App* cmd, GateArgs* args);
+// Reads the baseline, if any, so a bad one fails before the work.
+void CheckBaseline(const GateArgs& args);
+// Compares `report` with the baseline and writes JUnit XML, as asked; the exit code (0, or 3 on
+// any regression).
+int ApplyGate(const GateArgs& args, const nlohmann::json& report);
+
+// The first Ctrl-C sets the returned flag (long commands stop cleanly and can resume); a second
+// ends the process at once.
+std::atomic<bool>* CancelOnInterrupt();
+
+// The result table, the paper's finding and where the report is.
+void PrintOutcome(const BenchResult& result, const std::string& report_dir);
+
+}  // namespace hoilcd

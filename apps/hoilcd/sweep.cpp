@@ -1,0 +1,107 @@
+// hoilcd sweep SCENE --set KEY=V1,V2 --seeds N -o OUT: a scene over the cross product of values
+// and seeds, with a summary table and plots; --shard and --merge split it over machines.
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "command.h"
+#include "hoilcd/bench/pipeline/sweep.h"
+#include "hoilcd/bench/pipeline/sweep_summary.h"
+#include "hoilcd/core/util/error.h"
+#include "shared.h"
+
+namespace hoilcd {
+namespace {
+
+struct SweepArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  int seeds = 1;
+  std::string shard;
+  std::vector<std::string> merge;
+  std::string output;
+  RunOptions run;
+  BenchArgs bench;
+};
+
+void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
+  std::printf("%s", summary.FormatTable().c_str());
+  std::printf("summary: %s/summary.md (and summary.csv, plot_*.png)\n", out.c_str());
+}
+
+int MergeCommand(const SweepArgs& args) {
+  if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+  std::optional<SweepPlan> expected;
+  if (!args.scene.empty()) {
+    expected = MakeSweepPlan(args.scene, args.sets, args.seeds, ResolveBench(args.bench, args.run.threads));
+  } else if (!args.sets.empty()) {
+    throw InputError("--set", "with --merge, --set is only checked against the shards when SCENE is given too");
+  }
+  const SweepSummary summary = MergeSweep(args.merge, expected ? &*expected : nullptr);
+  WriteSweepSummary(summary, args.output);
+  PrintSweepSummary(summary, args.output);
+  return 0;
+}
+
+int SweepCommand(const SweepArgs& args) {
+  if (!args.merge.empty()) return MergeCommand(args);
+  if (args.scene.empty()) throw InputError("sweep", "a SCENE file is needed (or --merge DIR... to combine shard outputs)");
+  SweepOptions options;
+  options.output_dir = args.output;
+  options.run = args.run;
+  if (!args.shard.empty()) options.shard = ParseSweepShard(args.shard);
+  const BenchOptions bench = ResolveBench(args.bench, args.run.threads);
+  const SweepPlan plan = MakeSweepPlan(args.scene, args.sets, args.seeds, bench);
+  options.run.cancel = CancelOnInterrupt();
+  std::printf("sweep of %s: %zu runs (%zu combinations x %d seeds)", plan.scene_name.c_str(), plan.Runs().size(),
+              plan.Combinations().size(), plan.seeds);
+  if (options.shard.count > 1) std::printf(", shard %d/%d does %zu", options.shard.index, options.shard.count, plan.ShardRuns(options.shard).size());
+  std::printf("\n");
+  RunSweep(plan, bench, options, [](int position, int total, const SweepRunSpec& run, bool kept) {
+    std::printf("run %d/%d: %s%s\n", position, total, run.Name().c_str(), kept ? " (kept from an earlier sweep)" : "");
+    std::fflush(stdout);
+  });
+  if (options.shard.count > 1) {
+    std::printf("shard %d/%d done in %s; when every shard is done: hoilcd sweep --merge DIR... -o OUT\n",
+                options.shard.index, options.shard.count, args.output.c_str());
+    return 0;
+  }
+  const SweepSummary summary = MergeSweep({args.output}, &plan);
+  WriteSweepSummary(summary, args.output);
+  PrintSweepSummary(summary, args.output);
+  return 0;
+}
+
+}  // namespace
+
+Command AddSweepCommand(CLI::App* app) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "sweep", "run a scene over the cross product of --set values x seeds; summary table and plots");
+  cmd->footer(
+      "Every run's report is kept; the summary gives mean, std, min and max over seeds and a plot of\n"
+      "each metric against each swept value.\n"
+      "--shard I/N runs only every N-th run starting at I (0 <= I < N) of the sorted run list, for\n"
+      "job arrays; OUT/sweep.json marks the shard. --merge DIR... -o OUT combines shard outputs\n"
+      "(nothing is rendered) and fails naming any run that is missing or present twice. With\n"
+      "SCENE and the shards' --set/--seeds/bench flags, a merge also checks the shards ran exactly\n"
+      "that sweep; without SCENE, the sweep is read from the shards (they must agree).");
+  cmd->add_option("scene", args->scene, "scene file (JSON); optional with --merge");
+  cmd->add_option("--set", args->sets,
+                  "KEY=V1,V2,...: values to sweep (split on top-level commas, so [1,2] is one value); repeatable, "
+                  "the cross product is run")
+      ->type_name("KEY=V1,V2")
+      ->allow_extra_args(false);
+  cmd->add_option("--seeds", args->seeds, "run every combination with seeds 1..N")->check(CLI::PositiveNumber);
+  cmd->add_option("--cache", args->run.cache_dir, "folder of cached datasets (shared by every run and shard)");
+  cmd->add_option("-o,--output", args->output, "sweep folder: runs/<KEY=V,...,seed=S>/, summary.csv, summary.md, plots")
+      ->required();
+  cmd->add_option("--shard", args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
+      ->type_name("I/N");
+  cmd->add_option("--merge", args->merge, "combine these sweep output folders into OUT")->type_name("DIR...");
+  AddThreadsFlag(cmd, &args->run.threads);
+  AddBenchFlags(cmd, &args->bench);
+  return {cmd, [args] { return SweepCommand(*args); }};
+}
+
+}  // namespace hoilcd

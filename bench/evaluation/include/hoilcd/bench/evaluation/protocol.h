@@ -1,0 +1,81 @@
+// Evaluation protocol: which database frames each query is ranked against, and which of them are
+// true loop closures (robot positions within radius_m, optionally headings within a tolerance).
+// Positions are the odometry's, as the paper's ground truth (section 5.1), or the true poses'.
+// Frames within the temporal exclusion window of a query never enter its database.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/dataset/dataset.h"
+
+namespace hoilcd {
+
+struct ProtocolOptions {
+  // "laps": database = first lap, queries = later laps; "revisit": every frame is a query and its
+  // database is every frame older than the exclusion window (SLAM style).
+  std::string protocol = "laps";
+  double radius_m = 0.2;              // m, base positions this close make a true match (paper)
+  double heading_tolerance_deg = -1;  // deg, max heading difference of a true match; < 0 = off
+  double exclusion_window_s = 10;     // s, frames with |t_query - t_ref| <= this are left out
+  // Whose positions decide true matches and laps: "odometry" (the paper's: the robot's odometric
+  // poses) or "true" (the ground-truth poses).
+  std::string ground_truth = "odometry";
+  // Empty when valid, else what is wrong.
+  std::string Check() const;
+};
+
+struct Query {
+  int frame = 0;                      // query frame
+  int lap = 0;                        // lap of the query frame, 0 = first (LapIndexFromPoses)
+  std::vector<int> database;          // frames to rank, ascending
+  std::vector<uint8_t> is_true_match; // parallel to database: 1 when a true loop closure
+  int NumTrueMatches() const;         // 0 => the query is skipped (not scored)
+};
+
+// The poses whose x, y, theta are those `ground_truth` ("odometry" or "true") labels with: for
+// "odometry" a copy with the odometric pose in x_m, y_m, theta_rad; for "true" the poses as given.
+std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
+                                   const std::string& ground_truth);
+
+// The other choice of ground truth ("odometry" <-> "true").
+std::string OtherGroundTruth(const std::string& ground_truth);
+
+// Lap number per pose (0 = first lap), from the cumulative unwrapped ground-truth heading: a new
+// lap starts each time the heading has turned a further 2π in the sequence's overall turning
+// direction (−2π per clockwise lap). Never decreases along the sequence.
+std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses);
+
+// Euclidean distance between the robot base positions (x, y) of two poses, in metres.
+double BaseDistanceM(const PoseRecord& a, const PoseRecord& b);
+
+// Whether `reference` is a true match of `query` (radius and heading tolerance only; the
+// exclusion window is a property of the database, not of the pair).
+bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
+                 const ProtocolOptions& options);
+
+// Queries in frame order; those without a true match are kept (NumTrueMatches() == 0) so they can
+// be counted as skipped. `poses` are the dataset's rows (frames 0..N-1 in time order); laps and
+// true matches come from options.ground_truth's positions (LabelPoses).
+std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
+                                const ProtocolOptions& options);
+
+// The same queries and databases, labelled with `ground_truth`'s positions instead (so one set of
+// scores can be measured under both labellings).
+std::vector<Query> RelabelQueries(const std::vector<Query>& queries,
+                                  const std::vector<PoseRecord>& poses,
+                                  const ProtocolOptions& options, const std::string& ground_truth);
+
+// How two labellings of the same queries differ.
+struct LabelDisagreement {
+  int queries = 0;                 // queries compared
+  int queries_differing = 0;       // queries whose set of true matches differs
+  int scored_only_in_a = 0;        // queries with a true match under a only
+  int scored_only_in_b = 0;        // queries with a true match under b only
+  int64_t pairs = 0;               // (query, database frame) pairs compared
+  int64_t pairs_differing = 0;     // pairs labelled differently
+};
+LabelDisagreement CompareLabels(const std::vector<Query>& a, const std::vector<Query>& b);
+
+}  // namespace hoilcd

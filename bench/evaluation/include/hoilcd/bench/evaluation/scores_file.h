@@ -1,0 +1,39 @@
+// Loop-closure scores of any method as a file: CSV `query,reference,score` (frame indices; pairs
+// left out are unscored) or a NumPy .npy dense frames x frames float32/float64 matrix (NaN =
+// unscored). Read for `hoilcd evaluate`, written by `hoilcd bench --dump-scores`.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hoilcd/bench/evaluation/protocol.h"
+
+namespace hoilcd {
+
+// Scores of (query frame, reference frame) pairs of one dataset; higher = more alike.
+struct ScoreMatrix {
+  int frames = 0;
+  std::vector<double> values;  // row-major frames x frames: [query * frames + reference], NaN = unscored
+
+  static ScoreMatrix Unscored(int frames);  // every pair NaN
+  double At(int query, int reference) const { return values[static_cast<size_t>(query) * frames + reference]; }
+  double& At(int query, int reference) { return values[static_cast<size_t>(query) * frames + reference]; }
+};
+
+// CSV text with header `query,reference,score`, one pair a line, frames in [0, frames), finite
+// scores, each pair at most once. `source` names the file in errors (InputError "FILE:LINE").
+ScoreMatrix ScoresFromCsv(std::string_view text, const std::string& source, int frames);
+
+// The bytes of a .npy file (format version 1, 2 or 3): little-endian float32 or float64, C order,
+// shape (frames, frames). Errors name `source` and what was expected.
+ScoreMatrix ScoresFromNpy(std::string_view bytes, const std::string& source, int frames);
+
+// Reads `path` by its extension: .npy as ScoresFromNpy, anything else as CSV.
+ScoreMatrix ReadScoresFile(const std::string& path, int frames);
+
+// Every (query, database frame) pair of `queries` with its score (scores[i] parallel to
+// queries[i].database), in query then database order, scores printed so they read back exactly.
+std::string ScoresToCsv(const std::vector<Query>& queries, const std::vector<std::vector<double>>& scores);
+
+}  // namespace hoilcd

@@ -1,0 +1,146 @@
+#include "hoilcd/bench/evaluation/protocol.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hoilcd/core/util/error.h"
+
+namespace hoilcd {
+namespace {
+
+double WrapAngleRad(double angle_rad) { return std::remainder(angle_rad, 2.0 * M_PI); }
+
+}  // namespace
+
+std::string ProtocolOptions::Check() const {
+  if (protocol != "laps" && protocol != "revisit") {
+    return "protocol must be 'laps' or 'revisit', got '" + protocol + "'";
+  }
+  if (!(radius_m > 0) || !std::isfinite(radius_m)) return "radius_m must be positive";
+  if (std::isnan(heading_tolerance_deg) || heading_tolerance_deg > 180) {
+    return "heading_tolerance_deg must be at most 180 (or negative to turn it off)";
+  }
+  if (!(exclusion_window_s >= 0) || !std::isfinite(exclusion_window_s)) {
+    return "exclusion_window_s must be zero or positive";
+  }
+  if (ground_truth != "odometry" && ground_truth != "true") {
+    return "ground_truth must be 'odometry' or 'true', got '" + ground_truth + "'";
+  }
+  return "";
+}
+
+int Query::NumTrueMatches() const {
+  return static_cast<int>(std::count(is_true_match.begin(), is_true_match.end(), 1));
+}
+
+std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
+                                   const std::string& ground_truth) {
+  HOILCD_CHECK_MSG(ground_truth == "odometry" || ground_truth == "true", ground_truth);
+  std::vector<PoseRecord> out = poses;
+  if (ground_truth == "odometry") {
+    for (PoseRecord& p : out) {
+      p.x_m = p.odo_x_m;
+      p.y_m = p.odo_y_m;
+      p.theta_rad = p.odo_theta_rad;
+    }
+  }
+  return out;
+}
+
+std::string OtherGroundTruth(const std::string& ground_truth) {
+  return ground_truth == "odometry" ? "true" : "odometry";
+}
+
+std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses) {
+  std::vector<double> turned_rad(poses.size(), 0.0);
+  for (size_t i = 1; i < poses.size(); ++i) {
+    turned_rad[i] =
+        turned_rad[i - 1] + WrapAngleRad(poses[i].theta_rad - poses[i - 1].theta_rad);
+  }
+  const double direction = (!turned_rad.empty() && turned_rad.back() < 0) ? -1.0 : 1.0;
+  // A lap that ends exactly at 2π (up to rounding) belongs to the next lap.
+  constexpr double kToleranceRad = 1e-9;
+  std::vector<int> laps(poses.size(), 0);
+  int lap = 0;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const double laps_turned = (direction * turned_rad[i] + kToleranceRad) / (2.0 * M_PI);
+    lap = std::max(lap, static_cast<int>(std::floor(std::max(0.0, laps_turned))));
+    laps[i] = lap;
+  }
+  return laps;
+}
+
+double BaseDistanceM(const PoseRecord& a, const PoseRecord& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
+}
+
+bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
+                 const ProtocolOptions& options) {
+  if (BaseDistanceM(query, reference) > options.radius_m) return false;
+  if (options.heading_tolerance_deg < 0) return true;
+  const double difference_deg =
+      std::abs(WrapAngleRad(query.theta_rad - reference.theta_rad)) * 180.0 / M_PI;
+  return difference_deg <= options.heading_tolerance_deg;
+}
+
+std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
+                                const ProtocolOptions& options) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  const std::vector<PoseRecord> label = LabelPoses(poses, options.ground_truth);
+  const std::vector<int> laps = LapIndexFromPoses(label);
+  const bool laps_protocol = options.protocol == "laps";
+  std::vector<Query> queries;
+  for (size_t q = 0; q < poses.size(); ++q) {
+    if (laps_protocol && laps[q] == 0) continue;
+    Query query;
+    query.frame = poses[q].frame;
+    query.lap = laps[q];
+    for (size_t r = 0; r < poses.size(); ++r) {
+      const double dt_s = poses[q].time_s - poses[r].time_s;
+      if (std::abs(dt_s) <= options.exclusion_window_s) continue;
+      if (laps_protocol ? laps[r] != 0 : dt_s < 0) continue;
+      query.database.push_back(poses[r].frame);
+      query.is_true_match.push_back(IsTrueMatch(label[q], label[r], options) ? 1 : 0);
+    }
+    queries.push_back(std::move(query));
+  }
+  return queries;
+}
+
+std::vector<Query> RelabelQueries(const std::vector<Query>& queries,
+                                  const std::vector<PoseRecord>& poses,
+                                  const ProtocolOptions& options, const std::string& ground_truth) {
+  const std::vector<PoseRecord> label = LabelPoses(poses, ground_truth);
+  std::vector<Query> out = queries;
+  for (Query& q : out) {
+    for (size_t j = 0; j < q.database.size(); ++j) {
+      q.is_true_match[j] = IsTrueMatch(label[q.frame], label[q.database[j]], options) ? 1 : 0;
+    }
+  }
+  return out;
+}
+
+LabelDisagreement CompareLabels(const std::vector<Query>& a, const std::vector<Query>& b) {
+  HOILCD_CHECK(a.size() == b.size());
+  LabelDisagreement d;
+  for (size_t i = 0; i < a.size(); ++i) {
+    HOILCD_CHECK(a[i].frame == b[i].frame && a[i].database == b[i].database);
+    ++d.queries;
+    bool differs = false;
+    for (size_t j = 0; j < a[i].database.size(); ++j) {
+      ++d.pairs;
+      if (a[i].is_true_match[j] != b[i].is_true_match[j]) {
+        ++d.pairs_differing;
+        differs = true;
+      }
+    }
+    if (differs) ++d.queries_differing;
+    const bool in_a = a[i].NumTrueMatches() > 0, in_b = b[i].NumTrueMatches() > 0;
+    if (in_a && !in_b) ++d.scored_only_in_a;
+    if (in_b && !in_a) ++d.scored_only_in_b;
+  }
+  return d;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,253 @@
+#include "hoilcd/bench/evaluation/tracking_metrics.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "hoilcd/bench/evaluation/json_number.h"
+#include "hoilcd/core/tracking/lapjv.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/stats.h"
+
+namespace hoilcd {
+namespace {
+
+// Assignment costs: 1 - IoU for pairs at or above the threshold (at most 1 - threshold), a value
+// above the limit for the rest, so LinearAssignment never matches them and prefers more matches.
+constexpr double kCostLimit = 1.0;
+constexpr double kForbiddenCost = 2.0;
+
+// Matches persons (rows) to predicted boxes (columns) with IoU >= threshold: as many as
+// possible, then the largest total IoU.
+std::vector<std::pair<int, int>> MatchByIoU(const std::vector<cv::Rect2f>& persons,
+                                            const std::vector<cv::Rect2f>& boxes,
+                                            double iou_threshold) {
+  if (persons.empty() || boxes.empty()) return {};
+  std::vector<std::vector<double>> cost(persons.size(), std::vector<double>(boxes.size()));
+  for (size_t i = 0; i < persons.size(); ++i) {
+    for (size_t j = 0; j < boxes.size(); ++j) {
+      const double iou = BoxIoU(persons[i], boxes[j]);
+      cost[i][j] = iou >= iou_threshold ? 1.0 - iou : kForbiddenCost;
+    }
+  }
+  std::vector<std::pair<int, int>> matches;
+  for (const auto& [i, j] : LinearAssignment(cost, kCostLimit).matches) {
+    if (cost[i][j] < kCostLimit) matches.emplace_back(i, j);
+  }
+  return matches;
+}
+
+}  // namespace
+
+std::string TrackingMetricsOptions::Check() const {
+  if (!(iou_threshold > 0 && iou_threshold <= 1)) return "iou_threshold must be in (0, 1]";
+  if (!(min_visible_fraction >= 0 && min_visible_fraction <= 1)) {
+    return "min_visible_fraction must be in [0, 1]";
+  }
+  if (!(min_box_height_px >= 0)) return "min_box_height_px must not be negative";
+  if (!(hoi_tolerance_px >= 0)) return "hoi_tolerance_px must not be negative";
+  return "";
+}
+
+nlohmann::json TrackingMetrics::ToJson() const {
+  return {{"frames", frames},
+          {"gt_boxes", gt_boxes},
+          {"predicted_boxes", predicted_boxes},
+          {"true_positives", true_positives},
+          {"false_positives", false_positives},
+          {"false_negatives", false_negatives},
+          {"id_switches", id_switches},
+          {"precision", JsonNumber(precision)},
+          {"recall", JsonNumber(recall)},
+          {"mota", JsonNumber(mota)},
+          {"idtp", idtp},
+          {"idfp", idfp},
+          {"idfn", idfn},
+          {"idf1", JsonNumber(idf1)},
+          {"hoi_contacts", hoi_contacts},
+          {"hoi_contacts_without_points", hoi_contacts_without_points},
+          {"hoi_median_error_px", JsonNumber(hoi_median_error_px)},
+          {"hoi_fraction_within_tolerance", JsonNumber(hoi_fraction_within_tolerance)}};
+}
+
+TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_truth,
+                                       const std::vector<FrameTracks>& predicted,
+                                       const TrackingMetricsOptions& options) {
+  const std::string problem = options.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  std::map<int, const FramePersons*> truth_of_frame;
+  std::map<int, const FrameTracks*> tracks_of_frame;
+  std::set<int> frames;
+  for (const FramePersons& f : ground_truth) {
+    HOILCD_CHECK_MSG(truth_of_frame.emplace(f.frame, &f).second, "frame " << f.frame << " twice");
+    frames.insert(f.frame);
+  }
+  for (const FrameTracks& f : predicted) {
+    HOILCD_CHECK_MSG(tracks_of_frame.emplace(f.frame, &f).second, "frame " << f.frame << " twice");
+    frames.insert(f.frame);
+  }
+
+  TrackingMetrics m;
+  m.frames = static_cast<int>(frames.size());
+  std::map<int, int> last_match;            // person id -> track id of its latest match
+  std::map<int, int> previous_frame_match;  // person id -> track id matched in the last frame
+  std::map<std::pair<int, int>, int> overlap_frames;  // (person, track) -> frames at IoU >= thr
+  std::map<int, int> person_boxes, track_boxes;
+  std::vector<double> hoi_errors_px;
+  int hoi_hits = 0;
+  for (int frame : frames) {
+    std::vector<const PersonRecord*> persons;
+    std::vector<const TrackedBox*> tracks;
+    if (const auto it = truth_of_frame.find(frame); it != truth_of_frame.end()) {
+      for (const PersonRecord& p : it->second->persons) persons.push_back(&p);
+    }
+    if (const auto it = tracks_of_frame.find(frame); it != tracks_of_frame.end()) {
+      std::set<int> ids;
+      for (const TrackedBox& t : it->second->tracks) {
+        HOILCD_CHECK_MSG(ids.insert(t.id).second, "track " << t.id << " twice in frame " << frame);
+        tracks.push_back(&t);
+      }
+    }
+    auto boxes_of = [](const auto& items, auto box) {
+      std::vector<cv::Rect2f> out;
+      for (const auto* item : items) out.push_back(box(*item));
+      return out;
+    };
+    auto person_box = [](const PersonRecord& p) { return p.box_px; };
+    auto track_box = [](const TrackedBox& t) { return t.box; };
+
+    // Ignored persons take their matching predictions with them.
+    const auto is_ignored = [&](const PersonRecord* p) {
+      return p->visible_fraction < options.min_visible_fraction ||
+             p->box_px.height < options.min_box_height_px;
+    };
+    if (std::any_of(persons.begin(), persons.end(), is_ignored)) {
+      std::vector<uint8_t> drop_track(tracks.size(), 0);
+      for (const auto& [i, j] : MatchByIoU(boxes_of(persons, person_box),
+                                           boxes_of(tracks, track_box), options.iou_threshold)) {
+        if (is_ignored(persons[i])) drop_track[j] = 1;
+      }
+      std::vector<const TrackedBox*> kept;
+      for (size_t j = 0; j < tracks.size(); ++j) {
+        if (!drop_track[j]) kept.push_back(tracks[j]);
+      }
+      tracks = std::move(kept);
+      persons.erase(std::remove_if(persons.begin(), persons.end(), is_ignored), persons.end());
+    }
+
+    // IDF1 counts every (person, track) overlap, independently of the CLEAR MOT matching.
+    for (const PersonRecord* p : persons) {
+      ++person_boxes[p->id];
+      for (const TrackedBox* t : tracks) {
+        if (BoxIoU(p->box_px, t->box) >= options.iou_threshold) ++overlap_frames[{p->id, t->id}];
+      }
+    }
+    for (const TrackedBox* t : tracks) ++track_boxes[t->id];
+
+    // CLEAR MOT: keep last frame's correspondences that are still valid, assign the rest.
+    std::vector<std::pair<int, int>> matches;
+    std::vector<uint8_t> person_used(persons.size(), 0), track_used(tracks.size(), 0);
+    for (size_t i = 0; i < persons.size(); ++i) {
+      const auto previous = previous_frame_match.find(persons[i]->id);
+      if (previous == previous_frame_match.end()) continue;
+      for (size_t j = 0; j < tracks.size(); ++j) {
+        if (tracks[j]->id == previous->second && !track_used[j] &&
+            BoxIoU(persons[i]->box_px, tracks[j]->box) >= options.iou_threshold) {
+          matches.emplace_back(i, j);
+          person_used[i] = track_used[j] = 1;
+          break;
+        }
+      }
+    }
+    std::vector<int> free_persons, free_tracks;
+    for (size_t i = 0; i < persons.size(); ++i) {
+      if (!person_used[i]) free_persons.push_back(static_cast<int>(i));
+    }
+    for (size_t j = 0; j < tracks.size(); ++j) {
+      if (!track_used[j]) free_tracks.push_back(static_cast<int>(j));
+    }
+    std::vector<cv::Rect2f> free_person_boxes, free_track_boxes;
+    for (int i : free_persons) free_person_boxes.push_back(persons[i]->box_px);
+    for (int j : free_tracks) free_track_boxes.push_back(tracks[j]->box);
+    for (const auto& [a, b] :
+         MatchByIoU(free_person_boxes, free_track_boxes, options.iou_threshold)) {
+      matches.emplace_back(free_persons[a], free_tracks[b]);
+    }
+
+    std::map<int, int> this_frame_match;
+    for (const auto& [i, j] : matches) {
+      const PersonRecord& person = *persons[i];
+      const TrackedBox& track = *tracks[j];
+      const auto last = last_match.find(person.id);
+      if (last != last_match.end() && last->second != track.id) ++m.id_switches;
+      last_match[person.id] = track.id;
+      this_frame_match[person.id] = track.id;
+      for (const ContactRecord& contact : person.contacts) {
+        if (!contact.visible) continue;
+        ++m.hoi_contacts;
+        if (track.hoi_points_px.empty()) {
+          ++m.hoi_contacts_without_points;
+          continue;
+        }
+        double nearest_px = INFINITY;
+        for (const cv::Point2f& q : track.hoi_points_px) {
+          nearest_px = std::min(nearest_px, std::hypot(q.x - contact.u_px, q.y - contact.v_px));
+        }
+        hoi_errors_px.push_back(nearest_px);
+        if (nearest_px <= options.hoi_tolerance_px) ++hoi_hits;
+      }
+    }
+    previous_frame_match = std::move(this_frame_match);
+    m.gt_boxes += static_cast<int>(persons.size());
+    m.predicted_boxes += static_cast<int>(tracks.size());
+    m.true_positives += static_cast<int>(matches.size());
+    m.false_positives += static_cast<int>(tracks.size() - matches.size());
+    m.false_negatives += static_cast<int>(persons.size() - matches.size());
+  }
+
+  if (m.true_positives + m.false_positives > 0) {
+    m.precision = static_cast<double>(m.true_positives) / (m.true_positives + m.false_positives);
+  }
+  if (m.gt_boxes > 0) {
+    m.recall = static_cast<double>(m.true_positives) / m.gt_boxes;
+    m.mota = 1.0 - static_cast<double>(m.false_negatives + m.false_positives + m.id_switches) /
+                       m.gt_boxes;
+  }
+
+  // IDF1: one-to-one person-to-track assignment maximising the frames they overlap (IDTP).
+  // With cost C - IDTP and limit C, each match changes the objective by -IDTP.
+  std::vector<int> person_ids, track_ids;
+  for (const auto& entry : person_boxes) person_ids.push_back(entry.first);
+  for (const auto& entry : track_boxes) track_ids.push_back(entry.first);
+  int max_overlap = 0;
+  for (const auto& entry : overlap_frames) max_overlap = std::max(max_overlap, entry.second);
+  if (max_overlap > 0) {
+    const double c = max_overlap + 1.0;
+    std::vector<std::vector<double>> cost(person_ids.size(),
+                                          std::vector<double>(track_ids.size(), 2 * c + 1));
+    for (const auto& [pair, count] : overlap_frames) {
+      const size_t row = std::lower_bound(person_ids.begin(), person_ids.end(), pair.first) -
+                         person_ids.begin();
+      const size_t col = std::lower_bound(track_ids.begin(), track_ids.end(), pair.second) -
+                         track_ids.begin();
+      cost[row][col] = c - count;
+    }
+    for (const auto& [row, col] : LinearAssignment(cost, c).matches) {
+      const auto it = overlap_frames.find({person_ids[row], track_ids[col]});
+      if (it != overlap_frames.end()) m.idtp += it->second;
+    }
+  }
+  m.idfn = m.gt_boxes - m.idtp;
+  m.idfp = m.predicted_boxes - m.idtp;
+  if (m.gt_boxes + m.predicted_boxes > 0) {
+    m.idf1 = 2.0 * m.idtp / (m.gt_boxes + m.predicted_boxes);
+  }
+
+  m.hoi_median_error_px = Median(hoi_errors_px);
+  if (m.hoi_contacts > 0) {
+    m.hoi_fraction_within_tolerance = static_cast<double>(hoi_hits) / m.hoi_contacts;
+  }
+  return m;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,77 @@
+#include "hoilcd/bench/export/mot_export.h"
+
+#include <cctype>
+#include <cstdio>
+
+#include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/bench/methods/manifest_options.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr const char* kBenchmark = "HOILCD-train";
+
+std::string Box(const cv::Rect2f& b) {
+  char buf[96];
+  std::snprintf(buf, sizeof(buf), "%.2f,%.2f,%.2f,%.2f", b.x + 1.0, b.y + 1.0, b.width, b.height);  // 1-based pixels
+  return buf;
+}
+
+}  // namespace
+
+std::string MotGroundTruth(const std::vector<FramePersons>& persons, const TrackingMetricsOptions& options) {
+  std::string out;
+  char tail[64];
+  for (const FramePersons& f : persons) {
+    for (const PersonRecord& p : f.persons) {
+      const bool scored = p.visible_fraction >= options.min_visible_fraction && p.box_px.height >= options.min_box_height_px;
+      std::snprintf(tail, sizeof(tail), ",%d,%d,%.4f\n", scored ? 1 : 0, scored ? 1 : 8, p.visible_fraction);
+      out += std::to_string(f.frame + 1) + "," + std::to_string(p.id + 1) + "," + Box(p.box_px) + tail;
+    }
+  }
+  return out;
+}
+
+std::string MotTracks(const std::vector<FrameTracks>& tracks) {
+  std::string out;
+  for (const FrameTracks& f : tracks) {
+    for (const TrackedBox& t : f.tracks) {
+      out += std::to_string(f.frame + 1) + "," + std::to_string(t.id) + "," + Box(t.box) + ",1,-1,-1,-1\n";
+    }
+  }
+  return out;
+}
+
+MotExport ExportMot(const Dataset& dataset, const BenchOptions& options_in, const std::string& out_dir) {
+  const BenchOptions options = WithManifest(options_in, dataset.manifest());
+  FrontEndOptions front;
+  front.detector = options.detector;
+  front.tracker = options.tracker;
+  front.hoi = options.hoi;
+  front.threads = options.threads;
+  const FrontEndOutput out = RunFrontEnds(dataset, {FrontEnd::kPersons}, front);
+
+  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, /*allow_exceptions=*/false);
+  const bool named = scene.is_object() && scene.contains("name") && scene["name"].is_string();
+  std::string sequence = "HOILCD-" + (named ? scene["name"].get<std::string>() : std::string("scene"));
+  for (char& c : sequence)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+  const DatasetManifest& m = dataset.manifest();
+  const std::string gt_root = out_dir + "/gt/mot_challenge";
+  const std::string seq_dir = gt_root + "/" + kBenchmark + "/" + sequence;
+  MotExport e;
+  e.sequence = sequence;
+  e.ground_truth = seq_dir + "/gt/gt.txt";
+  e.tracks = out_dir + "/trackers/mot_challenge/" + kBenchmark + "/hoilcd-dlcd/data/" + sequence + ".txt";
+  WriteFileAtomic(e.ground_truth, MotGroundTruth(dataset.persons(), options.tracking_metrics));
+  char info[512];
+  std::snprintf(info, sizeof(info),
+                "[Sequence]\nname=%s\nimDir=img1\nframeRate=%g\nseqLength=%d\nimWidth=%d\nimHeight=%d\nimExt=.png\n",
+                sequence.c_str(), m.frame_rate_hz, dataset.num_frames(), m.intrinsics.width, m.intrinsics.height);
+  WriteFileAtomic(seq_dir + "/seqinfo.ini", info);
+  WriteFileAtomic(gt_root + "/seqmaps/" + kBenchmark + ".txt", "name\n" + sequence + "\n");
+  WriteFileAtomic(e.tracks, MotTracks(out.tracks));
+  return e;
+}
+
+}  // namespace hoilcd

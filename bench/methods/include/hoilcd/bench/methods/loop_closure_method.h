@@ -1,0 +1,90 @@
+// A loop-closure method as an object (as COLMAP's retrieval::VisualIndex): its name, one-line
+// description, whether it is one of the paper's, which shared front ends it reads, which other
+// methods' scores it combines (composites such as fusion), and how it scores every query against
+// its database. Methods are made by name through the registry; the built-ins are listed once in
+// bench/methods/src/method_list.h and other code can add its own with RegisterMethod.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hoilcd/bench/evaluation/evaluate.h"
+#include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/option_table.h"
+
+namespace hoilcd {
+
+struct BenchOptions;
+
+// What a method produced for every query.
+struct MethodScores {
+  std::vector<std::vector<double>> scores;  // per query, parallel to Query::database, finite
+  std::vector<double> extract_ms;           // per query: feature extraction of its frame, ms
+  std::vector<double> match_ms;             // per query: scoring against its database, ms
+  // Optional frames x frames similarity a method computed anyway (thumb), for methods built on it.
+  std::vector<std::vector<float>> dense;
+};
+
+// Everything a method may read while scoring.
+struct MethodContext {
+  const Dataset& dataset;
+  const BenchOptions& options;
+  const Labelling& labelling;        // queries, their databases and which are worth scoring
+  const FrontEndOutput& front_ends;  // the front ends the run's methods asked for
+  const std::map<std::string, MethodScores>& scored;  // methods scored so far (Inputs() included)
+  uint64_t seed;                     // the dataset's seed (keyed RNG of RANSAC)
+  int threads;                       // 0 = every core
+
+  const std::vector<Query>& queries() const { return labelling.queries; }
+  const MethodScores& Input(const std::string& name) const;  // HOILCD_CHECK when not scored
+  std::vector<double> PerQuery(const std::vector<double>& per_frame) const;  // picks each query's frame
+};
+
+// Which per-frame features the report draws for a method's matches.
+enum class ShownFeatures { kNone, kKeypoints, kHoiPoints };
+
+class LoopClosureMethod {
+ public:
+  virtual ~LoopClosureMethod() = default;
+  virtual std::string Name() const = 0;         // as given to --methods
+  virtual std::string Description() const = 0;  // one line for the report
+  virtual bool FromPaper() const { return false; }  // one of the paper's Table 1 methods
+  virtual ShownFeatures Features() const { return ShownFeatures::kNone; }
+  virtual std::set<FrontEnd> FrontEnds() const { return {}; }
+  virtual std::vector<std::string> Inputs() const { return {}; }  // scored before this one
+  // The fields of BenchOptions this method reads that --param NAME.FIELD=VALUE may set for it
+  // alone (method_params.h); null: none.
+  virtual const OptionTable<BenchOptions>* Params() const { return nullptr; }
+  virtual MethodScores Score(const MethodContext& context) const = 0;
+
+  // Scoring in one pass with other methods. Methods without Inputs() whose PassKey (under their
+  // own options) is the same non-empty text are scored by one ScoreTogether call on the first of
+  // them in scoring order, with all of them and their contexts; it returns what each one's
+  // Score() would (scores and timing). A key names one family of classes that can score each
+  // other (prefix it with the family's name). The point-set methods share each pair's MNN this way.
+  virtual std::string PassKey(const MethodContext& context) const {
+    (void)context;
+    return "";
+  }
+  virtual std::vector<MethodScores> ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
+                                                  const std::vector<MethodContext>& contexts) const;
+};
+
+using MethodFactory = std::function<std::unique_ptr<LoopClosureMethod>()>;
+
+// Adds a method to every later lookup (after the built-ins, in call order). InputError-free:
+// HOILCD_CHECK on a name already taken.
+void RegisterMethod(const MethodFactory& factory);
+
+// A new instance of the method called `name`; HOILCD_CHECK on unknown names (ParseMethodList
+// validates user input first).
+std::unique_ptr<LoopClosureMethod> CreateMethod(const std::string& name);
+
+// One instance of every registered method, in report order.
+const std::vector<std::unique_ptr<LoopClosureMethod>>& RegisteredMethods();
+
+}  // namespace hoilcd

@@ -1,0 +1,23 @@
+// DLCD (the paper's dynamic landmarks): HOI points, the bottom contour of tracked people, matched
+// like SLCD's corners.
+#include "hoilcd/bench/methods/bench_options.h"
+#include "point_set_scoring.h"
+
+namespace hoilcd {
+namespace {
+
+class Dlcd : public PointSetMethod {
+ public:
+  Dlcd() : PointSetMethod(FrontEnd::kPersons, /*lo=*/false) {}
+  std::string Name() const override { return "dlcd"; }
+  std::string Description() const override {
+    return "dynamic landmarks: HOI points (bottom contour of tracked people) + the same matching";
+  }
+  bool FromPaper() const override { return true; }
+};
+
+}  // namespace
+
+std::unique_ptr<LoopClosureMethod> MakeDlcdMethod() { return std::make_unique<Dlcd>(); }
+
+}  // namespace hoilcd

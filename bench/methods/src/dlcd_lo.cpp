@@ -1,0 +1,19 @@
+// DLCD with locally optimised RANSAC.
+#include "hoilcd/bench/methods/bench_options.h"
+#include "point_set_scoring.h"
+
+namespace hoilcd {
+namespace {
+
+class DlcdLo : public PointSetMethod {
+ public:
+  DlcdLo() : PointSetMethod(FrontEnd::kPersons, /*lo=*/true) {}
+  std::string Name() const override { return "dlcd-lo"; }
+  std::string Description() const override { return "DLCD with locally optimised RANSAC"; }
+};
+
+}  // namespace
+
+std::unique_ptr<LoopClosureMethod> MakeDlcdLoMethod() { return std::make_unique<DlcdLo>(); }
+
+}  // namespace hoilcd

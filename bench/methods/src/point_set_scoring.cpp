@@ -1,0 +1,106 @@
+#include "point_set_scoring.h"
+
+#include <cstdio>
+
+#include "hoilcd/bench/methods/bench_options.h"
+#include "hoilcd/bench/methods/method_params.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/progress.h"
+
+namespace hoilcd {
+namespace {
+
+const RetrievalIndex& IndexOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
+  return front_end == FrontEnd::kKeypoints ? front_ends.keypoint_index : front_ends.hoi_index;
+}
+
+const std::vector<double>& ExtractMsOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
+  return front_end == FrontEnd::kKeypoints ? front_ends.keypoints_ms : front_ends.persons_ms;
+}
+
+}  // namespace
+
+ShownFeatures PointSetMethod::Features() const {
+  return front_end_ == FrontEnd::kKeypoints ? ShownFeatures::kKeypoints : ShownFeatures::kHoiPoints;
+}
+
+const OptionTable<BenchOptions>* PointSetMethod::Params() const {
+  static const OptionTable<BenchOptions> plain =
+      OptionTable<BenchOptions>().Flatten(&BenchOptions::ransac, RansacParams()).Flatten(&BenchOptions::match, MatchParams());
+  static const OptionTable<BenchOptions> with_lo = OptionTable<BenchOptions>(plain).Add(
+      "lo_refits", &BenchOptions::lo_refits, 2, "", OptionRange::Any().AtLeast(1),
+      "least-squares refits of the homography on its inliers");
+  return lo_ ? &with_lo : &plain;
+}
+
+RansacOptions PointSetMethod::Ransac(const BenchOptions& options) const {
+  RansacOptions ransac = options.ransac;
+  if (lo_) ransac.local_optimisation_refits = options.lo_refits;
+  return ransac;
+}
+
+MethodScores PointSetMethod::Score(const MethodContext& context) const {
+  return ScoreTogether({this}, {context}).front();
+}
+
+// The index and the matching decide the MNN; the seed is the dataset's for every method.
+std::string PointSetMethod::PassKey(const MethodContext& context) const {
+  const MatchOptions& match = context.options.match;
+  char key[120];
+  std::snprintf(key, sizeof(key), "point-set %s vertical_tolerance=%.17g image_height_px=%d",
+                FrontEndName(front_end_).c_str(), match.vertical_tolerance, match.image_height_px);
+  return key;
+}
+
+std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
+                                                        const std::vector<MethodContext>& contexts) const {
+  HOILCD_CHECK_MSG(methods.size() == contexts.size() && !methods.empty() && methods.front() == this,
+                   "a scoring pass is called on its first method, with one context per method");
+  // Only the first context's matching options, seed, threads, queries and front ends are used.
+  const MethodContext& context = contexts.front();
+  std::vector<RansacOptions> variants;
+  std::string title;
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const auto* method = dynamic_cast<const PointSetMethod*>(methods[m]);
+    const MethodContext& c = contexts[m];
+    HOILCD_CHECK_MSG(method != nullptr && method->front_end_ == front_end_ && c.options.match == context.options.match &&
+                         c.seed == context.seed && c.threads == context.threads &&
+                         &c.labelling == &context.labelling && &c.front_ends == &context.front_ends,
+                     methods[m]->Name() << " cannot share " << Name() << "'s scoring pass");
+    variants.push_back(method->Ransac(c.options));
+    title += (m ? " + " : "") + methods[m]->Name();
+  }
+  const std::vector<Query>& queries = context.queries();
+  // Every scored query in one parallel call; skipped queries are not scored (all 0).
+  std::vector<size_t> scored;
+  std::vector<int> frames;
+  std::vector<std::vector<int>> databases;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    if (!context.labelling.to_score[i] || queries[i].database.empty()) continue;
+    scored.push_back(i);
+    frames.push_back(queries[i].frame);
+    databases.push_back(queries[i].database);
+  }
+  int64_t pairs = 0;
+  for (const std::vector<int>& d : databases) pairs += static_cast<int64_t>(d.size());
+  ProgressReporter progress(title, pairs, "pairs");
+  std::vector<std::vector<int64_t>> time_ns;
+  const auto tables = IndexOf(context.front_ends, front_end_)
+                          .ScoreDatabases(frames, databases, context.options.match, variants, context.seed,
+                                          context.threads, &time_ns, &progress);
+  progress.Done();
+  std::vector<MethodScores> out(methods.size());
+  for (size_t m = 0; m < methods.size(); ++m) {
+    out[m].scores.resize(queries.size());
+    out[m].match_ms.assign(queries.size(), 0.0);
+    for (size_t i = 0; i < queries.size(); ++i) out[m].scores[i].assign(queries[i].database.size(), 0.0);
+    for (size_t k = 0; k < scored.size(); ++k) {
+      out[m].scores[scored[k]].assign(tables[m][k].begin(), tables[m][k].end());
+      out[m].match_ms[scored[k]] = 1e-6 * static_cast<double>(time_ns[m][k]);
+    }
+    out[m].extract_ms = contexts[m].PerQuery(ExtractMsOf(context.front_ends, front_end_));
+  }
+  return out;
+}
+
+}  // namespace hoilcd

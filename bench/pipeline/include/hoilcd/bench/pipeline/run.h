@@ -1,0 +1,48 @@
+// `hoilcd run`: render a scene (reusing a cached dataset whose manifest matches the scene's
+// hash), benchmark it, write the report, and say how long each part took.
+#pragma once
+
+#include <atomic>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/bench/report/report.h"
+#include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/sim/scene/scene.h"
+
+namespace hoilcd {
+
+struct RunOptions {
+  std::string cache_dir = "runs";   // datasets and reports go to CACHE/<scene>-<hash>/
+  std::string report_dir;           // default CACHE/<scene>-<hash>/report
+  int threads = 0;                  // 0 = every core
+  const std::atomic<bool>* cancel = nullptr;
+  // SLAM loop thresholds (when bench.slam and no --loop-threshold): each method's 100 %-precision
+  // threshold on the scene rendered with seed + calibration_seed_offset. Its dataset is cached
+  // like any run's and its thresholds in calibration.json beside it, keyed by that dataset's
+  // manifest, the hoilcd program's own bytes and the bench options a user can set.
+  uint64_t calibration_seed_offset = 1000;
+  std::string Check() const;
+};
+
+struct RunOutcome {
+  std::string dataset_dir;
+  std::string report_dir;
+  BenchResult result;
+  ReportTiming timing;
+  std::vector<std::string> warnings;  // the render's and the dataset's, for the caller to print
+  std::string calibration_dir;  // dataset the loop thresholds came from (empty: none)
+};
+
+// The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.
+std::string RunFolder(const Scene& scene, const std::string& cache_dir);
+
+// The bench settings a user can set that change metrics (methods, protocol, keypoint detector,
+// fusion constant, -lo refits, --param), as JSON: what a sweep plan records and what keys the
+// SLAM calibration's cache.
+nlohmann::json BenchSettingsJson(const BenchOptions& options);
+
+RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options);
+
+}  // namespace hoilcd

@@ -1,0 +1,327 @@
+#include "hoilcd/bench/pipeline/sweep.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/sim/scene/scene.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Settings = std::vector<std::pair<std::string, std::string>>;
+
+std::string Trim(const std::string& s) {
+  const size_t b = s.find_first_not_of(" \t\n\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\n\r") - b + 1);
+}
+
+// Valid JSON is re-dumped compactly (" [1, 2]" and "[1,2]" name the same run); other text is a
+// string value, as ApplyOverride takes it.
+std::string CanonicalValue(const std::string& text) {
+  const std::string t = Trim(text);
+  if (nlohmann::json::accept(t)) return nlohmann::json::parse(t).dump();
+  return t;
+}
+
+}  // namespace
+
+std::string SweepSafeName(const std::string& s) {
+  std::string out = s;
+  for (char& c : out) {
+    const bool ok = std::isalnum(static_cast<unsigned char>(c)) || std::string("._=,+-[]").find(c) != std::string::npos;
+    if (!ok) c = '_';
+  }
+  return out;
+}
+
+std::string SweepSettingsName(const std::vector<std::pair<std::string, std::string>>& settings) {
+  std::string out;
+  for (const auto& [key, value] : settings) out += (out.empty() ? "" : ",") + key + "=" + value;
+  return out;
+}
+
+nlohmann::json ReadSweepJson(const std::string& path) {
+  std::string bytes;
+  try {
+    bytes = ReadFileBytes(path);
+  } catch (const std::exception&) {
+    throw InputError(path, "cannot read the file (is this a hoilcd sweep output folder?)");
+  }
+  try {
+    return nlohmann::json::parse(bytes);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path, std::string("not valid JSON (") + e.what() + ")");
+  }
+}
+
+std::vector<std::string> SplitTopLevelCommas(const std::string& text, const std::string& where) {
+  std::vector<std::string> items;
+  std::string current;
+  std::vector<char> open;  // brackets still open, innermost last
+  bool in_string = false, escaped = false;
+  for (char c : text) {
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      open.push_back(c == '[' ? ']' : '}');
+    } else if (c == ']' || c == '}') {
+      if (open.empty() || open.back() != c) {
+        throw InputError(where, "unbalanced '" + std::string(1, c) + "' in '" + text + "'");
+      }
+      open.pop_back();
+    } else if (c == ',' && open.empty()) {
+      items.push_back(Trim(current));
+      current.clear();
+      continue;
+    }
+    current += c;
+  }
+  if (in_string) throw InputError(where, "unterminated string in '" + text + "'");
+  if (!open.empty()) throw InputError(where, "unclosed '" + std::string(1, open.back() == ']' ? '[' : '{') + "' in '" + text + "'");
+  items.push_back(Trim(current));
+  for (const std::string& item : items) {
+    if (item.empty()) throw InputError(where, "empty value in '" + text + "' (values are separated by single commas)");
+  }
+  return items;
+}
+
+SweepAxis ParseSweepAxis(const std::string& key_equals_values) {
+  const size_t eq = key_equals_values.find('=');
+  if (eq == std::string::npos) {
+    throw InputError("--set", "expected KEY=V1,V2,... but got '" + key_equals_values + "' (no '=')");
+  }
+  SweepAxis axis;
+  axis.key = Trim(key_equals_values.substr(0, eq));
+  if (axis.key.empty()) throw InputError("--set", "empty key in '" + key_equals_values + "'");
+  if (axis.key == "seed" || axis.key == "/seed") {
+    throw InputError("--set", "the seed is swept by --seeds N (seeds 1..N), not by --set");
+  }
+  std::set<std::string> seen;
+  for (const std::string& v : SplitTopLevelCommas(key_equals_values.substr(eq + 1), "--set " + axis.key)) {
+    const std::string value = CanonicalValue(v);
+    if (!seen.insert(value).second) throw InputError("--set " + axis.key, "value " + value + " is listed twice");
+    axis.values.push_back(value);
+  }
+  return axis;
+}
+
+std::string SweepShard::Check() const {
+  if (count < 1) return "the number of shards must be at least 1";
+  if (index < 0 || index >= count) return "the shard index must be in 0.." + std::to_string(count - 1);
+  return "";
+}
+
+SweepShard ParseSweepShard(const std::string& text) {
+  const size_t slash = text.find('/');
+  auto parse = [&](const std::string& part) {
+    const std::string t = Trim(part);
+    if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos || t.size() > 9) {
+      throw InputError("--shard", "expected I/N with whole numbers, 0 <= I < N (e.g. 0/4), but got '" + text + "'");
+    }
+    return std::stoi(t);
+  };
+  if (slash == std::string::npos) parse("");
+  SweepShard shard;
+  shard.index = parse(text.substr(0, slash));
+  shard.count = parse(text.substr(slash + 1));
+  if (const std::string problem = shard.Check(); !problem.empty()) throw InputError("--shard", problem + " (got '" + text + "')");
+  return shard;
+}
+
+std::string SweepRunSpec::Name() const {
+  const std::string s = SweepSettingsName(settings);
+  return s + (s.empty() ? "" : ",") + "seed=" + std::to_string(seed);
+}
+
+std::string SweepRunSpec::FolderName() const { return SweepSafeName(Name()); }
+
+std::vector<std::string> SweepRunSpec::Overrides() const {
+  std::vector<std::string> out;
+  for (const auto& [key, value] : settings) out.push_back(key + "=" + value);
+  out.push_back("seed=" + std::to_string(seed));
+  return out;
+}
+
+nlohmann::json SweepRunSpec::ToJson() const {
+  nlohmann::json s = nlohmann::json::array();
+  for (const auto& [key, value] : settings) s.push_back({key, value});
+  return {{"settings", s}, {"seed", seed}};
+}
+
+SweepRunSpec SweepRunSpec::FromJson(const nlohmann::json& j) {
+  try {
+    SweepRunSpec spec;
+    for (const nlohmann::json& kv : j.at("settings")) spec.settings.emplace_back(kv.at(0).get<std::string>(), kv.at(1).get<std::string>());
+    spec.seed = j.at("seed").get<int>();
+    return spec;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("sweep run", std::string("malformed run record (") + e.what() + ")");
+  }
+}
+
+std::vector<Settings> SweepPlan::Combinations() const {
+  std::vector<Settings> out = {{}};
+  for (const SweepAxis& axis : axes) {
+    std::vector<Settings> next;
+    for (const Settings& prefix : out) {
+      for (const std::string& value : axis.values) {
+        Settings s = prefix;
+        s.emplace_back(axis.key, value);
+        next.push_back(s);
+      }
+    }
+    out = next;
+  }
+  return out;
+}
+
+std::vector<SweepRunSpec> SweepPlan::Runs() const {
+  std::vector<SweepRunSpec> runs;
+  for (const Settings& s : Combinations()) {
+    for (int seed = 1; seed <= seeds; ++seed) runs.push_back({s, seed});
+  }
+  std::sort(runs.begin(), runs.end(), [](const SweepRunSpec& a, const SweepRunSpec& b) { return a.Name() < b.Name(); });
+  return runs;
+}
+
+std::vector<SweepRunSpec> SweepPlan::ShardRuns(const SweepShard& shard) const {
+  HOILCD_CHECK_MSG(shard.Check().empty(), shard.Check());
+  const std::vector<SweepRunSpec> all = Runs();
+  std::vector<SweepRunSpec> out;
+  for (size_t k = static_cast<size_t>(shard.index); k < all.size(); k += static_cast<size_t>(shard.count)) out.push_back(all[k]);
+  return out;
+}
+
+std::string SweepPlan::Check() const {
+  if (scene_path.empty()) return "no scene file";
+  if (seeds < 1) return "seeds must be at least 1";
+  std::set<std::string> keys, folders;
+  for (const SweepAxis& axis : axes) {
+    if (axis.key.empty()) return "an axis has an empty key";
+    if (axis.values.empty()) return "axis " + axis.key + " has no values";
+    if (!keys.insert(axis.key).second) return "key " + axis.key + " is swept twice";
+  }
+  for (const SweepRunSpec& run : Runs()) {
+    if (!folders.insert(run.FolderName()).second) return "two runs share the folder name " + run.FolderName();
+  }
+  return "";
+}
+
+nlohmann::json SweepPlan::ToJson() const {
+  nlohmann::json a = nlohmann::json::array();
+  for (const SweepAxis& axis : axes) a.push_back({{"key", axis.key}, {"values", axis.values}});
+  return {{"scene_path", scene_path}, {"scene_name", scene_name}, {"scene_hash", scene_hash},
+          {"axes", a}, {"seeds", seeds}, {"bench", bench}};
+}
+
+SweepPlan SweepPlan::FromJson(const nlohmann::json& j, const std::string& where) {
+  try {
+    SweepPlan plan;
+    plan.scene_path = j.at("scene_path").get<std::string>();
+    plan.scene_name = j.at("scene_name").get<std::string>();
+    plan.scene_hash = j.at("scene_hash").get<std::string>();
+    for (const nlohmann::json& a : j.at("axes")) {
+      plan.axes.push_back({a.at("key").get<std::string>(), a.at("values").get<std::vector<std::string>>()});
+    }
+    plan.seeds = j.at("seeds").get<int>();
+    plan.bench = j.at("bench");
+    if (const std::string problem = plan.Check(); !problem.empty()) throw InputError(where, problem);
+    return plan;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(where, std::string("malformed sweep plan (") + e.what() + ")");
+  }
+}
+
+SweepPlan MakeSweepPlan(const std::string& scene_path, const std::vector<std::string>& sets, int seeds,
+                        const BenchOptions& bench) {
+  if (seeds < 1) throw InputError("--seeds", "must be at least 1 (seeds 1..N are run)");
+  SweepPlan plan;
+  plan.scene_path = scene_path;
+  const Scene base = LoadScene(scene_path);
+  plan.scene_name = base.name;
+  plan.scene_hash = base.hash;
+  plan.seeds = seeds;
+  plan.bench = BenchSettingsJson(bench);
+  for (const std::string& set : sets) plan.axes.push_back(ParseSweepAxis(set));
+  if (const std::string problem = plan.Check(); !problem.empty()) throw InputError("--set", problem);
+  for (const Settings& s : plan.Combinations()) {
+    try {
+      LoadScene(scene_path, SweepRunSpec{s, 1}.Overrides());
+    } catch (const InputError& e) {
+      throw InputError("--set", "the combination " + (s.empty() ? "(none)" : SweepSettingsName(s)) +
+                                    " does not give a valid scene:\n" + e.what());
+    }
+  }
+  return plan;
+}
+
+std::string SweepOptions::Check() const {
+  if (output_dir.empty()) return "the output folder must be given";
+  if (const std::string problem = shard.Check(); !problem.empty()) return problem;
+  return run.Check();
+}
+
+void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptions& options,
+              const SweepRunCallback& before_run) {
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("sweep", problem);
+  if (const std::string problem = plan.Check(); !problem.empty()) throw InputError("sweep", problem);
+  HOILCD_CHECK_MSG(BenchSettingsJson(bench) == plan.bench, "the plan was made with other bench options");
+  std::error_code ec;
+  fs::create_directories(options.output_dir + "/runs", ec);
+  if (ec) throw InputError(options.output_dir, "cannot create the sweep folder (" + ec.message() + ")");
+
+  const std::vector<SweepRunSpec> runs = plan.ShardRuns(options.shard);
+  nlohmann::json marker = {{"plan", plan.ToJson()},
+                           {"shard", {{"index", options.shard.index}, {"count", options.shard.count}}},
+                           {"runs", nlohmann::json::array()},
+                           {"finished", false}};
+  for (const SweepRunSpec& run : runs) marker["runs"].push_back(run.ToJson());
+  WriteFileAtomic(options.output_dir + "/sweep.json", marker.dump(2));
+
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const SweepRunSpec& run = runs[i];
+    const Scene scene = LoadScene(plan.scene_path, run.Overrides());
+    const std::string dir = options.output_dir + "/runs/" + run.FolderName();
+    const nlohmann::json record = {{"run", run.ToJson()}, {"scene_hash", scene.hash}, {"bench", plan.bench}};
+    const std::string record_path = dir + "/sweep_run.json";
+    bool kept = false;
+    if (fs::exists(record_path, ec) && fs::exists(dir + "/report.json", ec)) {
+      try {
+        kept = ReadSweepJson(record_path) == record;
+      } catch (const InputError&) {
+        kept = false;  // unreadable: run again
+      }
+    }
+    if (before_run) before_run(static_cast<int>(i) + 1, static_cast<int>(runs.size()), run, kept);
+    if (kept) continue;
+    fs::remove(record_path, ec);  // an interrupted rerun must not leave the old record
+    RunOptions r = options.run;
+    r.report_dir = dir;
+    RunScene(scene, bench, r);
+    WriteFileAtomic(record_path, record.dump(2));
+  }
+  marker["finished"] = true;
+  WriteFileAtomic(options.output_dir + "/sweep.json", marker.dump(2));
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,60 @@
+// What a user checks before trusting a sequence (`hoilcd inspect`, and a section of every bench
+// report): laps, lap-to-lap true path difference, odometry drift, camera jitter, people in view,
+// occlusion, and how the odometric and true ground truths disagree. Each topic is one section of
+// named figures; a new topic is a new section builder added to InspectDataset.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/bench/evaluation/protocol.h"
+#include "hoilcd/core/dataset/dataset.h"
+
+namespace hoilcd {
+
+// One number (or histogram) with its unit and a short label for people.
+struct InspectFigure {
+  std::string key;                // JSON key, snake_case with the unit (e.g. "median_m")
+  std::string label;              // printed name
+  double value = 0;               // the number (unused for histograms)
+  std::string unit;               // printed unit ("m", "%", "deg", "")
+  std::vector<double> bin_edges;  // histogram: counts[i] in [edge i, edge i+1); the last bin is closed
+  std::vector<int64_t> counts;    // histogram counts; empty for a plain number
+};
+
+// A plain-number figure.
+InspectFigure NumberFigure(std::string key, std::string label, double value, std::string unit);
+
+struct InspectSection {
+  std::string key;    // JSON key of the section ("trajectory", "camera", ...)
+  std::string title;  // printed title
+  std::vector<InspectFigure> figures;
+  const InspectFigure* Find(const std::string& key) const;
+};
+
+struct InspectReport {
+  std::vector<InspectSection> sections;
+  const InspectSection* Find(const std::string& key) const;
+  nlohmann::json ToJson() const;     // {section: {figure: value | {bin_edges, counts}}}
+  std::string ToText() const;        // for the terminal
+  std::string ToMarkdown() const;    // for report.md
+};
+
+// Lap-to-lap true path difference: for every frame of a later lap (laps from the true heading),
+// the distance of its true base position to the first lap's true path (a polyline); median, p90.
+// Odometry drift: |odometric - true position| at the end, its maximum, and the end as a % of the
+// true distance driven; laps and frames.
+InspectSection TrajectorySection(const std::vector<PoseRecord>& poses);
+// Camera roll, pitch and height: standard deviation about the mean and RMS change frame to frame.
+InspectSection CameraSection(const std::vector<PoseRecord>& poses);
+// People in view per frame (mean, min, max) and a histogram of their occlusion fractions.
+InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frames);
+// How the odometric and the true ground truth label the protocol's queries differently.
+InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol);
+
+// Every section, for a dataset folder; the camera's output (video PSNR, lens shading, FFC
+// freezes) is the last, from camera_output.h, measured on `threads` threads (0: every core).
+InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol = {}, int threads = 0);
+
+}  // namespace hoilcd

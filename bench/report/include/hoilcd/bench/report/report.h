@@ -1,0 +1,37 @@
+// The benchmark report folder (SPEC.md "Evaluation protocol"): report.json with every number,
+// queries.csv, report.md shaped like the paper's Table 1, and PNG figures (PR curves, the
+// trajectory coloured by top-1 correctness, MRR per lap, match pictures like figures 6–7).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/dataset/dataset.h"
+
+namespace hoilcd {
+
+struct ReportTiming {
+  double render_s = 0;        // rendering time of this run (0 when the dataset was cached)
+  bool render_cached = false; // the dataset was reused
+  double bench_s = 0;         // RunBench wall time
+  double calibration_s = 0;   // render + bench of the SLAM calibration sequence (0: none)
+  bool calibration_render_cached = false;  // its dataset was reused
+  bool calibration_bench_cached = false;   // its thresholds were reused (calibration.json)
+};
+
+// The terminal table: method, MRR, R@1, R@5, PR-AUC, R@100%P, ms/query.
+std::string FormatResultTable(const BenchResult& result);
+
+// Writes the report folder (created if missing; files written atomically).
+void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                 const ReportTiming& timing, const std::string& dir);
+
+// RunBench, then WriteReport with *timing (its bench_s set from the result), with the report's
+// dataset checks run beside the bench. A report folder that cannot be used fails before the
+// bench. `before_slam`, if given, runs once the methods are scored and before the SLAM step, and
+// may change its options and *timing (hoilcd run waits there for its calibration's thresholds).
+BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
+                                const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam = {});
+
+}  // namespace hoilcd

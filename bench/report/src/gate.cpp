@@ -1,0 +1,109 @@
+#include "hoilcd/bench/report/gate.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/error.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr const char* kHeadlineMetrics[] = {"mrr", "recall_at_1"};
+
+double Value(const nlohmann::json& method, const char* metric) {
+  const auto it = method.find(metric);
+  return it != method.end() && it->is_number() ? it->get<double>() : NAN;
+}
+
+std::string Number(double v) {
+  if (std::isnan(v)) return "none";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4f", v);
+  return buf;
+}
+
+std::string XmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string Regression::ToString(double max_drop) const {
+  return "regression: method " + method + ", " + metric + " old " + Number(old_value) + " new " + Number(new_value) +
+         " (dropped by more than " + Number(max_drop) + ")";
+}
+
+nlohmann::json ReadReportJson(const std::string& path) {
+  const nlohmann::json j = nlohmann::json::parse(ReadFileBytes(path), nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) throw InputError(path, "is not JSON: expected a hoilcd report.json");
+  if (!j.is_object() || !j.contains("methods") || !j["methods"].is_object()) {
+    throw InputError(path, "/methods: expected an object of methods (a hoilcd report.json)");
+  }
+  for (const auto& [name, method] : j["methods"].items()) {
+    for (const char* metric : kHeadlineMetrics) {
+      if (!method.is_object() || !method.contains(metric) || !(method[metric].is_number() || method[metric].is_null())) {
+        throw InputError(path, "/methods/" + name + "/" + metric + ": expected a number or null");
+      }
+    }
+  }
+  return j;
+}
+
+std::vector<Regression> CompareToBaseline(const nlohmann::json& baseline, const nlohmann::json& current,
+                                          double max_drop) {
+  std::vector<Regression> out;
+  for (const auto& [name, old_method] : baseline["methods"].items()) {
+    if (!current["methods"].contains(name)) continue;
+    const nlohmann::json& new_method = current["methods"][name];
+    for (const char* metric : kHeadlineMetrics) {
+      const double old_value = Value(old_method, metric), new_value = Value(new_method, metric);
+      if (std::isnan(old_value)) continue;
+      if (std::isnan(new_value) || old_value - new_value > max_drop) out.push_back({name, metric, old_value, new_value});
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> MethodsOnlyInBaseline(const nlohmann::json& baseline, const nlohmann::json& current) {
+  std::vector<std::string> out;
+  for (const auto& [name, method] : baseline["methods"].items())
+    if (!current["methods"].contains(name)) out.push_back(name);
+  return out;
+}
+
+std::string JUnitXml(const nlohmann::json& report, const std::vector<Regression>& regressions, double max_drop) {
+  std::ostringstream cases;
+  int failures = 0, tests = 0;
+  for (const auto& [name, method] : report["methods"].items()) {
+    ++tests;
+    cases << "  <testcase classname=\"hoilcd.loop_closure\" name=\"" << XmlEscape(name) << "\">\n";
+    std::string lines;
+    for (const Regression& r : regressions)
+      if (r.method == name) lines += r.ToString(max_drop) + "\n";
+    if (!lines.empty()) {
+      ++failures;
+      cases << "    <failure message=\"headline metric dropped\">" << XmlEscape(lines) << "</failure>\n";
+    }
+    cases << "    <system-out>mrr " << Number(Value(method, "mrr")) << ", recall_at_1 "
+          << Number(Value(method, "recall_at_1")) << "</system-out>\n  </testcase>\n";
+  }
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"hoilcd\" tests=\"" << tests
+      << "\" failures=\"" << failures << "\" errors=\"0\">\n" << cases.str() << "</testsuite>\n";
+  return xml.str();
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,231 @@
+#include "hoilcd/bench/report/inspect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "hoilcd/bench/report/camera_output.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/stats.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+double RmsFrameToFrame(const std::vector<double>& values) {
+  if (values.size() < 2) return 0;
+  double sum = 0;
+  for (size_t i = 1; i < values.size(); ++i) sum += (values[i] - values[i - 1]) * (values[i] - values[i - 1]);
+  return std::sqrt(sum / (values.size() - 1));
+}
+
+double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+std::string FormatValue(const InspectFigure& f) {
+  char text[64];
+  if (f.unit.empty() && f.value == std::round(f.value)) {
+    std::snprintf(text, sizeof(text), "%.0f", f.value);
+  } else {
+    std::snprintf(text, sizeof(text), "%.4g%s%s", f.value, f.unit.empty() ? "" : " ", f.unit.c_str());
+  }
+  return text;
+}
+
+std::string FormatHistogram(const InspectFigure& f) {
+  std::ostringstream out;
+  for (size_t i = 0; i < f.counts.size(); ++i) {
+    if (i) out << ", ";
+    out << "[" << f.bin_edges[i] << ", " << f.bin_edges[i + 1] << (i + 1 == f.counts.size() ? "]: " : "): ")
+        << f.counts[i];
+  }
+  return out.str();
+}
+
+}  // namespace
+
+InspectFigure NumberFigure(std::string key, std::string label, double value, std::string unit) {
+  InspectFigure f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.value = value;
+  f.unit = std::move(unit);
+  return f;
+}
+
+const InspectFigure* InspectSection::Find(const std::string& k) const {
+  for (const InspectFigure& f : figures)
+    if (f.key == k) return &f;
+  return nullptr;
+}
+
+const InspectSection* InspectReport::Find(const std::string& k) const {
+  for (const InspectSection& s : sections)
+    if (s.key == k) return &s;
+  return nullptr;
+}
+
+nlohmann::json InspectReport::ToJson() const {
+  nlohmann::json out = nlohmann::json::object();
+  for (const InspectSection& s : sections) {
+    nlohmann::json section = nlohmann::json::object();
+    for (const InspectFigure& f : s.figures) {
+      if (f.counts.empty()) {
+        section[f.key] = f.value;
+      } else {
+        section[f.key] = {{"bin_edges", f.bin_edges}, {"counts", f.counts}};
+      }
+    }
+    out[s.key] = section;
+  }
+  return out;
+}
+
+std::string InspectReport::ToText() const {
+  std::ostringstream out;
+  for (const InspectSection& s : sections) {
+    out << s.title << "\n";
+    for (const InspectFigure& f : s.figures) {
+      out << "  " << f.label << ": " << (f.counts.empty() ? FormatValue(f) : FormatHistogram(f)) << "\n";
+    }
+  }
+  return out.str();
+}
+
+std::string InspectReport::ToMarkdown() const {
+  std::ostringstream out;
+  for (const InspectSection& s : sections) {
+    out << "### " << s.title << "\n\n| figure | value |\n|---|---|\n";
+    for (const InspectFigure& f : s.figures) {
+      out << "| " << f.label << " | " << (f.counts.empty() ? FormatValue(f) : FormatHistogram(f)) << " |\n";
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+InspectSection TrajectorySection(const std::vector<PoseRecord>& poses) {
+  InspectSection s{"trajectory", "Trajectory (true poses vs odometry)", {}};
+  const std::vector<int> laps = LapIndexFromPoses(poses);
+  std::vector<Eigen::Vector2d> first_lap;
+  for (size_t i = 0; i < poses.size(); ++i)
+    if (laps[i] == 0) first_lap.emplace_back(poses[i].x_m, poses[i].y_m);
+  std::vector<double> lap_difference_m;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (laps[i] == 0 || first_lap.empty()) continue;
+    const Eigen::Vector2d p(poses[i].x_m, poses[i].y_m);
+    double best = (first_lap[0] - p).norm();
+    for (size_t k = 1; k < first_lap.size(); ++k) best = std::min(best, DistanceToSegment(p, first_lap[k - 1], first_lap[k]));
+    lap_difference_m.push_back(best);
+  }
+  double path_m = 0, max_drift_m = 0, end_drift_m = 0;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (i > 0) path_m += std::hypot(poses[i].x_m - poses[i - 1].x_m, poses[i].y_m - poses[i - 1].y_m);
+    end_drift_m = std::hypot(poses[i].odo_x_m - poses[i].x_m, poses[i].odo_y_m - poses[i].y_m);
+    max_drift_m = std::max(max_drift_m, end_drift_m);
+  }
+  const double end_heading_deg =
+      poses.empty() ? 0 : std::remainder(poses.back().odo_theta_rad - poses.back().theta_rad, 2 * M_PI) * kRadToDeg;
+  s.figures = {
+      NumberFigure("frames", "frames", static_cast<double>(poses.size()), ""),
+      NumberFigure("laps", "laps started (true heading)", laps.empty() ? 0 : laps.back() + 1, ""),
+      NumberFigure("path_length_m", "true distance driven", path_m, "m"),
+      NumberFigure("lap_difference_median_m", "lap-to-lap true path difference, median", Quantile(lap_difference_m, 0.5), "m"),
+      NumberFigure("lap_difference_p90_m", "lap-to-lap true path difference, p90", Quantile(lap_difference_m, 0.9), "m"),
+      NumberFigure("odometry_drift_end_m", "odometry drift at the end", end_drift_m, "m"),
+      NumberFigure("odometry_drift_max_m", "odometry drift, max", max_drift_m, "m"),
+      NumberFigure("odometry_drift_end_pct", "odometry drift at the end, % of distance", path_m > 0 ? 100 * end_drift_m / path_m : 0, "%"),
+      NumberFigure("odometry_heading_error_end_deg", "odometry heading error at the end", end_heading_deg, "deg"),
+  };
+  return s;
+}
+
+InspectSection CameraSection(const std::vector<PoseRecord>& poses) {
+  InspectSection s{"camera", "Camera mount (jitter)", {}};
+  std::vector<double> roll_deg, pitch_deg, height_m;
+  for (const PoseRecord& p : poses) {
+    roll_deg.push_back(p.cam_roll_rad * kRadToDeg);
+    pitch_deg.push_back(p.cam_pitch_rad * kRadToDeg);
+    height_m.push_back(p.cam_z_m);
+  }
+  s.figures = {
+      NumberFigure("roll_std_deg", "roll std", StdDev(roll_deg), "deg"),
+      NumberFigure("pitch_std_deg", "pitch std", StdDev(pitch_deg), "deg"),
+      NumberFigure("height_std_m", "height std", StdDev(height_m), "m"),
+      NumberFigure("roll_frame_to_frame_rms_deg", "roll change frame to frame, RMS", RmsFrameToFrame(roll_deg), "deg"),
+      NumberFigure("pitch_frame_to_frame_rms_deg", "pitch change frame to frame, RMS", RmsFrameToFrame(pitch_deg), "deg"),
+  };
+  return s;
+}
+
+InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frames) {
+  InspectSection s{"people", "People in view", {}};
+  std::vector<int> per_frame(std::max(frames, 0), 0);
+  InspectFigure occlusion;
+  occlusion.key = "occlusion_histogram";
+  occlusion.label = "people by occlusion fraction";
+  occlusion.bin_edges = {0.0, 0.2, 0.4, 0.6, 0.8, 1.0};  // the last bin includes 1
+  occlusion.counts.assign(5, 0);
+  for (const FramePersons& f : persons) {
+    if (f.frame >= 0 && f.frame < frames) per_frame[f.frame] += static_cast<int>(f.persons.size());
+    for (const PersonRecord& p : f.persons) {
+      const int bin = std::clamp(static_cast<int>(p.occlusion_fraction / 0.2), 0, 4);
+      ++occlusion.counts[bin];
+    }
+  }
+  double mean = 0;
+  for (int n : per_frame) mean += n;
+  mean = per_frame.empty() ? 0 : mean / per_frame.size();
+  const auto [lo, hi] = std::minmax_element(per_frame.begin(), per_frame.end());
+  s.figures = {
+      NumberFigure("per_frame_mean", "people in view per frame, mean", mean, ""),
+      NumberFigure("per_frame_min", "people in view per frame, min", per_frame.empty() ? 0 : *lo, ""),
+      NumberFigure("per_frame_max", "people in view per frame, max", per_frame.empty() ? 0 : *hi, ""),
+      occlusion,
+  };
+  return s;
+}
+
+InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol) {
+  InspectSection s{"labels", "Ground truth: odometry vs true poses", {}};
+  ProtocolOptions odometry = protocol;
+  odometry.ground_truth = "odometry";
+  const std::vector<Query> by_odometry = BuildQueries(poses, odometry);
+  const std::vector<Query> by_truth = RelabelQueries(by_odometry, poses, odometry, "true");
+  const LabelDisagreement d = CompareLabels(by_odometry, by_truth);
+  int scored_odometry = 0, scored_truth = 0;
+  for (size_t i = 0; i < by_odometry.size(); ++i) {
+    scored_odometry += by_odometry[i].NumTrueMatches() > 0;
+    scored_truth += by_truth[i].NumTrueMatches() > 0;
+  }
+  s.figures = {
+      NumberFigure("queries", "queries (" + protocol.protocol + " protocol, laps from odometry)", d.queries, ""),
+      NumberFigure("queries_with_match_odometry", "queries with a true match, odometry labels", scored_odometry, ""),
+      NumberFigure("queries_with_match_true", "queries with a true match, true labels", scored_truth, ""),
+      NumberFigure("queries_differing", "queries whose true matches differ", d.queries_differing, ""),
+      NumberFigure("queries_differing_pct", "queries whose true matches differ, %", d.queries ? 100.0 * d.queries_differing / d.queries : 0, "%"),
+      NumberFigure("pairs_differing", "query-database pairs labelled differently", static_cast<double>(d.pairs_differing), ""),
+  };
+  return s;
+}
+
+InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol, int threads) {
+  if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("inspect", problem);
+  InspectReport r;
+  r.sections.push_back(TrajectorySection(dataset.poses()));
+  r.sections.push_back(CameraSection(dataset.poses()));
+  r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
+  r.sections.push_back(LabelSection(dataset.poses(), protocol));
+  CameraOutputOptions camera;
+  camera.threads = threads;
+  r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset, camera)));
+  return r;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,426 @@
+#include "hoilcd/bench/report/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+#include <sstream>
+
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/diagnosis.h"
+#include "hoilcd/bench/report/figures.h"
+#include "hoilcd/bench/report/inspect.h"
+#include "hoilcd/bench/report/slam_report.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/text.h"
+
+namespace hoilcd {
+namespace {
+
+const char* kNotes[] = {
+    "Precision-recall and R@100%P cover the scored queries, those with a true match in their "
+    "database (revisits); queries without one are counted as skipped and cannot add false "
+    "positives here.",
+    "Ranks with tied scores are expected values over a uniformly random order of the tied group "
+    "(many database frames share 0 inliers); no rank depends on database order.",
+    "SLCD uses Shi-Tomasi (GFTT) corners with SuperPoint-like settings (4 px NMS, 4 px border, up "
+    "to 1000 corners): pretrained SuperPoint weights cannot be shipped. Only coordinates are used, "
+    "as in the paper.",
+    "ByteTrack follows the Python reference (score fusion, 0.1 low-score floor); the official C++ "
+    "ports differ. Lost tracks are kept 30 frames.",
+    "Fusion ranks tied scores by their average position before reciprocal rank fusion, so fused "
+    "scores do not depend on database order either.",
+};
+
+cv::Mat PrFigure(const BenchResult& result) {
+  std::vector<Series> series;
+  for (const MethodRun& run : result.runs) {
+    Series s;
+    s.label = run.name;
+    for (const PrPoint& p : run.metrics.pr_curve) {
+      s.x.push_back(p.recall);
+      s.y.push_back(p.precision);
+    }
+    series.push_back(s);
+  }
+  PlotOptions o;
+  o.title = "Top-1 precision-recall";
+  o.x_label = "recall";
+  o.y_label = "precision";
+  o.x_range = std::make_pair(0.0, 1.0);
+  o.y_range = std::make_pair(0.0, 1.05);
+  return LinePlot(series, o);
+}
+
+cv::Mat LapFigure(const BenchResult& result) {
+  std::set<int> laps;
+  for (const MethodRun& run : result.runs)
+    for (const auto& [lap, _] : run.metrics.per_lap) laps.insert(lap);
+  std::vector<std::string> groups;
+  for (int lap : laps) groups.push_back("lap " + std::to_string(lap + 1));
+  std::vector<Series> series;
+  for (const MethodRun& run : result.runs) {
+    Series s;
+    s.label = run.name;
+    for (int lap : laps) {
+      const auto it = run.metrics.per_lap.find(lap);
+      s.y.push_back(it == run.metrics.per_lap.end() || !std::isfinite(it->second.mrr) ? 0.0 : it->second.mrr);
+    }
+    series.push_back(s);
+  }
+  PlotOptions o;
+  o.title = "MRR per lap (queries of that lap)";
+  o.y_label = "MRR";
+  return BarPlot(groups, series, o);
+}
+
+cv::Mat TrajectoryFigure(const BenchResult& result, const MethodRun& run, const Dataset& dataset) {
+  const std::vector<PoseRecord>& poses = dataset.poses();
+  std::vector<TrajectoryPoint> points;
+  std::vector<TrajectoryLink> links;
+  const cv::Scalar grey(170, 170, 170), green(80, 160, 40), red(40, 40, 220), database(200, 150, 90);
+  std::vector<bool> is_query(poses.size(), false);
+  for (const QueryRecord& q : run.metrics.queries) {
+    is_query[q.frame] = true;
+    const PoseRecord& p = poses[q.frame];
+    const cv::Scalar c = !q.scored ? grey : (q.top1_is_true_match ? green : red);
+    points.push_back({p.x_m, p.y_m, c});
+    if (q.scored && !q.top1_is_true_match && q.top1_frame >= 0) {
+      const PoseRecord& r = poses[q.top1_frame];
+      links.push_back({cv::Point2d(p.x_m, p.y_m), cv::Point2d(r.x_m, r.y_m), red});
+    }
+  }
+  for (size_t f = 0; f < poses.size(); ++f)
+    if (!is_query[f]) points.push_back({poses[f].x_m, poses[f].y_m, database});
+  (void)result;
+  PlotOptions o;
+  o.title = "Trajectory, top-1 of " + run.name;
+  o.x_label = "x (m)";
+  o.y_label = "y (m)";
+  return TrajectoryPlot(points, links, dataset.footprints(),
+                        {{"correct top-1", green}, {"wrong top-1 (line to it)", red},
+                         {"no true match", grey}, {"database only", database}},
+                        o);
+}
+
+// A row like the paper's figure 6: query with its features, the top-1, the best true match.
+std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run, size_t query_index,
+                                const Dataset& dataset) {
+  const Query& q = result.queries[query_index];
+  const QueryRecord& rec = run.metrics.queries[query_index];
+  const bool hoi = FindMethod(run.name).Features() == ShownFeatures::kHoiPoints;
+  auto features = [&](int frame) {
+    std::vector<cv::Point2f> pts;
+    if (hoi) {
+      for (const HoiFeature& h : result.features[frame].hoi) pts.push_back(h.point);
+    } else {
+      pts = result.features[frame].keypoints;
+    }
+    return pts;
+  };
+  int best_true = -1;
+  double best_score = -1;
+  for (size_t j = 0; j < q.database.size(); ++j) {
+    if (q.is_true_match[j] && run.scores[query_index][j] > best_score) {
+      best_score = run.scores[query_index][j];
+      best_true = q.database[j];
+    }
+  }
+  std::vector<MatchTile> row;
+  const cv::Scalar colour = hoi ? cv::Scalar(255, 255, 0) : cv::Scalar(0, 255, 0);
+  row.push_back({dataset.Thermal(q.frame), "query " + std::to_string(q.frame), {}, colour});
+  row.push_back({dataset.Thermal(q.frame), run.name + " features", features(q.frame), colour});
+  const std::string tie = rec.top1_tie_size > 1 ? " (" + std::to_string(rec.top1_tie_size) + " tied)" : "";
+  row.push_back({dataset.Thermal(rec.top1_frame),
+                 "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " ok" : " wrong") +
+                     " s=" + Fixed(rec.top1_score, 0) + tie,
+                 features(rec.top1_frame), colour});
+  row.push_back({best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
+                 best_true >= 0 ? "true match " + std::to_string(best_true) + " s=" + Fixed(best_score, 0)
+                                : "no true match",
+                 best_true >= 0 ? features(best_true) : std::vector<cv::Point2f>{}, colour});
+  return row;
+}
+
+}  // namespace
+
+std::string FormatResultTable(const BenchResult& result) {
+  std::ostringstream out;
+  char line[256];
+  const std::string other = "MRR(" + result.other_ground_truth + ")";
+  std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", "method", "MRR", "R@1", "R@5",
+                "PR-AUC", "R@100%P", "ms/query", other.c_str());
+  out << "ground truth: " << result.ground_truth << " positions (columns before the last)\n" << line;
+  for (const MethodRun& run : result.runs) {
+    const MethodMetrics& m = run.metrics;
+    std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", run.name.c_str(),
+                  Fixed(m.mrr).c_str(), Fixed(m.recall_at_1).c_str(), Fixed(m.recall_at_5).c_str(),
+                  Fixed(m.pr_auc).c_str(), Fixed(m.recall_at_100p).c_str(), Fixed(m.ms_per_query, 2).c_str(),
+                  Fixed(run.other_metrics.mrr).c_str());
+    out << line;
+  }
+  if (!result.runs.empty()) {
+    const MethodMetrics& m = result.runs.front().metrics;
+    out << m.queries_scored << " queries scored, " << m.queries_skipped << " skipped (no true match in their database); "
+        << result.label_disagreement.queries_differing << " of " << result.label_disagreement.queries
+        << " queries have other true matches under " << result.other_ground_truth << " labels\n";
+  }
+  return out.str();
+}
+
+// A report overwrites files only in a folder that is new, empty or holds an earlier hoilcd
+// report (report.json with hoilcd's keys); anything else is the user's folder.
+void CheckReportFolder(const std::string& dir) {
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec) || std::filesystem::is_empty(dir, ec)) return;
+  const std::string earlier = dir + "/report.json";
+  nlohmann::json report;
+  if (std::filesystem::is_regular_file(earlier, ec)) {
+    report = nlohmann::json::parse(ReadFileBytes(earlier), nullptr, /*allow_exceptions=*/false);
+  }
+  if (!(report.is_object() && report.contains("hoilcd_version") && report.contains("methods") &&
+        report.contains("dataset"))) {
+    throw InputError(dir, "exists, is not empty and holds no earlier hoilcd report (report.json); "
+                          "refusing to overwrite files in it: choose a new or empty report folder");
+  }
+}
+
+namespace {
+
+// WriteReport with the dataset's checks already made (InspectDataset).
+// Each caller has checked the folder (CheckReportFolder) before its own work.
+void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                          const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
+  const DatasetManifest& manifest = dataset.manifest();
+
+  nlohmann::json report;
+  report["hoilcd_version"] = HOILCD_VERSION;
+  report["dataset"] = {{"dir", dataset.dir()}, {"scene_hash", manifest.scene_hash},
+                       {"seed", manifest.seed}, {"frames", dataset.num_frames()}};
+  report["protocol"] = {{"protocol", options.protocol.protocol}, {"radius_m", options.protocol.radius_m},
+                        {"ground_truth", options.protocol.ground_truth},
+                        {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
+                        {"exclusion_window_s", options.protocol.exclusion_window_s}};
+  report["parameters"] = {{"vertical_tolerance", options.match.vertical_tolerance},
+                          {"ransac_trials", options.ransac.trials},
+                          {"inlier_threshold_px", options.ransac.inlier_threshold_px},
+                          {"lo_refits", options.lo_refits},
+                          {"keypoint_detector", options.keypoints.detector},
+                          {"rrf_k", options.rrf_k}};
+  if (!options.params.empty()) report["parameters"]["param"] = options.params;  // --param NAME=VALUE
+  for (const MethodRun& run : result.runs) {
+    nlohmann::json m = run.metrics.ToJson();
+    m["description"] = FindMethod(run.name).Description();
+    report["methods"][run.name] = m;
+  }
+  const LabelDisagreement& labels = result.label_disagreement;
+  report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
+                                  {"queries_differing", labels.queries_differing},
+                                  {"queries", labels.queries},
+                                  {"pairs_differing", labels.pairs_differing},
+                                  {"queries_with_match_only_under_chosen", labels.scored_only_in_a},
+                                  {"queries_with_match_only_under_other", labels.scored_only_in_b},
+                                  {"methods", nlohmann::json::object()}};
+  for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
+  report["inspect"] = inspect.ToJson();
+  if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
+  if (result.slam_evaluated) {
+    report["slam"] = SlamSummaryJson(result.slam);
+    for (const MethodSlam& m : result.slam.methods) report["methods"][m.method]["slam"] = MethodSlamJson(m);
+  }
+  report["features"] = {{"mean_keypoints_per_frame", result.mean_keypoints_per_frame},
+                        {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
+  report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
+                      {"bench_s", timing.bench_s}, {"calibration_s", timing.calibration_s},
+                      {"calibration_render_cached", timing.calibration_render_cached},
+                      {"calibration_bench_cached", timing.calibration_bench_cached}};
+  report["finding"] = PaperFindingSummary(result);
+  const Diagnosis diagnosis = Diagnose(result);
+  if (diagnosis.evaluated) report["diagnosis"] = diagnosis.ToJson();
+  report["notes"] = nlohmann::json::array();
+  for (const char* note : kNotes) report["notes"].push_back(note);
+  WriteFileAtomic(dir + "/report.json", report.dump(2));
+
+  std::string csv;
+  for (const MethodRun& run : result.runs) {
+    std::istringstream lines(QueryRecordsToCsv(run.metrics.queries));
+    std::string line;
+    bool header = true;
+    while (std::getline(lines, line)) {
+      if (header) {
+        if (csv.empty()) csv += "method," + line + "\n";
+        header = false;
+        continue;
+      }
+      csv += run.name + "," + line + "\n";
+    }
+  }
+  WriteFileAtomic(dir + "/queries.csv", csv);
+
+  // The figures, listed in the report's order, drawn and written in parallel (each its own file).
+  std::vector<std::pair<std::string, std::function<cv::Mat()>>> figure_jobs;
+  figure_jobs.emplace_back("pr_curves.png", [&] { return PrFigure(result); });
+  const bool any_lap = std::any_of(result.runs.begin(), result.runs.end(),
+                                   [](const MethodRun& r) { return !r.metrics.per_lap.empty(); });
+  if (any_lap) {  // a sequence shorter than two laps has no scored lap to plot
+    figure_jobs.emplace_back("mrr_per_lap.png", [&] { return LapFigure(result); });
+  }
+  // Figures of the paper's methods, last registered first (fusion, dlcd, slcd).
+  std::vector<const LoopClosureMethod*> paper;
+  for (const auto& m : RegisteredMethods())
+    if (m->FromPaper()) paper.insert(paper.begin(), m.get());
+  for (const LoopClosureMethod* m : paper) {
+    if (const MethodRun* run = result.Find(m->Name())) {
+      figure_jobs.emplace_back("trajectory_" + m->Name() + ".png",
+                               [&result, run, &dataset] { return TrajectoryFigure(result, *run, dataset); });
+    }
+  }
+  const size_t slam_figures_at = figure_jobs.size();  // the SLAM files' names go here
+  for (const LoopClosureMethod* m : paper) {
+    const MethodRun* run = result.Find(m->Name());
+    if (!run || m->Features() == ShownFeatures::kNone) continue;
+    // Queries whose frame has features for this method show the matching (like the paper's
+    // figure 6); a wall with no features makes a dull example.
+    const bool hoi = m->Features() == ShownFeatures::kHoiPoints;
+    std::vector<size_t> scored;
+    for (size_t i = 0; i < result.queries.size(); ++i) {
+      const FrameFeatures& f = result.features[result.queries[i].frame];
+      if (run->metrics.queries[i].scored && !(hoi ? f.hoi.empty() : f.keypoints.empty())) scored.push_back(i);
+    }
+    if (scored.empty()) {
+      for (size_t i = 0; i < result.queries.size(); ++i)
+        if (run->metrics.queries[i].scored) scored.push_back(i);
+    }
+    if (scored.empty()) continue;
+    figure_jobs.emplace_back("matches_" + m->Name() + ".png", [&result, run, &dataset, scored] {
+      std::vector<std::vector<MatchTile>> rows;
+      for (int k = 0; k < 4 && k < static_cast<int>(scored.size()); ++k) {
+        rows.push_back(MatchRow(result, *run, scored[(2 * k + 1) * scored.size() / 8], dataset));
+      }
+      MosaicOptions mosaic;
+      mosaic.scale = 1;  // four rows of four 256x192 tiles; x2 makes multi-megabyte PNGs
+      return MatchMosaic(rows, mosaic);
+    });
+  }
+  ParallelFor(static_cast<int64_t>(figure_jobs.size()), options.threads, [&](int64_t i) {
+    const auto& [name, draw] = figure_jobs[static_cast<size_t>(i)];
+    WritePng(dir + "/" + name, draw());
+  });
+  std::vector<std::string> figures;
+  for (size_t i = 0; i < slam_figures_at; ++i) figures.push_back(figure_jobs[i].first);
+  if (result.slam_evaluated) {
+    for (const std::string& f : WriteSlamFiles(result.slam, dataset.poses(), options.slam_options.slam, dir)) {
+      figures.push_back(f);
+    }
+  }
+  for (size_t i = slam_figures_at; i < figure_jobs.size(); ++i) figures.push_back(figure_jobs[i].first);
+
+  std::ostringstream md;
+  md << "# hoilcd loop-closure report\n\n"
+     << "Dataset `" << dataset.dir() << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
+     << ", scene hash `" << manifest.scene_hash << "`), protocol `" << options.protocol.protocol
+     << "`, true match within " << options.protocol.radius_m << " m of the query's "
+     << (options.protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)"
+                                                      : "true position")
+     << ", exclusion window " << options.protocol.exclusion_window_s << " s.\n\n"
+     << "## Results (shaped like the paper's Table 1; " << options.protocol.ground_truth << " ground truth)\n\n"
+     << "| method | MRR | R@1 | R@5 | R@10 | PR-AUC | R@100%P | ms/query (extract + match) |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (const MethodRun& run : result.runs) {
+    const MethodMetrics& m = run.metrics;
+    md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | "
+       << Fixed(m.recall_at_5) << " | " << Fixed(m.recall_at_10) << " | " << Fixed(m.pr_auc) << " | "
+       << Fixed(m.recall_at_100p) << " | " << Fixed(m.ms_per_query, 2) << " (" << Fixed(m.extract_ms_mean, 2)
+       << " + " << Fixed(m.match_ms_mean, 2) << ") |\n";
+  }
+  if (!result.runs.empty()) {
+    md << "\n" << result.runs.front().metrics.queries_scored << " queries scored, "
+       << result.runs.front().metrics.queries_skipped << " skipped (no true match in their database).\n";
+  }
+  md << "\n### The same scores under " << result.other_ground_truth << " ground truth\n\n"
+     << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
+     << labels.pairs_differing << " query-database pairs labelled differently; " << labels.scored_only_in_a
+     << " queries have a true match only under " << options.protocol.ground_truth << " labels, "
+     << labels.scored_only_in_b << " only under " << result.other_ground_truth << " labels).\n\n"
+     << "| method | MRR | R@1 | R@5 | PR-AUC | MRR (" << options.protocol.ground_truth << ") |\n|---|---|---|---|---|---|\n";
+  for (const MethodRun& run : result.runs) {
+    const MethodMetrics& m = run.other_metrics;
+    md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | " << Fixed(m.recall_at_5)
+       << " | " << Fixed(m.pr_auc) << " | " << Fixed(run.metrics.mrr) << " |\n";
+  }
+  md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
+     << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
+  if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
+    // Precision, recall and MOTA are 0/0 here; say what happened instead.
+    const TrackingMetrics& t = result.tracking;
+    md << "## Person tracking (DLCD front end vs ground truth)\n\n"
+       << "The ground truth has no people to track; the front end reported " << t.predicted_boxes
+       << " person boxes" << (t.predicted_boxes > 0 ? ", all false positives" : "")
+       << ". Mean HOI points per frame " << Fixed(result.mean_hoi_points_per_frame, 1)
+       << ", keypoints per frame " << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
+  } else if (result.tracking_evaluated) {
+    const TrackingMetrics& t = result.tracking;
+    md << "## Person tracking (DLCD front end vs ground truth)\n\n"
+       << "precision " << Fixed(t.precision) << ", recall " << Fixed(t.recall) << ", MOTA " << Fixed(t.mota)
+       << ", IDF1 " << Fixed(t.idf1) << ", id switches " << t.id_switches << "; HOI points: median error "
+       << Fixed(t.hoi_median_error_px, 1) << " px, " << Fixed(100 * t.hoi_fraction_within_tolerance, 1)
+       << " % of visible contacts within 3 px. Mean HOI points per frame "
+       << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
+       << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
+  }
+  if (result.slam_evaluated) md << SlamMarkdown(result.slam);
+  md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
+  md << "## Methods\n\n";
+  for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << "\n";
+  md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
+     << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
+  for (const char* note : kNotes) md << "- " << note << "\n";
+  md << "\n## Figures\n\n";
+  if (dataset.footprints().empty()) {
+    md << "The dataset has no footprints.json (written before it existed): the trajectory figures "
+          "show no obstacles.\n\n";
+  }
+  for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";
+  WriteFileAtomic(dir + "/report.md", md.str());
+}
+
+}  // namespace
+
+void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                 const ReportTiming& timing, const std::string& dir) {
+  CheckReportFolder(dir);  // before the checks' work
+  WriteReportInspected(result, dataset, options, timing, dir,
+                       InspectDataset(dataset, options.protocol, options.threads));
+}
+
+BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
+                                const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam) {
+  CheckReportFolder(dir);  // a folder the report may not use fails before the work
+  // The report's dataset checks read only the dataset: they run beside the bench, on the core
+  // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it. With one
+  // thread asked for there is no such core: they run after the bench, on the same thread.
+  const std::launch when = ResolveThreadCount(options.threads) > 1 ? std::launch::async : std::launch::deferred;
+  std::future<InspectReport> inspect =
+      std::async(when, [&] { return InspectDataset(dataset, options.protocol, options.threads); });
+  BenchOptions scoring = options;
+  scoring.slam = false;
+  BenchResult result = RunBench(dataset, scoring);  // if it throws, ~future waits for the checks
+  if (options.slam) {
+    if (before_slam) before_slam(&options.slam_options);
+    AddSlam(dataset, options, &result);
+  }
+  timing->bench_s = result.seconds;
+  WriteReportInspected(result, dataset, options, *timing, dir, inspect.get());
+  return result;
+}
+
+}  // namespace hoilcd

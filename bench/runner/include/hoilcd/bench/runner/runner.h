@@ -1,0 +1,60 @@
+// Runs loop-closure methods over a dataset folder in named steps: label the protocol's queries,
+// run the front ends the chosen methods need (front_ends.h), score every method
+// (loop_closure_method.h), compute metrics (evaluate.h); plus the person-tracking quality of the
+// DLCD front end against the ground truth. The report module writes what this returns.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hoilcd/bench/evaluation/metrics.h"
+#include "hoilcd/bench/evaluation/protocol.h"
+#include "hoilcd/bench/evaluation/tracking_metrics.h"
+#include "hoilcd/bench/methods/bench_options.h"
+#include "hoilcd/bench/slam/slam_run.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/features/hoi_features.h"
+#include "hoilcd/core/geometry/point.h"
+
+namespace hoilcd {
+
+// Features a method computed for one frame (for the report's match pictures).
+struct FrameFeatures {
+  std::vector<Point2> keypoints;   // SLCD
+  std::vector<HoiFeature> hoi;     // DLCD
+};
+
+struct MethodRun {
+  std::string name;
+  MethodMetrics metrics;        // under the chosen ground truth (protocol.ground_truth)
+  MethodMetrics other_metrics;  // the same scores under the other ground truth
+  std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
+};
+
+struct BenchResult {
+  std::vector<Query> queries;              // labelled with protocol.ground_truth
+  std::string ground_truth;                // protocol.ground_truth: "odometry" or "true"
+  std::string other_ground_truth;          // the other one
+  std::vector<Query> other_queries;        // the same queries labelled with other_ground_truth
+  LabelDisagreement label_disagreement;    // queries vs other_queries
+  std::vector<MethodRun> runs;             // in the order asked for
+  std::vector<FrameFeatures> features;     // per frame
+  TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)
+  bool tracking_evaluated = false;
+  double mean_hoi_points_per_frame = 0;
+  double mean_keypoints_per_frame = 0;
+  int64_t ground_truth_person_views = 0;   // person records in persons.json (all frames)
+  SlamResult slam;                         // when BenchOptions::slam
+  bool slam_evaluated = false;
+  double seconds = 0;                      // wall time of RunBench
+  const MethodRun* Find(const std::string& name) const;
+};
+
+BenchResult RunBench(const Dataset& dataset, const BenchOptions& options);
+
+// RunBench's last step, on its own: the pose graphs of each method's loops (options.slam_options)
+// into result->slam. For a result scored with slam off; adds its time to result->seconds.
+void AddSlam(const Dataset& dataset, const BenchOptions& options, BenchResult* result);
+
+}  // namespace hoilcd

@@ -1,0 +1,153 @@
+#include "hoilcd/bench/runner/runner.h"
+
+#include <chrono>
+#include <functional>
+#include <set>
+
+#include "hoilcd/bench/evaluation/evaluate.h"
+#include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/bench/methods/loop_closure_method.h"
+#include "hoilcd/bench/methods/manifest_options.h"
+#include "hoilcd/bench/methods/method_params.h"
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/core/util/allocator.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/parallel.h"
+
+namespace hoilcd {
+namespace {
+
+// The methods to score: the asked ones and, before each, the methods it combines (Inputs()).
+std::vector<const LoopClosureMethod*> ScoringOrder(const std::vector<std::string>& asked) {
+  std::vector<const LoopClosureMethod*> order;
+  std::set<std::string> seen;
+  std::function<void(const std::string&)> visit = [&](const std::string& name) {
+    if (!seen.insert(name).second) return;
+    const LoopClosureMethod& method = FindMethod(name);
+    for (const std::string& input : method.Inputs()) visit(input);
+    order.push_back(&method);
+  };
+  for (const std::string& name : asked) visit(name);
+  return order;
+}
+
+}  // namespace
+
+const MethodRun* BenchResult::Find(const std::string& name) const {
+  for (const MethodRun& r : runs)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
+  KeepFreedMemoryForReuse();  // decoded frames and per-pair buffers come and go on every thread
+  BenchOptions options = WithManifest(options_in, dataset.manifest());
+  if (options.methods.empty()) options.methods = DefaultMethods();
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  const auto start = std::chrono::steady_clock::now();
+  const int n = dataset.num_frames();
+
+  // Step 1: the protocol's queries, labelled under both ground truths.
+  const Labelling labelling = LabelQueries(dataset, options.protocol);
+  BenchResult result;
+  result.queries = labelling.queries;
+  result.ground_truth = labelling.ground_truth;
+  result.other_ground_truth = labelling.other_ground_truth;
+  result.other_queries = labelling.other_queries;
+  result.label_disagreement = labelling.disagreement;
+
+  // Step 2: the front ends the methods need, once each.
+  const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
+  std::set<FrontEnd> needed;
+  for (const LoopClosureMethod* m : order) {
+    const std::set<FrontEnd> f = m->FrontEnds();
+    needed.insert(f.begin(), f.end());
+  }
+  BenchOptions front = options;
+  for (FrontEnd f : needed) front = WithParams(front, FrontEndName(f), &FrontEndParams(f));
+  FrontEndOptions front_options;
+  front_options.keypoints = front.keypoints;
+  front_options.detector = front.detector;
+  front_options.tracker = front.tracker;
+  front_options.hoi = front.hoi;
+  front_options.thumbnail = front.thumbnail;
+  front_options.threads = options.threads;
+  const FrontEndOutput front_ends = RunFrontEnds(dataset, needed, front_options);
+  result.features.resize(n);
+  double kp = 0, hp = 0;
+  for (int f = 0; f < n; ++f) {
+    if (front_ends.Ran(FrontEnd::kKeypoints)) result.features[f].keypoints = front_ends.keypoints[f];
+    if (front_ends.Ran(FrontEnd::kPersons)) result.features[f].hoi = front_ends.hoi[f];
+    kp += result.features[f].keypoints.size(), hp += result.features[f].hoi.size();
+  }
+  result.mean_keypoints_per_frame = n ? kp / n : 0;
+  result.mean_hoi_points_per_frame = n ? hp / n : 0;
+  // People ground truth is optional (hoilcd render --outputs without persons): no tracking metrics then.
+  const bool has_persons = dataset.manifest().outputs.persons;
+  for (const FramePersons& f : has_persons ? dataset.persons() : std::vector<FramePersons>()) {
+    result.ground_truth_person_views += static_cast<int64_t>(f.persons.size());
+  }
+  if (has_persons && front_ends.Ran(FrontEnd::kPersons)) {
+    result.tracking = ComputeTrackingMetrics(dataset.persons(), front_ends.tracks, options.tracking_metrics);
+    result.tracking_evaluated = true;
+  }
+
+  // Step 3: every method's scores, inputs before the methods that combine them; methods that
+  // share a pass (PassKey) are scored together when the first of them comes up.
+  std::map<std::string, MethodScores> scored;
+  std::vector<BenchOptions> own;  // each method's options with its --param values
+  for (const LoopClosureMethod* m : order) own.push_back(WithParams(options, m->Name(), m->Params()));
+  const auto context_of = [&](size_t i) {
+    return MethodContext{dataset, own[i], labelling, front_ends, scored, dataset.manifest().seed, options.threads};
+  };
+  std::vector<std::string> pass_keys;
+  for (size_t i = 0; i < order.size(); ++i) {
+    pass_keys.push_back(order[i]->Inputs().empty() ? order[i]->PassKey(context_of(i)) : "");
+  }
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (scored.count(order[i]->Name())) continue;
+    std::vector<const LoopClosureMethod*> pass = {order[i]};
+    std::vector<MethodContext> contexts = {context_of(i)};
+    for (size_t j = i + 1; j < order.size() && !pass_keys[i].empty(); ++j) {
+      if (pass_keys[j] == pass_keys[i]) pass.push_back(order[j]), contexts.push_back(context_of(j));
+    }
+    std::vector<MethodScores> scores =
+        pass.size() == 1 ? std::vector<MethodScores>{order[i]->Score(contexts.front())}
+                         : order[i]->ScoreTogether(pass, contexts);
+    HOILCD_CHECK_MSG(scores.size() == pass.size(), order[i]->Name() << " scored " << scores.size() << " of "
+                                                                    << pass.size() << " methods in its pass");
+    for (size_t k = 0; k < pass.size(); ++k) scored[pass[k]->Name()] = std::move(scores[k]);
+  }
+
+  // Step 4: metrics of the asked methods under both labellings, one method per task.
+  result.runs.resize(options.methods.size());
+  ParallelFor(static_cast<int64_t>(options.methods.size()), options.threads, [&](int64_t i) {
+    MethodRun& run = result.runs[static_cast<size_t>(i)];
+    run.name = options.methods[static_cast<size_t>(i)];
+    MethodScores& s = scored.at(run.name);
+    const MethodReport report = EvaluateQueryScores(labelling, run.name, s.scores);
+    run.metrics = report.metrics;
+    run.metrics.SetTiming(s.extract_ms, s.match_ms);
+    run.other_metrics = report.other_metrics;
+    run.other_metrics.SetTiming(s.extract_ms, s.match_ms);
+    run.scores = std::move(s.scores);
+  });
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.slam) AddSlam(dataset, options, &result);
+  return result;
+}
+
+void AddSlam(const Dataset& dataset, const BenchOptions& options, BenchResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<NamedScores> named;
+  for (const MethodRun& r : result->runs) named.push_back({r.name, &r.scores});
+  SlamRunOptions slam_options = options.slam_options;
+  slam_options.threads = options.threads;
+  result->slam = RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json",
+                         dataset.manifest().frame_rate_hz, options.protocol.radius_m, result->queries, named,
+                         slam_options);
+  result->slam_evaluated = true;
+  result->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace hoilcd

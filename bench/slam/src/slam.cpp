@@ -1,0 +1,261 @@
+#include "hoilcd/bench/slam/slam.h"
+
+#include <algorithm>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "hoilcd/bench/slam/trajectory_metrics.h"
+#include "hoilcd/core/util/error.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+// A number at /section/key of the resolved scene; InputError naming the pointer otherwise.
+double Number(const nlohmann::json& doc, const std::string& section, const std::string& key, const std::string& path) {
+  const std::string pointer = "/" + section + "/" + key;
+  const nlohmann::json::json_pointer p(pointer);
+  if (!doc.contains(p) || !doc.at(p).is_number()) {
+    throw InputError(path + ": " + pointer, "expected a number (the odometry noise model the pose graph weights odometry with)");
+  }
+  return doc.at(p).get<double>();
+}
+
+}  // namespace
+
+Eigen::Matrix3d OdometryNoise::Information(const Pose2d& step) const {
+  const double d = std::hypot(step.x_m, step.y_m);
+  const double span = std::max(d, correlation_length_m);
+  const double sd_xy = std::max(floor_sd_m, distance_sd_frac * std::sqrt(d * span));
+  const double var_theta = heading_var_rad2_per_m * d + heading_sd_rad_per_m * heading_sd_rad_per_m * d * span;
+  const double sd_theta = std::max(floor_sd_rad, std::sqrt(var_theta));
+  return Eigen::Vector3d(1 / (sd_xy * sd_xy), 1 / (sd_xy * sd_xy), 1 / (sd_theta * sd_theta)).asDiagonal();
+}
+
+OdometryNoise OdometryNoise::FromSceneJson(const std::string& scene_json, const std::string& path,
+                                           double frame_rate_hz) {
+  const nlohmann::json doc = nlohmann::json::parse(scene_json, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) throw InputError(path, "expected the resolved scene as a JSON object");
+  if (!doc.contains("odometry") || !doc["odometry"].is_object()) {
+    throw InputError(path + ": /odometry", "expected the odometry error model (an object); the pose graph needs it");
+  }
+  const nlohmann::json& odo = doc["odometry"];
+  OdometryNoise noise;
+  if (odo.contains("enabled") && odo["enabled"].is_boolean() && !odo["enabled"].get<bool>()) {
+    noise.distance_sd_frac = noise.heading_sd_rad_per_m = noise.heading_var_rad2_per_m = 0;
+    return noise;  // exact odometry: only the floors remain
+  }
+  if (!odo.contains("encoder_noise_frac") && !odo.contains("heading_noise_deg_sqrt_m")) {
+    throw InputError(path + ": /odometry",
+                     "expected an odometry error model with encoder_noise_frac or heading_noise_deg_sqrt_m");
+  }
+  const double wheelbase_m = Number(doc, "robot", "wheelbase_m", path);
+  if (odo.contains("encoder_noise_frac")) {
+    // Per-integration-step noise: k independent steps per frame shrink the random part by √k;
+    // the constant slip and steering bias are counted as 1σ errors.
+    const double rate_hz = Number(doc, "robot", "integration_rate_hz", path);
+    const double k = std::max(1.0, rate_hz / frame_rate_hz);
+    const double encoder = Number(doc, "odometry", "encoder_noise_frac", path);
+    const double slip = Number(doc, "odometry", "slip_frac", path);
+    const double steer_sd = Number(doc, "odometry", "steer_noise_deg", path) * kDegToRad;
+    const double steer_bias = Number(doc, "odometry", "steer_bias_deg", path) * kDegToRad;
+    noise.distance_sd_frac = std::sqrt(encoder * encoder / k + slip * slip);
+    noise.heading_sd_rad_per_m = std::sqrt(steer_bias * steer_bias + steer_sd * steer_sd / k) / wheelbase_m;
+    noise.heading_var_rad2_per_m = 0;
+  } else {
+    // Systematic + slip + heading random walk model (docs/robot.md): systematic terms as 1σ, slips
+    // at 1 m/s² (longitudinal) and 1 m/s² lateral, the wheelbase error at 1 rad turned per metre.
+    const double scale = Number(doc, "odometry", "error_scale", path);
+    const double radius = Number(doc, "odometry", "wheel_radius_error_frac", path);
+    const double slip = Number(doc, "odometry", "slip_per_accel_s2_m", path);
+    const double offset = Number(doc, "odometry", "steer_offset_deg", path) * kDegToRad;
+    const double wheelbase_err = Number(doc, "odometry", "wheelbase_error_frac", path);
+    const double turn_slip = Number(doc, "odometry", "turn_slip_per_lat_accel_s2_m", path);
+    const double walk = Number(doc, "odometry", "heading_noise_deg_sqrt_m", path) * kDegToRad;
+    noise.distance_sd_frac = scale * std::hypot(radius, slip);
+    noise.heading_sd_rad_per_m = scale * std::hypot(std::tan(offset) / wheelbase_m, std::hypot(wheelbase_err, turn_slip));
+    noise.heading_var_rad2_per_m = std::pow(scale * walk, 2);
+  }
+  return noise;
+}
+
+std::string SlamOptions::Check() const {
+  if (const std::string p = graph.Check(); !p.empty()) return p;
+  if (std::isinf(loop_threshold)) return "loop threshold must be finite";
+  if (!(loop_sd_m > 0 && std::isfinite(loop_sd_m))) return "loop_sd_m must be positive";
+  if (!(loop_yaw_sd_deg > 0 && std::isfinite(loop_yaw_sd_deg))) return "loop_yaw_sd_deg must be positive";
+  if (!(rpe_delta_m > 0 && std::isfinite(rpe_delta_m))) return "rpe_delta_m must be positive";
+  if (keyframe_every < 1) return "keyframe_every must be at least 1";
+  return "";
+}
+
+std::vector<LoopClosure> AcceptLoops(const std::vector<Query>& queries,
+                                     const std::vector<std::vector<double>>& scores, double threshold,
+                                     const std::vector<PoseRecord>& poses, double radius_m) {
+  HOILCD_CHECK(queries.size() == scores.size());
+  std::vector<LoopClosure> loops;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const Query& q = queries[i];
+    if (q.NumTrueMatches() == 0 || q.database.empty()) continue;
+    HOILCD_CHECK(scores[i].size() == q.database.size());
+    const size_t best = std::max_element(scores[i].begin(), scores[i].end()) - scores[i].begin();
+    if (!(scores[i][best] >= threshold)) continue;
+    const int r = q.database[best];
+    loops.push_back({q.frame, r, scores[i][best], BaseDistanceM(poses.at(q.frame), poses.at(r)) <= radius_m});
+  }
+  return loops;
+}
+
+std::vector<LoopClosure> OracleLoops(const std::vector<Query>& queries, const std::vector<PoseRecord>& poses,
+                                     double radius_m) {
+  std::vector<LoopClosure> loops;
+  for (const Query& q : queries) {
+    int best = -1;
+    double best_d = radius_m;
+    for (int r : q.database) {
+      const double d = BaseDistanceM(poses.at(q.frame), poses.at(r));
+      if (d <= best_d) best_d = d, best = r;
+    }
+    if (best >= 0) loops.push_back({q.frame, best, 1.0, true});
+  }
+  return loops;
+}
+
+double ThresholdAtFullPrecision(const std::vector<Query>& queries, const std::vector<std::vector<double>>& scores,
+                                const std::vector<PoseRecord>& poses, double radius_m) {
+  // Top-1 matches by descending score; the threshold stops just before the first false one.
+  std::vector<LoopClosure> all =
+      AcceptLoops(queries, scores, -std::numeric_limits<double>::infinity(), poses, radius_m);
+  std::sort(all.begin(), all.end(), [](const LoopClosure& a, const LoopClosure& b) { return a.score > b.score; });
+  double threshold = NAN;
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i;
+    bool any_false = false;
+    while (j < all.size() && all[j].score == all[i].score) any_false |= !all[j++].is_true;
+    if (any_false) break;  // a tie group holding a false loop cannot be split by a threshold
+    threshold = all[i].score;
+    i = j;
+  }
+  return threshold;
+}
+
+std::vector<double> ThresholdCandidates(const std::vector<Query>& queries,
+                                        const std::vector<std::vector<double>>& scores, int count) {
+  std::vector<double> values;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    if (queries[i].NumTrueMatches() == 0 || scores[i].empty()) continue;
+    values.push_back(*std::max_element(scores[i].begin(), scores[i].end()));
+  }
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  if (count < 1 || static_cast<int>(values.size()) <= count) return values;
+  std::vector<double> thinned;
+  for (int k = 0; k < count; ++k) thinned.push_back(values[k * (values.size() - 1) / (count - 1)]);
+  thinned.erase(std::unique(thinned.begin(), thinned.end()), thinned.end());
+  return thinned;
+}
+
+std::vector<Pose2d> TruePoses(const std::vector<PoseRecord>& poses) {
+  std::vector<Pose2d> out;
+  for (const PoseRecord& p : poses) out.push_back({p.x_m, p.y_m, p.theta_rad});
+  return out;
+}
+
+std::vector<Pose2d> OdometryPoses(const std::vector<PoseRecord>& poses) {
+  std::vector<Pose2d> out;
+  for (const PoseRecord& p : poses) out.push_back({p.odo_x_m, p.odo_y_m, p.odo_theta_rad});
+  return out;
+}
+
+std::vector<int> Keyframes(int num_frames, int keyframe_every) {
+  HOILCD_CHECK(keyframe_every >= 1);
+  std::vector<int> frames;
+  for (int f = 0; f < num_frames; f += keyframe_every) frames.push_back(f);
+  if (num_frames > 0 && frames.back() != num_frames - 1) frames.push_back(num_frames - 1);
+  return frames;
+}
+
+std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
+                                            int keyframe_every) {
+  const std::vector<Pose2d> odometry = OdometryPoses(poses);
+  const std::vector<int> keyframes = Keyframes(static_cast<int>(poses.size()), keyframe_every);
+  HOILCD_CHECK(keyframes.size() == keyframe_poses.size());
+  std::vector<Pose2d> out;
+  for (size_t f = 0; f < poses.size(); ++f) {
+    const size_t k = f == poses.size() - 1 ? keyframes.size() - 1 : f / keyframe_every;
+    out.push_back(Compose(keyframe_poses[k], Between(odometry[keyframes[k]], odometry[f])));
+  }
+  return out;
+}
+
+PoseGraph BuildPoseGraph(const std::vector<PoseRecord>& poses, const std::vector<LoopClosure>& loops,
+                         const OdometryNoise& noise, const SlamOptions& options) {
+  PoseGraph graph;
+  const std::vector<Pose2d> odometry = OdometryPoses(poses);
+  const int n = static_cast<int>(poses.size());
+  const std::vector<int> keyframes = Keyframes(n, options.keyframe_every);
+  for (int f : keyframes) graph.nodes.push_back(odometry[f]);
+  for (size_t i = 1; i < graph.nodes.size(); ++i) {
+    const Pose2d step = Between(graph.nodes[i - 1], graph.nodes[i]);
+    graph.odometry.push_back({static_cast<int>(i - 1), static_cast<int>(i), step, noise.Information(step)});
+  }
+  // Node of the keyframe nearest to frame f.
+  auto node_of = [&](int f) {
+    const int k = static_cast<int>(std::lround(static_cast<double>(f) / options.keyframe_every));
+    return std::min(k, static_cast<int>(keyframes.size()) - 1);
+  };
+  const double yaw_sd = options.loop_yaw_sd_deg * kDegToRad;
+  const Eigen::Matrix3d loop_information =
+      Eigen::Vector3d(1 / std::pow(options.loop_sd_m, 2), 1 / std::pow(options.loop_sd_m, 2), 1 / (yaw_sd * yaw_sd))
+          .asDiagonal();
+  for (const LoopClosure& l : loops) {
+    HOILCD_CHECK(l.query >= 0 && l.query < n && l.reference >= 0 && l.reference < n);
+    const int a = node_of(l.reference), b = node_of(l.query);
+    if (a == b) continue;  // within one keyframe spacing: says nothing the odometry does not
+    // keyframe_a⁻¹·keyframe_b = (keyframe_a⁻¹·reference)·(query⁻¹·keyframe_b), with query = reference.
+    const Pose2d measurement = Compose(Between(odometry[keyframes[a]], odometry[l.reference]),
+                                       Between(odometry[l.query], odometry[keyframes[b]]));
+    graph.loops.push_back({a, b, measurement, loop_information});
+  }
+  return graph;
+}
+
+namespace {
+SlamScore Score(const std::vector<PoseRecord>& poses, std::vector<Pose2d> estimate, const SlamOptions& options) {
+  if (poses.size() < 2) throw InputError("slam", "the dataset has fewer than 2 poses; no trajectory to score");
+  const std::vector<Pose2d> truth = TruePoses(poses);
+  SlamScore s;
+  s.ate_rmse_m = AteRmseM(estimate, truth);
+  s.rpe_rmse_m = RpeRmseM(estimate, truth, options.rpe_delta_m);
+  s.poses = std::move(estimate);
+  return s;
+}
+}  // namespace
+
+SlamScore ScoreOdometry(const std::vector<PoseRecord>& poses, const SlamOptions& options) {
+  SlamScore s = Score(poses, OdometryPoses(poses), options);
+  s.backend = "odometry";
+  return s;
+}
+
+SlamScore SolveSlam(const std::vector<PoseRecord>& poses, const std::vector<LoopClosure>& loops,
+                    const OdometryNoise& noise, const SlamOptions& options, const std::string& backend) {
+  if (const std::string p = options.Check(); !p.empty()) throw InputError("slam", p);
+  PoseGraphOptions graph_options = options.graph;
+  graph_options.backend = backend;
+  SlamScore s;
+  if (loops.empty()) {
+    s = ScoreOdometry(poses, options);
+  } else {
+    const PoseGraph graph = BuildPoseGraph(poses, loops, noise, options);
+    s = Score(poses, FramePosesFromKeyframes(poses, OptimisePoseGraph(graph, graph_options).poses, options.keyframe_every),
+              options);
+  }
+  s.backend = backend;
+  s.loops_accepted = static_cast<int>(loops.size());
+  for (const LoopClosure& l : loops) s.false_loops += l.is_true ? 0 : 1;
+  return s;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,80 @@
+#include "hoilcd/core/features/keypoints.h"
+
+#include <algorithm>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "hoilcd/core/util/error.h"
+
+namespace hoilcd {
+
+std::string KeypointOptions::Check() const {
+  static const char* kDetectors[] = {"gftt", "fast", "orb", "sift", "akaze"};
+  if (std::none_of(std::begin(kDetectors), std::end(kDetectors),
+                   [&](const char* d) { return detector == d; })) {
+    return "detector must be one of gftt, fast, orb, sift, akaze (got '" + detector + "')";
+  }
+  if (max_keypoints < 1) return "max_keypoints must be positive";
+  if (nms_radius_px < 0) return "nms_radius_px must be non-negative";
+  if (border_px < 0) return "border_px must be non-negative";
+  if (!(gftt_quality > 0 && gftt_quality < 1)) return "gftt_quality must be in (0, 1)";
+  if (gftt_block_size_px < 3) return "gftt_block_size_px must be at least 3";
+  if (gftt_min_eigenvalue < 0) return "gftt_min_eigenvalue must be non-negative";
+  if (fast_threshold < 1 || fast_threshold > 255) return "fast_threshold must be in 1..255";
+  if (blur_sigma_px < 0) return "blur_sigma_px must be non-negative";
+  return "";
+}
+
+std::vector<Point2> DetectKeypoints(const cv::Mat& thermal_u8, const KeypointOptions& options) {
+  HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
+  HOILCD_CHECK(thermal_u8.type() == CV_8U && !thermal_u8.empty());
+  cv::Mat image = thermal_u8;
+  if (options.blur_sigma_px > 0) cv::GaussianBlur(thermal_u8, image, cv::Size(), options.blur_sigma_px);
+  cv::Mat mask(image.size(), CV_8U, cv::Scalar(0));
+  const int b = options.border_px;
+  if (image.cols > 2 * b && image.rows > 2 * b) {
+    mask(cv::Rect(b, b, image.cols - 2 * b, image.rows - 2 * b)).setTo(255);
+  }
+  std::vector<Point2> out;
+  if (options.detector == "gftt") {
+    if (options.gftt_min_eigenvalue > 0) {
+      cv::Mat strength;
+      cv::cornerMinEigenVal(image, strength, options.gftt_block_size_px, 3);
+      mask &= (strength >= options.gftt_min_eigenvalue);
+    }
+    std::vector<cv::Point2f> corners;
+    cv::goodFeaturesToTrack(image, corners, options.max_keypoints, options.gftt_quality,
+                            std::max(1.0, options.nms_radius_px), mask, options.gftt_block_size_px);
+    return corners;
+  }
+  std::vector<cv::KeyPoint> keypoints;
+  if (options.detector == "fast") {
+    cv::FAST(image, keypoints, options.fast_threshold, /*nonmaxSuppression=*/true);
+  } else if (options.detector == "orb") {
+    cv::ORB::create(options.max_keypoints * 2)->detect(image, keypoints, mask);
+  } else if (options.detector == "sift") {
+    cv::SIFT::create()->detect(image, keypoints, mask);
+  } else {
+    cv::AKAZE::create()->detect(image, keypoints, mask);
+  }
+  // Strongest first (ties by position, so the order never depends on the detector's internals),
+  // then the border and a greedy radius suppression like SuperPoint's NMS.
+  std::sort(keypoints.begin(), keypoints.end(), [](const cv::KeyPoint& a, const cv::KeyPoint& c) {
+    if (a.response != c.response) return a.response > c.response;
+    if (a.pt.y != c.pt.y) return a.pt.y < c.pt.y;
+    return a.pt.x < c.pt.x;
+  });
+  const float r2 = static_cast<float>(options.nms_radius_px * options.nms_radius_px);
+  for (const cv::KeyPoint& k : keypoints) {
+    if (static_cast<int>(out.size()) >= options.max_keypoints) break;
+    if (k.pt.x < b || k.pt.y < b || k.pt.x >= image.cols - b || k.pt.y >= image.rows - b) continue;
+    const bool close = std::any_of(out.begin(), out.end(), [&](const Point2& p) {
+      const float dx = p.x - k.pt.x, dy = p.y - k.pt.y;
+      return dx * dx + dy * dy < r2;
+    });
+    if (!close) out.push_back(k.pt);
+  }
+  return out;
+}
+
+}  // namespace hoilcd

@@ -1,0 +1,86 @@
+// ByteTrack (Zhang et al., ECCV 2022): multi-object tracking by associating every detection box,
+// high and low score, to Kalman-predicted tracks by IoU. Follows BYTETracker.update of the Python
+// reference (ifzhang/ByteTrack, yolox/tracker/byte_tracker.py).
+//
+// The official C++ ports (deploy/TensorRT, ncnn) differ from the Python reference: they skip the
+// score fusion of the IoU cost and the 0.1 floor under low-score detections. We follow Python.
+// IoU follows the reference's cython_bbox by default (1 px added to widths and heights); the
+// continuous convention is an option. Known, deliberate differences from Python: a lost track
+// that expires is dropped at once (Python keeps it in the lost pool for one more frame because
+// it subtracts the removed list before extending it); track ids count from 1 per tracker instead
+// of per process. tests/core/byte_tracker_reference_test.cpp replays detections through both.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/types.hpp>
+
+#include "hoilcd/core/tracking/kalman_filter.h"
+
+namespace hoilcd {
+
+struct Detection {
+  cv::Rect2f box;   // px (x, y, w, h), top-left origin
+  float score = 0;  // detector confidence in (0, 1]
+};
+
+// How IoU measures a box (x, y, w, h): as the continuous rectangle, or as cython_bbox.bbox_overlaps
+// does for the reference, inclusive pixel corners, i.e. w + 1 by h + 1.
+enum class IouConvention { kPlusOnePixel, kContinuous };
+
+struct ByteTrackOptions {
+  double track_high_thresh = 0.5;  // score; above (strictly, as Python): first association
+  double track_low_thresh = 0.1;   // score; strictly between low and high: second association
+  double new_track_thresh = 0.6;   // score; a leftover high detection this good starts a track
+  double match_thresh = 0.8;       // cost 1 - IoU*score; first association limit
+  double second_match_thresh = 0.5;       // cost 1 - IoU; low-score association limit
+  double unconfirmed_match_thresh = 0.7;  // cost 1 - IoU*score; unconfirmed-track limit
+  int track_buffer_frames = 30;  // frames at 30 Hz a lost track is kept (scaled by the rate)
+  double frame_rate_hz = 25;     // Hz; lost tracks live int(rate / 30 * buffer) frames
+  bool fuse_score = true;        // cost uses IoU * detection score (Python, not MOT20)
+  IouConvention iou_convention = IouConvention::kPlusOnePixel;  // the reference's (cython_bbox)
+  std::string Check() const;
+};
+
+struct Track {
+  int id = 0;       // from 1, never reused by one tracker
+  cv::Rect2f box;   // px, the Kalman-filtered box
+  float score = 0;  // score of the detection that last updated the track
+};
+
+// 1 - IoU for every (a, b) pair: rows = a, cols = b.
+std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
+                                             const std::vector<cv::Rect2f>& b,
+                                             IouConvention convention = IouConvention::kContinuous);
+
+class ByteTracker {
+ public:
+  explicit ByteTracker(ByteTrackOptions options = {});
+  ~ByteTracker();
+  ByteTracker(ByteTracker&&) noexcept;
+  ByteTracker& operator=(ByteTracker&&) noexcept;
+
+  // One frame of detections in; the activated tracks of this frame out (BYTETracker.update's
+  // output_stracks). Detections scoring at most track_low_thresh are ignored.
+  std::vector<Track> Update(const std::vector<Detection>& detections);
+
+  int frame_count() const { return frame_id_; }
+  // How many frames a track may stay lost before it is removed.
+  int max_time_lost_frames() const { return max_time_lost_; }
+
+ private:
+  struct STrack;
+  using TrackPtr = std::shared_ptr<STrack>;
+
+  ByteTrackOptions options_;
+  KalmanFilterXYAH kalman_;
+  int max_time_lost_ = 0;
+  int frame_id_ = 0;
+  int next_id_ = 1;
+  std::vector<TrackPtr> tracked_;  // state Tracked (confirmed or not), in Python's order
+  std::vector<TrackPtr> lost_;     // state Lost
+};
+
+}  // namespace hoilcd

@@ -1,0 +1,252 @@
+#include "hoilcd/core/tracking/byte_tracker.h"
+
+#include <algorithm>
+#include <sstream>
+#include <type_traits>
+#include <unordered_set>
+#include <utility>
+
+#include "hoilcd/core/tracking/box_iou.h"
+#include "hoilcd/core/tracking/lapjv.h"
+#include "hoilcd/core/util/error.h"
+
+namespace hoilcd {
+
+std::string ByteTrackOptions::Check() const {
+  std::ostringstream out;
+  if (!(track_low_thresh >= 0 && track_low_thresh <= track_high_thresh && track_high_thresh <= 1)) {
+    out << "need 0 <= track_low_thresh <= track_high_thresh <= 1, got " << track_low_thresh
+        << " and " << track_high_thresh << "; ";
+  }
+  if (!(new_track_thresh >= 0 && new_track_thresh <= 1)) {
+    out << "new_track_thresh must be in [0, 1], got " << new_track_thresh << "; ";
+  }
+  for (const auto& [name, value] : {std::pair<const char*, double>{"match_thresh", match_thresh},
+                                    {"second_match_thresh", second_match_thresh},
+                                    {"unconfirmed_match_thresh", unconfirmed_match_thresh}}) {
+    if (!(value > 0 && value <= 1)) out << name << " must be in (0, 1], got " << value << "; ";
+  }
+  if (track_buffer_frames < 0) {
+    out << "track_buffer_frames must be >= 0, got " << track_buffer_frames << "; ";
+  }
+  if (!(frame_rate_hz > 0)) out << "frame_rate_hz must be > 0, got " << frame_rate_hz << "; ";
+  std::string message = out.str();
+  if (!message.empty()) message.resize(message.size() - 2);
+  return message;
+}
+
+std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
+                                             const std::vector<cv::Rect2f>& b,
+                                             IouConvention convention) {
+  std::vector<std::vector<double>> cost(a.size(), std::vector<double>(b.size(), 1.0));
+  if (convention == IouConvention::kPlusOnePixel) {
+    // cython_bbox.bbox_overlaps on (x1, y1, x2, y2) = (x, y, x + w, y + h), in double as there.
+    const auto area = [](const cv::Rect2f& r) {
+      return (static_cast<double>(r.width) + 1) * (static_cast<double>(r.height) + 1);
+    };
+    for (size_t i = 0; i < a.size(); ++i) {
+      for (size_t j = 0; j < b.size(); ++j) {
+        const double iw = std::min(static_cast<double>(a[i].x) + a[i].width,
+                                   static_cast<double>(b[j].x) + b[j].width) -
+                          std::max<double>(a[i].x, b[j].x) + 1;
+        if (!(iw > 0)) continue;
+        const double ih = std::min(static_cast<double>(a[i].y) + a[i].height,
+                                   static_cast<double>(b[j].y) + b[j].height) -
+                          std::max<double>(a[i].y, b[j].y) + 1;
+        if (!(ih > 0)) continue;
+        cost[i][j] = 1.0 - iw * ih / (area(a[i]) + area(b[j]) - iw * ih);
+      }
+    }
+    return cost;
+  }
+  for (size_t i = 0; i < a.size(); ++i) {
+    for (size_t j = 0; j < b.size(); ++j) cost[i][j] = 1.0 - BoxIoU(a[i], b[j]);
+  }
+  return cost;
+}
+
+enum class TrackState { kTracked, kLost, kRemoved };
+
+struct ByteTracker::STrack {
+  int id = 0;
+  TrackState state = TrackState::kTracked;
+  bool activated = false;  // false until a second detection confirms it (except on frame 1)
+  KalmanState kf;
+  float score = 0;
+  int frame_id = 0;     // last frame it was updated (Python's end_frame)
+  int start_frame = 0;  // frame it was born
+  cv::Rect2f Box() const { return XyahToBox(kf.mean.head<4>()); }
+};
+
+ByteTracker::ByteTracker(ByteTrackOptions options) : options_(std::move(options)) {
+  const std::string problem = options_.Check();
+  HOILCD_CHECK_MSG(problem.empty(), problem);
+  max_time_lost_ = static_cast<int>(options_.frame_rate_hz / 30.0 * options_.track_buffer_frames);
+}
+
+ByteTracker::~ByteTracker() = default;
+ByteTracker::ByteTracker(ByteTracker&&) noexcept = default;
+ByteTracker& ByteTracker::operator=(ByteTracker&&) noexcept = default;
+
+namespace {
+
+template <typename T>
+std::vector<cv::Rect2f> Boxes(const std::vector<T>& items) {
+  std::vector<cv::Rect2f> boxes;
+  boxes.reserve(items.size());
+  for (const auto& item : items) {
+    if constexpr (std::is_same_v<T, Detection>) {
+      boxes.push_back(item.box);
+    } else {
+      boxes.push_back(item->Box());
+    }
+  }
+  return boxes;
+}
+
+// matching.fuse_score: cost = 1 - IoU * detection score.
+void FuseScore(std::vector<std::vector<double>>& cost, const std::vector<Detection>& detections) {
+  for (auto& row : cost) {
+    for (size_t j = 0; j < row.size(); ++j) row[j] = 1.0 - (1.0 - row[j]) * detections[j].score;
+  }
+}
+
+// LinearAssignment, also when there are no tracks (a 0-row matrix cannot say how many
+// detections it has).
+Assignment Associate(const std::vector<std::vector<double>>& cost, size_t num_detections,
+                     double cost_limit) {
+  if (!cost.empty()) return LinearAssignment(cost, cost_limit);
+  Assignment none;
+  for (size_t j = 0; j < num_detections; ++j) none.unmatched_cols.push_back(static_cast<int>(j));
+  return none;
+}
+
+}  // namespace
+
+std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections) {
+  ++frame_id_;
+  std::vector<Detection> high, low;
+  for (const Detection& d : detections) {
+    HOILCD_CHECK_MSG(d.box.width > 0 && d.box.height > 0, "empty detection box");
+    if (d.score > options_.track_high_thresh) {
+      high.push_back(d);
+    } else if (d.score > options_.track_low_thresh && d.score < options_.track_high_thresh) {
+      low.push_back(d);
+    }
+  }
+  const auto update = [&](STrack& track, const Detection& det) {
+    track.kf = kalman_.Update(track.kf, BoxToXyah(det.box));
+    track.state = TrackState::kTracked;
+    track.activated = true;
+    track.frame_id = frame_id_;
+    track.score = det.score;
+  };
+
+  std::vector<TrackPtr> unconfirmed, pool;
+  for (const TrackPtr& t : tracked_) (t->activated ? pool : unconfirmed).push_back(t);
+  pool.insert(pool.end(), lost_.begin(), lost_.end());
+  for (const TrackPtr& t : pool) {
+    // A lost track's height velocity is frozen (STrack.multi_predict).
+    if (t->state != TrackState::kTracked) t->kf.mean(7) = 0;
+    t->kf = kalman_.Predict(t->kf);
+  }
+
+  // First association: high-score detections against confirmed and lost tracks.
+  std::vector<TrackPtr> refound;
+  const IouConvention iou = options_.iou_convention;
+  std::vector<std::vector<double>> cost = IouDistance(Boxes(pool), Boxes(high), iou);
+  if (options_.fuse_score) FuseScore(cost, high);
+  const Assignment first = Associate(cost, high.size(), options_.match_thresh);
+  for (const auto& [i, j] : first.matches) {
+    if (pool[i]->state != TrackState::kTracked) refound.push_back(pool[i]);
+    update(*pool[i], high[j]);
+  }
+
+  // Second association: low-score detections against the still unmatched tracked tracks.
+  std::vector<TrackPtr> remaining;
+  for (int i : first.unmatched_rows) {
+    if (pool[i]->state == TrackState::kTracked) remaining.push_back(pool[i]);
+  }
+  const Assignment second = Associate(IouDistance(Boxes(remaining), Boxes(low), iou), low.size(),
+                                      options_.second_match_thresh);
+  for (const auto& [i, j] : second.matches) update(*remaining[i], low[j]);
+  std::vector<TrackPtr> newly_lost;
+  for (int i : second.unmatched_rows) {
+    remaining[i]->state = TrackState::kLost;
+    newly_lost.push_back(remaining[i]);
+  }
+
+  // Unconfirmed tracks (seen once) against the high detections left over; unmatched ones die.
+  std::vector<Detection> leftover;
+  for (int j : first.unmatched_cols) leftover.push_back(high[j]);
+  cost = IouDistance(Boxes(unconfirmed), Boxes(leftover), iou);
+  if (options_.fuse_score) FuseScore(cost, leftover);
+  const Assignment third = Associate(cost, leftover.size(), options_.unconfirmed_match_thresh);
+  for (const auto& [i, j] : third.matches) update(*unconfirmed[i], leftover[j]);
+  for (int i : third.unmatched_rows) unconfirmed[i]->state = TrackState::kRemoved;
+
+  // New tracks from confident leftovers; confirmed at once only on the first frame.
+  std::vector<TrackPtr> born;
+  for (int j : third.unmatched_cols) {
+    if (leftover[j].score < options_.new_track_thresh) continue;
+    auto track = std::make_shared<STrack>();
+    track->id = next_id_++;
+    track->kf = kalman_.Initiate(BoxToXyah(leftover[j].box));
+    track->activated = frame_id_ == 1;
+    track->score = leftover[j].score;
+    track->frame_id = frame_id_;
+    track->start_frame = frame_id_;
+    born.push_back(std::move(track));
+  }
+
+  // Lost tracks expire after max_time_lost frames without an update.
+  for (const TrackPtr& t : lost_) {
+    if (t->state == TrackState::kLost && frame_id_ - t->frame_id > max_time_lost_) {
+      t->state = TrackState::kRemoved;
+    }
+  }
+
+  std::vector<TrackPtr> tracked;
+  for (const TrackPtr& t : tracked_) {
+    if (t->state == TrackState::kTracked) tracked.push_back(t);
+  }
+  tracked.insert(tracked.end(), born.begin(), born.end());
+  tracked.insert(tracked.end(), refound.begin(), refound.end());
+  std::vector<TrackPtr> lost;
+  for (const TrackPtr& t : lost_) {
+    if (t->state == TrackState::kLost) lost.push_back(t);
+  }
+  lost.insert(lost.end(), newly_lost.begin(), newly_lost.end());
+
+  // Duplicates (a tracked and a lost track on the same box): keep the one tracked longer.
+  const std::vector<std::vector<double>> overlap = IouDistance(Boxes(tracked), Boxes(lost), iou);
+  std::unordered_set<size_t> drop_tracked, drop_lost;
+  for (size_t p = 0; p < tracked.size(); ++p) {
+    for (size_t q = 0; q < lost.size(); ++q) {
+      if (overlap[p][q] >= 0.15) continue;
+      const int age_p = tracked[p]->frame_id - tracked[p]->start_frame;
+      const int age_q = lost[q]->frame_id - lost[q]->start_frame;
+      if (age_p > age_q) {
+        drop_lost.insert(q);
+      } else {
+        drop_tracked.insert(p);
+      }
+    }
+  }
+  tracked_.clear();
+  lost_.clear();
+  for (size_t p = 0; p < tracked.size(); ++p) {
+    if (!drop_tracked.count(p)) tracked_.push_back(tracked[p]);
+  }
+  for (size_t q = 0; q < lost.size(); ++q) {
+    if (!drop_lost.count(q)) lost_.push_back(lost[q]);
+  }
+
+  std::vector<Track> output;
+  for (const TrackPtr& t : tracked_) {
+    if (t->activated) output.push_back({t->id, t->Box(), t->score});
+  }
+  return output;
+}
+
+}  // namespace hoilcd

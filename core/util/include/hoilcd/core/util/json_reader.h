@@ -1,0 +1,101 @@
+// Reading typed fields from parsed JSON, every problem collected with its file and JSON pointer
+// ("FILE: /json/pointer") in a ProblemCollector; unknown keys are errors, so typos fail loudly.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+
+#include "hoilcd/core/util/error.h"
+
+namespace hoilcd {
+
+// Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
+class JsonReader {
+ public:
+  explicit JsonReader(std::string path) : path_(std::move(path)) {}
+
+  ProblemCollector& problems() { return problems_; }
+
+  void Add(const std::string& pointer, std::string message) {
+    problems_.Add(path_ + ": " + (pointer.empty() ? "/" : pointer), std::move(message));
+  }
+
+  nlohmann::json Parse(const std::string& text) {
+    try {
+      return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {  // parse errors and number overflow (1e400)
+      throw InputError(path_, std::string("invalid JSON: ") + e.what());
+    }
+  }
+
+  bool ExpectObject(const nlohmann::json& value, const std::string& pointer) {
+    if (value.is_object()) return true;
+    Add(pointer, "expected an object");
+    return false;
+  }
+
+  bool ExpectArray(const nlohmann::json& value, const std::string& pointer) {
+    if (value.is_array()) return true;
+    Add(pointer, "expected an array");
+    return false;
+  }
+
+  // Unknown keys are errors, so typos fail loudly.
+  void CheckKeys(const nlohmann::json& object, const std::string& pointer,
+                 std::initializer_list<const char*> allowed) {
+    for (const auto& item : object.items()) {
+      bool known = false;
+      for (const char* key : allowed) known = known || item.key() == key;
+      if (!known) Add(pointer + "/" + item.key(), "unknown key");
+    }
+  }
+
+  template <typename T>
+  void Read(const nlohmann::json& object, const std::string& pointer, const char* key, T* out) {
+    const std::string where = pointer + "/" + key;
+    const auto it = object.find(key);
+    if (it == object.end()) {
+      Add(where, "missing");
+      return;
+    }
+    ReadValue(*it, where, out);
+  }
+
+  void ReadValue(const nlohmann::json& value, const std::string& where, std::string* out) {
+    if (value.is_string()) *out = value.get<std::string>();
+    else Add(where, "expected a string");
+  }
+  void ReadValue(const nlohmann::json& value, const std::string& where, double* out) {
+    if (value.is_number()) *out = value.get<double>();
+    else Add(where, "expected a number");
+  }
+  void ReadValue(const nlohmann::json& value, const std::string& where, float* out) {
+    if (value.is_number()) *out = value.get<float>();
+    else Add(where, "expected a number");
+  }
+  void ReadValue(const nlohmann::json& value, const std::string& where, int* out) {
+    if (value.is_number_integer() && value.get<int64_t>() >= INT32_MIN &&
+        value.get<int64_t>() <= INT32_MAX) {
+      *out = value.get<int>();
+    } else {
+      Add(where, "expected a 32-bit integer");
+    }
+  }
+  void ReadValue(const nlohmann::json& value, const std::string& where, uint64_t* out) {
+    if (value.is_number_unsigned()) *out = value.get<uint64_t>();
+    else Add(where, "expected a non-negative integer");
+  }
+  void ReadValue(const nlohmann::json& value, const std::string& where, bool* out) {
+    if (value.is_boolean()) *out = value.get<bool>();
+    else Add(where, "expected true or false");
+  }
+
+ private:
+  std::string path_;
+  ProblemCollector problems_;
+};
+
+}  // namespace hoilcd

@@ -1,0 +1,429 @@
+#include "hoilcd/core/util/option_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace hoilcd {
+
+using nlohmann::json;
+
+struct OptionTableBase::Field {
+  enum class Kind { kNumber, kInteger, kBoolean, kString, kExternal, kNested };
+  Kind kind = Kind::kNumber;
+  std::string name;
+  std::string unit, description;
+  OptionRange range;
+  double default_number = 0;
+  bool default_bool = false;
+  std::string default_string;
+  std::vector<std::string> choices;
+  Locate at;  // numbers, integers, booleans, nested tables
+  std::function<std::string(const void*)> get_string;
+  std::function<void(void*, const std::string&)> set_string;
+  std::shared_ptr<const OptionTableBase> nested;
+  bool code_only = false;
+};
+
+struct OptionTableBase::Rule {
+  std::string field;
+  std::function<std::string(const void*)> check;
+};
+
+namespace {
+
+std::string Number(double value) {
+  std::ostringstream out;
+  out << std::setprecision(10) << value;
+  return out.str();
+}
+
+// JSON pointer escaping of one key (RFC 6901).
+std::string EscapeKey(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string Join(const std::string& where, const std::string& name) {
+  return where.empty() ? name : where + "/" + name;
+}
+
+std::string JoinChoices(const std::vector<std::string>& choices) {
+  std::string out;
+  for (const std::string& c : choices) out += (out.empty() ? "" : ", ") + c;
+  return out;
+}
+
+void* Mutable(const void* p) { return const_cast<void*>(p); }  // Locate serves reads and writes
+
+}  // namespace
+
+bool OptionRange::Contains(double value) const {
+  if (!std::isfinite(value)) return false;
+  if (min && (min->exclusive ? !(value > min->value) : !(value >= min->value))) return false;
+  if (max && (max->exclusive ? !(value < max->value) : !(value <= max->value))) return false;
+  return true;
+}
+
+std::string OptionRange::ToString(const std::string& unit) const {
+  std::string text;
+  if (min && max) {
+    text = std::string("in ") + (min->exclusive ? "(" : "[") + Number(min->value) + ", " +
+           Number(max->value) + (max->exclusive ? ")" : "]");
+  } else if (min) {
+    text = (min->exclusive ? "above " : "at least ") + Number(min->value);
+  } else if (max) {
+    text = (max->exclusive ? "below " : "at most ") + Number(max->value);
+  } else {
+    return "a finite number" + (unit.empty() ? "" : " (" + unit + ")");
+  }
+  return unit.empty() ? text : text + " " + unit;
+}
+
+OptionTableBase::OptionTableBase() = default;
+OptionTableBase::~OptionTableBase() = default;
+OptionTableBase::OptionTableBase(const OptionTableBase& other) = default;
+OptionTableBase& OptionTableBase::operator=(const OptionTableBase& other) = default;
+
+void OptionTableBase::AddNumber(const char* name, Locate at, bool integer, double default_value,
+                                const char* unit, OptionRange range, const char* description) {
+  Field f;
+  f.kind = integer ? Field::Kind::kInteger : Field::Kind::kNumber;
+  f.name = name;
+  f.at = std::move(at);
+  f.default_number = default_value;
+  f.unit = unit;
+  f.range = range;
+  f.description = description;
+  HOILCD_CHECK_MSG(range.Contains(default_value), name << ": default " << default_value << " outside its range");
+  fields_.push_back(std::move(f));
+}
+
+void OptionTableBase::AddBool(const char* name, Locate at, bool default_value, const char* description) {
+  Field f;
+  f.kind = Field::Kind::kBoolean;
+  f.name = name;
+  f.at = std::move(at);
+  f.default_bool = default_value;
+  f.description = description;
+  fields_.push_back(std::move(f));
+}
+
+void OptionTableBase::AddString(const char* name, std::function<std::string(const void*)> get,
+                                std::function<void(void*, const std::string&)> set,
+                                std::string default_value, std::vector<std::string> choices,
+                                const char* description) {
+  Field f;
+  f.kind = Field::Kind::kString;
+  f.name = name;
+  f.get_string = std::move(get);
+  f.set_string = std::move(set);
+  f.default_string = std::move(default_value);
+  f.choices = std::move(choices);
+  f.description = description;
+  HOILCD_CHECK_MSG(f.choices.empty() || std::count(f.choices.begin(), f.choices.end(), f.default_string) == 1,
+                   name << ": default '" << f.default_string << "' is not one of its choices");
+  fields_.push_back(std::move(f));
+}
+
+void OptionTableBase::AddNested(const char* name, Locate at, const OptionTableBase& table) {
+  Field f;
+  f.kind = Field::Kind::kNested;
+  f.name = name;
+  f.at = std::move(at);
+  f.nested = std::make_shared<const OptionTableBase>(table);
+  fields_.push_back(std::move(f));
+}
+
+void OptionTableBase::AddFlattened(Locate at, const OptionTableBase& table) {
+  for (Field f : table.fields_) {
+    if (f.at) f.at = [outer = at, inner = f.at](void* p) { return inner(outer(p)); };
+    if (f.get_string) {
+      f.get_string = [outer = at, inner = f.get_string](const void* p) { return inner(outer(Mutable(p))); };
+      f.set_string = [outer = at, inner = f.set_string](void* p, const std::string& v) { inner(outer(p), v); };
+    }
+    fields_.push_back(std::move(f));
+  }
+  for (Rule r : table.rules_) {
+    r.check = [outer = at, inner = r.check](const void* p) { return inner(outer(Mutable(p))); };
+    rules_.push_back(std::move(r));
+  }
+}
+
+void OptionTableBase::AddExternal(const char* name, const char* description) {
+  Field f;
+  f.kind = Field::Kind::kExternal;
+  f.name = name;
+  f.description = description;
+  fields_.push_back(std::move(f));
+}
+
+void OptionTableBase::AddRule(const char* field, std::function<std::string(const void*)> rule) {
+  rules_.push_back({field, std::move(rule)});
+}
+
+void OptionTableBase::MarkLastCodeOnly() {
+  HOILCD_CHECK(!fields_.empty() && fields_.back().kind != Field::Kind::kNested);
+  fields_.back().code_only = true;
+}
+
+void OptionTableBase::FillDefaultsOf(void* options) const {
+  for (const Field& f : fields_) {
+    switch (f.kind) {
+      case Field::Kind::kNumber: *static_cast<double*>(f.at(options)) = f.default_number; break;
+      case Field::Kind::kInteger: *static_cast<int*>(f.at(options)) = static_cast<int>(f.default_number); break;
+      case Field::Kind::kBoolean: *static_cast<bool*>(f.at(options)) = f.default_bool; break;
+      case Field::Kind::kString: f.set_string(options, f.default_string); break;
+      case Field::Kind::kExternal: break;
+      case Field::Kind::kNested: f.nested->FillDefaultsOf(f.at(options)); break;
+    }
+  }
+}
+
+void OptionTableBase::ReadInto(const json& object, const std::string& where, void* options,
+                               ProblemCollector* problems) const {
+  if (!object.is_object()) {
+    problems->Add(where, "expected an object");
+    return;
+  }
+  for (const auto& [key, value] : object.items()) {
+    const std::string at = Join(where, EscapeKey(key));
+    const auto field = std::find_if(fields_.begin(), fields_.end(),
+                                    [&key = key](const Field& f) { return f.name == key && !f.code_only; });
+    if (field == fields_.end()) {
+      std::vector<std::string> names;
+      for (const Field& f : fields_) {
+        if (!f.code_only) names.push_back(f.name);
+      }
+      problems->Add(at, "unknown key '" + key + "' (expected one of: " + JoinChoices(names) + ")");
+      continue;
+    }
+    const Field& f = *field;
+    switch (f.kind) {
+      case Field::Kind::kNumber:
+        if (value.is_number()) {
+          *static_cast<double*>(f.at(options)) = value.get<double>();
+        } else {
+          problems->Add(at, "expected a number");
+        }
+        break;
+      case Field::Kind::kInteger:
+        if (value.is_number_integer() && value.get<double>() >= std::numeric_limits<int>::min() &&
+            value.get<double>() <= std::numeric_limits<int>::max()) {
+          *static_cast<int*>(f.at(options)) = value.get<int>();
+        } else {
+          problems->Add(at, "expected a whole number");
+        }
+        break;
+      case Field::Kind::kBoolean:
+        if (value.is_boolean()) {
+          *static_cast<bool*>(f.at(options)) = value.get<bool>();
+        } else {
+          problems->Add(at, "expected true or false");
+        }
+        break;
+      case Field::Kind::kString:
+        if (!value.is_string()) {
+          problems->Add(at, "expected a string");
+        } else if (!f.choices.empty() && std::count(f.choices.begin(), f.choices.end(), value.get<std::string>()) == 0) {
+          problems->Add(at, "expected one of: " + JoinChoices(f.choices));
+        } else {
+          f.set_string(options, value.get<std::string>());
+        }
+        break;
+      case Field::Kind::kExternal: break;
+      case Field::Kind::kNested: f.nested->ReadInto(value, at, f.at(options), problems); break;
+    }
+  }
+}
+
+void OptionTableBase::CheckOf(const void* options, const std::string& where, ProblemCollector* problems) const {
+  for (const Field& f : fields_) {
+    const std::string at = Join(where, f.name);
+    switch (f.kind) {
+      case Field::Kind::kNumber:
+      case Field::Kind::kInteger: {
+        const double value = f.kind == Field::Kind::kNumber ? *static_cast<const double*>(f.at(Mutable(options)))
+                                                            : *static_cast<const int*>(f.at(Mutable(options)));
+        if (!f.range.Contains(value)) {
+          problems->Add(at, "must be " + f.range.ToString(f.unit) + " (got " + Number(value) + ")");
+        }
+        break;
+      }
+      case Field::Kind::kString: {
+        const std::string value = f.get_string(options);
+        if (!f.choices.empty() && std::count(f.choices.begin(), f.choices.end(), value) == 0) {
+          problems->Add(at, "must be one of: " + JoinChoices(f.choices) + " (got '" + value + "')");
+        }
+        break;
+      }
+      case Field::Kind::kBoolean:
+      case Field::Kind::kExternal: break;
+      case Field::Kind::kNested: f.nested->CheckOf(f.at(Mutable(options)), at, problems); break;
+    }
+  }
+  for (const Rule& r : rules_) {
+    if (std::string message = r.check(options); !message.empty()) problems->Add(Join(where, r.field), message);
+  }
+}
+
+void OptionTableBase::SetOf(const std::string& name_equals_value, void* options) const {
+  const size_t eq = name_equals_value.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError(name_equals_value, "expected NAME=VALUE");
+  std::string name = name_equals_value.substr(0, eq);
+  const std::string text = name_equals_value.substr(eq + 1);
+  std::replace(name.begin(), name.end(), '.', '/');
+  const OptionTableBase* table = this;
+  void* target = options;
+  for (;;) {
+    const size_t slash = name.find('/');
+    const std::string key = name.substr(0, slash);
+    const auto field = std::find_if(table->fields_.begin(), table->fields_.end(),
+                                    [&](const Field& f) { return f.name == key && f.kind != Field::Kind::kExternal; });
+    if (field == table->fields_.end()) {
+      std::string names;
+      for (const OptionInfo& info : List()) {
+        if (info.kind != OptionInfo::Kind::kExternal) names += (names.empty() ? "" : ", ") + info.name;
+      }
+      throw InputError(name_equals_value, "an option name (one of: " + names + ")");
+    }
+    const Field& f = *field;
+    if (f.kind == Field::Kind::kNested) {
+      if (slash == std::string::npos) throw InputError(name_equals_value, "a field of '" + key + "' (e.g. " + key + "/...)");
+      table = f.nested.get();
+      target = f.at(target);
+      name = name.substr(slash + 1);
+      continue;
+    }
+    if (slash != std::string::npos) throw InputError(name_equals_value, "'" + key + "' has no fields");
+    char* end = nullptr;
+    switch (f.kind) {
+      case Field::Kind::kNumber: {
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(value)) throw InputError(name_equals_value, "a number");
+        *static_cast<double*>(f.at(target)) = value;
+        return;
+      }
+      case Field::Kind::kInteger: {
+        const long long value = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0' || value < std::numeric_limits<int>::min() ||
+            value > std::numeric_limits<int>::max()) {
+          throw InputError(name_equals_value, "a whole number");
+        }
+        *static_cast<int*>(f.at(target)) = static_cast<int>(value);
+        return;
+      }
+      case Field::Kind::kBoolean:
+        if (text != "true" && text != "false") throw InputError(name_equals_value, "true or false");
+        *static_cast<bool*>(f.at(target)) = text == "true";
+        return;
+      case Field::Kind::kString:
+        if (!f.choices.empty() && std::count(f.choices.begin(), f.choices.end(), text) == 0) {
+          throw InputError(name_equals_value, "one of: " + JoinChoices(f.choices));
+        }
+        f.set_string(target, text);
+        return;
+      case Field::Kind::kExternal:
+      case Field::Kind::kNested: return;  // excluded above
+    }
+  }
+}
+
+std::vector<OptionInfo> OptionTableBase::List() const {
+  std::vector<OptionInfo> out;
+  for (const Field& f : fields_) {
+    if (f.kind == Field::Kind::kNested) {
+      for (OptionInfo info : f.nested->List()) {
+        info.name = f.name + "/" + info.name;
+        out.push_back(std::move(info));
+      }
+      continue;
+    }
+    OptionInfo info;
+    info.name = f.name;
+    info.unit = f.unit;
+    info.description = f.description;
+    info.code_only = f.code_only;
+    switch (f.kind) {
+      case Field::Kind::kNumber:
+        info.kind = OptionInfo::Kind::kNumber;
+        info.default_json = json(f.default_number).dump();
+        info.range = f.range;
+        break;
+      case Field::Kind::kInteger:
+        info.kind = OptionInfo::Kind::kInteger;
+        info.default_json = json(static_cast<int>(f.default_number)).dump();
+        info.range = f.range;
+        break;
+      case Field::Kind::kBoolean:
+        info.kind = OptionInfo::Kind::kBoolean;
+        info.default_json = f.default_bool ? "true" : "false";
+        break;
+      case Field::Kind::kString:
+        info.kind = OptionInfo::Kind::kString;
+        info.default_json = json(f.default_string).dump();
+        info.choices = f.choices;
+        break;
+      case Field::Kind::kExternal:
+      case Field::Kind::kNested: info.kind = OptionInfo::Kind::kExternal; break;
+    }
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
+std::string OptionRangeText(const OptionInfo& o) {
+  if (o.kind == OptionInfo::Kind::kNumber || o.kind == OptionInfo::Kind::kInteger) return o.range.ToString(o.unit);
+  if (!o.choices.empty()) return "one of: " + JoinChoices(o.choices);
+  if (o.kind == OptionInfo::Kind::kBoolean) return "true or false";
+  if (o.kind == OptionInfo::Kind::kExternal) return "(see the description)";
+  return "any text";
+}
+
+std::string FormatOptionList(const std::vector<OptionInfo>& options) {
+  size_t name_width = 0, default_width = 0;
+  for (const OptionInfo& o : options) {
+    name_width = std::max(name_width, o.name.size());
+    default_width = std::max(default_width, o.default_json.size());
+  }
+  std::ostringstream out;
+  for (const OptionInfo& o : options) {
+    std::string range = OptionRangeText(o);
+    if (range == "any text") range.clear();
+    out << std::left << std::setw(static_cast<int>(name_width)) << o.name << "  "
+        << std::setw(static_cast<int>(default_width)) << o.default_json << "  " << range << "  "
+        << o.description << "\n";
+  }
+  return out.str();
+}
+
+std::string FormatOptionTableMarkdown(const std::vector<OptionInfo>& options) {
+  const auto cell = [](std::string text) {
+    for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+    return text;
+  };
+  std::ostringstream out;
+  out << "| field | default | accepted | description |\n|---|---|---|---|\n";
+  for (const OptionInfo& o : options) {
+    if (o.code_only) continue;
+    const std::string default_text = o.kind == OptionInfo::Kind::kExternal ? "" : "`" + o.default_json + "`";
+    out << "| `" << o.name << "` | " << cell(default_text) << " | " << cell(OptionRangeText(o)) << " | "
+        << cell(o.description) << " |\n";
+  }
+  return out.str();
+}
+
+}  // namespace hoilcd

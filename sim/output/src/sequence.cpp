@@ -1,0 +1,429 @@
+#include "hoilcd/sim/output/sequence.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/dataset/dataset_folder.h"
+#include "hoilcd/core/dataset/exr_io.h"
+#include "hoilcd/core/dataset/frame_encoding.h"
+#include "hoilcd/core/dataset/video.h"
+#include "hoilcd/core/util/allocator.h"
+#include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/progress.h"
+#include "hoilcd/sim/output/frame_writer.h"
+#include "hoilcd/sim/render/renderer.h"
+#include "hoilcd/sim/render/visibility.h"
+#include "hoilcd/sim/scene/scene_options.h"
+#include "hoilcd/sim/sensor/sensor.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string FramePath(const char* folder, int frame, const char* extension) {
+  return std::string(folder) + "/" + FrameFileName(frame, extension);
+}
+
+// The per-frame files of frame f that `outputs` asks for.
+std::vector<std::string> FrameFiles(const DatasetOutputs& outputs, int frame) {
+  std::vector<std::string> files;
+  if (outputs.thermal) files.push_back(FramePath("thermal", frame, "png"));
+  if (outputs.radiometric) files.push_back(FramePath("radiometric", frame, "png"));
+  if (outputs.exr) files.push_back(FramePath("exr", frame, "exr"));
+  return files;
+}
+
+// A frame counts as done when each of its files is listed and matches its checksum (and it has
+// at least one: without per-frame outputs, every frame is rendered again).
+bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int frame) {
+  const std::vector<std::string> files = FrameFiles(manifest.outputs, frame);
+  if (files.empty()) return false;
+  for (const std::string& rel : files) {
+    const auto it = manifest.files.find(rel);
+    if (it == manifest.files.end()) return false;
+    std::error_code ec;
+    if (!fs::exists(dir + "/" + rel, ec)) return false;
+    if (ChecksumOfFile(dir + "/" + rel) != it->second) return false;
+  }
+  return true;
+}
+
+// The uncompressed 8-bit frame, as the render wrote it: from the EXR's T channel (float32, so
+// exactly the temperature the thermal PNG was made from), else from the thermal PNG itself (the
+// caller makes sure it is still the uncompressed frame: not in video mode).
+cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options,
+                          const DatasetManifest& manifest) {
+  if (!manifest.outputs.exr) {
+    const std::string path = dir + "/" + FramePath("thermal", frame, "png");
+    return DecodeFramePng(ReadFileBytes(path), path, CV_8UC1, manifest.intrinsics);
+  }
+  const std::string path = dir + "/" + FramePath("exr", frame, "exr");
+  for (const auto& [name, channel] : ReadExr(path, {manifest.intrinsics.width, manifest.intrinsics.height})) {
+    if (name == "T") return ToDisplay8Bit(channel, sensor_options.display_min_c, sensor_options.display_max_c);
+  }
+  throw InputError(path, "no T channel");
+}
+
+}  // namespace
+
+SequenceOptions::SequenceOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SequenceOptions>& SequenceOptions::Table() {
+  using O = SequenceOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("output_dir", &O::output_dir, "", {}, "dataset folder (created if missing)")
+          .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "an output folder is required" : ""; })
+          .Add("frames", &O::frames, 0, "frames", OptionRange().AtLeast(0),
+               "render only the first N frames (0: the scene's count)")
+          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: every core)")
+          .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
+               "the manifest is rewritten this often (resume granularity)")
+          .Add("outputs", &O::outputs, "thermal,radiometric,exr,video,persons", {},
+               "comma-separated outputs to write: thermal, radiometric, exr, video, persons")
+          .Rule("outputs", [](const O& o) {
+            DatasetOutputs parsed;
+            return DatasetOutputs::Parse(o.outputs, &parsed);
+          });
+  return table;
+}
+
+std::string SequenceOptions::Check() const { return Table().FirstProblem(*this); }
+
+// Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
+// camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people;
+// 6: the robot steers on localised odometry by default; 7: walkers planned in free space, clear of
+// each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
+// half of the gap to each neighbour, gestures on the roomier side; 9: EXR RLE-compressed with Z
+// half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
+// parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals; 11: walkers enter and
+// leave through the room's doors, seated people look at whichever neighbours sit at their table,
+// chair jitter never squeezes neighbours together; 12: people 0.43 m across the shoulders instead
+// of 0.48, seated body sizes capped so that neighbours' shoulders never meet; 13: frame PNGs
+// deflated by libdeflate, every row Sub-filtered, one IDAT; 14: thermal.mp4 without x264's
+// macroblock tree, whose AVX-512 path made the video's bytes vary from run to run).
+constexpr int kSimulatorRevision = 14;
+
+std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
+
+namespace {
+
+// One call of RenderSequence, in named steps: OpenOrResume, then per frame ReuseFrame or
+// RenderFrame + WriteFrame (with a Checkpoint every few frames), then Finish. Frames are encoded
+// and written by a FrameWriter on every core while the next ones render.
+class SequenceRender {
+ public:
+  SequenceRender(const Scene& scene, const SequenceOptions& options)
+      : scene_(scene),
+        options_(options),
+        dir_(options.output_dir),
+        manifest_path_(options.output_dir + "/manifest.json"),
+        frames_(options.frames > 0 ? std::min(options.frames, scene.frames) : scene.frames),
+        outputs_(ParseOutputs(options.outputs)),
+        world_(scene, table_),
+        intrinsics_(IntrinsicsFromScene(scene)),
+        run_(SimulateSceneRobot(scene, world_.obstacles())) {
+    HOILCD_CHECK(static_cast<int>(run_.samples.size()) >= frames_);
+    world_.PlanCrowd(run_.samples);
+    sensor_options_ = SensorOptionsFromScene(scene);
+    video_options_ = VideoOptionsFromScene(scene);
+    // thermal.mp4 is encoded when it is an output, or to make video mode's thermal PNGs.
+    encode_video_ = outputs_.video || (video_options_.enabled && outputs_.thermal);
+    sensor_ = NewSensor();
+    renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, RenderOptionsFromScene(scene, options.threads));
+  }
+
+  SequenceResult Run() {
+    OpenOrResume();
+    result_.frames_total = frames_;
+    result_.warnings = world_.warnings();
+    persons_.resize(frames_);
+    ProgressReporter progress("render", frames_, "frames");
+    // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
+    // written when every frame is rendered by this call, else at the end from the EXRs on disk.
+    // Both feed the encoder the same frames, so a resumed render gives the same file.
+    if (encode_video_ && !any_done_) {
+      streaming_video_ = std::make_unique<VideoEncoder>(video_options_, intrinsics_.width, intrinsics_.height,
+                                                        scene_.frame_rate_hz);
+    }
+    FrameWriterOptions writer_options;
+    writer_options.dir = dir_;
+    writer_options.display_min_c = sensor_options_.display_min_c;
+    writer_options.display_max_c = sensor_options_.display_max_c;
+    writer_options.workers = ResolveThreadCount(options_.threads);
+    writer_options.thermal = outputs_.thermal;
+    writer_options.radiometric = outputs_.radiometric;
+    writer_options.exr = outputs_.exr;
+    writer_ = std::make_unique<FrameWriter>(writer_options, &manifest_, streaming_video_.get());
+    for (int f = 0; f < frames_; ++f) {
+      if (options_.cancel && options_.cancel->load()) {
+        writer_->Finish();
+        WriteFileAtomic(manifest_path_, manifest_.ToJson());
+        throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
+      }
+      world_.SetTime(run_.samples[f].time_s);
+      if (done_[f]) {
+        ReuseFrame(f);
+      } else {
+        WriteFrame(RenderFrame(f));
+      }
+      progress.Update();
+    }
+    writer_->Finish();
+    result_.video_seconds += writer_->video_seconds();
+    progress.Done();
+    Finish();
+    return result_;
+  }
+
+ private:
+  static DatasetOutputs ParseOutputs(const std::string& text) {
+    DatasetOutputs outputs;
+    HOILCD_CHECK(DatasetOutputs::Parse(text, &outputs).empty());  // SequenceOptions::Check ran
+    return outputs;
+  }
+
+  std::unique_ptr<SensorModel> NewSensor() const {
+    return std::make_unique<SensorModel>(sensor_options_, intrinsics_.width, intrinsics_.height,
+                                         scene_.frame_rate_hz, scene_.seed, &table_, options_.threads);
+  }
+
+  // An existing folder must be an earlier run of this very scene; anything else is the user's.
+  // Marks the frames an earlier run finished (done_) and writes the first manifest.
+  void OpenOrResume() {
+    std::error_code ec;
+    if (fs::exists(manifest_path_, ec)) {
+      DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path_), manifest_path_);
+      if (old.hoilcd_version != SimulatorVersion()) {
+        throw InputError(dir_, "holds a dataset rendered by hoilcd " + old.hoilcd_version + " (this is " +
+                                   SimulatorVersion() +
+                                   "), whose frames would not match new ones; delete it or choose another "
+                                   "output folder");
+      }
+      if (old.scene_hash != scene_.hash || old.seed != scene_.seed) {
+        throw InputError(dir_, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
+                                   ", seed " + std::to_string(old.seed) +
+                                   "); choose another output folder or delete this one");
+      }
+      if (old.outputs != outputs_) {
+        throw InputError(dir_, "holds a dataset with --outputs " + old.outputs.ToText() + " (this render asks for " +
+                                   outputs_.ToText() + "); use the same --outputs, another output folder, or "
+                                   "delete this one");
+      }
+      manifest_ = old;
+    } else if (const std::vector<std::string> foreign = ForeignFiles(dir_); !foreign.empty()) {
+      // Only temp files of a run killed before its first manifest may be there.
+      throw InputError(dir_, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(foreign) +
+                                 "); refusing to write into it");
+    }
+    fs::create_directories(dir_, ec);
+    if (ec) throw InputError(dir_, "cannot create the output folder (" + ec.message() + ")");
+    // A killed run may leave temp files of atomic writes ("NAME.tmp.PID"); they were never
+    // renamed into place, so nothing refers to them. Only those exact names are removed.
+    RemoveDatasetTempFiles(dir_);
+
+    manifest_.hoilcd_version = SimulatorVersion();
+    manifest_.scene_hash = scene_.hash;
+    manifest_.seed = scene_.seed;
+    manifest_.intrinsics = intrinsics_;
+    manifest_.frame_rate_hz = scene_.frame_rate_hz;
+    manifest_.frame_count = frames_;
+    manifest_.window_min_c = sensor_options_.display_min_c;
+    manifest_.window_max_c = sensor_options_.display_max_c;
+    manifest_.classes = world_.classes();
+    manifest_.outputs = outputs_;
+    manifest_.complete = false;
+
+    done_.assign(frames_, false);
+    // The video of a resumed render is made from the kept frames' EXRs, else from their thermal
+    // PNGs outside video mode; with neither, every frame is rendered again.
+    const bool video_from_disk = outputs_.exr || (outputs_.thermal && !video_options_.enabled);
+    for (int f = 0; f < frames_ && (video_from_disk || !encode_video_); ++f) {
+      done_[f] = FrameDone(dir_, manifest_, f);
+      any_done_ = any_done_ || done_[f];
+    }
+    // Drop listings of files that are not (or no longer) valid frames or side files.
+    for (auto it = manifest_.files.begin(); it != manifest_.files.end();) {
+      bool keep = false;
+      for (int f = 0; f < frames_ && !keep; ++f) {
+        const std::vector<std::string> files = FrameFiles(outputs_, f);
+        keep = done_[f] && std::find(files.begin(), files.end(), it->first) != files.end();
+      }
+      it = keep ? std::next(it) : manifest_.files.erase(it);
+    }
+    WriteFileAtomic(manifest_path_, manifest_.ToJson());
+  }
+
+  // Kept from an earlier run: ground truth comes from its stored instance ids and depth, or
+  // without EXRs from the frame's ids and depth cast again (no sensor model needed).
+  void ReuseFrame(int f) {
+    ++result_.frames_reused;
+    if (!outputs_.persons) return;
+    cv::Mat ids, depth;
+    if (outputs_.exr) {
+      for (const auto& [name, channel] : ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height})) {
+        if (name == "id") channel.convertTo(ids, CV_32S);
+        if (name == "Z") channel.convertTo(depth, CV_32F);
+      }
+    } else {
+      const FrameBuffers buffers = renderer_->Render(run_.samples[f].camera);
+      ids = buffers.instance;
+      depth = StoredDepth(buffers.depth_m);
+    }
+    if (!ids.empty()) persons_[f] = {f, VisiblePersons(world_, intrinsics_, run_.samples[f].camera, ids, depth, options_.threads)};
+  }
+
+  // The depth as the EXR stores it (half), which the persons' ground truth reads, so that a
+  // resumed frame's ground truth is that of a fresh one.
+  static cv::Mat StoredDepth(const cv::Mat& depth_m) {
+    cv::Mat half, back;
+    depth_m.convertTo(half, CV_16F);
+    half.convertTo(back, CV_32F);
+    return back;
+  }
+
+  // Ray casts frame f (the world is at its time), applies the sensor model and finds the
+  // visible people.
+  FrameImages RenderFrame(int f) {
+    const RobotSample& sample = run_.samples[f];
+    if (f > 0 && sensor_frame_ != f - 1) {
+      // Resuming after kept frames: a fresh model replays the frames its state depends on (the
+      // previous frame; during an FFC freeze, back to the frame it shows): the resume contract.
+      sensor_ = NewSensor();
+      for (int replay = sensor_->ReplayFrom(f); replay < f; ++replay) {
+        world_.SetTime(run_.samples[replay].time_s);
+        sensor_->Apply(replay, renderer_->Render(run_.samples[replay].camera).radiance);
+      }
+      world_.SetTime(sample.time_s);
+    }
+    const FrameBuffers buffers = renderer_->Render(sample.camera);
+    FrameImages out;
+    out.frame = f;
+    out.temperature_c = sensor_->Apply(f, buffers.radiance);
+    sensor_frame_ = f;
+    if (outputs_.exr) {
+      out.exr = FrameExrChannels(out.temperature_c, sensor_->IdealTemperature(buffers.radiance), buffers.depth_m,
+                                 buffers.instance, buffers.class_id);
+    }
+    if (outputs_.persons) {
+      persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, StoredDepth(buffers.depth_m),
+                                        options_.threads)};
+    }
+    return out;
+  }
+
+  // Hands the frame to the writer (waiting only while its queue is full); every
+  // checkpoint_every_frames frames, a resume point.
+  void WriteFrame(FrameImages frame) {
+    writer_->Submit(std::move(frame));
+    ++result_.frames_rendered;
+    if (++since_checkpoint_ >= options_.checkpoint_every_frames) {
+      writer_->Checkpoint();
+      since_checkpoint_ = 0;
+    }
+  }
+
+  // The video; in video mode its decoded frames become the thermal PNGs that methods read.
+  void WriteVideo() {
+    const auto video_start = std::chrono::steady_clock::now();
+    std::string mp4;
+    if (streaming_video_ && streaming_video_->frames_added() == frames_) {
+      mp4 = streaming_video_->Finish();
+    } else {
+      VideoEncoder encoder(video_options_, intrinsics_.width, intrinsics_.height, scene_.frame_rate_hz);
+      for (int f = 0; f < frames_; ++f) encoder.Add(UncompressedFrame(dir_, f, sensor_options_, manifest_));
+      mp4 = encoder.Finish();
+    }
+    if (outputs_.video) WriteDatasetFile(dir_, "thermal.mp4", mp4, &manifest_);
+    if (video_options_.enabled && outputs_.thermal) {
+      const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4", ResolveThreadCount(options_.threads));
+      HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames_,
+                       "decoded " << video.frames.size() << " of " << frames_ << " frames");
+      // Written in parallel, synced as one batch, listed in the manifest in order.
+      std::vector<std::string> checksums(frames_), paths(frames_);
+      ParallelFor(frames_, ResolveThreadCount(options_.threads), [&](int64_t f) {
+        const std::string bytes = EncodePng(video.frames[f]);
+        paths[f] = dir_ + "/" + FramePath("thermal", static_cast<int>(f), "png");
+        WriteFileAtomicUnsynced(paths[f], bytes);
+        checksums[f] = ChecksumOf(bytes);
+      });
+      SyncFiles(paths);
+      for (int f = 0; f < frames_; ++f) manifest_.files[FramePath("thermal", f, "png")] = checksums[f];
+    }
+    video_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
+  }
+
+  // thermal.mp4, the side files, then the manifest that declares the dataset complete.
+  void Finish() {
+    if (encode_video_) WriteVideo();
+    const std::vector<PoseRecord> poses = PoseRecordsOf(run_, frames_);
+    std::vector<DatasetEvent> events;
+    for (const DatasetEvent& e : world_.events())
+      if (e.frame < frames_) events.push_back(e);
+    for (int f : sensor_->FfcFrames(frames_)) {
+      events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
+      for (int frozen = f; frozen < frames_ && sensor_->ShownFrame(frozen) != frozen; ++frozen) {
+        events.push_back({frozen, "freeze", -1, "",
+                          "output repeats frame " + std::to_string(sensor_->ShownFrame(frozen)) +
+                              " (FFC shutter closed)"});
+      }
+    }
+    std::stable_sort(events.begin(), events.end(),
+                     [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
+    WriteDatasetFile(dir_, "poses.csv", PosesToCsv(poses), &manifest_);
+    WriteDatasetFile(dir_, "poses_tum.txt", PosesToTum(poses), &manifest_);
+    if (outputs_.persons) WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_, options_.threads), &manifest_);
+    WriteDatasetFile(dir_, "events.json", EventsToJson(events), &manifest_);
+    WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(FootprintRecordsOf(world_.obstacles())), &manifest_);
+    WriteDatasetFile(dir_, "scene.json", scene_.resolved.dump(2), &manifest_);
+    manifest_.complete = true;
+    WriteFileAtomic(manifest_path_, manifest_.ToJson());
+    result_.complete = true;
+    result_.video_seconds += video_s_;
+  }
+
+  const Scene& scene_;
+  const SequenceOptions& options_;
+  const std::string dir_;
+  const std::string manifest_path_;
+  const int frames_;
+  const DatasetOutputs outputs_;
+  const BandRadianceTable table_;
+  World world_;
+  const CameraIntrinsics intrinsics_;
+  const RobotRun run_;
+  SensorOptions sensor_options_;
+  VideoOptions video_options_;
+  std::unique_ptr<SensorModel> sensor_;
+  std::unique_ptr<FrameRenderer> renderer_;
+
+  DatasetManifest manifest_;
+  std::vector<bool> done_;  // frames kept from an earlier run
+  bool any_done_ = false;
+  std::vector<FramePersons> persons_;
+  int sensor_frame_ = -1;       // last frame the sensor model has seen
+  int since_checkpoint_ = 0;
+  bool encode_video_ = true;  // thermal.mp4 is an output or makes video mode's thermal PNGs
+  std::unique_ptr<VideoEncoder> streaming_video_;
+  double video_s_ = 0.0;  // thermal.mp4 outside the writer
+  SequenceResult result_;
+  // Last, so it is destroyed (stopping its workers) before the manifest and video it writes to.
+  std::unique_ptr<FrameWriter> writer_;
+};
+
+}  // namespace
+
+SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("render", problem);
+  KeepFreedMemoryForReuse();  // frames are allocated here and freed by the writer's threads
+  const auto start = std::chrono::steady_clock::now();
+  SequenceResult result = SequenceRender(scene, options).Run();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace hoilcd

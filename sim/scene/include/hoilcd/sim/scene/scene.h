@@ -1,0 +1,83 @@
+// Scene files: JSON validated against scenes/scene.schema.json (embedded in the binary), with
+// command-line overrides (--set KEY=VALUE) applied first and every default filled in from the
+// schema, so the resolved scene is complete. The typed Scene is what the simulator reads.
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/sim/people/crowd_options.h"
+#include "hoilcd/sim/robot/robot.h"
+#include "hoilcd/sim/scene/camera_options.h"
+#include "hoilcd/sim/scene/room_options.h"
+
+namespace hoilcd {
+
+// The scene JSON Schema text (scenes/scene.schema.json, compiled in).
+const std::string& SceneSchemaText();
+
+// Applies one "KEY=VALUE" override. KEY is a dotted path ("crowd.people_per_table",
+// "tables.0.center_m") or a JSON pointer ("/crowd/people_per_table"); VALUE is parsed as JSON
+// when it is valid JSON, else taken as a string. Throws InputError naming the override.
+void ApplyOverride(nlohmann::json* doc, const std::string& key_equals_value);
+
+// Every schema violation of doc, each as {file: /json/pointer, what was expected}.
+std::vector<Problem> ValidateScene(const nlohmann::json& doc, const std::string& file);
+
+// Inserts schema defaults for every absent property, recursively.
+void FillSceneDefaults(nlohmann::json* doc);
+
+struct TableSpec {
+  Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
+  double yaw_deg = 0;
+};
+
+struct ObjectSpec {
+  std::string asset;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  double yaw_deg = 0;
+  double temperature_offset_c = 0;
+  bool enabled = true;
+};
+
+// The typed, fully resolved scene. Field meanings and units: scenes/scene.schema.json.
+struct Scene {
+  std::string file;                 // where it was loaded from (for messages)
+  nlohmann::json resolved;          // the resolved document (dataset's scene.json)
+  std::string hash;                 // checksum of the resolved document
+  std::string assets_dir;           // absolute folder searched for asset names
+
+  std::string name;
+  uint64_t seed = 1;
+  int frames = 1996;
+  double frame_rate_hz = 25;
+
+  RoomOptions room;                 // /room
+  std::vector<TableSpec> tables;
+  FurnitureOptions furniture;       // /furniture (asset names resolved to paths)
+
+  CrowdOptions crowd;               // /crowd
+
+  std::vector<ObjectSpec> objects;  // distractor switches already applied
+  CameraOptions camera;             // /camera: image, sensor, renderer, video
+  TricycleOptions robot;            // /robot
+  RouteOptions route;               // /route (frames = the scene's frames)
+  OdometryErrorOptions odometry;    // /odometry
+};
+
+// Reads, overrides, validates (all problems at once), fills defaults, and types a scene file.
+// Throws InputError listing every problem as "FILE: /json/pointer: what was expected".
+Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// `error` with every problem given as a bare scene section ("route", "frame_rate_hz") located
+// in the scene file ("FILE: /route"): for checks made while simulating, not while loading.
+InputError LocatedInScene(const Scene& scene, const InputError& error);
+
+// The same from an in-memory document (file names messages).
+Scene SceneFromJson(nlohmann::json doc, const std::string& file,
+                    const std::vector<std::string>& overrides = {});
+
+}  // namespace hoilcd

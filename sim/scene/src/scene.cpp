@@ -1,0 +1,478 @@
+#include "hoilcd/sim/scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <valijson/adapters/nlohmann_json_adapter.hpp>
+#include <valijson/schema.hpp>
+#include <valijson/schema_parser.hpp>
+#include <valijson/validator.hpp>
+
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/text.h"
+#include "hoilcd/sim/assets/asset.h"
+#include "scene_schema_text.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const json& SchemaJson() {
+  static const json schema = json::parse(SceneSchemaText());
+  return schema;
+}
+
+const valijson::Schema& CompiledSchema() {
+  static const std::unique_ptr<valijson::Schema> schema = [] {
+    auto s = std::make_unique<valijson::Schema>();
+    valijson::SchemaParser parser;
+    valijson::adapters::NlohmannJsonAdapter adapter(SchemaJson());
+    parser.populateSchema(adapter, *s);
+    return s;
+  }();
+  return *schema;
+}
+
+// valijson context ["<root>", "[room]", "[size_m]", "[0]"] -> JSON pointer "/room/size_m/0".
+std::string ContextToPointer(const std::vector<std::string>& context) {
+  std::string pointer;
+  for (const std::string& part : context) {
+    if (part == "<root>") continue;
+    std::string key = part;
+    if (key.size() >= 2 && key.front() == '[' && key.back() == ']') key = key.substr(1, key.size() - 2);
+    pointer += "/" + json::json_pointer::string_t(key);
+  }
+  return pointer.empty() ? "/" : pointer;
+}
+
+// The schema node that describes a JSON pointer inside a document (null when unknown).
+const json* SchemaAt(const std::string& pointer) {
+  const json* node = &SchemaJson();
+  std::stringstream ss(pointer);
+  std::string part;
+  std::getline(ss, part, '/');
+  while (std::getline(ss, part, '/')) {
+    if (node->contains("properties") && (*node)["properties"].contains(part)) {
+      node = &(*node)["properties"][part];
+    } else if (node->contains("items")) {
+      node = &(*node)["items"];
+    } else {
+      return nullptr;
+    }
+  }
+  return node;
+}
+
+// Rewrites valijson's messages into "what was expected" phrasing where we can say it better.
+std::string Describe(const std::string& pointer, const std::string& description) {
+  const std::string marker = "constraints: '";
+  const size_t at = description.find(marker);
+  if (at != std::string::npos) {
+    const std::string key = description.substr(at + marker.size(),
+                                               description.size() - at - marker.size() - 2);
+    std::string expected;
+    if (const json* node = SchemaAt(pointer); node && node->contains("properties")) {
+      for (const auto& [name, _] : (*node)["properties"].items()) {
+        expected += (expected.empty() ? "" : ", ") + name;
+      }
+    }
+    return "unknown key '" + key + "'" + (expected.empty() ? "" : " (expected one of: " + expected + ")");
+  }
+  std::string out = description;
+  if (description.find("'type' constraint") != std::string::npos) {
+    if (const json* node = SchemaAt(pointer); node && node->contains("type")) {
+      static const std::map<std::string, std::string> kExpected = {
+          {"number", "a number"}, {"integer", "a whole number"}, {"string", "a string"},
+          {"boolean", "true or false"}, {"array", "an array"}, {"object", "an object"}};
+      const std::string type = (*node)["type"].is_string() ? (*node)["type"].get<std::string>() : "";
+      if (kExpected.count(type)) out = "expected " + kExpected.at(type);
+    }
+  }
+  if (const json* node = SchemaAt(pointer); node && node->contains("description")) {
+    out += " (" + (*node)["description"].get<std::string>() + ")";
+  }
+  return out;
+}
+
+// Numbers the schema calls "number" are stored as floating point, so 25 and 25.0 resolve (and
+// hash) the same.
+void NormaliseNumbers(json* doc, const json& schema) {
+  if (schema.value("type", "") == "number" && doc->is_number()) *doc = doc->get<double>();
+  if (doc->is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (doc->contains(key)) NormaliseNumbers(&(*doc)[key], sub);
+    }
+  } else if (doc->is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (json& item : *doc) NormaliseNumbers(&item, schema["items"]);
+  }
+}
+
+// The schema's "required" properties, checked on the document as written: FillDefaults would
+// otherwise supply them (a table without center_m would silently stand at the default).
+void CheckRequired(const json& doc, const json& schema, const std::string& pointer,
+                   const std::string& file, ProblemCollector* problems) {
+  if (doc.is_object()) {
+    if (schema.contains("required")) {
+      for (const json& key : schema["required"]) {
+        if (!doc.contains(key.get<std::string>())) {
+          problems->Add(file + ": " + (pointer.empty() ? "/" : pointer),
+                        "missing required property '" + key.get<std::string>() + "'");
+        }
+      }
+    }
+    if (schema.contains("properties")) {
+      for (const auto& [key, sub] : schema["properties"].items()) {
+        if (doc.contains(key)) CheckRequired(doc[key], sub, pointer + "/" + key, file, problems);
+      }
+    }
+  } else if (doc.is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (size_t i = 0; i < doc.size(); ++i) {
+      CheckRequired(doc[i], schema["items"], pointer + "/" + std::to_string(i), file, problems);
+    }
+  }
+}
+
+void FillDefaults(json* doc, const json& schema) {
+  if (doc->is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (!doc->contains(key) && sub.contains("default")) (*doc)[key] = sub["default"];
+      if (doc->contains(key)) FillDefaults(&(*doc)[key], sub);
+    }
+  } else if (doc->is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (json& item : *doc) FillDefaults(&item, schema["items"]);
+  }
+}
+
+// Asset names stay names; a relative .gltf/.glb path is relative to the scene file's folder.
+std::string ResolveAssetRef(const std::string& ref, const fs::path& scene_dir) {
+  const std::string ext = fs::path(ref).extension().string();
+  if ((ext != ".gltf" && ext != ".glb") || fs::path(ref).is_absolute()) return ref;
+  return (scene_dir / ref).lexically_normal().string();
+}
+
+Eigen::Vector2d Vec2(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
+Eigen::Vector3d Vec3(const json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+// Cross-field checks the schema cannot express.
+void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
+  const std::string& f = scene.file;
+  for (size_t i = 0; i < scene.tables.size(); ++i) {
+    const Eigen::Vector2d& c = scene.tables[i].center_m;
+    if (c.x() < 0 || c.y() < 0 || c.x() > scene.room.size_m.x() || c.y() > scene.room.size_m.y()) {
+      problems->Add(f + ": /tables/" + std::to_string(i) + "/center_m",
+                    "a position inside the room (x in [0, " + std::to_string(scene.room.size_m.x()) +
+                        "], y in [0, " + std::to_string(scene.room.size_m.y()) + "])");
+    }
+  }
+  for (size_t i = 0; i < scene.crowd.seating.size(); ++i) {
+    if (scene.crowd.seating[i].table >= static_cast<int>(scene.tables.size())) {
+      problems->Add(f + ": /crowd/seating/" + std::to_string(i) + "/table",
+                    "a table index below " + std::to_string(scene.tables.size()));
+    }
+  }
+  for (size_t i = 0; i < scene.room.windows.size(); ++i) {
+    const WindowSpec& w = scene.room.windows[i];
+    const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room.size_m.x()
+                                                                         : scene.room.size_m.y();
+    const std::string at = f + ": /room/windows/" + std::to_string(i);
+    if (w.center_m - 0.5 * w.width_m < 0 || w.center_m + 0.5 * w.width_m > wall_length) {
+      problems->Add(at + "/center_m", "the window to fit along its wall (length " +
+                                          std::to_string(wall_length) + " m)");
+    }
+    if (w.bottom_m + w.height_m > scene.room.size_m.z()) {
+      problems->Add(at + "/height_m", "the window top below the ceiling");
+    }
+  }
+  // Doors: centred on a wall (within 1 cm) with the whole opening along it.
+  const double size_x = scene.room.size_m.x(), size_y = scene.room.size_m.y();
+  for (size_t i = 0; i < scene.room.doors.size(); ++i) {
+    const DoorSpec& d = scene.room.doors[i];
+    const std::string at = f + ": /room/doors/" + std::to_string(i);
+    const double x = d.position_m.x(), y = d.position_m.y();
+    constexpr double kOnWallM = 0.01;
+    const bool in_x = x >= -kOnWallM && x <= size_x + kOnWallM, in_y = y >= -kOnWallM && y <= size_y + kOnWallM;
+    const bool on_x_wall = in_y && (std::abs(x) <= kOnWallM || std::abs(x - size_x) <= kOnWallM);  // west, east
+    const bool on_y_wall = in_x && (std::abs(y) <= kOnWallM || std::abs(y - size_y) <= kOnWallM);  // south, north
+    if (!on_x_wall && !on_y_wall) {
+      problems->Add(at + "/position_m", "a point on one of the room's walls (x = 0 or " + ShortestDouble(size_x) +
+                                            ", or y = 0 or " + ShortestDouble(size_y) + ", within 1 cm); got (" +
+                                            ShortestDouble(x) + ", " + ShortestDouble(y) + ")");
+      continue;
+    }
+    const double along = on_x_wall ? y : x, length = on_x_wall ? size_y : size_x;
+    if (along - 0.5 * d.width_m < 0 || along + 0.5 * d.width_m > length) {
+      problems->Add(at + "/width_m", "the doorway (" + ShortestDouble(d.width_m) + " m wide, centred " + ShortestDouble(along) +
+                                         " m along its wall) to fit along its wall (length " + ShortestDouble(length) +
+                                         " m) without reaching a corner");
+    }
+  }
+  auto inside_room = [&](const Eigen::Vector3d& p) {
+    return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room.size_m.x() &&
+           p.y() <= scene.room.size_m.y() && p.z() <= scene.room.size_m.z();
+  };
+  const std::string room_box = "x in [0, " + std::to_string(scene.room.size_m.x()) + "], y in [0, " +
+                               std::to_string(scene.room.size_m.y()) + "], z in [0, " +
+                               std::to_string(scene.room.size_m.z()) + "]";
+  const json& objects = scene.resolved.at("objects");
+  const AssetLibrary assets(scene.assets_dir);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const std::string at = f + ": /objects/" + std::to_string(i);
+    if (!inside_room(Vec3(objects[i].at("position_m")))) {
+      problems->Add(at + "/position_m", "a position inside the room (" + room_box + ")");
+    }
+    const std::string path = assets.Resolve(objects[i].at("asset").get<std::string>());
+    std::error_code ec;
+    if (objects[i].at("enabled").get<bool>() && !fs::is_regular_file(path, ec)) {
+      problems->Add(at + "/asset", "an asset name in " + scene.assets_dir + " or a .gltf/.glb file; " + path +
+                                       " does not exist");
+    }
+  }
+  for (const char* key : {"table_asset", "chair_asset"}) {
+    const std::string path = assets.Resolve(scene.resolved.at("furniture").at(key).get<std::string>());
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      problems->Add(f + ": /furniture/" + key, "an asset name in " + scene.assets_dir +
+                                                   " or a .gltf/.glb file; " + path + " does not exist");
+    }
+  }
+  const std::vector<StandingSpec>& standing = scene.crowd.standing;
+  for (size_t i = 0; i < standing.size(); ++i) {
+    const Eigen::Vector2d& p = standing[i].position_m;
+    if (!inside_room({p.x(), p.y(), 0})) {
+      problems->Add(f + ": /crowd/standing/" + std::to_string(i) + "/position_m",
+                    "a position inside the room (" + room_box + ")");
+    }
+  }
+  const std::vector<Eigen::Vector2d>& waypoints = scene.route.waypoints_m;
+  for (size_t i = 0; i < waypoints.size(); ++i) {
+    const Eigen::Vector2d& p = waypoints[i];
+    if (p.x() < 0 || p.y() < 0 || p.x() > scene.room.size_m.x() || p.y() > scene.room.size_m.y()) {
+      problems->Add(f + ": /route/waypoints_m/" + std::to_string(i), "a waypoint inside the room");
+    }
+  }
+}
+
+bool DistractorEnabled(const json& distractors, const std::string& asset) {
+  const std::string name = fs::path(asset).stem().string();
+  for (const char* cls : {"cup", "laptop", "monitor", "radiator"}) {
+    if (name.rfind(cls, 0) == 0) return distractors.at(std::string(cls) + "s").get<bool>();
+  }
+  return true;
+}
+
+}  // namespace
+
+const std::string& SceneSchemaText() {
+  static const std::string text(kSceneSchemaText);
+  return text;
+}
+
+void ApplyOverride(json* doc, const std::string& key_equals_value) {
+  const std::string where = "--set " + key_equals_value;
+  const size_t eq = key_equals_value.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError(where, "expected KEY=VALUE");
+  std::string key = key_equals_value.substr(0, eq);
+  const std::string value_text = key_equals_value.substr(eq + 1);
+  if (key.front() != '/') {
+    std::replace(key.begin(), key.end(), '.', '/');
+    key = "/" + key;
+  }
+  json value = json::parse(value_text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded()) value = value_text;
+  try {
+    const json::json_pointer pointer(key);
+    // Arrays may be indexed only within their size ("-" appends), at every level of the path.
+    json::json_pointer prefix;
+    const json* node = doc;
+    std::stringstream tokens(key.substr(1));
+    std::string token;
+    while (std::getline(tokens, token, '/')) {
+      // Past the end of the document a numeric token would create an array of that size.
+      if ((node == nullptr || node->is_null()) && !token.empty() &&
+          (token == "-" || token.find_first_not_of("0123456789") == std::string::npos)) {
+        throw InputError(where, "an existing array at " + (prefix.empty() ? "/" : prefix.to_string()) +
+                                    " to index with '" + token + "'");
+      }
+      if (node && node->is_array() && token != "-") {
+        if (token.empty() || token.size() > 9 || token.find_first_not_of("0123456789") != std::string::npos ||
+            std::stoul(token) >= node->size()) {
+          throw InputError(where, "an index below " + std::to_string(node->size()) + " at " +
+                                      (prefix.empty() ? "/" : prefix.to_string()));
+        }
+      }
+      prefix /= token;
+      node = node && doc->contains(prefix) ? &(*doc)[prefix] : nullptr;
+    }
+    (*doc)[pointer] = value;
+  } catch (const json::exception& e) {
+    throw InputError(where, std::string("a valid path into the scene (") + e.what() + ")");
+  }
+}
+
+std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
+  valijson::Validator validator;
+  valijson::ValidationResults results;
+  valijson::adapters::NlohmannJsonAdapter target(doc);
+  validator.validate(CompiledSchema(), target, &results);
+  std::vector<std::pair<std::string, std::string>> errors;
+  valijson::ValidationResults::Error error;
+  while (results.popError(error)) {
+    errors.emplace_back(ContextToPointer(error.context), error.description);
+  }
+  // valijson also reports each failing ancestor ("Failed to validate against schema associated
+  // with property name 'room'"); keep only the deepest messages, which say what was expected.
+  std::vector<Problem> problems;
+  for (const auto& [pointer, description] : errors) {
+    bool has_deeper = false;
+    for (const auto& other : errors) {
+      if (other.first.size() > pointer.size() &&
+          other.first.compare(0, pointer.size(), pointer) == 0 &&
+          (pointer == "/" || other.first[pointer.size()] == '/')) {
+        has_deeper = true;
+        break;
+      }
+    }
+    const bool generic = description.rfind("Failed to validate", 0) == 0;
+    if (has_deeper && generic) continue;
+    if (generic && errors.size() > 1) continue;
+    problems.push_back({file + ": " + pointer, Describe(pointer, description)});
+  }
+  std::sort(problems.begin(), problems.end(),
+            [](const Problem& a, const Problem& b) { return a.where < b.where; });
+  problems.erase(std::unique(problems.begin(), problems.end(),
+                             [](const Problem& a, const Problem& b) {
+                               return a.where == b.where && a.message == b.message;
+                             }),
+                 problems.end());
+  return problems;
+}
+
+void FillSceneDefaults(json* doc) {
+  FillDefaults(doc, SchemaJson());
+  NormaliseNumbers(doc, SchemaJson());
+}
+
+Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
+  if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
+  ProblemCollector problems;
+  CheckRequired(doc, SchemaJson(), "", file, &problems);
+  // Defaults first, so an override of one element of a default array (objects.0.enabled)
+  // changes that element instead of replacing the whole array.
+  FillDefaults(&doc, SchemaJson());
+  for (const std::string& o : overrides) ApplyOverride(&doc, o);
+  for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
+  problems.ThrowIfAny();
+  FillSceneDefaults(&doc);
+
+  Scene s;
+  s.file = file;
+  s.name = doc["name"].get<std::string>();
+  s.seed = doc["seed"].get<uint64_t>();
+  s.frames = doc["frames"].get<int>();
+  s.frame_rate_hz = doc["frame_rate_hz"].get<double>();
+
+  const fs::path scene_dir = fs::absolute(fs::path(file)).parent_path();
+  // Paths relative to the scene file are made absolute in the resolved document, so a
+  // dataset's scene.json (written elsewhere) still finds the same assets.
+  std::string assets_dir = doc["assets_dir"].get<std::string>();
+  if (!assets_dir.empty()) {
+    assets_dir = (scene_dir / assets_dir).lexically_normal().string();
+    doc["assets_dir"] = assets_dir;
+  }
+  s.assets_dir = assets_dir.empty() ? ShippedAssetDir() : assets_dir;
+  for (const char* key : {"table_asset", "chair_asset"}) {
+    doc["furniture"][key] = ResolveAssetRef(doc["furniture"][key].get<std::string>(), scene_dir);
+  }
+  for (json& o : doc["objects"]) o["asset"] = ResolveAssetRef(o["asset"].get<std::string>(), scene_dir);
+
+  // The module options, each read and checked by its option table (every problem at its pointer).
+  ProblemCollector consistency;
+  RoomOptions::Table().Read(doc["room"], file + ": /room", &s.room, &consistency);
+  s.room.size_m = Vec3(doc["room"]["size_m"]);
+  s.room.windows.clear();
+  for (size_t i = 0; i < doc["room"]["windows"].size(); ++i) {
+    WindowSpec w;
+    WindowSpec::Table().Read(doc["room"]["windows"][i], file + ": /room/windows/" + std::to_string(i), &w, &consistency);
+    s.room.windows.push_back(w);
+  }
+  // No doors given: a 0.9 m door in the middle of each end wall (west and east, as a seminar
+  // room's front and back doors), written into the resolved scene so the dataset's scene.json
+  // names the doors walkers used.
+  if (doc["room"]["doors"].empty()) {
+    const double mid_y = 0.5 * s.room.size_m.y();
+    doc["room"]["doors"] = json::array({{{"position_m", {0.0, mid_y}}, {"width_m", 0.9}},
+                                        {{"position_m", {s.room.size_m.x(), mid_y}}, {"width_m", 0.9}}});
+  }
+  for (const json& d : doc["room"]["doors"]) s.room.doors.push_back({Vec2(d["position_m"]), d["width_m"].get<double>()});
+  for (const json& t : doc["tables"]) s.tables.push_back({Vec2(t["center_m"]), t["yaw_deg"].get<double>()});
+  FurnitureOptions::Table().Read(doc["furniture"], file + ": /furniture", &s.furniture, &consistency);
+
+  for (const json& o : doc["objects"]) {
+    ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
+                    o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
+    if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
+  }
+  CameraOptions::Table().Read(doc["camera"], file + ": /camera", &s.camera, &consistency);
+  s.camera.sensor.reflected_temperature_c = s.room.environment_temperature_c;
+  TricycleOptions::Table().Read(doc["robot"], file + ": /robot", &s.robot, &consistency);
+  RouteOptions::Table().Read(doc["route"], file + ": /route", &s.route, &consistency);
+  s.route.waypoints_m.clear();
+  for (const json& p : doc["route"]["waypoints_m"]) s.route.waypoints_m.push_back(Vec2(p));
+  s.route.frames = s.frames;
+  OdometryErrorOptions::Table().Read(doc["odometry"], file + ": /odometry", &s.odometry, &consistency);
+  CrowdOptions::Table().Read(doc["crowd"], file + ": /crowd", &s.crowd, &consistency);
+  for (const json& p : doc["crowd"]["seating"]) {
+    s.crowd.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
+  }
+  for (const json& p : doc["crowd"]["standing"]) s.crowd.standing.push_back({Vec2(p["position_m"]), p["yaw_deg"].get<double>()});
+  RoomOptions::Table().Check(s.room, file + ": /room", &consistency);
+  for (size_t i = 0; i < s.room.windows.size(); ++i) {
+    WindowSpec::Table().Check(s.room.windows[i], file + ": /room/windows/" + std::to_string(i), &consistency);
+  }
+  FurnitureOptions::Table().Check(s.furniture, file + ": /furniture", &consistency);
+  CameraOptions::Table().Check(s.camera, file + ": /camera", &consistency);
+  TricycleOptions::Table().Check(s.robot, file + ": /robot", &consistency);
+  RouteOptions::Table().Check(s.route, file + ": /route", &consistency);
+  OdometryErrorOptions::Table().Check(s.odometry, file + ": /odometry", &consistency);
+  CrowdOptions::Table().Check(s.crowd, file + ": /crowd", &consistency);
+  s.resolved = doc;
+  s.hash = ChecksumOf(doc.dump());
+
+  CheckConsistency(s, &consistency);
+  consistency.ThrowIfAny();
+  return s;
+}
+
+InputError LocatedInScene(const Scene& scene, const InputError& error) {
+  std::vector<Problem> problems = error.problems();
+  for (Problem& p : problems) {
+    if (!p.where.empty() && p.where.find(':') == std::string::npos && p.where.front() != '/') {
+      p.where = scene.file + ": /" + p.where;
+    }
+  }
+  return InputError(std::move(problems));
+}
+
+Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the scene file (does it exist and is it readable?)");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(buffer.str());
+  } catch (const json::exception& e) {  // parse errors and number overflow (1e400)
+    throw InputError(path, std::string("valid JSON (") + e.what() + ")");
+  }
+  return SceneFromJson(std::move(doc), path, overrides);
+}
+
+}  // namespace hoilcd

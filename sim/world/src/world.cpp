@@ -1,0 +1,339 @@
+#include "hoilcd/sim/world/world.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "hoilcd/core/util/random.h"
+#include "hoilcd/core/util/text.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+             const Eigen::Vector3f& c, const Eigen::Vector3f& d, uint32_t material) {
+  const auto base = static_cast<uint32_t>(mesh->positions_m.size());
+  for (const Eigen::Vector3f* p : {&a, &b, &c, &d}) mesh->positions_m.push_back(*p);
+  for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh->indices.push_back(base + i);
+  mesh->triangle_material.push_back(material);
+  mesh->triangle_material.push_back(material);
+}
+
+Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen::Vector3d& position,
+                       double yaw_rad, double margin_m = 0.0) {
+  const Eigen::Vector3f lo = asset.bounds_m.min(), hi = asset.bounds_m.max();
+  const Eigen::Vector2d center_local(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()));
+  const Eigen::Rotation2Dd rot(yaw_rad);
+  Obstacle2D o;
+  o.name = name;
+  o.shape = Obstacle2D::Shape::kRectangle;
+  o.center_m = position.head<2>() + rot * center_local;
+  o.half_size_m = Eigen::Vector2d(0.5 * (hi.x() - lo.x()) + margin_m, 0.5 * (hi.y() - lo.y()) + margin_m);
+  o.yaw_rad = yaw_rad;
+  return o;
+}
+
+// Separating-axis test of two rectangle footprints (touching counts as overlapping).
+bool RectanglesOverlap(const Obstacle2D& a, const Obstacle2D& b) {
+  const Eigen::Vector2d d = b.center_m - a.center_m;
+  for (const Obstacle2D* owner : {&a, &b}) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const double angle = owner->yaw_rad + axis * M_PI / 2;
+      const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+      double reach = 0;
+      for (const Obstacle2D* r : {&a, &b}) {
+        const Eigen::Vector2d u(std::cos(r->yaw_rad), std::sin(r->yaw_rad));
+        const Eigen::Vector2d v(-u.y(), u.x());
+        reach += r->half_size_m.x() * std::abs(n.dot(u)) + r->half_size_m.y() * std::abs(n.dot(v));
+      }
+      if (std::abs(n.dot(d)) > reach) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad, double scale) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.topLeftCorner<3, 3>() =
+      (Eigen::AngleAxisf(static_cast<float>(yaw_rad), Eigen::Vector3f::UnitZ()).toRotationMatrix() *
+       static_cast<float>(scale));
+  m.topRightCorner<3, 1>() = position_m.cast<float>();
+  return m;
+}
+
+World::World(const Scene& scene, const BandRadianceTable& table)
+    : table_(table), assets_(scene.assets_dir), caster_(std::make_unique<RayCaster>()),
+      room_size_m_(scene.room.size_m) {
+  crowd_ = std::make_unique<Crowd>(scene, &assets_, static_cast<CrowdStage*>(this));
+  environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.room.environment_temperature_c));
+  for (const char* name : {"none", "floor", "ceiling", "wall", "window", "table", "chair", "person",
+                           "cup", "laptop", "monitor", "radiator"}) {
+    ClassId(name);
+  }
+  BuildRoom(scene);
+  BuildFurnitureAndPeople(scene);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const ObjectSpec& o = scene.objects[i];
+    const Asset& asset = assets_.Get(o.asset);
+    const double yaw = o.yaw_deg * kDegToRad;
+    Place(asset, PlacementTransform(o.position_m, yaw), InstanceRole::kObject,
+          asset.class_name + " " + std::to_string(i), o.temperature_offset_c);
+    if (o.position_m.z() < 0.2) {
+      obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset,
+                                       o.position_m, yaw));
+    }
+  }
+  // People standing still (chatting by a wall): present all the time, obstacles for the robot.
+  for (Obstacle2D& o : crowd_->AddStandingPeople(scene)) obstacles_.push_back(std::move(o));
+  SetTime(0.0);
+}
+
+void World::SetTime(double time_s) {
+  crowd_->SetTime(time_s);
+  caster_->Commit();
+}
+
+void World::Move(int instance, const Eigen::Matrix4f& world_from_object) {
+  caster_->SetInstanceTransform(instance, world_from_object);
+}
+
+int World::ClassId(const std::string& name) {
+  const auto it = classes_.find(name);
+  if (it != classes_.end()) return it->second;
+  const int id = static_cast<int>(classes_.size());
+  classes_[name] = id;
+  return id;
+}
+
+void World::Finish(InstanceMaterial* m) const {
+  m->blackbody_bottom = table_.RadianceFromCelsius(m->temperature_c);
+  m->blackbody_top = table_.RadianceFromCelsius(m->temperature_top_c);
+}
+
+int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role,
+                 std::string name, double temperature_offset_c) {
+  auto [it, inserted] = prototype_of_asset_.emplace(&asset, -1);
+  if (inserted) it->second = caster_->AddPrototype(asset.mesh);
+  const int id = caster_->AddInstance(it->second, world_from_object);
+  InstanceInfo info;
+  info.role = role;
+  info.name = std::move(name);
+  info.class_id = ClassId(asset.class_name.empty() ? "object" : asset.class_name);
+  info.asset = &asset;
+  info.mesh = &asset.mesh;
+  info.label = id;
+  for (const ThermalMaterial& tm : asset.materials) {
+    InstanceMaterial m;
+    m.temperature_c = m.temperature_top_c = static_cast<float>(tm.temperature_c + temperature_offset_c);
+    m.emissivity = static_cast<float>(tm.emissivity);
+    m.specular = tm.specular;
+    m.class_id = info.class_id;
+    Finish(&m);
+    info.materials.push_back(m);
+  }
+  instances_.push_back(std::move(info));
+  return id;
+}
+
+void World::BuildRoom(const Scene& scene) {
+  const auto X = static_cast<float>(room_size_m_.x()), Y = static_cast<float>(room_size_m_.y()),
+             Z = static_cast<float>(room_size_m_.z());
+  using V = Eigen::Vector3f;
+  AddQuad(&room_mesh_, V(0, 0, 0), V(X, 0, 0), V(X, Y, 0), V(0, Y, 0), 0);  // floor
+  AddQuad(&room_mesh_, V(0, 0, Z), V(0, Y, Z), V(X, Y, Z), V(X, 0, Z), 1);  // ceiling
+  AddQuad(&room_mesh_, V(0, 0, 0), V(0, 0, Z), V(X, 0, Z), V(X, 0, 0), 2);  // south
+  AddQuad(&room_mesh_, V(0, Y, 0), V(X, Y, 0), V(X, Y, Z), V(0, Y, Z), 2);  // north
+  AddQuad(&room_mesh_, V(0, 0, 0), V(0, Y, 0), V(0, Y, Z), V(0, 0, Z), 2);  // west
+  AddQuad(&room_mesh_, V(X, 0, 0), V(X, 0, Z), V(X, Y, Z), V(X, Y, 0), 2);  // east
+  const float inset = 0.002f;  // windows sit just inside the wall plane
+  for (size_t i = 0; i < scene.room.windows.size(); ++i) {
+    const WindowSpec& w = scene.room.windows[i];
+    const auto a = static_cast<float>(w.center_m - 0.5 * w.width_m);
+    const auto b = static_cast<float>(w.center_m + 0.5 * w.width_m);
+    const auto z0 = static_cast<float>(w.bottom_m), z1 = static_cast<float>(w.bottom_m + w.height_m);
+    const auto material = static_cast<uint32_t>(3 + i);
+    if (w.wall == "south") AddQuad(&room_mesh_, V(a, inset, z0), V(a, inset, z1), V(b, inset, z1), V(b, inset, z0), material);
+    if (w.wall == "north") AddQuad(&room_mesh_, V(a, Y - inset, z0), V(b, Y - inset, z0), V(b, Y - inset, z1), V(a, Y - inset, z1), material);
+    if (w.wall == "west") AddQuad(&room_mesh_, V(inset, a, z0), V(inset, b, z0), V(inset, b, z1), V(inset, a, z1), material);
+    if (w.wall == "east") AddQuad(&room_mesh_, V(X - inset, a, z0), V(X - inset, a, z1), V(X - inset, b, z1), V(X - inset, b, z0), material);
+  }
+  const int prototype = caster_->AddPrototype(room_mesh_);
+  caster_->AddInstance(prototype, Eigen::Matrix4f::Identity());
+  InstanceInfo info;
+  info.role = InstanceRole::kRoom;
+  info.name = "room";
+  info.class_id = ClassId("wall");
+  info.mesh = &room_mesh_;
+  // bottom_c at the floor, top_c at the ceiling (equal but for the walls).
+  auto surface = [&](double bottom_c, double top_c, double emissivity, bool specular, const char* cls) {
+    InstanceMaterial m;
+    m.class_id = ClassId(cls);
+    m.temperature_c = static_cast<float>(bottom_c);
+    m.temperature_top_c = static_cast<float>(top_c);
+    m.emissivity = static_cast<float>(emissivity);
+    m.specular = specular;
+    Finish(&m);
+    return m;
+  };
+  auto plain = [&](const SurfaceSpec& s, const char* cls) {
+    return surface(s.temperature_c, s.temperature_c, s.emissivity, s.specular, cls);
+  };
+  const WallOptions& walls = scene.room.walls;
+  info.materials.push_back(plain(scene.room.floor, "floor"));
+  info.materials.push_back(plain(scene.room.ceiling, "ceiling"));
+  info.materials.push_back(
+      surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
+  for (const WindowSpec& w : scene.room.windows) info.materials.push_back(plain(w.surface, "window"));
+  instances_.push_back(std::move(info));
+  const double t = 0.05;  // walls as thin obstacles just outside the room
+  auto wall = [&](const std::string& name, double cx, double cy, double hx, double hy) {
+    Obstacle2D o;
+    o.name = name;
+    o.shape = Obstacle2D::Shape::kRectangle;
+    o.center_m = {cx, cy};
+    o.half_size_m = {hx, hy};
+    obstacles_.push_back(o);
+  };
+  wall("south wall", 0.5 * X, -t, 0.5 * X + t, t);
+  wall("north wall", 0.5 * X, Y + t, 0.5 * X + t, t);
+  wall("west wall", -t, 0.5 * Y, t, 0.5 * Y + t);
+  wall("east wall", X + t, 0.5 * Y, t, 0.5 * Y + t);
+}
+
+void World::BuildFurnitureAndPeople(const Scene& scene) {
+  const Asset& table_asset = assets_.Get(scene.furniture.table_asset);
+  const Asset& chair_asset = assets_.Get(scene.furniture.chair_asset);
+  bool three_per_side = scene.crowd.people_per_table > 4;
+  for (const SeatingSpec& s : scene.crowd.seating) three_per_side |= (s.seat % 3 == 2);
+  const int per_side = three_per_side ? 3 : 2;
+  const double spacing = three_per_side ? scene.furniture.seat_spacing_6_m : scene.furniture.seat_spacing_4_m;
+  // Seated bodies are capped in size to fit between neighbours (Crowd::Plan), down to the
+  // smallest body drawn; closer seats leave no room for anyone (1 cm more for chair jitter).
+  const double narrowest_m = 2 * kMinSeatedBodyScale * crowd_->skeleton().UpperBodyHalfExtentM().y() + kSeatedShoulderGapM + 0.01;
+  if (per_side > 1 && spacing < narrowest_m) {
+    std::ostringstream message;
+    message << (three_per_side ? "/furniture/seat_spacing_6_m" : "/furniture/seat_spacing_4_m") << ": seats "
+            << spacing << " m apart leave no room for a seated person (the narrowest body is "
+            << Fixed(narrowest_m - 0.01 - kSeatedShoulderGapM, 3) << " m across the shoulders); expected at least "
+            << Fixed(narrowest_m, 3) << " m";
+    throw InputError(scene.file, message.str());
+  }
+  const double half_depth = table_asset.bounds_m.max().y();
+  // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
+  const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
+  const double chair_half_width = 0.5 * std::max(chair_size.x(), chair_size.y());
+
+  const std::vector<SeatingSpec> seating = Crowd::InitialSeating(scene, per_side);
+
+  // Chairs stand where people left them, not on a grid: without this, full tables in the
+  // point-symmetric paper room look the same from opposite ends of the loop. A chair moves along
+  // the table, is pushed in (never pulled out: the robot drives close behind), and turns; the turn
+  // is paid for by pushing it in further, so its footprint reaches no further from the table
+  // than a straight chair's. Chairs whose moved footprints would overlap another chair's get
+  // their moves halved until none does (the straight layout is kept as it is).
+  struct ChairPlan {
+    int table, seat, side, k;
+    double turn, shift, push;  // full jitter: rad, m along the table, m pushed in
+    double scale = 1;          // fraction of the jitter applied
+    double shift_scale = 1;    // and of the shift along the table
+  };
+  std::vector<ChairPlan> chairs;
+  for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
+    for (int side = 0; side < 2; ++side) {
+      for (int k = 0; k < per_side; ++k) {
+        const int seat = side * 3 + k;
+        Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
+        ChairPlan plan{t, seat, side, k, 0, 0, 0};
+        plan.turn = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_deg * kDegToRad;
+        plan.shift = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_m;
+        plan.push = 0.5 * jitter.Uniform() * scene.furniture.chair_jitter_m;
+        chairs.push_back(plan);
+      }
+    }
+  }
+  const auto chair_pose = [&](const ChairPlan& c, Eigen::Vector3d* position, double* seat_yaw) {
+    const TableSpec& spec = scene.tables[c.table];
+    const double yaw = spec.yaw_deg * kDegToRad;
+    const double turn = c.scale * c.turn;
+    const double along = (c.k - 0.5 * (per_side - 1)) * spacing + c.scale * c.shift_scale * c.shift;
+    const double pushed_in = c.scale * c.push + chair_half_width * std::abs(std::sin(turn));
+    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth + scene.furniture.seat_setback_m - pushed_in);
+    const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
+    *position = Eigen::Vector3d(p.x(), p.y(), 0.0);
+    *seat_yaw = yaw + (c.side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
+  };
+  const auto footprint = [&](const ChairPlan& c) {
+    Eigen::Vector3d position;
+    double seat_yaw;
+    chair_pose(c, &position, &seat_yaw);
+    return FootprintOf("", chair_asset, position, seat_yaw);
+  };
+  const auto seat_at = [&](ChairPlan c, double scale) {
+    c.scale *= scale;
+    Eigen::Vector3d position;
+    double seat_yaw;
+    chair_pose(c, &position, &seat_yaw);
+    return Eigen::Vector2d(position.head<2>());
+  };
+  // Seats side by side (closer than kCloseSeatsM when straight) are not shifted more than 1 cm
+  // closer together (their shifts are halved until so): seated neighbours' shoulder joints are
+  // 0.38 m apart at body scale 1, so a crowded row (0.45 m) has nothing to give.
+  constexpr double kCloseSeatsM = 0.6, kSqueezeM = 0.01;
+  constexpr int kHalvings = 6;
+  for (int round = 0; round <= kHalvings; ++round) {
+    std::vector<Obstacle2D> footprints;
+    for (const ChairPlan& c : chairs) footprints.push_back(footprint(c));
+    std::vector<bool> overlapping(chairs.size(), false), squeezed(chairs.size(), false);
+    bool any = false;
+    for (size_t i = 0; i < chairs.size(); ++i) {
+      for (size_t j = i + 1; j < chairs.size(); ++j) {
+        if (chairs[i].scale == 0 && chairs[j].scale == 0) continue;
+        const double straight_m = (seat_at(chairs[i], 0) - seat_at(chairs[j], 0)).norm();
+        if (straight_m < kCloseSeatsM && (seat_at(chairs[i], 1) - seat_at(chairs[j], 1)).norm() < straight_m - kSqueezeM) {
+          squeezed[i] = squeezed[j] = any = true;
+        }
+        if (RectanglesOverlap(footprints[i], footprints[j])) {
+          overlapping[i] = overlapping[j] = any = true;
+        }
+      }
+    }
+    if (!any) break;
+    for (size_t i = 0; i < chairs.size(); ++i) {
+      if (overlapping[i]) chairs[i].scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].scale;
+      if (squeezed[i]) chairs[i].shift_scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].shift_scale;
+    }
+  }
+
+  size_t next_chair = 0;
+  for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
+    const TableSpec& spec = scene.tables[t];
+    const double yaw = spec.yaw_deg * kDegToRad;
+    const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
+    Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
+    crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m);
+    obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
+    for (int n = 0; n < 2 * per_side; ++n) {
+      const ChairPlan& plan = chairs[next_chair++];
+      const int seat = plan.seat;
+      Eigen::Vector3d seat_pos;
+      double seat_yaw;
+      chair_pose(plan, &seat_pos, &seat_yaw);
+      const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
+      const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
+                              chair_name, 0.0);
+      obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
+      crowd_->AddSeat(t, seat, chair, PlacementTransform(seat_pos, seat_yaw));
+      const auto who = std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
+        return s.table == t && s.seat == seat;
+      });
+      if (who != seating.end()) crowd_->AddSeatedPerson(t, seat, who->posture, 0.0, 1e30);
+    }
+  }
+}
+
+}  // namespace hoilcd

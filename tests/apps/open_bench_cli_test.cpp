@@ -1,0 +1,164 @@
+// End to end through the command line: bench --dump-scores -> evaluate --scores reproduces every
+// method's metrics exactly; the CI gate's exit codes; evaluate's errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core/utility.hpp>
+
+#include "cli.h"
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/sim/output/sequence.h"
+#include "test_dir.h"
+#include "tiny_room.h"
+
+namespace hoilcd {
+namespace {
+
+int Hoilcd(std::vector<std::string> args) {
+  args.insert(args.begin(), {"hoilcd", "-q"});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  return RunCommandLine(static_cast<int>(argv.size()), argv.data());
+}
+
+std::string RenderTiny(const test::TestDir& temp) { return test::RenderTinyRoom(temp / "dataset"); }
+
+nlohmann::json Json(const std::string& path) { return nlohmann::json::parse(ReadFileBytes(path)); }
+
+// hoilcd's loops use the threads --threads gives them; OpenCV's own pool (an arena of every
+// core) would add a spinning worker to a --threads 1 bench.
+TEST(OpenBenchCli, TheCommandLineTurnsOpenCvsOwnThreadsOff) {
+  cv::setNumThreads(-1);  // OpenCV's default: every core
+  EXPECT_EQ(Hoilcd({"validate", std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json"}), 0);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  cv::parallel_for_(cv::Range(0, 500), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));  // long enough to share
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.insert(std::this_thread::get_id());
+    }
+  });
+  EXPECT_EQ(seen, std::set<std::thread::id>{caller});
+}
+
+TEST(OpenBenchCli, DumpedScoresThroughEvaluateReproduceEveryMethodsMetricsExactly) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "-o", temp / "report", "--dump-scores", temp / "scores", "--threads", "2"}), 0);
+  const nlohmann::json report = Json(temp / "report/report.json");
+  for (const std::string& method : DefaultMethods()) {
+    const std::string out = temp / (method + ".json");
+    ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / ("scores/" + method + ".csv"), "-o", out}), 0) << method;
+    const nlohmann::json mine = Json(out)["methods"][method];
+    const nlohmann::json theirs = report["methods"][method];
+    for (const char* key : {"mrr", "recall_at_1", "recall_at_5", "recall_at_10", "pr_auc", "recall_at_100p",
+                            "queries_scored", "per_lap"}) {
+      EXPECT_EQ(mine[key], theirs[key]) << method << " " << key;
+    }
+    EXPECT_EQ(Json(out)["other_ground_truth"]["methods"][method]["mrr"],
+              report["other_ground_truth"]["methods"][method]["mrr"]) << method;
+  }
+}
+
+TEST(OpenBenchCli, DumpedScoresOfEveryMethodAreByteIdenticalAtOneAndTwoThreads) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  for (const char* threads : {"1", "2"}) {
+    ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "all", "-o", temp / (std::string("report") + threads),
+                      "--dump-scores", temp / (std::string("scores") + threads), "--threads", threads}),
+              0);
+  }
+  for (const std::string& method : DefaultMethods()) {
+    const std::string one = ReadFileBytes(temp / ("scores1/" + method + ".csv"));
+    EXPECT_GT(std::count(one.begin(), one.end(), '\n'), 10) << method;
+    EXPECT_EQ(one, ReadFileBytes(temp / ("scores2/" + method + ".csv"))) << method;
+  }
+  const nlohmann::json a = Json(temp / "report1/report.json"), b = Json(temp / "report2/report.json");
+  EXPECT_EQ(a["tracking"], b["tracking"]);
+}
+
+TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnReport) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "report", "--dump-scores", temp / "scores",
+                 "--junit", temp / "junit.xml"}), 0);
+  const std::string own = temp / "report/report.json";
+  nlohmann::json better = Json(own);
+  better["methods"]["thumb"]["mrr"] = better["methods"]["thumb"]["mrr"].get<double>() + 0.05;
+  WriteFileAtomic(temp / "better.json", better.dump());
+
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "again", "--baseline", own}), 0);
+  testing::internal::CaptureStdout();
+  const int code = Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "again", "--baseline",
+                        temp / "better.json", "--max-drop", "0.01", "--junit", temp / "junit.xml"});
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(code, 3);
+  EXPECT_NE(out.find("regression: method thumb, mrr old "), std::string::npos) << out;
+  EXPECT_EQ(out.find("method slcd"), std::string::npos) << out;
+  const std::string junit = ReadFileBytes(temp / "junit.xml");
+  EXPECT_NE(junit.find("tests=\"2\" failures=\"1\""), std::string::npos) << junit;
+
+  // evaluate: the same gate on one method's scores.
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", own}), 0);
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "better.json",
+                 "--max-drop", "0.01"}), 3);
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "better.json",
+                 "--max-drop", "0.1"}), 0);
+}
+
+TEST(OpenBenchCli, EvaluateNamesTheBadScoresFileAndLineAndABadBaselineFailsBeforeAnyWork) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  WriteFileAtomic(temp / "bad.csv", "query,reference,score\n0,1,0.5\n0,99999,1\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "bad.csv"}), 1);
+  std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find(temp / "bad.csv" + ":3: reference '99999': expected a frame index in 0.."), std::string::npos) << err;
+
+  WriteFileAtomic(temp / "baseline.json", "[]");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "r", "--baseline", temp / "baseline.json"}), 1);
+  err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("baseline.json: /methods: expected an object of methods"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "r"));
+
+  testing::internal::CaptureStderr();
+  EXPECT_NE(Hoilcd({"evaluate", dataset, "--scores", temp / "bad.csv", "--max-drop", "0.1"}), 0) << "a usage error";
+  err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("--max-drop requires --baseline"), std::string::npos) << err;
+}
+
+// The bench checks each file against manifest.json as it reads it: a changed thermal frame stops
+// it with the file's name and writes no report; an EXR it never reads is never read.
+TEST(OpenBenchCli, BenchRefusesAChangedFrameItReadsAndIgnoresAChangedFileItDoesNotRead) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  const auto flip_a_byte = [](const std::string& path) {
+    std::string bytes = ReadFileBytes(path);
+    bytes[bytes.size() / 2] ^= 0x01;
+    WriteFileAtomic(path, bytes);
+  };
+  flip_a_byte(dataset + "/exr/000003.exr");
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "r1"}), 0);
+  flip_a_byte(dataset + "/thermal/000002.png");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "r2", "--threads", "2"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("error: " + dataset + "/thermal/000002.png: checksum mismatch"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "r2"));
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -1,0 +1,205 @@
+#include "hoilcd/bench/evaluation/protocol.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hoilcd {
+namespace {
+
+constexpr int kFramesPerLap = 100;
+
+// `laps` laps of a 1 m circle at 1 frame per second; clockwise: heading = angle - π/2, so the
+// heading turns by -2π per lap. Frame k and k + 100 are at the same place; neighbouring frames are
+// 2 sin(π/100) ≈ 0.0628 m apart, so frames within 3 steps are within 0.2 m (0.188 m), 4 are not.
+std::vector<PoseRecord> CirclePoses(int laps, bool clockwise = true) {
+  std::vector<PoseRecord> poses;
+  const double sign = clockwise ? -1.0 : 1.0;
+  for (int i = 0; i < laps * kFramesPerLap; ++i) {
+    const double angle = sign * 2.0 * M_PI * i / kFramesPerLap;
+    PoseRecord p;
+    p.frame = i;
+    p.time_s = i;
+    p.x_m = 3.0 + std::cos(angle);
+    p.y_m = 1.5 + std::sin(angle);
+    p.theta_rad = std::remainder(angle + sign * M_PI / 2, 2 * M_PI);
+    p.odo_x_m = p.x_m;  // perfect odometry unless a test says otherwise
+    p.odo_y_m = p.y_m;
+    p.odo_theta_rad = p.theta_rad;
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+std::vector<int> TrueFrames(const Query& q) {
+  std::vector<int> out;
+  for (size_t i = 0; i < q.database.size(); ++i) {
+    if (q.is_true_match[i]) out.push_back(q.database[i]);
+  }
+  return out;
+}
+
+TEST(LapIndexFromPoses, CountsOneLapPerFullTurnInEitherDirection) {
+  for (bool clockwise : {true, false}) {
+    const std::vector<int> laps = LapIndexFromPoses(CirclePoses(3, clockwise));
+    ASSERT_EQ(laps.size(), 300u);
+    EXPECT_EQ(laps[0], 0);
+    EXPECT_EQ(laps[99], 0);
+    EXPECT_EQ(laps[100], 1);
+    EXPECT_EQ(laps[199], 1);
+    EXPECT_EQ(laps[200], 2);
+    EXPECT_EQ(laps[299], 2);
+  }
+}
+
+TEST(ProtocolOptions, CheckNamesWhatIsWrong) {
+  ProtocolOptions options;
+  EXPECT_EQ(options.Check(), "");
+  options.protocol = "lap";
+  EXPECT_NE(options.Check().find("'laps' or 'revisit'"), std::string::npos);
+  options = ProtocolOptions();
+  options.radius_m = 0;
+  EXPECT_NE(options.Check().find("radius_m"), std::string::npos);
+  options = ProtocolOptions();
+  options.exclusion_window_s = -1;
+  EXPECT_NE(options.Check().find("exclusion_window_s"), std::string::npos);
+  options = ProtocolOptions();
+  options.heading_tolerance_deg = 200;
+  EXPECT_NE(options.Check().find("heading_tolerance_deg"), std::string::npos);
+}
+
+TEST(BuildQueries, LapsUsesFirstLapAsDatabaseAndLaterLapsAsQueries) {
+  const std::vector<Query> queries = BuildQueries(CirclePoses(2), ProtocolOptions());
+  ASSERT_EQ(queries.size(), 100u);
+  EXPECT_EQ(queries.front().frame, 100);
+  EXPECT_EQ(queries.back().frame, 199);
+  const Query& q = queries[50];  // frame 150, far in time from every first-lap frame
+  EXPECT_EQ(q.lap, 1);
+  ASSERT_EQ(q.database.size(), 100u);
+  EXPECT_EQ(q.database.front(), 0);
+  EXPECT_EQ(q.database.back(), 99);
+  EXPECT_EQ(TrueFrames(q), (std::vector<int>{47, 48, 49, 50, 51, 52, 53}));
+}
+
+TEST(BuildQueries, ExclusionWindowRemovesFramesNearInTime) {
+  const std::vector<Query> queries = BuildQueries(CirclePoses(2), ProtocolOptions());
+  const Query& q = queries[0];  // frame 100: frames 90..99 are within 10 s
+  ASSERT_EQ(q.frame, 100);
+  ASSERT_EQ(q.database.size(), 90u);
+  EXPECT_EQ(q.database.back(), 89);
+  // Without the window 97, 98, 99 would be true matches too.
+  EXPECT_EQ(TrueFrames(q), (std::vector<int>{0, 1, 2, 3}));
+  ProtocolOptions no_window;
+  no_window.exclusion_window_s = 0;
+  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), no_window)[0]),
+            (std::vector<int>{0, 1, 2, 3, 97, 98, 99}));
+}
+
+TEST(BuildQueries, RadiusAndHeadingToleranceDecideTrueMatches) {
+  ProtocolOptions options;
+  options.radius_m = 0.26;  // 4 steps = 0.251 m now count
+  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), options)[50]).size(), 9u);
+  options.radius_m = 0.2;
+  options.heading_tolerance_deg = 11;  // 3 steps turn 10.8°
+  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), options)[50]).size(), 7u);
+  options.heading_tolerance_deg = 4;  // 1 step turns 3.6°
+  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), options)[50]),
+            (std::vector<int>{49, 50, 51}));
+}
+
+TEST(IsTrueMatch, SamePlaceFacingTheOtherWayFailsOnlyWithAHeadingTolerance) {
+  PoseRecord a, b;
+  a.x_m = 1;
+  b.x_m = 1.15;
+  b.theta_rad = M_PI;
+  ProtocolOptions options;
+  EXPECT_TRUE(IsTrueMatch(a, b, options));
+  options.heading_tolerance_deg = 90;
+  EXPECT_FALSE(IsTrueMatch(a, b, options));
+  b.theta_rad = -179.0 * M_PI / 180.0;
+  a.theta_rad = 179.0 * M_PI / 180.0;  // 2° apart across the ±π seam
+  options.heading_tolerance_deg = 3;
+  EXPECT_TRUE(IsTrueMatch(a, b, options));
+  b.x_m = 1.21;
+  EXPECT_FALSE(IsTrueMatch(a, b, options));
+}
+
+TEST(BuildQueries, RevisitMakesEveryFrameAQueryAgainstOlderFramesOnly) {
+  ProtocolOptions options;
+  options.protocol = "revisit";
+  const std::vector<Query> queries = BuildQueries(CirclePoses(2), options);
+  ASSERT_EQ(queries.size(), 200u);
+  EXPECT_TRUE(queries[5].database.empty());
+  EXPECT_EQ(queries[5].NumTrueMatches(), 0);  // kept, to be counted as skipped
+  const Query& q = queries[150];
+  ASSERT_EQ(q.database.size(), 140u);  // frames 0..139: older than 10 s
+  EXPECT_EQ(q.database.back(), 139);
+  EXPECT_EQ(TrueFrames(q), (std::vector<int>{47, 48, 49, 50, 51, 52, 53}));
+  EXPECT_EQ(queries[60].NumTrueMatches(), 0);  // first lap: nothing older is near
+}
+
+// Odometry that drifted 0.15 m along +x during the second lap: the odometric labels of a query
+// then point at other first-lap frames than the true ones.
+std::vector<PoseRecord> DriftedSecondLap() {
+  std::vector<PoseRecord> poses = CirclePoses(2);
+  for (PoseRecord& p : poses)
+    if (p.frame >= kFramesPerLap) p.odo_x_m += 0.15;
+  return poses;
+}
+
+TEST(GroundTruth, OdometryLabelsComeFromOdometricPositionsTrueLabelsFromTruePoses) {
+  ProtocolOptions by_odometry, by_truth;
+  by_truth.ground_truth = "true";
+  const std::vector<PoseRecord> poses = DriftedSecondLap();
+  EXPECT_EQ(TrueFrames(BuildQueries(poses, by_truth)[50]), (std::vector<int>{47, 48, 49, 50, 51, 52, 53}));
+  // Frame 150 sits at angle -pi (x = 2, y = 1.5); its odometry says x = 2.15, closer to the
+  // first-lap frames on either side of 50 whose x is larger.
+  const std::vector<int> odometric = TrueFrames(BuildQueries(poses, by_odometry)[50]);
+  EXPECT_NE(odometric, TrueFrames(BuildQueries(poses, by_truth)[50]));
+  EXPECT_FALSE(odometric.empty());
+  for (int f : odometric) {
+    EXPECT_LE(std::hypot(poses[f].odo_x_m - poses[150].odo_x_m, poses[f].odo_y_m - poses[150].odo_y_m), 0.2);
+  }
+}
+
+TEST(GroundTruth, RelabelKeepsQueriesAndDatabasesAndCompareCountsTheDifferences) {
+  ProtocolOptions options;
+  const std::vector<PoseRecord> poses = DriftedSecondLap();
+  const std::vector<Query> by_odometry = BuildQueries(poses, options);
+  const std::vector<Query> by_truth = RelabelQueries(by_odometry, poses, options, "true");
+  ASSERT_EQ(by_truth.size(), by_odometry.size());
+  for (size_t i = 0; i < by_truth.size(); ++i) {
+    EXPECT_EQ(by_truth[i].frame, by_odometry[i].frame);
+    EXPECT_EQ(by_truth[i].database, by_odometry[i].database);
+  }
+  const LabelDisagreement d = CompareLabels(by_odometry, by_truth);
+  EXPECT_EQ(d.queries, 100);
+  EXPECT_GT(d.queries_differing, 50);
+  EXPECT_GT(d.pairs_differing, d.queries_differing);
+  const LabelDisagreement same = CompareLabels(by_truth, by_truth);
+  EXPECT_EQ(same.queries_differing, 0);
+  EXPECT_EQ(same.pairs_differing, 0);
+  // Perfect odometry: both labellings agree.
+  const std::vector<PoseRecord> perfect = CirclePoses(2);
+  const std::vector<Query> q = BuildQueries(perfect, options);
+  EXPECT_EQ(CompareLabels(q, RelabelQueries(q, perfect, options, "true")).pairs_differing, 0);
+}
+
+TEST(GroundTruth, LabelPosesSwapsInTheOdometryAndOtherGroundTruthFlips) {
+  const std::vector<PoseRecord> poses = DriftedSecondLap();
+  const std::vector<PoseRecord> odometric = LabelPoses(poses, "odometry");
+  EXPECT_EQ(odometric[150].x_m, poses[150].odo_x_m);
+  EXPECT_EQ(odometric[150].theta_rad, poses[150].odo_theta_rad);
+  EXPECT_EQ(LabelPoses(poses, "true")[150].x_m, poses[150].x_m);
+  EXPECT_EQ(OtherGroundTruth("odometry"), "true");
+  EXPECT_EQ(OtherGroundTruth("true"), "odometry");
+}
+
+TEST(GroundTruth, UnknownChoiceIsNamedByCheck) {
+  ProtocolOptions options;
+  options.ground_truth = "gps";
+  EXPECT_EQ(options.Check(), "ground_truth must be 'odometry' or 'true', got 'gps'");
+}
+
+}  // namespace
+}  // namespace hoilcd

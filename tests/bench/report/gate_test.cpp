@@ -1,0 +1,79 @@
+#include "hoilcd/bench/report/gate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/error.h"
+#include "test_dir.h"
+
+namespace hoilcd {
+namespace {
+
+nlohmann::json Report(double slcd_mrr, double slcd_r1, double dlcd_mrr) {
+  nlohmann::json j;
+  j["methods"]["slcd"] = {{"mrr", slcd_mrr}, {"recall_at_1", slcd_r1}};
+  j["methods"]["dlcd"] = {{"mrr", dlcd_mrr}, {"recall_at_1", 0.1}};
+  return j;
+}
+
+TEST(Gate, AReportComparedWithItselfHasNoRegression) {
+  const nlohmann::json r = Report(0.5, 0.4, 0.2);
+  EXPECT_TRUE(CompareToBaseline(r, r, 0.0).empty());
+}
+
+TEST(Gate, OnlyDropsLargerThanTheAllowedOneAreRegressionsAndEachNamesMethodMetricOldAndNew) {
+  const nlohmann::json baseline = Report(0.5, 0.4, 0.2);
+  const nlohmann::json current = Report(0.45, 0.39, 0.2);
+  const auto regressions = CompareToBaseline(baseline, current, 0.02);
+  ASSERT_EQ(regressions.size(), 1u);
+  EXPECT_EQ(regressions[0].method, "slcd");
+  EXPECT_EQ(regressions[0].metric, "mrr");
+  EXPECT_EQ(regressions[0].ToString(0.02), "regression: method slcd, mrr old 0.5000 new 0.4500 (dropped by more than 0.0200)");
+  EXPECT_EQ(CompareToBaseline(baseline, current, 0.1).size(), 0u);
+  EXPECT_EQ(CompareToBaseline(baseline, current, 0.0).size(), 2u);  // R@1 0.40 -> 0.39 too
+}
+
+TEST(Gate, MethodsInOnlyOneReportAreNotComparedAndAMissingNewValueIsARegression) {
+  nlohmann::json baseline = Report(0.5, 0.4, 0.2);
+  baseline["methods"]["thumb"] = {{"mrr", 0.9}, {"recall_at_1", 0.9}};
+  nlohmann::json current = Report(0.5, 0.4, 0.2);
+  current["methods"]["mine"] = {{"mrr", 0.0}, {"recall_at_1", 0.0}};
+  EXPECT_TRUE(CompareToBaseline(baseline, current, 0.0).empty());
+  EXPECT_EQ(MethodsOnlyInBaseline(baseline, current), std::vector<std::string>{"thumb"});
+  current["methods"]["dlcd"]["mrr"] = nullptr;
+  const auto regressions = CompareToBaseline(baseline, current, 0.5);
+  ASSERT_EQ(regressions.size(), 1u);
+  EXPECT_NE(regressions[0].ToString(0.5).find("dlcd, mrr old 0.2000 new none"), std::string::npos);
+}
+
+TEST(Gate, JUnitHasOneTestCasePerMethodAndAFailureForEachRegressedOne) {
+  const nlohmann::json current = Report(0.3, 0.4, 0.2);
+  const std::string xml = JUnitXml(current, CompareToBaseline(Report(0.5, 0.4, 0.2), current, 0.0), 0.0);
+  EXPECT_NE(xml.find("<testsuite name=\"hoilcd\" tests=\"2\" failures=\"1\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"slcd\">\n    <failure"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"dlcd\">\n    <system-out>"), std::string::npos) << xml;
+}
+
+TEST(Gate, ABaselineThatIsNotAReportIsAnErrorNamingTheFileAndWhatWasExpected) {
+  const test::TestDir temp;
+  auto error = [&](const std::string& text) {
+    WriteFileAtomic(temp / "b.json", text);
+    try {
+      ReadReportJson(temp / "b.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("{nope").find("b.json: is not JSON: expected a hoilcd report.json"), std::string::npos);
+  EXPECT_NE(error("{}").find("b.json: /methods: expected an object of methods"), std::string::npos);
+  EXPECT_NE(error("{\"methods\": {\"slcd\": {\"mrr\": \"high\", \"recall_at_1\": 1}}}")
+                .find("b.json: /methods/slcd/mrr: expected a number or null"),
+            std::string::npos);
+  EXPECT_EQ(error(Report(0.1, 0.1, 0.1).dump()), "");
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -1,0 +1,138 @@
+#include "hoilcd/bench/report/inspect.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hoilcd/sim/robot/robot.h"
+#include "hoilcd/sim/scene/scene_options.h"
+#include "hoilcd/sim/sensor/radiometry.h"
+#include "hoilcd/sim/world/world.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr int kFramesPerLap = 200;
+
+// Two clockwise laps of a 1 m circle; the second lap's true path is `lap_offset_m` further out
+// and the odometry drifts linearly along +x to `end_drift_m`; the camera rolls +-roll_rad.
+std::vector<PoseRecord> TwoLaps(double lap_offset_m, double end_drift_m, double roll_rad) {
+  std::vector<PoseRecord> poses;
+  const int n = 2 * kFramesPerLap;
+  for (int i = 0; i < n; ++i) {
+    const double angle = -2.0 * M_PI * i / kFramesPerLap;
+    const double radius = i < kFramesPerLap ? 1.0 : 1.0 + lap_offset_m;
+    PoseRecord p;
+    p.frame = i;
+    p.time_s = i;
+    p.x_m = 3.0 + radius * std::cos(angle);
+    p.y_m = 1.5 + radius * std::sin(angle);
+    p.theta_rad = std::remainder(angle - M_PI / 2, 2 * M_PI);
+    p.odo_x_m = p.x_m + end_drift_m * i / (n - 1);
+    p.odo_y_m = p.y_m;
+    p.odo_theta_rad = p.theta_rad;
+    p.cam_roll_rad = (i % 2 ? 1 : -1) * roll_rad;
+    p.cam_z_m = 0.95;
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+double Figure(const InspectSection& s, const std::string& key) {
+  const InspectFigure* f = s.Find(key);
+  EXPECT_NE(f, nullptr) << key;
+  return f ? f->value : NAN;
+}
+
+TEST(Inspect, TrajectoryMeasuresLapDifferenceAndDrift) {
+  const InspectSection s = TrajectorySection(TwoLaps(0.05, 0.3, 0));
+  EXPECT_EQ(Figure(s, "frames"), 400);
+  EXPECT_EQ(Figure(s, "laps"), 2);
+  // Lap 2 is a concentric circle 5 cm out; the first lap's polyline (chords) is slightly inside.
+  EXPECT_NEAR(Figure(s, "lap_difference_median_m"), 0.05, 0.001);
+  EXPECT_NEAR(Figure(s, "lap_difference_p90_m"), 0.05, 0.001);
+  EXPECT_NEAR(Figure(s, "odometry_drift_end_m"), 0.3, 1e-12);
+  EXPECT_NEAR(Figure(s, "odometry_drift_max_m"), 0.3, 1e-12);
+  EXPECT_NEAR(Figure(s, "path_length_m"), 2 * M_PI * 2.05, 0.05);
+  EXPECT_NEAR(Figure(s, "odometry_drift_end_pct"), 100 * 0.3 / Figure(s, "path_length_m"), 1e-9);
+}
+
+TEST(Inspect, CameraJitterIsTheStdAndFrameToFrameChangeOfRoll) {
+  const InspectSection s = CameraSection(TwoLaps(0, 0, 0.01));
+  EXPECT_NEAR(Figure(s, "roll_std_deg"), 0.01 * 180 / M_PI, 1e-3);
+  EXPECT_NEAR(Figure(s, "roll_frame_to_frame_rms_deg"), 0.02 * 180 / M_PI, 1e-9);
+  EXPECT_NEAR(Figure(s, "pitch_std_deg"), 0, 1e-12);
+  EXPECT_NEAR(Figure(s, "height_std_m"), 0, 1e-12);
+}
+
+TEST(Inspect, PeopleCountsPerFrameAndOcclusionHistogram) {
+  std::vector<FramePersons> persons(3);
+  for (int f = 0; f < 3; ++f) persons[f].frame = f;
+  persons[0].persons.resize(2);
+  persons[0].persons[0].occlusion_fraction = 0.1;
+  persons[0].persons[1].occlusion_fraction = 1.0;
+  persons[2].persons.resize(1);
+  persons[2].persons[0].occlusion_fraction = 0.5;
+  const InspectSection s = PeopleSection(persons, 3);
+  EXPECT_EQ(Figure(s, "per_frame_mean"), 1.0);
+  EXPECT_EQ(Figure(s, "per_frame_min"), 0);
+  EXPECT_EQ(Figure(s, "per_frame_max"), 2);
+  const InspectFigure* h = s.Find("occlusion_histogram");
+  ASSERT_NE(h, nullptr);
+  EXPECT_EQ(h->counts, (std::vector<int64_t>{1, 0, 1, 0, 1}));
+}
+
+TEST(Inspect, LabelsDisagreeOnlyWhenOdometryDrifts) {
+  EXPECT_EQ(Figure(LabelSection(TwoLaps(0, 0, 0), ProtocolOptions()), "queries_differing"), 0);
+  const InspectSection drifting = LabelSection(TwoLaps(0, 0.3, 0), ProtocolOptions());
+  EXPECT_GT(Figure(drifting, "queries_differing"), 100);
+  EXPECT_EQ(Figure(drifting, "queries"), kFramesPerLap);
+}
+
+TEST(Inspect, JsonHasOneObjectPerSectionAndHistogramsWithEdges) {
+  InspectReport r;
+  r.sections.push_back(TrajectorySection(TwoLaps(0.05, 0.3, 0)));
+  r.sections.push_back(PeopleSection({}, 2));
+  const nlohmann::json j = r.ToJson();
+  EXPECT_NEAR(j["trajectory"]["lap_difference_median_m"].get<double>(), 0.05, 0.001);
+  EXPECT_EQ(j["people"]["occlusion_histogram"]["counts"].size(), 5u);
+  EXPECT_EQ(j["people"]["occlusion_histogram"]["bin_edges"].size(), 6u);
+  EXPECT_NE(r.ToText().find("lap-to-lap true path difference, median"), std::string::npos);
+  EXPECT_NE(r.ToMarkdown().find("| odometry drift at the end |"), std::string::npos);
+}
+
+// The paper room's robot as rendered (scene defaults, furniture as obstacles).
+std::vector<PoseRecord> ScenePoses(const std::string& scene_name, const std::vector<std::string>& overrides = {}) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + scene_name, overrides);
+  const BandRadianceTable table;
+  const World world(scene, table);
+  return PoseRecordsOf(SimulateSceneRobot(scene, world.obstacles()));
+}
+
+// The documented bands (docs/robot.md) of the paper room's defaults, for the seeds the README uses.
+TEST(PaperRoomDefaults, LapDifferenceDriftAndJitterLieInTheDocumentedBands) {
+  for (const char* seed : {"seed=1", "seed=2"}) {
+    const std::vector<PoseRecord> poses = ScenePoses("paper_room.json", {seed});
+    const InspectSection t = TrajectorySection(poses);
+    EXPECT_GE(Figure(t, "lap_difference_median_m"), 0.03) << seed;
+    EXPECT_LE(Figure(t, "lap_difference_median_m"), 0.30) << seed;
+    EXPECT_GE(Figure(t, "odometry_drift_max_m"), 0.10) << seed;
+    EXPECT_LE(Figure(t, "odometry_drift_max_m"), 2.00) << seed;
+    const InspectSection c = CameraSection(poses);
+    EXPECT_GT(Figure(c, "roll_frame_to_frame_rms_deg"), 0.05) << seed;
+    EXPECT_GT(Figure(c, "pitch_frame_to_frame_rms_deg"), 0.05) << seed;
+    EXPECT_GT(Figure(LabelSection(poses, ProtocolOptions()), "queries_differing"), 0) << seed;
+  }
+}
+
+TEST(IdealRoom, LapsRepeatOdometryIsExactCameraIsRigidAndLabelsAgree) {
+  const std::vector<PoseRecord> poses = ScenePoses("ideal_room.json");
+  const InspectSection t = TrajectorySection(poses);
+  EXPECT_LT(Figure(t, "lap_difference_median_m"), 0.005);
+  EXPECT_EQ(Figure(t, "odometry_drift_max_m"), 0);
+  EXPECT_EQ(Figure(CameraSection(poses), "roll_std_deg"), 0);
+  EXPECT_EQ(Figure(LabelSection(poses, ProtocolOptions()), "queries_differing"), 0);
+}
+
+}  // namespace
+}  // namespace hoilcd
