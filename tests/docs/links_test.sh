@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Every link in the repository's Markdown files (README.md, */README.md, docs/*.md) resolves to
-# a file or folder inside the repository; web links (http, https, mailto) and in-page anchors
-# are not checked. Usage: links_test.sh SOURCE_DIR
+# Every link in the repository's Markdown files (README.md, CHANGELOG.md, */README.md and every
+# .md file under docs/, at any depth) resolves to a file or folder inside the repository; web
+# links (http, https, mailto) and in-page anchors are not checked. Usage: links_test.sh SOURCE_DIR
 set -euo pipefail
 root="$(cd "$1" && pwd -P)"
 status=0
@@ -25,6 +25,9 @@ while IFS= read -r md; do
   while IFS=: read -r line text; do
     echo "${md#$root/}:$line: '$text' points outside the repository"; status=1
   done < <(grep -no '`\.\./\.\./[^`]*`\|`\.\./shared/[^`]*`' "$md" || true)
-done < <(cd "$root" && for f in README.md */README.md docs/*.md; do [[ -f "$f" ]] && echo "$root/$f"; done)
+done < <(cd "$root" && {
+  for f in README.md CHANGELOG.md */README.md; do [[ -f "$f" ]] && echo "$root/$f"; done
+  [[ -d docs ]] && find docs -name '*.md' -type f | LC_ALL=C sort | sed "s|^|$root/|"
+})
 echo "checked $checked links"
 exit $status
