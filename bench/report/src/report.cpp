@@ -193,15 +193,11 @@ void CheckReportFolder(const std::string& dir) {
 
 namespace {
 
-// WriteReport with the dataset's checks already made (InspectDataset).
-// Each caller has checked the folder (CheckReportFolder) before its own work.
-void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
-                          const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
+// report.json: every number of the run.
+nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                          const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis) {
   const DatasetManifest& manifest = dataset.manifest();
-
+  const LabelDisagreement& labels = result.label_disagreement;
   nlohmann::json report;
   report["hoilcd_version"] = HOILCD_VERSION;
   report["dataset"] = {{"dir", dataset.dir()}, {"scene_hash", manifest.scene_hash},
@@ -222,7 +218,6 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
     m["description"] = FindMethod(run.name).Description();
     report["methods"][run.name] = m;
   }
-  const LabelDisagreement& labels = result.label_disagreement;
   report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
                                   {"queries_differing", labels.queries_differing},
                                   {"queries", labels.queries},
@@ -244,12 +239,14 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
                       {"calibration_render_cached", timing.calibration_render_cached},
                       {"calibration_bench_cached", timing.calibration_bench_cached}};
   report["finding"] = PaperFindingSummary(result);
-  const Diagnosis diagnosis = Diagnose(result);
   if (diagnosis.evaluated) report["diagnosis"] = diagnosis.ToJson();
   report["notes"] = nlohmann::json::array();
   for (const char* note : kNotes) report["notes"].push_back(note);
-  WriteFileAtomic(dir + "/report.json", report.dump(2));
+  return report;
+}
 
+// queries.csv: one row per method and query.
+std::string QueriesCsv(const BenchResult& result) {
   std::string csv;
   for (const MethodRun& run : result.runs) {
     std::istringstream lines(QueryRecordsToCsv(run.metrics.queries));
@@ -264,8 +261,12 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
       csv += run.name + "," + line + "\n";
     }
   }
-  WriteFileAtomic(dir + "/queries.csv", csv);
+  return csv;
+}
 
+// Draws and writes the figures into `dir`; their file names in the report's order.
+std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                                      const std::string& dir) {
   // The figures, listed in the report's order, drawn and written in parallel (each its own file).
   std::vector<std::pair<std::string, std::function<cv::Mat()>>> figure_jobs;
   figure_jobs.emplace_back("pr_curves.png", [&] { return PrFigure(result); });
@@ -324,6 +325,16 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
   }
   for (size_t i = slam_figures_at; i < figure_jobs.size(); ++i) figures.push_back(figure_jobs[i].first);
 
+  return figures;
+}
+
+// report.md: the tables shaped like the paper's, the diagnosis, tracking, SLAM, the dataset's
+// checks, and the figures.
+std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                           const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
+                           const std::vector<std::string>& figures) {
+  const DatasetManifest& manifest = dataset.manifest();
+  const LabelDisagreement& labels = result.label_disagreement;
   std::ostringstream md;
   md << "# hoilcd loop-closure report\n\n"
      << "Dataset `" << dataset.dir() << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
@@ -390,7 +401,22 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
           "show no obstacles.\n\n";
   }
   for (const std::string& f : figures) md << "![" << f << "](" << f << ")\n\n";
-  WriteFileAtomic(dir + "/report.md", md.str());
+  return md.str();
+}
+
+// WriteReport with the dataset's checks already made (InspectDataset).
+// Each caller has checked the folder (CheckReportFolder) before its own work.
+void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                          const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
+  const Diagnosis diagnosis = Diagnose(result);
+  WriteFileAtomic(dir + "/report.json", ReportJson(result, dataset, options, timing, inspect, diagnosis).dump(2));
+  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result));
+  const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
+  WriteFileAtomic(dir + "/report.md",
+                  ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
 }
 
 }  // namespace
