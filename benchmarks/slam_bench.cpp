@@ -3,7 +3,7 @@
 // RunSlam: 3 back ends at the operating point plus a 6-point ATE curve, and the oracle: 75 solves.
 // Scores are synthetic (keyed RNG): the true match scores high with probability 0.5, so each
 // method accepts a realistic mix of true and false loops. Compare the time with `hoilcd run`'s
-// (bench/README.md): the issue asks for <= 10 %.
+// (docs/performance.md): the issue asks for <= 10 %.
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // The built-in loop-closure methods, one line each, in report order: HOILCD_METHOD(Factory) names
 // a function `std::unique_ptr<LoopClosureMethod> Factory()` defined in this folder. Adding a
-// method is one new file here plus one line below (docs/methods.md).
+// method is one new file here plus one line below (docs/guide/methods.md).
 HOILCD_METHOD(MakeSlcdMethod)
 HOILCD_METHOD(MakeDlcdMethod)
 HOILCD_METHOD(MakeFusionMethod)

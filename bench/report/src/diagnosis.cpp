@@ -51,8 +51,8 @@ std::string FindingExplanation(const BenchResult& result, const Diagnosis& diagn
       md << " (person tracking precision " << Fixed(result.tracking.precision) << ", recall "
          << Fixed(result.tracking.recall) << ", below)";
     }
-    md << ", so HOI contours of groups change whenever anyone in them moves. The README's "
-          "\"Results\" section has the full discussion.\n\n";
+    md << ", so HOI contours of groups change whenever anyone in them moves. The study "
+          "docs/results/2026-12-01-why-dlcd-scores-0.141.md in the hoilcd repository has the full discussion.\n\n";
   }
   const MethodRun* f = result.Find("fusion");
   if (f && f->metrics.mrr < std::max(sm, dm) - 0.01) {

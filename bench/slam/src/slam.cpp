@@ -64,7 +64,7 @@ OdometryNoise OdometryNoise::FromSceneJson(const std::string& scene_json, const 
     noise.heading_sd_rad_per_m = std::sqrt(steer_bias * steer_bias + steer_sd * steer_sd / k) / wheelbase_m;
     noise.heading_var_rad2_per_m = 0;
   } else {
-    // Systematic + slip + heading random walk model (docs/robot.md): systematic terms as 1σ, slips
+    // Systematic + slip + heading random walk model (docs/models/robot.md): systematic terms as 1σ, slips
     // at 1 m/s² (longitudinal) and 1 m/s² lateral, the wheelbase error at 1 rad turned per metre.
     const double scale = Number(doc, "odometry", "error_scale", path);
     const double radius = Number(doc, "odometry", "wheel_radius_error_frac", path);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "test_dir.h"
 #include "tiny_room.h"

@@ -109,7 +109,7 @@ std::vector<PoseRecord> ScenePoses(const std::string& scene_name, const std::vec
   return PoseRecordsOf(SimulateSceneRobot(scene, world.obstacles()));
 }
 
-// The documented bands (docs/robot.md) of the paper room's defaults, for the seeds the README uses.
+// The documented bands (docs/models/robot.md) of the paper room's defaults, for the seeds the docs use.
 TEST(PaperRoomDefaults, LapDifferenceDriftAndJitterLieInTheDocumentedBands) {
   for (const char* seed : {"seed=1", "seed=2"}) {
     const std::vector<PoseRecord> poses = ScenePoses("paper_room.json", {seed});

@@ -1,6 +1,6 @@
 // Greyscale PNG frames through libdeflate: the dataset's 8-bit thermal and 16-bit radiometric
 // frames are encoded and decoded here in about 2/3 of the CPU of OpenCV's libpng on zlib
-// (bench/README.md, "PNG frames through libdeflate"). Only non-interlaced 8- and 16-bit greyscale
+// (docs/performance.md, "Rendering and the dataset"). Only non-interlaced 8- and 16-bit greyscale
 // files with IHDR, IDAT and IEND chunks are handled; the caller sends anything else to OpenCV.
 #pragma once
 
