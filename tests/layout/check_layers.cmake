@@ -1,5 +1,6 @@
 # cmake -DGRAPH=graph.cmake -P check_layers.cmake: fails (SEND_ERROR) when a target's link closure
 # breaks the dependency rule. GRAPH sets HOILCD_TARGETS and HOILCD_LINKS_<target> (direct links).
+cmake_minimum_required(VERSION 3.18)  # policies of script mode (IN_LIST, ...)
 include(${GRAPH})
 
 # Layer of a target: 0 core, 1 sim, 2 bench, 3 apps and tools.
@@ -45,11 +46,11 @@ foreach(target ${HOILCD_TARGETS})
   foreach(dep ${reached})
     layer_of(${dep} dep_layer)
     if(dep_layer GREATER layer)
-      message(SEND_ERROR "${target} (layer ${layer}) links ${dep} (layer ${dep_layer}): a lower layer may not depend on an upper one")
+      message(SEND_ERROR "layer-order: ${target} (layer ${layer}) links ${dep} (layer ${dep_layer}); a lower layer may not depend on an upper one")
       math(EXPR problems "${problems} + 1")
     endif()
     if(reads_datasets AND dep MATCHES "^hoilcd_sim")
-      message(SEND_ERROR "${target} links ${dep}: it reads the dataset folder, never the simulator")
+      message(SEND_ERROR "reads-datasets-only: ${target} links ${dep}; it reads the dataset folder, never the simulator")
       math(EXPR problems "${problems} + 1")
     endif()
   endforeach()
