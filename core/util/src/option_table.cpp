@@ -37,6 +37,10 @@ struct OptionTableBase::Rule {
 namespace {
 
 std::string Number(double value) {
+  // Whole numbers up to 2^53 in full ("9007199254740992", not "9.007199255e+15").
+  if (value == std::floor(value) && std::fabs(value) <= 9007199254740992.0) {
+    return std::to_string(static_cast<long long>(value));
+  }
   std::ostringstream out;
   out << std::setprecision(10) << value;
   return out.str();
@@ -390,7 +394,7 @@ std::string OptionRangeText(const OptionInfo& o) {
   if (!o.choices.empty()) return "one of: " + JoinChoices(o.choices);
   if (o.kind == OptionInfo::Kind::kBoolean) return "true or false";
   if (o.kind == OptionInfo::Kind::kExternal) return "(see the description)";
-  return "any text";
+  return "";  // a string without choices
 }
 
 std::string FormatOptionList(const std::vector<OptionInfo>& options) {
@@ -401,10 +405,8 @@ std::string FormatOptionList(const std::vector<OptionInfo>& options) {
   }
   std::ostringstream out;
   for (const OptionInfo& o : options) {
-    std::string range = OptionRangeText(o);
-    if (range == "any text") range.clear();
     out << std::left << std::setw(static_cast<int>(name_width)) << o.name << "  "
-        << std::setw(static_cast<int>(default_width)) << o.default_json << "  " << range << "  "
+        << std::setw(static_cast<int>(default_width)) << o.default_json << "  " << OptionRangeText(o) << "  "
         << o.description << "\n";
   }
   return out.str();
@@ -419,8 +421,10 @@ std::string FormatOptionTableMarkdown(const std::vector<OptionInfo>& options) {
   out << "| field | default | accepted | description |\n|---|---|---|---|\n";
   for (const OptionInfo& o : options) {
     if (o.code_only) continue;
-    const std::string default_text = o.kind == OptionInfo::Kind::kExternal ? "" : "`" + o.default_json + "`";
-    out << "| `" << o.name << "` | " << cell(default_text) << " | " << cell(OptionRangeText(o)) << " | "
+    const bool shown = o.kind != OptionInfo::Kind::kExternal && !o.default_json.empty();
+    const std::string default_text = shown ? "`" + o.default_json + "`" : "";
+    const std::string accepted = OptionRangeText(o);
+    out << "| `" << o.name << "` | " << cell(default_text) << " | " << cell(accepted.empty() ? "any text" : accepted) << " | "
         << cell(o.description) << " |\n";
   }
   return out.str();

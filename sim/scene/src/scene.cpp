@@ -23,16 +23,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const json& SchemaJson() {
-  static const json schema = json::parse(SceneSchemaText());
-  return schema;
-}
-
 const valijson::Schema& CompiledSchema() {
   static const std::unique_ptr<valijson::Schema> schema = [] {
     auto s = std::make_unique<valijson::Schema>();
     valijson::SchemaParser parser;
-    valijson::adapters::NlohmannJsonAdapter adapter(SchemaJson());
+    valijson::adapters::NlohmannJsonAdapter adapter(SceneSchema());
     parser.populateSchema(adapter, *s);
     return s;
   }();
@@ -53,7 +48,7 @@ std::string ContextToPointer(const std::vector<std::string>& context) {
 
 // The schema node that describes a JSON pointer inside a document (null when unknown).
 const json* SchemaAt(const std::string& pointer) {
-  const json* node = &SchemaJson();
+  const json* node = &SceneSchema();
   std::stringstream ss(pointer);
   std::string part;
   std::getline(ss, part, '/');
@@ -270,6 +265,11 @@ bool DistractorEnabled(const json& distractors, const std::string& asset) {
 
 }  // namespace
 
+const json& SceneSchema() {
+  static const json schema = json::parse(SceneSchemaText());
+  return schema;
+}
+
 const std::string& SceneSchemaText() {
   static const std::string text(kSceneSchemaText);
   return text;
@@ -356,17 +356,17 @@ std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
 }
 
 void FillSceneDefaults(json* doc) {
-  FillDefaults(doc, SchemaJson());
-  NormaliseNumbers(doc, SchemaJson());
+  FillDefaults(doc, SceneSchema());
+  NormaliseNumbers(doc, SceneSchema());
 }
 
 Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
   ProblemCollector problems;
-  CheckRequired(doc, SchemaJson(), "", file, &problems);
+  CheckRequired(doc, SceneSchema(), "", file, &problems);
   // Defaults first, so an override of one element of a default array (objects.0.enabled)
   // changes that element instead of replacing the whole array.
-  FillDefaults(&doc, SchemaJson());
+  FillDefaults(&doc, SceneSchema());
   for (const std::string& o : overrides) ApplyOverride(&doc, o);
   for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
   problems.ThrowIfAny();

@@ -17,51 +17,40 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string Cell(std::string text) {
-  for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
-  return text;
-}
-
-// "in [0, 1]", "one of: a, b" from a schema node (for the fields no option table reads).
-std::string SchemaAccepted(const json& node) {
-  if (node.contains("enum")) {
-    std::string out = "one of: ";
-    for (size_t i = 0; i < node["enum"].size(); ++i) out += (i ? ", " : "") + node["enum"][i].get<std::string>();
-    return out;
-  }
+// The fields no option table reads (top-level keys, tables, objects, distractors) as OptionInfo,
+// so one formatter (FormatOptionTableMarkdown) writes every table of the reference.
+OptionInfo OptionFromSchema(const std::string& name, const json& node) {
+  OptionInfo o;
+  o.name = name;
+  o.description = node.value("description", "");
   const std::string type = node.value("type", "");
-  if (type == "boolean") return "true or false";
-  if (type == "array") return "array";
-  if (type == "object") return "object (below)";
-  if (type != "number" && type != "integer") return type == "string" ? "any text" : type;
-  std::string lo, hi;
-  if (node.contains("minimum")) lo = "[" + node["minimum"].dump();
-  if (node.contains("exclusiveMinimum")) lo = "(" + node["exclusiveMinimum"].dump();
-  if (node.contains("maximum")) hi = node["maximum"].dump() + "]";
-  if (node.contains("exclusiveMaximum")) hi = node["exclusiveMaximum"].dump() + ")";
-  if (lo.empty() && hi.empty()) return type == "integer" ? "any integer" : "any number";
-  return "in " + (lo.empty() ? "(-inf" : lo) + ", " + (hi.empty() ? "inf)" : hi);
+  o.kind = type == "number"    ? OptionInfo::Kind::kNumber
+           : type == "integer" ? OptionInfo::Kind::kInteger
+           : type == "boolean" ? OptionInfo::Kind::kBoolean
+           : type == "string"  ? OptionInfo::Kind::kString
+                               : OptionInfo::Kind::kExternal;
+  if (node.contains("default")) o.default_json = node["default"].dump();
+  if (node.contains("enum")) o.choices = node["enum"].get<std::vector<std::string>>();
+  if (node.contains("minimum")) o.range = o.range.AtLeast(node["minimum"].get<double>());
+  if (node.contains("exclusiveMinimum")) o.range = o.range.Above(node["exclusiveMinimum"].get<double>());
+  if (node.contains("maximum")) o.range = o.range.AtMost(node["maximum"].get<double>());
+  if (node.contains("exclusiveMaximum")) o.range = o.range.Below(node["exclusiveMaximum"].get<double>());
+  return o;
 }
 
-// A Markdown table of a schema object's properties.
-std::string SchemaTable(const json& properties) {
-  std::ostringstream out;
-  out << "| field | default | accepted | description |\n|---|---|---|---|\n";
+// A Markdown table of a schema object's properties, or of only those that are not objects.
+std::string SchemaTable(const json& properties, bool skip_objects = false) {
+  std::vector<OptionInfo> options;
   for (const auto& [name, node] : properties.items()) {
-    const std::string default_text =
-        node.contains("default") && !node["default"].is_array() && !node["default"].is_object()
-            ? "`" + node["default"].dump() + "`"
-            : "";
-    out << "| `" << name << "` | " << Cell(default_text) << " | " << Cell(SchemaAccepted(node)) << " | "
-        << Cell(node.value("description", "")) << " |\n";
+    if (!(skip_objects && node.value("type", "") == "object")) options.push_back(OptionFromSchema(name, node));
   }
-  return out.str();
+  return FormatOptionTableMarkdown(options);
 }
 
 }  // namespace
 
 std::string SceneReferenceMarkdown() {
-  const json schema = json::parse(SceneSchemaText());
+  const json& schema = SceneSchema();
   const json& top = schema["properties"];
   std::ostringstream out;
   out << "# Scene file reference\n\n"
@@ -74,11 +63,7 @@ std::string SceneReferenceMarkdown() {
          "A field `a/b` is key `b` of the object `a` (`--set camera.video.crf=20` sets `video/crf` of "
          "`camera`). Units are in the names (`_m`, `_deg`, `_c`, `_s`, `_hz`).\n\n";
   out << "## Top level\n\n";
-  json plain = json::object();
-  for (const auto& [name, node] : top.items()) {
-    if (node.value("type", "") != "object") plain[name] = node;
-  }
-  out << SchemaTable(plain) << "\n";
+  out << SchemaTable(top, /*skip_objects=*/true) << "\n";
   const std::vector<std::pair<std::string, std::vector<OptionInfo>>> tables = {
       {"room", RoomOptions::Table().List()},     {"furniture", FurnitureOptions::Table().List()},
       {"crowd", CrowdOptions::Table().List()},   {"camera", CameraOptions::Table().List()},

@@ -17,11 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-const json& Schema() {
-  static const json schema = json::parse(SceneSchemaText());
-  return schema;
-}
-
 // The schema node of an object property path ("/robot/vibration"), or null.
 const json* SchemaNode(const json& root, const std::string& path) {
   const json* node = &root;
@@ -141,14 +136,14 @@ TEST(OptionSchema, EverySimOptionTableAgreesWithTheSceneSchema) {
       {"/furniture", FurnitureOptions::Table().List()},
   };
   for (const auto& [pointer, options] : tables) {
-    const std::vector<std::string> problems = Disagreements(Schema(), pointer, options);
+    const std::vector<std::string> problems = Disagreements(SceneSchema(), pointer, options);
     EXPECT_TRUE(problems.empty()) << Lines(problems);
   }
 }
 
 // Array elements have a table too: one window of /room/windows against the schema's items.
 TEST(OptionSchema, TheWindowTableAgreesWithTheSchemasWindowItems) {
-  const json items = Schema()["properties"]["room"]["properties"]["windows"]["items"];
+  const json items = SceneSchema()["properties"]["room"]["properties"]["windows"]["items"];
   const json wrapped = {{"properties", {{"window", items}}}};
   const std::vector<std::string> problems = Disagreements(wrapped, "/window", WindowSpec::Table().List());
   EXPECT_TRUE(problems.empty()) << Lines(problems);
@@ -156,7 +151,7 @@ TEST(OptionSchema, TheWindowTableAgreesWithTheSchemasWindowItems) {
 
 // Defaults that are arrays (read by hand, so outside the tables) agree with the schema too.
 TEST(OptionSchema, ArrayDefaultsAgreeWithTheSchema) {
-  const json& properties = Schema()["properties"];
+  const json& properties = SceneSchema()["properties"];
   json waypoints = json::array();
   for (const Eigen::Vector2d& p : RouteOptions().waypoints_m) waypoints.push_back({p.x(), p.y()});
   EXPECT_EQ(waypoints, properties["route"]["properties"]["waypoints_m"]["default"]);
@@ -180,7 +175,7 @@ TEST(OptionSchema, ArrayDefaultsAgreeWithTheSchema) {
 TEST(OptionSchema, ADriftedDefaultRangeOrFieldIsReported) {
   const std::vector<OptionInfo> robot = TricycleOptions::Table().List();
   const auto drifted = [&](const std::function<void(json*)>& edit) {
-    json schema = Schema();
+    json schema = SceneSchema();
     edit(&schema);
     return Lines(Disagreements(schema, "/robot", robot));
   };

@@ -215,7 +215,8 @@ class OptionTable : public OptionTableBase {
 
 // The table as aligned text, one field a line: name, default, unit, range, description.
 std::string FormatOptionList(const std::vector<OptionInfo>& options);
-// The accepted values of a field in words: "in (0, 10] px", "one of: a, b", "true or false".
+// The accepted values of a field in words: "in (0, 10] px", "one of: a, b", "true or false";
+// "" for a string that takes any text.
 std::string OptionRangeText(const OptionInfo& option);
 // The table as a Markdown table (field, default, accepted values, description); fields set only by
 // code are left out. The generated reference docs/guide/scenes.md is made of these.

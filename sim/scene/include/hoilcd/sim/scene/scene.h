@@ -16,8 +16,9 @@
 
 namespace hoilcd {
 
-// The scene JSON Schema text (scenes/scene.schema.json, compiled in).
+// The scene JSON Schema text (scenes/scene.schema.json, compiled in), and the same parsed once.
 const std::string& SceneSchemaText();
+const nlohmann::json& SceneSchema();
 
 // Applies one "KEY=VALUE" override. KEY is a dotted path ("crowd.people_per_table",
 // "tables.0.center_m") or a JSON pointer ("/crowd/people_per_table"); VALUE is parsed as JSON
