@@ -15,12 +15,12 @@
 #include <string_view>
 #include <utility>
 
+#include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/png.h"
 #include "hoilcd/core/util/text.h"
-#include "hoilcd/core/util/units.h"
 
 namespace hoilcd {
 namespace {
@@ -846,9 +846,7 @@ cv::Mat Dataset::RadiometricCentikelvin(int frame) const {
 }
 
 cv::Mat Dataset::RadiometricC(int frame) const {
-  cv::Mat celsius;
-  RadiometricCentikelvin(frame).convertTo(celsius, CV_32F, 0.01, -kZeroCelsiusK);
-  return celsius;
+  return CelsiusFromCentikelvin16(RadiometricCentikelvin(frame));
 }
 
 std::string Dataset::scene_json() const { return ReadFile("scene.json"); }

@@ -21,4 +21,11 @@ cv::Mat ToCentikelvin16(const cv::Mat& temperature_c) {
   return centikelvin;
 }
 
+cv::Mat CelsiusFromCentikelvin16(const cv::Mat& centikelvin) {
+  HOILCD_CHECK(centikelvin.type() == CV_16UC1);
+  cv::Mat celsius;
+  centikelvin.convertTo(celsius, CV_32F, 0.01, -kZeroCelsiusK);
+  return celsius;
+}
+
 }  // namespace hoilcd

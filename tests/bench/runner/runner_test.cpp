@@ -127,9 +127,7 @@ std::vector<cv::Mat> RenderRadiometricFrames(const Scene& scene, const std::vect
       world.SetTime(run.samples[k].time_s);
       temperature_c = sensor.Apply(k, renderer.Render(run.samples[k].camera).radiance);
     }
-    cv::Mat celsius;
-    ToCentikelvin16(temperature_c).convertTo(celsius, CV_32F, 0.01, -273.15);
-    out.push_back(celsius);
+    out.push_back(CelsiusFromCentikelvin16(ToCentikelvin16(temperature_c)));
   }
   return out;
 }

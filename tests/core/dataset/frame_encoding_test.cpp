@@ -30,5 +30,15 @@ TEST(ToCentikelvin16, EncodesKelvinTimes100RoundedAndClamped) {
   EXPECT_EQ(centikelvin.at<uint16_t>(0, 4), 29815);
 }
 
+TEST(CelsiusFromCentikelvin16, InvertsToCentikelvin16ToTheCentikelvin) {
+  const cv::Mat temperature = (cv::Mat_<float>(1, 4) << 25.0f, 0.0f, 33.456f, -20.0f);
+  const cv::Mat back = CelsiusFromCentikelvin16(ToCentikelvin16(temperature));
+  ASSERT_EQ(back.type(), CV_32F);
+  EXPECT_NEAR(back.at<float>(0, 0), 25.0f, 1e-4);
+  EXPECT_NEAR(back.at<float>(0, 1), 0.0f, 1e-4);
+  EXPECT_NEAR(back.at<float>(0, 2), 33.46f, 1e-4);  // rounded to the centikelvin
+  EXPECT_NEAR(back.at<float>(0, 3), -20.0f, 1e-4);
+}
+
 }  // namespace
 }  // namespace hoilcd

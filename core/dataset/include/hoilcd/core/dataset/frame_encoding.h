@@ -14,5 +14,7 @@ cv::Mat ToDisplay8Bit(const cv::Mat& temperature_c, double display_min_c, double
 
 // 16-bit radiometric image (CV_16U): value = temperature in K × 100, rounded, clamped to 0..65535.
 cv::Mat ToCentikelvin16(const cv::Mat& temperature_c);
+// Its inverse as a reader sees it: CV_32F °C from a CV_16U centikelvin image.
+cv::Mat CelsiusFromCentikelvin16(const cv::Mat& centikelvin);
 
 }  // namespace hoilcd
