@@ -24,9 +24,9 @@ struct BenchCommandArgs {
 
 int BenchCommand(const BenchCommandArgs& args) {
   const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead, args.threads);
-  for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  PrintWarnings(dataset.warnings());
   const BenchOptions options = ResolveBench(args.bench, args.threads);
-  CheckBaseline(args.gate);
+  const nlohmann::json baseline = ReadBaseline(args.gate);
   const std::string out = args.report_dir.empty() ? args.dataset + "/report" : args.report_dir;
   ReportTiming timing;
   const BenchResult result = BenchAndWriteReport(dataset, options, &timing, out);
@@ -36,7 +36,7 @@ int BenchCommand(const BenchCommandArgs& args) {
     }
   }
   PrintOutcome(result, out);
-  return ApplyGate(args.gate, ReadReportJson(out + "/report.json"));
+  return ApplyGate(args.gate, baseline, ReadReportJson(out + "/report.json"));
 }
 
 }  // namespace

@@ -25,8 +25,8 @@ struct EvaluateArgs {
 
 int EvaluateCommand(const EvaluateArgs& args) {
   const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead);
-  for (const std::string& warning : dataset.warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  CheckBaseline(args.gate);
+  PrintWarnings(dataset.warnings());
+  const nlohmann::json baseline = ReadBaseline(args.gate);
   std::string name = args.name;
   if (name.empty()) name = std::filesystem::path(args.scores).stem().string();
   if (name.empty()) throw InputError("--name", "a method name (the scores file name has none)");
@@ -40,7 +40,7 @@ int EvaluateCommand(const EvaluateArgs& args) {
     WriteFileAtomic(args.output, json.dump(2) + "\n");
     std::printf("report: %s\n", args.output.c_str());
   }
-  return ApplyGate(args.gate, json);
+  return ApplyGate(args.gate, baseline, json);
 }
 
 }  // namespace

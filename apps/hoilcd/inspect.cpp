@@ -37,10 +37,7 @@ Command AddInspectCommand(CLI::App* app) {
   cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
   cmd->add_flag("--json", args->json, "print the figures as JSON instead of text");
   cmd->add_option("-o,--output", args->output, "also write the figures as JSON to this file");
-  cmd->add_option("--protocol", args->protocol.protocol, "laps (database = first lap) or revisit")
-      ->check(CLI::IsMember({"laps", "revisit"}));
-  cmd->add_option("--radius", args->protocol.radius_m, "true-match radius, m (paper: 0.2)")
-      ->check(CLI::PositiveNumber);
+  AddProtocolAndRadiusFlags(cmd, &args->protocol);
   return {cmd, [args] { return InspectCommand(*args); }};
 }
 

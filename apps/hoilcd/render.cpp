@@ -19,7 +19,7 @@ int RenderCommand(const RenderArgs& args) {
   SequenceOptions o = args.options;
   o.cancel = CancelOnInterrupt();
   const SequenceResult r = RenderSequence(scene, o);
-  for (const std::string& warning : r.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  PrintWarnings(r.warnings);
   std::printf("rendered %d frames (%d kept from an earlier run) into %s in %.1f s (%.1f frames/s)\n",
               r.frames_rendered, r.frames_reused, o.output_dir.c_str(), r.seconds,
               r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0);

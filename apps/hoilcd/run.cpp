@@ -23,13 +23,13 @@ int RunCommand(const RunArgs& args) {
   SceneArgs a = args.scene;
   if (a.path.empty()) a.path = DataDir() + "/scenes/paper_room.json";
   const Scene scene = LoadSceneArgs(a);
-  CheckBaseline(args.gate);
+  const nlohmann::json baseline = ReadBaseline(args.gate);
   RunOptions run = args.run;
   run.cancel = CancelOnInterrupt();
   const auto start = std::chrono::steady_clock::now();
   const RunOutcome outcome = RunScene(scene, ResolveBench(args.bench, run.threads), run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (const std::string& warning : outcome.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  PrintWarnings(outcome.warnings);
   PrintOutcome(outcome.result, outcome.report_dir);
   const ReportTiming& t = outcome.timing;
   std::string calibration;
@@ -43,7 +43,7 @@ int RunCommand(const RunArgs& args) {
   std::printf("end to end: %.1f s: render %.1f s%s, then bench %.1f s and the report%s (dataset %s)\n", wall_s,
               t.render_s, t.render_cached ? " (cached)" : "", t.bench_s, calibration.c_str(),
               outcome.dataset_dir.c_str());
-  return ApplyGate(args.gate, ReadReportJson(outcome.report_dir + "/report.json"));
+  return ApplyGate(args.gate, baseline, ReadReportJson(outcome.report_dir + "/report.json"));
 }
 
 }  // namespace

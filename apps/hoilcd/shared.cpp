@@ -45,10 +45,14 @@ Scene LoadSceneArgs(const SceneArgs& args) {
   return LoadScene(args.path, overrides);
 }
 
-void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
+void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol) {
   cmd->add_option("--protocol", protocol->protocol, "laps (database = first lap) or revisit")
       ->check(CLI::IsMember({"laps", "revisit"}));
   cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (paper: 0.2)")->check(CLI::PositiveNumber);
+}
+
+void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
+  AddProtocolAndRadiusFlags(cmd, protocol);
   cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
                   "frames this close in time to a query are not in its database, s")
       ->check(CLI::NonNegativeNumber);
@@ -100,14 +104,13 @@ void AddGateFlags(CLI::App* cmd, GateArgs* args) {
   cmd->add_option("--junit", args->junit, "write JUnit XML here (one test case per method)");
 }
 
-void CheckBaseline(const GateArgs& args) {
-  if (!args.baseline.empty()) ReadReportJson(args.baseline);
+nlohmann::json ReadBaseline(const GateArgs& args) {
+  return args.baseline.empty() ? nlohmann::json() : ReadReportJson(args.baseline);
 }
 
-int ApplyGate(const GateArgs& args, const nlohmann::json& report) {
+int ApplyGate(const GateArgs& args, const nlohmann::json& baseline, const nlohmann::json& report) {
   std::vector<Regression> regressions;
   if (!args.baseline.empty()) {
-    const nlohmann::json baseline = ReadReportJson(args.baseline);
     for (const std::string& m : MethodsOnlyInBaseline(baseline, report)) {
       std::printf("baseline: method %s is not in this run (not compared)\n", m.c_str());
     }
@@ -122,6 +125,10 @@ int ApplyGate(const GateArgs& args, const nlohmann::json& report) {
 std::atomic<bool>* CancelOnInterrupt() {
   std::signal(SIGINT, OnInterrupt);
   return &g_interrupted;
+}
+
+void PrintWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
 }
 
 void PrintOutcome(const BenchResult& result, const std::string& report_dir) {

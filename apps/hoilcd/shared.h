@@ -27,7 +27,9 @@ struct SceneArgs {
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required);
 Scene LoadSceneArgs(const SceneArgs& args);
 
-// The evaluation protocol's flags (bench, run, sweep, evaluate, inspect).
+// The evaluation protocol's flags (bench, run, sweep, evaluate): --protocol and --radius (alone
+// in inspect, which labels under both ground truths itself) and the rest.
+void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol);
 void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol);
 
 // The methods and their options (bench, run, sweep).
@@ -46,15 +48,18 @@ struct GateArgs {
   std::string junit;
 };
 void AddGateFlags(CLI::App* cmd, GateArgs* args);
-// Reads the baseline, if any, so a bad one fails before the work.
-void CheckBaseline(const GateArgs& args);
-// Compares `report` with the baseline and writes JUnit XML, as asked; the exit code (0, or 3 on
-// any regression).
-int ApplyGate(const GateArgs& args, const nlohmann::json& report);
+// The --baseline report (null without one), read before the work so a bad one fails first.
+nlohmann::json ReadBaseline(const GateArgs& args);
+// Compares `report` with `baseline` (ReadBaseline's) and writes JUnit XML, as asked; the exit
+// code (0, or 3 on any regression).
+int ApplyGate(const GateArgs& args, const nlohmann::json& baseline, const nlohmann::json& report);
 
 // The first Ctrl-C sets the returned flag (long commands stop cleanly and can resume); a second
 // ends the process at once.
 std::atomic<bool>* CancelOnInterrupt();
+
+// Each warning on stderr, one line each ("warning: ...").
+void PrintWarnings(const std::vector<std::string>& warnings);
 
 // The result table, the paper's finding and where the report is.
 void PrintOutcome(const BenchResult& result, const std::string& report_dir);
