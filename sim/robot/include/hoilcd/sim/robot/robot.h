@@ -2,7 +2,7 @@
 // waypoint route by pure pursuit on the pose it believes (wheel odometry, by default corrected by
 // periodic localisation fixes with a bounded error), sampled at
 // the camera rate: true base and camera poses (with mount vibration), the odometry, and footprint
-// collision checks against 2-D obstacles (SPEC.md 5.1). Error model: docs/robot.md.
+// collision checks against 2-D obstacles (SPEC.md 5.1). Error model: docs/models/robot.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -51,7 +51,7 @@ struct VibrationOptions {
 // a first-order Gauss-Markov process (correlation time correlation_s: a localiser's error changes
 // slowly with the scene it matches), each component truncated at 2 sd so it stays bounded; draws
 // from KeyedRng(seed, "robot.localization", fix index). Independent of odometry.error_scale.
-// Defaults and their sources: docs/robot.md.
+// Defaults and their sources: docs/models/robot.md.
 struct LocalizationOptions {
   double interval_s;       // s, time between localisation fixes
   double position_sd_m;  // m, sd of a fix's error along x and along y
@@ -126,7 +126,7 @@ struct RouteOptions {
   // (Limits shared with the robot are checked by SimulateRobot.)
 };
 
-// How the true motion differs from what the encoders report (docs/robot.md derives the defaults
+// How the true motion differs from what the encoders report (docs/models/robot.md derives the defaults
 // from published figures). The drive motor is servoed on the wheel encoder and the steering motor
 // on the steering encoder, so the commanded motion is what odometry integrates (with the nominal
 // wheel radius and wheelbase); the true motion is
