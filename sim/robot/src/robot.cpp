@@ -583,10 +583,12 @@ CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& o) {
   return cam;
 }
 
-RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
-                       const OdometryErrorOptions& odometry,
-                       const std::vector<Obstacle2D>& obstacles, double frame_rate_hz,
-                       uint64_t seed) {
+namespace {
+
+// What SimulateRobot needs beyond each options struct's own checks: options that must agree.
+void CheckRobotInputs(const TricycleOptions& robot, const RouteOptions& route,
+                      const OdometryErrorOptions& odometry, const std::vector<Obstacle2D>& obstacles,
+                      double frame_rate_hz) {
   ThrowIfBad("robot", robot.Check());
   ThrowIfBad("route", route.Check());
   ThrowIfBad("odometry", odometry.Check());
@@ -606,207 +608,280 @@ RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
   if (route.cruise_speed_m_s > robot.max_speed_m_s) {
     throw InputError("route", "cruise_speed_m_s exceeds the robot's max_speed_m_s");
   }
-  const RoutePath path(route.waypoints_m, route.corner_radius_m);
-  const SpeedProfile profile(path, route.cruise_speed_m_s, route.max_lateral_accel_m_s2,
-                             kBrakeFraction * robot.max_accel_m_s2);
+}
 
-  const double dt = 1.0 / robot.integration_rate_hz;
-  const double max_steer = robot.max_steer_deg * kDegToRad;
-  const double max_steer_step = robot.max_steer_rate_deg_s * kDegToRad * dt;
-  const double max_speed_step = robot.max_accel_m_s2 * dt;
-  const double max_curvature = std::tan(max_steer) / robot.wheelbase_m;
-  // The error model, scaled (OdometryErrorOptions).
-  const double k = odometry.enabled ? odometry.error_scale : 0.0;
-  const double true_radius_scale = 1.0 + k * odometry.wheel_radius_error_frac;
-  const double steer_offset = k * odometry.steer_offset_deg * kDegToRad;
-  const double true_wheelbase = robot.wheelbase_m * (1.0 + k * odometry.wheelbase_error_frac);
-  const double slip_per_accel = k * odometry.slip_per_accel_s2_m;
-  const double turn_slip_per_lat_accel = k * odometry.turn_slip_per_lat_accel_s2_m;
-  const double heading_noise = k * odometry.heading_noise_deg_sqrt_m * kDegToRad;
-  const double metres_per_count = 2.0 * M_PI * odometry.wheel_radius_m / odometry.encoder_counts_per_rev;
-  const bool steer_on_truth = robot.navigation == TricycleOptions::Navigation::kGroundTruth;
-  const bool localized = robot.navigation == TricycleOptions::Navigation::kLocalized;
-  const double fix_interval_s = robot.localization.interval_s;
-  FixError fix_error(robot.localization, seed);
-  const VibrationOptions& vib = robot.vibration;
-  const double vib_omega = 2.0 * M_PI * vib.natural_frequency_hz;
-  // Generous bound on the simulated time, so a route the robot cannot follow fails loudly.
-  const double planned_m = route.frames > 0 ? 0.0 : route.laps * path.loop_m() + path.lead_m();
-  const double max_time_s = route.frames > 0 ? route.frames / frame_rate_hz
-                                             : 60.0 + 20.0 * planned_m / route.cruise_speed_m_s;
+// One run of SimulateRobot: the model's fixed quantities, the robot's state, and one integration
+// step at a time (navigate, move the wheels, shake the mount, sample frames, advance).
+class RobotSimulator {
+ public:
+  RobotSimulator(const TricycleOptions& robot, const RouteOptions& route,
+                 const OdometryErrorOptions& odometry, const std::vector<Obstacle2D>& obstacles,
+                 double frame_rate_hz, uint64_t seed)
+      : robot_(robot),
+        route_(route),
+        odometry_(odometry),
+        obstacles_(obstacles),
+        frame_rate_hz_(frame_rate_hz),
+        seed_(seed),
+        path_(route.waypoints_m, route.corner_radius_m),
+        profile_(path_, route.cruise_speed_m_s, route.max_lateral_accel_m_s2,
+                 kBrakeFraction * robot.max_accel_m_s2),
+        dt_(1.0 / robot.integration_rate_hz),
+        max_steer_(robot.max_steer_deg * kDegToRad),
+        max_steer_step_(robot.max_steer_rate_deg_s * kDegToRad * dt_),
+        max_speed_step_(robot.max_accel_m_s2 * dt_),
+        max_curvature_(std::tan(max_steer_) / robot.wheelbase_m),
+        k_(odometry.enabled ? odometry.error_scale : 0.0),
+        true_radius_scale_(1.0 + k_ * odometry.wheel_radius_error_frac),
+        steer_offset_(k_ * odometry.steer_offset_deg * kDegToRad),
+        true_wheelbase_(robot.wheelbase_m * (1.0 + k_ * odometry.wheelbase_error_frac)),
+        slip_per_accel_(k_ * odometry.slip_per_accel_s2_m),
+        turn_slip_per_lat_accel_(k_ * odometry.turn_slip_per_lat_accel_s2_m),
+        heading_noise_(k_ * odometry.heading_noise_deg_sqrt_m * kDegToRad),
+        metres_per_count_(2.0 * M_PI * odometry.wheel_radius_m / odometry.encoder_counts_per_rev),
+        steer_on_truth_(robot.navigation == TricycleOptions::Navigation::kGroundTruth),
+        localized_(robot.navigation == TricycleOptions::Navigation::kLocalized),
+        fix_error_(robot.localization, seed),
+        vib_omega_(2.0 * M_PI * robot.vibration.natural_frequency_hz) {
+    // Generous bound on the simulated time, so a route the robot cannot follow fails loudly.
+    const double planned_m = route.frames > 0 ? 0.0 : route.laps * path_.loop_m() + path_.lead_m();
+    max_time_s_ = route.frames > 0 ? route.frames / frame_rate_hz
+                                   : 60.0 + 20.0 * planned_m / route.cruise_speed_m_s;
+    run_.min_obstacle_distance_m = std::numeric_limits<double>::infinity();
+    run_.obstacle_distance_m.assign(obstacles.size(), std::numeric_limits<double>::infinity());
+    const Eigen::Vector2d start = route.waypoints_m[0];
+    const Eigen::Vector2d heading = route.waypoints_m[1] - start;
+    truth_ = {start.x(), start.y(), std::atan2(heading.y(), heading.x())};
+    odo_ = truth_;
+    belief_ = truth_;
+    theta0_ = truth_.theta_rad;
+  }
 
-  RobotRun run;
-  run.min_obstacle_distance_m = std::numeric_limits<double>::infinity();
-  run.obstacle_distance_m.assign(obstacles.size(), std::numeric_limits<double>::infinity());
-
-  const Eigen::Vector2d start = route.waypoints_m[0];
-  const Eigen::Vector2d heading = route.waypoints_m[1] - start;
-  Pose2 truth{start.x(), start.y(), std::atan2(heading.y(), heading.x())};
-  Pose2 odo = truth;
-  Pose2 belief = truth;  // what the robot steers on when localized: odometry between fixes
-  int fixes = 0;
-  const double theta0 = truth.theta_rad;
-  double speed = 0, steer = 0, s = 0, s_true = 0, travelled_m = 0, route_deviation_m = 0;
-  double wheel_turns_m = 0;  // drive-wheel rotation times the nominal radius, unquantised
-  int64_t counts = 0;        // encoder counts so far
-  MountAxis roll, pitch, height;
-
-  auto check_pose = [&](const Pose2& pose, double time_s) {
-    const Box footprint = FootprintBox(pose, robot);
-    const Eigen::Vector2d base(pose.x_m, pose.y_m);
-    for (size_t j = 0; j < obstacles.size(); ++j) {
-      if (FootprintHits(footprint, obstacles[j])) {
-        char when[160];
-        std::snprintf(when, sizeof(when),
-                      "at frame %d (t = %.2f s), its true path %.2f m from the route and %.2f m from "
-                      "its odometry",
-                      static_cast<int>(std::floor(time_s * frame_rate_hz + 1e-9)), time_s,
-                      route_deviation_m, std::hypot(odo.x_m - pose.x_m, odo.y_m - pose.y_m));
-        const std::string lower =
-            localized ? "lower the localisation error (robot.localization.position_sd_m, "
-                        "robot.localization.heading_sd_deg)"
-                      : "lower the odometry error (odometry.error_scale)";
-        throw InputError("route", "robot collides with '" + obstacles[j].name + "' " + when + "; " +
-                                      lower + " or widen the route (route.waypoints_m further "
-                                      "from the furniture)" +
-                                      (robot.navigation == TricycleOptions::Navigation::kOdometry
-                                           ? ", or let the robot localise (robot.navigation "
-                                             "\"localized\")"
-                                           : ""));
+  RobotRun Run() {
+    CheckPose(truth_, 0.0);
+    for (long step = 0;; ++step) {
+      const double t = step * dt_;
+      if (t > max_time_s_ + dt_) {
+        throw InputError("route",
+                         "robot did not finish the route within " + FormatNumber(max_time_s_) + " s");
       }
-      const double d = DistanceToObstacle(base, obstacles[j]);
-      run.obstacle_distance_m[j] = std::min(run.obstacle_distance_m[j], d);
-      if (d < run.min_obstacle_distance_m) {
-        run.min_obstacle_distance_m = d;
-        run.closest_obstacle = obstacles[j].name;
-      }
+      Localize(t);
+      const double accel = Navigate();
+      const Steps steps = MoveWheels(step, accel);
+      ShakeMount(step, steps, accel);
+      if (SampleFrames(t, steps)) break;
+      Advance(truth_, steps.truth.forward_m, steps.truth.dtheta_rad);
+      Advance(odo_, steps.odometry.forward_m, steps.odometry.dtheta_rad);
+      Advance(belief_, steps.odometry.forward_m, steps.odometry.dtheta_rad);
+      travelled_m_ += steps.truth.forward_m;
+      CheckPose(truth_, t + dt_);
     }
+    run_.localization_fixes = fixes_;
+    return std::move(run_);
+  }
+
+ private:
+  // One integration step's motion as the odometry reports it and as the robot truly moves.
+  struct Steps {
+    Motion odometry, truth;
+    double base_speed_m_s = 0, lateral_accel_m_s2 = 0;  // true, for the mount
   };
-  check_pose(truth, 0.0);
 
-  int frame = 0;
-  for (long step = 0;; ++step) {
-    const double t = step * dt;
-    if (t > max_time_s + dt) {
-      throw InputError("route",
-                       "robot did not finish the route within " + FormatNumber(max_time_s) + " s");
+  // A localisation fix replaces the belief with the true pose plus the fix error.
+  void Localize(double t) {
+    if (localized_ && t >= (fixes_ + 1) * robot_.localization.interval_s - 1e-9 * dt_) {
+      const Pose2 e = fix_error_.Next(static_cast<uint64_t>(fixes_));
+      belief_ = {truth_.x_m + e.x_m, truth_.y_m + e.y_m, truth_.theta_rad + e.theta_rad};
+      ++fixes_;
     }
-    // A localisation fix replaces the belief with the true pose plus the fix error.
-    if (localized && t >= (fixes + 1) * fix_interval_s - 1e-9 * dt) {
-      const Pose2 e = fix_error.Next(static_cast<uint64_t>(fixes));
-      belief = {truth.x_m + e.x_m, truth.y_m + e.y_m, truth.theta_rad + e.theta_rad};
-      ++fixes;
-    }
-    // Pure pursuit on the rounded route, from the pose the robot steers on.
-    const Pose2& nav = steer_on_truth ? truth : localized ? belief : odo;
+  }
+
+  // Pure pursuit on the rounded route, from the pose the robot steers on: servoes steer_ and
+  // speed_ towards their commands within the rate limits; returns the acceleration, m/s^2.
+  double Navigate() {
+    const Pose2& nav = steer_on_truth_ ? truth_ : localized_ ? belief_ : odo_;
     double tracking_error = 0;
-    s = path.Project({nav.x_m, nav.y_m}, std::max(0.0, s - kSearchBackM),
-                     s + kSearchAheadM + route.lookahead_m, &tracking_error);
-    run.max_tracking_error_m = std::max(run.max_tracking_error_m, tracking_error);
-    s_true = path.Project({truth.x_m, truth.y_m}, std::max(0.0, s_true - kSearchBackM),
-                          s_true + kSearchAheadM + route.lookahead_m, &route_deviation_m);
-    run.max_route_deviation_m = std::max(run.max_route_deviation_m, route_deviation_m);
-    const Eigen::Vector2d target = path.Point(s + route.lookahead_m);
+    s_ = path_.Project({nav.x_m, nav.y_m}, std::max(0.0, s_ - kSearchBackM),
+                       s_ + kSearchAheadM + route_.lookahead_m, &tracking_error);
+    run_.max_tracking_error_m = std::max(run_.max_tracking_error_m, tracking_error);
+    s_true_ = path_.Project({truth_.x_m, truth_.y_m}, std::max(0.0, s_true_ - kSearchBackM),
+                           s_true_ + kSearchAheadM + route_.lookahead_m, &route_deviation_m_);
+    run_.max_route_deviation_m = std::max(run_.max_route_deviation_m, route_deviation_m_);
+    const Eigen::Vector2d target = path_.Point(s_ + route_.lookahead_m);
     const double c = std::cos(nav.theta_rad), sn = std::sin(nav.theta_rad);
     const Eigen::Vector2d rel = target - Eigen::Vector2d(nav.x_m, nav.y_m);
     const double lateral = -sn * rel.x() + c * rel.y();
     const double curvature = std::clamp(2.0 * lateral / std::max(rel.squaredNorm(), 1e-12),
-                                        -max_curvature, max_curvature);
-    run.max_curvature_per_m = std::max(run.max_curvature_per_m, std::abs(curvature));
-    const double steer_cmd = std::atan(curvature * robot.wheelbase_m);
-    steer = std::clamp(steer + std::clamp(steer_cmd - steer, -max_steer_step, max_steer_step),
-                       -max_steer, max_steer);
-    const double base_limit = std::min(profile.At(s), profile.At(s + route.lookahead_m));
-    const double speed_cmd = std::min(robot.max_speed_m_s, base_limit / std::cos(steer));
-    const double previous_speed = speed;
-    speed = std::clamp(speed + std::clamp(speed_cmd - speed, -max_speed_step, max_speed_step), 0.0,
-                       robot.max_speed_m_s);
-    const double accel = (speed - previous_speed) / dt;
+                                        -max_curvature_, max_curvature_);
+    run_.max_curvature_per_m = std::max(run_.max_curvature_per_m, std::abs(curvature));
+    const double steer_cmd = std::atan(curvature * robot_.wheelbase_m);
+    steer_ = std::clamp(steer_ + std::clamp(steer_cmd - steer_, -max_steer_step_, max_steer_step_),
+                        -max_steer_, max_steer_);
+    const double base_limit = std::min(profile_.At(s_), profile_.At(s_ + route_.lookahead_m));
+    const double speed_cmd = std::min(robot_.max_speed_m_s, base_limit / std::cos(steer_));
+    const double previous_speed = speed_;
+    speed_ = std::clamp(speed_ + std::clamp(speed_cmd - speed_, -max_speed_step_, max_speed_step_),
+                        0.0, robot_.max_speed_m_s);
+    return (speed_ - previous_speed) / dt_;
+  }
 
-    // What the encoders report this step (steer and speed are servoed on them) ...
-    const double wheel_m = speed * dt;
-    wheel_turns_m += wheel_m;
-    const int64_t new_counts = static_cast<int64_t>(std::floor(wheel_turns_m / metres_per_count));
-    const double odo_wheel_m = odometry.enabled ? (new_counts - counts) * metres_per_count : wheel_m;
-    counts = new_counts;
-    const Motion odo_step = TricycleMotion(odo_wheel_m, steer, robot.wheelbase_m);
-    // ... and how the robot truly moves.
-    Rng rng = KeyedRng(seed, "robot.odometry", step);
+  // What the encoders report this step (steer and speed are servoed on them), and how the robot
+  // truly moves: wheel radius and wheelbase errors, steering offset, slip, heading noise.
+  Steps MoveWheels(long step, double accel) {
+    const OdometryErrorOptions& o = odometry_;
+    const double wheel_m = speed_ * dt_;
+    wheel_turns_m_ += wheel_m;
+    const int64_t new_counts = static_cast<int64_t>(std::floor(wheel_turns_m_ / metres_per_count_));
+    const double odo_wheel_m = o.enabled ? (new_counts - counts_) * metres_per_count_ : wheel_m;
+    counts_ = new_counts;
+    Steps out;
+    out.odometry = TricycleMotion(odo_wheel_m, steer_, robot_.wheelbase_m);
+    Rng rng = KeyedRng(seed_, "robot.odometry", step);
     const double n1 = rng.Normal(), n2 = rng.Normal(), n3 = rng.Normal();
-    const double slip = slip_per_accel * accel * (1.0 + odometry.slip_noise_frac * n1);
-    const double true_wheel_m = wheel_m * true_radius_scale * (1.0 - slip);
-    const double true_steer = steer + steer_offset;
-    Motion true_step = TricycleMotion(true_wheel_m, true_steer, true_wheelbase);
-    const double base_speed = speed * std::cos(true_steer);
-    const double lateral_accel = base_speed * base_speed * std::tan(true_steer) / true_wheelbase;
-    true_step.dtheta_rad *= 1.0 - std::min(1.0, turn_slip_per_lat_accel * std::abs(lateral_accel) *
-                                                    (1.0 + odometry.slip_noise_frac * n2));
-    true_step.dtheta_rad += heading_noise * std::sqrt(std::abs(true_step.forward_m)) * n3;
-    if (!odometry.enabled) true_step = odo_step;
+    const double slip = slip_per_accel_ * accel * (1.0 + o.slip_noise_frac * n1);
+    const double true_wheel_m = wheel_m * true_radius_scale_ * (1.0 - slip);
+    const double true_steer = steer_ + steer_offset_;
+    out.truth = TricycleMotion(true_wheel_m, true_steer, true_wheelbase_);
+    out.base_speed_m_s = speed_ * std::cos(true_steer);
+    out.lateral_accel_m_s2 =
+        out.base_speed_m_s * out.base_speed_m_s * std::tan(true_steer) / true_wheelbase_;
+    out.truth.dtheta_rad *= 1.0 - std::min(1.0, turn_slip_per_lat_accel_ * std::abs(out.lateral_accel_m_s2) *
+                                                    (1.0 + o.slip_noise_frac * n2));
+    out.truth.dtheta_rad += heading_noise_ * std::sqrt(std::abs(out.truth.forward_m)) * n3;
+    if (!o.enabled) out.truth = out.odometry;
+    return out;
+  }
 
-    // Camera mount: roughness grows with speed; acceleration pitches, lateral acceleration rolls.
-    if (vib.enabled) {
-      Rng vrng = KeyedRng(seed, "robot.vibration", step);
-      const double level = base_speed / vib.reference_speed_m_s;
-      const double z = vib.damping_ratio;
-      roll.Step(vib.roll_per_lat_accel_deg_s2_m * kDegToRad * lateral_accel,
-                level * vib.roll_sd_deg * kDegToRad, vrng.Normal(), vib_omega, z, dt);
-      pitch.Step(-vib.pitch_per_accel_deg_s2_m * kDegToRad * accel,
-                 level * vib.pitch_sd_deg * kDegToRad, vrng.Normal(), vib_omega, z, dt);
-      height.Step(0.0, level * vib.height_sd_m, vrng.Normal(), vib_omega, z, dt);
-    }
+  // Camera mount: roughness grows with speed; acceleration pitches, lateral acceleration rolls.
+  void ShakeMount(long step, const Steps& steps, double accel) {
+    const VibrationOptions& vib = robot_.vibration;
+    if (!vib.enabled) return;
+    Rng vrng = KeyedRng(seed_, "robot.vibration", step);
+    const double level = steps.base_speed_m_s / vib.reference_speed_m_s;
+    const double z = vib.damping_ratio;
+    roll_.Step(vib.roll_per_lat_accel_deg_s2_m * kDegToRad * steps.lateral_accel_m_s2,
+               level * vib.roll_sd_deg * kDegToRad, vrng.Normal(), vib_omega_, z, dt_);
+    pitch_.Step(-vib.pitch_per_accel_deg_s2_m * kDegToRad * accel,
+                level * vib.pitch_sd_deg * kDegToRad, vrng.Normal(), vib_omega_, z, dt_);
+    height_.Step(0.0, level * vib.height_sd_m, vrng.Normal(), vib_omega_, z, dt_);
+  }
 
-    // Frames falling inside [t, t + dt) are sampled by interpolating this step's motion.
-    bool done = false;
+  // Frames falling inside [t, t + dt) are sampled by interpolating this step's motion. Returns
+  // whether the run is done (its frames, or its laps as the robot believes them).
+  bool SampleFrames(double t, const Steps& steps) {
+    const Motion& true_step = steps.truth;
+    const Motion& odo_step = steps.odometry;
     while (true) {
-      const double frame_t = frame / frame_rate_hz;
-      if (frame_t >= t + dt - 1e-12 * (1.0 + t)) break;
-      const double part = std::max(0.0, frame_t - t) / dt;
+      const double frame_t = frame_ / frame_rate_hz_;
+      if (frame_t >= t + dt_ - 1e-12 * (1.0 + t)) return false;
+      const double part = std::max(0.0, frame_t - t) / dt_;
       RobotSample sample;
-      sample.frame = frame;
+      sample.frame = frame_;
       sample.time_s = frame_t;
-      Pose2 base = truth;
+      Pose2 base = truth_;
       Advance(base, part * true_step.forward_m, part * true_step.dtheta_rad);
-      Pose2 odo_now = odo;
+      Pose2 odo_now = odo_;
       Advance(odo_now, part * odo_step.forward_m, part * odo_step.dtheta_rad);
-      Pose2 belief_now = belief;
+      Pose2 belief_now = belief_;
       Advance(belief_now, part * odo_step.forward_m, part * odo_step.dtheta_rad);
-      const Pose2& nav_now = steer_on_truth ? base : localized ? belief_now : odo_now;
+      const Pose2& nav_now = steer_on_truth_ ? base : localized_ ? belief_now : odo_now;
       double ignored = 0;
-      const double s_frame = path.Project({nav_now.x_m, nav_now.y_m},
-                                          std::max(0.0, s - kSearchBackM), s + kSearchAheadM,
-                                          &ignored);
+      const double s_frame = path_.Project({nav_now.x_m, nav_now.y_m},
+                                           std::max(0.0, s_ - kSearchBackM), s_ + kSearchAheadM,
+                                           &ignored);
       // Laps completed never run backwards (a localisation fix may move the belief back a little).
-      sample.lap = std::max(s_frame / path.loop_m(), run.samples.empty() ? 0.0 : run.samples.back().lap);
-      sample.camera = CameraPoseFromBase(base, robot);
-      sample.vibration = {roll.x, pitch.x, height.x};
-      sample.camera.roll_rad += roll.x;
-      sample.camera.pitch_rad += pitch.x;
-      sample.camera.z_m += height.x;
-      sample.speed_m_s = speed;
-      sample.steer_rad = steer;
-      run.path_length_m = travelled_m + part * true_step.forward_m;
-      run.heading_change_rad = base.theta_rad - theta0;
-      run.laps = sample.lap;
+      sample.lap = std::max(s_frame / path_.loop_m(), run_.samples.empty() ? 0.0 : run_.samples.back().lap);
+      sample.camera = CameraPoseFromBase(base, robot_);
+      sample.vibration = {roll_.x, pitch_.x, height_.x};
+      sample.camera.roll_rad += roll_.x;
+      sample.camera.pitch_rad += pitch_.x;
+      sample.camera.z_m += height_.x;
+      sample.speed_m_s = speed_;
+      sample.steer_rad = steer_;
+      run_.path_length_m = travelled_m_ + part * true_step.forward_m;
+      run_.heading_change_rad = base.theta_rad - theta0_;
+      run_.laps = sample.lap;
       base.theta_rad = WrapAngle(base.theta_rad);
       odo_now.theta_rad = WrapAngle(odo_now.theta_rad);
       sample.base = base;
       sample.odometry = odo_now;
-      run.samples.push_back(sample);
-      ++frame;
-      done = route.frames > 0 ? frame >= route.frames : sample.lap >= route.laps;
-      if (done) break;
+      run_.samples.push_back(sample);
+      ++frame_;
+      if (route_.frames > 0 ? frame_ >= route_.frames : sample.lap >= route_.laps) return true;
     }
-    if (done) break;
-
-    Advance(truth, true_step.forward_m, true_step.dtheta_rad);
-    Advance(odo, odo_step.forward_m, odo_step.dtheta_rad);
-    Advance(belief, odo_step.forward_m, odo_step.dtheta_rad);
-    travelled_m += true_step.forward_m;
-    check_pose(truth, t + dt);
   }
-  run.localization_fixes = fixes;
-  return run;
+
+  // Throws when the footprint at `pose` overlaps an obstacle; records the closest approaches.
+  void CheckPose(const Pose2& pose, double time_s) {
+    const Box footprint = FootprintBox(pose, robot_);
+    const Eigen::Vector2d base(pose.x_m, pose.y_m);
+    for (size_t j = 0; j < obstacles_.size(); ++j) {
+      if (FootprintHits(footprint, obstacles_[j])) ThrowCollision(pose, time_s, obstacles_[j]);
+      const double d = DistanceToObstacle(base, obstacles_[j]);
+      run_.obstacle_distance_m[j] = std::min(run_.obstacle_distance_m[j], d);
+      if (d < run_.min_obstacle_distance_m) {
+        run_.min_obstacle_distance_m = d;
+        run_.closest_obstacle = obstacles_[j].name;
+      }
+    }
+  }
+
+  // The collision error: when, how far the robot drifted, and which setting to change.
+  [[noreturn]] void ThrowCollision(const Pose2& pose, double time_s, const Obstacle2D& obstacle) const {
+    char when[160];
+    std::snprintf(when, sizeof(when),
+                  "at frame %d (t = %.2f s), its true path %.2f m from the route and %.2f m from "
+                  "its odometry",
+                  static_cast<int>(std::floor(time_s * frame_rate_hz_ + 1e-9)), time_s,
+                  route_deviation_m_, std::hypot(odo_.x_m - pose.x_m, odo_.y_m - pose.y_m));
+    const std::string lower =
+        localized_ ? "lower the localisation error (robot.localization.position_sd_m, "
+                     "robot.localization.heading_sd_deg)"
+                   : "lower the odometry error (odometry.error_scale)";
+    throw InputError("route", "robot collides with '" + obstacle.name + "' " + when + "; " + lower +
+                                  " or widen the route (route.waypoints_m further from the furniture)" +
+                                  (robot_.navigation == TricycleOptions::Navigation::kOdometry
+                                       ? ", or let the robot localise (robot.navigation \"localized\")"
+                                       : ""));
+  }
+
+  const TricycleOptions& robot_;
+  const RouteOptions& route_;
+  const OdometryErrorOptions& odometry_;
+  const std::vector<Obstacle2D>& obstacles_;
+  const double frame_rate_hz_;
+  const uint64_t seed_;
+  const RoutePath path_;
+  const SpeedProfile profile_;  // refers to path_
+  const double dt_, max_steer_, max_steer_step_, max_speed_step_, max_curvature_;
+  // The odometry error model, scaled by error_scale (OdometryErrorOptions).
+  const double k_, true_radius_scale_, steer_offset_, true_wheelbase_, slip_per_accel_,
+      turn_slip_per_lat_accel_, heading_noise_, metres_per_count_;
+  const bool steer_on_truth_, localized_;
+  FixError fix_error_;
+  const double vib_omega_;
+  double max_time_s_ = 0;
+
+  RobotRun run_;
+  Pose2 truth_, odo_;
+  Pose2 belief_;  // what the robot steers on when localized: odometry between fixes
+  int fixes_ = 0;
+  double theta0_ = 0;
+  double speed_ = 0, steer_ = 0, s_ = 0, s_true_ = 0, travelled_m_ = 0, route_deviation_m_ = 0;
+  double wheel_turns_m_ = 0;  // drive-wheel rotation times the nominal radius, unquantised
+  int64_t counts_ = 0;        // encoder counts so far
+  MountAxis roll_, pitch_, height_;
+  int frame_ = 0;
+};
+
+}  // namespace
+
+RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
+                       const OdometryErrorOptions& odometry,
+                       const std::vector<Obstacle2D>& obstacles, double frame_rate_hz,
+                       uint64_t seed) {
+  CheckRobotInputs(robot, route, odometry, obstacles, frame_rate_hz);
+  return RobotSimulator(robot, route, odometry, obstacles, frame_rate_hz, seed).Run();
 }
 
 std::vector<PoseRecord> PoseRecordsOf(const RobotRun& run, int frames) {
