@@ -37,6 +37,133 @@ std::vector<std::pair<int, int>> MatchByIoU(const std::vector<cv::Rect2f>& perso
   return matches;
 }
 
+
+std::vector<cv::Rect2f> PersonBoxes(const std::vector<const PersonRecord*>& persons) {
+  std::vector<cv::Rect2f> out;
+  for (const PersonRecord* p : persons) out.push_back(p->box_px);
+  return out;
+}
+
+std::vector<cv::Rect2f> TrackBoxes(const std::vector<const TrackedBox*>& tracks) {
+  std::vector<cv::Rect2f> out;
+  for (const TrackedBox* t : tracks) out.push_back(t->box);
+  return out;
+}
+
+// One frame's persons and tracks, as evaluated.
+struct FrameBoxes {
+  std::vector<const PersonRecord*> persons;
+  std::vector<const TrackedBox*> tracks;
+};
+
+// Leaves out the persons too hidden or too low to score, and the predictions matching them.
+void DropIgnored(const TrackingMetricsOptions& options, FrameBoxes* frame) {
+  const auto is_ignored = [&](const PersonRecord* p) {
+    return p->visible_fraction < options.min_visible_fraction ||
+           p->box_px.height < options.min_box_height_px;
+  };
+  std::vector<const PersonRecord*>& persons = frame->persons;
+  if (std::none_of(persons.begin(), persons.end(), is_ignored)) return;
+  std::vector<uint8_t> drop_track(frame->tracks.size(), 0);
+  for (const auto& [i, j] : MatchByIoU(PersonBoxes(persons), TrackBoxes(frame->tracks), options.iou_threshold)) {
+    if (is_ignored(persons[i])) drop_track[j] = 1;
+  }
+  std::vector<const TrackedBox*> kept;
+  for (size_t j = 0; j < frame->tracks.size(); ++j) {
+    if (!drop_track[j]) kept.push_back(frame->tracks[j]);
+  }
+  frame->tracks = std::move(kept);
+  persons.erase(std::remove_if(persons.begin(), persons.end(), is_ignored), persons.end());
+}
+
+// CLEAR MOT's matches of one frame (person index, track index): last frame's correspondences
+// (person id -> track id) that are still valid, then an IoU assignment of the rest.
+std::vector<std::pair<int, int>> ClearMotMatches(const FrameBoxes& frame,
+                                                 const std::map<int, int>& previous_frame_match,
+                                                 double iou_threshold) {
+  const std::vector<const PersonRecord*>& persons = frame.persons;
+  const std::vector<const TrackedBox*>& tracks = frame.tracks;
+  std::vector<std::pair<int, int>> matches;
+  std::vector<uint8_t> person_used(persons.size(), 0), track_used(tracks.size(), 0);
+  for (size_t i = 0; i < persons.size(); ++i) {
+    const auto previous = previous_frame_match.find(persons[i]->id);
+    if (previous == previous_frame_match.end()) continue;
+    for (size_t j = 0; j < tracks.size(); ++j) {
+      if (tracks[j]->id == previous->second && !track_used[j] &&
+          BoxIoU(persons[i]->box_px, tracks[j]->box) >= iou_threshold) {
+        matches.emplace_back(i, j);
+        person_used[i] = track_used[j] = 1;
+        break;
+      }
+    }
+  }
+  std::vector<int> free_persons, free_tracks;
+  std::vector<cv::Rect2f> free_person_boxes, free_track_boxes;
+  for (size_t i = 0; i < persons.size(); ++i) {
+    if (person_used[i]) continue;
+    free_persons.push_back(static_cast<int>(i));
+    free_person_boxes.push_back(persons[i]->box_px);
+  }
+  for (size_t j = 0; j < tracks.size(); ++j) {
+    if (track_used[j]) continue;
+    free_tracks.push_back(static_cast<int>(j));
+    free_track_boxes.push_back(tracks[j]->box);
+  }
+  for (const auto& [a, b] : MatchByIoU(free_person_boxes, free_track_boxes, iou_threshold)) {
+    matches.emplace_back(free_persons[a], free_tracks[b]);
+  }
+  return matches;
+}
+
+// The distances from a matched person's visible contacts to the nearest HOI point of its track.
+struct HoiScore {
+  std::vector<double> errors_px;  // contacts whose track had HOI points
+  int contacts = 0, contacts_without_points = 0, hits = 0;
+
+  void Add(const PersonRecord& person, const TrackedBox& track, double tolerance_px) {
+    for (const ContactRecord& contact : person.contacts) {
+      if (!contact.visible) continue;
+      ++contacts;
+      if (track.hoi_points_px.empty()) {
+        ++contacts_without_points;
+        continue;
+      }
+      double nearest_px = INFINITY;
+      for (const cv::Point2f& q : track.hoi_points_px) {
+        nearest_px = std::min(nearest_px, std::hypot(q.x - contact.u_px, q.y - contact.v_px));
+      }
+      errors_px.push_back(nearest_px);
+      if (nearest_px <= tolerance_px) ++hits;
+    }
+  }
+};
+
+// IDF1's IDTP: one-to-one person-to-track assignment maximising the frames they overlap. With
+// cost C - IDTP and limit C, each match changes the objective by -IDTP. The maps are keyed by
+// person id, track id and (person, track) -> frames overlapping at the IoU threshold.
+int IdTruePositives(const std::map<int, int>& person_boxes, const std::map<int, int>& track_boxes,
+                    const std::map<std::pair<int, int>, int>& overlap_frames) {
+  std::vector<int> person_ids, track_ids;
+  for (const auto& entry : person_boxes) person_ids.push_back(entry.first);
+  for (const auto& entry : track_boxes) track_ids.push_back(entry.first);
+  int max_overlap = 0;
+  for (const auto& entry : overlap_frames) max_overlap = std::max(max_overlap, entry.second);
+  if (max_overlap == 0) return 0;
+  const double c = max_overlap + 1.0;
+  std::vector<std::vector<double>> cost(person_ids.size(), std::vector<double>(track_ids.size(), 2 * c + 1));
+  for (const auto& [pair, count] : overlap_frames) {
+    const size_t row = std::lower_bound(person_ids.begin(), person_ids.end(), pair.first) - person_ids.begin();
+    const size_t col = std::lower_bound(track_ids.begin(), track_ids.end(), pair.second) - track_ids.begin();
+    cost[row][col] = c - count;
+  }
+  int idtp = 0;
+  for (const auto& [row, col] : LinearAssignment(cost, c).matches) {
+    const auto it = overlap_frames.find({person_ids[row], track_ids[col]});
+    if (it != overlap_frames.end()) idtp += it->second;
+  }
+  return idtp;
+}
+
 }  // namespace
 
 std::string TrackingMetricsOptions::Check() const {
@@ -93,47 +220,22 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
   std::map<int, int> previous_frame_match;  // person id -> track id matched in the last frame
   std::map<std::pair<int, int>, int> overlap_frames;  // (person, track) -> frames at IoU >= thr
   std::map<int, int> person_boxes, track_boxes;
-  std::vector<double> hoi_errors_px;
-  int hoi_hits = 0;
+  HoiScore hoi;
   for (int frame : frames) {
-    std::vector<const PersonRecord*> persons;
-    std::vector<const TrackedBox*> tracks;
+    FrameBoxes boxes;
     if (const auto it = truth_of_frame.find(frame); it != truth_of_frame.end()) {
-      for (const PersonRecord& p : it->second->persons) persons.push_back(&p);
+      for (const PersonRecord& p : it->second->persons) boxes.persons.push_back(&p);
     }
     if (const auto it = tracks_of_frame.find(frame); it != tracks_of_frame.end()) {
       std::set<int> ids;
       for (const TrackedBox& t : it->second->tracks) {
         HOILCD_CHECK_MSG(ids.insert(t.id).second, "track " << t.id << " twice in frame " << frame);
-        tracks.push_back(&t);
+        boxes.tracks.push_back(&t);
       }
     }
-    auto boxes_of = [](const auto& items, auto box) {
-      std::vector<cv::Rect2f> out;
-      for (const auto* item : items) out.push_back(box(*item));
-      return out;
-    };
-    auto person_box = [](const PersonRecord& p) { return p.box_px; };
-    auto track_box = [](const TrackedBox& t) { return t.box; };
-
-    // Ignored persons take their matching predictions with them.
-    const auto is_ignored = [&](const PersonRecord* p) {
-      return p->visible_fraction < options.min_visible_fraction ||
-             p->box_px.height < options.min_box_height_px;
-    };
-    if (std::any_of(persons.begin(), persons.end(), is_ignored)) {
-      std::vector<uint8_t> drop_track(tracks.size(), 0);
-      for (const auto& [i, j] : MatchByIoU(boxes_of(persons, person_box),
-                                           boxes_of(tracks, track_box), options.iou_threshold)) {
-        if (is_ignored(persons[i])) drop_track[j] = 1;
-      }
-      std::vector<const TrackedBox*> kept;
-      for (size_t j = 0; j < tracks.size(); ++j) {
-        if (!drop_track[j]) kept.push_back(tracks[j]);
-      }
-      tracks = std::move(kept);
-      persons.erase(std::remove_if(persons.begin(), persons.end(), is_ignored), persons.end());
-    }
+    DropIgnored(options, &boxes);
+    const std::vector<const PersonRecord*>& persons = boxes.persons;
+    const std::vector<const TrackedBox*>& tracks = boxes.tracks;
 
     // IDF1 counts every (person, track) overlap, independently of the CLEAR MOT matching.
     for (const PersonRecord* p : persons) {
@@ -144,36 +246,7 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
     }
     for (const TrackedBox* t : tracks) ++track_boxes[t->id];
 
-    // CLEAR MOT: keep last frame's correspondences that are still valid, assign the rest.
-    std::vector<std::pair<int, int>> matches;
-    std::vector<uint8_t> person_used(persons.size(), 0), track_used(tracks.size(), 0);
-    for (size_t i = 0; i < persons.size(); ++i) {
-      const auto previous = previous_frame_match.find(persons[i]->id);
-      if (previous == previous_frame_match.end()) continue;
-      for (size_t j = 0; j < tracks.size(); ++j) {
-        if (tracks[j]->id == previous->second && !track_used[j] &&
-            BoxIoU(persons[i]->box_px, tracks[j]->box) >= options.iou_threshold) {
-          matches.emplace_back(i, j);
-          person_used[i] = track_used[j] = 1;
-          break;
-        }
-      }
-    }
-    std::vector<int> free_persons, free_tracks;
-    for (size_t i = 0; i < persons.size(); ++i) {
-      if (!person_used[i]) free_persons.push_back(static_cast<int>(i));
-    }
-    for (size_t j = 0; j < tracks.size(); ++j) {
-      if (!track_used[j]) free_tracks.push_back(static_cast<int>(j));
-    }
-    std::vector<cv::Rect2f> free_person_boxes, free_track_boxes;
-    for (int i : free_persons) free_person_boxes.push_back(persons[i]->box_px);
-    for (int j : free_tracks) free_track_boxes.push_back(tracks[j]->box);
-    for (const auto& [a, b] :
-         MatchByIoU(free_person_boxes, free_track_boxes, options.iou_threshold)) {
-      matches.emplace_back(free_persons[a], free_tracks[b]);
-    }
-
+    const std::vector<std::pair<int, int>> matches = ClearMotMatches(boxes, previous_frame_match, options.iou_threshold);
     std::map<int, int> this_frame_match;
     for (const auto& [i, j] : matches) {
       const PersonRecord& person = *persons[i];
@@ -182,20 +255,7 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
       if (last != last_match.end() && last->second != track.id) ++m.id_switches;
       last_match[person.id] = track.id;
       this_frame_match[person.id] = track.id;
-      for (const ContactRecord& contact : person.contacts) {
-        if (!contact.visible) continue;
-        ++m.hoi_contacts;
-        if (track.hoi_points_px.empty()) {
-          ++m.hoi_contacts_without_points;
-          continue;
-        }
-        double nearest_px = INFINITY;
-        for (const cv::Point2f& q : track.hoi_points_px) {
-          nearest_px = std::min(nearest_px, std::hypot(q.x - contact.u_px, q.y - contact.v_px));
-        }
-        hoi_errors_px.push_back(nearest_px);
-        if (nearest_px <= options.hoi_tolerance_px) ++hoi_hits;
-      }
+      hoi.Add(person, track, options.hoi_tolerance_px);
     }
     previous_frame_match = std::move(this_frame_match);
     m.gt_boxes += static_cast<int>(persons.size());
@@ -213,39 +273,17 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
     m.mota = 1.0 - static_cast<double>(m.false_negatives + m.false_positives + m.id_switches) /
                        m.gt_boxes;
   }
-
-  // IDF1: one-to-one person-to-track assignment maximising the frames they overlap (IDTP).
-  // With cost C - IDTP and limit C, each match changes the objective by -IDTP.
-  std::vector<int> person_ids, track_ids;
-  for (const auto& entry : person_boxes) person_ids.push_back(entry.first);
-  for (const auto& entry : track_boxes) track_ids.push_back(entry.first);
-  int max_overlap = 0;
-  for (const auto& entry : overlap_frames) max_overlap = std::max(max_overlap, entry.second);
-  if (max_overlap > 0) {
-    const double c = max_overlap + 1.0;
-    std::vector<std::vector<double>> cost(person_ids.size(),
-                                          std::vector<double>(track_ids.size(), 2 * c + 1));
-    for (const auto& [pair, count] : overlap_frames) {
-      const size_t row = std::lower_bound(person_ids.begin(), person_ids.end(), pair.first) -
-                         person_ids.begin();
-      const size_t col = std::lower_bound(track_ids.begin(), track_ids.end(), pair.second) -
-                         track_ids.begin();
-      cost[row][col] = c - count;
-    }
-    for (const auto& [row, col] : LinearAssignment(cost, c).matches) {
-      const auto it = overlap_frames.find({person_ids[row], track_ids[col]});
-      if (it != overlap_frames.end()) m.idtp += it->second;
-    }
-  }
+  m.idtp = IdTruePositives(person_boxes, track_boxes, overlap_frames);
   m.idfn = m.gt_boxes - m.idtp;
   m.idfp = m.predicted_boxes - m.idtp;
   if (m.gt_boxes + m.predicted_boxes > 0) {
     m.idf1 = 2.0 * m.idtp / (m.gt_boxes + m.predicted_boxes);
   }
-
-  m.hoi_median_error_px = Median(hoi_errors_px);
+  m.hoi_contacts = hoi.contacts;
+  m.hoi_contacts_without_points = hoi.contacts_without_points;
+  m.hoi_median_error_px = Median(hoi.errors_px);
   if (m.hoi_contacts > 0) {
-    m.hoi_fraction_within_tolerance = static_cast<double>(hoi_hits) / m.hoi_contacts;
+    m.hoi_fraction_within_tolerance = static_cast<double>(hoi.hits) / m.hoi_contacts;
   }
   return m;
 }

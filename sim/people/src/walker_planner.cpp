@@ -494,51 +494,91 @@ WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, dou
   return out;
 }
 
-WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
-                      std::shared_ptr<const FreeSpace> space, const RobotTrack& robot,
-                      const std::vector<WalkerPlan>& others, const std::vector<Doorway>& doors, double lateral_m) {
-  Rng rng = KeyedRng(seed, "crowd.walker_plan", static_cast<uint64_t>(walker));
-  WalkerPlan plan;
-  plan.radius_m = space->radius_m();
-  plan.space = space;
-  plan.lateral_m = lateral_m;
-  const double door_speed_m_s = rng.Uniform(1.0, 1.3);  // its pace in and out, an ordinary walk
-  double t = 0, lead = rng.Uniform(4.0, 9.0);
-  bool inside = false;
-  int start_attempts = 0;
-  // From where its last bout ends out through a door (checked; empty: the run ends first).
-  std::optional<std::vector<WalkerSegment>> way_out;
-  std::string wanted;                  // a bout drawn in the room that starts elsewhere: tried first
-  auto push_gone = [&](double until_s) {
-    if (until_s <= t) return;
+namespace {
+
+// One walker's plan, bout by bout: in the room, another bout on the route or out through a door;
+// out of it, the next bout walked into from a door, taken only when a way out from its end exists.
+class WalkerPlanner {
+ public:
+  WalkerPlanner(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
+                std::shared_ptr<const FreeSpace> space, const RobotTrack& robot,
+                const std::vector<WalkerPlan>& others, const std::vector<Doorway>& doors, double lateral_m)
+      : weights_(weights),
+        duration_s_(duration_s),
+        space_(*space),
+        robot_(robot),
+        others_(others),
+        doors_(doors),
+        rng_(KeyedRng(seed, "crowd.walker_plan", static_cast<uint64_t>(walker))) {
+    plan_.radius_m = space->radius_m();
+    plan_.space = space;
+    plan_.lateral_m = lateral_m;
+    door_speed_m_s_ = rng_.Uniform(1.0, 1.3);  // its pace in and out, an ordinary walk
+    lead_ = rng_.Uniform(4.0, 9.0);
+    door_passes_ = DoorPasses();
+  }
+
+  WalkerPlan Plan() {
+    while (t_ < duration_s_ + 1) {
+      if (inside_) {
+        NextBoutInside();
+      } else {
+        NextBoutFromOutside();
+      }
+    }
+    return std::move(plan_);
+  }
+
+ private:
+  // Route times at which the robot passes closest to a door (within 1.5 m), ascending.
+  std::vector<double> DoorPasses() const {
+    auto nearest_door_m = [&](double u) {
+      double best = 1e9;
+      for (const Doorway& door : doors_) best = std::min(best, (robot_.At(u) - DoorThreshold(door, plan_.radius_m)).norm());
+      return best;
+    };
+    std::vector<double> passes;
+    for (double u = robot_.start_s() + 0.1; u + 0.1 <= robot_.end_s(); u += 0.1) {
+      const double d = nearest_door_m(u);
+      if (d < 1.5 && d <= nearest_door_m(u - 0.1) && d < nearest_door_m(u + 0.1)) passes.push_back(u);
+    }
+    return passes;
+  }
+
+  void PushGone(double until_s) {
+    if (until_s <= t_) return;
     WalkerSegment gone;
     gone.behaviour = "gone";
-    gone.start_s = t;
+    gone.start_s = t_;
     gone.end_s = until_s;
-    plan.segments.push_back(gone);
-    t = until_s;
-  };
-  auto go_out = [&] {
-    plan.segments.insert(plan.segments.end(), way_out->begin(), way_out->end());
-    t = way_out->empty() ? duration_s + 1 : way_out->back().end_s;
-    way_out.reset();
-    inside = false;
-  };
+    plan_.segments.push_back(gone);
+    t_ = until_s;
+  }
+
+  void GoOut() {
+    plan_.segments.insert(plan_.segments.end(), way_out_->begin(), way_out_->end());
+    t_ = way_out_->empty() ? duration_s_ + 1 : way_out_->back().end_s;
+    way_out_.reset();
+    inside_ = false;
+  }
+
   // Behaviours possible from a lead; approach needs room to come closer.
-  auto possible = [&](double from_lead) {
+  std::array<double, kWalkerBehaviourCount> Possible(double from_lead) const {
     std::array<double, kWalkerBehaviourCount> w{};
     for (size_t i = 0; i < w.size(); ++i) {
       const std::string b = kWalkerBehaviours[i];
-      w[i] = (b != "approach" || from_lead >= 8) && (b != "stop_to_chat" || from_lead >= 6) ? weights.at(b) : 0.0;
+      w[i] = (b != "approach" || from_lead >= 8) && (b != "stop_to_chat" || from_lead >= 6) ? weights_.at(b) : 0.0;
     }
     return w;
-  };
+  }
+
   // The way out after a bout: straight to a door, or first on along the route ahead of the robot
   // (briskly, as "away") until a door can be reached without meeting it; none needed when the run
   // is over by then.
-  auto exit_after = [&](const WalkerSegment& bout) -> std::optional<std::vector<WalkerSegment>> {
-    if (bout.end_s >= duration_s) return std::vector<WalkerSegment>{};
-    if (auto out = PlanDoorWalk(false, EndOf(bout, plan, robot), bout.end_s, bout.end_s, door_speed_m_s, doors, plan, robot, others))
+  std::optional<std::vector<WalkerSegment>> ExitAfter(const WalkerSegment& bout) const {
+    if (bout.end_s >= duration_s_) return std::vector<WalkerSegment>{};
+    if (auto out = PlanDoorWalk(false, EndOf(bout, plan_, robot_), bout.end_s, bout.end_s, door_speed_m_s_, doors_,
+                                plan_, robot_, others_))
       return std::vector<WalkerSegment>{*out};
     if (!bout.path_m.empty()) return std::nullopt;
     WalkerSegment on;
@@ -548,78 +588,79 @@ WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t see
     on.rate = 2.4;  // ~1.1 m/s
     for (double walk_s = 1; walk_s <= 30; walk_s += 1) {
       on.end_s = on.start_s + walk_s;
-      if (on.end_s >= duration_s) return std::vector<WalkerSegment>{on};
-      if (on.u_start + on.rate * walk_s > robot.end_s() - 0.1 || !ClearOfRobotAndWalkers(on, plan, robot, others, false)) break;
-      if (auto out = PlanDoorWalk(false, EndOf(on, plan, robot), on.end_s, on.end_s, door_speed_m_s, doors, plan, robot, others))
+      if (on.end_s >= duration_s_) return std::vector<WalkerSegment>{on};
+      if (on.u_start + on.rate * walk_s > robot_.end_s() - 0.1 || !ClearOfRobotAndWalkers(on, plan_, robot_, others_, false))
+        break;
+      if (auto out = PlanDoorWalk(false, EndOf(on, plan_, robot_), on.end_s, on.end_s, door_speed_m_s_, doors_, plan_,
+                                  robot_, others_))
         return std::vector<WalkerSegment>{on, *out};
     }
     return std::nullopt;
-  };
+  }
+
   // Takes the bout (walked into by `in` unless the run starts with it) if a way out from its end exists.
-  auto place = [&](const std::optional<WalkerSegment>& in, const WalkerSegment& bout) {
-    const std::optional<std::vector<WalkerSegment>> out = exit_after(bout);
+  bool Place(const std::optional<WalkerSegment>& in, const WalkerSegment& bout) {
+    const std::optional<std::vector<WalkerSegment>> out = ExitAfter(bout);
     if (!out) return false;
     if (in) {
-      push_gone(in->start_s);
-      plan.segments.push_back(*in);
+      PushGone(in->start_s);
+      plan_.segments.push_back(*in);
     }
-    plan.segments.push_back(bout);
-    t = bout.end_s;
-    way_out = out;
-    inside = true;
-    lead = bout.u_start + bout.rate * (bout.end_s - bout.start_s) - bout.end_s;
-    if (bout.behaviour == "cross" || bout.behaviour == "away") go_out();
+    plan_.segments.push_back(bout);
+    t_ = bout.end_s;
+    way_out_ = out;
+    inside_ = true;
+    lead_ = bout.u_start + bout.rate * (bout.end_s - bout.start_s) - bout.end_s;
+    if (bout.behaviour == "cross" || bout.behaviour == "away") GoOut();
     return true;
-  };
-  // Route times at which the robot passes closest to a door (within 1.5 m), ascending.
-  std::vector<double> door_passes;
-  {
-    auto nearest_door_m = [&](double u) {
-      double best = 1e9;
-      for (const Doorway& door : doors) best = std::min(best, (robot.At(u) - DoorThreshold(door, plan.radius_m)).norm());
-      return best;
-    };
-    for (double u = robot.start_s() + 0.1; u + 0.1 <= robot.end_s(); u += 0.1) {
-      const double d = nearest_door_m(u);
-      if (d < 1.5 && d <= nearest_door_m(u - 0.1) && d < nearest_door_m(u + 0.1)) door_passes.push_back(u);
-    }
   }
-  while (t < duration_s + 1) {
-    if (inside) {
-      // In the room: another bout on the route from where it is, or out through a door.
-      const std::array<double, kWalkerBehaviourCount> w = possible(lead);
-      const std::string behaviour = kWalkerBehaviours[DrawBehaviour(w, &rng)];
-      if (behaviour == "cross" || behaviour == "overtake") {  // these start elsewhere
-        wanted = behaviour;
-        go_out();
-        continue;
-      }
-      const std::optional<WalkerSegment> bout = PlanRouteBout(behaviour, robot, t, lead, &rng);
-      std::optional<std::vector<WalkerSegment>> out;
-      if (bout && ClearOfRobotAndWalkers(*bout, plan, robot, others, false)) out = exit_after(*bout);
-      if (!out) {  // no room for it here and now: out through the door
-        go_out();
-        continue;
-      }
-      plan.segments.push_back(*bout);
-      way_out = out;
-      t = bout->end_s;
-      lead = bout->u_start + bout->rate * (bout->end_s - bout->start_s) - bout->end_s;
-      if (behaviour == "away") go_out();
-      continue;
+
+  // In the room: another bout on the route from where it is, or out through a door.
+  void NextBoutInside() {
+    const std::string behaviour = kWalkerBehaviours[DrawBehaviour(Possible(lead_), &rng_)];
+    if (behaviour == "cross" || behaviour == "overtake") {  // these start elsewhere
+      wanted_ = behaviour;
+      GoOut();
+      return;
     }
-    // Out of the room (or at the start of the run, already in it): the next bout, walked into
-    // from a door; taken only when a way out from its end exists too.
-    const bool at_start = plan.segments.empty() && t == 0;
-    if (!at_start) lead = rng.Uniform(5.0, 10.0);
-    const double out_s = at_start ? 0.0 : t + kMinOutS + rng.Uniform(0.0, 2.0);  // walks in from then
-    std::array<double, kWalkerBehaviourCount> w = possible(lead);
-    bool placed = false;
-    while (!placed && std::any_of(w.begin(), w.end(), [](double x) { return x > 0; })) {
-      size_t chosen = DrawBehaviour(w, &rng);
-      if (!wanted.empty()) {
-        chosen = static_cast<size_t>(std::find(kWalkerBehaviours.begin(), kWalkerBehaviours.end(), wanted) - kWalkerBehaviours.begin());
-        wanted.clear();
+    const std::optional<WalkerSegment> bout = PlanRouteBout(behaviour, robot_, t_, lead_, &rng_);
+    std::optional<std::vector<WalkerSegment>> out;
+    if (bout && ClearOfRobotAndWalkers(*bout, plan_, robot_, others_, false)) out = ExitAfter(*bout);
+    if (!out) {  // no room for it here and now: out through the door
+      GoOut();
+      return;
+    }
+    plan_.segments.push_back(*bout);
+    way_out_ = out;
+    t_ = bout->end_s;
+    lead_ = bout->u_start + bout->rate * (bout->end_s - bout->start_s) - bout->end_s;
+    if (behaviour == "away") GoOut();
+  }
+
+  // Out of the room (or at the start of the run, already in it): the next bout, walked into
+  // from a door; taken only when a way out from its end exists too.
+  void NextBoutFromOutside() {
+    const bool at_start = plan_.segments.empty() && t_ == 0;
+    if (!at_start) lead_ = rng_.Uniform(5.0, 10.0);
+    const double out_s = at_start ? 0.0 : t_ + kMinOutS + rng_.Uniform(0.0, 2.0);  // walks in from then
+    bool placed = PlaceDrawnBout(at_start, out_s);
+    if (!placed && !at_start) placed = PlaceAtNextDoor();
+    if (!placed && at_start && ++start_attempts_ < 6) {
+      lead_ = rng_.Uniform(4.0, 16.0);  // another place on the route to start the run at
+      return;
+    }
+    if (!placed) PushGone(t_ + 1.0);  // no bout fits now: a little later
+  }
+
+  // Draws behaviours (without replacement) until one's bout and the walk into it fit.
+  bool PlaceDrawnBout(bool at_start, double out_s) {
+    std::array<double, kWalkerBehaviourCount> w = Possible(lead_);
+    while (std::any_of(w.begin(), w.end(), [](double x) { return x > 0; })) {
+      size_t chosen = DrawBehaviour(w, &rng_);
+      if (!wanted_.empty()) {
+        chosen = static_cast<size_t>(std::find(kWalkerBehaviours.begin(), kWalkerBehaviours.end(), wanted_) -
+                                     kWalkerBehaviours.begin());
+        wanted_.clear();
       }
       const std::string behaviour = kWalkerBehaviours[chosen];
       w[chosen] = 0;
@@ -629,43 +670,68 @@ WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t see
       double bout_s = at_start ? 0.0 : out_s + 3.0;
       std::optional<WalkerSegment> bout, in;
       for (int attempt = 0; attempt < 3; ++attempt) {
-        bout = behaviour == "cross"      ? PlanCross(*space, robot, bout_s, lead, &rng)
-               : behaviour == "overtake" ? PlanOvertake(*space, robot, bout_s, &rng)
-                                         : PlanRouteBout(behaviour, robot, bout_s, lead, &rng);
-        if (!bout || !ClearOfRobotAndWalkers(*bout, plan, robot, others, moves_by_robot)) {
+        bout = behaviour == "cross"      ? PlanCross(space_, robot_, bout_s, lead_, &rng_)
+               : behaviour == "overtake" ? PlanOvertake(space_, robot_, bout_s, &rng_)
+                                         : PlanRouteBout(behaviour, robot_, bout_s, lead_, &rng_);
+        if (!bout || !ClearOfRobotAndWalkers(*bout, plan_, robot_, others_, moves_by_robot)) {
           bout.reset();
           break;
         }
         if (at_start) break;
-        in = PlanDoorWalk(true, StartOf(*bout, plan, robot), bout_s, -1e30, door_speed_m_s, doors, plan, robot, others);
-        if (in && in->start_s >= t + kMinOutS && in->start_s <= out_s + 1.0) break;
+        in = PlanDoorWalk(true, StartOf(*bout, plan_, robot_), bout_s, -1e30, door_speed_m_s_, doors_, plan_, robot_,
+                          others_);
+        if (in && in->start_s >= t_ + kMinOutS && in->start_s <= out_s + 1.0) break;
         bout_s = out_s + (in ? in->end_s - in->start_s : 2.0 + 2.0 * attempt);
         in.reset();
       }
       if (!bout || (!at_start && !in)) continue;
-      placed = place(in, *bout);
+      if (Place(in, *bout)) return true;
     }
-    // Else onto the route at the next door the robot has yet to pass, 4-10 s of route ahead of it:
-    // the walk in is short and the robot is behind it.
-    for (const double pass_u : door_passes) {
-      if (placed || at_start || pass_u < t + kMinOutS + kMinWalkerLeadS + 1.5) continue;
-      lead = std::min(rng.Uniform(4.0, 10.0), pass_u - t - kMinOutS - 0.5);
-      const double bout_s = pass_u - lead;
-      const std::optional<WalkerSegment> bout = PlanRouteBout("ahead", robot, bout_s, lead, &rng);
-      if (bout && ClearOfRobotAndWalkers(*bout, plan, robot, others, false)) {
-        const std::optional<WalkerSegment> in =
-            PlanDoorWalk(true, StartOf(*bout, plan, robot), bout_s, t + kMinOutS, door_speed_m_s, doors, plan, robot, others);
-        if (in) placed = place(in, *bout);
-      }
-      break;
-    }
-    if (!placed && at_start && ++start_attempts < 6) {
-      lead = rng.Uniform(4.0, 16.0);  // another place on the route to start the run at
-      continue;
-    }
-    if (!placed) push_gone(t + 1.0);  // no bout fits now: a little later
+    return false;
   }
-  return plan;
+
+  // Onto the route at the next door the robot has yet to pass, 4-10 s of route ahead of it: the
+  // walk in is short and the robot is behind it.
+  bool PlaceAtNextDoor() {
+    for (const double pass_u : door_passes_) {
+      if (pass_u < t_ + kMinOutS + kMinWalkerLeadS + 1.5) continue;
+      lead_ = std::min(rng_.Uniform(4.0, 10.0), pass_u - t_ - kMinOutS - 0.5);
+      const double bout_s = pass_u - lead_;
+      const std::optional<WalkerSegment> bout = PlanRouteBout("ahead", robot_, bout_s, lead_, &rng_);
+      if (bout && ClearOfRobotAndWalkers(*bout, plan_, robot_, others_, false)) {
+        const std::optional<WalkerSegment> in = PlanDoorWalk(true, StartOf(*bout, plan_, robot_), bout_s, t_ + kMinOutS,
+                                                             door_speed_m_s_, doors_, plan_, robot_, others_);
+        if (in) return Place(in, *bout);
+      }
+      return false;
+    }
+    return false;
+  }
+
+  const std::map<std::string, double>& weights_;
+  const double duration_s_;
+  const FreeSpace& space_;
+  const RobotTrack& robot_;
+  const std::vector<WalkerPlan>& others_;
+  const std::vector<Doorway>& doors_;
+  Rng rng_;
+  WalkerPlan plan_;
+  double door_speed_m_s_ = 0;
+  std::vector<double> door_passes_;
+  double t_ = 0, lead_ = 0;
+  bool inside_ = false;
+  int start_attempts_ = 0;
+  // From where its last bout ends out through a door (checked; empty: the run ends first).
+  std::optional<std::vector<WalkerSegment>> way_out_;
+  std::string wanted_;  // a bout drawn in the room that starts elsewhere: tried first
+};
+
+}  // namespace
+
+WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
+                      std::shared_ptr<const FreeSpace> space, const RobotTrack& robot,
+                      const std::vector<WalkerPlan>& others, const std::vector<Doorway>& doors, double lateral_m) {
+  return WalkerPlanner(weights, seed, walker, duration_s, std::move(space), robot, others, doors, lateral_m).Plan();
 }
 
 }  // namespace hoilcd
