@@ -229,15 +229,24 @@ std::array<int, Skeleton::kPartCount> Crowd::AddBody(int person_id, const std::s
 
 void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles) {
   robot_ = RobotTrack(samples);
+  PlanTurnover(samples);
+  FitSeatedBodies();
+  AimGlances();
+  PlanWalkers(samples, obstacles);
+  WarnIdleWalkers();
+  std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
+    return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
+  });
+}
+
+// Seat turnover at every lap boundary the robot crosses.
+void Crowd::PlanTurnover(const std::vector<RobotSample>& samples) {
   const double p = options_.turnover_probability;
-  auto frame_of = [&](double t) { return static_cast<int>(std::lround(t * frame_rate_hz_)); };
   auto seat_name = [](int table, int seat) { return std::to_string(table) + "." + std::to_string(seat); };
-  // Seat turnover at every lap boundary the robot crosses.
   for (int lap = 1; p > 0 && !samples.empty() && lap <= static_cast<int>(samples.back().lap); ++lap) {
     const auto crossing = std::find_if(samples.begin(), samples.end(), [&](const RobotSample& s) { return s.lap >= lap; });
     const double t = crossing->time_s;
     const int frame = crossing->frame;
-    (void)frame_of;
     std::vector<size_t> sitting;
     for (size_t i = 0; i < people_.size(); ++i) {
       if (people_[i].seated && people_[i].arrive_s <= t && people_[i].leave_s > t) sitting.push_back(i);
@@ -275,6 +284,9 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
       events_.push_back({frame, "arrive", people_[index].person_id, seat_name(seat.table, seat.seat), ""});
     }
   }
+}
+
+void Crowd::FitSeatedBodies() {
   // Elbow room on each side, now that every seat and sitter is known (people are added
   // seat by seat, so AddSeatedPerson sees only the seats before theirs).
   for (Person& person : people_) {
@@ -314,8 +326,11 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
   for (Person& person : people_) {
     if (person.seated) person.height_scale = std::min(person.height_scale, largest_scale);
   }
-  // Glances and talk go to the people at the same table when each episode starts (directions in
-  // the person's seat frame), whichever of them sat down first.
+}
+
+// Glances and talk go to the people at the same table when each episode starts (directions in
+// the person's seat frame), whichever of them sat down first.
+void Crowd::AimGlances() {
   for (Person& person : people_) {
     if (!person.seated) continue;
     const Eigen::Matrix4d seat_from_world = person.world_from_seat.cast<double>().inverse();
@@ -330,12 +345,14 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
       GazeAt(neighbours, &episode);
     }
   }
-  // Walkers: bouts on the robot's route ahead of it (between the camera and the seated people:
-  // the occlusion knob), across its path and past it, clear of furniture, the robot and each other.
-  const int walkers = options_.walkers;
+}
+
+// Walkers: bouts on the robot's route ahead of it (between the camera and the seated people:
+// the occlusion knob), across its path and past it, clear of furniture, the robot and each other.
+void Crowd::PlanWalkers(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles) {
   const std::map<std::string, double> behaviour_weights = options_.walker_behaviours.ByName();
   walker_plans_.clear();
-  for (int w = 0; w < walkers; ++w) {
+  for (int w = 0; w < options_.walkers; ++w) {
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
     Person& walker = AddStandingPerson("walker", &rng);
     walker.walker = w;
@@ -344,33 +361,43 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
     walker.lead_phase_rad = rng.Uniform(0, 2 * M_PI);
     walker.lateral_m = rng.Uniform(0.0, 0.04);  // to the left: the tables are on the right of a clockwise lap
-    const auto space = std::make_shared<const FreeSpace>(obstacles, kWalkerRadiusM * walker.height_scale);
-    for (size_t d = 0; d < doors_.size(); ++d) {
-      std::string nearest;
-      const double clearance = space->Clearance(DoorThreshold(doors_[d], space->radius_m()), &nearest);
-      if (clearance >= 0) continue;
-      throw InputError(scene_file_, "/room/doors/" + std::to_string(d) + ": walkers (crowd.walkers) enter and leave the room here, but " +
-                                        nearest + " stands in the doorway; a walker's body needs " +
-                                        std::to_string(space->radius_m()).substr(0, 5) +
-                                        " m free around it just inside: move the door or " + nearest + ", or set crowd.walkers to 0");
-    }
-    for (const RobotSample& s : samples) {
-      const Eigen::Vector2d at(s.base.x_m, s.base.y_m);
-      if (space->FreeAlong(at, Eigen::Vector2d(-std::sin(s.base.theta_rad), std::cos(s.base.theta_rad)), kWalkerMaxSidestepM)) continue;
-      std::string nearest;
-      const double clearance = space->Clearance(at, &nearest);
-      throw InputError(scene_file_, "/route/waypoints_m: walkers (crowd.walkers) follow the robot's route, which passes " +
-                                        std::to_string(clearance + space->radius_m()).substr(0, 5) + " m from " + nearest +
-                                        " at t = " + std::to_string(s.time_s).substr(0, 6) + " s with no room to step aside; a walker's body needs " +
-                                        std::to_string(space->radius_m()).substr(0, 5) +
-                                        " m: move the route away from it or set crowd.walkers to 0");
-    }
+    const auto space = WalkerSpace(samples, obstacles, kWalkerRadiusM * walker.height_scale);
     walker_plans_.push_back(
         PlanWalker(behaviour_weights, seed_, w, duration_s_, space, robot_, walker_plans_, doors_, walker.lateral_m));
   }
-  // Walkers are planned one after another, each clear of the robot and of those before it: in
-  // narrow aisles the later ones find little or no time to walk. Say so rather than quietly
-  // rendering fewer walkers than asked for.
+}
+
+std::shared_ptr<const FreeSpace> Crowd::WalkerSpace(const std::vector<RobotSample>& samples,
+                                                    const std::vector<Obstacle2D>& obstacles, double radius_m) const {
+  const auto space = std::make_shared<const FreeSpace>(obstacles, radius_m);
+  for (size_t d = 0; d < doors_.size(); ++d) {
+    std::string nearest;
+    const double clearance = space->Clearance(DoorThreshold(doors_[d], space->radius_m()), &nearest);
+    if (clearance >= 0) continue;
+    throw InputError(scene_file_, "/room/doors/" + std::to_string(d) + ": walkers (crowd.walkers) enter and leave the room here, but " +
+                                      nearest + " stands in the doorway; a walker's body needs " +
+                                      std::to_string(space->radius_m()).substr(0, 5) +
+                                      " m free around it just inside: move the door or " + nearest + ", or set crowd.walkers to 0");
+  }
+  for (const RobotSample& s : samples) {
+    const Eigen::Vector2d at(s.base.x_m, s.base.y_m);
+    if (space->FreeAlong(at, Eigen::Vector2d(-std::sin(s.base.theta_rad), std::cos(s.base.theta_rad)), kWalkerMaxSidestepM)) continue;
+    std::string nearest;
+    const double clearance = space->Clearance(at, &nearest);
+    throw InputError(scene_file_, "/route/waypoints_m: walkers (crowd.walkers) follow the robot's route, which passes " +
+                                      std::to_string(clearance + space->radius_m()).substr(0, 5) + " m from " + nearest +
+                                      " at t = " + std::to_string(s.time_s).substr(0, 6) + " s with no room to step aside; a walker's body needs " +
+                                      std::to_string(space->radius_m()).substr(0, 5) +
+                                      " m: move the route away from it or set crowd.walkers to 0");
+  }
+  return space;
+}
+
+// Walkers are planned one after another, each clear of the robot and of those before it: in
+// narrow aisles the later ones find little or no time to walk. Say so rather than quietly
+// rendering fewer walkers than asked for.
+void Crowd::WarnIdleWalkers() {
+  const int walkers = options_.walkers;
   std::vector<int> idle;
   for (int w = 0; w < walkers; ++w) {
     double in_room_s = 0;
@@ -388,9 +415,6 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
                         "and the walkers planned before " + (idle.size() > 1 ? "them" : "it") +
                         ", so more walkers add little occlusion here");
   }
-  std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
-    return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
-  });
 }
 
 int Crowd::NextPersonId() const {

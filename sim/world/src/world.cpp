@@ -55,6 +55,118 @@ bool RectanglesOverlap(const Obstacle2D& a, const Obstacle2D& b) {
   return true;
 }
 
+// Chairs stand where people left them, not on a grid: without this, full tables in the
+// point-symmetric paper room look the same from opposite ends of the loop. A chair moves along
+// the table, is pushed in (never pulled out: the robot drives close behind), and turns; the turn
+// is paid for by pushing it in further, so its footprint reaches no further from the table
+// than a straight chair's. Chairs whose moved footprints would overlap another chair's get
+// their moves halved until none does (the straight layout is kept as it is).
+class ChairLayout {
+ public:
+  struct Chair {
+    int table, seat, side, k;
+    double turn, shift, push;  // full jitter: rad, m along the table, m pushed in
+    double scale = 1;          // fraction of the jitter applied
+    double shift_scale = 1;    // and of the shift along the table
+  };
+
+  // Chairs of every table in order (table, then side, then place along the side), jittered.
+  ChairLayout(const Scene& scene, const Asset& table_asset, const Asset& chair_asset, int per_side, double spacing_m)
+      : scene_(scene),
+        chair_asset_(chair_asset),
+        per_side_(per_side),
+        spacing_m_(spacing_m),
+        half_depth_m_(table_asset.bounds_m.max().y()) {
+    // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
+    const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
+    chair_half_width_m_ = 0.5 * std::max(chair_size.x(), chair_size.y());
+    for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
+      for (int side = 0; side < 2; ++side) {
+        for (int k = 0; k < per_side; ++k) {
+          const int seat = side * 3 + k;
+          Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
+          Chair chair{t, seat, side, k, 0, 0, 0};
+          chair.turn = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_deg * kDegToRad;
+          chair.shift = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_m;
+          chair.push = 0.5 * jitter.Uniform() * scene.furniture.chair_jitter_m;
+          chairs_.push_back(chair);
+        }
+      }
+    }
+    Settle();
+  }
+
+  const std::vector<Chair>& chairs() const { return chairs_; }
+
+  // Where a chair stands (floor point below the seat) and which way its seat faces.
+  void Pose(const Chair& c, Eigen::Vector3d* position, double* seat_yaw) const {
+    const TableSpec& spec = scene_.tables[c.table];
+    const double yaw = spec.yaw_deg * kDegToRad;
+    const double turn = c.scale * c.turn;
+    const double along = (c.k - 0.5 * (per_side_ - 1)) * spacing_m_ + c.scale * c.shift_scale * c.shift;
+    const double pushed_in = c.scale * c.push + chair_half_width_m_ * std::abs(std::sin(turn));
+    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth_m_ + scene_.furniture.seat_setback_m - pushed_in);
+    const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
+    *position = Eigen::Vector3d(p.x(), p.y(), 0.0);
+    *seat_yaw = yaw + (c.side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
+  }
+
+ private:
+  Obstacle2D Footprint(const Chair& c) const {
+    Eigen::Vector3d position;
+    double seat_yaw;
+    Pose(c, &position, &seat_yaw);
+    return FootprintOf("", chair_asset_, position, seat_yaw);
+  }
+
+  Eigen::Vector2d SeatAt(Chair c, double scale) const {
+    c.scale *= scale;
+    Eigen::Vector3d position;
+    double seat_yaw;
+    Pose(c, &position, &seat_yaw);
+    return Eigen::Vector2d(position.head<2>());
+  }
+
+  // Halves the moves of chairs that overlap another; seats side by side (closer than kCloseSeatsM
+  // when straight) are not shifted more than 1 cm closer together (their shifts are halved until
+  // so): seated neighbours' shoulder joints are 0.38 m apart at body scale 1, so a crowded row
+  // (0.45 m) has nothing to give.
+  void Settle() {
+    constexpr double kCloseSeatsM = 0.6, kSqueezeM = 0.01;
+    constexpr int kHalvings = 6;
+    for (int round = 0; round <= kHalvings; ++round) {
+      std::vector<Obstacle2D> footprints;
+      for (const Chair& c : chairs_) footprints.push_back(Footprint(c));
+      std::vector<bool> overlapping(chairs_.size(), false), squeezed(chairs_.size(), false);
+      bool any = false;
+      for (size_t i = 0; i < chairs_.size(); ++i) {
+        for (size_t j = i + 1; j < chairs_.size(); ++j) {
+          if (chairs_[i].scale == 0 && chairs_[j].scale == 0) continue;
+          const double straight_m = (SeatAt(chairs_[i], 0) - SeatAt(chairs_[j], 0)).norm();
+          if (straight_m < kCloseSeatsM && (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
+            squeezed[i] = squeezed[j] = any = true;
+          }
+          if (RectanglesOverlap(footprints[i], footprints[j])) {
+            overlapping[i] = overlapping[j] = any = true;
+          }
+        }
+      }
+      if (!any) break;
+      for (size_t i = 0; i < chairs_.size(); ++i) {
+        if (overlapping[i]) chairs_[i].scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs_[i].scale;
+        if (squeezed[i]) chairs_[i].shift_scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs_[i].shift_scale;
+      }
+    }
+  }
+
+  const Scene& scene_;
+  const Asset& chair_asset_;
+  const int per_side_;
+  const double spacing_m_, half_depth_m_;
+  double chair_half_width_m_ = 0;
+  std::vector<Chair> chairs_;
+};
+
 }  // namespace
 
 Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad, double scale) {
@@ -223,91 +335,8 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
             << Fixed(narrowest_m, 3) << " m";
     throw InputError(scene.file, message.str());
   }
-  const double half_depth = table_asset.bounds_m.max().y();
-  // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
-  const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
-  const double chair_half_width = 0.5 * std::max(chair_size.x(), chair_size.y());
-
   const std::vector<SeatingSpec> seating = Crowd::InitialSeating(scene, per_side);
-
-  // Chairs stand where people left them, not on a grid: without this, full tables in the
-  // point-symmetric paper room look the same from opposite ends of the loop. A chair moves along
-  // the table, is pushed in (never pulled out: the robot drives close behind), and turns; the turn
-  // is paid for by pushing it in further, so its footprint reaches no further from the table
-  // than a straight chair's. Chairs whose moved footprints would overlap another chair's get
-  // their moves halved until none does (the straight layout is kept as it is).
-  struct ChairPlan {
-    int table, seat, side, k;
-    double turn, shift, push;  // full jitter: rad, m along the table, m pushed in
-    double scale = 1;          // fraction of the jitter applied
-    double shift_scale = 1;    // and of the shift along the table
-  };
-  std::vector<ChairPlan> chairs;
-  for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
-    for (int side = 0; side < 2; ++side) {
-      for (int k = 0; k < per_side; ++k) {
-        const int seat = side * 3 + k;
-        Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
-        ChairPlan plan{t, seat, side, k, 0, 0, 0};
-        plan.turn = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_deg * kDegToRad;
-        plan.shift = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_m;
-        plan.push = 0.5 * jitter.Uniform() * scene.furniture.chair_jitter_m;
-        chairs.push_back(plan);
-      }
-    }
-  }
-  const auto chair_pose = [&](const ChairPlan& c, Eigen::Vector3d* position, double* seat_yaw) {
-    const TableSpec& spec = scene.tables[c.table];
-    const double yaw = spec.yaw_deg * kDegToRad;
-    const double turn = c.scale * c.turn;
-    const double along = (c.k - 0.5 * (per_side - 1)) * spacing + c.scale * c.shift_scale * c.shift;
-    const double pushed_in = c.scale * c.push + chair_half_width * std::abs(std::sin(turn));
-    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth + scene.furniture.seat_setback_m - pushed_in);
-    const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
-    *position = Eigen::Vector3d(p.x(), p.y(), 0.0);
-    *seat_yaw = yaw + (c.side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
-  };
-  const auto footprint = [&](const ChairPlan& c) {
-    Eigen::Vector3d position;
-    double seat_yaw;
-    chair_pose(c, &position, &seat_yaw);
-    return FootprintOf("", chair_asset, position, seat_yaw);
-  };
-  const auto seat_at = [&](ChairPlan c, double scale) {
-    c.scale *= scale;
-    Eigen::Vector3d position;
-    double seat_yaw;
-    chair_pose(c, &position, &seat_yaw);
-    return Eigen::Vector2d(position.head<2>());
-  };
-  // Seats side by side (closer than kCloseSeatsM when straight) are not shifted more than 1 cm
-  // closer together (their shifts are halved until so): seated neighbours' shoulder joints are
-  // 0.38 m apart at body scale 1, so a crowded row (0.45 m) has nothing to give.
-  constexpr double kCloseSeatsM = 0.6, kSqueezeM = 0.01;
-  constexpr int kHalvings = 6;
-  for (int round = 0; round <= kHalvings; ++round) {
-    std::vector<Obstacle2D> footprints;
-    for (const ChairPlan& c : chairs) footprints.push_back(footprint(c));
-    std::vector<bool> overlapping(chairs.size(), false), squeezed(chairs.size(), false);
-    bool any = false;
-    for (size_t i = 0; i < chairs.size(); ++i) {
-      for (size_t j = i + 1; j < chairs.size(); ++j) {
-        if (chairs[i].scale == 0 && chairs[j].scale == 0) continue;
-        const double straight_m = (seat_at(chairs[i], 0) - seat_at(chairs[j], 0)).norm();
-        if (straight_m < kCloseSeatsM && (seat_at(chairs[i], 1) - seat_at(chairs[j], 1)).norm() < straight_m - kSqueezeM) {
-          squeezed[i] = squeezed[j] = any = true;
-        }
-        if (RectanglesOverlap(footprints[i], footprints[j])) {
-          overlapping[i] = overlapping[j] = any = true;
-        }
-      }
-    }
-    if (!any) break;
-    for (size_t i = 0; i < chairs.size(); ++i) {
-      if (overlapping[i]) chairs[i].scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].scale;
-      if (squeezed[i]) chairs[i].shift_scale = round == kHalvings - 1 ? 0.0 : 0.5 * chairs[i].shift_scale;
-    }
-  }
+  const ChairLayout layout(scene, table_asset, chair_asset, per_side, spacing);
 
   size_t next_chair = 0;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
@@ -318,11 +347,11 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m);
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
     for (int n = 0; n < 2 * per_side; ++n) {
-      const ChairPlan& plan = chairs[next_chair++];
+      const ChairLayout::Chair& plan = layout.chairs()[next_chair++];
       const int seat = plan.seat;
       Eigen::Vector3d seat_pos;
       double seat_yaw;
-      chair_pose(plan, &seat_pos, &seat_yaw);
+      layout.Pose(plan, &seat_pos, &seat_yaw);
       const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
       const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
                               chair_name, 0.0);

@@ -134,6 +134,17 @@ class Crowd {
   void KeepOwnElbowRoom(const Person& p, BodyPose* pose) const;
   // The pose (person frame) and world_from_person of a present person at time t.
   BodyPose PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const;
+  // The steps of Plan: seat turnover at each lap boundary; each seated body's elbow room and the
+  // scene's cap on body size between seats; glances at table neighbours; the walkers' bouts (and
+  // a warning for walkers with little time in the room).
+  void PlanTurnover(const std::vector<RobotSample>& samples);
+  void FitSeatedBodies();
+  void AimGlances();
+  void PlanWalkers(const std::vector<RobotSample>& samples, const std::vector<Obstacle2D>& obstacles);
+  // The free space of walker `walker`; InputError when a door or the route leaves it no room.
+  std::shared_ptr<const FreeSpace> WalkerSpace(const std::vector<RobotSample>& samples,
+                                               const std::vector<Obstacle2D>& obstacles, double radius_m) const;
+  void WarnIdleWalkers();
   // The id a new person gets: one past the largest so far (0 for the first).
   int NextPersonId() const;
   void UpdateSeatWarmth(double time_s);
