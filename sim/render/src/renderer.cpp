@@ -137,6 +137,12 @@ void Reuse(int rows, int cols, int type, cv::Mat* image) {
 
 }  // namespace
 
+namespace {
+constexpr int kBlock = 4;                // pixels per side of a ray packet's block
+constexpr int64_t kRowsPerChunk = 8;     // rows per parallel chunk
+static_assert(kBlock * kBlock == kRayPacketSize, "one packet per pixel block");
+}  // namespace
+
 void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
   HOILCD_CHECK_MSG(!rendering_.exchange(true),
                    "FrameRenderer::Render called while it renders another frame; use one renderer per thread");
@@ -146,126 +152,139 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
   } done{rendering_};
   const int W = intrinsics_.width, H = intrinsics_.height;
   const Rigid3 world_from_cam = pose.WorldFromCam();
-  const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
-  const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
-  const RayCaster& caster = world_.caster();
+  const RayFrame frame{world_from_cam.rotation.toRotationMatrix().cast<float>(),
+                       world_from_cam.translation.cast<float>()};
   Reuse(H, W, CV_32F, &out->radiance);
   Reuse(H, W, CV_32F, &out->depth_m);
   Reuse(H, W, CV_32S, &out->instance);
   Reuse(H, W, CV_32S, &out->class_id);
   out->edge_pixels = 0;
   material_.create(H, W, CV_32S);  // instance * 4096 + material, to find edges
+
+  // Pass 1: one ray through each pixel centre; each chunk's reflection rays after its last packet.
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
+    CastPixelRows(frame, y0, y1, worker, out);
+  });
+  if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return;
+
+  // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
+  // samples; smooth depth changes within one surface need none.
+  std::atomic<int> edge_count{0};
+  float* radiance_px = out->radiance.ptr<float>();
+  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
+    edge_count += SupersampleEdgeRows(frame, y0, y1, worker, radiance_px);
+  });
+  out->edge_pixels = edge_count;
+}
+
+void FrameRenderer::CastPixelRows(const RayFrame& frame, int64_t y0, int64_t y1, int worker,
+                                  FrameBuffers* out) const {
+  const int W = intrinsics_.width;
   float* radiance_px = out->radiance.ptr<float>();
   float* depth_px = out->depth_m.ptr<float>();
   int* instance_px = out->instance.ptr<int>();
   int* class_px = out->class_id.ptr<int>();
   int* material_px = material_.ptr<int>();
-  std::vector<PendingReflection>* no_reflections = nullptr;
-  const bool reflect = options_.specular_reflections;
-
-  // Pass 1: one ray through each pixel centre, cast as packets of 4×4 neighbouring pixels; the
-  // chunk's reflection rays after its last packet.
-  constexpr int kBlock = 4;
-  constexpr int64_t kRowsPerChunk = 8;
-  static_assert(kBlock * kBlock == kRayPacketSize, "one packet per pixel block");
-  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
-    std::vector<PendingReflection>* pending = reflect ? &scratch_[worker].pending : no_reflections;
-    Eigen::Vector3f directions[kRayPacketSize];
-    RayHitPacket hits;
-    int pixels[kRayPacketSize];
-    for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
-      for (int bx = 0; bx < W; bx += kBlock) {
-        int count = 0;
-        for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
-          for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
-            pixels[count] = y * W + x;
-            directions[count++] = R * pixel_rays_[y * W + x];
-          }
+  std::vector<PendingReflection>* pending = options_.specular_reflections ? &scratch_[worker].pending : nullptr;
+  Eigen::Vector3f directions[kRayPacketSize];
+  RayHitPacket hits;
+  int pixels[kRayPacketSize];
+  for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
+    for (int bx = 0; bx < W; bx += kBlock) {
+      int count = 0;
+      for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
+        for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
+          pixels[count] = y * W + x;
+          directions[count++] = frame.rotation * pixel_rays_[y * W + x];
         }
-        caster.IntersectPacket(origin, directions, count, &hits);
-        ShadePacket(origin, directions, count, hits, radiance_px, pixels, pending, instance_px,
-                    class_px, material_px);
-        for (int i = 0; i < count; ++i) {
-          const int p = pixels[i];
-          depth_px[p] = hits.instance[i] >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
+      }
+      world_.caster().IntersectPacket(frame.origin, directions, count, &hits);
+      ShadePacket(frame.origin, directions, count, hits, radiance_px, pixels, pending, instance_px, class_px,
+                  material_px);
+      for (int i = 0; i < count; ++i) {
+        const int p = pixels[i];
+        depth_px[p] = hits.instance[i] >= 0 ? hits.distance_m[i] * pixel_rays_[p].z() : 0.0f;
+      }
+    }
+  }
+  if (pending != nullptr) CastReflections(pending);
+}
+
+void FrameRenderer::FindEdgePixels(int64_t y0, int64_t y1, Scratch* scratch) const {
+  const int W = intrinsics_.width, H = intrinsics_.height;
+  const int* material_px = material_.ptr<int>();
+  std::vector<int>& edge_pixels = scratch->edge_pixels;
+  std::vector<uint8_t>& flags = scratch->edge_flags;
+  edge_pixels.clear();
+  flags.resize(static_cast<size_t>(y1 - y0) * W);
+  for (int64_t y = y0; y < y1; ++y) {  // branch-free, so that it runs in vector lanes
+    const int* row = material_px + y * W;
+    const int* above = material_px + std::max<int64_t>(y - 1, 0) * W;
+    const int* below = material_px + std::min<int64_t>(y + 1, H - 1) * W;
+    uint8_t* flag = flags.data() + (y - y0) * W;
+    for (int x = 0; x < W; ++x) flag[x] = (above[x] != row[x]) | (below[x] != row[x]);
+    for (int x = 1; x < W; ++x) flag[x] |= row[x - 1] != row[x];
+    for (int x = 0; x + 1 < W; ++x) flag[x] |= row[x + 1] != row[x];
+  }
+  for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
+    for (int bx = 0; bx < W; bx += kBlock) {
+      for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
+        const uint8_t* flag = flags.data() + (y - y0) * W;
+        uint32_t any = 0;  // most blocks have no edge: one 4-byte test for a block's row
+        if (bx + kBlock <= W) std::memcpy(&any, flag + bx, sizeof any);
+        else any = 1;
+        if (any == 0) continue;
+        for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
+          if (flag[x]) edge_pixels.push_back(y * W + x);
         }
       }
     }
-    if (pending != nullptr) CastReflections(pending);
-  });
-  if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return;
+  }
+}
 
-  // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
-  // samples; smooth depth changes within one surface need none. Each chunk finds its own edge
-  // pixels (pass 1 has labelled every row) block by block (4×4, so that a packet's rays stay
-  // close), casts their samples in packets, then their reflections, and sums each pixel's
-  // samples in the order of one ray at a time.
+// Each chunk finds its own edge pixels (pass 1 has labelled every row), casts their samples in
+// packets (block by block, so that a packet's rays stay close), then their reflections, and
+// sums each pixel's samples in the order of one ray at a time.
+int FrameRenderer::SupersampleEdgeRows(const RayFrame& frame, int64_t y0, int64_t y1, int worker,
+                                       float* radiance) const {
+  const int W = intrinsics_.width;
   const int n = options_.edge_samples_per_axis;
-  std::atomic<int> edge_count{0};
-  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
-    Scratch& scratch = scratch_[worker];
-    std::vector<PendingReflection>* pending = reflect ? &scratch.pending : no_reflections;
-    std::vector<int>& edge_pixels = scratch.edge_pixels;
-    std::vector<uint8_t>& flags = scratch.edge_flags;
-    edge_pixels.clear();
-    flags.resize(static_cast<size_t>(y1 - y0) * W);
-    for (int64_t y = y0; y < y1; ++y) {  // branch-free, so that it runs in vector lanes
-      const int* row = material_px + y * W;
-      const int* above = material_px + std::max<int64_t>(y - 1, 0) * W;
-      const int* below = material_px + std::min<int64_t>(y + 1, H - 1) * W;
-      uint8_t* flag = flags.data() + (y - y0) * W;
-      for (int x = 0; x < W; ++x) flag[x] = (above[x] != row[x]) | (below[x] != row[x]);
-      for (int x = 1; x < W; ++x) flag[x] |= row[x - 1] != row[x];
-      for (int x = 0; x + 1 < W; ++x) flag[x] |= row[x + 1] != row[x];
-    }
-    for (int by = static_cast<int>(y0); by < y1; by += kBlock) {
-      for (int bx = 0; bx < W; bx += kBlock) {
-        for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
-          const uint8_t* flag = flags.data() + (y - y0) * W;
-          uint32_t any = 0;  // most blocks have no edge: one 4-byte test for a block's row
-          if (bx + kBlock <= W) std::memcpy(&any, flag + bx, sizeof any);
-          else any = 1;
-          if (any == 0) continue;
-          for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
-            if (flag[x]) edge_pixels.push_back(y * W + x);
-          }
-        }
+  Scratch& scratch = scratch_[worker];
+  std::vector<PendingReflection>* pending = options_.specular_reflections ? &scratch.pending : nullptr;
+  FindEdgePixels(y0, y1, &scratch);
+  const std::vector<int>& edge_pixels = scratch.edge_pixels;
+  // Sample k of edge pixel `slot` at samples[slot·n² + k]; pending reflections point into it,
+  // so it is sized once, before any packet.
+  std::vector<float>& samples = scratch.samples;
+  samples.resize(edge_pixels.size() * n * n);
+  Eigen::Vector3f directions[kRayPacketSize];
+  RayHitPacket hits;
+  int slots[kRayPacketSize];
+  int count = 0;
+  auto flush = [&] {
+    world_.caster().IntersectPacket(frame.origin, directions, count, &hits);
+    ShadePacket(frame.origin, directions, count, hits, samples.data(), slots, pending);
+    count = 0;
+  };
+  int sample = 0;
+  for (const int pixel : edge_pixels) {
+    const int x = pixel % W, y = pixel / W;
+    for (int sy = 0; sy < n; ++sy) {
+      for (int sx = 0; sx < n; ++sx) {
+        slots[count] = sample++;
+        directions[count++] = frame.rotation * CameraRay(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n);
+        if (count == kRayPacketSize) flush();
       }
     }
-    edge_count += static_cast<int>(edge_pixels.size());
-    // Sample k of edge pixel `slot` at samples[slot·n² + k]; pending reflections point into it,
-    // so it is sized once, before any packet.
-    std::vector<float>& samples = scratch.samples;
-    samples.resize(edge_pixels.size() * n * n);
-    Eigen::Vector3f directions[kRayPacketSize];
-    RayHitPacket hits;
-    int slots[kRayPacketSize];
-    int count = 0;
-    auto flush = [&] {
-      caster.IntersectPacket(origin, directions, count, &hits);
-      ShadePacket(origin, directions, count, hits, samples.data(), slots, pending);
-      count = 0;
-    };
-    int sample = 0;
-    for (const int pixel : edge_pixels) {
-      const int x = pixel % W, y = pixel / W;
-      for (int sy = 0; sy < n; ++sy) {
-        for (int sx = 0; sx < n; ++sx) {
-          slots[count] = sample++;
-          directions[count++] = R * CameraRay(x - 0.5 + (sx + 0.5) / n, y - 0.5 + (sy + 0.5) / n);
-          if (count == kRayPacketSize) flush();
-        }
-      }
-    }
-    if (count > 0) flush();
-    if (pending != nullptr) CastReflections(pending);
-    for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
-      double sum = 0.0;
-      for (int k = 0; k < n * n; ++k) sum += samples[slot * n * n + k];
-      radiance_px[edge_pixels[slot]] = static_cast<float>(sum / (n * n));
-    }
-  });
-  out->edge_pixels = edge_count;
+  }
+  if (count > 0) flush();
+  if (pending != nullptr) CastReflections(pending);
+  for (size_t slot = 0; slot < edge_pixels.size(); ++slot) {
+    double sum = 0.0;
+    for (int k = 0; k < n * n; ++k) sum += samples[slot * n * n + k];
+    radiance[edge_pixels[slot]] = static_cast<float>(sum / (n * n));
+  }
+  return static_cast<int>(edge_pixels.size());
 }
 
 }  // namespace hoilcd

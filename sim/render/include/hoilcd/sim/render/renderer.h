@@ -61,6 +61,17 @@ class FrameRenderer {
                    std::vector<PendingReflection>* pending, int* labels = nullptr,
                    int* class_ids = nullptr, int* materials = nullptr) const;
   void CastReflections(std::vector<PendingReflection>* pending) const;
+  // The camera of one frame: world_from_cam's rotation and the rays' origin.
+  struct RayFrame {
+    Eigen::Matrix3f rotation;
+    Eigen::Vector3f origin;
+  };
+  // Pass 1 of Render over rows [y0, y1): one ray through each pixel centre, in packets of 4×4.
+  void CastPixelRows(const RayFrame& frame, int64_t y0, int64_t y1, int worker, FrameBuffers* out) const;
+  // Pass 2 over rows [y0, y1): n×n samples for each edge pixel; returns how many there were.
+  int SupersampleEdgeRows(const RayFrame& frame, int64_t y0, int64_t y1, int worker, float* radiance) const;
+  // The edge pixels of rows [y0, y1) into scratch->edge_pixels, 4×4 block by block.
+  void FindEdgePixels(int64_t y0, int64_t y1, Scratch* scratch) const;
   float Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               bool allow_reflection) const;
 
