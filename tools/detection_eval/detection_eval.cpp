@@ -74,71 +74,23 @@ void SetOption(PersonDetectorOptions* o, const std::string& assignment) {
   else throw InputError(assignment, "not a detector option this tool can set");
 }
 
-int Main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [OPTION=VALUE...]\n");
-    return 2;
-  }
-  const Dataset dataset = Dataset::Open(argv[1], Verify::kOnRead);
-  std::vector<int> range;
-  std::string draw_dir;
-  bool u8_only = false;
-  BenchOptions options = WithManifest(BenchOptions{}, dataset.manifest());
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg.rfind("--draw=", 0) == 0) draw_dir = arg.substr(7);
-    else if (arg == "--u8") u8_only = true;
-    else if (arg.find('=') != std::string::npos) SetOption(&options.detector, arg);
-    else range.push_back(std::stoi(arg));
-  }
-  if (const std::string problem = options.detector.Check(); !problem.empty()) throw InputError("detector", problem);
-  const int first = range.size() > 0 ? range[0] : 0;
-  const int end = range.size() > 1 ? std::min(range[1], dataset.num_frames()) : dataset.num_frames();
-  const TrackingMetricsOptions& scoring = options.tracking_metrics;
-  const bool video_mode = u8_only || IsVideoMode(dataset);
-  const int person_class = dataset.manifest().classes.at("person");
-  DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
-
-  std::vector<FramePersons> truth;
-  std::vector<FrameTracks> detected, tracked;
+// Why people were missed and what false detections were on, counted over the frames.
+struct MissTally {
   std::map<std::string, int> misses, false_positives;
   std::map<std::string, std::pair<int, int>> by_posture;  // posture -> (found, scored)
   double warm_fraction_sum = 0;
   int scored_people = 0;
-  for (int f = first; f < end; ++f) {
-    const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, true);
-    const std::vector<HoiFeature> hoi = front_end.Process(input.thermal_u8, input.radiometric_c);
-    FrameTracks d{f, {}}, t{f, {}};
-    for (size_t k = 0; k < front_end.last_detections().detections.size(); ++k) {
-      d.tracks.push_back({static_cast<int>(f * 100 + k), front_end.last_detections().detections[k].box, {}});
-    }
-    for (const Track& track : front_end.last_tracks()) {
-      TrackedBox box{track.id, track.box, {}};
-      for (const HoiFeature& h : hoi)
-        if (h.track_id == track.id) box.hoi_points_px.push_back(h.point);
-      t.tracks.push_back(box);
-    }
-    const FramePersons& people = dataset.persons().at(f);
-    HOILCD_CHECK(people.frame == f);
-    truth.push_back(people);
-    // Reasons for misses and false detections, frame by frame (IoU 0.5, greedy by IoU).
-    std::vector<const PersonRecord*> scored;
-    for (const PersonRecord& p : people.persons)
-      if (Scored(p, scoring)) scored.push_back(&p);
-    ExrChannels exr;
-    cv::Mat ids, classes, temperature = dataset.RadiometricC(f);
-    if (!scored.empty()) {
-      exr = ReadDatasetExr(dataset, f);
-      for (auto& [name, channel] : exr) {
-        if (name == "id") ids = channel;
-        if (name == "class") classes = channel;
-      }
-    }
+
+  // One frame's raw detections `d` against its people (IoU at the scoring threshold, greedy by
+  // IoU); `scored`: the people scored; ids, classes: the EXR channels (empty without scored people).
+  void Add(const FramePersons& people, const std::vector<const PersonRecord*>& scored, const FrameTracks& d,
+           const cv::Mat& temperature, const cv::Mat& ids, const cv::Mat& classes, int person_class,
+           const PersonDetectorOptions& detector, const TrackingMetricsOptions& scoring) {
     for (const PersonRecord* p : scored) {
       ++scored_people;
       const cv::Mat own = PersonPixels(ids, classes, person_class, p->box_px);
       const int pixels = cv::countNonZero(own);
-      const int warm = cv::countNonZero(own & (temperature >= options.detector.threshold_c));
+      const int warm = cv::countNonZero(own & (temperature >= detector.threshold_c));
       warm_fraction_sum += pixels ? static_cast<double>(warm) / pixels : 0;
       double best_iou = 0;
       const TrackedBox* best = nullptr;
@@ -176,31 +128,34 @@ int Main(int argc, char** argv) {
       if (best_iou >= scoring.iou_threshold || best_any >= scoring.iou_threshold) continue;
       false_positives[best_any >= 0.1 ? "overlaps a person at IoU 0.1-0.5 (merge, part)" : "on no person (object)"]++;
     }
-    if (!draw_dir.empty() && !scored.empty()) {
-      cv::Mat grey, colour, mask;
-      temperature.convertTo(grey, CV_8U, 255.0 / 17.0, -20.0 * 255.0 / 17.0);
-      cv::applyColorMap(grey, colour, cv::COLORMAP_INFERNO);
-      cv::cvtColor(front_end.last_detections().mask, mask, cv::COLOR_GRAY2BGR);
-      cv::Mat both;
-      cv::vconcat(colour, mask, both);
-      cv::resize(both, both, cv::Size(), 3, 3, cv::INTER_NEAREST);
-      for (int half = 0; half < 2; ++half) {
-        const cv::Point2f shift(0, half * temperature.rows);
-        for (const PersonRecord* p : scored)
-          cv::rectangle(both, cv::Rect((p->box_px.tl() + shift) * 3, cv::Size2f(p->box_px.width * 3, p->box_px.height * 3)), {0, 255, 0}, 1);
-        for (const TrackedBox& b : d.tracks)
-          cv::rectangle(both, cv::Rect((b.box.tl() + shift) * 3, cv::Size2f(b.box.width * 3, b.box.height * 3)), {0, 0, 255}, 1);
-      }
-      cv::imwrite(draw_dir + "/" + FrameFileName(f, "png"), both);
-    }
-    detected.push_back(d);
-    tracked.push_back(t);
   }
-  const TrackingMetrics det = ComputeTrackingMetrics(truth, detected, scoring);
-  const TrackingMetrics trk = ComputeTrackingMetrics(truth, tracked, scoring);
-  std::printf("frames %d-%d of %s (%s)\n", first, end - 1, argv[1], video_mode ? "8-bit frames only" : "radiometric");
-  std::printf("scored people %d; mean fraction of their pixels >= threshold_c %.3f\n", scored_people,
-              scored_people ? warm_fraction_sum / scored_people : 0.0);
+};
+
+// DIR/NNNNNN.png: temperatures 20-37 degC over the detector's mask, ground-truth boxes green,
+// detections red, scaled 3x.
+void DrawFrame(const std::string& draw_dir, int frame, const cv::Mat& temperature, const cv::Mat& detector_mask,
+               const std::vector<const PersonRecord*>& scored, const FrameTracks& d) {
+  cv::Mat grey, colour, mask;
+  temperature.convertTo(grey, CV_8U, 255.0 / 17.0, -20.0 * 255.0 / 17.0);
+  cv::applyColorMap(grey, colour, cv::COLORMAP_INFERNO);
+  cv::cvtColor(detector_mask, mask, cv::COLOR_GRAY2BGR);
+  cv::Mat both;
+  cv::vconcat(colour, mask, both);
+  cv::resize(both, both, cv::Size(), 3, 3, cv::INTER_NEAREST);
+  for (int half = 0; half < 2; ++half) {
+    const cv::Point2f shift(0, half * temperature.rows);
+    for (const PersonRecord* p : scored)
+      cv::rectangle(both, cv::Rect((p->box_px.tl() + shift) * 3, cv::Size2f(p->box_px.width * 3, p->box_px.height * 3)), {0, 255, 0}, 1);
+    for (const TrackedBox& b : d.tracks)
+      cv::rectangle(both, cv::Rect((b.box.tl() + shift) * 3, cv::Size2f(b.box.width * 3, b.box.height * 3)), {0, 0, 255}, 1);
+  }
+  cv::imwrite(draw_dir + "/" + FrameFileName(frame, "png"), both);
+}
+
+void PrintSummary(const TrackingMetrics& det, const TrackingMetrics& trk, const MissTally& tally,
+                  const TrackingMetricsOptions& scoring) {
+  std::printf("scored people %d; mean fraction of their pixels >= threshold_c %.3f\n", tally.scored_people,
+              tally.scored_people ? tally.warm_fraction_sum / tally.scored_people : 0.0);
   std::printf("detections: precision %.3f recall %.3f (TP %d FP %d FN %d)\n", det.precision, det.recall,
               det.true_positives, det.false_positives, det.false_negatives);
   std::printf("tracks:     precision %.3f recall %.3f MOTA %.3f IDF1 %.3f id switches %d\n", trk.precision,
@@ -208,12 +163,86 @@ int Main(int argc, char** argv) {
   std::printf("HOI points: median %.2f px from the true contact, %.3f within %.0f px (%d contacts)\n",
               trk.hoi_median_error_px, trk.hoi_fraction_within_tolerance, scoring.hoi_tolerance_px, trk.hoi_contacts);
   std::printf("misses (raw detections, IoU < %.1f):\n", scoring.iou_threshold);
-  for (const auto& [why, n] : misses) std::printf("  %5d  %s\n", n, why.c_str());
+  for (const auto& [why, n] : tally.misses) std::printf("  %5d  %s\n", n, why.c_str());
   std::printf("false detections:\n");
-  for (const auto& [why, n] : false_positives) std::printf("  %5d  %s\n", n, why.c_str());
+  for (const auto& [why, n] : tally.false_positives) std::printf("  %5d  %s\n", n, why.c_str());
   std::printf("recall by posture:\n");
-  for (const auto& [posture, n] : by_posture)
+  for (const auto& [posture, n] : tally.by_posture)
     std::printf("  %-22s %.3f (%d of %d)\n", posture.c_str(), n.second ? double(n.first) / n.second : 0.0, n.first, n.second);
+}
+
+// The raw detections (ids f·100 + k) and the tracks with their HOI points of the front end's last frame.
+void FrameOutputs(const DlcdFrontEnd& front_end, const std::vector<HoiFeature>& hoi, int f, FrameTracks* d,
+                  FrameTracks* t) {
+  *d = {f, {}};
+  *t = {f, {}};
+  for (size_t k = 0; k < front_end.last_detections().detections.size(); ++k) {
+    d->tracks.push_back({static_cast<int>(f * 100 + k), front_end.last_detections().detections[k].box, {}});
+  }
+  for (const Track& track : front_end.last_tracks()) {
+    TrackedBox box{track.id, track.box, {}};
+    for (const HoiFeature& h : hoi)
+      if (h.track_id == track.id) box.hoi_points_px.push_back(h.point);
+    t->tracks.push_back(box);
+  }
+}
+
+int Main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: detection_eval DATASET [FIRST_FRAME [END_FRAME]] [OPTION=VALUE...]\n");
+    return 2;
+  }
+  const Dataset dataset = Dataset::Open(argv[1], Verify::kOnRead);
+  std::vector<int> range;
+  std::string draw_dir;
+  bool u8_only = false;
+  BenchOptions options = WithManifest(BenchOptions{}, dataset.manifest());
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--draw=", 0) == 0) draw_dir = arg.substr(7);
+    else if (arg == "--u8") u8_only = true;
+    else if (arg.find('=') != std::string::npos) SetOption(&options.detector, arg);
+    else range.push_back(std::stoi(arg));
+  }
+  if (const std::string problem = options.detector.Check(); !problem.empty()) throw InputError("detector", problem);
+  const int first = range.size() > 0 ? range[0] : 0;
+  const int end = range.size() > 1 ? std::min(range[1], dataset.num_frames()) : dataset.num_frames();
+  const TrackingMetricsOptions& scoring = options.tracking_metrics;
+  const bool video_mode = u8_only || IsVideoMode(dataset);
+  const int person_class = dataset.manifest().classes.at("person");
+  DlcdFrontEnd front_end(options.detector, options.tracker, options.hoi);
+
+  std::vector<FramePersons> truth;
+  std::vector<FrameTracks> detected, tracked;
+  MissTally tally;
+  for (int f = first; f < end; ++f) {
+    const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, true);
+    const std::vector<HoiFeature> hoi = front_end.Process(input.thermal_u8, input.radiometric_c);
+    FrameTracks d, t;
+    FrameOutputs(front_end, hoi, f, &d, &t);
+    const FramePersons& people = dataset.persons().at(f);
+    HOILCD_CHECK(people.frame == f);
+    truth.push_back(people);
+    std::vector<const PersonRecord*> scored;
+    for (const PersonRecord& p : people.persons)
+      if (Scored(p, scoring)) scored.push_back(&p);
+    cv::Mat ids, classes, temperature = dataset.RadiometricC(f);
+    if (!scored.empty()) {
+      for (auto& [name, channel] : ReadDatasetExr(dataset, f)) {
+        if (name == "id") ids = channel;
+        if (name == "class") classes = channel;
+      }
+    }
+    tally.Add(people, scored, d, temperature, ids, classes, person_class, options.detector, scoring);
+    if (!draw_dir.empty() && !scored.empty()) {
+      DrawFrame(draw_dir, f, temperature, front_end.last_detections().mask, scored, d);
+    }
+    detected.push_back(d);
+    tracked.push_back(t);
+  }
+  std::printf("frames %d-%d of %s (%s)\n", first, end - 1, argv[1], video_mode ? "8-bit frames only" : "radiometric");
+  PrintSummary(ComputeTrackingMetrics(truth, detected, scoring), ComputeTrackingMetrics(truth, tracked, scoring), tally,
+               scoring);
   return 0;
 }
 

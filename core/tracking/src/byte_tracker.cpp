@@ -134,13 +134,6 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
       low.push_back(d);
     }
   }
-  const auto update = [&](STrack& track, const Detection& det) {
-    track.kf = kalman_.Update(track.kf, BoxToXyah(det.box));
-    track.state = TrackState::kTracked;
-    track.activated = true;
-    track.frame_id = frame_id_;
-    track.score = det.score;
-  };
 
   std::vector<TrackPtr> unconfirmed, pool;
   for (const TrackPtr& t : tracked_) (t->activated ? pool : unconfirmed).push_back(t);
@@ -159,7 +152,7 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   const Assignment first = Associate(cost, high.size(), options_.match_thresh);
   for (const auto& [i, j] : first.matches) {
     if (pool[i]->state != TrackState::kTracked) refound.push_back(pool[i]);
-    update(*pool[i], high[j]);
+    Refresh(pool[i].get(), high[j]);
   }
 
   // Second association: low-score detections against the still unmatched tracked tracks.
@@ -169,7 +162,7 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   }
   const Assignment second = Associate(IouDistance(Boxes(remaining), Boxes(low), iou), low.size(),
                                       options_.second_match_thresh);
-  for (const auto& [i, j] : second.matches) update(*remaining[i], low[j]);
+  for (const auto& [i, j] : second.matches) Refresh(remaining[i].get(), low[j]);
   std::vector<TrackPtr> newly_lost;
   for (int i : second.unmatched_rows) {
     remaining[i]->state = TrackState::kLost;
@@ -182,30 +175,51 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   cost = IouDistance(Boxes(unconfirmed), Boxes(leftover), iou);
   if (options_.fuse_score) FuseScore(cost, leftover);
   const Assignment third = Associate(cost, leftover.size(), options_.unconfirmed_match_thresh);
-  for (const auto& [i, j] : third.matches) update(*unconfirmed[i], leftover[j]);
+  for (const auto& [i, j] : third.matches) Refresh(unconfirmed[i].get(), leftover[j]);
   for (int i : third.unmatched_rows) unconfirmed[i]->state = TrackState::kRemoved;
 
-  // New tracks from confident leftovers; confirmed at once only on the first frame.
+  Settle(Birth(leftover, third.unmatched_cols), refound, newly_lost);
+  std::vector<Track> output;
+  for (const TrackPtr& t : tracked_) {
+    if (t->activated) output.push_back({t->id, t->Box(), t->score});
+  }
+  return output;
+}
+
+void ByteTracker::Refresh(STrack* track, const Detection& detection) const {
+  track->kf = kalman_.Update(track->kf, BoxToXyah(detection.box));
+  track->state = TrackState::kTracked;
+  track->activated = true;
+  track->frame_id = frame_id_;
+  track->score = detection.score;
+}
+
+// Confirmed at once only on the first frame.
+std::vector<ByteTracker::TrackPtr> ByteTracker::Birth(const std::vector<Detection>& leftovers,
+                                                      const std::vector<int>& unmatched) {
   std::vector<TrackPtr> born;
-  for (int j : third.unmatched_cols) {
-    if (leftover[j].score < options_.new_track_thresh) continue;
+  for (int j : unmatched) {
+    if (leftovers[j].score < options_.new_track_thresh) continue;
     auto track = std::make_shared<STrack>();
     track->id = next_id_++;
-    track->kf = kalman_.Initiate(BoxToXyah(leftover[j].box));
+    track->kf = kalman_.Initiate(BoxToXyah(leftovers[j].box));
     track->activated = frame_id_ == 1;
-    track->score = leftover[j].score;
+    track->score = leftovers[j].score;
     track->frame_id = frame_id_;
     track->start_frame = frame_id_;
     born.push_back(std::move(track));
   }
+  return born;
+}
 
+void ByteTracker::Settle(const std::vector<TrackPtr>& born, const std::vector<TrackPtr>& refound,
+                         const std::vector<TrackPtr>& newly_lost) {
   // Lost tracks expire after max_time_lost frames without an update.
   for (const TrackPtr& t : lost_) {
     if (t->state == TrackState::kLost && frame_id_ - t->frame_id > max_time_lost_) {
       t->state = TrackState::kRemoved;
     }
   }
-
   std::vector<TrackPtr> tracked;
   for (const TrackPtr& t : tracked_) {
     if (t->state == TrackState::kTracked) tracked.push_back(t);
@@ -219,7 +233,7 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   lost.insert(lost.end(), newly_lost.begin(), newly_lost.end());
 
   // Duplicates (a tracked and a lost track on the same box): keep the one tracked longer.
-  const std::vector<std::vector<double>> overlap = IouDistance(Boxes(tracked), Boxes(lost), iou);
+  const std::vector<std::vector<double>> overlap = IouDistance(Boxes(tracked), Boxes(lost), options_.iou_convention);
   std::unordered_set<size_t> drop_tracked, drop_lost;
   for (size_t p = 0; p < tracked.size(); ++p) {
     for (size_t q = 0; q < lost.size(); ++q) {
@@ -241,12 +255,6 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   for (size_t q = 0; q < lost.size(); ++q) {
     if (!drop_lost.count(q)) lost_.push_back(lost[q]);
   }
-
-  std::vector<Track> output;
-  for (const TrackPtr& t : tracked_) {
-    if (t->activated) output.push_back({t->id, t->Box(), t->score});
-  }
-  return output;
 }
 
 }  // namespace hoilcd

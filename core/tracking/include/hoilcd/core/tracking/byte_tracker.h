@@ -74,6 +74,15 @@ class ByteTracker {
   struct STrack;
   using TrackPtr = std::shared_ptr<STrack>;
 
+  // A matched detection's update of a track: Kalman update, tracked and confirmed, its score.
+  void Refresh(STrack* track, const Detection& detection) const;
+  // New tracks from leftovers[j] (j in `unmatched`) scoring at least new_track_thresh.
+  std::vector<TrackPtr> Birth(const std::vector<Detection>& leftovers, const std::vector<int>& unmatched);
+  // The frame's bookkeeping after the associations: lost tracks expire, the tracked and lost
+  // lists are rebuilt with the born, refound and newly lost tracks, duplicates are removed.
+  void Settle(const std::vector<TrackPtr>& born, const std::vector<TrackPtr>& refound,
+              const std::vector<TrackPtr>& newly_lost);
+
   ByteTrackOptions options_;
   KalmanFilterXYAH kalman_;
   int max_time_lost_ = 0;
