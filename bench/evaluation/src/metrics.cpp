@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <functional>
 #include <numeric>
 
 #include "hoilcd/bench/evaluation/json_number.h"
@@ -12,6 +13,65 @@
 
 namespace hoilcd {
 namespace {
+
+// A query's record before ranking: its size, labels and the top-1 match (the first of a tied
+// top group in database order, with the group's expected correctness).
+QueryRecord Top1Record(const Query& q, const std::vector<double>& s,
+                       const std::function<const PoseRecord&(int)>& pose_of) {
+  QueryRecord r;
+  r.frame = q.frame;
+  r.lap = q.lap;
+  r.database_size = static_cast<int>(s.size());
+  r.true_matches = q.NumTrueMatches();
+  r.scored = r.true_matches > 0;
+  if (s.empty()) return r;
+  const double top = *std::max_element(s.begin(), s.end());
+  int top_true = 0;
+  for (size_t k = 0; k < s.size(); ++k) {
+    if (s[k] != top) continue;
+    if (r.top1_tie_size == 0) {
+      r.top1_frame = q.database[k];
+      r.top1_is_true_match = q.is_true_match[k] != 0;
+    }
+    ++r.top1_tie_size;
+    top_true += q.is_true_match[k] ? 1 : 0;
+  }
+  r.top1_score = top;
+  r.top1_expected_correct = static_cast<double>(top_true) / r.top1_tie_size;
+  r.top1_distance_m = BaseDistanceM(pose_of(q.frame), pose_of(r.top1_frame));
+  return r;
+}
+
+// The top-1 precision-recall curve of the scored queries, its area and the recall at 100 %
+// precision (recall over m->queries_scored).
+void AddPrCurve(MethodMetrics* m) {
+  std::vector<const QueryRecord*> claims;
+  for (const QueryRecord& r : m->queries) {
+    if (r.scored) claims.push_back(&r);
+  }
+  std::sort(claims.begin(), claims.end(), [](const QueryRecord* a, const QueryRecord* b) {
+    return a->top1_score > b->top1_score;
+  });
+  const double n = m->queries_scored;
+  double correct = 0, previous_recall = 0;
+  m->pr_auc = 0;
+  m->recall_at_100p = 0;
+  for (size_t i = 0; i < claims.size();) {
+    const double threshold = claims[i]->top1_score;
+    for (; i < claims.size() && claims[i]->top1_score == threshold; ++i) {
+      correct += claims[i]->top1_expected_correct;
+    }
+    PrPoint p;
+    p.threshold = threshold;
+    p.precision = correct / i;
+    p.recall = correct / n;
+    m->pr_auc += (p.recall - previous_recall) * p.precision;
+    previous_recall = p.recall;
+    // Expected correctness is a sum of fractions; allow for its rounding.
+    if (p.precision >= 1.0 - 1e-12) m->recall_at_100p = std::max(m->recall_at_100p, p.recall);
+    m->pr_curve.push_back(p);
+  }
+}
 
 }  // namespace
 
@@ -134,28 +194,7 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
     const std::vector<double>& s = scores[i];
     HOILCD_CHECK_MSG(s.size() == q.database.size() && q.is_true_match.size() == s.size(),
                      "query " << i << ": scores, database and is_true_match differ in size");
-    QueryRecord r;
-    r.frame = q.frame;
-    r.lap = q.lap;
-    r.database_size = static_cast<int>(s.size());
-    r.true_matches = q.NumTrueMatches();
-    r.scored = r.true_matches > 0;
-    if (!s.empty()) {
-      const double top = *std::max_element(s.begin(), s.end());
-      int top_true = 0;
-      for (size_t k = 0; k < s.size(); ++k) {
-        if (s[k] != top) continue;
-        if (r.top1_tie_size == 0) {
-          r.top1_frame = q.database[k];
-          r.top1_is_true_match = q.is_true_match[k] != 0;
-        }
-        ++r.top1_tie_size;
-        top_true += q.is_true_match[k] ? 1 : 0;
-      }
-      r.top1_score = top;
-      r.top1_expected_correct = static_cast<double>(top_true) / r.top1_tie_size;
-      r.top1_distance_m = BaseDistanceM(pose_of(q.frame), pose_of(r.top1_frame));
-    }
+    QueryRecord r = Top1Record(q, s, pose_of);
     if (r.scored) {
       const FirstTrueRank rank = RankFirstTrueMatch(s, q.is_true_match);
       r.first_true_rank = rank.ExpectedRank();
@@ -182,31 +221,7 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
     lap_metrics.mrr = lap_sum_rr[lap] / lap_metrics.queries_scored;
   }
 
-  std::vector<const QueryRecord*> claims;
-  for (const QueryRecord& r : m.queries) {
-    if (r.scored) claims.push_back(&r);
-  }
-  std::sort(claims.begin(), claims.end(), [](const QueryRecord* a, const QueryRecord* b) {
-    return a->top1_score > b->top1_score;
-  });
-  double correct = 0, previous_recall = 0;
-  m.pr_auc = 0;
-  m.recall_at_100p = 0;
-  for (size_t i = 0; i < claims.size();) {
-    const double threshold = claims[i]->top1_score;
-    for (; i < claims.size() && claims[i]->top1_score == threshold; ++i) {
-      correct += claims[i]->top1_expected_correct;
-    }
-    PrPoint p;
-    p.threshold = threshold;
-    p.precision = correct / i;
-    p.recall = correct / n;
-    m.pr_auc += (p.recall - previous_recall) * p.precision;
-    previous_recall = p.recall;
-    // Expected correctness is a sum of fractions; allow for its rounding.
-    if (p.precision >= 1.0 - 1e-12) m.recall_at_100p = std::max(m.recall_at_100p, p.recall);
-    m.pr_curve.push_back(p);
-  }
+  AddPrCurve(&m);
   return m;
 }
 

@@ -73,21 +73,27 @@ const std::vector<SweepMetric>& SweepMetrics() {
   return kMetrics;
 }
 
-SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* expected) {
-  if (dirs.empty()) throw InputError("--merge", "no sweep output folders given");
-  struct Found {
+namespace {
+
+// What the shard folders of a sweep hold: its plan, and each run's finished copies.
+struct ShardContents {
+  struct Copy {
     std::string dir;
     SweepRunSpec spec;
   };
   std::optional<SweepPlan> plan;
-  std::string plan_source;
+  std::string plan_source;                         // where the plan came from, for errors
+  std::map<std::string, std::vector<Copy>> found;  // by run name: completed copies
+  std::map<std::string, std::string> unfinished;   // run name -> why its report is missing
+};
+
+// Reads every shard's sweep.json; throws when a folder is no shard or holds another sweep.
+ShardContents ReadShards(const std::vector<std::string>& dirs, const SweepPlan* expected) {
+  ShardContents out;
   if (expected) {
-    plan = *expected;
-    plan_source = "the command line";
+    out.plan = *expected;
+    out.plan_source = "the command line";
   }
-  std::map<std::string, std::vector<Found>> found;  // by run name: completed copies
-  std::map<std::string, std::string> unfinished;    // run name -> why its report is missing
-  std::vector<Problem> problems;
   for (const std::string& dir : dirs) {
     const std::string marker_path = dir + "/sweep.json";
     const nlohmann::json marker = ReadSweepJson(marker_path);
@@ -95,12 +101,12 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
       throw InputError(marker_path, "not a sweep marker (needs plan, shard and runs)");
     }
     const SweepPlan dir_plan = SweepPlan::FromJson(marker.at("plan"), marker_path);
-    if (!plan) {
-      plan = dir_plan;
-      plan_source = marker_path;
-    } else if (Identity(dir_plan) != Identity(*plan)) {
-      throw InputError(marker_path, "its sweep differs from the one in " + plan_source + " at " +
-                                        FirstDifference(Identity(dir_plan), Identity(*plan)) +
+    if (!out.plan) {
+      out.plan = dir_plan;
+      out.plan_source = marker_path;
+    } else if (Identity(dir_plan) != Identity(*out.plan)) {
+      throw InputError(marker_path, "its sweep differs from the one in " + out.plan_source + " at " +
+                                        FirstDifference(Identity(dir_plan), Identity(*out.plan)) +
                                         " (shards of one sweep must be run with the same scene, --set, --seeds and bench flags)");
     }
     const std::string shard = std::to_string(marker["shard"].value("index", 0)) + "/" +
@@ -110,43 +116,58 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
       const std::string run_dir = dir + "/runs/" + spec.FolderName();
       std::error_code ec;
       if (fs::exists(run_dir + "/sweep_run.json", ec) && fs::exists(run_dir + "/report.json", ec)) {
-        found[spec.Name()].push_back({dir, spec});
+        out.found[spec.Name()].push_back({dir, spec});
       } else {
-        unfinished[spec.Name()] = "shard " + shard + " in " + dir + " has no finished report in " + run_dir +
-                                  (marker.value("finished", false) ? "" : "; that shard did not finish");
+        out.unfinished[spec.Name()] = "shard " + shard + " in " + dir + " has no finished report in " + run_dir +
+                                      (marker.value("finished", false) ? "" : "; that shard did not finish");
       }
     }
   }
+  return out;
+}
 
+// Throws, listing every problem, unless each run of the plan was finished exactly once and no
+// other run is there.
+void CheckComplete(const ShardContents& shards) {
+  std::vector<Problem> problems;
   std::set<std::string> expected_names;
-  for (const SweepRunSpec& run : plan->Runs()) {
+  for (const SweepRunSpec& run : shards.plan->Runs()) {
     expected_names.insert(run.Name());
-    const auto it = found.find(run.Name());
-    if (it == found.end()) {
-      const auto why = unfinished.find(run.Name());
+    const auto it = shards.found.find(run.Name());
+    if (it == shards.found.end()) {
+      const auto why = shards.unfinished.find(run.Name());
       problems.push_back({"--merge", "missing run " + run.Name() +
-                                         (why != unfinished.end() ? " (" + why->second + ")" : " (in no shard's run list)")});
+                                         (why != shards.unfinished.end() ? " (" + why->second + ")" : " (in no shard's run list)")});
     } else if (it->second.size() > 1) {
       std::string where;
-      for (const Found& f : it->second) where += (where.empty() ? "" : ", ") + f.dir;
+      for (const ShardContents::Copy& f : it->second) where += (where.empty() ? "" : ", ") + f.dir;
       problems.push_back({"--merge", "run " + run.Name() + " appears " + std::to_string(it->second.size()) +
                                          " times (in " + where + ")"});
     }
   }
-  for (const auto& [name, copies] : found) {
+  for (const auto& [name, copies] : shards.found) {
     if (!expected_names.count(name)) {
       problems.push_back({"--merge", "run " + name + " in " + copies.front().dir + " is not part of the sweep"});
     }
   }
   if (!problems.empty()) throw InputError(problems);
+}
 
-  const std::vector<std::string> methods = plan->bench.at("methods").get<std::vector<std::string>>();
+}  // namespace
+
+SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* expected) {
+  if (dirs.empty()) throw InputError("--merge", "no sweep output folders given");
+  const ShardContents shards = ReadShards(dirs, expected);
+  CheckComplete(shards);
+  const SweepPlan& plan = *shards.plan;
+
+  const std::vector<std::string> methods = plan.bench.at("methods").get<std::vector<std::string>>();
   const std::vector<SweepMetric>& metrics = SweepMetrics();
   // values[combination name][method][metric] over seeds
   std::map<std::string, std::vector<std::vector<std::vector<double>>>> values;
   std::map<std::string, std::vector<int>> seeds;
-  for (const auto& [name, copies] : found) {
-    const Found& f = copies.front();
+  for (const auto& [name, copies] : shards.found) {
+    const ShardContents::Copy& f = copies.front();
     const std::string path = f.dir + "/runs/" + f.spec.FolderName() + "/report.json";
     const nlohmann::json report = ReadSweepJson(path);
     const std::string combo = SweepSettingsName(f.spec.settings);
@@ -162,8 +183,8 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
   }
 
   SweepSummary summary;
-  summary.plan = *plan;
-  for (const Settings& s : plan->Combinations()) {
+  summary.plan = plan;
+  for (const Settings& s : plan.Combinations()) {
     const std::string combo = SweepSettingsName(s);
     std::vector<int> seed_list = seeds[combo];
     std::sort(seed_list.begin(), seed_list.end());

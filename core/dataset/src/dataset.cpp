@@ -674,26 +674,9 @@ std::string ChecksumMismatch(const std::string& listed, const std::string& actua
   return "checksum mismatch (manifest.json says " + listed + ", file has " + actual +
          "): the file was changed or corrupted; re-render the dataset";
 }
-}  // namespace
 
-Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
-  Dataset ds;
-  ds.dir_ = dir;
-  ds.verify_ = verify;
-  const std::string manifest_path = JoinPath(dir, "manifest.json");
-  if (!fs::is_regular_file(manifest_path)) {
-    throw InputError(manifest_path,
-                     "no manifest.json: not a hoilcd dataset folder (write one with "
-                     "hoilcd render SCENE -o DIR)");
-  }
-  ds.manifest_ = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
-  const DatasetManifest& m = ds.manifest_;
-  if (!m.complete) {
-    throw InputError(dir, "dataset is partial: " + std::to_string(m.FramesWritten()) + " of " +
-                              std::to_string(m.frame_count) +
-                              " frames; re-run hoilcd render to finish it");
-  }
-
+// Throws unless the manifest lists every side file and every frame of the outputs it names.
+void CheckListedFiles(const DatasetManifest& m, const std::string& manifest_path) {
   ProblemCollector problems;
   for (const char* side : {"scene.json", "poses.csv", "persons.json", "events.json"}) {
     if (std::string(side) == "persons.json" && !m.outputs.persons) continue;
@@ -714,37 +697,62 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
     }
   }
   problems.ThrowIfAny();
+}
+
+// Checksums every listed file on `threads` threads; throws on a missing or changed file, except
+// the video (a preview of the frames), which only adds a warning.
+void VerifyEveryFile(const std::string& dir, const DatasetManifest& m, int threads,
+                     std::vector<std::string>* warnings) {
+  const std::vector<std::pair<std::string, std::string>> listed(m.files.begin(), m.files.end());
+  std::vector<std::string> errors(listed.size());
+  ParallelFor(static_cast<int64_t>(listed.size()), threads, [&](int64_t i) {
+    const std::string path = JoinPath(dir, listed[i].first);
+    std::string actual;
+    try {
+      actual = ChecksumOfFile(path);
+    } catch (const InputError&) {
+      errors[i] = "listed in manifest.json but missing or unreadable";
+      return;
+    }
+    if (actual != listed[i].second) errors[i] = ChecksumMismatch(listed[i].second, actual);
+  });
+  ProblemCollector problems;
+  for (size_t i = 0; i < listed.size(); ++i) {
+    if (errors[i].empty()) continue;
+    if (listed[i].first == kVideoFile) {
+      warnings->push_back(JoinPath(dir, listed[i].first) + ": " + errors[i] + "; the frames are read without it");
+    } else {
+      problems.Add(JoinPath(dir, listed[i].first), errors[i]);
+    }
+  }
+  problems.ThrowIfAny();
+}
+}  // namespace
+
+Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
+  Dataset ds;
+  ds.dir_ = dir;
+  ds.verify_ = verify;
+  const std::string manifest_path = JoinPath(dir, "manifest.json");
+  if (!fs::is_regular_file(manifest_path)) {
+    throw InputError(manifest_path,
+                     "no manifest.json: not a hoilcd dataset folder (write one with "
+                     "hoilcd render SCENE -o DIR)");
+  }
+  ds.manifest_ = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
+  const DatasetManifest& m = ds.manifest_;
+  if (!m.complete) {
+    throw InputError(dir, "dataset is partial: " + std::to_string(m.FramesWritten()) + " of " +
+                              std::to_string(m.frame_count) +
+                              " frames; re-run hoilcd render to finish it");
+  }
+
+  CheckListedFiles(m, manifest_path);
   if (m.outputs.video && !m.files.count(kVideoFile)) {
     ds.warnings_.push_back(JoinPath(dir, kVideoFile) +
                            ": not listed in manifest.json; the frames are read without it");
   }
-
-  if (verify == Verify::kEveryFile) {
-    const std::vector<std::pair<std::string, std::string>> listed(m.files.begin(),
-                                                                  m.files.end());
-    std::vector<std::string> errors(listed.size());
-    ParallelFor(static_cast<int64_t>(listed.size()), threads, [&](int64_t i) {
-      const std::string path = JoinPath(dir, listed[i].first);
-      std::string actual;
-      try {
-        actual = ChecksumOfFile(path);
-      } catch (const InputError&) {
-        errors[i] = "listed in manifest.json but missing or unreadable";
-        return;
-      }
-      if (actual != listed[i].second) errors[i] = ChecksumMismatch(listed[i].second, actual);
-    });
-    for (size_t i = 0; i < listed.size(); ++i) {
-      if (errors[i].empty()) continue;
-      if (listed[i].first == kVideoFile) {  // a preview of the frames: not needed to read them
-        ds.warnings_.push_back(JoinPath(dir, listed[i].first) + ": " + errors[i] +
-                               "; the frames are read without it");
-      } else {
-        problems.Add(JoinPath(dir, listed[i].first), errors[i]);
-      }
-    }
-    problems.ThrowIfAny();
-  }
+  if (verify == Verify::kEveryFile) VerifyEveryFile(dir, m, threads, &ds.warnings_);
 
   const std::string poses_path = JoinPath(dir, "poses.csv");
   ds.poses_ = PosesFromCsv(ds.ReadFile("poses.csv"), poses_path);
