@@ -29,6 +29,78 @@ double CornerMinusCentre(const cv::Mat& image, int size) {
   return corners - PatchMean(image, w / 2, h / 2, size);
 }
 
+// One compared frame: its lens shading (T - T_true, corners minus centre) and how its video
+// frame compares with the uncompressed 8-bit frame.
+struct FrameComparison {
+  bool compared = false, shaded = false, same_as_video = false;
+  double shading_k = 0, psnr_db = 0;
+};
+
+// Frames marked by a freeze event; counts the events and the frames whose radiometric PNG
+// repeats the one before (same checksum) into *stats.
+std::vector<bool> FrozenFrames(const Dataset& dataset, CameraOutputStats* stats) {
+  const DatasetManifest& m = dataset.manifest();
+  const int frames = dataset.num_frames();
+  std::vector<bool> frozen(static_cast<size_t>(frames), false);
+  for (const DatasetEvent& e : dataset.events()) {
+    if (e.type != "freeze") continue;
+    ++stats->freeze_events;
+    frozen[static_cast<size_t>(e.frame)] = true;
+  }
+  for (int f = 1; f < frames; ++f) {
+    const auto now = m.files.find("radiometric/" + FrameFileName(f, "png"));
+    const auto before = m.files.find("radiometric/" + FrameFileName(f - 1, "png"));
+    if (now != m.files.end() && before != m.files.end()) stats->frozen_frames += now->second == before->second;
+  }
+  return frozen;
+}
+
+// The decoded thermal.mp4; stats->video_problem says why it cannot be compared (empty: it can).
+DecodedVideo ReadVideo(const Dataset& dataset, int threads, CameraOutputStats* stats) {
+  DecodedVideo video;
+  const std::string video_path = dataset.dir() + "/thermal.mp4";
+  try {
+    video = DecodeVideo(dataset.ReadFile("thermal.mp4"), video_path, threads);
+    stats->video_frames = static_cast<int>(video.frames.size());
+    if (stats->video_frames != dataset.num_frames()) {
+      stats->video_problem = video_path + ": " + std::to_string(stats->video_frames) + " video frames for " +
+                             std::to_string(dataset.num_frames()) + " frames";
+    }
+  } catch (const InputError& e) {
+    stats->video_problem = e.what();
+  }
+  return video;
+}
+
+// Frame f compared; `video` empty when it cannot be compared. Not compared without its EXR.
+FrameComparison CompareFrame(const Dataset& dataset, int f, bool frozen, const DecodedVideo* video, int patch_px) {
+  FrameComparison sample;
+  cv::Mat t, t_true;
+  ExrChannels exr;
+  try {
+    exr = ReadDatasetExr(dataset, f);
+  } catch (const InputError&) {
+    return sample;  // the EXRs are optional for readers (Dataset::Open needs only the PNGs)
+  }
+  for (const auto& [name, channel] : exr) {
+    if (name == "T") t = channel;
+    if (name == "T_true") t_true = channel;
+  }
+  if (t.empty() || t_true.empty()) return sample;
+  sample.compared = true;
+  const int patch = std::min({patch_px, t.cols / 2, t.rows / 2});
+  // A frozen frame's T is an earlier view of the scene than its T_true: no shading there.
+  sample.shaded = !frozen;
+  if (sample.shaded) sample.shading_k = CornerMinusCentre(t - t_true, patch);
+  if (video != nullptr) {
+    const DatasetManifest& m = dataset.manifest();
+    const cv::Mat uncompressed = ToDisplay8Bit(t, m.window_min_c, m.window_max_c);
+    sample.psnr_db = cv::PSNR(video->frames[f], uncompressed);
+    sample.same_as_video = cv::norm(dataset.Thermal(f), video->frames[f], cv::NORM_INF) == 0.0;
+  }
+  return sample;
+}
+
 }  // namespace
 
 std::string CameraOutputOptions::Check() const {
@@ -41,76 +113,27 @@ std::string CameraOutputOptions::Check() const {
 CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutputOptions& options) {
   const std::string problem = options.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
-  const DatasetManifest& m = dataset.manifest();
   const int frames = dataset.num_frames();
   CameraOutputStats stats;
   stats.video_mode = IsVideoMode(dataset);
-
-  std::vector<bool> frozen(static_cast<size_t>(frames), false);
-  for (const DatasetEvent& e : dataset.events()) {
-    if (e.type != "freeze") continue;
-    ++stats.freeze_events;
-    frozen[static_cast<size_t>(e.frame)] = true;
-  }
-  for (int f = 1; f < frames; ++f) {
-    const auto now = m.files.find("radiometric/" + FrameFileName(f, "png"));
-    const auto before = m.files.find("radiometric/" + FrameFileName(f - 1, "png"));
-    if (now != m.files.end() && before != m.files.end()) stats.frozen_frames += now->second == before->second;
-  }
-
-  DecodedVideo video;
-  const std::string video_path = dataset.dir() + "/thermal.mp4";
-  try {
-    video = DecodeVideo(dataset.ReadFile("thermal.mp4"), video_path, options.threads);
-    stats.video_frames = static_cast<int>(video.frames.size());
-    if (stats.video_frames != frames) {
-      stats.video_problem = video_path + ": " + std::to_string(stats.video_frames) + " video frames for " +
-                            std::to_string(frames) + " frames";
-    }
-  } catch (const InputError& e) {
-    stats.video_problem = e.what();
-  }
+  const std::vector<bool> frozen = FrozenFrames(dataset, &stats);
+  const DecodedVideo video = ReadVideo(dataset, options.threads, &stats);
   const bool video_ok = stats.video_problem.empty();
 
-  const int step = std::max(1, (frames + options.max_frames_compared - 1) / options.max_frames_compared);
   // The evenly spaced frames are compared in parallel, each into its own slot, then summed in
   // frame order.
-  struct Sample {
-    bool compared = false, shaded = false, same_as_video = false;
-    double shading_k = 0, psnr_db = 0;
-  };
+  const int step = std::max(1, (frames + options.max_frames_compared - 1) / options.max_frames_compared);
   std::vector<int> sampled;
   for (int f = 0; f < frames; f += step) sampled.push_back(f);
-  std::vector<Sample> samples(sampled.size());
+  std::vector<FrameComparison> samples(sampled.size());
   ParallelFor(static_cast<int64_t>(sampled.size()), options.threads, [&](int64_t i) {
     const int f = sampled[static_cast<size_t>(i)];
-    Sample& sample = samples[static_cast<size_t>(i)];
-    cv::Mat t, t_true;
-    ExrChannels exr;
-    try {
-      exr = ReadDatasetExr(dataset, f);
-    } catch (const InputError&) {
-      return;  // the EXRs are optional for readers (Dataset::Open needs only the PNGs)
-    }
-    for (const auto& [name, channel] : exr) {
-      if (name == "T") t = channel;
-      if (name == "T_true") t_true = channel;
-    }
-    if (t.empty() || t_true.empty()) return;
-    sample.compared = true;
-    const int patch = std::min({options.patch_px, t.cols / 2, t.rows / 2});
-    // A frozen frame's T is an earlier view of the scene than its T_true: no shading there.
-    sample.shaded = !frozen[static_cast<size_t>(f)];
-    if (sample.shaded) sample.shading_k = CornerMinusCentre(t - t_true, patch);
-    if (video_ok) {
-      const cv::Mat uncompressed = ToDisplay8Bit(t, m.window_min_c, m.window_max_c);
-      sample.psnr_db = cv::PSNR(video.frames[f], uncompressed);
-      sample.same_as_video = cv::norm(dataset.Thermal(f), video.frames[f], cv::NORM_INF) == 0.0;
-    }
+    samples[static_cast<size_t>(i)] =
+        CompareFrame(dataset, f, frozen[static_cast<size_t>(f)], video_ok ? &video : nullptr, options.patch_px);
   });
   std::vector<double> psnr_db, shading_k;
   bool thermal_is_video = video_ok;
-  for (const Sample& sample : samples) {
+  for (const FrameComparison& sample : samples) {
     if (!sample.compared) continue;
     ++stats.frames_compared;
     if (sample.shaded) shading_k.push_back(sample.shading_k);

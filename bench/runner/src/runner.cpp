@@ -31,33 +31,9 @@ std::vector<const LoopClosureMethod*> ScoringOrder(const std::vector<std::string
   return order;
 }
 
-}  // namespace
-
-const MethodRun* BenchResult::Find(const std::string& name) const {
-  for (const MethodRun& r : runs)
-    if (r.name == name) return &r;
-  return nullptr;
-}
-
-BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
-  KeepFreedMemoryForReuse();  // decoded frames and per-pair buffers come and go on every thread
-  BenchOptions options = WithManifest(options_in, dataset.manifest());
-  if (options.methods.empty()) options.methods = DefaultMethods();
-  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
-  const auto start = std::chrono::steady_clock::now();
-  const int n = dataset.num_frames();
-
-  // Step 1: the protocol's queries, labelled under both ground truths.
-  const Labelling labelling = LabelQueries(dataset, options.protocol);
-  BenchResult result;
-  result.queries = labelling.queries;
-  result.ground_truth = labelling.ground_truth;
-  result.other_ground_truth = labelling.other_ground_truth;
-  result.other_queries = labelling.other_queries;
-  result.label_disagreement = labelling.disagreement;
-
-  // Step 2: the front ends the methods need, once each.
-  const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
+// Step 2 of RunBench: the front ends the methods need, once each, with their --param values.
+FrontEndOutput RunNeededFrontEnds(const Dataset& dataset, const BenchOptions& options,
+                                  const std::vector<const LoopClosureMethod*>& order) {
   std::set<FrontEnd> needed;
   for (const LoopClosureMethod* m : order) {
     const std::set<FrontEnd> f = m->FrontEnds();
@@ -72,28 +48,39 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   front_options.hoi = front.hoi;
   front_options.thumbnail = front.thumbnail;
   front_options.threads = options.threads;
-  const FrontEndOutput front_ends = RunFrontEnds(dataset, needed, front_options);
-  result.features.resize(n);
+  return RunFrontEnds(dataset, needed, front_options);
+}
+
+// The front ends' features per frame and the ground truth's person views, into *result; the
+// tracking metrics when the dataset has people and the person front end ran.
+void AddFeaturesAndTracking(const Dataset& dataset, const BenchOptions& options, const FrontEndOutput& front_ends,
+                            BenchResult* result) {
+  const int n = dataset.num_frames();
+  result->features.resize(n);
   double kp = 0, hp = 0;
   for (int f = 0; f < n; ++f) {
-    if (front_ends.Ran(FrontEnd::kKeypoints)) result.features[f].keypoints = front_ends.keypoints[f];
-    if (front_ends.Ran(FrontEnd::kPersons)) result.features[f].hoi = front_ends.hoi[f];
-    kp += result.features[f].keypoints.size(), hp += result.features[f].hoi.size();
+    if (front_ends.Ran(FrontEnd::kKeypoints)) result->features[f].keypoints = front_ends.keypoints[f];
+    if (front_ends.Ran(FrontEnd::kPersons)) result->features[f].hoi = front_ends.hoi[f];
+    kp += result->features[f].keypoints.size(), hp += result->features[f].hoi.size();
   }
-  result.mean_keypoints_per_frame = n ? kp / n : 0;
-  result.mean_hoi_points_per_frame = n ? hp / n : 0;
+  result->mean_keypoints_per_frame = n ? kp / n : 0;
+  result->mean_hoi_points_per_frame = n ? hp / n : 0;
   // People ground truth is optional (hoilcd render --outputs without persons): no tracking metrics then.
   const bool has_persons = dataset.manifest().outputs.persons;
   for (const FramePersons& f : has_persons ? dataset.persons() : std::vector<FramePersons>()) {
-    result.ground_truth_person_views += static_cast<int64_t>(f.persons.size());
+    result->ground_truth_person_views += static_cast<int64_t>(f.persons.size());
   }
   if (has_persons && front_ends.Ran(FrontEnd::kPersons)) {
-    result.tracking = ComputeTrackingMetrics(dataset.persons(), front_ends.tracks, options.tracking_metrics);
-    result.tracking_evaluated = true;
+    result->tracking = ComputeTrackingMetrics(dataset.persons(), front_ends.tracks, options.tracking_metrics);
+    result->tracking_evaluated = true;
   }
+}
 
-  // Step 3: every method's scores, inputs before the methods that combine them; methods that
-  // share a pass (PassKey) are scored together when the first of them comes up.
+// Step 3: every method's scores, inputs before the methods that combine them; methods that
+// share a pass (PassKey) are scored together when the first of them comes up.
+std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const BenchOptions& options,
+                                                 const std::vector<const LoopClosureMethod*>& order,
+                                                 const Labelling& labelling, const FrontEndOutput& front_ends) {
   std::map<std::string, MethodScores> scored;
   std::vector<BenchOptions> own;  // each method's options with its --param values
   for (const LoopClosureMethod* m : order) own.push_back(WithParams(options, m->Name(), m->Params()));
@@ -118,6 +105,38 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
                                                                     << pass.size() << " methods in its pass");
     for (size_t k = 0; k < pass.size(); ++k) scored[pass[k]->Name()] = std::move(scores[k]);
   }
+  return scored;
+}
+
+}  // namespace
+
+const MethodRun* BenchResult::Find(const std::string& name) const {
+  for (const MethodRun& r : runs)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
+  KeepFreedMemoryForReuse();  // decoded frames and per-pair buffers come and go on every thread
+  BenchOptions options = WithManifest(options_in, dataset.manifest());
+  if (options.methods.empty()) options.methods = DefaultMethods();
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  const auto start = std::chrono::steady_clock::now();
+
+  // Step 1: the protocol's queries, labelled under both ground truths.
+  const Labelling labelling = LabelQueries(dataset, options.protocol);
+  BenchResult result;
+  result.queries = labelling.queries;
+  result.ground_truth = labelling.ground_truth;
+  result.other_ground_truth = labelling.other_ground_truth;
+  result.other_queries = labelling.other_queries;
+  result.label_disagreement = labelling.disagreement;
+
+  // Step 2: the front ends the methods need, once each; step 3: every method's scores.
+  const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
+  const FrontEndOutput front_ends = RunNeededFrontEnds(dataset, options, order);
+  AddFeaturesAndTracking(dataset, options, front_ends, &result);
+  std::map<std::string, MethodScores> scored = ScoreMethods(dataset, options, order, labelling, front_ends);
 
   // Step 4: metrics of the asked methods under both labellings, one method per task.
   result.runs.resize(options.methods.size());
