@@ -267,6 +267,88 @@ int HostOf(const Part& headless, const std::vector<Part>& parts,
   return host;
 }
 
+// The warm mask (at or above threshold_c, opened and closed) and the temperatures it came from
+// (radiometric, or read back from the 8-bit frame through the display window).
+void WarmMask(const cv::Mat& thermal_u8, const cv::Mat& radiometric_c, const PersonDetectorOptions& options,
+              cv::Mat* mask, cv::Mat* temperature_c) {
+  if (!radiometric_c.empty()) {
+    *mask = radiometric_c >= options.threshold_c;
+    *temperature_c = radiometric_c;
+  } else {
+    // Level v shows u8_min_c + v * (u8_max_c - u8_min_c) / 255 degC: the first at or above
+    // threshold_c (256: none is).
+    const double level = std::ceil((options.threshold_c - options.u8_min_c) /
+                                   (options.u8_max_c - options.u8_min_c) * 255.0);
+    *mask = thermal_u8 >= std::clamp(level, 0.0, 256.0);
+    thermal_u8.convertTo(*temperature_c, CV_32F, (options.u8_max_c - options.u8_min_c) / 255.0,
+                         options.u8_min_c);
+  }
+  if (options.open_kernel_px > 1) {
+    cv::morphologyEx(*mask, *mask, cv::MORPH_OPEN, Ellipse(options.open_kernel_px));
+  }
+  if (options.close_kernel_px > 1) {
+    cv::morphologyEx(*mask, *mask, cv::MORPH_CLOSE, Ellipse(options.close_kernel_px));
+  }
+}
+
+// One connected blob split into column parts (between heads, or at valleys of its column
+// profile when it has none); warm objects and specks dropped.
+void SplitBlob(const cv::Mat& labels, int label, const cv::Rect& blob, const cv::Mat& temperature_c,
+               const PersonDetectorOptions& options, std::vector<Part>* parts) {
+  const std::vector<ColumnSpan> heads = FindHeads(labels, label, blob, temperature_c, options);
+  std::vector<int> bounds;
+  if (heads.size() >= 2) {
+    bounds = SplitBetweenHeads(heads);
+  } else if (heads.empty()) {
+    std::vector<double> counts(blob.width, 0.0);
+    for (int y = blob.y; y < blob.br().y; ++y) {
+      const int* row = labels.ptr<int>(y);
+      for (int x = blob.x; x < blob.br().x; ++x) counts[x - blob.x] += row[x] == label;
+    }
+    bounds = FindSplitColumns(counts, options);
+  }
+  bounds.insert(bounds.begin(), 0);
+  bounds.push_back(blob.width);
+  for (size_t k = 0; k + 1 < bounds.size(); ++k) {
+    const int x0 = blob.x + bounds[k], x1 = blob.x + bounds[k + 1];
+    Part part;
+    for (int y = blob.y; y < blob.br().y; ++y) {
+      const int* row = labels.ptr<int>(y);
+      const float* t_row = temperature_c.ptr<float>(y);
+      for (int x = x0; x < x1; ++x) {
+        if (row[x] != label) continue;
+        part.pixels.emplace_back(x, y);
+        part.temperatures_c.push_back(t_row[x]);
+      }
+    }
+    if (static_cast<int>(part.pixels.size()) < options.min_fragment_area_px) continue;
+    part.box = cv::boundingRect(part.pixels);
+    for (const ColumnSpan& h : heads) {
+      part.has_head |= blob.x + h.x0 < x1 && blob.x + h.x1 > x0;
+    }
+    if (IsObject(part, Median(std::vector<double>(part.temperatures_c.begin(), part.temperatures_c.end())), options)) continue;
+    parts->push_back(std::move(part));
+  }
+}
+
+// Headless parts join the part with a head above them (in order, so a chain cannot form).
+// Returns each part's host (-1: none, it stands for itself).
+std::vector<int> JoinHeadlessParts(const PersonDetectorOptions& options, std::vector<Part>* parts) {
+  std::vector<int> host(parts->size(), -1);
+  for (size_t k = 0; k < parts->size(); ++k) {
+    if (!(*parts)[k].has_head) host[k] = HostOf((*parts)[k], *parts, options);
+  }
+  for (size_t k = 0; k < parts->size(); ++k) {
+    if (host[k] < 0) continue;
+    Part& into = (*parts)[host[k]];
+    const Part& part = (*parts)[k];
+    into.box |= part.box;
+    into.pixels.insert(into.pixels.end(), part.pixels.begin(), part.pixels.end());
+    into.temperatures_c.insert(into.temperatures_c.end(), part.temperatures_c.begin(), part.temperatures_c.end());
+  }
+  return host;
+}
+
 }  // namespace
 
 PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiometric_c,
@@ -280,86 +362,17 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
                thermal_u8.size() == radiometric_c.size());
 
   cv::Mat mask, temperature_c;
-  if (!radiometric_c.empty()) {
-    mask = radiometric_c >= options.threshold_c;
-    temperature_c = radiometric_c;
-  } else {
-    // Level v shows u8_min_c + v * (u8_max_c - u8_min_c) / 255 degC: the first at or above
-    // threshold_c (256: none is).
-    const double level = std::ceil((options.threshold_c - options.u8_min_c) /
-                                   (options.u8_max_c - options.u8_min_c) * 255.0);
-    mask = thermal_u8 >= std::clamp(level, 0.0, 256.0);
-    thermal_u8.convertTo(temperature_c, CV_32F, (options.u8_max_c - options.u8_min_c) / 255.0,
-                         options.u8_min_c);
-  }
-  if (options.open_kernel_px > 1) {
-    cv::morphologyEx(mask, mask, cv::MORPH_OPEN, Ellipse(options.open_kernel_px));
-  }
-  if (options.close_kernel_px > 1) {
-    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, Ellipse(options.close_kernel_px));
-  }
-
+  WarmMask(thermal_u8, radiometric_c, options, &mask, &temperature_c);
   cv::Mat labels, stats, centroids;
-  const int num_labels =
-      cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
-  // Blobs, split into column parts; warm objects and specks dropped.
+  const int num_labels = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
   std::vector<Part> parts;
   for (int label = 1; label < num_labels; ++label) {
-    const cv::Rect blob(
-        stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
-        stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
+    const cv::Rect blob(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                        stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
     if (stats.at<int>(label, cv::CC_STAT_AREA) < options.min_fragment_area_px) continue;
-    const std::vector<ColumnSpan> heads =
-        FindHeads(labels, label, blob, temperature_c, options);
-    std::vector<int> bounds;
-    if (heads.size() >= 2) {
-      bounds = SplitBetweenHeads(heads);
-    } else if (heads.empty()) {
-      std::vector<double> counts(blob.width, 0.0);
-      for (int y = blob.y; y < blob.br().y; ++y) {
-        const int* row = labels.ptr<int>(y);
-        for (int x = blob.x; x < blob.br().x; ++x) counts[x - blob.x] += row[x] == label;
-      }
-      bounds = FindSplitColumns(counts, options);
-    }
-    bounds.insert(bounds.begin(), 0);
-    bounds.push_back(blob.width);
-
-    for (size_t k = 0; k + 1 < bounds.size(); ++k) {
-      const int x0 = blob.x + bounds[k], x1 = blob.x + bounds[k + 1];
-      Part part;
-      for (int y = blob.y; y < blob.br().y; ++y) {
-        const int* row = labels.ptr<int>(y);
-        const float* t_row = temperature_c.ptr<float>(y);
-        for (int x = x0; x < x1; ++x) {
-          if (row[x] != label) continue;
-          part.pixels.emplace_back(x, y);
-          part.temperatures_c.push_back(t_row[x]);
-        }
-      }
-      if (static_cast<int>(part.pixels.size()) < options.min_fragment_area_px) continue;
-      part.box = cv::boundingRect(part.pixels);
-      for (const ColumnSpan& h : heads) {
-        part.has_head |= blob.x + h.x0 < x1 && blob.x + h.x1 > x0;
-      }
-      if (IsObject(part, Median(std::vector<double>(part.temperatures_c.begin(), part.temperatures_c.end())), options)) continue;
-      parts.push_back(std::move(part));
-    }
+    SplitBlob(labels, label, blob, temperature_c, options, &parts);
   }
-
-  // Headless parts join the part with a head above them (in order, so a chain cannot form).
-  std::vector<int> host(parts.size(), -1);
-  for (size_t k = 0; k < parts.size(); ++k) {
-    if (!parts[k].has_head) host[k] = HostOf(parts[k], parts, options);
-  }
-  for (size_t k = 0; k < parts.size(); ++k) {
-    if (host[k] < 0) continue;
-    Part& into = parts[host[k]];
-    into.box |= parts[k].box;
-    into.pixels.insert(into.pixels.end(), parts[k].pixels.begin(), parts[k].pixels.end());
-    into.temperatures_c.insert(into.temperatures_c.end(), parts[k].temperatures_c.begin(),
-                               parts[k].temperatures_c.end());
-  }
+  const std::vector<int> host = JoinHeadlessParts(options, &parts);
 
   PersonDetections result;
   result.mask = cv::Mat::zeros(mask.size(), CV_8U);
