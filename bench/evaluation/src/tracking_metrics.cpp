@@ -56,6 +56,28 @@ struct FrameBoxes {
   std::vector<const TrackedBox*> tracks;
 };
 
+// Each frame's persons and tracks, by frame number (a frame absent from one side has none there).
+std::map<int, FrameBoxes> FramesOf(const std::vector<FramePersons>& ground_truth,
+                                   const std::vector<FrameTracks>& predicted) {
+  std::map<int, FrameBoxes> frames;
+  std::set<int> truth_frames, track_frames;
+  for (const FramePersons& f : ground_truth) {
+    HOILCD_CHECK_MSG(truth_frames.insert(f.frame).second, "frame " << f.frame << " twice");
+    for (const PersonRecord& p : f.persons) frames[f.frame].persons.push_back(&p);
+    frames[f.frame];
+  }
+  for (const FrameTracks& f : predicted) {
+    HOILCD_CHECK_MSG(track_frames.insert(f.frame).second, "frame " << f.frame << " twice");
+    std::set<int> ids;
+    FrameBoxes& boxes = frames[f.frame];
+    for (const TrackedBox& t : f.tracks) {
+      HOILCD_CHECK_MSG(ids.insert(t.id).second, "track " << t.id << " twice in frame " << f.frame);
+      boxes.tracks.push_back(&t);
+    }
+  }
+  return frames;
+}
+
 // Leaves out the persons too hidden or too low to score, and the predictions matching them.
 void DropIgnored(const TrackingMetricsOptions& options, FrameBoxes* frame) {
   const auto is_ignored = [&](const PersonRecord* p) {
@@ -202,17 +224,7 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
                                        const TrackingMetricsOptions& options) {
   const std::string problem = options.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
-  std::map<int, const FramePersons*> truth_of_frame;
-  std::map<int, const FrameTracks*> tracks_of_frame;
-  std::set<int> frames;
-  for (const FramePersons& f : ground_truth) {
-    HOILCD_CHECK_MSG(truth_of_frame.emplace(f.frame, &f).second, "frame " << f.frame << " twice");
-    frames.insert(f.frame);
-  }
-  for (const FrameTracks& f : predicted) {
-    HOILCD_CHECK_MSG(tracks_of_frame.emplace(f.frame, &f).second, "frame " << f.frame << " twice");
-    frames.insert(f.frame);
-  }
+  std::map<int, FrameBoxes> frames = FramesOf(ground_truth, predicted);
 
   TrackingMetrics m;
   m.frames = static_cast<int>(frames.size());
@@ -221,18 +233,7 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
   std::map<std::pair<int, int>, int> overlap_frames;  // (person, track) -> frames at IoU >= thr
   std::map<int, int> person_boxes, track_boxes;
   HoiScore hoi;
-  for (int frame : frames) {
-    FrameBoxes boxes;
-    if (const auto it = truth_of_frame.find(frame); it != truth_of_frame.end()) {
-      for (const PersonRecord& p : it->second->persons) boxes.persons.push_back(&p);
-    }
-    if (const auto it = tracks_of_frame.find(frame); it != tracks_of_frame.end()) {
-      std::set<int> ids;
-      for (const TrackedBox& t : it->second->tracks) {
-        HOILCD_CHECK_MSG(ids.insert(t.id).second, "track " << t.id << " twice in frame " << frame);
-        boxes.tracks.push_back(&t);
-      }
-    }
+  for (auto& [frame, boxes] : frames) {
     DropIgnored(options, &boxes);
     const std::vector<const PersonRecord*>& persons = boxes.persons;
     const std::vector<const TrackedBox*>& tracks = boxes.tracks;

@@ -8,97 +8,128 @@
 
 namespace hoilcd {
 
+namespace {
+
+// Jonker & Volgenant (1987) on an n x n row-major cost matrix: the assignment so far and the
+// column potentials (row potentials stay implicit), changed phase by phase.
+class JonkerVolgenant {
+ public:
+  JonkerVolgenant(const std::vector<double>& cost, int n)
+      : cost_(cost), n_(n), col_of_row_(n, -1), row_of_col_(n, -1), v_(n, 0.0), dist_(n), pred_(n), scanned_(n) {}
+
+  std::vector<int> Solve() {
+    ReduceColumns();
+    for (int free_row : TransferReduction()) Augment(free_row);
+    return col_of_row_;
+  }
+
+ private:
+  double c(int i, int j) const { return cost_[static_cast<size_t>(i) * n_ + j]; }
+
+  // Column reduction: v[j] = column minimum; a row keeps the first column it is the minimum of.
+  void ReduceColumns() {
+    for (int j = n_ - 1; j >= 0; --j) {
+      int i_min = 0;
+      for (int i = 1; i < n_; ++i) {
+        if (c(i, j) < c(i_min, j)) i_min = i;
+      }
+      v_[j] = c(i_min, j);
+      if (col_of_row_[i_min] < 0) {
+        col_of_row_[i_min] = j;
+        row_of_col_[j] = i_min;
+      }
+    }
+  }
+
+  // Reduction transfer: lower the potential of each kept column so its row sees its second-best
+  // reduced cost there. Keeps every assigned column a row minimum. Returns the free rows.
+  std::vector<int> TransferReduction() {
+    std::vector<int> free_rows;
+    for (int i = 0; i < n_; ++i) {
+      const int j1 = col_of_row_[i];
+      if (j1 < 0) {
+        free_rows.push_back(i);
+        continue;
+      }
+      double second = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < n_; ++j) {
+        if (j != j1) second = std::min(second, c(i, j) - v_[j]);
+      }
+      if (std::isfinite(second)) v_[j1] = c(i, j1) - second;
+    }
+    return free_rows;
+  }
+
+  // Augmentation: a shortest path (Dijkstra on reduced costs) from a free row to a free column,
+  // then the assignment flipped along it.
+  void Augment(int free_row) {
+    for (int j = 0; j < n_; ++j) {
+      dist_[j] = c(free_row, j) - v_[j];
+      pred_[j] = free_row;
+      scanned_[j] = 0;
+    }
+    scanned_cols_.clear();
+    int sink = -1;
+    double mu = 0;
+    while (sink < 0) {
+      int j_min = -1;
+      for (int j = 0; j < n_; ++j) {
+        if (scanned_[j]) continue;
+        // Ties go to a free column: the path ends sooner at the same length.
+        if (j_min < 0 || dist_[j] < dist_[j_min] ||
+            (dist_[j] == dist_[j_min] && row_of_col_[j] < 0 && row_of_col_[j_min] >= 0)) {
+          j_min = j;
+        }
+      }
+      mu = dist_[j_min];
+      if (row_of_col_[j_min] < 0) {
+        sink = j_min;
+        break;
+      }
+      scanned_[j_min] = 1;
+      scanned_cols_.push_back(j_min);
+      const int i = row_of_col_[j_min];
+      const double u_i = c(i, j_min) - v_[j_min];
+      for (int j = 0; j < n_; ++j) {
+        if (scanned_[j]) continue;
+        const double d = mu + c(i, j) - v_[j] - u_i;
+        if (d < dist_[j]) {
+          dist_[j] = d;
+          pred_[j] = i;
+        }
+      }
+    }
+    for (int j : scanned_cols_) v_[j] += dist_[j] - mu;
+    for (int j = sink;;) {
+      const int i = pred_[j];
+      row_of_col_[j] = i;
+      const int previous = col_of_row_[i];
+      col_of_row_[i] = j;
+      if (i == free_row) break;
+      j = previous;
+    }
+  }
+
+  const std::vector<double>& cost_;
+  const int n_;
+  std::vector<int> col_of_row_, row_of_col_;
+  std::vector<double> v_;  // column potentials
+  // Scratch of Augment.
+  std::vector<double> dist_;
+  std::vector<int> pred_;
+  std::vector<char> scanned_;
+  std::vector<int> scanned_cols_;
+};
+
+}  // namespace
+
 // Jonker & Volgenant (1987): column reduction, reduction transfer, then one shortest augmenting
 // path (Dijkstra on reduced costs) per free row. JV's augmenting row reduction phase is left
 // out: it only speeds up large problems and ours are a few tracks by a few detections.
 std::vector<int> SolveSquareAssignment(const std::vector<double>& cost, int n) {
   HOILCD_CHECK(n >= 0);
   HOILCD_CHECK(cost.size() == static_cast<size_t>(n) * static_cast<size_t>(n));
-  const auto c = [&](int i, int j) { return cost[static_cast<size_t>(i) * n + j]; };
-  std::vector<int> col_of_row(n, -1), row_of_col(n, -1);
-  std::vector<double> v(n, 0.0);  // column potentials; row potentials stay implicit
-
-  // Column reduction: v[j] = column minimum; a row keeps the first column it is the minimum of.
-  for (int j = n - 1; j >= 0; --j) {
-    int i_min = 0;
-    for (int i = 1; i < n; ++i) {
-      if (c(i, j) < c(i_min, j)) i_min = i;
-    }
-    v[j] = c(i_min, j);
-    if (col_of_row[i_min] < 0) {
-      col_of_row[i_min] = j;
-      row_of_col[j] = i_min;
-    }
-  }
-  // Reduction transfer: lower the potential of each kept column so its row sees its
-  // second-best reduced cost there. Keeps every assigned column a row minimum.
-  std::vector<int> free_rows;
-  for (int i = 0; i < n; ++i) {
-    const int j1 = col_of_row[i];
-    if (j1 < 0) {
-      free_rows.push_back(i);
-      continue;
-    }
-    double second = std::numeric_limits<double>::infinity();
-    for (int j = 0; j < n; ++j) {
-      if (j != j1) second = std::min(second, c(i, j) - v[j]);
-    }
-    if (std::isfinite(second)) v[j1] = c(i, j1) - second;
-  }
-
-  // Augmentation: shortest path from each free row to a free column.
-  std::vector<double> dist(n);
-  std::vector<int> pred(n);
-  std::vector<char> scanned(n);
-  std::vector<int> scanned_cols;
-  for (int free_row : free_rows) {
-    for (int j = 0; j < n; ++j) {
-      dist[j] = c(free_row, j) - v[j];
-      pred[j] = free_row;
-      scanned[j] = 0;
-    }
-    scanned_cols.clear();
-    int sink = -1;
-    double mu = 0;
-    while (sink < 0) {
-      int j_min = -1;
-      for (int j = 0; j < n; ++j) {
-        if (scanned[j]) continue;
-        // Ties go to a free column: the path ends sooner at the same length.
-        if (j_min < 0 || dist[j] < dist[j_min] ||
-            (dist[j] == dist[j_min] && row_of_col[j] < 0 && row_of_col[j_min] >= 0)) {
-          j_min = j;
-        }
-      }
-      mu = dist[j_min];
-      if (row_of_col[j_min] < 0) {
-        sink = j_min;
-        break;
-      }
-      scanned[j_min] = 1;
-      scanned_cols.push_back(j_min);
-      const int i = row_of_col[j_min];
-      const double u_i = c(i, j_min) - v[j_min];
-      for (int j = 0; j < n; ++j) {
-        if (scanned[j]) continue;
-        const double d = mu + c(i, j) - v[j] - u_i;
-        if (d < dist[j]) {
-          dist[j] = d;
-          pred[j] = i;
-        }
-      }
-    }
-    for (int j : scanned_cols) v[j] += dist[j] - mu;
-    for (int j = sink;;) {
-      const int i = pred[j];
-      row_of_col[j] = i;
-      const int previous = col_of_row[i];
-      col_of_row[i] = j;
-      if (i == free_row) break;
-      j = previous;
-    }
-  }
-  return col_of_row;
+  return JonkerVolgenant(cost, n).Solve();
 }
 
 Assignment LinearAssignment(const std::vector<std::vector<double>>& cost, double cost_limit) {

@@ -156,8 +156,8 @@ Eigen::Vector3d Vec3(const json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
-// Cross-field checks the schema cannot express.
-void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
+// Tables inside the room; seating names existing tables.
+void CheckTables(const Scene& scene, ProblemCollector* problems) {
   const std::string& f = scene.file;
   for (size_t i = 0; i < scene.tables.size(); ++i) {
     const Eigen::Vector2d& c = scene.tables[i].center_m;
@@ -173,6 +173,12 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
                     "a table index below " + std::to_string(scene.tables.size()));
     }
   }
+}
+
+// Windows fit along their wall below the ceiling; doors sit on a wall (within 1 cm) with the
+// whole opening along it.
+void CheckOpenings(const Scene& scene, ProblemCollector* problems) {
+  const std::string& f = scene.file;
   for (size_t i = 0; i < scene.room.windows.size(); ++i) {
     const WindowSpec& w = scene.room.windows[i];
     const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room.size_m.x()
@@ -186,7 +192,6 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
       problems->Add(at + "/height_m", "the window top below the ceiling");
     }
   }
-  // Doors: centred on a wall (within 1 cm) with the whole opening along it.
   const double size_x = scene.room.size_m.x(), size_y = scene.room.size_m.y();
   for (size_t i = 0; i < scene.room.doors.size(); ++i) {
     const DoorSpec& d = scene.room.doors[i];
@@ -209,6 +214,11 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
                                          " m) without reaching a corner");
     }
   }
+}
+
+// Objects, standing people and waypoints inside the room; the assets named exist.
+void CheckPlacements(const Scene& scene, ProblemCollector* problems) {
+  const std::string& f = scene.file;
   auto inside_room = [&](const Eigen::Vector3d& p) {
     return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room.size_m.x() &&
            p.y() <= scene.room.size_m.y() && p.z() <= scene.room.size_m.z();
@@ -253,6 +263,13 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
       problems->Add(f + ": /route/waypoints_m/" + std::to_string(i), "a waypoint inside the room");
     }
   }
+}
+
+// Cross-field checks the schema cannot express.
+void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
+  CheckTables(scene, problems);
+  CheckOpenings(scene, problems);
+  CheckPlacements(scene, problems);
 }
 
 bool DistractorEnabled(const json& distractors, const std::string& asset) {
@@ -360,41 +377,30 @@ void FillSceneDefaults(json* doc) {
   NormaliseNumbers(doc, SceneSchema());
 }
 
-Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
-  if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
-  ProblemCollector problems;
-  CheckRequired(doc, SceneSchema(), "", file, &problems);
-  // Defaults first, so an override of one element of a default array (objects.0.enabled)
-  // changes that element instead of replacing the whole array.
-  FillDefaults(&doc, SceneSchema());
-  for (const std::string& o : overrides) ApplyOverride(&doc, o);
-  for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
-  problems.ThrowIfAny();
-  FillSceneDefaults(&doc);
-
-  Scene s;
-  s.file = file;
-  s.name = doc["name"].get<std::string>();
-  s.seed = doc["seed"].get<uint64_t>();
-  s.frames = doc["frames"].get<int>();
-  s.frame_rate_hz = doc["frame_rate_hz"].get<double>();
-
+// Makes the scene's asset paths absolute in the document (relative to the scene file, so a
+// dataset's scene.json, written elsewhere, still finds the same assets); sets s->assets_dir.
+void ResolveAssetPaths(const std::string& file, json* doc_in, Scene* s) {
+  json& doc = *doc_in;
   const fs::path scene_dir = fs::absolute(fs::path(file)).parent_path();
-  // Paths relative to the scene file are made absolute in the resolved document, so a
-  // dataset's scene.json (written elsewhere) still finds the same assets.
   std::string assets_dir = doc["assets_dir"].get<std::string>();
   if (!assets_dir.empty()) {
     assets_dir = (scene_dir / assets_dir).lexically_normal().string();
     doc["assets_dir"] = assets_dir;
   }
-  s.assets_dir = assets_dir.empty() ? ShippedAssetDir() : assets_dir;
+  s->assets_dir = assets_dir.empty() ? ShippedAssetDir() : assets_dir;
   for (const char* key : {"table_asset", "chair_asset"}) {
     doc["furniture"][key] = ResolveAssetRef(doc["furniture"][key].get<std::string>(), scene_dir);
   }
   for (json& o : doc["objects"]) o["asset"] = ResolveAssetRef(o["asset"].get<std::string>(), scene_dir);
+}
 
-  // The module options, each read and checked by its option table (every problem at its pointer).
-  ProblemCollector consistency;
+// The room (with its windows and doors), tables, furniture and objects, each read by its option
+// table or the schema's shape; writes the default doors into the document when it has none.
+void ReadRoomAndFurniture(const std::string& file, json* doc_in, Scene* s_out, ProblemCollector* consistency_out) {
+  json& doc = *doc_in;
+  Scene& s = *s_out;
+  ProblemCollector& consistency = *consistency_out;
+  const fs::path scene_dir = fs::absolute(fs::path(file)).parent_path();
   RoomOptions::Table().Read(doc["room"], file + ": /room", &s.room, &consistency);
   s.room.size_m = Vec3(doc["room"]["size_m"]);
   s.room.windows.clear();
@@ -420,6 +426,12 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
                     o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
     if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
   }
+}
+
+// The camera, robot, route, odometry and crowd, each read by its option table.
+void ReadCameraRobotAndCrowd(const std::string& file, const json& doc, Scene* s_out, ProblemCollector* consistency_out) {
+  Scene& s = *s_out;
+  ProblemCollector& consistency = *consistency_out;
   CameraOptions::Table().Read(doc["camera"], file + ": /camera", &s.camera, &consistency);
   s.camera.sensor.reflected_temperature_c = s.room.environment_temperature_c;
   TricycleOptions::Table().Read(doc["robot"], file + ": /robot", &s.robot, &consistency);
@@ -433,6 +445,11 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
     s.crowd.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
   }
   for (const json& p : doc["crowd"]["standing"]) s.crowd.standing.push_back({Vec2(p["position_m"]), p["yaw_deg"].get<double>()});
+}
+
+// Every module's values checked by its option table, each problem at its pointer.
+void CheckOptionTables(const std::string& file, const Scene& s, ProblemCollector* consistency_out) {
+  ProblemCollector& consistency = *consistency_out;
   RoomOptions::Table().Check(s.room, file + ": /room", &consistency);
   for (size_t i = 0; i < s.room.windows.size(); ++i) {
     WindowSpec::Table().Check(s.room.windows[i], file + ": /room/windows/" + std::to_string(i), &consistency);
@@ -443,6 +460,34 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   RouteOptions::Table().Check(s.route, file + ": /route", &consistency);
   OdometryErrorOptions::Table().Check(s.odometry, file + ": /odometry", &consistency);
   CrowdOptions::Table().Check(s.crowd, file + ": /crowd", &consistency);
+}
+
+Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
+  if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
+  ProblemCollector problems;
+  CheckRequired(doc, SceneSchema(), "", file, &problems);
+  // Defaults first, so an override of one element of a default array (objects.0.enabled)
+  // changes that element instead of replacing the whole array.
+  FillDefaults(&doc, SceneSchema());
+  for (const std::string& o : overrides) ApplyOverride(&doc, o);
+  for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
+  problems.ThrowIfAny();
+  FillSceneDefaults(&doc);
+
+  Scene s;
+  s.file = file;
+  s.name = doc["name"].get<std::string>();
+  s.seed = doc["seed"].get<uint64_t>();
+  s.frames = doc["frames"].get<int>();
+  s.frame_rate_hz = doc["frame_rate_hz"].get<double>();
+
+  ResolveAssetPaths(file, &doc, &s);
+
+  // The module options, each read and checked by its option table (every problem at its pointer).
+  ProblemCollector consistency;
+  ReadRoomAndFurniture(file, &doc, &s, &consistency);
+  ReadCameraRobotAndCrowd(file, doc, &s, &consistency);
+  CheckOptionTables(file, s, &consistency);
   s.resolved = doc;
   s.hash = ChecksumOf(doc.dump());
 
