@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <functional>
 #include <future>
 #include <nlohmann/json.hpp>
@@ -15,8 +14,9 @@
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/figures.h"
 #include "hoilcd/bench/report/inspect.h"
+#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/slam_report.h"
-#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/text.h"
 
@@ -174,21 +174,9 @@ std::string FormatResultTable(const BenchResult& result) {
   return out.str();
 }
 
-// A report overwrites files only in a folder that is new, empty or holds an earlier hoilcd
-// report (report.json with hoilcd's keys); anything else is the user's folder.
+// The report's guard (output_folder.h): its marker is report.json with hoilcd's keys.
 void CheckReportFolder(const std::string& dir) {
-  std::error_code ec;
-  if (!std::filesystem::exists(dir, ec) || std::filesystem::is_empty(dir, ec)) return;
-  const std::string earlier = dir + "/report.json";
-  nlohmann::json report;
-  if (std::filesystem::is_regular_file(earlier, ec)) {
-    report = nlohmann::json::parse(ReadFileBytes(earlier), nullptr, /*allow_exceptions=*/false);
-  }
-  if (!(report.is_object() && report.contains("hoilcd_version") && report.contains("methods") &&
-        report.contains("dataset"))) {
-    throw InputError(dir, "exists, is not empty and holds no earlier hoilcd report (report.json); "
-                          "refusing to overwrite files in it: choose a new or empty report folder");
-  }
+  CheckOutputFolder(dir, {"report.json", {"hoilcd_version", "methods", "dataset"}, "report"});
 }
 
 namespace {
@@ -408,9 +396,7 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
 // Each caller has checked the folder (CheckReportFolder) before its own work.
 void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                           const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
+  CreateOutputFolder(dir);
   const Diagnosis diagnosis = Diagnose(result);
   WriteFileAtomic(dir + "/report.json", ReportJson(result, dataset, options, timing, inspect, diagnosis).dump(2));
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result));
