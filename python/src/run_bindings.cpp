@@ -61,7 +61,7 @@ ProtocolOptions Protocol(const std::string& protocol, const std::string& ground_
 }
 
 // The metrics of one method's dense frames x frames scores (NaN = unscored), as report.json's
-// methods.<name>; with `output`, that report.json is written there (as hoilcd evaluate -o).
+// methods.<name>; with `output`, its report folder is written there (as hoilcd evaluate -o).
 py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array::c_style | py::array::forcecast> scores,
                           const std::string& name, std::optional<std::string> output, const std::string& protocol,
                           const std::string& ground_truth, double radius_m, double exclusion_window_s,
@@ -77,13 +77,13 @@ py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array:
   ScoreMatrix matrix;
   matrix.frames = static_cast<int>(scores.shape(0));
   matrix.values.assign(scores.data(), scores.data() + scores.size());
+  const std::string description = "scores from Python";
   std::string report_json;
   {
     py::gil_scoped_release unlocked;
-    const MethodReport report = Evaluate(dataset, matrix, name, options);
-    const nlohmann::json json = EvaluateReportJson(dataset, options, report, "scores from Python");
-    if (output) WriteFileAtomic(*output, json.dump(2) + "\n");
-    report_json = json["methods"][name].dump();
+    const MethodReport report = output ? EvaluateAndWriteReport(dataset, matrix, name, description, options, *output)
+                                       : Evaluate(dataset, matrix, name, options);
+    report_json = EvaluateReportJson(dataset, options, report, description)["methods"][name].dump();
   }
   return JsonToPython(report_json);
 }
@@ -145,7 +145,8 @@ void BindRun(py::module_& m) {
         "The benchmark's protocol, labels and metrics applied to your method, as `hoilcd evaluate`: `scores` "
         "is a dense frames x frames numpy matrix (scores[query, reference], higher = more alike, NaN = "
         "unscored). Returns the method's metrics as report.json's methods.<name> (mrr, recall_at_1, ...); "
-        "with `output`, also writes that report.json file.");
+        "with `output`, also writes the report folder there, as `hoilcd evaluate -o` (report.json, "
+        "queries.csv, report.md, figures; a new or empty folder, or an earlier report's).");
   m.def("methods", [] {
         py::list out;
         for (const auto& method : RegisteredMethods()) {
