@@ -1,6 +1,6 @@
 // End to end through the command line: bench --dump-scores -> evaluate --scores reproduces every
-// method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's -o folder
-// and the guard it shares with bench.
+// method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's and inspect's
+// -o folders and the guard they share with bench.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -207,7 +207,7 @@ TEST(OpenBenchCli, EvaluateOutputIsAReportFolderWithTheBenchsReportJsonAndQuerie
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", temp / "report"}), 0);
 }
 
-TEST(OpenBenchCli, EvaluateRefusesAFolderOfTheUsersNamingWhatItHoldsAndWritesNothing) {
+TEST(OpenBenchCli, EvaluateAndInspectRefuseAFolderOfTheUsersNamingWhatItHoldsAndWriteNothing) {
   const test::TestDir temp;
   const std::string dataset = RenderTiny(temp);
   ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "report", "--dump-scores", temp / "scores"}),
@@ -216,6 +216,7 @@ TEST(OpenBenchCli, EvaluateRefusesAFolderOfTheUsersNamingWhatItHoldsAndWritesNot
   WriteFileAtomic(mine + "/notes.txt", "my own notes");
   for (const std::vector<std::string>& command :
        {std::vector<std::string>{"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", mine},
+        std::vector<std::string>{"inspect", dataset, "-o", mine},
         std::vector<std::string>{"bench", dataset, "--methods", "thumb", "-o", mine}}) {
     testing::internal::CaptureStderr();
     EXPECT_EQ(Hoilcd(command), 1) << command[0];
@@ -227,11 +228,34 @@ TEST(OpenBenchCli, EvaluateRefusesAFolderOfTheUsersNamingWhatItHoldsAndWritesNot
     EXPECT_EQ(Listing(mine), std::vector<std::string>{"notes.txt"}) << command[0];
     EXPECT_EQ(ReadFileBytes(mine + "/notes.txt"), "my own notes");
   }
+  // inspect writes beside nothing but an earlier inspect.json: a report folder is not its own.
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"inspect", dataset, "-o", temp / "report"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("holds no earlier hoilcd inspect output (inspect.json)"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "report/inspect.json"));
   // A file where the folder should be.
   testing::internal::CaptureStderr();
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", mine + "/notes.txt"}), 1);
   EXPECT_NE(testing::internal::GetCapturedStderr().find(mine + "/notes.txt: is a file: expected a folder"),
             std::string::npos);
+}
+
+TEST(OpenBenchCli, InspectOutputIsAFolderHoldingInspectJsonAsPrintedByJson) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  testing::internal::CaptureStdout();
+  const int code = Hoilcd({"inspect", dataset, "--json", "-o", temp / "checks"});
+  const std::string printed = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  EXPECT_EQ(Listing(temp / "checks"), std::vector<std::string>{"inspect.json"});
+  EXPECT_EQ(ReadFileBytes(temp / "checks/inspect.json"), printed);
+  EXPECT_TRUE(Json(temp / "checks/inspect.json").contains("labels"));
+  // Its own earlier folder is written again.
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(Hoilcd({"inspect", dataset, "-o", temp / "checks", "--radius", "0.5"}), 0);
+  testing::internal::GetCapturedStdout();
+  EXPECT_NE(ReadFileBytes(temp / "checks/inspect.json"), printed);
 }
 
 }  // namespace
