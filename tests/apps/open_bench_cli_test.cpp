@@ -1,12 +1,13 @@
 // End to end through the command line: bench --dump-scores -> evaluate --scores reproduces every
 // method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's and inspect's
-// -o folders and the guard they share with bench.
+// -o folders and the guard they share with bench; the protocol flags' defaults in the help.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "cli.h"
+#include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -256,6 +258,42 @@ TEST(OpenBenchCli, InspectOutputIsAFolderHoldingInspectJsonAsPrintedByJson) {
   EXPECT_EQ(Hoilcd({"inspect", dataset, "-o", temp / "checks", "--radius", "0.5"}), 0);
   testing::internal::GetCapturedStdout();
   EXPECT_NE(ReadFileBytes(temp / "checks/inspect.json"), printed);
+}
+
+// The protocol flags' help shows the defaults ProtocolOptions() holds, not copies of them.
+TEST(OpenBenchCli, TheProtocolFlagsHelpShowsTheDefaultsOfProtocolOptions) {
+  const ProtocolOptions defaults = ProtocolOptions();
+  const auto text = [](double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  };
+  const std::vector<std::pair<std::string, std::string>> flags = {
+      {"--protocol", defaults.protocol},
+      {"--radius", text(defaults.radius_m)},
+      {"--exclusion-window", text(defaults.exclusion_window_s)},
+      {"--ground-truth", defaults.ground_truth},
+      {"--heading-tolerance", text(defaults.heading_tolerance_deg)}};
+  for (const char* command : {"bench", "run", "evaluate", "inspect"}) {
+    testing::internal::CaptureStdout();
+    EXPECT_EQ(Hoilcd({command, "--help"}), 0);
+    std::istringstream help(testing::internal::GetCapturedStdout());
+    std::map<std::string, std::string> usage;  // flag -> its line
+    for (std::string line; std::getline(help, line);) {
+      const size_t at = line.find("--");
+      if (at == std::string::npos || line.find_first_not_of(' ') != at) continue;  // a long flag's first line
+      usage[line.substr(at, line.find(' ', at) - at)] = line;
+    }
+    for (const auto& [flag, value] : flags) {
+      if (std::string(command) == "inspect" && flag != "--protocol" && flag != "--radius") continue;
+      ASSERT_EQ(usage.count(flag), 1u) << command << " " << flag;
+      const std::string& line = usage[flag];
+      const size_t at = line.find("=" + value);
+      ASSERT_NE(at, std::string::npos) << command << ": " << line;
+      const size_t end = at + 1 + value.size();
+      EXPECT_TRUE(end == line.size() || line[end] == ' ') << command << ": " << line;
+    }
+  }
 }
 
 }  // namespace

@@ -402,7 +402,7 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
        << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
-  if (result.slam_evaluated) md << SlamMarkdown(result.slam);
+  if (result.slam_evaluated) md << SlamMarkdown(result.slam, options.slam_options.slam);
   md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << "\n";
