@@ -6,9 +6,9 @@
 
 #include "command.h"
 #include "hoilcd/bench/evaluation/evaluate.h"
+#include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
-#include "hoilcd/core/util/file_io.h"
 #include "shared.h"
 
 namespace hoilcd {
@@ -30,17 +30,18 @@ int EvaluateCommand(const EvaluateArgs& args) {
   std::string name = args.name;
   if (name.empty()) name = std::filesystem::path(args.scores).stem().string();
   if (name.empty()) throw InputError("--name", "a method name (the scores file name has none)");
-  const MethodReport report = Evaluate(dataset, ReadScoresFile(args.scores, dataset.num_frames()), name, args.protocol);
-  const nlohmann::json json = EvaluateReportJson(dataset, args.protocol, report, "scores from " + args.scores);
+  if (!args.output.empty()) CheckReportFolder(args.output);  // a folder it may not use fails before the work
+  const ScoreMatrix scores = ReadScoresFile(args.scores, dataset.num_frames());
+  const std::string description = "scores from " + args.scores;
+  const MethodReport report =
+      args.output.empty() ? Evaluate(dataset, scores, name, args.protocol)
+                          : EvaluateAndWriteReport(dataset, scores, name, description, args.protocol, args.output);
   const MethodMetrics& m = report.metrics;
   std::printf("%s (%s ground truth): MRR %.4f, R@1 %.4f, R@5 %.4f, PR-AUC %.4f; %d queries scored, %d skipped\n",
               name.c_str(), args.protocol.ground_truth.c_str(), m.mrr, m.recall_at_1, m.recall_at_5, m.pr_auc,
               m.queries_scored, m.queries_skipped);
-  if (!args.output.empty()) {
-    WriteFileAtomic(args.output, json.dump(2) + "\n");
-    std::printf("report: %s\n", args.output.c_str());
-  }
-  return ApplyGate(args.gate, baseline, json);
+  if (!args.output.empty()) std::printf("report: %s/report.md\n", args.output.c_str());
+  return ApplyGate(args.gate, baseline, EvaluateReportJson(dataset, args.protocol, report, description));
 }
 
 }  // namespace
@@ -55,7 +56,10 @@ Command AddEvaluateCommand(CLI::App* app) {
                   ".npy dense frames x frames float32/float64 matrix (NaN = unscored)")
       ->required();
   cmd->add_option("--name", args->name, "method name in the report (default: the scores file's name)");
-  cmd->add_option("-o,--output", args->output, "write a report.json of this method here");
+  cmd->add_option("-o,--output", args->output,
+                  "report folder of this method: report.json, queries.csv, report.md, figures (a new or empty "
+                  "folder, or an earlier report's)")
+      ->type_name("DIR");
   AddProtocolFlags(cmd, &args->protocol);
   AddGateFlags(cmd, &args->gate);
   return {cmd, [args] { return EvaluateCommand(*args); }};

@@ -5,7 +5,6 @@
 #include "command.h"
 #include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/core/dataset/dataset.h"
-#include "hoilcd/core/util/file_io.h"
 #include "shared.h"
 
 namespace hoilcd {
@@ -19,11 +18,13 @@ struct InspectArgs {
 };
 
 int InspectCommand(const InspectArgs& args) {
+  if (!args.output.empty()) CheckInspectFolder(args.output);  // a folder it may not use fails before the work
   const Dataset dataset = Dataset::Open(args.dataset, Verify::kNothing);  // inspect looks at what is there
   const InspectReport report = InspectDataset(dataset, args.protocol);
-  const std::string json_text = report.ToJson().dump(2) + "\n";
-  if (!args.output.empty()) WriteFileAtomic(args.output, json_text);
-  std::printf("%s", args.json ? json_text.c_str() : ("dataset " + args.dataset + "\n" + report.ToText()).c_str());
+  if (!args.output.empty()) WriteInspectFolder(report, args.output);
+  const std::string text =
+      args.json ? report.ToJson().dump(2) + "\n" : "dataset " + args.dataset + "\n" + report.ToText();
+  std::printf("%s", text.c_str());
   return 0;
 }
 
@@ -36,7 +37,9 @@ Command AddInspectCommand(CLI::App* app) {
                  "camera jitter, people in view, occlusion, odometric vs true ground truth");
   cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
   cmd->add_flag("--json", args->json, "print the figures as JSON instead of text");
-  cmd->add_option("-o,--output", args->output, "also write the figures as JSON to this file");
+  cmd->add_option("-o,--output", args->output,
+                  "also write the figures as DIR/inspect.json (a new or empty folder, or an earlier inspect's)")
+      ->type_name("DIR");
   AddProtocolAndRadiusFlags(cmd, &args->protocol);
   return {cmd, [args] { return InspectCommand(*args); }};
 }

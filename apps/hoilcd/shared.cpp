@@ -45,22 +45,29 @@ Scene LoadSceneArgs(const SceneArgs& args) {
   return LoadScene(args.path, overrides);
 }
 
+// Each flag's help shows its default, the value in the ProtocolOptions the command starts from.
 void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol) {
   cmd->add_option("--protocol", protocol->protocol, "laps (database = first lap) or revisit")
-      ->check(CLI::IsMember({"laps", "revisit"}));
-  cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (paper: 0.2)")->check(CLI::PositiveNumber);
+      ->check(CLI::IsMember({"laps", "revisit"}))
+      ->capture_default_str();
+  cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (the default is the paper's)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
   AddProtocolAndRadiusFlags(cmd, protocol);
   cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
                   "frames this close in time to a query are not in its database, s")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--ground-truth", protocol->ground_truth,
                   "whose positions label true matches: odometry (the paper's) or true (the true poses)")
-      ->check(CLI::IsMember({"odometry", "true"}));
+      ->check(CLI::IsMember({"odometry", "true"}))
+      ->capture_default_str();
   cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
-                  "max heading difference of a true match, deg (negative: off)");
+                  "max heading difference of a true match, deg (negative: off)")
+      ->capture_default_str();
 }
 
 void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {

@@ -40,7 +40,8 @@ def main():
     parser.add_argument("dataset", help="dataset folder (written by hoilcd render)")
     parser.add_argument("--render", metavar="SCENE", help="render SCENE into DATASET first")
     parser.add_argument("--frames", type=int, default=0, help="with --render: only the first N frames")
-    parser.add_argument("-o", "--output", help="also write a report folder (report.json, queries.csv)")
+    parser.add_argument("-o", "--output", metavar="REPORT_DIR",
+                        help="also write a report folder, as hoilcd evaluate -o (report.json, queries.csv, report.md)")
     args = parser.parse_args()
 
     if args.render:

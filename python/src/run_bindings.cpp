@@ -61,7 +61,7 @@ ProtocolOptions Protocol(const std::string& protocol, const std::string& ground_
 }
 
 // The metrics of one method's dense frames x frames scores (NaN = unscored), as report.json's
-// methods.<name>; with `output`, that report.json is written there (as hoilcd evaluate -o).
+// methods.<name>; with `output`, its report folder is written there (as hoilcd evaluate -o).
 py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array::c_style | py::array::forcecast> scores,
                           const std::string& name, std::optional<std::string> output, const std::string& protocol,
                           const std::string& ground_truth, double radius_m, double exclusion_window_s,
@@ -77,13 +77,13 @@ py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array:
   ScoreMatrix matrix;
   matrix.frames = static_cast<int>(scores.shape(0));
   matrix.values.assign(scores.data(), scores.data() + scores.size());
+  const std::string description = "scores from Python";
   std::string report_json;
   {
     py::gil_scoped_release unlocked;
-    const MethodReport report = Evaluate(dataset, matrix, name, options);
-    const nlohmann::json json = EvaluateReportJson(dataset, options, report, "scores from Python");
-    if (output) WriteFileAtomic(*output, json.dump(2) + "\n");
-    report_json = json["methods"][name].dump();
+    const MethodReport report = output ? EvaluateAndWriteReport(dataset, matrix, name, description, options, *output)
+                                       : Evaluate(dataset, matrix, name, options);
+    report_json = EvaluateReportJson(dataset, options, report, description)["methods"][name].dump();
   }
   return JsonToPython(report_json);
 }
@@ -128,24 +128,28 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
 }  // namespace
 
 void BindRun(py::module_& m) {
+  const ProtocolOptions defaults = ProtocolOptions();  // the protocol's defaults, as the command line's
   m.def("render", &Render, py::arg("scene"), py::arg("output"), py::arg("frames") = 0,
         py::arg("seed") = py::none(), py::arg("set") = py::dict(), py::arg("threads") = 0,
         "Renders SCENE (a scene file) into the dataset folder OUTPUT, as `hoilcd render`: the first "
         "`frames` frames (0: all), `seed` overriding the scene's, `set` overriding scene values by path "
         "({'crowd.people_per_table': 2}). Resumes an interrupted render. Returns the Dataset.");
   m.def("bench", &Bench, py::arg("dataset"), py::arg("methods") = py::none(), py::arg("output") = py::none(),
-        py::arg("protocol") = "laps", py::arg("ground_truth") = "odometry", py::arg("radius_m") = 0.2,
-        py::arg("threads") = 0,
+        py::arg("protocol") = defaults.protocol, py::arg("ground_truth") = defaults.ground_truth,
+        py::arg("radius_m") = defaults.radius_m, py::arg("threads") = 0,
         "Runs the built-in methods (names as `hoilcd bench --methods`; default: all) on a Dataset. With "
         "`output`, writes the report folder there and returns report.json as a dict; otherwise returns "
         "{'protocol': ..., 'methods': {name: metrics}} with the metrics as in report.json.");
   m.def("evaluate", &EvaluateScores, py::arg("dataset"), py::arg("scores"), py::arg("name") = "python",
-        py::arg("output") = py::none(), py::arg("protocol") = "laps", py::arg("ground_truth") = "odometry",
-        py::arg("radius_m") = 0.2, py::arg("exclusion_window_s") = 10.0, py::arg("heading_tolerance_deg") = -1.0,
+        py::arg("output") = py::none(), py::arg("protocol") = defaults.protocol,
+        py::arg("ground_truth") = defaults.ground_truth, py::arg("radius_m") = defaults.radius_m,
+        py::arg("exclusion_window_s") = defaults.exclusion_window_s,
+        py::arg("heading_tolerance_deg") = defaults.heading_tolerance_deg,
         "The benchmark's protocol, labels and metrics applied to your method, as `hoilcd evaluate`: `scores` "
         "is a dense frames x frames numpy matrix (scores[query, reference], higher = more alike, NaN = "
         "unscored). Returns the method's metrics as report.json's methods.<name> (mrr, recall_at_1, ...); "
-        "with `output`, also writes that report.json file.");
+        "with `output`, also writes the report folder there, as `hoilcd evaluate -o` (report.json, "
+        "queries.csv, report.md, figures; a new or empty folder, or an earlier report's).");
   m.def("methods", [] {
         py::list out;
         for (const auto& method : RegisteredMethods()) {

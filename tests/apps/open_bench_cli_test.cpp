@@ -1,20 +1,24 @@
 // End to end through the command line: bench --dump-scores -> evaluate --scores reproduces every
-// method's metrics exactly; the CI gate's exit codes; evaluate's errors.
+// method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's and inspect's
+// -o folders and the guard they share with bench; the protocol flags' defaults in the help.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <mutex>
-#include <set>
-#include <thread>
 #include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
 
 #include "cli.h"
+#include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -59,8 +63,11 @@ TEST(OpenBenchCli, DumpedScoresThroughEvaluateReproduceEveryMethodsMetricsExactl
   ASSERT_EQ(Hoilcd({"bench", dataset, "-o", temp / "report", "--dump-scores", temp / "scores", "--threads", "2"}), 0);
   const nlohmann::json report = Json(temp / "report/report.json");
   for (const std::string& method : DefaultMethods()) {
-    const std::string out = temp / (method + ".json");
-    ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / ("scores/" + method + ".csv"), "-o", out}), 0) << method;
+    const std::string out = temp / ("evaluated/" + method + "/report.json");
+    ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / ("scores/" + method + ".csv"), "-o",
+                      temp / ("evaluated/" + method)}),
+              0)
+        << method;
     const nlohmann::json mine = Json(out)["methods"][method];
     const nlohmann::json theirs = report["methods"][method];
     for (const char* key : {"mrr", "recall_at_1", "recall_at_5", "recall_at_10", "pr_auc", "recall_at_100p",
@@ -158,6 +165,135 @@ TEST(OpenBenchCli, BenchRefusesAChangedFrameItReadsAndIgnoresAChangedFileItDoesN
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("error: " + dataset + "/thermal/000002.png: checksum mismatch"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists(temp / "r2"));
+}
+
+// The names under a folder (sorted; folders with a trailing '/'), to see what a command wrote.
+std::vector<std::string> Listing(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    names.push_back(e.path().filename().string() + (e.is_directory() ? "/" : ""));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(OpenBenchCli, EvaluateOutputIsAReportFolderWithTheBenchsReportJsonAndQueriesCsv) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "report", "--dump-scores",
+                    temp / "scores"}),
+            0);
+  ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", temp / "new/thumb"}), 0);
+  EXPECT_EQ(Listing(temp / "new/thumb"), (std::vector<std::string>{"mrr_per_lap.png", "pr_curves.png", "queries.csv",
+                                                                   "report.json", "report.md"}));
+  const nlohmann::json report = Json(temp / "new/thumb/report.json");
+  EXPECT_EQ(report["methods"]["thumb"]["mrr"], Json(temp / "report/report.json")["methods"]["thumb"]["mrr"]);
+  EXPECT_EQ(report["methods"]["thumb"]["description"], "scores from " + temp / "scores/thumb.csv");
+  // queries.csv: the bench's rows of that method, as the bench wrote them.
+  const std::string bench_csv = ReadFileBytes(temp / "report/queries.csv");
+  std::istringstream lines(bench_csv);
+  std::string line, thumb_rows;
+  std::getline(lines, line);
+  thumb_rows = line + "\n";
+  while (std::getline(lines, line))
+    if (line.rfind("thumb,", 0) == 0) thumb_rows += line + "\n";
+  EXPECT_GT(std::count(thumb_rows.begin(), thumb_rows.end(), '\n'), 10);
+  EXPECT_EQ(ReadFileBytes(temp / "new/thumb/queries.csv"), thumb_rows);
+  const std::string md = ReadFileBytes(temp / "new/thumb/report.md");
+  EXPECT_NE(md.find("| thumb | "), std::string::npos) << md;
+  EXPECT_NE(md.find("![pr_curves.png](pr_curves.png)"), std::string::npos) << md;
+
+  // Its own earlier report folder is written again; so is a bench's (both have report.json).
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/slcd.csv", "-o", temp / "new/thumb"}), 0);
+  EXPECT_TRUE(Json(temp / "new/thumb/report.json")["methods"].contains("slcd"));
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", temp / "report"}), 0);
+}
+
+TEST(OpenBenchCli, EvaluateAndInspectRefuseAFolderOfTheUsersNamingWhatItHoldsAndWriteNothing) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "report", "--dump-scores", temp / "scores"}),
+            0);
+  const std::string mine = temp / "mine";
+  WriteFileAtomic(mine + "/notes.txt", "my own notes");
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", mine},
+        std::vector<std::string>{"inspect", dataset, "-o", mine},
+        std::vector<std::string>{"bench", dataset, "--methods", "thumb", "-o", mine}}) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(Hoilcd(command), 1) << command[0];
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("error: " + mine + ": exists, is not empty (it holds notes.txt) and holds no earlier hoilcd "),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("refusing to overwrite files in it"), std::string::npos) << err;
+    EXPECT_EQ(Listing(mine), std::vector<std::string>{"notes.txt"}) << command[0];
+    EXPECT_EQ(ReadFileBytes(mine + "/notes.txt"), "my own notes");
+  }
+  // inspect writes beside nothing but an earlier inspect.json: a report folder is not its own.
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"inspect", dataset, "-o", temp / "report"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("holds no earlier hoilcd inspect output (inspect.json)"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "report/inspect.json"));
+  // A file where the folder should be.
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", mine + "/notes.txt"}), 1);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find(mine + "/notes.txt: is a file: expected a folder"),
+            std::string::npos);
+}
+
+TEST(OpenBenchCli, InspectOutputIsAFolderHoldingInspectJsonAsPrintedByJson) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  testing::internal::CaptureStdout();
+  const int code = Hoilcd({"inspect", dataset, "--json", "-o", temp / "checks"});
+  const std::string printed = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(code, 0);
+  EXPECT_EQ(Listing(temp / "checks"), std::vector<std::string>{"inspect.json"});
+  EXPECT_EQ(ReadFileBytes(temp / "checks/inspect.json"), printed);
+  EXPECT_TRUE(Json(temp / "checks/inspect.json").contains("labels"));
+  // Its own earlier folder is written again.
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(Hoilcd({"inspect", dataset, "-o", temp / "checks", "--radius", "0.5"}), 0);
+  testing::internal::GetCapturedStdout();
+  EXPECT_NE(ReadFileBytes(temp / "checks/inspect.json"), printed);
+}
+
+// The protocol flags' help shows the defaults ProtocolOptions() holds, not copies of them.
+TEST(OpenBenchCli, TheProtocolFlagsHelpShowsTheDefaultsOfProtocolOptions) {
+  const ProtocolOptions defaults = ProtocolOptions();
+  const auto text = [](double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  };
+  const std::vector<std::pair<std::string, std::string>> flags = {
+      {"--protocol", defaults.protocol},
+      {"--radius", text(defaults.radius_m)},
+      {"--exclusion-window", text(defaults.exclusion_window_s)},
+      {"--ground-truth", defaults.ground_truth},
+      {"--heading-tolerance", text(defaults.heading_tolerance_deg)}};
+  for (const char* command : {"bench", "run", "evaluate", "inspect"}) {
+    testing::internal::CaptureStdout();
+    EXPECT_EQ(Hoilcd({command, "--help"}), 0);
+    std::istringstream help(testing::internal::GetCapturedStdout());
+    std::map<std::string, std::string> usage;  // flag -> its line
+    for (std::string line; std::getline(help, line);) {
+      const size_t at = line.find("--");
+      if (at == std::string::npos || line.find_first_not_of(' ') != at) continue;  // a long flag's first line
+      usage[line.substr(at, line.find(' ', at) - at)] = line;
+    }
+    for (const auto& [flag, value] : flags) {
+      if (std::string(command) == "inspect" && flag != "--protocol" && flag != "--radius") continue;
+      ASSERT_EQ(usage.count(flag), 1u) << command << " " << flag;
+      const std::string& line = usage[flag];
+      const size_t at = line.find("=" + value);
+      ASSERT_NE(at, std::string::npos) << command << ": " << line;
+      const size_t end = at + 1 + value.size();
+      EXPECT_TRUE(end == line.size() || line[end] == ' ') << command << ": " << line;
+    }
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 """hoilcd.evaluate applies the benchmark's protocol, labels and metrics to a numpy method's score
-matrix and agrees exactly with `hoilcd evaluate --scores` on the same scores; the numpy example
-(examples/python/numpy_method.py) runs end to end."""
+matrix and agrees exactly with `hoilcd evaluate --scores` on the same scores; its `output` is a
+report folder as `hoilcd evaluate -o`'s; the numpy example (examples/python/numpy_method.py) runs
+end to end."""
 import json
 import math
 import os
@@ -34,16 +35,20 @@ def without_description(metrics):
 
 
 def test_a_numpy_method_gets_the_same_metrics_as_its_npy_through_the_cli(tmp_path, hoilcd_exe, ds, scores):
-    py = hoilcd.evaluate(ds, scores, name="numpy_thumb")
+    py = hoilcd.evaluate(ds, scores, name="numpy_thumb", output=str(tmp_path / "py"))
     assert py["queries_scored"] > 0 and 0 < py["mrr"] <= 1
     np.save(tmp_path / "numpy_thumb.npy", scores)
     code, stdout, stderr = run_cli(hoilcd_exe, "evaluate", ds.dir, "--scores", str(tmp_path / "numpy_thumb.npy"),
-                                   "-o", str(tmp_path / "report.json"))
+                                   "-o", str(tmp_path / "report"))
     assert code == 0, stderr
-    with open(tmp_path / "report.json") as f:
-        cli = json.load(f)["methods"]["numpy_thumb"]
+    with open(tmp_path / "report" / "report.json") as f:
+        cli_report = json.load(f)
+    cli = cli_report["methods"]["numpy_thumb"]
     assert py["mrr"] == cli["mrr"]
     assert without_description(py) == without_description(cli)
+    # The protocol's defaults are the command line's: both read them from ProtocolOptions.
+    with open(tmp_path / "py" / "report.json") as f:
+        assert json.load(f)["protocol"] == cli_report["protocol"]
 
 
 def test_the_same_scores_as_csv_give_the_same_mrr(tmp_path, hoilcd_exe, ds, scores):
@@ -53,25 +58,44 @@ def test_the_same_scores_as_csv_give_the_same_mrr(tmp_path, hoilcd_exe, ds, scor
             for r in range(len(ds)):
                 f.write(f"{q},{r},{scores[q, r]!r}\n")
     code, _, stderr = run_cli(hoilcd_exe, "evaluate", ds.dir, "--scores", str(tmp_path / "mine.csv"),
-                              "--name", "mine", "-o", str(tmp_path / "report.json"))
+                              "--name", "mine", "-o", str(tmp_path / "report"))
     assert code == 0, stderr
-    with open(tmp_path / "report.json") as f:
+    with open(tmp_path / "report" / "report.json") as f:
         assert json.load(f)["methods"]["mine"]["mrr"] == hoilcd.evaluate(ds, scores, name="mine")["mrr"]
 
 
 def test_protocol_and_ground_truth_are_those_of_the_cli(tmp_path, hoilcd_exe, ds, scores):
     py = hoilcd.evaluate(ds.dir, scores.astype(np.float32), name="m", protocol="revisit", ground_truth="true",
-                         output=str(tmp_path / "py.json"))
+                         output=str(tmp_path / "py"))
     np.save(tmp_path / "m.npy", scores.astype(np.float32))
     code, _, stderr = run_cli(hoilcd_exe, "evaluate", ds.dir, "--scores", str(tmp_path / "m.npy"),
-                              "--protocol", "revisit", "--ground-truth", "true", "-o", str(tmp_path / "cli.json"))
+                              "--protocol", "revisit", "--ground-truth", "true", "-o", str(tmp_path / "cli"))
     assert code == 0, stderr
-    with open(tmp_path / "cli.json") as f:
+    with open(tmp_path / "cli" / "report.json") as f:
         cli = json.load(f)
-    with open(tmp_path / "py.json") as f:
+    with open(tmp_path / "py" / "report.json") as f:
         written = json.load(f)
     assert py["mrr"] == cli["methods"]["m"]["mrr"] == written["methods"]["m"]["mrr"]
     assert written["protocol"] == cli["protocol"]
+    # The same report folder: only the method's description (where its scores came from) differs.
+    assert sorted(os.listdir(tmp_path / "py")) == sorted(os.listdir(tmp_path / "cli"))
+    with open(tmp_path / "py" / "queries.csv") as a, open(tmp_path / "cli" / "queries.csv") as b:
+        assert a.read() == b.read()
+
+
+def test_output_is_a_report_folder_and_a_folder_of_the_users_is_refused(tmp_path, ds, scores):
+    hoilcd.evaluate(ds, scores, name="mine", output=str(tmp_path / "report"))
+    assert {"report.json", "queries.csv", "report.md", "pr_curves.png"} <= set(os.listdir(tmp_path / "report"))
+    with open(tmp_path / "report" / "queries.csv") as f:
+        rows = f.read().splitlines()
+    assert rows[0].startswith("method,frame,") and rows[1].startswith("mine,") and len(rows) > 10
+    hoilcd.evaluate(ds, scores, name="again", output=str(tmp_path / "report"))  # its own earlier folder
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("my own notes")
+    with pytest.raises(hoilcd.InputError, match=r"mine: exists, is not empty \(it holds notes.txt\) and holds no "
+                                                r"earlier hoilcd report \(report.json\)"):
+        hoilcd.evaluate(ds, scores, output=str(tmp_path / "mine"))
+    assert os.listdir(tmp_path / "mine") == ["notes.txt"]
 
 
 def test_unscored_pairs_are_nan(ds, scores):
@@ -110,8 +134,8 @@ def test_methods_lists_the_built_ins():
 def test_the_numpy_example_runs_end_to_end(tmp_path, ds):
     env = dict(os.environ)
     done = subprocess.run([sys.executable, os.path.join(EXAMPLES, "numpy_method.py"), ds.dir,
-                           "-o", str(tmp_path / "report.json")], capture_output=True, text=True, env=env)
+                           "-o", str(tmp_path / "report")], capture_output=True, text=True, env=env)
     assert done.returncode == 0, done.stderr
     assert re.match(rf"numpy_thumb on {re.escape(ds.dir)}: MRR [01]\.\d{{3}}, R@1 ", done.stdout), done.stdout
-    with open(tmp_path / "report.json") as f:
+    with open(tmp_path / "report" / "report.json") as f:
         assert "numpy_thumb" in json.load(f)["methods"]

@@ -6,13 +6,20 @@
 #include <sstream>
 
 #include "hoilcd/bench/report/camera_output.h"
+#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/stats.h"
 
 namespace hoilcd {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
+
+// An earlier `hoilcd inspect -o DIR`: its inspect.json has InspectDataset's first sections.
+OutputMarker InspectMarker() {
+  return {"inspect.json", {"trajectory", "camera", "people", "labels"}, "inspect output"};
+}
 
 double RmsFrameToFrame(const std::vector<double>& values) {
   if (values.size() < 2) return 0;
@@ -226,6 +233,14 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   camera.threads = threads;
   r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset, camera)));
   return r;
+}
+
+void CheckInspectFolder(const std::string& dir) { CheckOutputFolder(dir, InspectMarker()); }
+
+void WriteInspectFolder(const InspectReport& report, const std::string& dir) {
+  CheckInspectFolder(dir);
+  CreateOutputFolder(dir);
+  WriteFileAtomic(dir + "/" + InspectMarker().file, report.ToJson().dump(2) + "\n");
 }
 
 }  // namespace hoilcd

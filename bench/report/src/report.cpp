@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <functional>
 #include <future>
 #include <nlohmann/json.hpp>
@@ -15,20 +14,25 @@
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/figures.h"
 #include "hoilcd/bench/report/inspect.h"
+#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/slam_report.h"
-#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
 namespace {
 
-const char* kNotes[] = {
+// Notes on the metrics of any method's scores (the bench's reports and hoilcd evaluate's)...
+const char* const kScoringNotes[] = {
     "Precision-recall and R@100%P cover the scored queries, those with a true match in their "
     "database (revisits); queries without one are counted as skipped and cannot add false "
     "positives here.",
     "Ranks with tied scores are expected values over a uniformly random order of the tied group "
     "(many database frames share 0 inliers); no rank depends on database order.",
+};
+// ... and on the built-in methods (the bench's reports, after those).
+const char* const kMethodNotes[] = {
     "SLCD uses Shi-Tomasi (GFTT) corners with SuperPoint-like settings (4 px NMS, 4 px border, up "
     "to 1000 corners): pretrained SuperPoint weights cannot be shipped. Only coordinates are used, "
     "as in the paper.",
@@ -38,9 +42,9 @@ const char* kNotes[] = {
     "scores do not depend on database order either.",
 };
 
-cv::Mat PrFigure(const BenchResult& result) {
+cv::Mat PrFigure(const std::vector<MethodRun>& runs) {
   std::vector<Series> series;
-  for (const MethodRun& run : result.runs) {
+  for (const MethodRun& run : runs) {
     Series s;
     s.label = run.name;
     for (const PrPoint& p : run.metrics.pr_curve) {
@@ -58,14 +62,14 @@ cv::Mat PrFigure(const BenchResult& result) {
   return LinePlot(series, o);
 }
 
-cv::Mat LapFigure(const BenchResult& result) {
+cv::Mat LapFigure(const std::vector<MethodRun>& runs) {
   std::set<int> laps;
-  for (const MethodRun& run : result.runs)
+  for (const MethodRun& run : runs)
     for (const auto& [lap, _] : run.metrics.per_lap) laps.insert(lap);
   std::vector<std::string> groups;
   for (int lap : laps) groups.push_back("lap " + std::to_string(lap + 1));
   std::vector<Series> series;
-  for (const MethodRun& run : result.runs) {
+  for (const MethodRun& run : runs) {
     Series s;
     s.label = run.name;
     for (int lap : laps) {
@@ -174,21 +178,8 @@ std::string FormatResultTable(const BenchResult& result) {
   return out.str();
 }
 
-// A report overwrites files only in a folder that is new, empty or holds an earlier hoilcd
-// report (report.json with hoilcd's keys); anything else is the user's folder.
 void CheckReportFolder(const std::string& dir) {
-  std::error_code ec;
-  if (!std::filesystem::exists(dir, ec) || std::filesystem::is_empty(dir, ec)) return;
-  const std::string earlier = dir + "/report.json";
-  nlohmann::json report;
-  if (std::filesystem::is_regular_file(earlier, ec)) {
-    report = nlohmann::json::parse(ReadFileBytes(earlier), nullptr, /*allow_exceptions=*/false);
-  }
-  if (!(report.is_object() && report.contains("hoilcd_version") && report.contains("methods") &&
-        report.contains("dataset"))) {
-    throw InputError(dir, "exists, is not empty and holds no earlier hoilcd report (report.json); "
-                          "refusing to overwrite files in it: choose a new or empty report folder");
-  }
+  CheckOutputFolder(dir, {"report.json", {"hoilcd_version", "methods", "dataset"}, "report"});
 }
 
 namespace {
@@ -241,14 +232,15 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
   report["finding"] = PaperFindingSummary(result);
   if (diagnosis.evaluated) report["diagnosis"] = diagnosis.ToJson();
   report["notes"] = nlohmann::json::array();
-  for (const char* note : kNotes) report["notes"].push_back(note);
+  for (const char* note : kScoringNotes) report["notes"].push_back(note);
+  for (const char* note : kMethodNotes) report["notes"].push_back(note);
   return report;
 }
 
 // queries.csv: one row per method and query.
-std::string QueriesCsv(const BenchResult& result) {
+std::string QueriesCsv(const std::vector<MethodRun>& runs) {
   std::string csv;
-  for (const MethodRun& run : result.runs) {
+  for (const MethodRun& run : runs) {
     std::istringstream lines(QueryRecordsToCsv(run.metrics.queries));
     std::string line;
     bool header = true;
@@ -264,17 +256,35 @@ std::string QueriesCsv(const BenchResult& result) {
   return csv;
 }
 
+// Figures to draw: file name and how to draw it.
+using FigureJobs = std::vector<std::pair<std::string, std::function<cv::Mat()>>>;
+
+// The figures of the methods' metrics alone (any method's, run by the bench or scored outside):
+// the PR curves, and MRR per lap when a lap was scored.
+FigureJobs MetricFigures(const std::vector<MethodRun>& runs) {
+  FigureJobs jobs;
+  jobs.emplace_back("pr_curves.png", [&runs] { return PrFigure(runs); });
+  const bool any_lap =
+      std::any_of(runs.begin(), runs.end(), [](const MethodRun& r) { return !r.metrics.per_lap.empty(); });
+  if (any_lap) {  // a sequence shorter than two laps has no scored lap to plot
+    jobs.emplace_back("mrr_per_lap.png", [&runs] { return LapFigure(runs); });
+  }
+  return jobs;
+}
+
+// Draws and writes each figure into `dir`, in parallel (each its own file).
+void WriteFigureJobs(const FigureJobs& jobs, int threads, const std::string& dir) {
+  ParallelFor(static_cast<int64_t>(jobs.size()), threads, [&](int64_t i) {
+    const auto& [name, draw] = jobs[static_cast<size_t>(i)];
+    WritePng(dir + "/" + name, draw());
+  });
+}
+
 // Draws and writes the figures into `dir`; their file names in the report's order.
 std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                                       const std::string& dir) {
-  // The figures, listed in the report's order, drawn and written in parallel (each its own file).
-  std::vector<std::pair<std::string, std::function<cv::Mat()>>> figure_jobs;
-  figure_jobs.emplace_back("pr_curves.png", [&] { return PrFigure(result); });
-  const bool any_lap = std::any_of(result.runs.begin(), result.runs.end(),
-                                   [](const MethodRun& r) { return !r.metrics.per_lap.empty(); });
-  if (any_lap) {  // a sequence shorter than two laps has no scored lap to plot
-    figure_jobs.emplace_back("mrr_per_lap.png", [&] { return LapFigure(result); });
-  }
+  // The figures, listed in the report's order.
+  FigureJobs figure_jobs = MetricFigures(result.runs);
   // Figures of the paper's methods, last registered first (fusion, dlcd, slcd).
   std::vector<const LoopClosureMethod*> paper;
   for (const auto& m : RegisteredMethods())
@@ -312,10 +322,7 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
       return MatchMosaic(rows, mosaic);
     });
   }
-  ParallelFor(static_cast<int64_t>(figure_jobs.size()), options.threads, [&](int64_t i) {
-    const auto& [name, draw] = figure_jobs[static_cast<size_t>(i)];
-    WritePng(dir + "/" + name, draw());
-  });
+  WriteFigureJobs(figure_jobs, options.threads, dir);
   std::vector<std::string> figures;
   for (size_t i = 0; i < slam_figures_at; ++i) figures.push_back(figure_jobs[i].first);
   if (result.slam_evaluated) {
@@ -328,46 +335,53 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
   return figures;
 }
 
-// report.md: the tables shaped like the paper's, the diagnosis, tracking, SLAM, the dataset's
-// checks, and the figures.
-std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
-                           const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
-                           const std::vector<std::string>& figures) {
+// report.md's opening: the dataset and protocol, the results table shaped like the paper's
+// Table 1 and the same scores under the other ground truth.
+std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const Dataset& dataset, const ProtocolOptions& protocol,
+                            const std::string& other_ground_truth, const LabelDisagreement& labels) {
   const DatasetManifest& manifest = dataset.manifest();
-  const LabelDisagreement& labels = result.label_disagreement;
   std::ostringstream md;
   md << "# hoilcd loop-closure report\n\n"
      << "Dataset `" << dataset.dir() << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
-     << ", scene hash `" << manifest.scene_hash << "`), protocol `" << options.protocol.protocol
-     << "`, true match within " << options.protocol.radius_m << " m of the query's "
-     << (options.protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)"
-                                                      : "true position")
-     << ", exclusion window " << options.protocol.exclusion_window_s << " s.\n\n"
-     << "## Results (shaped like the paper's Table 1; " << options.protocol.ground_truth << " ground truth)\n\n"
+     << ", scene hash `" << manifest.scene_hash << "`), protocol `" << protocol.protocol
+     << "`, true match within " << protocol.radius_m << " m of the query's "
+     << (protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)" : "true position")
+     << ", exclusion window " << protocol.exclusion_window_s << " s.\n\n"
+     << "## Results (shaped like the paper's Table 1; " << protocol.ground_truth << " ground truth)\n\n"
      << "| method | MRR | R@1 | R@5 | R@10 | PR-AUC | R@100%P | ms/query (extract + match) |\n"
      << "|---|---|---|---|---|---|---|---|\n";
-  for (const MethodRun& run : result.runs) {
+  for (const MethodRun& run : runs) {
     const MethodMetrics& m = run.metrics;
     md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | "
        << Fixed(m.recall_at_5) << " | " << Fixed(m.recall_at_10) << " | " << Fixed(m.pr_auc) << " | "
        << Fixed(m.recall_at_100p) << " | " << Fixed(m.ms_per_query, 2) << " (" << Fixed(m.extract_ms_mean, 2)
        << " + " << Fixed(m.match_ms_mean, 2) << ") |\n";
   }
-  if (!result.runs.empty()) {
-    md << "\n" << result.runs.front().metrics.queries_scored << " queries scored, "
-       << result.runs.front().metrics.queries_skipped << " skipped (no true match in their database).\n";
+  if (!runs.empty()) {
+    md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
+       << " skipped (no true match in their database).\n";
   }
-  md << "\n### The same scores under " << result.other_ground_truth << " ground truth\n\n"
+  md << "\n### The same scores under " << other_ground_truth << " ground truth\n\n"
      << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
      << labels.pairs_differing << " query-database pairs labelled differently; " << labels.scored_only_in_a
-     << " queries have a true match only under " << options.protocol.ground_truth << " labels, "
-     << labels.scored_only_in_b << " only under " << result.other_ground_truth << " labels).\n\n"
-     << "| method | MRR | R@1 | R@5 | PR-AUC | MRR (" << options.protocol.ground_truth << ") |\n|---|---|---|---|---|---|\n";
-  for (const MethodRun& run : result.runs) {
+     << " queries have a true match only under " << protocol.ground_truth << " labels, "
+     << labels.scored_only_in_b << " only under " << other_ground_truth << " labels).\n\n"
+     << "| method | MRR | R@1 | R@5 | PR-AUC | MRR (" << protocol.ground_truth << ") |\n|---|---|---|---|---|---|\n";
+  for (const MethodRun& run : runs) {
     const MethodMetrics& m = run.other_metrics;
     md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | " << Fixed(m.recall_at_5)
        << " | " << Fixed(m.pr_auc) << " | " << Fixed(run.metrics.mrr) << " |\n";
   }
+  return md.str();
+}
+
+// report.md: the tables shaped like the paper's, the diagnosis, tracking, SLAM, the dataset's
+// checks, and the figures.
+std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
+                           const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
+                           const std::vector<std::string>& figures) {
+  std::ostringstream md;
+  md << ResultsMarkdown(result.runs, dataset, options.protocol, result.other_ground_truth, result.label_disagreement);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
   if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
@@ -388,13 +402,14 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
        << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
        << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
-  if (result.slam_evaluated) md << SlamMarkdown(result.slam);
+  if (result.slam_evaluated) md << SlamMarkdown(result.slam, options.slam_options.slam);
   md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
   for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << "\n";
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
      << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
-  for (const char* note : kNotes) md << "- " << note << "\n";
+  for (const char* note : kScoringNotes) md << "- " << note << "\n";
+  for (const char* note : kMethodNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";
   if (dataset.footprints().empty()) {
     md << "The dataset has no footprints.json (written before it existed): the trajectory figures "
@@ -408,12 +423,10 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
 // Each caller has checked the folder (CheckReportFolder) before its own work.
 void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                           const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "cannot create the report folder (" + ec.message() + ")");
+  CreateOutputFolder(dir);
   const Diagnosis diagnosis = Diagnose(result);
   WriteFileAtomic(dir + "/report.json", ReportJson(result, dataset, options, timing, inspect, diagnosis).dump(2));
-  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result));
+  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result.runs));
   const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
   WriteFileAtomic(dir + "/report.md",
                   ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
@@ -447,6 +460,29 @@ BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, Re
   timing->bench_s = result.seconds;
   WriteReportInspected(result, dataset, options, *timing, dir, inspect.get());
   return result;
+}
+
+MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& scores, const std::string& name,
+                                    const std::string& description, const ProtocolOptions& protocol,
+                                    const std::string& dir) {
+  CheckReportFolder(dir);  // a folder the report may not use fails before the work
+  const Labelling labelling = LabelQueries(dataset, protocol);
+  const MethodReport report =
+      EvaluateQueryScores(labelling, name, QueryScores(labelling, scores, dataset.num_frames()));
+  const std::vector<MethodRun> runs = {{report.name, report.metrics, report.other_metrics, {}}};
+  CreateOutputFolder(dir);
+  WriteFileAtomic(dir + "/report.json", EvaluateReportJson(dataset, protocol, report, description).dump(2) + "\n");
+  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(runs));
+  const FigureJobs figures = MetricFigures(runs);
+  WriteFigureJobs(figures, /*threads=*/1, dir);
+  std::ostringstream md;
+  md << ResultsMarkdown(runs, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
+     << "\n## Methods\n\n- `" << report.name << "`: " << description << "\n\n## Notes\n\n";
+  for (const char* note : kScoringNotes) md << "- " << note << "\n";
+  md << "\n## Figures\n\n";
+  for (const auto& figure : figures) md << "![" << figure.first << "](" << figure.first << ")\n\n";
+  WriteFileAtomic(dir + "/report.md", md.str());
+  return report;
 }
 
 }  // namespace hoilcd

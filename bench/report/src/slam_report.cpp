@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "hoilcd/bench/evaluation/json_number.h"
+#include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/report/chart.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/text.h"
@@ -54,7 +55,7 @@ nlohmann::json MethodSlamJson(const MethodSlam& m) {
   return j;
 }
 
-std::string SlamMarkdown(const SlamResult& slam) {
+std::string SlamMarkdown(const SlamResult& slam, const SlamOptions& options) {
   std::ostringstream md;
   md << "## SLAM consequence (pose graph, ATE / RPE over 1 m, metres)\n\n"
      << "Odometry alone: ATE " << Fixed(slam.odometry.ate_rmse_m) << ", RPE " << Fixed(slam.odometry.rpe_rmse_m)
@@ -71,8 +72,9 @@ std::string SlamMarkdown(const SlamResult& slam) {
     for (const SlamScore& s : m.backends) md << " " << Fixed(s.ate_rmse_m) << " | " << Fixed(s.rpe_rmse_m) << " |";
     md << "\n";
   }
-  md << "\nLoop edges are appearance-only: zero relative pose, σ = 0.1 m per axis (a uniform spread over the "
-        "0.2 m true-match disk) and a weak σ = 20° on yaw; odometry edges are weighted by the scene's odometry "
+  md << "\nLoop edges are appearance-only: zero relative pose, σ = " << options.loop_sd_m
+     << " m per axis (a uniform spread over the " << ProtocolOptions().radius_m << " m true-match disk) and a weak σ = "
+     << options.loop_yaw_sd_deg << "° on yaw; odometry edges are weighted by the scene's odometry "
         "error model. Back ends: `plain` least squares, `cauchy` loss on loops, `dcs` (Dynamic Covariance "
         "Scaling). The graph (g2o) and optimised trajectories (TUM) are in `slam/`.\n\n";
   for (const std::string& note : slam.notes) md << "- " << note << "\n";

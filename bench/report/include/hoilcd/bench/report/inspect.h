@@ -57,4 +57,12 @@ InspectSection LabelSection(const std::vector<PoseRecord>& poses, const Protocol
 // freezes) is the last, from camera_output.h, measured on `threads` threads (0: every core).
 InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol = {}, int threads = 0);
 
+// hoilcd inspect -o DIR: InputError unless DIR may hold inspect.json (the guard of
+// output_folder.h: new, empty or holding an earlier inspect.json); call it before the work.
+void CheckInspectFolder(const std::string& dir);
+
+// DIR/inspect.json (report.ToJson(), indented), written atomically; DIR is created. Checks DIR
+// as CheckInspectFolder does.
+void WriteInspectFolder(const InspectReport& report, const std::string& dir);
+
 }  // namespace hoilcd

@@ -1,11 +1,13 @@
 // The benchmark report folder (SPEC.md "Evaluation protocol"): report.json with every number,
 // queries.csv, report.md shaped like the paper's Table 1, and PNG figures (PR curves, the
-// trajectory coloured by top-1 correctness, MRR per lap, match pictures like figures 6–7).
+// trajectory coloured by top-1 correctness, MRR per lap, match pictures like figures 6–7); and
+// the smaller folder of one method scored outside hoilcd (hoilcd evaluate).
 #pragma once
 
 #include <functional>
 #include <string>
 
+#include "hoilcd/bench/evaluation/evaluate.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/dataset.h"
 
@@ -23,6 +25,10 @@ struct ReportTiming {
 // The terminal table: method, MRR, R@1, R@5, PR-AUC, R@100%P, ms/query.
 std::string FormatResultTable(const BenchResult& result);
 
+// InputError unless `dir` may hold a report: new, empty or an earlier report (its report.json
+// with hoilcd's keys); the guard of output_folder.h. Every writer below checks it first.
+void CheckReportFolder(const std::string& dir);
+
 // Writes the report folder (created if missing; files written atomically).
 void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                  const ReportTiming& timing, const std::string& dir);
@@ -33,5 +39,13 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
 // may change its options and *timing (hoilcd run waits there for its calibration's thresholds).
 BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam = {});
+
+// One method scored outside hoilcd (hoilcd evaluate, hoilcd.evaluate): Evaluate (evaluate.h), and
+// its report folder in `dir`, checked before the work: report.json (EvaluateReportJson, the
+// method described by `description`), queries.csv, report.md with the bench's results tables and
+// scoring notes, and the figures of its metrics (pr_curves.png, mrr_per_lap.png).
+MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& scores, const std::string& name,
+                                    const std::string& description, const ProtocolOptions& protocol,
+                                    const std::string& dir);
 
 }  // namespace hoilcd

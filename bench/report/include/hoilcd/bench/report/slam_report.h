@@ -17,8 +17,9 @@ nlohmann::json SlamSummaryJson(const SlamResult& slam);
 // false_loops per back end, plus the ATE-vs-threshold curve.
 nlohmann::json MethodSlamJson(const MethodSlam& method);
 
-// A report.md section: the per-method ATE table under every back end.
-std::string SlamMarkdown(const SlamResult& slam);
+// A report.md section: the per-method ATE table under every back end, and the loop edges' model
+// (`options`, the options the graphs were built with).
+std::string SlamMarkdown(const SlamResult& slam, const SlamOptions& options);
 
 // Writes DIR/slam/<method>.g2o (the method's keyframe graph, nodes at their odometry poses),
 // DIR/slam/<method>_tum.txt, odometry_tum.txt, groundtruth_tum.txt, oracle_tum.txt, and

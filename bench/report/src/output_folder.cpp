@@ -1,0 +1,56 @@
+#include "hoilcd/bench/report/output_folder.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "hoilcd/core/dataset/dataset_folder.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
+
+namespace hoilcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool IsEarlierOutput(const std::string& dir, const OutputMarker& marker) {
+  std::error_code ec;
+  const std::string path = dir + "/" + marker.file;
+  if (!fs::is_regular_file(path, ec)) return false;
+  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(path), nullptr, /*allow_exceptions=*/false);
+  return json.is_object() && std::all_of(marker.keys.begin(), marker.keys.end(),
+                                         [&](const std::string& key) { return json.contains(key); });
+}
+
+// The folder's entries (sorted names, a folder with a trailing '/'), for the message.
+std::vector<std::string> Entries(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    names.push_back(e.path().filename().string() + (e.is_directory(ec) ? "/" : ""));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+void CheckOutputFolder(const std::string& dir, const OutputMarker& marker) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec)) {
+    throw InputError(dir, "is a file: expected a folder (new, empty, or holding an earlier hoilcd " + marker.what + ")");
+  }
+  if (fs::is_empty(dir, ec) || IsEarlierOutput(dir, marker)) return;
+  throw InputError(dir, "exists, is not empty (it holds " + JoinFileList(Entries(dir)) +
+                            ") and holds no earlier hoilcd " + marker.what + " (" + marker.file +
+                            "); refusing to overwrite files in it: choose a new or empty folder");
+}
+
+void CreateOutputFolder(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "cannot create the folder (" + ec.message() + ")");
+}
+
+}  // namespace hoilcd
