@@ -524,39 +524,9 @@ AssetBuilder LimbPart(const std::string& part, const std::string& parent, const 
   return limb;
 }
 
-std::vector<AssetBuilder> PersonParts() {
-  const RestSkeleton rest;
+// The head: skin with hair over the crown and back, nose and ears, the face's COCO keypoints.
+AssetBuilder HeadPart(const RestSkeleton& rest) {
   const Mat3 I = Mat3::Identity();
-  std::vector<AssetBuilder> parts;
-
-  AssetBuilder pelvis = Part("pelvis", "", rest.pelvis);
-  pelvis.Add(Ellipsoid(rest.pelvis + Vec3(-0.01, 0, 0), I, Vec3(0.115, 0.15, 0.10), 24, 12),
-             pelvis.Material(kClothingLower));
-  parts.push_back(pelvis);
-
-  AssetBuilder torso = Part("torso", "pelvis", rest.pelvis);
-  const TorsoSection sections[] = {
-      {0.02, 0.145, 0.100, -0.01},  {0.08, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
-      {0.26, 0.150, 0.110, 0.01},   {0.36, 0.162, 0.112, 0.01},   {0.42, 0.163, 0.100, 0.00},
-      {0.46, 0.155, 0.088, -0.005}, {0.485, 0.125, 0.075, -0.01}, {0.505, 0.075, 0.062, -0.01}};
-  std::vector<Ring> rings;
-  for (const TorsoSection& s : sections) {
-    rings.push_back({rest.pelvis + Vec3(s.forward, 0, s.height), Vec3(0, s.half_width, 0),
-                     Vec3(s.half_depth, 0, 0)});
-  }
-  const int upper = torso.Material(kClothingUpper);
-  torso.Add(Loft(rings, rest.pelvis + Vec3(-0.01, 0, -0.01), rest.pelvis + Vec3(-0.01, 0, 0.515), 32, 2.6),
-            upper);
-  for (int side = 0; side < 2; ++side) {
-    torso.Add(Ellipsoid(rest.shoulder[side] + Vec3(0, 0, -0.01), I, Vec3(0.06, 0.05, 0.055), 16, 10), upper);
-    torso.keypoints.push_back({side == 0 ? "left_shoulder" : "right_shoulder", rest.shoulder[side]});
-  }
-  parts.push_back(torso);
-
-  AssetBuilder neck = Part("neck", "torso", rest.neck_base);
-  neck.Add(Capsule(rest.neck_base, rest.neck_top, 0.062, 0.056, 20, 4), neck.Material(kSkin));
-  parts.push_back(neck);
-
   AssetBuilder head = Part("head", "neck", rest.neck_top);
   const int skin = head.Material(kSkin);
   const int hair = head.Material(kHair);
@@ -579,8 +549,13 @@ std::vector<AssetBuilder> PersonParts() {
                     {"right_eye", c + Vec3(0.075, -0.035, 0.025)},
                     {"left_ear", c + Vec3(-0.005, 0.075, -0.005)},
                     {"right_ear", c + Vec3(-0.005, -0.075, -0.005)}};
-  parts.push_back(head);
+  return head;
+}
 
+// Arms, hands, legs and feet of both sides, appended to *parts.
+void AddLimbParts(const RestSkeleton& rest, std::vector<AssetBuilder>* parts_out) {
+  std::vector<AssetBuilder>& parts = *parts_out;
+  const Mat3 I = Mat3::Identity();
   for (int side = 0; side < 2; ++side) {
     const std::string s = side == 0 ? "left" : "right";
     const double sign = side == 0 ? 1.0 : -1.0;
@@ -614,6 +589,44 @@ std::vector<AssetBuilder> PersonParts() {
     foot.contacts.push_back({"floor", Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.0)});
     parts.push_back(foot);
   }
+}
+
+std::vector<AssetBuilder> PersonParts() {
+  const RestSkeleton rest;
+  const Mat3 I = Mat3::Identity();
+  std::vector<AssetBuilder> parts;
+
+  AssetBuilder pelvis = Part("pelvis", "", rest.pelvis);
+  pelvis.Add(Ellipsoid(rest.pelvis + Vec3(-0.01, 0, 0), I, Vec3(0.115, 0.15, 0.10), 24, 12),
+             pelvis.Material(kClothingLower));
+  parts.push_back(pelvis);
+
+  AssetBuilder torso = Part("torso", "pelvis", rest.pelvis);
+  const TorsoSection sections[] = {
+      {0.02, 0.145, 0.100, -0.01},  {0.08, 0.155, 0.105, 0.00},   {0.15, 0.145, 0.100, 0.00},
+      {0.26, 0.150, 0.110, 0.01},   {0.36, 0.162, 0.112, 0.01},   {0.42, 0.163, 0.100, 0.00},
+      {0.46, 0.155, 0.088, -0.005}, {0.485, 0.125, 0.075, -0.01}, {0.505, 0.075, 0.062, -0.01}};
+  std::vector<Ring> rings;
+  for (const TorsoSection& s : sections) {
+    rings.push_back({rest.pelvis + Vec3(s.forward, 0, s.height), Vec3(0, s.half_width, 0),
+                     Vec3(s.half_depth, 0, 0)});
+  }
+  const int upper = torso.Material(kClothingUpper);
+  torso.Add(Loft(rings, rest.pelvis + Vec3(-0.01, 0, -0.01), rest.pelvis + Vec3(-0.01, 0, 0.515), 32, 2.6),
+            upper);
+  for (int side = 0; side < 2; ++side) {
+    torso.Add(Ellipsoid(rest.shoulder[side] + Vec3(0, 0, -0.01), I, Vec3(0.06, 0.05, 0.055), 16, 10), upper);
+    torso.keypoints.push_back({side == 0 ? "left_shoulder" : "right_shoulder", rest.shoulder[side]});
+  }
+  parts.push_back(torso);
+
+  AssetBuilder neck = Part("neck", "torso", rest.neck_base);
+  neck.Add(Capsule(rest.neck_base, rest.neck_top, 0.062, 0.056, 20, 4), neck.Material(kSkin));
+  parts.push_back(neck);
+
+  parts.push_back(HeadPart(rest));
+
+  AddLimbParts(rest, &parts);
   return parts;
 }
 
@@ -761,86 +774,73 @@ int AddBufferView(tinygltf::Model& model, const void* data, size_t size, int tar
   return static_cast<int>(model.bufferViews.size() - 1);
 }
 
-tinygltf::Model ToGltf(const AssetBuilder& asset) {
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "hoilcd make_assets";
-  model.buffers.emplace_back();
-  tinygltf::Mesh mesh;
-  mesh.name = asset.name;
-  for (size_t m = 0; m < asset.materials.size(); ++m) {
-    const ThermalSpec& spec = asset.materials[m];
-    tinygltf::Material material;
-    material.name = spec.region;
-    material.pbrMetallicRoughness.baseColorFactor.assign(spec.base_color.begin(),
-                                                         spec.base_color.end());
-    material.pbrMetallicRoughness.metallicFactor = spec.metallic;
-    material.pbrMetallicRoughness.roughnessFactor = spec.specular ? 0.2 : 0.8;
-    material.extras = tinygltf::Value(
-        tinygltf::Value::Object{{"temperature_c", tinygltf::Value(spec.temperature_c)},
-                                {"emissivity", tinygltf::Value(spec.emissivity)},
-                                {"specular", tinygltf::Value(spec.specular)},
-                                {"region", tinygltf::Value(spec.region)}});
-    model.materials.push_back(material);
+// A material with its thermal properties in extras.
+tinygltf::Material GltfMaterial(const ThermalSpec& spec) {
+  tinygltf::Material material;
+  material.name = spec.region;
+  material.pbrMetallicRoughness.baseColorFactor.assign(spec.base_color.begin(), spec.base_color.end());
+  material.pbrMetallicRoughness.metallicFactor = spec.metallic;
+  material.pbrMetallicRoughness.roughnessFactor = spec.specular ? 0.2 : 0.8;
+  material.extras = tinygltf::Value(
+      tinygltf::Value::Object{{"temperature_c", tinygltf::Value(spec.temperature_c)},
+                              {"emissivity", tinygltf::Value(spec.emissivity)},
+                              {"specular", tinygltf::Value(spec.specular)},
+                              {"region", tinygltf::Value(spec.region)}});
+  return material;
+}
 
-    const Shape& part = asset.parts[m];
-    if (part.indices.empty()) continue;
-    std::vector<float> positions;
-    std::vector<double> lo(3, 1e9);
-    std::vector<double> hi(3, -1e9);
-    for (const Vec3& p_hoilcd : part.positions) {
-      const float gltf[3] = {static_cast<float>(p_hoilcd.y()), static_cast<float>(p_hoilcd.z()),
-                             static_cast<float>(p_hoilcd.x())};
-      for (int k = 0; k < 3; ++k) {
-        positions.push_back(gltf[k]);
-        lo[static_cast<size_t>(k)] = std::min(lo[static_cast<size_t>(k)], double{gltf[k]});
-        hi[static_cast<size_t>(k)] = std::max(hi[static_cast<size_t>(k)], double{gltf[k]});
-      }
+// One part's triangles as a primitive of material `material`: positions (hoilcd x, y, z to
+// glTF's z, x, y) and indices (16-bit when they fit) appended to the model's buffer.
+tinygltf::Primitive GltfPrimitive(const Shape& part, int material, tinygltf::Model* model) {
+  std::vector<float> positions;
+  std::vector<double> lo(3, 1e9);
+  std::vector<double> hi(3, -1e9);
+  for (const Vec3& p_hoilcd : part.positions) {
+    const float gltf[3] = {static_cast<float>(p_hoilcd.y()), static_cast<float>(p_hoilcd.z()),
+                           static_cast<float>(p_hoilcd.x())};
+    for (int k = 0; k < 3; ++k) {
+      positions.push_back(gltf[k]);
+      lo[static_cast<size_t>(k)] = std::min(lo[static_cast<size_t>(k)], double{gltf[k]});
+      hi[static_cast<size_t>(k)] = std::max(hi[static_cast<size_t>(k)], double{gltf[k]});
     }
-    tinygltf::Accessor position_accessor;
-    position_accessor.bufferView = AddBufferView(
-        model, positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-    position_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    position_accessor.type = TINYGLTF_TYPE_VEC3;
-    position_accessor.count = part.positions.size();
-    position_accessor.minValues = lo;
-    position_accessor.maxValues = hi;
-    model.accessors.push_back(position_accessor);
-    const int position_index = static_cast<int>(model.accessors.size() - 1);
-
-    tinygltf::Accessor index_accessor;
-    if (part.positions.size() < 65536) {
-      const std::vector<uint16_t> indices(part.indices.begin(), part.indices.end());
-      index_accessor.bufferView = AddBufferView(model, indices.data(), indices.size() * 2,
-                                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-      index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-    } else {
-      index_accessor.bufferView = AddBufferView(model, part.indices.data(), part.indices.size() * 4,
-                                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-      index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    }
-    index_accessor.type = TINYGLTF_TYPE_SCALAR;
-    index_accessor.count = part.indices.size();
-    model.accessors.push_back(index_accessor);
-
-    tinygltf::Primitive primitive;
-    primitive.attributes["POSITION"] = position_index;
-    primitive.indices = static_cast<int>(model.accessors.size() - 1);
-    primitive.material = static_cast<int>(m);
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    mesh.primitives.push_back(primitive);
   }
-  model.buffers[0].name = asset.name;
-  model.meshes.push_back(mesh);
+  tinygltf::Accessor position_accessor;
+  position_accessor.bufferView = AddBufferView(*model, positions.data(), positions.size() * sizeof(float),
+                                               TINYGLTF_TARGET_ARRAY_BUFFER);
+  position_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  position_accessor.type = TINYGLTF_TYPE_VEC3;
+  position_accessor.count = part.positions.size();
+  position_accessor.minValues = lo;
+  position_accessor.maxValues = hi;
+  model->accessors.push_back(position_accessor);
+  const int position_index = static_cast<int>(model->accessors.size() - 1);
 
-  tinygltf::Node node;
-  node.name = asset.name;
-  node.mesh = 0;
-  model.nodes.push_back(node);
+  tinygltf::Accessor index_accessor;
+  if (part.positions.size() < 65536) {
+    const std::vector<uint16_t> indices(part.indices.begin(), part.indices.end());
+    index_accessor.bufferView = AddBufferView(*model, indices.data(), indices.size() * 2,
+                                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  } else {
+    index_accessor.bufferView = AddBufferView(*model, part.indices.data(), part.indices.size() * 4,
+                                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  }
+  index_accessor.type = TINYGLTF_TYPE_SCALAR;
+  index_accessor.count = part.indices.size();
+  model->accessors.push_back(index_accessor);
 
-  tinygltf::Scene scene;
-  scene.name = asset.name;
-  scene.nodes.push_back(0);
+  tinygltf::Primitive primitive;
+  primitive.attributes["POSITION"] = position_index;
+  primitive.indices = static_cast<int>(model->accessors.size() - 1);
+  primitive.material = material;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  return primitive;
+}
+
+// The scene's extras: class, posture, contact points, and for a body part its name, parent,
+// joint and keypoints.
+tinygltf::Value SceneExtras(const AssetBuilder& asset) {
   tinygltf::Value::Object extras{{"class", tinygltf::Value(asset.class_name)}};
   if (!asset.posture.empty()) extras["posture"] = tinygltf::Value(asset.posture);
   auto points = [](const std::vector<Contact>& list) {
@@ -858,7 +858,33 @@ tinygltf::Model ToGltf(const AssetBuilder& asset) {
     extras["joint"] = Vec3Value(Rounded(asset.joint));
     if (!asset.keypoints.empty()) extras["keypoints"] = points(asset.keypoints);
   }
-  scene.extras = tinygltf::Value(extras);
+  return tinygltf::Value(extras);
+}
+
+tinygltf::Model ToGltf(const AssetBuilder& asset) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "hoilcd make_assets";
+  model.buffers.emplace_back();
+  tinygltf::Mesh mesh;
+  mesh.name = asset.name;
+  for (size_t m = 0; m < asset.materials.size(); ++m) {
+    model.materials.push_back(GltfMaterial(asset.materials[m]));
+    if (asset.parts[m].indices.empty()) continue;
+    mesh.primitives.push_back(GltfPrimitive(asset.parts[m], static_cast<int>(m), &model));
+  }
+  model.buffers[0].name = asset.name;
+  model.meshes.push_back(mesh);
+
+  tinygltf::Node node;
+  node.name = asset.name;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+
+  tinygltf::Scene scene;
+  scene.name = asset.name;
+  scene.nodes.push_back(0);
+  scene.extras = SceneExtras(asset);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   return model;
