@@ -224,80 +224,86 @@ void PointGrid::BuildLattice() {
   for (int slot = 0; slot < count_; ++slot) slot_of_id[ids_[slot]] = slot;
   for (int y = 0; y < lattice_ny_; ++y) {
     for (int x = 0; x < lattice_nx_; ++x) {
-      const float x0 = lattice_origin_x_ + x * lattice_px_ - slack;
-      const float x1 = lattice_origin_x_ + (x + 1) * lattice_px_ + slack;
-      const float y0 = lattice_origin_y_ + y * lattice_px_ - slack;
-      const float y1 = lattice_origin_y_ + (y + 1) * lattice_px_ + slack;
-      // Every position in the box is within `reach` of the point nearest to the box centre, so
-      // its nearest point lies within `reach` of the box: those are the candidates.
-      const Point2 centre(0.5f * (x0 + x1), 0.5f * (y0 + y1));
-      const int anchor_slot = slot_of_id[NearestInGrid(centre)];
-      const double far_x = std::max(std::abs(xs_[anchor_slot] - x0), std::abs(xs_[anchor_slot] - x1));
-      const double far_y = std::max(std::abs(ys_[anchor_slot] - y0), std::abs(ys_[anchor_slot] - y1));
-      const double reach = std::sqrt(far_x * far_x + far_y * far_y) * (1 + 1e-5) + slack;
-      const auto grid_x = [&](double v) {
-        return static_cast<int>(std::clamp((v - origin_x_) * inv_cell_, 0.0, nx_ - 1.0));
-      };
-      const auto grid_y = [&](double v) {
-        return static_cast<int>(std::clamp((v - origin_y_) * inv_cell_, 0.0, ny_ - 1.0));
-      };
-      LatticeCell& cell = lattice_[static_cast<size_t>(y) * lattice_nx_ + x];
-      const auto crowded = [&cell] { cell.id[0] = -1; };
-      // A cell far from every point (an outlier's margin) would gather many candidates: the
-      // grid answers its queries instead, which keeps the build linear in the point count.
-      if (reach > kMaxReachCells * lattice_px_) {
-        crowded();
-        continue;
-      }
-      const int gx0 = grid_x(x0 - reach - cell_px_), gx1 = grid_x(x1 + reach + cell_px_);
-      const int gy0 = grid_y(y0 - reach - cell_px_), gy1 = grid_y(y1 + reach + cell_px_);
-      near.clear();
-      for (int gy = gy0; gy <= gy1; ++gy) {
-        for (int k = cell_start_[Slot(gx0, gy)], end = cell_start_[Slot(gx1, gy) + 1]; k < end; ++k) {
-          const double dx = std::max({0.0, x0 - static_cast<double>(xs_[k]), xs_[k] - static_cast<double>(x1)});
-          const double dy = std::max({0.0, y0 - static_cast<double>(ys_[k]), ys_[k] - static_cast<double>(y1)});
-          if (dx * dx + dy * dy <= reach * reach) near.push_back(k);
-        }
-      }
-      // A point is no candidate if another one is nearer to all four corners of the box, hence
-      // (the set where one point is nearer than another being a half-plane) to all of it. The
-      // margin keeps float distances at a query ordered the same way.
-      const double corners[4][2] = {{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}};
-      const auto dominates = [&](int k, int j) {
-        for (const auto& c : corners) {
-          const double kx = xs_[k] - c[0], ky = ys_[k] - c[1];
-          const double jx = xs_[j] - c[0], jy = ys_[j] - c[1];
-          const double dk = kx * kx + ky * ky, dj = jx * jx + jy * jy;
-          if (!(dk < dj * (1 - 1e-4) - 1e-6)) return false;
-        }
-        return true;
-      };
-      if (near.size() > kMaxNearCandidates) {
-        crowded();
-        continue;
-      }
-      int slots[kLatticeWidth], kept = 0;
-      bool too_many = false;
-      for (int j : near) {
-        bool dominated = false;
-        for (int k : near) dominated = dominated || (k != j && dominates(k, j));
-        if (dominated) continue;
-        if (kept == kLatticeWidth) {
-          too_many = true;
-          break;
-        }
-        slots[kept++] = j;
-      }
-      if (too_many) {
-        crowded();
-        continue;
-      }
-      for (int c = 0; c < kLatticeWidth; ++c) {  // unused slots repeat the first
-        const int slot = slots[c < kept ? c : 0];
-        cell.x[c] = xs_[slot], cell.y[c] = ys_[slot], cell.id[c] = ids_[slot];
-      }
+      lattice_[static_cast<size_t>(y) * lattice_nx_ + x] = LatticeCellAt(x, y, slack, slot_of_id, &near);
     }
   }
+}
+
+PointGrid::LatticeCell PointGrid::LatticeCellAt(int x, int y, float slack, const std::vector<int>& slot_of_id,
+                                                std::vector<int>* near) const {
+  const float x0 = lattice_origin_x_ + x * lattice_px_ - slack;
+  const float x1 = lattice_origin_x_ + (x + 1) * lattice_px_ + slack;
+  const float y0 = lattice_origin_y_ + y * lattice_px_ - slack;
+  const float y1 = lattice_origin_y_ + (y + 1) * lattice_px_ + slack;
+  // Every position in the box is within `reach` of the point nearest to the box centre, so
+  // its nearest point lies within `reach` of the box: those are the candidates.
+  const Point2 centre(0.5f * (x0 + x1), 0.5f * (y0 + y1));
+  const int anchor_slot = slot_of_id[NearestInGrid(centre)];
+  const double far_x = std::max(std::abs(xs_[anchor_slot] - x0), std::abs(xs_[anchor_slot] - x1));
+  const double far_y = std::max(std::abs(ys_[anchor_slot] - y0), std::abs(ys_[anchor_slot] - y1));
+  const double reach = std::sqrt(far_x * far_x + far_y * far_y) * (1 + 1e-5) + slack;
+  const auto grid_x = [&](double v) {
+    return static_cast<int>(std::clamp((v - origin_x_) * inv_cell_, 0.0, nx_ - 1.0));
+  };
+  const auto grid_y = [&](double v) {
+    return static_cast<int>(std::clamp((v - origin_y_) * inv_cell_, 0.0, ny_ - 1.0));
+  };
+  LatticeCell cell{};
+  const auto crowded = [&cell] {
+    cell.id[0] = -1;
+    return cell;
+  };
+  // A cell far from every point (an outlier's margin) would gather many candidates: the
+  // grid answers its queries instead, which keeps the build linear in the point count.
+  if (reach > kMaxReachCells * lattice_px_) {
+    return crowded();
+  }
+  const int gx0 = grid_x(x0 - reach - cell_px_), gx1 = grid_x(x1 + reach + cell_px_);
+  const int gy0 = grid_y(y0 - reach - cell_px_), gy1 = grid_y(y1 + reach + cell_px_);
+  near->clear();
+  for (int gy = gy0; gy <= gy1; ++gy) {
+    for (int k = cell_start_[Slot(gx0, gy)], end = cell_start_[Slot(gx1, gy) + 1]; k < end; ++k) {
+      const double dx = std::max({0.0, x0 - static_cast<double>(xs_[k]), xs_[k] - static_cast<double>(x1)});
+      const double dy = std::max({0.0, y0 - static_cast<double>(ys_[k]), ys_[k] - static_cast<double>(y1)});
+      if (dx * dx + dy * dy <= reach * reach) near->push_back(k);
+    }
+  }
+  // A point is no candidate if another one is nearer to all four corners of the box, hence
+  // (the set where one point is nearer than another being a half-plane) to all of it. The
+  // margin keeps float distances at a query ordered the same way.
+  const double corners[4][2] = {{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}};
+  const auto dominates = [&](int k, int j) {
+    for (const auto& c : corners) {
+      const double kx = xs_[k] - c[0], ky = ys_[k] - c[1];
+      const double jx = xs_[j] - c[0], jy = ys_[j] - c[1];
+      const double dk = kx * kx + ky * ky, dj = jx * jx + jy * jy;
+      if (!(dk < dj * (1 - 1e-4) - 1e-6)) return false;
+    }
+    return true;
+  };
+  if (near->size() > kMaxNearCandidates) {
+    return crowded();
+  }
+  int slots[kLatticeWidth] = {}, kept = 0;  // kept >= 1: some point is nearest to each corner
+  bool too_many = false;
+  for (int j : *near) {
+    bool dominated = false;
+    for (int k : *near) dominated = dominated || (k != j && dominates(k, j));
+    if (dominated) continue;
+    if (kept == kLatticeWidth) {
+      too_many = true;
+      break;
+    }
+    slots[kept++] = j;
+  }
+  if (too_many) {
+    return crowded();
+  }
+  for (int c = 0; c < kLatticeWidth; ++c) {  // unused slots repeat the first
+    const int slot = slots[c < kept ? c : 0];
+    cell.x[c] = xs_[slot], cell.y[c] = ys_[slot], cell.id[c] = ids_[slot];
+  }
+  return cell;
 }
 
 int PointGrid::NearestOfAll(Point2 p) const {

@@ -53,6 +53,10 @@ class PointGrid {
   int NearestOfAll(Point2 p) const;
   // Fills the candidate lattice (after the grid is built; not for small sets).
   void BuildLattice();
+  // The candidates of lattice cell (x, y) whose box reaches `slack` px beyond its nominal one;
+  // slot_of_id maps an original index to its slot; near is scratch.
+  struct LatticeCell;
+  LatticeCell LatticeCellAt(int x, int y, float slack, const std::vector<int>& slot_of_id, std::vector<int>* near) const;
   // (squared distance bits, original index) of stored point k from p: the bits of a
   // non-negative float order like the float, so the least key is the nearest point with ties
   // going to the lower index.
