@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "command.h"
+#include "hoilcd/core/util/parallel.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "shared.h"
 
@@ -20,9 +21,10 @@ int RenderCommand(const RenderArgs& args) {
   o.cancel = CancelOnInterrupt();
   const SequenceResult r = RenderSequence(scene, o);
   PrintWarnings(r.warnings);
-  std::printf("rendered %d frames (%d kept from an earlier run) into %s in %.1f s (%.1f frames/s)\n",
+  const int threads = ResolveThreadCount(o.threads);
+  std::printf("rendered %d frames (%d kept from an earlier run) into %s in %.1f s (%.1f frames/s, %d thread%s)\n",
               r.frames_rendered, r.frames_reused, o.output_dir.c_str(), r.seconds,
-              r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0);
+              r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0, threads, threads == 1 ? "" : "s");
   // The encoder runs on a writer thread while later frames render: its time is not all added.
   std::printf("thermal.mp4: %.2f s of work, %.1f %% of the render's wall time (its encoding runs beside the rendering)\n",
               r.video_seconds, r.seconds > 0 ? 100.0 * r.video_seconds / r.seconds : 0.0);

@@ -27,7 +27,7 @@ extern "C" void OnInterrupt(int) {
 }  // namespace
 
 void AddThreadsFlag(CLI::App* cmd, int* threads) {
-  cmd->add_option("--threads", *threads, "worker threads (0: every core)")->check(CLI::Range(0, kMaxThreadsFlag));
+  cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")->check(CLI::Range(0, kMaxThreadsFlag));
 }
 
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {

@@ -15,7 +15,7 @@
 
 namespace hoilcd {
 
-// --threads N (0: every core) on `cmd`, into `threads`.
+// --threads N (0: the CPUs this process may use) on `cmd`, into `threads`.
 void AddThreadsFlag(CLI::App* cmd, int* threads);
 
 // SCENE, --set KEY=VALUE and --seed.

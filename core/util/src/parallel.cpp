@@ -1,10 +1,11 @@
 #include "hoilcd/core/util/parallel.h"
 
+#include "hoilcd/core/util/cpus.h"
+
 #include <algorithm>
 #include <map>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include <opencv2/core/utility.hpp>
 #include <tbb/blocked_range.h>
@@ -38,8 +39,9 @@ tbb::task_arena& ArenaFor(int threads) {
 
 int ResolveThreadCount(int requested) {
   if (requested > 0) return std::min(requested, kMaxThreads);
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw == 0 ? 1 : static_cast<int>(std::min<unsigned>(hw, kMaxThreads));
+  // Read once: the affinity and quota of a run do not change while it runs.
+  static const int available = AvailableCpus();
+  return std::min(available, kMaxThreads);
 }
 
 void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,

@@ -80,7 +80,7 @@ const OptionTable<SequenceOptions>& SequenceOptions::Table() {
           .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "an output folder is required" : ""; })
           .Add("frames", &O::frames, 0, "frames", OptionRange().AtLeast(0),
                "render only the first N frames (0: the scene's count)")
-          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: every core)")
+          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: the CPUs this process may use)")
           .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
                "the manifest is rewritten this often (resume granularity)")
           .Add("outputs", &O::outputs, "thermal,radiometric,exr,video,persons", {},

@@ -12,7 +12,7 @@ const OptionTable<RenderOptions>& RenderOptions::Table() {
           .Add("edge_samples_per_axis", &O::edge_samples_per_axis, 2, "", OptionRange::Closed(1, 8),
                "n x n stratified samples in an edge pixel")
           .Add("specular_reflections", &O::specular_reflections, true, "one traced reflection on specular surfaces")
-          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: every core)")
+          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: the CPUs this process may use)")
           .CodeOnly();
   return table;
 }

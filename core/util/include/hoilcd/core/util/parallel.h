@@ -13,7 +13,8 @@ namespace hoilcd {
 // from a thread count can overflow.
 constexpr int kMaxThreads = 256;
 
-// 0 (or less) means "every core"; otherwise the number asked for, at most kMaxThreads.
+// 0 (or less) means the CPUs this process may use (AvailableCpus, cpus.h); otherwise the number
+// asked for; at most kMaxThreads.
 int ResolveThreadCount(int requested);
 
 // Calls fn(begin, end, worker) for disjoint chunks [begin, end) covering [0, count).

@@ -19,7 +19,7 @@ namespace hoilcd {
 struct SequenceOptions {
   std::string output_dir;        // dataset folder (created if missing)
   int frames;                    // frames: render only the first N (0 = the scene's count)
-  int threads;                   // worker threads (0 = every core)
+  int threads;                   // worker threads (0 = the CPUs this process may use)
   int checkpoint_every_frames;   // frames: the manifest is rewritten this often (resume granularity)
   std::string outputs;           // comma-separated: thermal, radiometric, exr, video, persons (default all)
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame; not in the table

@@ -12,7 +12,7 @@ struct RenderOptions {
   bool edge_supersampling;    // supersample pixels on object/material/depth edges
   int edge_samples_per_axis;  // n×n stratified samples in an edge pixel
   bool specular_reflections;  // one traced reflection on specular surfaces
-  int threads;                // 0 = every core (not a scene value)
+  int threads;                // 0 = the CPUs this process may use (not a scene value)
 
   RenderOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /camera), unit, default, range, description.
