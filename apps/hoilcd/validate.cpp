@@ -5,7 +5,7 @@
 
 #include "command.h"
 #include "hoilcd/core/util/error.h"
-#include "hoilcd/sim/scene/scene_options.h"
+#include "hoilcd/sim/output/sequence.h"
 #include "shared.h"
 
 namespace hoilcd {
@@ -19,8 +19,7 @@ Command AddValidateCommand(CLI::App* app) {
             std::ifstream in(args->path);
             if (!in) throw InputError(args->path, "cannot open the scene file (does it exist and is it readable?)");
             const Scene scene = LoadSceneArgs(*args);
-            SensorOptionsFromScene(scene);  // the camera's cross-field checks (the schema checks each field)
-            VideoOptionsFromScene(scene);   // frame rate and size that thermal.mp4 can carry
+            PrintWarnings(CheckSceneRenders(scene));  // what render checks before its first frame
             std::printf("%s: valid scene '%s' (%d frames at %g Hz, %zu tables, hash %s)\n", args->path.c_str(),
                         scene.name.c_str(), scene.frames, scene.frame_rate_hz, scene.tables.size(),
                         scene.hash.c_str());

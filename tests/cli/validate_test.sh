@@ -63,3 +63,22 @@ fi
 grep -q "loop threshold must be finite" "$work/out" || fail "infinite --loop-threshold not explained: $(cat "$work/out")"
 [ ! -e "$work/runs" ] || fail "a refused run rendered"
 echo "1 passed, 0 failed"
+
+# validate runs the checks render runs before its first frame: what one refuses, so does the
+# other, with the same message (the frame rate against the robot's integration rate, seats too
+# close for a person, a robot whose drift runs it into the furniture, a corner too tight).
+for sets in "frame_rate_hz=201" "furniture.seat_spacing_4_m=0.2" "robot.navigation=odometry odometry.error_scale=8" \
+            "route.corner_radius_m=0.05"; do
+  flags=()
+  for set in $sets; do flags+=(--set "$set"); done
+  if "$hoilcd" validate "$source_dir/scenes/paper_room.json" "${flags[@]}" > "$work/validate.out" 2>&1; then
+    fail "validate passed $sets: $(cat "$work/validate.out")"
+  fi
+  if "$hoilcd" render "$source_dir/scenes/paper_room.json" -o "$work/r" --frames 1 "${flags[@]}" > "$work/render.out" 2>&1; then
+    fail "render passed $sets"
+  fi
+  diff <(grep error "$work/validate.out") <(grep error "$work/render.out") > /dev/null \
+    || fail "validate and render refuse $sets differently: $(cat "$work/validate.out" "$work/render.out")"
+done
+grep -q "/robot/integration_rate_hz" <("$hoilcd" validate "$source_dir/scenes/paper_room.json" --set frame_rate_hz=201 2>&1) \
+  || fail "the frame-rate refusal does not name /robot/integration_rate_hz"

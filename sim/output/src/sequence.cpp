@@ -115,6 +115,18 @@ namespace {
 // One call of RenderSequence, in named steps: OpenOrResume, then per frame ReuseFrame or
 // RenderFrame + WriteFrame (with a Checkpoint every few frames), then Finish. Frames are encoded
 // and written by a FrameWriter on every core while the next ones render.
+// What every render sets up (and checks) after the world and the robot's run, before its first
+// frame: the crowd's plan over the run, and the camera's, video's and renderer's options.
+struct FrameSetUp {
+  SensorOptions sensor;
+  VideoOptions video;
+  RenderOptions render;
+};
+FrameSetUp SetUpFrames(const Scene& scene, World* world, const RobotRun& run, int threads) {
+  world->PlanCrowd(run.samples);
+  return {SensorOptionsFromScene(scene), VideoOptionsFromScene(scene), RenderOptionsFromScene(scene, threads)};
+}
+
 class SequenceRender {
  public:
   SequenceRender(const Scene& scene, const SequenceOptions& options)
@@ -128,13 +140,13 @@ class SequenceRender {
         intrinsics_(IntrinsicsFromScene(scene)),
         run_(SimulateSceneRobot(scene, world_.obstacles())) {
     HOILCD_CHECK(static_cast<int>(run_.samples.size()) >= frames_);
-    world_.PlanCrowd(run_.samples);
-    sensor_options_ = SensorOptionsFromScene(scene);
-    video_options_ = VideoOptionsFromScene(scene);
+    FrameSetUp set_up = SetUpFrames(scene, &world_, run_, options.threads);
+    sensor_options_ = set_up.sensor;
+    video_options_ = set_up.video;
     // thermal.mp4 is encoded when it is an output, or to make video mode's thermal PNGs.
     encode_video_ = outputs_.video || (video_options_.enabled && outputs_.thermal);
     sensor_ = NewSensor();
-    renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, RenderOptionsFromScene(scene, options.threads));
+    renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, set_up.render);
   }
 
   SequenceResult Run() {
@@ -416,6 +428,17 @@ class SequenceRender {
 };
 
 }  // namespace
+
+std::vector<std::string> CheckSceneRenders(const Scene& scene) {
+  // SequenceRender's set-up, in its order: the world, the robot's run among its obstacles, then
+  // SetUpFrames.
+  const BandRadianceTable table;
+  World world(scene, table);
+  IntrinsicsFromScene(scene);
+  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
+  SetUpFrames(scene, &world, run, 1);
+  return world.warnings();
+}
 
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("render", problem);

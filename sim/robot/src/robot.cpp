@@ -598,7 +598,10 @@ void CheckRobotInputs(const TricycleOptions& robot, const RouteOptions& route,
                                  "max_steer_deg " + FormatNumber(robot.max_steer_deg));
   }
   if (!(frame_rate_hz > 0 && frame_rate_hz <= robot.integration_rate_hz)) {
-    throw InputError("frame_rate_hz", "must be positive and at most integration_rate_hz");
+    throw InputError("frame_rate_hz", "must be positive and at most /robot/integration_rate_hz, the rate the robot's "
+                                      "motion is integrated at (" + FormatNumber(robot.integration_rate_hz) +
+                                      " Hz here, 200 by default): lower the frame rate or raise "
+                                      "robot.integration_rate_hz");
   }
   if (route.corner_radius_m < robot.MinTurnRadiusM()) {
     throw InputError("route", "corner_radius_m " + FormatNumber(route.corner_radius_m) +

@@ -52,6 +52,12 @@ class RenderInterrupted : public std::runtime_error {
 // dataset cache never mixes or reuses frames of another simulator.
 std::string SimulatorVersion();
 
+// Everything a render checks before its first frame (the world and its furniture and people, the
+// robot's run among them, the crowd's plan, the camera's, video's and renderer's options), without
+// rendering: throws the InputError a render would. Returns the warnings a render would print.
+// `hoilcd validate` runs it, so a scene it passes renders.
+std::vector<std::string> CheckSceneRenders(const Scene& scene);
+
 // Throws InputError when the folder holds a dataset of another scene, seed or simulator version.
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options);
 
