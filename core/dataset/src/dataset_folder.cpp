@@ -73,6 +73,14 @@ std::vector<std::string> ForeignFiles(const std::string& dir) {
   return foreign;
 }
 
+std::vector<std::string> NonTempFiles(const std::string& dir) {
+  std::vector<std::string> files;
+  for (const std::string& file : FilesUnder(dir)) {
+    if (!IsDatasetTempFileName(file)) files.push_back(file);
+  }
+  return files;
+}
+
 void RemoveDatasetTempFiles(const std::string& dir) {
   for (const std::string& file : FilesUnder(dir)) {
     if (IsDatasetTempFileName(file)) Remove(fs::path(dir) / file);

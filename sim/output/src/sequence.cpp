@@ -227,10 +227,12 @@ class SequenceRender {
                                    "delete this one");
       }
       manifest_ = old;
-    } else if (const std::vector<std::string> foreign = ForeignFiles(dir_); !foreign.empty()) {
-      // Only temp files of a run killed before its first manifest may be there.
-      throw InputError(dir_, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(foreign) +
-                                 "); refusing to write into it");
+    } else if (const std::vector<std::string> files = NonTempFiles(dir_); !files.empty()) {
+      // Only temp files of a run killed before its first manifest may be there: any other file,
+      // even one named like a dataset file (scene.json, poses.csv), is the user's.
+      throw InputError(dir_, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(files) +
+                                 " and no manifest.json); refusing to overwrite files in it: choose a new or "
+                                 "empty folder");
     }
     fs::create_directories(dir_, ec);
     if (ec) throw InputError(dir_, "cannot create the output folder (" + ec.message() + ")");

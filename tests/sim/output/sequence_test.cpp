@@ -224,6 +224,25 @@ TEST_F(Sequence, RefusesToWriteIntoAFolderItDidNotMake) {
   EXPECT_THROW(RenderSequence(PaperRoom({"crowd.people_per_table=2"}), options), InputError);
 }
 
+TEST_F(Sequence, RefusesAFolderHoldingTheUsersFilesNamedLikeDatasetFilesAndLeavesThem) {
+  const std::string dir = TempDir("named_like_ours");
+  fs::create_directories(dir);
+  WriteFileAtomic(dir + "/scene.json", "{\"my\": \"scene\"}");
+  WriteFileAtomic(dir + "/poses.csv", "my,poses\n");
+  SequenceOptions options;
+  options.output_dir = dir;
+  options.frames = 1;
+  try {
+    RenderSequence(PaperRoom(), options);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("poses.csv and scene.json"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ReadFileBytes(dir + "/scene.json"), "{\"my\": \"scene\"}");
+  EXPECT_EQ(ReadFileBytes(dir + "/poses.csv"), "my,poses\n");
+  EXPECT_FALSE(fs::exists(dir + "/manifest.json"));
+}
+
 TEST_F(Sequence, GroundTruthFilesDescribeTheFrames) {
   const std::string dir = TempDir("gt");
   Render(PaperRoom(), dir, 3, 0);
@@ -299,7 +318,7 @@ TEST_F(Sequence, RefusalNamesTheFilesThatAreNotItsOwn) {
     RenderSequence(PaperRoom(), options);
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("it holds thesis.tex)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("it holds thesis.tex and no manifest.json)"), std::string::npos) << e.what();
   }
 }
 

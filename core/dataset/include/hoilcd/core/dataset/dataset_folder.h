@@ -19,6 +19,11 @@ bool IsDatasetTempFileName(const std::string& relative_path);
 // files nor their temp files. Folders count only through what they hold. Missing dir: none.
 std::vector<std::string> ForeignFiles(const std::string& dir);
 
+// Relative paths (sorted) of entries under dir other than temp files: what a folder without
+// manifest.json holds that a render did not write (a render writes its manifest before any other
+// file, so even a file with a dataset file's name, such as scene.json, is the user's there).
+std::vector<std::string> NonTempFiles(const std::string& dir);
+
 // Deletes the temp files of a killed run (IsDatasetTempFileName) under dir, nothing else.
 void RemoveDatasetTempFiles(const std::string& dir);
 
