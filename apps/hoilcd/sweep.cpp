@@ -37,6 +37,7 @@ int MergeCommand(const SweepArgs& args) {
   } else if (!args.sets.empty()) {
     throw InputError("--set", "with --merge, --set is only checked against the shards when SCENE is given too");
   }
+  CheckSweepSummaryFolder(args.output);
   const SweepSummary summary = MergeSweep(args.merge, expected ? &*expected : nullptr);
   WriteSweepSummary(summary, args.output);
   PrintSweepSummary(summary, args.output);

@@ -1,5 +1,7 @@
 #include "hoilcd/bench/pipeline/sweep.h"
 
+#include "hoilcd/bench/report/output_folder.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -10,6 +12,7 @@
 #include <sstream>
 
 #include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -286,6 +289,8 @@ void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptio
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("sweep", problem);
   if (const std::string problem = plan.Check(); !problem.empty()) throw InputError("sweep", problem);
   HOILCD_CHECK_MSG(BenchSettingsJson(bench) == plan.bench, "the plan was made with other bench options");
+  // A folder of the user's is refused before any work: only an earlier sweep (sweep.json) is ours.
+  CheckOutputFolder(options.output_dir, {"sweep.json", {"plan", "shard", "runs"}, "sweep"});
   std::error_code ec;
   fs::create_directories(options.output_dir + "/runs", ec);
   if (ec) throw InputError(options.output_dir, "cannot create the sweep folder (" + ec.message() + ")");

@@ -10,7 +10,10 @@
 #include <sstream>
 
 #include "hoilcd/bench/report/chart.h"
+#include "hoilcd/bench/evaluation/json_number.h"
+#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/stats.h"
 #include "hoilcd/core/util/text.h"
@@ -280,10 +283,52 @@ std::string SweepSummary::FormatTable() const {
   return out.str();
 }
 
+nlohmann::json SweepSummary::ToJson() const {
+  nlohmann::json rows_json = nlohmann::json::array();
+  for (const SweepSummaryRow& row : rows) {
+    nlohmann::json settings = nlohmann::json::object(), stats = nlohmann::json::object();
+    for (const auto& [key, value] : row.settings) settings[key] = value;
+    for (size_t k = 0; k < row.stats.size() && k < SweepMetrics().size(); ++k) {
+      const SweepStats& s = row.stats[k];
+      stats[SweepMetrics()[k].key] = {{"count", s.count}, {"mean", JsonNumber(s.mean)}, {"std", JsonNumber(s.std)},
+                                      {"min", JsonNumber(s.min)}, {"max", JsonNumber(s.max)}};
+    }
+    rows_json.push_back({{"settings", settings}, {"method", row.method}, {"seeds", row.seeds}, {"stats", stats}});
+  }
+  return {{"plan", plan.ToJson()}, {"rows", rows_json}};
+}
+
+void CheckSweepSummaryFolder(const std::string& out_dir) {
+  std::error_code ec;
+  if (!fs::exists(out_dir, ec)) return;
+  if (!fs::is_directory(out_dir, ec)) throw InputError(out_dir, "is a file: expected a folder for the sweep's summary");
+  // Ours: a folder a sweep ran in, or one an earlier summary went to.
+  for (const OutputMarker& marker : {OutputMarker{"sweep.json", {"plan", "shard", "runs"}, "sweep"},
+                                     OutputMarker{"summary.json", {"plan", "rows"}, "sweep summary"}}) {
+    if (IsEarlierOutput(out_dir, marker)) return;
+  }
+  std::vector<std::string> taken;
+  for (const fs::directory_entry& e : fs::directory_iterator(out_dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name == "summary.csv" || name == "summary.md" || name == "summary.json" ||
+        (name.rfind("plot_", 0) == 0 && e.path().extension() == ".png")) {
+      taken.push_back(name);
+    }
+  }
+  std::sort(taken.begin(), taken.end());
+  if (!taken.empty()) {
+    throw InputError(out_dir, "holds " + JoinFileList(taken) +
+                                  ", which the sweep's summary would overwrite, and no earlier hoilcd sweep "
+                                  "(sweep.json or summary.json); refusing: choose another folder");
+  }
+}
+
 void WriteSweepSummary(const SweepSummary& summary, const std::string& out_dir) {
+  CheckSweepSummaryFolder(out_dir);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw InputError(out_dir, "cannot create the sweep folder (" + ec.message() + ")");
+  WriteFileAtomic(out_dir + "/summary.json", summary.ToJson().dump(2) + "\n");
   WriteFileAtomic(out_dir + "/summary.csv", summary.ToCsv());
   std::string md = summary.ToMarkdown();
 

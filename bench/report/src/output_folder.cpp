@@ -13,15 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool IsEarlierOutput(const std::string& dir, const OutputMarker& marker) {
-  std::error_code ec;
-  const std::string path = dir + "/" + marker.file;
-  if (!fs::is_regular_file(path, ec)) return false;
-  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(path), nullptr, /*allow_exceptions=*/false);
-  return json.is_object() && std::all_of(marker.keys.begin(), marker.keys.end(),
-                                         [&](const std::string& key) { return json.contains(key); });
-}
-
 // The folder's entries (sorted names, a folder with a trailing '/'), for the message.
 std::vector<std::string> Entries(const std::string& dir) {
   std::vector<std::string> names;
@@ -34,6 +25,15 @@ std::vector<std::string> Entries(const std::string& dir) {
 }
 
 }  // namespace
+
+bool IsEarlierOutput(const std::string& dir, const OutputMarker& marker) {
+  std::error_code ec;
+  const std::string path = dir + "/" + marker.file;
+  if (!fs::is_regular_file(path, ec)) return false;
+  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(path), nullptr, /*allow_exceptions=*/false);
+  return json.is_object() && std::all_of(marker.keys.begin(), marker.keys.end(),
+                                         [&](const std::string& key) { return json.contains(key); });
+}
 
 void CheckOutputFolder(const std::string& dir, const OutputMarker& marker) {
   std::error_code ec;

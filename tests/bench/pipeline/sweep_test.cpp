@@ -199,6 +199,48 @@ TEST_F(SweepEndToEnd, SummaryFilesAndOnePlotPerMetricAreWritten) {
   }
 }
 
+TEST_F(SweepEndToEnd, SummaryJsonHoldsThePlanAndEveryRowsStatistics) {
+  const SweepSummary merged = MergeSweep({Dir("shard0"), Dir("shard1")});
+  const std::string out = Dir("merged_json");
+  WriteSweepSummary(merged, out);
+  const nlohmann::json j = nlohmann::json::parse(ReadFileBytes(out + "/summary.json"));
+  EXPECT_EQ(j["plan"], merged.plan.ToJson());
+  ASSERT_EQ(j["rows"].size(), merged.rows.size());
+  EXPECT_EQ(j["rows"][0]["stats"]["mrr"]["mean"].get<double>(), merged.rows[0].stats[0].mean);
+}
+
+TEST_F(SweepEndToEnd, TheSummaryNeverOverwritesTheUsersFilesButReplacesItsOwn) {
+  const SweepSummary merged = MergeSweep({Dir("shard0"), Dir("shard1")});
+  // The cluster layout: the summary goes beside the shards' folders and logs.
+  const std::string beside = Dir("cluster");
+  fs::create_directories(beside + "/shard-0");
+  fs::create_directories(beside + "/logs");
+  WriteFileAtomic(beside + "/logs/merge.out", "log");
+  EXPECT_NO_THROW(WriteSweepSummary(merged, beside));
+  EXPECT_NO_THROW(WriteSweepSummary(merged, beside));  // an earlier summary (summary.json) is its own
+  // A summary.md of the user's, with no sweep there: refused, named, left as it was.
+  const std::string users = Dir("users_summary");
+  fs::create_directories(users);
+  WriteFileAtomic(users + "/summary.md", "my notes");
+  const std::string message = InputErrorOf([&] { WriteSweepSummary(merged, users); });
+  EXPECT_NE(message.find("summary.md"), std::string::npos) << message;
+  EXPECT_EQ(ReadFileBytes(users + "/summary.md"), "my notes");
+  EXPECT_FALSE(fs::exists(users + "/summary.csv"));
+}
+
+TEST_F(SweepEndToEnd, ASweepRefusesAFolderOfTheUsersBeforeAnyWork) {
+  const std::string users = Dir("users_folder");
+  fs::create_directories(users);
+  WriteFileAtomic(users + "/summary.csv", "mine");
+  SweepOptions options;
+  options.run.cache_dir = Dir("cache");
+  options.output_dir = users;
+  const std::string message = InputErrorOf([&] { RunSweep(*plan_, *bench_, options); });
+  EXPECT_NE(message.find("summary.csv"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(users + "/sweep.json"));
+  EXPECT_EQ(ReadFileBytes(users + "/summary.csv"), "mine");
+}
+
 TEST_F(SweepEndToEnd, RerunKeepsEveryFinishedRunInsteadOfRunningItAgain) {
   SweepOptions options;
   options.run.cache_dir = (*root_ / "cache").string();

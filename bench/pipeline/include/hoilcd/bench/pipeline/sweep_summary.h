@@ -3,6 +3,8 @@
 // and plots of each metric against each swept value.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -41,6 +43,7 @@ struct SweepSummary {
   std::string ToCsv() const;       // one row per combination and method: mean, std, min, max
   std::string ToMarkdown() const;  // the same as a table of "mean ± std [min, max]"
   std::string FormatTable() const; // terminal: mean ± std per metric
+  nlohmann::json ToJson() const;   // the plan and every row's statistics (summary.json)
 };
 
 // Reads the runs of sweep output folders (their sweep.json and each assigned run's report.json)
@@ -53,5 +56,11 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
 // least two values: metric against value, one line per method (and per value of the other axes),
 // the mean over seeds with a band from the minimum to the maximum.
 void WriteSweepSummary(const SweepSummary& summary, const std::string& out_dir);
+
+// The summary's folder may hold other things (the shards' folders, logs); InputError when it
+// holds a file the summary would overwrite (summary.csv, .md, .json, plot_*.png) but is neither
+// a sweep's folder (sweep.json) nor an earlier summary's (summary.json). WriteSweepSummary checks
+// it; call it before long work too.
+void CheckSweepSummaryFolder(const std::string& out_dir);
 
 }  // namespace hoilcd

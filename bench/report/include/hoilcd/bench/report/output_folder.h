@@ -15,6 +15,9 @@ struct OutputMarker {
   std::string what;               // its name in messages, e.g. "report"
 };
 
+// Whether dir holds `marker`'s file as a JSON object with its keys.
+bool IsEarlierOutput(const std::string& dir, const OutputMarker& marker);
+
 // InputError(dir, ...) when dir is a file, or a folder that is not empty and holds no marker
 // file recognised by `marker` (the message names the folder's entries). A missing dir is fine.
 void CheckOutputFolder(const std::string& dir, const OutputMarker& marker);
