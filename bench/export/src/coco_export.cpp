@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
@@ -22,6 +23,22 @@ std::string CocoKeypointsJson(const Dataset& dataset) {
   using nlohmann::json;
   const DatasetManifest& m = dataset.manifest();
   const int W = m.intrinsics.width, H = m.intrinsics.height;
+  // The images the annotations point to must be there (a COCO reader opens them by file_name).
+  if (!m.outputs.thermal) {
+    throw InputError(dataset.dir(), "has no thermal frames (rendered with --outputs " + m.outputs.ToText() +
+                                        "): COCO's images are the thermal PNGs; render with thermal");
+  }
+  std::vector<std::string> missing;
+  for (int f = 0; f < m.frame_count; ++f) {
+    const std::string file = "thermal/" + FrameFileName(f, "png");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(dataset.dir() + "/" + file, ec)) missing.push_back(file);
+  }
+  if (!missing.empty()) {
+    throw InputError(dataset.dir(), "the COCO images " + JoinFileList(missing) + " are missing (" +
+                                        std::to_string(missing.size()) + " of " + std::to_string(m.frame_count) +
+                                        "): restore or re-render the dataset");
+  }
   json images = json::array(), annotations = json::array();
   for (int f = 0; f < m.frame_count; ++f) {
     images.push_back({{"id", f}, {"file_name", "thermal/" + FrameFileName(f, "png")}, {"width", W}, {"height", H}});

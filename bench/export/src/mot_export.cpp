@@ -2,9 +2,14 @@
 
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
+#include <set>
+#include <sstream>
 
 #include "hoilcd/bench/methods/front_ends.h"
 #include "hoilcd/bench/methods/manifest_options.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
 
 namespace hoilcd {
 namespace {
@@ -42,6 +47,42 @@ std::string MotTracks(const std::vector<FrameTracks>& tracks) {
   return out;
 }
 
+std::string MotSequenceName(const Dataset& dataset) {
+  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, /*allow_exceptions=*/false);
+  const bool named = scene.is_object() && scene.contains("name") && scene["name"].is_string();
+  const DatasetManifest& m = dataset.manifest();
+  const std::string& hash = m.scene_hash;
+  const std::string hash_hex = hash.substr(hash.find(':') == std::string::npos ? 0 : hash.find(':') + 1, 8);
+  std::string sequence = "HOILCD-" + (named ? scene["name"].get<std::string>() : std::string("scene")) + "-seed" +
+                         std::to_string(m.seed) + "-" + hash_hex;
+  for (char& c : sequence)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+  return sequence;
+}
+
+namespace {
+
+// The seqmap at `path` (absent: none yet) with `sequence` added: "name" then the sequences, sorted.
+std::string SeqmapWith(const std::string& path, const std::string& sequence) {
+  std::set<std::string> sequences = {sequence};
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) {
+    std::istringstream in(ReadFileBytes(path));
+    std::string line;
+    if (!std::getline(in, line) || line != "name") {
+      throw InputError(path, "expected a MOTChallenge seqmap (first line \"name\") to add the sequence to");
+    }
+    while (std::getline(in, line)) {
+      if (!line.empty()) sequences.insert(line);
+    }
+  }
+  std::string out = "name\n";
+  for (const std::string& s : sequences) out += s + "\n";
+  return out;
+}
+
+}  // namespace
+
 MotExport ExportMot(const Dataset& dataset, const BenchOptions& options_in, const std::string& out_dir) {
   const BenchOptions options = WithManifest(options_in, dataset.manifest());
   FrontEndOptions front;
@@ -51,11 +92,7 @@ MotExport ExportMot(const Dataset& dataset, const BenchOptions& options_in, cons
   front.threads = options.threads;
   const FrontEndOutput out = RunFrontEnds(dataset, {FrontEnd::kPersons}, front);
 
-  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, /*allow_exceptions=*/false);
-  const bool named = scene.is_object() && scene.contains("name") && scene["name"].is_string();
-  std::string sequence = "HOILCD-" + (named ? scene["name"].get<std::string>() : std::string("scene"));
-  for (char& c : sequence)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+  const std::string sequence = MotSequenceName(dataset);
   const DatasetManifest& m = dataset.manifest();
   const std::string gt_root = out_dir + "/gt/mot_challenge";
   const std::string seq_dir = gt_root + "/" + kBenchmark + "/" + sequence;
@@ -69,7 +106,8 @@ MotExport ExportMot(const Dataset& dataset, const BenchOptions& options_in, cons
                 "[Sequence]\nname=%s\nimDir=img1\nframeRate=%g\nseqLength=%d\nimWidth=%d\nimHeight=%d\nimExt=.png\n",
                 sequence.c_str(), m.frame_rate_hz, dataset.num_frames(), m.intrinsics.width, m.intrinsics.height);
   WriteFileAtomic(seq_dir + "/seqinfo.ini", info);
-  WriteFileAtomic(gt_root + "/seqmaps/" + kBenchmark + ".txt", "name\n" + sequence + "\n");
+  const std::string seqmap = gt_root + "/seqmaps/" + kBenchmark + ".txt";
+  WriteFileAtomic(seqmap, SeqmapWith(seqmap, sequence));
   WriteFileAtomic(e.tracks, MotTracks(out.tracks));
   return e;
 }

@@ -73,6 +73,23 @@ TEST(CocoExport, ADatasetWithoutKeypointsIsAnErrorNamingPersonsJsonAndTheFrame) 
   }
 }
 
+TEST(CocoExport, AMissingThermalImageIsAnErrorNamingItAndNothingIsWritten) {
+  const test::TestDir temp;
+  const std::string dir = temp.str();
+  SequenceOptions options;
+  options.output_dir = dir + "/dataset";
+  options.frames = 3;
+  RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json"), options);
+  std::filesystem::remove(dir + "/dataset/thermal/000001.png");
+  try {
+    ExportCoco(dir + "/dataset", dir + "/coco");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("thermal/000001.png"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/coco/person_keypoints.json"));
+}
+
 TEST(CocoExport, AFolderThatIsNotADatasetIsAnError) {
   const test::TestDir temp;
   const std::string dir = temp.str();

@@ -35,6 +35,23 @@ TEST(MotExport, TrackerRowsCarryTheTrackIdAndTheMotPlaceholders) {
   EXPECT_EQ(MotTracks({f}), "10,3,1.00,1.00,5.00,8.00,1,-1,-1,-1\n");
 }
 
+TEST(MotExport, TwoDatasetsExportedIntoOneFolderKeepBothSequencesAndBothInTheSeqmap) {
+  const test::TestDir temp;
+  const Dataset a = test::TinyRoomDataset(temp / "a");
+  const Dataset b = test::TinyRoomDataset(temp / "b", {"seed=2"});
+  const MotExport ea = ExportMot(a, BenchOptions{}, temp / "mot");
+  const MotExport eb = ExportMot(b, BenchOptions{}, temp / "mot");
+  EXPECT_NE(ea.sequence, eb.sequence);
+  EXPECT_NE(ea.sequence.find("-seed1-"), std::string::npos) << ea.sequence;
+  EXPECT_NE(eb.sequence.find("-seed2-"), std::string::npos) << eb.sequence;
+  EXPECT_TRUE(std::filesystem::exists(ea.ground_truth));
+  EXPECT_TRUE(std::filesystem::exists(eb.ground_truth));
+  const std::string seqmap = ReadFileBytes(temp / "mot/gt/mot_challenge/seqmaps/HOILCD-train.txt");
+  EXPECT_EQ(seqmap, "name\n" + std::min(ea.sequence, eb.sequence) + "\n" + std::max(ea.sequence, eb.sequence) + "\n");
+  ExportMot(a, BenchOptions{}, temp / "mot");  // again: listed once
+  EXPECT_EQ(ReadFileBytes(temp / "mot/gt/mot_challenge/seqmaps/HOILCD-train.txt"), seqmap);
+}
+
 TEST(MotExport, ADatasetExportsTrackEvalsLayoutWithOneGroundTruthRowPerPersonRecord) {
   const test::TestDir temp;
   const Dataset dataset = test::TinyRoomDataset(temp / "dataset");

@@ -1,6 +1,7 @@
 // MOTChallenge export of a dataset, laid out for TrackEval's MOTChallenge 2D box reader: the
 // ground-truth person boxes (persons.json) and the DLCD front end's tracks, so TrackEval users can
-// score hoilcd's tracker. Benchmark "HOILCD", split "train", one sequence named after the scene.
+// score hoilcd's tracker. Benchmark "HOILCD", split "train", one sequence per dataset, named after
+// its scene, seed and scene hash, so several datasets exported into one folder sit side by side.
 #pragma once
 
 #include <string>
@@ -19,6 +20,10 @@ std::string MotGroundTruth(const std::vector<FramePersons>& persons, const Track
 // Tracker file: frame,id,left,top,width,height,conf,-1,-1,-1 (frames and ids from 1).
 std::string MotTracks(const std::vector<FrameTracks>& tracks);
 
+// "HOILCD-<scene name>-seed<seed>-<first 8 hex digits of the scene hash>", characters other than
+// letters, digits and '-' replaced by '_'.
+std::string MotSequenceName(const Dataset& dataset);
+
 struct MotExport {
   std::string sequence;      // sequence name
   std::string ground_truth;  // path of gt.txt
@@ -27,7 +32,8 @@ struct MotExport {
 
 // Runs the DLCD front end (bench defaults, the dataset's manifest) and writes under out_dir:
 // gt/mot_challenge/HOILCD-train/<seq>/{gt/gt.txt,seqinfo.ini}, gt/mot_challenge/seqmaps/HOILCD-train.txt
-// and trackers/mot_challenge/HOILCD-train/hoilcd-dlcd/data/<seq>.txt.
+// (the sequence added to those already listed there) and
+// trackers/mot_challenge/HOILCD-train/hoilcd-dlcd/data/<seq>.txt.
 MotExport ExportMot(const Dataset& dataset, const BenchOptions& options, const std::string& out_dir);
 
 }  // namespace hoilcd
