@@ -668,7 +668,7 @@ class RobotSimulator {
         throw InputError("route",
                          "robot did not finish the route within " + FormatNumber(max_time_s_) + " s");
       }
-      Localize(t);
+      Localise(t);
       const double accel = Navigate();
       const Steps steps = MoveWheels(step, accel);
       ShakeMount(step, steps, accel);
@@ -691,7 +691,7 @@ class RobotSimulator {
   };
 
   // A localisation fix replaces the belief with the true pose plus the fix error.
-  void Localize(double t) {
+  void Localise(double t) {
     if (localized_ && t >= (fixes_ + 1) * robot_.localization.interval_s - 1e-9 * dt_) {
       const Pose2 e = fix_error_.Next(static_cast<uint64_t>(fixes_));
       belief_ = {truth_.x_m + e.x_m, truth_.y_m + e.y_m, truth_.theta_rad + e.theta_rad};
