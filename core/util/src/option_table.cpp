@@ -214,9 +214,11 @@ void OptionTableBase::KeepOnly(const std::vector<std::string>& names) {
     HOILCD_CHECK_MSG(std::count_if(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == name; }) == 1,
                      "no field '" << name << "' to keep");
   }
-  fields_.erase(std::remove_if(fields_.begin(), fields_.end(),
-                               [&](const Field& f) { return std::count(names.begin(), names.end(), f.name) == 0; }),
+  const auto dropped = [&](const std::string& name) { return std::count(names.begin(), names.end(), name) == 0; };
+  fields_.erase(std::remove_if(fields_.begin(), fields_.end(), [&](const Field& f) { return dropped(f.name); }),
                 fields_.end());
+  rules_.erase(std::remove_if(rules_.begin(), rules_.end(), [&](const Rule& r) { return dropped(r.field); }),
+               rules_.end());
 }
 
 void OptionTableBase::RenameField(const std::string& from, const std::string& to) {
@@ -252,6 +254,27 @@ void OptionTableBase::FillDefaultsOf(void* options) const {
       case Field::Kind::kNested: f.nested->FillDefaultsOf(f.at(options)); break;
     }
   }
+}
+
+json OptionTableBase::ToJsonOf(const void* options) const {
+  json out = json::object();
+  for (const Field& f : fields_) {
+    switch (f.kind) {
+      case Field::Kind::kNumber: out[f.name] = LoadNumber(f, options); break;
+      case Field::Kind::kInteger:
+        if (f.storage == Storage::kUint64) {
+          out[f.name] = *static_cast<const uint64_t*>(f.at(Mutable(options)));
+        } else {
+          out[f.name] = *static_cast<const int*>(f.at(Mutable(options)));
+        }
+        break;
+      case Field::Kind::kBoolean: out[f.name] = *static_cast<const bool*>(f.at(Mutable(options))); break;
+      case Field::Kind::kString: out[f.name] = f.get_string(options); break;
+      case Field::Kind::kExternal: break;
+      case Field::Kind::kNested: out[f.name] = f.nested->ToJsonOf(f.at(Mutable(options))); break;
+    }
+  }
+  return out;
 }
 
 void OptionTableBase::ReadInto(const json& object, const std::string& where, void* options,

@@ -242,7 +242,7 @@ TEST(OptionTable, ListGivesEveryFieldWithDefaultUnitRangeAndDescription) {
   EXPECT_NE(text.find("standard deviation"), std::string::npos);
 }
 
-TEST(OptionTable, OnlyKeepsTheNamedFieldsWithTheirDefaultsRangesAndEveryRule) {
+TEST(OptionTable, OnlyKeepsTheNamedFieldsWithTheirDefaultsRangesAndRules) {
   const OptionTable<Example> some = ExampleTable().Only({"offset_k", "gain"});
   std::vector<std::string> names;
   for (const OptionInfo& o : some.List()) names.push_back(o.name);
@@ -256,8 +256,42 @@ TEST(OptionTable, OnlyKeepsTheNamedFieldsWithTheirDefaultsRangesAndEveryRule) {
   e.gain = 0.5;
   e.offset_k = 1;
   EXPECT_EQ(some.FirstProblem(e), "offset_k: at most gain");
+  EXPECT_EQ(ExampleTable().Only({"gain"}).FirstProblem(e), "") << "a rule at a field left out is left out";
   EXPECT_THROW(some.Set("count=2", &e), InputError);
   EXPECT_THROW(ExampleTable().Only({"gian"}), std::logic_error);
+}
+
+TEST(OptionTable, AppendJoinsTwoViewsOfOneStruct) {
+  const OptionTable<Example> joined = ExampleTable().Only({"count"}).Append(ExampleTable().Only({"gain"}));
+  std::vector<std::string> names;
+  for (const OptionInfo& o : joined.List()) names.push_back(o.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"count", "gain"}));
+  Example e = Defaults();
+  joined.Set("gain=3", &e);
+  EXPECT_EQ(e.gain, 3);
+}
+
+TEST(OptionTable, ToJsonGivesEveryValueAsReadReadsItAndListsDefaults) {
+  Example e = Defaults();
+  const json values = ExampleTable().ToJson(e);
+  EXPECT_EQ(values, json::parse(R"({"gain": 0.5, "offset_k": 0.0, "count": 3, "on": true, "reference_c": 25.0,
+                                    "preset": "fast", "mode": "fast", "inner": {"sd_m": 0.1, "enabled": true},
+                                    "samples": 2})"));
+  for (const OptionInfo& o : ExampleTable().List()) {
+    if (o.kind != OptionInfo::Kind::kExternal) {
+      EXPECT_EQ(values.at(json::json_pointer("/" + o.name)), json::parse(o.default_json)) << o.name;
+    }
+  }
+  Example read;
+  ProblemCollector problems;
+  json without_code_only = values;
+  without_code_only.erase("reference_c");
+  ExampleTable().Read(without_code_only, "", &read, &problems);
+  EXPECT_TRUE(problems.empty());
+  json read_back = ExampleTable().ToJson(read);
+  EXPECT_EQ(read_back["reference_c"], -1.0) << "code-only: not read";
+  read_back.erase("reference_c");
+  EXPECT_EQ(read_back, without_code_only);
 }
 
 TEST(OptionTable, RenameGivesAFieldAndItsRulesAnotherNameOnly) {

@@ -96,6 +96,7 @@ class OptionTableBase {
   void ChangeDefault(const std::string& name, double default_value);
 
   void FillDefaultsOf(void* options) const;
+  nlohmann::json ToJsonOf(const void* options) const;
   void ReadInto(const nlohmann::json& object, const std::string& where, void* options,
                 ProblemCollector* problems) const;
   void CheckOf(const void* options, const std::string& where, ProblemCollector* problems) const;
@@ -203,9 +204,9 @@ class OptionTable : public OptionTableBase {
     return *this;
   }
 
-  // A copy holding only the fields `names` (in this table's order) and every rule: the fields of
-  // T that another interface exposes (a --param table, say), their defaults and ranges still
-  // registered once, here. A name this table does not have is an API misuse.
+  // A copy holding only the fields `names` (in this table's order) and the rules reported at them:
+  // the fields of T that another interface exposes (a --param table, say), their defaults and
+  // ranges still registered once, here. A name this table does not have is an API misuse.
   OptionTable Only(const std::vector<std::string>& names) const {
     OptionTable out = *this;
     out.KeepOnly(names);
@@ -226,7 +227,20 @@ class OptionTable : public OptionTableBase {
     return out;
   }
 
+  // Appends every field and rule of `other`, another table of T (fields from two views of T).
+  OptionTable& Append(const OptionTable<T>& other) {
+    AddFlattened([](void* p) { return p; }, other);
+    return *this;
+  }
+
   void FillDefaults(T* options) const { FillDefaultsOf(options); }
+  // Every registered field's value as Read reads it (nested tables as objects; External keys
+  // left out; code-only fields included): for reports, and for tests against List()'s defaults.
+  // (A template only so that this header needs no more than json_fwd.hpp.)
+  template <typename Json = nlohmann::json>
+  Json ToJson(const T& options) const {
+    return ToJsonOf(&options);
+  }
   // Sets every field present in `object` (a JSON object); absent fields keep their value. Wrong
   // types, unknown keys and values outside a string's choices are problems at their pointer.
   void Read(const nlohmann::json& object, const std::string& where, T* options,
