@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <sstream>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -477,24 +476,24 @@ Eigen::Matrix3d ToResultMatrix(const Real h[9]) {
 
 }  // namespace
 
-std::string RansacOptions::Check() const {
-  // The message is built only for bad options: Check runs once per pair in some callers.
-  std::string text;
-  const auto problem = [&](const auto&... parts) {
-    std::ostringstream out;
-    (out << ... << parts);
-    text += out.str() + "; ";
-  };
-  if (trials < 1 || trials > kMaxTrials) problem("trials must be in [1, ", kMaxTrials, "] (got ", trials, ")");
-  if (!(inlier_threshold_px > 0) || !std::isfinite(inlier_threshold_px)) {
-    problem("inlier_threshold_px must be a positive number of pixels (got ", inlier_threshold_px, ")");
-  }
-  if (local_optimisation_refits < 0) {
-    problem("local_optimisation_refits must be >= 0 (got ", local_optimisation_refits, ")");
-  }
-  if (!text.empty()) text.resize(text.size() - 2);
-  return text;
+RansacOptions::RansacOptions() { Table().FillDefaults(this); }
+
+const OptionTable<RansacOptions>& RansacOptions::Table() {
+  using O = RansacOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("trials", &O::trials, 100, "", R::Closed(1, kMaxTrials), "RANSAC hypotheses per pair (paper: 100)")
+          .Add("redraw_degenerate_samples", &O::redraw_degenerate_samples, true,
+               "a degenerate sample is redrawn (up to 10 draws per trial on average) instead of using up its trial")
+          .Add("inlier_threshold_px", &O::inlier_threshold_px, 5.0, "px", R::Any().Above(0),
+               "reprojection error bound of an inlier")
+          .Add("local_optimisation_refits", &O::local_optimisation_refits, 0, "", R::Any().AtLeast(0),
+               "LO-RANSAC least-squares refits on the inliers of each new best model (0: plain RANSAC, the paper's)");
+  return table;
 }
+
+std::string RansacOptions::Check() const { return Table().FirstProblem(*this); }
 
 void RansacSample(uint64_t seed, uint32_t draw, uint32_t n, uint32_t idx[4]) {
   HOILCD_CHECK_MSG(n >= 4, "a sample needs n >= 4 matches (got " << n << ")");

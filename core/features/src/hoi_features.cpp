@@ -2,24 +2,27 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <utility>
 
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
 
-std::string HoiOptions::Check() const {
-  std::ostringstream out;
-  if (min_points_per_person < 0) {
-    out << "min_points_per_person must be >= 0, got " << min_points_per_person;
-  }
-  if (column_step_px < 1) {
-    if (!out.str().empty()) out << "; ";
-    out << "column_step_px must be >= 1, got " << column_step_px;
-  }
-  return out.str();
+HoiOptions::HoiOptions() { Table().FillDefaults(this); }
+
+const OptionTable<HoiOptions>& HoiOptions::Table() {
+  using O = HoiOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("min_points_per_person", &O::min_points_per_person, 3, "", R::Any().AtLeast(0),
+               "a person with fewer bottom points gives none")
+          .Add("column_step_px", &O::column_step_px, 1, "px", R::Any().AtLeast(1),
+               "take every n-th column of the track box (1: all, as the paper)");
+  return table;
 }
+
+std::string HoiOptions::Check() const { return Table().FirstProblem(*this); }
 
 namespace {
 

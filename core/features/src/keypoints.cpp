@@ -8,22 +8,29 @@
 
 namespace hoilcd {
 
-std::string KeypointOptions::Check() const {
-  static const char* kDetectors[] = {"gftt", "fast", "orb", "sift", "akaze"};
-  if (std::none_of(std::begin(kDetectors), std::end(kDetectors),
-                   [&](const char* d) { return detector == d; })) {
-    return "detector must be one of gftt, fast, orb, sift, akaze (got '" + detector + "')";
-  }
-  if (max_keypoints < 1) return "max_keypoints must be positive";
-  if (nms_radius_px < 0) return "nms_radius_px must be non-negative";
-  if (border_px < 0) return "border_px must be non-negative";
-  if (!(gftt_quality > 0 && gftt_quality < 1)) return "gftt_quality must be in (0, 1)";
-  if (gftt_block_size_px < 3) return "gftt_block_size_px must be at least 3";
-  if (gftt_min_eigenvalue < 0) return "gftt_min_eigenvalue must be non-negative";
-  if (fast_threshold < 1 || fast_threshold > 255) return "fast_threshold must be in 1..255";
-  if (blur_sigma_px < 0) return "blur_sigma_px must be non-negative";
-  return "";
+KeypointOptions::KeypointOptions() { Table().FillDefaults(this); }
+
+const OptionTable<KeypointOptions>& KeypointOptions::Table() {
+  using O = KeypointOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("detector", &O::detector, "gftt", {"gftt", "fast", "orb", "sift", "akaze"}, "keypoint detector")
+          .Add("max_keypoints", &O::max_keypoints, 1000, "", R::Any().AtLeast(1), "keypoints kept per frame, strongest first")
+          .Add("nms_radius_px", &O::nms_radius_px, 4.0, "px", R::Any().AtLeast(0),
+               "minimum distance between keypoints (SuperPoint's NMS: 4)")
+          .Add("border_px", &O::border_px, 4, "px", R::Any().AtLeast(0), "keypoints this close to the image border are ignored")
+          .Add("gftt_quality", &O::gftt_quality, 0.01, "", R::Any().Above(0).Below(1),
+               "GFTT quality level, fraction of the strongest corner")
+          .Add("gftt_block_size_px", &O::gftt_block_size_px, 3, "px", R::Any().AtLeast(3), "GFTT structure-tensor window")
+          .Add("gftt_min_eigenvalue", &O::gftt_min_eigenvalue, 5e-4, "", R::Any().AtLeast(0),
+               "absolute floor on the Shi-Tomasi score")
+          .Add("fast_threshold", &O::fast_threshold, 10, "", R::Closed(1, 255), "FAST intensity threshold, 8-bit levels")
+          .Add("blur_sigma_px", &O::blur_sigma_px, 0.0, "px", R::Any().AtLeast(0), "Gaussian pre-blur (0: none)");
+  return table;
 }
+
+std::string KeypointOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<Point2> DetectKeypoints(const cv::Mat& thermal_u8, const KeypointOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <sstream>
 
 #include <opencv2/imgproc.hpp>
 
@@ -13,58 +12,86 @@
 
 namespace hoilcd {
 
-std::string PersonDetectorOptions::Check() const {
-  std::ostringstream out;
-  const auto need = [&out](bool ok, const char* what, double value) {
-    if (!ok) out << what << ", got " << value << "; ";
-  };
-  need(std::isfinite(threshold_c), "threshold_c must be finite", threshold_c);
-  need(u8_max_c > u8_min_c, "u8_max_c must exceed u8_min_c", u8_max_c);
-  need(open_kernel_px >= 0, "open_kernel_px must be >= 0", open_kernel_px);
-  need(close_kernel_px >= 0, "close_kernel_px must be >= 0", close_kernel_px);
-  need(profile_smooth_px >= 1, "profile_smooth_px must be >= 1", profile_smooth_px);
-  need(split_valley_ratio > 0 && split_valley_ratio < 1, "split_valley_ratio must be in (0, 1)",
-       split_valley_ratio);
-  need(valley_tolerance_ratio >= 0 && valley_tolerance_ratio < 1,
-       "valley_tolerance_ratio must be in [0, 1)", valley_tolerance_ratio);
-  need(min_peak_ratio >= 0 && min_peak_ratio <= 1, "min_peak_ratio must be in [0, 1]",
-       min_peak_ratio);
-  need(min_split_width_px >= 1, "min_split_width_px must be >= 1", min_split_width_px);
-  need(std::isfinite(head_min_c), "head_min_c must be finite", head_min_c);
-  need(min_head_area_px >= 1, "min_head_area_px must be >= 1", min_head_area_px);
-  need(head_zone_ratio > 0 && head_zone_ratio <= 1, "head_zone_ratio must be in (0, 1]",
-       head_zone_ratio);
-  need(merge_min_overlap > 0 && merge_min_overlap <= 1, "merge_min_overlap must be in (0, 1]",
-       merge_min_overlap);
-  need(min_fragment_area_px >= 1, "min_fragment_area_px must be >= 1", min_fragment_area_px);
-  need(min_area_px >= 1, "min_area_px must be >= 1", min_area_px);
-  need(min_height_px >= 1, "min_height_px must be >= 1", min_height_px);
-  need(min_aspect_hw > 0 && min_aspect_hw < max_aspect_hw,
-       "need 0 < min_aspect_hw < max_aspect_hw; min_aspect_hw", min_aspect_hw);
-  need(max_median_c > threshold_c, "max_median_c must exceed threshold_c", max_median_c);
-  need(max_hot_fraction > 0 && max_hot_fraction <= 1, "max_hot_fraction must be in (0, 1]",
-       max_hot_fraction);
-  need(max_fill_ratio > 0 && max_fill_ratio <= 1, "max_fill_ratio must be in (0, 1]",
-       max_fill_ratio);
-  need(max_flat_top_fraction > 0 && max_flat_top_fraction <= 1, "max_flat_top_fraction must be in (0, 1]",
-       max_flat_top_fraction);
-  need(min_top_skin_px >= 0, "min_top_skin_px must be >= 0", min_top_skin_px);
-  need(top_skin_zone_ratio > 0 && top_skin_zone_ratio <= 1, "top_skin_zone_ratio must be in (0, 1]",
-       top_skin_zone_ratio);
-  need(clothing_max_c > clothing_min_c, "clothing_max_c must exceed clothing_min_c",
-       clothing_max_c);
-  need(min_clothing_fraction >= 0 && min_clothing_fraction <= 1,
-       "min_clothing_fraction must be in [0, 1]", min_clothing_fraction);
-  need(max_solidity > 0 && max_solidity <= 1, "max_solidity must be in (0, 1]", max_solidity);
-  need(score_area_px > 0, "score_area_px must be > 0", score_area_px);
-  need(typical_aspect_hw > 0, "typical_aspect_hw must be > 0", typical_aspect_hw);
-  need(aspect_sigma_log > 0, "aspect_sigma_log must be > 0", aspect_sigma_log);
-  need(person_max_c >= person_min_c, "person_max_c must be >= person_min_c", person_max_c);
-  need(temperature_sigma_c > 0, "temperature_sigma_c must be > 0", temperature_sigma_c);
-  std::string message = out.str();
-  if (!message.empty()) message.resize(message.size() - 2);
-  return message;
+PersonDetectorOptions::PersonDetectorOptions() { Table().FillDefaults(this); }
+
+const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
+  using O = PersonDetectorOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          // Thresholding and clean-up.
+          .Add("threshold_c", &O::threshold_c, 26.5, "degC", R::Any(),
+               "person threshold of the detector (on an 8-bit frame alone, the first level at or above it)")
+          .Add("u8_min_c", &O::u8_min_c, 20, "degC", R::Any(), "shown as 0 in the 8-bit frame (the manifest's window_min_c)")
+          .Add("u8_max_c", &O::u8_max_c, 30, "degC", R::Any(), "shown as 255 in the 8-bit frame (the manifest's window_max_c)")
+          .Rule("u8_max_c", [](const O& o) { return o.u8_max_c > o.u8_min_c ? "" : "must exceed u8_min_c"; })
+          .Add("open_kernel_px", &O::open_kernel_px, 3, "px", R::Any().AtLeast(0),
+               "elliptic opening diameter that removes speckle (0: none)")
+          .Add("close_kernel_px", &O::close_kernel_px, 5, "px", R::Any().AtLeast(0),
+               "elliptic closing diameter that fills small holes (0: none)")
+          // Splitting touching neighbours.
+          .Add("profile_smooth_px", &O::profile_smooth_px, 3, "px", R::Any().AtLeast(1),
+               "box-filter width over the per-column pixel counts")
+          .Add("split_valley_ratio", &O::split_valley_ratio, 0.85, "", R::Any().Above(0).Below(1),
+               "split at a valley at most this fraction of the lower peak")
+          .Add("valley_tolerance_ratio", &O::valley_tolerance_ratio, 0.1, "", R::Any().AtLeast(0).Below(1),
+               "of the lower peak; the valley floor is cut in its middle")
+          .Add("min_peak_ratio", &O::min_peak_ratio, 0.5, "", R::Closed(0, 1),
+               "a peak is a person only if at least this fraction of the blob's maximum")
+          .Add("min_split_width_px", &O::min_split_width_px, 8, "px", R::Any().AtLeast(1),
+               "every part of a split is at least this wide")
+          // Head seeds.
+          .Add("head_min_c", &O::head_min_c, 31.0, "degC", R::Any(), "lowest skin temperature of a head seed")
+          .Add("min_head_area_px", &O::min_head_area_px, 10, "px^2", R::Any().AtLeast(1), "smaller skin spots are ignored")
+          .Add("head_zone_ratio", &O::head_zone_ratio, 0.8, "", R::Any().Above(0).AtMost(1),
+               "a head's top lies in this upper fraction of its blob")
+          .Add("merge_min_overlap", &O::merge_min_overlap, 0.5, "", R::Any().Above(0).AtMost(1),
+               "column overlap, of the headless part's width, for it to join a part with a head")
+          .Add("min_fragment_area_px", &O::min_fragment_area_px, 6, "px^2", R::Any().AtLeast(1),
+               "smaller parts are dropped before merging")
+          // Rejection of non-people.
+          .Add("min_area_px", &O::min_area_px, 60, "px^2", R::Any().AtLeast(1), "smaller parts are not people")
+          .Add("min_height_px", &O::min_height_px, 12, "px", R::Any().AtLeast(1), "lower parts are not people")
+          .Add("min_aspect_hw", &O::min_aspect_hw, 0.6, "", R::Any().Above(0),
+               "height/width; flatter parts are laptops, radiators, tables")
+          .Add("max_aspect_hw", &O::max_aspect_hw, 5.0, "", R::Any(), "height/width; taller parts are pipes or door frames")
+          .Rule("min_aspect_hw", [](const O& o) { return o.min_aspect_hw < o.max_aspect_hw ? "" : "must be below max_aspect_hw"; })
+          .Add("max_median_c", &O::max_median_c, 37.0, "degC", R::Any(), "hotter parts are cups (> 40) or radiators (~40)")
+          .Rule("max_median_c", [](const O& o) { return o.max_median_c > o.threshold_c ? "" : "must exceed threshold_c"; })
+          .Add("hot_c", &O::hot_c, 30, "degC", R::Any(), "the 8-bit image saturates here (u8_max_c)")
+          .Add("max_hot_fraction", &O::max_hot_fraction, 0.7, "", R::Any().Above(0).AtMost(1),
+               "parts with more pixels at or above hot_c are laptops, cups, radiators")
+          .Add("max_fill_ratio", &O::max_fill_ratio, 0.9, "", R::Any().Above(0).AtMost(1),
+               "area / box area; rectangles fill more ...")
+          .Add("max_solidity", &O::max_solidity, 0.97, "", R::Any().Above(0).AtMost(1),
+               "... and are convex (area / hull area): both make an object")
+          .Add("max_flat_top_fraction", &O::max_flat_top_fraction, 0.7, "", R::Any().Above(0).AtMost(1),
+               "of a part's columns whose top pixel lies within 1 px of the median top row; flatter tops are screens")
+          // Skin or clothing (radiometric frames only).
+          .Add("min_top_skin_px", &O::min_top_skin_px, 10, "px^2", R::Any().AtLeast(0),
+               "skin pixels needed in the top zone (0: rule off)")
+          .Add("top_skin_zone_ratio", &O::top_skin_zone_ratio, 0.33, "", R::Any().Above(0).AtMost(1),
+               "upper fraction of the part's box height: the top zone")
+          .Add("clothing_min_c", &O::clothing_min_c, 27.0, "degC", R::Any(), "lowest apparent temperature counted as clothing")
+          .Add("clothing_max_c", &O::clothing_max_c, 29.0, "degC", R::Any(), "highest apparent temperature counted as clothing")
+          .Rule("clothing_max_c", [](const O& o) { return o.clothing_max_c > o.clothing_min_c ? "" : "must exceed clothing_min_c"; })
+          .Add("min_clothing_fraction", &O::min_clothing_fraction, 0.6, "", R::Closed(0, 1),
+               "of a part's pixels at clothing temperature, when it shows no skin")
+          // Score.
+          .Add("score_area_px", &O::score_area_px, 400, "px^2", R::Any().Above(0), "area at which the area score is 1 - 1/e")
+          .Add("typical_aspect_hw", &O::typical_aspect_hw, 1.8, "", R::Any().Above(0),
+               "height/width of a seated person, shape score 1")
+          .Add("aspect_sigma_log", &O::aspect_sigma_log, 0.7, "", R::Any().Above(0),
+               "width of the shape score, natural-log units")
+          .Add("person_min_c", &O::person_min_c, 27, "degC", R::Any(), "a median below this lowers the temperature score")
+          .Add("person_max_c", &O::person_max_c, 35, "degC", R::Any(), "a median above this lowers the temperature score")
+          .Rule("person_max_c", [](const O& o) { return o.person_max_c >= o.person_min_c ? "" : "must be at least person_min_c"; })
+          .Add("temperature_sigma_c", &O::temperature_sigma_c, 2, "degC", R::Any().Above(0),
+               "fall-off of the temperature score outside its range");
+  return table;
 }
+
+std::string PersonDetectorOptions::Check() const { return Table().FirstProblem(*this); }
 
 // Seated neighbours touch at shoulders or arms, but each has a head on top: the per-column pixel
 // count has one peak per person with a valley between. We split recursively at the deepest valley

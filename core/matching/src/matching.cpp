@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <sstream>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/random.h"
@@ -111,17 +110,20 @@ bool WithinVerticalTolerance(float query_y, float reference_y, double tolerance_
 
 }  // namespace
 
-std::string MatchOptions::Check() const {
-  std::ostringstream out;
-  if (!(vertical_tolerance >= 0) || !std::isfinite(vertical_tolerance)) {
-    out << "vertical_tolerance must be a non-negative fraction of the image height (got "
-        << vertical_tolerance << "); ";
-  }
-  if (image_height_px <= 0) out << "image_height_px must be > 0 (got " << image_height_px << "); ";
-  std::string text = out.str();
-  if (!text.empty()) text.resize(text.size() - 2);
-  return text;
+MatchOptions::MatchOptions() { Table().FillDefaults(this); }
+
+const OptionTable<MatchOptions>& MatchOptions::Table() {
+  using O = MatchOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("vertical_tolerance", &O::vertical_tolerance, 0.1, "", OptionRange::Closed(0, 1),
+               "vertical filter: |y_q - y_r| at most this fraction of the image height")
+          .Add("image_height_px", &O::image_height_px, 192, "px", OptionRange::Any().AtLeast(1),
+               "image height the vertical tolerance is a fraction of");
+  return table;
 }
+
+std::string MatchOptions::Check() const { return Table().FirstProblem(*this); }
 
 PointGrid::PointGrid(const Point2* points, int count) {
   if (count <= 0) return;

@@ -37,15 +37,29 @@ size_t NearestArcPosition(const std::vector<double>& arc_length_px, double arc_p
 
 }  // namespace
 
-std::string TrackAwareOptions::Check() const {
-  if (min_points_per_person < 1) return "min_points_per_person must be >= 1";
-  if (profile_samples < 2) return "profile_samples must be >= 2";
-  if (!(position_weight >= 0) || !(width_weight >= 0) || !(shape_weight >= 0)) {
-    return "position_weight, width_weight and shape_weight must be >= 0";
-  }
-  if (!(max_pair_cost > 0)) return "max_pair_cost must be > 0";
-  return "";
+TrackAwareOptions::TrackAwareOptions() { Table().FillDefaults(this); }
+
+const OptionTable<TrackAwareOptions>& TrackAwareOptions::Table() {
+  using O = TrackAwareOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("min_points_per_person", &O::min_points_per_person, 3, "", R::Any().AtLeast(1),
+               "persons with fewer HOI points are ignored")
+          .Add("profile_samples", &O::profile_samples, 16, "", R::Any().AtLeast(2),
+               "samples of the contour profile compared between persons")
+          .Add("position_weight", &O::position_weight, 1.0, "", R::Any().AtLeast(0),
+               "cost per px of offset of the contour centre (x and mean y)")
+          .Add("width_weight", &O::width_weight, 0.5, "", R::Any().AtLeast(0),
+               "cost per px of difference in contour width (x-extent)")
+          .Add("shape_weight", &O::shape_weight, 1.0, "", R::Any().AtLeast(0),
+               "cost per px of mean difference of the centred profiles")
+          .Add("max_pair_cost", &O::max_pair_cost, 80.0, "px", R::Any().Above(0),
+               "persons whose pair cost exceeds this stay unpaired");
+  return table;
 }
+
+std::string TrackAwareOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<PersonContour> GroupPersonContours(const std::vector<HoiFeature>& features,
                                                const TrackAwareOptions& options) {

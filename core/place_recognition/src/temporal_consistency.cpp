@@ -31,13 +31,25 @@ bool StrictlyAscending(const std::vector<int>& frames) {
 
 }  // namespace
 
-std::string TemporalConsistencyOptions::Check() const {
-  if (consecutive_queries < 1) return "consecutive_queries must be >= 1";
-  if (candidates_per_query < 1) return "candidates_per_query must be >= 1";
-  if (max_frame_gap < 0) return "max_frame_gap must be >= 0";
-  if (max_query_gap < 1) return "max_query_gap must be >= 1";
-  return "";
+TemporalConsistencyOptions::TemporalConsistencyOptions() { Table().FillDefaults(this); }
+
+const OptionTable<TemporalConsistencyOptions>& TemporalConsistencyOptions::Table() {
+  using O = TemporalConsistencyOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("consecutive_queries", &O::consecutive_queries, 3, "", R::Any().AtLeast(1),
+               "queries in a consistent run, the current one included (1 = off)")
+          .Add("candidates_per_query", &O::candidates_per_query, 5, "", R::Any().AtLeast(1),
+               "best frames of each earlier query that support a chain")
+          .Add("max_frame_gap", &O::max_frame_gap, 10, "frames", R::Any().AtLeast(0),
+               "database frames a chain may advance per query step")
+          .Add("max_query_gap", &O::max_query_gap, 1, "frames", R::Any().AtLeast(1),
+               "frames between two queries for them to count as consecutive");
+  return table;
 }
+
+std::string TemporalConsistencyOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<std::vector<float>> TemporalConsistencyScores(
     const std::vector<int>& query_frames, const std::vector<int>& database_frames,

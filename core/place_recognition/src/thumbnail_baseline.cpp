@@ -27,11 +27,21 @@ void NormalisePatch(cv::Mat patch) {
 
 }  // namespace
 
-std::string ThumbnailOptions::Check() const {
-  if (width_px < 1 || height_px < 1) return "thumbnail width_px and height_px must be >= 1";
-  if (patch_px < 1) return "patch_px must be >= 1";
-  return "";
+ThumbnailOptions::ThumbnailOptions() { Table().FillDefaults(this); }
+
+const OptionTable<ThumbnailOptions>& ThumbnailOptions::Table() {
+  using O = ThumbnailOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("width_px", &O::width_px, 32, "px", R::Any().AtLeast(1), "thumbnail width")
+          .Add("height_px", &O::height_px, 24, "px", R::Any().AtLeast(1), "thumbnail height")
+          .Add("patch_px", &O::patch_px, 8, "px", R::Any().AtLeast(1),
+               "side of the square patches normalised to zero mean and unit variance");
+  return table;
 }
+
+std::string ThumbnailOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<float> ThumbnailDescriptor(const cv::Mat& thermal_u8, const ThumbnailOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
@@ -125,15 +135,26 @@ std::vector<std::vector<float>> ThumbnailIndex::ScoreAll(const std::vector<int>&
   return scores;
 }
 
-std::string SeqSlamOptions::Check() const {
-  if (sequence_length < 1) return "sequence_length must be >= 1";
-  if (!std::isfinite(min_velocity) || !std::isfinite(max_velocity)) {
-    return "min_velocity and max_velocity must be finite";
-  }
-  if (min_velocity > max_velocity) return "min_velocity must be <= max_velocity";
-  if (velocity_steps < 1) return "velocity_steps must be >= 1";
-  return "";
+SeqSlamOptions::SeqSlamOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SeqSlamOptions>& SeqSlamOptions::Table() {
+  using O = SeqSlamOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("sequence_length", &O::sequence_length, 10, "frames", R::Any().AtLeast(1),
+               "frames along each trajectory, the end point included")
+          .Add("min_velocity", &O::min_velocity, 0.8, "", R::Any(),
+               "slowest trajectory, database frames per query frame")
+          .Add("max_velocity", &O::max_velocity, 1.25, "", R::Any(),
+               "fastest trajectory, database frames per query frame")
+          .Rule("min_velocity", [](const O& o) { return o.min_velocity <= o.max_velocity ? "" : "must be at most max_velocity"; })
+          .Add("velocity_steps", &O::velocity_steps, 5, "", R::Any().AtLeast(1),
+               "trajectories tried between the slowest and fastest velocity (1: the midpoint)");
+  return table;
 }
+
+std::string SeqSlamOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<std::vector<float>> SequenceScores(const std::vector<std::vector<float>>& similarity,
                                                const SeqSlamOptions& options, int threads) {

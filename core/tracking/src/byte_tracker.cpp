@@ -1,7 +1,6 @@
 #include "hoilcd/core/tracking/byte_tracker.h"
 
 #include <algorithm>
-#include <sstream>
 #include <type_traits>
 #include <unordered_set>
 #include <utility>
@@ -12,28 +11,39 @@
 
 namespace hoilcd {
 
-std::string ByteTrackOptions::Check() const {
-  std::ostringstream out;
-  if (!(track_low_thresh >= 0 && track_low_thresh <= track_high_thresh && track_high_thresh <= 1)) {
-    out << "need 0 <= track_low_thresh <= track_high_thresh <= 1, got " << track_low_thresh
-        << " and " << track_high_thresh << "; ";
-  }
-  if (!(new_track_thresh >= 0 && new_track_thresh <= 1)) {
-    out << "new_track_thresh must be in [0, 1], got " << new_track_thresh << "; ";
-  }
-  for (const auto& [name, value] : {std::pair<const char*, double>{"match_thresh", match_thresh},
-                                    {"second_match_thresh", second_match_thresh},
-                                    {"unconfirmed_match_thresh", unconfirmed_match_thresh}}) {
-    if (!(value > 0 && value <= 1)) out << name << " must be in (0, 1], got " << value << "; ";
-  }
-  if (track_buffer_frames < 0) {
-    out << "track_buffer_frames must be >= 0, got " << track_buffer_frames << "; ";
-  }
-  if (!(frame_rate_hz > 0)) out << "frame_rate_hz must be > 0, got " << frame_rate_hz << "; ";
-  std::string message = out.str();
-  if (!message.empty()) message.resize(message.size() - 2);
-  return message;
+ByteTrackOptions::ByteTrackOptions() { Table().FillDefaults(this); }
+
+const OptionTable<ByteTrackOptions>& ByteTrackOptions::Table() {
+  using O = ByteTrackOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("track_high_thresh", &O::track_high_thresh, 0.5, "", R::Closed(0, 1),
+               "detection score above which (strictly) a detection enters the first association")
+          .Add("track_low_thresh", &O::track_low_thresh, 0.1, "", R::Closed(0, 1),
+               "detection score above which (strictly) a lower one enters the second association")
+          .Rule("track_low_thresh",
+                [](const O& o) { return o.track_low_thresh <= o.track_high_thresh ? "" : "must be at most track_high_thresh"; })
+          .Add("new_track_thresh", &O::new_track_thresh, 0.6, "", R::Closed(0, 1),
+               "a leftover high detection this good starts a track")
+          .Add("match_thresh", &O::match_thresh, 0.8, "", R::Any().Above(0).AtMost(1),
+               "first association limit on the cost 1 - IoU*score")
+          .Add("second_match_thresh", &O::second_match_thresh, 0.5, "", R::Any().Above(0).AtMost(1),
+               "low-score association limit on the cost 1 - IoU")
+          .Add("unconfirmed_match_thresh", &O::unconfirmed_match_thresh, 0.7, "", R::Any().Above(0).AtMost(1),
+               "unconfirmed-track limit on the cost 1 - IoU*score")
+          .Add("track_buffer_frames", &O::track_buffer_frames, 30, "frames", R::Any().AtLeast(0),
+               "frames at 30 Hz a lost track is kept (scaled by the frame rate)")
+          .Add("frame_rate_hz", &O::frame_rate_hz, 25, "Hz", R::Any().Above(0),
+               "frame rate; lost tracks live int(rate / 30 * buffer) frames")
+          .Add("fuse_score", &O::fuse_score, true, "the first association's cost uses IoU * detection score (Python, not MOT20)")
+          .AddEnum("iou_convention", &O::iou_convention, IouConvention::kPlusOnePixel,
+                   {{"plus_one_pixel", IouConvention::kPlusOnePixel}, {"continuous", IouConvention::kContinuous}},
+                   "how IoU measures a box: with 1 px added to width and height (the reference's cython_bbox) or continuous");
+  return table;
 }
+
+std::string ByteTrackOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
                                              const std::vector<cv::Rect2f>& b,

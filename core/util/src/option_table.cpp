@@ -15,6 +15,7 @@ using nlohmann::json;
 struct OptionTableBase::Field {
   enum class Kind { kNumber, kInteger, kBoolean, kString, kExternal, kNested };
   Kind kind = Kind::kNumber;
+  Storage storage = Storage::kDouble;  // numbers and integers
   std::string name;
   std::string unit, description;
   OptionRange range;
@@ -73,9 +74,32 @@ std::string JoinChoices(const std::vector<std::string>& choices) {
 
 void* Mutable(const void* p) { return const_cast<void*>(p); }  // Locate serves reads and writes
 
+constexpr double kMaxExactInteger = 9007199254740992.0;  // 2^53: every whole number below is a double
+
+// A number field's value, whatever the member's type.
+double LoadNumber(const OptionTableBase::Field& f, const void* options) {
+  const void* p = f.at(Mutable(options));
+  switch (f.storage) {
+    case OptionTableBase::Storage::kDouble: return *static_cast<const double*>(p);
+    case OptionTableBase::Storage::kInt: return *static_cast<const int*>(p);
+    case OptionTableBase::Storage::kUint64: return static_cast<double>(*static_cast<const uint64_t*>(p));
+  }
+  return 0;
+}
+
+void StoreNumber(const OptionTableBase::Field& f, void* options, double value) {
+  void* p = f.at(options);
+  switch (f.storage) {
+    case OptionTableBase::Storage::kDouble: *static_cast<double*>(p) = value; break;
+    case OptionTableBase::Storage::kInt: *static_cast<int*>(p) = static_cast<int>(value); break;
+    case OptionTableBase::Storage::kUint64: *static_cast<uint64_t*>(p) = static_cast<uint64_t>(value); break;
+  }
+}
+
 }  // namespace
 
 bool OptionRange::Contains(double value) const {
+  if (std::isnan(value)) return nan_allowed;
   if (!std::isfinite(value)) return false;
   if (min && (min->exclusive ? !(value > min->value) : !(value >= min->value))) return false;
   if (max && (max->exclusive ? !(value < max->value) : !(value <= max->value))) return false;
@@ -92,9 +116,9 @@ std::string OptionRange::ToString(const std::string& unit) const {
   } else if (max) {
     text = (max->exclusive ? "below " : "at most ") + Number(max->value);
   } else {
-    return "a finite number" + (unit.empty() ? "" : " (" + unit + ")");
+    return "a finite number" + (unit.empty() ? "" : " (" + unit + ")") + (nan_allowed ? " or NaN" : "");
   }
-  return unit.empty() ? text : text + " " + unit;
+  return (unit.empty() ? text : text + " " + unit) + (nan_allowed ? " or NaN" : "");
 }
 
 OptionTableBase::OptionTableBase() = default;
@@ -102,10 +126,11 @@ OptionTableBase::~OptionTableBase() = default;
 OptionTableBase::OptionTableBase(const OptionTableBase& other) = default;
 OptionTableBase& OptionTableBase::operator=(const OptionTableBase& other) = default;
 
-void OptionTableBase::AddNumber(const char* name, Locate at, bool integer, double default_value,
+void OptionTableBase::AddNumber(const char* name, Locate at, Storage storage, double default_value,
                                 const char* unit, OptionRange range, const char* description) {
   Field f;
-  f.kind = integer ? Field::Kind::kInteger : Field::Kind::kNumber;
+  f.kind = storage == Storage::kDouble ? Field::Kind::kNumber : Field::Kind::kInteger;
+  f.storage = storage;
   f.name = name;
   f.at = std::move(at);
   f.default_number = default_value;
@@ -184,17 +209,72 @@ void OptionTableBase::MarkLastCodeOnly() {
   fields_.back().code_only = true;
 }
 
+void OptionTableBase::KeepOnly(const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    HOILCD_CHECK_MSG(std::count_if(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == name; }) == 1,
+                     "no field '" << name << "' to keep");
+  }
+  const auto dropped = [&](const std::string& name) { return std::count(names.begin(), names.end(), name) == 0; };
+  fields_.erase(std::remove_if(fields_.begin(), fields_.end(), [&](const Field& f) { return dropped(f.name); }),
+                fields_.end());
+  rules_.erase(std::remove_if(rules_.begin(), rules_.end(), [&](const Rule& r) { return dropped(r.field); }),
+               rules_.end());
+}
+
+void OptionTableBase::RenameField(const std::string& from, const std::string& to) {
+  const auto field = std::find_if(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == from; });
+  HOILCD_CHECK_MSG(field != fields_.end(), "no field '" << from << "' to rename");
+  HOILCD_CHECK_MSG(std::none_of(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == to; }),
+                   "a field '" << to << "' already exists");
+  field->name = to;
+  for (Rule& r : rules_) {
+    if (r.field == from) r.field = to;
+  }
+}
+
+void OptionTableBase::ChangeDefault(const std::string& name, double default_value) {
+  const auto field = std::find_if(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == name; });
+  HOILCD_CHECK_MSG(field != fields_.end() &&
+                       (field->kind == Field::Kind::kNumber || field->kind == Field::Kind::kInteger),
+                   "no number field '" << name << "'");
+  HOILCD_CHECK_MSG(field->range.Contains(default_value), name << ": default " << default_value << " outside its range");
+  HOILCD_CHECK_MSG(field->kind == Field::Kind::kNumber || default_value == std::floor(default_value),
+                   name << ": default " << default_value << " is not a whole number");
+  field->default_number = default_value;
+}
+
 void OptionTableBase::FillDefaultsOf(void* options) const {
   for (const Field& f : fields_) {
     switch (f.kind) {
-      case Field::Kind::kNumber: *static_cast<double*>(f.at(options)) = f.default_number; break;
-      case Field::Kind::kInteger: *static_cast<int*>(f.at(options)) = static_cast<int>(f.default_number); break;
+      case Field::Kind::kNumber:
+      case Field::Kind::kInteger: StoreNumber(f, options, f.default_number); break;
       case Field::Kind::kBoolean: *static_cast<bool*>(f.at(options)) = f.default_bool; break;
       case Field::Kind::kString: f.set_string(options, f.default_string); break;
       case Field::Kind::kExternal: break;
       case Field::Kind::kNested: f.nested->FillDefaultsOf(f.at(options)); break;
     }
   }
+}
+
+json OptionTableBase::ToJsonOf(const void* options) const {
+  json out = json::object();
+  for (const Field& f : fields_) {
+    switch (f.kind) {
+      case Field::Kind::kNumber: out[f.name] = LoadNumber(f, options); break;
+      case Field::Kind::kInteger:
+        if (f.storage == Storage::kUint64) {
+          out[f.name] = *static_cast<const uint64_t*>(f.at(Mutable(options)));
+        } else {
+          out[f.name] = *static_cast<const int*>(f.at(Mutable(options)));
+        }
+        break;
+      case Field::Kind::kBoolean: out[f.name] = *static_cast<const bool*>(f.at(Mutable(options))); break;
+      case Field::Kind::kString: out[f.name] = f.get_string(options); break;
+      case Field::Kind::kExternal: break;
+      case Field::Kind::kNested: out[f.name] = f.nested->ToJsonOf(f.at(Mutable(options))); break;
+    }
+  }
+  return out;
 }
 
 void OptionTableBase::ReadInto(const json& object, const std::string& where, void* options,
@@ -224,14 +304,17 @@ void OptionTableBase::ReadInto(const json& object, const std::string& where, voi
           problems->Add(at, "expected a number");
         }
         break;
-      case Field::Kind::kInteger:
-        if (value.is_number_integer() && value.get<double>() >= std::numeric_limits<int>::min() &&
-            value.get<double>() <= std::numeric_limits<int>::max()) {
-          *static_cast<int*>(f.at(options)) = value.get<int>();
+      case Field::Kind::kInteger: {
+        const bool wide = f.storage == Storage::kUint64;
+        const double lowest = wide ? 0.0 : std::numeric_limits<int>::min();
+        const double highest = wide ? kMaxExactInteger : std::numeric_limits<int>::max();
+        if (value.is_number_integer() && value.get<double>() >= lowest && value.get<double>() <= highest) {
+          StoreNumber(f, options, value.get<double>());
         } else {
-          problems->Add(at, "expected a whole number");
+          problems->Add(at, wide ? "expected a whole number, 0 or more" : "expected a whole number");
         }
         break;
+      }
       case Field::Kind::kBoolean:
         if (value.is_boolean()) {
           *static_cast<bool*>(f.at(options)) = value.get<bool>();
@@ -255,28 +338,28 @@ void OptionTableBase::ReadInto(const json& object, const std::string& where, voi
 }
 
 void OptionTableBase::CheckOf(const void* options, const std::string& where, ProblemCollector* problems) const {
+  // The location is joined only for a problem: some callers check options once per pair.
   for (const Field& f : fields_) {
-    const std::string at = Join(where, f.name);
     switch (f.kind) {
       case Field::Kind::kNumber:
       case Field::Kind::kInteger: {
-        const double value = f.kind == Field::Kind::kNumber ? *static_cast<const double*>(f.at(Mutable(options)))
-                                                            : *static_cast<const int*>(f.at(Mutable(options)));
+        const double value = LoadNumber(f, options);
         if (!f.range.Contains(value)) {
-          problems->Add(at, "must be " + f.range.ToString(f.unit) + " (got " + Number(value) + ")");
+          problems->Add(Join(where, f.name), "must be " + f.range.ToString(f.unit) + " (got " + Number(value) + ")");
         }
         break;
       }
       case Field::Kind::kString: {
+        if (f.choices.empty()) break;
         const std::string value = f.get_string(options);
-        if (!f.choices.empty() && std::count(f.choices.begin(), f.choices.end(), value) == 0) {
-          problems->Add(at, "must be one of: " + JoinChoices(f.choices) + " (got '" + value + "')");
+        if (std::count(f.choices.begin(), f.choices.end(), value) == 0) {
+          problems->Add(Join(where, f.name), "must be one of: " + JoinChoices(f.choices) + " (got '" + value + "')");
         }
         break;
       }
       case Field::Kind::kBoolean:
       case Field::Kind::kExternal: break;
-      case Field::Kind::kNested: f.nested->CheckOf(f.at(Mutable(options)), at, problems); break;
+      case Field::Kind::kNested: f.nested->CheckOf(f.at(Mutable(options)), Join(where, f.name), problems); break;
     }
   }
   for (const Rule& r : rules_) {
@@ -318,16 +401,18 @@ void OptionTableBase::SetOf(const std::string& name_equals_value, void* options)
       case Field::Kind::kNumber: {
         const double value = std::strtod(text.c_str(), &end);
         if (text.empty() || *end != '\0' || !std::isfinite(value)) throw InputError(name_equals_value, "a number");
-        *static_cast<double*>(f.at(target)) = value;
+        StoreNumber(f, target, value);
         return;
       }
       case Field::Kind::kInteger: {
+        const bool wide = f.storage == Storage::kUint64;
         const long long value = std::strtoll(text.c_str(), &end, 10);
-        if (text.empty() || *end != '\0' || value < std::numeric_limits<int>::min() ||
-            value > std::numeric_limits<int>::max()) {
-          throw InputError(name_equals_value, "a whole number");
+        const long long lowest = wide ? 0 : std::numeric_limits<int>::min();
+        const long long highest = wide ? static_cast<long long>(kMaxExactInteger) : std::numeric_limits<int>::max();
+        if (text.empty() || *end != '\0' || value < lowest || value > highest) {
+          throw InputError(name_equals_value, wide ? "a whole number, 0 or more" : "a whole number");
         }
-        *static_cast<int*>(f.at(target)) = static_cast<int>(value);
+        StoreNumber(f, target, static_cast<double>(value));
         return;
       }
       case Field::Kind::kBoolean:
@@ -369,7 +454,7 @@ std::vector<OptionInfo> OptionTableBase::List() const {
         break;
       case Field::Kind::kInteger:
         info.kind = OptionInfo::Kind::kInteger;
-        info.default_json = json(static_cast<int>(f.default_number)).dump();
+        info.default_json = json(static_cast<long long>(f.default_number)).dump();
         info.range = f.range;
         break;
       case Field::Kind::kBoolean:

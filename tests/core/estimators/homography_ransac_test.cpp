@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -437,14 +438,24 @@ TEST(RansacOptions, CheckNamesEachInvalidFieldAndEstimateRejectsThem) {
   bad.trials = 0;
   bad.inlier_threshold_px = -1;
   bad.local_optimisation_refits = -2;
-  const std::string message = bad.Check();
-  EXPECT_NE(message.find("trials"), std::string::npos);
-  EXPECT_NE(message.find("inlier_threshold_px"), std::string::npos);
-  EXPECT_NE(message.find("local_optimisation_refits"), std::string::npos);
+  EXPECT_EQ(bad.Check(), "trials: must be in [1, 10000000] (got 0)");
   EXPECT_THROW(EstimateHomographyRansac({}, {}, {}, bad, 1), std::logic_error);
+  bad.trials = 100;
+  EXPECT_EQ(bad.Check(), "inlier_threshold_px: must be above 0 px (got -1)");
+  bad.inlier_threshold_px = 5;
+  EXPECT_EQ(bad.Check(), "local_optimisation_refits: must be at least 0 (got -2)");
   RansacOptions too_many;
   too_many.trials = 20'000'000;  // sample counters would pass 2^32
-  EXPECT_NE(too_many.Check().find("trials must be in [1, 10000000]"), std::string::npos);
+  EXPECT_EQ(too_many.Check(), "trials: must be in [1, 10000000] (got 20000000)");
+}
+
+TEST(RansacOptions, HoldsThePapersDefaultsFromItsTableAndChecksEveryBound) {
+  const RansacOptions options;
+  EXPECT_EQ(options.trials, 100);  // paper, section 5.2
+  EXPECT_EQ(options.inlier_threshold_px, 5.0);
+  EXPECT_EQ(options.local_optimisation_refits, 0);
+  ExpectConstructedHoldsTheTableDefaults<RansacOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<RansacOptions>(), 4);
 }
 
 TEST(EstimateHomographyRansac, OutOfRangeMatchIsRejected) {

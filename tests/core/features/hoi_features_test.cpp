@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -85,6 +87,12 @@ TEST(HoiOptions, CheckNamesTheBadField) {
   bad.column_step_px = 0;
   EXPECT_NE(bad.Check().find("column_step_px"), std::string::npos);
   EXPECT_THROW(ExtractHoiFeatures(HandMask(), {}, bad), std::logic_error);
+}
+
+TEST(HoiOptions, HoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  EXPECT_EQ(HoiOptions().column_step_px, 1);  // every column, as the paper
+  ExpectConstructedHoldsTheTableDefaults<HoiOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<HoiOptions>(), 2);
 }
 
 // Two seated people (torsos touching) drift right by 1 px per frame: the front end keeps two

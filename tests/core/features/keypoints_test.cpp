@@ -4,6 +4,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -64,8 +66,18 @@ TEST(Keypoints, UniformImageHasNoKeypointsAndMaxIsRespected) {
 TEST(Keypoints, CheckRejectsUnknownDetector) {
   KeypointOptions options;
   options.detector = "superpoint";
-  EXPECT_NE(options.Check().find("gftt"), std::string::npos);
+  EXPECT_EQ(options.Check(), "detector: must be one of: gftt, fast, orb, sift, akaze (got 'superpoint')");
   EXPECT_THROW(DetectKeypoints(Rectangles(), options), std::logic_error);
+}
+
+TEST(Keypoints, OptionsHoldSuperPointLikeDefaultsFromTheirTableAndEveryBoundIsChecked) {
+  const KeypointOptions options;
+  EXPECT_EQ(options.detector, "gftt");
+  EXPECT_EQ(options.max_keypoints, 1000);
+  EXPECT_EQ(options.nms_radius_px, 4.0);
+  EXPECT_EQ(options.border_px, 4);
+  ExpectConstructedHoldsTheTableDefaults<KeypointOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<KeypointOptions>(), 10);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -260,6 +261,14 @@ TEST(PersonDetectorOptions, CheckNamesTheBadField) {
     EXPECT_NE(wrong.Check().find("min_clothing_fraction"), std::string::npos) << fraction;
   }
   EXPECT_THROW(DetectPersons(cv::Mat(), SceneC(), bad), std::logic_error);
+  bad = {};
+  bad.threshold_c = 40;
+  EXPECT_EQ(bad.Check(), "max_median_c: must exceed threshold_c");
+}
+
+TEST(PersonDetectorOptions, HoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  ExpectConstructedHoldsTheTableDefaults<PersonDetectorOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PersonDetectorOptions>(), 36);
 }
 
 }  // namespace

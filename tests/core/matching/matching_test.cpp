@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hoilcd/core/util/random.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -196,11 +197,17 @@ TEST(MatchOptions, CheckNamesEachInvalidField) {
   MatchOptions bad;
   bad.vertical_tolerance = -0.1;
   bad.image_height_px = 0;
-  const std::string message = bad.Check();
-  EXPECT_NE(message.find("vertical_tolerance"), std::string::npos);
-  EXPECT_NE(message.find("image_height_px"), std::string::npos);
+  EXPECT_EQ(bad.Check(), "vertical_tolerance: must be in [0, 1] (got -0.1)");
   EXPECT_THROW(FilterVertical({}, {}, {}, bad), std::logic_error);
   EXPECT_THROW(ScorePair({}, {}, bad, {}, 1, 0, 0), std::logic_error);
+  bad.vertical_tolerance = 0.1;
+  EXPECT_EQ(bad.Check(), "image_height_px: must be at least 1 px (got 0)");
+}
+
+TEST(MatchOptions, HoldsThePapersDefaultsFromItsTableAndChecksEveryBound) {
+  EXPECT_EQ(MatchOptions().vertical_tolerance, 0.1);  // paper, section 5.2
+  ExpectConstructedHoldsTheTableDefaults<MatchOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<MatchOptions>(), 3);
 }
 
 TEST(ScorePair, EqualsTheComposedPipelineWithThePairKeyedStream) {

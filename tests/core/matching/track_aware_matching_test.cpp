@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -192,6 +194,11 @@ TEST(TrackAwareMatching, OptionChecksNameTheBadField) {
   options = TrackAwareOptions();
   options.min_points_per_person = 0;
   EXPECT_NE(options.Check().find("min_points_per_person"), std::string::npos);
+}
+
+TEST(TrackAwareMatching, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  ExpectConstructedHoldsTheTableDefaults<TrackAwareOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TrackAwareOptions>(), 6);
 }
 
 }  // namespace

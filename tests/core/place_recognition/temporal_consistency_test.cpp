@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -118,6 +120,11 @@ TEST(TemporalConsistency, OptionChecksNameTheBadField) {
   options = TemporalConsistencyOptions();
   options.max_query_gap = 0;
   EXPECT_NE(options.Check().find("max_query_gap"), std::string::npos);
+}
+
+TEST(TemporalConsistency, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  ExpectConstructedHoldsTheTableDefaults<TemporalConsistencyOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TemporalConsistencyOptions>(), 4);
 }
 
 TEST(TemporalConsistency, UnsortedFramesAreRejected) {

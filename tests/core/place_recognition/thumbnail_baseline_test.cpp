@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -180,6 +181,13 @@ TEST(ThumbnailBaseline, OptionChecksNameTheBadField) {
   sequence = SeqSlamOptions();
   sequence.velocity_steps = 0;
   EXPECT_NE(sequence.Check().find("velocity_steps"), std::string::npos);
+}
+
+TEST(ThumbnailBaseline, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  ExpectConstructedHoldsTheTableDefaults<ThumbnailOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ThumbnailOptions>(), 3);
+  ExpectConstructedHoldsTheTableDefaults<SeqSlamOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SeqSlamOptions>(), 2);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "hoilcd/core/util/random.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -149,6 +150,21 @@ TEST(ByteTrackOptions, CheckNamesTheBadField) {
   bad.frame_rate_hz = -1;
   EXPECT_NE(bad.Check().find("frame_rate_hz"), std::string::npos);
   EXPECT_THROW(ByteTracker{bad}, std::logic_error);
+}
+
+TEST(ByteTrackOptions, HoldThePythonReferencesDefaultsFromTheirTableAndEveryBoundIsChecked) {
+  const ByteTrackOptions o;
+  EXPECT_EQ(o.track_high_thresh, 0.5);
+  EXPECT_EQ(o.track_low_thresh, 0.1);
+  EXPECT_EQ(o.new_track_thresh, 0.6);
+  EXPECT_EQ(o.match_thresh, 0.8);
+  EXPECT_EQ(o.second_match_thresh, 0.5);
+  EXPECT_EQ(o.unconfirmed_match_thresh, 0.7);
+  EXPECT_EQ(o.track_buffer_frames, 30);
+  EXPECT_TRUE(o.fuse_score);
+  EXPECT_EQ(o.iou_convention, IouConvention::kPlusOnePixel);
+  ExpectConstructedHoldsTheTableDefaults<ByteTrackOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ByteTrackOptions>(), 14);
 }
 
 TEST(IouDistance, IsOneMinusIntersectionOverUnion) {

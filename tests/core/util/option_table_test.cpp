@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 namespace hoilcd {
@@ -237,6 +240,120 @@ TEST(OptionTable, ListGivesEveryFieldWithDefaultUnitRangeAndDescription) {
   EXPECT_NE(text.find("inner/sd_m"), std::string::npos);
   EXPECT_NE(text.find("in [0, 1] m"), std::string::npos);
   EXPECT_NE(text.find("standard deviation"), std::string::npos);
+}
+
+TEST(OptionTable, OnlyKeepsTheNamedFieldsWithTheirDefaultsRangesAndRules) {
+  const OptionTable<Example> some = ExampleTable().Only({"offset_k", "gain"});
+  std::vector<std::string> names;
+  for (const OptionInfo& o : some.List()) names.push_back(o.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"gain", "offset_k"}));  // the table's order
+  Example e;
+  some.FillDefaults(&e);
+  EXPECT_EQ(e.gain, 0.5);
+  EXPECT_EQ(e.count, -1) << "a field left out is not touched";
+  e.gain = 11;
+  EXPECT_EQ(some.FirstProblem(e), "gain: must be in (0, 10] (got 11)");
+  e.gain = 0.5;
+  e.offset_k = 1;
+  EXPECT_EQ(some.FirstProblem(e), "offset_k: at most gain");
+  EXPECT_EQ(ExampleTable().Only({"gain"}).FirstProblem(e), "") << "a rule at a field left out is left out";
+  EXPECT_THROW(some.Set("count=2", &e), InputError);
+  EXPECT_THROW(ExampleTable().Only({"gian"}), std::logic_error);
+}
+
+TEST(OptionTable, AppendJoinsTwoViewsOfOneStruct) {
+  const OptionTable<Example> joined = ExampleTable().Only({"count"}).Append(ExampleTable().Only({"gain"}));
+  std::vector<std::string> names;
+  for (const OptionInfo& o : joined.List()) names.push_back(o.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"count", "gain"}));
+  Example e = Defaults();
+  joined.Set("gain=3", &e);
+  EXPECT_EQ(e.gain, 3);
+}
+
+TEST(OptionTable, ToJsonGivesEveryValueAsReadReadsItAndListsDefaults) {
+  Example e = Defaults();
+  const json values = ExampleTable().ToJson(e);
+  EXPECT_EQ(values, json::parse(R"({"gain": 0.5, "offset_k": 0.0, "count": 3, "on": true, "reference_c": 25.0,
+                                    "preset": "fast", "mode": "fast", "inner": {"sd_m": 0.1, "enabled": true},
+                                    "samples": 2})"));
+  for (const OptionInfo& o : ExampleTable().List()) {
+    if (o.kind != OptionInfo::Kind::kExternal) {
+      EXPECT_EQ(values.at(json::json_pointer("/" + o.name)), json::parse(o.default_json)) << o.name;
+    }
+  }
+  Example read;
+  ProblemCollector problems;
+  json without_code_only = values;
+  without_code_only.erase("reference_c");
+  ExampleTable().Read(without_code_only, "", &read, &problems);
+  EXPECT_TRUE(problems.empty());
+  json read_back = ExampleTable().ToJson(read);
+  EXPECT_EQ(read_back["reference_c"], -1.0) << "code-only: not read";
+  read_back.erase("reference_c");
+  EXPECT_EQ(read_back, without_code_only);
+}
+
+TEST(OptionTable, RenameGivesAFieldAndItsRulesAnotherNameOnly) {
+  const OptionTable<Example> renamed = ExampleTable().Only({"gain", "offset_k"}).Rename("offset_k", "bias_k");
+  Example e = Defaults();
+  renamed.Set("bias_k=0.25", &e);
+  EXPECT_EQ(e.offset_k, 0.25);
+  e.offset_k = 1;
+  EXPECT_EQ(renamed.FirstProblem(e), "bias_k: at most gain");
+  EXPECT_EQ(renamed.List()[1].default_json, "0.0");
+  EXPECT_THROW(renamed.Set("offset_k=0", &e), InputError);
+  EXPECT_THROW(ExampleTable().Rename("gain", "count"), std::logic_error);
+}
+
+TEST(OptionTable, WithDefaultChangesOneDefaultInsideItsRange) {
+  const OptionTable<Example> other = ExampleTable().WithDefault("gain", 2).WithDefault("count", 7);
+  Example e;
+  other.FillDefaults(&e);
+  EXPECT_EQ(e.gain, 2);
+  EXPECT_EQ(e.count, 7);
+  EXPECT_EQ(e.offset_k, 0);
+  EXPECT_EQ(Defaults().gain, 0.5) << "the original table keeps its own";
+  EXPECT_THROW(ExampleTable().WithDefault("gain", 20), std::logic_error);
+  EXPECT_THROW(ExampleTable().WithDefault("count", 2.5), std::logic_error);
+  EXPECT_THROW(ExampleTable().WithDefault("preset", 1), std::logic_error);
+}
+
+TEST(OptionTable, Uint64FieldsAreDefaultedReadSetAndChecked) {
+  struct Seeded {
+    uint64_t offset = 0;
+  };
+  const OptionTable<Seeded> table = OptionTable<Seeded>().Add("offset", &Seeded::offset, uint64_t{1000}, "",
+                                                              OptionRange::Any().AtLeast(0), "seed offset");
+  Seeded s;
+  table.FillDefaults(&s);
+  EXPECT_EQ(s.offset, 1000u);
+  EXPECT_EQ(table.List()[0].default_json, "1000");
+  EXPECT_EQ(table.List()[0].kind, OptionInfo::Kind::kInteger);
+  table.Set("offset=4294967296", &s);
+  EXPECT_EQ(s.offset, 4294967296u);
+  EXPECT_EQ(table.FirstProblem(s), "");
+  EXPECT_THROW(table.Set("offset=-1", &s), InputError);
+  ProblemCollector problems;
+  table.Read(json::parse(R"({"offset": -3})"), "f.json", &s, &problems);
+  EXPECT_EQ(Wheres(problems), std::vector<std::string>{"f.json/offset"});
+  table.Read(json::parse(R"({"offset": 7})"), "f.json", &s, &problems);
+  EXPECT_EQ(s.offset, 7u);
+}
+
+TEST(OptionTable, OrNaNAcceptsNaNAsNotSetButNoInfinity) {
+  struct Threshold {
+    double t = 0;
+  };
+  const OptionTable<Threshold> table = OptionTable<Threshold>().Add(
+      "t", &Threshold::t, std::nan(""), "", OptionRange::Any().OrNaN(), "threshold; NaN: calibrated");
+  Threshold x;
+  table.FillDefaults(&x);
+  EXPECT_TRUE(std::isnan(x.t));
+  EXPECT_EQ(table.FirstProblem(x), "");
+  x.t = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(table.FirstProblem(x), "t: must be a finite number or NaN (got inf)");
+  EXPECT_EQ(OptionRange::Any().AtLeast(0).OrNaN().ToString("m"), "at least 0 m or NaN");
 }
 
 TEST(OptionTable, RegisteringADefaultOutsideItsRangeIsAnApiMisuse) {

@@ -11,6 +11,7 @@
 #include <opencv2/core/types.hpp>
 
 #include "hoilcd/core/geometry/point.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -24,13 +25,19 @@ inline bool operator==(const Correspondence& a, const Correspondence& b) {
   return a.query == b.query && a.reference == b.reference;
 }
 
+// Defaults and ranges: Table() in homography_ransac.cpp.
 struct RansacOptions {
-  int trials = 100;                   // exact number of hypotheses (paper), no adaptive stop
-  bool redraw_degenerate_samples = true;  // a degenerate sample is redrawn (up to 10 draws per
-                                          // trial on average) instead of using up its trial
-  double inlier_threshold_px = 5.0;   // reprojection error bound, px
-  int local_optimisation_refits = 0;  // 0 = plain RANSAC (paper); >0 = LO-RANSAC least-squares
-                                      // refits on the inlier set of each new best model
+  int trials;                      // exact number of hypotheses (paper), no adaptive stop
+  bool redraw_degenerate_samples;  // a degenerate sample is redrawn (up to 10 draws per trial on
+                                   // average) instead of using up its trial
+  double inlier_threshold_px;      // reprojection error bound, px
+  int local_optimisation_refits;   // 0 = plain RANSAC (paper); >0 = LO-RANSAC least-squares
+                                   // refits on the inlier set of each new best model
+
+  RansacOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<RansacOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

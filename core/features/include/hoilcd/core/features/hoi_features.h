@@ -12,6 +12,7 @@
 #include "hoilcd/core/features/person_detection.h"
 #include "hoilcd/core/geometry/point.h"
 #include "hoilcd/core/tracking/byte_tracker.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -20,9 +21,15 @@ struct HoiFeature {
   int track_id = 0;  // ByteTrack id of the person
 };
 
+// Defaults and ranges: Table() in hoi_features.cpp.
 struct HoiOptions {
-  int min_points_per_person = 3;  // points; a person with fewer bottom points gives none
-  int column_step_px = 1;         // px, take every n-th column of the box (1 = all, as the paper)
+  int min_points_per_person;  // points; a person with fewer bottom points gives none
+  int column_step_px;         // px, take every n-th column of the box (1 = all, as the paper)
+
+  HoiOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<HoiOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -11,14 +11,21 @@
 #include <opencv2/core/types.hpp>
 
 #include "hoilcd/core/estimators/homography_ransac.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
 // Point2 and Correspondence are defined in homography_ransac.h.
 
+// Defaults and ranges: Table() in matching.cpp.
 struct MatchOptions {
-  double vertical_tolerance = 0.1;  // τ_y, fraction of image height (|y_q - y_r| <= τ_y * H)
-  int image_height_px = 192;        // H, px
+  double vertical_tolerance;  // τ_y, fraction of image height (|y_q - y_r| <= τ_y * H)
+  int image_height_px;        // H, px
+
+  MatchOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<MatchOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -10,16 +10,23 @@
 #include "hoilcd/core/estimators/homography_ransac.h"
 #include "hoilcd/core/features/hoi_features.h"
 #include "hoilcd/core/tracking/lapjv.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in track_aware_matching.cpp.
 struct TrackAwareOptions {
-  int min_points_per_person = 3;   // points; persons with fewer HOI points are ignored
-  int profile_samples = 16;        // samples of the contour profile compared between persons
-  double position_weight = 1.0;    // cost per px of offset of the contour centre (x and mean y)
-  double width_weight = 0.5;       // cost per px of difference in contour width (x-extent)
-  double shape_weight = 1.0;       // cost per px of mean difference of the centred profiles
-  double max_pair_cost = 80.0;     // persons whose pair cost exceeds this stay unpaired, px
+  int min_points_per_person;  // points; persons with fewer HOI points are ignored
+  int profile_samples;        // samples of the contour profile compared between persons
+  double position_weight;     // cost per px of offset of the contour centre (x and mean y)
+  double width_weight;        // cost per px of difference in contour width (x-extent)
+  double shape_weight;        // cost per px of mean difference of the centred profiles
+  double max_pair_cost;       // persons whose pair cost exceeds this stay unpaired, px
+
+  TrackAwareOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<TrackAwareOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -5,14 +5,21 @@
 
 #include <string>
 #include <vector>
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in temporal_consistency.cpp.
 struct TemporalConsistencyOptions {
-  int consecutive_queries = 3;   // k: queries in a consistent run, current one included (1 = off)
-  int candidates_per_query = 5;  // K: each earlier query supports the chain with its K best frames
-  int max_frame_gap = 10;        // frames a chain may advance in the database per query step
-  int max_query_gap = 1;         // frames between two queries for them to count as consecutive
+  int consecutive_queries;   // k: queries in a consistent run, current one included (1 = off)
+  int candidates_per_query;  // K: each earlier query supports the chain with its K best frames
+  int max_frame_gap;         // frames a chain may advance in the database per query step
+  int max_query_gap;         // frames between two queries for them to count as consecutive
+
+  TemporalConsistencyOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<TemporalConsistencyOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -7,14 +7,21 @@
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in thumbnail_baseline.cpp.
 struct ThumbnailOptions {
-  int width_px = 32;   // thumbnail width after area downsampling, px
-  int height_px = 24;  // thumbnail height after area downsampling, px
-  int patch_px = 8;    // side of the square patches normalised to zero mean / unit variance,
-                       // thumbnail px (SeqSLAM's patch normalisation); edge patches may be smaller
+  int width_px;   // thumbnail width after area downsampling, px
+  int height_px;  // thumbnail height after area downsampling, px
+  int patch_px;   // side of the square patches normalised to zero mean / unit variance,
+                  // thumbnail px (SeqSLAM's patch normalisation); edge patches may be smaller
+
+  ThumbnailOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<ThumbnailOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 
@@ -51,11 +58,17 @@ class ThumbnailIndex {
 };
 
 // SeqSLAM's trajectory search. v is database frames advanced per query frame.
+// Defaults and ranges: Table() in thumbnail_baseline.cpp.
 struct SeqSlamOptions {
-  int sequence_length = 10;    // frames along each trajectory, the end point included (SeqSLAM ds)
-  double min_velocity = 0.8;   // slowest trajectory, database frames per query frame
-  double max_velocity = 1.25;  // fastest trajectory, database frames per query frame
-  int velocity_steps = 5;      // trajectories tried, evenly spaced in [min, max]; 1 = the midpoint
+  int sequence_length;  // frames along each trajectory, the end point included (SeqSLAM ds)
+  double min_velocity;  // slowest trajectory, database frames per query frame
+  double max_velocity;  // fastest trajectory, database frames per query frame
+  int velocity_steps;   // trajectories tried, evenly spaced in [min, max]; 1 = the midpoint
+
+  SeqSlamOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<SeqSlamOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -18,6 +18,7 @@
 #include <opencv2/core/types.hpp>
 
 #include "hoilcd/core/tracking/kalman_filter.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -30,17 +31,23 @@ struct Detection {
 // does for the reference, inclusive pixel corners, i.e. w + 1 by h + 1.
 enum class IouConvention { kPlusOnePixel, kContinuous };
 
+// Defaults and ranges: Table() in byte_tracker.cpp.
 struct ByteTrackOptions {
-  double track_high_thresh = 0.5;  // score; above (strictly, as Python): first association
-  double track_low_thresh = 0.1;   // score; strictly between low and high: second association
-  double new_track_thresh = 0.6;   // score; a leftover high detection this good starts a track
-  double match_thresh = 0.8;       // cost 1 - IoU*score; first association limit
-  double second_match_thresh = 0.5;       // cost 1 - IoU; low-score association limit
-  double unconfirmed_match_thresh = 0.7;  // cost 1 - IoU*score; unconfirmed-track limit
-  int track_buffer_frames = 30;  // frames at 30 Hz a lost track is kept (scaled by the rate)
-  double frame_rate_hz = 25;     // Hz; lost tracks live int(rate / 30 * buffer) frames
-  bool fuse_score = true;        // cost uses IoU * detection score (Python, not MOT20)
-  IouConvention iou_convention = IouConvention::kPlusOnePixel;  // the reference's (cython_bbox)
+  double track_high_thresh;         // score; above (strictly, as Python): first association
+  double track_low_thresh;          // score; strictly between low and high: second association
+  double new_track_thresh;          // score; a leftover high detection this good starts a track
+  double match_thresh;              // cost 1 - IoU*score; first association limit
+  double second_match_thresh;       // cost 1 - IoU; low-score association limit
+  double unconfirmed_match_thresh;  // cost 1 - IoU*score; unconfirmed-track limit
+  int track_buffer_frames;          // frames at 30 Hz a lost track is kept (scaled by the rate)
+  double frame_rate_hz;             // Hz; lost tracks live int(rate / 30 * buffer) frames
+  bool fuse_score;                  // cost uses IoU * detection score (Python, not MOT20)
+  IouConvention iou_convention;     // the reference's (cython_bbox)
+
+  ByteTrackOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<ByteTrackOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

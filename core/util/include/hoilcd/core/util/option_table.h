@@ -5,6 +5,7 @@
 // (The idea of COLMAP's OptionManager; the schema test compares the tables with the scene schema.)
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
@@ -17,13 +18,15 @@
 
 namespace hoilcd {
 
-// A numeric range: each end absent (unbounded), inclusive or exclusive.
+// A numeric range: each end absent (unbounded), inclusive or exclusive. Non-finite values are
+// outside every range, except NaN where OrNaN() says it stands for "not set".
 struct OptionRange {
   struct Bound {
     double value = 0;
     bool exclusive = false;
   };
   std::optional<Bound> min, max;
+  bool nan_allowed = false;
 
   static OptionRange Any() { return {}; }
   static OptionRange Closed(double lo, double hi) { return Any().AtLeast(lo).AtMost(hi); }  // [lo, hi]
@@ -31,9 +34,14 @@ struct OptionRange {
   OptionRange Above(double lo) const { return With(&OptionRange::min, {lo, true}); }      // > lo
   OptionRange AtMost(double hi) const { return With(&OptionRange::max, {hi, false}); }    // <= hi
   OptionRange Below(double hi) const { return With(&OptionRange::max, {hi, true}); }      // < hi
+  OptionRange OrNaN() const {                                                              // or NaN (not set)
+    OptionRange out = *this;
+    out.nan_allowed = true;
+    return out;
+  }
 
-  bool Contains(double value) const;  // false for NaN
-  // "in (0, 10] px", "at least 1", "any value" (unit appended when not empty).
+  bool Contains(double value) const;  // false for infinities, and for NaN unless OrNaN()
+  // "in (0, 10] px", "at least 1", "a finite number" (unit appended when not empty; "or NaN").
   std::string ToString(const std::string& unit = "") const;
 
  private:
@@ -61,6 +69,7 @@ struct OptionInfo {
 class OptionTableBase {
  public:
   struct Field;
+  enum class Storage { kDouble, kInt, kUint64 };  // the C++ type of a number's member
   OptionTableBase();
   ~OptionTableBase();
   OptionTableBase(const OptionTableBase& other);
@@ -70,7 +79,7 @@ class OptionTableBase {
 
  protected:
   using Locate = std::function<void*(void*)>;  // the struct -> one of its members
-  void AddNumber(const char* name, Locate at, bool integer, double default_value, const char* unit,
+  void AddNumber(const char* name, Locate at, Storage storage, double default_value, const char* unit,
                    OptionRange range, const char* description);
   void AddBool(const char* name, Locate at, bool default_value, const char* description);
   // String members; enums go through to_text / from_text (choices: the accepted texts).
@@ -82,8 +91,12 @@ class OptionTableBase {
   void AddExternal(const char* name, const char* description);
   void AddRule(const char* field, std::function<std::string(const void*)> rule);
   void MarkLastCodeOnly();
+  void KeepOnly(const std::vector<std::string>& names);
+  void RenameField(const std::string& from, const std::string& to);
+  void ChangeDefault(const std::string& name, double default_value);
 
   void FillDefaultsOf(void* options) const;
+  nlohmann::json ToJsonOf(const void* options) const;
   void ReadInto(const nlohmann::json& object, const std::string& where, void* options,
                 ProblemCollector* problems) const;
   void CheckOf(const void* options, const std::string& where, ProblemCollector* problems) const;
@@ -103,12 +116,18 @@ class OptionTable : public OptionTableBase {
  public:
   OptionTable& Add(const char* name, double T::*member, double default_value, const char* unit,
                    OptionRange range, const char* description) {
-    AddNumber(name, At(member), false, default_value, unit, range, description);
+    AddNumber(name, At(member), Storage::kDouble, default_value, unit, range, description);
     return *this;
   }
   OptionTable& Add(const char* name, int T::*member, int default_value, const char* unit,
                    OptionRange range, const char* description) {
-    AddNumber(name, At(member), true, default_value, unit, range, description);
+    AddNumber(name, At(member), Storage::kInt, default_value, unit, range, description);
+    return *this;
+  }
+  // An unsigned 64-bit whole number (a seed offset, say); values above 2^53 are not supported.
+  OptionTable& Add(const char* name, uint64_t T::*member, uint64_t default_value, const char* unit,
+                   OptionRange range, const char* description) {
+    AddNumber(name, At(member), Storage::kUint64, static_cast<double>(default_value), unit, range, description);
     return *this;
   }
   OptionTable& Add(const char* name, bool T::*member, bool default_value, const char* description) {
@@ -185,7 +204,43 @@ class OptionTable : public OptionTableBase {
     return *this;
   }
 
+  // A copy holding only the fields `names` (in this table's order) and the rules reported at them:
+  // the fields of T that another interface exposes (a --param table, say), their defaults and
+  // ranges still registered once, here. A name this table does not have is an API misuse.
+  OptionTable Only(const std::vector<std::string>& names) const {
+    OptionTable out = *this;
+    out.KeepOnly(names);
+    return out;
+  }
+  // A copy in which field `from` (and the rules reported at it) is called `to`.
+  OptionTable Rename(const std::string& from, const std::string& to) const {
+    OptionTable out = *this;
+    out.RenameField(from, to);
+    return out;
+  }
+  // A copy in which number field `name` defaults to `default_value` (inside its range): the
+  // default of T's field where T is part of a larger whole with its own (a bench's scoring
+  // filter, say), stated once by that whole's table.
+  OptionTable WithDefault(const std::string& name, double default_value) const {
+    OptionTable out = *this;
+    out.ChangeDefault(name, default_value);
+    return out;
+  }
+
+  // Appends every field and rule of `other`, another table of T (fields from two views of T).
+  OptionTable& Append(const OptionTable<T>& other) {
+    AddFlattened([](void* p) { return p; }, other);
+    return *this;
+  }
+
   void FillDefaults(T* options) const { FillDefaultsOf(options); }
+  // Every registered field's value as Read reads it (nested tables as objects; External keys
+  // left out; code-only fields included): for reports, and for tests against List()'s defaults.
+  // (A template only so that this header needs no more than json_fwd.hpp.)
+  template <typename Json = nlohmann::json>
+  Json ToJson(const T& options) const {
+    return ToJsonOf(&options);
+  }
   // Sets every field present in `object` (a JSON object); absent fields keep their value. Wrong
   // types, unknown keys and values outside a string's choices are problems at their pointer.
   void Read(const nlohmann::json& object, const std::string& where, T* options,
