@@ -41,7 +41,7 @@ Command AddRenderCommand(CLI::App* app) {
                   "dataset folder (resumed if it holds an interrupted render of the same scene)")
       ->required();
   cmd->add_option("--frames", args->options.frames, "render only the first N frames (0: all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberIn(OptionRange().AtLeast(0)));
   AddThreadsFlag(cmd, &args->options.threads);
   cmd->add_option("--outputs", args->options.outputs,
                   "comma-separated outputs to write: thermal, radiometric, exr, video, persons (default: all; "

@@ -1,6 +1,8 @@
 #include "shared.h"
 
+#include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 
 #include "hoilcd/bench/methods/method_params.h"
@@ -26,8 +28,21 @@ extern "C" void OnInterrupt(int) {
 
 }  // namespace
 
+CLI::Validator NumberIn(const OptionRange& range) {
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        const double value = std::strtod(begin, &end);
+        const bool parsed = end != begin && *end == '\0';
+        if (parsed && std::isfinite(value) && range.Contains(value)) return "";
+        return "expected a number " + range.ToString() + ", got '" + text + "'";
+      },
+      range.ToString());
+}
+
 void AddThreadsFlag(CLI::App* cmd, int* threads) {
-  cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")->check(CLI::Range(0, kMaxThreadsFlag));
+  cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")->check(NumberIn(OptionRange::Closed(0, kMaxThreadsFlag)));
 }
 
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
@@ -36,7 +51,7 @@ void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
   cmd->add_option("--set", args->overrides,
                   "override a scene value by its path, e.g. --set crowd.people_per_table=2 (repeatable)")
       ->type_name("KEY=VALUE");
-  cmd->add_option("--seed", args->seed, "override the scene's seed")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "override the scene's seed")->check(NumberIn(OptionRange().AtLeast(0)));
 }
 
 Scene LoadSceneArgs(const SceneArgs& args) {
@@ -51,7 +66,7 @@ void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol) {
       ->check(CLI::IsMember({"laps", "revisit"}))
       ->capture_default_str();
   cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (the default is the paper's)")
-      ->check(CLI::PositiveNumber)
+      ->check(NumberIn(OptionRange().Above(0)))
       ->capture_default_str();
 }
 
@@ -59,7 +74,7 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
   AddProtocolAndRadiusFlags(cmd, protocol);
   cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
                   "frames this close in time to a query are not in its database, s")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NumberIn(OptionRange().AtLeast(0)))
       ->capture_default_str();
   cmd->add_option("--ground-truth", protocol->ground_truth,
                   "whose positions label true matches: odometry (the paper's) or true (the true poses)")
@@ -67,6 +82,7 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
       ->capture_default_str();
   cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
                   "max heading difference of a true match, deg (negative: off)")
+      ->check(NumberIn(OptionRange()))
       ->capture_default_str();
 }
 
@@ -81,7 +97,7 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
   cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
       ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
   cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NumberIn(OptionRange().AtLeast(0)));
   cmd->add_flag("--slam,!--no-slam", args->options.slam,
                 "each method's loops in a pose graph: ATE/RPE per back end (default: on in run, off in bench)");
   cmd->add_option("--slam-backend", args->options.slam_options.slam.graph.backend,
@@ -89,7 +105,8 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
       ->check(CLI::IsMember(PoseGraphBackends()));
   cmd->add_option("--loop-threshold", args->options.slam_options.slam.loop_threshold,
                   "accept a method's top-1 match as a loop when its score is at least this (default: the "
-                  "threshold of 100 % precision on the calibration sequence)");
+                  "threshold of 100 % precision on the calibration sequence)")
+      ->check(NumberIn(OptionRange()));
 }
 
 BenchOptions ResolveBench(const BenchArgs& args, int threads) {
@@ -106,7 +123,7 @@ void AddGateFlags(CLI::App* cmd, GateArgs* args) {
                   "earlier report.json: exit 3 when a headline metric (MRR, R@1) of a method in both dropped by "
                   "more than --max-drop");
   cmd->add_option("--max-drop", args->max_drop, "largest allowed drop of MRR or R@1 against --baseline (default 0)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NumberIn(OptionRange::Closed(0, 1)))
       ->needs(baseline);
   cmd->add_option("--junit", args->junit, "write JUnit XML here (one test case per method)");
 }

@@ -11,9 +11,15 @@
 
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/scene/scene.h"
 
 namespace hoilcd {
+
+// The check of every number flag: a finite number in `range`, else "--flag: expected a number at
+// least 0, got nan" (NaN and infinities are refused; CLI11's own ranges let NaN through and print
+// the bounds of a double in full).
+CLI::Validator NumberIn(const OptionRange& range);
 
 // --threads N (0: the CPUs this process may use) on `cmd`, into `threads`.
 void AddThreadsFlag(CLI::App* cmd, int* threads);

@@ -93,7 +93,10 @@ Command AddSweepCommand(CLI::App* app) {
                   "the cross product is run")
       ->type_name("KEY=V1,V2")
       ->allow_extra_args(false);
-  cmd->add_option("--seeds", args->seeds, "run every combination with seeds 1..N")->check(CLI::PositiveNumber);
+  // Each seed is a full render and bench (about a minute): more than this is a typo, not a plan.
+  constexpr double kMaxSeeds = 10000;
+  cmd->add_option("--seeds", args->seeds, "run every combination with seeds 1..N")
+      ->check(NumberIn(OptionRange::Closed(1, kMaxSeeds)));
   cmd->add_option("--cache", args->run.cache_dir, "folder of cached datasets (shared by every run and shard)");
   cmd->add_option("-o,--output", args->output, "sweep folder: runs/<KEY=V,...,seed=S>/, summary.csv, summary.md, plots")
       ->required();

@@ -127,6 +127,7 @@ std::string DatasetManifest::ToJson() const {
   return j.dump(2) + "\n";
 }
 
+// 82 lines: one read and check per manifest key, in the file's order; a list, not steps.
 DatasetManifest DatasetManifest::FromJson(const std::string& text,
                                           const std::string& path_for_errors) {
   JsonReader reader(path_for_errors);

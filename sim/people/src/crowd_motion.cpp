@@ -111,6 +111,7 @@ void GazeAt(const std::vector<double>& neighbour_yaw_rad, ActivityEpisode* episo
   episode->gaze_yaw_rad = neighbour_yaw_rad[std::min(n - 1, static_cast<size_t>(episode->neighbour_pick * static_cast<double>(n)))];
 }
 
+// 81 lines: one block per activity (head turn, talking, typing, drinking) over a shared envelope.
 BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const ActivityEpisode& episode,
                        double time_s, double blend_s, const Props& props, double robot_yaw_rad,
                        Eigen::Matrix4d* seat_from_cup) {
