@@ -36,7 +36,8 @@ CLI::Validator NumberIn(const OptionRange& range) {
         const double value = std::strtod(begin, &end);
         const bool parsed = end != begin && *end == '\0';
         if (parsed && std::isfinite(value) && range.Contains(value)) return "";
-        return "expected a number " + range.ToString() + ", got '" + text + "'";
+        const bool bounded = range.min || range.max;
+        return std::string("expected ") + (bounded ? "a number " : "") + range.ToString() + ", got '" + text + "'";
       },
       range.ToString());
 }

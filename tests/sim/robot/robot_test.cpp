@@ -744,7 +744,7 @@ TEST(Options, InfeasibleCombinationsAreRefused) {
   EXPECT_NE(SimulationError({}, back, {}, kFrameRateHz).find("turns back on itself"),
             std::string::npos);
   EXPECT_NE(
-      SimulationError({}, {}, {}, 0.0).find("must be positive and at most integration_rate_hz"),
+      SimulationError({}, {}, {}, 0.0).find("must be positive and at most /robot/integration_rate_hz"),
       std::string::npos);
   EXPECT_NE(SimulationError({}, {}, {Obstacle2D::Circle("stool", {9, 9}, 0)}, kFrameRateHz)
                 .find("obstacle 0 ('stool'): radius_m must be positive"),
