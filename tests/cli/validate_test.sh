@@ -60,6 +60,6 @@ grep -q "slam-backend" "$work/out" || fail "bad --slam-backend not named: $(cat 
 if "$hoilcd" run "$source_dir/tests/data/tiny_room.json" --cache "$work/runs" --loop-threshold inf > "$work/out" 2>&1; then
   fail "an infinite --loop-threshold ran"
 fi
-grep -q "loop threshold must be finite" "$work/out" || fail "infinite --loop-threshold not explained: $(cat "$work/out")"
+grep -q "loop_threshold: must be a finite number" "$work/out" || fail "infinite --loop-threshold not explained: $(cat "$work/out")"
 [ ! -e "$work/runs" ] || fail "a refused run rendered"
 echo "1 passed, 0 failed"
