@@ -21,7 +21,8 @@ const OptionTable<ProtocolOptions>& ProtocolOptions::Table() {
       OptionTable<O>()
           .Add("protocol", &O::protocol, "laps", {"laps", "revisit"},
                "laps: database = first lap, queries = later laps; revisit: every frame older than the exclusion window")
-          .Add("radius_m", &O::radius_m, 0.2, "m", R::Any().Above(0), "base positions this close make a true match (paper)")
+          .Add("radius_m", &O::radius_m, 0.2, "m", R::Any().Above(0),
+               "base positions this close make a true match (paper)")
           .Add("heading_tolerance_deg", &O::heading_tolerance_deg, -1, "deg", R::Any().AtMost(180),
                "max heading difference of a true match (negative: off)")
           .Add("exclusion_window_s", &O::exclusion_window_s, 10, "s", R::Any().AtLeast(0),

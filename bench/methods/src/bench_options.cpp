@@ -28,7 +28,9 @@ const OptionTable<BenchOptions>& BenchOptions::Table() {
           .Nest("temporal", &O::temporal, TemporalConsistencyOptions::Table())
           .Add("rrf_k", &O::rrf_k, 0.0, "", R::Any().AtLeast(0), "reciprocal rank fusion constant (paper: 0)")
           .Nest("tracking_metrics", &O::tracking_metrics,
-                TrackingMetricsOptions::Table().WithDefault("min_visible_fraction", 0.2).WithDefault("min_box_height_px", 16))
+                TrackingMetricsOptions::Table()
+                    .WithDefault("min_visible_fraction", 0.2)
+                    .WithDefault("min_box_height_px", 16))
           .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "threads (0: every core)")
           .Add("slam", &O::slam, false, "run the SLAM back end over every method's loops (slam_run.h)")
           .Nest("slam_options", &O::slam_options, SlamRunOptions::Table())

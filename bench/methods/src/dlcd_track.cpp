@@ -26,7 +26,8 @@ class DlcdTrack : public LoopClosureMethod {
     static const OptionTable<BenchOptions> table =
         OptionTable<BenchOptions>()
             .Flatten(&BenchOptions::ransac, RansacParams())
-            .Flatten(&BenchOptions::track_aware, TrackAwareOptions::Table().Only({"min_points_per_person", "max_pair_cost"}));
+            .Flatten(&BenchOptions::track_aware,
+                     TrackAwareOptions::Table().Only({"min_points_per_person", "max_pair_cost"}));
     return &table;
   }
   MethodScores Score(const MethodContext& c) const override {

@@ -466,7 +466,8 @@ namespace {
 
 // "" for an unset range or a finite one with first < second, else what is expected.
 std::string RangeProblem(const std::optional<std::pair<double, double>>& range) {
-  const bool valid = !range || (std::isfinite(range->first) && std::isfinite(range->second) && range->first < range->second);
+  const bool valid =
+      !range || (std::isfinite(range->first) && std::isfinite(range->second) && range->first < range->second);
   return valid ? "" : "must be finite with first < second";
 }
 
@@ -486,7 +487,8 @@ const OptionTable<PlotOptions>& PlotOptions::Table() {
           .Add("height_px", &O::height_px, 560, "px", R::Closed(150, 10000), "image height")
           .Rule("x_range", [](const O& o) { return RangeProblem(o.x_range); })
           .Rule("y_range", [](const O& o) { return RangeProblem(o.y_range); })
-          .Add("equal_aspect", &O::equal_aspect, false, "one data unit is as long on both axes (ranges are widened to fit)")
+          .Add("equal_aspect", &O::equal_aspect, false,
+               "one data unit is as long on both axes (ranges are widened to fit)")
           .Add("legend", &O::legend, true, "a legend of labelled series, in the corner hiding least data")
           .Add("font_scale", &O::font_scale, 0.5, "", R::Closed(0.4, 2),
                "tick-label size (OpenCV Hershey scale); labels and title are larger");

@@ -144,7 +144,8 @@ const OptionTable<PoseGraphOptions>& PoseGraphOptions::Table() {
                "how loop edges are weighted: plain least squares, a Cauchy loss, or Dynamic Covariance Scaling")
           .Add("cauchy_scale", &O::cauchy_scale, 1.0, "", R::Any().Above(0),
                "chi (Mahalanobis, dimensionless) where the Cauchy loss bends")
-          .Add("dcs_phi", &O::dcs_phi, 1.0, "", R::Any().Above(0), "Phi of Dynamic Covariance Scaling, a chi^2 (dimensionless)")
+          .Add("dcs_phi", &O::dcs_phi, 1.0, "", R::Any().Above(0),
+               "Phi of Dynamic Covariance Scaling, a chi^2 (dimensionless)")
           .Add("max_iterations", &O::max_iterations, 100, "", R::Any().AtLeast(1), "Levenberg-Marquardt iterations");
   return table;
 }

@@ -53,7 +53,9 @@ TEST(MethodParams, EveryParamIsAFieldOfTheOptionsTablesWithItsDefaultUnitAndRang
   for (const auto& m : RegisteredMethods()) {
     if (m->Params() != nullptr) tables.push_back(m->Params());
   }
-  for (FrontEnd f : {FrontEnd::kKeypoints, FrontEnd::kPersons, FrontEnd::kThumbnails}) tables.push_back(&FrontEndParams(f));
+  for (FrontEnd f : {FrontEnd::kKeypoints, FrontEnd::kPersons, FrontEnd::kThumbnails}) {
+    tables.push_back(&FrontEndParams(f));
+  }
   int params = 0;
   for (const OptionTable<BenchOptions>* table : tables) {
     for (const OptionInfo& p : table->List()) {
