@@ -12,22 +12,27 @@ double WrapAngleRad(double angle_rad) { return std::remainder(angle_rad, 2.0 * M
 
 }  // namespace
 
-std::string ProtocolOptions::Check() const {
-  if (protocol != "laps" && protocol != "revisit") {
-    return "protocol must be 'laps' or 'revisit', got '" + protocol + "'";
-  }
-  if (!(radius_m > 0) || !std::isfinite(radius_m)) return "radius_m must be positive";
-  if (std::isnan(heading_tolerance_deg) || heading_tolerance_deg > 180) {
-    return "heading_tolerance_deg must be at most 180 (or negative to turn it off)";
-  }
-  if (!(exclusion_window_s >= 0) || !std::isfinite(exclusion_window_s)) {
-    return "exclusion_window_s must be zero or positive";
-  }
-  if (ground_truth != "odometry" && ground_truth != "true") {
-    return "ground_truth must be 'odometry' or 'true', got '" + ground_truth + "'";
-  }
-  return "";
+ProtocolOptions::ProtocolOptions() { Table().FillDefaults(this); }
+
+const OptionTable<ProtocolOptions>& ProtocolOptions::Table() {
+  using O = ProtocolOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("protocol", &O::protocol, "laps", {"laps", "revisit"},
+               "laps: database = first lap, queries = later laps; revisit: every frame older than the exclusion window")
+          .Add("radius_m", &O::radius_m, 0.2, "m", R::Any().Above(0),
+               "base positions this close make a true match (paper)")
+          .Add("heading_tolerance_deg", &O::heading_tolerance_deg, -1, "deg", R::Any().AtMost(180),
+               "max heading difference of a true match (negative: off)")
+          .Add("exclusion_window_s", &O::exclusion_window_s, 10, "s", R::Any().AtLeast(0),
+               "frames with |t_query - t_ref| at most this are left out of the query's database")
+          .Add("ground_truth", &O::ground_truth, "odometry", {"odometry", "true"},
+               "whose positions decide true matches and laps: the odometry's (paper) or the true poses'");
+  return table;
 }
+
+std::string ProtocolOptions::Check() const { return Table().FirstProblem(*this); }
 
 int Query::NumTrueMatches() const {
   return static_cast<int>(std::count(is_true_match.begin(), is_true_match.end(), 1));

@@ -188,15 +188,25 @@ int IdTruePositives(const std::map<int, int>& person_boxes, const std::map<int, 
 
 }  // namespace
 
-std::string TrackingMetricsOptions::Check() const {
-  if (!(iou_threshold > 0 && iou_threshold <= 1)) return "iou_threshold must be in (0, 1]";
-  if (!(min_visible_fraction >= 0 && min_visible_fraction <= 1)) {
-    return "min_visible_fraction must be in [0, 1]";
-  }
-  if (!(min_box_height_px >= 0)) return "min_box_height_px must not be negative";
-  if (!(hoi_tolerance_px >= 0)) return "hoi_tolerance_px must not be negative";
-  return "";
+TrackingMetricsOptions::TrackingMetricsOptions() { Table().FillDefaults(this); }
+
+const OptionTable<TrackingMetricsOptions>& TrackingMetricsOptions::Table() {
+  using O = TrackingMetricsOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("iou_threshold", &O::iou_threshold, 0.5, "", R::Any().Above(0).AtMost(1),
+               "IoU a prediction needs with a person to match it")
+          .Add("min_visible_fraction", &O::min_visible_fraction, 0, "", R::Closed(0, 1),
+               "less visible persons are ignored: never missed, and a prediction on one is not a false positive")
+          .Add("min_box_height_px", &O::min_box_height_px, 0, "px", R::Any().AtLeast(0),
+               "persons whose visible box is lower are ignored likewise")
+          .Add("hoi_tolerance_px", &O::hoi_tolerance_px, 3, "px", R::Any().AtLeast(0),
+               "a contact this close to its nearest HOI point is a hit");
+  return table;
 }
+
+std::string TrackingMetricsOptions::Check() const { return Table().FirstProblem(*this); }
 
 nlohmann::json TrackingMetrics::ToJson() const {
   return {{"frames", frames},

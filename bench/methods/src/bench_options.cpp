@@ -6,25 +6,52 @@
 
 namespace hoilcd {
 
-std::string BenchOptions::Check() const {
-  for (const std::string& m : methods) {
-    if (!IsMethod(m)) return "unknown method '" + m + "'";
-  }
-  for (const std::string& problem :
-       {protocol.Check(), match.Check(), ransac.Check(), keypoints.Check(), detector.Check(),
-        tracker.Check(), hoi.Check(), track_aware.Check(), thumbnail.Check(), sequence.Check(),
-        temporal.Check(), tracking_metrics.Check(), slam_options.Check()}) {
-    if (!problem.empty()) return problem;
-  }
-  try {
-    CheckParams(params, methods);
-  } catch (const InputError& e) {
-    return e.problems().front().message;
-  }
-  if (lo_refits < 1) return "lo_refits must be positive";
-  if (rrf_k < 0) return "rrf_k must be non-negative";
-  if (threads < 0) return "threads must be 0 (every core) or positive";
-  return "";
+BenchOptions::BenchOptions() { Table().FillDefaults(this); }
+
+const OptionTable<BenchOptions>& BenchOptions::Table() {
+  using O = BenchOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Nest("protocol", &O::protocol, ProtocolOptions::Table())
+          .Nest("match", &O::match, MatchOptions::Table())
+          .Nest("ransac", &O::ransac, RansacOptions::Table())
+          .Add("lo_refits", &O::lo_refits, 2, "", R::Any().AtLeast(1),
+               "least-squares refits of the homography on its inliers (the -lo variants)")
+          .Nest("keypoints", &O::keypoints, KeypointOptions::Table())
+          .Nest("detector", &O::detector, PersonDetectorOptions::Table())
+          .Nest("tracker", &O::tracker, ByteTrackOptions::Table())
+          .Nest("hoi", &O::hoi, HoiOptions::Table())
+          .Nest("track_aware", &O::track_aware, TrackAwareOptions::Table())
+          .Nest("thumbnail", &O::thumbnail, ThumbnailOptions::Table())
+          .Nest("sequence", &O::sequence, SeqSlamOptions::Table())
+          .Nest("temporal", &O::temporal, TemporalConsistencyOptions::Table())
+          .Add("rrf_k", &O::rrf_k, 0.0, "", R::Any().AtLeast(0), "reciprocal rank fusion constant (paper: 0)")
+          .Nest("tracking_metrics", &O::tracking_metrics,
+                TrackingMetricsOptions::Table()
+                    .WithDefault("min_visible_fraction", 0.2)
+                    .WithDefault("min_box_height_px", 16))
+          .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "threads (0: every core)")
+          .Add("slam", &O::slam, false, "run the SLAM back end over every method's loops (slam_run.h)")
+          .Nest("slam_options", &O::slam_options, SlamRunOptions::Table())
+          .Rule("methods",
+                [](const O& o) {
+                  for (const std::string& m : o.methods) {
+                    if (!IsMethod(m)) return "unknown method '" + m + "'";
+                  }
+                  return std::string();
+                })
+          .Rule("params", [](const O& o) {
+            try {
+              CheckParams(o.params, o.methods);
+            } catch (const InputError& e) {
+              return e.problems().front().message;
+            }
+            return std::string();
+          });
+  return table;
 }
+
+std::string BenchOptions::Check() const { return Table().FirstProblem(*this); }
 
 }  // namespace hoilcd

@@ -23,15 +23,11 @@ class DlcdTrack : public LoopClosureMethod {
   ShownFeatures Features() const override { return ShownFeatures::kHoiPoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kPersons}; }
   const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<TrackAwareOptions> track =
-        OptionTable<TrackAwareOptions>()
-            .Add("min_points_per_person", &TrackAwareOptions::min_points_per_person, 3, "",
-                 OptionRange::Any().AtLeast(1), "persons with fewer HOI points are ignored")
-            .Add("max_pair_cost", &TrackAwareOptions::max_pair_cost, 80.0, "px", OptionRange::Any().Above(0),
-                 "persons whose pair cost exceeds this stay unpaired");
-    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>()
-                                                       .Flatten(&BenchOptions::ransac, RansacParams())
-                                                       .Flatten(&BenchOptions::track_aware, track);
+    static const OptionTable<BenchOptions> table =
+        OptionTable<BenchOptions>()
+            .Flatten(&BenchOptions::ransac, RansacParams())
+            .Flatten(&BenchOptions::track_aware,
+                     TrackAwareOptions::Table().Only({"min_points_per_person", "max_pair_cost"}));
     return &table;
   }
   MethodScores Score(const MethodContext& c) const override {

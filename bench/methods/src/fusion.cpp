@@ -15,8 +15,7 @@ class Fusion : public LoopClosureMethod {
   bool FromPaper() const override { return true; }
   std::vector<std::string> Inputs() const override { return {"slcd", "dlcd"}; }
   const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>().Add(
-        "k", &BenchOptions::rrf_k, 0.0, "", OptionRange::Any().AtLeast(0), "reciprocal rank fusion constant (paper: 0)");
+    static const OptionTable<BenchOptions> table = BenchOptions::Table().Only({"rrf_k"}).Rename("rrf_k", "k");
     return &table;
   }
   MethodScores Score(const MethodContext& c) const override {

@@ -48,16 +48,9 @@ class FusionTc : public LoopClosureMethod {
   }
   std::vector<std::string> Inputs() const override { return {"fusion"}; }
   const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<TemporalConsistencyOptions> temporal =
-        OptionTable<TemporalConsistencyOptions>()
-            .Add("consecutive_queries", &TemporalConsistencyOptions::consecutive_queries, 3, "",
-                 OptionRange::Any().AtLeast(1), "queries in a consistent run, the current one included (1 = off)")
-            .Add("candidates_per_query", &TemporalConsistencyOptions::candidates_per_query, 5, "",
-                 OptionRange::Any().AtLeast(1), "best frames of each earlier query that support a chain")
-            .Add("max_frame_gap", &TemporalConsistencyOptions::max_frame_gap, 10, "frames",
-                 OptionRange::Any().AtLeast(0), "database frames a chain may advance per query step");
-    static const OptionTable<BenchOptions> table =
-        OptionTable<BenchOptions>().Flatten(&BenchOptions::temporal, temporal);
+    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>().Flatten(
+        &BenchOptions::temporal,
+        TemporalConsistencyOptions::Table().Only({"consecutive_queries", "candidates_per_query", "max_frame_gap"}));
     return &table;
   }
   MethodScores Score(const MethodContext& c) const override {

@@ -53,54 +53,28 @@ std::string FrontEndName(FrontEnd front_end) {
   return "";
 }
 
+// The --param tables are views of the options' own tables (Only, Rename): each default and range
+// is registered once, beside its struct.
 const OptionTable<RansacOptions>& RansacParams() {
   static const OptionTable<RansacOptions> table =
-      OptionTable<RansacOptions>()
-          .Add("ransac_trials", &RansacOptions::trials, 100, "", OptionRange::Any().AtLeast(1),
-               "RANSAC hypotheses per pair (paper: 100)")
-          .Add("inlier_threshold_px", &RansacOptions::inlier_threshold_px, 5.0, "px", OptionRange::Any().Above(0),
-               "reprojection error bound of an inlier");
+      RansacOptions::Table().Only({"trials", "inlier_threshold_px"}).Rename("trials", "ransac_trials");
   return table;
 }
 
 const OptionTable<MatchOptions>& MatchParams() {
-  static const OptionTable<MatchOptions> table = OptionTable<MatchOptions>().Add(
-      "vertical_tolerance", &MatchOptions::vertical_tolerance, 0.1, "", OptionRange::Any().Above(0).AtMost(1),
-      "vertical filter: |y_q - y_r| at most this fraction of the image height");
+  static const OptionTable<MatchOptions> table = MatchOptions::Table().Only({"vertical_tolerance"});
   return table;
 }
 
 const OptionTable<BenchOptions>& FrontEndParams(FrontEnd front_end) {
-  static const OptionTable<KeypointOptions> keypoints =
-      OptionTable<KeypointOptions>()
-          .Add("detector", &KeypointOptions::detector, "gftt", {"gftt", "fast", "orb", "sift", "akaze"},
-               "keypoint detector")
-          .Add("max_keypoints", &KeypointOptions::max_keypoints, 1000, "", OptionRange::Any().AtLeast(1),
-               "keypoints kept per frame, strongest first")
-          .Add("gftt_quality", &KeypointOptions::gftt_quality, 0.01, "", OptionRange::Any().Above(0).Below(1),
-               "GFTT quality level, fraction of the strongest corner")
-          .Add("gftt_min_eigenvalue", &KeypointOptions::gftt_min_eigenvalue, 5e-4, "", OptionRange::Any().AtLeast(0),
-               "absolute floor on the Shi-Tomasi score");
-  static const OptionTable<PersonDetectorOptions> detector =
-      OptionTable<PersonDetectorOptions>()
-          .Add("threshold_c", &PersonDetectorOptions::threshold_c, 26.5, "degC", OptionRange::Any(),
-               "person threshold of the detector")
-          .Add("head_min_c", &PersonDetectorOptions::head_min_c, 31.0, "degC", OptionRange::Any(),
-               "lowest skin temperature of a head seed")
-          .Add("min_area_px", &PersonDetectorOptions::min_area_px, 60, "px^2", OptionRange::Any().AtLeast(1),
-               "smaller parts are not people")
-          .Add("min_height_px", &PersonDetectorOptions::min_height_px, 12, "px", OptionRange::Any().AtLeast(1),
-               "lower parts are not people");
-  static const OptionTable<ThumbnailOptions> thumbnail =
-      OptionTable<ThumbnailOptions>()
-          .Add("width_px", &ThumbnailOptions::width_px, 32, "px", OptionRange::Any().AtLeast(1), "thumbnail width")
-          .Add("height_px", &ThumbnailOptions::height_px, 24, "px", OptionRange::Any().AtLeast(1), "thumbnail height")
-          .Add("patch_px", &ThumbnailOptions::patch_px, 8, "px", OptionRange::Any().AtLeast(1),
-               "side of the normalised patches");
   static const OptionTable<BenchOptions> tables[] = {
-      OptionTable<BenchOptions>().Flatten(&BenchOptions::keypoints, keypoints),
-      OptionTable<BenchOptions>().Flatten(&BenchOptions::detector, detector),
-      OptionTable<BenchOptions>().Flatten(&BenchOptions::thumbnail, thumbnail),
+      OptionTable<BenchOptions>().Flatten(
+          &BenchOptions::keypoints,
+          KeypointOptions::Table().Only({"detector", "max_keypoints", "gftt_quality", "gftt_min_eigenvalue"})),
+      OptionTable<BenchOptions>().Flatten(
+          &BenchOptions::detector,
+          PersonDetectorOptions::Table().Only({"threshold_c", "head_min_c", "min_area_px", "min_height_px"})),
+      OptionTable<BenchOptions>().Flatten(&BenchOptions::thumbnail, ThumbnailOptions::Table()),
   };
   return tables[static_cast<int>(front_end)];
 }

@@ -27,9 +27,8 @@ ShownFeatures PointSetMethod::Features() const {
 const OptionTable<BenchOptions>* PointSetMethod::Params() const {
   static const OptionTable<BenchOptions> plain =
       OptionTable<BenchOptions>().Flatten(&BenchOptions::ransac, RansacParams()).Flatten(&BenchOptions::match, MatchParams());
-  static const OptionTable<BenchOptions> with_lo = OptionTable<BenchOptions>(plain).Add(
-      "lo_refits", &BenchOptions::lo_refits, 2, "", OptionRange::Any().AtLeast(1),
-      "least-squares refits of the homography on its inliers");
+  static const OptionTable<BenchOptions> with_lo =
+      OptionTable<BenchOptions>(plain).Append(BenchOptions::Table().Only({"lo_refits"}));
   return lo_ ? &with_lo : &plain;
 }
 

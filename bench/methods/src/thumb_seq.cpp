@@ -14,14 +14,8 @@ class ThumbSeq : public LoopClosureMethod {
   std::string Description() const override { return "thumbnail correlation with SeqSLAM sequence matching"; }
   std::vector<std::string> Inputs() const override { return {"thumb"}; }
   const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<SeqSlamOptions> sequence =
-        OptionTable<SeqSlamOptions>()
-            .Add("sequence_length", &SeqSlamOptions::sequence_length, 10, "frames", OptionRange::Any().AtLeast(1),
-                 "frames along each trajectory, the end point included")
-            .Add("velocity_steps", &SeqSlamOptions::velocity_steps, 5, "", OptionRange::Any().AtLeast(1),
-                 "trajectories tried between the slowest and fastest velocity");
-    static const OptionTable<BenchOptions> table =
-        OptionTable<BenchOptions>().Flatten(&BenchOptions::sequence, sequence);
+    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>().Flatten(
+        &BenchOptions::sequence, SeqSlamOptions::Table().Only({"sequence_length", "velocity_steps"}));
     return &table;
   }
   MethodScores Score(const MethodContext& c) const override {

@@ -21,11 +21,23 @@
 
 namespace hoilcd {
 
-std::string RunOptions::Check() const {
-  if (cache_dir.empty()) return "cache_dir must not be empty";
-  if (threads < 0) return "threads must be 0 (every core) or positive";
-  return "";
+RunOptions::RunOptions() { Table().FillDefaults(this); }
+
+const OptionTable<RunOptions>& RunOptions::Table() {
+  using O = RunOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("cache_dir", &O::cache_dir, "runs", {}, "datasets and reports go to CACHE/<scene>-<hash>/")
+          .Rule("cache_dir", [](const O& o) { return o.cache_dir.empty() ? "must not be empty" : ""; })
+          .Add("report_dir", &O::report_dir, "", {}, "the report folder (empty: CACHE/<scene>-<hash>/report)")
+          .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "threads (0: every core)")
+          .Add("calibration_seed_offset", &O::calibration_seed_offset, uint64_t{1000}, "", R::Any().AtLeast(0),
+               "the SLAM calibration run renders the scene with seed + this");
+  return table;
 }
+
+std::string RunOptions::Check() const { return Table().FirstProblem(*this); }
 
 nlohmann::json BenchSettingsJson(const BenchOptions& options) {
   const std::vector<std::string> methods = options.methods.empty() ? DefaultMethods() : options.methods;

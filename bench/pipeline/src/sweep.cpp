@@ -278,11 +278,20 @@ SweepPlan MakeSweepPlan(const std::string& scene_path, const std::vector<std::st
   return plan;
 }
 
-std::string SweepOptions::Check() const {
-  if (output_dir.empty()) return "the output folder must be given";
-  if (const std::string problem = shard.Check(); !problem.empty()) return problem;
-  return run.Check();
+SweepOptions::SweepOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SweepOptions>& SweepOptions::Table() {
+  using O = SweepOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("output_dir", &O::output_dir, "", {}, "runs/<FolderName>/ and sweep.json (the shard marker) go here")
+          .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "the output folder must be given" : ""; })
+          .Rule("shard", [](const O& o) { return o.shard.Check(); })
+          .Nest("run", &O::run, RunOptions::Table());
+  return table;
 }
+
+std::string SweepOptions::Check() const { return Table().FirstProblem(*this); }
 
 void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptions& options,
               const SweepRunCallback& before_run) {

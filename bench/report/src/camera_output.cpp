@@ -103,12 +103,21 @@ FrameComparison CompareFrame(const Dataset& dataset, int f, bool frozen, const D
 
 }  // namespace
 
-std::string CameraOutputOptions::Check() const {
-  if (max_frames_compared < 1) return "max_frames_compared must be positive";
-  if (patch_px < 1 || patch_px > 64) return "patch_px must be in [1, 64]";
-  if (threads < 0) return "threads must be 0 (every core) or positive";
-  return "";
+CameraOutputOptions::CameraOutputOptions() { Table().FillDefaults(this); }
+
+const OptionTable<CameraOutputOptions>& CameraOutputOptions::Table() {
+  using O = CameraOutputOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("max_frames_compared", &O::max_frames_compared, 200, "frames", R::Any().AtLeast(1),
+               "frames decoded and compared at most (evenly spaced)")
+          .Add("patch_px", &O::patch_px, 8, "px", R::Closed(1, 64), "side of the corner and centre patches for shading")
+          .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "decoding and comparing threads (0: every core)");
+  return table;
 }
+
+std::string CameraOutputOptions::Check() const { return Table().FirstProblem(*this); }
 
 CameraOutputStats MeasureCameraOutput(const Dataset& dataset, const CameraOutputOptions& options) {
   const std::string problem = options.Check();

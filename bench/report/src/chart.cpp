@@ -462,19 +462,40 @@ std::vector<double> NiceTicks(double lo, double hi, int max_count) {
   return ticks;
 }
 
-std::string PlotOptions::Check() const {
-  if (width_px < 200 || width_px > 10000) return "width_px must be in [200, 10000]";
-  if (height_px < 150 || height_px > 10000) return "height_px must be in [150, 10000]";
-  for (const auto* range : {&x_range, &y_range}) {
-    if (*range && !(std::isfinite((*range)->first) && std::isfinite((*range)->second) &&
-                    (*range)->first < (*range)->second)) {
-      return std::string(range == &x_range ? "x_range" : "y_range") +
-             " must be finite with first < second";
-    }
-  }
-  if (!(font_scale >= 0.4 && font_scale <= 2.0)) return "font_scale must be in [0.4, 2]";
-  return "";
+namespace {
+
+// "" for an unset range or a finite one with first < second, else what is expected.
+std::string RangeProblem(const std::optional<std::pair<double, double>>& range) {
+  const bool valid =
+      !range || (std::isfinite(range->first) && std::isfinite(range->second) && range->first < range->second);
+  return valid ? "" : "must be finite with first < second";
 }
+
+}  // namespace
+
+PlotOptions::PlotOptions() { Table().FillDefaults(this); }
+
+const OptionTable<PlotOptions>& PlotOptions::Table() {
+  using O = PlotOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("title", &O::title, "", {}, "drawn above the axes; empty: none")
+          .Add("x_label", &O::x_label, "", {}, "below the x axis; empty: none")
+          .Add("y_label", &O::y_label, "", {}, "left of the y axis, rotated; empty: none")
+          .Add("width_px", &O::width_px, 800, "px", R::Closed(200, 10000), "image width")
+          .Add("height_px", &O::height_px, 560, "px", R::Closed(150, 10000), "image height")
+          .Rule("x_range", [](const O& o) { return RangeProblem(o.x_range); })
+          .Rule("y_range", [](const O& o) { return RangeProblem(o.y_range); })
+          .Add("equal_aspect", &O::equal_aspect, false,
+               "one data unit is as long on both axes (ranges are widened to fit)")
+          .Add("legend", &O::legend, true, "a legend of labelled series, in the corner hiding least data")
+          .Add("font_scale", &O::font_scale, 0.5, "", R::Closed(0.4, 2),
+               "tick-label size (OpenCV Hershey scale); labels and title are larger");
+  return table;
+}
+
+std::string PlotOptions::Check() const { return Table().FirstProblem(*this); }
 
 cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options,
                  cv::Rect* plot_area_px) {

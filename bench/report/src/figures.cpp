@@ -142,12 +142,20 @@ cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
   return Render(equal, spec, true, items, draw, plot_area_px);
 }
 
-std::string MosaicOptions::Check() const {
-  if (scale < 1 || scale > 16) return "scale must be in [1, 16]";
-  if (gap_px < 0 || gap_px > 100) return "gap_px must be in [0, 100]";
-  if (!(font_scale >= 0.3 && font_scale <= 2.0)) return "font_scale must be in [0.3, 2]";
-  return "";
+MosaicOptions::MosaicOptions() { Table().FillDefaults(this); }
+
+const OptionTable<MosaicOptions>& MosaicOptions::Table() {
+  using O = MosaicOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("scale", &O::scale, 2, "", R::Closed(1, 16), "upscaling factor per tile (nearest neighbour)")
+          .Add("gap_px", &O::gap_px, 4, "px", R::Closed(0, 100), "white gap between tiles and between rows")
+          .Add("font_scale", &O::font_scale, 0.5, "", R::Closed(0.3, 2), "caption size (OpenCV Hershey scale)");
+  return table;
 }
+
+std::string MosaicOptions::Check() const { return Table().FirstProblem(*this); }
 
 cv::Mat MatchMosaic(const std::vector<std::vector<MatchTile>>& rows, const MosaicOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());

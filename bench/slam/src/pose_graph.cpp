@@ -133,16 +133,24 @@ std::string PoseGraph::Check() const {
   return "";
 }
 
-std::string PoseGraphOptions::Check() const {
-  const auto& b = PoseGraphBackends();
-  if (std::find(b.begin(), b.end(), backend) == b.end()) {
-    return "slam backend must be plain, cauchy or dcs, not '" + backend + "'";
-  }
-  if (!(cauchy_scale > 0 && std::isfinite(cauchy_scale))) return "cauchy_scale must be positive";
-  if (!(dcs_phi > 0 && std::isfinite(dcs_phi))) return "dcs_phi must be positive";
-  if (max_iterations < 1) return "max_iterations must be positive";
-  return "";
+PoseGraphOptions::PoseGraphOptions() { Table().FillDefaults(this); }
+
+const OptionTable<PoseGraphOptions>& PoseGraphOptions::Table() {
+  using O = PoseGraphOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("backend", &O::backend, "dcs", PoseGraphBackends(),
+               "how loop edges are weighted: plain least squares, a Cauchy loss, or Dynamic Covariance Scaling")
+          .Add("cauchy_scale", &O::cauchy_scale, 1.0, "", R::Any().Above(0),
+               "chi (Mahalanobis, dimensionless) where the Cauchy loss bends")
+          .Add("dcs_phi", &O::dcs_phi, 1.0, "", R::Any().Above(0),
+               "Phi of Dynamic Covariance Scaling, a chi^2 (dimensionless)")
+          .Add("max_iterations", &O::max_iterations, 100, "", R::Any().AtLeast(1), "Levenberg-Marquardt iterations");
+  return table;
 }
+
+std::string PoseGraphOptions::Check() const { return Table().FirstProblem(*this); }
 
 const std::vector<std::string>& PoseGraphBackends() {
   static const std::vector<std::string> kBackends = {"plain", "cauchy", "dcs"};

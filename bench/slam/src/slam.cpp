@@ -1,6 +1,7 @@
 #include "hoilcd/bench/slam/slam.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -80,15 +81,26 @@ OdometryNoise OdometryNoise::FromSceneJson(const std::string& scene_json, const 
   return noise;
 }
 
-std::string SlamOptions::Check() const {
-  if (const std::string p = graph.Check(); !p.empty()) return p;
-  if (std::isinf(loop_threshold)) return "loop threshold must be finite";
-  if (!(loop_sd_m > 0 && std::isfinite(loop_sd_m))) return "loop_sd_m must be positive";
-  if (!(loop_yaw_sd_deg > 0 && std::isfinite(loop_yaw_sd_deg))) return "loop_yaw_sd_deg must be positive";
-  if (!(rpe_delta_m > 0 && std::isfinite(rpe_delta_m))) return "rpe_delta_m must be positive";
-  if (keyframe_every < 1) return "keyframe_every must be at least 1";
-  return "";
+SlamOptions::SlamOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SlamOptions>& SlamOptions::Table() {
+  using O = SlamOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Nest("graph", &O::graph, PoseGraphOptions::Table())
+          .Add("loop_threshold", &O::loop_threshold, NAN, "", R::Any().OrNaN(),
+               "score a top-1 match must reach to be accepted (NaN: the operating point)")
+          .Add("loop_sd_m", &O::loop_sd_m, 0.1, "m", R::Any().Above(0),
+               "per-axis sigma of an appearance loop: uniform over the 0.2 m radius disk (r/2)")
+          .Add("loop_yaw_sd_deg", &O::loop_yaw_sd_deg, 20, "deg", R::Any().Above(0),
+               "sigma of the relative yaw of a loop (weak: revisits run the same way)")
+          .Add("rpe_delta_m", &O::rpe_delta_m, 1.0, "m", R::Any().Above(0), "RPE pair spacing along the true path")
+          .Add("keyframe_every", &O::keyframe_every, 5, "frames", R::Any().AtLeast(1), "frames per graph node");
+  return table;
 }
+
+std::string SlamOptions::Check() const { return Table().FirstProblem(*this); }
 
 std::vector<LoopClosure> AcceptLoops(const std::vector<Query>& queries,
                                      const std::vector<std::vector<double>>& scores, double threshold,

@@ -10,12 +10,20 @@
 
 namespace hoilcd {
 
-std::string SlamRunOptions::Check() const {
-  if (const std::string p = slam.Check(); !p.empty()) return p;
-  if (curve_points < 2) return "curve_points must be at least 2";
-  if (threads < 0) return "threads must be 0 (every core) or positive";
-  return "";
+SlamRunOptions::SlamRunOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SlamRunOptions>& SlamRunOptions::Table() {
+  using O = SlamRunOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Nest("slam", &O::slam, SlamOptions::Table())
+          .Add("curve_points", &O::curve_points, 6, "", R::Any().AtLeast(2), "thresholds on each ATE curve")
+          .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "methods solved at once (0: every core)");
+  return table;
 }
+
+std::string SlamRunOptions::Check() const { return Table().FirstProblem(*this); }
 
 const SlamScore& MethodSlam::Headline(const std::string& backend) const {
   const auto it = std::find_if(backends.begin(), backends.end(), [&](const SlamScore& s) { return s.backend == backend; });

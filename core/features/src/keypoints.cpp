@@ -16,16 +16,20 @@ const OptionTable<KeypointOptions>& KeypointOptions::Table() {
   static const OptionTable<O> table =
       OptionTable<O>()
           .Add("detector", &O::detector, "gftt", {"gftt", "fast", "orb", "sift", "akaze"}, "keypoint detector")
-          .Add("max_keypoints", &O::max_keypoints, 1000, "", R::Any().AtLeast(1), "keypoints kept per frame, strongest first")
+          .Add("max_keypoints", &O::max_keypoints, 1000, "", R::Any().AtLeast(1),
+               "keypoints kept per frame, strongest first")
           .Add("nms_radius_px", &O::nms_radius_px, 4.0, "px", R::Any().AtLeast(0),
                "minimum distance between keypoints (SuperPoint's NMS: 4)")
-          .Add("border_px", &O::border_px, 4, "px", R::Any().AtLeast(0), "keypoints this close to the image border are ignored")
+          .Add("border_px", &O::border_px, 4, "px", R::Any().AtLeast(0),
+               "keypoints this close to the image border are ignored")
           .Add("gftt_quality", &O::gftt_quality, 0.01, "", R::Any().Above(0).Below(1),
                "GFTT quality level, fraction of the strongest corner")
-          .Add("gftt_block_size_px", &O::gftt_block_size_px, 3, "px", R::Any().AtLeast(3), "GFTT structure-tensor window")
+          .Add("gftt_block_size_px", &O::gftt_block_size_px, 3, "px", R::Any().AtLeast(3),
+               "GFTT structure-tensor window")
           .Add("gftt_min_eigenvalue", &O::gftt_min_eigenvalue, 5e-4, "", R::Any().AtLeast(0),
                "absolute floor on the Shi-Tomasi score")
-          .Add("fast_threshold", &O::fast_threshold, 10, "", R::Closed(1, 255), "FAST intensity threshold, 8-bit levels")
+          .Add("fast_threshold", &O::fast_threshold, 10, "", R::Closed(1, 255),
+               "FAST intensity threshold, 8-bit levels")
           .Add("blur_sigma_px", &O::blur_sigma_px, 0.0, "px", R::Any().AtLeast(0), "Gaussian pre-blur (0: none)");
   return table;
 }

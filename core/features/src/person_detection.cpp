@@ -22,8 +22,10 @@ const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
           // Thresholding and clean-up.
           .Add("threshold_c", &O::threshold_c, 26.5, "degC", R::Any(),
                "person threshold of the detector (on an 8-bit frame alone, the first level at or above it)")
-          .Add("u8_min_c", &O::u8_min_c, 20, "degC", R::Any(), "shown as 0 in the 8-bit frame (the manifest's window_min_c)")
-          .Add("u8_max_c", &O::u8_max_c, 30, "degC", R::Any(), "shown as 255 in the 8-bit frame (the manifest's window_max_c)")
+          .Add("u8_min_c", &O::u8_min_c, 20, "degC", R::Any(),
+               "shown as 0 in the 8-bit frame (the manifest's window_min_c)")
+          .Add("u8_max_c", &O::u8_max_c, 30, "degC", R::Any(),
+               "shown as 255 in the 8-bit frame (the manifest's window_max_c)")
           .Rule("u8_max_c", [](const O& o) { return o.u8_max_c > o.u8_min_c ? "" : "must exceed u8_min_c"; })
           .Add("open_kernel_px", &O::open_kernel_px, 3, "px", R::Any().AtLeast(0),
                "elliptic opening diameter that removes speckle (0: none)")
@@ -42,7 +44,8 @@ const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
                "every part of a split is at least this wide")
           // Head seeds.
           .Add("head_min_c", &O::head_min_c, 31.0, "degC", R::Any(), "lowest skin temperature of a head seed")
-          .Add("min_head_area_px", &O::min_head_area_px, 10, "px^2", R::Any().AtLeast(1), "smaller skin spots are ignored")
+          .Add("min_head_area_px", &O::min_head_area_px, 10, "px^2", R::Any().AtLeast(1),
+               "smaller skin spots are ignored")
           .Add("head_zone_ratio", &O::head_zone_ratio, 0.8, "", R::Any().Above(0).AtMost(1),
                "a head's top lies in this upper fraction of its blob")
           .Add("merge_min_overlap", &O::merge_min_overlap, 0.5, "", R::Any().Above(0).AtMost(1),
@@ -54,10 +57,14 @@ const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
           .Add("min_height_px", &O::min_height_px, 12, "px", R::Any().AtLeast(1), "lower parts are not people")
           .Add("min_aspect_hw", &O::min_aspect_hw, 0.6, "", R::Any().Above(0),
                "height/width; flatter parts are laptops, radiators, tables")
-          .Add("max_aspect_hw", &O::max_aspect_hw, 5.0, "", R::Any(), "height/width; taller parts are pipes or door frames")
-          .Rule("min_aspect_hw", [](const O& o) { return o.min_aspect_hw < o.max_aspect_hw ? "" : "must be below max_aspect_hw"; })
-          .Add("max_median_c", &O::max_median_c, 37.0, "degC", R::Any(), "hotter parts are cups (> 40) or radiators (~40)")
-          .Rule("max_median_c", [](const O& o) { return o.max_median_c > o.threshold_c ? "" : "must exceed threshold_c"; })
+          .Add("max_aspect_hw", &O::max_aspect_hw, 5.0, "", R::Any(),
+               "height/width; taller parts are pipes or door frames")
+          .Rule("min_aspect_hw",
+                [](const O& o) { return o.min_aspect_hw < o.max_aspect_hw ? "" : "must be below max_aspect_hw"; })
+          .Add("max_median_c", &O::max_median_c, 37.0, "degC", R::Any(),
+               "hotter parts are cups (> 40) or radiators (~40)")
+          .Rule("max_median_c",
+                [](const O& o) { return o.max_median_c > o.threshold_c ? "" : "must exceed threshold_c"; })
           .Add("hot_c", &O::hot_c, 30, "degC", R::Any(), "the 8-bit image saturates here (u8_max_c)")
           .Add("max_hot_fraction", &O::max_hot_fraction, 0.7, "", R::Any().Above(0).AtMost(1),
                "parts with more pixels at or above hot_c are laptops, cups, radiators")
@@ -72,20 +79,27 @@ const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
                "skin pixels needed in the top zone (0: rule off)")
           .Add("top_skin_zone_ratio", &O::top_skin_zone_ratio, 0.33, "", R::Any().Above(0).AtMost(1),
                "upper fraction of the part's box height: the top zone")
-          .Add("clothing_min_c", &O::clothing_min_c, 27.0, "degC", R::Any(), "lowest apparent temperature counted as clothing")
-          .Add("clothing_max_c", &O::clothing_max_c, 29.0, "degC", R::Any(), "highest apparent temperature counted as clothing")
-          .Rule("clothing_max_c", [](const O& o) { return o.clothing_max_c > o.clothing_min_c ? "" : "must exceed clothing_min_c"; })
+          .Add("clothing_min_c", &O::clothing_min_c, 27.0, "degC", R::Any(),
+               "lowest apparent temperature counted as clothing")
+          .Add("clothing_max_c", &O::clothing_max_c, 29.0, "degC", R::Any(),
+               "highest apparent temperature counted as clothing")
+          .Rule("clothing_max_c",
+                [](const O& o) { return o.clothing_max_c > o.clothing_min_c ? "" : "must exceed clothing_min_c"; })
           .Add("min_clothing_fraction", &O::min_clothing_fraction, 0.6, "", R::Closed(0, 1),
                "of a part's pixels at clothing temperature, when it shows no skin")
           // Score.
-          .Add("score_area_px", &O::score_area_px, 400, "px^2", R::Any().Above(0), "area at which the area score is 1 - 1/e")
+          .Add("score_area_px", &O::score_area_px, 400, "px^2", R::Any().Above(0),
+               "area at which the area score is 1 - 1/e")
           .Add("typical_aspect_hw", &O::typical_aspect_hw, 1.8, "", R::Any().Above(0),
                "height/width of a seated person, shape score 1")
           .Add("aspect_sigma_log", &O::aspect_sigma_log, 0.7, "", R::Any().Above(0),
                "width of the shape score, natural-log units")
-          .Add("person_min_c", &O::person_min_c, 27, "degC", R::Any(), "a median below this lowers the temperature score")
-          .Add("person_max_c", &O::person_max_c, 35, "degC", R::Any(), "a median above this lowers the temperature score")
-          .Rule("person_max_c", [](const O& o) { return o.person_max_c >= o.person_min_c ? "" : "must be at least person_min_c"; })
+          .Add("person_min_c", &O::person_min_c, 27, "degC", R::Any(),
+               "a median below this lowers the temperature score")
+          .Add("person_max_c", &O::person_max_c, 35, "degC", R::Any(),
+               "a median above this lowers the temperature score")
+          .Rule("person_max_c",
+                [](const O& o) { return o.person_max_c >= o.person_min_c ? "" : "must be at least person_min_c"; })
           .Add("temperature_sigma_c", &O::temperature_sigma_c, 2, "degC", R::Any().Above(0),
                "fall-off of the temperature score outside its range");
   return table;

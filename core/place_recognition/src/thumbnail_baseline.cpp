@@ -148,7 +148,8 @@ const OptionTable<SeqSlamOptions>& SeqSlamOptions::Table() {
                "slowest trajectory, database frames per query frame")
           .Add("max_velocity", &O::max_velocity, 1.25, "", R::Any(),
                "fastest trajectory, database frames per query frame")
-          .Rule("min_velocity", [](const O& o) { return o.min_velocity <= o.max_velocity ? "" : "must be at most max_velocity"; })
+          .Rule("min_velocity",
+                [](const O& o) { return o.min_velocity <= o.max_velocity ? "" : "must be at most max_velocity"; })
           .Add("velocity_steps", &O::velocity_steps, 5, "", R::Any().AtLeast(1),
                "trajectories tried between the slowest and fastest velocity (1: the midpoint)");
   return table;

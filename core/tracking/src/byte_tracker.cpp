@@ -23,7 +23,9 @@ const OptionTable<ByteTrackOptions>& ByteTrackOptions::Table() {
           .Add("track_low_thresh", &O::track_low_thresh, 0.1, "", R::Closed(0, 1),
                "detection score above which (strictly) a lower one enters the second association")
           .Rule("track_low_thresh",
-                [](const O& o) { return o.track_low_thresh <= o.track_high_thresh ? "" : "must be at most track_high_thresh"; })
+                [](const O& o) {
+                  return o.track_low_thresh <= o.track_high_thresh ? "" : "must be at most track_high_thresh";
+                })
           .Add("new_track_thresh", &O::new_track_thresh, 0.6, "", R::Closed(0, 1),
                "a leftover high detection this good starts a track")
           .Add("match_thresh", &O::match_thresh, 0.8, "", R::Any().Above(0).AtMost(1),
@@ -36,10 +38,12 @@ const OptionTable<ByteTrackOptions>& ByteTrackOptions::Table() {
                "frames at 30 Hz a lost track is kept (scaled by the frame rate)")
           .Add("frame_rate_hz", &O::frame_rate_hz, 25, "Hz", R::Any().Above(0),
                "frame rate; lost tracks live int(rate / 30 * buffer) frames")
-          .Add("fuse_score", &O::fuse_score, true, "the first association's cost uses IoU * detection score (Python, not MOT20)")
+          .Add("fuse_score", &O::fuse_score, true,
+               "the first association's cost uses IoU * detection score (Python, not MOT20)")
           .AddEnum("iou_convention", &O::iou_convention, IouConvention::kPlusOnePixel,
                    {{"plus_one_pixel", IouConvention::kPlusOnePixel}, {"continuous", IouConvention::kContinuous}},
-                   "how IoU measures a box: with 1 px added to width and height (the reference's cython_bbox) or continuous");
+                   "how IoU measures a box: with 1 px added to width and height (the reference's cython_bbox) "
+                   "or continuous");
   return table;
 }
 

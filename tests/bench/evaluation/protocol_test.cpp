@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -56,7 +58,7 @@ TEST(ProtocolOptions, CheckNamesWhatIsWrong) {
   ProtocolOptions options;
   EXPECT_EQ(options.Check(), "");
   options.protocol = "lap";
-  EXPECT_NE(options.Check().find("'laps' or 'revisit'"), std::string::npos);
+  EXPECT_EQ(options.Check(), "protocol: must be one of: laps, revisit (got 'lap')");
   options = ProtocolOptions();
   options.radius_m = 0;
   EXPECT_NE(options.Check().find("radius_m"), std::string::npos);
@@ -66,6 +68,16 @@ TEST(ProtocolOptions, CheckNamesWhatIsWrong) {
   options = ProtocolOptions();
   options.heading_tolerance_deg = 200;
   EXPECT_NE(options.Check().find("heading_tolerance_deg"), std::string::npos);
+}
+
+TEST(ProtocolOptions, HoldThePapersDefaultsFromTheirTableAndEveryBoundIsChecked) {
+  const ProtocolOptions options;
+  EXPECT_EQ(options.protocol, "laps");
+  EXPECT_EQ(options.radius_m, 0.2);  // paper, section 5.1
+  EXPECT_EQ(options.exclusion_window_s, 10);
+  EXPECT_EQ(options.ground_truth, "odometry");
+  ExpectConstructedHoldsTheTableDefaults<ProtocolOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ProtocolOptions>(), 3);
 }
 
 TEST(BuildQueries, LapsUsesFirstLapAsDatabaseAndLaterLapsAsQueries) {
@@ -198,7 +210,7 @@ TEST(GroundTruth, LabelPosesSwapsInTheOdometryAndOtherGroundTruthFlips) {
 TEST(GroundTruth, UnknownChoiceIsNamedByCheck) {
   ProtocolOptions options;
   options.ground_truth = "gps";
-  EXPECT_EQ(options.Check(), "ground_truth must be 'odometry' or 'true', got 'gps'");
+  EXPECT_EQ(options.Check(), "ground_truth: must be one of: odometry, true (got 'gps')");
 }
 
 }  // namespace

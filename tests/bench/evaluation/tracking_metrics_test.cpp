@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -133,6 +135,13 @@ TEST(TrackingMetricsOptions, CheckNamesWhatIsWrong) {
   options = {};
   options.min_box_height_px = -1;
   EXPECT_NE(options.Check().find("min_box_height_px"), std::string::npos);
+}
+
+TEST(TrackingMetricsOptions, HoldTheirTablesDefaultsScoringEveryoneAndEveryBoundIsChecked) {
+  EXPECT_EQ(TrackingMetricsOptions().min_visible_fraction, 0);
+  EXPECT_EQ(TrackingMetricsOptions().min_box_height_px, 0);
+  ExpectConstructedHoldsTheTableDefaults<TrackingMetricsOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TrackingMetricsOptions>(), 6);
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ TEST(MotExport, GroundTruthRowsAreOneBasedAndUnscoredPeopleAreDistractorsNotToCo
   hidden.id = 4;
   hidden.visible_fraction = 0.1;
   f.persons = {seen, hidden};
-  EXPECT_EQ(MotGroundTruth({f}, DefaultTrackingMetricsOptions()),
+  EXPECT_EQ(MotGroundTruth({f}, BenchOptions().tracking_metrics),
             "1,1,11.00,21.00,30.00,60.00,1,1,0.9000\n"
             "1,5,11.00,21.00,30.00,60.00,0,8,0.1000\n");
 }

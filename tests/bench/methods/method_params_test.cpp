@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/sim/output/sequence.h"
+#include "option_properties.h"
 #include "test_dir.h"
 #include "tiny_room.h"
 
@@ -40,6 +43,49 @@ TEST(MethodParams, EveryBadParamIsAnErrorNamingItAndWhatWasExpected) {
   EXPECT_NE(ParamError("thumb.x=1").find("method thumb has no parameters"), std::string::npos);
   EXPECT_NE(ParamError("keypoints.detector=superpoint").find("'keypoints.detector=superpoint'"), std::string::npos);
   EXPECT_FALSE(FormatParams().empty());
+}
+
+TEST(MethodParams, EveryParamIsAFieldOfTheOptionsTablesWithItsDefaultUnitAndRange) {
+  // Each --param is a view of a registered field (its struct's own table, reached through
+  // BenchOptions'), never a second declaration: same kind, default, unit, range and description.
+  const std::vector<OptionInfo> fields = BenchOptions::Table().List();
+  std::vector<const OptionTable<BenchOptions>*> tables;
+  for (const auto& m : RegisteredMethods()) {
+    if (m->Params() != nullptr) tables.push_back(m->Params());
+  }
+  for (FrontEnd f : {FrontEnd::kKeypoints, FrontEnd::kPersons, FrontEnd::kThumbnails}) {
+    tables.push_back(&FrontEndParams(f));
+  }
+  int params = 0;
+  for (const OptionTable<BenchOptions>* table : tables) {
+    for (const OptionInfo& p : table->List()) {
+      ++params;
+      const bool registered = std::any_of(fields.begin(), fields.end(), [&](const OptionInfo& f) {
+        return f.kind == p.kind && f.default_json == p.default_json && f.unit == p.unit &&
+               f.range.ToString() == p.range.ToString() && f.choices == p.choices && f.description == p.description;
+      });
+      EXPECT_TRUE(registered) << p.name << " is not a field of BenchOptions::Table()";
+    }
+  }
+  EXPECT_GT(params, 20);
+  const OptionInfo trials = RansacParams().List().front();
+  EXPECT_EQ(trials.name, "ransac_trials");
+  EXPECT_EQ(trials.default_json, "100");
+  EXPECT_EQ(trials.range.ToString(), RansacOptions::Table().List().front().range.ToString());
+}
+
+TEST(BenchOptions, HoldTheirTablesDefaultsTheBenchsTrackingFilterAndEveryBoundIsChecked) {
+  const BenchOptions options;
+  EXPECT_EQ(options.tracking_metrics.min_visible_fraction, 0.2);  // the bench's own, not the library's 0
+  EXPECT_EQ(options.tracking_metrics.min_box_height_px, 16);
+  EXPECT_EQ(options.tracking_metrics.iou_threshold, TrackingMetricsOptions().iou_threshold);
+  EXPECT_EQ(options.rrf_k, 0.0);
+  EXPECT_EQ(options.ransac.trials, RansacOptions().trials);
+  ExpectConstructedHoldsTheTableDefaults<BenchOptions>();
+  EXPECT_GT(ExpectEveryBoundCrossedIsNamedByCheck<BenchOptions>(), 100);
+  BenchOptions bad;
+  bad.methods = {"superglue"};
+  EXPECT_EQ(bad.Check(), "methods: unknown method 'superglue'");
 }
 
 TEST(MethodParams, AParamOfAMethodNotRunOrAFrontEndNoMethodUsesIsAnErrorNotIgnored) {

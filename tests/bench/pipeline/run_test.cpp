@@ -12,6 +12,7 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/output/sequence.h"
+#include "option_properties.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -41,6 +42,15 @@ RunOptions CachedIn(const std::string& cache_dir) {
   options.cache_dir = cache_dir;
   options.threads = 2;
   return options;
+}
+
+TEST(RunOptions, HoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  const RunOptions options;
+  EXPECT_EQ(options.cache_dir, "runs");
+  EXPECT_EQ(options.calibration_seed_offset, 1000u);
+  EXPECT_EQ(options.cancel, nullptr);
+  ExpectConstructedHoldsTheTableDefaults<RunOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<RunOptions>(), 1);
 }
 
 TEST(RunScene, ReusesItsCacheButRendersAgainWhenAnotherSimulatorMadeIt) {

@@ -14,6 +14,7 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "input_error_of.h"
+#include "option_properties.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -54,6 +55,21 @@ TEST(SweepShardSyntax, BadShardIsAnErrorNamingTheFlag) {
     const std::string message = InputErrorOf([&] { ParseSweepShard(bad); });
     EXPECT_NE(message.find("--shard"), std::string::npos) << bad << " gave: " << message;
   }
+}
+
+TEST(SweepOptions, HoldTheirTablesDefaultsAndNameAMissingFolderABadShardAndABadRun) {
+  SweepOptions options;
+  EXPECT_EQ(options.run.cache_dir, "runs");
+  EXPECT_EQ(options.Check(), "output_dir: the output folder must be given");
+  options.output_dir = "out";
+  EXPECT_EQ(options.Check(), "");
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SweepOptions>(), 1);  // run/threads
+  options.shard.index = 2;
+  options.shard.count = 2;
+  EXPECT_EQ(options.Check(), "shard: the shard index must be in 0..1");
+  options.shard = SweepShard();
+  options.run.cache_dir = "";
+  EXPECT_EQ(options.Check(), "run/cache_dir: must not be empty");
 }
 
 TEST(SweepPlanRuns, ShardsPartitionTheCrossProduct) {

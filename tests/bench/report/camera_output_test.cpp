@@ -7,6 +7,7 @@
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
+#include "option_properties.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -19,6 +20,14 @@ std::string RenderInto(const test::TestDir& temp, const std::vector<std::string>
   options.frames = frames;
   RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides), options);
   return options.output_dir;
+}
+
+TEST(CameraOutput, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  ExpectConstructedHoldsTheTableDefaults<CameraOutputOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<CameraOutputOptions>(), 4);
+  CameraOutputOptions options;
+  options.patch_px = 65;
+  EXPECT_EQ(options.Check(), "patch_px: must be in [1, 64] px (got 65)");
 }
 
 TEST(CameraOutput, VideoModeOffMeasuresThePreviewAndFreezesAndShading) {

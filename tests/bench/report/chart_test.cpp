@@ -8,6 +8,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -122,6 +124,13 @@ TEST(PlotOptions, CheckRejectsBadSizesRangesAndFonts) {
   o = PlotOptions{};
   o.width_px = 0;
   EXPECT_THROW(LinePlot({}, o), std::logic_error);
+}
+
+TEST(PlotOptions, HoldTheirTablesDefaultsUnsetRangesAndEveryBoundIsChecked) {
+  EXPECT_FALSE(PlotOptions().x_range.has_value());
+  EXPECT_FALSE(PlotOptions().y_range.has_value());
+  ExpectConstructedHoldsTheTableDefaults<PlotOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PlotOptions>(), 6);
 }
 
 TEST(LinePlot, HasRequestedSizeAndThreeChannels) {

@@ -9,6 +9,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "option_properties.h"
+
 namespace hoilcd {
 namespace {
 
@@ -36,6 +38,11 @@ TEST(MosaicOptions, CheckRejectsABadScale) {
   m.scale = 0;
   EXPECT_NE(m.Check().find("scale"), std::string::npos);
   EXPECT_THROW(MatchMosaic({}, m), std::logic_error);
+}
+
+TEST(MosaicOptions, HoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  ExpectConstructedHoldsTheTableDefaults<MosaicOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<MosaicOptions>(), 6);
 }
 
 TEST(TrajectoryPlot, MetresHaveEqualLengthOnBothAxes) {

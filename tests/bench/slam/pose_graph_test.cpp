@@ -6,6 +6,7 @@
 #include <map>
 
 #include "hoilcd/core/util/error.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -125,7 +126,7 @@ TEST(PoseGraphTest, UnusableGraphsAreClearErrorsNotNaN) {
 TEST(PoseGraphTest, UnknownBackendIsRejected) {
   PoseGraphOptions options;
   options.backend = "gauss";
-  EXPECT_NE(options.Check().find("plain, cauchy or dcs"), std::string::npos);
+  EXPECT_EQ(options.Check(), "backend: must be one of: plain, cauchy, dcs (got 'gauss')");
   options = PoseGraphOptions{};
   options.dcs_phi = 0;
   EXPECT_NE(options.Check().find("dcs_phi"), std::string::npos);
@@ -135,6 +136,12 @@ TEST(PoseGraphTest, UnknownBackendIsRejected) {
   options = PoseGraphOptions{};
   options.max_iterations = 0;
   EXPECT_NE(options.Check().find("max_iterations"), std::string::npos);
+}
+
+TEST(PoseGraphTest, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  EXPECT_EQ(PoseGraphOptions().backend, "dcs");
+  ExpectConstructedHoldsTheTableDefaults<PoseGraphOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PoseGraphOptions>(), 3);
 }
 
 TEST(PoseGraphTest, G2oTextHasOneVertexPerNodeOneEdgePerConstraintAndFixesNodeZero) {

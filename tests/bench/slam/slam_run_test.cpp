@@ -9,6 +9,7 @@
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/util/error.h"
+#include "option_properties.h"
 #include "test_dir.h"
 #include "tiny_room.h"
 
@@ -79,10 +80,17 @@ TEST(SlamRun, BadSlamOptionsAreInputErrorsOfTheBench) {
   BenchOptions options;
   options.slam = true;
   options.slam_options.slam.graph.backend = "gauss";
-  EXPECT_NE(options.Check().find("plain, cauchy or dcs"), std::string::npos);
+  EXPECT_NE(options.Check().find("graph/backend: must be one of: plain, cauchy, dcs (got 'gauss')"), std::string::npos)
+      << options.Check();
   options.slam_options = SlamRunOptions{};
   options.slam_options.curve_points = 1;
   EXPECT_NE(options.Check().find("curve_points"), std::string::npos);
+}
+
+TEST(SlamRun, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
+  EXPECT_TRUE(SlamRunOptions().calibrated_threshold.empty());
+  ExpectConstructedHoldsTheTableDefaults<SlamRunOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SlamRunOptions>(), 9);
 }
 
 TEST(SlamRun, PosesWithoutOdometryColumnsAreRejectedWhenTheDatasetIsRead) {

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "hoilcd/core/util/error.h"
+#include "option_properties.h"
 
 namespace hoilcd {
 namespace {
@@ -233,7 +234,16 @@ TEST(SlamTest, BadSlamOptionsAreRejected) {
   EXPECT_NE(o.Check().find("keyframe_every"), std::string::npos);
   o = SlamOptions{};
   o.loop_threshold = INFINITY;
-  EXPECT_NE(o.Check().find("finite"), std::string::npos);
+  EXPECT_EQ(o.Check(), "loop_threshold: must be a finite number or NaN (got inf)");
+  o = SlamOptions{};
+  o.graph.dcs_phi = 0;
+  EXPECT_EQ(o.Check(), "graph/dcs_phi: must be above 0 (got 0)");
+}
+
+TEST(SlamTest, OptionsHoldTheirTablesDefaultsWithNoLoopThresholdAndEveryBoundIsChecked) {
+  EXPECT_TRUE(std::isnan(SlamOptions().loop_threshold));  // NaN: the operating point
+  ExpectConstructedHoldsTheTableDefaults<SlamOptions>();
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SlamOptions>(), 7);
 }
 
 }  // namespace

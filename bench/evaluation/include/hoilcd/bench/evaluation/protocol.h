@@ -9,20 +9,26 @@
 #include <vector>
 
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in protocol.cpp.
 struct ProtocolOptions {
   // "laps": database = first lap, queries = later laps; "revisit": every frame is a query and its
   // database is every frame older than the exclusion window (SLAM style).
-  std::string protocol = "laps";
-  double radius_m = 0.2;              // m, base positions this close make a true match (paper)
-  double heading_tolerance_deg = -1;  // deg, max heading difference of a true match; < 0 = off
-  double exclusion_window_s = 10;     // s, frames with |t_query - t_ref| <= this are left out
+  std::string protocol;
+  double radius_m;               // m, base positions this close make a true match (paper)
+  double heading_tolerance_deg;  // deg, max heading difference of a true match; < 0 = off
+  double exclusion_window_s;     // s, frames with |t_query - t_ref| <= this are left out
   // Whose positions decide true matches and laps: "odometry" (the paper's: the robot's odometric
   // poses) or "true" (the ground-truth poses).
-  std::string ground_truth = "odometry";
-  // Empty when valid, else what is wrong.
+  std::string ground_truth;
+
+  ProtocolOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<ProtocolOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

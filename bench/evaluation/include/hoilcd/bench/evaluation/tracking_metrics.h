@@ -11,6 +11,7 @@
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/tracking/box_iou.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -25,14 +26,19 @@ struct FrameTracks {
   std::vector<TrackedBox> tracks;
 };
 
+// Defaults and ranges: Table() in tracking_metrics.cpp.
 struct TrackingMetricsOptions {
-  double iou_threshold = 0.5;       // IoU (0..1) a prediction needs with a person to match it
-  double min_visible_fraction = 0;  // 0..1; less visible persons are ignored: never missed, and a
-                                    // prediction on one is not a false positive
-  double min_box_height_px = 0;     // px; persons whose visible box is lower are ignored likewise
-                                    // (slivers at the image edge or between others)
-  double hoi_tolerance_px = 3;      // px, a contact this close to its nearest HOI point is a hit
-  // Empty when valid, else what is wrong.
+  double iou_threshold;         // IoU (0..1) a prediction needs with a person to match it
+  double min_visible_fraction;  // 0..1; less visible persons are ignored: never missed, and a
+                                // prediction on one is not a false positive
+  double min_box_height_px;     // px; persons whose visible box is lower are ignored likewise
+                                // (slivers at the image edge or between others)
+  double hoi_tolerance_px;      // px, a contact this close to its nearest HOI point is a hit
+
+  TrackingMetricsOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<TrackingMetricsOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -20,37 +20,37 @@
 
 namespace hoilcd {
 
-// Tracking is scored on people at least 20 % visible with a visible box at least 16 px high;
-// others are neither missed nor false positives (a thermal detector cannot see through a person
-// or a chair back, nor find a sliver at the image edge).
-inline TrackingMetricsOptions DefaultTrackingMetricsOptions() {
-  TrackingMetricsOptions o;
-  o.min_visible_fraction = 0.2;
-  o.min_box_height_px = 16;  // slivers at the image edge are fully "visible" but undetectable
-  return o;
-}
-
+// Defaults and ranges: Table() in bench_options.cpp, each member struct's from its own table.
 struct BenchOptions {
-  std::vector<std::string> methods;      // names from methods.h (empty: DefaultMethods())
+  // Lists, not table fields (empty when constructed); the table's rules check them.
+  std::vector<std::string> methods;  // names from methods.h (empty: DefaultMethods())
   // --param NAME=VALUE: "<method>.<field>" or "<front end>.<field>" (method_params.h).
   std::vector<std::string> params;
   ProtocolOptions protocol;
   MatchOptions match;
   RansacOptions ransac;
-  int lo_refits = 2;                     // least-squares refits of the -lo variants
+  int lo_refits;                     // least-squares refits of the -lo variants
   KeypointOptions keypoints;
   PersonDetectorOptions detector;
   ByteTrackOptions tracker;
   HoiOptions hoi;
   TrackAwareOptions track_aware;
   ThumbnailOptions thumbnail;
-  SeqSlamOptions sequence;               // sequence matching of thumb-seq
+  SeqSlamOptions sequence;           // sequence matching of thumb-seq
   TemporalConsistencyOptions temporal;
-  double rrf_k = 0.0;                    // reciprocal rank fusion constant (paper: 0)
-  TrackingMetricsOptions tracking_metrics = DefaultTrackingMetricsOptions();
-  int threads = 0;                       // 0 = every core
-  bool slam = false;                     // run the SLAM back end over every method's loops (slam_run.h)
+  double rrf_k;                      // reciprocal rank fusion constant (paper: 0)
+  // The bench's own defaults (its table): people at least 20 % visible with a visible box at
+  // least 16 px high are scored; others are neither missed nor false positives (a thermal detector
+  // cannot see through a person or a chair back, nor find a sliver at the image edge).
+  TrackingMetricsOptions tracking_metrics;
+  int threads;                       // 0 = every core
+  bool slam;                         // run the SLAM back end over every method's loops (slam_run.h)
   SlamRunOptions slam_options;
+
+  BenchOptions();  // the registered defaults
+  // Every field once (member structs through their own tables): name, default, unit, range.
+  static const OptionTable<BenchOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...", an unknown method, a bad --param).
   std::string Check() const;
 };
 

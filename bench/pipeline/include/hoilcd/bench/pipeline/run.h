@@ -10,19 +10,26 @@
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/sim/scene/scene.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in run.cpp.
 struct RunOptions {
-  std::string cache_dir = "runs";   // datasets and reports go to CACHE/<scene>-<hash>/
-  std::string report_dir;           // default CACHE/<scene>-<hash>/report
-  int threads = 0;                  // 0 = every core
-  const std::atomic<bool>* cancel = nullptr;
+  std::string cache_dir;   // datasets and reports go to CACHE/<scene>-<hash>/
+  std::string report_dir;  // default CACHE/<scene>-<hash>/report
+  int threads;             // 0 = every core
+  const std::atomic<bool>* cancel = nullptr;  // set by code to stop early; a hook, not in the table
   // SLAM loop thresholds (when bench.slam and no --loop-threshold): each method's 100 %-precision
   // threshold on the scene rendered with seed + calibration_seed_offset. Its dataset is cached
   // like any run's and its thresholds in calibration.json beside it, keyed by that dataset's
   // manifest, the hoilcd program's own bytes and the bench options a user can set.
-  uint64_t calibration_seed_offset = 1000;
+  uint64_t calibration_seed_offset;
+
+  RunOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<RunOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

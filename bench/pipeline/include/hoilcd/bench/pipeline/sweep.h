@@ -12,6 +12,7 @@
 
 #include "hoilcd/bench/pipeline/run.h"
 #include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -33,6 +34,7 @@ SweepAxis ParseSweepAxis(const std::string& key_equals_values);
 struct SweepShard {
   int index = 0;  // which part, 0 <= index < count
   int count = 1;  // number of parts, >= 1
+  // A value parsed from --shard or sweep.json, not options: no table, its check is by hand.
   std::string Check() const;
 };
 
@@ -67,6 +69,7 @@ struct SweepPlan {
   std::vector<SweepRunSpec> Runs() const;
   // The runs of one shard: Runs()[k] for k % count == index (round robin over the sorted list).
   std::vector<SweepRunSpec> ShardRuns(const SweepShard& shard) const;
+  // Parsed data (the command line or a plan file), not options: no table, its checks are by hand.
   std::string Check() const;
   nlohmann::json ToJson() const;
   static SweepPlan FromJson(const nlohmann::json& j, const std::string& where);
@@ -77,10 +80,17 @@ struct SweepPlan {
 SweepPlan MakeSweepPlan(const std::string& scene_path, const std::vector<std::string>& sets, int seeds,
                         const BenchOptions& bench);
 
+// Defaults and ranges: Table() in sweep.cpp.
 struct SweepOptions {
   std::string output_dir;  // OUT: runs/<FolderName>/ and sweep.json (the shard marker) go here
-  SweepShard shard;        // which part of the run list to do (default: all of it)
+  SweepShard shard;        // which part of the run list to do (default: all of it); a parsed
+                           // value with its own Check(), so only a rule of the table
   RunOptions run;          // dataset cache folder, threads, cancellation
+
+  SweepOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<SweepOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

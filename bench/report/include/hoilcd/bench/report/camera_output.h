@@ -8,13 +8,20 @@
 
 #include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in camera_output.cpp.
 struct CameraOutputOptions {
-  int max_frames_compared = 200;  // frames decoded and compared at most (evenly spaced), frames
-  int patch_px = 8;               // side of the corner and centre patches for shading, px
-  int threads = 0;                // decoding and comparing threads (0: every core)
+  int max_frames_compared;  // frames decoded and compared at most (evenly spaced), frames
+  int patch_px;             // side of the corner and centre patches for shading, px
+  int threads;              // decoding and comparing threads (0: every core)
+
+  CameraOutputOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<CameraOutputOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

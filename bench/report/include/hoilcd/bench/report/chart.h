@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -39,19 +40,25 @@ struct Series {
   bool band = false;                 // draw the spread as a shaded band instead of error bars
 };
 
+// Defaults and ranges: Table() in chart.cpp.
 struct PlotOptions {
   std::string title;    // drawn above the axes; empty: none
   std::string x_label;  // below the x axis; empty: none
   std::string y_label;  // left of the y axis, rotated; empty: none
-  int width_px = 800;   // image width, pixels
-  int height_px = 560;  // image height, pixels
-  std::optional<std::pair<double, double>> x_range;  // shown x interval, data units; unset: fit data
-  std::optional<std::pair<double, double>> y_range;  // shown y interval, data units; unset: fit data
-  bool equal_aspect = false;  // one data unit is as long on both axes (ranges are widened to fit)
-  bool legend = true;         // draw a legend of labelled series, in the corner hiding least data
-  double font_scale = 0.5;    // tick-label size (OpenCV Hershey scale); labels and title are larger
+  int width_px;         // image width, pixels
+  int height_px;        // image height, pixels
+  // Shown x and y intervals, data units; unset (as constructed): fit the data. Not table fields
+  // (a table holds no pairs); its rules check them.
+  std::optional<std::pair<double, double>> x_range;
+  std::optional<std::pair<double, double>> y_range;
+  bool equal_aspect;    // one data unit is as long on both axes (ranges are widened to fit)
+  bool legend;          // draw a legend of labelled series, in the corner hiding least data
+  double font_scale;    // tick-label size (OpenCV Hershey scale); labels and title are larger
 
-  // "" if valid, else what is wrong.
+  PlotOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<PlotOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

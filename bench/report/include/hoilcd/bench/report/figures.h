@@ -10,6 +10,7 @@
 
 #include "hoilcd/bench/report/chart.h"
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -49,12 +50,16 @@ struct MatchTile {
   cv::Scalar point_colour{0, 255, 0};     // BGR of the feature points
 };
 
+// Defaults and ranges: Table() in figures.cpp.
 struct MosaicOptions {
-  int scale = 2;             // upscaling factor per tile (nearest neighbour), >= 1
-  int gap_px = 4;            // white gap between tiles and between rows, pixels
-  double font_scale = 0.5;   // caption size (OpenCV Hershey scale)
+  int scale;          // upscaling factor per tile (nearest neighbour), >= 1
+  int gap_px;         // white gap between tiles and between rows, pixels
+  double font_scale;  // caption size (OpenCV Hershey scale)
 
-  // "" if valid, else what is wrong.
+  MosaicOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<MosaicOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "hoilcd/core/util/option_table.h"
+
 namespace hoilcd {
 
 struct Pose2d {
@@ -33,15 +35,21 @@ struct PoseGraph {
   std::vector<PoseEdge> loops;      // weighted by the back end
   // Empty when usable, else what is wrong (no node, an edge naming a missing node or itself, a
   // non-finite measurement, an information matrix that is not symmetric positive definite, a
-  // node no edge connects to node 0).
+  // node no edge connects to node 0). A graph is data, not options: no table, checked by hand.
   std::string Check() const;
 };
 
+// Defaults and ranges: Table() in pose_graph.cpp.
 struct PoseGraphOptions {
-  std::string backend = "dcs";    // "plain" | "cauchy" | "dcs"
-  double cauchy_scale = 1.0;      // χ (Mahalanobis, dimensionless) where the Cauchy loss bends
-  double dcs_phi = 1.0;           // Φ of Dynamic Covariance Scaling, χ² (dimensionless)
-  int max_iterations = 100;       // Levenberg–Marquardt iterations
+  std::string backend;  // "plain" | "cauchy" | "dcs"
+  double cauchy_scale;  // χ (Mahalanobis, dimensionless) where the Cauchy loss bends
+  double dcs_phi;       // Φ of Dynamic Covariance Scaling, χ² (dimensionless)
+  int max_iterations;   // Levenberg–Marquardt iterations
+
+  PoseGraphOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<PoseGraphOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

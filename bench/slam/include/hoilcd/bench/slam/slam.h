@@ -4,13 +4,13 @@
 // folder: the odometry noise model comes from DIR/scene.json.
 #pragma once
 
-#include <cmath>
 #include <string>
 #include <vector>
 
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/slam/pose_graph.h"
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
@@ -35,13 +35,19 @@ struct OdometryNoise {
   static OdometryNoise FromSceneJson(const std::string& scene_json, const std::string& path, double frame_rate_hz);
 };
 
+// Defaults and ranges: Table() in slam.cpp.
 struct SlamOptions {
-  PoseGraphOptions graph;              // back end options (graph.backend is the headline back end)
-  double loop_threshold = NAN;         // score a top-1 match must reach to be accepted; NaN = operating point
-  double loop_sd_m = 0.1;              // m, per-axis σ of an appearance loop: uniform over the 0.2 m radius disk (r/2)
-  double loop_yaw_sd_deg = 20;         // deg, σ of the relative yaw of a loop (weak: revisits run the same way)
-  double rpe_delta_m = 1.0;            // m, RPE pair spacing along the true path
-  int keyframe_every = 5;              // frames per graph node (paper_room: ~8 cm, well under the 0.2 m radius)
+  PoseGraphOptions graph;  // back end options (graph.backend is the headline back end)
+  double loop_threshold;   // score a top-1 match must reach to be accepted; NaN = operating point
+  double loop_sd_m;        // m, per-axis σ of an appearance loop: uniform over the 0.2 m radius disk (r/2)
+  double loop_yaw_sd_deg;  // deg, σ of the relative yaw of a loop (weak: revisits run the same way)
+  double rpe_delta_m;      // m, RPE pair spacing along the true path
+  int keyframe_every;      // frames per graph node (paper_room: ~8 cm, well under the 0.2 m radius)
+
+  SlamOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<SlamOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

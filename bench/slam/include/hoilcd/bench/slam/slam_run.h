@@ -10,14 +10,23 @@
 #include <vector>
 
 #include "hoilcd/bench/slam/slam.h"
+#include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
+// Defaults and ranges: Table() in slam_run.cpp.
 struct SlamRunOptions {
-  SlamOptions slam;                                   // back end, loop model, --loop-threshold
-  std::map<std::string, double> calibrated_threshold; // method -> threshold at 100 % precision on the calibration run
-  int curve_points = 6;                               // thresholds on each ATE curve (count)
-  int threads = 0;                                    // methods solved at once (0: every core)
+  SlamOptions slam;   // back end, loop model, --loop-threshold
+  int curve_points;   // thresholds on each ATE curve (count)
+  int threads;        // methods solved at once (0: every core)
+  // Not an option but a result passed in (so not in the table; empty when constructed): method ->
+  // threshold at 100 % precision on the calibration run.
+  std::map<std::string, double> calibrated_threshold;
+
+  SlamRunOptions();  // the registered defaults
+  // Every field once: name, default, unit, range, description.
+  static const OptionTable<SlamRunOptions>& Table();
+  // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
 

@@ -55,7 +55,8 @@ struct CameraIntrinsics {
   Eigen::Vector2d Project(const Eigen::Vector3d& point_in_cam) const;
   // Unit-less ray direction in the camera frame through pixel coordinates (u, v), z = 1.
   Eigen::Vector3d Unproject(double u, double v) const;
-  // Empty string when valid, else what is wrong.
+  // Empty string when valid, else what is wrong. A calibration (the manifest's, or derived from
+  // the scene's camera), not options: no table, checked by hand.
   std::string Check() const;
 };
 
