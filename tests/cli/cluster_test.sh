@@ -31,6 +31,10 @@ grep -q "refusing to submit: each shard asks CPUS=8" "$work/out.txt" || fail "no
 grep -q "largest: 4 cores, 7800 MB" "$work/out.txt" || fail "largest node not named: $(cat "$work/out.txt")"
 [ ! -e "$SBATCH_LOG" ] || fail "sbatch was called for a refused request"
 if CPUS=4 MEM=16G OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then fail "too much memory submitted"; fi
+for bad in 8GG G 0 8.5G -8G; do
+  if CPUS=4 MEM="$bad" OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then fail "MEM=$bad submitted"; fi
+  grep -q "MEM must look like" "$work/out.txt" || fail "MEM=$bad not explained: $(cat "$work/out.txt")"
+done
 
 # A request that fits: the array and the merge, logs under OUT/logs, merge cancelled on failure.
 CPUS=4 MEM=7G SHARDS=3 FRAMES=400 VALUES=0,2 OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1 \
