@@ -38,7 +38,7 @@ int EvaluateCommand(const EvaluateArgs& args) {
                           : EvaluateAndWriteReport(dataset, scores, name, description, args.protocol, args.output);
   const MethodMetrics& m = report.metrics;
   std::printf("%s (%s ground truth): MRR %.4f, R@1 %.4f, R@5 %.4f, PR-AUC %.4f; %d queries scored, %d skipped\n",
-              name.c_str(), args.protocol.ground_truth.c_str(), m.mrr, m.recall_at_1, m.recall_at_5, m.pr_auc,
+              report.name.c_str(), args.protocol.ground_truth.c_str(), m.mrr, m.recall_at_1, m.recall_at_5, m.pr_auc,
               m.queries_scored, m.queries_skipped);
   if (!args.output.empty()) std::printf("report: %s/report.md\n", args.output.c_str());
   return ApplyGate(args.gate, baseline, EvaluateReportJson(dataset, args.protocol, report, description));

@@ -83,7 +83,7 @@ py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array:
     py::gil_scoped_release unlocked;
     const MethodReport report = output ? EvaluateAndWriteReport(dataset, matrix, name, description, options, *output)
                                        : Evaluate(dataset, matrix, name, options);
-    report_json = EvaluateReportJson(dataset, options, report, description)["methods"][name].dump();
+    report_json = EvaluateReportJson(dataset, options, report, description)["methods"][report.name].dump();
   }
   return JsonToPython(report_json);
 }

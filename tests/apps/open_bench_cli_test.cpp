@@ -147,6 +147,30 @@ TEST(OpenBenchCli, EvaluateNamesTheBadScoresFileAndLineAndABadBaselineFailsBefor
   EXPECT_NE(err.find("--max-drop requires --baseline"), std::string::npos) << err;
 }
 
+TEST(OpenBenchCli, AScoresPathOrNameThatIsNotUtf8IsWrittenEscapedIntoTheReport) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "report", "--dump-scores", temp / "scores"}),
+            0);
+  const std::string latin1 = temp / "caf\xe9.csv";  // "café.csv" in Latin-1: not UTF-8
+  WriteFileAtomic(latin1, ReadFileBytes(temp / "scores/thumb.csv"));
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", latin1, "-o", temp / "by_path"}), 0);
+  EXPECT_NE(testing::internal::GetCapturedStdout().find("caf\\xe9 (odometry ground truth): MRR "), std::string::npos);
+  const nlohmann::json by_path = Json(temp / "by_path/report.json");
+  ASSERT_TRUE(by_path["methods"].contains("caf\\xe9"));
+  EXPECT_EQ(by_path["methods"]["caf\\xe9"]["description"], "scores from " + temp / "caf\\xe9.csv");
+  EXPECT_EQ(by_path["methods"]["caf\\xe9"]["mrr"], Json(temp / "report/report.json")["methods"]["thumb"]["mrr"]);
+  EXPECT_NE(ReadFileBytes(temp / "by_path/report.md").find("| caf\\xe9 | "), std::string::npos);
+
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--name", "caf\xe9\x1b[2J", "-o",
+                    temp / "by_name"}),
+            0);
+  testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(Json(temp / "by_name/report.json")["methods"].contains("caf\\xe9\\x1b[2J"));
+}
+
 // The bench checks each file against manifest.json as it reads it: a changed thermal frame stops
 // it with the file's name and writes no report; an EXR it never reads is never read.
 TEST(OpenBenchCli, BenchRefusesAChangedFrameItReadsAndIgnoresAChangedFileItDoesNotRead) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
@@ -26,7 +27,7 @@ Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol) 
 MethodReport EvaluateQueryScores(const Labelling& labelling, const std::string& name,
                                  const std::vector<std::vector<double>>& scores) {
   MethodReport r;
-  r.name = name;
+  r.name = SafeText(name);  // the name every report file writes
   r.metrics = ComputeMetrics(labelling.queries, scores, labelling.label_poses);
   r.other_metrics = ComputeMetrics(labelling.other_queries, scores, labelling.other_label_poses);
   return r;
@@ -75,17 +76,18 @@ nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions&
                                   const MethodReport& report, const std::string& description) {
   nlohmann::json j;
   j["hoilcd_version"] = HOILCD_VERSION;
-  j["dataset"] = {{"dir", dataset.dir()}, {"scene_hash", dataset.manifest().scene_hash},
+  j["dataset"] = {{"dir", SafeText(dataset.dir())}, {"scene_hash", dataset.manifest().scene_hash},
                   {"seed", dataset.manifest().seed}, {"frames", dataset.num_frames()}};
   j["protocol"] = {{"protocol", protocol.protocol}, {"radius_m", protocol.radius_m},
                    {"ground_truth", protocol.ground_truth},
                    {"heading_tolerance_deg", protocol.heading_tolerance_deg},
                    {"exclusion_window_s", protocol.exclusion_window_s}};
   nlohmann::json m = report.metrics.ToJson();
-  m["description"] = description;
-  j["methods"][report.name] = m;
+  m["description"] = SafeText(description);
+  const std::string name = SafeText(report.name);  // already safe from EvaluateQueryScores, unless built elsewhere
+  j["methods"][name] = m;
   j["other_ground_truth"] = {{"ground_truth", OtherGroundTruth(protocol.ground_truth)},
-                             {"methods", {{report.name, report.other_metrics.ToJson()}}}};
+                             {"methods", {{name, report.other_metrics.ToJson()}}}};
   return j;
 }
 

@@ -64,5 +64,21 @@ TEST(Evaluate, AMatrixOfTheWrongSizeIsAnErrorNamingBothSizes) {
   }
 }
 
+TEST(Evaluate, ANameThatIsNotUtf8GoesIntoTheReportJsonEscaped) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp);
+  const ProtocolOptions protocol;
+  const Labelling labelling = LabelQueries(dataset, protocol);
+  ScoreMatrix m = ScoreMatrix::Unscored(dataset.num_frames());
+  for (const Query& q : labelling.queries) {
+    for (int r : q.database) m.At(q.frame, r) = 1;
+  }
+  const MethodReport r = Evaluate(dataset, m, "caf\xe9\n", protocol);
+  EXPECT_EQ(r.name, "caf\\xe9\\x0a");
+  const nlohmann::json j = EvaluateReportJson(dataset, protocol, r, "scores from caf\xe9.csv");
+  EXPECT_NO_THROW(j.dump());
+  EXPECT_EQ(j["methods"]["caf\\xe9\\x0a"]["description"], "scores from caf\\xe9.csv");
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -33,7 +33,7 @@ Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol);
 
 // One method's figures under both labellings (timing left NaN: the caller sets it if known).
 struct MethodReport {
-  std::string name;
+  std::string name;             // as given, through SafeText (safe_text.h)
   MethodMetrics metrics;        // under Labelling::ground_truth
   MethodMetrics other_metrics;  // under Labelling::other_ground_truth
 };
