@@ -2,6 +2,7 @@
 // method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's and inspect's
 // -o folders and the guard they share with bench; the protocol flags' defaults in the help.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
@@ -169,6 +170,31 @@ TEST(OpenBenchCli, AScoresPathOrNameThatIsNotUtf8IsWrittenEscapedIntoTheReport) 
             0);
   testing::internal::GetCapturedStdout();
   EXPECT_TRUE(Json(temp / "by_name/report.json")["methods"].contains("caf\\xe9\\x1b[2J"));
+}
+
+TEST(OpenBenchCli, EvaluateRefusesAFifoOrADeviceAsScoresWithoutBlocking) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  const std::string fifo = temp / "scores.csv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& scores : {fifo, std::string("/dev/zero")}) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", scores}), 1);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("error: " + scores + ": is a "), std::string::npos) << err;
+    EXPECT_NE(err.find(": expected a regular file"), std::string::npos) << err;
+  }
+}
+
+TEST(OpenBenchCli, EvaluateRefusesScoresFilesWithoutAScore) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  WriteFileAtomic(temp / "header_only.csv", "query,reference,score\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "header_only.csv", "-o", temp / "r"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("error: " + temp / "header_only.csv" + ": holds the header and no pair"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "r"));
 }
 
 // The bench checks each file against manifest.json as it reads it: a changed thermal frame stops
