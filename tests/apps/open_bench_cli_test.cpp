@@ -197,6 +197,35 @@ TEST(OpenBenchCli, EvaluateRefusesScoresFilesWithoutAScore) {
   EXPECT_FALSE(std::filesystem::exists(temp / "r"));
 }
 
+TEST(OpenBenchCli, EvaluateOfADatasetWithoutATrueMatchFailsSayingWhyBeforeReadingTheScores) {
+  const test::TestDir temp;
+  const std::string dataset = test::RenderTinyRoom(temp / "short", {"frames=150"});
+  for (const char* protocol : {"laps", "revisit"}) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "never_written.csv", "--protocol", protocol}), 1);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("error: " + dataset + ": no query has a true match, so MRR, Recall@K and PR are undefined: "),
+              std::string::npos)
+        << err;
+    EXPECT_EQ(err.find("never_written.csv"), std::string::npos) << err;
+  }
+}
+
+TEST(OpenBenchCli, BenchOfADatasetWithoutATrueMatchWarnsWhyMrrIsUndefined) {
+  const test::TestDir temp;
+  const std::string dataset = test::RenderTinyRoom(temp / "short", {"frames=150"});
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "report"}), 0);
+  testing::internal::GetCapturedStdout();
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("warning: no query has a true match, so MRR, Recall@K and PR are undefined: the laps protocol "
+                     "queries the laps after the first, and the 150 frames never complete a first lap"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("('-' in the table)"), std::string::npos) << err;
+}
+
 // The bench checks each file against manifest.json as it reads it: a changed thermal frame stops
 // it with the file's name and writes no report; an EXR it never reads is never read.
 TEST(OpenBenchCli, BenchRefusesAChangedFrameItReadsAndIgnoresAChangedFileItDoesNotRead) {

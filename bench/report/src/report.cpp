@@ -470,8 +470,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
                                     const std::string& dir) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   const Labelling labelling = LabelQueries(dataset, protocol);
-  const MethodReport report =
-      EvaluateQueryScores(labelling, name, QueryScores(labelling, scores, dataset.num_frames()));
+  const MethodReport report = EvaluateLabelled(dataset, labelling, scores, name);
   const std::vector<MethodRun> runs = {{report.name, report.metrics, report.other_metrics, {}}};
   CreateOutputFolder(dir);
   WriteFileAtomic(dir + "/report.json", EvaluateReportJson(dataset, protocol, report, description).dump(2) + "\n");
