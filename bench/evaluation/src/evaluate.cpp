@@ -6,6 +6,7 @@
 
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
 
@@ -90,9 +91,11 @@ std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const S
     for (int r : q.database) {
       const double v = matrix.At(q.frame, r);
       if (std::isnan(v)) continue;
-      if (!std::isfinite(v)) {
-        throw InputError(matrix.source, "pair query " + std::to_string(q.frame) + ", reference " + std::to_string(r) +
-                                            " is infinite: expected a finite score, or NaN for unscored");
+      if (!(std::fabs(v) <= kMaxAbsScore)) {
+        const std::string pair = "pair query " + std::to_string(q.frame) + ", reference " + std::to_string(r);
+        if (std::isinf(v)) throw InputError(matrix.source, pair + " is infinite: expected a finite score, or NaN for unscored");
+        throw InputError(matrix.source, pair + " is " + ShortestDouble(v) + ": expected a score of magnitude at most " +
+                                            "1e300, or NaN for unscored");
       }
       lowest = any ? std::min(lowest, v) : v;
       any = true;
@@ -103,7 +106,7 @@ std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const S
       ++queries;
       queries_unscored += any ? 0 : 1;
     }
-    // Below every scored pair of this query; scores files cap magnitudes at 1e300, so this is finite.
+    // Below every scored pair of this query; magnitudes are at most kMaxAbsScore, so this is finite.
     const double unscored = any ? lowest - 1 - std::fabs(lowest) : 0;
     for (int r : q.database) {
       const double v = matrix.At(q.frame, r);

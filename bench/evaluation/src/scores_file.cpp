@@ -18,7 +18,6 @@ namespace {
 
 constexpr const char* kCsvHeader = "query,reference,score";
 constexpr int kMaxProblems = 10;         // a broken file of a million lines names its first few
-constexpr double kMaxAbsScore = 1e300;   // leaves room below the lowest score for "unscored"
 // The longest CSV line: two frame indices and a score of 17 significant digits take ~45 bytes.
 constexpr size_t kMaxCsvLineBytes = 128;
 constexpr size_t kCsvReadBlockBytes = size_t{1} << 20;

@@ -144,6 +144,22 @@ TEST(Evaluate, AnInfiniteScoreIsAnErrorNamingTheScoresSource) {
             std::string::npos);
 }
 
+// Python's matrices reach Evaluate without a reader's checks.
+TEST(Evaluate, AScoreBeyond1e300IsAnErrorNotAnInternalOne) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp);
+  const Labelling labelling = LabelQueries(dataset, ProtocolOptions{});
+  ScoreMatrix m = ScoreMatrix::Unscored(dataset.num_frames());
+  const Query& q = labelling.queries.back();
+  for (int r : q.database) m.At(q.frame, r) = 1;
+  m.At(q.frame, q.database[0]) = NAN;      // unscored: ranked below the lowest score...
+  m.At(q.frame, q.database[1]) = -1e308;   // ...which leaves no finite value below it
+  EXPECT_NE(test::InputErrorOf([&] { Evaluate(dataset, m, "x", ProtocolOptions{}); })
+                .find("scores: pair query " + std::to_string(q.frame) + ", reference " + std::to_string(q.database[1]) +
+                      " is -1e+308: expected a score of magnitude at most 1e300, or NaN for unscored"),
+            std::string::npos);
+}
+
 TEST(Evaluate, ANameThatIsNotUtf8GoesIntoTheReportJsonEscaped) {
   const test::TestDir temp;
   const Dataset dataset = TinyDataset(temp);

@@ -13,6 +13,10 @@
 
 namespace hoilcd {
 
+// The largest magnitude of a score, in files and in memory: it leaves room below the lowest score
+// of a query for its unscored pairs.
+inline constexpr double kMaxAbsScore = 1e300;
+
 // Scores of (query frame, reference frame) pairs of one dataset; higher = more alike.
 struct ScoreMatrix {
   int frames = 0;
