@@ -1,22 +1,23 @@
-// Fuzzes the scores file readers of `hoilcd evaluate`. The first byte picks the reader (even: CSV,
-// odd: .npy) and the matrix size (1..8 frames); the rest is the file. Only InputError may come
+// Fuzzes the CSV scores reader of `hoilcd evaluate`. The first byte picks the matrix size (1..8
+// frames, bits 1-3) and the way in (bit 0: 0 the text, ScoresFromCsv; 1 a file, ReadScoresFile,
+// read block by block after its size is checked); the rest is the file. Only InputError may come
 // out; anything else is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "fuzz_input.h"
 #include "hoilcd/bench/evaluation/scores_file.h"
 #include "hoilcd/core/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
-  const std::string bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
   const int frames = 1 + (data[0] >> 1) % 8;
   try {
     if (data[0] % 2 == 0) {
-      hoilcd::ScoresFromCsv(bytes, "scores.csv", frames);
+      hoilcd::ScoresFromCsv(std::string(reinterpret_cast<const char*>(data) + 1, size - 1), "scores.csv", frames);
     } else {
-      hoilcd::ScoresFromNpy(bytes, "scores.npy", frames);
+      hoilcd::ReadScoresFile(hoilcd::fuzz::WriteScratchFile("scores.csv", data + 1, size - 1), frames);
     }
   } catch (const hoilcd::InputError&) {
   }

@@ -79,11 +79,16 @@ py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array:
   matrix.values.assign(scores.data(), scores.data() + scores.size());
   const std::string description = "scores from Python";
   std::string report_json;
+  std::vector<std::string> warnings;
   {
     py::gil_scoped_release unlocked;
     const MethodReport report = output ? EvaluateAndWriteReport(dataset, matrix, name, description, options, *output)
                                        : Evaluate(dataset, matrix, name, options);
-    report_json = EvaluateReportJson(dataset, options, report, description)["methods"][name].dump();
+    report_json = EvaluateReportJson(dataset, options, report, description)["methods"][report.name].dump();
+    warnings = report.warnings;
+  }
+  for (const std::string& warning : warnings) {  // as `hoilcd evaluate` prints them
+    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
   }
   return JsonToPython(report_json);
 }

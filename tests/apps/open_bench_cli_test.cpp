@@ -2,6 +2,7 @@
 // method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's and inspect's
 // -o folders and the guard they share with bench; the protocol flags' defaults in the help.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
@@ -145,6 +146,84 @@ TEST(OpenBenchCli, EvaluateNamesTheBadScoresFileAndLineAndABadBaselineFailsBefor
   EXPECT_NE(Hoilcd({"evaluate", dataset, "--scores", temp / "bad.csv", "--max-drop", "0.1"}), 0) << "a usage error";
   err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("--max-drop requires --baseline"), std::string::npos) << err;
+}
+
+TEST(OpenBenchCli, AScoresPathOrNameThatIsNotUtf8IsWrittenEscapedIntoTheReport) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "report", "--dump-scores", temp / "scores"}),
+            0);
+  const std::string latin1 = temp / "caf\xe9.csv";  // "café.csv" in Latin-1: not UTF-8
+  WriteFileAtomic(latin1, ReadFileBytes(temp / "scores/thumb.csv"));
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", latin1, "-o", temp / "by_path"}), 0);
+  EXPECT_NE(testing::internal::GetCapturedStdout().find("caf\\xe9 (odometry ground truth): MRR "), std::string::npos);
+  const nlohmann::json by_path = Json(temp / "by_path/report.json");
+  ASSERT_TRUE(by_path["methods"].contains("caf\\xe9"));
+  EXPECT_EQ(by_path["methods"]["caf\\xe9"]["description"], "scores from " + temp / "caf\\xe9.csv");
+  EXPECT_EQ(by_path["methods"]["caf\\xe9"]["mrr"], Json(temp / "report/report.json")["methods"]["thumb"]["mrr"]);
+  EXPECT_NE(ReadFileBytes(temp / "by_path/report.md").find("| caf\\xe9 | "), std::string::npos);
+
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--name", "caf\xe9\x1b[2J", "-o",
+                    temp / "by_name"}),
+            0);
+  testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(Json(temp / "by_name/report.json")["methods"].contains("caf\\xe9\\x1b[2J"));
+}
+
+TEST(OpenBenchCli, EvaluateRefusesAFifoOrADeviceAsScoresWithoutBlocking) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  const std::string fifo = temp / "scores.csv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& scores : {fifo, std::string("/dev/zero")}) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", scores}), 1);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("error: " + scores + ": is a "), std::string::npos) << err;
+    EXPECT_NE(err.find(": expected a regular file"), std::string::npos) << err;
+  }
+}
+
+TEST(OpenBenchCli, EvaluateRefusesScoresFilesWithoutAScore) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  WriteFileAtomic(temp / "header_only.csv", "query,reference,score\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "header_only.csv", "-o", temp / "r"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("error: " + temp / "header_only.csv" + ": holds the header and no pair"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(temp / "r"));
+}
+
+TEST(OpenBenchCli, EvaluateOfADatasetWithoutATrueMatchFailsSayingWhyBeforeReadingTheScores) {
+  const test::TestDir temp;
+  const std::string dataset = test::RenderTinyRoom(temp / "short", {"frames=150"});
+  for (const char* protocol : {"laps", "revisit"}) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "never_written.csv", "--protocol", protocol}), 1);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("error: " + dataset + ": no query has a true match, so MRR, Recall@K and PR are undefined: "),
+              std::string::npos)
+        << err;
+    EXPECT_EQ(err.find("never_written.csv"), std::string::npos) << err;
+  }
+}
+
+TEST(OpenBenchCli, BenchOfADatasetWithoutATrueMatchWarnsWhyMrrIsUndefined) {
+  const test::TestDir temp;
+  const std::string dataset = test::RenderTinyRoom(temp / "short", {"frames=150"});
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "report"}), 0);
+  testing::internal::GetCapturedStdout();
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("warning: no query has a true match, so MRR, Recall@K and PR are undefined: the laps protocol "
+                     "queries the laps after the first, and the 150 frames never complete a first lap"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("('-' in the table)"), std::string::npos) << err;
 }
 
 // The bench checks each file against manifest.json as it reads it: a changed thermal frame stops

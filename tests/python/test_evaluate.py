@@ -105,6 +105,19 @@ def test_unscored_pairs_are_nan(ds, scores):
     assert not math.isnan(metrics["mrr"]) and metrics["mrr"] != hoilcd.evaluate(ds, scores)["mrr"]
 
 
+def test_queries_with_no_scored_pair_are_warned_about(ds, scores):
+    partial = scores.copy()
+    partial[1::2, :] = np.nan  # every other query row
+    with pytest.warns(UserWarning, match=r"^scores: \d+ of the \d+ queries with a true match have no scored pair"):
+        hoilcd.evaluate(ds, partial, name="half")
+
+
+def test_an_object_array_of_none_or_all_nan_is_refused_not_scored_as_a_random_order(ds):
+    for empty in (np.full((len(ds), len(ds)), None, dtype=object), np.full((len(ds), len(ds)), np.nan)):
+        with pytest.raises(hoilcd.InputError, match=r"^scores: scores none of the \d+ \(query, database frame\) pairs"):
+            hoilcd.evaluate(ds, empty)
+
+
 def test_a_matrix_of_the_wrong_shape_is_an_input_error(ds, scores):
     with pytest.raises(hoilcd.InputError, match=r"scores: a frames x frames matrix \(440 x 440\); got shape \(440, 439\)"):
         hoilcd.evaluate(ds, scores[:, :-1])

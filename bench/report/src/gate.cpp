@@ -4,13 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "hoilcd/core/dataset/dataset.h"
-#include "hoilcd/core/util/error.h"
-
 namespace hoilcd {
 namespace {
-
-constexpr const char* kHeadlineMetrics[] = {"mrr", "recall_at_1"};
 
 double Value(const nlohmann::json& method, const char* metric) {
   const auto it = method.find(metric);
@@ -44,22 +39,6 @@ std::string XmlEscape(const std::string& s) {
 std::string Regression::ToString(double max_drop) const {
   return "regression: method " + method + ", " + metric + " old " + Number(old_value) + " new " + Number(new_value) +
          " (dropped by more than " + Number(max_drop) + ")";
-}
-
-nlohmann::json ReadReportJson(const std::string& path) {
-  const nlohmann::json j = nlohmann::json::parse(ReadFileBytes(path), nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) throw InputError(path, "is not JSON: expected a hoilcd report.json");
-  if (!j.is_object() || !j.contains("methods") || !j["methods"].is_object()) {
-    throw InputError(path, "/methods: expected an object of methods (a hoilcd report.json)");
-  }
-  for (const auto& [name, method] : j["methods"].items()) {
-    for (const char* metric : kHeadlineMetrics) {
-      if (!method.is_object() || !method.contains(metric) || !(method[metric].is_number() || method[metric].is_null())) {
-        throw InputError(path, "/methods/" + name + "/" + metric + ": expected a number or null");
-      }
-    }
-  }
-  return j;
 }
 
 std::vector<Regression> CompareToBaseline(const nlohmann::json& baseline, const nlohmann::json& current,

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/figures.h"
@@ -191,7 +192,7 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
   const LabelDisagreement& labels = result.label_disagreement;
   nlohmann::json report;
   report["hoilcd_version"] = HOILCD_VERSION;
-  report["dataset"] = {{"dir", dataset.dir()}, {"scene_hash", manifest.scene_hash},
+  report["dataset"] = {{"dir", SafeText(dataset.dir())}, {"scene_hash", manifest.scene_hash},
                        {"seed", manifest.seed}, {"frames", dataset.num_frames()}};
   report["protocol"] = {{"protocol", options.protocol.protocol}, {"radius_m", options.protocol.radius_m},
                         {"ground_truth", options.protocol.ground_truth},
@@ -203,7 +204,9 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
                           {"lo_refits", options.lo_refits},
                           {"keypoint_detector", options.keypoints.detector},
                           {"rrf_k", options.rrf_k}};
-  if (!options.params.empty()) report["parameters"]["param"] = options.params;  // --param NAME=VALUE
+  for (const std::string& param : options.params) {  // --param NAME=VALUE
+    report["parameters"]["param"].push_back(SafeText(param));
+  }
   for (const MethodRun& run : result.runs) {
     nlohmann::json m = run.metrics.ToJson();
     m["description"] = FindMethod(run.name).Description();
@@ -342,7 +345,7 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const Dataset& d
   const DatasetManifest& manifest = dataset.manifest();
   std::ostringstream md;
   md << "# hoilcd loop-closure report\n\n"
-     << "Dataset `" << dataset.dir() << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
+     << "Dataset `" << SafeText(dataset.dir()) << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
      << ", scene hash `" << manifest.scene_hash << "`), protocol `" << protocol.protocol
      << "`, true match within " << protocol.radius_m << " m of the query's "
      << (protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)" : "true position")
@@ -467,8 +470,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
                                     const std::string& dir) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   const Labelling labelling = LabelQueries(dataset, protocol);
-  const MethodReport report =
-      EvaluateQueryScores(labelling, name, QueryScores(labelling, scores, dataset.num_frames()));
+  const MethodReport report = EvaluateLabelled(dataset, labelling, scores, name);
   const std::vector<MethodRun> runs = {{report.name, report.metrics, report.other_metrics, {}}};
   CreateOutputFolder(dir);
   WriteFileAtomic(dir + "/report.json", EvaluateReportJson(dataset, protocol, report, description).dump(2) + "\n");
@@ -477,7 +479,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
   md << ResultsMarkdown(runs, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
-     << "\n## Methods\n\n- `" << report.name << "`: " << description << "\n\n## Notes\n\n";
+     << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";
   for (const auto& figure : figures) md << "![" << figure.first << "](" << figure.first << ")\n\n";

@@ -5,10 +5,13 @@
 #include <unistd.h>
 #include <xxhash.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <new>
 #include <set>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
@@ -36,30 +39,71 @@ std::string ChecksumText(XXH128_hash_t hash) {
   return out;
 }
 
-int OpenForReading(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path, "cannot read file (missing or not readable)");
-  return fd;
+// What a file that is not regular is, for the message that refuses it.
+std::string KindOf(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "an unknown kind of file";
 }
 
-// Up to `size` bytes of fd into `into` (0 at the end of the file), retried on EINTR; on an error
-// closes fd and throws InputError(path, ...).
-size_t ReadSome(int fd, char* into, size_t size, const std::string& path) {
-  for (;;) {
-    const ssize_t got = ::read(fd, into, size);
-    if (got >= 0) return static_cast<size_t>(got);
-    if (errno == EINTR) continue;
-    const int error = errno;
-    ::close(fd);
-    // A folder opens but does not read (EISDIR): still "not readable" to the caller.
-    throw InputError(path, error == EISDIR ? "cannot read file (missing or not readable)"
-                                           : std::string("cannot read file (") + std::strerror(error) + ")");
-  }
-}
+std::string NotRegular(mode_t mode) { return "is " + KindOf(mode) + ": expected a regular file"; }
 
 }  // namespace
 
 std::string ChecksumOf(std::string_view bytes) { return ChecksumText(XXH3_128bits(bytes.data(), bytes.size())); }
+
+RegularFile::RegularFile(const std::string& path) : path_(path) {
+  // Refused by stat first, so a device is not even opened; then by fstat of what was opened, in
+  // case the path changed in between. O_NONBLOCK: opening a FIFO must not wait for a writer (it
+  // changes nothing for a regular file).
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) throw InputError(path, NotRegular(info.st_mode));
+  fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) throw InputError(path, "cannot read file (missing or not readable)");
+  if (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode)) {
+    const std::string what = NotRegular(info.st_mode);
+    ::close(fd_);
+    throw InputError(path, what);
+  }
+  size_ = static_cast<uint64_t>(info.st_size);
+}
+
+RegularFile::~RegularFile() { ::close(fd_); }
+
+size_t RegularFile::ReadInto(char* into, size_t max_bytes) {
+  for (;;) {
+    const ssize_t got = ::read(fd_, into, max_bytes);
+    if (got >= 0) return static_cast<size_t>(got);
+    if (errno != EINTR) throw InputError(path_, std::string("cannot read file (") + std::strerror(errno) + ")");
+  }
+}
+
+std::string RegularFile::Read(size_t max_bytes) {
+  constexpr size_t kFirstBlock = size_t{1} << 16;
+  std::string bytes;
+  size_t size = 0;
+  try {
+    // Sized by fstat with one byte more (the read that finds the end), then doubled for files
+    // whose size stat does not know (/proc) or that grow while read; never beyond max_bytes.
+    bytes.resize(static_cast<size_t>(std::min<uint64_t>(max_bytes, std::max<uint64_t>(size_ + 1, kFirstBlock))));
+    for (;;) {
+      if (size == bytes.size()) {
+        if (size == max_bytes) break;
+        bytes.resize(max_bytes - size > size ? 2 * size : max_bytes);
+      }
+      const size_t got = ReadInto(bytes.data() + size, bytes.size() - size);
+      if (got == 0) break;
+      size += got;
+    }
+  } catch (const std::bad_alloc&) {
+    throw InputError(path_, "is " + std::to_string(size_) + " bytes: more than this machine can hold in memory");
+  }
+  bytes.resize(size);
+  return bytes;
+}
 
 std::string ChecksumOfFile(const std::string& path) {
   const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(), XXH3_freeState);
@@ -68,31 +112,24 @@ std::string ChecksumOfFile(const std::string& path) {
   // zeroed or faulted in anew.
   constexpr size_t kBlock = size_t{1} << 18;
   const std::unique_ptr<char[]> block(new char[kBlock]);
-  const int fd = OpenForReading(path);  // opened last: nothing below throws but ReadSome, which closes it
-  while (const size_t got = ReadSome(fd, block.get(), kBlock, path)) {
+  RegularFile file(path);
+  while (const size_t got = file.ReadInto(block.get(), kBlock)) {
     XXH3_128bits_update(state.get(), block.get(), got);
   }
-  ::close(fd);
   return ChecksumText(XXH3_128bits_digest(state.get()));
 }
 
-std::string ReadFileBytes(const std::string& path) {
-  const int fd = OpenForReading(path);
-  struct stat st {};
-  // Sized by fstat, read in large blocks; the loop also reads files whose size stat does not
-  // know (/proc) or that grow while read.
-  std::string bytes(::fstat(fd, &st) == 0 && st.st_size > 0 ? static_cast<size_t>(st.st_size) + 1
-                                                             : size_t{1} << 16,
-                    '\0');
-  size_t size = 0;
-  for (;;) {
-    if (size == bytes.size()) bytes.resize(bytes.size() * 2);
-    const size_t got = ReadSome(fd, bytes.data() + size, bytes.size() - size, path);
-    if (got == 0) break;
-    size += got;
-  }
-  ::close(fd);
-  bytes.resize(size);
+std::string ReadFileBytes(const std::string& path, uint64_t max_bytes) {
+  RegularFile file(path);
+  const auto too_long = [&](const std::string& size) {
+    return InputError(path, "is " + size + " bytes: expected at most " + std::to_string(max_bytes));
+  };
+  if (file.size() > max_bytes) throw too_long(std::to_string(file.size()));
+  // One byte past the bound tells a file that stat did not size (/proc) and is too long.
+  const size_t bound = max_bytes < std::numeric_limits<size_t>::max() ? static_cast<size_t>(max_bytes) + 1
+                                                                      : std::numeric_limits<size_t>::max();
+  std::string bytes = file.Read(bound);
+  if (bytes.size() > max_bytes) throw too_long("more than " + std::to_string(max_bytes));
   return bytes;
 }
 

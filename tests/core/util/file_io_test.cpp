@@ -1,6 +1,8 @@
 #include "hoilcd/core/util/file_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <iterator>
@@ -122,7 +124,54 @@ TEST(ReadFileBytes, ReadsEveryByteOfLargeEmptyAndUnsizedFiles) {
 TEST(ReadFileBytes, AFolderIsAnInputErrorNamingIt) {
   test::TestDir dir;
   const std::string message = InputErrorOf([&] { ReadFileBytes(dir.str()); });
-  EXPECT_NE(message.find(dir.str() + ": cannot read file"), std::string::npos) << message;
+  EXPECT_NE(message.find(dir.str() + ": is a folder: expected a regular file"), std::string::npos) << message;
+}
+
+TEST(ReadFileBytes, RefusesAFifoWithoutBlocking) {
+  test::TestDir dir;
+  const std::string fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // No writer ever opens the FIFO: a reader that opened it blocking would wait forever.
+  const std::string message = InputErrorOf([&] { ReadFileBytes(fifo); });
+  EXPECT_NE(message.find(fifo + ": is a FIFO: expected a regular file"), std::string::npos) << message;
+  EXPECT_NE(InputErrorOf([&] { ChecksumOfFile(fifo); }).find("is a FIFO"), std::string::npos);
+  EXPECT_NE(InputErrorOf([&] { RegularFile{fifo}; }).find("is a FIFO"), std::string::npos);
+}
+
+TEST(ReadFileBytes, RefusesADeviceInsteadOfReadingItForever) {
+  const std::string message = InputErrorOf([&] { ReadFileBytes("/dev/zero"); });
+  EXPECT_NE(message.find("/dev/zero: is a character device: expected a regular file"), std::string::npos) << message;
+}
+
+TEST(ReadFileBytes, AFileLongerThanItsBoundIsRefusedByItsSizeBeforeItIsRead) {
+  test::TestDir dir;
+  const std::string path = dir / "sparse.bin";
+  WriteFileAtomic(path, "");
+  // 64 GiB of holes: reading it whole would take minutes and more memory than the machine has.
+  ASSERT_EQ(::truncate(path.c_str(), off_t{1} << 36), 0);
+  const std::string message = InputErrorOf([&] { ReadFileBytes(path, 1000); });
+  EXPECT_NE(message.find(path + ": is 68719476736 bytes: expected at most 1000"), std::string::npos) << message;
+  WriteFileAtomic(path, std::string(1000, 'x'));
+  EXPECT_EQ(ReadFileBytes(path, 1000).size(), 1000u);
+  EXPECT_NE(InputErrorOf([&] { ReadFileBytes(path, 999); }).find("is 1000 bytes: expected at most 999"),
+            std::string::npos);
+}
+
+TEST(ReadFileBytes, AFileWhoseSizeStatDoesNotKnowIsStillReadOnlyUpToItsBound) {
+  // /proc files report size 0 to stat but have content.
+  const std::string message = InputErrorOf([&] { ReadFileBytes("/proc/self/status", 10); });
+  EXPECT_NE(message.find("/proc/self/status: is more than 10 bytes: expected at most 10"), std::string::npos)
+      << message;
+}
+
+TEST(RegularFile, ReadsInPiecesAndGivesTheSizeBeforeReading) {
+  test::TestDir dir;
+  WriteFileAtomic(dir / "file.bin", "header|body");
+  RegularFile file(dir / "file.bin");
+  EXPECT_EQ(file.size(), 11u);
+  EXPECT_EQ(file.Read(7), "header|");
+  EXPECT_EQ(file.Read(100), "body");
+  EXPECT_EQ(file.Read(100), "");
 }
 
 TEST(ChecksumOfFile, IsTheChecksumOfTheWholeFileAtEverySizeAroundItsBlocks) {
@@ -143,7 +192,7 @@ TEST(ChecksumOfFile, AMissingFileOrAFolderIsAnInputErrorNamingIt) {
   std::string message = InputErrorOf([&] { ChecksumOfFile(dir / "nope.bin"); });
   EXPECT_NE(message.find("nope.bin: cannot read file (missing or not readable)"), std::string::npos) << message;
   message = InputErrorOf([&] { ChecksumOfFile(dir.str()); });
-  EXPECT_NE(message.find(dir.str() + ": cannot read file (missing or not readable)"), std::string::npos) << message;
+  EXPECT_NE(message.find(dir.str() + ": is a folder: expected a regular file"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -17,6 +17,7 @@ namespace hoilcd {
 
 // A dataset's queries labelled under the chosen ground truth and under the other one.
 struct Labelling {
+  ProtocolOptions protocol;             // what labelled them
   std::string ground_truth;             // protocol.ground_truth: "odometry" or "true"
   std::string other_ground_truth;       // the other one
   std::vector<Query> queries;           // labelled with ground_truth
@@ -31,11 +32,17 @@ struct Labelling {
 // InputError("protocol", ...) when protocol.Check() fails.
 Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol);
 
+// Empty when a query has a true match under labelling.ground_truth. Else why none has, in words
+// a user can act on ("no query has a true match, so MRR, Recall@K and PR are undefined: the
+// robot's 300 frames never complete its first lap ..."): the metrics are undefined.
+std::string NoTrueMatchReason(const Labelling& labelling);
+
 // One method's figures under both labellings (timing left NaN: the caller sets it if known).
 struct MethodReport {
-  std::string name;
+  std::string name;             // as given, through SafeText (safe_text.h)
   MethodMetrics metrics;        // under Labelling::ground_truth
   MethodMetrics other_metrics;  // under Labelling::other_ground_truth
+  std::vector<std::string> warnings;  // about the scores: queries with none of their pairs scored
 };
 
 // scores[i] parallel to labelling.queries[i].database, finite.
@@ -43,12 +50,18 @@ MethodReport EvaluateQueryScores(const Labelling& labelling, const std::string& 
                                  const std::vector<std::vector<double>>& scores);
 
 // Each query's database scores picked out of `matrix`; an unscored (NaN) pair ranks below every
-// scored pair of its query (all unscored: all tied). InputError when the matrix is not
-// frames x frames of the labelled dataset.
+// scored pair of its query (all unscored: all tied, each warned about in `warnings`). InputError
+// naming matrix.source when the matrix is not frames x frames of the labelled dataset, holds an
+// infinity, or scores none of the pairs of the queries with a true match (their metrics would be
+// those of a random order).
 std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const ScoreMatrix& matrix,
-                                             int dataset_frames);
+                                             int dataset_frames, std::vector<std::string>* warnings = nullptr);
 
-// LabelQueries + QueryScores + EvaluateQueryScores.
+// NoTrueMatchReason (an InputError naming the dataset) + QueryScores + EvaluateQueryScores.
+MethodReport EvaluateLabelled(const Dataset& dataset, const Labelling& labelling, const ScoreMatrix& scores,
+                              const std::string& name);
+
+// LabelQueries + EvaluateLabelled.
 MethodReport Evaluate(const Dataset& dataset, const ScoreMatrix& scores, const std::string& name,
                       const ProtocolOptions& protocol);
 

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hoilcd/bench/evaluation/report_json.h"  // ReadReportJson, kHeadlineMetrics
+
 namespace hoilcd {
 
 struct Regression {
@@ -17,10 +19,6 @@ struct Regression {
   double new_value = 0;  // NaN when the new run has no value (no query scored)
   std::string ToString(double max_drop) const;  // one line: method, metric, old, new
 };
-
-// A report.json read from `path`: InputError naming the file when it is not JSON or has no
-// "methods" object of methods with numeric (or null) "mrr" and "recall_at_1".
-nlohmann::json ReadReportJson(const std::string& path);
 
 // The regressions of `current` against `baseline` (both report.json documents), in baseline
 // method order then metric order. A metric the baseline lacks (null) is not compared.

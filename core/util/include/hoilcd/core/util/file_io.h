@@ -1,8 +1,10 @@
-// Generic file I/O: whole-file reads, atomic writes (a reader never sees a half-written file)
-// with an fsync per file or batched, content checksums, and PNG encoding with the one atomic
-// PNG writer.
+// Generic file I/O: reads of regular files only (a FIFO or device is refused, never waited on),
+// bounded when asked; atomic writes (a reader never sees a half-written file) with an fsync per
+// file or batched, content checksums, and PNG encoding with the one atomic PNG writer.
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
@@ -13,12 +15,40 @@ namespace hoilcd {
 // "xxh3-128:<32 lowercase hex digits>" (XXH3 128-bit, canonical big-endian byte order).
 std::string ChecksumOf(std::string_view bytes);
 
+// A regular file open for reading: the one check every reader goes through. Opening never
+// blocks; a FIFO, device, socket or folder is an InputError(path, "is a FIFO: expected a regular
+// file"), a missing or unreadable file InputError(path, "cannot read file ...").
+class RegularFile {
+ public:
+  explicit RegularFile(const std::string& path);
+  ~RegularFile();
+  RegularFile(const RegularFile&) = delete;
+  RegularFile& operator=(const RegularFile&) = delete;
+
+  const std::string& path() const { return path_; }
+  // Bytes, as fstat gave them when opened: a header can be checked against it before the body
+  // is read. 0 for files whose size stat does not know (/proc), so a bounded reader still reads
+  // at most its bound.
+  uint64_t size() const { return size_; }
+  // The next bytes, up to `max_bytes` (fewer only at the end of the file); InputError(path, ...)
+  // on a read error or when they do not fit in memory.
+  std::string Read(size_t max_bytes);
+  // The same into `into`, without allocating: 0 at the end of the file.
+  size_t ReadInto(char* into, size_t max_bytes);
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  uint64_t size_ = 0;
+};
+
 // ChecksumOf(ReadFileBytes(path)), read block by block (the file is never held whole); InputError
 // as ReadFileBytes.
 std::string ChecksumOfFile(const std::string& path);
 
-// Whole file as bytes; InputError(path, "cannot read ...") if missing or unreadable.
-std::string ReadFileBytes(const std::string& path);
+// Whole file as bytes, refused as RegularFile refuses, or when longer than max_bytes
+// (InputError(path, "is N bytes: expected at most M")) or than memory holds.
+std::string ReadFileBytes(const std::string& path, uint64_t max_bytes = std::numeric_limits<uint64_t>::max());
 
 // Writes to "<path>.tmp.<pid>" in the same directory, fsyncs, renames over path: readers never
 // see a half-written file. Creates parent directories. InputError(path, ...) on failure.

@@ -1,0 +1,78 @@
+#include "hoilcd/bench/evaluation/report_json.h"
+
+#include <cstdint>
+
+#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr uint64_t kMaxReportJsonBytes = uint64_t{64} << 20;  // a bench report of every method: ~1 MB
+constexpr int kMaxDepth = 64;                                  // a report nests ~5 deep
+
+// `name` as one JSON pointer token (RFC 6901: '~' as ~0, '/' as ~1), printable.
+std::string PointerToken(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return SafeText(out);
+}
+
+}  // namespace
+
+nlohmann::json ReportJsonFromText(std::string_view text, const std::string& source) {
+  nlohmann::json j;
+  try {
+    const auto limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+      if (depth > kMaxDepth) {
+        throw InputError(source, "nests deeper than " + std::to_string(kMaxDepth) +
+                                     " levels: expected a hoilcd report.json");
+      }
+      return true;
+    };
+    j = nlohmann::json::parse(text, limit_depth);
+  } catch (const nlohmann::json::exception& e) {  // parse errors and number overflow (1e400)
+    std::string what = e.what();
+    if (const size_t end = what.find("] "); what.rfind("[json.exception.", 0) == 0 && end != std::string::npos) {
+      what = what.substr(end + 2);
+    }
+    throw InputError(source, "is not JSON: expected a hoilcd report.json (" + SafeText(what) + ")");
+  }
+  if (!j.is_object() || !j.contains("methods") || !j["methods"].is_object()) {
+    throw InputError(source, "/methods: expected an object of methods (a hoilcd report.json)");
+  }
+  for (const auto& [name, method] : j["methods"].items()) {
+    const std::string where = source + ": /methods/" + PointerToken(name);
+    if (!method.is_object()) throw InputError(where, "expected an object of the method's metrics");
+    for (const char* metric : kHeadlineMetrics) {
+      const auto it = method.find(metric);
+      const bool valid = it != method.end() && (it->is_null() || (it->is_number() && it->get<double>() >= 0 &&
+                                                                   it->get<double>() <= 1));
+      if (!valid) throw InputError(where + "/" + metric, "expected a number or null (a fraction, in [0, 1])");
+    }
+  }
+  return j;
+}
+
+nlohmann::json ReadReportJson(const std::string& path) {
+  RegularFile file(path);
+  const auto too_long = [&](const std::string& size) {
+    return InputError(path, "is " + size + " bytes: expected a hoilcd report.json, at most " +
+                                std::to_string(kMaxReportJsonBytes >> 20) + " MiB");
+  };
+  if (file.size() > kMaxReportJsonBytes) throw too_long(std::to_string(file.size()));
+  const std::string text = file.Read(kMaxReportJsonBytes + 1);
+  if (text.size() > kMaxReportJsonBytes) throw too_long("more than " + std::to_string(kMaxReportJsonBytes));
+  return ReportJsonFromText(text, path);
+}
+
+}  // namespace hoilcd
