@@ -191,6 +191,11 @@ struct NpyPreamble {
   size_t header_bytes = 0;
 };
 
+InputError TruncatedHeader(const std::string& source, size_t needed, size_t held) {
+  return InputError(source, "truncated .npy header: expected " + std::to_string(needed) +
+                                " bytes up to the header's end, the file holds " + std::to_string(held));
+}
+
 NpyPreamble ReadNpyPreamble(std::string_view bytes, const std::string& source) {
   if (bytes.size() < 10 || bytes.substr(0, 6) != std::string_view("\x93NUMPY", 6)) {
     throw InputError(source, "expected a NumPy .npy file (magic \\x93NUMPY)");
@@ -202,7 +207,7 @@ NpyPreamble ReadNpyPreamble(std::string_view bytes, const std::string& source) {
     p.header_bytes = byte(8) | byte(9) << 8;
     p.header_start = 10;
   } else if (major == 2 || major == 3) {
-    if (bytes.size() < 12) throw InputError(source, "truncated .npy header");
+    if (bytes.size() < kNpyPreambleBytes) throw TruncatedHeader(source, kNpyPreambleBytes, bytes.size());
     for (int i = 3; i >= 0; --i) p.header_bytes = p.header_bytes << 8 | byte(8 + static_cast<size_t>(i));
     p.header_start = 12;
   } else {
@@ -402,7 +407,9 @@ ScoreMatrix ReadNpyFile(RegularFile* file, int frames) {
   // What the preamble read past the header's start belongs to the header (version 1: 2 bytes).
   std::string header = preamble.substr(std::min(preamble.size(), p.header_start));
   if (header.size() < p.header_bytes) header += file->Read(p.header_bytes - header.size());
-  if (header.size() < p.header_bytes) throw InputError(source, "truncated .npy header");
+  if (header.size() < p.header_bytes) {
+    throw TruncatedHeader(source, p.header_start + p.header_bytes, p.header_start + header.size());
+  }
   const std::string rest = header.substr(p.header_bytes);  // the body's first bytes
   header.resize(p.header_bytes);
   const size_t item = CheckNpyHeader(header, source, frames);
@@ -452,7 +459,9 @@ ScoreMatrix ScoresFromCsv(std::string_view text, const std::string& source, int 
 // followed by raw little-endian values.
 ScoreMatrix ScoresFromNpy(std::string_view bytes, const std::string& source, int frames) {
   const NpyPreamble p = ReadNpyPreamble(bytes, source);
-  if (p.header_bytes > bytes.size() - p.header_start) throw InputError(source, "truncated .npy header");
+  if (p.header_bytes > bytes.size() - p.header_start) {
+    throw TruncatedHeader(source, p.header_start + p.header_bytes, bytes.size());
+  }
   const size_t item = CheckNpyHeader(std::string(bytes.substr(p.header_start, p.header_bytes)), source, frames);
   const std::string_view data = bytes.substr(p.header_start + p.header_bytes);
   const uint64_t data_bytes = static_cast<uint64_t>(frames) * static_cast<uint64_t>(frames) * item;

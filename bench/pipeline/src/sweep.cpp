@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -233,7 +234,7 @@ std::string SweepPlan::Check() const {
 nlohmann::json SweepPlan::ToJson() const {
   nlohmann::json a = nlohmann::json::array();
   for (const SweepAxis& axis : axes) a.push_back({{"key", axis.key}, {"values", axis.values}});
-  return {{"scene_path", scene_path}, {"scene_name", scene_name}, {"scene_hash", scene_hash},
+  return {{"scene_path", SafeText(scene_path)}, {"scene_name", scene_name}, {"scene_hash", scene_hash},
           {"axes", a}, {"seeds", seeds}, {"bench", bench}};
 }
 

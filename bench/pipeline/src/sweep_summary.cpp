@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/bench/report/chart.h"
 #include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/bench/report/output_folder.h"
@@ -226,7 +227,7 @@ std::string SweepSummary::ToMarkdown() const {
   const std::vector<SweepMetric>& metrics = SweepMetrics();
   std::ostringstream out;
   out << "# hoilcd sweep of " << plan.scene_name << "\n\n"
-      << "Scene `" << plan.scene_path << "` (hash `" << plan.scene_hash << "`), seeds 1.." << plan.seeds
+      << "Scene `" << SafeText(plan.scene_path) << "` (hash `" << plan.scene_hash << "`), seeds 1.." << plan.seeds
       << ", methods " << plan.bench.at("methods").dump() << ", protocol `" << plan.bench.value("protocol", "")
       << "`. Each cell: mean ± sample std [min, max] over the seeds. Every run's report is in runs/.\n\n|";
   for (const SweepAxis& axis : plan.axes) out << " `" << axis.key << "` |";

@@ -76,7 +76,10 @@ RegularFile::~RegularFile() { ::close(fd_); }
 size_t RegularFile::ReadInto(char* into, size_t max_bytes) {
   for (;;) {
     const ssize_t got = ::read(fd_, into, max_bytes);
-    if (got >= 0) return static_cast<size_t>(got);
+    if (got >= 0) {
+      read_ += static_cast<uint64_t>(got);
+      return static_cast<size_t>(got);
+    }
     if (errno != EINTR) throw InputError(path_, std::string("cannot read file (") + std::strerror(errno) + ")");
   }
 }
@@ -86,13 +89,15 @@ std::string RegularFile::Read(size_t max_bytes) {
   std::string bytes;
   size_t size = 0;
   try {
-    // Sized by fstat with one byte more (the read that finds the end), then doubled for files
-    // whose size stat does not know (/proc) or that grow while read; never beyond max_bytes.
-    bytes.resize(static_cast<size_t>(std::min<uint64_t>(max_bytes, std::max<uint64_t>(size_ + 1, kFirstBlock))));
+    // Sized by what fstat says is left, with one byte more (the read that finds the end), then
+    // doubled for files whose size stat does not know (/proc) or that grow while read; never
+    // beyond max_bytes.
+    const uint64_t left = size_ > read_ ? size_ - read_ : 0;
+    bytes.resize(static_cast<size_t>(std::min<uint64_t>(max_bytes, size_ == 0 ? kFirstBlock : left + 1)));
     for (;;) {
       if (size == bytes.size()) {
         if (size == max_bytes) break;
-        bytes.resize(max_bytes - size > size ? 2 * size : max_bytes);
+        bytes.resize(max_bytes - size > std::max(size, kFirstBlock) ? size + std::max(size, kFirstBlock) : max_bytes);
       }
       const size_t got = ReadInto(bytes.data() + size, bytes.size() - size);
       if (got == 0) break;

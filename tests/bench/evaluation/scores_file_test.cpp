@@ -156,7 +156,12 @@ TEST(ScoresFile, NpyErrorsNameTheFileAndWhatWasExpected) {
   std::string v9 = Npy({1, 2, 3, 4}, "(2, 2)");
   v9[6] = 9;
   EXPECT_NE(NpyError(v9).find(".npy format version 9: expected 1, 2 or 3"), std::string::npos);
-  EXPECT_NE(NpyError(Npy({1, 2, 3, 4}, "(2, 2)").substr(0, 30)).find("truncated .npy header"), std::string::npos);
+  EXPECT_NE(NpyError(Npy({1, 2, 3, 4}, "(2, 2)").substr(0, 30))
+                .find("s.npy: truncated .npy header: expected 128 bytes up to the header's end, the file holds 30"),
+            std::string::npos);
+  EXPECT_NE(NpyError(Npy({1, 2, 3, 4}, "(2, 2)", "<f8", "False", 2).substr(0, 11))
+                .find("s.npy: truncated .npy header: expected 12 bytes up to the header's end, the file holds 11"),
+            std::string::npos);
 }
 
 TEST(ScoresFile, FilesReadThroughReadScoresFileGiveWhatTheirBytesGive) {
@@ -178,6 +183,16 @@ TEST(ScoresFile, FilesReadThroughReadScoresFileGiveWhatTheirBytesGive) {
   const ScoreMatrix from_file = ReadScoresFile(dir / "s.csv", 300);
   EXPECT_EQ(from_file.values, ScoresFromCsv(csv, "s.csv", 300).values);
   EXPECT_EQ(from_file.At(299, 0), 299.0);
+}
+
+TEST(ScoresFile, ATruncatedNpyFileNamesWhereItEndsReadFromAFileAsFromBytes) {
+  const test::TestDir dir;
+  const std::string npy = Npy({1, 2, 3, 4}, "(2, 2)");
+  for (size_t size : {size_t{11}, size_t{100}, size_t{140}}) {
+    EXPECT_EQ(FileError(dir, "s.npy", npy.substr(0, size)),
+              InputErrorOf([&] { ScoresFromNpy(npy.substr(0, size), dir / "s.npy", 2); }))
+        << size;
+  }
 }
 
 TEST(ScoresFile, RefusesAFifoWithoutBlocking) {

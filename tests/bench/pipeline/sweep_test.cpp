@@ -92,6 +92,15 @@ TEST(SweepPlanRuns, ShardsPartitionTheCrossProduct) {
   EXPECT_EQ(plan.ShardRuns({3, 4}).size(), 4u);
 }
 
+TEST(SweepPlanJson, AScenePathThatIsNotUtf8IsWrittenEscaped) {
+  SweepPlan plan;
+  plan.scene_path = "sc\xe9ne.json";  // Latin-1
+  plan.axes = {{"a", {"0"}}};
+  std::string text;
+  ASSERT_NO_THROW(text = plan.ToJson().dump());
+  EXPECT_NE(text.find("\"scene_path\":\"sc\\\\xe9ne.json\""), std::string::npos) << text;
+}
+
 TEST(SweepStatsOf, MeanSampleStdMinMaxOfFiniteValues) {
   const SweepStats s = SweepStats::Of({1.0, 3.0, NAN, 2.0});
   EXPECT_EQ(s.count, 3);

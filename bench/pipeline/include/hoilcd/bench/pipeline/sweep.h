@@ -56,7 +56,7 @@ struct SweepRunSpec {
 // What a sweep runs. Shards of one sweep must have equal plans (ToJson, apart from scene_path:
 // the scene hash identifies the scene) to be merged.
 struct SweepPlan {
-  std::string scene_path;       // scene file as given
+  std::string scene_path;       // scene file as given (in ToJson through SafeText: shown, never opened)
   std::string scene_name;       // its "name"
   std::string scene_hash;       // hash of the scene without the sweep's overrides
   std::vector<SweepAxis> axes;  // in --set order

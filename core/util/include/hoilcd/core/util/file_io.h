@@ -40,6 +40,7 @@ class RegularFile {
   std::string path_;
   int fd_ = -1;
   uint64_t size_ = 0;
+  uint64_t read_ = 0;  // bytes read so far
 };
 
 // ChecksumOf(ReadFileBytes(path)), read block by block (the file is never held whole); InputError
