@@ -14,6 +14,7 @@ Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol) 
   if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("protocol", problem);
   Labelling l;
   l.protocol = protocol;
+  l.frame_rate_hz = dataset.manifest().frame_rate_hz;
   l.ground_truth = protocol.ground_truth;
   l.other_ground_truth = OtherGroundTruth(protocol.ground_truth);
   l.queries = BuildQueries(dataset.poses(), protocol);
@@ -134,6 +135,9 @@ MethodReport EvaluateLabelled(const Dataset& dataset, const Labelling& labelling
   const std::vector<std::vector<double>> query_scores = QueryScores(labelling, scores, dataset.num_frames(), &warnings);
   MethodReport report = EvaluateQueryScores(labelling, name, query_scores);
   report.warnings = std::move(warnings);
+  const BootstrapOptions bootstrap;
+  report.bootstrap = PlanBootstrap({&report.metrics.queries}, labelling.frame_rate_hz, bootstrap);
+  report.intervals = BootstrapHeadline(report.metrics.queries, report.bootstrap, bootstrap.seed);
   return report;
 }
 
@@ -152,8 +156,10 @@ nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions&
                    {"ground_truth", protocol.ground_truth},
                    {"heading_tolerance_deg", protocol.heading_tolerance_deg},
                    {"exclusion_window_s", protocol.exclusion_window_s}};
+  j["bootstrap"] = report.bootstrap.ToJson();
   nlohmann::json m = report.metrics.ToJson();
   m["description"] = SafeText(description);
+  m["intervals"] = report.intervals.ToJson();
   const std::string name = SafeText(report.name);  // already safe from EvaluateQueryScores, unless built elsewhere
   j["methods"][name] = m;
   j["other_ground_truth"] = {{"ground_truth", OtherGroundTruth(protocol.ground_truth)},

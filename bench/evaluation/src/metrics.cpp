@@ -185,10 +185,8 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
                      "no pose for frame " << frame);
     return poses[frame];
   };
-  MethodMetrics m;
-  m.queries_total = static_cast<int>(queries.size());
-  double sum_rr = 0, sum_r1 = 0, sum_r5 = 0, sum_r10 = 0;
-  std::map<int, double> lap_sum_rr;
+  std::vector<QueryRecord> records;
+  records.reserve(queries.size());
   for (size_t i = 0; i < queries.size(); ++i) {
     const Query& q = queries[i];
     const std::vector<double>& s = scores[i];
@@ -199,18 +197,34 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
       const FirstTrueRank rank = RankFirstTrueMatch(s, q.is_true_match);
       r.first_true_rank = rank.ExpectedRank();
       r.reciprocal_rank = rank.ExpectedReciprocalRank();
+      r.recall_at_1 = rank.RecallAtK(1);
+      r.recall_at_5 = rank.RecallAtK(5);
+      r.recall_at_10 = rank.RecallAtK(10);
+    }
+    records.push_back(r);
+  }
+  return SummariseQueries(std::move(records));
+}
+
+MethodMetrics SummariseQueries(std::vector<QueryRecord> records) {
+  MethodMetrics m;
+  m.queries_total = static_cast<int>(records.size());
+  double sum_rr = 0, sum_r1 = 0, sum_r5 = 0, sum_r10 = 0;
+  std::map<int, double> lap_sum_rr;
+  for (const QueryRecord& r : records) {
+    if (r.scored) {
       ++m.queries_scored;
       sum_rr += r.reciprocal_rank;
-      sum_r1 += rank.RecallAtK(1);
-      sum_r5 += rank.RecallAtK(5);
-      sum_r10 += rank.RecallAtK(10);
-      lap_sum_rr[q.lap] += r.reciprocal_rank;
-      ++m.per_lap[q.lap].queries_scored;
+      sum_r1 += r.recall_at_1;
+      sum_r5 += r.recall_at_5;
+      sum_r10 += r.recall_at_10;
+      lap_sum_rr[r.lap] += r.reciprocal_rank;
+      ++m.per_lap[r.lap].queries_scored;
     } else {
       ++m.queries_skipped;
     }
-    m.queries.push_back(r);
   }
+  m.queries = std::move(records);
   if (m.queries_scored == 0) return m;
   const double n = m.queries_scored;
   m.mrr = sum_rr / n;
@@ -220,7 +234,6 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
   for (auto& [lap, lap_metrics] : m.per_lap) {
     lap_metrics.mrr = lap_sum_rr[lap] / lap_metrics.queries_scored;
   }
-
   AddPrCurve(&m);
   return m;
 }
@@ -228,7 +241,8 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
 std::string QueryRecordsToCsv(const std::vector<QueryRecord>& records) {
   std::string out =
       "frame,lap,database_size,true_matches,scored,first_true_rank,reciprocal_rank,top1_frame,"
-      "top1_score,top1_distance_m,top1_is_true_match,top1_tie_size,top1_expected_correct\n";
+      "top1_score,top1_distance_m,top1_is_true_match,top1_tie_size,top1_expected_correct,recall_at_1,"
+      "recall_at_5,recall_at_10\n";
   for (const QueryRecord& r : records) {
     out += std::to_string(r.frame) + ',' + std::to_string(r.lap) + ',' +
            std::to_string(r.database_size) + ',' + std::to_string(r.true_matches) + ',' +
@@ -237,7 +251,8 @@ std::string QueryRecordsToCsv(const std::vector<QueryRecord>& records) {
            (r.top1_frame >= 0 ? std::to_string(r.top1_frame) : "") + ',' +
            CsvNumber(r.top1_score) + ',' + CsvNumber(r.top1_distance_m) + ',' +
            (r.top1_frame >= 0 ? (r.top1_is_true_match ? "1" : "0") : "") + ',' +
-           std::to_string(r.top1_tie_size) + ',' + CsvNumber(r.top1_expected_correct) + '\n';
+           std::to_string(r.top1_tie_size) + ',' + CsvNumber(r.top1_expected_correct) + ',' +
+           CsvNumber(r.recall_at_1) + ',' + CsvNumber(r.recall_at_5) + ',' + CsvNumber(r.recall_at_10) + '\n';
   }
   return out;
 }

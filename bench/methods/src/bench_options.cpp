@@ -14,6 +14,7 @@ const OptionTable<BenchOptions>& BenchOptions::Table() {
   static const OptionTable<O> table =
       OptionTable<O>()
           .Nest("protocol", &O::protocol, ProtocolOptions::Table())
+          .Nest("bootstrap", &O::bootstrap, BootstrapOptions::Table())
           .Nest("keypoints", &O::keypoints, KeypointOptions::Table())
           .Nest("detector", &O::detector, PersonDetectorOptions::Table())
           .Nest("tracker", &O::tracker, ByteTrackOptions::Table())

@@ -219,8 +219,11 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
     nlohmann::json m = run.metrics.ToJson();
     m["description"] = FindMethod(run.name).Description();
     if (!run.options.is_null()) m["options"] = run.options;  // as it ran, --param values included
+    m["intervals"] = run.intervals.ToJson();
     report["methods"][run.name] = m;
   }
+  report["bootstrap"] = result.bootstrap.ToJson();
+  for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
   report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
                                   {"queries_differing", labels.queries_differing},
                                   {"queries", labels.queries},
@@ -347,9 +350,50 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
   return figures;
 }
 
+// The 95 % intervals of every headline metric, and how they were made.
+std::string IntervalsMarkdown(const std::vector<MethodRun>& runs) {
+  const BootstrapPlan& plan = runs.front().bootstrap;
+  if (plan.resamples == 0) return "";
+  std::ostringstream md;
+  const auto cell = [](const Interval& i) { return "[" + Fixed(i.low) + ", " + Fixed(i.high) + "]"; };
+  md << "\n### Uncertainty\n\n" << Fixed(100 * plan.confidence, 0)
+     << " % intervals: a circular block bootstrap of the queries in time order (" << plan.resamples
+     << " resamples, percentile intervals). Neighbouring queries see nearly the same view and score alike, "
+        "so resampling them one by one would claim more certainty than the sequence holds: they are "
+        "resampled in blocks of "
+     << plan.block_queries << " queries (" << Fixed(plan.block_s, 1)
+     << " s), the longest block length the per-query reciprocal ranks of any method call for "
+        "(Politis & White 2004).\n\n"
+     << "| method | MRR | R@1 | R@5 | R@10 | PR-AUC | R@100%P |\n|---|---|---|---|---|---|---|\n";
+  for (const MethodRun& run : runs) {
+    const HeadlineIntervals& i = run.intervals;
+    md << "| " << SafeText(run.name) << " | " << cell(i.mrr) << " | " << cell(i.recall_at_1) << " | "
+       << cell(i.recall_at_5) << " | " << cell(i.recall_at_10) << " | " << cell(i.pr_auc) << " | "
+       << cell(i.recall_at_100p) << " |\n";
+  }
+  return md.str();
+}
+
+// Every pair of methods on MRR, the paired difference and its interval, separated pairs first.
+std::string ComparisonsMarkdown(const std::vector<PairedComparison>& comparisons) {
+  if (comparisons.empty()) return "";
+  std::ostringstream md;
+  md << "\n### Paired comparisons (MRR)\n\nThe difference of per-query reciprocal ranks over the queries both "
+        "methods scored, with its interval from the same resampled blocks. Where the interval holds 0, this "
+        "sequence cannot tell the two methods apart.\n\n";
+  for (bool separated : {true, false}) {
+    for (const PairedComparison& c : comparisons) {
+      if (c.Separated() != separated) continue;
+      md << "- " << SafeText(c.ToString()) << (separated ? "" : " (not separated)") << "\n";
+    }
+  }
+  return md.str();
+}
+
 // report.md's opening: the dataset and protocol, the results table shaped like the paper's
 // Table 1 and the same scores under the other ground truth.
-std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const Dataset& dataset, const ProtocolOptions& protocol,
+std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const std::vector<PairedComparison>& comparisons,
+                            const Dataset& dataset, const ProtocolOptions& protocol,
                             const std::string& other_ground_truth, const LabelDisagreement& labels) {
   const DatasetManifest& manifest = dataset.manifest();
   std::ostringstream md;
@@ -371,7 +415,7 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const Dataset& d
   }
   if (!runs.empty()) {
     md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
-       << " skipped (no true match in their database).\n";
+       << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs) << ComparisonsMarkdown(comparisons);
   }
   md << "\n### The same scores under " << other_ground_truth << " ground truth\n\n"
      << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
@@ -393,7 +437,8 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
                            const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
                            const std::vector<std::string>& figures) {
   std::ostringstream md;
-  md << ResultsMarkdown(result.runs, dataset, options.protocol, result.other_ground_truth, result.label_disagreement);
+  md << ResultsMarkdown(result.runs, result.comparisons, dataset, options.protocol, result.other_ground_truth,
+                        result.label_disagreement);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
   if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
@@ -482,14 +527,19 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   const Labelling labelling = LabelQueries(dataset, protocol);
   const MethodReport report = EvaluateLabelled(dataset, labelling, scores, name);
-  const std::vector<MethodRun> runs = {{report.name, report.metrics, report.other_metrics, {}, nullptr}};
+  std::vector<MethodRun> runs(1);
+  runs[0].name = report.name;
+  runs[0].metrics = report.metrics;
+  runs[0].bootstrap = report.bootstrap;
+  runs[0].intervals = report.intervals;
+  runs[0].other_metrics = report.other_metrics;
   CreateOutputFolder(dir);
   WriteFileAtomic(dir + "/report.json", EvaluateReportJson(dataset, protocol, report, description).dump(2) + "\n");
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(runs));
   const FigureJobs figures = MetricFigures(runs);
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
-  md << ResultsMarkdown(runs, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
+  md << ResultsMarkdown(runs, {}, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
      << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";

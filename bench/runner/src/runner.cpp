@@ -109,6 +109,29 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
   return scored;
 }
 
+// Step 5: a 95 % interval on every headline metric and the paired comparison of every pair of
+// methods, all from the same resampled blocks of queries (bootstrap.h).
+void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResult* result) {
+  std::vector<const std::vector<QueryRecord>*> records;
+  for (const MethodRun& run : result->runs) records.push_back(&run.metrics.queries);
+  if (records.empty()) return;
+  result->bootstrap = PlanBootstrap(records, dataset.manifest().frame_rate_hz, options.bootstrap);
+  const uint64_t seed = options.bootstrap.seed;
+  for (MethodRun& run : result->runs) {
+    run.bootstrap = result->bootstrap;
+    run.intervals = BootstrapHeadline(run.metrics.queries, result->bootstrap, seed, options.threads);
+  }
+  for (size_t a = 0; a < result->runs.size(); ++a) {
+    for (size_t b = a + 1; b < result->runs.size(); ++b) {
+      const MethodRun& ra = result->runs[a];
+      const MethodRun& rb = result->runs[b];
+      result->comparisons.push_back(
+          PairedBootstrap(ra.name, ra.metrics.queries, rb.name, rb.metrics.queries, result->bootstrap, seed,
+                          options.threads));
+    }
+  }
+}
+
 }  // namespace
 
 const MethodRun* BenchResult::Find(const std::string& name) const {
@@ -156,6 +179,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
     run.other_metrics.SetTiming(s.extract_ms, s.match_ms);
     run.scores = std::move(s.scores);
   });
+  AddIntervals(dataset, options, &result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.slam) AddSlam(dataset, options, &result);
   return result;

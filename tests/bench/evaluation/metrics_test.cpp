@@ -189,8 +189,9 @@ TEST(ComputeMetrics, QueriesWithoutTrueMatchAreSkippedAndCounted) {
   EXPECT_EQ(m.queries[1].top1_frame, 0);  // still recorded for the report
   EXPECT_EQ(m.queries[2].top1_frame, -1);
   const std::string csv = QueryRecordsToCsv(m.queries);
-  EXPECT_NE(csv.find("\n12,2,0,0,0,,,,,,,0,\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\n10,1,2,1,1,1,1,0,2,10,1,1,1\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n12,2,0,0,0,,,,,,,0,,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n10,1,2,1,1,1,1,0,2,10,1,1,1,1,1,1\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n13,2,2,1,1,2,0.5,0,2,13,0,1,0,0,1,1\n"), std::string::npos) << csv;  // recall at 1, 5, 10
 }
 
 TEST(ComputeMetrics, NoScoredQueryLeavesRatesUndefinedAsJsonNull) {

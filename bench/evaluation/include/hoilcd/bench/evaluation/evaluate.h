@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/metrics.h"
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/evaluation/scores_file.h"
@@ -18,6 +19,7 @@ namespace hoilcd {
 // A dataset's queries labelled under the chosen ground truth and under the other one.
 struct Labelling {
   ProtocolOptions protocol;             // what labelled them
+  double frame_rate_hz = 0;             // the dataset's (the bootstrap's blocks are in seconds)
   std::string ground_truth;             // protocol.ground_truth: "odometry" or "true"
   std::string other_ground_truth;       // the other one
   std::vector<Query> queries;           // labelled with ground_truth
@@ -42,10 +44,13 @@ struct MethodReport {
   std::string name;             // as given, through SafeText (safe_text.h)
   MethodMetrics metrics;        // under Labelling::ground_truth
   MethodMetrics other_metrics;  // under Labelling::other_ground_truth
+  BootstrapPlan bootstrap;      // how the intervals resampled the queries (EvaluateLabelled)
+  HeadlineIntervals intervals;  // of metrics (EvaluateLabelled)
   std::vector<std::string> warnings;  // about the scores: queries with none of their pairs scored
 };
 
-// scores[i] parallel to labelling.queries[i].database, finite.
+// scores[i] parallel to labelling.queries[i].database, finite. No intervals: they need every
+// method's records for one plan (the runner's step 5; EvaluateLabelled's own for one method).
 MethodReport EvaluateQueryScores(const Labelling& labelling, const std::string& name,
                                  const std::vector<std::vector<double>>& scores);
 

@@ -40,6 +40,9 @@ struct QueryRecord {
   bool scored = false;                 // false: no true match in the database (skipped)
   double first_true_rank = NAN;        // expected rank of the first true match (scored only)
   double reciprocal_rank = NAN;        // expected reciprocal rank (scored only)
+  double recall_at_1 = NAN;            // P(first true match in the top 1, 5, 10) (scored only)
+  double recall_at_5 = NAN;
+  double recall_at_10 = NAN;
   int top1_frame = -1;                 // first in database order among the top-scoring items
   double top1_score = NAN;
   double top1_distance_m = NAN;        // base distance between query and top1_frame
@@ -85,6 +88,11 @@ struct MethodMetrics {
   // Every number except the per-query records (those go to queries.csv); NaN becomes null.
   nlohmann::json ToJson() const;
 };
+
+// The metrics of a set of per-query records (in query order): every rate, the per-lap MRR and the
+// PR curve; no timing. ComputeMetrics ends with it; the bootstrap (bootstrap.h) calls it on
+// resampled queries.
+MethodMetrics SummariseQueries(std::vector<QueryRecord> records);
 
 // scores[i] is parallel to queries[i].database. poses are indexed by frame number.
 MethodMetrics ComputeMetrics(const std::vector<Query>& queries,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
 #include "hoilcd/bench/slam/slam_run.h"
@@ -25,6 +26,7 @@ struct BenchOptions {
   // way to set a method's own options.
   std::vector<std::string> params;
   ProtocolOptions protocol;
+  BootstrapOptions bootstrap;        // the metrics' intervals (blocks span protocol.exclusion_window_s)
   KeypointOptions keypoints;
   PersonDetectorOptions detector;
   ByteTrackOptions tracker;

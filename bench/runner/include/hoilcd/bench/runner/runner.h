@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/metrics.h"
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
@@ -29,6 +30,8 @@ struct FrameFeatures {
 struct MethodRun {
   std::string name;
   MethodMetrics metrics;        // under the chosen ground truth (protocol.ground_truth)
+  BootstrapPlan bootstrap;      // how its intervals resampled the queries (the same for every run)
+  HeadlineIntervals intervals;  // of metrics
   MethodMetrics other_metrics;  // the same scores under the other ground truth
   std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
   nlohmann::json options;       // the method's own options as it ran (method_options.h); null: none
@@ -41,6 +44,8 @@ struct BenchResult {
   std::vector<Query> other_queries;        // the same queries labelled with other_ground_truth
   LabelDisagreement label_disagreement;    // queries vs other_queries
   std::vector<MethodRun> runs;             // in the order asked for
+  BootstrapPlan bootstrap;                 // how the intervals resampled the queries
+  std::vector<PairedComparison> comparisons;  // MRR of every pair of runs, in run order
   std::vector<FrameFeatures> features;     // per frame
   TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)
   bool tracking_evaluated = false;
