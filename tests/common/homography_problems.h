@@ -38,12 +38,14 @@ struct HomographyProblem {
   std::vector<Point2> query, reference;
   std::vector<Correspondence> matches;
   int num_inliers = 0;
+  Eigen::Matrix3d reference_to_query;  // the inliers' homography
 };
 
 inline HomographyProblem MakeHomographyProblem(Rng& rng, int n, int num_inliers, double noise_px) {
   HomographyProblem p;
   const Eigen::Matrix3d h = RandomHomography(rng);
   p.num_inliers = num_inliers;
+  p.reference_to_query = h;
   for (int i = 0; i < n; ++i) {
     const Point2 r = RandomPoint(rng);
     Point2 q = RandomPoint(rng);

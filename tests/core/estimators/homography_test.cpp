@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -91,6 +92,37 @@ TEST(HomographyLeastSquares, ExactCorrespondencesGiveTheHomographyBack) {
   for (int i = 0; i < 30; ++i) {
     const Point2 p = Apply(h, Point2(rx[i], ry[i]));
     EXPECT_LT(std::hypot(p.x - qx[i], p.y - qy[i]), 1e-3);  // inputs are float
+  }
+}
+
+TEST(HomographyEstimator, CountInliersIsTheMarkedCountAtEveryLengthAndStopsOnlyAtOrBelowTheBar) {
+  Rng rng = KeyedRng(6, "test.dlt");
+  for (int n = 4; n <= 40; ++n) {  // every remainder of the eight-lane steps
+    const HomographyProblem p = MakeHomographyProblem(rng, n, n / 2, 1.0);
+    std::vector<float> rx, ry, qx, qy, quads;
+    for (int i = 0; i < n; ++i) {
+      rx.push_back(p.reference[i].x);
+      ry.push_back(p.reference[i].y);
+      qx.push_back(p.query[i].x);
+      qy.push_back(p.query[i].y);
+    }
+    const HomographyEstimator::Data data =
+        HomographyEstimator::Prepare(rx.data(), ry.data(), qx.data(), qy.data(), n, &quads);
+    const Eigen::Matrix3d& h = p.reference_to_query;
+    float model[9];
+    for (int k = 0; k < 9; ++k) model[k] = static_cast<float>(h(k / 3, k % 3) / h.cwiseAbs().maxCoeff());
+    std::vector<uint8_t> mask(n);
+    HomographyEstimator::MarkInliers(model, data, 25.0f, mask.data());
+    const int marked = static_cast<int>(std::count(mask.begin(), mask.end(), 1));
+    EXPECT_EQ(HomographyEstimator::CountInliers(model, data, 25.0f, -1), marked) << n;
+    for (int bar = 0; bar <= n; ++bar) {
+      const int counted = HomographyEstimator::CountInliers(model, data, 25.0f, bar);
+      if (marked > bar) {
+        EXPECT_EQ(counted, marked) << n << " " << bar;
+      } else {
+        EXPECT_LE(counted, bar) << n << " " << bar;
+      }
+    }
   }
 }
 
