@@ -8,7 +8,7 @@ function(hoilcd_subsystem layer name)
   cmake_parse_arguments(ARG "" "" "PUBLIC;PRIVATE" ${ARGN})
   set(target hoilcd_${layer}_${name})
   set(dir ${CMAKE_CURRENT_SOURCE_DIR}/${name})
-  file(GLOB sources CONFIGURE_DEPENDS ${dir}/src/*.cpp)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${dir}/src/*.cpp)  # methods keep a folder each
   add_library(${target} ${sources})
   add_library(hoilcd::${layer}_${name} ALIAS ${target})
   target_include_directories(${target}

@@ -97,8 +97,6 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
       ->type_name("NAME=VALUE");
   cmd->add_option("--detector", args->options.keypoints.detector, "SLCD keypoints: gftt, fast, orb, sift, akaze")
       ->check(CLI::IsMember({"gftt", "fast", "orb", "sift", "akaze"}));
-  cmd->add_option("--rrf-k", args->options.rrf_k, "reciprocal rank fusion constant (paper: 0)")
-      ->check(NumberIn(OptionRange().AtLeast(0)));
   cmd->add_flag("--slam,!--no-slam", args->options.slam,
                 "each method's loops in a pose graph: ATE/RPE per back end (default: on in run, off in bench)");
   cmd->add_option("--slam-backend", args->options.slam_options.slam.graph.backend,

@@ -122,6 +122,7 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
       for (const MethodRun& run : result.runs) {
         nlohmann::json m = run.metrics.ToJson();
         m["description"] = FindMethod(run.name).Description();
+        if (!run.options.is_null()) m["options"] = run.options;
         report["methods"][run.name] = m;
       }
       report_json = report.dump();

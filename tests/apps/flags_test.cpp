@@ -46,7 +46,6 @@ TEST(Flags, EveryNumberFlagRefusesNanAndOutOfRangeValuesNamingTheFlagBriefly) {
       {"bench", temp.str(), "--radius", "nan"},
       {"bench", temp.str(), "--exclusion-window", "inf"},
       {"bench", temp.str(), "--heading-tolerance", "nan"},
-      {"bench", temp.str(), "--rrf-k", "-1"},
       {"bench", temp.str(), "--loop-threshold", "nan"},
       {"bench", temp.str(), "--threads", "-1"},
       {"render", scene, "-o", temp / "out", "--frames", "-3"},

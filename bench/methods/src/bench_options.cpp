@@ -14,19 +14,11 @@ const OptionTable<BenchOptions>& BenchOptions::Table() {
   static const OptionTable<O> table =
       OptionTable<O>()
           .Nest("protocol", &O::protocol, ProtocolOptions::Table())
-          .Nest("match", &O::match, MatchOptions::Table())
-          .Nest("ransac", &O::ransac, RansacOptions::Table())
-          .Add("lo_refits", &O::lo_refits, 2, "", R::Any().AtLeast(1),
-               "least-squares refits of the homography on its inliers (the -lo variants)")
           .Nest("keypoints", &O::keypoints, KeypointOptions::Table())
           .Nest("detector", &O::detector, PersonDetectorOptions::Table())
           .Nest("tracker", &O::tracker, ByteTrackOptions::Table())
           .Nest("hoi", &O::hoi, HoiOptions::Table())
-          .Nest("track_aware", &O::track_aware, TrackAwareOptions::Table())
           .Nest("thumbnail", &O::thumbnail, ThumbnailOptions::Table())
-          .Nest("sequence", &O::sequence, SeqSlamOptions::Table())
-          .Nest("temporal", &O::temporal, TemporalConsistencyOptions::Table())
-          .Add("rrf_k", &O::rrf_k, 0.0, "", R::Any().AtLeast(0), "reciprocal rank fusion constant (paper: 0)")
           .Nest("tracking_metrics", &O::tracking_metrics,
                 TrackingMetricsOptions::Table()
                     .WithDefault("min_visible_fraction", 0.2)

@@ -8,12 +8,11 @@ namespace {
 
 constexpr FrontEnd kFrontEnds[] = {FrontEnd::kKeypoints, FrontEnd::kPersons, FrontEnd::kThumbnails};
 
-// The table that owns `scope`, or null when the scope is a method without parameters; throws
-// for a scope that is neither a method nor a front end.
-const OptionTable<BenchOptions>* TableOf(const std::string& scope, const std::string& param) {
+// Throws for a scope that is neither a method nor a front end, naming the known ones.
+void CheckScope(const std::string& scope, const std::string& param) {
   for (FrontEnd f : kFrontEnds)
-    if (FrontEndName(f) == scope) return &FrontEndParams(f);
-  if (IsMethod(scope)) return FindMethod(scope).Params();
+    if (FrontEndName(f) == scope) return;
+  if (IsMethod(scope)) return;
   std::string known;
   for (const auto& m : RegisteredMethods()) known += (known.empty() ? "" : ", ") + m->Name();
   for (FrontEnd f : kFrontEnds) known += ", " + FrontEndName(f);
@@ -31,18 +30,28 @@ bool SplitParam(const std::string& param, std::string* scope, std::string* rest)
   return true;
 }
 
-BenchOptions Apply(const BenchOptions& options, const std::string& param, const std::string& rest,
-                   const OptionTable<BenchOptions>& table) {
-  BenchOptions out = options;
+// Runs `set` (one table's Set) with its InputError reworded to name the whole parameter.
+template <typename SetFn>
+void SetNamingParam(const std::string& param, const SetFn& set) {
   try {
-    table.Set(rest, &out);
+    set();
   } catch (const InputError& e) {
     throw InputError("--param", "'" + param + "': expected " + e.problems().front().message);
   }
-  return out;
+}
+
+void ThrowIfProblem(const std::string& param, const std::string& problem) {
+  if (!problem.empty()) throw InputError("--param", "'" + param + "': " + problem);
 }
 
 }  // namespace
+
+FrontEnd FrontEndOf(const std::string& name) {
+  for (FrontEnd f : kFrontEnds)
+    if (FrontEndName(f) == name) return f;
+  HOILCD_CHECK_MSG(false, "no front end called " << name);
+  std::abort();
+}
 
 std::string FrontEndName(FrontEnd front_end) {
   switch (front_end) {
@@ -89,13 +98,14 @@ void CheckParams(const std::vector<std::string>& params, const std::vector<std::
       throw InputError("--param", "'" + param + "': expected NAME=VALUE with NAME = <method or front end>.<field>, "
                                   "e.g. slcd.ransac_trials=50");
     }
-    const OptionTable<BenchOptions>* table = TableOf(scope, param);
-    if (table == nullptr) throw InputError("--param", "'" + param + "': method " + scope + " has no parameters");
-    const BenchOptions set = Apply(BenchOptions{}, param, rest, *table);
-    ProblemCollector problems;
-    table->Check(set, "", &problems);
-    if (!problems.empty()) {
-      throw InputError("--param", "'" + param + "': " + problems.problems().front().ToString());
+    CheckScope(scope, param);
+    if (IsMethod(scope)) {
+      OptionsWithParams(FindMethod(scope), {param});
+    } else {
+      const OptionTable<BenchOptions>& table = FrontEndParams(FrontEndOf(scope));
+      BenchOptions set;
+      SetNamingParam(param, [&] { table.Set(rest, &set); });
+      ThrowIfProblem(param, table.FirstProblem(set));
     }
     bool used = false;
     for (const std::string& m : run) {
@@ -110,22 +120,34 @@ void CheckParams(const std::vector<std::string>& params, const std::vector<std::
   }
 }
 
-BenchOptions WithParams(const BenchOptions& options, const std::string& scope,
-                        const OptionTable<BenchOptions>* table) {
+BenchOptions WithFrontEndParams(const BenchOptions& options, FrontEnd front_end) {
   BenchOptions out = options;
-  if (table == nullptr) return out;
   for (const std::string& param : options.params) {
-    std::string s, rest;
-    if (SplitParam(param, &s, &rest) && s == scope) out = Apply(out, param, rest, *table);
+    std::string scope, rest;
+    if (SplitParam(param, &scope, &rest) && scope == FrontEndName(front_end)) {
+      SetNamingParam(param, [&] { FrontEndParams(front_end).Set(rest, &out); });
+    }
   }
   return out;
+}
+
+std::unique_ptr<MethodOptions> OptionsWithParams(const LoopClosureMethod& method,
+                                                 const std::vector<std::string>& params) {
+  std::unique_ptr<MethodOptions> own = method.Options();
+  for (const std::string& param : params) {
+    std::string scope, rest;
+    if (!SplitParam(param, &scope, &rest) || scope != method.Name()) continue;
+    if (own == nullptr) throw InputError("--param", "'" + param + "': method " + scope + " has no parameters");
+    SetNamingParam(param, [&] { own->Set(rest); });
+    ThrowIfProblem(param, own->FirstProblem());
+  }
+  return own;
 }
 
 std::string FormatParams() {
   std::string out;
   for (const auto& m : RegisteredMethods()) {
-    if (m->Params() == nullptr) continue;
-    out += m->Name() + ".\n" + FormatOptionList(m->Params()->List());
+    if (const std::unique_ptr<MethodOptions> own = m->Options()) out += m->Name() + ".\n" + FormatOptionList(own->List());
   }
   for (FrontEnd f : kFrontEnds) out += FrontEndName(f) + ". (every method on this front end)\n" + FormatOptionList(FrontEndParams(f).List());
   return out;

@@ -48,9 +48,7 @@ nlohmann::json BenchSettingsJson(const BenchOptions& options) {
           {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
           {"ground_truth", options.protocol.ground_truth},
           {"keypoint_detector", options.keypoints.detector},
-          {"rrf_k", options.rrf_k},
-          {"lo_refits", options.lo_refits},
-          {"params", options.params}};
+          {"params", options.params}};  // every method's own options are set only by --param
 }
 
 std::string RunFolder(const Scene& scene, const std::string& cache_dir) {

@@ -185,6 +185,19 @@ void CheckReportFolder(const std::string& dir) {
 
 namespace {
 
+// " (k = 60, ...)": a method's own options as it ran, for its line in report.md; "" for none.
+std::string OptionsText(const nlohmann::json& options) {
+  if (!options.is_object()) return "";
+  std::string out;
+  for (const auto& [name, value] : options.items()) {
+    out += (out.empty() ? " (" : ", ") + name + " = " +
+           (value.is_string()            ? SafeText(value.get<std::string>())
+            : value.is_number_float() ? ShortestDouble(value.get<double>())
+                                      : value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  }
+  return out.empty() ? out : out + ")";
+}
+
 // report.json: every number of the run.
 nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                           const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis) {
@@ -198,18 +211,14 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
                         {"ground_truth", options.protocol.ground_truth},
                         {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
                         {"exclusion_window_s", options.protocol.exclusion_window_s}};
-  report["parameters"] = {{"vertical_tolerance", options.match.vertical_tolerance},
-                          {"ransac_trials", options.ransac.trials},
-                          {"inlier_threshold_px", options.ransac.inlier_threshold_px},
-                          {"lo_refits", options.lo_refits},
-                          {"keypoint_detector", options.keypoints.detector},
-                          {"rrf_k", options.rrf_k}};
+  report["parameters"] = {{"keypoint_detector", options.keypoints.detector}};
   for (const std::string& param : options.params) {  // --param NAME=VALUE
     report["parameters"]["param"].push_back(SafeText(param));
   }
   for (const MethodRun& run : result.runs) {
     nlohmann::json m = run.metrics.ToJson();
     m["description"] = FindMethod(run.name).Description();
+    if (!run.options.is_null()) m["options"] = run.options;  // as it ran, --param values included
     report["methods"][run.name] = m;
   }
   report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
@@ -408,7 +417,9 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
   if (result.slam_evaluated) md << SlamMarkdown(result.slam, options.slam_options.slam);
   md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
   md << "## Methods\n\n";
-  for (const MethodRun& run : result.runs) md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << "\n";
+  for (const MethodRun& run : result.runs) {
+    md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << OptionsText(run.options) << "\n";
+  }
   md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
      << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
@@ -471,7 +482,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
   const Labelling labelling = LabelQueries(dataset, protocol);
   const MethodReport report = EvaluateLabelled(dataset, labelling, scores, name);
-  const std::vector<MethodRun> runs = {{report.name, report.metrics, report.other_metrics, {}}};
+  const std::vector<MethodRun> runs = {{report.name, report.metrics, report.other_metrics, {}, nullptr}};
   CreateOutputFolder(dir);
   WriteFileAtomic(dir + "/report.json", EvaluateReportJson(dataset, protocol, report, description).dump(2) + "\n");
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(runs));

@@ -40,7 +40,7 @@ FrontEndOutput RunNeededFrontEnds(const Dataset& dataset, const BenchOptions& op
     needed.insert(f.begin(), f.end());
   }
   BenchOptions front = options;
-  for (FrontEnd f : needed) front = WithParams(front, FrontEndName(f), &FrontEndParams(f));
+  for (FrontEnd f : needed) front = WithFrontEndParams(front, f);
   FrontEndOptions front_options;
   front_options.keypoints = front.keypoints;
   front_options.detector = front.detector;
@@ -82,10 +82,11 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
                                                  const std::vector<const LoopClosureMethod*>& order,
                                                  const Labelling& labelling, const FrontEndOutput& front_ends) {
   std::map<std::string, MethodScores> scored;
-  std::vector<BenchOptions> own;  // each method's options with its --param values
-  for (const LoopClosureMethod* m : order) own.push_back(WithParams(options, m->Name(), m->Params()));
+  std::vector<std::unique_ptr<MethodOptions>> own;  // each method's own options with its --param values
+  for (const LoopClosureMethod* m : order) own.push_back(OptionsWithParams(*m, options.params));
   const auto context_of = [&](size_t i) {
-    return MethodContext{dataset, own[i], labelling, front_ends, scored, dataset.manifest().seed, options.threads};
+    return MethodContext{dataset, options, own[i].get(), labelling, front_ends, scored, dataset.manifest().seed,
+                         options.threads};
   };
   std::vector<std::string> pass_keys;
   for (size_t i = 0; i < order.size(); ++i) {
@@ -140,6 +141,10 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
 
   // Step 4: metrics of the asked methods under both labellings, one method per task.
   result.runs.resize(options.methods.size());
+  for (size_t i = 0; i < options.methods.size(); ++i) {
+    const auto own = OptionsWithParams(FindMethod(options.methods[i]), options.params);
+    if (own != nullptr) result.runs[i].options = own->ToJson();
+  }
   ParallelFor(static_cast<int64_t>(options.methods.size()), options.threads, [&](int64_t i) {
     MethodRun& run = result.runs[static_cast<size_t>(i)];
     run.name = options.methods[static_cast<size_t>(i)];

@@ -369,7 +369,7 @@ void OptionTableBase::CheckOf(const void* options, const std::string& where, Pro
 
 void OptionTableBase::SetOf(const std::string& name_equals_value, void* options) const {
   const size_t eq = name_equals_value.find('=');
-  if (eq == std::string::npos || eq == 0) throw InputError(name_equals_value, "expected NAME=VALUE");
+  if (eq == std::string::npos || eq == 0) throw InputError(name_equals_value, "NAME=VALUE");
   std::string name = name_equals_value.substr(0, eq);
   const std::string text = name_equals_value.substr(eq + 1);
   std::replace(name.begin(), name.end(), '.', '/');
@@ -395,7 +395,7 @@ void OptionTableBase::SetOf(const std::string& name_equals_value, void* options)
       name = name.substr(slash + 1);
       continue;
     }
-    if (slash != std::string::npos) throw InputError(name_equals_value, "'" + key + "' has no fields");
+    if (slash != std::string::npos) throw InputError(name_equals_value, "no field after '" + key + "' (it is a value, not a group)");
     char* end = nullptr;
     switch (f.kind) {
       case Field::Kind::kNumber: {

@@ -142,30 +142,32 @@ TEST(LoopClosureMethod, PointSetMethodsOnOneIndexWithOneMatchingShareAPassAndSco
   const Dataset dataset = TinyDataset(temp);
   const std::vector<std::string> point_sets = {"slcd", "dlcd", "slcd-lo", "dlcd-lo"};
   {
-    BenchOptions options, wider;
-    wider.match.vertical_tolerance = 0.2;
+    const BenchOptions options;
     const Labelling labelling = LabelQueries(dataset, options.protocol);
     const FrontEndOutput front_ends;
     const std::map<std::string, MethodScores> scored;
-    const MethodContext plain{dataset, options, labelling, front_ends, scored, 1, 1};
-    const MethodContext other{dataset, wider, labelling, front_ends, scored, 1, 1};
-    const auto key = [](const std::string& method, const MethodContext& c) { return FindMethod(method).PassKey(c); };
-    EXPECT_FALSE(key("slcd", plain).empty());
-    EXPECT_EQ(key("slcd", plain), key("slcd-lo", plain));
-    EXPECT_EQ(key("dlcd", plain), key("dlcd-lo", plain));
-    EXPECT_NE(key("slcd", plain), key("dlcd", plain));
-    EXPECT_NE(key("slcd", plain), key("slcd-lo", other));
-    EXPECT_EQ(key("fusion", plain), "");
+    // Each method's key under its own options with `params` set.
+    const auto key = [&](const std::string& method, const std::vector<std::string>& params = {}) {
+      const auto own = OptionsWithParams(FindMethod(method), params);
+      return FindMethod(method).PassKey(
+          MethodContext{dataset, options, own.get(), labelling, front_ends, scored, 1, 1});
+    };
+    EXPECT_NE(key("slcd").find("image_height_px=" + std::to_string(dataset.manifest().intrinsics.height)),
+              std::string::npos)
+        << key("slcd");  // the vertical filter's height is the dataset's
+    EXPECT_EQ(key("slcd"), key("slcd-lo"));
+    EXPECT_EQ(key("dlcd"), key("dlcd-lo"));
+    EXPECT_NE(key("slcd"), key("dlcd"));
+    EXPECT_NE(key("slcd"), key("slcd-lo", {"slcd-lo.vertical_tolerance=0.2"}));
+    EXPECT_EQ(key("slcd"), key("slcd-lo", {"slcd-lo.lo_refits=5", "slcd-lo.ransac_trials=7"}));  // RANSAC only
+    EXPECT_EQ(key("fusion"), "");
     // Every matching option a --param can set is in the key: a changed value, another pass.
     for (const OptionInfo& info : MatchParams().List()) {
       ASSERT_TRUE(info.kind == OptionInfo::Kind::kNumber || info.kind == OptionInfo::Kind::kInteger) << info.name;
-      BenchOptions changed;
       const double value = std::stod(info.default_json);
-      MatchParams().Set(info.name + "=" + std::to_string(info.kind == OptionInfo::Kind::kInteger ? value + 1 : value / 2),
-                        &changed.match);
-      ASSERT_NE(changed.match, options.match) << info.name;
-      const MethodContext with{dataset, changed, labelling, front_ends, scored, 1, 1};
-      EXPECT_NE(key("slcd", with), key("slcd", plain)) << info.name;
+      const std::string param =
+          "slcd." + info.name + "=" + std::to_string(info.kind == OptionInfo::Kind::kInteger ? value + 1 : value / 2);
+      EXPECT_NE(key("slcd", {param}), key("slcd")) << info.name;
     }
   }
   for (const std::vector<std::string>& params :

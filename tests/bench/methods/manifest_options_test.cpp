@@ -5,7 +5,7 @@
 namespace hoilcd {
 namespace {
 
-TEST(WithManifest, DetectorWindowTrackerRateAndImageHeightComeFromTheManifest) {
+TEST(WithManifest, DetectorWindowAndTrackerRateComeFromTheManifest) {
   DatasetManifest manifest;
   manifest.intrinsics.height = 120;
   manifest.window_min_c = 15;
@@ -15,7 +15,6 @@ TEST(WithManifest, DetectorWindowTrackerRateAndImageHeightComeFromTheManifest) {
   asked.detector.threshold_c = 27;
   asked.tracker.track_buffer_frames = 60;
   const BenchOptions used = WithManifest(asked, manifest);
-  EXPECT_EQ(used.match.image_height_px, 120);
   EXPECT_EQ(used.detector.u8_min_c, 15);
   EXPECT_EQ(used.detector.u8_max_c, 45);
   EXPECT_EQ(used.tracker.frame_rate_hz, 10);

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/core/matching/matching.h"
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
@@ -73,6 +74,34 @@ TEST(Runner, TheReportExplainsExactlyThePartsOfThePaperFindingThatFail) {
   EXPECT_EQ(markdown.find("Why DLCD does not beat SLCD here") != std::string::npos, d <= s) << s << " " << d;
   EXPECT_EQ(markdown.find("Why fusion falls below") != std::string::npos, f < std::max(s, d) - 0.01)
       << s << " " << d << " " << f;
+}
+
+TEST(Runner, EachMethodRunsWithItsOwnParamsAndTheReportSaysWhichOptionsItRanWith) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "own_options");
+  BenchOptions options;
+  options.methods = ParseMethodList("paper");
+  const BenchResult plain = RunBench(dataset, options);
+  options.params = {"fusion.k=60", "slcd.ransac_trials=30"};
+  const BenchResult result = RunBench(dataset, options);
+  EXPECT_EQ(result.Find("fusion")->options["k"], 60.0);  // issue 32 case 12: ran with 60, reported as 60
+  EXPECT_EQ(result.Find("slcd")->options["ransac_trials"], 30);
+  EXPECT_EQ(result.Find("dlcd")->options["ransac_trials"], 100);  // another method's parameter
+  EXPECT_EQ(plain.Find("fusion")->options["k"], 0.0);
+  EXPECT_EQ(result.Find("dlcd")->scores, plain.Find("dlcd")->scores);
+  EXPECT_NE(result.Find("fusion")->scores, plain.Find("fusion")->scores);
+  const std::string report = temp / "report";
+  WriteReport(result, dataset, options, ReportTiming{}, report);
+  const std::string markdown = ReadFileBytes(report + "/report.md");
+  EXPECT_NE(markdown.find("- `fusion`: reciprocal rank fusion of SLCD and DLCD (k = 60)"), std::string::npos)
+      << markdown;
+  EXPECT_NE(markdown.find("ransac_trials = 30"), std::string::npos);
+  EXPECT_EQ(markdown.find("k = 0"), std::string::npos);
+  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(report + "/report.json"));
+  EXPECT_EQ(json["methods"]["fusion"]["options"]["k"], 60.0);
+  EXPECT_EQ(json["methods"]["slcd"]["options"]["ransac_trials"], 30);
+  EXPECT_EQ(json["methods"]["slcd"]["options"]["vertical_tolerance"], MatchOptions().vertical_tolerance);
+  EXPECT_FALSE(json["parameters"].contains("rrf_k"));  // one place: the method's own options
 }
 
 TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {

@@ -217,8 +217,9 @@ TEST(OptionTable, SetRejectsUnknownNamesAndBadValuesNamingTheText) {
   EXPECT_EQ(message("on=yes"), "on=yes: true or false");
   EXPECT_EQ(message("mode=medium"), "mode=medium: one of: fast, slow");
   EXPECT_EQ(message("inner=1"), "inner=1: a field of 'inner' (e.g. inner/...)");
-  EXPECT_EQ(message("gain.x=1"), "gain.x=1: 'gain' has no fields");
-  EXPECT_EQ(message("gain"), "gain: expected NAME=VALUE");
+  EXPECT_EQ(message("gain.x=1"), "gain.x=1: no field after 'gain' (it is a value, not a group)");
+  EXPECT_EQ(message("gain"), "gain: NAME=VALUE");  // every message is what was expected
+  EXPECT_EQ(message("=1"), "=1: NAME=VALUE");
   EXPECT_EQ(message("waypoints=1").rfind("waypoints=1: an option name", 0), 0u);
 }
 

@@ -1,5 +1,6 @@
-// What a bench run is asked to do: which methods, the protocol, and every method's and front
-// end's options (the paper's defaults). The runner (runner.h) and the methods read it.
+// What a bench run is asked to do: which methods, the protocol, the shared front ends' options
+// and the --param values. Each method's own options live with the method (method_options.h);
+// the runner sets its --param values on them. The runner (runner.h) and the methods read this.
 #pragma once
 
 #include <string>
@@ -11,10 +12,6 @@
 #include "hoilcd/core/features/hoi_features.h"
 #include "hoilcd/core/features/keypoints.h"
 #include "hoilcd/core/features/person_detection.h"
-#include "hoilcd/core/matching/matching.h"
-#include "hoilcd/core/matching/track_aware_matching.h"
-#include "hoilcd/core/optim/ransac.h"
-#include "hoilcd/core/place_recognition/temporal_consistency.h"
 #include "hoilcd/core/place_recognition/thumbnail_baseline.h"
 #include "hoilcd/core/tracking/byte_tracker.h"
 
@@ -24,21 +21,15 @@ namespace hoilcd {
 struct BenchOptions {
   // Lists, not table fields (empty when constructed); the table's rules check them.
   std::vector<std::string> methods;  // names from methods.h (empty: DefaultMethods())
-  // --param NAME=VALUE: "<method>.<field>" or "<front end>.<field>" (method_params.h).
+  // --param NAME=VALUE: "<method>.<field>" or "<front end>.<field>" (method_params.h); the only
+  // way to set a method's own options.
   std::vector<std::string> params;
   ProtocolOptions protocol;
-  MatchOptions match;
-  RansacOptions ransac;
-  int lo_refits;                     // least-squares refits of the -lo variants
   KeypointOptions keypoints;
   PersonDetectorOptions detector;
   ByteTrackOptions tracker;
   HoiOptions hoi;
-  TrackAwareOptions track_aware;
   ThumbnailOptions thumbnail;
-  SeqSlamOptions sequence;           // sequence matching of thumb-seq
-  TemporalConsistencyOptions temporal;
-  double rrf_k;                      // reciprocal rank fusion constant (paper: 0)
   // The bench's own defaults (its table): people at least 20 % visible with a visible box at
   // least 16 px high are scored; others are neither missed nor false positives (a thermal detector
   // cannot see through a person or a chair back, nor find a sliver at the image edge).

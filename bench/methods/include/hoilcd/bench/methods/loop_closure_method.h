@@ -13,6 +13,7 @@
 
 #include "hoilcd/bench/evaluation/evaluate.h"
 #include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/bench/methods/method_options.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/option_table.h"
 
@@ -32,7 +33,8 @@ struct MethodScores {
 // Everything a method may read while scoring.
 struct MethodContext {
   const Dataset& dataset;
-  const BenchOptions& options;
+  const BenchOptions& options;       // the run's: protocol, front ends, threads
+  const MethodOptions* own;          // the method's own, with its --param values (null: none)
   const Labelling& labelling;        // queries, their databases and which are worth scoring
   const FrontEndOutput& front_ends;  // the front ends the run's methods asked for
   const std::map<std::string, MethodScores>& scored;  // methods scored so far (Inputs() included)
@@ -42,6 +44,10 @@ struct MethodContext {
   const std::vector<Query>& queries() const { return labelling.queries; }
   const MethodScores& Input(const std::string& name) const;  // HOILCD_CHECK when not scored
   std::vector<double> PerQuery(const std::vector<double>& per_frame) const;  // picks each query's frame
+  template <typename T>
+  const T& Own() const {  // the method's own options struct (HOILCD_CHECK on another type)
+    return OptionsValue<T>(own);
+  }
 };
 
 // Which per-frame features the report draws for a method's matches.
@@ -56,9 +62,10 @@ class LoopClosureMethod {
   virtual ShownFeatures Features() const { return ShownFeatures::kNone; }
   virtual std::set<FrontEnd> FrontEnds() const { return {}; }
   virtual std::vector<std::string> Inputs() const { return {}; }  // scored before this one
-  // The fields of BenchOptions this method reads that --param NAME.FIELD=VALUE may set for it
-  // alone (method_params.h); null: none.
-  virtual const OptionTable<BenchOptions>* Params() const { return nullptr; }
+  // The method's own options at their defaults, a fresh copy per call (null: none). The runner
+  // sets --param <name>.<field>=VALUE on it and hands it to Score as MethodContext::own; the
+  // report prints its resolved values. Declared in the method's folder (method_options.h).
+  virtual std::unique_ptr<MethodOptions> Options() const { return nullptr; }
   virtual MethodScores Score(const MethodContext& context) const = 0;
 
   // Scoring in one pass with other methods. Methods without Inputs() whose PassKey (under their

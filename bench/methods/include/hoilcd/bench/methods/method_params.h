@@ -1,8 +1,8 @@
-// --param NAME=VALUE for the bench: NAME is "<method>.<field>" (a field of that method's option
-// table, e.g. slcd.ransac_trials, fusion.k) or "<front end>.<field>" (a shared front end's, e.g.
-// persons.threshold_c, which every method on that front end sees). Each table registers fields of
-// BenchOptions once (option_table.h), so a parameter only changes the copy of the options its
-// method or front end runs with.
+// --param NAME=VALUE for the bench: NAME is "<method>.<field>" (a field of that method's own
+// options, method_options.h, e.g. slcd.ransac_trials, fusion.k) or "<front end>.<field>" (a shared
+// front end's field of BenchOptions, e.g. persons.threshold_c, which every method on that front
+// end sees). Every table is a view of its struct's own (option_table.h), so each default and
+// range is registered once, and a parameter only changes the method or front end it names.
 #pragma once
 
 #include <string>
@@ -10,14 +10,17 @@
 
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/bench/methods/loop_closure_method.h"
+#include "hoilcd/bench/methods/method_options.h"
 #include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
 
 std::string FrontEndName(FrontEnd front_end);  // "keypoints", "persons", "thumbnails"
+FrontEnd FrontEndOf(const std::string& name);   // HOILCD_CHECK on a name FrontEndName never gives
 const OptionTable<BenchOptions>& FrontEndParams(FrontEnd front_end);
 
-// Tables the point-set methods and others share.
+// Views that several methods' options share.
 const OptionTable<RansacOptions>& RansacParams();  // ransac_trials, inlier_threshold_px
 const OptionTable<MatchOptions>& MatchParams();    // vertical_tolerance
 
@@ -27,10 +30,13 @@ const OptionTable<MatchOptions>& MatchParams();    // vertical_tolerance
 // not among them or of a front end none of them uses, which would be silently ignored.
 void CheckParams(const std::vector<std::string>& params, const std::vector<std::string>& methods);
 
-// `options` with every parameter of `scope` (a method or front end name) set through `table`;
-// with a null table, `options` unchanged (parameters of a scope without one fail CheckParams).
-BenchOptions WithParams(const BenchOptions& options, const std::string& scope,
-                        const OptionTable<BenchOptions>* table);
+// `options` with every parameter of the front end set (after CheckParams).
+BenchOptions WithFrontEndParams(const BenchOptions& options, FrontEnd front_end);
+
+// `method`'s own options with every parameter "<method>.<field>" of `params` set, checked; null
+// for a method without options. Throws InputError naming a bad parameter.
+std::unique_ptr<MethodOptions> OptionsWithParams(const LoopClosureMethod& method,
+                                                 const std::vector<std::string>& params);
 
 // Every parameter, one line each, grouped by method and front end (for --help-params).
 std::string FormatParams();

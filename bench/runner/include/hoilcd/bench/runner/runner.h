@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct MethodRun {
   MethodMetrics metrics;        // under the chosen ground truth (protocol.ground_truth)
   MethodMetrics other_metrics;  // the same scores under the other ground truth
   std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
+  nlohmann::json options;       // the method's own options as it ran (method_options.h); null: none
 };
 
 struct BenchResult {

@@ -1,7 +1,6 @@
 // SLCD (the paper's static landmarks): GFTT corner coordinates of every frame, matched by MNN,
 // the vertical filter and RANSAC homography inliers.
-#include "hoilcd/bench/methods/bench_options.h"
-#include "point_set_scoring.h"
+#include "point_set/point_set_method.h"
 
 namespace hoilcd {
 namespace {

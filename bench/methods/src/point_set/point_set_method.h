@@ -7,28 +7,38 @@
 #include <string>
 
 #include "hoilcd/bench/methods/loop_closure_method.h"
+#include "hoilcd/core/matching/matching.h"
 #include "hoilcd/core/optim/ransac.h"
 #include "hoilcd/core/place_recognition/retrieval_index.h"
 
 namespace hoilcd {
 
+// The point-set methods' own options (--param slcd.ransac_trials=50, slcd-lo.lo_refits=3, ...).
+// Defaults and ranges are MatchOptions' and RansacOptions' own; the table says which fields a
+// method exposes.
+struct PointSetOptions {
+  MatchOptions match;    // vertical_tolerance; image_height_px is the dataset's, set when scoring
+  RansacOptions ransac;  // trials, inlier_threshold_px; local_optimisation_refits (-lo variants)
+
+  // The fields a method exposes: with `lo`, also lo_refits (default 2 refits).
+  static const OptionTable<PointSetOptions>& Table(bool lo);
+};
+
 class PointSetMethod : public LoopClosureMethod {
  public:
   // front_end: kKeypoints (corner keypoints) or kPersons (HOI points); lo: LO-RANSAC refits
-  // (the -lo variants, BenchOptions::lo_refits).
+  // (the -lo variants, PointSetOptions' lo_refits).
   PointSetMethod(FrontEnd front_end, bool lo) : front_end_(front_end), lo_(lo) {}
 
   ShownFeatures Features() const override;
   std::set<FrontEnd> FrontEnds() const override { return {front_end_}; }
-  const OptionTable<BenchOptions>* Params() const override;
+  std::unique_ptr<MethodOptions> Options() const override;
   MethodScores Score(const MethodContext& context) const override;
   std::string PassKey(const MethodContext& context) const override;
   std::vector<MethodScores> ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
                                           const std::vector<MethodContext>& contexts) const override;
 
  private:
-  RansacOptions Ransac(const BenchOptions& options) const;
-
   FrontEnd front_end_;
   bool lo_;
 };

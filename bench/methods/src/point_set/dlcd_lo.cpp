@@ -1,6 +1,5 @@
 // DLCD with locally optimised RANSAC.
-#include "hoilcd/bench/methods/bench_options.h"
-#include "point_set_scoring.h"
+#include "point_set/point_set_method.h"
 
 namespace hoilcd {
 namespace {

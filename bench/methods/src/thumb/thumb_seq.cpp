@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <chrono>
 
-#include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/methods/loop_closure_method.h"
+#include "hoilcd/core/place_recognition/thumbnail_baseline.h"
 
 namespace hoilcd {
 namespace {
@@ -13,16 +13,15 @@ class ThumbSeq : public LoopClosureMethod {
   std::string Name() const override { return "thumb-seq"; }
   std::string Description() const override { return "thumbnail correlation with SeqSLAM sequence matching"; }
   std::vector<std::string> Inputs() const override { return {"thumb"}; }
-  const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>().Flatten(
-        &BenchOptions::sequence, SeqSlamOptions::Table().Only({"sequence_length", "velocity_steps"}));
-    return &table;
+  std::unique_ptr<MethodOptions> Options() const override {
+    static const OptionTable<SeqSlamOptions> table = SeqSlamOptions::Table().Only({"sequence_length", "velocity_steps"});
+    return std::make_unique<OptionsOf<SeqSlamOptions>>(table);
   }
   MethodScores Score(const MethodContext& c) const override {
     using Clock = std::chrono::steady_clock;
     const MethodScores& thumb = c.Input("thumb");
     const auto t = Clock::now();
-    const auto seq = SequenceScores(thumb.dense, c.options.sequence, c.threads);
+    const auto seq = SequenceScores(thumb.dense, c.Own<SeqSlamOptions>(), c.threads);
     const double seq_ms = std::chrono::duration<double, std::milli>(Clock::now() - t).count() /
                           std::max(1, c.dataset.num_frames());
     MethodScores out;

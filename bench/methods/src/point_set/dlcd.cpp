@@ -1,7 +1,6 @@
 // DLCD (the paper's dynamic landmarks): HOI points, the bottom contour of tracked people, matched
 // like SLCD's corners.
-#include "hoilcd/bench/methods/bench_options.h"
-#include "point_set_scoring.h"
+#include "point_set/point_set_method.h"
 
 namespace hoilcd {
 namespace {

@@ -1,6 +1,5 @@
 // SLCD with locally optimised RANSAC: least-squares refits of the homography on its inliers.
-#include "hoilcd/bench/methods/bench_options.h"
-#include "point_set_scoring.h"
+#include "point_set/point_set_method.h"
 
 namespace hoilcd {
 namespace {

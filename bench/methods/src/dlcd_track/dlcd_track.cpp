@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 
-#include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/methods/loop_closure_method.h"
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/core/matching/track_aware_matching.h"
@@ -14,6 +13,21 @@
 namespace hoilcd {
 namespace {
 
+// dlcd-track's own options (--param dlcd-track.max_pair_cost=..., dlcd-track.ransac_trials=...).
+struct DlcdTrackOptions {
+  RansacOptions ransac;
+  TrackAwareOptions track_aware;
+
+  static const OptionTable<DlcdTrackOptions>& Table() {
+    using O = DlcdTrackOptions;
+    static const OptionTable<O> table =
+        OptionTable<O>()
+            .Flatten(&O::ransac, RansacParams())
+            .Flatten(&O::track_aware, TrackAwareOptions::Table().Only({"min_points_per_person", "max_pair_cost"}));
+    return table;
+  }
+};
+
 class DlcdTrack : public LoopClosureMethod {
  public:
   std::string Name() const override { return "dlcd-track"; }
@@ -22,18 +36,14 @@ class DlcdTrack : public LoopClosureMethod {
   }
   ShownFeatures Features() const override { return ShownFeatures::kHoiPoints; }
   std::set<FrontEnd> FrontEnds() const override { return {FrontEnd::kPersons}; }
-  const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<BenchOptions> table =
-        OptionTable<BenchOptions>()
-            .Flatten(&BenchOptions::ransac, RansacParams())
-            .Flatten(&BenchOptions::track_aware,
-                     TrackAwareOptions::Table().Only({"min_points_per_person", "max_pair_cost"}));
-    return &table;
+  std::unique_ptr<MethodOptions> Options() const override {
+    return std::make_unique<OptionsOf<DlcdTrackOptions>>(DlcdTrackOptions::Table());
   }
   MethodScores Score(const MethodContext& c) const override {
     using Clock = std::chrono::steady_clock;
     const std::vector<Query>& queries = c.queries();
     const auto& hoi = c.front_ends.hoi;
+    const DlcdTrackOptions& own = c.Own<DlcdTrackOptions>();
     MethodScores out;
     out.scores.resize(queries.size());
     out.match_ms.assign(queries.size(), 0.0);
@@ -58,7 +68,7 @@ class DlcdTrack : public LoopClosureMethod {
     std::vector<int64_t> prepare_ns(hoi.size());
     ParallelFor(static_cast<int64_t>(hoi.size()), c.threads, [&](int64_t f) {
       const auto t = Clock::now();
-      frames[f] = PrepareTrackAwareFrame(hoi[f], c.options.track_aware);
+      frames[f] = PrepareTrackAwareFrame(hoi[f], own.track_aware);
       prepare_ns[f] = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count();
     });
     std::vector<std::atomic<int64_t>> spent_ns(queries.size());
@@ -70,7 +80,7 @@ class DlcdTrack : public LoopClosureMethod {
       for (int64_t j = chunk.begin; j < chunk.end; ++j) {
         const int r = q.database[j];
         out.scores[chunk.query][j] =
-            ScoreTrackAwarePair(frames[q.frame], frames[r], c.options.track_aware, c.options.ransac, c.seed, q.frame, r);
+            ScoreTrackAwarePair(frames[q.frame], frames[r], own.track_aware, own.ransac, c.seed, q.frame, r);
       }
       spent_ns[chunk.query] += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count();
       progress.Update(chunk.end - chunk.begin);

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <set>
 
-#include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/methods/loop_closure_method.h"
 #include "hoilcd/core/place_recognition/temporal_consistency.h"
 
@@ -47,18 +46,17 @@ class FusionTc : public LoopClosureMethod {
     return "fusion with temporal consistency (consecutive queries must agree)";
   }
   std::vector<std::string> Inputs() const override { return {"fusion"}; }
-  const OptionTable<BenchOptions>* Params() const override {
-    static const OptionTable<BenchOptions> table = OptionTable<BenchOptions>().Flatten(
-        &BenchOptions::temporal,
-        TemporalConsistencyOptions::Table().Only({"consecutive_queries", "candidates_per_query", "max_frame_gap"}));
-    return &table;
+  std::unique_ptr<MethodOptions> Options() const override {
+    static const OptionTable<TemporalConsistencyOptions> table =
+        TemporalConsistencyOptions::Table().Only({"consecutive_queries", "candidates_per_query", "max_frame_gap"});
+    return std::make_unique<OptionsOf<TemporalConsistencyOptions>>(table);
   }
   MethodScores Score(const MethodContext& c) const override {
     using Clock = std::chrono::steady_clock;
     const MethodScores& fusion = c.Input("fusion");
     const auto t = Clock::now();
     MethodScores out;
-    out.scores = TemporalConsistencyOfQueries(c.queries(), fusion.scores, c.options.temporal);
+    out.scores = TemporalConsistencyOfQueries(c.queries(), fusion.scores, c.Own<TemporalConsistencyOptions>());
     const double per_query = std::chrono::duration<double, std::milli>(Clock::now() - t).count() /
                              static_cast<double>(std::max<size_t>(1, c.queries().size()));
     out.extract_ms = fusion.extract_ms;

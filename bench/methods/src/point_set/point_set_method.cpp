@@ -1,8 +1,7 @@
-#include "point_set_scoring.h"
+#include "point_set/point_set_method.h"
 
 #include <cstdio>
 
-#include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/progress.h"
@@ -18,24 +17,33 @@ const std::vector<double>& ExtractMsOf(const FrontEndOutput& front_ends, FrontEn
   return front_end == FrontEnd::kKeypoints ? front_ends.keypoints_ms : front_ends.persons_ms;
 }
 
+// The matching a method runs: its own tolerance, the dataset's image height.
+MatchOptions MatchOf(const MethodContext& context) {
+  MatchOptions match = context.Own<PointSetOptions>().match;
+  match.image_height_px = context.dataset.manifest().intrinsics.height;
+  return match;
+}
+
 }  // namespace
 
 ShownFeatures PointSetMethod::Features() const {
   return front_end_ == FrontEnd::kKeypoints ? ShownFeatures::kKeypoints : ShownFeatures::kHoiPoints;
 }
 
-const OptionTable<BenchOptions>* PointSetMethod::Params() const {
-  static const OptionTable<BenchOptions> plain =
-      OptionTable<BenchOptions>().Flatten(&BenchOptions::ransac, RansacParams()).Flatten(&BenchOptions::match, MatchParams());
-  static const OptionTable<BenchOptions> with_lo =
-      OptionTable<BenchOptions>(plain).Append(BenchOptions::Table().Only({"lo_refits"}));
-  return lo_ ? &with_lo : &plain;
+const OptionTable<PointSetOptions>& PointSetOptions::Table(bool lo) {
+  using O = PointSetOptions;
+  static const OptionTable<O> plain =
+      OptionTable<O>().Flatten(&O::ransac, RansacParams()).Flatten(&O::match, MatchParams());
+  static const OptionTable<O> with_lo = OptionTable<O>(plain).Flatten(
+      &O::ransac, RansacOptions::Table()
+                      .Only({"local_optimisation_refits"})
+                      .Rename("local_optimisation_refits", "lo_refits")
+                      .WithDefault("lo_refits", 2));
+  return lo ? with_lo : plain;
 }
 
-RansacOptions PointSetMethod::Ransac(const BenchOptions& options) const {
-  RansacOptions ransac = options.ransac;
-  if (lo_) ransac.local_optimisation_refits = options.lo_refits;
-  return ransac;
+std::unique_ptr<MethodOptions> PointSetMethod::Options() const {
+  return std::make_unique<OptionsOf<PointSetOptions>>(PointSetOptions::Table(lo_));
 }
 
 MethodScores PointSetMethod::Score(const MethodContext& context) const {
@@ -44,7 +52,7 @@ MethodScores PointSetMethod::Score(const MethodContext& context) const {
 
 // The index and the matching decide the MNN; the seed is the dataset's for every method.
 std::string PointSetMethod::PassKey(const MethodContext& context) const {
-  const MatchOptions& match = context.options.match;
+  const MatchOptions match = MatchOf(context);
   char key[120];
   std::snprintf(key, sizeof(key), "point-set %s vertical_tolerance=%.17g image_height_px=%d",
                 FrontEndName(front_end_).c_str(), match.vertical_tolerance, match.image_height_px);
@@ -62,11 +70,11 @@ std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const 
   for (size_t m = 0; m < methods.size(); ++m) {
     const auto* method = dynamic_cast<const PointSetMethod*>(methods[m]);
     const MethodContext& c = contexts[m];
-    HOILCD_CHECK_MSG(method != nullptr && method->front_end_ == front_end_ && c.options.match == context.options.match &&
+    HOILCD_CHECK_MSG(method != nullptr && method->front_end_ == front_end_ && MatchOf(c) == MatchOf(context) &&
                          c.seed == context.seed && c.threads == context.threads &&
                          &c.labelling == &context.labelling && &c.front_ends == &context.front_ends,
                      methods[m]->Name() << " cannot share " << Name() << "'s scoring pass");
-    variants.push_back(method->Ransac(c.options));
+    variants.push_back(c.Own<PointSetOptions>().ransac);
     title += (m ? " + " : "") + methods[m]->Name();
   }
   const std::vector<Query>& queries = context.queries();
@@ -85,7 +93,7 @@ std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const 
   ProgressReporter progress(title, pairs, "pairs");
   std::vector<std::vector<int64_t>> time_ns;
   const auto tables = IndexOf(context.front_ends, front_end_)
-                          .ScoreDatabases(frames, databases, context.options.match, variants, context.seed,
+                          .ScoreDatabases(frames, databases, MatchOf(context), variants, context.seed,
                                           context.threads, &time_ns, &progress);
   progress.Done();
   std::vector<MethodScores> out(methods.size());
