@@ -9,204 +9,17 @@
 #include <vector>
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"
-#include "option_properties.h"
+#include "homography_problems.h"
 
 namespace hoilcd {
 namespace {
 
-constexpr float kWidthPx = 256, kHeightPx = 192;
-
-// A plausible reference -> query homography: scale/shear near 1, shift, mild perspective.
-Eigen::Matrix3d RandomHomography(Rng& rng) {
-  Eigen::Matrix3d h;
-  h << rng.Uniform(0.8, 1.2), rng.Uniform(-0.15, 0.15), rng.Uniform(-25, 25),
-      rng.Uniform(-0.15, 0.15), rng.Uniform(0.8, 1.2), rng.Uniform(-20, 20),
-      rng.Uniform(-6e-4, 6e-4), rng.Uniform(-6e-4, 6e-4), 1.0;
-  return h;
-}
-
-Point2 Apply(const Eigen::Matrix3d& h, Point2 p) {
-  const Eigen::Vector3d q = h * Eigen::Vector3d(p.x, p.y, 1.0);
-  return Point2(static_cast<float>(q.x() / q.z()), static_cast<float>(q.y() / q.z()));
-}
-
-Point2 RandomPoint(Rng& rng) {
-  return Point2(static_cast<float>(rng.Uniform(0, kWidthPx)),
-                static_cast<float>(rng.Uniform(0, kHeightPx)));
-}
-
-// Matches 0..n-1 pair reference[i] with query[i]; the first `num_inliers` follow h plus Gaussian
-// noise of noise_px per axis, the rest are uniform outliers.
-struct Problem {
-  std::vector<Point2> query, reference;
-  std::vector<Correspondence> matches;
-  int num_inliers = 0;
-};
-
-Problem MakeProblem(Rng& rng, int n, int num_inliers, double noise_px) {
-  Problem p;
-  const Eigen::Matrix3d h = RandomHomography(rng);
-  p.num_inliers = num_inliers;
-  for (int i = 0; i < n; ++i) {
-    const Point2 r = RandomPoint(rng);
-    Point2 q = RandomPoint(rng);
-    if (i < num_inliers) {
-      q = Apply(h, r);
-      q.x += static_cast<float>(rng.Normal(0, noise_px));
-      q.y += static_cast<float>(rng.Normal(0, noise_px));
-    }
-    p.reference.push_back(r);
-    p.query.push_back(q);
-    p.matches.push_back({i, i});
-  }
-  return p;
-}
-
-TEST(HomographyFromFourPoints, ExactCorrespondencesOfRandomHomographyReprojectBelow1e6Px) {
-  Rng rng = KeyedRng(1, "test.dlt");
-  int solved = 0;
-  for (int t = 0; t < 1000; ++t) {
-    const Eigen::Matrix3d truth = RandomHomography(rng);
-    Point2 src[4], dst[4];
-    for (int k = 0; k < 4; ++k) {
-      src[k] = RandomPoint(rng);
-      dst[k] = Apply(truth, src[k]);
-    }
-    Eigen::Matrix3d h;
-    if (!HomographyFromFourPoints(src, dst, &h)) continue;
-    ++solved;
-    for (int k = 0; k < 4; ++k) {
-      const Eigen::Vector3d p = h * Eigen::Vector3d(src[k].x, src[k].y, 1.0);
-      EXPECT_LT(std::hypot(p.x() / p.z() - dst[k].x, p.y() / p.z() - dst[k].y), 1e-6);
-    }
-  }
-  EXPECT_GT(solved, 990);  // only near-collinear random samples are skipped
-}
-
-// OpenCV solves the unnormalised 8x8 system and reprojects its own points to about 1e-4 px, so
-// the two are compared on where they send points across the image, at 1e-3 px.
-TEST(HomographyFromFourPoints, AgreesWithOpenCvGetPerspectiveTransform) {
-  Rng rng = KeyedRng(2, "test.dlt");
-  for (int t = 0; t < 100; ++t) {
-    const Eigen::Matrix3d truth = RandomHomography(rng);
-    Point2 src[4], dst[4];
-    for (int k = 0; k < 4; ++k) {
-      src[k] = RandomPoint(rng);
-      dst[k] = Apply(truth, src[k]);
-    }
-    Eigen::Matrix3d h;
-    if (!HomographyFromFourPoints(src, dst, &h)) continue;
-    const cv::Mat cv_mat = cv::getPerspectiveTransform(src, dst);
-    Eigen::Matrix3d cv_h;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) cv_h(r, c) = cv_mat.at<double>(r, c);
-    }
-    for (float y = 0; y <= kHeightPx; y += 32) {
-      for (float x = 0; x <= kWidthPx; x += 32) {
-        const Point2 ours = Apply(h, Point2(x, y)), theirs = Apply(cv_h, Point2(x, y));
-        EXPECT_LT(std::hypot(ours.x - theirs.x, ours.y - theirs.y), 1e-3);
-      }
-    }
-  }
-}
-
-TEST(HomographyFromFourPoints, DegenerateSamplesAreRejected) {
-  const Point2 square[4] = {{10, 10}, {100, 10}, {100, 90}, {10, 90}};
-  const Point2 collinear[4] = {{10, 10}, {50, 50}, {90, 90}, {10, 90}};
-  const Point2 nearly_collinear[4] = {{10, 10}, {50, 50.0001f}, {90, 90}, {10, 90}};
-  const Point2 repeated[4] = {{10, 10}, {10, 10}, {100, 90}, {10, 90}};
-  Eigen::Matrix3d h;
-  EXPECT_TRUE(HomographyFromFourPoints(square, square, &h));
-  EXPECT_TRUE(h.isApprox(Eigen::Matrix3d::Identity(), 1e-12));
-  EXPECT_FALSE(HomographyFromFourPoints(collinear, square, &h));
-  EXPECT_FALSE(HomographyFromFourPoints(square, collinear, &h));
-  EXPECT_FALSE(HomographyFromFourPoints(nearly_collinear, square, &h));
-  EXPECT_FALSE(HomographyFromFourPoints(repeated, square, &h));
-}
-
-TEST(HomographyLeastSquares, ExactCorrespondencesGiveTheHomographyBack) {
-  Rng rng = KeyedRng(3, "test.dlt");
-  const Eigen::Matrix3d truth = RandomHomography(rng);
-  std::vector<float> rx, ry, qx, qy;
-  for (int i = 0; i < 30; ++i) {
-    const Point2 r = RandomPoint(rng), q = Apply(truth, r);
-    rx.push_back(r.x);
-    ry.push_back(r.y);
-    qx.push_back(q.x);
-    qy.push_back(q.y);
-  }
-  Eigen::Matrix3d h;
-  ASSERT_TRUE(HomographyLeastSquares(rx.data(), ry.data(), qx.data(), qy.data(), nullptr, 30, &h));
-  for (int i = 0; i < 30; ++i) {
-    const Point2 p = Apply(h, Point2(rx[i], ry[i]));
-    EXPECT_LT(std::hypot(p.x - qx[i], p.y - qy[i]), 1e-3);  // inputs are float
-  }
-}
-
-TEST(RansacSample, UniformOverOrderedFourTuplesOfDistinctIndices) {
-  // n = 6: 360 ordered 4-tuples of distinct indices, 1000 expected draws each.
-  constexpr uint32_t kN = 6;
-  std::vector<int> counts(kN * kN * kN * kN, 0);
-  constexpr uint32_t kDraws = 360000;
-  for (uint32_t d = 0; d < kDraws; ++d) {
-    uint32_t idx[4];
-    RansacSample(/*seed=*/77, d, kN, idx);
-    for (int a = 0; a < 4; ++a) {
-      ASSERT_LT(idx[a], kN);
-      for (int b = 0; b < a; ++b) ASSERT_NE(idx[a], idx[b]) << "draw " << d;
-    }
-    ++counts[((idx[0] * kN + idx[1]) * kN + idx[2]) * kN + idx[3]];
-  }
-  double chi_square = 0;
-  int tuples = 0;
-  for (int c : counts) {
-    if (c == 0) continue;
-    ++tuples;
-    chi_square += (c - 1000.0) * (c - 1000.0) / 1000.0;
-  }
-  EXPECT_EQ(tuples, 360);
-  // 359 degrees of freedom: mean 359, standard deviation 26.8; this bound is 6 sigma.
-  EXPECT_LT(chi_square, 520.0);
-}
-
-TEST(RansacSample, RejectionPathStaysDistinctAndUnbiased) {
-  // n = 3 * 2^30: the first digit is floor(3 w / 4) of a 32-bit word w, so without the rejection
-  // test digits divisible by 3 would get two words each and the others one (1/2 of the draws
-  // instead of 1/3); with it a quarter of the words are rejected and redrawn under a new key.
-  constexpr uint32_t kN = 3u << 30;
-  int by_residue[3] = {0, 0, 0};
-  constexpr int kDraws = 30000;
-  for (uint32_t d = 0; d < kDraws; ++d) {
-    uint32_t idx[4];
-    RansacSample(/*seed=*/5, d, kN, idx);
-    for (int a = 0; a < 4; ++a) {
-      ASSERT_LT(idx[a], kN);
-      for (int b = 0; b < a; ++b) ASSERT_NE(idx[a], idx[b]);
-    }
-    ++by_residue[idx[0] % 3];
-  }
-  // Binomial(30000, 1/3): standard deviation 82; the bound is 6 sigma.
-  for (int count : by_residue) EXPECT_NEAR(count, kDraws / 3, 6 * 82);
-}
-
-TEST(RansacSample, DifferentSeedsGiveDifferentStreams) {
-  int same = 0;
-  for (uint32_t d = 0; d < 1000; ++d) {
-    uint32_t a[4], b[4];
-    RansacSample(1, d, 200, a);
-    RansacSample(2, d, 200, b);
-    same += std::equal(a, a + 4, b) ? 1 : 0;
-  }
-  EXPECT_LE(same, 2);
-}
-
 TEST(EstimateHomographyRansac, FewerThanFourMatchesGiveZeroInliers) {
   Rng rng = KeyedRng(4, "test.ransac");
   for (int n = 0; n < 4; ++n) {
-    const Problem p = MakeProblem(rng, n, n, 0.0);
+    const HomographyProblem p = MakeHomographyProblem(rng, n, n, 0.0);
     const HomographyResult result = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, 7);
     EXPECT_EQ(result.inliers, 0);
     EXPECT_EQ(result.inlier_mask, std::vector<uint8_t>(n, 0));
@@ -220,7 +33,7 @@ TEST(EstimateHomographyRansac, KeepsAtLeast95PercentOfTrueInliersWithHalfOutlier
   int problems = 0;
   for (int t = 0; t < 200; ++t) {
     const int n = 50 + static_cast<int>(rng.UniformInt(251));
-    const Problem p = MakeProblem(rng, n, n / 2, 1.0);
+    const HomographyProblem p = MakeHomographyProblem(rng, n, n / 2, 1.0);
     const HomographyResult result = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, t);
     ASSERT_EQ(static_cast<int>(result.inlier_mask.size()), n);
     EXPECT_EQ(std::accumulate(result.inlier_mask.begin(), result.inlier_mask.end(), 0),
@@ -246,7 +59,7 @@ TEST(EstimateHomographyRansac, AgreesWithOpenCvRansacOnInlierCounts) {
   for (int t = 0; t < 1000; ++t) {
     const int n = 30 + static_cast<int>(rng.UniformInt(271));
     const int inliers = static_cast<int>(n * rng.Uniform(0.5, 0.9));
-    const Problem p = MakeProblem(rng, n, inliers, 1.0);
+    const HomographyProblem p = MakeHomographyProblem(rng, n, inliers, 1.0);
     const int ours = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, t).inliers;
     std::vector<uint8_t> mask;
     cv::findHomography(p.reference, p.query, cv::RANSAC, 5.0, mask, 100);
@@ -262,7 +75,7 @@ TEST(EstimateHomographyRansac, AgreesWithOpenCvRansacOnInlierCounts) {
 
 TEST(EstimateHomographyRansac, SameSeedGivesSameResultDifferentSeedsMayDiffer) {
   Rng rng = KeyedRng(7, "test.ransac");
-  const Problem p = MakeProblem(rng, 120, 40, 1.0);
+  const HomographyProblem p = MakeHomographyProblem(rng, 120, 40, 1.0);
   const HomographyResult a = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, 11);
   const HomographyResult b = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, 11);
   EXPECT_EQ(a.inliers, b.inliers);
@@ -281,7 +94,7 @@ TEST(CountRansacInliers, IsTheEstimatesInlierCountAndRejectsWhatTheEstimateRejec
   RansacOptions lo;
   lo.local_optimisation_refits = 2;
   for (int t = 0; t < 30; ++t) {
-    const Problem p = MakeProblem(rng, 20 + 7 * t, 5 + 3 * t, 1.0);
+    const HomographyProblem p = MakeHomographyProblem(rng, 20 + 7 * t, 5 + 3 * t, 1.0);
     for (const RansacOptions& options : {RansacOptions{}, lo}) {
       EXPECT_EQ(CountRansacInliers(p.query, p.reference, p.matches, options, t),
                 EstimateHomographyRansac(p.query, p.reference, p.matches, options, t).inliers)
@@ -298,7 +111,7 @@ TEST(CountRansacInliers, IsTheEstimatesInlierCountAndRejectsWhatTheEstimateRejec
 // Structure-of-arrays coordinates of a problem's matches, as RansacHomographySoa takes them.
 struct SoaMatches {
   std::vector<float> ref_x, ref_y, query_x, query_y;
-  explicit SoaMatches(const Problem& p) {
+  explicit SoaMatches(const HomographyProblem& p) {
     for (const Correspondence& m : p.matches) {
       ref_x.push_back(p.reference[m.reference].x);
       ref_y.push_back(p.reference[m.reference].y);
@@ -327,7 +140,7 @@ TEST(RansacCounter, EachVariantCountsWhatItsOwnRansacCountsAndIsChargedItsDrawin
   RansacCounter counter;
   for (int t = 0; t < 40; ++t) {
     const int n = t < 8 ? t : 9 + 6 * t;  // 0..7 matches first: none, too few, exactly 4, a handful
-    const Problem p = MakeProblem(rng, n, n * (t % 4) / 4, 1.0);
+    const HomographyProblem p = MakeHomographyProblem(rng, n, n * (t % 4) / 4, 1.0);
     const SoaMatches m(p);
     for (const std::vector<RansacOptions>* set : {&variants, &crowd}) {
       const int count = static_cast<int>(set->size());
@@ -369,7 +182,7 @@ TEST(RansacCounter, StopsDrawingOnceEveryMatchIsAnInlierAndNotBefore) {
   RansacCounter counter;
   for (int t = 0; t < 20; ++t) {
     const int n = 6 + 3 * t;
-    Problem p = MakeProblem(rng, n, n, 0.1);  // every match on the homography, to 0.1 px
+    HomographyProblem p = MakeHomographyProblem(rng, n, n, 0.1);  // every match on the homography, to 0.1 px
     for (const bool outlier : {false, true}) {
       if (outlier) p.query.back().x += 40;  // one match far off: n - 1 inliers at best
       const SoaMatches m(p);
@@ -396,7 +209,7 @@ TEST(EstimateHomographyRansac, LocalOptimisationNeverFindsFewerInliersThanPlainW
   lo.local_optimisation_refits = 2;
   int strictly_more = 0;
   for (int t = 0; t < 100; ++t) {
-    const Problem p = MakeProblem(rng, 150, 60, 1.5);
+    const HomographyProblem p = MakeHomographyProblem(rng, 150, 60, 1.5);
     const int plain = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, t).inliers;
     const int refined = EstimateHomographyRansac(p.query, p.reference, p.matches, lo, t).inliers;
     EXPECT_GE(refined, plain);
@@ -411,7 +224,7 @@ TEST(EstimateHomographyRansac, RedrawingDegenerateSamplesRecoversMoreInliersThan
   paper_literal.redraw_degenerate_samples = false;
   int64_t redrawn = 0, used_up = 0;
   for (int t = 0; t < 100; ++t) {
-    const Problem p = MakeProblem(rng, 150, 60, 1.0);
+    const HomographyProblem p = MakeHomographyProblem(rng, 150, 60, 1.0);
     redrawn += EstimateHomographyRansac(p.query, p.reference, p.matches, {}, t).inliers;
     used_up += EstimateHomographyRansac(p.query, p.reference, p.matches, paper_literal, t).inliers;
   }
@@ -447,15 +260,6 @@ TEST(RansacOptions, CheckNamesEachInvalidFieldAndEstimateRejectsThem) {
   RansacOptions too_many;
   too_many.trials = 20'000'000;  // sample counters would pass 2^32
   EXPECT_EQ(too_many.Check(), "trials: must be in [1, 10000000] (got 20000000)");
-}
-
-TEST(RansacOptions, HoldsThePapersDefaultsFromItsTableAndChecksEveryBound) {
-  const RansacOptions options;
-  EXPECT_EQ(options.trials, 100);  // paper, section 5.2
-  EXPECT_EQ(options.inlier_threshold_px, 5.0);
-  EXPECT_EQ(options.local_optimisation_refits, 0);
-  ExpectConstructedHoldsTheTableDefaults<RansacOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<RansacOptions>(), 4);
 }
 
 TEST(EstimateHomographyRansac, OutOfRangeMatchIsRejected) {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "hoilcd/bench/methods/loop_closure_method.h"
-#include "hoilcd/core/estimators/homography_ransac.h"
 #include "hoilcd/core/matching/matching.h"
+#include "hoilcd/core/optim/ransac.h"
 #include "hoilcd/core/place_recognition/retrieval_index.h"
 
 namespace hoilcd {
