@@ -109,12 +109,16 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
   return scored;
 }
 
-// Step 5: a 95 % interval on every headline metric and the paired comparison of every pair of
-// methods, all from the same resampled blocks of queries (bootstrap.h).
+// Step 5: the metrics per stratum of the queries' conditions (query_conditions.h), a 95 % interval
+// on every headline metric and the paired comparison of every pair of methods, all from the same
+// resampled blocks of queries (bootstrap.h).
 void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResult* result) {
   std::vector<const std::vector<QueryRecord>*> records;
-  for (const MethodRun& run : result->runs) records.push_back(&run.metrics.queries);
+  std::vector<std::string> names;
+  for (const MethodRun& run : result->runs) records.push_back(&run.metrics.queries), names.push_back(run.name);
   if (records.empty()) return;
+  result->strata = Stratify(result->conditions, names, records,
+                            options.strata.empty() ? DefaultStratifications() : options.strata);
   result->bootstrap = PlanBootstrap(records, dataset.manifest().frame_rate_hz, options.bootstrap);
   const uint64_t seed = options.bootstrap.seed;
   for (MethodRun& run : result->runs) {
@@ -155,6 +159,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   result.other_ground_truth = labelling.other_ground_truth;
   result.other_queries = labelling.other_queries;
   result.label_disagreement = labelling.disagreement;
+  result.conditions = ComputeQueryConditions(dataset, labelling.queries, options.threads);
 
   // Step 2: the front ends the methods need, once each; step 3: every method's scores.
   const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
