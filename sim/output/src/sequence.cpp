@@ -18,6 +18,7 @@
 #include "hoilcd/sim/render/visibility.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -78,7 +79,7 @@ const OptionTable<SequenceOptions>& SequenceOptions::Table() {
       OptionTable<O>()
           .Add("output_dir", &O::output_dir, "", {}, "dataset folder (created if missing)")
           .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "an output folder is required" : ""; })
-          .Add("frames", &O::frames, 0, "frames", OptionRange().AtLeast(0),
+          .Add("frames", &O::frames, 0, "frames", OptionRange::Closed(0, kMaxFrames),
                "render only the first N frames (0: the scene's count)")
           .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: the CPUs this process may use)")
           .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
