@@ -38,6 +38,13 @@ if "$hoilcd" render "$scene" -o "$work/long" --frames 2000000 > "$work/out" 2>&1
 grep -q "^error: .*frames: must be in \[0, 1000000\]" "$work/out" || fail "--frames bound not said: $(cat "$work/out")"
 [ ! -e "$work/long/manifest.json" ] || fail "a refused render wrote a dataset"
 
+# A camera of 4096 x 4096 px at 256 threads would hold ~275 GB of frames in flight: refused by name.
+if "$hoilcd" render "$scene" -o "$work/big" --threads 256 --set camera.width_px=4096 --set camera.height_px=4096 \
+  > "$work/out" 2>&1; then fail "a 4096 px camera rendered at 256 threads"; fi
+grep -q "^error: --threads: rendering 256 threads' frames in flight .* needs .* GB; this process may allocate" "$work/out" \
+  || fail "frames in flight not refused by name: $(cat "$work/out")"
+[ ! -e "$work/big/manifest.json" ] || fail "a refused render wrote a dataset"
+
 # A sequence length within its range but longer than this dataset counts as all of it.
 timeout 120 "$hoilcd" bench "$work/ds" -o "$work/seq" --methods thumb-seq \
   --param thumb-seq.sequence_length=1000000 > "$work/out" 2>&1 || fail "a long sequence_length failed: $(cat "$work/out")"

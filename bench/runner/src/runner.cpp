@@ -164,6 +164,13 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   result.other_queries = labelling.other_queries;
   result.label_disagreement = labelling.disagreement;
 
+  // Every method scores every pair: their scores must fit before the front ends run.
+  double pairs = 0;
+  for (const Query& q : labelling.queries) pairs += static_cast<double>(q.database.size());
+  CheckAllocation(pairs * sizeof(double) * static_cast<double>(order.size()), "--methods",
+                  "the scores of " + std::to_string(order.size()) + " methods over " +
+                      std::to_string(static_cast<int64_t>(pairs)) + " query pairs");
+
   // Step 2: the front ends the methods need, once each; step 3: every method's scores.
   const FrontEndOutput front_ends = RunNeededFrontEnds(dataset, options, order);
   AddFeaturesAndTracking(dataset, options, front_ends, &result);

@@ -20,8 +20,8 @@
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/png.h"
-#include "hoilcd/core/util/text.h"
 #include "hoilcd/core/util/sizes.h"
+#include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
 namespace {

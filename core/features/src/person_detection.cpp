@@ -8,8 +8,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/error.h"
-#include "hoilcd/core/util/stats.h"
 #include "hoilcd/core/util/sizes.h"
+#include "hoilcd/core/util/stats.h"
 
 namespace hoilcd {
 
