@@ -20,7 +20,6 @@
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/png.h"
-#include "hoilcd/core/util/sizes.h"
 #include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
@@ -169,9 +168,7 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
   reader.Read(j, "", "frame_rate_hz", &m.frame_rate_hz);
   if (!(m.frame_rate_hz > 0)) reader.Add("/frame_rate_hz", "must be positive");
   reader.Read(j, "", "frame_count", &m.frame_count);
-  if (m.frame_count < 0 || m.frame_count > kMaxFrames) {
-    reader.Add("/frame_count", "must be 0 to " + std::to_string(kMaxFrames));
-  }
+  if (m.frame_count < 0) reader.Add("/frame_count", "must not be negative");
   reader.Read(j, "", "window_min_c", &m.window_min_c);
   reader.Read(j, "", "window_max_c", &m.window_max_c);
   if (!(m.window_max_c > m.window_min_c)) {
