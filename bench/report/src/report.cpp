@@ -613,13 +613,19 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   runs[0].bootstrap = report.bootstrap;
   runs[0].intervals = report.intervals;
   runs[0].other_metrics = report.other_metrics;
+  // The same conditions and strata as a bench report of this method.
+  const std::vector<QueryConditions> conditions = ComputeQueryConditions(dataset, labelling.queries);
+  const std::vector<StratumRow> strata =
+      Stratify(conditions, {report.name}, {&report.metrics.queries}, DefaultStratifications());
   CreateOutputFolder(dir);
-  WriteFileAtomic(dir + "/report.json", EvaluateReportJson(dataset, protocol, report, description).dump(2) + "\n");
-  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(runs));
+  nlohmann::json json = EvaluateReportJson(dataset, protocol, report, description);
+  json["strata"] = StrataJson(strata);
+  WriteFileAtomic(dir + "/report.json", json.dump(2) + "\n");
+  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(runs, conditions));
   const FigureJobs figures = MetricFigures(runs);
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
-  md << ResultsMarkdown(runs, {}, {}, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
+  md << ResultsMarkdown(runs, {}, strata, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
      << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";

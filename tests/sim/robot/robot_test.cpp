@@ -658,7 +658,7 @@ TEST(Options, CheckNamesWhatIsWrong) {
        "waypoints_m: waypoint 1 is not finite"},
       {[](RouteOptions& o) { o.waypoints_m[2] = o.waypoints_m[1]; },
        "waypoints_m: waypoint 1 repeats the next one"},
-      {[](RouteOptions& o) { o.frames = -1; }, "frames: must be at least 0"},
+      {[](RouteOptions& o) { o.frames = -1; }, "frames: must be in [0, 1000000]"},
       {[](RouteOptions& o) { o.laps = 0; }, "laps: must be"},
       {[](RouteOptions& o) { o.cruise_speed_m_s = 0; }, "cruise_speed_m_s: must be"},
       {[](RouteOptions& o) { o.lookahead_m = -1; }, "lookahead_m: must be"},
