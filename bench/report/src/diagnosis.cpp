@@ -79,7 +79,7 @@ struct OracleSpec {
 constexpr OracleSpec kOracles[] = {
     {"dlcd-oracle", "dlcd", "ground-truth people", "detection and tracking are part of DLCD's deficit",
      "detection is not DLCD's deficit", "the HOI landmarks themselves limit it"},
-    {"slcd-ideal", "slcd", "noise-free image", "the sensor (noise, fixed pattern, blur, drift, FFC) costs SLCD",
+    {"slcd-ideal", "slcd", "noise-free image", "the sensor (noise, fixed pattern, blur, drift, FFC) is part of SLCD's deficit",
      "the sensor is not SLCD's limit", "the corners and their matching limit it"},
 };
 
@@ -120,10 +120,9 @@ OracleDiagnosis DiagnoseOracle(const BenchResult& result, const OracleSpec& spec
   if (has_interval) text << " [" << Fixed(interval.low) << ", " << Fixed(interval.high) << "]";
   text << "): ";
   if (o.helps) {
-    text << spec.costs << " " << Fixed(o.delta);
+    text << "higher beyond the noise: " << spec.costs;
   } else {
-    text << spec.not_limit << ": with the " << spec.source << " it scores "
-         << (separated ? "lower" : "no better") << ", so " << spec.limit;
+    text << (separated ? "lower" : "within the noise") << ": " << spec.not_limit << "; " << spec.limit;
   }
   o.finding = text.str();
   return o;
