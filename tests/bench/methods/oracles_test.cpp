@@ -7,6 +7,7 @@
 
 #include "hoilcd/bench/methods/front_end_input.h"
 #include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/exr_io.h"
@@ -143,6 +144,15 @@ TEST(Oracles, AreInAllButNotInPaperAndOnlyNamedMethodsAreRequired) {
   EXPECT_EQ(std::find(from_groups.begin(), from_groups.end(), "slcd"), from_groups.end());  // named
   const std::vector<std::string> paper = ParseMethodList("paper");
   EXPECT_EQ(std::find(paper.begin(), paper.end(), "dlcd-oracle"), paper.end());
+}
+
+TEST(Oracles, IdealKeypointsTakeTheKeypointParamsAndTruePersonsNoDetectorParams) {
+  EXPECT_NO_THROW(CheckParams({"keypoints.max_keypoints=500"}, {"slcd-ideal"}));
+  BenchOptions options;
+  options.params = {"keypoints.max_keypoints=500"};
+  EXPECT_EQ(WithFrontEndParams(options, FrontEnd::kIdealKeypoints).keypoints.max_keypoints, 500);
+  const std::string error = test::InputErrorOf([] { CheckParams({"persons.threshold_c=27"}, {"dlcd-oracle"}); });
+  EXPECT_NE(error.find("front end persons is used by none of the methods run"), std::string::npos) << error;
 }
 
 }  // namespace
