@@ -9,9 +9,11 @@
 #include "hoilcd/bench/methods/front_ends.h"
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/report.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
 #include "input_error_of.h"
 #include "test_dir.h"
 #include "tiny_room.h"
@@ -113,7 +115,7 @@ TEST(Oracles, NamedOracleOnADatasetWithoutItsGroundTruthIsAnInputErrorNamingOutp
   }
 }
 
-TEST(Oracles, AllOnADatasetWithoutGroundTruthLeavesTheOraclesOutWithANote) {
+TEST(Oracles, AllOnADatasetWithoutGroundTruthLeavesTheOraclesOutWithANoteInTheReport) {
   const test::TestDir temp;
   SequenceOptions render;
   render.output_dir = temp / "thermal_only";
@@ -124,7 +126,10 @@ TEST(Oracles, AllOnADatasetWithoutGroundTruthLeavesTheOraclesOutWithANote) {
   BenchOptions options;
   options.methods = ParseMethodList("all", &options.optional_methods);
   options.threads = 2;
-  const BenchResult result = RunBench(bare, options);
+  ReportTiming timing;
+  const BenchResult result = BenchAndWriteReport(bare, options, &timing, temp / "report");
+  EXPECT_NE(ReadFileBytes(temp / "report/report.md").find("- dlcd-oracle: not run, the dataset has no exr output"),
+            std::string::npos);
   EXPECT_EQ(result.Find("dlcd-oracle"), nullptr);
   EXPECT_EQ(result.Find("slcd-ideal"), nullptr);
   EXPECT_NE(result.Find("dlcd"), nullptr);
