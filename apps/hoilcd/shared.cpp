@@ -91,6 +91,10 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
   cmd->add_option("--methods", args->methods,
                   "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
   AddProtocolFlags(cmd, &args->options.protocol);
+  cmd->add_option("--strata", args->options.strata,
+                  "conditions the report splits the metrics by, comma-separated: view, occlusion, walkers, "
+                  "turning, lap, ffc (default: view,occlusion,walkers)")
+      ->delimiter(',');
   cmd->add_option("--param", args->options.params,
                   "a parameter of one method or front end, e.g. slcd.ransac_trials=50, fusion.k=60, "
                   "persons.threshold_c=27 (repeatable; hoilcd params lists them)")

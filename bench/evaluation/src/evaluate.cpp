@@ -6,6 +6,7 @@
 
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
@@ -17,6 +18,11 @@ Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol) 
   l.frame_rate_hz = dataset.manifest().frame_rate_hz;
   l.ground_truth = protocol.ground_truth;
   l.other_ground_truth = OtherGroundTruth(protocol.ground_truth);
+  // At most every earlier frame is a query's database: n^2 / 2 pairs, each a frame index and a
+  // label, under both ground truths.
+  const double frames = static_cast<double>(dataset.poses().size());
+  CheckAllocation(frames * frames / 2 * (sizeof(int) + sizeof(uint8_t)) * 2, SafeText(dataset.dir()),
+                  "labelling the query pairs of " + std::to_string(dataset.poses().size()) + " frames");
   l.queries = BuildQueries(dataset.poses(), protocol);
   l.other_queries = RelabelQueries(l.queries, dataset.poses(), protocol, l.other_ground_truth);
   l.disagreement = CompareLabels(l.queries, l.other_queries);

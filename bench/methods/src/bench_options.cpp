@@ -1,5 +1,7 @@
 #include "hoilcd/bench/methods/bench_options.h"
 
+#include <algorithm>
+
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/util/error.h"
@@ -31,6 +33,18 @@ const OptionTable<BenchOptions>& BenchOptions::Table() {
                 [](const O& o) {
                   for (const std::string& m : o.methods) {
                     if (!IsMethod(m)) return "unknown method '" + m + "'";
+                  }
+                  return std::string();
+                })
+          .Rule("strata",
+                [](const O& o) {
+                  const std::vector<std::string> known = StratificationNames();
+                  for (const std::string& s : o.strata) {
+                    if (std::find(known.begin(), known.end(), s) == known.end()) {
+                      std::string list;
+                      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+                      return "unknown stratification '" + s + "' (known: " + list + ")";
+                    }
                   }
                   return std::string();
                 })

@@ -16,6 +16,7 @@
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/scene/scene.h"
 
 namespace hoilcd {
@@ -224,6 +225,17 @@ std::string SweepPlan::Check() const {
     if (axis.key.empty()) return "an axis has an empty key";
     if (axis.values.empty()) return "axis " + axis.key + " has no values";
     if (!keys.insert(axis.key).second) return "key " + axis.key + " is swept twice";
+  }
+  // Counted before the runs are listed: a cross product of long --set lists would not fit memory.
+  // Each run renders and benches a dataset (minutes); 100,000 of them are years of one machine.
+  constexpr double kMaxRuns = 100000;
+  double runs = seeds;
+  for (const SweepAxis& axis : axes) runs *= static_cast<double>(axis.values.size());
+  if (runs > kMaxRuns) {
+    std::string product;
+    for (const SweepAxis& axis : axes) product += std::to_string(axis.values.size()) + " values of " + axis.key + " x ";
+    return product + std::to_string(seeds) + " seeds is " + Fixed(runs, 0) + " runs; at most " +
+           Fixed(kMaxRuns, 0) + " (split a larger study into several sweeps)";
   }
   for (const SweepRunSpec& run : Runs()) {
     if (!folders.insert(run.FolderName()).second) return "two runs share the folder name " + run.FolderName();

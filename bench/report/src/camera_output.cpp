@@ -11,6 +11,7 @@
 #include "hoilcd/core/dataset/video.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -110,7 +111,7 @@ const OptionTable<CameraOutputOptions>& CameraOutputOptions::Table() {
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("max_frames_compared", &O::max_frames_compared, 200, "frames", R::Any().AtLeast(1),
+          .Add("max_frames_compared", &O::max_frames_compared, 200, "frames", R::Closed(1, kMaxFrames),
                "frames decoded and compared at most (evenly spaced)")
           .Add("patch_px", &O::patch_px, 8, "px", R::Closed(1, 64), "side of the corner and centre patches for shading")
           .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "decoding and comparing threads (0: every core)");

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
+
 namespace hoilcd {
 namespace {
 
@@ -19,16 +21,25 @@ std::string Number(double v) {
   return buf;
 }
 
-std::string XmlEscape(const std::string& s) {
+// Text for an XML 1.0 attribute or element: through SafeText (valid UTF-8; control characters,
+// which XML 1.0 forbids even as character references, and stray bytes shown as \xNN), then the
+// two noncharacters XML 1.0 also forbids (U+FFFE, U+FFFF) shown the same way, markup escaped.
+std::string XmlText(const std::string& s) {
+  const std::string safe = SafeText(s);
   std::string out;
-  for (char c : s) {
-    switch (c) {
+  for (size_t i = 0; i < safe.size(); ++i) {
+    if (safe.compare(i, 3, "\xef\xbf\xbe") == 0 || safe.compare(i, 3, "\xef\xbf\xbf") == 0) {
+      out += safe[i + 2] == '\xbe' ? "\\xef\\xbf\\xbe" : "\\xef\\xbf\\xbf";
+      i += 2;
+      continue;
+    }
+    switch (safe[i]) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
       case '\'': out += "&apos;"; break;
-      default: out += c;
+      default: out += safe[i];
     }
   }
   return out;
@@ -68,13 +79,13 @@ std::string JUnitXml(const nlohmann::json& report, const std::vector<Regression>
   int failures = 0, tests = 0;
   for (const auto& [name, method] : report["methods"].items()) {
     ++tests;
-    cases << "  <testcase classname=\"hoilcd.loop_closure\" name=\"" << XmlEscape(name) << "\">\n";
-    std::string lines;
+    cases << "  <testcase classname=\"hoilcd.loop_closure\" name=\"" << XmlText(name) << "\">\n";
+    std::string lines;  // one regression a line, each line made safe on its own
     for (const Regression& r : regressions)
-      if (r.method == name) lines += r.ToString(max_drop) + "\n";
+      if (r.method == name) lines += XmlText(r.ToString(max_drop)) + "\n";
     if (!lines.empty()) {
       ++failures;
-      cases << "    <failure message=\"headline metric dropped\">" << XmlEscape(lines) << "</failure>\n";
+      cases << "    <failure message=\"headline metric dropped\">" << lines << "</failure>\n";
     }
     cases << "    <system-out>mrr " << Number(Value(method, "mrr")) << ", recall_at_1 "
           << Number(Value(method, "recall_at_1")) << "</system-out>\n  </testcase>\n";

@@ -223,6 +223,9 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
     report["methods"][run.name] = m;
   }
   report["bootstrap"] = result.bootstrap.ToJson();
+  report["strata"] = StrataJson(result.strata);
+  report["conditions"] = {{"blank_spread_k", kBlankSpreadK}, {"contrast_k", kContrastK},
+                          {"per_query", "queries.csv, one row per method and query"}};
   for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
   report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
                                   {"queries_differing", labels.queries_differing},
@@ -253,22 +256,49 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
 }
 
 // queries.csv: one row per method and query.
-std::string QueriesCsv(const std::vector<MethodRun>& runs) {
+// queries.csv: one row per method and query, each query's conditions appended (when computed).
+std::string QueriesCsv(const std::vector<MethodRun>& runs, const std::vector<QueryConditions>& conditions = {}) {
   std::string csv;
   for (const MethodRun& run : runs) {
     std::istringstream lines(QueryRecordsToCsv(run.metrics.queries));
     std::string line;
     bool header = true;
+    size_t query = 0;
     while (std::getline(lines, line)) {
       if (header) {
-        if (csv.empty()) csv += "method," + line + "\n";
+        if (csv.empty()) csv += "method," + line + (conditions.empty() ? "" : ConditionsCsvHeader()) + "\n";
         header = false;
         continue;
       }
-      csv += run.name + "," + line + "\n";
+      const std::string extra = query < conditions.size() ? ConditionsCsvRow(conditions[query]) : "";
+      csv += run.name + "," + line + extra + "\n";
+      ++query;
     }
   }
   return csv;
+}
+
+// MRR per stratum of the first stratification, one bar per method, chance as a grey bar.
+cv::Mat StrataFigure(const std::vector<StratumRow>& strata) {
+  std::vector<std::string> groups;
+  std::vector<Series> series;
+  for (const StratumRow& row : strata) {
+    if (row.stratification != strata.front().stratification) continue;
+    groups.push_back(row.stratum + " (" + std::to_string(row.queries) + ")");
+    series.resize(row.methods.size() + 1);
+    for (size_t m = 0; m < row.methods.size(); ++m) {
+      series[m].label = row.methods[m];
+      series[m].y.push_back(row.mrr[m]);
+    }
+    series.back().label = "chance";
+    series.back().colour = chart::Grey(170);
+    series.back().y.push_back(row.chance_mrr);
+  }
+  PlotOptions options;
+  options.title = "MRR by " + strata.front().stratification + " (queries)";
+  options.y_label = "MRR";
+  options.width_px = std::max(options.width_px, 160 * static_cast<int>(groups.size()));
+  return BarPlot(groups, series, options);
 }
 
 // Figures to draw: file name and how to draw it.
@@ -300,6 +330,9 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
                                       const std::string& dir) {
   // The figures, listed in the report's order.
   FigureJobs figure_jobs = MetricFigures(result.runs);
+  if (!result.strata.empty()) {
+    figure_jobs.emplace_back("strata_mrr.png", [&result] { return StrataFigure(result.strata); });
+  }
   // Figures of the paper's methods, last registered first (fusion, dlcd, slcd).
   std::vector<const LoopClosureMethod*> paper;
   for (const auto& m : RegisteredMethods())
@@ -390,10 +423,56 @@ std::string ComparisonsMarkdown(const std::vector<PairedComparison>& comparisons
   return md.str();
 }
 
+// What the blank-view stratum says, in words from its numbers ("" without one).
+std::string BlankViewSentence(const std::vector<StratumRow>& strata) {
+  int scored = 0;
+  const StratumRow* blank = nullptr;
+  for (const StratumRow& row : strata) {
+    if (row.stratification != "view") continue;
+    scored += row.queries;
+    if (row.stratum == "blank view" && row.queries > 0) blank = &row;
+  }
+  if (blank == nullptr) return "";
+  double lo = INFINITY, hi = -INFINITY;
+  for (double v : blank->mrr) lo = std::min(lo, v), hi = std::max(hi, v);
+  const bool no_better = hi < blank->chance_mrr + 0.05;  // within 0.05 of a random order, or below
+  std::ostringstream md;
+  md << "\n**Blank views:** " << blank->queries << " of " << scored << " scored queries ("
+     << Fixed(100.0 * blank->queries / scored, 0) << " %) see nothing but walls, floor and ceiling within "
+     << kBlankSpreadK << " K. The methods score " << Fixed(lo) << "-" << Fixed(hi) << " there, against "
+     << Fixed(blank->chance_mrr) << " for a random order: "
+     << (no_better ? "no method does better than chance on these queries, and every headline MRR mixes them in."
+                   : "some method does better than chance even there.")
+     << "\n";
+  return md.str();
+}
+
+// MRR and R@1 per stratum of the queries' conditions, with what chance scores there.
+std::string StrataMarkdown(const std::vector<StratumRow>& strata) {
+  if (strata.empty()) return "";
+  std::ostringstream md;
+  md << "\n### Results by condition\n\nMRR / R@1 of each method on the queries of each stratum "
+        "(conditions from the ground truth, per query in queries.csv; definitions in docs/guide/protocol.md). "
+        "*chance* is the MRR of a random order of each database: a method near it is guessing there.\n\n"
+     << "| stratum | queries | chance |";
+  for (const std::string& m : strata.front().methods) md << " " << SafeText(m) << " |";
+  md << "\n|---|---|---|";
+  for (size_t m = 0; m < strata.front().methods.size(); ++m) md << "---|";
+  md << "\n";
+  for (const StratumRow& row : strata) {
+    md << "| " << row.stratification << ": " << row.stratum << " | " << row.queries << " | " << Fixed(row.chance_mrr)
+       << " |";
+    for (size_t m = 0; m < row.methods.size(); ++m) md << " " << Fixed(row.mrr[m]) << " / " << Fixed(row.recall_at_1[m]) << " |";
+    md << "\n";
+  }
+  md << BlankViewSentence(strata);
+  return md.str();
+}
+
 // report.md's opening: the dataset and protocol, the results table shaped like the paper's
 // Table 1 and the same scores under the other ground truth.
 std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const std::vector<PairedComparison>& comparisons,
-                            const Dataset& dataset, const ProtocolOptions& protocol,
+                            const std::vector<StratumRow>& strata, const Dataset& dataset, const ProtocolOptions& protocol,
                             const std::string& other_ground_truth, const LabelDisagreement& labels) {
   const DatasetManifest& manifest = dataset.manifest();
   std::ostringstream md;
@@ -415,7 +494,8 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const std::vecto
   }
   if (!runs.empty()) {
     md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
-       << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs) << ComparisonsMarkdown(comparisons);
+       << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs) << ComparisonsMarkdown(comparisons)
+       << StrataMarkdown(strata);
   }
   md << "\n### The same scores under " << other_ground_truth << " ground truth\n\n"
      << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
@@ -437,7 +517,7 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
                            const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
                            const std::vector<std::string>& figures) {
   std::ostringstream md;
-  md << ResultsMarkdown(result.runs, result.comparisons, dataset, options.protocol, result.other_ground_truth,
+  md << ResultsMarkdown(result.runs, result.comparisons, result.strata, dataset, options.protocol, result.other_ground_truth,
                         result.label_disagreement);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
@@ -485,7 +565,7 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
   CreateOutputFolder(dir);
   const Diagnosis diagnosis = Diagnose(result);
   WriteFileAtomic(dir + "/report.json", ReportJson(result, dataset, options, timing, inspect, diagnosis).dump(2));
-  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result.runs));
+  WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result.runs, result.conditions));
   const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
   WriteFileAtomic(dir + "/report.md",
                   ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
@@ -539,7 +619,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   const FigureJobs figures = MetricFigures(runs);
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
-  md << ResultsMarkdown(runs, {}, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
+  md << ResultsMarkdown(runs, {}, {}, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
      << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";

@@ -13,6 +13,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/util/allocator.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/parallel.h"
 
 namespace hoilcd {
@@ -67,16 +68,45 @@ std::vector<std::string> LeaveOutUnavailable(const Dataset& dataset, BenchOption
   return notes;
 }
 
-// Step 2 of RunBench: the front ends the methods need, once each, with their --param values.
-FrontEndOutput RunNeededFrontEnds(const Dataset& dataset, const BenchOptions& options,
-                                  const std::vector<const LoopClosureMethod*>& order) {
+std::set<FrontEnd> NeededFrontEnds(const std::vector<const LoopClosureMethod*>& order) {
   std::set<FrontEnd> needed;
   for (const LoopClosureMethod* m : order) {
     const std::set<FrontEnd> f = m->FrontEnds();
     needed.insert(f.begin(), f.end());
   }
+  return needed;
+}
+
+// `options` with the --param values of the front ends in `needed`.
+BenchOptions WithNeededFrontEndParams(const BenchOptions& options, const std::set<FrontEnd>& needed) {
   BenchOptions front = options;
   for (FrontEnd f : needed) front = WithFrontEndParams(front, f);
+  return front;
+}
+
+// Before any work: the sizes the front ends' options ask of this dataset fit its image and this
+// machine's memory (a thumbnail no larger than the frame; its database within reach).
+void CheckFrontEndSizes(const Dataset& dataset, const BenchOptions& options,
+                        const std::vector<const LoopClosureMethod*>& order) {
+  const std::set<FrontEnd> needed = NeededFrontEnds(order);
+  if (!needed.count(FrontEnd::kThumbnails)) return;
+  const ThumbnailOptions& thumbnail = WithNeededFrontEndParams(options, needed).thumbnail;
+  const std::string scope = FrontEndName(FrontEnd::kThumbnails);
+  const CameraIntrinsics& image = dataset.manifest().intrinsics;
+  if (const std::string problem = thumbnail.CheckImage(image.width, image.height); !problem.empty()) {
+    throw InputError("--param", scope + "." + problem + " (the dataset's camera image)");
+  }
+  CheckAllocation(thumbnail.DatabaseBytes(dataset.num_frames()),
+                  "--param " + scope + ".width_px, " + scope + ".height_px",
+                  "the thumbnail database (" + std::to_string(dataset.num_frames()) + " frames of " +
+                      std::to_string(thumbnail.width_px) + " x " + std::to_string(thumbnail.height_px) + " px)");
+}
+
+// Step 2 of RunBench: the front ends the methods need, once each, with their --param values.
+FrontEndOutput RunNeededFrontEnds(const Dataset& dataset, const BenchOptions& options,
+                                  const std::vector<const LoopClosureMethod*>& order) {
+  const std::set<FrontEnd> needed = NeededFrontEnds(order);
+  const BenchOptions front = WithNeededFrontEndParams(options, needed);
   FrontEndOptions front_options;
   front_options.keypoints = front.keypoints;
   front_options.detector = front.detector;
@@ -145,12 +175,16 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
   return scored;
 }
 
-// Step 5: a 95 % interval on every headline metric and the paired comparison of every pair of
-// methods, all from the same resampled blocks of queries (bootstrap.h).
+// Step 5: the metrics per stratum of the queries' conditions (query_conditions.h), a 95 % interval
+// on every headline metric and the paired comparison of every pair of methods, all from the same
+// resampled blocks of queries (bootstrap.h).
 void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResult* result) {
   std::vector<const std::vector<QueryRecord>*> records;
-  for (const MethodRun& run : result->runs) records.push_back(&run.metrics.queries);
+  std::vector<std::string> names;
+  for (const MethodRun& run : result->runs) records.push_back(&run.metrics.queries), names.push_back(run.name);
   if (records.empty()) return;
+  result->strata = Stratify(result->conditions, names, records,
+                            options.strata.empty() ? DefaultStratifications() : options.strata);
   result->bootstrap = PlanBootstrap(records, dataset.manifest().frame_rate_hz, options.bootstrap);
   const uint64_t seed = options.bootstrap.seed;
   for (MethodRun& run : result->runs) {
@@ -181,8 +215,10 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
-  const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> skipped = LeaveOutUnavailable(dataset, &options);
+  const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
+  CheckFrontEndSizes(dataset, options, order);
+  const auto start = std::chrono::steady_clock::now();
 
   // Step 1: the protocol's queries, labelled under both ground truths.
   const Labelling labelling = LabelQueries(dataset, options.protocol);
@@ -193,9 +229,16 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   result.other_ground_truth = labelling.other_ground_truth;
   result.other_queries = labelling.other_queries;
   result.label_disagreement = labelling.disagreement;
+  result.conditions = ComputeQueryConditions(dataset, labelling.queries, options.threads);
+
+  // Every method scores every pair: their scores must fit before the front ends run.
+  double pairs = 0;
+  for (const Query& q : labelling.queries) pairs += static_cast<double>(q.database.size());
+  CheckAllocation(pairs * sizeof(double) * static_cast<double>(order.size()), "--methods",
+                  "the scores of " + std::to_string(order.size()) + " methods over " +
+                      std::to_string(static_cast<int64_t>(pairs)) + " query pairs");
 
   // Step 2: the front ends the methods need, once each; step 3: every method's scores.
-  const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
   const FrontEndOutput front_ends = RunNeededFrontEnds(dataset, options, order);
   AddFeaturesAndTracking(dataset, options, front_ends, &result);
   std::map<std::string, MethodScores> scored = ScoreMethods(dataset, options, order, labelling, front_ends);

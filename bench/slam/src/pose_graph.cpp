@@ -146,7 +146,7 @@ const OptionTable<PoseGraphOptions>& PoseGraphOptions::Table() {
                "chi (Mahalanobis, dimensionless) where the Cauchy loss bends")
           .Add("dcs_phi", &O::dcs_phi, 1.0, "", R::Any().Above(0),
                "Phi of Dynamic Covariance Scaling, a chi^2 (dimensionless)")
-          .Add("max_iterations", &O::max_iterations, 100, "", R::Any().AtLeast(1), "Levenberg-Marquardt iterations");
+          .Add("max_iterations", &O::max_iterations, 100, "", R::Closed(1, 10000), "Levenberg-Marquardt iterations");
   return table;
 }
 

@@ -7,6 +7,7 @@
 
 #include "hoilcd/bench/slam/trajectory_metrics.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -96,7 +97,7 @@ const OptionTable<SlamOptions>& SlamOptions::Table() {
           .Add("loop_yaw_sd_deg", &O::loop_yaw_sd_deg, 20, "deg", R::Any().Above(0),
                "sigma of the relative yaw of a loop (weak: revisits run the same way)")
           .Add("rpe_delta_m", &O::rpe_delta_m, 1.0, "m", R::Any().Above(0), "RPE pair spacing along the true path")
-          .Add("keyframe_every", &O::keyframe_every, 5, "frames", R::Any().AtLeast(1), "frames per graph node");
+          .Add("keyframe_every", &O::keyframe_every, 5, "frames", R::Closed(1, kMaxFrames), "frames per graph node");
   return table;
 }
 

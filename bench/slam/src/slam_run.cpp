@@ -18,7 +18,7 @@ const OptionTable<SlamRunOptions>& SlamRunOptions::Table() {
   static const OptionTable<O> table =
       OptionTable<O>()
           .Nest("slam", &O::slam, SlamOptions::Table())
-          .Add("curve_points", &O::curve_points, 6, "", R::Any().AtLeast(2), "thresholds on each ATE curve")
+          .Add("curve_points", &O::curve_points, 6, "", R::Closed(2, 1000), "thresholds on each ATE curve")
           .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "methods solved at once (0: every core)");
   return table;
 }

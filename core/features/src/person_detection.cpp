@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/sizes.h"
 #include "hoilcd/core/util/stats.h"
 
 namespace hoilcd {
@@ -27,12 +28,14 @@ const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
           .Add("u8_max_c", &O::u8_max_c, 30, "degC", R::Any(),
                "shown as 255 in the 8-bit frame (the manifest's window_max_c)")
           .Rule("u8_max_c", [](const O& o) { return o.u8_max_c > o.u8_min_c ? "" : "must exceed u8_min_c"; })
-          .Add("open_kernel_px", &O::open_kernel_px, 3, "px", R::Any().AtLeast(0),
+          // Speckle and holes are a few pixels; a kernel as wide as a seated person (~30 px at
+          // 256 x 192) erases people, and its cost grows with its area.
+          .Add("open_kernel_px", &O::open_kernel_px, 3, "px", R::Closed(0, 31),
                "elliptic opening diameter that removes speckle (0: none)")
-          .Add("close_kernel_px", &O::close_kernel_px, 5, "px", R::Any().AtLeast(0),
+          .Add("close_kernel_px", &O::close_kernel_px, 5, "px", R::Closed(0, 31),
                "elliptic closing diameter that fills small holes (0: none)")
           // Splitting touching neighbours.
-          .Add("profile_smooth_px", &O::profile_smooth_px, 3, "px", R::Any().AtLeast(1),
+          .Add("profile_smooth_px", &O::profile_smooth_px, 3, "px", R::Closed(1, kMaxImageSidePx),
                "box-filter width over the per-column pixel counts")
           .Add("split_valley_ratio", &O::split_valley_ratio, 0.85, "", R::Any().Above(0).Below(1),
                "split at a valley at most this fraction of the lower peak")
@@ -40,7 +43,7 @@ const OptionTable<PersonDetectorOptions>& PersonDetectorOptions::Table() {
                "of the lower peak; the valley floor is cut in its middle")
           .Add("min_peak_ratio", &O::min_peak_ratio, 0.5, "", R::Closed(0, 1),
                "a peak is a person only if at least this fraction of the blob's maximum")
-          .Add("min_split_width_px", &O::min_split_width_px, 8, "px", R::Any().AtLeast(1),
+          .Add("min_split_width_px", &O::min_split_width_px, 8, "px", R::Closed(1, kMaxImageSidePx),
                "every part of a split is at least this wide")
           // Head seeds.
           .Add("head_min_c", &O::head_min_c, 31.0, "degC", R::Any(), "lowest skin temperature of a head seed")

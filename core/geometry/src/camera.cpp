@@ -1,6 +1,9 @@
 #include "hoilcd/core/geometry/camera.h"
 
 #include <cmath>
+#include <string>
+
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 
@@ -60,7 +63,9 @@ Eigen::Vector3d CameraIntrinsics::Unproject(double u, double v) const {
 
 std::string CameraIntrinsics::Check() const {
   if (width <= 0 || height <= 0) return "image size must be positive";
-  if (width > 8192 || height > 8192) return "image size must be at most 8192 px";
+  if (width > kMaxImageSidePx || height > kMaxImageSidePx) {
+    return "image size must be at most " + std::to_string(kMaxImageSidePx) + " px";
+  }
   if (!(fx > 0) || !(fy > 0)) return "focal lengths must be positive";
   return "";
 }

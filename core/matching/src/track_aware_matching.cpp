@@ -6,6 +6,7 @@
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/random.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -46,7 +47,8 @@ const OptionTable<TrackAwareOptions>& TrackAwareOptions::Table() {
       OptionTable<O>()
           .Add("min_points_per_person", &O::min_points_per_person, 3, "", R::Any().AtLeast(1),
                "persons with fewer HOI points are ignored")
-          .Add("profile_samples", &O::profile_samples, 16, "", R::Any().AtLeast(2),
+          // No more samples than a person's box can have columns.
+          .Add("profile_samples", &O::profile_samples, 16, "", R::Closed(2, kMaxImageSidePx),
                "samples of the contour profile compared between persons")
           .Add("position_weight", &O::position_weight, 1.0, "", R::Any().AtLeast(0),
                "cost per px of offset of the contour centre (x and mean y)")

@@ -14,7 +14,8 @@ const OptionTable<RansacOptions>& RansacOptions::Table() {
                "a degenerate sample is redrawn (up to 10 draws per trial on average) instead of using up its trial")
           .Add("inlier_threshold_px", &O::inlier_threshold_px, 5.0, "px", R::Any().Above(0),
                "reprojection error bound of an inlier")
-          .Add("local_optimisation_refits", &O::local_optimisation_refits, 0, "", R::Any().AtLeast(0),
+          // Each refit is a least-squares solve per better hypothesis; LO-RANSAC uses a few.
+          .Add("local_optimisation_refits", &O::local_optimisation_refits, 0, "", R::Closed(0, 100),
                "LO-RANSAC least-squares refits on the inliers of each new best model (0: plain RANSAC, the paper's)");
   return table;
 }

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -38,13 +39,13 @@ const OptionTable<TemporalConsistencyOptions>& TemporalConsistencyOptions::Table
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("consecutive_queries", &O::consecutive_queries, 3, "", R::Any().AtLeast(1),
+          .Add("consecutive_queries", &O::consecutive_queries, 3, "", R::Closed(1, kMaxFrames),
                "queries in a consistent run, the current one included (1 = off)")
-          .Add("candidates_per_query", &O::candidates_per_query, 5, "", R::Any().AtLeast(1),
+          .Add("candidates_per_query", &O::candidates_per_query, 5, "", R::Closed(1, kMaxFrames),
                "best frames of each earlier query that support a chain")
-          .Add("max_frame_gap", &O::max_frame_gap, 10, "frames", R::Any().AtLeast(0),
+          .Add("max_frame_gap", &O::max_frame_gap, 10, "frames", R::Closed(0, kMaxFrames),
                "database frames a chain may advance per query step")
-          .Add("max_query_gap", &O::max_query_gap, 1, "frames", R::Any().AtLeast(1),
+          .Add("max_query_gap", &O::max_query_gap, 1, "frames", R::Closed(1, kMaxFrames),
                "frames between two queries for them to count as consecutive");
   return table;
 }

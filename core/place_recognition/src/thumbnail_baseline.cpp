@@ -7,7 +7,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -34,14 +36,29 @@ const OptionTable<ThumbnailOptions>& ThumbnailOptions::Table() {
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("width_px", &O::width_px, 32, "px", R::Any().AtLeast(1), "thumbnail width")
-          .Add("height_px", &O::height_px, 24, "px", R::Any().AtLeast(1), "thumbnail height")
-          .Add("patch_px", &O::patch_px, 8, "px", R::Any().AtLeast(1),
+          // No larger than the camera image can be (the dataset's own image: CheckImage).
+          .Add("width_px", &O::width_px, 32, "px", R::Closed(1, kMaxImageSidePx), "thumbnail width")
+          .Add("height_px", &O::height_px, 24, "px", R::Closed(1, kMaxImageSidePx), "thumbnail height")
+          .Add("patch_px", &O::patch_px, 8, "px", R::Closed(1, kMaxImageSidePx),
                "side of the square patches normalised to zero mean and unit variance");
   return table;
 }
 
 std::string ThumbnailOptions::Check() const { return Table().FirstProblem(*this); }
+
+std::string ThumbnailOptions::CheckImage(int image_width_px, int image_height_px) const {
+  if (width_px > image_width_px) {
+    return "width_px: must be at most the image width, " + std::to_string(image_width_px) + " px";
+  }
+  if (height_px > image_height_px) {
+    return "height_px: must be at most the image height, " + std::to_string(image_height_px) + " px";
+  }
+  return "";
+}
+
+double ThumbnailOptions::DatabaseBytes(int frames) const {
+  return static_cast<double>(frames) * width_px * height_px * sizeof(float);
+}
 
 std::vector<float> ThumbnailDescriptor(const cv::Mat& thermal_u8, const ThumbnailOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
@@ -120,6 +137,9 @@ std::vector<std::vector<float>> ThumbnailIndex::ScoreAll(const std::vector<int>&
                                                          int threads) const {
   for (int frame : queries) descriptor(frame);
   for (int frame : database) descriptor(frame);
+  CheckAllocation(static_cast<double>(queries.size()) * (database.size() * sizeof(float) + sizeof(std::vector<float>)),
+                  "", "the " + std::to_string(queries.size()) + " x " + std::to_string(database.size()) +
+                          " thumbnail similarity matrix");
   std::vector<std::vector<float>> scores(queries.size(), std::vector<float>(database.size()));
   ParallelForChunks(static_cast<int64_t>(queries.size()), 8, ResolveThreadCount(threads),
                     [&](int64_t begin, int64_t end, int) {
@@ -142,15 +162,19 @@ const OptionTable<SeqSlamOptions>& SeqSlamOptions::Table() {
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("sequence_length", &O::sequence_length, 10, "frames", R::Any().AtLeast(1),
+          // No longer than a sequence can be; longer than the sequence at hand counts as all of it.
+          .Add("sequence_length", &O::sequence_length, 10, "frames", R::Closed(1, kMaxFrames),
                "frames along each trajectory, the end point included")
-          .Add("min_velocity", &O::min_velocity, 0.8, "", R::Any(),
+          // |v| * sequence_length stays far inside an int; a line faster than 1000 frames per frame
+          // crosses a whole sequence in a few steps.
+          .Add("min_velocity", &O::min_velocity, 0.8, "", R::Closed(-1000, 1000),
                "slowest trajectory, database frames per query frame")
-          .Add("max_velocity", &O::max_velocity, 1.25, "", R::Any(),
+          .Add("max_velocity", &O::max_velocity, 1.25, "", R::Closed(-1000, 1000),
                "fastest trajectory, database frames per query frame")
           .Rule("min_velocity",
                 [](const O& o) { return o.min_velocity <= o.max_velocity ? "" : "must be at most max_velocity"; })
-          .Add("velocity_steps", &O::velocity_steps, 5, "", R::Any().AtLeast(1),
+          // SeqSLAM tries a handful (5 by default); the search's time grows with their number.
+          .Add("velocity_steps", &O::velocity_steps, 5, "", R::Closed(1, 100),
                "trajectories tried between the slowest and fastest velocity (1: the midpoint)");
   return table;
 }
@@ -166,7 +190,10 @@ std::vector<std::vector<float>> SequenceScores(const std::vector<std::vector<flo
     HOILCD_CHECK_MSG(static_cast<int>(row.size()) == cols, "similarity rows differ in length");
   }
   // column_offsets[s][k]: how many database frames trajectory s moves back over k query frames.
-  const int length = options.sequence_length;
+  // A line never has more steps than there are rows.
+  const int length = std::min(options.sequence_length, std::max(rows, 1));
+  CheckAllocation(static_cast<double>(rows) * (static_cast<double>(cols) * sizeof(float) + sizeof(std::vector<float>)),
+                  "", "the " + std::to_string(rows) + " x " + std::to_string(cols) + " sequence similarity matrix");
   std::vector<std::vector<int>> column_offsets(static_cast<size_t>(options.velocity_steps));
   for (int s = 0; s < options.velocity_steps; ++s) {
     const double v =

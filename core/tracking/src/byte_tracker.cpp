@@ -8,6 +8,7 @@
 #include "hoilcd/core/tracking/box_iou.h"
 #include "hoilcd/core/tracking/lapjv.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 
@@ -34,7 +35,7 @@ const OptionTable<ByteTrackOptions>& ByteTrackOptions::Table() {
                "low-score association limit on the cost 1 - IoU")
           .Add("unconfirmed_match_thresh", &O::unconfirmed_match_thresh, 0.7, "", R::Any().Above(0).AtMost(1),
                "unconfirmed-track limit on the cost 1 - IoU*score")
-          .Add("track_buffer_frames", &O::track_buffer_frames, 30, "frames", R::Any().AtLeast(0),
+          .Add("track_buffer_frames", &O::track_buffer_frames, 30, "frames", R::Closed(0, kMaxFrames),
                "frames at 30 Hz a lost track is kept (scaled by the frame rate)")
           .Add("frame_rate_hz", &O::frame_rate_hz, 25, "Hz", R::Any().Above(0),
                "frame rate; lost tracks live int(rate / 30 * buffer) frames")

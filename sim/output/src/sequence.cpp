@@ -11,8 +11,10 @@
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/dataset/video.h"
 #include "hoilcd/core/util/allocator.h"
+#include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
+#include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/output/frame_writer.h"
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/render/visibility.h"
@@ -78,7 +80,7 @@ const OptionTable<SequenceOptions>& SequenceOptions::Table() {
       OptionTable<O>()
           .Add("output_dir", &O::output_dir, "", {}, "dataset folder (created if missing)")
           .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "an output folder is required" : ""; })
-          .Add("frames", &O::frames, 0, "frames", OptionRange().AtLeast(0),
+          .Add("frames", &O::frames, 0, "frames", OptionRange::Closed(0, kMaxFrames),
                "render only the first N frames (0: the scene's count)")
           .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: the CPUs this process may use)")
           .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
@@ -150,6 +152,7 @@ class SequenceRender {
   }
 
   SequenceResult Run() {
+    CheckFramesInFlightFit(ResolveThreadCount(options_.threads));
     OpenOrResume();
     result_.frames_total = frames_;
     result_.warnings = world_.warnings();
@@ -193,6 +196,19 @@ class SequenceRender {
   }
 
  private:
+  // The frames the writer may hold (2 per encoder thread) and the one rendering, each its
+  // temperature image and EXR channels (T, T_true, Z, ids: about 26 bytes a pixel, 32 with the
+  // renderer's buffers), against this process's memory: a large camera at many threads is
+  // refused by name before the first frame.
+  void CheckFramesInFlightFit(int workers) const {
+    constexpr double kBytesPerPixel = 32;
+    const double frames = 2.0 * workers + 2;
+    CheckAllocation(frames * intrinsics_.width * intrinsics_.height * kBytesPerPixel, "--threads",
+                    "rendering " + std::to_string(workers) + " threads' frames in flight (" +
+                        std::to_string(static_cast<int>(frames)) + " frames of " + std::to_string(intrinsics_.width) +
+                        " x " + std::to_string(intrinsics_.height) + " px, /camera/width_px and /camera/height_px)");
+  }
+
   static DatasetOutputs ParseOutputs(const std::string& text) {
     DatasetOutputs outputs;
     HOILCD_CHECK(DatasetOutputs::Parse(text, &outputs).empty());  // SequenceOptions::Check ran

@@ -9,6 +9,7 @@
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/random.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -482,7 +483,7 @@ const OptionTable<RouteOptions>& RouteOptions::Table() {
                 })
           .Add("laps", &O::laps, 2.0, "", R().Above(0).AtMost(1000), "laps to drive when frames is 0")
           .CodeOnly()
-          .Add("frames", &O::frames, 0, "", R().AtLeast(0), "frames to simulate; > 0 overrides laps (the scene's frames)")
+          .Add("frames", &O::frames, 0, "", R::Closed(0, kMaxFrames), "frames to simulate; > 0 overrides laps (the scene's frames)")
           .CodeOnly()
           .Add("cruise_speed_m_s", &O::cruise_speed_m_s, 0.43, "m/s", R().Above(0), "speed of the base on straight stretches")
           .Add("lookahead_m", &O::lookahead_m, 0.20, "m", R().Above(0), "pure-pursuit lookahead along the path")

@@ -317,5 +317,19 @@ TEST(SweepPlanMaking, AValueTheSceneRejectsFailsBeforeRendering) {
             std::string::npos);
 }
 
+TEST(SweepPlanMaking, ACrossProductBeyondAHundredThousandRunsIsRefusedByNameBeforeListingIt) {
+  const test::TestDir temp;
+  const std::string scene = WriteTinyScene(temp.path());
+  std::string values;
+  for (int v = 0; v < 1000; ++v) values += (v ? "," : "") + std::to_string(v);
+  const std::string message = InputErrorOf([&] {
+    MakeSweepPlan(scene, {"crowd.walkers=" + values, "frames=" + values}, 10000, BenchOptions{});
+  });
+  EXPECT_NE(message.find("--set: 1000 values of crowd.walkers x 1000 values of frames x 10000 seeds is 10000000000 runs; "
+                         "at most 100000"),
+            std::string::npos)
+      << message;
+}
+
 }  // namespace
 }  // namespace hoilcd

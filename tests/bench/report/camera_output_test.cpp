@@ -24,7 +24,7 @@ std::string RenderInto(const test::TestDir& temp, const std::vector<std::string>
 
 TEST(CameraOutput, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   ExpectConstructedHoldsTheTableDefaults<CameraOutputOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<CameraOutputOptions>(), 4);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<CameraOutputOptions>(), 5);
   CameraOutputOptions options;
   options.patch_px = 65;
   EXPECT_EQ(options.Check(), "patch_px: must be in [1, 64] px (got 65)");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "test_dir.h"
@@ -54,6 +55,25 @@ TEST(Gate, JUnitHasOneTestCasePerMethodAndAFailureForEachRegressedOne) {
   EXPECT_NE(xml.find("<testsuite name=\"hoilcd\" tests=\"2\" failures=\"1\""), std::string::npos) << xml;
   EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"slcd\">\n    <failure"), std::string::npos) << xml;
   EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"dlcd\">\n    <system-out>"), std::string::npos) << xml;
+}
+
+TEST(Gate, JUnitOfAMethodNamedWithControlAndLatin1BytesIsWellFormedXml10) {
+  nlohmann::json current = Report(0.3, 0.4, 0.2);
+  const std::string name = "m\x01y <caf\xe9> \xef\xbf\xbe";
+  current["methods"][name] = {{"mrr", 0.1}, {"recall_at_1", 0.1}};
+  nlohmann::json baseline = Report(0.3, 0.4, 0.2);
+  baseline["methods"][name] = {{"mrr", 0.9}, {"recall_at_1", 0.9}};
+  const std::string xml = JUnitXml(current, CompareToBaseline(baseline, current, 0.0), 0.0);
+  // The name shows its bytes visibly, in the test case and in the failure text.
+  EXPECT_NE(xml.find("name=\"m\\x01y &lt;caf\\xe9&gt; \\xef\\xbf\\xbe\">"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("method m\\x01y &lt;caf\\xe9&gt; \\xef\\xbf\\xbe, mrr"), std::string::npos) << xml;
+  // XML 1.0's characters: valid UTF-8 (SafeText leaves it alone) with no control character but
+  // line feeds, and neither U+FFFE nor U+FFFF.
+  std::string without_line_feeds = xml;
+  for (char& c : without_line_feeds)
+    if (c == '\n') c = ' ';
+  EXPECT_EQ(SafeText(without_line_feeds), without_line_feeds);
+  EXPECT_EQ(xml.find("\xef\xbf\xbe"), std::string::npos);
 }
 
 TEST(Gate, ABaselineThatIsNotAReportIsAnErrorNamingTheFileAndWhatWasExpected) {

@@ -212,6 +212,23 @@ TEST(Runner, ADatasetWithoutThermalFramesIsAnInputErrorNamingTheMissingOutput) {
   EXPECT_EQ(result.runs.size(), 2u);
 }
 
+TEST(Runner, AThumbnailLargerThanTheCameraImageIsRefusedByNameBeforeAnyWork) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "ds", {"frames=12"});
+  BenchOptions options;
+  options.methods = {"thumb"};
+  options.params = {"thumbnails.width_px=200"};  // within [1, 8192], wider than the 128 px camera
+  try {
+    RunBench(dataset, options);
+    FAIL() << "a 200 px thumbnail of a 128 px image was benched";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problems().at(0).where, "--param");
+    EXPECT_NE(std::string(e.what()).find("thumbnails.width_px: must be at most the image width, 128 px"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Runner, UnknownMethodsAreInputErrorsNamingThem) {
   try {
     ParseMethodList("slcd,superglue");

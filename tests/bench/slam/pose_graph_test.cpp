@@ -141,7 +141,7 @@ TEST(PoseGraphTest, UnknownBackendIsRejected) {
 TEST(PoseGraphTest, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   EXPECT_EQ(PoseGraphOptions().backend, "dcs");
   ExpectConstructedHoldsTheTableDefaults<PoseGraphOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PoseGraphOptions>(), 3);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PoseGraphOptions>(), 4);
 }
 
 TEST(PoseGraphTest, G2oTextHasOneVertexPerNodeOneEdgePerConstraintAndFixesNodeZero) {

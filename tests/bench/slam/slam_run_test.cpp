@@ -90,7 +90,7 @@ TEST(SlamRun, BadSlamOptionsAreInputErrorsOfTheBench) {
 TEST(SlamRun, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   EXPECT_TRUE(SlamRunOptions().calibrated_threshold.empty());
   ExpectConstructedHoldsTheTableDefaults<SlamRunOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SlamRunOptions>(), 9);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SlamRunOptions>(), 12);
 }
 
 TEST(SlamRun, PosesWithoutOdometryColumnsAreRejectedWhenTheDatasetIsRead) {

@@ -243,7 +243,7 @@ TEST(SlamTest, BadSlamOptionsAreRejected) {
 TEST(SlamTest, OptionsHoldTheirTablesDefaultsWithNoLoopThresholdAndEveryBoundIsChecked) {
   EXPECT_TRUE(std::isnan(SlamOptions().loop_threshold));  // NaN: the operating point
   ExpectConstructedHoldsTheTableDefaults<SlamOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SlamOptions>(), 7);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SlamOptions>(), 9);
 }
 
 }  // namespace

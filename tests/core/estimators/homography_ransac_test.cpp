@@ -256,7 +256,7 @@ TEST(RansacOptions, CheckNamesEachInvalidFieldAndEstimateRejectsThem) {
   bad.trials = 100;
   EXPECT_EQ(bad.Check(), "inlier_threshold_px: must be above 0 px (got -1)");
   bad.inlier_threshold_px = 5;
-  EXPECT_EQ(bad.Check(), "local_optimisation_refits: must be at least 0 (got -2)");
+  EXPECT_EQ(bad.Check(), "local_optimisation_refits: must be in [0, 100] (got -2)");
   RansacOptions too_many;
   too_many.trials = 20'000'000;  // sample counters would pass 2^32
   EXPECT_EQ(too_many.Check(), "trials: must be in [1, 10000000] (got 20000000)");

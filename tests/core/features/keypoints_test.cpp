@@ -77,7 +77,7 @@ TEST(Keypoints, OptionsHoldSuperPointLikeDefaultsFromTheirTableAndEveryBoundIsCh
   EXPECT_EQ(options.nms_radius_px, 4.0);
   EXPECT_EQ(options.border_px, 4);
   ExpectConstructedHoldsTheTableDefaults<KeypointOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<KeypointOptions>(), 10);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<KeypointOptions>(), 13);
 }
 
 }  // namespace

@@ -268,7 +268,7 @@ TEST(PersonDetectorOptions, CheckNamesTheBadField) {
 
 TEST(PersonDetectorOptions, HoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   ExpectConstructedHoldsTheTableDefaults<PersonDetectorOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PersonDetectorOptions>(), 36);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<PersonDetectorOptions>(), 40);
 }
 
 }  // namespace

@@ -198,7 +198,7 @@ TEST(TrackAwareMatching, OptionChecksNameTheBadField) {
 
 TEST(TrackAwareMatching, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   ExpectConstructedHoldsTheTableDefaults<TrackAwareOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TrackAwareOptions>(), 6);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TrackAwareOptions>(), 7);
 }
 
 }  // namespace

@@ -142,7 +142,7 @@ TEST(RansacOptions, HoldsThePapersDefaultsFromItsTableAndChecksEveryBound) {
   EXPECT_EQ(options.inlier_threshold_px, 5.0);
   EXPECT_EQ(options.local_optimisation_refits, 0);
   ExpectConstructedHoldsTheTableDefaults<RansacOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<RansacOptions>(), 4);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<RansacOptions>(), 5);
 }
 
 }  // namespace

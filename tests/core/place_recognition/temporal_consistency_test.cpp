@@ -124,7 +124,7 @@ TEST(TemporalConsistency, OptionChecksNameTheBadField) {
 
 TEST(TemporalConsistency, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   ExpectConstructedHoldsTheTableDefaults<TemporalConsistencyOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TemporalConsistencyOptions>(), 4);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<TemporalConsistencyOptions>(), 8);
 }
 
 TEST(TemporalConsistency, UnsortedFramesAreRejected) {

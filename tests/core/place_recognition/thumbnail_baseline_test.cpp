@@ -185,9 +185,41 @@ TEST(ThumbnailBaseline, OptionChecksNameTheBadField) {
 
 TEST(ThumbnailBaseline, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
   ExpectConstructedHoldsTheTableDefaults<ThumbnailOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ThumbnailOptions>(), 3);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ThumbnailOptions>(), 6);
   ExpectConstructedHoldsTheTableDefaults<SeqSlamOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SeqSlamOptions>(), 2);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<SeqSlamOptions>(), 8);
+}
+
+TEST(ThumbnailBaseline, ThumbnailSizeBeyondTheImageIsRefusedByName) {
+  ThumbnailOptions thumbnail;
+  thumbnail.width_px = thumbnail.height_px = 100000;  // the audit's 40 GB request
+  EXPECT_NE(thumbnail.Check().find("width_px: must be in [1, 8192]"), std::string::npos) << thumbnail.Check();
+  thumbnail = ThumbnailOptions();
+  EXPECT_EQ(thumbnail.CheckImage(256, 192), "");
+  thumbnail.width_px = 257;
+  EXPECT_EQ(thumbnail.CheckImage(256, 192), "width_px: must be at most the image width, 256 px");
+  thumbnail = ThumbnailOptions();
+  thumbnail.height_px = 193;
+  EXPECT_EQ(thumbnail.CheckImage(256, 192), "height_px: must be at most the image height, 192 px");
+  EXPECT_DOUBLE_EQ(ThumbnailOptions().DatabaseBytes(1996), 1996.0 * 32 * 24 * 4);
+}
+
+TEST(ThumbnailBaseline, SequenceLengthBeyondAnySequenceIsRefusedByName) {
+  SeqSlamOptions sequence;
+  sequence.sequence_length = 2147483647;  // the audit's endless run
+  EXPECT_NE(sequence.Check().find("sequence_length: must be in [1, 1000000]"), std::string::npos) << sequence.Check();
+  sequence = SeqSlamOptions();
+  sequence.velocity_steps = 101;
+  EXPECT_NE(sequence.Check().find("velocity_steps"), std::string::npos);
+}
+
+TEST(ThumbnailBaseline, SequenceLongerThanTheMatrixCountsAsAllOfItsRows) {
+  const std::vector<std::vector<float>> similarity = {
+      {1.0f, 0.0f, 0.0f}, {0.6f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+  SeqSlamOptions three, all;
+  three.sequence_length = 3;
+  all.sequence_length = 1000000;
+  EXPECT_EQ(SequenceScores(similarity, all, 1), SequenceScores(similarity, three, 1));
 }
 
 }  // namespace

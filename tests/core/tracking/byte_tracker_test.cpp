@@ -164,7 +164,7 @@ TEST(ByteTrackOptions, HoldThePythonReferencesDefaultsFromTheirTableAndEveryBoun
   EXPECT_TRUE(o.fuse_score);
   EXPECT_EQ(o.iou_convention, IouConvention::kPlusOnePixel);
   ExpectConstructedHoldsTheTableDefaults<ByteTrackOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ByteTrackOptions>(), 14);
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ByteTrackOptions>(), 15);
 }
 
 TEST(IouDistance, IsOneMinusIntersectionOverUnion) {

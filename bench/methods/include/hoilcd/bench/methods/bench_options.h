@@ -8,6 +8,7 @@
 
 #include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/protocol.h"
+#include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
 #include "hoilcd/bench/slam/slam_run.h"
 #include "hoilcd/core/features/hoi_features.h"
@@ -29,6 +30,8 @@ struct BenchOptions {
   // --param NAME=VALUE: "<method>.<field>" or "<front end>.<field>" (method_params.h); the only
   // way to set a method's own options.
   std::vector<std::string> params;
+  // Stratifications of the report (query_conditions.h StratificationNames(); empty: the default).
+  std::vector<std::string> strata;
   ProtocolOptions protocol;
   BootstrapOptions bootstrap;        // the metrics' intervals (blocks span protocol.exclusion_window_s)
   KeypointOptions keypoints;

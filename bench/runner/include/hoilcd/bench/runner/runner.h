@@ -12,6 +12,7 @@
 #include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/metrics.h"
 #include "hoilcd/bench/evaluation/protocol.h"
+#include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/slam/slam_run.h"
@@ -48,6 +49,8 @@ struct BenchResult {
   std::vector<std::string> skipped;
   BootstrapPlan bootstrap;                 // how the intervals resampled the queries
   std::vector<PairedComparison> comparisons;  // MRR of every pair of runs, in run order
+  std::vector<QueryConditions> conditions;    // per query, parallel to queries
+  std::vector<StratumRow> strata;             // every run's MRR and R@1 per stratum (options.strata)
   std::vector<FrameFeatures> features;     // per frame
   TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)
   bool tracking_evaluated = false;

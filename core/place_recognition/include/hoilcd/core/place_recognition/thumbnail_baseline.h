@@ -23,6 +23,11 @@ struct ThumbnailOptions {
   static const OptionTable<ThumbnailOptions>& Table();
   // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
+  // "" when a thumbnail of this size fits in a width x height image (area downsampling only
+  // shrinks), else the problem ("width_px: must be at most the image width, 256 px").
+  std::string CheckImage(int width_px, int height_px) const;
+  // Bytes of the descriptors of `frames` frames (floats, width_px x height_px each).
+  double DatabaseBytes(int frames) const;
 };
 
 // The descriptor of one 8-bit frame (CV_8UC1): area-downsampled to width x height, every patch
@@ -49,6 +54,7 @@ class ThumbnailIndex {
   // scores[i][j] = ThumbnailSimilarity(frame queries[i], frame database[j]) in [-1, 1], higher
   // is more similar; parallel over query rows (threads 0 = all cores), identical at any thread
   // count. ScoreAll(all, all, threads) gives the dense frame-by-frame matrix SequenceScores takes.
+  // Throws InputError when the matrix needs more memory than this process may allocate.
   std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries,
                                            const std::vector<int>& database, int threads) const;
 
@@ -75,7 +81,9 @@ struct SeqSlamOptions {
 // `similarity[i][j]`: single-frame similarity of query-timeline frame i and database-timeline
 // frame j, both consecutive in time (e.g. the dense all-frames matrix, rows = cols = frames).
 // Returns a matrix of the same shape: out[i][j] = max over velocities v of the mean of
-// similarity[i - k][j - round(v k)] for k = 0..sequence_length-1, the line ending at (i, j).
+// similarity[i - k][j - round(v k)] for k = 0..sequence_length-1, the line ending at (i, j); a
+// sequence_length beyond the rows counts as the rows there are. Throws InputError when the result
+// needs more memory than this process may allocate.
 // Near the first rows a line is shortened to the rows there are (every entry of the row alike);
 // steps that leave the columns count as similarity 0 (NCC's "unrelated"), so a line cut short at
 // the matrix edge cannot win on one lucky frame. Parallel over rows, deterministic.
