@@ -114,7 +114,8 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
 
 BenchOptions ResolveBench(const BenchArgs& args, int threads) {
   BenchOptions o = args.options;
-  o.methods = args.methods.empty() ? DefaultMethods() : ParseMethodList(args.methods);
+  o.methods = args.methods.empty() ? DefaultMethods() : ParseMethodList(args.methods, &o.optional_methods);
+  if (args.methods.empty()) o.optional_methods = o.methods;
   o.threads = threads;
   CheckParams(o.params, o.methods);
   if (const std::string problem = o.Check(); !problem.empty()) throw InputError("bench options", problem);
@@ -159,6 +160,7 @@ void PrintWarnings(const std::vector<std::string>& warnings) {
 }
 
 void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
+  PrintWarnings(result.skipped);
   std::printf("%s", FormatResultTable(result).c_str());
   std::printf("%s\n", PaperFindingSummary(result).c_str());
   std::printf("report: %s/report.md\n", report_dir.c_str());

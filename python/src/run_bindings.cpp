@@ -97,11 +97,11 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
                std::optional<std::string> output, const std::string& protocol, const std::string& ground_truth,
                double radius_m, int threads) {
   BenchOptions options;
-  options.methods = DefaultMethods();
+  options.methods = options.optional_methods = DefaultMethods();  // as the command line's
   if (methods) {
     std::string csv;
     for (const std::string& name : *methods) csv += (csv.empty() ? "" : ",") + name;
-    options.methods = ParseMethodList(csv);
+    options.methods = ParseMethodList(csv, &options.optional_methods);
   }
   options.protocol = Protocol(protocol, ground_truth, radius_m, options.protocol.exclusion_window_s,
                               options.protocol.heading_tolerance_deg);

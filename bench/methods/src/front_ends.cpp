@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "hoilcd/bench/methods/front_end_input.h"
+#include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
 
@@ -52,10 +53,69 @@ void TrackBlock(int block, int size, const FrontEndOptions& options, ByteTracker
   }
 }
 
+// The oracle front ends of frame f, from the dataset's ground truth (no order between frames).
+void RunOracles(const Dataset& dataset, int f, const FrontEndOptions& options, FrontEndOutput* out) {
+  const bool ideal = out->Ran(FrontEnd::kIdealKeypoints), persons = out->Ran(FrontEnd::kTruePersons);
+  if (!ideal && !persons) return;
+  const GroundTruthInput input = ReadGroundTruthInput(dataset, f, ideal, persons);
+  if (ideal) {
+    const auto t = Clock::now();
+    out->ideal_keypoints[f] = DetectKeypoints(input.ideal_u8, options.keypoints);
+    out->ideal_keypoints_ms[f] = MsSince(t);
+  }
+  if (persons) {
+    const FramePersons& people = dataset.persons()[f];
+    HOILCD_CHECK_MSG(people.frame == f, "persons.json lists frame " << people.frame << " at " << f);
+    const auto t = Clock::now();
+    out->true_hoi[f] = ExtractHoiFeatures(input.person_mask, GroundTruthTracks(people), options.hoi);
+    out->true_persons_ms[f] = MsSince(t);
+  }
+}
+
+// The oracles' point sets per frame into their retrieval indexes.
+void IndexOracles(const FrontEndOptions& options, FrontEndOutput* out) {
+  if (out->Ran(FrontEnd::kIdealKeypoints)) out->ideal_keypoint_index.AddAll(out->ideal_keypoints, options.threads);
+  if (!out->Ran(FrontEnd::kTruePersons)) return;
+  std::vector<std::vector<Point2>> points(out->true_hoi.size());
+  for (size_t f = 0; f < points.size(); ++f) {
+    for (const HoiFeature& h : out->true_hoi[f]) points[f].push_back(h.point);
+  }
+  out->true_hoi_index.AddAll(points, options.threads);
+}
+
+// Sizes the per-frame outputs of the front ends that run.
+void SizeOutputs(int n, FrontEndOutput* out) {
+  if (out->Ran(FrontEnd::kKeypoints)) out->keypoints.assign(n, {});
+  if (out->Ran(FrontEnd::kKeypoints) || out->Ran(FrontEnd::kThumbnails)) {
+    out->keypoints_ms.assign(n, 0.0);
+    out->thumbnails_ms.assign(n, 0.0);
+  }
+  if (out->Ran(FrontEnd::kPersons)) {
+    out->hoi.assign(n, {});
+    out->persons_ms.assign(n, 0.0);
+  }
+  if (out->Ran(FrontEnd::kIdealKeypoints)) {
+    out->ideal_keypoints.assign(n, {});
+    out->ideal_keypoints_ms.assign(n, 0.0);
+  }
+  if (out->Ran(FrontEnd::kTruePersons)) {
+    out->true_hoi.assign(n, {});
+    out->true_persons_ms.assign(n, 0.0);
+  }
+}
+
 }  // namespace
 
+std::vector<std::string> GroundTruthOutputs(FrontEnd front_end) {
+  switch (front_end) {
+    case FrontEnd::kIdealKeypoints: return {"exr"};
+    case FrontEnd::kTruePersons: return {"exr", "persons"};
+    default: return {};
+  }
+}
+
 // One pass over the frames, block by block: each frame is read and decoded once, and its
-// keypoints, thumbnail and person detections computed in parallel; then the block's tracking.
+// keypoints, thumbnail, person detections and oracles computed in parallel; then the block's tracking.
 FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& needed, const FrontEndOptions& options) {
   FrontEndOutput out;
   out.ran = needed;
@@ -63,17 +123,11 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
   const int n = dataset.num_frames();
   const bool keypoints = out.Ran(FrontEnd::kKeypoints), thumbnails = out.Ran(FrontEnd::kThumbnails);
   const bool persons = out.Ran(FrontEnd::kPersons);
-  if (!keypoints && !thumbnails && !persons) return out;
-  if (keypoints) out.keypoints.assign(n, {});
-  if (keypoints || thumbnails) {
-    out.keypoints_ms.assign(n, 0.0);
-    out.thumbnails_ms.assign(n, 0.0);
-  }
+  if (needed.empty()) return out;
+  SizeOutputs(n, &out);
+  // The camera's frames, for the front ends that read them (the oracles read the ground truth).
+  const bool camera = keypoints || thumbnails || persons;
   std::vector<std::vector<float>> descriptors(thumbnails ? n : 0);
-  if (persons) {
-    out.hoi.assign(n, {});
-    out.persons_ms.assign(n, 0.0);
-  }
   ByteTracker tracker(options.tracker);
   std::vector<PersonDetections> detections(persons ? kBlockFrames : 0);
   std::vector<std::vector<Track>> tracks(persons ? kBlockFrames : 0);
@@ -85,6 +139,8 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
     const int size = std::min(block_frames, n - block);
     ParallelFor(size, options.threads, [&](int64_t i) {
       const int f = block + static_cast<int>(i);
+      RunOracles(dataset, f, options, &out);
+      if (!camera) return;
       const FrontEndInput input = ReadFrontEndInput(dataset, f, video_mode, /*detector=*/persons);
       if (keypoints) {
         const auto t = Clock::now();
@@ -107,6 +163,7 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
   }
   progress.Done();
   if (keypoints) out.keypoint_index.AddAll(out.keypoints, options.threads);
+  IndexOracles(options, &out);
   for (std::vector<float>& d : descriptors) out.thumbnails.AddDescriptor(std::move(d));
   return out;
 }

@@ -1,12 +1,20 @@
 #include "hoilcd/bench/methods/method_params.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
 namespace {
 
+// The front ends with a --param scope of their own (the oracles' options are their models').
 constexpr FrontEnd kFrontEnds[] = {FrontEnd::kKeypoints, FrontEnd::kPersons, FrontEnd::kThumbnails};
+
+bool HasScope(FrontEnd front_end) {
+  return std::find(std::begin(kFrontEnds), std::end(kFrontEnds), front_end) != std::end(kFrontEnds);
+}
 
 // Throws for a scope that is neither a method nor a front end, naming the known ones.
 void CheckScope(const std::string& scope, const std::string& param) {
@@ -58,6 +66,8 @@ std::string FrontEndName(FrontEnd front_end) {
     case FrontEnd::kKeypoints: return "keypoints";
     case FrontEnd::kPersons: return "persons";
     case FrontEnd::kThumbnails: return "thumbnails";
+    case FrontEnd::kIdealKeypoints: return "ideal-keypoints";
+    case FrontEnd::kTruePersons: return "true-persons";
   }
   return "";
 }
@@ -75,7 +85,12 @@ const OptionTable<MatchOptions>& MatchParams() {
   return table;
 }
 
+FrontEnd ParamScope(FrontEnd front_end) {
+  return front_end == FrontEnd::kIdealKeypoints ? FrontEnd::kKeypoints : front_end;
+}
+
 const OptionTable<BenchOptions>& FrontEndParams(FrontEnd front_end) {
+  HOILCD_CHECK_MSG(HasScope(front_end), FrontEndName(front_end) << " has no --param scope");
   static const OptionTable<BenchOptions> tables[] = {
       OptionTable<BenchOptions>().Flatten(
           &BenchOptions::keypoints,
@@ -110,7 +125,7 @@ void CheckParams(const std::vector<std::string>& params, const std::vector<std::
     bool used = false;
     for (const std::string& m : run) {
       if (m == scope) used = true;
-      for (FrontEnd f : FindMethod(m).FrontEnds()) used |= FrontEndName(f) == scope;
+      for (FrontEnd f : FindMethod(m).FrontEnds()) used |= FrontEndName(ParamScope(f)) == scope;
     }
     if (!used) {
       throw InputError("--param", "'" + param + "': " + (IsMethod(scope) ? "method " : "front end ") + scope +
@@ -120,7 +135,9 @@ void CheckParams(const std::vector<std::string>& params, const std::vector<std::
   }
 }
 
-BenchOptions WithFrontEndParams(const BenchOptions& options, FrontEnd front_end) {
+BenchOptions WithFrontEndParams(const BenchOptions& options, FrontEnd front_end_in) {
+  const FrontEnd front_end = ParamScope(front_end_in);
+  if (!HasScope(front_end)) return options;
   BenchOptions out = options;
   for (const std::string& param : options.params) {
     std::string scope, rest;

@@ -18,8 +18,8 @@ std::vector<std::string> DefaultMethods() {
   return out;
 }
 
-std::vector<std::string> ParseMethodList(const std::string& csv) {
-  std::vector<std::string> out;
+std::vector<std::string> ParseMethodList(const std::string& csv, std::vector<std::string>* from_groups) {
+  std::vector<std::string> out, named;
   std::stringstream ss(csv);
   std::string name;
   auto add = [&](const std::string& n) {
@@ -44,8 +44,14 @@ std::vector<std::string> ParseMethodList(const std::string& csv) {
       throw InputError("--methods", "unknown method '" + name + "' (known: " + known + ", paper, all)");
     }
     add(name);
+    named.push_back(name);
   }
   if (out.empty()) throw InputError("--methods", "at least one method name");
+  if (from_groups != nullptr) {
+    from_groups->clear();
+    for (const std::string& m : out)
+      if (std::find(named.begin(), named.end(), m) == named.end()) from_groups->push_back(m);
+  }
   return out;
 }
 

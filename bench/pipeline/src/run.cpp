@@ -214,6 +214,9 @@ Calibration CalibrateLoopThresholds(const Scene& scene, const BenchOptions& benc
     const std::string key = CalibrationKey(out.dataset_dir, bench);
     BenchOptions b = bench;
     b.slam = false;
+    // The calibration sequence has no ground truth (CalibrationOutputs): the oracles are left
+    // out, and their SLAM thresholds come from the test sequence.
+    b.optional_methods = b.methods;
     const BenchResult result = RunBench(dataset, b);
     thresholds.emplace();
     nlohmann::json saved = nlohmann::json::object();

@@ -67,6 +67,80 @@ std::string FindingExplanation(const BenchResult& result, const Diagnosis& diagn
   return md.str();
 }
 
+// The oracles and the method each stands beside, with the words of its finding.
+struct OracleSpec {
+  const char* oracle;
+  const char* method;
+  const char* source;     // what the oracle reads in place of the method's input
+  const char* costs;      // the finding when the oracle is better beyond the noise
+  const char* not_limit;  // ... when it is not
+  const char* limit;      // what limits the method then
+};
+constexpr OracleSpec kOracles[] = {
+    {"dlcd-oracle", "dlcd", "ground-truth people", "detection and tracking are part of DLCD's deficit",
+     "detection is not DLCD's deficit", "the HOI landmarks themselves limit it"},
+    {"slcd-ideal", "slcd", "noise-free image", "the sensor (noise, fixed pattern, blur, drift, FFC) is part of SLCD's deficit",
+     "the sensor is not SLCD's limit", "the corners and their matching limit it"},
+};
+
+// Below this difference of MRR an oracle counts as no better, when no interval was computed.
+constexpr double kMrrNoise = 0.01;
+
+// The paired bootstrap of `a` against `b` from the result, oriented as a - b (NaN when absent).
+std::pair<double, Interval> PairedDelta(const BenchResult& result, const std::string& a, const std::string& b) {
+  for (const PairedComparison& c : result.comparisons) {
+    if (c.a == a && c.b == b) return {c.delta, c.interval};
+    if (c.a == b && c.b == a) return {-c.delta, Interval{-c.interval.high, -c.interval.low}};
+  }
+  return {NAN, Interval{}};
+}
+
+// The oracle's numbers and its finding in words.
+OracleDiagnosis DiagnoseOracle(const BenchResult& result, const OracleSpec& spec, const MethodRun& oracle) {
+  OracleDiagnosis o;
+  o.oracle = spec.oracle;
+  o.method = spec.method;
+  o.oracle_mrr = oracle.metrics.mrr;
+  std::ostringstream text;
+  text << spec.oracle << " (" << spec.source << ") " << Fixed(o.oracle_mrr);
+  const MethodRun* method = result.Find(spec.method);
+  if (method == nullptr) {
+    text << "; run " << spec.method << " beside it to see what it isolates";
+    o.finding = text.str();
+    return o;
+  }
+  o.method_mrr = method->metrics.mrr;
+  const auto [paired, interval] = PairedDelta(result, spec.oracle, spec.method);
+  o.delta = std::isnan(paired) ? o.oracle_mrr - o.method_mrr : paired;
+  o.interval = interval;
+  const bool has_interval = !std::isnan(interval.low) && !std::isnan(interval.high);
+  const bool separated = has_interval ? (interval.low > 0 || interval.high < 0) : std::abs(o.delta) >= kMrrNoise;
+  o.helps = separated && o.delta > 0;
+  text << " vs " << spec.method << " " << Fixed(o.method_mrr) << " (\xce\x94 " << (o.delta >= 0 ? "+" : "") << Fixed(o.delta);
+  if (has_interval) text << " [" << Fixed(interval.low) << ", " << Fixed(interval.high) << "]";
+  text << "): ";
+  if (o.helps) {
+    text << "higher beyond the noise: " << spec.costs;
+  } else {
+    text << (separated ? "lower" : "within the noise") << ": " << spec.not_limit << "; " << spec.limit;
+  }
+  o.finding = text.str();
+  return o;
+}
+
+// "**Oracles.**" and the lines of what each showed and which were left out (empty: none).
+std::string OracleMarkdown(const Diagnosis& diagnosis) {
+  if (diagnosis.oracles.empty() && diagnosis.not_run.empty()) return "";
+  std::ostringstream md;
+  md << "**Oracles.** Each replaces one part of a method with the dataset's ground truth: dlcd-oracle "
+        "takes the people from it (no detector, no tracker), slcd-ideal reads the true temperature "
+        "before the sensor model, in the same 8-bit window.\n\n";
+  for (const OracleDiagnosis& o : diagnosis.oracles) md << "- " << o.finding << ".\n";
+  for (const std::string& n : diagnosis.not_run) md << "- " << n << ".\n";
+  md << "\n";
+  return md.str();
+}
+
 }  // namespace
 
 std::string PaperFindingSummary(const BenchResult& result) {
@@ -97,8 +171,23 @@ std::string PaperFindingSummary(const BenchResult& result) {
 
 nlohmann::json Diagnosis::ToJson() const {
   nlohmann::json j;
-  j["queries_with_hoi_points"] = queries_with_hoi;
-  j["queries_without_hoi_points"] = queries_without_hoi;
+  if (hoi_split) {
+    j["queries_with_hoi_points"] = queries_with_hoi;
+    j["queries_without_hoi_points"] = queries_without_hoi;
+  }
+  if (!oracles.empty() || !not_run.empty()) {
+    j["oracles"] = nlohmann::json::object();
+    for (const OracleDiagnosis& o : oracles) {
+      j["oracles"][o.oracle] = {{"method", o.method},
+                                {"mrr", JsonNumber(o.oracle_mrr)},
+                                {"method_mrr", JsonNumber(o.method_mrr)},
+                                {"delta_mrr", JsonNumber(o.delta)},
+                                {"interval", {JsonNumber(o.interval.low), JsonNumber(o.interval.high)}},
+                                {"replaced_part_costs_method", o.helps},
+                                {"finding", o.finding}};
+    }
+    j["not_run"] = not_run;
+  }
   j["methods"] = nlohmann::json::object();
   for (const MethodDiagnosis& m : methods) {
     j["methods"][m.method] = {{"mrr_with_hoi_points", JsonNumber(m.mrr_with_hoi)},
@@ -116,9 +205,15 @@ nlohmann::json Diagnosis::ToJson() const {
 
 Diagnosis Diagnose(const BenchResult& result) {
   Diagnosis diagnosis;
+  for (const MethodRun& run : result.runs) {
+    for (const OracleSpec& spec : kOracles)
+      if (run.name == spec.oracle) diagnosis.oracles.push_back(DiagnoseOracle(result, spec, run));
+  }
+  diagnosis.not_run = result.skipped;
+  diagnosis.evaluated = !diagnosis.oracles.empty() || !diagnosis.not_run.empty();
   const MethodRun* d = result.Find("dlcd");
   if (!d) return diagnosis;
-  diagnosis.evaluated = true;
+  diagnosis.evaluated = diagnosis.hoi_split = true;
   for (const QueryRecord& q : d->metrics.queries) {
     if (!q.scored) continue;
     (result.features[q.frame].hoi.empty() ? diagnosis.queries_without_hoi : diagnosis.queries_with_hoi) += 1;
@@ -153,6 +248,7 @@ std::string DiagnosisMarkdown(const BenchResult& result, const Diagnosis& diagno
   if (!diagnosis.evaluated) return "";
   std::ostringstream md;
   md << "## Diagnosis\n\n";
+  if (!diagnosis.hoi_split) return md.str() + OracleMarkdown(diagnosis);
   if (result.mean_hoi_points_per_frame == 0) {
     md << "No person detected in any frame: DLCD has no HOI points, every query scores 0 and its "
           "MRR is that of a random order of the database. "
@@ -170,7 +266,7 @@ std::string DiagnosisMarkdown(const BenchResult& result, const Diagnosis& diagno
   for (const MethodDiagnosis& m : diagnosis.methods) {
     md << "| " << m.method << " | " << Fixed(m.mrr_with_hoi) << " | " << Fixed(m.mrr_without_hoi) << " |\n";
   }
-  md << "\n" << FindingExplanation(result, diagnosis);
+  md << "\n" << FindingExplanation(result, diagnosis) << OracleMarkdown(diagnosis);
   return md.str();
 }
 

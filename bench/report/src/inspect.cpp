@@ -227,7 +227,8 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   InspectReport r;
   r.sections.push_back(TrajectorySection(dataset.poses()));
   r.sections.push_back(CameraSection(dataset.poses()));
-  r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
+  // People ground truth is optional (render --outputs without persons): no people section then.
+  if (dataset.manifest().outputs.persons) r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   CameraOutputOptions camera;
   camera.threads = threads;

@@ -1,5 +1,6 @@
 #include "hoilcd/bench/runner/runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <set>
@@ -30,6 +31,41 @@ std::vector<const LoopClosureMethod*> ScoringOrder(const std::vector<std::string
   };
   for (const std::string& name : asked) visit(name);
   return order;
+}
+
+// What a method (with the methods it combines) needs from the dataset that it lacks: the first
+// missing output and the front end that wants it; empty when it has everything.
+std::pair<std::string, FrontEnd> MissingOutput(const Dataset& dataset, const std::string& method) {
+  for (const LoopClosureMethod* m : ScoringOrder({method})) {
+    for (FrontEnd f : m->FrontEnds()) {
+      for (const std::string& output : GroundTruthOutputs(f)) {
+        if (!dataset.manifest().outputs.Has(output)) return {output, f};
+      }
+    }
+  }
+  return {"", FrontEnd::kKeypoints};
+}
+
+// Before step 1 of RunBench: the methods the dataset lacks the ground truth for. A named one stops the
+// bench with an InputError naming the output and the method; an optional one (from "all",
+// "paper" or the default) is left out of options->methods, with a line in the returned notes.
+std::vector<std::string> LeaveOutUnavailable(const Dataset& dataset, BenchOptions* options) {
+  std::vector<std::string> kept, notes;
+  for (const std::string& m : options->methods) {
+    const auto [output, front_end] = MissingOutput(dataset, m);
+    if (output.empty()) {
+      kept.push_back(m);
+      continue;
+    }
+    const std::string needed_for = "method " + m + " (its " + FrontEndName(front_end) + " front end)";
+    const auto& optional = options->optional_methods;
+    if (std::find(optional.begin(), optional.end(), m) == optional.end()) dataset.RequireOutput(output, needed_for);
+    notes.push_back(m + ": not run, the dataset has no " + output + " output, which " + needed_for +
+                    " needs (rendered with --outputs " + dataset.manifest().outputs.ToText() + ")");
+  }
+  if (kept.empty()) throw InputError("--methods", "no method can run on " + dataset.dir() + ": " + notes.front());
+  options->methods = kept;
+  return notes;
 }
 
 std::set<FrontEnd> NeededFrontEnds(const std::vector<const LoopClosureMethod*>& order) {
@@ -177,8 +213,9 @@ const MethodRun* BenchResult::Find(const std::string& name) const {
 BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   KeepFreedMemoryForReuse();  // decoded frames and per-pair buffers come and go on every thread
   BenchOptions options = WithManifest(options_in, dataset.manifest());
-  if (options.methods.empty()) options.methods = DefaultMethods();
+  if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  std::vector<std::string> skipped = LeaveOutUnavailable(dataset, &options);
   const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
   CheckFrontEndSizes(dataset, options, order);
   const auto start = std::chrono::steady_clock::now();
@@ -186,6 +223,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   // Step 1: the protocol's queries, labelled under both ground truths.
   const Labelling labelling = LabelQueries(dataset, options.protocol);
   BenchResult result;
+  result.skipped = std::move(skipped);
   result.queries = labelling.queries;
   result.ground_truth = labelling.ground_truth;
   result.other_ground_truth = labelling.other_ground_truth;

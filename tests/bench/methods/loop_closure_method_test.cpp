@@ -44,7 +44,8 @@ class NegatedSlcd : public LoopClosureMethod {
 
 TEST(LoopClosureMethod, TheBuiltInsAreRegisteredInReportOrderWithThePapersThreeMarked) {
   EXPECT_EQ(DefaultMethods(), (std::vector<std::string>{"slcd", "dlcd", "fusion", "slcd-lo", "dlcd-lo", "dlcd-track",
-                                                         "fusion-tc", "thumb", "thumb-seq"}));
+                                                         "fusion-tc", "thumb", "thumb-seq", "dlcd-oracle",
+                                                         "slcd-ideal"}));
   for (const auto& m : RegisteredMethods()) {
     EXPECT_FALSE(m->Description().empty()) << m->Name();
     EXPECT_EQ(CreateMethod(m->Name())->Name(), m->Name());

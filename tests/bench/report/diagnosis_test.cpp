@@ -90,5 +90,87 @@ TEST(Diagnosis, MrrOfAnEmptyGroupIsNullInJson) {
   EXPECT_EQ(j["queries_without_hoi_points"], 0);
 }
 
+// FourQueries with dlcd-oracle (MRR 0.375, below dlcd's 0.5) and slcd-ideal (MRR 1, above slcd's
+// 0.875) and the paired intervals the runner would have added.
+BenchResult WithOracles() {
+  BenchResult result = FourQueries();
+  result.runs.push_back(Run("dlcd-oracle", {0.25, 0.5, 0.5, 0.25}));
+  result.runs.push_back(Run("slcd-ideal", {1.0, 1.0, 1.0, 1.0}));
+  PairedComparison dlcd;  // written better first: dlcd > dlcd-oracle
+  dlcd.a = "dlcd", dlcd.b = "dlcd-oracle", dlcd.delta = 0.125, dlcd.interval = {-0.05, 0.2};
+  PairedComparison slcd;
+  slcd.a = "slcd-ideal", slcd.b = "slcd", slcd.delta = 0.125, slcd.interval = {0.02, 0.25};
+  result.comparisons = {dlcd, slcd};
+  return result;
+}
+
+TEST(Diagnosis, OraclesSayWhatTheyIsolateFromTheirNumbers) {
+  const BenchResult result = WithOracles();
+  const Diagnosis d = Diagnose(result);
+  ASSERT_EQ(d.oracles.size(), 2u);
+  const OracleDiagnosis& dlcd = d.oracles[0];
+  EXPECT_EQ(dlcd.oracle, "dlcd-oracle");
+  EXPECT_DOUBLE_EQ(dlcd.oracle_mrr, 0.375);
+  EXPECT_DOUBLE_EQ(dlcd.method_mrr, 0.5);
+  EXPECT_DOUBLE_EQ(dlcd.delta, -0.125);  // oriented oracle - method
+  EXPECT_DOUBLE_EQ(dlcd.interval.low, -0.2);
+  EXPECT_FALSE(dlcd.helps);
+  EXPECT_EQ(dlcd.finding,
+            "dlcd-oracle (ground-truth people) 0.375 vs dlcd 0.500 (\xce\x94 -0.125 [-0.200, 0.050]): within the "
+            "noise: detection is not DLCD's deficit; the HOI landmarks themselves limit it");
+  const OracleDiagnosis& slcd = d.oracles[1];
+  EXPECT_TRUE(slcd.helps);
+  EXPECT_NE(slcd.finding.find("slcd-ideal (noise-free image) 1.000 vs slcd 0.875 (\xce\x94 +0.125 [0.020, 0.250]): "
+                              "higher beyond the noise: the sensor (noise, fixed pattern, blur, drift, FFC) is "
+                              "part of SLCD's deficit"),
+            std::string::npos)
+      << slcd.finding;
+  const std::string md = DiagnosisMarkdown(result, d);
+  EXPECT_NE(md.find("**Oracles.**"), std::string::npos) << md;
+  EXPECT_NE(md.find("- " + dlcd.finding + ".\n"), std::string::npos) << md;
+  const nlohmann::json j = d.ToJson();
+  EXPECT_DOUBLE_EQ(j["oracles"]["slcd-ideal"]["delta_mrr"].get<double>(), 0.125);
+  EXPECT_EQ(j["oracles"]["dlcd-oracle"]["replaced_part_costs_method"], false);
+  EXPECT_EQ(j["oracles"]["dlcd-oracle"]["finding"], dlcd.finding);
+}
+
+TEST(Diagnosis, AnOracleBelowItsIntervalIsLowerAndOneClearlyAboveSaysThePartCostsTheMethod) {
+  BenchResult result = WithOracles();
+  result.comparisons[0].interval = {0.01, 0.1};  // dlcd - oracle: now the oracle is separated below
+  const Diagnosis d = Diagnose(result);
+  EXPECT_NE(d.oracles[0].finding.find("-0.010]): lower: detection is not DLCD's deficit"), std::string::npos)
+      << d.oracles[0].finding;
+  result.runs[3] = hoilcd::Run("dlcd-oracle", {1.0, 1.0, 1.0, 1.0});
+  result.comparisons.clear();  // no interval: a difference of 0.01 or more counts
+  const Diagnosis better = Diagnose(result);
+  EXPECT_TRUE(better.oracles[0].helps);
+  EXPECT_NE(better.oracles[0].finding.find(
+                "(\xce\x94 +0.500): higher beyond the noise: detection and tracking are part of DLCD's deficit"),
+            std::string::npos)
+      << better.oracles[0].finding;
+}
+
+TEST(Diagnosis, WithoutOraclesThereIsNoOracleText) {
+  const BenchResult result = FourQueries();
+  const Diagnosis d = Diagnose(result);
+  EXPECT_TRUE(d.oracles.empty());
+  EXPECT_EQ(DiagnosisMarkdown(result, d).find("Oracles"), std::string::npos);
+  EXPECT_FALSE(d.ToJson().contains("oracles"));
+}
+
+TEST(Diagnosis, AnOracleAloneOrLeftOutIsStillReported) {
+  BenchResult result;
+  result.runs = {hoilcd::Run("slcd-ideal", {1.0, 0.5})};
+  result.skipped = {"dlcd-oracle: not run, the dataset has no exr output"};
+  const Diagnosis d = Diagnose(result);
+  ASSERT_TRUE(d.evaluated);
+  EXPECT_FALSE(d.hoi_split);
+  const std::string md = DiagnosisMarkdown(result, d);
+  EXPECT_NE(md.find("slcd-ideal (noise-free image) 0.750; run slcd beside it"), std::string::npos) << md;
+  EXPECT_NE(md.find("- dlcd-oracle: not run, the dataset has no exr output.\n"), std::string::npos) << md;
+  EXPECT_EQ(md.find("HOI points |"), std::string::npos) << md;  // no HOI split without dlcd
+  EXPECT_FALSE(d.ToJson().contains("queries_with_hoi_points"));
+}
+
 }  // namespace
 }  // namespace hoilcd

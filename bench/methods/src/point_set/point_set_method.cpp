@@ -10,11 +10,21 @@ namespace hoilcd {
 namespace {
 
 const RetrievalIndex& IndexOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
-  return front_end == FrontEnd::kKeypoints ? front_ends.keypoint_index : front_ends.hoi_index;
+  switch (front_end) {
+    case FrontEnd::kKeypoints: return front_ends.keypoint_index;
+    case FrontEnd::kIdealKeypoints: return front_ends.ideal_keypoint_index;
+    case FrontEnd::kTruePersons: return front_ends.true_hoi_index;
+    default: return front_ends.hoi_index;
+  }
 }
 
 const std::vector<double>& ExtractMsOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
-  return front_end == FrontEnd::kKeypoints ? front_ends.keypoints_ms : front_ends.persons_ms;
+  switch (front_end) {
+    case FrontEnd::kKeypoints: return front_ends.keypoints_ms;
+    case FrontEnd::kIdealKeypoints: return front_ends.ideal_keypoints_ms;
+    case FrontEnd::kTruePersons: return front_ends.true_persons_ms;
+    default: return front_ends.persons_ms;
+  }
 }
 
 // The matching a method runs: its own tolerance, the dataset's image height.
@@ -26,8 +36,10 @@ MatchOptions MatchOf(const MethodContext& context) {
 
 }  // namespace
 
+// The report draws the camera's front ends' features; the oracles' are not kept in the result.
 ShownFeatures PointSetMethod::Features() const {
-  return front_end_ == FrontEnd::kKeypoints ? ShownFeatures::kKeypoints : ShownFeatures::kHoiPoints;
+  if (front_end_ == FrontEnd::kKeypoints) return ShownFeatures::kKeypoints;
+  return front_end_ == FrontEnd::kPersons ? ShownFeatures::kHoiPoints : ShownFeatures::kNone;
 }
 
 const OptionTable<PointSetOptions>& PointSetOptions::Table(bool lo) {

@@ -1,4 +1,4 @@
-// Shared by the point-set methods (SLCD, DLCD and their -lo variants): every query against its own
+// Shared by the point-set methods (SLCD, DLCD, their -lo variants and oracles): every query against its own
 // database through a front end's RetrievalIndex (MNN -> vertical filter -> RANSAC inliers), timed
 // per query. Point-set methods on the same index with the same matching options share one pass:
 // each pair's MNN is found once, then every method's RANSAC runs on it.
@@ -26,8 +26,8 @@ struct PointSetOptions {
 
 class PointSetMethod : public LoopClosureMethod {
  public:
-  // front_end: kKeypoints (corner keypoints) or kPersons (HOI points); lo: LO-RANSAC refits
-  // (the -lo variants, PointSetOptions' lo_refits).
+  // front_end: kKeypoints (corner keypoints), kPersons (HOI points) or an oracle's
+  // (kIdealKeypoints, kTruePersons); lo: LO-RANSAC refits (the -lo variants, PointSetOptions' lo_refits).
   PointSetMethod(FrontEnd front_end, bool lo) : front_end_(front_end), lo_(lo) {}
 
   ShownFeatures Features() const override;

@@ -23,6 +23,10 @@ namespace hoilcd {
 struct BenchOptions {
   // Lists, not table fields (empty when constructed); the table's rules check them.
   std::vector<std::string> methods;  // names from methods.h (empty: DefaultMethods())
+  // Those of `methods` that came in through "all", "paper" or the default, not by name: one the
+  // dataset lacks the ground truth for (an oracle's) is left out with a note, where a named one
+  // is an InputError.
+  std::vector<std::string> optional_methods;
   // --param NAME=VALUE: "<method>.<field>" or "<front end>.<field>" (method_params.h); the only
   // way to set a method's own options.
   std::vector<std::string> params;

@@ -16,8 +16,12 @@
 
 namespace hoilcd {
 
-std::string FrontEndName(FrontEnd front_end);  // "keypoints", "persons", "thumbnails"
-FrontEnd FrontEndOf(const std::string& name);   // HOILCD_CHECK on a name FrontEndName never gives
+std::string FrontEndName(FrontEnd front_end);  // "keypoints", "persons", "thumbnails", "ideal-keypoints", ...
+FrontEnd FrontEndOf(const std::string& name);   // HOILCD_CHECK on a name that is not a --param scope
+// The --param scope whose values a front end reads: the ideal keypoints take the keypoints' (the
+// same detector on another image); the true persons have none (returned as themselves).
+FrontEnd ParamScope(FrontEnd front_end);
+// The --param table of keypoints, persons or thumbnails (HOILCD_CHECK on another).
 const OptionTable<BenchOptions>& FrontEndParams(FrontEnd front_end);
 
 // Views that several methods' options share.
@@ -30,7 +34,7 @@ const OptionTable<MatchOptions>& MatchParams();    // vertical_tolerance
 // not among them or of a front end none of them uses, which would be silently ignored.
 void CheckParams(const std::vector<std::string>& params, const std::vector<std::string>& methods);
 
-// `options` with every parameter of the front end set (after CheckParams).
+// `options` with every parameter of the front end's ParamScope set (after CheckParams).
 BenchOptions WithFrontEndParams(const BenchOptions& options, FrontEnd front_end);
 
 // `method`'s own options with every parameter "<method>.<field>" of `params` set, checked; null

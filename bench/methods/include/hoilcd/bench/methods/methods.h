@@ -16,8 +16,9 @@ const LoopClosureMethod& FindMethod(const std::string& name);
 bool IsMethod(const std::string& name);
 
 // "slcd,dlcd,fusion" -> names, validated; "paper" = the paper's three, "all" = every method.
-// Throws InputError("--methods", ...) naming the unknown method and the known ones.
-std::vector<std::string> ParseMethodList(const std::string& csv);
+// Throws InputError("--methods", ...) naming the unknown method and the known ones. With
+// `from_groups`, also the names that only "all" or "paper" brought in (BenchOptions::optional_methods).
+std::vector<std::string> ParseMethodList(const std::string& csv, std::vector<std::string>* from_groups = nullptr);
 
 // The default of `hoilcd bench` and `hoilcd run`: every registered method, in report order.
 std::vector<std::string> DefaultMethods();

@@ -45,6 +45,8 @@ struct BenchResult {
   std::vector<Query> other_queries;        // the same queries labelled with other_ground_truth
   LabelDisagreement label_disagreement;    // queries vs other_queries
   std::vector<MethodRun> runs;             // in the order asked for
+  // Optional methods left out, each "<method>: <why>" (the dataset lacks the ground truth it needs).
+  std::vector<std::string> skipped;
   BootstrapPlan bootstrap;                 // how the intervals resampled the queries
   std::vector<PairedComparison> comparisons;  // MRR of every pair of runs, in run order
   std::vector<QueryConditions> conditions;    // per query, parallel to queries
