@@ -123,8 +123,13 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
         nlohmann::json m = run.metrics.ToJson();
         m["description"] = FindMethod(run.name).Description();
         if (!run.options.is_null()) m["options"] = run.options;
+        m["intervals"] = run.intervals.ToJson();
         report["methods"][run.name] = m;
       }
+      // The same uncertainty and strata as the command line's report.json.
+      report["bootstrap"] = result.bootstrap.ToJson();
+      for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
+      report["strata"] = StrataJson(result.strata);
       report_json = report.dump();
     }
   }

@@ -42,6 +42,10 @@ def test_bench_gives_the_cli_reports_metrics(tmp_path, hoilcd_exe, tiny_dataset)
         assert py["methods"][name]["mrr"] == cli["methods"][name]["mrr"]
         assert py["methods"][name]["recall_at_1"] == cli["methods"][name]["recall_at_1"]
         assert py["methods"][name]["queries_scored"] > 0
+        assert py["methods"][name]["intervals"] == cli["methods"][name]["intervals"]
+    assert py["strata"] == cli["strata"]
+    assert py["comparisons"] == cli["comparisons"]
+    assert py["bootstrap"] == cli["bootstrap"]
 
 
 def test_bench_with_an_output_writes_the_report_folder(tmp_path, tiny_dataset):
