@@ -297,7 +297,7 @@ cv::Mat StrataFigure(const std::vector<StratumRow>& strata) {
   PlotOptions options;
   options.title = "MRR by " + strata.front().stratification + " (queries)";
   options.y_label = "MRR";
-  options.width_px = std::max(options.width_px, 160 * static_cast<int>(groups.size()));
+  options.width_px = std::max(options.width_px, 270 * static_cast<int>(groups.size()));  // room for the labels
   return BarPlot(groups, series, options);
 }
 
