@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/random.h"
@@ -32,10 +33,7 @@ Interval PercentileInterval(const std::vector<double>& values, double confidence
   return {Quantile(finite, tail), Quantile(std::move(finite), 1 - tail)};
 }
 
-nlohmann::json Ends(const Interval& i) {
-  const auto end = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
-  return nlohmann::json::array({end(i.low), end(i.high)});
-}
+nlohmann::json Ends(const Interval& i) { return nlohmann::json::array({JsonNumber(i.low), JsonNumber(i.high)}); }
 
 }  // namespace
 
@@ -209,7 +207,7 @@ std::string PairedComparison::ToString() const {
 }
 
 nlohmann::json PairedComparison::ToJson() const {
-  return {{"better", a}, {"worse", b}, {"delta_mrr", delta}, {"interval", Ends(interval)},
+  return {{"better", a}, {"worse", b}, {"delta_mrr", JsonNumber(delta)}, {"interval", Ends(interval)},
           {"queries", queries}, {"separated", Separated()}};
 }
 

@@ -1,10 +1,10 @@
 #include "hoilcd/bench/evaluation/query_conditions.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <map>
 #include <set>
 
+#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
@@ -142,28 +142,52 @@ std::string ConditionsCsvRow(const QueryConditions& c) {
 std::vector<std::string> StratificationNames() { return {"view", "occlusion", "walkers", "turning", "lap", "ffc"}; }
 std::vector<std::string> DefaultStratifications() { return {"view", "occlusion", "walkers"}; }
 
-std::string StratumOf(const std::string& stratification, const QueryConditions& c) {
+namespace {
+
+// Each stratification's strata in report order; "lap" has one per lap, named "lap N".
+const std::vector<std::string>& NamedStrata(const std::string& stratification) {
+  static const std::map<std::string, std::vector<std::string>> strata = {
+      {"view", {"blank view", "static structure only", "no people", "1-2 people", "3 or more people"}},
+      {"occlusion", {"people < 25 % occluded", "people 25-50 % occluded", "people >= 50 % occluded"}},
+      {"walkers", {"no walker in view", "walker in view"}},
+      {"turning", {"straight (< 10 deg/s)", "turning (>= 10 deg/s)"}},
+      {"lap", {}},
+      {"ffc", {"live frame", "FFC or frozen frame"}}};
+  const auto it = strata.find(stratification);
+  HOILCD_CHECK_MSG(it != strata.end(), "unknown stratification " << stratification);
+  return it->second;
+}
+
+// The position of `c`'s stratum in its stratification's order (-1: in none, e.g. occlusion with
+// nobody in view); for "lap", the lap.
+int StratumIndex(const std::string& stratification, const QueryConditions& c) {
+  NamedStrata(stratification);  // checks the name
   if (stratification == "view") {
-    if (c.people_in_view >= 3) return "3 or more people";
-    if (c.people_in_view >= 1) return "1-2 people";
-    if (c.person_pixels < 0) return "no people";  // no EXR: blank views cannot be told apart
-    return c.blank ? "blank view" : "static structure only";
+    if (c.people_in_view >= 3) return 4;
+    if (c.people_in_view >= 1) return 3;
+    if (c.person_pixels < 0) return 2;  // no EXR: blank views cannot be told apart
+    return c.blank ? 0 : 1;
   }
   if (stratification == "occlusion") {
-    if (c.people_in_view == 0) return "";
-    return c.mean_occlusion < 0.25 ? "people < 25 % occluded"
-           : c.mean_occlusion < 0.5 ? "people 25-50 % occluded"
-                                    : "people >= 50 % occluded";
+    if (c.people_in_view == 0) return -1;
+    return c.mean_occlusion < 0.25 ? 0 : c.mean_occlusion < 0.5 ? 1 : 2;
   }
-  if (stratification == "walkers") return c.walkers_in_view > 0 ? "walker in view" : "no walker in view";
-  if (stratification == "turning") {
-    if (std::isnan(c.turn_rate_deg_s)) return "";
-    return c.turn_rate_deg_s >= 10 ? "turning (>= 10 deg/s)" : "straight (< 10 deg/s)";
-  }
-  if (stratification == "lap") return "lap " + std::to_string(c.lap + 1);
-  if (stratification == "ffc") return c.ffc_or_frozen ? "FFC or frozen frame" : "live frame";
-  HOILCD_CHECK_MSG(false, "unknown stratification " << stratification);
-  return "";
+  if (stratification == "walkers") return c.walkers_in_view > 0 ? 1 : 0;
+  if (stratification == "turning") return std::isnan(c.turn_rate_deg_s) ? -1 : c.turn_rate_deg_s >= 10 ? 1 : 0;
+  if (stratification == "lap") return c.lap;
+  return c.ffc_or_frozen ? 1 : 0;  // ffc
+}
+
+std::string StratumName(const std::string& stratification, int index) {
+  if (stratification == "lap") return "lap " + std::to_string(index + 1);
+  return NamedStrata(stratification).at(static_cast<size_t>(index));
+}
+
+}  // namespace
+
+std::string StratumOf(const std::string& stratification, const QueryConditions& c) {
+  const int index = StratumIndex(stratification, c);
+  return index < 0 ? "" : StratumName(stratification, index);
 }
 
 double ChanceReciprocalRank(int database_size, int true_matches) {
@@ -185,41 +209,27 @@ std::vector<StratumRow> Stratify(const std::vector<QueryConditions>& conditions,
                                  const std::vector<std::string>& stratifications) {
   std::vector<StratumRow> rows;
   for (const std::string& s : stratifications) {
-    std::vector<std::string> order;  // strata in the order first met, then sorted for lap
-    std::map<std::string, std::vector<size_t>> members;
+    std::map<int, std::vector<size_t>> members;  // by stratum index: report order
     for (size_t i = 0; i < conditions.size(); ++i) {
-      const std::string stratum = StratumOf(s, conditions[i]);
-      if (stratum.empty()) continue;
-      if (!members.count(stratum)) order.push_back(stratum);
-      members[stratum].push_back(i);
+      const int index = StratumIndex(s, conditions[i]);
+      if (index >= 0) members[index].push_back(i);
     }
-    // Strata in their natural order (fewest people first, least occluded first, laps by number).
-    const auto rank = [&](const std::string& stratum) {
-      static const std::vector<std::string> known = {
-          "blank view", "static structure only", "no people", "1-2 people", "3 or more people",
-          "people < 25 % occluded", "people 25-50 % occluded", "people >= 50 % occluded", "no walker in view",
-          "walker in view", "straight (< 10 deg/s)", "turning (>= 10 deg/s)", "live frame", "FFC or frozen frame"};
-      const auto it = std::find(known.begin(), known.end(), stratum);
-      if (it != known.end()) return static_cast<int>(it - known.begin());
-      return 100 + std::atoi(stratum.c_str() + stratum.find_first_of("0123456789"));  // "lap N"
-    };
-    std::sort(order.begin(), order.end(), [&](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
-    for (const std::string& stratum : order) {
+    for (const auto& [index, queries] : members) {
       StratumRow row;
       row.stratification = s;
-      row.stratum = stratum;
+      row.stratum = StratumName(s, index);
       row.methods = names;
       double chance = 0;
       for (size_t m = 0; m < records.size(); ++m) {
         std::vector<QueryRecord> subset;
-        for (size_t i : members[stratum]) subset.push_back((*records[m])[i]);
+        for (size_t i : queries) subset.push_back((*records[m])[i]);
         const MethodMetrics metrics = SummariseQueries(std::move(subset));
         row.mrr.push_back(metrics.mrr);
         row.recall_at_1.push_back(metrics.recall_at_1);
         row.queries = metrics.queries_scored;
       }
       if (!records.empty()) {
-        for (size_t i : members[stratum]) {
+        for (size_t i : queries) {
           const QueryRecord& r = (*records[0])[i];
           if (r.scored) chance += ChanceReciprocalRank(r.database_size, r.true_matches);
         }
@@ -233,14 +243,13 @@ std::vector<StratumRow> Stratify(const std::vector<QueryConditions>& conditions,
 
 nlohmann::json StrataJson(const std::vector<StratumRow>& rows) {
   nlohmann::json out = nlohmann::json::array();
-  const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   for (const StratumRow& r : rows) {
     nlohmann::json methods;
     for (size_t m = 0; m < r.methods.size(); ++m) {
-      methods[r.methods[m]] = {{"mrr", number(r.mrr[m])}, {"recall_at_1", number(r.recall_at_1[m])}};
+      methods[r.methods[m]] = {{"mrr", JsonNumber(r.mrr[m])}, {"recall_at_1", JsonNumber(r.recall_at_1[m])}};
     }
     out.push_back({{"stratification", r.stratification}, {"stratum", r.stratum}, {"queries", r.queries},
-                   {"chance_mrr", number(r.chance_mrr)}, {"methods", methods}});
+                   {"chance_mrr", JsonNumber(r.chance_mrr)}, {"methods", methods}});
   }
   return out;
 }

@@ -5,27 +5,13 @@
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
 namespace {
 
 constexpr uint64_t kMaxReportJsonBytes = uint64_t{64} << 20;  // a bench report of every method: ~1 MB
 constexpr int kMaxDepth = 64;                                  // a report nests ~5 deep
-
-// `name` as one JSON pointer token (RFC 6901: '~' as ~0, '/' as ~1), printable.
-std::string PointerToken(const std::string& name) {
-  std::string out;
-  for (char c : name) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-  return SafeText(out);
-}
 
 }  // namespace
 
@@ -51,7 +37,7 @@ nlohmann::json ReportJsonFromText(std::string_view text, const std::string& sour
     throw InputError(source, "/methods: expected an object of methods (a hoilcd report.json)");
   }
   for (const auto& [name, method] : j["methods"].items()) {
-    const std::string where = source + ": /methods/" + PointerToken(name);
+    const std::string where = source + ": /methods/" + SafeText(JsonPointerToken(name));
     if (!method.is_object()) throw InputError(where, "expected an object of the method's metrics");
     for (const char* metric : kHeadlineMetrics) {
       const auto it = method.find(metric);

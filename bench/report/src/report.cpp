@@ -384,8 +384,7 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
 }
 
 // The 95 % intervals of every headline metric, and how they were made.
-std::string IntervalsMarkdown(const std::vector<MethodRun>& runs) {
-  const BootstrapPlan& plan = runs.front().bootstrap;
+std::string IntervalsMarkdown(const std::vector<MethodRun>& runs, const BootstrapPlan& plan) {
   if (plan.resamples == 0) return "";
   std::ostringstream md;
   const auto cell = [](const Interval& i) { return "[" + Fixed(i.low) + ", " + Fixed(i.high) + "]"; };
@@ -471,7 +470,8 @@ std::string StrataMarkdown(const std::vector<StratumRow>& strata) {
 
 // report.md's opening: the dataset and protocol, the results table shaped like the paper's
 // Table 1 and the same scores under the other ground truth.
-std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const std::vector<PairedComparison>& comparisons,
+std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapPlan& plan,
+                            const std::vector<PairedComparison>& comparisons,
                             const std::vector<StratumRow>& strata, const Dataset& dataset, const ProtocolOptions& protocol,
                             const std::string& other_ground_truth, const LabelDisagreement& labels) {
   const DatasetManifest& manifest = dataset.manifest();
@@ -494,7 +494,7 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const std::vecto
   }
   if (!runs.empty()) {
     md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
-       << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs) << ComparisonsMarkdown(comparisons)
+       << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs, plan) << ComparisonsMarkdown(comparisons)
        << StrataMarkdown(strata);
   }
   md << "\n### The same scores under " << other_ground_truth << " ground truth\n\n"
@@ -517,7 +517,7 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
                            const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
                            const std::vector<std::string>& figures) {
   std::ostringstream md;
-  md << ResultsMarkdown(result.runs, result.comparisons, result.strata, dataset, options.protocol, result.other_ground_truth,
+  md << ResultsMarkdown(result.runs, result.bootstrap, result.comparisons, result.strata, dataset, options.protocol, result.other_ground_truth,
                         result.label_disagreement);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
@@ -610,7 +610,6 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   std::vector<MethodRun> runs(1);
   runs[0].name = report.name;
   runs[0].metrics = report.metrics;
-  runs[0].bootstrap = report.bootstrap;
   runs[0].intervals = report.intervals;
   runs[0].other_metrics = report.other_metrics;
   // The same conditions and strata as a bench report of this method.
@@ -625,7 +624,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   const FigureJobs figures = MetricFigures(runs);
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
-  md << ResultsMarkdown(runs, {}, strata, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
+  md << ResultsMarkdown(runs, report.bootstrap, {}, strata, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
      << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";

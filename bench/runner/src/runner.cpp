@@ -143,13 +143,18 @@ void AddFeaturesAndTracking(const Dataset& dataset, const BenchOptions& options,
 }
 
 // Step 3: every method's scores, inputs before the methods that combine them; methods that
-// share a pass (PassKey) are scored together when the first of them comes up.
+// share a pass (PassKey) are scored together when the first of them comes up. *resolved: each
+// method's own options as it ran (for the report; methods without options are absent).
 std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const BenchOptions& options,
                                                  const std::vector<const LoopClosureMethod*>& order,
-                                                 const Labelling& labelling, const FrontEndOutput& front_ends) {
+                                                 const Labelling& labelling, const FrontEndOutput& front_ends,
+                                                 std::map<std::string, nlohmann::json>* resolved) {
   std::map<std::string, MethodScores> scored;
   std::vector<std::unique_ptr<MethodOptions>> own;  // each method's own options with its --param values
-  for (const LoopClosureMethod* m : order) own.push_back(OptionsWithParams(*m, options.params));
+  for (const LoopClosureMethod* m : order) {
+    own.push_back(OptionsWithParams(*m, options.params));
+    if (own.back() != nullptr) (*resolved)[m->Name()] = own.back()->ToJson();
+  }
   const auto context_of = [&](size_t i) {
     return MethodContext{dataset, options, own[i].get(), labelling, front_ends, scored, dataset.manifest().seed,
                          options.threads};
@@ -188,7 +193,6 @@ void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResu
   result->bootstrap = PlanBootstrap(records, dataset.manifest().frame_rate_hz, options.bootstrap);
   const uint64_t seed = options.bootstrap.seed;
   for (MethodRun& run : result->runs) {
-    run.bootstrap = result->bootstrap;
     run.intervals = BootstrapHeadline(run.metrics.queries, result->bootstrap, seed, options.threads);
   }
   for (size_t a = 0; a < result->runs.size(); ++a) {
@@ -241,13 +245,14 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   // Step 2: the front ends the methods need, once each; step 3: every method's scores.
   const FrontEndOutput front_ends = RunNeededFrontEnds(dataset, options, order);
   AddFeaturesAndTracking(dataset, options, front_ends, &result);
-  std::map<std::string, MethodScores> scored = ScoreMethods(dataset, options, order, labelling, front_ends);
+  std::map<std::string, nlohmann::json> resolved;
+  std::map<std::string, MethodScores> scored =
+      ScoreMethods(dataset, options, order, labelling, front_ends, &resolved);
 
   // Step 4: metrics of the asked methods under both labellings, one method per task.
   result.runs.resize(options.methods.size());
   for (size_t i = 0; i < options.methods.size(); ++i) {
-    const auto own = OptionsWithParams(FindMethod(options.methods[i]), options.params);
-    if (own != nullptr) result.runs[i].options = own->ToJson();
+    if (resolved.count(options.methods[i])) result.runs[i].options = resolved.at(options.methods[i]);
   }
   ParallelFor(static_cast<int64_t>(options.methods.size()), options.threads, [&](int64_t i) {
     MethodRun& run = result.runs[static_cast<size_t>(i)];

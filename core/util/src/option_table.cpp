@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "hoilcd/core/util/json_reader.h"
+
 namespace hoilcd {
 
 using nlohmann::json;
@@ -45,21 +47,6 @@ std::string Number(double value) {
   std::ostringstream out;
   out << std::setprecision(10) << value;
   return out.str();
-}
-
-// JSON pointer escaping of one key (RFC 6901).
-std::string EscapeKey(const std::string& key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-  return out;
 }
 
 std::string Join(const std::string& where, const std::string& name) {
@@ -284,7 +271,7 @@ void OptionTableBase::ReadInto(const json& object, const std::string& where, voi
     return;
   }
   for (const auto& [key, value] : object.items()) {
-    const std::string at = Join(where, EscapeKey(key));
+    const std::string at = Join(where, JsonPointerToken(key));
     const auto field = std::find_if(fields_.begin(), fields_.end(),
                                     [&key = key](const Field& f) { return f.name == key && !f.code_only; });
     if (field == fields_.end()) {

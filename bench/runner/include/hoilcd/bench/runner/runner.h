@@ -31,8 +31,7 @@ struct FrameFeatures {
 struct MethodRun {
   std::string name;
   MethodMetrics metrics;        // under the chosen ground truth (protocol.ground_truth)
-  BootstrapPlan bootstrap;      // how its intervals resampled the queries (the same for every run)
-  HeadlineIntervals intervals;  // of metrics
+  HeadlineIntervals intervals;  // of metrics (BenchResult::bootstrap says how)
   MethodMetrics other_metrics;  // the same scores under the other ground truth
   std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
   nlohmann::json options;       // the method's own options as it ran (method_options.h); null: none

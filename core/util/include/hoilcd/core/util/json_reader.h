@@ -12,6 +12,21 @@
 
 namespace hoilcd {
 
+// `key` as one JSON pointer token (RFC 6901: '~' as "~0", '/' as "~1").
+inline std::string JsonPointerToken(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 // Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
 class JsonReader {
  public:
