@@ -28,10 +28,6 @@ int BenchCommand(const BenchCommandArgs& args) {
   PrintWarnings(dataset.warnings());
   const BenchOptions options = ResolveBench(args.bench, args.threads);
   const nlohmann::json baseline = ReadBaseline(args.gate);
-  // The bench's other figures stand without a true match; its retrieval metrics do not.
-  if (const std::string why = NoTrueMatchReason(LabelQueries(dataset, options.protocol)); !why.empty()) {
-    PrintWarnings({why + " ('-' in the table)"});
-  }
   const std::string out = args.report_dir.empty() ? args.dataset + "/report" : args.report_dir;
   ReportTiming timing;
   const BenchResult result = BenchAndWriteReport(dataset, options, &timing, out);

@@ -32,14 +32,13 @@ int EvaluateCommand(const EvaluateArgs& args) {
   if (name.empty()) throw InputError("--name", "a method name (the scores file name has none)");
   if (!args.output.empty()) CheckReportFolder(args.output);  // a folder it may not use fails before the work
   // A dataset without a true match fails before the scores are read: their metrics are undefined.
-  if (const std::string why = NoTrueMatchReason(LabelQueries(dataset, args.protocol)); !why.empty()) {
-    throw InputError(args.dataset, why);
-  }
+  const Labelling labelling = LabelQueries(dataset, args.protocol);
+  if (const std::string why = NoTrueMatchReason(labelling); !why.empty()) throw InputError(args.dataset, why);
   const ScoreMatrix scores = ReadScoresFile(args.scores, dataset.num_frames());
   const std::string description = "scores from " + args.scores;
   const MethodReport report =
-      args.output.empty() ? Evaluate(dataset, scores, name, args.protocol)
-                          : EvaluateAndWriteReport(dataset, scores, name, description, args.protocol, args.output);
+      args.output.empty() ? EvaluateLabelled(dataset, labelling, scores, name)
+                          : EvaluateAndWriteReport(dataset, labelling, scores, name, description, args.output);
   PrintWarnings(report.warnings);
   const MethodMetrics& m = report.metrics;
   std::printf("%s (%s ground truth): MRR %.4f, R@1 %.4f, R@5 %.4f, PR-AUC %.4f; %d queries scored, %d skipped\n",

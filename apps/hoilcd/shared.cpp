@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstdio>
 
+#include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
@@ -71,6 +72,24 @@ void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol) {
       ->capture_default_str();
 }
 
+namespace {
+
+// `flag` for the registered field `name` of ProtocolOptions: its description, unit and range
+// come from the table, so they are written once.
+template <typename T>
+void AddProtocolTableFlag(CLI::App* cmd, const std::string& flag, const std::string& name, T* member) {
+  for (const OptionInfo& info : ProtocolOptions::Table().List()) {
+    if (info.name != name) continue;
+    cmd->add_option(flag, *member, info.description + (info.unit.empty() ? "" : ", " + info.unit))
+        ->check(NumberIn(info.range))
+        ->capture_default_str();
+    return;
+  }
+  HOILCD_CHECK_MSG(false, "no protocol option " + name);
+}
+
+}  // namespace
+
 void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
   AddProtocolAndRadiusFlags(cmd, protocol);
   cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
@@ -78,9 +97,14 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
       ->check(NumberIn(OptionRange().AtLeast(0)))
       ->capture_default_str();
   cmd->add_option("--ground-truth", protocol->ground_truth,
-                  "whose positions label true matches: odometry (the paper's) or true (the true poses)")
-      ->check(CLI::IsMember({"odometry", "true"}))
+                  "what labels true matches: odometry (positions, the paper's), true (true positions) or overlap "
+                  "(the share of the query's static view the reference sees)")
+      ->check(CLI::IsMember({"odometry", "true", "overlap"}))
       ->capture_default_str();
+  AddProtocolTableFlag(cmd, "--overlap-threshold", "overlap_threshold", &protocol->overlap_threshold);
+  AddProtocolTableFlag(cmd, "--overlap-stride", "overlap_stride_px", &protocol->overlap_stride_px);
+  AddProtocolTableFlag(cmd, "--overlap-depth-tolerance", "overlap_depth_tolerance_m",
+                       &protocol->overlap_depth_tolerance_m);
   cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
                   "max heading difference of a true match, deg (negative: off)")
       ->check(NumberIn(OptionRange()))
@@ -92,8 +116,8 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
                   "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
   AddProtocolFlags(cmd, &args->options.protocol);
   cmd->add_option("--strata", args->options.strata,
-                  "conditions the report splits the metrics by, comma-separated: view, occlusion, walkers, "
-                  "turning, lap, ffc (default: view,occlusion,walkers)")
+                  "conditions the report splits the metrics by, comma-separated: view, contrast, occlusion, "
+                  "walkers, turning, lap, ffc (default: view,contrast,occlusion,walkers)")
       ->delimiter(',');
   cmd->add_option("--param", args->options.params,
                   "a parameter of one method or front end, e.g. slcd.ransac_trials=50, fusion.k=60, "
@@ -126,8 +150,19 @@ void AddGateFlags(CLI::App* cmd, GateArgs* args) {
   CLI::Option* baseline = cmd->add_option("--baseline", args->baseline,
                   "earlier report.json: exit 3 when a headline metric (MRR, R@1) of a method in both dropped by "
                   "more than --max-drop");
-  cmd->add_option("--max-drop", args->max_drop, "largest allowed drop of MRR or R@1 against --baseline (default 0)")
-      ->check(NumberIn(OptionRange::Closed(0, 1)))
+  cmd->add_option("--max-drop", args->max_drop,
+                  "largest allowed drop of MRR or R@1 against --baseline (default 0), or 'ci': a drop is a regression "
+                  "only when the baseline's value lies above this run's 95 % interval")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              DropAllowance::Parse(text, "--max-drop");
+            } catch (const InputError&) {
+              return std::string("expected a number in [0, 1] or 'ci', got '") + SafeText(text) + "'";
+            }
+            return "";
+          },
+          "X|ci"))
       ->needs(baseline);
   cmd->add_option("--junit", args->junit, "write JUnit XML here (one test case per method)");
 }
@@ -137,16 +172,19 @@ nlohmann::json ReadBaseline(const GateArgs& args) {
 }
 
 int ApplyGate(const GateArgs& args, const nlohmann::json& baseline, const nlohmann::json& report) {
+  const DropAllowance allowed = DropAllowance::Parse(args.max_drop, "--max-drop");
   std::vector<Regression> regressions;
   if (!args.baseline.empty()) {
     for (const std::string& m : MethodsOnlyInBaseline(baseline, report)) {
       std::printf("baseline: method %s is not in this run (not compared)\n", m.c_str());
     }
-    regressions = CompareToBaseline(baseline, report, args.max_drop);
-    for (const Regression& r : regressions) std::printf("%s\n", r.ToString(args.max_drop).c_str());
-    if (regressions.empty()) std::printf("baseline %s: no headline metric dropped by more than %g\n", args.baseline.c_str(), args.max_drop);
+    regressions = CompareToBaseline(baseline, report, allowed);
+    for (const Regression& r : regressions) std::printf("%s\n", r.ToString(allowed).c_str());
+    if (regressions.empty()) {
+      std::printf("baseline %s: no headline metric dropped %s\n", args.baseline.c_str(), allowed.ToString().c_str());
+    }
   }
-  if (!args.junit.empty()) WriteFileAtomic(args.junit, JUnitXml(report, regressions, args.max_drop));
+  if (!args.junit.empty()) WriteFileAtomic(args.junit, JUnitXml(report, regressions, allowed));
   return regressions.empty() ? 0 : 3;
 }
 
@@ -161,6 +199,8 @@ void PrintWarnings(const std::vector<std::string>& warnings) {
 
 void PrintOutcome(const BenchResult& result, const std::string& report_dir) {
   PrintWarnings(result.skipped);
+  // The bench's other figures stand without a true match; its retrieval metrics do not.
+  if (!result.no_true_match.empty()) PrintWarnings({result.no_true_match + " ('-' in the table)"});
   std::printf("%s", FormatResultTable(result).c_str());
   std::printf("%s\n", PaperFindingSummary(result).c_str());
   std::printf("report: %s/report.md\n", report_dir.c_str());

@@ -50,7 +50,7 @@ BenchOptions ResolveBench(const BenchArgs& args, int threads);
 // The CI gate (bench, run, evaluate).
 struct GateArgs {
   std::string baseline;
-  double max_drop = 0;
+  std::string max_drop = "0";  // DropAllowance::Parse: a number in [0, 1] or "ci"
   std::string junit;
 };
 void AddGateFlags(CLI::App* cmd, GateArgs* args);

@@ -82,8 +82,10 @@ py::object EvaluateScores(const Dataset& dataset, py::array_t<double, py::array:
   std::vector<std::string> warnings;
   {
     py::gil_scoped_release unlocked;
-    const MethodReport report = output ? EvaluateAndWriteReport(dataset, matrix, name, description, options, *output)
-                                       : Evaluate(dataset, matrix, name, options);
+    if (output) CheckReportFolder(*output);  // a folder the report may not use fails before the work
+    const Labelling labelling = LabelQueries(dataset, options);
+    const MethodReport report = output ? EvaluateAndWriteReport(dataset, labelling, matrix, name, description, *output)
+                                       : EvaluateLabelled(dataset, labelling, matrix, name);
     report_json = EvaluateReportJson(dataset, options, report, description)["methods"][report.name].dump();
     warnings = report.warnings;
   }
@@ -117,20 +119,7 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
       WriteReport(result, dataset, options, timing, *output);
       report_json = ReadFileBytes(*output + "/report.json");
     } else {
-      nlohmann::json report;
-      report["protocol"] = {{"protocol", protocol}, {"ground_truth", ground_truth}, {"radius_m", radius_m}};
-      for (const MethodRun& run : result.runs) {
-        nlohmann::json m = run.metrics.ToJson();
-        m["description"] = FindMethod(run.name).Description();
-        if (!run.options.is_null()) m["options"] = run.options;
-        m["intervals"] = run.intervals.ToJson();
-        report["methods"][run.name] = m;
-      }
-      // The same uncertainty and strata as the command line's report.json.
-      report["bootstrap"] = result.bootstrap.ToJson();
-      for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
-      report["strata"] = StrataJson(result.strata);
-      report_json = report.dump();
+      report_json = ResultsJson(result, options).dump();  // the command line's report.json, its results
     }
   }
   return JsonToPython(report_json);

@@ -124,6 +124,38 @@ TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnRe
                  "--max-drop", "0.01"}), 3);
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "better.json",
                  "--max-drop", "0.1"}), 0);
+
+  // --max-drop ci: the run's own interval decides. Its own report passes; a baseline far above the
+  // interval does not, and the line names the interval.
+  const double high = Json(own)["methods"]["thumb"]["intervals"]["mrr"][1].get<double>();
+  nlohmann::json above = Json(own);
+  above["methods"]["thumb"]["mrr"] = high + 0.01;
+  WriteFileAtomic(temp / "above.json", above.dump());
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", own, "--max-drop", "ci"}), 0);
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "above.json",
+                 "--max-drop", "ci"}), 3);
+  const std::string ci_out = testing::internal::GetCapturedStdout();
+  EXPECT_NE(ci_out.find("(old above the new run's 95 % interval ["), std::string::npos) << ci_out;
+}
+
+TEST(OpenBenchCli, TheOverlapGroundTruthLabelsTheRunAndTheReportComparesTheThreeLabellings) {
+  const test::TestDir temp;
+  const std::string dataset = RenderTiny(temp);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "--ground-truth", "overlap", "--overlap-threshold", "0.6",
+                 "-o", temp / "report"}), 0);
+  const nlohmann::json report = Json(temp / "report/report.json");
+  EXPECT_EQ(report["protocol"]["ground_truth"], "overlap");
+  EXPECT_EQ(report["protocol"]["overlap_threshold"], 0.6);
+  EXPECT_EQ(report["other_ground_truth"]["ground_truth"], "odometry");
+  ASSERT_EQ(report["label_agreement"].size(), 3u);
+  EXPECT_EQ(report["label_agreement"][2]["a"], "overlap");
+  EXPECT_EQ(report["label_agreement"][2]["b"], "true");
+  EXPECT_GT(report["label_agreement"][2]["pairs_true_in_a"].get<int64_t>(), 0);
+  const std::string md = ReadFileBytes(temp / "report/report.md");
+  EXPECT_NE(md.find("at least 60 % of the query's static pixels"), std::string::npos) << md.substr(0, 600);
+  EXPECT_NE(md.find("### How the ground truths agree"), std::string::npos);
+  EXPECT_NE(md.find("| overlap vs odometry | "), std::string::npos);
 }
 
 TEST(OpenBenchCli, EvaluateNamesTheBadScoresFileAndLineAndABadBaselineFailsBeforeAnyWork) {

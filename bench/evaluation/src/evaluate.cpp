@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/overlap.h"
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/memory.h"
@@ -11,7 +12,15 @@
 
 namespace hoilcd {
 
-Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol) {
+nlohmann::json LabelAgreement::ToJson() const {
+  return {{"a", a}, {"b", b}, {"pairs", counts.pairs}, {"pairs_true_in_a", counts.pairs_true_in_a},
+          {"pairs_true_in_b", counts.pairs_true_in_b}, {"pairs_only_in_a", counts.pairs_only_in_a},
+          {"pairs_only_in_b", counts.pairs_only_in_b}, {"queries", counts.queries},
+          {"queries_with_match_only_in_a", counts.scored_only_in_a},
+          {"queries_with_match_only_in_b", counts.scored_only_in_b}};
+}
+
+Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol, int threads) {
   if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("protocol", problem);
   Labelling l;
   l.protocol = protocol;
@@ -25,6 +34,17 @@ Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol) 
                   "labelling the query pairs of " + std::to_string(dataset.poses().size()) + " frames");
   l.queries = BuildQueries(dataset.poses(), protocol);
   l.other_queries = RelabelQueries(l.queries, dataset.poses(), protocol, l.other_ground_truth);
+  if (protocol.ground_truth == "overlap") {
+    const std::vector<Query> by_truth = l.queries;  // BuildQueries labels overlap's pairs by true position
+    l.queries = OverlapLabels(dataset, by_truth, protocol, threads);
+    l.agreements = {{"true", "odometry", CompareLabels(by_truth, l.other_queries)},
+                    {"overlap", "odometry", CompareLabels(l.queries, l.other_queries)},
+                    {"overlap", "true", CompareLabels(l.queries, by_truth)}};
+  } else {
+    const bool odometry = protocol.ground_truth == "odometry";
+    l.agreements = {{"true", "odometry", odometry ? CompareLabels(l.other_queries, l.queries)
+                                                  : CompareLabels(l.queries, l.other_queries)}};
+  }
   l.disagreement = CompareLabels(l.queries, l.other_queries);
   l.label_poses = LabelPoses(dataset.poses(), l.ground_truth);
   l.other_label_poses = LabelPoses(dataset.poses(), l.other_ground_truth);
@@ -43,9 +63,16 @@ std::string NoTrueMatchReason(const Labelling& labelling) {
   const std::string positions = labelling.ground_truth == "odometry" ? "odometric" : "true";
   std::ostringstream why;
   why << "no query has a true match, so MRR, Recall@K and PR are undefined: ";
-  std::ostringstream match;
-  match << "within " << p.radius_m << " m";
-  if (p.heading_tolerance_deg >= 0) match << " and " << p.heading_tolerance_deg << " deg of heading";
+  const bool overlap = labelling.ground_truth == "overlap";
+  std::ostringstream match;  // what a query does to a true match: "[lies] within 0.2 m of"
+  if (overlap) {
+    match << p.overlap_threshold * 100 << " % of its static view with";
+  } else {
+    match << "within " << p.radius_m << " m";
+    if (p.heading_tolerance_deg >= 0) match << " and " << p.heading_tolerance_deg << " deg of heading";
+    match << " of";
+  }
+  const std::string larger = overlap ? "a lower --overlap-threshold" : "a larger --radius";
   if (p.protocol == "laps" && labelling.queries.empty()) {
     double turned_rad = 0;
     for (size_t i = 1; i < poses.size(); ++i) {
@@ -56,12 +83,13 @@ std::string NoTrueMatchReason(const Labelling& labelling) {
         << std::lround(std::fabs(turned_rad) * 180 / M_PI) << " deg of 360); render more frames, or use --protocol "
         << "revisit";
   } else if (p.protocol == "laps") {
-    why << "none of the " << labelling.queries.size() << " frames after the first lap lies " << match.str()
-        << " of a first-lap frame by the " << positions << " poses (frames within " << p.exclusion_window_s
-        << " s of a query are left out); a larger --radius may find some";
+    why << "none of the " << labelling.queries.size() << " frames after the first lap "
+        << (overlap ? "shares " : "lies ") << match.str()
+        << " a first-lap frame by the " << positions << " poses (frames within " << p.exclusion_window_s
+        << " s of a query are left out); " << larger << " may find some";
   } else {
-    why << "no frame comes back " << match.str() << " of a frame more than " << p.exclusion_window_s
-        << " s older by the " << positions << " poses; render more frames, or a larger --radius or a shorter "
+    why << "no frame " << (overlap ? "shares " : "comes back ") << match.str() << " a frame more than " << p.exclusion_window_s << " s older by the "
+        << positions << " poses; render more frames, or " << larger << " or a shorter "
         << "--exclusion-window may find some";
   }
   const auto other = std::count_if(labelling.other_queries.begin(), labelling.other_queries.end(), has_true_match);
@@ -158,10 +186,7 @@ nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions&
   j["hoilcd_version"] = HOILCD_VERSION;
   j["dataset"] = {{"dir", SafeText(dataset.dir())}, {"scene_hash", dataset.manifest().scene_hash},
                   {"seed", dataset.manifest().seed}, {"frames", dataset.num_frames()}};
-  j["protocol"] = {{"protocol", protocol.protocol}, {"radius_m", protocol.radius_m},
-                   {"ground_truth", protocol.ground_truth},
-                   {"heading_tolerance_deg", protocol.heading_tolerance_deg},
-                   {"exclusion_window_s", protocol.exclusion_window_s}};
+  j["protocol"] = ProtocolOptions::Table().ToJson(protocol);
   j["bootstrap"] = report.bootstrap.ToJson();
   nlohmann::json m = report.metrics.ToJson();
   m["description"] = SafeText(description);

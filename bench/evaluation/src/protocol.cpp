@@ -27,8 +27,14 @@ const OptionTable<ProtocolOptions>& ProtocolOptions::Table() {
                "max heading difference of a true match (negative: off)")
           .Add("exclusion_window_s", &O::exclusion_window_s, 10, "s", R::Any().AtLeast(0),
                "frames with |t_query - t_ref| at most this are left out of the query's database")
-          .Add("ground_truth", &O::ground_truth, "odometry", {"odometry", "true"},
-               "whose positions decide true matches and laps: the odometry's (paper) or the true poses'");
+          .Add("ground_truth", &O::ground_truth, "odometry", {"odometry", "true", "overlap"},
+               "what decides true matches: odometric positions (paper), true positions, or the view the frames share")
+          .Add("overlap_threshold", &O::overlap_threshold, 0.5, "", R::Any().Above(0).AtMost(1),
+               "ground truth overlap: fraction of the query's static pixels the reference must see")
+          .Add("overlap_stride_px", &O::overlap_stride_px, 4, "px", R::Any().AtLeast(1).AtMost(64),
+               "ground truth overlap: sample every this-th pixel of the query's rows and columns")
+          .Add("overlap_depth_tolerance_m", &O::overlap_depth_tolerance_m, 0.05, "m", R::Any().Above(0).AtMost(1),
+               "ground truth overlap: a reprojected point this far outside the reference's depths is not seen");
   return table;
 }
 
@@ -40,7 +46,7 @@ int Query::NumTrueMatches() const {
 
 std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
                                    const std::string& ground_truth) {
-  HOILCD_CHECK_MSG(ground_truth == "odometry" || ground_truth == "true", ground_truth);
+  HOILCD_CHECK_MSG(ground_truth == "odometry" || ground_truth == "true" || ground_truth == "overlap", ground_truth);
   std::vector<PoseRecord> out = poses;
   if (ground_truth == "odometry") {
     for (PoseRecord& p : out) {
@@ -53,7 +59,7 @@ std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
 }
 
 std::string OtherGroundTruth(const std::string& ground_truth) {
-  return ground_truth == "odometry" ? "true" : "odometry";
+  return ground_truth == "odometry" ? "true" : "odometry";  // overlap is compared with the paper's
 }
 
 std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses) {
@@ -116,6 +122,7 @@ std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
 std::vector<Query> RelabelQueries(const std::vector<Query>& queries,
                                   const std::vector<PoseRecord>& poses,
                                   const ProtocolOptions& options, const std::string& ground_truth) {
+  HOILCD_CHECK_MSG(ground_truth != "overlap", "RelabelQueries labels by position; overlap needs OverlapLabels");
   const std::vector<PoseRecord> label = LabelPoses(poses, ground_truth);
   std::vector<Query> out = queries;
   for (Query& q : out) {
@@ -135,7 +142,12 @@ LabelDisagreement CompareLabels(const std::vector<Query>& a, const std::vector<Q
     bool differs = false;
     for (size_t j = 0; j < a[i].database.size(); ++j) {
       ++d.pairs;
-      if (a[i].is_true_match[j] != b[i].is_true_match[j]) {
+      const bool true_in_a = a[i].is_true_match[j] != 0, true_in_b = b[i].is_true_match[j] != 0;
+      d.pairs_true_in_a += true_in_a;
+      d.pairs_true_in_b += true_in_b;
+      d.pairs_only_in_a += true_in_a && !true_in_b;
+      d.pairs_only_in_b += true_in_b && !true_in_a;
+      if (true_in_a != true_in_b) {
         ++d.pairs_differing;
         differs = true;
       }

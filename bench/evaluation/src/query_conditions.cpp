@@ -67,6 +67,7 @@ void AddImageConditions(const Dataset& dataset, int frame, QueryConditions* c) {
   c->temperature_spread_k = values.empty() ? NAN : percentile(0.98) - percentile(0.02);
   c->structure_only_classes = structure_only;
   c->structure_contrast_pixels = contrast;
+  c->structure_contrast_fraction = static_cast<double>(contrast) / static_cast<double>(t.total());
   c->blank = structure_only && c->temperature_spread_k < kBlankSpreadK;
 }
 
@@ -126,7 +127,7 @@ std::vector<QueryConditions> ComputeQueryConditions(const Dataset& dataset, cons
 
 std::string ConditionsCsvHeader() {
   return ",people_in_view,walkers_in_view,mean_occlusion,person_pixels,temperature_spread_k,blank_view,"
-         "structure_contrast_pixels,ffc_or_frozen,turn_rate_deg_s,nearest_true_distance_m,nearest_true_heading_deg";
+         "structure_contrast_pixels,structure_contrast_fraction,ffc_or_frozen,turn_rate_deg_s,nearest_true_distance_m,nearest_true_heading_deg";
 }
 
 std::string ConditionsCsvRow(const QueryConditions& c) {
@@ -134,13 +135,16 @@ std::string ConditionsCsvRow(const QueryConditions& c) {
   return "," + std::to_string(c.people_in_view) + "," + std::to_string(c.walkers_in_view) + "," +
          CsvNumber(c.mean_occlusion, 6) + "," + (exr ? std::to_string(c.person_pixels) : "") + "," +
          CsvNumber(c.temperature_spread_k, 6) + "," + (exr ? (c.blank ? "1" : "0") : "") + "," +
-         (exr ? std::to_string(c.structure_contrast_pixels) : "") + "," + (c.ffc_or_frozen ? "1" : "0") + "," +
+         (exr ? std::to_string(c.structure_contrast_pixels) : "") + "," + CsvNumber(c.structure_contrast_fraction, 6) +
+         "," + (c.ffc_or_frozen ? "1" : "0") + "," +
          CsvNumber(c.turn_rate_deg_s, 6) + "," + CsvNumber(c.nearest_true_distance_m, 6) + "," +
          CsvNumber(c.nearest_true_heading_deg, 6);
 }
 
-std::vector<std::string> StratificationNames() { return {"view", "occlusion", "walkers", "turning", "lap", "ffc"}; }
-std::vector<std::string> DefaultStratifications() { return {"view", "occlusion", "walkers"}; }
+std::vector<std::string> StratificationNames() {
+  return {"view", "contrast", "occlusion", "walkers", "turning", "lap", "ffc"};
+}
+std::vector<std::string> DefaultStratifications() { return {"view", "contrast", "occlusion", "walkers"}; }
 
 namespace {
 
@@ -148,6 +152,7 @@ namespace {
 const std::vector<std::string>& NamedStrata(const std::string& stratification) {
   static const std::map<std::string, std::vector<std::string>> strata = {
       {"view", {"blank view", "static structure only", "no people", "1-2 people", "3 or more people"}},
+      {"contrast", {"static contrast < 1 % of pixels", "static contrast 1-4 %", "static contrast >= 4 %"}},
       {"occlusion", {"people < 25 % occluded", "people 25-50 % occluded", "people >= 50 % occluded"}},
       {"walkers", {"no walker in view", "walker in view"}},
       {"turning", {"straight (< 10 deg/s)", "turning (>= 10 deg/s)"}},
@@ -167,6 +172,10 @@ int StratumIndex(const std::string& stratification, const QueryConditions& c) {
     if (c.people_in_view >= 1) return 3;
     if (c.person_pixels < 0) return 2;  // no EXR: blank views cannot be told apart
     return c.blank ? 0 : 1;
+  }
+  if (stratification == "contrast") {
+    if (std::isnan(c.structure_contrast_fraction)) return -1;  // no EXR
+    return c.structure_contrast_fraction < 0.01 ? 0 : c.structure_contrast_fraction < 0.04 ? 1 : 2;
   }
   if (stratification == "occlusion") {
     if (c.people_in_view == 0) return -1;

@@ -41,14 +41,11 @@ std::string RunOptions::Check() const { return Table().FirstProblem(*this); }
 
 nlohmann::json BenchSettingsJson(const BenchOptions& options) {
   const std::vector<std::string> methods = options.methods.empty() ? DefaultMethods() : options.methods;
-  return {{"methods", methods},
-          {"protocol", options.protocol.protocol},
-          {"radius_m", options.protocol.radius_m},
-          {"exclusion_window_s", options.protocol.exclusion_window_s},
-          {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
-          {"ground_truth", options.protocol.ground_truth},
-          {"keypoint_detector", options.keypoints.detector},
-          {"params", options.params}};  // every method's own options are set only by --param
+  nlohmann::json settings = ProtocolOptions::Table().ToJson(options.protocol);
+  settings["methods"] = methods;
+  settings["keypoint_detector"] = options.keypoints.detector;
+  settings["params"] = options.params;  // every method's own options are set only by --param
+  return settings;
 }
 
 std::string RunFolder(const Scene& scene, const std::string& cache_dir) {

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
 namespace {
@@ -47,13 +49,35 @@ std::string XmlText(const std::string& s) {
 
 }  // namespace
 
-std::string Regression::ToString(double max_drop) const {
+DropAllowance DropAllowance::Parse(const std::string& text, const std::string& where) {
+  DropAllowance allowed;
+  if (text == "ci") {
+    allowed.interval = true;
+    return allowed;
+  }
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  allowed.max_drop = std::strtod(begin, &end);
+  if (end == begin || *end != '\0' || !(allowed.max_drop >= 0 && allowed.max_drop <= 1)) {
+    throw InputError(where, "a number in [0, 1] or 'ci' (the run's 95 % interval), got '" + SafeText(text) + "'");
+  }
+  return allowed;
+}
+
+std::string DropAllowance::ToString() const {
+  return interval ? "beyond the run's 95 % interval" : "by more than " + Number(max_drop);
+}
+
+std::string Regression::ToString(const DropAllowance& allowed) const {
+  const std::string why = allowed.interval && !std::isnan(new_high)
+                              ? "old above the new run's 95 % interval [" + Number(new_low) + ", " + Number(new_high) + "]"
+                              : "dropped " + allowed.ToString();
   return "regression: method " + method + ", " + metric + " old " + Number(old_value) + " new " + Number(new_value) +
-         " (dropped by more than " + Number(max_drop) + ")";
+         " (" + why + ")";
 }
 
 std::vector<Regression> CompareToBaseline(const nlohmann::json& baseline, const nlohmann::json& current,
-                                          double max_drop) {
+                                          const DropAllowance& allowed) {
   std::vector<Regression> out;
   for (const auto& [name, old_method] : baseline["methods"].items()) {
     if (!current["methods"].contains(name)) continue;
@@ -61,7 +85,23 @@ std::vector<Regression> CompareToBaseline(const nlohmann::json& baseline, const 
     for (const char* metric : kHeadlineMetrics) {
       const double old_value = Value(old_method, metric), new_value = Value(new_method, metric);
       if (std::isnan(old_value)) continue;
-      if (std::isnan(new_value) || old_value - new_value > max_drop) out.push_back({name, metric, old_value, new_value});
+      Regression r{name, metric, old_value, new_value};
+      bool regressed = std::isnan(new_value);
+      if (!regressed && allowed.interval) {
+        r.new_low = r.new_high = new_value;  // no interval: one of zero width
+        const nlohmann::json* ends = nullptr;
+        if (const auto it = new_method.find("intervals"); it != new_method.end() && it->is_object()) {
+          if (const auto e = it->find(metric); e != it->end() && e->is_array() && e->size() == 2) ends = &*e;
+        }
+        if (ends != nullptr && (*ends)[0].is_number() && (*ends)[1].is_number()) {
+          r.new_low = (*ends)[0].get<double>();
+          r.new_high = (*ends)[1].get<double>();
+        }
+        regressed = old_value > r.new_high;
+      } else if (!regressed) {
+        regressed = old_value - new_value > allowed.max_drop;
+      }
+      if (regressed) out.push_back(r);
     }
   }
   return out;
@@ -74,7 +114,8 @@ std::vector<std::string> MethodsOnlyInBaseline(const nlohmann::json& baseline, c
   return out;
 }
 
-std::string JUnitXml(const nlohmann::json& report, const std::vector<Regression>& regressions, double max_drop) {
+std::string JUnitXml(const nlohmann::json& report, const std::vector<Regression>& regressions,
+                     const DropAllowance& allowed) {
   std::ostringstream cases;
   int failures = 0, tests = 0;
   for (const auto& [name, method] : report["methods"].items()) {
@@ -82,7 +123,7 @@ std::string JUnitXml(const nlohmann::json& report, const std::vector<Regression>
     cases << "  <testcase classname=\"hoilcd.loop_closure\" name=\"" << XmlText(name) << "\">\n";
     std::string lines;  // one regression a line, each line made safe on its own
     for (const Regression& r : regressions)
-      if (r.method == name) lines += XmlText(r.ToString(max_drop)) + "\n";
+      if (r.method == name) lines += XmlText(r.ToString(allowed)) + "\n";
     if (!lines.empty()) {
       ++failures;
       cases << "    <failure message=\"headline metric dropped\">" << lines << "</failure>\n";

@@ -43,24 +43,38 @@ const char* const kMethodNotes[] = {
     "scores do not depend on database order either.",
 };
 
+// The paper's methods in one panel and the rest (variants, baselines, oracles) in another, so no
+// curve hides under its variant's; both share the recall axis, fitted to the longest curve.
 cv::Mat PrFigure(const std::vector<MethodRun>& runs) {
-  std::vector<Series> series;
+  std::vector<Series> paper, others;
+  double max_recall = 0;
   for (const MethodRun& run : runs) {
+    const bool from_paper = IsMethod(run.name) && FindMethod(run.name).FromPaper();
     Series s;
     s.label = run.name;
+    s.colour = PaletteColour(static_cast<int>((from_paper ? paper : others).size()));
     for (const PrPoint& p : run.metrics.pr_curve) {
       s.x.push_back(p.recall);
       s.y.push_back(p.precision);
+      if (std::isfinite(p.recall)) max_recall = std::max(max_recall, p.recall);
     }
-    series.push_back(s);
+    (from_paper ? paper : others).push_back(s);
   }
   PlotOptions o;
-  o.title = "Top-1 precision-recall";
   o.x_label = "recall";
   o.y_label = "precision";
-  o.x_range = std::make_pair(0.0, 1.0);
+  o.x_range = std::make_pair(0.0, std::min(1.0, std::ceil(max_recall * 10 + 0.5) / 10));
   o.y_range = std::make_pair(0.0, 1.05);
-  return LinePlot(series, o);
+  if (paper.empty() || others.empty()) {
+    o.title = "Top-1 precision-recall";
+    return LinePlot(paper.empty() ? others : paper, o);
+  }
+  o.width_px = o.width_px * 3 / 4;
+  o.title = "Top-1 precision-recall: the paper's methods";
+  cv::Mat left = LinePlot(paper, o), both;
+  o.title = "... variants, baselines and oracles";
+  cv::hconcat(left, LinePlot(others, o), both);
+  return both;
 }
 
 cv::Mat LapFigure(const std::vector<MethodRun>& runs) {
@@ -161,7 +175,8 @@ std::string FormatResultTable(const BenchResult& result) {
   const std::string other = "MRR(" + result.other_ground_truth + ")";
   std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", "method", "MRR", "R@1", "R@5",
                 "PR-AUC", "R@100%P", "ms/query", other.c_str());
-  out << "ground truth: " << result.ground_truth << " positions (columns before the last)\n" << line;
+  out << "ground truth: " << (result.ground_truth == "overlap" ? "overlap (the view two frames share)" : result.ground_truth + " positions")
+      << " (columns before the last)\n" << line;
   for (const MethodRun& run : result.runs) {
     const MethodMetrics& m = run.metrics;
     std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", run.name.c_str(),
@@ -177,6 +192,35 @@ std::string FormatResultTable(const BenchResult& result) {
         << " queries have other true matches under " << result.other_ground_truth << " labels\n";
   }
   return out.str();
+}
+
+nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& options) {
+  const LabelDisagreement& labels = result.label_disagreement;
+  nlohmann::json report;
+  report["protocol"] = ProtocolOptions::Table().ToJson(options.protocol);
+  for (const MethodRun& run : result.runs) {
+    nlohmann::json m = run.metrics.ToJson();
+    m["description"] = FindMethod(run.name).Description();
+    if (!run.options.is_null()) m["options"] = run.options;  // as it ran, --param values included
+    m["intervals"] = run.intervals.ToJson();
+    report["methods"][run.name] = m;
+  }
+  report["bootstrap"] = result.bootstrap.ToJson();
+  report["strata"] = StrataJson(result.strata);
+  report["conditions"] = {{"blank_spread_k", kBlankSpreadK}, {"contrast_k", kContrastK},
+                          {"per_query", "queries.csv, one row per method and query"}};
+  for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
+  report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
+                                  {"queries_differing", labels.queries_differing},
+                                  {"queries", labels.queries},
+                                  {"pairs_differing", labels.pairs_differing},
+                                  {"queries_with_match_only_under_chosen", labels.scored_only_in_a},
+                                  {"queries_with_match_only_under_other", labels.scored_only_in_b},
+                                  {"methods", nlohmann::json::object()}};
+  for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
+  report["label_agreement"] = nlohmann::json::array();
+  for (const LabelAgreement& g : result.label_agreements) report["label_agreement"].push_back(g.ToJson());
+  return report;
 }
 
 void CheckReportFolder(const std::string& dir) {
@@ -202,39 +246,14 @@ std::string OptionsText(const nlohmann::json& options) {
 nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                           const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis) {
   const DatasetManifest& manifest = dataset.manifest();
-  const LabelDisagreement& labels = result.label_disagreement;
-  nlohmann::json report;
+  nlohmann::json report = ResultsJson(result, options);
   report["hoilcd_version"] = HOILCD_VERSION;
   report["dataset"] = {{"dir", SafeText(dataset.dir())}, {"scene_hash", manifest.scene_hash},
                        {"seed", manifest.seed}, {"frames", dataset.num_frames()}};
-  report["protocol"] = {{"protocol", options.protocol.protocol}, {"radius_m", options.protocol.radius_m},
-                        {"ground_truth", options.protocol.ground_truth},
-                        {"heading_tolerance_deg", options.protocol.heading_tolerance_deg},
-                        {"exclusion_window_s", options.protocol.exclusion_window_s}};
   report["parameters"] = {{"keypoint_detector", options.keypoints.detector}};
   for (const std::string& param : options.params) {  // --param NAME=VALUE
     report["parameters"]["param"].push_back(SafeText(param));
   }
-  for (const MethodRun& run : result.runs) {
-    nlohmann::json m = run.metrics.ToJson();
-    m["description"] = FindMethod(run.name).Description();
-    if (!run.options.is_null()) m["options"] = run.options;  // as it ran, --param values included
-    m["intervals"] = run.intervals.ToJson();
-    report["methods"][run.name] = m;
-  }
-  report["bootstrap"] = result.bootstrap.ToJson();
-  report["strata"] = StrataJson(result.strata);
-  report["conditions"] = {{"blank_spread_k", kBlankSpreadK}, {"contrast_k", kContrastK},
-                          {"per_query", "queries.csv, one row per method and query"}};
-  for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
-  report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
-                                  {"queries_differing", labels.queries_differing},
-                                  {"queries", labels.queries},
-                                  {"pairs_differing", labels.pairs_differing},
-                                  {"queries_with_match_only_under_chosen", labels.scored_only_in_a},
-                                  {"queries_with_match_only_under_other", labels.scored_only_in_b},
-                                  {"methods", nlohmann::json::object()}};
-  for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
   report["inspect"] = inspect.ToJson();
   if (result.tracking_evaluated) report["tracking"] = result.tracking.ToJson();
   if (result.slam_evaluated) {
@@ -468,20 +487,44 @@ std::string StrataMarkdown(const std::vector<StratumRow>& strata) {
   return md.str();
 }
 
+// How the ground truths label the same pairs: what each adds to and removes from the other.
+std::string AgreementsMarkdown(const std::vector<LabelAgreement>& agreements) {
+  if (agreements.size() < 2) return "";  // odometry vs true alone: the section above says it
+  std::ostringstream md;
+  md << "\n### How the ground truths agree\n\n"
+     << "Over the same " << agreements.front().counts.pairs << " query-database pairs: odometry and true label by "
+     << "position (within the radius), overlap by the share of the query's static view the reference sees.\n\n"
+     << "| a vs b | true pairs (a) | true pairs (b) | a adds | a removes | queries matched only under a | only under b |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const LabelAgreement& g : agreements) {
+    const LabelDisagreement& c = g.counts;
+    md << "| " << g.a << " vs " << g.b << " | " << c.pairs_true_in_a << " | " << c.pairs_true_in_b << " | "
+       << c.pairs_only_in_a << " | " << c.pairs_only_in_b << " | " << c.scored_only_in_a << " | " << c.scored_only_in_b
+       << " |\n";
+  }
+  return md.str();
+}
+
 // report.md's opening: the dataset and protocol, the results table shaped like the paper's
 // Table 1 and the same scores under the other ground truth.
 std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapPlan& plan,
                             const std::vector<PairedComparison>& comparisons,
                             const std::vector<StratumRow>& strata, const Dataset& dataset, const ProtocolOptions& protocol,
-                            const std::string& other_ground_truth, const LabelDisagreement& labels) {
+                            const std::string& other_ground_truth, const LabelDisagreement& labels,
+                            const std::vector<LabelAgreement>& agreements) {
   const DatasetManifest& manifest = dataset.manifest();
   std::ostringstream md;
   md << "# hoilcd loop-closure report\n\n"
      << "Dataset `" << SafeText(dataset.dir()) << "` (" << dataset.num_frames() << " frames, seed " << manifest.seed
-     << ", scene hash `" << manifest.scene_hash << "`), protocol `" << protocol.protocol
-     << "`, true match within " << protocol.radius_m << " m of the query's "
-     << (protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)" : "true position")
-     << ", exclusion window " << protocol.exclusion_window_s << " s.\n\n"
+     << ", scene hash `" << manifest.scene_hash << "`), protocol `" << protocol.protocol << "`, ";
+  if (protocol.ground_truth == "overlap") {
+    md << "true match when the reference sees at least " << protocol.overlap_threshold * 100
+       << " % of the query's static pixels (overlap ground truth, true poses and depth)";
+  } else {
+    md << "true match within " << protocol.radius_m << " m of the query's "
+       << (protocol.ground_truth == "odometry" ? "odometric position (the paper's ground truth)" : "true position");
+  }
+  md << ", exclusion window " << protocol.exclusion_window_s << " s.\n\n"
      << "## Results (shaped like the paper's Table 1; " << protocol.ground_truth << " ground truth)\n\n"
      << "| method | MRR | R@1 | R@5 | R@10 | PR-AUC | R@100%P | ms/query (extract + match) |\n"
      << "|---|---|---|---|---|---|---|---|\n";
@@ -508,6 +551,7 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapP
     md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | " << Fixed(m.recall_at_5)
        << " | " << Fixed(m.pr_auc) << " | " << Fixed(run.metrics.mrr) << " |\n";
   }
+  md << AgreementsMarkdown(agreements);
   return md.str();
 }
 
@@ -517,8 +561,8 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
                            const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
                            const std::vector<std::string>& figures) {
   std::ostringstream md;
-  md << ResultsMarkdown(result.runs, result.bootstrap, result.comparisons, result.strata, dataset, options.protocol, result.other_ground_truth,
-                        result.label_disagreement);
+  md << ResultsMarkdown(result.runs, result.bootstrap, result.comparisons, result.strata, dataset, options.protocol,
+                        result.other_ground_truth, result.label_disagreement, result.label_agreements);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
   if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
@@ -601,11 +645,10 @@ BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, Re
   return result;
 }
 
-MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& scores, const std::string& name,
-                                    const std::string& description, const ProtocolOptions& protocol,
-                                    const std::string& dir) {
+MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& labelling, const ScoreMatrix& scores,
+                                    const std::string& name, const std::string& description, const std::string& dir) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
-  const Labelling labelling = LabelQueries(dataset, protocol);
+  const ProtocolOptions& protocol = labelling.protocol;
   const MethodReport report = EvaluateLabelled(dataset, labelling, scores, name);
   std::vector<MethodRun> runs(1);
   runs[0].name = report.name;
@@ -619,12 +662,15 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& s
   CreateOutputFolder(dir);
   nlohmann::json json = EvaluateReportJson(dataset, protocol, report, description);
   json["strata"] = StrataJson(strata);
+  json["label_agreement"] = nlohmann::json::array();
+  for (const LabelAgreement& g : labelling.agreements) json["label_agreement"].push_back(g.ToJson());
   WriteFileAtomic(dir + "/report.json", json.dump(2) + "\n");
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(runs, conditions));
   const FigureJobs figures = MetricFigures(runs);
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
-  md << ResultsMarkdown(runs, report.bootstrap, {}, strata, dataset, protocol, labelling.other_ground_truth, labelling.disagreement)
+  md << ResultsMarkdown(runs, report.bootstrap, {}, strata, dataset, protocol, labelling.other_ground_truth, labelling.disagreement,
+                        labelling.agreements)
      << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";

@@ -225,7 +225,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   const auto start = std::chrono::steady_clock::now();
 
   // Step 1: the protocol's queries, labelled under both ground truths.
-  const Labelling labelling = LabelQueries(dataset, options.protocol);
+  const Labelling labelling = LabelQueries(dataset, options.protocol, options.threads);
   BenchResult result;
   result.skipped = std::move(skipped);
   result.queries = labelling.queries;
@@ -233,6 +233,8 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   result.other_ground_truth = labelling.other_ground_truth;
   result.other_queries = labelling.other_queries;
   result.label_disagreement = labelling.disagreement;
+  result.label_agreements = labelling.agreements;
+  result.no_true_match = NoTrueMatchReason(labelling);
   result.conditions = ComputeQueryConditions(dataset, labelling.queries, options.threads);
 
   // Every method scores every pair: their scores must fit before the front ends run.

@@ -647,17 +647,21 @@ std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string&
   return poses;
 }
 
+CameraPose PoseRecord::Camera() const {
+  CameraPose pose;
+  pose.x_m = cam_x_m;
+  pose.y_m = cam_y_m;
+  pose.z_m = cam_z_m;
+  pose.yaw_rad = cam_yaw_rad;
+  pose.pitch_rad = cam_pitch_rad;
+  pose.roll_rad = cam_roll_rad;
+  return pose;
+}
+
 std::string PosesToTum(const std::vector<PoseRecord>& poses) {
   std::string out = "# timestamp tx ty tz qx qy qz qw (world_from_cam, OpenCV camera frame)\n";
   for (const PoseRecord& p : poses) {
-    CameraPose pose;
-    pose.x_m = p.cam_x_m;
-    pose.y_m = p.cam_y_m;
-    pose.z_m = p.cam_z_m;
-    pose.yaw_rad = p.cam_yaw_rad;
-    pose.pitch_rad = p.cam_pitch_rad;
-    pose.roll_rad = p.cam_roll_rad;
-    const Rigid3 world_from_cam = pose.WorldFromCam();
+    const Rigid3 world_from_cam = p.Camera().WorldFromCam();
     const Eigen::Quaterniond& q = world_from_cam.rotation;
     const Eigen::Vector3d& t = world_from_cam.translation;
     out += ShortestDouble(p.time_s);

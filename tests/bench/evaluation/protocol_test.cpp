@@ -76,8 +76,11 @@ TEST(ProtocolOptions, HoldThePapersDefaultsFromTheirTableAndEveryBoundIsChecked)
   EXPECT_EQ(options.radius_m, 0.2);  // paper, section 5.1
   EXPECT_EQ(options.exclusion_window_s, 10);
   EXPECT_EQ(options.ground_truth, "odometry");
+  EXPECT_EQ(options.overlap_threshold, 0.5);
   ExpectConstructedHoldsTheTableDefaults<ProtocolOptions>();
-  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ProtocolOptions>(), 3);
+  // radius, heading tolerance, exclusion window; overlap threshold, stride and depth tolerance
+  // (each bounded at both ends).
+  EXPECT_EQ(ExpectEveryBoundCrossedIsNamedByCheck<ProtocolOptions>(), 9);
 }
 
 TEST(BuildQueries, LapsUsesFirstLapAsDatabaseAndLaterLapsAsQueries) {
@@ -210,7 +213,7 @@ TEST(GroundTruth, LabelPosesSwapsInTheOdometryAndOtherGroundTruthFlips) {
 TEST(GroundTruth, UnknownChoiceIsNamedByCheck) {
   ProtocolOptions options;
   options.ground_truth = "gps";
-  EXPECT_EQ(options.Check(), "ground_truth: must be one of: odometry, true (got 'gps')");
+  EXPECT_EQ(options.Check(), "ground_truth: must be one of: odometry, true, overlap (got 'gps')");
 }
 
 }  // namespace

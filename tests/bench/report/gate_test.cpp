@@ -49,6 +49,43 @@ TEST(Gate, MethodsInOnlyOneReportAreNotComparedAndAMissingNewValueIsARegression)
   EXPECT_NE(regressions[0].ToString(0.5).find("dlcd, mrr old 0.2000 new none"), std::string::npos);
 }
 
+TEST(Gate, WithTheIntervalADropIsARegressionOnlyWhenTheBaselineLiesAboveTheNewInterval) {
+  const nlohmann::json baseline = Report(0.5, 0.4, 0.2);
+  nlohmann::json current = Report(0.45, 0.39, 0.2);
+  DropAllowance ci;
+  ci.interval = true;
+  // slcd's MRR fell by 0.05, but its interval reaches 0.52: the queries explain the drop.
+  current["methods"]["slcd"]["intervals"] = {{"mrr", {0.38, 0.52}}, {"recall_at_1", {0.30, 0.45}}};
+  current["methods"]["dlcd"]["intervals"] = {{"mrr", {0.15, 0.25}}, {"recall_at_1", {0.05, 0.15}}};
+  EXPECT_TRUE(CompareToBaseline(baseline, current, ci).empty());
+  // A narrower interval no longer reaches the old value.
+  current["methods"]["slcd"]["intervals"]["mrr"] = {0.41, 0.49};
+  const auto regressions = CompareToBaseline(baseline, current, ci);
+  ASSERT_EQ(regressions.size(), 1u);
+  EXPECT_EQ(regressions[0].ToString(ci),
+            "regression: method slcd, mrr old 0.5000 new 0.4500 (old above the new run's 95 % interval [0.4100, 0.4900])");
+  // Without an interval the allowance is zero; a missing new value is always a regression.
+  current["methods"]["dlcd"].erase("intervals");
+  current["methods"]["dlcd"]["mrr"] = 0.19;
+  EXPECT_EQ(CompareToBaseline(baseline, current, ci).size(), 2u);
+  current["methods"]["dlcd"]["mrr"] = nullptr;
+  EXPECT_EQ(CompareToBaseline(baseline, current, ci).size(), 2u);
+}
+
+TEST(Gate, TheAllowanceIsANumberInZeroToOneOrCi) {
+  EXPECT_TRUE(DropAllowance::Parse("ci", "--max-drop").interval);
+  EXPECT_DOUBLE_EQ(DropAllowance::Parse("0.02", "--max-drop").max_drop, 0.02);
+  for (const char* bad : {"", "CI", "nan", "-0.1", "1.5", "0.1x"}) {
+    try {
+      DropAllowance::Parse(bad, "--max-drop");
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--max-drop"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("a number in [0, 1] or 'ci'"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Gate, JUnitHasOneTestCasePerMethodAndAFailureForEachRegressedOne) {
   const nlohmann::json current = Report(0.3, 0.4, 0.2);
   const std::string xml = JUnitXml(current, CompareToBaseline(Report(0.5, 0.4, 0.2), current, 0.0), 0.0);

@@ -16,23 +16,34 @@
 
 namespace hoilcd {
 
+// How two of the ground truths label the same pairs: `a` against `b`.
+struct LabelAgreement {
+  std::string a, b;  // "odometry", "true", "overlap"
+  LabelDisagreement counts;
+  nlohmann::json ToJson() const;
+};
+
 // A dataset's queries labelled under the chosen ground truth and under the other one.
 struct Labelling {
   ProtocolOptions protocol;             // what labelled them
   double frame_rate_hz = 0;             // the dataset's (the bootstrap's blocks are in seconds)
-  std::string ground_truth;             // protocol.ground_truth: "odometry" or "true"
-  std::string other_ground_truth;       // the other one
+  std::string ground_truth;             // protocol.ground_truth: "odometry", "true" or "overlap"
+  std::string other_ground_truth;       // OtherGroundTruth(ground_truth)
   std::vector<Query> queries;           // labelled with ground_truth
   std::vector<Query> other_queries;     // the same queries and databases, other labels
   std::vector<PoseRecord> label_poses;  // LabelPoses(poses, ground_truth)
   std::vector<PoseRecord> other_label_poses;
   LabelDisagreement disagreement;       // queries vs other_queries
+  // Every pair of the ground truths computed: true vs odometry, and with overlap labels (ground
+  // truth overlap) overlap vs odometry and overlap vs true.
+  std::vector<LabelAgreement> agreements;
   // Queries worth scoring: a true match under either labelling, so both can be measured.
   std::vector<bool> to_score;
 };
 
-// InputError("protocol", ...) when protocol.Check() fails.
-Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol);
+// InputError("protocol", ...) when protocol.Check() fails. Overlap labels read the EXRs on
+// `threads` threads (0: every CPU).
+Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol, int threads = 0);
 
 // Empty when a query has a true match under labelling.ground_truth. Else why none has, in words
 // a user can act on ("no query has a true match, so MRR, Recall@K and PR are undefined: the

@@ -21,9 +21,13 @@ struct ProtocolOptions {
   double radius_m;               // m, base positions this close make a true match (paper)
   double heading_tolerance_deg;  // deg, max heading difference of a true match; < 0 = off
   double exclusion_window_s;     // s, frames with |t_query - t_ref| <= this are left out
-  // Whose positions decide true matches and laps: "odometry" (the paper's: the robot's odometric
-  // poses) or "true" (the ground-truth poses).
+  // What decides true matches: "odometry" (the paper's: the robot's odometric positions within
+  // radius_m), "true" (the ground-truth positions within radius_m) or "overlap" (the share of the
+  // query's static view the reference sees, overlap.h; laps and databases from the true poses).
   std::string ground_truth;
+  double overlap_threshold;          // fraction of the query's static pixels shared to be a true match
+  int overlap_stride_px;             // px, the overlap samples every this-th pixel of rows and columns
+  double overlap_depth_tolerance_m;  // m, a reprojected point this far from the reference's depth is unseen
 
   ProtocolOptions();  // the registered defaults
   // Every field once: name, default, unit, range, description.
@@ -40,12 +44,13 @@ struct Query {
   int NumTrueMatches() const;         // 0 => the query is skipped (not scored)
 };
 
-// The poses whose x, y, theta are those `ground_truth` ("odometry" or "true") labels with: for
-// "odometry" a copy with the odometric pose in x_m, y_m, theta_rad; for "true" the poses as given.
+// The poses whose x, y, theta are those `ground_truth` labels with: for "odometry" a copy with the
+// odometric pose in x_m, y_m, theta_rad; for "true" and "overlap" the poses as given.
 std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
                                    const std::string& ground_truth);
 
-// The other choice of ground truth ("odometry" <-> "true").
+// The ground truth the report compares with: "odometry" <-> "true"; "overlap" -> "odometry" (the
+// paper's).
 std::string OtherGroundTruth(const std::string& ground_truth);
 
 // Lap number per pose (0 = first lap), from the cumulative unwrapped ground-truth heading: a new
@@ -63,12 +68,13 @@ bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
 
 // Queries in frame order; those without a true match are kept (NumTrueMatches() == 0) so they can
 // be counted as skipped. `poses` are the dataset's rows (frames 0..N-1 in time order); laps and
-// true matches come from options.ground_truth's positions (LabelPoses).
+// true matches come from options.ground_truth's positions (LabelPoses). Under "overlap" the
+// pairs are labelled by true position: OverlapLabels (overlap.h) relabels them from the images.
 std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
                                 const ProtocolOptions& options);
 
 // The same queries and databases, labelled with `ground_truth`'s positions instead (so one set of
-// scores can be measured under both labellings).
+// scores can be measured under both labellings); "odometry" or "true".
 std::vector<Query> RelabelQueries(const std::vector<Query>& queries,
                                   const std::vector<PoseRecord>& poses,
                                   const ProtocolOptions& options, const std::string& ground_truth);
@@ -81,6 +87,10 @@ struct LabelDisagreement {
   int scored_only_in_b = 0;        // queries with a true match under b only
   int64_t pairs = 0;               // (query, database frame) pairs compared
   int64_t pairs_differing = 0;     // pairs labelled differently
+  int64_t pairs_true_in_a = 0;     // true matches under a
+  int64_t pairs_true_in_b = 0;     // true matches under b
+  int64_t pairs_only_in_a = 0;     // true under a, not under b: the pairs a adds to b
+  int64_t pairs_only_in_b = 0;     // true under b, not under a: the pairs a removes from b
 };
 LabelDisagreement CompareLabels(const std::vector<Query>& a, const std::vector<Query>& b);
 

@@ -34,6 +34,7 @@ struct QueryConditions {
   double temperature_spread_k = NAN;  // T_true, 98th minus 2nd percentile
   bool structure_only_classes = false;  // nothing but wall, floor, ceiling (and no person)
   int structure_contrast_pixels = -1;  // non-person pixels with a 4-neighbour kContrastK apart
+  double structure_contrast_fraction = NAN;  // of them, as a fraction of the frame's pixels
   bool blank = false;                  // spread < kBlankSpreadK and structure_only_classes
   bool ffc_or_frozen = false;          // an FFC at this frame, or a frame repeating an earlier one
   double turn_rate_deg_s = NAN;        // |heading change| of the true base pose per second
@@ -51,8 +52,9 @@ std::string ConditionsCsvHeader();
 std::string ConditionsCsvRow(const QueryConditions& c);
 
 // The stratifications the report can split by (--strata): their names and their strata.
-std::vector<std::string> StratificationNames();       // "view", "occlusion", "walkers", "turning", "lap", "ffc"
-std::vector<std::string> DefaultStratifications();    // "view", "occlusion", "walkers"
+// "view", "contrast", "occlusion", "walkers", "turning", "lap", "ffc"
+std::vector<std::string> StratificationNames();
+std::vector<std::string> DefaultStratifications();  // "view", "contrast", "occlusion", "walkers"
 // The stratum of `c` under `stratification` ("" when the query belongs to none, e.g. occlusion
 // with nobody in view).
 std::string StratumOf(const std::string& stratification, const QueryConditions& c);

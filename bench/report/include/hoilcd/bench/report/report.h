@@ -29,6 +29,11 @@ std::string FormatResultTable(const BenchResult& result);
 // with hoilcd's keys); the guard of output_folder.h. Every writer below checks it first.
 void CheckReportFolder(const std::string& dir);
 
+// report.json's results: protocol, methods (metrics, intervals, options), bootstrap, strata,
+// comparisons, the other ground truth and label_agreement. WriteReport adds the dataset, inspect,
+// tracking, SLAM, timing and the diagnosis; Python's hoilcd.bench without a folder returns this.
+nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& options);
+
 // Writes the report folder (created if missing; files written atomically).
 void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                  const ReportTiming& timing, const std::string& dir);
@@ -44,8 +49,7 @@ BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, Re
 // its report folder in `dir`, checked before the work: report.json (EvaluateReportJson, the
 // method described by `description`), queries.csv, report.md with the bench's results tables and
 // scoring notes, and the figures of its metrics (pr_curves.png, mrr_per_lap.png).
-MethodReport EvaluateAndWriteReport(const Dataset& dataset, const ScoreMatrix& scores, const std::string& name,
-                                    const std::string& description, const ProtocolOptions& protocol,
-                                    const std::string& dir);
+MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& labelling, const ScoreMatrix& scores,
+                                    const std::string& name, const std::string& description, const std::string& dir);
 
 }  // namespace hoilcd

@@ -144,6 +144,8 @@ struct PoseRecord {
   double cam_yaw_rad = 0, cam_pitch_rad = 0;         // camera, ground truth (REP 103)
   double cam_roll_rad = 0;                           // camera roll about its optical axis
   double odo_x_m = 0, odo_y_m = 0, odo_theta_rad = 0;  // noisy wheel odometry
+
+  CameraPose Camera() const;  // the cam_* fields (world_from_cam through CameraPose::WorldFromCam)
 };
 
 // poses.csv: a header line "frame,t,x,y,theta,cam_x,cam_y,cam_z,cam_yaw,cam_pitch,cam_roll,odo_x,
