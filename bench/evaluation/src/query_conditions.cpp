@@ -93,6 +93,13 @@ void AddPoseConditions(const std::vector<PoseRecord>& poses, const Query& q, Que
 
 }  // namespace
 
+QueryConditions ImageConditionsOf(const Dataset& dataset, int frame) {
+  QueryConditions c;
+  c.frame = frame;
+  AddImageConditions(dataset, frame, &c);
+  return c;
+}
+
 std::vector<QueryConditions> ComputeQueryConditions(const Dataset& dataset, const std::vector<Query>& queries,
                                                     int threads) {
   const bool has_persons = dataset.manifest().outputs.persons;

@@ -5,11 +5,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/bench/report/camera_output.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/stats.h"
+#include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
 namespace {
@@ -199,6 +202,35 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
   return s;
 }
 
+InspectSection ViewSection(const Dataset& dataset, int threads) {
+  InspectSection s{"views", "What the camera sees (true temperature, EXR)", {}};
+  const int frames = dataset.num_frames();
+  const int step = std::max(1, (frames + kViewFramesSampled - 1) / kViewFramesSampled);
+  std::vector<int> sampled;
+  for (int f = 0; f < frames; f += step) sampled.push_back(f);
+  std::vector<QueryConditions> views(sampled.size());
+  ParallelFor(static_cast<int64_t>(sampled.size()), threads,
+              [&](int64_t i) { views[static_cast<size_t>(i)] = ImageConditionsOf(dataset, sampled[static_cast<size_t>(i)]); });
+  std::vector<double> spread, contrast;
+  int blank = 0, people = 0;
+  for (const QueryConditions& c : views) {
+    blank += c.blank;
+    people += c.person_pixels > 0;
+    spread.push_back(c.temperature_spread_k);
+    contrast.push_back(100 * c.structure_contrast_fraction);
+  }
+  const double n = std::max<double>(1, static_cast<double>(views.size()));
+  s.figures = {
+      NumberFigure("frames_sampled", "frames sampled (evenly spaced)", static_cast<double>(views.size()), ""),
+      NumberFigure("blank_percent", "blank views (spread < " + ShortestDouble(kBlankSpreadK) + " K, walls/floor/ceiling only)",
+                   100 * blank / n, "%"),
+      NumberFigure("with_people_percent", "views with a person", 100 * people / n, "%"),
+      NumberFigure("spread_median_k", "true temperature spread (p98 - p2), median", Median(spread), "K"),
+      NumberFigure("static_contrast_median_percent", "static pixels with contrast, median", Median(contrast), "%"),
+  };
+  return s;
+}
+
 InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol) {
   InspectSection s{"labels", "Ground truth: odometry vs true poses", {}};
   ProtocolOptions odometry = protocol;
@@ -229,6 +261,7 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   r.sections.push_back(CameraSection(dataset.poses()));
   // People ground truth is optional (render --outputs without persons): no people section then.
   if (dataset.manifest().outputs.persons) r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
+  if (dataset.manifest().outputs.exr) r.sections.push_back(ViewSection(dataset, threads));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   CameraOutputOptions camera;
   camera.threads = threads;

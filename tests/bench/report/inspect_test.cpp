@@ -4,6 +4,10 @@
 
 #include <cmath>
 
+#include "test_dir.h"
+#include "tiny_room.h"
+
+#include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/radiometry.h"
@@ -132,6 +136,23 @@ TEST(IdealRoom, LapsRepeatOdometryIsExactCameraIsRigidAndLabelsAgree) {
   EXPECT_EQ(Figure(t, "odometry_drift_max_m"), 0);
   EXPECT_EQ(Figure(CameraSection(poses), "roll_std_deg"), 0);
   EXPECT_EQ(Figure(LabelSection(poses, ProtocolOptions()), "queries_differing"), 0);
+}
+
+TEST(Inspect, ViewsCountTheBlankFramesOfTheEvenlySampledExrs) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomDataset(temp / "dataset");
+  const InspectSection views = ViewSection(dataset, 2);
+  const int frames = dataset.num_frames();  // 440: every frame is sampled (at most 400 a step of 2)
+  const int step = (frames + kViewFramesSampled - 1) / kViewFramesSampled;
+  int sampled = 0, blank = 0;
+  for (int f = 0; f < frames; f += step, ++sampled) blank += ImageConditionsOf(dataset, f).blank;
+  EXPECT_EQ(views.Find("frames_sampled")->value, sampled);
+  EXPECT_DOUBLE_EQ(views.Find("blank_percent")->value, 100.0 * blank / sampled);
+  EXPECT_GT(views.Find("with_people_percent")->value, 0);  // the tiny room's camera faces its table
+  EXPECT_GT(views.Find("spread_median_k")->value, kBlankSpreadK);
+  // The same at one thread, and in the dataset's inspect report.
+  EXPECT_EQ(ViewSection(dataset, 1).Find("blank_percent")->value, views.Find("blank_percent")->value);
+  ASSERT_NE(InspectDataset(dataset).Find("views"), nullptr);
 }
 
 }  // namespace

@@ -42,6 +42,10 @@ struct QueryConditions {
   double nearest_true_heading_deg = NAN;   // |heading difference| to that match
 };
 
+// The EXR-based fields of frame `frame` (person pixels, temperature spread, structure only,
+// contrast, blank), the rest left as constructed. InputError when the dataset has no EXRs.
+QueryConditions ImageConditionsOf(const Dataset& dataset, int frame);
+
 // One condition per query, in query order; EXR-based fields only when the dataset has EXRs.
 // `threads`: 0 = every CPU.
 std::vector<QueryConditions> ComputeQueryConditions(const Dataset& dataset, const std::vector<Query>& queries,

@@ -1,6 +1,6 @@
 // What a user checks before trusting a sequence (`hoilcd inspect`, and a section of every bench
 // report): laps, lap-to-lap true path difference, odometry drift, camera jitter, people in view,
-// occlusion, and how the odometric and true ground truths disagree. Each topic is one section of
+// occlusion, blank views, and how the odometric and true ground truths disagree. Each topic is one section of
 // named figures; a new topic is a new section builder added to InspectDataset.
 #pragma once
 
@@ -50,6 +50,12 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses);
 InspectSection CameraSection(const std::vector<PoseRecord>& poses);
 // People in view per frame (mean, min, max) and a histogram of their occlusion fractions.
 InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frames);
+// What the camera sees, from the EXR ground truth of up to kViewFramesSampled evenly spaced
+// frames: the share of blank views (query_conditions.h: true temperature spread below
+// kBlankSpreadK with nothing but walls, floor and ceiling in view), the median spread, the median
+// share of static pixels with contrast, and frames showing people. Datasets without EXRs: none.
+constexpr int kViewFramesSampled = 400;
+InspectSection ViewSection(const Dataset& dataset, int threads);
 // How the odometric and the true ground truth label the protocol's queries differently.
 InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol);
 
