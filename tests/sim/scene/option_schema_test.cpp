@@ -91,6 +91,11 @@ std::vector<std::string> Disagreements(const json& schema, const std::string& po
                               (*object)["required"].end();
     if (required) {
       // A required key has no schema default; the table's only fills a struct made in code.
+    } else if (o.optional) {
+      if (node->contains("default")) {
+        out.push_back(where + ": optional in C++ (left out means " + o.default_json +
+                      ") but the schema gives a default, which every resolved scene would then hold");
+      }
     } else if (!node->contains("default")) {
       out.push_back(where + ": no default in the schema (C++: " + o.default_json + ")");
     } else if (cpp_default.is_number() ? (*node)["default"].get<double>() != cpp_default.get<double>()
@@ -204,6 +209,12 @@ TEST(OptionSchema, ADriftedDefaultRangeOrFieldIsReported) {
   EXPECT_NE(drifted([](json* s) {
               (*s)["properties"]["robot"]["properties"]["tilt_deg"] = {{"type", "number"}, {"default", 0}};
             }).find("/robot/tilt_deg: in the schema, missing in the C++ table"),
+            std::string::npos);
+  const std::vector<OptionInfo> camera = CameraOptions::Table().List();
+  json with_default = SceneSchema();
+  with_default["properties"]["camera"]["properties"]["ffc_temperature_delta_k"]["default"] = 0.0;
+  EXPECT_NE(Lines(Disagreements(with_default, "/camera", camera))
+                .find("/camera/ffc_temperature_delta_k: optional in C++ (left out means 0.0) but the schema gives a default"),
             std::string::npos);
   EXPECT_NE(drifted([](json* s) { (*s)["properties"]["robot"]["properties"]["navigation"]["enum"].erase(2); })
                 .find("/robot/navigation: string choices differ"),
