@@ -9,6 +9,7 @@
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/camera_options.h"
+#include "hoilcd/sim/scene/camera_profiles.h"
 #include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/sim/world/crowd.h"
 
@@ -144,6 +145,13 @@ TEST(OptionSchema, EverySimOptionTableAgreesWithTheSceneSchema) {
     const std::vector<std::string> problems = Disagreements(SceneSchema(), pointer, options);
     EXPECT_TRUE(problems.empty()) << Lines(problems);
   }
+}
+
+// The schema's enum of camera profiles is the registry's list, in its order.
+TEST(OptionSchema, TheCameraProfileEnumIsTheRegisteredProfiles) {
+  const json& profile = SceneSchema()["properties"]["camera"]["properties"]["profile"];
+  EXPECT_EQ(profile["enum"].get<std::vector<std::string>>(), CameraProfileNames());
+  EXPECT_FALSE(profile.contains("default")) << "a default would put a profile into every resolved scene";
 }
 
 // Array elements have a table too: one window of /room/windows against the schema's items.
