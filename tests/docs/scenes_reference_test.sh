@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# docs/guide/scenes.md is what `hoilcd reference scene` prints today (it is generated from the
-# option tables; an edited table or schema must regenerate it). Usage: scenes_reference_test.sh HOILCD REPO_ROOT
+# A page generated from the code is what `hoilcd reference TOPIC` prints today (an edited option
+# table, schema or camera profile must regenerate it).
+# Usage: scenes_reference_test.sh HOILCD REPO_ROOT [TOPIC PAGE] (default: scene docs/guide/scenes.md)
 set -euo pipefail
 hoilcd="$1"
 root="$2"
-if ! diff -u "$root/docs/guide/scenes.md" <("$hoilcd" reference scene); then
-  echo "docs/guide/scenes.md is stale; regenerate it: build/bin/hoilcd reference scene > docs/guide/scenes.md"
+topic="${3:-scene}"
+page="${4:-docs/guide/scenes.md}"
+if ! diff -u "$root/$page" <("$hoilcd" reference "$topic"); then
+  echo "$page is stale; regenerate it: build/bin/hoilcd reference $topic > $page"
   exit 1
 fi
-echo "docs/guide/scenes.md is current"
+echo "$page is current"

@@ -30,6 +30,7 @@ struct OptionTableBase::Field {
   std::function<void(void*, const std::string&)> set_string;
   std::shared_ptr<const OptionTableBase> nested;
   bool code_only = false;
+  bool optional = false;
 };
 
 struct OptionTableBase::Rule {
@@ -194,6 +195,11 @@ void OptionTableBase::AddRule(const char* field, std::function<std::string(const
 void OptionTableBase::MarkLastCodeOnly() {
   HOILCD_CHECK(!fields_.empty() && fields_.back().kind != Field::Kind::kNested);
   fields_.back().code_only = true;
+}
+
+void OptionTableBase::MarkLastOptional() {
+  HOILCD_CHECK(!fields_.empty() && fields_.back().kind != Field::Kind::kNested);
+  fields_.back().optional = true;
 }
 
 void OptionTableBase::KeepOnly(const std::vector<std::string>& names) {
@@ -433,6 +439,7 @@ std::vector<OptionInfo> OptionTableBase::List() const {
     info.unit = f.unit;
     info.description = f.description;
     info.code_only = f.code_only;
+    info.optional = f.optional;
     switch (f.kind) {
       case Field::Kind::kNumber:
         info.kind = OptionInfo::Kind::kNumber;

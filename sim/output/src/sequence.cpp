@@ -155,7 +155,8 @@ class SequenceRender {
     CheckFramesInFlightFit(ResolveThreadCount(options_.threads));
     OpenOrResume();
     result_.frames_total = frames_;
-    result_.warnings = world_.warnings();
+    result_.warnings = scene_.warnings;
+    result_.warnings.insert(result_.warnings.end(), world_.warnings().begin(), world_.warnings().end());
     persons_.resize(frames_);
     ProgressReporter progress("render", frames_, "frames");
     // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
@@ -455,7 +456,9 @@ std::vector<std::string> CheckSceneRenders(const Scene& scene) {
   IntrinsicsFromScene(scene);
   const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   SetUpFrames(scene, &world, run, 1);
-  return world.warnings();
+  std::vector<std::string> warnings = scene.warnings;
+  warnings.insert(warnings.end(), world.warnings().begin(), world.warnings().end());
+  return warnings;
 }
 
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options) {

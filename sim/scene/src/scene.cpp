@@ -15,6 +15,7 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/assets/asset.h"
+#include "hoilcd/sim/scene/camera_profiles.h"
 #include "scene_schema_text.h"
 
 namespace hoilcd {
@@ -80,16 +81,20 @@ std::string Describe(const std::string& pointer, const std::string& description)
     return "unknown key '" + key + "'" + (expected.empty() ? "" : " (expected one of: " + expected + ")");
   }
   std::string out = description;
-  if (description.find("'type' constraint") != std::string::npos) {
-    if (const json* node = SchemaAt(pointer); node && node->contains("type")) {
-      static const std::map<std::string, std::string> kExpected = {
-          {"number", "a number"}, {"integer", "a whole number"}, {"string", "a string"},
-          {"boolean", "true or false"}, {"array", "an array"}, {"object", "an object"}};
-      const std::string type = (*node)["type"].is_string() ? (*node)["type"].get<std::string>() : "";
-      if (kExpected.count(type)) out = "expected " + kExpected.at(type);
-    }
+  const json* node = SchemaAt(pointer);
+  if (node && node->contains("enum") && description.find("enum") != std::string::npos) {
+    std::string names;
+    for (const json& name : (*node)["enum"]) names += (names.empty() ? "" : ", ") + name.get<std::string>();
+    out = "expected one of: " + names;
   }
-  if (const json* node = SchemaAt(pointer); node && node->contains("description")) {
+  if (description.find("'type' constraint") != std::string::npos && node && node->contains("type")) {
+    static const std::map<std::string, std::string> kExpected = {
+        {"number", "a number"}, {"integer", "a whole number"}, {"string", "a string"},
+        {"boolean", "true or false"}, {"array", "an array"}, {"object", "an object"}};
+    const std::string type = (*node)["type"].is_string() ? (*node)["type"].get<std::string>() : "";
+    if (kExpected.count(type)) out = "expected " + kExpected.at(type);
+  }
+  if (node && node->contains("description")) {
     out += " (" + (*node)["description"].get<std::string>() + ")";
   }
   return out;
@@ -270,6 +275,15 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
   CheckTables(scene, problems);
   CheckOpenings(scene, problems);
   CheckPlacements(scene, problems);
+}
+
+// The camera profile the scene names once the overrides are applied ("" when none).
+std::string NamedCameraProfile(json doc, const std::vector<std::string>& overrides) {
+  FillDefaults(&doc, SceneSchema());
+  for (const std::string& o : overrides) ApplyOverride(&doc, o);
+  const json::json_pointer at("/camera/profile");
+  if (!doc.is_object() || !doc["camera"].is_object() || !doc.contains(at) || !doc[at].is_string()) return "";
+  return doc[at].get<std::string>();
 }
 
 bool DistractorEnabled(const json& distractors, const std::string& asset) {
@@ -466,10 +480,17 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
   ProblemCollector problems;
   CheckRequired(doc, SceneSchema(), "", file, &problems);
-  // Defaults first, so an override of one element of a default array (objects.0.enabled)
-  // changes that element instead of replacing the whole array.
+  // The camera profile's values go in where the scene leaves them out, before the schema's
+  // defaults, so an explicit value or an override wins over the profile and the profile over the
+  // defaults. Defaults first, so an override of one element of a default array
+  // (objects.0.enabled) changes that element instead of replacing the whole array; the profile
+  // again after the overrides, for fields an override of a whole object left out.
+  const json written = doc;
+  const std::string profile = NamedCameraProfile(doc, overrides);
+  FillCameraProfile(&doc, profile);
   FillDefaults(&doc, SceneSchema());
   for (const std::string& o : overrides) ApplyOverride(&doc, o);
+  FillCameraProfile(&doc, profile);
   for (Problem& p : ValidateScene(doc, file)) problems.Add(p.where, p.message);
   problems.ThrowIfAny();
   FillSceneDefaults(&doc);
@@ -490,6 +511,7 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   CheckOptionTables(file, s, &consistency);
   s.resolved = doc;
   s.hash = ChecksumOf(doc.dump());
+  if (profile != NamedCameraProfile(written, {})) s.warnings = CameraProfileOverrides(written, doc, profile, file);
 
   CheckConsistency(s, &consistency);
   consistency.ThrowIfAny();

@@ -16,6 +16,10 @@ const OptionTable<CameraOptions>& CameraOptions::Table() {
   using O = CameraOptions;
   static const OptionTable<O> table =
       OptionTable<O>()
+          .External("profile",
+                    "a real camera whose datasheet sets the image size, field of view, frame rate, NETD, FFC and "
+                    "output step, unless the scene gives them; left out, the defaults here (the paper's camera). "
+                    "Names and values: docs/models/camera_profiles.md")
           .Add("width_px", &O::width_px, 256, "px", OptionRange::Closed(8, 4096), "image width")
           .Add("height_px", &O::height_px, 192, "px", OptionRange::Closed(8, 4096), "image height")
           .Add("hfov_deg", &O::hfov_deg, 50.0, "deg", OptionRange::Closed(1, 170), "horizontal field of view")

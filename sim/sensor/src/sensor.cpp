@@ -101,9 +101,20 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
           .Add("drift_k_per_min", &O::drift_k_per_min, 0.2, "K/min", R::Closed(0, 10),
                "1-sigma of the ramp's random slope per FFC interval")
           .Add("ffc_interval_s", &O::ffc_interval_s, 60.0, "s", R::Closed(0, 86400),
-               "time between flat-field corrections (0: never)")
+               "time between flat-field corrections (0: never, unless ffc_temperature_delta_k triggers them)")
           .Rule("ffc_interval_s",
                 [](const O& o) { return o.ffc_interval_s == 0 || o.ffc_interval_s >= 1 ? "" : "must be 0 (never) or at least 1 s"; })
+          .Add("ffc_temperature_delta_k", &O::ffc_temperature_delta_k, 0.0, "K", R::Closed(0, 20),
+               "an FFC also once the housing has warmed this much since the last one (0: off)")
+          .Optional()
+          .Rule("ffc_temperature_delta_k",
+                [](const O& o) {
+                  const double period_s = FfcPeriodS(o);
+                  return period_s == 0 || period_s >= 1
+                             ? ""
+                             : "must give at least 1 s between FFCs at housing_warming_k_per_min (got " +
+                                   std::to_string(period_s) + " s)";
+                })
           .Add("lens_shading", &O::lens_shading, true, "radial shading that grows as the housing warms after an FFC")
           .Add("housing_warming_k_per_min", &O::housing_warming_k_per_min, 0.5, "K/min", R::Closed(0, 10),
                "housing temperature rise after each FFC")
@@ -137,12 +148,22 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
 
 std::string SensorOptions::Check() const { return Table().FirstProblem(*this); }
 
+double FfcPeriodS(const SensorOptions& options) {
+  double period_s = options.ffc_interval_s;
+  if (options.ffc_temperature_delta_k > 0 && options.housing_warming_k_per_min > 0) {
+    const double by_temperature_s = options.ffc_temperature_delta_k / options.housing_warming_k_per_min * 60.0;
+    period_s = period_s > 0 ? std::min(period_s, by_temperature_s) : by_temperature_s;
+  }
+  return period_s;
+}
+
 SensorModel::SensorModel(SensorOptions options, int width, int height, double frame_rate_hz,
                          uint64_t seed, const BandRadianceTable* table, int num_threads)
     : options_(std::move(options)),
       width_(width),
       height_(height),
       frame_rate_hz_(frame_rate_hz),
+      ffc_period_s_(FfcPeriodS(options_)),
       seed_(seed),
       table_(table),
       num_threads_(ResolveThreadCount(num_threads)),
@@ -153,8 +174,7 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
   HOILCD_CHECK(table_ != nullptr);
   HOILCD_CHECK_MSG(width > 0 && height > 0, width << "x" << height);
   HOILCD_CHECK_MSG(frame_rate_hz > 0.0, "frame rate " << frame_rate_hz);
-  HOILCD_CHECK_MSG(options_.ffc_interval_s == 0.0 || options_.ffc_interval_s * frame_rate_hz >= 1.0,
-                   "FFC interval shorter than a frame");
+  HOILCD_CHECK_MSG(ffc_period_s_ == 0.0 || ffc_period_s_ * frame_rate_hz >= 1.0, "FFC period shorter than a frame");
   responsivity_ = table_->SlopeFromKelvin(options_.reference_temperature_c + kZeroCelsiusK);
   shutter_radiance_ = table_->RadianceFromKelvin(options_.shutter_temperature_c + kZeroCelsiusK);
   reflected_radiance_ =
@@ -201,13 +221,12 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
 }
 
 int64_t SensorModel::FfcFrame(int64_t index) const {
-  return std::llround(static_cast<double>(index) * options_.ffc_interval_s * frame_rate_hz_);
+  return std::llround(static_cast<double>(index) * ffc_period_s_ * frame_rate_hz_);
 }
 
 int64_t SensorModel::FfcIndex(int frame) const {
-  if (options_.ffc_interval_s <= 0.0) return 0;
-  int64_t index =
-      static_cast<int64_t>(std::floor(frame / (options_.ffc_interval_s * frame_rate_hz_)));
+  if (ffc_period_s_ <= 0.0) return 0;
+  int64_t index = static_cast<int64_t>(std::floor(frame / (ffc_period_s_ * frame_rate_hz_)));
   while (FfcFrame(index + 1) <= frame) ++index;
   while (index > 0 && FfcFrame(index) > frame) --index;
   return index;
@@ -215,7 +234,7 @@ int64_t SensorModel::FfcIndex(int frame) const {
 
 std::vector<int> SensorModel::FfcFrames(int num_frames) const {
   std::vector<int> frames;
-  if (options_.ffc_interval_s <= 0.0) return frames;
+  if (ffc_period_s_ <= 0.0) return frames;
   for (int64_t j = 1;; ++j) {
     const int64_t frame = FfcFrame(j);
     if (frame >= num_frames) break;
@@ -249,10 +268,9 @@ double SensorModel::ShadingCornerToCentreK(int frame) const {
 }
 
 int SensorModel::FreezeFrames() const {
-  if (!options_.ffc_freeze || options_.ffc_interval_s <= 0.0) return 0;
+  if (!options_.ffc_freeze || ffc_period_s_ <= 0.0) return 0;
   const int64_t frames = std::llround(options_.ffc_freeze_s * frame_rate_hz_);
-  const int64_t shortest_interval =
-      static_cast<int64_t>(std::floor(options_.ffc_interval_s * frame_rate_hz_));
+  const int64_t shortest_interval = static_cast<int64_t>(std::floor(ffc_period_s_ * frame_rate_hz_));
   return static_cast<int>(std::max<int64_t>(0, std::min(frames, shortest_interval - 1)));
 }
 

@@ -176,6 +176,25 @@ TEST(OptionTable, CodeOnlyFieldsAreDefaultedCheckedAndSettableButNotReadFromJson
   EXPECT_TRUE(ExampleTable().List()[4].code_only);
 }
 
+TEST(OptionTable, OptionalFieldsAreListedAsSuchAndReadLikeAnyOther) {
+  struct Trigger {
+    double delta_k;
+  };
+  const OptionTable<Trigger> table = OptionTable<Trigger>()
+                                         .Add("delta_k", &Trigger::delta_k, 0.0, "K", OptionRange::Closed(0, 20), "trigger")
+                                         .Optional();
+  ASSERT_EQ(table.List().size(), 1u);
+  EXPECT_TRUE(table.List()[0].optional);
+  EXPECT_FALSE(ExampleTable().List()[0].optional);
+  Trigger t{};
+  table.FillDefaults(&t);
+  EXPECT_EQ(t.delta_k, 0.0);
+  ProblemCollector problems;
+  table.Read(json::parse(R"({"delta_k": 1.5})"), "f.json: /x", &t, &problems);
+  EXPECT_TRUE(problems.empty());
+  EXPECT_EQ(t.delta_k, 1.5);
+}
+
 TEST(OptionTable, RulesAreReportedAtTheirField) {
   Example e = Defaults();
   e.offset_k = 1;

@@ -54,6 +54,30 @@ TEST_F(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   EXPECT_TRUE(one.complete);
 }
 
+// A FLIR Lepton 3.5 (camera.profile): 160 × 120 frames at 8.7 Hz through every file that holds
+// the size or the rate.
+TEST_F(Sequence, ALeptonProfileRenders160By120FramesAt8Point7Hz) {
+  const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/lepton_room.json");
+  const std::string dir = TempDir("lepton");
+  const DatasetManifest manifest = Render(scene, dir, 3, 0);
+  EXPECT_EQ(manifest.intrinsics.width, 160);
+  EXPECT_EQ(manifest.intrinsics.height, 120);
+  EXPECT_EQ(manifest.frame_rate_hz, 8.7);
+  const Dataset dataset = Dataset::Open(dir);
+  EXPECT_EQ(dataset.Thermal(2).size(), cv::Size(160, 120));
+  EXPECT_EQ(dataset.RadiometricCentikelvin(2).size(), cv::Size(160, 120));
+  ASSERT_EQ(dataset.poses().size(), 3u);
+  EXPECT_EQ(dataset.poses()[2].time_s, 2 / 8.7);
+  const DecodedVideo video = DecodeVideo(ReadFileBytes(dir + "/thermal.mp4"), "thermal.mp4");
+  EXPECT_EQ(video.width, 160);
+  EXPECT_EQ(video.height, 120);
+  EXPECT_NEAR(video.frame_rate_hz, 8.7, 1e-9);
+  EXPECT_EQ(video.frames.size(), 3u);
+  const nlohmann::json resolved = nlohmann::json::parse(ReadFileBytes(dir + "/scene.json"));
+  EXPECT_EQ(resolved["camera"]["profile"], "flir_lepton_3_5");
+  EXPECT_EQ(resolved["frame_rate_hz"].get<double>(), 8.7);
+}
+
 TEST_F(Sequence, WalkersPlannedInFreeSpaceGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/open_room.json", {"crowd.walkers=4"});
   const DatasetManifest one = Render(scene, TempDir("w1"), 3, 1);

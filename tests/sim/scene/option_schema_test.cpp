@@ -9,6 +9,7 @@
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/camera_options.h"
+#include "hoilcd/sim/scene/camera_profiles.h"
 #include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/sim/world/crowd.h"
 
@@ -91,6 +92,11 @@ std::vector<std::string> Disagreements(const json& schema, const std::string& po
                               (*object)["required"].end();
     if (required) {
       // A required key has no schema default; the table's only fills a struct made in code.
+    } else if (o.optional) {
+      if (node->contains("default")) {
+        out.push_back(where + ": optional in C++ (left out means " + o.default_json +
+                      ") but the schema gives a default, which every resolved scene would then hold");
+      }
     } else if (!node->contains("default")) {
       out.push_back(where + ": no default in the schema (C++: " + o.default_json + ")");
     } else if (cpp_default.is_number() ? (*node)["default"].get<double>() != cpp_default.get<double>()
@@ -139,6 +145,13 @@ TEST(OptionSchema, EverySimOptionTableAgreesWithTheSceneSchema) {
     const std::vector<std::string> problems = Disagreements(SceneSchema(), pointer, options);
     EXPECT_TRUE(problems.empty()) << Lines(problems);
   }
+}
+
+// The schema's enum of camera profiles is the registry's list, in its order.
+TEST(OptionSchema, TheCameraProfileEnumIsTheRegisteredProfiles) {
+  const json& profile = SceneSchema()["properties"]["camera"]["properties"]["profile"];
+  EXPECT_EQ(profile["enum"].get<std::vector<std::string>>(), CameraProfileNames());
+  EXPECT_FALSE(profile.contains("default")) << "a default would put a profile into every resolved scene";
 }
 
 // Array elements have a table too: one window of /room/windows against the schema's items.
@@ -204,6 +217,12 @@ TEST(OptionSchema, ADriftedDefaultRangeOrFieldIsReported) {
   EXPECT_NE(drifted([](json* s) {
               (*s)["properties"]["robot"]["properties"]["tilt_deg"] = {{"type", "number"}, {"default", 0}};
             }).find("/robot/tilt_deg: in the schema, missing in the C++ table"),
+            std::string::npos);
+  const std::vector<OptionInfo> camera = CameraOptions::Table().List();
+  json with_default = SceneSchema();
+  with_default["properties"]["camera"]["properties"]["ffc_temperature_delta_k"]["default"] = 0.0;
+  EXPECT_NE(Lines(Disagreements(with_default, "/camera", camera))
+                .find("/camera/ffc_temperature_delta_k: optional in C++ (left out means 0.0) but the schema gives a default"),
             std::string::npos);
   EXPECT_NE(drifted([](json* s) { (*s)["properties"]["robot"]["properties"]["navigation"]["enum"].erase(2); })
                 .find("/robot/navigation: string choices differ"),

@@ -254,6 +254,65 @@ TEST(SensorModel, NoFlatFieldCorrectionWhenIntervalIsZero) {
   EXPECT_NEAR(model.DriftK(2000), 2.0 * model.DriftK(1000), 1e-12);
 }
 
+// A FLIR Lepton's automatic FFC (Lepton engineering datasheet 500-0659-00-09, FFC states): every
+// 3 min, or sooner when the camera's temperature has changed by 1.5 K since the last FFC.
+SensorOptions LeptonFfc() {
+  SensorOptions options;
+  options.ffc_interval_s = 180.0;
+  options.ffc_temperature_delta_k = 1.5;
+  return options;
+}
+
+// FFC times over 400 s at 8.7 Hz, in seconds (frame / rate).
+std::vector<double> FfcTimesOver400s(const SensorOptions& options) {
+  const BandRadianceTable table;
+  constexpr double kLeptonHz = 8.7;
+  const SensorModel model(options, 160, 120, kLeptonHz, 5, &table);
+  std::vector<double> times_s;
+  for (int frame : model.FfcFrames(static_cast<int>(400 * kLeptonHz))) times_s.push_back(frame / kLeptonHz);
+  return times_s;
+}
+
+TEST(SensorModel, ALeptonCorrectsEveryThreeMinutesWhenItsHousingWarmsAtTheDefaultRate) {
+  SensorOptions options = LeptonFfc();
+  ASSERT_EQ(options.housing_warming_k_per_min, 0.5);  // 1.5 K takes 180 s: both triggers agree
+  EXPECT_EQ(FfcPeriodS(options), 180.0);
+  const std::vector<double> times_s = FfcTimesOver400s(options);
+  ASSERT_EQ(times_s.size(), 2u);
+  EXPECT_NEAR(times_s[0], 180.0, 0.5 / 8.7);
+  EXPECT_NEAR(times_s[1], 360.0, 0.5 / 8.7);
+}
+
+TEST(SensorModel, AFasterWarmingHousingTriggersTheFfcByTemperatureBeforeTheInterval) {
+  SensorOptions options = LeptonFfc();
+  options.housing_warming_k_per_min = 1.0;  // 1.5 K in 90 s
+  EXPECT_EQ(FfcPeriodS(options), 90.0);
+  const std::vector<double> times_s = FfcTimesOver400s(options);
+  ASSERT_EQ(times_s.size(), 4u);
+  for (size_t i = 0; i < times_s.size(); ++i) EXPECT_NEAR(times_s[i], 90.0 * (i + 1), 0.5 / 8.7);
+  // A slower one leaves the interval in charge; no interval leaves the temperature alone.
+  options.housing_warming_k_per_min = 0.25;
+  EXPECT_EQ(FfcPeriodS(options), 180.0);
+  options.ffc_interval_s = 0;
+  EXPECT_EQ(FfcPeriodS(options), 360.0);
+  EXPECT_EQ(FfcTimesOver400s(options).size(), 1u);
+  // Off (the default), or a housing that does not warm: the interval alone.
+  SensorOptions interval_only;
+  EXPECT_EQ(interval_only.ffc_temperature_delta_k, 0.0);
+  EXPECT_EQ(FfcPeriodS(interval_only), interval_only.ffc_interval_s);
+  options = LeptonFfc();
+  options.housing_warming_k_per_min = 0;
+  EXPECT_EQ(FfcPeriodS(options), 180.0);
+}
+
+TEST(SensorModel, ATemperatureTriggerFasterThanOneFfcASecondIsRefused) {
+  SensorOptions options = LeptonFfc();
+  options.ffc_temperature_delta_k = 0.1;
+  options.housing_warming_k_per_min = 10;  // 0.6 s
+  EXPECT_EQ(options.Check().rfind("ffc_temperature_delta_k: must give at least 1 s between FFCs", 0), 0u)
+      << options.Check();
+}
+
 TEST(SensorModel, EmissivitySettingRecoversTheTrueTemperatureOfAGreySurface) {
   const BandRadianceTable table;
   SensorOptions options = AllOff();

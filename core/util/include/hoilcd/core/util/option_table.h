@@ -63,6 +63,7 @@ struct OptionInfo {
   std::vector<std::string> choices;  // strings: the accepted values (empty: any string)
   std::string description;           // one line
   bool code_only = false;            // set by code, never read from JSON (see CodeOnly)
+  bool optional = false;             // may be left out of a document, default and all (see Optional)
 };
 
 // The type-independent machinery; use OptionTable<T> below.
@@ -91,6 +92,7 @@ class OptionTableBase {
   void AddExternal(const char* name, const char* description);
   void AddRule(const char* field, std::function<std::string(const void*)> rule);
   void MarkLastCodeOnly();
+  void MarkLastOptional();
   void KeepOnly(const std::vector<std::string>& names);
   void RenameField(const std::string& from, const std::string& to);
   void ChangeDefault(const std::string& name, double default_value);
@@ -196,6 +198,14 @@ class OptionTable : public OptionTableBase {
   // elsewhere in the scene): listed, defaulted, checked and settable, but not a JSON key.
   OptionTable& CodeOnly() {
     MarkLastCodeOnly();
+    return *this;
+  }
+  // Marks the field registered last as optional: a document may leave it out and stays without
+  // it when its defaults are filled in (the schema gives it no default), its absence meaning the
+  // table's default. A field added later this way leaves every existing resolved document, and
+  // its hash, unchanged.
+  OptionTable& Optional() {
+    MarkLastOptional();
     return *this;
   }
   // A check beyond one field's range: `rule` returns "" or what was expected, reported at `field`.

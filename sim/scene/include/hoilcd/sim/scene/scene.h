@@ -50,6 +50,7 @@ struct Scene {
   nlohmann::json resolved;          // the resolved document (dataset's scene.json)
   std::string hash;                 // checksum of the resolved document
   std::string assets_dir;           // absolute folder searched for asset names
+  std::vector<std::string> warnings;  // what it may not mean: a --set camera profile's values the file sets
 
   std::string name;
   uint64_t seed = 1;

@@ -31,7 +31,8 @@ struct SensorOptions {
   double shutter_temperature_c;   // FFC shutter temperature: gain errors vanish there, °C
   bool drift;                     // global offset ramp between flat-field corrections
   double drift_k_per_min;          // 1-σ of the ramp's random slope per FFC interval, K/min
-  double ffc_interval_s;          // time between flat-field corrections, s (0: never)
+  double ffc_interval_s;          // time between flat-field corrections, s (0: none by time)
+  double ffc_temperature_delta_k;  // an FFC also once the housing warmed this much since the last, K (0: off)
   bool lens_shading;              // radial shading that grows as the housing warms after an FFC
   double housing_warming_k_per_min;  // housing temperature rise after each FFC, K/min
   double vignetting_k_per_k;       // corner minus centre per K of housing warming, K/K
@@ -55,6 +56,12 @@ struct SensorOptions {
   // "" when valid, else the first problem ("field: must be ...").
   std::string Check() const;
 };
+
+// Seconds between flat-field corrections: ffc_interval_s, or sooner the time the housing takes
+// to warm by ffc_temperature_delta_k at housing_warming_k_per_min (a camera's trigger on its own
+// temperature change since the last FFC, as a FLIR Lepton's); 0 when neither triggers (never).
+// The housing warms at a constant rate, so the FFCs come at a constant period either way.
+double FfcPeriodS(const SensorOptions& options);
 
 // A stateful model for one sequence, applied to frames in order. Apply(k) does, per pixel:
 //   1. optics blur of the radiance (cv::GaussianBlur, reflected border);
@@ -95,8 +102,8 @@ class SensorModel {
   // the EXR's T_true channel. Equals Apply with every effect off.
   cv::Mat IdealTemperature(const cv::Mat& radiance) const;
 
-  // Frames in [1, num_frames) at which a flat-field correction happens (round(j·interval·fps)
-  // for j = 1, 2, ...); the camera has just corrected when frame 0 is taken.
+  // Frames in [1, num_frames) at which a flat-field correction happens (round(j·period·fps)
+  // for j = 1, 2, ..., period = FfcPeriodS); the camera has just corrected when frame 0 is taken.
   std::vector<int> FfcFrames(int num_frames) const;
 
   // Drift offset at `frame`, K (0 at each FFC frame; 0 when drift is off).
@@ -123,7 +130,7 @@ class SensorModel {
   const SensorOptions& options() const { return options_; }
 
  private:
-  // Index j of the FFC interval holding `frame` (FFC j at round(j·interval·fps), FFC 0 at 0).
+  // Index j of the FFC period holding `frame` (FFC j at round(j·period·fps), FFC 0 at 0).
   int64_t FfcIndex(int frame) const;
   int64_t FfcFrame(int64_t index) const;
   // Housing temperature rise since the last FFC, K (0 when lens shading is off).
@@ -132,6 +139,7 @@ class SensorModel {
   SensorOptions options_;
   int width_, height_;
   double frame_rate_hz_;
+  double ffc_period_s_;        // FfcPeriodS(options_)
   uint64_t seed_;
   const BandRadianceTable* table_;
   int num_threads_;
