@@ -1,8 +1,11 @@
-// hoilcd reference scene: the scene file's reference as Markdown (docs/guide/scenes.md).
+// hoilcd reference scene|generate: the scene file's reference (docs/guide/scenes.md) or the
+// generator's options, as Markdown.
 #include <cstdio>
 #include <memory>
 
 #include "command.h"
+#include "hoilcd/core/util/option_table.h"
+#include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/scene/scene_reference.h"
 #include "shared.h"
 
@@ -11,10 +14,14 @@ namespace hoilcd {
 Command AddReferenceCommand(CLI::App* app) {
   auto topic = std::make_shared<std::string>();
   CLI::App* cmd = app->add_subcommand(
-      "reference", "print a reference generated from the code as Markdown (scene: every scene file field)");
-  cmd->add_option("topic", *topic, "what to print: scene")->required()->check(CLI::IsMember({"scene"}));
+      "reference",
+      "print a reference generated from the code as Markdown (scene: every scene file field; generate: every "
+      "option of hoilcd generate, a scene's /generator/options)");
+  cmd->add_option("topic", *topic, "what to print: scene or generate")->required()->check(CLI::IsMember({"scene", "generate"}));
   return {cmd, [topic] {
-            std::printf("%s", SceneReferenceMarkdown().c_str());
+            const std::string text = *topic == "scene" ? SceneReferenceMarkdown()
+                                                       : FormatOptionTableMarkdown(GeneratorOptions::Table().List());
+            std::printf("%s", text.c_str());
             return 0;
           }};
 }

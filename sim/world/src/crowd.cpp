@@ -97,6 +97,12 @@ void Crowd::AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::Align
   table_seats_.push_back(seats);
 }
 
+std::vector<Crowd::SeatPlace> Crowd::SeatPlaces() const {
+  std::vector<SeatPlace> places;
+  for (const Seat& s : seats_) places.push_back({s.table, s.seat, s.world_from_seat, s.chair_instance >= 0});
+  return places;
+}
+
 void Crowd::AddSeat(int table, int seat, int chair_instance, const Eigen::Matrix4f& world_from_seat) {
   Seat record;
   record.table = table;

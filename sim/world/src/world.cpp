@@ -36,25 +36,6 @@ Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen:
   return o;
 }
 
-// Separating-axis test of two rectangle footprints (touching counts as overlapping).
-bool RectanglesOverlap(const Obstacle2D& a, const Obstacle2D& b) {
-  const Eigen::Vector2d d = b.center_m - a.center_m;
-  for (const Obstacle2D* owner : {&a, &b}) {
-    for (int axis = 0; axis < 2; ++axis) {
-      const double angle = owner->yaw_rad + axis * M_PI / 2;
-      const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
-      double reach = 0;
-      for (const Obstacle2D* r : {&a, &b}) {
-        const Eigen::Vector2d u(std::cos(r->yaw_rad), std::sin(r->yaw_rad));
-        const Eigen::Vector2d v(-u.y(), u.x());
-        reach += r->half_size_m.x() * std::abs(n.dot(u)) + r->half_size_m.y() * std::abs(n.dot(v));
-      }
-      if (std::abs(n.dot(d)) > reach) return false;
-    }
-  }
-  return true;
-}
-
 // Chairs stand where people left them, not on a grid: without this, full tables in the
 // point-symmetric paper room look the same from opposite ends of the loop. A chair moves along
 // the table, is pushed in (never pulled out: the robot drives close behind), and turns; the turn
@@ -164,7 +145,7 @@ class ChairLayout {
           if (straight_m < kCloseSeatsM && (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
             squeezed[i] = squeezed[j] = any = true;
           }
-          if (RectanglesOverlap(footprints[i], footprints[j])) {
+          if (FootprintsOverlap(footprints[i], footprints[j])) {
             overlapping[i] = overlapping[j] = any = true;
           }
         }

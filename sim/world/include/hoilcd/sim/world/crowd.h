@@ -108,6 +108,14 @@ class Crowd {
   void SetTime(double time_s);
 
   const std::vector<Person>& people() const { return people_; }
+  // Every seat (occupied or not) as placed: its frame (x: the way a sitter faces) and whether it
+  // is a chair (else a place on a sofa).
+  struct SeatPlace {
+    int table = 0, seat = 0;
+    Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
+    bool chair = true;
+  };
+  std::vector<SeatPlace> SeatPlaces() const;
   const std::vector<DatasetEvent>& events() const { return events_; }
   // What Plan could not give the scene (walkers with no room to walk), one sentence each.
   const std::vector<std::string>& warnings() const { return warnings_; }
