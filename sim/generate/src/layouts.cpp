@@ -89,7 +89,7 @@ Layout Classroom(const Frame& f, Rng* rng, Layout layout) {
 // Round tables (four to six around) and square ones (four) on a loose grid, a few people standing.
 Layout Cafeteria(const Frame& f, Rng* rng, Layout layout) {
   const double space_x = f.length_m - 2 * f.inset_m(), space_y = f.width_m - 2 * f.inset_m();
-  const double cell = std::min({rng->Uniform(2.2, 2.5), space_x, space_y});
+  const double cell = std::min({rng->Uniform(2.2, 2.4), space_x, space_y});
   const int nx = std::max(1, static_cast<int>(std::floor(space_x / cell))), ny = std::max(1, static_cast<int>(std::floor(space_y / cell)));
   const double group_reach = kRoundTableRadiusM + kChairReachM;
   const double jitter = std::max(0.0, 0.5 * cell - group_reach - 0.02);
@@ -181,10 +181,14 @@ Layout Lounge(const Frame& f, Rng* rng, Layout layout) {
   const double space_x = f.length_m - 2 * f.inset_m(), space_y = f.width_m - 2 * f.inset_m();
   const double sofa_offset = kLowTableHalfDepthM + 0.45 + kSofaFrontM;  // table centre to sofa origin
   const double two_sofas = 2 * (sofa_offset + kSofaBackM), one_sofa = sofa_offset + kSofaBackM + kLowTableHalfDepthM;
-  const double cell = std::min(rng->Uniform(2.3, 2.7), space_x);
-  const int cells = std::max(1, static_cast<int>(std::floor(space_x / cell)));
+  // Cells at least 2 m long (a sofa is 1.8 m) share the room's length, up to 2.6 m each.
+  const int cells = std::max(1, static_cast<int>(std::floor(space_x / 2.0)));
+  const double cell = std::min(space_x / cells, rng->Uniform(2.0, 2.6));
+  // With two cells or more, one of them is always a standing group.
+  const int standing_cell = cells > 1 ? static_cast<int>(rng->UniformInt(static_cast<uint32_t>(cells))) : -1;
+  int c = 0;
   for (double x : Centred(cells, cell, 0.5 * f.length_m)) {
-    const double kind = rng->Uniform();
+    const double kind = c++ == standing_cell ? 1.0 : rng->Uniform();
     if (kind < 0.65 && space_y >= one_sofa) {
       const bool both = space_y >= two_sofas && rng->Uniform() < 0.6;
       const double y_table = 0.5 * f.width_m + (both ? 0.0 : 0.5 * (sofa_offset + kSofaBackM - kLowTableHalfDepthM));
