@@ -24,6 +24,7 @@ constexpr double kGridM = 0.05;          // the reachability grid, m
 
 double Mm(double value) { return std::round(value * 1000) / 1000; }  // positions to the millimetre
 ojson Point(const Eigen::Vector2d& p) { return ojson::array({Mm(p.x()), Mm(p.y())}); }
+double Yaw(double deg) { return Mm(std::remainder(deg, 360.0)); }  // in [-180, 180], deg
 
 bool IsWall(const Obstacle2D& o) { return o.name.size() > 5 && o.name.compare(o.name.size() - 5, 5, " wall") == 0; }
 
@@ -152,7 +153,7 @@ ojson Crowd(const Layout& layout, const GeneratorOptions& o, Rng* rng) {
       if (rng->Uniform() < occupancy) seating.push_back({{"table", t}, {"seat", seat}});
   }
   ojson standing = ojson::array();
-  for (const StandingPerson& p : layout.standing) standing.push_back({{"position_m", Point(p.position_m)}, {"yaw_deg", Mm(p.yaw_deg)}});
+  for (const StandingPerson& p : layout.standing) standing.push_back({{"position_m", Point(p.position_m)}, {"yaw_deg", Yaw(p.yaw_deg)}});
   ojson postures;
   for (const char* name : {"seated_upright", "seated_leaning", "seated_arms_on_table", "seated_leaning_back"})
     postures[name] = Mm(rng->Uniform(o.posture_weight_min, o.posture_weight_max));
@@ -172,7 +173,7 @@ ojson Crowd(const Layout& layout, const GeneratorOptions& o, Rng* rng) {
 ojson Tables(const Layout& layout) {
   ojson tables = ojson::array();
   for (const Piece& p : layout.pieces) {
-    ojson t = {{"center_m", Point(p.center_m)}, {"yaw_deg", Mm(p.yaw_deg)}};
+    ojson t = {{"center_m", Point(p.center_m)}, {"yaw_deg", Yaw(p.yaw_deg)}};
     if (!p.asset.empty()) t["asset"] = p.asset;
     if (p.seats != "both_sides") t["seats"] = p.seats;
     if (p.seat_count > 0) t["seat_count"] = p.seat_count;
@@ -186,7 +187,7 @@ ojson Objects(const Layout& layout) {
   for (const PlacedObject& o : layout.objects) {
     objects.push_back({{"asset", o.asset},
                        {"position_m", ojson::array({Mm(o.position_m.x()), Mm(o.position_m.y()), Mm(o.position_m.z())})},
-                       {"yaw_deg", Mm(o.yaw_deg)}});
+                       {"yaw_deg", Yaw(o.yaw_deg)}});
   }
   return objects;
 }

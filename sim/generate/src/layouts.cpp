@@ -10,6 +10,10 @@
 namespace hoilcd {
 namespace {
 
+// Tables in a row: the paper's stand 0.92 m apart and their chairs reach under the next table;
+// these stand 1.0 m apart, so a chair (shifted and turned, up to 0.08 m past its table's end)
+// stays clear of its neighbour.
+constexpr double kPitchM = 1.0;
 // A chair reaches this far beyond the table edge it stands at (seat set back 0.15 m, backrest
 // 0.26 m behind the seat centre): furniture.seat_setback_m's default and chair.gltf.
 constexpr double kChairReachM = 0.42;
@@ -56,11 +60,10 @@ Piece Desk(double x, double y, double yaw_deg, int seats) { return {"desk", {x, 
 
 // The paper's room grown and shrunk: tables in a row along x, people on both long sides.
 Layout MeetingRow(const Frame& f, Rng* rng, Layout layout) {
-  // Chairs at the row's ends reach 0.05 m past the table (seat spacing 0.45 m, jitter).
-  const int most = std::max(1, FitCount(f.length_m - 2 * f.inset_m() - 0.1, 2 * kTableHalfLengthM, 0.92));
+  const int most = std::max(1, FitCount(f.length_m - 2 * f.inset_m() - 0.16, 2 * kTableHalfLengthM, kPitchM));
   const int fewest = (2 * most + 2) / 3;  // at least two thirds of the row that fits
   const int count = fewest + static_cast<int>(rng->UniformInt(static_cast<uint32_t>(most - fewest + 1)));
-  for (double x : Centred(count, 0.92, 0.5 * f.length_m)) layout.pieces.push_back({"", {x, 0.5 * f.width_m}, 0, "both_sides", 0});
+  for (double x : Centred(count, kPitchM, 0.5 * f.length_m)) layout.pieces.push_back({"", {x, 0.5 * f.width_m}, 0, "both_sides", 0});
   layout.cup_fraction = 0.5;
   layout.laptop_fraction = 0.3;
   return layout;
@@ -159,14 +162,14 @@ Layout SeminarU(const Frame& f, Rng* rng, Layout layout) {
   const double x_east = f.length_m - f.inset_m() - kChairReachM - kTableHalfDepthM;
   // The east column (tables turned 90°, chairs on +x), clear of the rows' table ends.
   const double column_from = y_south + kTableHalfDepthM + 0.02, column_to = y_north - kTableHalfDepthM - 0.02;
-  const int column = FitCount(column_to - column_from, 2 * kTableHalfLengthM, 0.92);
-  for (double y : Centred(column, 0.92, 0.5 * f.width_m)) layout.pieces.push_back({"table", {x_east, y}, 90, "one_side", 2});
+  const int column = FitCount(column_to - column_from - 0.16, 2 * kTableHalfLengthM, kPitchM);
+  for (double y : Centred(column, kPitchM, 0.5 * f.width_m)) layout.pieces.push_back({"table", {x_east, y}, 90, "one_side", 2});
   // The rows, from the column westwards, leaving an opening at the front.
-  const double row_end = x_east - kTableHalfDepthM - 0.02;
-  const int most = FitCount(row_end - (f.inset_m() + 0.8), 2 * kTableHalfLengthM, 0.92);
+  const double row_end = x_east - kTableHalfDepthM - 0.1;
+  const int most = FitCount(row_end - (f.inset_m() + 0.8), 2 * kTableHalfLengthM, kPitchM);
   const int count = most - static_cast<int>(rng->UniformInt(static_cast<uint32_t>(std::min(2, std::max(1, most - 1)))));
   for (int i = 0; i < count; ++i) {
-    const double x = row_end - kTableHalfLengthM - 0.92 * i;
+    const double x = row_end - kTableHalfLengthM - kPitchM * i;
     layout.pieces.push_back({"table", {x, y_south}, 0, "one_side", 2});
     layout.pieces.push_back({"table", {x, y_north}, 180, "one_side", 2});
   }
