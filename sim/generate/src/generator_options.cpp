@@ -51,7 +51,7 @@ const OptionTable<GeneratorOptions>& GeneratorOptions::Table() {
           .Nest("cafeteria", &O::cafeteria, SizeTable({6.0, 15.0, 4.0, 8.0}, 3.6, 3.6))
           .Nest("open_office", &O::open_office, SizeTable({6.0, 15.0, 5.6, 8.0}, 4.0, 4.0))
           .Nest("seminar_u", &O::seminar_u, SizeTable({6.0, 10.0, 5.0, 7.0}, 5.0, 4.2))
-          .Nest("lounge", &O::lounge, SizeTable({5.0, 10.0, 3.4, 7.0}, 4.0, 3.3))
+          .Nest("lounge", &O::lounge, SizeTable({5.0, 10.0, 3.4, 7.0}, 4.0, 3.4))
           .Add("height_min_m", &O::height_min_m, 2.5, "m", R::Closed(2.2, 6), "lowest ceiling (uniform)")
           .Add("height_max_m", &O::height_max_m, 3.2, "m", R::Closed(2.2, 6), "highest ceiling (uniform)")
           .Rule("height_max_m", [](const O& o) { return o.height_max_m >= o.height_min_m ? "" : "at least height_min_m"; })

@@ -179,34 +179,52 @@ Layout SeminarU(const Frame& f, Rng* rng, Layout layout) {
   return layout;
 }
 
-// Sofa groups round low tables (one sofa or two facing each other) and people standing in circles.
+// Sofa groups round low tables (one sofa or two facing each other along x, so the robot's long
+// legs see their people side on, as the paper's) and people standing in circles, in a row along x.
 Layout Lounge(const Frame& f, Rng* rng, Layout layout) {
-  const double space_x = f.length_m - 2 * f.inset_m(), space_y = f.width_m - 2 * f.inset_m();
+  const double space_x = f.length_m - 2 * f.inset_m();
   const double sofa_offset = kLowTableHalfDepthM + 0.45 + kSofaFrontM;  // table centre to sofa origin
-  const double two_sofas = 2 * (sofa_offset + kSofaBackM), one_sofa = sofa_offset + kSofaBackM + kLowTableHalfDepthM;
-  // Cells at least 2 m long (a sofa is 1.8 m) share the room's length, up to 2.6 m each.
-  const int cells = std::max(1, static_cast<int>(std::floor(space_x / 2.0)));
-  const double cell = std::min(space_x / cells, rng->Uniform(2.0, 2.6));
-  // With two cells or more, one of them is always a standing group.
-  const int standing_cell = cells > 1 ? static_cast<int>(rng->UniformInt(static_cast<uint32_t>(cells))) : -1;
-  int c = 0;
-  for (double x : Centred(cells, cell, 0.5 * f.length_m)) {
-    const double kind = c++ == standing_cell ? 1.0 : rng->Uniform();
-    if (kind < 0.65 && space_y >= one_sofa) {
-      const bool both = space_y >= two_sofas && rng->Uniform() < 0.6;
-      const double y_table = 0.5 * f.width_m + (both ? 0.0 : 0.5 * (sofa_offset + kSofaBackM - kLowTableHalfDepthM));
-      layout.pieces.push_back({"low_table", {x, y_table}, 0, "none", 0});
-      layout.pieces.push_back({"sofa", {x, y_table - sofa_offset}, 90, "sofa", 2 + static_cast<int>(rng->UniformInt(2))});
-      if (both) layout.pieces.push_back({"sofa", {x, y_table + sofa_offset}, -90, "sofa", 2 + static_cast<int>(rng->UniformInt(2))});
-    } else {
-      const int people = 2 + static_cast<int>(rng->UniformInt(3));
-      const double radius = people == 2 ? 0.45 : 0.55, turn = rng->Uniform(0, 2 * M_PI);
-      if (2 * (radius + kStandingRadiusM) > std::min(cell, space_y)) continue;
-      for (int k = 0; k < people; ++k) {
-        const double a = turn + 2 * M_PI * k / people;
-        layout.standing.push_back({{x + radius * std::cos(a), 0.5 * f.width_m + radius * std::sin(a)}, a * 180 / M_PI + 180});
+  const double gap = 0.5;
+  struct Group {
+    int kind;  // 0: two sofas, 1: one sofa (on the west side), 2: people standing
+    double extent_m;
+    int people;
+  };
+  auto extent_of = [&](int kind, int people) {
+    if (kind == 0) return 2 * (sofa_offset + kSofaBackM);
+    if (kind == 1) return sofa_offset + kSofaBackM + kLowTableHalfDepthM;
+    return 2 * ((people == 2 ? 0.45 : 0.55) + kStandingRadiusM);
+  };
+  // Groups from west to east while they fit; the first two are a sofa group and a standing one.
+  std::vector<Group> groups;
+  double used = -gap;
+  for (int i = 0;; ++i) {
+    const double u = rng->Uniform();
+    const int kind = i == 0 ? (u < 0.5 ? 0 : 1) : i == 1 ? 2 : (u < 0.35 ? 0 : u < 0.6 ? 1 : 2);
+    const int people = kind == 2 ? 2 + static_cast<int>(rng->UniformInt(3)) : 2 + static_cast<int>(rng->UniformInt(2));
+    Group g{kind, extent_of(kind, people), people};
+    if (used + gap + g.extent_m > space_x && kind == 0) g = Group{1, extent_of(1, people), people};
+    if (used + gap + g.extent_m > space_x) break;
+    used += gap + g.extent_m;
+    groups.push_back(g);
+  }
+  double x = 0.5 * (f.length_m - used);
+  const double y = 0.5 * f.width_m;
+  for (const Group& g : groups) {
+    if (g.kind == 2) {
+      const double radius = g.people == 2 ? 0.45 : 0.55, turn = rng->Uniform(0, 2 * M_PI);
+      const double cx = x + 0.5 * g.extent_m;
+      for (int k = 0; k < g.people; ++k) {
+        const double a = turn + 2 * M_PI * k / g.people;
+        layout.standing.push_back({{cx + radius * std::cos(a), y + radius * std::sin(a)}, a * 180 / M_PI + 180});
       }
+    } else {
+      const double table_x = x + sofa_offset + kSofaBackM;
+      layout.pieces.push_back({"low_table", {table_x, y}, 90, "none", 0});
+      layout.pieces.push_back({"sofa", {table_x - sofa_offset, y}, 0, "sofa", g.people});
+      if (g.kind == 0) layout.pieces.push_back({"sofa", {table_x + sofa_offset, y}, 180, "sofa", 2 + static_cast<int>(rng->UniformInt(2))});
     }
+    x += g.extent_m + gap;
   }
   layout.cup_fraction = 0;
   layout.laptop_fraction = 0;
