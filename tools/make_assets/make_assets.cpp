@@ -636,20 +636,24 @@ std::vector<AssetBuilder> PersonParts() {
 // ---------------------------------------------------------------------------------------------
 // Furniture and hot objects.
 
-AssetBuilder Table() {
+// A wooden top 3 cm thick with its surface at 0.74 m (half sizes along x and y) on four metal legs
+// at (±leg_x, ±leg_y).
+AssetBuilder TableOnLegs(const std::string& name, double half_x, double half_y, double leg_x, double leg_y) {
   AssetBuilder asset;
-  asset.name = "table";
+  asset.name = name;
   asset.class_name = "table";
   const int wood = asset.Material(kWood);
   const int metal = asset.Material(kMetal);
-  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(0.45, 0.375, 0.015)), wood);
+  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(half_x, half_y, 0.015)), wood);
   for (int i = 0; i < 4; ++i) {
-    const double x = (i & 1) ? 0.40 : -0.40;
-    const double y = (i & 2) ? 0.325 : -0.325;
+    const double x = (i & 1) ? leg_x : -leg_x;
+    const double y = (i & 2) ? leg_y : -leg_y;
     asset.Add(Rod(Vec3(x, y, 0), Vec3(x, y, 0.712), 0.02), metal);
   }
   return asset;
 }
+
+AssetBuilder Table() { return TableOnLegs("table", 0.45, 0.375, 0.40, 0.325); }
 
 AssetBuilder Chair() {
   AssetBuilder asset;
@@ -686,20 +690,7 @@ AssetBuilder RoundTable() {
 }
 
 // A square café table, 0.80 × 0.80 m, top at 0.74 m, four legs.
-AssetBuilder SquareTable() {
-  AssetBuilder asset;
-  asset.name = "square_table";
-  asset.class_name = "table";
-  const int wood = asset.Material(kWood);
-  const int metal = asset.Material(kMetal);
-  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(0.40, 0.40, 0.015)), wood);
-  for (int i = 0; i < 4; ++i) {
-    const double x = (i & 1) ? 0.35 : -0.35;
-    const double y = (i & 2) ? 0.35 : -0.35;
-    asset.Add(Rod(Vec3(x, y, 0), Vec3(x, y, 0.712), 0.02), metal);
-  }
-  return asset;
-}
+AssetBuilder SquareTable() { return TableOnLegs("square_table", 0.40, 0.40, 0.35, 0.35); }
 
 // A desk for one or two people sitting on its -y side: 1.20 m along x × 0.60 m, top at 0.74 m,
 // a modesty panel along the +y edge and two side panels.

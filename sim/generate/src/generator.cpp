@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <set>
+#include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/file_io.h"
@@ -21,6 +21,7 @@ using ojson = nlohmann::ordered_json;
 
 constexpr double kAccessRadiusM = 0.18;  // a person squeezing to their seat, m
 constexpr double kGridM = 0.05;          // the reachability grid, m
+constexpr uint8_t kFree = 1, kReached = 2;  // its cells: 0 blocked
 
 double Mm(double value) { return std::round(value * 1000) / 1000; }  // positions to the millimetre
 ojson Point(const Eigen::Vector2d& p) { return ojson::array({Mm(p.x()), Mm(p.y())}); }
@@ -288,40 +289,28 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
     }
   }
   if (route.size() < 3 || twice_area >= 0) problems.push_back("the route is not a closed clockwise loop");
-  // Reachability: a flood over a 5 cm grid of the floor a person fits on, from the route's start.
+  // Reachability: the floor a person fits on, as a 5 cm grid, flooded from the route's start.
   const int nx = static_cast<int>(size_x / kGridM), ny = static_cast<int>(size_y / kGridM);
-  auto centre = [&](int i, int j) { return Eigen::Vector2d((i + 0.5) * kGridM, (j + 0.5) * kGridM); };
-  std::vector<char> free(static_cast<size_t>(nx * ny), 0), reached(free.size(), 0);
+  cv::Mat floor(ny, nx, CV_8U, cv::Scalar(0));
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
-      const Eigen::Vector2d p = centre(i, j);
+      const Eigen::Vector2d p((i + 0.5) * kGridM, (j + 0.5) * kGridM);
       const bool in_room = std::min({p.x(), p.y(), size_x - p.x(), size_y - p.y()}) >= kAccessRadiusM;
-      free[static_cast<size_t>(j * nx + i)] = in_room && Clearance(p, furniture) >= kAccessRadiusM;
+      if (in_room && Clearance(p, furniture) >= kAccessRadiusM) floor.at<uint8_t>(j, i) = kFree;
     }
   }
   auto cell_of = [&](const Eigen::Vector2d& p) {
-    const int i = std::clamp(static_cast<int>(p.x() / kGridM), 0, nx - 1), j = std::clamp(static_cast<int>(p.y() / kGridM), 0, ny - 1);
-    return j * nx + i;
+    return cv::Point(std::clamp(static_cast<int>(p.x() / kGridM), 0, nx - 1), std::clamp(static_cast<int>(p.y() / kGridM), 0, ny - 1));
   };
-  std::vector<int> stack;
-  if (!route.empty() && free[static_cast<size_t>(cell_of(route.front()))]) stack.push_back(cell_of(route.front()));
-  while (!stack.empty()) {
-    const int c = stack.back();
-    stack.pop_back();
-    if (reached[static_cast<size_t>(c)]) continue;
-    reached[static_cast<size_t>(c)] = 1;
-    const int i = c % nx, j = c / nx;
-    for (const auto& [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-      const int u = i + di, v = j + dj;
-      if (u >= 0 && v >= 0 && u < nx && v < ny && free[static_cast<size_t>(v * nx + u)] && !reached[static_cast<size_t>(v * nx + u)]) stack.push_back(v * nx + u);
-    }
+  if (!route.empty() && floor.at<uint8_t>(cell_of(route.front())) == kFree) {
+    cv::floodFill(floor, cell_of(route.front()), cv::Scalar(kReached), nullptr, cv::Scalar(0), cv::Scalar(0), 4);
   }
   // Where a person stands before sitting: behind a chair, in front of a sofa place.
   for (const Crowd::SeatPlace& seat : world.seat_places()) {
     const Eigen::Vector2d at = seat.world_from_seat.topRightCorner<2, 1>().cast<double>();
     const Eigen::Vector2d facing = seat.world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
     const Eigen::Vector2d access = seat.chair ? Eigen::Vector2d(at - 0.5 * facing) : Eigen::Vector2d(at + 0.52 * facing);
-    if (!reached[static_cast<size_t>(cell_of(access))]) {
+    if (floor.at<uint8_t>(cell_of(access)) != kReached) {
       problems.push_back("seat " + std::to_string(seat.table) + "." + std::to_string(seat.seat) + " cannot be reached on foot from the route");
     }
   }

@@ -10,6 +10,8 @@
 namespace hoilcd {
 namespace {
 
+// Hand-written: the families' rules are a few lines each; no Debian library lays out rooms by rule.
+
 // Tables in a row: the paper's stand 0.92 m apart and their chairs reach under the next table;
 // these stand 1.0 m apart, so a chair (shifted and turned, up to 0.08 m past its table's end)
 // stays clear of its neighbour.

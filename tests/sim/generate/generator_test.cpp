@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/sim/generate/generator.h"
