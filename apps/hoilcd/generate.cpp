@@ -6,6 +6,7 @@
 
 #include "command.h"
 #include "hoilcd/bench/report/output_folder.h"
+#include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
@@ -15,7 +16,7 @@
 namespace hoilcd {
 namespace {
 
-constexpr int kMaxScenes = 10000;  // --count and --start accept this much
+constexpr int kMaxScenes = 10000;  // the largest scene index (the schema's /generator/index)
 
 struct GenerateArgs {
   std::string layout = "mixed";
@@ -29,6 +30,11 @@ struct GenerateArgs {
 
 int GenerateCommand(const GenerateArgs& args) {
   FamilyOf(args.layout, static_cast<uint64_t>(args.seed), args.start);  // a bad --layout fails first
+  if (args.start + args.count - 1 > kMaxScenes) {
+    throw InputError("--start " + std::to_string(args.start) + " --count " + std::to_string(args.count),
+                     "scene indices up to " + std::to_string(kMaxScenes) + " (the last would be " +
+                         std::to_string(args.start + args.count - 1) + ")");
+  }
   GeneratorOptions options;
   for (const std::string& setting : args.settings) GeneratorOptions::Table().Set(setting, &options);
   ProblemCollector problems;
@@ -82,7 +88,7 @@ Command AddGenerateCommand(CLI::App* app) {
       ->type_name("DIR");
   cmd->add_option("--set", args->settings,
                   "a generator option by its name, e.g. --set occupancy_min=0.8 or --set lounge.width_max_m=6 (repeatable; "
-                  "docs/guide/generate.md lists them)")
+                  "`hoilcd reference generate` lists them)")
       ->type_name("NAME=VALUE");
   AddThreadsFlag(cmd, &args->threads);
   return {cmd, [args] { return GenerateCommand(*args); }};

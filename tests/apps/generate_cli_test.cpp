@@ -76,6 +76,7 @@ TEST(GenerateCli, EveryErrorAUserCanTriggerIsRefusedWithWhatWasExpected) {
       {{"generate", "--set", "occupancy_max=0.1", "-o", temp / "x"}, {"occupancy_max", "at least occupancy_min"}},
       {{"generate", "--set", "no_such_option=1", "-o", temp / "x"}, {"no_such_option"}},
       {{"generate", "--count", "2"}, {"--output"}},
+      {{"generate", "--start", "9999", "--count", "5", "-o", temp / "x"}, {"--start 9999 --count 5", "indices up to 10000"}},
   };
   for (const auto& [args, expected] : cases) {
     const Outcome o = Hoilcd(args);

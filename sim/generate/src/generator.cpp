@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/dataset/dataset_folder.h"
