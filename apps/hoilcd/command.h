@@ -26,5 +26,6 @@ Command AddExportMotCommand(CLI::App* app);
 Command AddExportCocoCommand(CLI::App* app);
 Command AddParamsCommand(CLI::App* app);
 Command AddReferenceCommand(CLI::App* app);
+Command AddGenerateCommand(CLI::App* app);
 
 }  // namespace hoilcd

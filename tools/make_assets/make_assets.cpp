@@ -270,6 +270,9 @@ const ThermalSpec kLaptopScreen{"laptop_screen", 30.0, 0.94, true, {0.05, 0.05, 
 const ThermalSpec kMonitorBack{"monitor_back", 30.0, 0.94, false, {0.12, 0.12, 0.12, 1}, 0};
 const ThermalSpec kMonitorScreen{"monitor_screen", 27.0, 0.94, true, {0.03, 0.03, 0.05, 1}, 0};
 const ThermalSpec kRadiator{"radiator", 42.0, 0.93, false, {0.95, 0.95, 0.95, 1}, 0};
+const ThermalSpec kUpholstery{"upholstery", 22.0, 0.95, false, {0.35, 0.30, 0.45, 1}, 0};
+const ThermalSpec kFelt{"felt", 22.0, 0.92, false, {0.45, 0.50, 0.45, 1}, 0};
+const ThermalSpec kLaminate{"laminate", 22.0, 0.90, false, {0.85, 0.85, 0.80, 1}, 0};
 
 // ---------------------------------------------------------------------------------------------
 // People.
@@ -633,20 +636,24 @@ std::vector<AssetBuilder> PersonParts() {
 // ---------------------------------------------------------------------------------------------
 // Furniture and hot objects.
 
-AssetBuilder Table() {
+// A wooden top 3 cm thick with its surface at 0.74 m (half sizes along x and y) on four metal legs
+// at (±leg_x, ±leg_y).
+AssetBuilder TableOnLegs(const std::string& name, double half_x, double half_y, double leg_x, double leg_y) {
   AssetBuilder asset;
-  asset.name = "table";
+  asset.name = name;
   asset.class_name = "table";
   const int wood = asset.Material(kWood);
   const int metal = asset.Material(kMetal);
-  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(0.45, 0.375, 0.015)), wood);
+  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(half_x, half_y, 0.015)), wood);
   for (int i = 0; i < 4; ++i) {
-    const double x = (i & 1) ? 0.40 : -0.40;
-    const double y = (i & 2) ? 0.325 : -0.325;
+    const double x = (i & 1) ? leg_x : -leg_x;
+    const double y = (i & 2) ? leg_y : -leg_y;
     asset.Add(Rod(Vec3(x, y, 0), Vec3(x, y, 0.712), 0.02), metal);
   }
   return asset;
 }
+
+AssetBuilder Table() { return TableOnLegs("table", 0.45, 0.375, 0.40, 0.325); }
 
 AssetBuilder Chair() {
   AssetBuilder asset;
@@ -666,6 +673,96 @@ AssetBuilder Chair() {
     const double y = side == 0 ? 0.17 : -0.17;
     asset.Add(Rod(Vec3(-0.18, y, 0.42), Vec3(-0.25, y, 0.84), 0.011), metal);
   }
+  return asset;
+}
+
+// A round café table on one pedestal (knees fit all around): top Ø 0.90 m at 0.74 m.
+AssetBuilder RoundTable() {
+  AssetBuilder asset;
+  asset.name = "round_table";
+  asset.class_name = "table";
+  const int wood = asset.Material(kWood);
+  const int metal = asset.Material(kMetal);
+  asset.Add(Lathe(Vec3::Zero(), {{0.45, 0.71}, {0.45, 0.74}}, 0.71, 0.74, 48), wood);
+  asset.Add(Rod(Vec3(0, 0, 0.02), Vec3(0, 0, 0.71), 0.04), metal);
+  asset.Add(Lathe(Vec3::Zero(), {{0.25, 0.0}, {0.25, 0.02}}, 0.0, 0.02, 32), metal);
+  return asset;
+}
+
+// A square café table, 0.80 × 0.80 m, top at 0.74 m, four legs.
+AssetBuilder SquareTable() { return TableOnLegs("square_table", 0.40, 0.40, 0.35, 0.35); }
+
+// A desk for one or two people sitting on its -y side: 1.20 m along x × 0.60 m, top at 0.74 m,
+// a modesty panel along the +y edge and two side panels.
+AssetBuilder Desk() {
+  AssetBuilder asset;
+  asset.name = "desk";
+  asset.class_name = "table";
+  const int laminate = asset.Material(kLaminate);
+  const int metal = asset.Material(kMetal);
+  asset.Add(Box(Vec3(0, 0, 0.725), Mat3::Identity(), Vec3(0.60, 0.30, 0.015)), laminate);
+  asset.Add(Box(Vec3(0, 0.27, 0.45), Mat3::Identity(), Vec3(0.56, 0.01, 0.25)), laminate);
+  for (int side = 0; side < 2; ++side) {
+    const double x = side == 0 ? -0.57 : 0.57;
+    asset.Add(Box(Vec3(x, 0, 0.355), Mat3::Identity(), Vec3(0.015, 0.28, 0.355)), metal);
+  }
+  return asset;
+}
+
+// A three-seat sofa, faces +x (backrest at -x), 1.80 m along y × 0.85 m: seat cushions 0.55 m
+// deep with their top at 0.45 m (a chair's), backrest to 0.85 m, arms to 0.62 m.
+AssetBuilder Sofa() {
+  AssetBuilder asset;
+  asset.name = "sofa";
+  asset.class_name = "sofa";
+  const int cloth = asset.Material(kUpholstery);
+  asset.Add(Box(Vec3(0.025, 0, 0.225), Mat3::Identity(), Vec3(0.275, 0.75, 0.225)), cloth);
+  asset.Add(Box(Vec3(-0.35, 0, 0.425), Mat3::Identity(), Vec3(0.10, 0.90, 0.425)), cloth);
+  for (int side = 0; side < 2; ++side) {
+    const double y = side == 0 ? -0.825 : 0.825;
+    asset.Add(Box(Vec3(0.025, y, 0.31), Mat3::Identity(), Vec3(0.275, 0.075, 0.31)), cloth);
+  }
+  return asset;
+}
+
+// A low coffee table, 1.00 m along x × 0.50 m, top at 0.42 m, four legs.
+AssetBuilder LowTable() {
+  AssetBuilder asset;
+  asset.name = "low_table";
+  asset.class_name = "table";
+  const int wood = asset.Material(kWood);
+  asset.Add(Box(Vec3(0, 0, 0.40), Mat3::Identity(), Vec3(0.50, 0.25, 0.02)), wood);
+  for (int i = 0; i < 4; ++i) {
+    const double x = (i & 1) ? 0.46 : -0.46;
+    const double y = (i & 2) ? 0.21 : -0.21;
+    asset.Add(Box(Vec3(x, y, 0.19), Mat3::Identity(), Vec3(0.025, 0.025, 0.19)), wood);
+  }
+  return asset;
+}
+
+// A freestanding office partition (a felt screen on two feet): 1.60 m along y × 0.05 m, 1.30 m tall.
+AssetBuilder Partition() {
+  AssetBuilder asset;
+  asset.name = "partition";
+  asset.class_name = "partition";
+  const int felt = asset.Material(kFelt);
+  const int metal = asset.Material(kMetal);
+  asset.Add(Box(Vec3(0, 0, 0.70), Mat3::Identity(), Vec3(0.025, 0.80, 0.60)), felt);
+  for (int side = 0; side < 2; ++side) {
+    const double y = side == 0 ? -0.70 : 0.70;
+    asset.Add(Box(Vec3(0, y, 0.05), Mat3::Identity(), Vec3(0.20, 0.03, 0.05)), metal);
+  }
+  return asset;
+}
+
+// A lectern: the speaker stands at +x; 0.60 m along y × 0.50 m, its sloped top 1.05-1.15 m high.
+AssetBuilder Lectern() {
+  AssetBuilder asset;
+  asset.name = "lectern";
+  asset.class_name = "lectern";
+  const int wood = asset.Material(kWood);
+  asset.Add(Box(Vec3(-0.05, 0, 0.50), Mat3::Identity(), Vec3(0.20, 0.28, 0.50)), wood);
+  asset.Add(Box(Vec3(0, 0, 1.10), PitchForward(Deg(12)), Vec3(0.25, 0.30, 0.02)), wood);
   return asset;
 }
 
@@ -914,7 +1011,14 @@ int main(int argc, char** argv) {
       Cup(),
       Laptop(),
       Monitor(),
-      Radiator()};
+      Radiator(),
+      RoundTable(),
+      SquareTable(),
+      Desk(),
+      Sofa(),
+      LowTable(),
+      Partition(),
+      Lectern()};
   for (AssetBuilder& part : PersonParts()) assets.push_back(std::move(part));
   tinygltf::TinyGLTF writer;
   for (const AssetBuilder& asset : assets) {

@@ -572,6 +572,29 @@ double DistanceToObstacle(const Eigen::Vector2d& point_m, const Obstacle2D& obst
   return DistancePointBox(point_m, ObstacleBox(obstacle));
 }
 
+bool FootprintsOverlap(const Obstacle2D& a, const Obstacle2D& b) {
+  using Shape = Obstacle2D::Shape;
+  if (a.shape == Shape::kCircle && b.shape == Shape::kCircle) return (a.center_m - b.center_m).norm() <= a.radius_m + b.radius_m;
+  if (a.shape == Shape::kCircle) return DistanceToObstacle(a.center_m, b) <= a.radius_m;
+  if (b.shape == Shape::kCircle) return DistanceToObstacle(b.center_m, a) <= b.radius_m;
+  // Two rectangles: the separating-axis test.
+  const Eigen::Vector2d d = b.center_m - a.center_m;
+  for (const Obstacle2D* owner : {&a, &b}) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const double angle = owner->yaw_rad + axis * M_PI / 2;
+      const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+      double reach = 0;
+      for (const Obstacle2D* r : {&a, &b}) {
+        const Eigen::Vector2d u(std::cos(r->yaw_rad), std::sin(r->yaw_rad));
+        const Eigen::Vector2d v(-u.y(), u.x());
+        reach += r->half_size_m.x() * std::abs(n.dot(u)) + r->half_size_m.y() * std::abs(n.dot(v));
+      }
+      if (std::abs(n.dot(d)) > reach) return false;
+    }
+  }
+  return true;
+}
+
 CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& o) {
   const double c = std::cos(base.theta_rad), s = std::sin(base.theta_rad);
   CameraPose cam;

@@ -161,7 +161,7 @@ Eigen::Vector3d Vec3(const json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
-// Tables inside the room; seating names existing tables.
+// Tables inside the room; seating names existing tables and seats they have.
 void CheckTables(const Scene& scene, ProblemCollector* problems) {
   const std::string& f = scene.file;
   for (size_t i = 0; i < scene.tables.size(); ++i) {
@@ -173,9 +173,17 @@ void CheckTables(const Scene& scene, ProblemCollector* problems) {
     }
   }
   for (size_t i = 0; i < scene.crowd.seating.size(); ++i) {
-    if (scene.crowd.seating[i].table >= static_cast<int>(scene.tables.size())) {
+    const SeatingSpec& seating = scene.crowd.seating[i];
+    if (seating.table >= static_cast<int>(scene.tables.size())) {
       problems->Add(f + ": /crowd/seating/" + std::to_string(i) + "/table",
                     "a table index below " + std::to_string(scene.tables.size()));
+      continue;
+    }
+    const std::vector<int> seats = SeatsOf(scene.tables[static_cast<size_t>(seating.table)], 3);
+    if (std::find(seats.begin(), seats.end(), seating.seat) == seats.end()) {
+      problems->Add(f + ": /crowd/seating/" + std::to_string(i) + "/seat",
+                    "a seat table " + std::to_string(seating.table) + " has (" +
+                        (seats.empty() ? std::string("it has none") : "0.." + std::to_string(seats.back())) + ")");
     }
   }
 }
@@ -251,6 +259,15 @@ void CheckPlacements(const Scene& scene, ProblemCollector* problems) {
     if (!fs::is_regular_file(path, ec)) {
       problems->Add(f + ": /furniture/" + key, "an asset name in " + scene.assets_dir +
                                                    " or a .gltf/.glb file; " + path + " does not exist");
+    }
+  }
+  for (size_t i = 0; i < scene.tables.size(); ++i) {
+    if (scene.tables[i].asset.empty()) continue;
+    const std::string path = assets.Resolve(scene.tables[i].asset);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      problems->Add(f + ": /tables/" + std::to_string(i) + "/asset", "an asset name in " + scene.assets_dir +
+                                                                     " or a .gltf/.glb file; " + path + " does not exist");
     }
   }
   const std::vector<StandingSpec>& standing = scene.crowd.standing;
@@ -391,6 +408,25 @@ void FillSceneDefaults(json* doc) {
   NormaliseNumbers(doc, SceneSchema());
 }
 
+// One element of /tables; fields the scene leaves out keep their meaning without being written
+// into the resolved scene (the schema gives them no default, so older scenes resolve as before).
+TableSpec ReadTable(const json& t) {
+  static const std::map<std::string, std::pair<SeatArrangement, int>> kArrangements = {
+      {"both_sides", {SeatArrangement::kBothSides, 0}}, {"one_side", {SeatArrangement::kOneSide, 2}},
+      {"around", {SeatArrangement::kAround, 4}},        {"sofa", {SeatArrangement::kSofa, 3}},
+      {"none", {SeatArrangement::kNone, 0}}};
+  TableSpec spec;
+  spec.center_m = Vec2(t["center_m"]);
+  spec.yaw_deg = t["yaw_deg"].get<double>();
+  spec.asset = t.value("asset", "");
+  const auto& [seats, default_count] = kArrangements.at(t.value("seats", "both_sides"));
+  spec.seats = seats;
+  spec.seat_count = seats == SeatArrangement::kBothSides || seats == SeatArrangement::kNone
+                        ? 0
+                        : t.value("seat_count", default_count);
+  return spec;
+}
+
 // Makes the scene's asset paths absolute in the document (relative to the scene file, so a
 // dataset's scene.json, written elsewhere, still finds the same assets); sets s->assets_dir.
 void ResolveAssetPaths(const std::string& file, json* doc_in, Scene* s) {
@@ -404,6 +440,9 @@ void ResolveAssetPaths(const std::string& file, json* doc_in, Scene* s) {
   s->assets_dir = assets_dir.empty() ? ShippedAssetDir() : assets_dir;
   for (const char* key : {"table_asset", "chair_asset"}) {
     doc["furniture"][key] = ResolveAssetRef(doc["furniture"][key].get<std::string>(), scene_dir);
+  }
+  for (json& t : doc["tables"]) {
+    if (t.contains("asset")) t["asset"] = ResolveAssetRef(t["asset"].get<std::string>(), scene_dir);
   }
   for (json& o : doc["objects"]) o["asset"] = ResolveAssetRef(o["asset"].get<std::string>(), scene_dir);
 }
@@ -432,7 +471,7 @@ void ReadRoomAndFurniture(const std::string& file, json* doc_in, Scene* s_out, P
                                         {{"position_m", {s.room.size_m.x(), mid_y}}, {"width_m", 0.9}}});
   }
   for (const json& d : doc["room"]["doors"]) s.room.doors.push_back({Vec2(d["position_m"]), d["width_m"].get<double>()});
-  for (const json& t : doc["tables"]) s.tables.push_back({Vec2(t["center_m"]), t["yaw_deg"].get<double>()});
+  for (const json& t : doc["tables"]) s.tables.push_back(ReadTable(t));
   FurnitureOptions::Table().Read(doc["furniture"], file + ": /furniture", &s.furniture, &consistency);
 
   for (const json& o : doc["objects"]) {
@@ -516,6 +555,17 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   CheckConsistency(s, &consistency);
   consistency.ThrowIfAny();
   return s;
+}
+
+std::vector<int> SeatsOf(const TableSpec& table, int per_side) {
+  std::vector<int> seats;
+  if (table.seats == SeatArrangement::kBothSides) {
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < per_side; ++k) seats.push_back(side * 3 + k);
+  } else {
+    for (int k = 0; k < table.seat_count; ++k) seats.push_back(k);
+  }
+  return seats;
 }
 
 InputError LocatedInScene(const Scene& scene, const InputError& error) {

@@ -77,6 +77,9 @@ std::string SceneReferenceMarkdown() {
           << FormatOptionTableMarkdown(WindowSpec::Table().List()) << "\n";
     }
   }
+  out << "## generator\n\n" << top["generator"].value("description", "") << ". Its `options` are listed by "
+      << "`hoilcd reference generate` ([generate.md](generate.md)).\n\n"
+      << SchemaTable(top["generator"]["properties"], /*skip_objects=*/true) << "\n";
   out << "## distractors\n\n" << top["distractors"].value("description", "") << ".\n\n"
       << SchemaTable(top["distractors"]["properties"]) << "\n";
   for (const char* array : {"tables", "objects"}) {

@@ -78,9 +78,7 @@ std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side)
   std::vector<SeatingSpec> seating = scene.crowd.seating;
   if (!seating.empty()) return seating;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
-    std::vector<int> seats;
-    for (int side = 0; side < 2; ++side)
-      for (int k = 0; k < per_side; ++k) seats.push_back(side * 3 + k);
+    std::vector<int> seats = SeatsOf(scene.tables[t], per_side);
     Rng rng = KeyedRng(scene.seed, "crowd.seats", t);
     for (int i = static_cast<int>(seats.size()) - 1; i > 0; --i) {
       std::swap(seats[i], seats[rng.UniformInt(static_cast<uint32_t>(i + 1))]);
@@ -92,9 +90,17 @@ std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side)
   return seating;
 }
 
-void Crowd::AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::AlignedBox3f& table_bounds_m) {
+void Crowd::AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::AlignedBox3f& table_bounds_m,
+                     SeatArrangement seats) {
   world_from_table_.push_back(world_from_table);
-  table_bounds_m_ = table_bounds_m;
+  table_bounds_m_.push_back(table_bounds_m);
+  table_seats_.push_back(seats);
+}
+
+std::vector<Crowd::SeatPlace> Crowd::SeatPlaces() const {
+  std::vector<SeatPlace> places;
+  for (const Seat& s : seats_) places.push_back({s.table, s.seat, s.world_from_seat, s.chair_instance >= 0});
+  return places;
 }
 
 void Crowd::AddSeat(int table, int seat, int chair_instance, const Eigen::Matrix4f& world_from_seat) {
@@ -103,7 +109,7 @@ void Crowd::AddSeat(int table, int seat, int chair_instance, const Eigen::Matrix
   record.seat = seat;
   record.chair_instance = chair_instance;
   record.world_from_seat = world_from_seat;
-  record.chair_materials = stage_.MutableInstance(chair_instance).materials;
+  if (chair_instance >= 0) record.chair_materials = stage_.MutableInstance(chair_instance).materials;
   seats_.push_back(record);
 }
 
@@ -157,11 +163,14 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
   person.table_from_seat = world_from_table_.at(table).inverse() * person.world_from_seat.cast<double>();
   Rng rng = KeyedRng(seed_, "crowd.person", id);
   // What is on the table in front of them (the same for the person wherever they sit).
+  // On a sofa there is no table top: no props, and no posture resting on one.
+  person.at_table_top = table_seats_.at(table) != SeatArrangement::kSofa;
   Rng props = KeyedRng(seed_, "crowd.props", id);
-  const bool has_cup = props.Uniform() < options_.activity.cup_fraction;
-  const bool has_laptop = props.Uniform() < options_.activity.laptop_fraction;
+  const bool has_cup = props.Uniform() < options_.activity.cup_fraction && person.at_table_top;
+  const bool has_laptop = props.Uniform() < options_.activity.laptop_fraction && person.at_table_top;
+  const bool hands_off_table = has_laptop || !person.at_table_top;
   const PostureWeights& weights = options_.posture_weights;
-  std::string current = posture == "random" ? ChoosePosture(weights, has_laptop, &rng) : posture;
+  std::string current = posture == "random" ? ChoosePosture(weights, hands_off_table, &rng) : posture;
   person.postures.emplace_back(arrive_s, current);
   // People shift posture now and then (exponential intervals): the upper body changes, the
   // contact with chair and table stays, which is what makes HOI points landmarks.
@@ -171,7 +180,7 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
       t += -options_.posture_change_interval_s * std::log(1.0 - changes.Uniform());
       if (t >= std::min(leave_s, duration_s_)) break;
       std::string next = current;
-      for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, has_laptop, &changes);
+      for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, hands_off_table, &changes);
       if (next == current) continue;
       person.postures.emplace_back(t, next);
       current = next;
@@ -181,8 +190,16 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
   {
     const Eigen::Vector3d q = person.table_from_seat.topRightCorner<3, 1>();
     const Eigen::Vector3d d = person.table_from_seat.topLeftCorner<3, 3>().col(0);
-    const double half_depth = 0.5 * (table_bounds_m_.max().y() - table_bounds_m_.min().y());
-    if (std::abs(d.y()) > 0.5) person.table_edge_m = std::clamp((std::abs(q.y()) - half_depth) / std::abs(d.y()), 0.1, 0.5);
+    const Eigen::AlignedBox3f& bounds = table_bounds_m_.at(table);
+    const double half_depth = 0.5 * (bounds.max().y() - bounds.min().y());
+    if (table_seats_.at(table) == SeatArrangement::kAround) {
+      // Seats round a table face its centre: the edge is where the ellipse its footprint's half
+      // sizes span meets the line from the seat to the centre.
+      const double hx = 0.5 * bounds.sizes().x(), hy = half_depth, r = std::hypot(q.x(), q.y());
+      person.table_edge_m = std::clamp(r - r / std::hypot(q.x() / hx, q.y() / hy), 0.1, 0.5);
+    } else if (std::abs(d.y()) > 0.5) {
+      person.table_edge_m = std::clamp((std::abs(q.y()) - half_depth) / std::abs(d.y()), 0.1, 0.5);
+    }
   }
   // Whom they look at is settled by AimGazes, once every seat and sitter is known.
   person.activities = PlanActivities(options_.activity, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
@@ -449,6 +466,7 @@ void Crowd::UpdateSeatWarmth(double time_s) {
                                     ? seat_warmth_c_
                                     : seat_warmth_c_ * std::exp(-(time_s - p.leave_s) / options_.heat_print_time_constant_s));
     }
+    if (seat.chair_instance < 0) continue;  // a sofa's place: the sofa is not warmed seat by seat
     std::vector<InstanceMaterial>& materials = stage_.MutableInstance(seat.chair_instance).materials;
     for (size_t m = 0; m < materials.size(); ++m) {
       if (seat.chair_materials[m].specular) continue;  // metal legs do not hold body heat
@@ -552,7 +570,7 @@ double DepthIntoSlab(const Asset& part, const Eigen::Matrix4d& table_from_part, 
 void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
   // The table top slab in the table frame, grown by a few millimetres of clearance.
   constexpr double kClearanceM = 0.004;
-  const Eigen::Vector3f lo = table_bounds_m_.min(), hi = table_bounds_m_.max();
+  const Eigen::Vector3f lo = table_bounds_m_.at(p.table).min(), hi = table_bounds_m_.at(p.table).max();
   const TableSlab slab{lo.x() - kClearanceM, hi.x() + kClearanceM, lo.y() - kClearanceM, hi.y() + kClearanceM,
                        hi.z() - 0.03 - kClearanceM, hi.z() + kClearanceM};
   // How deep the part's mesh reaches into the slab from above (0 if it does not).
@@ -618,7 +636,7 @@ void Crowd::SetTime(double time_s) {
     }
     if (p.seated) {
       KeepOwnElbowRoom(p, &pose);
-      KeepClearOfTable(p, &pose);
+      if (p.at_table_top) KeepClearOfTable(p, &pose);
     }
     pose = skeleton_->Limit(pose);
     const auto parts = skeleton_->PartTransforms(pose);
@@ -630,7 +648,7 @@ void Crowd::SetTime(double time_s) {
     // Contacts with the chair, the table and the floor follow the moving parts.
     if (p.seated) {
       p.contacts_m.emplace_back("seat", Apply(world_from_person, Eigen::Vector3d(pose.pelvis_m.x() + 0.02, pose.pelvis_m.y(), 0.45)));
-      for (int s = 0; s < 2; ++s) {
+      for (int s = 0; s < 2 && p.at_table_top; ++s) {
         const Eigen::Vector3d elbow = keypoints[7 + s], wrist = keypoints[9 + s];
         if (wrist.z() > 0.80 || wrist.x() < 0.33) continue;  // forearm not on the table top
         const Eigen::Vector3d mid = 0.5 * (elbow + wrist);

@@ -36,31 +36,13 @@ Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen:
   return o;
 }
 
-// Separating-axis test of two rectangle footprints (touching counts as overlapping).
-bool RectanglesOverlap(const Obstacle2D& a, const Obstacle2D& b) {
-  const Eigen::Vector2d d = b.center_m - a.center_m;
-  for (const Obstacle2D* owner : {&a, &b}) {
-    for (int axis = 0; axis < 2; ++axis) {
-      const double angle = owner->yaw_rad + axis * M_PI / 2;
-      const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
-      double reach = 0;
-      for (const Obstacle2D* r : {&a, &b}) {
-        const Eigen::Vector2d u(std::cos(r->yaw_rad), std::sin(r->yaw_rad));
-        const Eigen::Vector2d v(-u.y(), u.x());
-        reach += r->half_size_m.x() * std::abs(n.dot(u)) + r->half_size_m.y() * std::abs(n.dot(v));
-      }
-      if (std::abs(n.dot(d)) > reach) return false;
-    }
-  }
-  return true;
-}
-
 // Chairs stand where people left them, not on a grid: without this, full tables in the
 // point-symmetric paper room look the same from opposite ends of the loop. A chair moves along
 // the table, is pushed in (never pulled out: the robot drives close behind), and turns; the turn
 // is paid for by pushing it in further, so its footprint reaches no further from the table
 // than a straight chair's. Chairs whose moved footprints would overlap another chair's get
-// their moves halved until none does (the straight layout is kept as it is).
+// their moves halved until none does (the straight layout is kept as it is). Tables seat people
+// on both long sides, on one (-y) side, or around them (facing the centre); sofas have no chairs.
 class ChairLayout {
  public:
   struct Chair {
@@ -71,26 +53,23 @@ class ChairLayout {
   };
 
   // Chairs of every table in order (table, then side, then place along the side), jittered.
-  ChairLayout(const Scene& scene, const Asset& table_asset, const Asset& chair_asset, int per_side, double spacing_m)
-      : scene_(scene),
-        chair_asset_(chair_asset),
-        per_side_(per_side),
-        spacing_m_(spacing_m),
-        half_depth_m_(table_asset.bounds_m.max().y()) {
+  ChairLayout(const Scene& scene, const std::vector<const Asset*>& table_assets, const Asset& chair_asset, int per_side,
+              double spacing_m)
+      : scene_(scene), table_assets_(table_assets), chair_asset_(chair_asset), per_side_(per_side), spacing_m_(spacing_m) {
     // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
     const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
     chair_half_width_m_ = 0.5 * std::max(chair_size.x(), chair_size.y());
     for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
-      for (int side = 0; side < 2; ++side) {
-        for (int k = 0; k < per_side; ++k) {
-          const int seat = side * 3 + k;
-          Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
-          Chair chair{t, seat, side, k, 0, 0, 0};
-          chair.turn = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_deg * kDegToRad;
-          chair.shift = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_m;
-          chair.push = 0.5 * jitter.Uniform() * scene.furniture.chair_jitter_m;
-          chairs_.push_back(chair);
-        }
+      const TableSpec& spec = scene.tables[t];
+      if (spec.seats == SeatArrangement::kSofa) continue;
+      for (int seat : SeatsOf(spec, per_side)) {
+        Rng jitter = KeyedRng(scene.seed, "furniture.chair", t, seat);
+        Chair chair{t, seat, seat / 3, seat % 3, 0, 0, 0};
+        if (spec.seats != SeatArrangement::kBothSides) chair = Chair{t, seat, 0, seat, 0, 0, 0};
+        chair.turn = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_deg * kDegToRad;
+        chair.shift = jitter.Uniform(-1.0, 1.0) * scene.furniture.chair_jitter_m;
+        chair.push = 0.5 * jitter.Uniform() * scene.furniture.chair_jitter_m;
+        chairs_.push_back(chair);
       }
     }
     Settle();
@@ -101,14 +80,34 @@ class ChairLayout {
   // Where a chair stands (floor point below the seat) and which way its seat faces.
   void Pose(const Chair& c, Eigen::Vector3d* position, double* seat_yaw) const {
     const TableSpec& spec = scene_.tables[c.table];
+    const Eigen::AlignedBox3f& bounds = table_assets_[c.table]->bounds_m;
     const double yaw = spec.yaw_deg * kDegToRad;
     const double turn = c.scale * c.turn;
-    const double along = (c.k - 0.5 * (per_side_ - 1)) * spacing_m_ + c.scale * c.shift_scale * c.shift;
+    const double shift = c.scale * c.shift_scale * c.shift;
     const double pushed_in = c.scale * c.push + chair_half_width_m_ * std::abs(std::sin(turn));
-    const double across = (c.side == 0 ? -1.0 : 1.0) * (half_depth_m_ + scene_.furniture.seat_setback_m - pushed_in);
-    const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(along, across);
+    const double setback_m = scene_.furniture.seat_setback_m;
+    Eigen::Vector2d local;
+    double facing = 0;  // the seat's yaw in the table frame
+    if (spec.seats == SeatArrangement::kAround) {
+      // Evenly round the table, the first seat on -y, each set back from the ellipse the
+      // footprint's half sizes span (a round top's circle; a square's sides, for four seats).
+      const double angle = -M_PI / 2 + 2 * M_PI * c.k / spec.seat_count;
+      const Eigen::Vector2d out(std::cos(angle), std::sin(angle));
+      const double hx = 0.5 * bounds.sizes().x(), hy = 0.5 * bounds.sizes().y();
+      const double reach = 1.0 / std::hypot(out.x() / hx, out.y() / hy);
+      local = out * (reach + setback_m - pushed_in) + Eigen::Vector2d(-out.y(), out.x()) * shift;
+      facing = angle + M_PI;
+    } else {
+      const int count = spec.seats == SeatArrangement::kBothSides ? per_side_ : spec.seat_count;
+      const double spacing = spec.seats == SeatArrangement::kBothSides ? spacing_m_ : bounds.sizes().x() / count;
+      const double half_depth = spec.seats == SeatArrangement::kBothSides ? bounds.max().y() : -bounds.min().y();
+      const double along = (c.k - 0.5 * (count - 1)) * spacing + shift;
+      local = Eigen::Vector2d(along, (c.side == 0 ? -1.0 : 1.0) * (half_depth + setback_m - pushed_in));
+      facing = c.side == 0 ? M_PI / 2 : -M_PI / 2;
+    }
+    const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * local;
     *position = Eigen::Vector3d(p.x(), p.y(), 0.0);
-    *seat_yaw = yaw + (c.side == 0 ? M_PI / 2 : -M_PI / 2) + turn;
+    *seat_yaw = yaw + facing + turn;
   }
 
  private:
@@ -146,7 +145,7 @@ class ChairLayout {
           if (straight_m < kCloseSeatsM && (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
             squeezed[i] = squeezed[j] = any = true;
           }
-          if (RectanglesOverlap(footprints[i], footprints[j])) {
+          if (FootprintsOverlap(footprints[i], footprints[j])) {
             overlapping[i] = overlapping[j] = any = true;
           }
         }
@@ -160,9 +159,10 @@ class ChairLayout {
   }
 
   const Scene& scene_;
+  const std::vector<const Asset*>& table_assets_;
   const Asset& chair_asset_;
   const int per_side_;
-  const double spacing_m_, half_depth_m_;
+  const double spacing_m_;
   double chair_half_width_m_ = 0;
   std::vector<Chair> chairs_;
 };
@@ -318,10 +318,15 @@ void World::BuildRoom(const Scene& scene) {
 }
 
 void World::BuildFurnitureAndPeople(const Scene& scene) {
-  const Asset& table_asset = assets_.Get(scene.furniture.table_asset);
+  std::vector<const Asset*> table_assets;
+  for (const TableSpec& spec : scene.tables) {
+    table_assets.push_back(&assets_.Get(spec.asset.empty() ? scene.furniture.table_asset : spec.asset));
+  }
   const Asset& chair_asset = assets_.Get(scene.furniture.chair_asset);
   bool three_per_side = scene.crowd.people_per_table > 4;
-  for (const SeatingSpec& s : scene.crowd.seating) three_per_side |= (s.seat % 3 == 2);
+  for (const SeatingSpec& s : scene.crowd.seating) {
+    if (scene.tables[s.table].seats == SeatArrangement::kBothSides) three_per_side |= (s.seat % 3 == 2);
+  }
   const int per_side = three_per_side ? 3 : 2;
   const double spacing = three_per_side ? scene.furniture.seat_spacing_6_m : scene.furniture.seat_spacing_4_m;
   // Seated bodies are capped in size to fit between neighbours (Crowd::Plan), down to the
@@ -336,26 +341,34 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     throw InputError(scene.file, message.str());
   }
   const std::vector<SeatingSpec> seating = Crowd::InitialSeating(scene, per_side);
-  const ChairLayout layout(scene, table_asset, chair_asset, per_side, spacing);
+  const ChairLayout layout(scene, table_assets, chair_asset, per_side, spacing);
 
   size_t next_chair = 0;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
     const TableSpec& spec = scene.tables[t];
+    const Asset& table_asset = *table_assets[t];
     const double yaw = spec.yaw_deg * kDegToRad;
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
     Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
-    crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m);
+    crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m, spec.seats);
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
-    for (int n = 0; n < 2 * per_side; ++n) {
-      const ChairLayout::Chair& plan = layout.chairs()[next_chair++];
-      const int seat = plan.seat;
+    for (int seat : SeatsOf(spec, per_side)) {
       Eigen::Vector3d seat_pos;
       double seat_yaw;
-      layout.Pose(plan, &seat_pos, &seat_yaw);
-      const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
-      const int chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair,
-                              chair_name, 0.0);
-      obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
+      int chair = -1;
+      if (spec.seats == SeatArrangement::kSofa) {
+        // People sit on the piece itself: seat_count places spread over its inner 5/6, facing +x.
+        const double along = (seat - 0.5 * (spec.seat_count - 1)) * (table_asset.bounds_m.sizes().y() * 5.0 / 6.0) / spec.seat_count;
+        const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(0.0, along);
+        seat_pos = Eigen::Vector3d(p.x(), p.y(), 0.0);
+        seat_yaw = yaw;
+      } else {
+        const ChairLayout::Chair& plan = layout.chairs()[next_chair++];
+        layout.Pose(plan, &seat_pos, &seat_yaw);
+        const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
+        chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair, chair_name, 0.0);
+        obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
+      }
       crowd_->AddSeat(t, seat, chair, PlacementTransform(seat_pos, seat_yaw));
       const auto who = std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
         return s.table == t && s.seat == seat;

@@ -79,7 +79,14 @@ TEST(ShippedAssets, EveryAssetLoadsWithItsDocumentedClassAndAConsistentMesh) {
       {"cup", "cup"},
       {"laptop", "laptop"},
       {"monitor", "monitor"},
-      {"radiator", "radiator"}};
+      {"radiator", "radiator"},
+      {"round_table", "table"},
+      {"square_table", "table"},
+      {"desk", "table"},
+      {"sofa", "sofa"},
+      {"low_table", "table"},
+      {"partition", "partition"},
+      {"lectern", "lectern"}};
   for (const auto& [name, class_name] : expected) {
     SCOPED_TRACE(name);
     const Asset& asset = Shipped(name);
@@ -101,6 +108,23 @@ TEST(ShippedAssets, PeopleHave2kTo8kTrianglesAndADocumentedPosture) {
     EXPECT_GE(person.mesh.TriangleCount(), 2000u);
     EXPECT_LE(person.mesh.TriangleCount(), 8000u);
     EXPECT_EQ("person_" + person.posture, name);
+  }
+}
+
+// The generated layouts' furniture (hoilcd generate) has the sizes assets/README.md documents:
+// footprint x × y and height, m.
+TEST(ShippedAssets, GeneratorFurnitureHasItsDocumentedSizes) {
+  const std::vector<std::pair<std::string, Eigen::Vector3f>> expected = {
+      {"round_table", {0.90f, 0.90f, 0.74f}}, {"square_table", {0.80f, 0.80f, 0.74f}},
+      {"desk", {1.20f, 0.60f, 0.74f}},        {"sofa", {0.75f, 1.80f, 0.85f}},
+      {"low_table", {1.00f, 0.50f, 0.42f}},   {"partition", {0.40f, 1.60f, 1.30f}},
+      {"lectern", {0.50f, 0.60f, 1.17f}}};
+  for (const auto& [name, size] : expected) {
+    SCOPED_TRACE(name);
+    const Eigen::Vector3f sizes = Shipped(name).bounds_m.sizes();
+    EXPECT_NEAR(sizes.x(), size.x(), 0.01f);
+    EXPECT_NEAR(sizes.y(), size.y(), 0.01f);
+    EXPECT_NEAR(sizes.z(), size.z(), 0.01f);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "hoilcd/core/util/option_table.h"
+#include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/camera_options.h"
 #include "hoilcd/sim/scene/camera_profiles.h"
@@ -140,6 +141,7 @@ TEST(OptionSchema, EverySimOptionTableAgreesWithTheSceneSchema) {
       {"/crowd", CrowdOptions::Table().List()},
       {"/room", RoomOptions::Table().List()},
       {"/furniture", FurnitureOptions::Table().List()},
+      {"/generator/options", GeneratorOptions::Table().List()},
   };
   for (const auto& [pointer, options] : tables) {
     const std::vector<std::string> problems = Disagreements(SceneSchema(), pointer, options);

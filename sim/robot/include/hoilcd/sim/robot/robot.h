@@ -177,6 +177,9 @@ std::vector<FootprintRecord> FootprintRecordsOf(const std::vector<Obstacle2D>& o
 // Euclidean distance from a point to the obstacle's footprint (0 inside).
 double DistanceToObstacle(const Eigen::Vector2d& point_m, const Obstacle2D& obstacle);
 
+// Whether two footprints overlap (touching counts as overlapping).
+bool FootprintsOverlap(const Obstacle2D& a, const Obstacle2D& b);
+
 // The camera's world pose for a base pose (rigid front mount from the options).
 CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& options);
 

@@ -31,10 +31,20 @@ std::vector<Problem> ValidateScene(const nlohmann::json& doc, const std::string&
 // Inserts schema defaults for every absent property, recursively.
 void FillSceneDefaults(nlohmann::json* doc);
 
+// How a table's seats are set (the schema's /tables/N/seats says where each stands).
+enum class SeatArrangement { kBothSides, kOneSide, kAround, kSofa, kNone };
+
 struct TableSpec {
   Eigen::Vector2d center_m = Eigen::Vector2d::Zero();
   double yaw_deg = 0;
+  std::string asset;  // asset name or path; "" when the scene names none (furniture.table_asset)
+  SeatArrangement seats = SeatArrangement::kBothSides;
+  int seat_count = 0;  // seats of kOneSide, kAround and kSofa (their default when the scene names none)
 };
+
+// The seat indices a table offers: both sides, per_side seats each (0.. on -y, 3.. on +y, as
+// people_per_table sets them); otherwise 0 .. seat_count - 1 (none for kNone).
+std::vector<int> SeatsOf(const TableSpec& table, int per_side);
 
 struct ObjectSpec {
   std::string asset;

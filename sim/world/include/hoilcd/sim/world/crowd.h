@@ -45,6 +45,7 @@ struct Person {
   Eigen::Matrix4d table_from_seat = Eigen::Matrix4d::Identity();  // seated: their table's frame
   std::array<double, 2> side_room_m{1, 1};   // seated: the same on the left (+y) and on the right
   double table_edge_m = 0.30;                // seated: seat centre to the table's near edge, m
+  bool at_table_top = true;                  // seated: their hands reach a table top (not on a sofa)
   double height_scale = 1;
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
   double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
@@ -82,12 +83,13 @@ class Crowd {
   Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage);
 
   // Who sits where at the start: the scene's list, or people_per_table random seats per table
-  // (seats 0..per_side-1 on one side, 3..3+per_side-1 on the other).
+  // (of SeatsOf: seats 0..per_side-1 on one side, 3..3+per_side-1 on the other, for both_sides).
   static std::vector<SeatingSpec> InitialSeating(const Scene& scene, int per_side);
 
-  // The furniture as the World places it, in order: a table (its frame; every table is the same
-  // asset, whose bounds have the top at max z), then its chairs.
-  void AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::AlignedBox3f& table_bounds_m);
+  // The furniture as the World places it, in order: a table (its frame, its asset's bounds with
+  // the top at max z, how it seats people), then its seats (chair_instance -1: a sofa's place).
+  void AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::AlignedBox3f& table_bounds_m,
+                SeatArrangement seats);
   void AddSeat(int table, int seat, int chair_instance, const Eigen::Matrix4f& world_from_seat);
   // Adds a seated person (instances for every posture they will take) and returns its index.
   // person_id < 0: a new person; else that person (same appearance) on another seat.
@@ -106,6 +108,14 @@ class Crowd {
   void SetTime(double time_s);
 
   const std::vector<Person>& people() const { return people_; }
+  // Every seat (occupied or not) as placed: its frame (x: the way a sitter faces) and whether it
+  // is a chair (else a place on a sofa).
+  struct SeatPlace {
+    int table = 0, seat = 0;
+    Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
+    bool chair = true;
+  };
+  std::vector<SeatPlace> SeatPlaces() const;
   const std::vector<DatasetEvent>& events() const { return events_; }
   // What Plan could not give the scene (walkers with no room to walk), one sentence each.
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -153,7 +163,8 @@ class Crowd {
   CrowdStage& stage_;
   std::unique_ptr<Skeleton> skeleton_;
   std::vector<Eigen::Matrix4d> world_from_table_;  // per table
-  Eigen::AlignedBox3f table_bounds_m_;             // the table asset's bounds (top at max z)
+  std::vector<Eigen::AlignedBox3f> table_bounds_m_;  // per table: its asset's bounds (top at max z)
+  std::vector<SeatArrangement> table_seats_;         // per table: how it seats people
   std::vector<Person> people_;
   std::vector<Seat> seats_;
   RobotTrack robot_;                          // the robot's run (Plan)

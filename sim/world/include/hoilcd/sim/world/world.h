@@ -46,6 +46,7 @@ class World : private CrowdStage {
   // Everyone who appears in the sequence; `present` says who is in the room at the current time.
   const std::vector<Person>& people() const { return crowd_->people(); }
   const std::vector<Obstacle2D>& obstacles() const { return obstacles_; }
+  std::vector<Crowd::SeatPlace> seat_places() const { return crowd_->SeatPlaces(); }
   const Skeleton& skeleton() const { return crowd_->skeleton(); }
   double room_height_m() const { return room_size_m_.z(); }
   // Band radiance of the room's surroundings, for diffuse reflection (L_env).

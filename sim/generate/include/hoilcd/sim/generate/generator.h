@@ -1,0 +1,74 @@
+// A seeded generator of varied rooms (`hoilcd generate`): six layout families, each with its own
+// furniture and seating rules, a room size, people drawn within the crowd schema, and a closed
+// robot route planned around the furniture with clearance. Same arguments, same bytes.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hoilcd/core/util/option_table.h"
+#include "hoilcd/sim/scene/scene.h"
+#include "hoilcd/sim/world/world.h"
+
+namespace hoilcd {
+
+// The layout families, in the order `mixed` draws from.
+const std::vector<std::string>& LayoutFamilies();
+// Bumped whenever the same arguments would give other scenes; recorded in every scene.
+constexpr int kGeneratorVersion = 1;
+
+// A family's room size, drawn uniformly per scene: length along x, width along y.
+struct RoomSizeRange {
+  double length_min_m, length_max_m;  // m
+  double width_min_m, width_max_m;    // m
+};
+
+// Every parameter of the generator but the layout, seed and count (the scene's /generator/options).
+struct GeneratorOptions {
+  RoomSizeRange meeting_row, classroom, cafeteria, open_office, seminar_u, lounge;
+  double height_min_m, height_max_m;              // m, room height, uniform
+  double occupancy_min, occupancy_max;            // fraction of seats taken, uniform per room
+  double posture_weight_min, posture_weight_max;  // each seated posture's weight, uniform
+  double activity_weight_spread;                  // each activity weight times U[1 - s, 1 + s]
+  int walkers_max;                                // walkers per room, uniform in 0..walkers_max
+  double turnover_max;                            // crowd.turnover_probability, uniform in [0, this]
+  double laps;                                    // laps the robot drives (sets the frames)
+  double route_wall_m;                            // m, route from the walls
+  double route_clearance_m;                       // m, route centre line from every footprint
+  int attempts;                                   // draws of a scene before it is given up
+
+  GeneratorOptions();  // the registered defaults
+  // Every field once: JSON name (the scene's /generator/options), unit, default, range, description.
+  static const OptionTable<GeneratorOptions>& Table();
+  const RoomSizeRange& SizeOf(const std::string& family) const;
+};
+
+// Scene `index` of the run (seed, layout): layout is a family or "mixed" (the family drawn per
+// index). A scene depends on (seed, index, family, options) only, so `--layout FAMILY` regenerates
+// what `mixed` drew. Throws InputError when no draw in options.attempts passes every check.
+nlohmann::ordered_json GenerateScene(const std::string& layout, uint64_t seed, int index, const GeneratorOptions& options);
+
+// The family scene `index` gets (layout itself unless it is "mixed"); InputError naming --layout
+// when layout is neither a family nor "mixed".
+std::string FamilyOf(const std::string& layout, uint64_t seed, int index);
+
+// What the generator checks of every scene it makes, one sentence per problem (none: fine):
+// footprints inside the room and apart (a chair may stand under its own table), every seat
+// reachable on foot from the route's start, the route a closed clockwise loop keeping wall_m
+// from the walls and clearance_m from every footprint.
+std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World& world, double wall_m, double clearance_m);
+
+// A scene file's name in the output folder: "scene_0007_classroom.json".
+std::string GeneratedSceneFileName(int index, const std::string& family);
+
+// The bytes of a scene file: keys in a fixed order, two-space indent, a final newline.
+std::string SceneFileText(const nlohmann::ordered_json& scene);
+
+// The folder rule of generate -o: a missing or empty folder, or one holding only earlier
+// generated scenes (JSON objects with a /generator object), is fine; else InputError naming the
+// other entries.
+void CheckGenerateFolder(const std::string& dir);
+
+}  // namespace hoilcd
