@@ -157,11 +157,14 @@ std::string PaperFindingSummary(const BenchResult& result) {
     out << "; fusion MRR " << Fixed(fm) << (fm >= better - 0.01 ? " >= " : " < ") << "better - 0.01 = "
         << Fixed(better - 0.01) << (fm >= better - 0.01 ? " (holds)" : " (does NOT hold)");
   }
+  // Whether the scene has people is known only from persons.json (tracking_evaluated: the dataset
+  // has it and DLCD's front end ran).
+  const bool no_people = result.tracking_evaluated && result.ground_truth_person_views == 0;
   if (result.mean_hoi_points_per_frame == 0) {
     out << ". DLCD found no HOI points at all (no person detected in any frame"
-        << (result.ground_truth_person_views == 0 ? ", and the scene has no people" : "")
+        << (no_people ? ", and the scene has no people" : "")
         << "), so it has nothing to match: every query scores 0 and its ranks are pure ties.";
-  } else if (result.ground_truth_person_views == 0) {
+  } else if (no_people) {
     out << ". The scene has no people, so every one of DLCD's HOI points (" << Fixed(result.mean_hoi_points_per_frame, 1)
         << " a frame) comes from a warm object mistaken for a person: its score measures the detector's false "
            "positives, not human-object interaction.";

@@ -104,6 +104,21 @@ TEST(Runner, EachMethodRunsWithItsOwnParamsAndTheReportSaysWhichOptionsItRanWith
   EXPECT_FALSE(json["parameters"].contains("rrf_k"));  // one place: the method's own options
 }
 
+TEST(Runner, TheFindingSaysTheSceneHasNoPeopleOnlyWhenPersonsJsonSaysSo) {
+  BenchResult result;
+  for (const char* name : {"slcd", "dlcd"}) {
+    MethodRun run;
+    run.name = name;
+    run.metrics.mrr = 0.2;
+    result.runs.push_back(run);
+  }
+  result.mean_hoi_points_per_frame = 3;
+  result.ground_truth_person_views = 0;  // nothing counted: a dataset rendered without persons.json
+  EXPECT_EQ(PaperFindingSummary(result).find("no people"), std::string::npos) << PaperFindingSummary(result);
+  result.tracking_evaluated = true;  // persons.json read, and it lists nobody
+  EXPECT_NE(PaperFindingSummary(result).find("The scene has no people"), std::string::npos);
+}
+
 TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
   const test::TestDir temp;
   const Dataset dataset = TinyDataset(temp, "empty", {"crowd.people_per_table=0"});

@@ -15,7 +15,7 @@
 
 namespace hoilcd {
 
-// Point2 and Correspondence are defined in homography_ransac.h.
+// Point2 is defined in core/geometry/point.h; Correspondence in homography_ransac.h.
 
 // Defaults and ranges: Table() in matching.cpp.
 struct MatchOptions {
