@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "input_error_of.h"
@@ -95,6 +96,21 @@ INSTANTIATE_TEST_SUITE_P(
         BadSuite{R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"},
                                                   {"name": "a", "scene": "y.json", "seeds": [1], "split": "dev"}]})",
                  "/sequences/1/name: sequence name \"a\" is used twice"}));
+
+TEST(Suite, ShippedSuitesReadAndNameSceneFilesThatExist) {
+  for (const char* name : {"ci", "standard"}) {
+    const Suite suite = ReadSuite(std::string(HOILCD_TEST_SOURCE_DIR) + "/suites/" + name + ".json");
+    EXPECT_EQ(suite.name, name);
+    EXPECT_FALSE(SuiteRuns(suite, "dev").empty()) << name;
+    EXPECT_FALSE(SuiteRuns(suite, "test").empty()) << name;
+    for (const SuiteSequence& s : suite.sequences) {
+      if (!s.generated) {
+        EXPECT_TRUE(std::filesystem::exists(s.scene_path)) << name << ": " << s.scene_path;
+      }
+    }
+  }
+  EXPECT_GE(ReadSuite(std::string(HOILCD_TEST_SOURCE_DIR) + "/suites/standard.json").sequences.size(), 12u);
+}
 
 TEST(Suite, AMissingFileIsNamed) {
   const std::string message = test::InputErrorOf([] { ReadSuite("/nonexistent/suite.json"); });
