@@ -249,6 +249,7 @@ SuiteSummary RunSuite(const Suite& suite, const BenchOptions& bench, const Suite
     } catch (const RenderInterrupted&) {
       throw;  // Ctrl-C stops the suite; a rerun resumes it
     } catch (const std::exception& e) {
+      if (options.run.cancel != nullptr && options.run.cancel->load()) throw;  // stopped, not failed
       result = SuiteRunResult{run.name, e.what(), {}, {}};
       if (result.error.empty()) result.error = "failed without a message";
     }
