@@ -66,6 +66,8 @@ TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSame
     EXPECT_EQ(m["runs"].size(), 2u);
   }
   EXPECT_EQ(report["wins"].size(), 1u);
+  EXPECT_EQ(report["settings"]["split"], "all");
+  EXPECT_EQ(report["settings"]["bench"]["methods"], (nlohmann::json{"slcd", "dlcd"}));
   const std::string markdown = ReadFileBytes(temp / "out/suite_report.md");
   EXPECT_NE(markdown.find("missing-seed1"), std::string::npos) << markdown;
 

@@ -142,6 +142,7 @@ SuiteSummary SummariseSuite(const std::string& name, const std::string& descript
 nlohmann::json SuiteSummary::ToJson() const {
   nlohmann::json j;
   j["suite"] = {{"name", name}, {"description", description}};
+  if (!settings.is_null()) j["settings"] = settings;
   j["interval"] = {{"kind", "percentile bootstrap over runs, resampled i.i.d."},
                    {"resamples", bootstrap.resamples},
                    {"confidence", bootstrap.confidence},

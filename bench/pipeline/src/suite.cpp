@@ -255,7 +255,8 @@ SuiteSummary RunSuite(const Suite& suite, const BenchOptions& bench, const Suite
     }
     results.push_back(result);
   }
-  const SuiteSummary summary = SummariseSuite(suite.name, suite.description, methods, results);
+  SuiteSummary summary = SummariseSuite(suite.name, suite.description, methods, results);
+  summary.settings = {{"split", options.split}, {"bench", bench_json}};
   WriteFileAtomic(out + "/suite_report.json", summary.ToJson().dump(2) + "\n");
   WriteFileAtomic(out + "/suite_report.md", summary.ToMarkdown());
   return summary;

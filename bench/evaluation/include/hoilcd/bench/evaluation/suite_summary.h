@@ -49,6 +49,7 @@ struct SuiteWins {
 
 struct SuiteSummary {
   std::string name, description;
+  nlohmann::json settings;                // what the runs were made with (split, bench), copied to the JSON
   SuiteBootstrapOptions bootstrap;
   std::vector<std::string> runs;          // finished runs, in run order
   std::vector<SuiteMethodSummary> methods;  // in the order given
