@@ -24,7 +24,8 @@ int RunCommandLine(int argc, char** argv) {
       AddValidateCommand(&app), AddRenderCommand(&app),     AddBenchCommand(&app),
       AddRunCommand(&app),      AddEvaluateCommand(&app),   AddInspectCommand(&app),
       AddSweepCommand(&app),    AddExportCocoCommand(&app), AddParamsCommand(&app),
-      AddExportMotCommand(&app), AddReferenceCommand(&app), AddGenerateCommand(&app)};
+      AddExportMotCommand(&app), AddReferenceCommand(&app), AddGenerateCommand(&app),
+      AddSuiteCommand(&app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -27,5 +27,6 @@ Command AddExportCocoCommand(CLI::App* app);
 Command AddParamsCommand(CLI::App* app);
 Command AddReferenceCommand(CLI::App* app);
 Command AddGenerateCommand(CLI::App* app);
+Command AddSuiteCommand(CLI::App* app);
 
 }  // namespace hoilcd

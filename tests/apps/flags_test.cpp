@@ -56,6 +56,8 @@ TEST(Flags, EveryNumberFlagRefusesNanAndOutOfRangeValuesNamingTheFlagBriefly) {
       {"render", scene, "-o", temp / "out", "--seed", "-1"},
       {"sweep", scene, "-o", temp / "sweep", "--seeds", "0"},
       {"sweep", scene, "-o", temp / "sweep", "--seeds", "2147483647"},
+      {"suite", scene, "-o", temp / "suite", "--threads", "-1"},
+      {"suite", scene, "-o", temp / "suite", "--radius", "nan"},
   };
   for (const std::vector<std::string>& args : cases) {
     const Outcome o = Hoilcd(args);

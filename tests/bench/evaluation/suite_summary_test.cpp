@@ -1,0 +1,71 @@
+// The suite summary on constructed numbers: a hand-checked mean, ranks with ties, paired wins,
+// an interval that covers the mean and is the same bytes on a rerun, failed runs listed apart.
+#include "hoilcd/bench/evaluation/suite_summary.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hoilcd {
+namespace {
+
+SuiteRunResult Run(const std::string& name, double a, double b, double c) {
+  return {name, "", {{"a", a}, {"b", b}, {"c", c}}, {{"a", a / 2}, {"b", b / 2}, {"c", c / 2}}};
+}
+
+std::vector<SuiteRunResult> Runs() {
+  return {Run("r1", 0.9, 0.5, 0.5), Run("r2", 0.6, 0.7, 0.1), Run("r3", 0.3, 0.3, 0.3),
+          Run("r4", 0.8, 0.2, 0.4), {"r5", "scene missing", {}, {}}};
+}
+
+TEST(SuiteSummary, RanksGiveTiedValuesTheirMeanRankAndNanTheLast) {
+  EXPECT_EQ(RanksDescending({0.9, 0.5, 0.5}), (std::vector<double>{1, 2.5, 2.5}));
+  EXPECT_EQ(RanksDescending({0.3, 0.3, 0.3}), (std::vector<double>{2, 2, 2}));
+  EXPECT_EQ(RanksDescending({NAN, 0.1, 0.7}), (std::vector<double>{3, 2, 1}));
+  EXPECT_EQ(RanksDescending({NAN, 0.1, NAN}), (std::vector<double>{2.5, 1, 2.5}));
+}
+
+TEST(SuiteSummary, MeansRanksAndWinsMatchAHandCount) {
+  const SuiteSummary s = SummariseSuite("t", "", {"a", "b", "c"}, Runs());
+  ASSERT_EQ(s.runs.size(), 4u);
+  ASSERT_EQ(s.failed.size(), 1u);
+  EXPECT_EQ(s.failed[0].first, "r5");
+  EXPECT_EQ(s.failed[0].second, "scene missing");
+  EXPECT_NEAR(s.methods[0].mean_mrr, (0.9 + 0.6 + 0.3 + 0.8) / 4, 1e-12);
+  EXPECT_NEAR(s.methods[1].mean_recall_at_1, (0.5 + 0.7 + 0.3 + 0.2) / 8, 1e-12);
+  // a: ranks 1, 2, 2, 1; b: 2.5, 1, 2, 3; c: 2.5, 3, 2, 2.
+  EXPECT_EQ(s.methods[0].rank, (std::vector<double>{1, 2, 2, 1}));
+  EXPECT_EQ(s.methods[1].rank, (std::vector<double>{2.5, 1, 2, 3}));
+  EXPECT_DOUBLE_EQ(s.methods[0].mean_rank, 1.5);
+  EXPECT_DOUBLE_EQ(s.methods[2].mean_rank, 2.375);
+  ASSERT_EQ(s.wins.size(), 3u);  // a-b, a-c, b-c
+  EXPECT_EQ(s.wins[0].a_wins, 2);
+  EXPECT_EQ(s.wins[0].b_wins, 1);
+  EXPECT_EQ(s.wins[0].ties, 1);
+  EXPECT_EQ(s.wins[0].ToString(), "a beats b on 2 of 4 (1 tie)");
+  EXPECT_EQ(s.wins[2].ToString(), "b and c each win 1 of 4 (2 ties)");
+}
+
+TEST(SuiteSummary, IntervalCoversTheMeanAndIsTheSameBytesOnARerun) {
+  const SuiteSummary s = SummariseSuite("t", "d", {"a", "b", "c"}, Runs());
+  for (const SuiteMethodSummary& m : s.methods) {
+    EXPECT_TRUE(m.mrr_interval.Contains(m.mean_mrr)) << m.method;
+    EXPECT_LT(m.mrr_interval.low, m.mrr_interval.high) << m.method;
+    EXPECT_GE(m.mrr_interval.low, 0.1);
+    EXPECT_LE(m.mrr_interval.high, 0.9);
+  }
+  const SuiteSummary again = SummariseSuite("t", "d", {"a", "b", "c"}, Runs());
+  EXPECT_EQ(s.ToJson().dump(2), again.ToJson().dump(2));
+  EXPECT_EQ(s.ToMarkdown(), again.ToMarkdown());
+  EXPECT_NE(s.ToMarkdown().find("r5: scene missing"), std::string::npos);
+}
+
+TEST(SuiteSummary, OneValueGivesAPointIntervalAndNoValueNone) {
+  const Interval one = BootstrapMeanInterval({0.4}, {}, "x");
+  EXPECT_DOUBLE_EQ(one.low, 0.4);
+  EXPECT_DOUBLE_EQ(one.high, 0.4);
+  EXPECT_TRUE(std::isnan(BootstrapMeanInterval({}, {}, "x").low));
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -1,0 +1,131 @@
+// Suite files: a valid file read with paths resolved against its folder, runs sorted by name and
+// chosen by split, and every problem a user can write reported with the file and JSON pointer.
+#include "hoilcd/bench/pipeline/suite.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "input_error_of.h"
+
+namespace hoilcd {
+namespace {
+
+const char* kGood = R"({
+  "name": "s",
+  "description": "two sequences",
+  "sequences": [
+    {"name": "room", "scene": "scenes/room.json", "seeds": [2, 1], "set": ["crowd.walkers=0"], "split": "dev"},
+    {"name": "gen", "generate": {"layout": "lounge", "seed": 3, "index": 4}, "seeds": [5], "split": "test"}
+  ]
+})";
+
+TEST(Suite, ReadsSequencesResolvesScenePathsAndSortsRunsByName) {
+  const Suite suite = ParseSuite(kGood, "/data/suites/s.json");
+  EXPECT_EQ(suite.name, "s");
+  EXPECT_EQ(suite.description, "two sequences");
+  ASSERT_EQ(suite.sequences.size(), 2u);
+  EXPECT_EQ(suite.sequences[0].scene_path, "/data/suites/scenes/room.json");
+  EXPECT_EQ(suite.sequences[0].sets, (std::vector<std::string>{"crowd.walkers=0"}));
+  EXPECT_TRUE(suite.sequences[1].generated);
+  EXPECT_EQ(suite.sequences[1].layout, "lounge");
+  EXPECT_EQ(suite.sequences[1].generator_seed, 3u);
+  EXPECT_EQ(suite.sequences[1].generator_index, 4);
+  std::vector<std::string> names;
+  for (const SuiteRunSpec& run : SuiteRuns(suite, "all")) names.push_back(run.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"gen-seed5", "room-seed1", "room-seed2"}));
+  EXPECT_EQ(SuiteRuns(suite, "dev").size(), 2u);
+  ASSERT_EQ(SuiteRuns(suite, "test").size(), 1u);
+  EXPECT_EQ(SuiteRuns(suite, "test")[0].seed, 5);
+}
+
+struct BadSuite {
+  std::string text;
+  std::string expected;  // part of the message, with the JSON pointer
+};
+
+class SuiteErrors : public testing::TestWithParam<BadSuite> {};
+
+TEST_P(SuiteErrors, NameTheFilePointerAndWhatWasExpected) {
+  const std::string message = test::InputErrorOf([&] { ParseSuite(GetParam().text, "my_suite.json"); });
+  EXPECT_NE(message.find("my_suite.json"), std::string::npos) << message;
+  EXPECT_NE(message.find(GetParam().expected), std::string::npos) << "expected '" << GetParam().expected << "' in:\n" << message;
+}
+
+std::string One(const std::string& sequence) {
+  return R"({"name": "s", "sequences": [)" + sequence + "]}";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Suite, SuiteErrors,
+    testing::Values(
+        BadSuite{"{", "invalid JSON"},
+        BadSuite{"[]", "/: expected an object"},
+        BadSuite{R"({"sequences": []})", "/name: missing"},
+        BadSuite{R"({"name": "s"})", "/sequences: missing"},
+        BadSuite{R"({"name": "s", "sequences": []})", "/sequences: expected at least one sequence"},
+        BadSuite{R"({"name": "s", "sequences": {}})", "/sequences: expected an array"},
+        BadSuite{R"({"name": "s", "sequences": [{}], "typo": 1})", "/typo: unknown key"},
+        BadSuite{One("3"), "/sequences/0: expected an object"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "split": "dev", "seed": 2})"), "/sequences/0/seed: unknown key"},
+        BadSuite{One(R"({"scene": "x.json", "seeds": [1], "split": "dev"})"), "/sequences/0/name: missing"},
+        BadSuite{One(R"({"name": "a b", "scene": "x.json", "seeds": [1], "split": "dev"})"), "/sequences/0/name: expected 1-100 letters"},
+        BadSuite{One(R"({"name": "a", "seeds": [1], "split": "dev"})"), "/sequences/0: expected exactly one of \"scene\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "generate": {}, "seeds": [1], "split": "dev"})"), "expected exactly one of"},
+        BadSuite{One(R"({"name": "a", "scene": 3, "seeds": [1], "split": "dev"})"), "/sequences/0/scene: expected a string"},
+        BadSuite{One(R"({"name": "a", "scene": "", "seeds": [1], "split": "dev"})"), "/sequences/0/scene: expected a scene file path"},
+        BadSuite{One(R"({"name": "a", "generate": [], "seeds": [1], "split": "dev"})"), "/sequences/0/generate: expected an object"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": 0, "count": 2}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/count: unknown key"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "castle", "seed": 1, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/layout: expected a layout family"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: missing"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": -1, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: expected a non-negative integer"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": -2}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/index: expected a non-negative integer"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "split": "dev"})"), "/sequences/0/seeds: missing"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": 1, "split": "dev"})"), "/sequences/0/seeds: expected an array"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [], "split": "dev"})"), "/sequences/0/seeds: expected at least one seed"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1.5], "split": "dev"})"), "/sequences/0/seeds/0: expected a 32-bit integer"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [-1], "split": "dev"})"), "/sequences/0/seeds/0: expected a non-negative seed"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1, 1], "split": "dev"})"), "/sequences/0/seeds/1: seed 1 is listed twice"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": "frames=3", "split": "dev"})"), "/sequences/0/set: expected an array"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": [3], "split": "dev"})"), "/sequences/0/set/0: expected a string"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": ["frames"], "split": "dev"})"), "/sequences/0/set/0: expected \"key=value\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": ["seed=4"], "split": "dev"})"), "/sequences/0/set/0: the seed is given by \"seeds\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1]})"), "/sequences/0/split: missing"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "split": "train"})"), "/sequences/0/split: expected \"dev\" or \"test\""},
+        BadSuite{R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"},
+                                                  {"name": "a", "scene": "y.json", "seeds": [1], "split": "dev"}]})",
+                 "/sequences/1/name: sequence name \"a\" is used twice"}));
+
+TEST(Suite, ShippedSuitesReadAndNameSceneFilesThatExist) {
+  for (const char* name : {"ci", "standard"}) {
+    const Suite suite = ReadSuite(std::string(HOILCD_TEST_SOURCE_DIR) + "/suites/" + name + ".json");
+    EXPECT_EQ(suite.name, name);
+    EXPECT_FALSE(SuiteRuns(suite, "dev").empty()) << name;
+    EXPECT_FALSE(SuiteRuns(suite, "test").empty()) << name;
+    for (const SuiteSequence& s : suite.sequences) {
+      if (!s.generated) {
+        EXPECT_TRUE(std::filesystem::exists(s.scene_path)) << name << ": " << s.scene_path;
+      }
+    }
+  }
+  EXPECT_GE(ReadSuite(std::string(HOILCD_TEST_SOURCE_DIR) + "/suites/standard.json").sequences.size(), 12u);
+}
+
+TEST(Suite, AMissingFileIsNamed) {
+  const std::string message = test::InputErrorOf([] { ReadSuite("/nonexistent/suite.json"); });
+  EXPECT_NE(message.find("/nonexistent/suite.json"), std::string::npos) << message;
+  EXPECT_NE(message.find("cannot read the suite file"), std::string::npos) << message;
+}
+
+TEST(Suite, OptionsRefuseAnUnknownSplitAndAMissingFolder) {
+  SuiteOptions options;
+  EXPECT_NE(options.Check().find("output_dir"), std::string::npos) << options.Check();
+  options.output_dir = "out";
+  EXPECT_EQ(options.Check(), "");
+  options.split = "train";
+  EXPECT_NE(options.Check().find("split"), std::string::npos) << options.Check();
+}
+
+}  // namespace
+}  // namespace hoilcd
