@@ -34,18 +34,21 @@ Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol, 
                   "labelling the query pairs of " + std::to_string(dataset.poses().size()) + " frames");
   l.queries = BuildQueries(dataset.poses(), protocol);
   l.other_queries = RelabelQueries(l.queries, dataset.poses(), protocol, l.other_ground_truth);
+  std::vector<Query> by_truth;  // overlap: BuildQueries labels its pairs by true position
   if (protocol.ground_truth == "overlap") {
-    const std::vector<Query> by_truth = l.queries;  // BuildQueries labels overlap's pairs by true position
+    by_truth = l.queries;
     l.queries = OverlapLabels(dataset, by_truth, protocol, threads);
-    l.agreements = {{"true", "odometry", CompareLabels(by_truth, l.other_queries)},
-                    {"overlap", "odometry", CompareLabels(l.queries, l.other_queries)},
-                    {"overlap", "true", CompareLabels(l.queries, by_truth)}};
-  } else {
-    const bool odometry = protocol.ground_truth == "odometry";
-    l.agreements = {{"true", "odometry", odometry ? CompareLabels(l.other_queries, l.queries)
-                                                  : CompareLabels(l.queries, l.other_queries)}};
   }
   l.disagreement = CompareLabels(l.queries, l.other_queries);
+  if (protocol.ground_truth == "overlap") {
+    l.agreements = {{"true", "odometry", CompareLabels(by_truth, l.other_queries)},
+                    {"overlap", "odometry", l.disagreement},
+                    {"overlap", "true", CompareLabels(l.queries, by_truth)}};
+  } else if (protocol.ground_truth == "true") {
+    l.agreements = {{"true", "odometry", l.disagreement}};
+  } else {
+    l.agreements = {{"true", "odometry", CompareLabels(l.other_queries, l.queries)}};
+  }
   l.label_poses = LabelPoses(dataset.poses(), l.ground_truth);
   l.other_label_poses = LabelPoses(dataset.poses(), l.other_ground_truth);
   l.to_score.resize(l.queries.size());

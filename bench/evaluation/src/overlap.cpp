@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/dataset/exr_io.h"
@@ -17,12 +16,6 @@ namespace {
 constexpr float kNearestDepthM = 1e-3f;
 
 bool HasDepth(float z) { return std::isfinite(z) && z > 0; }
-
-const cv::Mat& Channel(const ExrChannels& channels, const std::string& name, const std::string& path) {
-  for (const auto& [n, m] : channels)
-    if (n == name) return m;
-  throw InputError(path, "an EXR channel '" + name + "'");
-}
 
 }  // namespace
 
@@ -129,39 +122,40 @@ std::vector<Query> OverlapLabels(const Dataset& dataset, const std::vector<Query
                                               "the dataset was rendered without the 'exr' output");
   }
   const CameraIntrinsics& intrinsics = dataset.manifest().intrinsics;
-  const auto& classes = dataset.manifest().classes;
-  const auto person = classes.find("person");
-  const int person_class = person == classes.end() ? -2 : person->second;
-  // Frames needed as queries (points) and as references (depth maps), each read once.
-  std::map<int, bool> frames;  // frame -> needed as a reference
+  const int person_class = dataset.manifest().ClassId("person");
+  // What each frame is needed as: a query (its points) and/or a reference (its depth map); each
+  // needed frame is read once.
+  enum Role : uint8_t { kQuery = 1, kReference = 2 };
+  std::vector<uint8_t> roles(dataset.poses().size(), 0);
   for (const Query& q : queries) {
-    frames.emplace(q.frame, false);
-    for (int r : q.database) frames[r] = true;
+    roles.at(static_cast<size_t>(q.frame)) |= kQuery;
+    for (int r : q.database) roles.at(static_cast<size_t>(r)) |= kReference;
   }
-  const double references = static_cast<double>(std::count_if(frames.begin(), frames.end(), [](auto& f) { return f.second; }));
-  CheckAllocation(references * intrinsics.width * intrinsics.height * sizeof(float), "--ground-truth overlap",
-                  "the depth maps of " + std::to_string(static_cast<int64_t>(references)) + " reference frames");
-  std::vector<int> order;
-  for (const auto& [frame, unused] : frames) order.push_back(frame);
-  std::vector<OverlapView> views(order.size());
-  std::map<int, size_t> index;
-  for (size_t i = 0; i < order.size(); ++i) index[order[i]] = i;
-  ParallelFor(static_cast<int64_t>(order.size()), threads, [&](int64_t i) {
-    const int frame = order[static_cast<size_t>(i)];
+  std::vector<int> needed;
+  for (size_t f = 0; f < roles.size(); ++f)
+    if (roles[f] != 0) needed.push_back(static_cast<int>(f));
+  const auto references = std::count_if(roles.begin(), roles.end(), [](uint8_t r) { return (r & kReference) != 0; });
+  CheckAllocation(static_cast<double>(references) * intrinsics.width * intrinsics.height * sizeof(float),
+                  "--ground-truth overlap", "the depth maps of " + std::to_string(references) + " reference frames");
+  std::vector<OverlapView> views(roles.size());  // by frame; empty for frames not needed
+  ParallelFor(static_cast<int64_t>(needed.size()), threads, [&](int64_t i) {
+    const int frame = needed[static_cast<size_t>(i)];
     const ExrChannels channels = ReadDatasetExr(dataset, frame);
-    const std::string path = dataset.dir() + "/exr/" + std::to_string(frame);
-    OverlapView view = MakeOverlapView(Channel(channels, "Z", path), Channel(channels, "class", path), person_class,
-                                       intrinsics, dataset.poses().at(static_cast<size_t>(frame)).Camera().WorldFromCam(),
+    const std::string path = DatasetExrPath(dataset, frame);
+    OverlapView view = MakeOverlapView(ExrChannel(channels, "Z", path), ExrChannel(channels, "class", path),
+                                       person_class, intrinsics,
+                                       dataset.poses()[static_cast<size_t>(frame)].Camera().WorldFromCam(),
                                        options.overlap_stride_px);
-    if (!frames.at(frame)) view.depth_m = cv::Mat();
-    views[static_cast<size_t>(i)] = std::move(view);
+    if (!(roles[static_cast<size_t>(frame)] & kReference)) view.depth_m = cv::Mat();
+    if (!(roles[static_cast<size_t>(frame)] & kQuery)) view.static_points_world = {};
+    views[static_cast<size_t>(frame)] = std::move(view);
   });
   std::vector<Query> out = queries;
   ParallelFor(static_cast<int64_t>(out.size()), threads, [&](int64_t i) {
     Query& q = out[static_cast<size_t>(i)];
-    const OverlapView& query = views[index.at(q.frame)];
+    const OverlapView& query = views[static_cast<size_t>(q.frame)];
     for (size_t j = 0; j < q.database.size(); ++j) {
-      q.is_true_match[j] = SharesAtLeast(query, views[index.at(q.database[j])], intrinsics,
+      q.is_true_match[j] = SharesAtLeast(query, views[static_cast<size_t>(q.database[j])], intrinsics,
                                          options.overlap_depth_tolerance_m, options.overlap_threshold) ? 1 : 0;
     }
   });

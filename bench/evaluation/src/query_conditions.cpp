@@ -17,25 +17,16 @@ constexpr double kPi = 3.14159265358979323846;
 
 double WrapRad(double a) { return std::remainder(a, 2 * kPi); }
 
-cv::Mat Channel(const ExrChannels& channels, const std::string& name, const std::string& path) {
-  for (const auto& [n, m] : channels)
-    if (n == name) return m;
-  throw InputError(path, "an EXR channel '" + name + "'");
-}
-
 // The EXR-based fields of one frame: person pixels, spread of the true temperature, whether only
 // walls, floor and ceiling are in view, and the static pixels with contrast.
 void AddImageConditions(const Dataset& dataset, int frame, QueryConditions* c) {
   const ExrChannels channels = ReadDatasetExr(dataset, frame);
-  const std::string path = dataset.dir() + "/exr/" + std::to_string(frame);
-  const cv::Mat t = Channel(channels, "T_true", path), cls = Channel(channels, "class", path);
-  const auto& classes = dataset.manifest().classes;
-  const auto id_of = [&](const char* name) {
-    const auto it = classes.find(name);
-    return it == classes.end() ? -2 : it->second;
-  };
-  const int person = id_of("person");
-  const std::set<int> structure = {id_of("wall"), id_of("floor"), id_of("ceiling")};
+  const std::string path = DatasetExrPath(dataset, frame);
+  const cv::Mat& t = ExrChannel(channels, "T_true", path);
+  const cv::Mat& cls = ExrChannel(channels, "class", path);
+  const DatasetManifest& manifest = dataset.manifest();
+  const int person = manifest.ClassId("person");
+  const std::set<int> structure = {manifest.ClassId("wall"), manifest.ClassId("floor"), manifest.ClassId("ceiling")};
   std::vector<float> values;
   values.reserve(t.total());
   int person_pixels = 0, contrast = 0;

@@ -26,15 +26,15 @@ GroundTruthInput ReadGroundTruthInput(const Dataset& dataset, int frame, bool id
   GroundTruthInput input;
   if (!ideal && !persons) return input;
   const DatasetManifest& manifest = dataset.manifest();
-  const auto person = manifest.classes.find("person");
-  if (persons && person == manifest.classes.end()) {
+  const int person = manifest.ClassId("person");
+  if (persons && person == DatasetManifest::kNoClass) {
     throw InputError(dataset.dir() + "/manifest.json", "no \"person\" in /classes, which the true person masks need");
   }
   for (const auto& [name, channel] : ReadDatasetExr(dataset, frame)) {
     if (ideal && name == "T_true") input.ideal_u8 = ToDisplay8Bit(channel, manifest.window_min_c, manifest.window_max_c);
-    if (persons && name == "class") input.person_mask = channel == static_cast<float>(person->second);
+    if (persons && name == "class") input.person_mask = channel == static_cast<float>(person);
   }
-  const std::string path = dataset.dir() + "/exr/" + FrameFileName(frame, "exr");
+  const std::string path = DatasetExrPath(dataset, frame);
   if (ideal && input.ideal_u8.empty()) throw InputError(path, "no T_true channel (the true temperature)");
   if (persons && input.person_mask.empty()) throw InputError(path, "no class channel (the person masks)");
   return input;

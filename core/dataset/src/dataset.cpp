@@ -49,6 +49,11 @@ bool IsSafeRelativePath(const std::string& relative) {
 
 }  // namespace
 
+int DatasetManifest::ClassId(const std::string& name) const {
+  const auto it = classes.find(name);
+  return it == classes.end() ? kNoClass : it->second;
+}
+
 std::string FrameFileName(int frame, const char* extension) {
   HOILCD_CHECK(frame >= 0 && extension != nullptr);
   char digits[16];

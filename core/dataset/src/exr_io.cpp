@@ -389,8 +389,18 @@ ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Siz
 ExrChannels ReadDatasetExr(const Dataset& dataset, int frame) {
   dataset.RequireOutput("exr", "reading the EXR frames");
   const CameraIntrinsics& size = dataset.manifest().intrinsics;
-  const std::string name = "exr/" + FrameFileName(frame, "exr");
-  return DecodeExr(dataset.ReadFile(name), dataset.dir() + "/" + name, {size.width, size.height});
+  return DecodeExr(dataset.ReadFile("exr/" + FrameFileName(frame, "exr")), DatasetExrPath(dataset, frame),
+                   {size.width, size.height});
+}
+
+std::string DatasetExrPath(const Dataset& dataset, int frame) {
+  return dataset.dir() + "/exr/" + FrameFileName(frame, "exr");
+}
+
+const cv::Mat& ExrChannel(const ExrChannels& channels, const std::string& name, const std::string& path) {
+  for (const auto& [n, m] : channels)
+    if (n == name) return m;
+  throw InputError(path, "an EXR channel '" + name + "'");
 }
 
 }  // namespace hoilcd

@@ -66,6 +66,9 @@ struct DatasetManifest {
   // Frames whose first per-frame output (thermal, radiometric or EXR, in that order) is listed
   // in `files`; frame_count when the dataset has no per-frame output.
   int FramesWritten() const;
+  // The id of class `name` in the EXR 'class' channel, or kNoClass when the dataset has none.
+  static constexpr int kNoClass = -2;  // matches no pixel (-1 is "nothing")
+  int ClassId(const std::string& name) const;
 };
 
 // Writes DIR/relative_path atomically and records its checksum in manifest->files.

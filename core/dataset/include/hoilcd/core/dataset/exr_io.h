@@ -47,5 +47,9 @@ ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Siz
 // manifest's frame size; InputError naming the missing output when the dataset was rendered
 // without EXRs.
 ExrChannels ReadDatasetExr(const Dataset& dataset, int frame);
+// The path of that frame's EXR (DIR/exr/NNNNNN.exr), for messages.
+std::string DatasetExrPath(const Dataset& dataset, int frame);
+// The channel `name` of `channels`; InputError naming `path` and the channel when it is absent.
+const cv::Mat& ExrChannel(const ExrChannels& channels, const std::string& name, const std::string& path);
 
 }  // namespace hoilcd
