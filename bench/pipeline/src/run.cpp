@@ -299,4 +299,25 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   return out;
 }
 
+namespace fs = std::filesystem;
+
+bool RecordedRun::Kept() const {
+  const std::string path = dir + "/" + record_file;
+  std::error_code ec;
+  if (!fs::exists(path, ec) || !fs::exists(dir + "/report.json", ec)) return false;
+  try {
+    return nlohmann::json::parse(ReadFileBytes(path)) == record;
+  } catch (const std::exception&) {
+    return false;  // unreadable: run again
+  }
+}
+
+void RecordedRun::Run(const Scene& scene, const BenchOptions& bench, RunOptions options) const {
+  std::error_code ec;
+  fs::remove(dir + "/" + record_file, ec);
+  options.report_dir = dir;
+  RunScene(scene, bench, options);
+  WriteFileAtomic(dir + "/" + record_file, record.dump(2) + "\n");
+}
+
 }  // namespace hoilcd

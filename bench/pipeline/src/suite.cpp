@@ -87,25 +87,11 @@ SuiteSummary RunSuite(const Suite& suite, const BenchOptions& bench, const Suite
     result.name = run.name;
     try {
       const Scene scene = LoadRunScene(seq, run.seed, out);
-      const nlohmann::json record = {{"sequence", seq.name}, {"seed", run.seed}, {"scene_hash", scene.hash}, {"bench", bench_json}};
-      const std::string record_path = dir + "/suite_run.json";
-      bool kept = false;
-      std::error_code ec;
-      if (fs::exists(record_path, ec) && fs::exists(dir + "/report.json", ec)) {
-        try {
-          kept = nlohmann::json::parse(ReadFileBytes(record_path)) == record;
-        } catch (const std::exception&) {
-          kept = false;  // unreadable: run again
-        }
-      }
+      const RecordedRun recorded{
+          dir, "suite_run.json", {{"sequence", seq.name}, {"seed", run.seed}, {"scene_hash", scene.hash}, {"bench", bench_json}}};
+      const bool kept = recorded.Kept();
       if (before_run) before_run(static_cast<int>(i) + 1, static_cast<int>(runs.size()), run, kept);
-      if (!kept) {
-        fs::remove(record_path, ec);  // an interrupted rerun must not leave the old record
-        RunOptions r = options.run;
-        r.report_dir = dir;
-        RunScene(scene, bench, r);
-        WriteFileAtomic(record_path, record.dump(2) + "\n");
-      }
+      if (!kept) recorded.Run(scene, bench, options.run);
       const nlohmann::json report = nlohmann::json::parse(ReadFileBytes(dir + "/report.json"));
       for (const std::string& m : methods) {
         const nlohmann::json& method = report.at("methods").at(m);

@@ -329,23 +329,10 @@ void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptio
     const SweepRunSpec& run = runs[i];
     const Scene scene = LoadScene(plan.scene_path, run.Overrides());
     const std::string dir = options.output_dir + "/runs/" + run.FolderName();
-    const nlohmann::json record = {{"run", run.ToJson()}, {"scene_hash", scene.hash}, {"bench", plan.bench}};
-    const std::string record_path = dir + "/sweep_run.json";
-    bool kept = false;
-    if (fs::exists(record_path, ec) && fs::exists(dir + "/report.json", ec)) {
-      try {
-        kept = ReadSweepJson(record_path) == record;
-      } catch (const InputError&) {
-        kept = false;  // unreadable: run again
-      }
-    }
+    const RecordedRun recorded{dir, "sweep_run.json", {{"run", run.ToJson()}, {"scene_hash", scene.hash}, {"bench", plan.bench}}};
+    const bool kept = recorded.Kept();
     if (before_run) before_run(static_cast<int>(i) + 1, static_cast<int>(runs.size()), run, kept);
-    if (kept) continue;
-    fs::remove(record_path, ec);  // an interrupted rerun must not leave the old record
-    RunOptions r = options.run;
-    r.report_dir = dir;
-    RunScene(scene, bench, r);
-    WriteFileAtomic(record_path, record.dump(2));
+    if (!kept) recorded.Run(scene, bench, options.run);
   }
   marker["finished"] = true;
   WriteFileAtomic(options.output_dir + "/sweep.json", marker.dump(2));

@@ -52,4 +52,19 @@ nlohmann::json BenchSettingsJson(const BenchOptions& options);
 
 RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options);
 
+// A run of a sweep or suite, kept in its report folder `dir` beside a record file: the record
+// (the run, its scene hash, the bench settings) says what made the report there.
+struct RecordedRun {
+  std::string dir;          // the report folder
+  std::string record_file;  // e.g. "sweep_run.json", beside report.json
+  nlohmann::json record;
+
+  // Whether an earlier run left exactly this record beside a report.json (an unreadable record
+  // is not a match: the run is done again).
+  bool Kept() const;
+  // RunScene with its report in dir, then the record written; the old record is removed first,
+  // so an interrupted run never leaves a record beside a partial report.
+  void Run(const Scene& scene, const BenchOptions& bench, RunOptions options) const;
+};
+
 }  // namespace hoilcd
