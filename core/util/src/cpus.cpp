@@ -4,19 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
+#include "hoilcd/core/util/cgroup.h"
+
 namespace hoilcd {
 namespace {
-
-std::string ReadSmallFile(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // The CPU affinity of the calling thread (0: unknown).
 int AffinityCpus() {
@@ -26,24 +20,16 @@ int AffinityCpus() {
   return CPU_COUNT(&set);
 }
 
-// The tightest quota on this process's cgroup or its ancestors. Hand-written: neither the
-// standard library nor TBB reads cgroup quotas.
+// The tightest quota on this process's cgroup or its ancestors.
 std::optional<int> CgroupCpuLimit() {
   std::optional<int> limit;
   auto tighten = [&](std::optional<int> l) {
     if (l && (!limit || *l < *limit)) limit = l;
   };
-  std::istringstream cgroups(ReadSmallFile("/proc/self/cgroup"));
-  for (std::string line; std::getline(cgroups, line);) {
-    const size_t first = line.find(':'), second = line.find(':', first + 1);
-    if (first == std::string::npos || second == std::string::npos) continue;
-    const std::string controllers = line.substr(first + 1, second - first - 1);
-    std::string path = line.substr(second + 1);
-    const bool v2 = line.compare(0, first, "0") == 0 && controllers.empty();
-    const bool v1_cpu = controllers.find("cpu") != std::string::npos && controllers.find("cpuset") == std::string::npos;
-    if (!v2 && !v1_cpu) continue;
-    for (;;) {  // the cgroup and every ancestor
-      if (v2) {
+  for (const CgroupMembership& m : ParseCgroupMemberships(ReadSmallFile("/proc/self/cgroup"))) {
+    if (!m.v2 && !m.Has("cpu")) continue;
+    for (const std::string& path : CgroupAndAncestors(m.path)) {
+      if (m.v2) {
         tighten(CpuQuotaLimit(ReadSmallFile("/sys/fs/cgroup" + path + "/cpu.max")));
       } else {
         for (const std::string root : {"/sys/fs/cgroup/cpu,cpuacct", "/sys/fs/cgroup/cpu"}) {
@@ -51,8 +37,6 @@ std::optional<int> CgroupCpuLimit() {
                                 ReadSmallFile(root + path + "/cpu.cfs_period_us")));
         }
       }
-      if (path.empty() || path == "/") break;
-      path = path.substr(0, path.find_last_of('/'));
     }
   }
   return limit;

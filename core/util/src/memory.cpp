@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <iterator>
 #include <sstream>
 
+#include "hoilcd/core/util/cgroup.h"
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
@@ -13,13 +13,6 @@ namespace {
 
 // v1 writes its "no limit" as the largest page-aligned int64; anything this large is no limit.
 constexpr double kNoLimitBytes = 1e18;
-
-std::string ReadSmallFile(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::optional<double> ParseBytes(const std::string& text) {
   std::istringstream in(text);
@@ -29,33 +22,21 @@ std::optional<double> ParseBytes(const std::string& text) {
 }
 
 // The tightest room under the memory limits of this process's cgroup and its ancestors.
-// Hand-written, as cpus.cpp reads the CPU quota: no library at hand reads cgroup limits.
 std::optional<double> CgroupRoom(const MemoryFiles& files) {
   std::optional<double> room;
   auto tighten = [&](std::optional<double> r) {
     if (r && (!room || *r < *room)) room = r;
   };
-  std::istringstream cgroups(ReadSmallFile(files.proc + "/self/cgroup"));
-  for (std::string line; std::getline(cgroups, line);) {
-    const size_t first = line.find(':'), second = line.find(':', first + 1);
-    if (first == std::string::npos || second == std::string::npos) continue;
-    const std::string controllers = line.substr(first + 1, second - first - 1);
-    std::string path = line.substr(second + 1);
-    const bool v2 = line.compare(0, first, "0") == 0 && controllers.empty();
-    bool v1_memory = false;
-    std::istringstream names(controllers);
-    for (std::string name; std::getline(names, name, ',');) v1_memory |= name == "memory";
-    if (!v2 && !v1_memory) continue;
-    for (;;) {  // the cgroup and every ancestor
-      const std::string dir = v2 ? files.cgroup + path : files.cgroup + "/memory" + path;
-      if (v2) {
+  for (const CgroupMembership& m : ParseCgroupMemberships(ReadSmallFile(files.proc + "/self/cgroup"))) {
+    if (!m.v2 && !m.Has("memory")) continue;
+    for (const std::string& path : CgroupAndAncestors(m.path)) {
+      const std::string dir = m.v2 ? files.cgroup + path : files.cgroup + "/memory" + path;
+      if (m.v2) {
         tighten(CgroupMemoryRoom(ReadSmallFile(dir + "/memory.max"), ReadSmallFile(dir + "/memory.current")));
       } else {
         tighten(CgroupMemoryRoom(ReadSmallFile(dir + "/memory.limit_in_bytes"),
                                  ReadSmallFile(dir + "/memory.usage_in_bytes")));
       }
-      if (path.empty() || path == "/") break;
-      path = path.substr(0, path.find_last_of('/'));
     }
   }
   return room;
