@@ -6,26 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "cli.h"
 #include "shared.h"
+#include "run_cli.h"
 #include "test_dir.h"
 
 namespace hoilcd {
 namespace {
-
-struct Outcome {
-  int exit_code;
-  std::string err;
-};
-
-Outcome Hoilcd(std::vector<std::string> args) {
-  args.insert(args.begin(), {"hoilcd", "-q"});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  testing::internal::CaptureStderr();
-  const int code = RunCommandLine(static_cast<int>(argv.size()), argv.data());
-  return {code, testing::internal::GetCapturedStderr()};
-}
 
 TEST(NumberIn, AcceptsFiniteNumbersInRangeOnly) {
   CLI::Validator v = NumberIn(OptionRange().AtLeast(0));
@@ -60,7 +46,7 @@ TEST(Flags, EveryNumberFlagRefusesNanAndOutOfRangeValuesNamingTheFlagBriefly) {
       {"suite", scene, "-o", temp / "suite", "--radius", "nan"},
   };
   for (const std::vector<std::string>& args : cases) {
-    const Outcome o = Hoilcd(args);
+    const test::CliOutcome o = test::RunCli(args);
     const std::string flag = args[args.size() - 2];
     EXPECT_NE(o.exit_code, 0) << flag << " " << args.back();
     EXPECT_NE(o.err.find(flag), std::string::npos) << o.err;

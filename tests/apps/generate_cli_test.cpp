@@ -7,30 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "cli.h"
 #include "hoilcd/core/util/file_io.h"
+#include "run_cli.h"
 #include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Outcome {
-  int exit_code;
-  std::string out, err;
-};
-
-Outcome Hoilcd(std::vector<std::string> args) {
-  args.insert(args.begin(), {"hoilcd", "-q"});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  testing::internal::CaptureStdout();
-  testing::internal::CaptureStderr();
-  const int code = RunCommandLine(static_cast<int>(argv.size()), argv.data());
-  const std::string out = testing::internal::GetCapturedStdout();
-  return {code, out, testing::internal::GetCapturedStderr()};
-}
 
 // name -> bytes of every file in dir.
 std::map<std::string, std::string> Files(const std::string& dir) {
@@ -41,21 +25,21 @@ std::map<std::string, std::string> Files(const std::string& dir) {
 
 TEST(GenerateCli, WritesScenesThatValidateTheSameBytesAtAnyThreadCountAndRewritesItsOwnFolder) {
   const test::TestDir temp;
-  const Outcome one = Hoilcd({"generate", "--layout", "mixed", "--count", "4", "--seed", "9", "-o", temp / "a", "--threads", "1"});
+  const test::CliOutcome one = test::RunCli({"generate", "--layout", "mixed", "--count", "4", "--seed", "9", "-o", temp / "a", "--threads", "1"});
   ASSERT_EQ(one.exit_code, 0) << one.err;
   EXPECT_NE(one.out.find("generated 4 scenes"), std::string::npos) << one.out;
-  const Outcome two = Hoilcd({"generate", "--layout", "mixed", "--count", "4", "--seed", "9", "-o", temp / "b", "--threads", "2"});
+  const test::CliOutcome two = test::RunCli({"generate", "--layout", "mixed", "--count", "4", "--seed", "9", "-o", temp / "b", "--threads", "2"});
   ASSERT_EQ(two.exit_code, 0) << two.err;
   const auto files = Files(temp / "a");
   EXPECT_EQ(files.size(), 4u);
   EXPECT_EQ(files, Files(temp / "b"));
   for (const auto& [name, bytes] : files) {
-    const Outcome valid = Hoilcd({"validate", temp / "a" + "/" + name});
+    const test::CliOutcome valid = test::RunCli({"validate", temp / "a" + "/" + name});
     EXPECT_EQ(valid.exit_code, 0) << name << ": " << valid.err;
     EXPECT_EQ(valid.err, "") << name;
   }
   // Its own earlier output is no obstacle; --start regenerates one scene of the run.
-  const Outcome again = Hoilcd({"generate", "--layout", "mixed", "--count", "1", "--start", "2", "--seed", "9", "-o", temp / "a"});
+  const test::CliOutcome again = test::RunCli({"generate", "--layout", "mixed", "--count", "1", "--start", "2", "--seed", "9", "-o", temp / "a"});
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(Files(temp / "a"), files);
 }
@@ -79,7 +63,7 @@ TEST(GenerateCli, EveryErrorAUserCanTriggerIsRefusedWithWhatWasExpected) {
       {{"generate", "--start", "9999", "--count", "5", "-o", temp / "x"}, {"--start 9999 --count 5", "indices up to 10000"}},
   };
   for (const auto& [args, expected] : cases) {
-    const Outcome o = Hoilcd(args);
+    const test::CliOutcome o = test::RunCli(args);
     EXPECT_NE(o.exit_code, 0) << args[2];
     for (const std::string& text : expected) EXPECT_NE(o.err.find(text), std::string::npos) << "expected '" << text << "' in: " << o.err;
   }

@@ -8,30 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "cli.h"
 #include "hoilcd/core/util/file_io.h"
+#include "run_cli.h"
 #include "test_dir.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Outcome {
-  int exit_code;
-  std::string out, err;
-};
-
-Outcome Hoilcd(std::vector<std::string> args) {
-  args.insert(args.begin(), {"hoilcd", "-q"});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  testing::internal::CaptureStdout();
-  testing::internal::CaptureStderr();
-  const int code = RunCommandLine(static_cast<int>(argv.size()), argv.data());
-  const std::string out = testing::internal::GetCapturedStdout();
-  return {code, out, testing::internal::GetCapturedStderr()};
-}
 
 TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSameReport) {
   const test::TestDir temp;
@@ -45,7 +29,7 @@ TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSame
   })");
   const std::vector<std::string> args = {"suite", temp / "suite.json", "-o", temp / "out", "--cache", temp / "cache",
                                          "--methods", "slcd,dlcd", "--no-slam", "--threads", "2"};
-  const Outcome first = Hoilcd(args);
+  const test::CliOutcome first = test::RunCli(args);
   EXPECT_NE(first.exit_code, 0) << first.out << first.err;
   EXPECT_NE(first.err.find("missing-seed1"), std::string::npos) << first.err;
   EXPECT_NE(first.err.find("does_not_exist.json"), std::string::npos) << first.err;
@@ -73,7 +57,7 @@ TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSame
 
   const std::string bytes = ReadFileBytes(report_path);
   const auto run_report_time = fs::last_write_time(temp / "out/runs/tiny-seed1/report.json");
-  const Outcome again = Hoilcd(args);
+  const test::CliOutcome again = test::RunCli(args);
   EXPECT_NE(again.exit_code, 0);
   EXPECT_NE(again.out.find("tiny-seed1 (kept from an earlier run)"), std::string::npos) << again.out;
   EXPECT_NE(again.out.find("tiny-seed2 (kept from an earlier run)"), std::string::npos) << again.out;
@@ -84,18 +68,18 @@ TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSame
 TEST(SuiteCli, RefusesABadSuiteFileAFolderOfTheUsersAndAnEmptySplit) {
   const test::TestDir temp;
   WriteFileAtomic(temp / "bad.json", R"({"name": "s", "sequences": [{"name": "a", "seeds": [1], "split": "dev"}]})");
-  const Outcome bad = Hoilcd({"suite", temp / "bad.json", "-o", temp / "out"});
+  const test::CliOutcome bad = test::RunCli({"suite", temp / "bad.json", "-o", temp / "out"});
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("bad.json: /sequences/0: expected exactly one of"), std::string::npos) << bad.err;
 
   WriteFileAtomic(temp / "dev.json", R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"}]})");
-  const Outcome empty = Hoilcd({"suite", temp / "dev.json", "-o", temp / "out", "--split", "test"});
+  const test::CliOutcome empty = test::RunCli({"suite", temp / "dev.json", "-o", temp / "out", "--split", "test"});
   EXPECT_EQ(empty.exit_code, 1);
   EXPECT_NE(empty.err.find("no sequence in split test"), std::string::npos) << empty.err;
 
   fs::create_directories(temp / "mine");
   WriteFileAtomic(temp / "mine/notes.txt", "the user's");
-  const Outcome mine = Hoilcd({"suite", temp / "dev.json", "-o", temp / "mine"});
+  const test::CliOutcome mine = test::RunCli({"suite", temp / "dev.json", "-o", temp / "mine"});
   EXPECT_EQ(mine.exit_code, 1);
   EXPECT_NE(mine.err.find("notes.txt"), std::string::npos) << mine.err;
   EXPECT_EQ(ReadFileBytes(temp / "mine/notes.txt"), "the user's");
