@@ -77,6 +77,29 @@ Vec2 PointAlong(const std::vector<Vec2>& path, double s) {
   return path.back();
 }
 
+// The facing at arc length s along a path: each corner's turn spread evenly over the `window_m`
+// either side of it, so a sharp corner (a path wrapping round a table's end) turns at a bounded
+// rate instead of flipping where the chord across it vanishes.
+double HeadingAlong(const std::vector<Vec2>& path, double s, double window_m) {
+  double heading = 0, corner_s = 0, previous = 0;
+  bool first = true;
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec2 step = path[i] - path[i - 1];
+    if (step.norm() < 1e-9) continue;
+    const double h = std::atan2(step.y(), step.x());
+    if (first) {
+      heading = h;
+      first = false;
+    } else {
+      const double turn = std::remainder(h - previous, 2 * M_PI);
+      heading += turn * std::clamp((s - corner_s + window_m) / (2 * window_m), 0.0, 1.0);
+    }
+    previous = h;
+    corner_s += step.norm();
+  }
+  return heading;
+}
+
 // True when the segment keeps clear of the robot and of every other walker present.
 bool ClearOfRobotAndWalkers(const WalkerSegment& segment, const WalkerPlan& plan, const RobotTrack& robot,
                             const std::vector<WalkerPlan>& others, bool check_robot) {
@@ -188,7 +211,7 @@ std::optional<WalkerSegment> PlanRouteBout(const std::string& behaviour, const R
   double length = 0;
   if (behaviour == "ahead") {
     seg.rate = rng->Uniform(0.9, 1.1);
-    length = rng->Uniform(6, 14);
+    length = rng->Uniform(4, 10);
     if (seg.rate < 1) length = std::min(length, (lead - kMinWalkerLeadS) / (1 - seg.rate));
   } else if (behaviour == "away") {
     seg.rate = rng->Uniform(2.2, 2.8);       // ~1.1 m/s against the robot's ~0.45 m/s
@@ -445,13 +468,11 @@ WalkerPlacement PlaceOnSegment(const WalkerPlan& plan, const WalkerSegment& s, c
   WalkerPlacement out;
   if (robot.empty() || s.behaviour == "gone") return out;
   if (!s.path_m.empty()) {
-    // On a free path: the facing from the path 0.3 m behind to 0.3 m ahead (rounds corners over a
-    // step or two).
+    // On a free path: rounding each corner from 0.3 m before it to 0.3 m after it.
     const double length = PolylineLength(s.path_m);
     const double along = std::clamp(s.speed_m_s * (time_s - s.start_s), 0.0, length);
     out.at_m = PointAlong(s.path_m, along);
-    const Vec2 d = PointAlong(s.path_m, along + 0.3) - PointAlong(s.path_m, along - 0.3);
-    out.heading_rad = std::atan2(d.y(), d.x());
+    out.heading_rad = HeadingAlong(s.path_m, along, 0.3);
     out.speed_m_s = along < length ? s.speed_m_s : 0.0;
     out.present = true;
     return out;
@@ -470,18 +491,17 @@ WalkerPlacement PlaceOnSegment(const WalkerPlan& plan, const WalkerSegment& s, c
   return out;
 }
 
-}  // namespace
-
-WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s) {
-  const WalkerSegment& s = plan.At(time_s);
+// Segment `index`'s placement at time t, with the turn from the facing the walker had when it
+// began (itself still turning, if the segment before was short).
+WalkerPlacement PlaceTurning(const WalkerPlan& plan, size_t index, const RobotTrack& robot, double time_s) {
+  const WalkerSegment& s = plan.segments[index];
   WalkerPlacement out = PlaceOnSegment(plan, s, robot, time_s);
   // Where one segment hands over to the next (a door walk joining the route, turning back
   // towards the robot, stopping to chat), the walker turns from the facing it had at a brisk
   // pace (180° in a second), easing in and out, instead of snapping round.
   constexpr double kTurnRateRadS = M_PI;
-  if (!out.present || &s == &plan.segments.front()) return out;
-  const WalkerSegment& previous = *(&s - 1);
-  const WalkerPlacement before = PlaceOnSegment(plan, previous, robot, s.start_s);
+  if (!out.present || index == 0 || time_s - s.start_s >= M_PI / kTurnRateRadS) return out;
+  const WalkerPlacement before = PlaceTurning(plan, index - 1, robot, s.start_s);
   if (!before.present) return out;
   // The turn's direction is the shorter way at the hand-over; the facing it turns towards may go
   // on changing (a corner of the route), and is followed continuously from there.
@@ -492,6 +512,13 @@ WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, dou
   const double turn = start_turn + std::remainder(out.heading_rad - start_heading, 2 * M_PI);
   out.heading_rad = before.heading_rad + turn * SmoothStep((time_s - s.start_s) / turn_s);
   return out;
+}
+
+}  // namespace
+
+WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, double time_s) {
+  const WalkerSegment& s = plan.At(time_s);
+  return PlaceTurning(plan, static_cast<size_t>(&s - plan.segments.data()), robot, time_s);
 }
 
 namespace {
@@ -560,14 +587,19 @@ class WalkerPlanner {
     t_ = way_out_->empty() ? duration_s_ + 1 : way_out_->back().end_s;
     way_out_.reset();
     inside_ = false;
+    last_bout_.clear();
   }
 
-  // Behaviours possible from a lead; approach needs room to come closer.
+  // Behaviours possible from a lead: approach needs room to come closer; keeping pace needs a
+  // walker's following distance and is never done twice in a row (nobody strolls at a robot's
+  // pace in front of it for long: they go on to somewhere).
   std::array<double, kWalkerBehaviourCount> Possible(double from_lead) const {
     std::array<double, kWalkerBehaviourCount> w{};
     for (size_t i = 0; i < w.size(); ++i) {
       const std::string b = kWalkerBehaviours[i];
-      w[i] = (b != "approach" || from_lead >= 8) && (b != "stop_to_chat" || from_lead >= 6) ? weights_.at(b) : 0.0;
+      const bool possible = (b != "approach" || from_lead >= 8) && (b != "stop_to_chat" || from_lead >= 6) &&
+                            (b != "ahead" || (from_lead >= kMinAheadLeadS && last_bout_ != "ahead"));
+      w[i] = possible ? weights_.at(b) : 0.0;
     }
     return w;
   }
@@ -607,6 +639,7 @@ class WalkerPlanner {
       plan_.segments.push_back(*in);
     }
     plan_.segments.push_back(bout);
+    last_bout_ = bout.behaviour;
     t_ = bout.end_s;
     way_out_ = out;
     inside_ = true;
@@ -631,6 +664,7 @@ class WalkerPlanner {
       return;
     }
     plan_.segments.push_back(*bout);
+    last_bout_ = bout->behaviour;
     way_out_ = out;
     t_ = bout->end_s;
     lead_ = bout->u_start + bout->rate * (bout->end_s - bout->start_s) - bout->end_s;
@@ -694,8 +728,8 @@ class WalkerPlanner {
   // walk in is short and the robot is behind it.
   bool PlaceAtNextDoor() {
     for (const double pass_u : door_passes_) {
-      if (pass_u < t_ + kMinOutS + kMinWalkerLeadS + 1.5) continue;
-      lead_ = std::min(rng_.Uniform(4.0, 10.0), pass_u - t_ - kMinOutS - 0.5);
+      if (pass_u < t_ + kMinOutS + kMinAheadLeadS + 0.5) continue;
+      lead_ = std::min(rng_.Uniform(kMinAheadLeadS, 10.0), pass_u - t_ - kMinOutS - 0.5);
       const double bout_s = pass_u - lead_;
       const std::optional<WalkerSegment> bout = PlanRouteBout("ahead", robot_, bout_s, lead_, &rng_);
       if (bout && ClearOfRobotAndWalkers(*bout, plan_, robot_, others_, false)) {
@@ -719,6 +753,7 @@ class WalkerPlanner {
   double door_speed_m_s_ = 0;
   std::vector<double> door_passes_;
   double t_ = 0, lead_ = 0;
+  std::string last_bout_;  // the behaviour of the bout before, in this stay in the room
   bool inside_ = false;
   int start_attempts_ = 0;
   // From where its last bout ends out through a door (checked; empty: the run ends first).

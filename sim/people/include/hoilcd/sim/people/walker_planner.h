@@ -25,6 +25,9 @@ constexpr double kWalkerRadiusM = 0.25;
 constexpr double kWalkerRobotClearanceM = 0.6;
 // Route-following walkers stay at least this much route time ahead of the robot, s.
 constexpr double kMinWalkerLeadS = 3.0;
+// A walker keeping pace ahead of the robot starts at least this much route time ahead (about 2 m
+// from the camera at the robot's 0.45 m/s: beyond Hall's 1.2 m personal distance), s.
+constexpr double kMinAheadLeadS = 4.0;
 
 // What walkers do, in the order of crowd.walker_behaviours in the scene schema: "ahead" keeps
 // pace (the original pattern), "away" walks off faster than the robot, "approach" comes towards
