@@ -117,6 +117,7 @@ ShardFolder ReadShardFolder(const std::string& dir) {
                                           "cannot be merged: run that suite or shard again, which keeps its runs)");
     }
   }
+  if (!marker.at("identity").is_object()) throw InputError(f.marker_path, "/identity: expected an object");
   try {
     f.identity = marker.at("identity");
     f.shard = {marker.at("shard").at("index").get<int>(), marker.at("shard").at("count").get<int>()};

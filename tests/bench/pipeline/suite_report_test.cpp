@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -172,6 +173,60 @@ TEST_F(SuiteShards, AShardStoppedEarlyIsRefusedThenRunAgainAloneAndMerged) {
   const size_t runs = marker["runs"].size();
   EXPECT_EQ(Run("stopped1of2", Shard{1, 2}), static_cast<int>(runs) - 1 - static_cast<int>(marker["failed"].size()));
   ExpectTheWholeSuitesReport({Dir(ShardDir(0, 2)), stopped}, "merged_after_rerun");
+}
+
+TEST_F(SuiteShards, AMergeNamesEveryWayAShardFolderCanBeDamaged) {
+  struct Damage {
+    std::function<void(nlohmann::json* marker, const std::string& run_dir)> apply;
+    std::string expected;  // part of the message, after the damaged copy's path
+  };
+  const auto record = [](const std::string& run_dir) {
+    return nlohmann::json::parse(ReadFileBytes(run_dir + "/suite_run.json"));
+  };
+  const std::vector<Damage> damages = {
+      {[](nlohmann::json* m, const std::string&) { m->erase("identity"); }, "suite.json: has no \"identity\""},
+      {[](nlohmann::json* m, const std::string&) { (*m)["identity"] = 3; }, "suite.json: /identity: expected an object"},
+      {[](nlohmann::json* m, const std::string&) { (*m)["shard"]["index"] = 2; },
+       "suite.json: /shard: the shard index must be in 0..1"},
+      {[](nlohmann::json* m, const std::string&) { (*m)["shard"]["index"] = "x"; }, "suite.json: malformed suite.json"},
+      {[](nlohmann::json* m, const std::string&) { (*m)["runs"].erase(0); },
+       "suite.json: its runs (tiny-seed2) are not shard 1/2 of the suite's (pairs-seed4, tiny-seed2)"},
+      {[&](nlohmann::json*, const std::string& dir) {
+         nlohmann::json r = record(dir);
+         r["seed"] = 7;
+         WriteFileAtomic(dir + "/suite_run.json", r.dump());
+       },
+       ": shard 1/2 has no finished run tiny-seed2 (" + Dir("damaged") + "/runs/tiny-seed2/suite_run.json records another run)"},
+      {[&](nlohmann::json*, const std::string& dir) {
+         nlohmann::json r = record(dir);
+         r["bench"]["methods"] = {"slcd"};
+         WriteFileAtomic(dir + "/suite_run.json", r.dump());
+       },
+       "suite_run.json records other bench settings (at /methods/"},
+      {[](nlohmann::json*, const std::string& dir) { WriteFileAtomic(dir + "/suite_run.json", "{"); },
+       "(no readable suite_run.json beside " + Dir("damaged") + "/runs/tiny-seed2/report.json)"},
+      {[](nlohmann::json*, const std::string& dir) { fs::remove(dir + "/report.json"); },
+       "(no report.json in " + Dir("damaged") + "/runs/tiny-seed2); its suite.json says it finished: run the shard again"},
+  };
+  for (const Damage& damage : damages) {
+    const std::string copy = Dir("damaged");
+    fs::remove_all(copy);
+    fs::copy(Dir(ShardDir(1, 2)), copy, fs::copy_options::recursive);
+    nlohmann::json marker = nlohmann::json::parse(ReadFileBytes(copy + "/suite.json"));
+    damage.apply(&marker, copy + "/runs/tiny-seed2");
+    WriteFileAtomic(copy + "/suite.json", marker.dump(2));
+    const std::string message = InputErrorOf([&] { MergeSuite({Dir(ShardDir(0, 2)), copy}); });
+    EXPECT_NE(message.find(copy), std::string::npos) << message;
+    EXPECT_NE(message.find(damage.expected), std::string::npos) << "expected '" << damage.expected << "' in:\n" << message;
+  }
+}
+
+TEST_F(SuiteShards, ARunReportWithoutAMethodAndAReportPathThatIsAFileAreNamed) {
+  const std::string run = Dir("whole") + "/runs/tiny-seed1/report.json";
+  const std::string message = InputErrorOf([&] { ReadSuiteRunResult("tiny-seed1", run, {"slcd", "nope"}); });
+  EXPECT_NE(message.find(run + ": has no results of method nope"), std::string::npos) << message;
+  const std::string file = InputErrorOf([&] { CheckSuiteReportFolder(Dir("suite.json")); });
+  EXPECT_NE(file.find(Dir("suite.json") + ": is a file: expected a folder"), std::string::npos) << file;
 }
 
 TEST_F(SuiteShards, TheReportNeverOverwritesTheUsersFilesButGoesBesideTheShards) {
