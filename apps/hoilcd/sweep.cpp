@@ -50,7 +50,7 @@ int SweepCommand(const SweepArgs& args) {
   SweepOptions options;
   options.output_dir = args.output;
   options.run = args.run;
-  if (!args.shard.empty()) options.shard = ParseSweepShard(args.shard);
+  if (!args.shard.empty()) options.shard = ParseShard(args.shard);
   const BenchOptions bench = ResolveBench(args.bench, args.run.threads);
   const SweepPlan plan = MakeSweepPlan(args.scene, args.sets, args.seeds, bench);
   options.run.cancel = CancelOnInterrupt();

@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# scripts/cluster/sweep.sbatch against stand-ins for sinfo and sbatch (no Slurm here): a request no
-# node can hold is refused before anything is submitted; a request that fits submits the shard
-# array and a merge that Slurm cancels if a shard fails, with logs under the sweep's folder;
-# each step passes the swept values, frames and cores from the environment to hoilcd.
+# scripts/cluster/{sweep,suite}.sbatch (the one given) against stand-ins for sinfo and sbatch (no
+# Slurm here): a request no node can hold is refused before anything is submitted; a request that
+# fits submits the shard array and a merge that Slurm cancels if a shard fails, with logs under the
+# output folder; ONLY resubmits chosen shards; each step passes its settings from the environment
+# to hoilcd (a sweep's values and frames, a suite's file, split and methods) with the cores.
 set -euo pipefail
 script=$1
+kind=$(basename "$script" .sbatch)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
+fail() { echo "FAIL ($kind): $*" >&2; exit 1; }
 mkdir "$work/bin"
 cat > "$work/bin/sinfo" <<'SH'
 #!/bin/sh
@@ -23,7 +25,22 @@ cat > "$work/bin/fake-hoilcd" <<'SH'
 echo "$*" > "$HOILCD_LOG"
 SH
 chmod +x "$work/bin/"*
+echo '{}' > "$work/my_suite.json"
 export PATH="$work/bin:$PATH" SBATCH_LOG="$work/sbatch.log" HOILCD_LOG="$work/hoilcd.log"
+# The settings of each kind's steps, and what its shard and merge must pass to hoilcd.
+case "$kind" in
+  sweep)
+    export FRAMES=400 VALUES=0,2
+    shard_wants=("sweep scenes/crowded_room.json" "--set crowd.people_per_table=0,2" "--set frames=400")
+    merge_wants=("sweep scenes/crowded_room.json --set crowd.people_per_table=0,2 --seeds 3 --methods paper --set frames=400")
+    ;;
+  suite)
+    export SUITE="$work/my_suite.json" SPLIT=test METHODS=slcd,dlcd
+    shard_wants=("suite $work/my_suite.json --split test --methods slcd,dlcd")
+    merge_wants=("suite $work/my_suite.json --split test --methods slcd,dlcd")
+    ;;
+  *) fail "unknown script $script" ;;
+esac
 
 # The shipped default (8 cores) cannot fit a 4-core node: refused, nothing submitted.
 if OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then fail "an oversized request was submitted"; fi
@@ -35,27 +52,48 @@ for bad in 8GG G 0 8.5G -8G; do
   if CPUS=4 MEM="$bad" OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then fail "MEM=$bad submitted"; fi
   grep -q "MEM must look like" "$work/out.txt" || fail "MEM=$bad not explained: $(cat "$work/out.txt")"
 done
+for bad in x 1,,2 3; do
+  if CPUS=4 MEM=7G SHARDS=3 ONLY="$bad" OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then fail "ONLY=$bad submitted"; fi
+  grep -q "ONLY" "$work/out.txt" || fail "ONLY=$bad not explained: $(cat "$work/out.txt")"
+done
+if [ "$kind" = suite ]; then
+  if CPUS=4 MEM=7G SUITE="$work/nowhere.json" OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then
+    fail "a missing suite file was submitted"
+  fi
+  grep -q "SUITE: cannot read '$work/nowhere.json'" "$work/out.txt" || fail "missing suite not named: $(cat "$work/out.txt")"
+fi
+[ ! -e "$SBATCH_LOG" ] || fail "sbatch was called for a refused request"
 
 # A request that fits: the array and the merge, logs under OUT/logs, merge cancelled on failure.
-CPUS=4 MEM=7G SHARDS=3 FRAMES=400 VALUES=0,2 OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1 \
+CPUS=4 MEM=7G SHARDS=3 OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1 \
   || fail "a fitting request was refused: $(cat "$work/out.txt")"
 [ "$(wc -l < "$SBATCH_LOG")" -eq 2 ] || fail "expected two sbatch calls: $(cat "$SBATCH_LOG")"
 shards=$(sed -n 1p "$SBATCH_LOG"); merge=$(sed -n 2p "$SBATCH_LOG")
-for want in "--array=0-2" "--cpus-per-task=4" "--mem=7G" "--output=$work/out/logs/shard-%A_%a.out"; do
+for want in "--array=0-2" "--cpus-per-task=4" "--mem=7G" "--job-name=hoilcd-$kind" "--output=$work/out/logs/shard-%A_%a.out"; do
   case "$shards" in *"$want"*) ;; *) fail "shard submission lacks $want: $shards" ;; esac
 done
-for want in "--dependency=afterok:42421" "--kill-on-invalid-dep=yes" "--output=$work/out/logs/merge-%j.out"; do
+for want in "--dependency=afterok:42421" "--kill-on-invalid-dep=yes" "HOILCD_STEP=merge" "--job-name=hoilcd-$kind-merge" \
+            "--output=$work/out/logs/merge-%j.out"; do
   case "$merge" in *"$want"*) ;; *) fail "merge submission lacks $want: $merge" ;; esac
 done
 [ -d "$work/out/logs" ] || fail "no log folder"
+# Failed shards again: only they are submitted, and a merge after them.
+CPUS=4 MEM=7G SHARDS=3 ONLY=0,2 OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1 \
+  || fail "ONLY=0,2 was refused: $(cat "$work/out.txt")"
+case "$(sed -n 3p "$SBATCH_LOG")" in *"--array=0,2 "*) ;; *) fail "ONLY=0,2 submitted $(sed -n 3p "$SBATCH_LOG")" ;; esac
+case "$(sed -n 4p "$SBATCH_LOG")" in *"--dependency=afterok:42423 "*) ;; *) fail "no merge after ONLY: $(cat "$SBATCH_LOG")" ;; esac
 
-# Inside the jobs: a shard and the merge call hoilcd with the values, frames and cores.
-SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=1 SLURM_CPUS_PER_TASK=4 SHARDS=3 FRAMES=400 VALUES=0,2 \
-  OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
-for want in "--set crowd.people_per_table=0,2" "--set frames=400" "--shard 1/3" "--threads 4"; do
+# Inside the jobs: a shard and the merge call hoilcd with the settings and cores.
+SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=1 SLURM_CPUS_PER_TASK=4 SHARDS=3 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
+for want in "${shard_wants[@]}" "--shard 1/3" "--threads 4" "--cache $work/out/cache" "-o $work/out/shard-1"; do
   grep -q -- "$want" "$HOILCD_LOG" || fail "shard runs hoilcd without $want: $(cat "$HOILCD_LOG")"
 done
-SLURM_JOB_ID=2 SWEEP_STEP=merge SHARDS=3 FRAMES=400 VALUES=0,2 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
-grep -q -- "--merge $work/out/shard-0 $work/out/shard-1 $work/out/shard-2 -o $work/out" "$HOILCD_LOG" \
-  || fail "merge does not list the shards: $(cat "$HOILCD_LOG")"
+SLURM_JOB_ID=2 HOILCD_STEP=merge SHARDS=3 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
+for want in "${merge_wants[@]}" "--merge $work/out/shard-0 $work/out/shard-1 $work/out/shard-2 -o $work/out"; do
+  grep -q -- "$want" "$HOILCD_LOG" || fail "merge runs hoilcd without $want: $(cat "$HOILCD_LOG")"
+done
+# A plain sbatch of the file (no array): the whole job in one, its output straight into OUT.
+SLURM_JOB_ID=3 SLURM_CPUS_PER_TASK=4 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
+grep -q -- "-o $work/out\$" "$HOILCD_LOG" || fail "a plain job does not write into OUT: $(cat "$HOILCD_LOG")"
+if grep -q -- "--shard" "$HOILCD_LOG"; then fail "a plain job runs a shard: $(cat "$HOILCD_LOG")"; fi
 echo "1 passed, 0 failed"

@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
-"""scripts/cluster/sweep-job.yaml tells the truth (no Kubernetes here, so the file itself is checked):
-the shard Job's completions, parallelism and SHARDS agree, the merge lists the same shards with the
-same sweep flags, and --threads follows the pod's CPU limit through the downward API."""
+"""scripts/cluster/{sweep,suite}-job.yaml (the one given) tells the truth (no Kubernetes here, so the
+file itself is checked): the shard Job's completions, parallelism and SHARDS agree, the merge lists the
+same shards with the same sweep or suite flags, each shard writes its own folder under the one the
+merge reads, and --threads follows the pod's CPU limit through the downward API."""
 import sys
 import yaml
 
 docs = [d for d in yaml.safe_load_all(open(sys.argv[1])) if d]
 jobs = {d["metadata"]["name"]: d for d in docs if d["kind"] == "Job"}
-shard, merge = jobs["hoilcd-sweep-shards"], jobs["hoilcd-sweep-merge"]
+kind = "suite" if "hoilcd-suite-shards" in jobs else "sweep"
+shard, merge = jobs[f"hoilcd-{kind}-shards"], jobs[f"hoilcd-{kind}-merge"]
 
 
 def container(job):
@@ -39,13 +41,17 @@ if '--threads "$CPUS"' not in shard_args:
     fail("--threads is not $CPUS: " + shard_args)
 
 
-def sweep_flags(args):
+def command_flags(args):
     words = args.split()
-    start = words.index("sweep")
+    start = words.index(kind)
     end = next(i for i, w in enumerate(words) if w in ("--shard", "--merge"))
     return words[start:end]
 
 
-if sweep_flags(shard_args) != sweep_flags(merge_args):
-    fail(f"shard and merge sweep different things: {sweep_flags(shard_args)} vs {sweep_flags(merge_args)}")
-print("sweep-job.yaml: consistent")
+if command_flags(shard_args) != command_flags(merge_args):
+    fail(f"shard and merge {kind} different things: {command_flags(shard_args)} vs {command_flags(merge_args)}")
+words = merge_args.split()
+out = words[words.index("-o") + 1]
+if f'-o "{out}/shard-$JOB_COMPLETION_INDEX"' not in shard_args or f"{out}/shard-$i" not in merge_args:
+    fail(f"the shards do not write the folders the merge into {out} reads: {shard_args} / {merge_args}")
+print(f"{kind}-job.yaml: consistent")

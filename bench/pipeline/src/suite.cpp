@@ -1,10 +1,9 @@
 #include "hoilcd/bench/pipeline/suite.h"
 
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
 
 #include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/bench/pipeline/suite_report.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -17,9 +16,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double Metric(const nlohmann::json& method, const char* key) {
-  const auto it = method.find(key);
-  return it != method.end() && it->is_number() ? it->get<double>() : NAN;
+// The checksum of a scene file's bytes; null when it cannot be read (its runs will fail, naming it).
+nlohmann::json SceneChecksum(const std::string& path) {
+  try {
+    return ChecksumOfFile(path);
+  } catch (const InputError&) {
+    return nullptr;
+  }
 }
 
 // The run's scene: a generated sequence's file is written first (only when its bytes change).
@@ -52,30 +55,58 @@ const OptionTable<SuiteOptions>& SuiteOptions::Table() {
   using O = SuiteOptions;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("output_dir", &O::output_dir, "", {}, "suite.json, scenes/, runs/ and suite_report.{json,md} go here")
+          .Add("output_dir", &O::output_dir, "", {}, "suite.json, scenes/ and runs/ go here")
           .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "the output folder must be given" : ""; })
           .Add("split", &O::split, "all", {"dev", "test", "all"}, "which sequences run: dev, test or all")
+          .Rule("shard", [](const O& o) { return o.shard.Check(); })
           .Nest("run", &O::run, RunOptions::Table());
   return table;
 }
 
 std::string SuiteOptions::Check() const { return Table().FirstProblem(*this); }
 
-SuiteSummary RunSuite(const Suite& suite, const BenchOptions& bench, const SuiteOptions& options,
-                      const SuiteRunCallback& before_run) {
+nlohmann::json SuiteIdentity(const Suite& suite, const std::string& split, const nlohmann::json& bench) {
+  nlohmann::json sequences = nlohmann::json::array();
+  for (const SuiteSequence& seq : suite.sequences) {
+    if (split != "all" && seq.split != split) continue;
+    nlohmann::json s = {{"name", seq.name}};
+    if (seq.generated) {
+      s["generate"] = {{"layout", seq.layout}, {"seed", seq.generator_seed}, {"index", seq.generator_index}};
+    } else {
+      s["scene_checksum"] = SceneChecksum(seq.scene_path);
+    }
+    s["seeds"] = seq.seeds;
+    s["set"] = seq.sets;
+    s["split"] = seq.split;
+    sequences.push_back(s);
+  }
+  nlohmann::json runs = nlohmann::json::array();
+  for (const SuiteRunSpec& run : SuiteRuns(suite, split)) runs.push_back(run.name);
+  return {{"name", suite.name}, {"description", suite.description}, {"sequences", sequences},
+          {"split", split},     {"bench", bench},                   {"runs", runs}};
+}
+
+std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& bench, const SuiteOptions& options,
+                                     const SuiteRunCallback& before_run) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("suite", problem);
   const std::string& out = options.output_dir;
-  CheckOutputFolder(out, {"suite.json", {"suite", "split", "bench", "runs"}, "suite"});
+  // "suite" and "runs": the keys of every suite.json, this one's and an older hoilcd's.
+  CheckOutputFolder(out, {"suite.json", {"suite", "runs"}, "suite"});
   CreateOutputFolder(out + "/runs");
   CreateOutputFolder(out + "/scenes");
   const nlohmann::json bench_json = BenchSettingsJson(bench);
-  const std::vector<SuiteRunSpec> runs = SuiteRuns(suite, options.split);
+  const nlohmann::json identity = SuiteIdentity(suite, options.split, bench_json);
+  const std::vector<SuiteRunSpec> runs = ShardOf(SuiteRuns(suite, options.split), options.shard);
   nlohmann::json marker = {{"suite", {{"name", suite.name}, {"file", SafeText(suite.path)}}},
-                           {"split", options.split},
-                           {"bench", bench_json},
-                           {"runs", nlohmann::json::array()}};
+                           {"identity", identity},
+                           {"identity_hash", ChecksumOf(identity.dump())},
+                           {"shard", {{"index", options.shard.index}, {"count", options.shard.count}}},
+                           {"runs", nlohmann::json::array()},
+                           {"failed", nlohmann::json::array()},
+                           {"finished", false}};
   for (const SuiteRunSpec& run : runs) marker["runs"].push_back(run.name);
-  WriteFileAtomic(out + "/suite.json", marker.dump(2) + "\n");
+  const auto write_marker = [&] { WriteFileAtomic(out + "/suite.json", marker.dump(2) + "\n"); };
+  write_marker();
 
   const std::vector<std::string> methods = bench_json.at("methods").get<std::vector<std::string>>();
   std::vector<SuiteRunResult> results;
@@ -84,7 +115,6 @@ SuiteSummary RunSuite(const Suite& suite, const BenchOptions& bench, const Suite
     const SuiteSequence& seq = suite.sequences[run.sequence];
     const std::string dir = out + "/runs/" + run.name;
     SuiteRunResult result;
-    result.name = run.name;
     try {
       const Scene scene = LoadRunScene(seq, run.seed, out);
       const RecordedRun recorded{
@@ -92,26 +122,21 @@ SuiteSummary RunSuite(const Suite& suite, const BenchOptions& bench, const Suite
       const bool kept = recorded.Kept();
       if (before_run) before_run(static_cast<int>(i) + 1, static_cast<int>(runs.size()), run, kept);
       if (!kept) recorded.Run(scene, bench, options.run);
-      const nlohmann::json report = nlohmann::json::parse(ReadFileBytes(dir + "/report.json"));
-      for (const std::string& m : methods) {
-        const nlohmann::json& method = report.at("methods").at(m);
-        result.mrr[m] = Metric(method, "mrr");
-        result.recall_at_1[m] = Metric(method, "recall_at_1");
-      }
+      result = ReadSuiteRunResult(run.name, dir + "/report.json", methods);
     } catch (const RenderInterrupted&) {
       throw;  // Ctrl-C stops the suite; a rerun resumes it
     } catch (const std::exception& e) {
       if (options.run.cancel != nullptr && options.run.cancel->load()) throw;  // stopped, not failed
       result = SuiteRunResult{run.name, e.what(), {}, {}};
       if (result.error.empty()) result.error = "failed without a message";
+      marker["failed"].push_back({{"run", run.name}, {"error", result.error}});
+      write_marker();
     }
     results.push_back(result);
   }
-  SuiteSummary summary = SummariseSuite(suite.name, suite.description, methods, results);
-  summary.settings = {{"split", options.split}, {"bench", bench_json}};
-  WriteFileAtomic(out + "/suite_report.json", summary.ToJson().dump(2) + "\n");
-  WriteFileAtomic(out + "/suite_report.md", summary.ToMarkdown());
-  return summary;
+  marker["finished"] = true;
+  write_marker();
+  return results;
 }
 
 }  // namespace hoilcd

@@ -130,29 +130,6 @@ SweepAxis ParseSweepAxis(const std::string& key_equals_values) {
   return axis;
 }
 
-std::string SweepShard::Check() const {
-  if (count < 1) return "the number of shards must be at least 1";
-  if (index < 0 || index >= count) return "the shard index must be in 0.." + std::to_string(count - 1);
-  return "";
-}
-
-SweepShard ParseSweepShard(const std::string& text) {
-  const size_t slash = text.find('/');
-  auto parse = [&](const std::string& part) {
-    const std::string t = Trim(part);
-    if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos || t.size() > 9) {
-      throw InputError("--shard", "expected I/N with whole numbers, 0 <= I < N (e.g. 0/4), but got '" + text + "'");
-    }
-    return std::stoi(t);
-  };
-  if (slash == std::string::npos) parse("");
-  SweepShard shard;
-  shard.index = parse(text.substr(0, slash));
-  shard.count = parse(text.substr(slash + 1));
-  if (const std::string problem = shard.Check(); !problem.empty()) throw InputError("--shard", problem + " (got '" + text + "')");
-  return shard;
-}
-
 std::string SweepRunSpec::Name() const {
   const std::string s = SweepSettingsName(settings);
   return s + (s.empty() ? "" : ",") + "seed=" + std::to_string(seed);
@@ -209,13 +186,7 @@ std::vector<SweepRunSpec> SweepPlan::Runs() const {
   return runs;
 }
 
-std::vector<SweepRunSpec> SweepPlan::ShardRuns(const SweepShard& shard) const {
-  HOILCD_CHECK_MSG(shard.Check().empty(), shard.Check());
-  const std::vector<SweepRunSpec> all = Runs();
-  std::vector<SweepRunSpec> out;
-  for (size_t k = static_cast<size_t>(shard.index); k < all.size(); k += static_cast<size_t>(shard.count)) out.push_back(all[k]);
-  return out;
-}
+std::vector<SweepRunSpec> SweepPlan::ShardRuns(const Shard& shard) const { return ShardOf(Runs(), shard); }
 
 std::string SweepPlan::Check() const {
   if (scene_path.empty()) return "no scene file";

@@ -1,13 +1,17 @@
 // Suite files: a valid file read with paths resolved against its folder, runs sorted by name and
-// chosen by split, and every problem a user can write reported with the file and JSON pointer.
+// chosen by split and shard, the identity a merge compares, and every problem a user can write
+// reported with the file and JSON pointer.
 #include "hoilcd/bench/pipeline/suite.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 #include <string>
 
+#include "hoilcd/core/util/file_io.h"
 #include "input_error_of.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -118,13 +122,67 @@ TEST(Suite, AMissingFileIsNamed) {
   EXPECT_NE(message.find("cannot read the suite file"), std::string::npos) << message;
 }
 
-TEST(Suite, OptionsRefuseAnUnknownSplitAndAMissingFolder) {
+TEST(Suite, OptionsRefuseAnUnknownSplitAMissingFolderAndABadShard) {
   SuiteOptions options;
   EXPECT_NE(options.Check().find("output_dir"), std::string::npos) << options.Check();
   options.output_dir = "out";
   EXPECT_EQ(options.Check(), "");
+  options.shard = {2, 2};
+  EXPECT_EQ(options.Check(), "shard: the shard index must be in 0..1");
+  options.shard = {};
   options.split = "train";
   EXPECT_NE(options.Check().find("split"), std::string::npos) << options.Check();
+}
+
+TEST(Suite, ShardsOfOneToFiveCoverEveryRunOfTheSplitExactlyOnce) {
+  const Suite suite = ParseSuite(R"({"name": "s", "sequences": [
+    {"name": "a", "scene": "a.json", "seeds": [4, 1, 3, 2], "split": "dev"},
+    {"name": "b", "generate": {"layout": "lounge", "seed": 1, "index": 0}, "seeds": [9, 7, 8], "split": "test"}]})",
+                                 "s.json");
+  for (const char* split : {"all", "dev", "test"}) {
+    const std::vector<SuiteRunSpec> runs = SuiteRuns(suite, split);
+    std::multiset<std::string> expected;
+    for (const SuiteRunSpec& run : runs) expected.insert(run.name);
+    for (int count = 1; count <= 5; ++count) {
+      std::multiset<std::string> from_shards;
+      for (int index = 0; index < count; ++index) {
+        for (const SuiteRunSpec& run : ShardOf(runs, Shard{index, count})) from_shards.insert(run.name);
+      }
+      EXPECT_EQ(from_shards, expected) << split << " in " << count << " shards";
+    }
+  }
+  EXPECT_EQ(SuiteRuns(suite, "all").size(), 7u);
+}
+
+TEST(Suite, IdentityKnowsASceneByItsBytesNotItsPathAndHoldsOnlyTheSplitsSequences) {
+  const test::TestDir here("here"), there("there");
+  const std::string scene = R"({"name": "room", "frames": 10})";
+  WriteFileAtomic(here / "scenes/room.json", scene);
+  WriteFileAtomic(there / "elsewhere/room.json", scene);
+  const auto suite_text = [](const std::string& scene_path) {
+    return R"({"name": "s", "sequences": [
+      {"name": "room", "scene": ")" + scene_path + R"(", "seeds": [1, 2], "split": "dev"},
+      {"name": "gen", "generate": {"layout": "lounge", "seed": 3, "index": 0}, "seeds": [5], "set": ["frames=9"], "split": "test"}]})";
+  };
+  const nlohmann::json bench = {{"methods", {"slcd"}}};
+  const Suite a = ParseSuite(suite_text("scenes/room.json"), here / "suite.json");
+  const Suite b = ParseSuite(suite_text("elsewhere/room.json"), there / "suite.json");
+  EXPECT_EQ(SuiteIdentity(a, "all", bench), SuiteIdentity(b, "all", bench));
+
+  const nlohmann::json identity = SuiteIdentity(a, "all", bench);
+  EXPECT_EQ(identity["sequences"][0]["scene_checksum"], ChecksumOf(scene));
+  EXPECT_EQ(identity["sequences"][1]["generate"], (nlohmann::json{{"layout", "lounge"}, {"seed", 3}, {"index", 0}}));
+  EXPECT_EQ(identity["runs"], (nlohmann::json{"gen-seed5", "room-seed1", "room-seed2"}));
+  EXPECT_EQ(identity["bench"], bench);
+  const nlohmann::json dev = SuiteIdentity(a, "dev", bench);
+  EXPECT_EQ(dev["split"], "dev");
+  ASSERT_EQ(dev["sequences"].size(), 1u);
+  EXPECT_EQ(dev["runs"], (nlohmann::json{"room-seed1", "room-seed2"}));
+
+  WriteFileAtomic(there / "elsewhere/room.json", R"({"name": "room", "frames": 11})");
+  EXPECT_NE(SuiteIdentity(b, "all", bench)["sequences"][0]["scene_checksum"], identity["sequences"][0]["scene_checksum"]);
+  std::filesystem::remove(there / "elsewhere/room.json");
+  EXPECT_TRUE(SuiteIdentity(b, "all", bench)["sequences"][0]["scene_checksum"].is_null());
 }
 
 }  // namespace

@@ -47,16 +47,6 @@ TEST(SweepValues, BadSetSyntaxIsAnErrorNamingTheFlag) {
   }
 }
 
-TEST(SweepShardSyntax, BadShardIsAnErrorNamingTheFlag) {
-  const SweepShard ok = ParseSweepShard("3/4");
-  EXPECT_EQ(ok.index, 3);
-  EXPECT_EQ(ok.count, 4);
-  for (const std::string bad : {"4/4", "1", "a/2", "1/0", "-1/2", "1/2/3", "/2", "1/", ""}) {
-    const std::string message = InputErrorOf([&] { ParseSweepShard(bad); });
-    EXPECT_NE(message.find("--shard"), std::string::npos) << bad << " gave: " << message;
-  }
-}
-
 TEST(SweepOptions, HoldTheirTablesDefaultsAndNameAMissingFolderABadShardAndABadRun) {
   SweepOptions options;
   EXPECT_EQ(options.run.cache_dir, "runs");
@@ -67,7 +57,7 @@ TEST(SweepOptions, HoldTheirTablesDefaultsAndNameAMissingFolderABadShardAndABadR
   options.shard.index = 2;
   options.shard.count = 2;
   EXPECT_EQ(options.Check(), "shard: the shard index must be in 0..1");
-  options.shard = SweepShard();
+  options.shard = Shard();
   options.run.cache_dir = "";
   EXPECT_EQ(options.Check(), "run/cache_dir: must not be empty");
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hoilcd/bench/pipeline/run.h"
+#include "hoilcd/bench/pipeline/shard.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/util/option_table.h"
 
@@ -28,18 +29,6 @@ struct SweepAxis {
 
 // Parses "KEY=V1,V2,..."; throws InputError("--set", ...) naming what is wrong.
 SweepAxis ParseSweepAxis(const std::string& key_equals_values);
-
-// The I-th of N disjoint parts of a sweep's run list (0-based, as Slurm array task ids and
-// Kubernetes JOB_COMPLETION_INDEX are).
-struct SweepShard {
-  int index = 0;  // which part, 0 <= index < count
-  int count = 1;  // number of parts, >= 1
-  // A value parsed from --shard or sweep.json, not options: no table, its check is by hand.
-  std::string Check() const;
-};
-
-// Parses "I/N"; throws InputError("--shard", ...).
-SweepShard ParseSweepShard(const std::string& text);
 
 // One run of a sweep: a value for every axis and a seed.
 struct SweepRunSpec {
@@ -68,7 +57,7 @@ struct SweepPlan {
   // Every combination x seeds 1..seeds, sorted by Name().
   std::vector<SweepRunSpec> Runs() const;
   // The runs of one shard: Runs()[k] for k % count == index (round robin over the sorted list).
-  std::vector<SweepRunSpec> ShardRuns(const SweepShard& shard) const;
+  std::vector<SweepRunSpec> ShardRuns(const Shard& shard) const;
   // Parsed data (the command line or a plan file), not options: no table, its checks are by hand.
   std::string Check() const;
   nlohmann::json ToJson() const;
@@ -83,7 +72,7 @@ SweepPlan MakeSweepPlan(const std::string& scene_path, const std::vector<std::st
 // Defaults and ranges: Table() in sweep.cpp.
 struct SweepOptions {
   std::string output_dir;  // OUT: runs/<FolderName>/ and sweep.json (the shard marker) go here
-  SweepShard shard;        // which part of the run list to do (default: all of it); a parsed
+  Shard shard;             // which part of the run list to do (default: all of it); a parsed
                            // value with its own Check(), so only a rule of the table
   RunOptions run;          // dataset cache folder, threads, cancellation
 
