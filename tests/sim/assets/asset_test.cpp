@@ -441,7 +441,7 @@ TEST_F(GltfFileTest, BadPartParentJointAndKeypointExtrasAreReportedWithTheirPath
                                "/scenes/0/extras/keypoints/0: needs both name and position",
                                "/scenes/0/extras/keypoints/1/name: must be a non-empty string",
                                "/scenes/0/extras/keypoints/2: must be an object",
-                               "/scenes/0/extras/bone: unknown key (expected class, posture, contacts, part, parent, joint, keypoints)"}) {
+                               "/scenes/0/extras/bone: unknown key (expected class, posture, mount, contacts, part, parent, joint, keypoints)"}) {
     EXPECT_NE(message.find(expected), std::string::npos) << expected << " in: " << message;
   }
   gltf_["scenes"][0]["extras"] = {{"class", "person"}, {"keypoints", "nose"}};
