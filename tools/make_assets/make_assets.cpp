@@ -206,6 +206,7 @@ struct AssetBuilder {
   std::string name;
   std::string class_name;
   std::string posture;  // people only
+  std::string mount;    // "wall" or "hanging" for room objects that do not stand on the floor
   std::vector<ThermalSpec> materials;
   std::vector<Shape> parts;  // one per material
   std::vector<Contact> contacts;
@@ -273,6 +274,19 @@ const ThermalSpec kRadiator{"radiator", 42.0, 0.93, false, {0.95, 0.95, 0.95, 1}
 const ThermalSpec kUpholstery{"upholstery", 22.0, 0.95, false, {0.35, 0.30, 0.45, 1}, 0};
 const ThermalSpec kFelt{"felt", 22.0, 0.92, false, {0.45, 0.50, 0.45, 1}, 0};
 const ThermalSpec kLaminate{"laminate", 22.0, 0.90, false, {0.85, 0.85, 0.80, 1}, 0};
+// Room objects: docs/models/room_objects.md gives each figure's source.
+const ThermalSpec kWhiteboard{"whiteboard", 22.0, 0.88, true, {0.97, 0.97, 0.97, 1}, 0};
+const ThermalSpec kAnodized{"anodized_aluminium", 22.0, 0.55, true, {0.80, 0.80, 0.82, 1}, 1};
+const ThermalSpec kPaintedWood{"painted_wood", 22.0, 0.93, false, {0.93, 0.93, 0.90, 1}, 0};
+const ThermalSpec kDoorLeaf{"door_leaf", 22.0, 0.90, false, {0.70, 0.55, 0.40, 1}, 0};
+const ThermalSpec kAcLouvre{"ac_louvre", 15.0, 0.94, false, {0.90, 0.90, 0.90, 1}, 0};
+const ThermalSpec kBooks{"books", 22.0, 0.93, false, {0.60, 0.25, 0.20, 1}, 0};
+const ThermalSpec kPaintedSteel{"painted_steel", 22.0, 0.93, false, {0.55, 0.58, 0.60, 1}, 0};
+const ThermalSpec kLightDiffuser{"light_diffuser", 26.0, 0.94, false, {1.00, 1.00, 0.98, 1}, 0};
+const ThermalSpec kLightFrame{"light_frame", 30.0, 0.93, false, {0.95, 0.95, 0.95, 1}, 0};
+const ThermalSpec kBagFabric{"bag_fabric", 22.0, 0.90, false, {0.15, 0.20, 0.30, 1}, 0};
+const ThermalSpec kCoat{"coat", 25.0, 0.90, false, {0.30, 0.25, 0.20, 1}, 0};
+const ThermalSpec kCharger{"charger", 40.0, 0.94, false, {0.10, 0.10, 0.10, 1}, 0};
 
 // ---------------------------------------------------------------------------------------------
 // People.
@@ -844,6 +858,166 @@ AssetBuilder Radiator() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Room objects. Wall-mounted ones ("mount": "wall") have their origin on the wall at the bottom
+// of their back face, centred along the wall, and face +x; hanging ones ("mount": "hanging")
+// hang from their origin (a ceiling light's top face, a coat's fold over a chair's backrest).
+
+AssetBuilder RoomObject(const std::string& name, const std::string& class_name, const std::string& mount) {
+  AssetBuilder asset;
+  asset.name = name;
+  asset.class_name = class_name;
+  asset.mount = mount;
+  return asset;
+}
+
+// A box from `lo` to `hi` (axis-aligned corners).
+Shape Slab(const Vec3& lo, const Vec3& hi) { return Box(0.5 * (lo + hi), Mat3::Identity(), 0.5 * (hi - lo)); }
+
+// A whiteboard 1.80 m along the wall × 1.20 m: glossy board in a 25 mm anodized aluminium frame
+// 20 mm deep, a pen tray along the bottom.
+AssetBuilder Whiteboard() {
+  AssetBuilder asset = RoomObject("whiteboard", "whiteboard", "wall");
+  const int board = asset.Material(kWhiteboard);
+  const int frame = asset.Material(kAnodized);
+  asset.Add(Slab(Vec3(0, -0.875, 0.025), Vec3(0.015, 0.875, 1.175)), board);
+  asset.Add(Slab(Vec3(0, -0.90, 1.175), Vec3(0.02, 0.90, 1.20)), frame);
+  asset.Add(Slab(Vec3(0, -0.90, 0.0), Vec3(0.02, 0.90, 0.025)), frame);
+  for (double y : {-0.8875, 0.8875}) asset.Add(Slab(Vec3(0, y - 0.0125, 0.025), Vec3(0.02, y + 0.0125, 1.175)), frame);
+  asset.Add(Slab(Vec3(0.02, -0.35, 0.0), Vec3(0.08, 0.35, 0.02)), frame);
+  return asset;
+}
+
+// A closed door in its frame: a 0.90 × 2.05 m clear opening (a scene's default doorway) with a
+// painted architrave 70 mm wide round it and a lever handle at 1.05 m on the -y side.
+AssetBuilder DoorFrame() {
+  AssetBuilder asset = RoomObject("door_frame", "door", "wall");
+  const int paint = asset.Material(kPaintedWood);
+  const int leaf = asset.Material(kDoorLeaf);
+  const int metal = asset.Material(kMetal);
+  for (double y : {-0.485, 0.485}) asset.Add(Slab(Vec3(0, y - 0.035, 0), Vec3(0.015, y + 0.035, 2.05)), paint);
+  asset.Add(Slab(Vec3(0, -0.52, 2.05), Vec3(0.015, 0.52, 2.12)), paint);
+  asset.Add(Slab(Vec3(0, -0.45, 0), Vec3(0.006, 0.45, 2.05)), leaf);
+  asset.Add(Rod(Vec3(0.006, -0.38, 1.05), Vec3(0.06, -0.38, 1.05), 0.008), metal);
+  asset.Add(Rod(Vec3(0.055, -0.38, 1.05), Vec3(0.055, -0.26, 1.05), 0.008), metal);
+  return asset;
+}
+
+// The indoor unit of a split air conditioner, 0.80 m along the wall × 0.28 m × 0.20 m deep, in
+// cooling mode: the outlet louvre along the bottom front is cold.
+AssetBuilder AcUnit() {
+  AssetBuilder asset = RoomObject("ac_unit", "ac_unit", "wall");
+  const int casing = asset.Material(kPlastic);
+  const int louvre = asset.Material(kAcLouvre);
+  asset.Add(Slab(Vec3(0, -0.40, 0.02), Vec3(0.20, 0.40, 0.28)), casing);
+  asset.Add(Slab(Vec3(0.09, -0.34, 0.0), Vec3(0.19, 0.34, 0.03)), louvre);
+  return asset;
+}
+
+// A light switch: an 86 × 86 mm plate with a rocker (ABS).
+AssetBuilder LightSwitch() {
+  AssetBuilder asset = RoomObject("light_switch", "switch", "wall");
+  const int plastic = asset.Material(kPlastic);
+  asset.Add(Slab(Vec3(0, -0.043, 0), Vec3(0.009, 0.043, 0.086)), plastic);
+  asset.Add(Slab(Vec3(0.009, -0.025, 0.018), Vec3(0.016, 0.025, 0.068)), plastic);
+  return asset;
+}
+
+// A double wall socket: two 86 × 86 mm plates side by side, each with its raised insert (ABS).
+AssetBuilder WallSocket() {
+  AssetBuilder asset = RoomObject("wall_socket", "socket", "wall");
+  const int plastic = asset.Material(kPlastic);
+  for (double y : {-0.043, 0.043}) {
+    asset.Add(Slab(Vec3(0, y - 0.042, 0), Vec3(0.009, y + 0.042, 0.086)), plastic);
+    asset.Add(Slab(Vec3(0.009, y - 0.022, 0.021), Vec3(0.014, y + 0.022, 0.065)), plastic);
+  }
+  return asset;
+}
+
+// A wall shelf: a wooden board 0.90 m × 0.25 m on two steel brackets 0.20 m high, with books
+// standing at one end and a stack lying at the other.
+AssetBuilder Shelf() {
+  AssetBuilder asset = RoomObject("shelf", "shelf", "wall");
+  const int wood = asset.Material(kWood);
+  const int books = asset.Material(kBooks);
+  const int metal = asset.Material(kMetal);
+  asset.Add(Slab(Vec3(0, -0.45, 0.18), Vec3(0.25, 0.45, 0.20)), wood);
+  for (double y : {-0.33, 0.33}) {
+    asset.Add(Slab(Vec3(0, y - 0.006, 0), Vec3(0.01, y + 0.006, 0.18)), metal);
+    asset.Add(Slab(Vec3(0.01, y - 0.006, 0.165), Vec3(0.20, y + 0.006, 0.18)), metal);
+  }
+  const double widths[] = {0.035, 0.05, 0.03, 0.045, 0.04, 0.06};
+  const double heights[] = {0.24, 0.28, 0.22, 0.26, 0.24, 0.30};
+  double y = -0.43;
+  for (int i = 0; i < 6; ++i) {
+    asset.Add(Slab(Vec3(0.02, y, 0.20), Vec3(0.21, y + widths[i] - 0.002, 0.20 + heights[i])), books);
+    y += widths[i];
+  }
+  asset.Add(Slab(Vec3(0.03, 0.15, 0.20), Vec3(0.23, 0.41, 0.27)), books);
+  return asset;
+}
+
+// A painted steel storage cabinet, 0.80 m along the wall × 0.42 m deep × 1.02 m, origin under its
+// centre, doors facing +x with two handles, three box files on top.
+AssetBuilder Cabinet() {
+  AssetBuilder asset = RoomObject("cabinet", "cabinet", "");
+  const int steel = asset.Material(kPaintedSteel);
+  const int metal = asset.Material(kMetal);
+  const int books = asset.Material(kBooks);
+  asset.Add(Slab(Vec3(-0.21, -0.40, 0), Vec3(0.21, 0.40, 1.02)), steel);
+  for (double y : {-0.04, 0.04}) asset.Add(Rod(Vec3(0.225, y, 0.55), Vec3(0.225, y, 0.75), 0.008), metal);
+  for (int i = 0; i < 3; ++i) {
+    const double y = -0.30 + 0.085 * i;
+    asset.Add(Slab(Vec3(-0.15, y, 1.02), Vec3(0.17, y + 0.08, 1.34)), books);
+  }
+  return asset;
+}
+
+// A surface-mounted LED panel, 0.60 × 0.60 m and 41 mm deep, hanging from its top face: a warm
+// painted aluminium frame round the diffuser.
+AssetBuilder CeilingLight() {
+  AssetBuilder asset = RoomObject("ceiling_light", "ceiling_light", "hanging");
+  const int frame = asset.Material(kLightFrame);
+  const int diffuser = asset.Material(kLightDiffuser);
+  asset.Add(Slab(Vec3(-0.30, -0.30, -0.040), Vec3(0.30, 0.30, 0.0)), frame);
+  asset.Add(Slab(Vec3(-0.285, -0.285, -0.041), Vec3(0.285, 0.285, -0.02)), diffuser);
+  return asset;
+}
+
+// A soft shoulder bag standing on the floor, 0.32 m long (x) × 0.14 m × 0.36 m with a strap.
+AssetBuilder Bag() {
+  AssetBuilder asset = RoomObject("bag", "bag", "");
+  const int fabric = asset.Material(kBagFabric);
+  std::vector<Ring> rings;
+  for (const auto& [z, scale] : std::vector<std::pair<double, double>>{{0.0, 0.92}, {0.04, 1.0}, {0.30, 1.0}, {0.36, 0.85}}) {
+    rings.push_back({Vec3(0, 0, z), Vec3(0.16 * scale, 0, 0), Vec3(0, 0.07 * scale, 0)});
+  }
+  asset.Add(Loft(rings, Vec3(0, 0, 0), Vec3(0, 0, 0.36), 16, 4.0), fabric);
+  asset.Add(Rod(Vec3(-0.12, 0, 0.34), Vec3(-0.10, 0, 0.48), 0.008, 8), fabric);
+  asset.Add(Rod(Vec3(-0.11, 0, 0.48), Vec3(0.11, 0, 0.48), 0.008, 8), fabric);
+  asset.Add(Rod(Vec3(0.10, 0, 0.48), Vec3(0.12, 0, 0.34), 0.008, 8), fabric);
+  return asset;
+}
+
+// A coat folded over a chair's backrest: its origin is on the backrest's top edge (chair.gltf:
+// 0.253 m behind the seat centre, 0.86 m up); most of it hangs 0.45 m down behind the backrest.
+AssetBuilder Coat() {
+  AssetBuilder asset = RoomObject("coat", "coat", "hanging");
+  const int cloth = asset.Material(kCoat);
+  asset.Add(Capsule(Vec3(-0.01, -0.20, 0.02), Vec3(-0.01, 0.20, 0.02), 0.022, 0.022, 10, 2), cloth);
+  asset.Add(Slab(Vec3(-0.06, -0.21, -0.45), Vec3(-0.022, 0.21, 0.0)), cloth);
+  asset.Add(Slab(Vec3(0.03, -0.19, -0.07), Vec3(0.042, 0.19, 0.01)), cloth);
+  return asset;
+}
+
+// A laptop power brick lying on a table, 0.11 × 0.05 × 0.03 m, warm under load.
+AssetBuilder Charger() {
+  AssetBuilder asset = RoomObject("charger", "charger", "");
+  const int brick = asset.Material(kCharger);
+  asset.Add(Slab(Vec3(-0.055, -0.025, 0), Vec3(0.055, 0.025, 0.03)), brick);
+  return asset;
+}
+
+// ---------------------------------------------------------------------------------------------
 // glTF output.
 
 tinygltf::Value Vec3Value(const Vec3& p_hoilcd) {
@@ -940,6 +1114,7 @@ tinygltf::Primitive GltfPrimitive(const Shape& part, int material, tinygltf::Mod
 tinygltf::Value SceneExtras(const AssetBuilder& asset) {
   tinygltf::Value::Object extras{{"class", tinygltf::Value(asset.class_name)}};
   if (!asset.posture.empty()) extras["posture"] = tinygltf::Value(asset.posture);
+  if (!asset.mount.empty()) extras["mount"] = tinygltf::Value(asset.mount);
   auto points = [](const std::vector<Contact>& list) {
     tinygltf::Value::Array out;
     for (const Contact& contact : list) {
@@ -1018,7 +1193,18 @@ int main(int argc, char** argv) {
       Sofa(),
       LowTable(),
       Partition(),
-      Lectern()};
+      Lectern(),
+      Whiteboard(),
+      DoorFrame(),
+      AcUnit(),
+      LightSwitch(),
+      WallSocket(),
+      Shelf(),
+      Cabinet(),
+      CeilingLight(),
+      Bag(),
+      Coat(),
+      Charger()};
   for (AssetBuilder& part : PersonParts()) assets.push_back(std::move(part));
   tinygltf::TinyGLTF writer;
   for (const AssetBuilder& asset : assets) {

@@ -236,6 +236,13 @@ class GltfReader {
                                                   : asset.parent;
           field = value.Get<std::string>();
         }
+      } else if (key == "mount") {
+        const std::string mount = value.IsString() ? value.Get<std::string>() : "";
+        if (mount != "floor" && mount != "wall" && mount != "hanging") {
+          Fail(where, "must be \"floor\", \"wall\" or \"hanging\"");
+        } else {
+          asset.mount = mount;
+        }
       } else if (key == "contacts") {
         ReadContacts(asset.contacts, value, where);
       } else if (key == "keypoints") {
@@ -243,7 +250,7 @@ class GltfReader {
       } else if (key == "joint") {
         if (const std::optional<Eigen::Vector3f> p = ReadPosition(value, where)) asset.joint_m = *p;
       } else {
-        Fail(where, "unknown key (expected class, posture, contacts, part, parent, joint, keypoints)");
+        Fail(where, "unknown key (expected class, posture, mount, contacts, part, parent, joint, keypoints)");
       }
     }
   }

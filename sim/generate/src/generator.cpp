@@ -1,5 +1,6 @@
 #include "hoilcd/sim/generate/generator.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/people/walker_planner.h"
 #include "layouts.h"
+#include "room_objects.h"
 
 namespace hoilcd {
 namespace {
@@ -112,6 +114,39 @@ std::vector<Eigen::Vector2d> PlanRoute(const Eigen::Vector4d& layout_box, const 
   return route;
 }
 
+// Every object inside the room; wall-mounted ones with their backs on a wall, facing into the
+// room; ceiling lights touching the ceiling (1 mm tolerance).
+std::vector<std::string> ObjectProblems(const Scene& scene) {
+  constexpr double kTouchM = 1e-3;
+  std::vector<std::string> problems;
+  AssetLibrary assets(scene.assets_dir);
+  const Eigen::Vector3d room = scene.room.size_m;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const ObjectSpec& o = scene.objects[i];
+    if (!o.enabled) continue;
+    const Asset& asset = assets.Get(o.asset);
+    const std::string name = "object " + std::to_string(i) + " (" + o.asset + ")";
+    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(o.yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    Eigen::AlignedBox3d box;
+    for (int c = 0; c < 8; ++c) {
+      box.extend(o.position_m + rotation * asset.bounds_m.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>());
+    }
+    if ((box.min().array() < -kTouchM).any() || (box.max() - room).maxCoeff() > kTouchM) problems.push_back(name + " reaches outside the room");
+    if (asset.mount == "wall") {
+      // The back face's centre and the way the front faces.
+      const Eigen::Vector3d back = o.position_m + rotation * Eigen::Vector3d(asset.bounds_m.min().x(), 0, 0);
+      const Eigen::Vector3d front = rotation.col(0);
+      const bool on_wall = (std::abs(back.x()) < kTouchM && front.x() > 0.999) || (std::abs(back.x() - room.x()) < kTouchM && front.x() < -0.999) ||
+                           (std::abs(back.y()) < kTouchM && front.y() > 0.999) || (std::abs(back.y() - room.y()) < kTouchM && front.y() < -0.999);
+      if (!on_wall) problems.push_back(name + " is wall-mounted but its back is not on a wall facing into the room");
+    }
+    if (asset.class_name == "ceiling_light" && std::abs(box.max().z() - room.z()) > kTouchM) {
+      problems.push_back(name + " does not touch the ceiling");
+    }
+  }
+  return problems;
+}
+
 // Frames for `laps` laps of the route: the robot is simulated until it has driven them.
 int FramesForLaps(const Scene& scene, const World& world, const std::vector<Eigen::Vector2d>& route, double laps) {
   RouteOptions options = scene.route;
@@ -184,26 +219,32 @@ ojson Tables(const Layout& layout) {
   return tables;
 }
 
+ojson ObjectJson(const PlacedObject& o) {
+  return {{"asset", o.asset},
+          {"position_m", ojson::array({Mm(o.position_m.x()), Mm(o.position_m.y()), Mm(o.position_m.z())})},
+          {"yaw_deg", Yaw(o.yaw_deg)}};
+}
+
 ojson Objects(const Layout& layout) {
   ojson objects = ojson::array();
-  for (const PlacedObject& o : layout.objects) {
-    objects.push_back({{"asset", o.asset},
-                       {"position_m", ojson::array({Mm(o.position_m.x()), Mm(o.position_m.y()), Mm(o.position_m.z())})},
-                       {"yaw_deg", Yaw(o.yaw_deg)}});
-  }
+  for (const PlacedObject& o : layout.objects) objects.push_back(ObjectJson(o));
   return objects;
 }
 
-// One draw of a scene: the document, with the frames still to count and the route still to plan
-// round route_box (its corners stand in for it).
-ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorOptions& o, Rng* rng, Eigen::Vector4d* route_box) {
+// Floor-standing room objects: footprints the route, walkers and seats must keep clear of.
+bool OnTheFloor(const PlacedObject& o) { return o.asset == "cabinet" || o.asset == "bag"; }
+
+// One draw of a scene: the document, with the frames still to count, the route still to plan round
+// the layout's route box (its corners stand in for it) and the room objects still to place.
+ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorOptions& o, Rng* rng, Layout* layout_out) {
   const RoomSizeRange& size = o.SizeOf(family);
   auto cm = [](double value) { return std::round(value * 100) / 100; };
   const Eigen::Vector3d room(cm(rng->Uniform(size.length_min_m, size.length_max_m)),
                              cm(rng->Uniform(size.width_min_m, size.width_max_m)),
                              cm(rng->Uniform(o.height_min_m, o.height_max_m)));
   const Layout layout = DrawLayout(family, room.head<2>(), o, rng);
-  *route_box = layout.route_box_m;
+  *layout_out = layout;
+  const Eigen::Vector4d& box = layout.route_box_m;
   const ojson options = ojson::parse(GeneratorOptions::Table().ToJson(o).dump());
   // The scene's own seed (render noise, people, robot) from the run's seed and the index.
   const uint64_t scene_seed = HashCombine(HashString("generate.scene_seed"), seed, static_cast<uint64_t>(index)) >> 11;
@@ -219,8 +260,8 @@ ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorO
       {"tables", Tables(layout)},
       {"crowd", Crowd(layout, o, rng)},
       {"objects", Objects(layout)},
-      {"route", {{"waypoints_m", ojson::array({Point({route_box->x(), route_box->y()}), Point({route_box->x(), route_box->w()}),
-                                               Point({route_box->z(), route_box->w()}), Point({route_box->z(), route_box->y()})})}}}};
+      {"route", {{"waypoints_m", ojson::array({Point({box.x(), box.y()}), Point({box.x(), box.w()}), Point({box.z(), box.w()}),
+                                               Point({box.z(), box.y()})})}}}};
 }
 
 }  // namespace
@@ -290,6 +331,7 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
     }
   }
   if (route.size() < 3 || twice_area >= 0) problems.push_back("the route is not a closed clockwise loop");
+  for (const std::string& p : ObjectProblems(scene)) problems.push_back(p);
   // Reachability: the floor a person fits on, as a 5 cm grid, flooded from the route's start.
   const int nx = static_cast<int>(size_x / kGridM), ny = static_cast<int>(size_y / kGridM);
   cv::Mat floor(ny, nx, CV_8U, cv::Scalar(0));
@@ -324,20 +366,48 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
   std::string last_problem;
   for (int attempt = 0; attempt < options.attempts; ++attempt) {
     Rng rng = KeyedRng(seed, "generate.scene", index, HashString(family), attempt);
-    Eigen::Vector4d box;
-    ojson doc = Draw(family, seed, index, options, &rng, &box);
+    Layout layout;
+    ojson doc = Draw(family, seed, index, options, &rng, &layout);
     try {
       Scene scene = SceneFromJson(nlohmann::json::parse(doc.dump()), where);
       const BandRadianceTable table;
       const World world(scene, table);
-      const std::vector<Eigen::Vector2d> route = PlanRoute(box, world, options.route_wall_m, options.route_clearance_m);
-      scene.route.waypoints_m = route;
-      const std::vector<std::string> problems = GeneratedSceneProblems(scene, world, options.route_wall_m, options.route_clearance_m);
-      if (!problems.empty()) {
+      const std::vector<Eigen::Vector2d> route = PlanRoute(layout.route_box_m, world, options.route_wall_m, options.route_clearance_m);
+      // The room's fittings and people's things, from their own stream: the furniture a draw
+      // gives does not depend on them.
+      Rng things_rng = KeyedRng(seed, "generate.objects", index, HashString(family), attempt);
+      const Eigen::Vector3d room = scene.room.size_m;
+      const bool whiteboard = HasFrontWall(family) && things_rng.Uniform() < options.objects.whiteboard_probability;
+      const std::vector<Eigen::Vector2d> doors = RoomDoors(room.head<2>(), whiteboard);
+      std::vector<PlacedObject> added =
+          RoomFittings(room, layout, doc["room"]["windows"], doors, whiteboard, world, route, options, &things_rng);
+      std::vector<std::pair<int, int>> occupied;
+      for (const ojson& s : doc["crowd"]["seating"]) occupied.emplace_back(s["table"].get<int>(), s["seat"].get<int>());
+      for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng)) added.push_back(o);
+      doc["room"]["doors"] = ojson::array();
+      for (const Eigen::Vector2d& d : doors) doc["room"]["doors"].push_back({{"position_m", Point(d)}});
+      // With every object, else without the floor-standing ones (bags and cabinets, the only ones
+      // that can block a seat's access the checks below find).
+      std::vector<std::string> problems;
+      bool placed = false;
+      for (const bool floor : {true, false}) {
+        ojson candidate = doc;
+        for (const PlacedObject& o : added)
+          if (floor || !OnTheFloor(o)) candidate["objects"].push_back(ObjectJson(o));
+        Scene final_scene = SceneFromJson(nlohmann::json::parse(candidate.dump()), where);
+        final_scene.route.waypoints_m = route;
+        const World final_world(final_scene, table);
+        problems = GeneratedSceneProblems(final_scene, final_world, options.route_wall_m, options.route_clearance_m);
+        if (!problems.empty()) continue;
+        doc = candidate;
+        doc["frames"] = FramesForLaps(final_scene, final_world, route, options.laps);
+        placed = true;
+        break;
+      }
+      if (!placed) {
         last_problem = problems.front();
         continue;
       }
-      doc["frames"] = FramesForLaps(scene, world, route, options.laps);
       doc["route"]["waypoints_m"] = ojson::array();
       for (const Eigen::Vector2d& p : route) doc["route"]["waypoints_m"].push_back(Point(p));
       // What `hoilcd validate` checks: the scene loads, its robot runs clear, its crowd plans.

@@ -23,6 +23,31 @@ OptionTable<RoomSizeRange> SizeTable(RoomSizeRange defaults, double smallest_len
 
 }  // namespace
 
+const OptionTable<RoomObjectOptions>& RoomObjectOptions::Table() {
+  using O = RoomObjectOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("whiteboard_probability", &O::whiteboard_probability, 0.9, "", R::Closed(0, 1),
+               "chance of a whiteboard on the front (west) wall of a classroom, seminar_u or meeting_row room")
+          .Add("ac_unit_probability", &O::ac_unit_probability, 0.6, "", R::Closed(0, 1),
+               "chance of a split air conditioner high on the south or east wall")
+          .Add("socket_probability", &O::socket_probability, 0.5, "", R::Closed(0, 1),
+               "chance of a wall socket on the nearer long wall, per table or desk")
+          .Add("shelf_count_max", &O::shelf_count_max, 2, "", R::Closed(0, 6), "most wall shelves (uniform in 0..this)")
+          .Add("cabinet_count_max", &O::cabinet_count_max, 2, "", R::Closed(0, 6),
+               "most floor cabinets against free wall (uniform in 0..this)")
+          .Add("ceiling_light_spacing_m", &O::ceiling_light_spacing_m, 2.4, "m", R::Closed(1.2, 6),
+               "pitch of the grid of ceiling lights")
+          .Add("bag_probability", &O::bag_probability, 0.3, "", R::Closed(0, 1),
+               "chance of a bag on the floor beside an occupied chair")
+          .Add("coat_probability", &O::coat_probability, 0.25, "", R::Closed(0, 1),
+               "chance of a coat over an occupied chair's backrest")
+          .Add("charger_probability", &O::charger_probability, 0.2, "", R::Closed(0, 1),
+               "chance of a charger on the table top beside an occupied seat");
+  return table;
+}
+
 const std::vector<std::string>& LayoutFamilies() {
   static const std::vector<std::string> families = {"meeting_row", "classroom", "cafeteria",
                                                     "open_office", "seminar_u", "lounge"};
@@ -73,7 +98,8 @@ const OptionTable<GeneratorOptions>& GeneratorOptions::Table() {
           .Add("route_wall_m", &O::route_wall_m, 0.4, "m", R::Closed(0.3, 1.5), "route from the walls")
           .Add("route_clearance_m", &O::route_clearance_m, 0.4, "m", R::Closed(0.3, 1.5),
                "least distance from the route's centre line to any footprint (the robot is 0.34 m wide)")
-          .Add("attempts", &O::attempts, 20, "", R::Closed(1, 1000), "draws of a scene before it is given up");
+          .Add("attempts", &O::attempts, 20, "", R::Closed(1, 1000), "draws of a scene before it is given up")
+          .Nest("objects", &O::objects, RoomObjectOptions::Table());
   return table;
 }
 

@@ -86,6 +86,9 @@ std::string SceneReferenceMarkdown() {
     out << "## " << array << "[]\n\n" << top[array].value("description", "") << "; each element:\n\n"
         << SchemaTable(top[array]["items"]["properties"]) << "\n";
   }
+  out << "The shipped assets, their sizes, origins and mounts are listed in [assets/README.md](../../assets/README.md); "
+      << "the temperatures and emissivities of the room objects (whiteboard, door frame, AC unit, switch, socket, shelf, "
+      << "cabinet, ceiling light, bag, coat, charger), each with its source, in [room_objects.md](../models/room_objects.md).\n\n";
   std::string text = out.str();
   text.pop_back();  // one newline at the end
   return text;

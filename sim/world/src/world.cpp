@@ -195,7 +195,7 @@ World::World(const Scene& scene, const BandRadianceTable& table)
     const double yaw = o.yaw_deg * kDegToRad;
     Place(asset, PlacementTransform(o.position_m, yaw), InstanceRole::kObject,
           asset.class_name + " " + std::to_string(i), o.temperature_offset_c);
-    if (o.position_m.z() < 0.2) {
+    if (asset.mount == "floor" && o.position_m.z() < 0.2) {
       obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset,
                                        o.position_m, yaw));
     }

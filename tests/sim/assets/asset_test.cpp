@@ -86,7 +86,10 @@ TEST(ShippedAssets, EveryAssetLoadsWithItsDocumentedClassAndAConsistentMesh) {
       {"sofa", "sofa"},
       {"low_table", "table"},
       {"partition", "partition"},
-      {"lectern", "lectern"}};
+      {"lectern", "lectern"},
+      {"cabinet", "cabinet"},
+      {"bag", "bag"},
+      {"charger", "charger"}};
   for (const auto& [name, class_name] : expected) {
     SCOPED_TRACE(name);
     const Asset& asset = Shipped(name);
@@ -281,6 +284,61 @@ TEST(ShippedAssets, HotObjectsCarryTheirThermalProperties) {
   EXPECT_GE(Shipped("monitor").MaterialIndex("monitor_back"), 0);
 }
 
+// The room objects (docs/models/room_objects.md): class, mount, size (x out of the wall or forward,
+// y along, z up), each region's temperature, emissivity and specular flag, and where the origin is.
+TEST(ShippedAssets, RoomObjectsHaveTheirDocumentedClassMountSizeAndThermalRegions) {
+  struct Region {
+    std::string name;
+    double temperature_c, emissivity;
+    bool specular;
+  };
+  struct Expected {
+    std::string name, class_name, mount;
+    Eigen::Vector3f size_m;
+    std::vector<Region> regions;
+  };
+  const std::vector<Expected> expected = {
+      {"whiteboard", "whiteboard", "wall", {0.08f, 1.80f, 1.20f}, {{"whiteboard", 22, 0.88, true}, {"anodized_aluminium", 22, 0.55, true}}},
+      {"door_frame", "door", "wall", {0.063f, 1.04f, 2.12f}, {{"painted_wood", 22, 0.93, false}, {"door_leaf", 22, 0.90, false}, {"metal", 22, 0.10, true}}},
+      {"ac_unit", "ac_unit", "wall", {0.20f, 0.80f, 0.28f}, {{"plastic", 22, 0.94, false}, {"ac_louvre", 15, 0.94, false}}},
+      {"light_switch", "switch", "wall", {0.016f, 0.086f, 0.086f}, {{"plastic", 22, 0.94, false}}},
+      {"wall_socket", "socket", "wall", {0.014f, 0.172f, 0.086f}, {{"plastic", 22, 0.94, false}}},
+      {"shelf", "shelf", "wall", {0.25f, 0.90f, 0.50f}, {{"wood", 22, 0.90, false}, {"books", 22, 0.93, false}, {"metal", 22, 0.10, true}}},
+      {"cabinet", "cabinet", "floor", {0.443f, 0.80f, 1.34f}, {{"painted_steel", 22, 0.93, false}, {"metal", 22, 0.10, true}, {"books", 22, 0.93, false}}},
+      {"ceiling_light", "ceiling_light", "hanging", {0.60f, 0.60f, 0.041f}, {{"light_frame", 30, 0.93, false}, {"light_diffuser", 26, 0.94, false}}},
+      {"bag", "bag", "floor", {0.32f, 0.14f, 0.488f}, {{"bag_fabric", 22, 0.90, false}}},
+      {"coat", "coat", "hanging", {0.102f, 0.44f, 0.492f}, {{"coat", 25, 0.90, false}}},
+      {"charger", "charger", "floor", {0.11f, 0.05f, 0.03f}, {{"charger", 40, 0.94, false}}}};
+  for (const Expected& e : expected) {
+    SCOPED_TRACE(e.name);
+    const Asset& asset = Shipped(e.name);
+    EXPECT_EQ(asset.class_name, e.class_name);
+    EXPECT_EQ(asset.mount, e.mount);
+    EXPECT_LE(asset.mesh.TriangleCount(), 400u) << "room objects stay small";
+    const Eigen::Vector3f size = asset.bounds_m.sizes();
+    for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(size[axis], e.size_m[axis], 0.005f) << "axis " << axis;
+    for (const Region& r : e.regions) {
+      const int m = asset.MaterialIndex(r.name);
+      ASSERT_GE(m, 0) << r.name;
+      const ThermalMaterial& material = asset.materials[static_cast<size_t>(m)];
+      EXPECT_DOUBLE_EQ(material.temperature_c, r.temperature_c) << r.name;
+      EXPECT_DOUBLE_EQ(material.emissivity, r.emissivity) << r.name;
+      EXPECT_EQ(material.specular, r.specular) << r.name;
+    }
+    EXPECT_EQ(asset.materials.size(), e.regions.size());
+    if (e.mount == "wall") {
+      EXPECT_NEAR(asset.bounds_m.min().x(), 0.0f, 1e-4f) << "the back face is on the wall";
+      EXPECT_NEAR(asset.bounds_m.center().y(), 0.0f, 1e-3f) << "centred along the wall";
+      EXPECT_NEAR(asset.bounds_m.min().z(), 0.0f, 1e-4f) << "the origin is at the bottom";
+    }
+  }
+  EXPECT_NEAR(Shipped("ceiling_light").bounds_m.max().z(), 0.0f, 1e-4f) << "hangs from its top face";
+  EXPECT_NEAR(Shipped("coat").bounds_m.max().z(), 0.04f, 2e-3f) << "folded over the backrest's top edge";
+  // The louvre is the unit's underside, facing the floor in front of the casing.
+  EXPECT_LT(RegionCentroid(Shipped("ac_unit"), "ac_louvre").z(), 0.03f);
+  EXPECT_GT(RegionCentroid(Shipped("whiteboard"), "whiteboard").x(), 0.0f);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Hand-written glTF files: one triangle (0,0,0), (1,0,0), (0,1,0) in tri.bin.
 
@@ -428,6 +486,16 @@ TEST_F(GltfFileTest, BadExtrasValuesAreAllReportedWithTheirPaths) {
   }
 }
 
+TEST_F(GltfFileTest, MountIsReadAndABadMountIsReportedWithItsPath) {
+  EXPECT_EQ(LoadAsset(Write()).mount, "floor");
+  gltf_["scenes"][0]["extras"]["mount"] = "wall";
+  EXPECT_EQ(LoadAsset(Write()).mount, "wall");
+  gltf_["scenes"][0]["extras"]["mount"] = "ceiling";
+  const std::string error = LoadError(Write());
+  EXPECT_NE(error.find("test.gltf"), std::string::npos) << error;
+  EXPECT_NE(error.find("/scenes/0/extras/mount: must be \"floor\", \"wall\" or \"hanging\""), std::string::npos) << error;
+}
+
 TEST_F(GltfFileTest, BadPartParentJointAndKeypointExtrasAreReportedWithTheirPaths) {
   gltf_["scenes"][0]["extras"]["part"] = "";
   gltf_["scenes"][0]["extras"]["parent"] = 3;
@@ -441,7 +509,7 @@ TEST_F(GltfFileTest, BadPartParentJointAndKeypointExtrasAreReportedWithTheirPath
                                "/scenes/0/extras/keypoints/0: needs both name and position",
                                "/scenes/0/extras/keypoints/1/name: must be a non-empty string",
                                "/scenes/0/extras/keypoints/2: must be an object",
-                               "/scenes/0/extras/bone: unknown key (expected class, posture, contacts, part, parent, joint, keypoints)"}) {
+                               "/scenes/0/extras/bone: unknown key (expected class, posture, mount, contacts, part, parent, joint, keypoints)"}) {
     EXPECT_NE(message.find(expected), std::string::npos) << expected << " in: " << message;
   }
   gltf_["scenes"][0]["extras"] = {{"class", "person"}, {"keypoints", "nose"}};

@@ -4,13 +4,17 @@
 // `mixed` draws is what the family alone gives.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene_options.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -24,6 +28,7 @@ class EveryLayout : public testing::TestWithParam<std::string> {};
 TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClosedRouteOver50Seeds) {
   const GeneratorOptions options;
   std::vector<std::string> failures(kSeeds);
+  std::vector<int> whiteboards(kSeeds, 0), people_things(kSeeds, 0);
   ParallelFor(kSeeds, 0, [&](int64_t seed) {
     try {
       const nlohmann::ordered_json doc = GenerateScene(GetParam(), static_cast<uint64_t>(seed), 0, options);
@@ -36,12 +41,30 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
       if (run.laps < options.laps - 0.01) problems += "the robot drove only " + std::to_string(run.laps) + " laps; ";
       if (scene.tables.empty() && scene.crowd.standing.empty()) problems += "an empty room; ";
       if (doc["generator"]["layout"] != GetParam()) problems += "generator.layout is not the family; ";
+      // Every room has its doors in frames, a switch by each, and ceiling lights.
+      std::map<std::string, int> count;
+      for (const ObjectSpec& o : scene.objects) ++count[o.asset];
+      if (count["door_frame"] != static_cast<int>(scene.room.doors.size())) problems += "a door without its frame; ";
+      if (count["light_switch"] < 1 || count["ceiling_light"] < 1) problems += "no switch or no ceiling light; ";
       if (!problems.empty()) failures[static_cast<size_t>(seed)] = "seed " + std::to_string(seed) + ": " + problems;
+      whiteboards[static_cast<size_t>(seed)] = count["whiteboard"];
+      people_things[static_cast<size_t>(seed)] = count["bag"] + count["coat"] + count["charger"];
     } catch (const std::exception& e) {
       failures[static_cast<size_t>(seed)] = "seed " + std::to_string(seed) + ": " + e.what();
     }
   });
   for (const std::string& f : failures) EXPECT_EQ(f, "");
+  // A whiteboard on the front wall of most classroom, seminar_u and meeting_row rooms (never
+  // elsewhere); bags, coats or chargers in most rooms with chairs.
+  const int with_whiteboard = static_cast<int>(std::count_if(whiteboards.begin(), whiteboards.end(), [](int n) { return n > 0; }));
+  const bool front_wall = GetParam() == "classroom" || GetParam() == "seminar_u" || GetParam() == "meeting_row";
+  if (front_wall) {
+    EXPECT_GE(with_whiteboard, kSeeds * 7 / 10);
+  } else {
+    EXPECT_EQ(with_whiteboard, 0);
+  }
+  const int with_things = static_cast<int>(std::count_if(people_things.begin(), people_things.end(), [](int n) { return n > 0; }));
+  if (GetParam() != "lounge") EXPECT_GE(with_things, kSeeds / 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Generator, EveryLayout, testing::ValuesIn(LayoutFamilies()),
@@ -88,6 +111,106 @@ TEST(Generator, TheGeneratorObjectRecordsTheRunAndRenderingIgnoresIt) {
     EXPECT_EQ(a.obstacles()[i].center_m, b.obstacles()[i].center_m);
   }
   EXPECT_EQ(a.people().size(), b.people().size());
+}
+
+// GeneratedSceneProblems' object rules: inside the room, wall objects' backs on a wall facing in,
+// ceiling lights on the ceiling.
+TEST(Generator, ObjectsOffTheirWallOrCeilingOrOutsideTheRoomAreProblems) {
+  const nlohmann::ordered_json doc = GenerateScene("classroom", 3, 0, GeneratorOptions());
+  auto problems_with = [&](const nlohmann::ordered_json& object) {
+    nlohmann::ordered_json changed = doc;
+    changed["objects"].push_back(object);
+    const Scene scene = Load(changed);
+    const BandRadianceTable table;
+    const World world(scene, table);
+    std::string all;
+    for (const std::string& p : GeneratedSceneProblems(scene, world, 0.4, 0.4)) all += p + "; ";
+    return all;
+  };
+  const double height = doc["room"]["size_m"][2];
+  const double width = doc["room"]["size_m"][1];
+  EXPECT_EQ(problems_with({{"asset", "shelf"}, {"position_m", {0.0, 1.0, 1.4}}, {"yaw_deg", 0}}), "");
+  EXPECT_NE(problems_with({{"asset", "shelf"}, {"position_m", {0.1, 1.0, 1.4}}, {"yaw_deg", 0}}).find("(shelf) is wall-mounted but its back is not on a wall"),
+            std::string::npos);
+  EXPECT_NE(problems_with({{"asset", "shelf"}, {"position_m", {0.0, 1.0, 1.4}}, {"yaw_deg", 180}}).find("reaches outside the room"),
+            std::string::npos);
+  EXPECT_EQ(problems_with({{"asset", "shelf"}, {"position_m", {1.0, width, 1.4}}, {"yaw_deg", -90}}), "");
+  EXPECT_EQ(problems_with({{"asset", "ceiling_light"}, {"position_m", {2.0, 2.0, height}}}), "");
+  EXPECT_NE(problems_with({{"asset", "ceiling_light"}, {"position_m", {2.0, 2.0, height - 0.2}}}).find("(ceiling_light) does not touch the ceiling"),
+            std::string::npos);
+}
+
+// A generated classroom with only its wall fittings at room temperature (and, when `lights`, its
+// ceiling lights) left, its room surfaces and the environment at 22 °C (so that what the specular
+// whiteboard mirrors reads 22 °C too) and no window, and a route heading straight at its front
+// wall from 3.5 m; `pitch_deg` tilts the camera.
+nlohmann::ordered_json ClearedClassroom(double pitch_deg, bool lights) {
+  GeneratorOptions options;
+  options.objects.whiteboard_probability = 1;
+  nlohmann::ordered_json doc = GenerateScene("classroom", 5, 0, options);
+  const double middle = 0.5 * doc["room"]["size_m"][1].get<double>();
+  nlohmann::ordered_json kept = nlohmann::ordered_json::array();
+  for (const auto& o : doc["objects"])
+    for (const char* fitting : {"whiteboard", "door_frame", "light_switch", "wall_socket", "shelf"})
+      if (o["asset"] == fitting || (lights && o["asset"] == "ceiling_light")) kept.push_back(o);
+  doc["objects"] = kept;
+  doc["tables"] = nlohmann::ordered_json::array();
+  doc["crowd"]["seating"] = nlohmann::ordered_json::array();
+  doc["crowd"]["standing"] = nlohmann::ordered_json::array();
+  doc["crowd"]["walkers"] = 0;
+  doc["room"]["windows"] = nlohmann::ordered_json::array();
+  doc["room"]["environment_temperature_c"] = 22;
+  doc["room"]["floor"] = {{"temperature_c", 22}};
+  doc["room"]["ceiling"] = {{"temperature_c", 22}};
+  doc["room"]["walls"] = {{"temperature_bottom_c", 22}, {"temperature_top_c", 22}};
+  doc["robot"] = {{"camera_pitch_deg", pitch_deg}};
+  doc["route"]["waypoints_m"] = {{3.5, middle}, {1.2, middle}, {1.2, middle + 1.5}, {3.5, middle + 1.5}};
+  return doc;
+}
+
+// The T_true of the pixels of `class_name` in the second frame of the scene's render.
+std::vector<float> TrueTemperaturesOf(const nlohmann::ordered_json& doc, const std::string& class_name) {
+  const test::TestDir dir(class_name);
+  SequenceOptions render;
+  render.output_dir = (dir.path() / "dataset").string();
+  render.frames = 2;
+  render.threads = 1;
+  RenderSequence(Load(doc), render);
+  const Dataset dataset = Dataset::Open(render.output_dir);
+  const ExrChannels exr = ReadDatasetExr(dataset, 1);
+  const std::string path = DatasetExrPath(dataset, 1);
+  const cv::Mat& cls = ExrChannel(exr, "class", path);
+  const cv::Mat& t_true = ExrChannel(exr, "T_true", path);
+  std::vector<float> out;
+  for (int y = 0; y < cls.rows; ++y)
+    for (int x = 0; x < cls.cols; ++x)
+      if (static_cast<int>(cls.at<float>(y, x)) == dataset.manifest().ClassId(class_name)) out.push_back(t_true.at<float>(y, x));
+  return out;
+}
+
+// The rendered frame's ground truth (T_true, before sensor noise) shows a generated room's
+// whiteboard at its documented 22 °C (board and frame; the lights are taken out for this view, as
+// the board would mirror them) and its ceiling lights' diffuser (26 °C,
+// ε 0.94) and frame (30 °C, ε 0.93) at the band radiance ε·B(T) + (1 − ε)·B(22 °C) gives.
+TEST(Generator, AGeneratedRoomsWhiteboardAndCeilingLightsRenderAtTheirDocumentedTemperatures) {
+  const std::vector<float> board = TrueTemperaturesOf(ClearedClassroom(8, false), "whiteboard");
+  EXPECT_GT(board.size(), 256u * 192u / 10) << "the whiteboard fills a good part of the view";
+  for (float t : board) ASSERT_NEAR(t, 22.0f, 0.01f);
+  const std::vector<float> light = TrueTemperaturesOf(ClearedClassroom(-60, true), "ceiling_light");
+  ASSERT_GT(light.size(), 100u) << "a ceiling light is in view";
+  const BandRadianceTable band;
+  auto apparent = [&](float t_c, float emissivity) {
+    return band.CelsiusFromRadiance(emissivity * band.RadianceFromCelsius(t_c) + (1 - emissivity) * band.RadianceFromCelsius(22));
+  };
+  const float diffuser = apparent(26, 0.94f), frame = apparent(30, 0.93f);
+  int diffuser_pixels = 0, frame_pixels = 0;
+  for (float t : light) {
+    diffuser_pixels += std::abs(t - diffuser) < 0.02f;
+    frame_pixels += std::abs(t - frame) < 0.02f;
+  }
+  EXPECT_GT(diffuser_pixels, frame_pixels);
+  EXPECT_GT(frame_pixels, 0);
+  EXPECT_GE(diffuser_pixels + frame_pixels, static_cast<int>(light.size() * 9 / 10)) << "edge pixels mix the two";
 }
 
 TEST(Generator, ABadLayoutNameIsRefusedNamingTheFamilies) {

@@ -42,6 +42,10 @@ struct Asset {
   std::string path;
   std::string class_name;  // "person", "table", "chair", ...; empty when the file does not say
   std::string posture;     // people: "seated_upright", "standing", ...; else empty
+  // How it is mounted: "floor" (stands on the floor, origin under it; the default), "wall" (its
+  // back on a wall, origin at the bottom of its back face) or "hanging" (hangs from its origin: a
+  // ceiling light, a coat over a backrest). Only floor objects are footprints on the floor.
+  std::string mount = "floor";
   TriangleMesh mesh;
   // The glTF materials in file order; one extra default material ("default") at the end when a
   // primitive has none.
@@ -65,7 +69,7 @@ struct Asset {
 // Throws InputError naming the file (and the glTF JSON path, e.g. "/materials/2/extras/emissivity")
 // on a missing file, a parse error, a non-triangle primitive, missing positions, a bad accessor, or
 // a bad extras value (unknown key, wrong type, temperature outside [-50, 200] °C, emissivity
-// outside (0, 1]). Materials without extras get the ThermalMaterial defaults, silently.
+// outside (0, 1], a mount other than floor, wall or hanging). Materials without extras get the ThermalMaterial defaults, silently.
 Asset LoadAsset(const std::string& path);
 
 // The assets shipped with hoilcd: DataDir()/assets (data_dir.h).

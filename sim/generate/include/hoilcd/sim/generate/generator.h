@@ -17,12 +17,30 @@ namespace hoilcd {
 // The layout families, in the order `mixed` draws from.
 const std::vector<std::string>& LayoutFamilies();
 // Bumped whenever the same arguments would give other scenes; recorded in every scene.
-constexpr int kGeneratorVersion = 1;
+// Version 2: rooms hold doors in frames, switches, sockets, a whiteboard, an air conditioner,
+// shelves, cabinets, ceiling lights, and bags, coats and chargers by occupied seats.
+constexpr int kGeneratorVersion = 2;
 
 // A family's room size, drawn uniformly per scene: length along x, width along y.
 struct RoomSizeRange {
   double length_min_m, length_max_m;  // m
   double width_min_m, width_max_m;    // m
+};
+
+// The things a room holds besides its furniture (the scene's /generator/options/objects);
+// docs/guide/generate.md says where each goes.
+struct RoomObjectOptions {
+  double whiteboard_probability;   // a whiteboard on the front (west) wall of classroom, seminar_u, meeting_row
+  double ac_unit_probability;      // an air conditioner high on the south or east wall
+  double socket_probability;       // a wall socket on the nearer long wall, per table or desk
+  int shelf_count_max;             // wall shelves, uniform in 0..this
+  int cabinet_count_max;           // floor cabinets against free wall, uniform in 0..this
+  double ceiling_light_spacing_m;  // m, pitch of the ceiling lights' grid
+  double bag_probability;          // a bag on the floor beside an occupied chair
+  double coat_probability;         // a coat over an occupied chair's backrest
+  double charger_probability;      // a charger on the table top beside an occupied seat
+
+  static const OptionTable<RoomObjectOptions>& Table();
 };
 
 // Every parameter of the generator but the layout, seed and count (the scene's /generator/options).
@@ -38,6 +56,7 @@ struct GeneratorOptions {
   double route_wall_m;                            // m, route from the walls
   double route_clearance_m;                       // m, route centre line from every footprint
   int attempts;                                   // draws of a scene before it is given up
+  RoomObjectOptions objects;                      // doors, wall and ceiling fittings, people's things
 
   GeneratorOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /generator/options), unit, default, range, description.
@@ -57,7 +76,8 @@ std::string FamilyOf(const std::string& layout, uint64_t seed, int index);
 // What the generator checks of every scene it makes, one sentence per problem (none: fine):
 // footprints inside the room and apart (a chair may stand under its own table), every seat
 // reachable on foot from the route's start, the route a closed clockwise loop keeping wall_m
-// from the walls and clearance_m from every footprint.
+// from the walls and clearance_m from every footprint, every object inside the room, wall-mounted
+// ones touching a wall with their backs and ceiling lights touching the ceiling.
 std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World& world, double wall_m, double clearance_m);
 
 // A scene file's name in the output folder: "scene_0007_classroom.json".

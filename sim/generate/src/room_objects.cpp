@@ -1,0 +1,295 @@
+#include "room_objects.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace hoilcd {
+namespace {
+
+// Sizes of the shipped room objects (assets/README.md), m: along the wall, out of it, height.
+constexpr double kWhiteboardHalfM = 0.90, kWhiteboardBottomM = 0.90, kWhiteboardHeightM = 1.20;
+constexpr double kDoorFrameHalfM = 0.52, kDoorFrameHeightM = 2.12;
+constexpr double kPlateHalfM = 0.043, kPlateHeightM = 0.086;  // light_switch; wall_socket is two plates
+constexpr double kAcHalfM = 0.40, kAcHeightM = 0.28, kAcBelowCeilingM = 0.15;
+constexpr double kShelfHalfM = 0.45, kShelfHeightM = 0.50, kShelfBottomM = 1.45;
+constexpr double kCabinetHalfM = 0.40, kCabinetDepthM = 0.42, kCabinetHeightM = 1.34;
+constexpr double kBagLengthM = 0.32, kBagWidthM = 0.14;
+constexpr double kChargerHalfM = 0.055, kChargerHalfWidthM = 0.025;
+// Heights of the fittings' bottom edges: a switch centred 1.05 m up, a socket 0.30 m up (DIN
+// 18015-3's installation zones, the usual European practice).
+constexpr double kSwitchBottomM = 1.05 - kPlateHeightM / 2, kSocketBottomM = 0.30;
+// chair.gltf: the seat is 0.42 m wide; the backrest's top edge is 0.253 m behind the seat centre,
+// 0.86 m up. Table tops are at 0.74 m.
+constexpr double kChairHalfWidthM = 0.21, kBackrestBackM = 0.253, kBackrestTopM = 0.86, kTableTopM = 0.74;
+constexpr double kCornerM = 0.1;      // fittings keep this far from a room corner
+constexpr double kGapM = 0.1;         // and from each other along a wall
+constexpr double kDoorwayM = 1.0;     // floor objects keep this far from a doorway's centre
+constexpr double kAccessRadiusM = 0.18;  // GeneratedSceneProblems: a person squeezing to a seat
+
+enum Wall { kSouth, kNorth, kWest, kEast };
+
+// The stretches of wall taken: along the wall (x for south and north, y for west and east) and
+// in height.
+struct Span {
+  Wall wall;
+  double a, b, z0, z1;
+};
+
+class WallPlan {
+ public:
+  explicit WallPlan(const Eigen::Vector3d& size_m) : size_m_(size_m) {}
+
+  double Length(Wall wall) const { return wall == kSouth || wall == kNorth ? size_m_.x() : size_m_.y(); }
+
+  bool Free(Wall wall, double a, double b, double z0, double z1) const {
+    if (a < kCornerM || b > Length(wall) - kCornerM || z1 > size_m_.z()) return false;
+    for (const Span& s : spans_)
+      if (s.wall == wall && a < s.b + kGapM && s.a < b + kGapM && z0 < s.z1 && s.z0 < z1) return false;
+    return true;
+  }
+
+  void Take(Wall wall, double a, double b, double z0, double z1) { spans_.push_back({wall, a, b, z0, z1}); }
+
+  // An object with its back on `wall` at `along_m`, its bottom at z_m: the asset's origin and yaw.
+  PlacedObject On(const std::string& asset, Wall wall, double along_m, double z_m) const {
+    switch (wall) {
+      case kSouth: return {asset, Eigen::Vector3d(along_m, 0, z_m), 90};
+      case kNorth: return {asset, Eigen::Vector3d(along_m, size_m_.y(), z_m), -90};
+      case kWest: return {asset, Eigen::Vector3d(0, along_m, z_m), 0};
+      case kEast: break;
+    }
+    return {asset, Eigen::Vector3d(size_m_.x(), along_m, z_m), 180};
+  }
+
+ private:
+  Eigen::Vector3d size_m_;
+  std::vector<Span> spans_;
+};
+
+// Takes the stretch and places the object when the stretch is free.
+bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& asset, Wall wall, double along_m, double half_m,
+           double bottom_m, double height_m) {
+  if (!plan->Free(wall, along_m - half_m, along_m + half_m, bottom_m, bottom_m + height_m)) return false;
+  plan->Take(wall, along_m - half_m, along_m + half_m, bottom_m, bottom_m + height_m);
+  out->push_back(plan->On(asset, wall, along_m, bottom_m));
+  return true;
+}
+
+bool IsWallName(const std::string& name) { return name.size() > 5 && name.compare(name.size() - 5, 5, " wall") == 0; }
+
+// The footprints of the furniture, objects and standing people (walls left out).
+std::vector<Obstacle2D> Footprints(const World& world) {
+  std::vector<Obstacle2D> out;
+  for (const Obstacle2D& o : world.obstacles())
+    if (!IsWallName(o.name)) out.push_back(o);
+  return out;
+}
+
+// The route's centre line, every 2 cm.
+std::vector<Eigen::Vector2d> RoutePoints(const std::vector<Eigen::Vector2d>& route) {
+  std::vector<Eigen::Vector2d> out;
+  for (size_t i = 0; i < route.size(); ++i) {
+    const Eigen::Vector2d& a = route[i];
+    const Eigen::Vector2d& b = route[(i + 1) % route.size()];
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / 0.02)));
+    for (int k = 0; k < steps; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / steps));
+  }
+  return out;
+}
+
+// Where a person stands before sitting (as GeneratedSceneProblems reaches it).
+std::vector<Eigen::Vector2d> SeatAccess(const World& world) {
+  std::vector<Eigen::Vector2d> out;
+  for (const Crowd::SeatPlace& seat : world.seat_places()) {
+    const Eigen::Vector2d at = seat.world_from_seat.topRightCorner<2, 1>().cast<double>();
+    const Eigen::Vector2d facing = seat.world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
+    out.push_back(seat.chair ? Eigen::Vector2d(at - 0.5 * facing) : Eigen::Vector2d(at + 0.52 * facing));
+  }
+  return out;
+}
+
+// A floor object's footprint clear of the walls, every other footprint, the doorways, the seats'
+// access and the route.
+struct FloorCheck {
+  Eigen::Vector2d room_m;
+  std::vector<Obstacle2D> footprints;
+  std::vector<Eigen::Vector2d> doors, access, route;
+  double clearance_m;
+
+  bool Clear(const Obstacle2D& o) const {
+    const double c = std::cos(o.yaw_rad), s = std::sin(o.yaw_rad);
+    const Eigen::Vector2d reach(std::abs(c) * o.half_size_m.x() + std::abs(s) * o.half_size_m.y(),
+                                std::abs(s) * o.half_size_m.x() + std::abs(c) * o.half_size_m.y());
+    if ((o.center_m - reach).minCoeff() < 0.01 || o.center_m.x() + reach.x() > room_m.x() - 0.01 ||
+        o.center_m.y() + reach.y() > room_m.y() - 0.01) {
+      return false;
+    }
+    Obstacle2D grown = o;
+    grown.half_size_m += Eigen::Vector2d(0.02, 0.02);
+    for (const Obstacle2D& f : footprints)
+      if (FootprintsOverlap(grown, f)) return false;
+    for (const Eigen::Vector2d& d : doors)
+      if (DistanceToObstacle(d, o) < kDoorwayM) return false;
+    for (const Eigen::Vector2d& a : access)
+      if (DistanceToObstacle(a, o) < kAccessRadiusM + 0.05) return false;
+    for (const Eigen::Vector2d& p : route)
+      if (DistanceToObstacle(p, o) < clearance_m + 0.01) return false;
+    return true;
+  }
+};
+
+FloorCheck MakeFloorCheck(const Eigen::Vector2d& room_m, const World& world, const std::vector<Eigen::Vector2d>& doors,
+                          const std::vector<Eigen::Vector2d>& route, double clearance_m) {
+  return {room_m, Footprints(world), doors, SeatAccess(world), RoutePoints(route), clearance_m};
+}
+
+Eigen::Vector2d Rotate(double yaw_rad, const Eigen::Vector2d& v) { return Eigen::Rotation2Dd(yaw_rad) * v; }
+
+}  // namespace
+
+bool HasFrontWall(const std::string& family) {
+  return family == "classroom" || family == "seminar_u" || family == "meeting_row";
+}
+
+std::vector<Eigen::Vector2d> RoomDoors(const Eigen::Vector2d& size_m, bool whiteboard) {
+  std::vector<Eigen::Vector2d> doors = {{size_m.x(), 0.5 * size_m.y()}};
+  const double corner_y = kCornerM + kDoorFrameHalfM;
+  if (!whiteboard) {
+    doors.insert(doors.begin(), Eigen::Vector2d(0, 0.5 * size_m.y()));
+  } else if (0.5 * size_m.y() - corner_y - kDoorFrameHalfM >= kWhiteboardHalfM + kGapM) {
+    doors.insert(doors.begin(), Eigen::Vector2d(0, corner_y));  // by the south corner of the front wall
+  }
+  return doors;
+}
+
+std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layout& layout, const nlohmann::ordered_json& windows,
+                                       const std::vector<Eigen::Vector2d>& doors, bool whiteboard, const World& world,
+                                       const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng) {
+  const RoomObjectOptions& o = options.objects;
+  WallPlan plan(size_m);
+  std::vector<PlacedObject> out;
+  for (const auto& w : windows) {
+    const std::string wall = w["wall"];
+    const Wall at = wall == "south" ? kSouth : wall == "north" ? kNorth : wall == "west" ? kWest : kEast;
+    const double center = w["center_m"], width = w["width_m"], bottom = w["bottom_m"], height = w["height_m"];
+    plan.Take(at, center - 0.5 * width, center + 0.5 * width, bottom, bottom + height);
+  }
+  if (whiteboard) Mount(&plan, &out, "whiteboard", kWest, 0.5 * size_m.y(), kWhiteboardHalfM, kWhiteboardBottomM, kWhiteboardHeightM);
+  // Each door in its frame, its switch on the handle's side (the frame's -y), else on the other.
+  for (const Eigen::Vector2d& d : doors) {
+    const Wall wall = d.x() < 0.5 * size_m.x() ? kWest : kEast;
+    plan.Take(wall, d.y() - kDoorFrameHalfM, d.y() + kDoorFrameHalfM, 0, kDoorFrameHeightM);
+    out.push_back(plan.On("door_frame", wall, d.y(), 0));
+    const double handle_side = wall == kWest ? -1 : 1;  // the frame's -y along the wall
+    const double offset = kDoorFrameHalfM + kGapM + kPlateHalfM + 0.001;
+    if (!Mount(&plan, &out, "light_switch", wall, d.y() + handle_side * offset, kPlateHalfM, kSwitchBottomM, kPlateHeightM)) {
+      Mount(&plan, &out, "light_switch", wall, d.y() - handle_side * offset, kPlateHalfM, kSwitchBottomM, kPlateHeightM);
+    }
+  }
+  // The air conditioner high on the south or the east wall, its top kAcBelowCeilingM down.
+  if (rng->Uniform() < o.ac_unit_probability) {
+    const double bottom = size_m.z() - kAcBelowCeilingM - kAcHeightM;
+    const Wall first = rng->Uniform() < 0.5 ? kSouth : kEast;
+    bool placed = false;
+    for (int attempt = 0; attempt < 8 && !placed; ++attempt) {
+      const Wall wall = attempt % 2 == 0 ? first : (first == kSouth ? kEast : kSouth);
+      const double along = rng->Uniform(kCornerM + kAcHalfM, plan.Length(wall) - kCornerM - kAcHalfM);
+      placed = Mount(&plan, &out, "ac_unit", wall, along, kAcHalfM, bottom, kAcHeightM);
+    }
+  }
+  // A socket on the nearer long wall for some of the tables and desks.
+  for (const Piece& piece : layout.pieces) {
+    if (rng->Uniform() >= o.socket_probability || piece.seats == "none" || piece.seats == "sofa") continue;
+    const Wall wall = piece.center_m.y() < 0.5 * size_m.y() ? kSouth : kNorth;
+    Mount(&plan, &out, "wall_socket", wall, piece.center_m.x(), 2 * kPlateHalfM, kSocketBottomM, kPlateHeightM);
+  }
+  // Shelves and cabinets on free stretches of the south, north and east walls.
+  const Wall shelf_walls[] = {kSouth, kNorth, kEast};
+  const int shelves = static_cast<int>(rng->UniformInt(static_cast<uint32_t>(o.shelf_count_max + 1)));
+  for (int k = 0, tries = 0; k < shelves && tries < 12 * shelves; ++tries) {
+    const Wall wall = shelf_walls[rng->UniformInt(3)];
+    const double along = rng->Uniform(kCornerM + kShelfHalfM, plan.Length(wall) - kCornerM - kShelfHalfM);
+    k += Mount(&plan, &out, "shelf", wall, along, kShelfHalfM, kShelfBottomM, kShelfHeightM);
+  }
+  FloorCheck floor = MakeFloorCheck(size_m.head<2>(), world, doors, route, options.route_clearance_m);
+  const int cabinets = static_cast<int>(rng->UniformInt(static_cast<uint32_t>(o.cabinet_count_max + 1)));
+  for (int k = 0, tries = 0; k < cabinets && tries < 12 * cabinets; ++tries) {
+    const Wall wall = shelf_walls[rng->UniformInt(3)];
+    const double along = rng->Uniform(kCornerM + kCabinetHalfM, plan.Length(wall) - kCornerM - kCabinetHalfM);
+    if (!plan.Free(wall, along - kCabinetHalfM, along + kCabinetHalfM, 0, kCabinetHeightM)) continue;
+    // The cabinet stands 1 cm off the wall: its origin is under its centre.
+    PlacedObject cabinet = plan.On("cabinet", wall, along, 0);
+    const double yaw = cabinet.yaw_deg * M_PI / 180;
+    cabinet.position_m.head<2>() += Rotate(yaw, Eigen::Vector2d(0.5 * kCabinetDepthM + 0.01, 0));
+    const Obstacle2D footprint = Obstacle2D::Rectangle("cabinet", cabinet.position_m.head<2>(),
+                                                       Eigen::Vector2d(kCabinetDepthM, 2 * kCabinetHalfM), yaw);
+    if (!floor.Clear(footprint)) continue;
+    plan.Take(wall, along - kCabinetHalfM, along + kCabinetHalfM, 0, kCabinetHeightM);
+    floor.footprints.push_back(footprint);
+    out.push_back(cabinet);
+    ++k;
+  }
+  // Ceiling lights in a grid of cells about ceiling_light_spacing_m across, one in each cell's middle.
+  const int nx = std::max(1, static_cast<int>(std::lround(size_m.x() / o.ceiling_light_spacing_m)));
+  const int ny = std::max(1, static_cast<int>(std::lround(size_m.y() / o.ceiling_light_spacing_m)));
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      out.push_back({"ceiling_light", Eigen::Vector3d((i + 0.5) * size_m.x() / nx, (j + 0.5) * size_m.y() / ny, size_m.z()), 0});
+  return out;
+}
+
+std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& occupied, const Eigen::Vector2d& size_m,
+                                        const Layout& layout, const std::vector<Eigen::Vector2d>& doors, const World& world,
+                                        const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng) {
+  const RoomObjectOptions& o = options.objects;
+  FloorCheck floor = MakeFloorCheck(size_m, world, doors, route, options.route_clearance_m);
+  std::vector<PlacedObject> out;
+  const std::vector<Crowd::SeatPlace> seats = world.seat_places();
+  for (const auto& [table, seat] : occupied) {
+    const auto place = std::find_if(seats.begin(), seats.end(), [&](const Crowd::SeatPlace& s) { return s.table == table && s.seat == seat; });
+    const double bag = rng->Uniform(), coat = rng->Uniform(), charger = rng->Uniform(), side = rng->Uniform() < 0.5 ? 1.0 : -1.0;
+    if (place == seats.end() || !place->chair) continue;  // a sofa's places hold nothing of this
+    const Eigen::Vector2d at = place->world_from_seat.topRightCorner<2, 1>().cast<double>();
+    const Eigen::Vector2d facing = place->world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
+    const double yaw = std::atan2(facing.y(), facing.x());
+    const double yaw_deg = yaw * 180 / M_PI;
+    if (bag < o.bag_probability) {
+      // On the floor beside the chair, its long side along the seat's facing; the other side if
+      // this one is taken.
+      for (double s : {side, -side}) {
+        const Eigen::Vector2d center = at + Rotate(yaw, Eigen::Vector2d(-0.03, s * (kChairHalfWidthM + 0.02 + 0.5 * kBagWidthM)));
+        const Obstacle2D footprint = Obstacle2D::Rectangle("bag", center, Eigen::Vector2d(kBagLengthM, kBagWidthM), yaw);
+        if (!floor.Clear(footprint)) continue;
+        floor.footprints.push_back(footprint);
+        out.push_back({"bag", Eigen::Vector3d(center.x(), center.y(), 0), yaw_deg});
+        break;
+      }
+    }
+    if (coat < o.coat_probability) {
+      const Eigen::Vector2d hook = at + Rotate(yaw, Eigen::Vector2d(-kBackrestBackM, 0));
+      out.push_back({"coat", Eigen::Vector3d(hook.x(), hook.y(), kBackrestTopM), yaw_deg});
+    }
+    if (charger < o.charger_probability) {
+      // On the table top 6 cm in from its near edge, 0.30 m to the person's left (clear of their
+      // cup on the right, their laptop in front and the neighbours' props), along the edge.
+      const Piece& piece = layout.pieces[static_cast<size_t>(table)];
+      if (piece.asset == "low_table" || piece.asset == "sofa" || piece.asset == "lectern") continue;
+      const std::string name = "table " + std::to_string(table);
+      const auto top = std::find_if(world.obstacles().begin(), world.obstacles().end(), [&](const Obstacle2D& f) { return f.name == name; });
+      if (top == world.obstacles().end()) continue;
+      double edge = 0;
+      while (edge < 1.0 && DistanceToObstacle(at + edge * facing, *top) > 0) edge += 0.005;
+      const Eigen::Vector2d center = at + Rotate(yaw, Eigen::Vector2d(edge + 0.055, 0.30));
+      bool on_top = edge < 1.0;
+      for (int corner = 0; corner < 4 && on_top; ++corner) {
+        const Eigen::Vector2d p = center + Rotate(yaw, Eigen::Vector2d((corner & 1 ? 1 : -1) * kChargerHalfWidthM, (corner & 2 ? 1 : -1) * kChargerHalfM));
+        on_top = piece.asset == "round_table" ? (p - piece.center_m).norm() < 0.44 : DistanceToObstacle(p, *top) == 0;
+      }
+      if (on_top) out.push_back({"charger", Eigen::Vector3d(center.x(), center.y(), kTableTopM), yaw_deg + 90});
+    }
+  }
+  return out;
+}
+
+}  // namespace hoilcd
