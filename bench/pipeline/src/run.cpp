@@ -32,6 +32,9 @@ const OptionTable<RunOptions>& RunOptions::Table() {
           .Rule("cache_dir", [](const O& o) { return o.cache_dir.empty() ? "must not be empty" : ""; })
           .Add("report_dir", &O::report_dir, "", {}, "the report folder (empty: CACHE/<scene>-<hash>/report)")
           .Add("threads", &O::threads, 0, "", R::Any().AtLeast(0), "threads (0: every core)")
+          .Add("keep_datasets", &O::keep_datasets, true,
+               "keep each rendered dataset in the cache; false deletes it (and its SLAM calibration's) once the report "
+               "is written, for suites and sweeps too large to keep (~1 GB a thousand frames)")
           .Add("calibration_seed_offset", &O::calibration_seed_offset, uint64_t{1000}, "", R::Any().AtLeast(0),
                "the SLAM calibration run renders the scene with seed + this");
   return table;
@@ -295,6 +298,11 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   } catch (...) {
     stop_calibration = true;  // as for a failed render
     throw;
+  }
+  if (!options.keep_datasets) {
+    std::error_code ec;  // a dataset that cannot be removed only costs disk
+    std::filesystem::remove_all(out.dataset_dir, ec);
+    if (!out.calibration_dir.empty()) std::filesystem::remove_all(out.calibration_dir, ec);
   }
   return out;
 }

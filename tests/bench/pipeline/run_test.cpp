@@ -165,6 +165,28 @@ TEST(RunScene, TheSlamCalibrationIsCachedDatasetAndThresholdsAndRedoneWhenItsInp
   EXPECT_FALSE(RunScene(scene, fewer_trials, options).timing.calibration_bench_cached);
 }
 
+TEST(RunScene, WithoutKeepingDatasetsTheReportStaysAndTheDatasetsGo) {
+  const test::TestDir temp;
+  const Scene scene = TinyRoom();
+  BenchOptions bench;
+  bench.methods = {"slcd", "thumb"};
+  bench.slam = true;
+  RunOptions dropping = CachedIn((temp.path() / "dropping").string());
+  dropping.keep_datasets = false;
+  const RunOutcome dropped = RunScene(scene, bench, dropping);
+  EXPECT_TRUE(fs::exists(dropped.report_dir + "/report.json"));
+  EXPECT_FALSE(fs::exists(dropped.dataset_dir)) << dropped.dataset_dir;
+  ASSERT_FALSE(dropped.calibration_dir.empty());
+  EXPECT_FALSE(fs::exists(dropped.calibration_dir)) << dropped.calibration_dir;
+  // The same figures as a run that keeps them.
+  const RunOutcome kept = RunScene(scene, bench, CachedIn((temp.path() / "keeping").string()));
+  EXPECT_TRUE(fs::exists(kept.dataset_dir));
+  ASSERT_EQ(kept.result.runs.size(), dropped.result.runs.size());
+  for (size_t i = 0; i < kept.result.runs.size(); ++i) {
+    EXPECT_EQ(kept.result.runs[i].metrics.mrr, dropped.result.runs[i].metrics.mrr) << kept.result.runs[i].name;
+  }
+}
+
 // slcd, dlcd and thumb with the SLAM section, so with the calibration.
 BenchOptions SlcdDlcdThumbWithSlam() {
   BenchOptions bench;

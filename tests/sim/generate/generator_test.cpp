@@ -64,7 +64,9 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
     EXPECT_EQ(with_whiteboard, 0);
   }
   const int with_things = static_cast<int>(std::count_if(people_things.begin(), people_things.end(), [](int n) { return n > 0; }));
-  if (GetParam() != "lounge") EXPECT_GE(with_things, kSeeds / 2);
+  if (GetParam() != "lounge") {
+    EXPECT_GE(with_things, kSeeds / 2);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Generator, EveryLayout, testing::ValuesIn(LayoutFamilies()),

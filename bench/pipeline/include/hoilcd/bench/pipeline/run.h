@@ -19,6 +19,7 @@ struct RunOptions {
   std::string cache_dir;   // datasets and reports go to CACHE/<scene>-<hash>/
   std::string report_dir;  // default CACHE/<scene>-<hash>/report
   int threads;             // 0 = every core
+  bool keep_datasets;      // false: each dataset (and its SLAM calibration's) is deleted once its report is written
   const std::atomic<bool>* cancel = nullptr;  // set by code to stop early; a hook, not in the table
   // SLAM loop thresholds (when bench.slam and no --loop-threshold): each method's 100 %-precision
   // threshold on the scene rendered with seed + calibration_seed_offset. Its dataset is cached

@@ -44,8 +44,8 @@ struct BenchResult {
   std::string other_ground_truth;          // the other one
   std::vector<Query> other_queries;        // the same queries labelled with other_ground_truth
   LabelDisagreement label_disagreement;    // queries vs other_queries
-  std::vector<LabelAgreement> label_agreements;
-  std::string no_true_match;  // NoTrueMatchReason: empty unless no query has a true match  // Labelling::agreements: how the ground truths differ
+  std::vector<LabelAgreement> label_agreements;  // Labelling::agreements: how the ground truths differ
+  std::string no_true_match;  // NoTrueMatchReason: empty unless no query has a true match
   std::vector<MethodRun> runs;             // in the order asked for
   // Optional methods left out, each "<method>: <why>" (the dataset lacks the ground truth it needs).
   std::vector<std::string> skipped;
