@@ -212,9 +212,10 @@ InspectSection ViewSection(const Dataset& dataset, int threads) {
   ParallelFor(static_cast<int64_t>(sampled.size()), threads,
               [&](int64_t i) { views[static_cast<size_t>(i)] = ImageConditionsOf(dataset, sampled[static_cast<size_t>(i)]); });
   std::vector<double> spread, contrast;
-  int blank = 0, people = 0;
+  int blank = 0, bare = 0, people = 0;
   for (const QueryConditions& c : views) {
     blank += c.blank;
+    bare += c.structure_only_classes;
     people += c.person_pixels > 0;
     spread.push_back(c.temperature_spread_k);
     contrast.push_back(100 * c.structure_contrast_fraction);
@@ -224,6 +225,7 @@ InspectSection ViewSection(const Dataset& dataset, int threads) {
       NumberFigure("frames_sampled", "frames sampled (evenly spaced)", static_cast<double>(views.size()), ""),
       NumberFigure("blank_percent", "blank views (spread < " + ShortestDouble(kBlankSpreadK) + " K, walls/floor/ceiling only)",
                    100 * blank / n, "%"),
+      NumberFigure("bare_percent", "bare views (walls/floor/ceiling only, whatever their spread)", 100 * bare / n, "%"),
       NumberFigure("with_people_percent", "views with a person", 100 * people / n, "%"),
       NumberFigure("spread_median_k", "true temperature spread (p98 - p2), median", Median(spread), "K"),
       NumberFigure("static_contrast_median_percent", "static pixels with contrast, median", Median(contrast), "%"),

@@ -144,10 +144,16 @@ TEST(Inspect, ViewsCountTheBlankFramesOfTheEvenlySampledExrs) {
   const InspectSection views = ViewSection(dataset, 2);
   const int frames = dataset.num_frames();  // 440: every frame is sampled (at most 400 a step of 2)
   const int step = (frames + kViewFramesSampled - 1) / kViewFramesSampled;
-  int sampled = 0, blank = 0;
-  for (int f = 0; f < frames; f += step, ++sampled) blank += ImageConditionsOf(dataset, f).blank;
+  int sampled = 0, blank = 0, bare = 0;
+  for (int f = 0; f < frames; f += step, ++sampled) {
+    const QueryConditions c = ImageConditionsOf(dataset, f);
+    blank += c.blank;
+    bare += c.structure_only_classes;
+  }
   EXPECT_EQ(views.Find("frames_sampled")->value, sampled);
   EXPECT_DOUBLE_EQ(views.Find("blank_percent")->value, 100.0 * blank / sampled);
+  EXPECT_DOUBLE_EQ(views.Find("bare_percent")->value, 100.0 * bare / sampled);
+  EXPECT_GE(bare, blank);  // a blank view is a bare one with little spread
   EXPECT_GT(views.Find("with_people_percent")->value, 0);  // the tiny room's camera faces its table
   EXPECT_GT(views.Find("spread_median_k")->value, kBlankSpreadK);
   // The same at one thread, and in the dataset's inspect report.
