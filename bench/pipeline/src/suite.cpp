@@ -105,7 +105,7 @@ std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& ben
                            {"failed", nlohmann::json::array()},
                            {"finished", false}};
   for (const SuiteRunSpec& run : runs) marker["runs"].push_back(run.name);
-  const auto write_marker = [&] { WriteFileAtomic(out + "/suite.json", marker.dump(2) + "\n"); };
+  const auto write_marker = [&] { WriteFileAtomic(out + "/suite.json", marker.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"); };
   write_marker();
 
   const std::vector<std::string> methods = bench_json.at("methods").get<std::vector<std::string>>();

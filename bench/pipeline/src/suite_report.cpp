@@ -11,6 +11,7 @@
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
@@ -23,17 +24,6 @@ constexpr uint64_t kMaxMarkerBytes = 64u << 20;
 
 const OutputMarker kSuiteFolder{"suite.json", {"suite", "runs"}, "suite"};
 const OutputMarker kSuiteReport{"suite_report.json", {"suite", "runs", "methods", "failed"}, "suite report"};
-
-double Metric(const nlohmann::json& method, const char* key) {
-  const auto it = method.find(key);
-  return it != method.end() && it->is_number() ? it->get<double>() : NAN;
-}
-
-// Where two identities first differ, as a JSON pointer (the first operation of their JSON Patch).
-std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b) {
-  const nlohmann::json patch = nlohmann::json::diff(a, b);
-  return patch.empty() ? "/" : patch.front().value("path", "/");
-}
 
 // `value` as compact JSON of at most 80 characters.
 std::string Shown(const nlohmann::json& value) {
@@ -49,7 +39,7 @@ std::string IdentityDifference(const nlohmann::json& there, const nlohmann::json
   for (const char* key : {"split", "bench", "name", "description", "sequences", "runs"}) {
     const nlohmann::json a = there.value(key, nlohmann::json()), b = here.value(key, nlohmann::json());
     if (a == b) continue;
-    nlohmann::json::json_pointer at("/" + std::string(key) + FirstDifference(a, b));
+    nlohmann::json::json_pointer at("/" + std::string(key) + JsonFirstDifference(a, b));
     while (!at.parent_pointer().empty() &&
            (at.back() == "-" || at.back().find_first_not_of("0123456789") == std::string::npos)) {
       at = at.parent_pointer();
@@ -57,7 +47,7 @@ std::string IdentityDifference(const nlohmann::json& there, const nlohmann::json
     const auto value = [&](const nlohmann::json& j) { return j.contains(at) ? Shown(j.at(at)) : "absent"; };
     return at.to_string() + " is " + value(there) + " there and " + value(here) + " here";
   }
-  return FirstDifference(there, here);
+  return JsonFirstDifference(there, here);
 }
 
 std::string JoinNames(const std::vector<std::string>& names) {
@@ -151,7 +141,7 @@ std::string WhyUnfinished(const std::string& run_dir, const std::string& run, co
   }
   if (record.value("bench", nlohmann::json()) != bench) {
     return run_dir + "/suite_run.json records other bench settings (at " +
-           FirstDifference(bench, record.value("bench", nlohmann::json())) + ")";
+           JsonFirstDifference(bench, record.value("bench", nlohmann::json())) + ")";
   }
   return "";
 }
@@ -166,8 +156,8 @@ SuiteRunResult ReadSuiteRunResult(const std::string& name, const std::string& re
   for (const std::string& m : methods) {
     if (!report.at("methods").contains(m)) throw InputError(report_path, "has no results of method " + m);
     const nlohmann::json& method = report.at("methods").at(m);
-    result.mrr[m] = Metric(method, "mrr");
-    result.recall_at_1[m] = Metric(method, "recall_at_1");
+    result.mrr[m] = JsonNumberOrNan(method, "mrr");
+    result.recall_at_1[m] = JsonNumberOrNan(method, "recall_at_1");
   }
   return result;
 }
@@ -269,7 +259,7 @@ void CheckSuiteReportFolder(const std::string& out_dir) {
 void WriteSuiteReport(const SuiteSummary& summary, const std::string& out_dir) {
   CheckSuiteReportFolder(out_dir);
   CreateOutputFolder(out_dir);
-  WriteFileAtomic(out_dir + "/suite_report.json", summary.ToJson().dump(2) + "\n");
+  WriteFileAtomic(out_dir + "/suite_report.json", summary.ToJson().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   WriteFileAtomic(out_dir + "/suite_report.md", summary.ToMarkdown());
 }
 

@@ -13,7 +13,6 @@
 
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/bench/methods/methods.h"
-#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/text.h"

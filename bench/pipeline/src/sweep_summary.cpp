@@ -16,6 +16,7 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/stats.h"
 #include "hoilcd/core/util/text.h"
 
@@ -33,17 +34,6 @@ std::string CsvField(const std::string& s) {
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-double JsonMetric(const nlohmann::json& method, const std::string& key) {
-  const auto it = method.find(key);
-  return it != method.end() && it->is_number() ? it->get<double>() : NAN;
-}
-
-// Where two plans first differ, as a JSON pointer (the first operation of their JSON Patch).
-std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b) {
-  const nlohmann::json patch = nlohmann::json::diff(a, b);
-  return patch.empty() ? "" : patch.front().value("path", "");
 }
 
 // What shards of one sweep share: the plan without the scene path (the same scene file may sit
@@ -110,7 +100,7 @@ ShardContents ReadShards(const std::vector<std::string>& dirs, const SweepPlan* 
       out.plan_source = marker_path;
     } else if (Identity(dir_plan) != Identity(*out.plan)) {
       throw InputError(marker_path, "its sweep differs from the one in " + out.plan_source + " at " +
-                                        FirstDifference(Identity(dir_plan), Identity(*out.plan)) +
+                                        JsonFirstDifference(Identity(dir_plan), Identity(*out.plan)) +
                                         " (shards of one sweep must be run with the same scene, --set, --seeds and bench flags)");
     }
     const std::string shard = std::to_string(marker["shard"].value("index", 0)) + "/" +
@@ -182,7 +172,7 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
       if (!report.contains("methods") || !report["methods"].contains(methods[m])) {
         throw InputError(path, "has no results of method " + methods[m]);
       }
-      for (size_t k = 0; k < metrics.size(); ++k) v[m][k].push_back(JsonMetric(report["methods"][methods[m]], metrics[k].key));
+      for (size_t k = 0; k < metrics.size(); ++k) v[m][k].push_back(JsonNumberOrNan(report["methods"][methods[m]], metrics[k].key));
     }
   }
 

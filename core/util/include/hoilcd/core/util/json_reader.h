@@ -27,6 +27,13 @@ inline std::string JsonPointerToken(const std::string& key) {
   return out;
 }
 
+// Where b first differs from a, as a JSON pointer (the path of the first operation of their JSON
+// Patch); "/" when they are equal.
+inline std::string JsonFirstDifference(const nlohmann::json& a, const nlohmann::json& b) {
+  const nlohmann::json patch = nlohmann::json::diff(a, b);
+  return patch.empty() ? "/" : patch.front().value("path", "/");
+}
+
 // Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
 class JsonReader {
  public:
