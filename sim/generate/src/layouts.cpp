@@ -24,7 +24,7 @@ constexpr double kStandingRadiusM = 0.3;
 // Half sizes of the shipped pieces (assets/README.md), m.
 constexpr double kTableHalfLengthM = 0.45, kTableHalfDepthM = 0.375;  // table.gltf
 constexpr double kDeskHalfLengthM = 0.60, kDeskHalfDepthM = 0.30;     // desk.gltf
-constexpr double kRoundTableRadiusM = 0.45, kSquareTableHalfM = 0.40;
+constexpr double kRoundTableRadiusM = 0.45;
 constexpr double kSofaFrontM = 0.30, kSofaBackM = 0.45;  // sofa.gltf: seat front and back, from its origin
 constexpr double kLowTableHalfDepthM = 0.25;
 constexpr double kPartitionHalfLengthM = 0.80;
