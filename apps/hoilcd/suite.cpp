@@ -94,7 +94,7 @@ int SuiteCommand(const SuiteArgs& args) {
 Command AddSuiteCommand(CLI::App* app) {
   auto args = std::make_shared<SuiteArgs>();
   CLI::App* cmd = app->add_subcommand(
-      "suite", "run every sequence x seed of a suite file; mean MRR over runs with 95 % intervals, ranks, wins");
+      "suite", "run every sequence x seed of a suite file; mean MRR over sequences with 95 % intervals, ranks, wins");
   cmd->footer(
       "Each run's report goes to OUT/runs/<sequence>-seed<S>/ and is kept on a rerun when its scene\n"
       "and bench settings are unchanged. A run that fails is listed in the report with its error;\n"

@@ -92,13 +92,22 @@ SuiteSummary SummariseSuite(const std::string& name, const std::string& descript
   s.name = name;
   s.description = description;
   s.bootstrap = options;
-  for (const std::string& m : methods) s.methods.push_back({m, {}, {}, {}, NAN, NAN, NAN, {}, {}});
+  for (const std::string& m : methods) {
+    SuiteMethodSummary summary;
+    summary.method = m;
+    s.methods.push_back(summary);
+  }
+  std::vector<size_t> run_sequence;  // per finished run: its index in s.sequences
   for (const SuiteRunResult& run : runs) {
     if (!run.ok()) {
       s.failed.emplace_back(run.name, run.error);
       continue;
     }
     s.runs.push_back(run.name);
+    const std::string& sequence = run.sequence.empty() ? run.name : run.sequence;
+    const auto known = std::find(s.sequences.begin(), s.sequences.end(), sequence);
+    run_sequence.push_back(static_cast<size_t>(known - s.sequences.begin()));
+    if (known == s.sequences.end()) s.sequences.push_back(sequence);
     std::vector<double> mrr;
     for (SuiteMethodSummary& m : s.methods) {
       const auto at = [&](const std::map<std::string, double>& values) {
@@ -113,18 +122,36 @@ SuiteSummary SummariseSuite(const std::string& name, const std::string& descript
     const std::vector<double> ranks = RanksDescending(mrr);
     for (size_t k = 0; k < s.methods.size(); ++k) s.methods[k].rank.push_back(ranks[k]);
   }
+  // Each sequence's mean over its runs, ranked per sequence.
+  for (size_t q = 0; q < s.sequences.size(); ++q) {
+    std::vector<double> mrr;
+    for (SuiteMethodSummary& m : s.methods) {
+      std::vector<double> of_mrr, of_recall;
+      for (size_t r = 0; r < s.runs.size(); ++r) {
+        if (run_sequence[r] != q) continue;
+        of_mrr.push_back(m.mrr[r]);
+        of_recall.push_back(m.recall_at_1[r]);
+      }
+      const std::vector<double> finite_mrr = Finite(of_mrr), finite_recall = Finite(of_recall);
+      m.sequence_mrr.push_back(finite_mrr.empty() ? NAN : Mean(finite_mrr));
+      m.sequence_recall_at_1.push_back(finite_recall.empty() ? NAN : Mean(finite_recall));
+      mrr.push_back(m.sequence_mrr.back());
+    }
+    const std::vector<double> ranks = RanksDescending(mrr);
+    for (size_t k = 0; k < s.methods.size(); ++k) s.methods[k].sequence_rank.push_back(ranks[k]);
+  }
   for (SuiteMethodSummary& m : s.methods) {
-    m.mean_mrr = Mean(Finite(m.mrr));
-    m.mean_recall_at_1 = Mean(Finite(m.recall_at_1));
-    m.mean_rank = Mean(m.rank);
-    m.mrr_interval = BootstrapMeanInterval(m.mrr, options, m.method + "/mrr");
-    m.recall_at_1_interval = BootstrapMeanInterval(m.recall_at_1, options, m.method + "/recall_at_1");
+    m.mean_mrr = Mean(Finite(m.sequence_mrr));
+    m.mean_recall_at_1 = Mean(Finite(m.sequence_recall_at_1));
+    m.mean_rank = Mean(m.sequence_rank);
+    m.mrr_interval = BootstrapMeanInterval(m.sequence_mrr, options, m.method + "/mrr");
+    m.recall_at_1_interval = BootstrapMeanInterval(m.sequence_recall_at_1, options, m.method + "/recall_at_1");
   }
   for (size_t i = 0; i < s.methods.size(); ++i) {
     for (size_t j = i + 1; j < s.methods.size(); ++j) {
       SuiteWins w{s.methods[i].method, s.methods[j].method};
-      for (size_t r = 0; r < s.runs.size(); ++r) {
-        const double a = s.methods[i].rank[r], b = s.methods[j].rank[r];
+      for (size_t q = 0; q < s.sequences.size(); ++q) {
+        const double a = s.methods[i].sequence_rank[q], b = s.methods[j].sequence_rank[q];
         if (a < b) {
           ++w.a_wins;
         } else if (b < a) {
@@ -143,21 +170,29 @@ nlohmann::json SuiteSummary::ToJson() const {
   nlohmann::json j;
   j["suite"] = {{"name", name}, {"description", description}};
   if (!settings.is_null()) j["settings"] = settings;
-  j["interval"] = {{"kind", "percentile bootstrap over runs, resampled i.i.d."},
+  j["interval"] = {{"kind", "percentile bootstrap over sequences (each the mean of its runs), resampled i.i.d."},
                    {"resamples", bootstrap.resamples},
                    {"confidence", bootstrap.confidence},
                    {"seed", bootstrap.seed}};
   j["runs"] = runs;
+  j["sequences"] = sequences;
   nlohmann::json ms = nlohmann::json::array();
   for (const SuiteMethodSummary& m : methods) {
     nlohmann::json per_run = nlohmann::json::object();
     for (size_t r = 0; r < runs.size(); ++r) {
       per_run[runs[r]] = {{"mrr", Number(m.mrr[r])}, {"recall_at_1", Number(m.recall_at_1[r])}, {"rank", m.rank[r]}};
     }
+    nlohmann::json per_sequence = nlohmann::json::object();
+    for (size_t q = 0; q < sequences.size(); ++q) {
+      per_sequence[sequences[q]] = {{"mrr", Number(m.sequence_mrr[q])},
+                                    {"recall_at_1", Number(m.sequence_recall_at_1[q])},
+                                    {"rank", m.sequence_rank[q]}};
+    }
     ms.push_back({{"method", m.method},
                   {"mrr", {{"mean", Number(m.mean_mrr)}, {"interval", IntervalJson(m.mrr_interval)}}},
                   {"recall_at_1", {{"mean", Number(m.mean_recall_at_1)}, {"interval", IntervalJson(m.recall_at_1_interval)}}},
                   {"mean_rank", Number(m.mean_rank)},
+                  {"sequences", per_sequence},
                   {"runs", per_run}});
   }
   j["methods"] = ms;
@@ -176,9 +211,11 @@ std::string SuiteSummary::ToMarkdown() const {
   std::ostringstream out;
   out << "# Suite " << name << "\n\n";
   if (!description.empty()) out << description << "\n\n";
-  out << runs.size() << " runs finished, " << failed.size() << " failed. Means over runs with "
-      << Fixed(100 * bootstrap.confidence, 0) << " % percentile bootstrap intervals (" << bootstrap.resamples
-      << " resamples of the runs, i.i.d.: the sequences are independent).\n\n";
+  out << runs.size() << " runs of " << sequences.size() << " sequences finished, " << failed.size()
+      << " failed. Means over sequences (each the mean of its seeds) with " << Fixed(100 * bootstrap.confidence, 0)
+      << " % percentile bootstrap intervals (" << bootstrap.resamples
+      << " resamples of the sequences, i.i.d.: the seeds of one room are not independent of each other); ranks "
+         "and wins per sequence.\n\n";
   out << "| method | MRR | R@1 | mean rank |\n|---|---|---|---|\n";
   for (const SuiteMethodSummary& m : methods) {
     out << "| " << m.method << " | " << IntervalCell(m.mean_mrr, m.mrr_interval) << " | "
@@ -187,6 +224,20 @@ std::string SuiteSummary::ToMarkdown() const {
   if (!wins.empty()) {
     out << "\n## Paired wins on MRR\n\n";
     for (const SuiteWins& w : wins) out << "- " << w.ToString() << "\n";
+  }
+  if (!sequences.empty()) {
+    out << "\n## MRR per sequence (rank)\n\n| sequence |";
+    for (const SuiteMethodSummary& m : methods) out << " " << m.method << " |";
+    out << "\n|---|";
+    for (size_t k = 0; k < methods.size(); ++k) out << "---|";
+    out << "\n";
+    for (size_t q = 0; q < sequences.size(); ++q) {
+      out << "| " << sequences[q] << " |";
+      for (const SuiteMethodSummary& m : methods) {
+        out << " " << Cell(m.sequence_mrr[q]) << " (" << Fixed(m.sequence_rank[q], 1) << ") |";
+      }
+      out << "\n";
+    }
   }
   if (!runs.empty()) {
     out << "\n## MRR per run (rank)\n\n| run |";

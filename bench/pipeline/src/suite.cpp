@@ -127,7 +127,7 @@ std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& ben
       throw;  // Ctrl-C stops the suite; a rerun resumes it
     } catch (const std::exception& e) {
       if (options.run.cancel != nullptr && options.run.cancel->load()) throw;  // stopped, not failed
-      result = SuiteRunResult{run.name, e.what(), {}, {}};
+      result = SuiteRunResult{run.name, e.what(), {}, {}, seq.name};
       if (result.error.empty()) result.error = "failed without a message";
       marker["failed"].push_back({{"run", run.name}, {"error", result.error}});
       write_marker();

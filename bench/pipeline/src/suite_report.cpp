@@ -61,6 +61,7 @@ struct IdentityView {
   std::string name, description, split;
   nlohmann::json bench;
   std::vector<std::string> methods, runs;
+  std::map<std::string, std::string> sequence_of_run;  // run name -> its sequence's name
 };
 
 IdentityView ViewIdentity(const nlohmann::json& identity, const std::string& source) {
@@ -72,6 +73,10 @@ IdentityView ViewIdentity(const nlohmann::json& identity, const std::string& sou
     v.bench = identity.at("bench");
     v.methods = v.bench.at("methods").get<std::vector<std::string>>();
     v.runs = identity.at("runs").get<std::vector<std::string>>();
+    for (const nlohmann::json& seq : identity.at("sequences")) {
+      const std::string name = seq.at("name").get<std::string>();
+      for (const nlohmann::json& seed : seq.at("seeds")) v.sequence_of_run[name + "-seed" + std::to_string(seed.get<int64_t>())] = name;
+    }
     return v;
   } catch (const nlohmann::json::exception& e) {
     throw InputError(source, std::string("malformed suite identity (") + e.what() + ")");
@@ -230,10 +235,12 @@ SuiteSummary MergeSuite(const std::vector<std::string>& dirs, const nlohmann::js
     const ShardFolder& f = *owner.at(run);
     const auto failed = f.failed.find(run);
     if (failed != f.failed.end()) {
-      results.push_back({run, failed->second, {}, {}});
+      results.push_back({run, failed->second, {}, {}, ""});
     } else {
       results.push_back(ReadSuiteRunResult(run, f.dir + "/runs/" + run + "/report.json", view.methods));
     }
+    const auto sequence = view.sequence_of_run.find(run);
+    if (sequence != view.sequence_of_run.end()) results.back().sequence = sequence->second;
   }
   SuiteSummary summary = SummariseSuite(view.name, view.description, view.methods, results);
   summary.settings = {{"split", view.split}, {"bench", view.bench}};

@@ -1,6 +1,7 @@
-// The summary of a benchmark suite (`hoilcd suite`): per method, each run's MRR and R@1, their
-// mean over runs with a percentile bootstrap interval, each method's rank per run and mean rank,
-// and paired wins for every pair of methods. Built from numbers alone, so it is tested on
+// The summary of a benchmark suite (`hoilcd suite`): per method, each run's MRR and R@1 and each
+// sequence's mean over its seeds; the mean over sequences with a percentile bootstrap interval
+// (resampling sequences: the seeds of one room are not independent of each other), each method's
+// rank per sequence and mean rank, and paired wins per sequence for every pair of methods. Built from numbers alone, so it is tested on
 // constructed values; the pipeline (suite.h) fills it from the runs' report.json files.
 #pragma once
 
@@ -20,11 +21,12 @@ struct SuiteRunResult {
   std::string error;                         // empty when the run finished
   std::map<std::string, double> mrr;         // method -> MRR (NaN: no scored query)
   std::map<std::string, double> recall_at_1; // method -> R@1
+  std::string sequence;                      // the sequence it is a seed of (empty: its own)
   bool ok() const { return error.empty(); }
 };
 
-// The interval over runs: runs are resampled i.i.d. (the sequences are independent renders, so
-// unlike the queries of one sequence they carry no serial correlation), keyed by (seed, resample).
+// The interval over sequences: each sequence's mean over its seeds, the sequences resampled i.i.d.
+// (independent rooms, where the seeds of one room share its layout), keyed by (seed, resample).
 struct SuiteBootstrapOptions {
   int resamples = 2000;     // bootstrap resamples
   double confidence = 0.95; // of the two-sided percentile interval
@@ -36,11 +38,14 @@ struct SuiteMethodSummary {
   std::string method;
   std::vector<double> mrr, recall_at_1;  // per finished run, in run order
   std::vector<double> rank;              // per finished run: 1 = best MRR, ties share the mean rank
-  double mean_mrr = NAN, mean_recall_at_1 = NAN, mean_rank = NAN;
+  // Per sequence with a finished run (SuiteSummary::sequences): the mean over its finished runs
+  // (NaN: none scored), and the rank of that mean.
+  std::vector<double> sequence_mrr, sequence_recall_at_1, sequence_rank;
+  double mean_mrr = NAN, mean_recall_at_1 = NAN, mean_rank = NAN;  // over sequences
   Interval mrr_interval, recall_at_1_interval;  // of the means
 };
 
-// How often `a` beat `b` on MRR over the finished runs.
+// How often `a` beat `b` on a sequence's mean MRR.
 struct SuiteWins {
   std::string a, b;
   int a_wins = 0, b_wins = 0, ties = 0;
@@ -52,6 +57,7 @@ struct SuiteSummary {
   nlohmann::json settings;                // what the runs were made with (split, bench), copied to the JSON
   SuiteBootstrapOptions bootstrap;
   std::vector<std::string> runs;          // finished runs, in run order
+  std::vector<std::string> sequences;     // their sequences, in order of first appearance
   std::vector<SuiteMethodSummary> methods;  // in the order given
   std::vector<SuiteWins> wins;            // every pair (i < j) in method order
   std::vector<std::pair<std::string, std::string>> failed;  // (run, error)
