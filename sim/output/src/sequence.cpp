@@ -108,7 +108,7 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // of 0.48, seated body sizes capped so that neighbours' shoulders never meet; 13: frame PNGs
 // deflated by libdeflate, every row Sub-filtered, one IDAT; 14: thermal.mp4 without x264's
 // macroblock tree, whose AVX-512 path made the video's bytes vary from run to run).
-constexpr int kSimulatorRevision = 15;
+constexpr int kSimulatorRevision = 16;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

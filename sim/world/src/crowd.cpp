@@ -516,7 +516,24 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
   if (place.speed_m_s < 0.03) return PresetPose("standing");
   const double stride_m = Skeleton::StrideAt(place.speed_m_s) * p.height_scale;
   const double phase = 2 * M_PI * plan.Walked(time_s) * robot_.cruise_speed_m_s() / stride_m + p.lead_phase_rad;
-  return skeleton_->Walking(phase, stride_m / p.height_scale);
+  // Furniture close ahead (a chair past the corner where the route turns): shorter steps, and so
+  // a shorter arm swing, until neither hand's furthest reach (about a quarter of a stride ahead
+  // of the pelvis, 0.2 m to its side) comes within 5 cm of a footprint. The footprint circle
+  // alone leaves the swinging hands out.
+  constexpr double kReachPerStride = 0.25, kHandSideM = 0.2, kHandClearanceM = 0.05;
+  double pose_stride_m = stride_m;
+  if (plan.space != nullptr) {
+    const Eigen::Vector2d ahead(std::cos(place.heading_rad), std::sin(place.heading_rad)), left(-ahead.y(), ahead.x());
+    const auto hands_clear = [&](double stride) {
+      for (const double side : {-1.0, 1.0}) {
+        const Eigen::Vector2d hand = place.at_m + kReachPerStride * stride * ahead + side * kHandSideM * p.height_scale * left;
+        if (plan.space->Clearance(hand) + plan.space->radius_m() < kHandClearanceM) return false;
+      }
+      return true;
+    };
+    while (pose_stride_m > 0.3 * p.height_scale && !hands_clear(pose_stride_m)) pose_stride_m *= 0.8;
+  }
+  return skeleton_->Walking(phase, pose_stride_m / p.height_scale);
 }
 
 void Crowd::KeepOwnElbowRoom(const Person& p, BodyPose* pose) const {
