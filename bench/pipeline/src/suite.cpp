@@ -71,7 +71,11 @@ nlohmann::json SuiteIdentity(const Suite& suite, const std::string& split, const
     if (split != "all" && seq.split != split) continue;
     nlohmann::json s = {{"name", seq.name}};
     if (seq.generated) {
-      s["generate"] = {{"layout", seq.layout}, {"seed", seq.generator_seed}, {"index", seq.generator_index}};
+      // The generator's version too: another version makes another scene from the same spec.
+      s["generate"] = {{"layout", seq.layout},
+                       {"seed", seq.generator_seed},
+                       {"index", seq.generator_index},
+                       {"generator_version", kGeneratorVersion}};
     } else {
       s["scene_checksum"] = SceneChecksum(seq.scene_path);
     }

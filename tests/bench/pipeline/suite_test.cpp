@@ -10,6 +10,7 @@
 #include <string>
 
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/sim/generate/generator.h"
 #include "input_error_of.h"
 #include "test_dir.h"
 
@@ -171,7 +172,9 @@ TEST(Suite, IdentityKnowsASceneByItsBytesNotItsPathAndHoldsOnlyTheSplitsSequence
 
   const nlohmann::json identity = SuiteIdentity(a, "all", bench);
   EXPECT_EQ(identity["sequences"][0]["scene_checksum"], ChecksumOf(scene));
-  EXPECT_EQ(identity["sequences"][1]["generate"], (nlohmann::json{{"layout", "lounge"}, {"seed", 3}, {"index", 0}}));
+  // A generated sequence by its spec and the generator's version (another version, another scene).
+  EXPECT_EQ(identity["sequences"][1]["generate"],
+            (nlohmann::json{{"layout", "lounge"}, {"seed", 3}, {"index", 0}, {"generator_version", kGeneratorVersion}}));
   EXPECT_EQ(identity["runs"], (nlohmann::json{"gen-seed5", "room-seed1", "room-seed2"}));
   EXPECT_EQ(identity["bench"], bench);
   const nlohmann::json dev = SuiteIdentity(a, "dev", bench);
