@@ -13,6 +13,7 @@
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/people/walker_planner.h"
+#include "floor_plan.h"
 #include "layouts.h"
 #include "room_objects.h"
 
@@ -22,23 +23,12 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
-constexpr double kAccessRadiusM = 0.18;  // a person squeezing to their seat, m
 constexpr double kGridM = 0.05;          // the reachability grid, m
 constexpr uint8_t kFree = 1, kReached = 2;  // its cells: 0 blocked
 
 double Mm(double value) { return std::round(value * 1000) / 1000; }  // positions to the millimetre
 ojson Point(const Eigen::Vector2d& p) { return ojson::array({Mm(p.x()), Mm(p.y())}); }
 double Yaw(double deg) { return Mm(std::remainder(deg, 360.0)); }  // in [-180, 180], deg
-
-bool IsWall(const Obstacle2D& o) { return o.name.size() > 5 && o.name.compare(o.name.size() - 5, 5, " wall") == 0; }
-
-// The furniture, objects and standing people: every footprint but the walls.
-std::vector<Obstacle2D> Furniture(const World& world) {
-  std::vector<Obstacle2D> out;
-  for (const Obstacle2D& o : world.obstacles())
-    if (!IsWall(o)) out.push_back(o);
-  return out;
-}
 
 double Clearance(const Eigen::Vector2d& p, const std::vector<Obstacle2D>& furniture, std::string* nearest = nullptr) {
   double best = 1e30;
@@ -50,14 +40,6 @@ double Clearance(const Eigen::Vector2d& p, const std::vector<Obstacle2D>& furnit
     }
   }
   return best;
-}
-
-// Points every 2 cm along a leg, both ends included.
-std::vector<Eigen::Vector2d> Along(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / 0.02)));
-  std::vector<Eigen::Vector2d> out;
-  for (int i = 0; i <= steps; ++i) out.push_back(a + (b - a) * (static_cast<double>(i) / steps));
-  return out;
 }
 
 bool LegClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::vector<Obstacle2D>& furniture, double clearance_m) {
@@ -348,12 +330,10 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
   if (!route.empty() && floor.at<uint8_t>(cell_of(route.front())) == kFree) {
     cv::floodFill(floor, cell_of(route.front()), cv::Scalar(kReached), nullptr, cv::Scalar(0), cv::Scalar(0), 4);
   }
-  // Where a person stands before sitting: behind a chair, in front of a sofa place.
-  for (const Crowd::SeatPlace& seat : world.seat_places()) {
-    const Eigen::Vector2d at = seat.world_from_seat.topRightCorner<2, 1>().cast<double>();
-    const Eigen::Vector2d facing = seat.world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
-    const Eigen::Vector2d access = seat.chair ? Eigen::Vector2d(at - 0.5 * facing) : Eigen::Vector2d(at + 0.52 * facing);
-    if (floor.at<uint8_t>(cell_of(access)) != kReached) {
+  const std::vector<Eigen::Vector2d> access = SeatAccess(world);
+  for (size_t k = 0; k < access.size(); ++k) {
+    const Crowd::SeatPlace& seat = world.seat_places()[k];
+    if (floor.at<uint8_t>(cell_of(access[k])) != kReached) {
       problems.push_back("seat " + std::to_string(seat.table) + "." + std::to_string(seat.seat) + " cannot be reached on foot from the route");
     }
   }

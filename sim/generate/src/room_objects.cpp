@@ -25,7 +25,6 @@ constexpr double kChairHalfWidthM = 0.21, kBackrestBackM = 0.253, kBackrestTopM 
 constexpr double kCornerM = 0.1;      // fittings keep this far from a room corner
 constexpr double kGapM = 0.1;         // and from each other along a wall
 constexpr double kDoorwayM = 1.0;     // floor objects keep this far from a doorway's centre
-constexpr double kAccessRadiusM = 0.18;  // GeneratedSceneProblems: a person squeezing to a seat
 
 enum Wall { kSouth, kNorth, kWest, kEast };
 
@@ -76,35 +75,12 @@ bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& as
   return true;
 }
 
-bool IsWallName(const std::string& name) { return name.size() > 5 && name.compare(name.size() - 5, 5, " wall") == 0; }
-
-// The footprints of the furniture, objects and standing people (walls left out).
-std::vector<Obstacle2D> Footprints(const World& world) {
-  std::vector<Obstacle2D> out;
-  for (const Obstacle2D& o : world.obstacles())
-    if (!IsWallName(o.name)) out.push_back(o);
-  return out;
-}
-
 // The route's centre line, every 2 cm.
 std::vector<Eigen::Vector2d> RoutePoints(const std::vector<Eigen::Vector2d>& route) {
   std::vector<Eigen::Vector2d> out;
   for (size_t i = 0; i < route.size(); ++i) {
-    const Eigen::Vector2d& a = route[i];
-    const Eigen::Vector2d& b = route[(i + 1) % route.size()];
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / 0.02)));
-    for (int k = 0; k < steps; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / steps));
-  }
-  return out;
-}
-
-// Where a person stands before sitting (as GeneratedSceneProblems reaches it).
-std::vector<Eigen::Vector2d> SeatAccess(const World& world) {
-  std::vector<Eigen::Vector2d> out;
-  for (const Crowd::SeatPlace& seat : world.seat_places()) {
-    const Eigen::Vector2d at = seat.world_from_seat.topRightCorner<2, 1>().cast<double>();
-    const Eigen::Vector2d facing = seat.world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
-    out.push_back(seat.chair ? Eigen::Vector2d(at - 0.5 * facing) : Eigen::Vector2d(at + 0.52 * facing));
+    const std::vector<Eigen::Vector2d> leg = Along(route[i], route[(i + 1) % route.size()]);
+    out.insert(out.end(), leg.begin(), leg.end());
   }
   return out;
 }
@@ -141,7 +117,7 @@ struct FloorCheck {
 
 FloorCheck MakeFloorCheck(const Eigen::Vector2d& room_m, const World& world, const std::vector<Eigen::Vector2d>& doors,
                           const std::vector<Eigen::Vector2d>& route, double clearance_m) {
-  return {room_m, Footprints(world), doors, SeatAccess(world), RoutePoints(route), clearance_m};
+  return {room_m, Furniture(world), doors, SeatAccess(world), RoutePoints(route), clearance_m};
 }
 
 Eigen::Vector2d Rotate(double yaw_rad, const Eigen::Vector2d& v) { return Eigen::Rotation2Dd(yaw_rad) * v; }

@@ -10,6 +10,7 @@
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/world/world.h"
+#include "floor_plan.h"
 #include "layouts.h"
 
 namespace hoilcd {
