@@ -138,12 +138,14 @@ Suite ReadSuite(const std::string& path) {
   return ParseSuite(text, path);
 }
 
+std::string SuiteRunName(const std::string& sequence, int64_t seed) { return sequence + "-seed" + std::to_string(seed); }
+
 std::vector<SuiteRunSpec> SuiteRuns(const Suite& suite, const std::string& split) {
   std::vector<SuiteRunSpec> runs;
   for (size_t k = 0; k < suite.sequences.size(); ++k) {
     const SuiteSequence& s = suite.sequences[k];
     if (split != "all" && s.split != split) continue;
-    for (int seed : s.seeds) runs.push_back({k, seed, s.name + "-seed" + std::to_string(seed)});
+    for (int seed : s.seeds) runs.push_back({k, seed, SuiteRunName(s.name, seed)});
   }
   std::sort(runs.begin(), runs.end(), [](const SuiteRunSpec& a, const SuiteRunSpec& b) { return a.name < b.name; });
   return runs;

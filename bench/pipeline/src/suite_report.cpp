@@ -5,13 +5,14 @@
 #include <filesystem>
 #include <map>
 
+#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/bench/evaluation/report_json.h"
 #include "hoilcd/bench/pipeline/shard.h"
+#include "hoilcd/bench/pipeline/suite_file.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
-#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
@@ -75,7 +76,7 @@ IdentityView ViewIdentity(const nlohmann::json& identity, const std::string& sou
     v.runs = identity.at("runs").get<std::vector<std::string>>();
     for (const nlohmann::json& seq : identity.at("sequences")) {
       const std::string name = seq.at("name").get<std::string>();
-      for (const nlohmann::json& seed : seq.at("seeds")) v.sequence_of_run[name + "-seed" + std::to_string(seed.get<int64_t>())] = name;
+      for (const nlohmann::json& seed : seq.at("seeds")) v.sequence_of_run[SuiteRunName(name, seed.get<int64_t>())] = name;
     }
     return v;
   } catch (const nlohmann::json::exception& e) {
@@ -141,7 +142,7 @@ std::string WhyUnfinished(const std::string& run_dir, const std::string& run, co
   if (!record.is_object()) return "no readable suite_run.json beside " + run_dir + "/report.json";
   const nlohmann::json sequence = record.value("sequence", nlohmann::json()), seed = record.value("seed", nlohmann::json());
   if (!sequence.is_string() || !seed.is_number_integer() ||
-      sequence.get<std::string>() + "-seed" + std::to_string(seed.get<int64_t>()) != run) {
+      SuiteRunName(sequence.get<std::string>(), seed.get<int64_t>()) != run) {
     return run_dir + "/suite_run.json records another run";
   }
   if (record.value("bench", nlohmann::json()) != bench) {

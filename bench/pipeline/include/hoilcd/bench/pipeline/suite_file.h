@@ -41,6 +41,9 @@ struct SuiteRunSpec {
   std::string name;     // "<sequence>-seed<S>": its folder under runs/ and its name in the report
 };
 
+// A run's name, "<sequence>-seed<S>": its folder under runs/ and its name in the report.
+std::string SuiteRunName(const std::string& sequence, int64_t seed);
+
 // The runs of the sequences in `split` ("dev", "test" or "all"), sorted by name (so a later
 // --shard I/N can take every N-th).
 std::vector<SuiteRunSpec> SuiteRuns(const Suite& suite, const std::string& split);
