@@ -47,6 +47,13 @@ void AddThreadsFlag(CLI::App* cmd, int* threads) {
   cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")->check(NumberIn(OptionRange::Closed(0, kMaxThreadsFlag)));
 }
 
+void AddManyRunsCacheFlags(CLI::App* cmd, RunOptions* run) {
+  cmd->add_option("--cache", run->cache_dir, "folder of cached datasets (shared by every run and shard)");
+  cmd->add_flag("--drop-datasets", [run](std::int64_t) { run->keep_datasets = false; },
+                "delete each run's dataset once its report is written (a large suite or sweep needs ~1 GB of disk a "
+                "thousand frames otherwise); reports are kept and a rerun keeps them");
+}
+
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
   auto* opt = cmd->add_option("scene", args->path, "scene file (JSON, see scenes/scene.schema.json)");
   if (scene_required) opt->required();

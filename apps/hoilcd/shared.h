@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/methods/bench_options.h"
+#include "hoilcd/bench/pipeline/run.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -23,6 +24,8 @@ CLI::Validator NumberIn(const OptionRange& range);
 
 // --threads N (0: the CPUs this process may use) on `cmd`, into `threads`.
 void AddThreadsFlag(CLI::App* cmd, int* threads);
+// --cache and --drop-datasets of the commands that render many runs (sweep, suite).
+void AddManyRunsCacheFlags(CLI::App* cmd, RunOptions* run);
 
 // SCENE, --set KEY=VALUE and --seed.
 struct SceneArgs {

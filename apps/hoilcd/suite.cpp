@@ -113,10 +113,7 @@ Command AddSuiteCommand(CLI::App* app) {
   cmd->add_option("--split", args->split, "which sequences to run")
       ->check(CLI::IsMember({"dev", "test", "all"}))
       ->capture_default_str();
-  cmd->add_option("--cache", args->run.cache_dir, "folder of cached datasets (shared by every run and shard)");
-  cmd->add_flag("--drop-datasets", [args](std::int64_t) { args->run.keep_datasets = false; },
-                "delete each run's dataset once its report is written (a large suite or sweep needs ~1 GB of disk a "
-                "thousand frames otherwise); reports are kept and a rerun keeps them");
+  AddManyRunsCacheFlags(cmd, &args->run);
   cmd->add_option("--shard", args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
       ->type_name("I/N");
   cmd->add_option("--merge", args->merge, "write the report of these suite or shard folders into OUT")->type_name("DIR...");

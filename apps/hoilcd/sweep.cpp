@@ -97,10 +97,7 @@ Command AddSweepCommand(CLI::App* app) {
   constexpr double kMaxSeeds = 10000;
   cmd->add_option("--seeds", args->seeds, "run every combination with seeds 1..N")
       ->check(NumberIn(OptionRange::Closed(1, kMaxSeeds)));
-  cmd->add_option("--cache", args->run.cache_dir, "folder of cached datasets (shared by every run and shard)");
-  cmd->add_flag("--drop-datasets", [args](std::int64_t) { args->run.keep_datasets = false; },
-                "delete each run's dataset once its report is written (a large suite or sweep needs ~1 GB of disk a "
-                "thousand frames otherwise); reports are kept and a rerun keeps them");
+  AddManyRunsCacheFlags(cmd, &args->run);
   cmd->add_option("-o,--output", args->output, "sweep folder: runs/<KEY=V,...,seed=S>/, summary.csv, summary.md, plots")
       ->required();
   cmd->add_option("--shard", args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
