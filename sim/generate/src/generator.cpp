@@ -331,8 +331,9 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
     cv::floodFill(floor, cell_of(route.front()), cv::Scalar(kReached), nullptr, cv::Scalar(0), cv::Scalar(0), 4);
   }
   const std::vector<Eigen::Vector2d> access = SeatAccess(world);
+  const std::vector<Crowd::SeatPlace> seats = world.seat_places();
   for (size_t k = 0; k < access.size(); ++k) {
-    const Crowd::SeatPlace& seat = world.seat_places()[k];
+    const Crowd::SeatPlace& seat = seats[k];
     if (floor.at<uint8_t>(cell_of(access[k])) != kReached) {
       problems.push_back("seat " + std::to_string(seat.table) + "." + std::to_string(seat.seat) + " cannot be reached on foot from the route");
     }

@@ -223,7 +223,7 @@ std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& 
   std::vector<PlacedObject> out;
   const std::vector<Crowd::SeatPlace> seats = world.seat_places();
   for (const auto& [table, seat] : occupied) {
-    const auto place = std::find_if(seats.begin(), seats.end(), [&](const Crowd::SeatPlace& s) { return s.table == table && s.seat == seat; });
+    const auto place = std::find_if(seats.begin(), seats.end(), [&, t = table, k = seat](const Crowd::SeatPlace& s) { return s.table == t && s.seat == k; });
     const double bag = rng->Uniform(), coat = rng->Uniform(), charger = rng->Uniform(), side = rng->Uniform() < 0.5 ? 1.0 : -1.0;
     if (place == seats.end() || !place->chair) continue;  // a sofa's places hold nothing of this
     const Eigen::Vector2d at = place->world_from_seat.topRightCorner<2, 1>().cast<double>();
