@@ -212,6 +212,7 @@ void World::SetTime(double time_s) {
 
 void World::Move(int instance, const Eigen::Matrix4f& world_from_object) {
   caster_->SetInstanceTransform(instance, world_from_object);
+  instances_[instance].object_from_world = world_from_object.inverse();
 }
 
 int World::ClassId(const std::string& name) {
@@ -239,6 +240,7 @@ int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, I
   info.asset = &asset;
   info.mesh = &asset.mesh;
   info.label = id;
+  info.object_from_world = world_from_object.inverse();
   for (const ThermalMaterial& tm : asset.materials) {
     InstanceMaterial m;
     m.temperature_c = m.temperature_top_c = static_cast<float>(tm.temperature_c + temperature_offset_c);

@@ -7,11 +7,13 @@
 #include <vector>
 
 #include "hoilcd/sim/assets/asset.h"
+#include "hoilcd/sim/assets/surface_field.h"
 
 namespace hoilcd {
 
 // A material as one instance shows it this frame. Radiance is linear in height between the
 // bottom and top values (walls are warmer near the ceiling); other materials have bottom == top.
+// With a field, the temperature is linear in height instead, plus the field's offset at the hit.
 struct InstanceMaterial {
   float temperature_c = 22;
   float temperature_top_c = 22;
@@ -20,6 +22,7 @@ struct InstanceMaterial {
   int class_id = 0;            // class of pixels showing this material (the room has several)
   float blackbody_bottom = 0;  // band radiance at z = 0, W·m⁻²·sr⁻¹
   float blackbody_top = 0;     // band radiance at z = room height
+  const SurfaceField* field = nullptr;  // not owned; null: uniform (fast path)
 };
 
 enum class InstanceRole { kRoom, kTable, kChair, kPerson, kObject };
@@ -34,6 +37,7 @@ struct InstanceInfo {
   const Asset* asset = nullptr;         // null for the room
   std::vector<InstanceMaterial> materials;  // per prototype material
   const TriangleMesh* mesh = nullptr;   // the prototype's mesh (triangle -> material index)
+  Eigen::Matrix4f object_from_world = Eigen::Matrix4f::Identity();  // for fields, kept by the World
 };
 
 // World transform of an asset placed at position with a yaw about z (and uniform scale).

@@ -44,6 +44,9 @@ class FrameRenderer {
     float emissivity, blackbody;
     Eigen::Vector3f origin, direction;  // the reflection ray
   };
+  // Band radiance a material emits as a blackbody at a hit `point` (world frame) at relative
+  // height h: linear in height between its bottom and top values, or through its field.
+  float Blackbody(const InstanceInfo& info, const InstanceMaterial& m, const Eigen::Vector3f& point, float h) const;
   // Per worker, kept between frames.
   struct Scratch {
     std::vector<int> edge_pixels;        // a chunk's edge pixels, 4×4 block by block

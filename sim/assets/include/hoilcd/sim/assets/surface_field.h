@@ -1,0 +1,28 @@
+// Temperature fields over a surface: what makes a garment, a table top or a wall vary inside one
+// material (folds, a forearm's print, a cold corner). A material may point to one; the renderer
+// adds its offset to the material's temperature at each hit and renders ε·B(T + offset).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+namespace hoilcd {
+
+// Implementations are owned by whoever made them (the crowd, the world) and must outlive the
+// frames that render them. OffsetK is called from many threads at once while a frame renders, so
+// it reads state only; an owner changes that state between frames (in World::SetTime).
+class SurfaceField {
+ public:
+  virtual ~SurfaceField() = default;
+  // Offset, K, at a surface point given in the instance's own frame (it moves with the
+  // instance: a garment's folds follow the body) and in the world frame.
+  virtual float OffsetK(const Eigen::Vector3f& object_point, const Eigen::Vector3f& world_point) const = 0;
+};
+
+// Smooth value noise in [−1, 1] with unit feature size (scale the point for other sizes),
+// continuous with continuous first derivative (quintic fade), keyed by `key` through the one
+// keying scheme (random.h), so each person or surface has its own stable pattern.
+// Written here because it is a dozen lines: a noise library would add a dependency for one call.
+float ValueNoise3(uint64_t key, const Eigen::Vector3f& point);
+
+}  // namespace hoilcd
