@@ -202,12 +202,17 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
   return s;
 }
 
-InspectSection ViewSection(const Dataset& dataset, int threads) {
-  InspectSection s{"views", "What the camera sees (true temperature, EXR)", {}};
+std::vector<int> SampledViewFrames(const Dataset& dataset) {
   const int frames = dataset.num_frames();
   const int step = std::max(1, (frames + kViewFramesSampled - 1) / kViewFramesSampled);
   std::vector<int> sampled;
   for (int f = 0; f < frames; f += step) sampled.push_back(f);
+  return sampled;
+}
+
+InspectSection ViewSection(const Dataset& dataset, int threads) {
+  InspectSection s{"views", "What the camera sees (true temperature, EXR)", {}};
+  const std::vector<int> sampled = SampledViewFrames(dataset);
   std::vector<QueryConditions> views(sampled.size());
   ParallelFor(static_cast<int64_t>(sampled.size()), threads,
               [&](int64_t i) { views[static_cast<size_t>(i)] = ImageConditionsOf(dataset, sampled[static_cast<size_t>(i)]); });
@@ -230,6 +235,13 @@ InspectSection ViewSection(const Dataset& dataset, int threads) {
       NumberFigure("spread_median_k", "true temperature spread (p98 - p2), median", Median(spread), "K"),
       NumberFigure("static_contrast_median_percent", "static pixels with contrast, median", Median(contrast), "%"),
   };
+  return s;
+}
+
+InspectSection ThermalSection(const Dataset& dataset, int threads) {
+  InspectSection s{"thermal", "Thermal detail (true temperature, EXR)", {}};
+  const std::vector<int> sampled = SampledViewFrames(dataset);
+  for (InspectFigure& f : ReflectionFigures(dataset, sampled, threads)) s.figures.push_back(std::move(f));
   return s;
 }
 
@@ -263,7 +275,10 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   r.sections.push_back(CameraSection(dataset.poses()));
   // People ground truth is optional (render --outputs without persons): no people section then.
   if (dataset.manifest().outputs.persons) r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
-  if (dataset.manifest().outputs.exr) r.sections.push_back(ViewSection(dataset, threads));
+  if (dataset.manifest().outputs.exr) {
+    r.sections.push_back(ViewSection(dataset, threads));
+    r.sections.push_back(ThermalSection(dataset, threads));
+  }
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   CameraOutputOptions camera;
   camera.threads = threads;

@@ -202,6 +202,12 @@ class GltfReader {
             } else {
               material.specular = value.Get<bool>();
             }
+          } else if (key == "roughness_um") {
+            if (!value.IsNumber() || !(value.GetNumberAsDouble() >= 0 && value.GetNumberAsDouble() <= 100)) {
+              Fail(where, "must be a number in [0, 100] (rms surface roughness, µm)");
+            } else {
+              material.roughness_um = value.GetNumberAsDouble();
+            }
           } else if (key == "region") {
             if (!value.IsString() || value.Get<std::string>().empty()) {
               Fail(where, "must be a non-empty string");
@@ -209,7 +215,7 @@ class GltfReader {
               material.region = value.Get<std::string>();
             }
           } else {
-            Fail(where, "unknown key (expected temperature_c, emissivity, specular, region)");
+            Fail(where, "unknown key (expected temperature_c, emissivity, specular, roughness_um, region)");
           }
         }
       }

@@ -157,6 +157,19 @@ ojson Windows(double length_m, double height_m, Rng* rng) {
   return windows;
 }
 
+// The floor's finish, from its own keyed stream (so the rest of a seed's room is version 2's):
+// matte, or one of the glossy finishes of docs/models/sensor_and_thermal.md (ε, rms roughness).
+ojson Floor(uint64_t seed, int index, const GeneratorOptions& o) {
+  struct Finish {
+    double emissivity, roughness_um;
+  };
+  static constexpr Finish kGlossy[] = {{0.91, 0.2}, {0.92, 0.5}, {0.93, 1.0}, {0.92, 1.5}};  // epoxy, vinyl, concrete, wood
+  Rng rng = KeyedRng(seed, "generate.floor", index);
+  if (rng.Uniform() >= o.glossy_floor_probability) return {{"specular", false}};
+  const Finish& f = kGlossy[rng.UniformInt(4)];
+  return {{"specular", true}, {"emissivity", f.emissivity}, {"roughness_um", f.roughness_um}};
+}
+
 // The crowd: who sits where (each seat taken with the room's occupancy), postures, activities,
 // props, walkers and turnover drawn for the room within the crowd schema.
 ojson Crowd(const Layout& layout, const GeneratorOptions& o, Rng* rng) {
@@ -238,7 +251,7 @@ ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorO
       {"seed", scene_seed},
       {"frames", 1},
       {"frame_rate_hz", 25.0},
-      {"room", {{"size_m", ojson::array({room.x(), room.y(), room.z()})}, {"windows", Windows(room.x(), room.z(), rng)}}},
+      {"room", {{"size_m", ojson::array({room.x(), room.y(), room.z()})}, {"windows", Windows(room.x(), room.z(), rng)}, {"floor", Floor(seed, index, o)}}},
       {"tables", Tables(layout)},
       {"crowd", Crowd(layout, o, rng)},
       {"objects", Objects(layout)},

@@ -94,6 +94,9 @@ const OptionTable<GeneratorOptions>& GeneratorOptions::Table() {
           .Add("walkers_max", &O::walkers_max, 2, "", R::Closed(0, 8), "most walkers in a room (uniform in 0..this)")
           .Add("turnover_max", &O::turnover_max, 0.2, "", R::Closed(0, 1),
                "largest crowd.turnover_probability (uniform in [0, this] per room)")
+          .Add("glossy_floor_probability", &O::glossy_floor_probability, 0.5, "", R::Closed(0, 1),
+               "chance of a glossy floor (epoxy, polished vinyl, polished concrete or lacquered wood, equally likely; "
+               "docs/models/sensor_and_thermal.md), else a matte one (carpet, matte finish)")
           .Add("laps", &O::laps, 2.0, "", R::Closed(1, 10), "laps the robot drives; the scene's frames end when it has")
           .Add("route_wall_m", &O::route_wall_m, 0.4, "m", R::Closed(0.3, 1.5), "route from the walls")
           .Add("route_clearance_m", &O::route_clearance_m, 0.4, "m", R::Closed(0.3, 1.5),

@@ -54,7 +54,8 @@ float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
     const Eigen::Vector3f r = direction - 2.0f * direction.dot(hit.normal_world) * hit.normal_world;
     const Eigen::Vector3f o = point + 1e-3f * hit.normal_world;
     const RayHit second = world_.caster().Intersect(o, r);
-    reflected = Shade(second, o, r, /*allow_reflection=*/false);
+    const float mirror = MirrorShare(m.roughness_um, std::abs(direction.dot(hit.normal_world)));
+    reflected = mirror * Shade(second, o, r, /*allow_reflection=*/false) + (1.0f - mirror) * environment;
   }
   return m.emissivity * blackbody + (1.0f - m.emissivity) * reflected;
 }
@@ -97,7 +98,8 @@ void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vect
     const float blackbody = Blackbody(info, m, point, h);
     if (pending != nullptr && m.specular && m.emissivity < 1.0f) {
       const Eigen::Vector3f n = world_.caster().Hit(hits, i, direction).normal_world;
-      pending->push_back({&radiance, m.emissivity, blackbody, point + 1e-3f * n,
+      pending->push_back({&radiance, m.emissivity, MirrorShare(m.roughness_um, std::abs(direction.dot(n))), blackbody,
+                          point + 1e-3f * n,
                           direction - 2.0f * direction.dot(n) * n});
       continue;
     }
@@ -109,6 +111,7 @@ void FrameRenderer::CastReflections(std::vector<PendingReflection>* pending) con
   Eigen::Vector3f origins[kRayPacketSize], directions[kRayPacketSize];
   RayHitPacket hits, one;
   float reflected = 0.0f;
+  const float environment = world_.environment_radiance();
   const int slot = 0;
   for (size_t begin = 0; begin < pending->size(); begin += kRayPacketSize) {
     const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, pending->size() - begin));
@@ -124,7 +127,8 @@ void FrameRenderer::CastReflections(std::vector<PendingReflection>* pending) con
       one.distance_m[0] = hits.distance_m[i];
       ShadePacket(origins[i], &directions[i], 1, one, &reflected, &slot, nullptr);
       const PendingReflection& p = (*pending)[begin + i];
-      *p.radiance = p.emissivity * p.blackbody + (1.0f - p.emissivity) * reflected;
+      *p.radiance = p.emissivity * p.blackbody +
+                    (1.0f - p.emissivity) * (p.mirror * reflected + (1.0f - p.mirror) * environment);
     }
   }
   pending->clear();

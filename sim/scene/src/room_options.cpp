@@ -9,7 +9,11 @@ OptionTable<SurfaceSpec> SurfaceSpec::TableWith(double temperature_c, double emi
            "surface temperature")
       .Add("emissivity", &O::emissivity, emissivity, "", OptionRange().Above(0).AtMost(1), "emissivity (8-14 um)")
       .Add("specular", &O::specular, specular,
-           "mirror-like in LWIR: one traced reflection ray instead of ambient reflection");
+           "mirror-like in LWIR: one traced reflection ray instead of ambient reflection")
+      .Add("roughness_um", &O::roughness_um, 0.0, "um", OptionRange::Closed(0, 100),
+           "with specular: rms surface roughness; the mirror-like share of the reflection is exp(-(4π·roughness·cos θ / "
+           "10 µm)²) (Davies 1954), the rest diffuse: 0 for glass, ~0.5 for vinyl, ~1 for polished concrete "
+           "(docs/models/sensor_and_thermal.md)");
 }
 
 WallOptions::WallOptions() { Table().FillDefaults(this); }

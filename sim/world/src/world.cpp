@@ -246,6 +246,7 @@ int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, I
     m.temperature_c = m.temperature_top_c = static_cast<float>(tm.temperature_c + temperature_offset_c);
     m.emissivity = static_cast<float>(tm.emissivity);
     m.specular = tm.specular;
+    m.roughness_um = static_cast<float>(tm.roughness_um);
     m.class_id = info.class_id;
     Finish(&m);
     info.materials.push_back(m);
@@ -284,8 +285,10 @@ void World::BuildRoom(const Scene& scene) {
   info.class_id = ClassId("wall");
   info.mesh = &room_mesh_;
   // bottom_c at the floor, top_c at the ceiling (equal but for the walls).
-  auto surface = [&](double bottom_c, double top_c, double emissivity, bool specular, const char* cls) {
+  auto surface = [&](double bottom_c, double top_c, double emissivity, bool specular, const char* cls,
+                     double roughness_um = 0) {
     InstanceMaterial m;
+    m.roughness_um = static_cast<float>(roughness_um);
     m.class_id = ClassId(cls);
     m.temperature_c = static_cast<float>(bottom_c);
     m.temperature_top_c = static_cast<float>(top_c);
@@ -295,7 +298,7 @@ void World::BuildRoom(const Scene& scene) {
     return m;
   };
   auto plain = [&](const SurfaceSpec& s, const char* cls) {
-    return surface(s.temperature_c, s.temperature_c, s.emissivity, s.specular, cls);
+    return surface(s.temperature_c, s.temperature_c, s.emissivity, s.specular, cls, s.roughness_um);
   };
   const WallOptions& walls = scene.room.walls;
   info.materials.push_back(plain(scene.room.floor, "floor"));

@@ -56,6 +56,14 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
 // share of static pixels with contrast, and frames showing people. Datasets without EXRs: none.
 constexpr int kViewFramesSampled = 400;
 InspectSection ViewSection(const Dataset& dataset, int threads);
+// The frames the view and thermal sections read: up to kViewFramesSampled, evenly spaced.
+std::vector<int> SampledViewFrames(const Dataset& dataset);
+// Thermal detail from the same frames' EXR ground truth: reflections in glossy surfaces.
+InspectSection ThermalSection(const Dataset& dataset, int threads);
+// Reflections (inspect_reflections.cpp): for whiteboards and windows, how many of `frames` show
+// one (≥ 100 interior pixels) and the median and largest p98 − p2 of the true temperature over
+// its interior pixels: a plain one is nearly uniform, one that mirrors a warm body is not.
+std::vector<InspectFigure> ReflectionFigures(const Dataset& dataset, const std::vector<int>& frames, int threads);
 // How the odometric and the true ground truth label the protocol's queries differently.
 InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol);
 

@@ -22,6 +22,7 @@ struct ThermalMaterial {
   double temperature_c = 22;  // surface temperature, °C, in [-50, 200]
   double emissivity = 0.9;    // 8–14 µm band emissivity, in (0, 1]
   bool specular = false;      // true: reflections are traced (metal, glass), else diffuse
+  double roughness_um = 0;    // specular: rms roughness, µm (mirror-like share: MirrorShare)
 };
 
 // Where the asset touches its support: "seat", "table" or "floor" (HOI ground truth).

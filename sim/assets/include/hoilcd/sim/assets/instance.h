@@ -19,6 +19,7 @@ struct InstanceMaterial {
   float temperature_top_c = 22;
   float emissivity = 0.9f;
   bool specular = false;
+  float roughness_um = 0;      // specular: rms roughness, µm (MirrorShare; rest of the reflection: ambient)
   int class_id = 0;            // class of pixels showing this material (the room has several)
   float blackbody_bottom = 0;  // band radiance at z = 0, W·m⁻²·sr⁻¹
   float blackbody_top = 0;     // band radiance at z = room height

@@ -19,7 +19,8 @@ const std::vector<std::string>& LayoutFamilies();
 // Bumped whenever the same arguments would give other scenes; recorded in every scene.
 // Version 2: rooms hold doors in frames, switches, sockets, a whiteboard, an air conditioner,
 // shelves, cabinets, ceiling lights, and bags, coats and chargers by occupied seats.
-constexpr int kGeneratorVersion = 2;
+// Version 3: the floor is matte or one of four glossy finishes (room.floor.roughness_um).
+constexpr int kGeneratorVersion = 3;
 
 // A family's room size, drawn uniformly per scene: length along x, width along y.
 struct RoomSizeRange {
@@ -52,6 +53,7 @@ struct GeneratorOptions {
   double activity_weight_spread;                  // each activity weight times U[1 - s, 1 + s]
   int walkers_max;                                // walkers per room, uniform in 0..walkers_max
   double turnover_max;                            // crowd.turnover_probability, uniform in [0, this]
+  double glossy_floor_probability;                // a glossy floor finish, else matte
   double laps;                                    // laps the robot drives (sets the frames)
   double route_wall_m;                            // m, route from the walls
   double route_clearance_m;                       // m, route centre line from every footprint

@@ -41,7 +41,7 @@ class FrameRenderer {
   // A specular hit whose radiance waits for its reflection ray.
   struct PendingReflection {
     float* radiance;  // where the finished radiance goes
-    float emissivity, blackbody;
+    float emissivity, mirror, blackbody;  // mirror: MirrorShare of the hit
     Eigen::Vector3f origin, direction;  // the reflection ray
   };
   // Band radiance a material emits as a blackbody at a hit `point` (world frame) at relative

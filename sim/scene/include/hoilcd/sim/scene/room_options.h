@@ -16,6 +16,7 @@ struct SurfaceSpec {
   double temperature_c = 22;  // C
   double emissivity = 0.92;   // (0, 1]
   bool specular = false;      // mirror-like reflection instead of diffuse
+  double roughness_um = 0;    // with specular: rms roughness, µm (0: a perfect mirror)
   // The table of a surface whose defaults are these (floor and ceiling differ only in defaults).
   static OptionTable<SurfaceSpec> TableWith(double temperature_c, double emissivity, bool specular);
 };

@@ -3,6 +3,7 @@
 // camera (emitted plus reflected). Radiance is in W·m⁻²·sr⁻¹ throughout.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "hoilcd/core/util/units.h"
@@ -58,6 +59,15 @@ class BandRadianceTable {
 inline float SurfaceRadiance(float emissivity, float blackbody_radiance,
                              float environment_radiance) {
   return emissivity * blackbody_radiance + (1.0f - emissivity) * environment_radiance;
+}
+
+// The share of a rough surface's reflection that stays mirror-like (specular), by the scalar
+// scattering theory of Davies (1954) / Bennett & Porteus (1961): exp(−(4π·σ·cos θ / λ)²) for rms
+// roughness σ, incidence angle θ from the normal and the band's centre wavelength λ (10 µm for
+// 8–14 µm). σ = 0 gives exactly 1 (a perfect mirror); the rest of the reflection is diffuse.
+inline float MirrorShare(float roughness_um, float cos_incidence, float wavelength_um = 10.0f) {
+  const float k = 4.0f * 3.14159265f * roughness_um * cos_incidence / wavelength_um;
+  return std::exp(-k * k);
 }
 
 }  // namespace hoilcd
