@@ -161,5 +161,32 @@ TEST(Inspect, ViewsCountTheBlankFramesOfTheEvenlySampledExrs) {
   ASSERT_NE(InspectDataset(dataset).Find("views"), nullptr);
 }
 
+// Whiteboards on the four walls of the tiny room: with people at the table the boards behind them
+// mirror them, so their true temperature spreads; with nobody there a board is nearly uniform.
+TEST(Inspect, ThermalSectionSeesPeopleMirroredInWhiteboards) {
+  const std::string boards =
+      "objects=[{\"asset\": \"whiteboard\", \"position_m\": [0.0, 1.8, 0.9], \"yaw_deg\": 0},"
+      "{\"asset\": \"whiteboard\", \"position_m\": [4.4, 1.8, 0.9], \"yaw_deg\": 180},"
+      "{\"asset\": \"whiteboard\", \"position_m\": [2.2, 0.0, 0.9], \"yaw_deg\": 90},"
+      "{\"asset\": \"whiteboard\", \"position_m\": [2.2, 3.6, 0.9], \"yaw_deg\": -90}]";
+  const test::TestDir temp;
+  double spread_max[2];
+  for (int people = 0; people < 2; ++people) {
+    const Dataset dataset = test::TinyRoomDataset(temp / ("dataset" + std::to_string(people)),
+                                                  {boards, "frames=220", people ? "crowd.people_per_table=4" : "crowd.people_per_table=0"});
+    const InspectSection thermal = ThermalSection(dataset, 2);
+    ASSERT_NE(thermal.Find("whiteboard_views"), nullptr);
+    EXPECT_GT(thermal.Find("whiteboard_views")->value, 20);
+    EXPECT_EQ(thermal.Find("window_views")->value, 0);  // the tiny room has no window
+    ASSERT_NE(thermal.Find("whiteboard_spread_max_k"), nullptr);
+    spread_max[people] = thermal.Find("whiteboard_spread_max_k")->value;
+    EXPECT_LE(thermal.Find("whiteboard_spread_median_k")->value, spread_max[people]);
+    EXPECT_EQ(ThermalSection(dataset, 1).Find("whiteboard_spread_max_k")->value, spread_max[people]);
+  }
+  // A board mirroring only the room spreads by 12 % of the walls' 2.5 K stratification and the table.
+  EXPECT_LT(spread_max[0], 0.5) << "a board mirroring only the room is nearly uniform";
+  EXPECT_GT(spread_max[1], spread_max[0] + 0.5) << "a board behind seated people mirrors them: " << spread_max[1] << " K";
+}
+
 }  // namespace
 }  // namespace hoilcd
