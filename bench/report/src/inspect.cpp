@@ -7,6 +7,7 @@
 
 #include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/bench/report/camera_output.h"
+#include "hoilcd/bench/report/inspect_walls.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -238,8 +239,8 @@ InspectSection ViewSection(const Dataset& dataset, int threads) {
   return s;
 }
 
-InspectSection ThermalSection(const Dataset& dataset, int threads) {
-  InspectSection s{"thermal", "Thermal detail (true temperature, EXR)", {}};
+InspectSection ReflectionSection(const Dataset& dataset, int threads) {
+  InspectSection s{"reflections", "Reflections in glossy surfaces (true temperature, EXR)", {}};
   const std::vector<int> sampled = SampledViewFrames(dataset);
   for (InspectFigure& f : ReflectionFigures(dataset, sampled, threads)) s.figures.push_back(std::move(f));
   return s;
@@ -277,7 +278,8 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   if (dataset.manifest().outputs.persons) r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
   if (dataset.manifest().outputs.exr) {
     r.sections.push_back(ViewSection(dataset, threads));
-    r.sections.push_back(ThermalSection(dataset, threads));
+    r.sections.push_back(WallSection(dataset, threads));
+    r.sections.push_back(ReflectionSection(dataset, threads));
   }
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   CameraOutputOptions camera;

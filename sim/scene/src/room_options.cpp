@@ -40,7 +40,85 @@ const OptionTable<WindowSpec>& WindowSpec::Table() {
           .Add("bottom_m", &O::bottom_m, 0.9, "m", OptionRange().AtLeast(0), "sill height above the floor")
           .Add("width_m", &O::width_m, 1.2, "m", OptionRange().Above(0), "window width")
           .Add("height_m", &O::height_m, 1.2, "m", OptionRange().Above(0), "window height")
-          .Flatten(&O::surface, SurfaceSpec::TableWith(15.0, 0.94, true));
+          .Flatten(&O::surface, SurfaceSpec::TableWith(15.0, 0.94, true))
+          .Add("u_value_w_m2k", &O::u_value_w_m2k, 2.8, "W/(m2 K)", OptionRange::Closed(0.3, 6.5),
+               "glazing U-value (centre of glass): sets the glass temperature when room.surfaces.glass_from_u_value "
+               "(single 5.8, old double 2.8, low-e double 1.1)");
+  return table;
+}
+
+RoomSurfaceOptions::RoomSurfaceOptions() { Table().FillDefaults(this); }
+
+const OptionTable<RoomSurfaceOptions>& RoomSurfaceOptions::Table() {
+  using O = RoomSurfaceOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("thermal_bridges", &O::thermal_bridges, true,
+               "edges and corners of outside walls are cooler (thermal bridges, ISO 10211 / ISO 13788)")
+          .Add("exterior_walls", &O::exterior_walls, "windowed", {"windowed", "all", "none"},
+               "which walls face outdoors: those with a window, all four, or none")
+          .Add("wall_u_value_w_m2k", &O::wall_u_value_w_m2k, 0.6, "W/(m2 K)", R::Closed(0.1, 3),
+               "U-value of an outside wall away from its edges")
+          .Add("edge_f_rsi", &O::edge_f_rsi, 0.8, "", R().Above(0).Below(1),
+               "temperature factor f_Rsi = (T_si - T_e) / (T_i - T_e) at an edge of an outside wall")
+          .Add("bridge_decay_m", &O::bridge_decay_m, 0.15, "m", R().Above(0).AtMost(2),
+               "distance over which an edge's cooling falls by 1/e")
+          .Add("radiator_plume", &O::radiator_plume, true, "the wall above each radiator is warmer")
+          .Add("plume_warming_k", &O::plume_warming_k, 4.0, "K", R::Closed(0, 30),
+               "warming of the wall just above a radiator's top")
+          .Add("plume_height_m", &O::plume_height_m, 0.6, "m", R().Above(0).AtMost(5),
+               "height over which the plume's warming falls by 1/e")
+          .Add("plume_spread_m", &O::plume_spread_m, 0.1, "m", R().Above(0).AtMost(2),
+               "sideways fall-off (Gaussian sd) beyond the radiator's ends, growing by a quarter of the height")
+          .Add("glass_from_u_value", &O::glass_from_u_value, true,
+               "glass temperature T_i - U R_si (T_i - T_e) from each window's u_value_w_m2k (else its temperature_c)")
+          .Add("window_frames", &O::window_frames, true, "frames between glass and wall")
+          .Add("frame_width_m", &O::frame_width_m, 0.07, "m", R::Closed(0, 0.3), "visible frame width")
+          .Add("frame_u_value_w_m2k", &O::frame_u_value_w_m2k, 1.8, "W/(m2 K)", R::Closed(0.3, 6.5),
+               "frame U-value (PVC or wood frames 1.3-2.0, ISO 10077-1)")
+          .Add("texture", &O::texture, true, "walls, ceiling and floor are not perfectly even")
+          .Add("texture_k", &O::texture_k, 0.15, "K", R::Closed(0, 2), "amplitude of the irregularity")
+          .Add("texture_scale_m", &O::texture_scale_m, 0.4, "m", R().Above(0).AtMost(10),
+               "feature size of the irregularity");
+  return table;
+}
+
+SunOptions::SunOptions() { Table().FillDefaults(this); }
+
+const OptionTable<SunOptions>& SunOptions::Table() {
+  using O = SunOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("enabled", &O::enabled, true, "sun patches where direct sun falls through a window")
+          .Add("time_of_day_h", &O::time_of_day_h, 10.0, "h", R().AtLeast(0).Below(24),
+               "local solar time at the sequence's start")
+          .Add("day_of_year", &O::day_of_year, 20, "", R::Closed(1, 365), "day of the year (20: 20 January)")
+          .Add("latitude_deg", &O::latitude_deg, 35.7, "deg", R::Closed(-66, 66), "latitude, north positive")
+          .Add("north_wall_azimuth_deg", &O::north_wall_azimuth_deg, 0.0, "deg", R::Closed(-360, 360),
+               "compass direction (clockwise from true north) of the room's +y axis, which the north wall faces")
+          .Add("glass_transmittance", &O::glass_transmittance, 0.7, "", R().Above(0).AtMost(1),
+               "direct solar transmittance of the glazing")
+          .Add("warming_k_per_kw_m2", &O::warming_k_per_kw_m2, 12.0, "K/(kW/m2)", R::Closed(0, 100),
+               "surface warming per kW/m2 of direct sun on it");
+  return table;
+}
+
+HvacOptions::HvacOptions() { Table().FillDefaults(this); }
+
+const OptionTable<HvacOptions>& HvacOptions::Table() {
+  using O = HvacOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("enabled", &O::enabled, true, "the air cycles through the thermostat's deadband; surfaces follow")
+          .Add("deadband_k", &O::deadband_k, 1.0, "K", R::Closed(0, 5), "peak-to-peak swing of the air temperature")
+          .Add("period_s", &O::period_s, 900.0, "s", R().Above(0).AtMost(86400), "one heating and one cooling phase")
+          .Add("heating_fraction", &O::heating_fraction, 0.5, "", R().Above(0).Below(1),
+               "share of a cycle the air warms")
+          .Add("surface_lag_s", &O::surface_lag_s, 600.0, "s", R::Closed(0, 86400),
+               "first-order time constant with which surfaces (and what they reflect) follow the air");
   return table;
 }
 
@@ -62,9 +140,14 @@ const OptionTable<RoomOptions>& RoomOptions::Table() {
           .External("size_m", "m, room size (x, y, z), each in (0, 100]")
           .Add("environment_temperature_c", &O::environment_temperature_c, 22.0, "C", OptionRange::Closed(-50, 200),
                "mean radiant temperature of the surroundings (ambient radiance for diffuse reflection)")
+          .Add("outdoor_temperature_c", &O::outdoor_temperature_c, 5.0, "C", OptionRange::Closed(-50, 50),
+               "outdoor air temperature: sets cold glass, frames and thermal bridges")
           .Nest("floor", &O::floor, SurfaceSpec::TableWith(21.5, 0.93, false))
           .Nest("ceiling", &O::ceiling, SurfaceSpec::TableWith(23.0, 0.91, false))
           .Nest("walls", &O::walls, WallOptions::Table())
+          .Nest("surfaces", &O::surfaces, RoomSurfaceOptions::Table())
+          .Nest("sun", &O::sun, SunOptions::Table())
+          .Nest("hvac", &O::hvac, HvacOptions::Table())
           .External("windows", "cold windows set into walls (glass: opaque and reflective in LWIR)")
           .External("doors", "doorways walkers enter and leave by (none: one in the middle of each end wall)");
   return table;

@@ -202,11 +202,16 @@ World::World(const Scene& scene, const BandRadianceTable& table)
   }
   // People standing still (chatting by a wall): present all the time, obstacles for the robot.
   for (Obstacle2D& o : crowd_->AddStandingPeople(scene)) obstacles_.push_back(std::move(o));
+  room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")));
   SetTime(0.0);
 }
 
 void World::SetTime(double time_s) {
   crowd_->SetTime(time_s);
+  std::vector<InstanceMaterial>& room = instances_[static_cast<size_t>(room_instance_)].materials;
+  room_surfaces_->SetTime(time_s, &room);
+  for (InstanceMaterial& m : room) Finish(&m);
+  environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(room_surfaces_->EnvironmentTemperatureC(time_s)));
   caster_->Commit();
 }
 
@@ -306,6 +311,7 @@ void World::BuildRoom(const Scene& scene) {
   info.materials.push_back(
       surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
   for (const WindowSpec& w : scene.room.windows) info.materials.push_back(plain(w.surface, "window"));
+  room_instance_ = static_cast<int>(instances_.size());
   instances_.push_back(std::move(info));
   const double t = 0.05;  // walls as thin obstacles just outside the room
   auto wall = [&](const std::string& name, double cx, double cy, double hx, double hy) {

@@ -163,7 +163,7 @@ TEST(Inspect, ViewsCountTheBlankFramesOfTheEvenlySampledExrs) {
 
 // Whiteboards on the four walls of the tiny room: with people at the table the boards behind them
 // mirror them, so their true temperature spreads; with nobody there a board is nearly uniform.
-TEST(Inspect, ThermalSectionSeesPeopleMirroredInWhiteboards) {
+TEST(Inspect, ReflectionSectionSeesPeopleMirroredInWhiteboards) {
   const std::string boards =
       "objects=[{\"asset\": \"whiteboard\", \"position_m\": [0.0, 1.8, 0.9], \"yaw_deg\": 0},"
       "{\"asset\": \"whiteboard\", \"position_m\": [4.4, 1.8, 0.9], \"yaw_deg\": 180},"
@@ -174,14 +174,14 @@ TEST(Inspect, ThermalSectionSeesPeopleMirroredInWhiteboards) {
   for (int people = 0; people < 2; ++people) {
     const Dataset dataset = test::TinyRoomDataset(temp / ("dataset" + std::to_string(people)),
                                                   {boards, "frames=220", people ? "crowd.people_per_table=4" : "crowd.people_per_table=0"});
-    const InspectSection thermal = ThermalSection(dataset, 2);
+    const InspectSection thermal = ReflectionSection(dataset, 2);
     ASSERT_NE(thermal.Find("whiteboard_views"), nullptr);
     EXPECT_GT(thermal.Find("whiteboard_views")->value, 20);
     EXPECT_EQ(thermal.Find("window_views")->value, 0);  // the tiny room has no window
     ASSERT_NE(thermal.Find("whiteboard_spread_max_k"), nullptr);
     spread_max[people] = thermal.Find("whiteboard_spread_max_k")->value;
     EXPECT_LE(thermal.Find("whiteboard_spread_median_k")->value, spread_max[people]);
-    EXPECT_EQ(ThermalSection(dataset, 1).Find("whiteboard_spread_max_k")->value, spread_max[people]);
+    EXPECT_EQ(ReflectionSection(dataset, 1).Find("whiteboard_spread_max_k")->value, spread_max[people]);
   }
   // A board mirroring only the room spreads by 12 % of the walls' 2.5 K stratification and the table.
   EXPECT_LT(spread_max[0], 0.5) << "a board mirroring only the room is nearly uniform";

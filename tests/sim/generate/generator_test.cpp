@@ -165,6 +165,9 @@ nlohmann::ordered_json ClearedClassroom(double pitch_deg, bool lights) {
   doc["room"]["floor"] = {{"temperature_c", 22}};
   doc["room"]["ceiling"] = {{"temperature_c", 22}};
   doc["room"]["walls"] = {{"temperature_bottom_c", 22}, {"temperature_top_c", 22}};
+  // The board mirrors the room: every surface exactly 22 °C (no texture, edges, plume or HVAC cycle).
+  doc["room"]["surfaces"] = {{"texture", false}, {"thermal_bridges", false}, {"radiator_plume", false}};
+  doc["room"]["hvac"] = {{"enabled", false}};
   doc["robot"] = {{"camera_pitch_deg", pitch_deg}};
   doc["route"]["waypoints_m"] = {{3.5, middle}, {1.2, middle}, {1.2, middle + 1.5}, {3.5, middle + 1.5}};
   return doc;

@@ -58,8 +58,8 @@ constexpr int kViewFramesSampled = 400;
 InspectSection ViewSection(const Dataset& dataset, int threads);
 // The frames the view and thermal sections read: up to kViewFramesSampled, evenly spaced.
 std::vector<int> SampledViewFrames(const Dataset& dataset);
-// Thermal detail from the same frames' EXR ground truth: reflections in glossy surfaces.
-InspectSection ThermalSection(const Dataset& dataset, int threads);
+// Reflections in glossy surfaces from the same frames' EXR ground truth (ReflectionFigures).
+InspectSection ReflectionSection(const Dataset& dataset, int threads);
 // Reflections (inspect_reflections.cpp): for whiteboards and windows, how many of `frames` show
 // one (≥ 100 interior pixels) and the median and largest p98 − p2 of the true temperature over
 // its interior pixels: a plain one is nearly uniform, one that mirrors a warm body is not.

@@ -35,6 +35,7 @@ struct WindowSpec {
   std::string wall;  // north | south | east | west
   double center_m = 0, bottom_m = 0, width_m = 0, height_m = 0;  // m, along the wall / above the floor
   SurfaceSpec surface;
+  double u_value_w_m2k = 2.8;  // W/(m²·K), glazing; sets the glass temperature with room.surfaces.glass_from_u_value
   static const OptionTable<WindowSpec>& Table();  // one element of /room/windows
 };
 
@@ -44,9 +45,59 @@ struct DoorSpec {
   double width_m = 0.9;                                  // clear width, m
 };
 
+// What makes walls, ceiling, floor and windows vary inside one surface (room_surfaces.md).
+struct RoomSurfaceOptions {
+  bool thermal_bridges;          // cooler edges and corners of outside walls
+  std::string exterior_walls;    // "windowed" (walls with a window) | "all" | "none"
+  double wall_u_value_w_m2k;     // W/(m²·K), outside wall away from edges
+  double edge_f_rsi;             // temperature factor f_Rsi at an edge (ISO 13788), (0, 1)
+  double bridge_decay_m;         // m, e-folding distance of an edge's cooling
+  bool radiator_plume;           // warm wall above each radiator
+  double plume_warming_k;        // K, at the radiator's top
+  double plume_height_m;         // m, e-folding height of the plume
+  double plume_spread_m;         // m, sideways fall-off beyond the radiator's ends
+  bool glass_from_u_value;       // glass temperature from its U-value and the outdoor temperature
+  bool window_frames;            // frames between glass and wall
+  double frame_width_m;          // m
+  double frame_u_value_w_m2k;    // W/(m²·K)
+  bool texture;                  // small smooth irregularity (a fraction of a kelvin)
+  double texture_k;              // K, amplitude
+  double texture_scale_m;        // m, feature size
+  RoomSurfaceOptions();
+  static const OptionTable<RoomSurfaceOptions>& Table();
+};
+
+// The sun through the windows: a warm patch where it falls (room_surfaces.md).
+struct SunOptions {
+  bool enabled;
+  double time_of_day_h;             // h, local solar time at the sequence's start
+  int day_of_year;                  // 1..365
+  double latitude_deg;              // deg, north positive
+  double north_wall_azimuth_deg;    // deg, compass direction the room's +y ("north") axis points
+  double glass_transmittance;       // (0, 1], direct solar transmittance of the glazing
+  double warming_k_per_kw_m2;       // K per kW/m² of sun absorbed on a surface
+  SunOptions();
+  static const OptionTable<SunOptions>& Table();
+};
+
+// The thermostat's cycle: the air swings through the deadband, the surfaces follow slowly.
+struct HvacOptions {
+  bool enabled;
+  double deadband_k;        // K, peak to peak of the air's swing
+  double period_s;          // s, one heating and one cooling phase
+  double heating_fraction;  // (0, 1), share of a cycle the air warms
+  double surface_lag_s;     // s, first-order time constant of the surfaces
+  HvacOptions();
+  static const OptionTable<HvacOptions>& Table();
+};
+
 struct RoomOptions {
   Eigen::Vector3d size_m;             // m, x (length), y (width), z (height)
   double environment_temperature_c;   // C, the air (and what surfaces reflect)
+  double outdoor_temperature_c;       // C, outside air (glass, frames, thermal bridges)
+  RoomSurfaceOptions surfaces;
+  SunOptions sun;
+  HvacOptions hvac;
   SurfaceSpec floor, ceiling;
   WallOptions walls;
   std::vector<WindowSpec> windows;    // read by hand (an array); default: the schema's window

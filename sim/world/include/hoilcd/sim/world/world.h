@@ -17,6 +17,7 @@
 #include "hoilcd/sim/sensor/radiometry.h"
 #include "hoilcd/sim/world/crowd.h"
 #include "hoilcd/sim/world/ray_caster.h"
+#include "hoilcd/sim/world/room_thermal.h"
 
 namespace hoilcd {
 
@@ -49,8 +50,12 @@ class World : private CrowdStage {
   std::vector<Crowd::SeatPlace> seat_places() const { return crowd_->SeatPlaces(); }
   const Skeleton& skeleton() const { return crowd_->skeleton(); }
   double room_height_m() const { return room_size_m_.z(); }
-  // Band radiance of the room's surroundings, for diffuse reflection (L_env).
+  // Band radiance of the room's surroundings, for diffuse reflection (L_env), at the current time
+  // (it follows the surfaces through the HVAC cycle).
   float environment_radiance() const { return environment_radiance_; }
+  // The room's air temperature at time t (the thermostat's cycle, room_thermal.h), C.
+  double AirTemperatureC(double time_s) const { return room_surfaces_->climate().AirTemperatureC(time_s); }
+  const RoomSurfaces& room_surfaces() const { return *room_surfaces_; }
   const BandRadianceTable& radiance_table() const { return table_; }
 
  private:
@@ -71,6 +76,8 @@ class World : private CrowdStage {
   std::map<const Asset*, int> prototype_of_asset_;
   std::vector<InstanceInfo> instances_;
   TriangleMesh room_mesh_;
+  int room_instance_ = -1;
+  std::unique_ptr<RoomSurfaces> room_surfaces_;
   std::map<std::string, int> classes_;
   std::vector<Obstacle2D> obstacles_;
   Eigen::Vector3d room_size_m_;

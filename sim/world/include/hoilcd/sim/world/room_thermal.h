@@ -1,0 +1,111 @@
+// The room's surfaces over time (docs/models/room_surfaces.md): the air's thermostat cycle and the
+// surfaces' lagged response (RoomClimate), the sun's position, and the temperature fields of the
+// walls, ceiling, floor and windows (RoomSurfaces): cooler edges of outside walls, a warm plume
+// above each radiator, cold glass and its frame, sun patches and a small texture. Every value is a
+// closed-form function of (scene, seed, time), so frames come out the same at any thread count.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "hoilcd/sim/assets/instance.h"
+#include "hoilcd/sim/scene/room_options.h"
+
+namespace hoilcd {
+
+// R_si, m²·K/W: the inside surface resistance of ISO 6946 / ISO 13788 (horizontal heat flow).
+constexpr double kInsideSurfaceResistance = 0.13;
+
+// Inside surface temperature of an element with U-value u between inside air t_in and outdoors
+// t_out: T_si = T_i − U·R_si·(T_i − T_e).
+double InsideSurfaceTemperatureC(double u_value_w_m2k, double t_in_c, double t_out_c);
+
+// The sun seen from the room's latitude: elevation above the horizon and azimuth clockwise from
+// true north, rad (Cooper's declination, the hour angle of local solar time).
+struct SunPosition {
+  double elevation_rad = 0;
+  double azimuth_rad = 0;
+};
+SunPosition SolarPosition(double latitude_deg, int day_of_year, double solar_hour);
+// Clear-sky direct normal irradiance, W/m² (Meinel and Meinel with Kasten–Young air mass); 0 at night.
+double ClearSkyDirectNormalWm2(double elevation_rad);
+
+// The air's thermostat cycle and how the surfaces follow it. Anyone may build one from the scene
+// (it holds no state but the scene's): the garments' model asks it for the air at time t.
+class RoomClimate {
+ public:
+  RoomClimate(const RoomOptions& room, uint64_t seed);
+  // Air temperature at time t: environment_temperature_c plus the thermostat's triangle cycle
+  // (rising for heating_fraction of each period through the deadband, then falling), a phase
+  // keyed by the seed. Without hvac: environment_temperature_c.
+  double AirTemperatureC(double time_s) const;
+  // The cycle's part of the air temperature (AirTemperatureC minus its mean), K.
+  double AirOffsetK(double time_s) const;
+  // The first-order lag of AirOffsetK with surface_lag_s, in its periodic steady state (closed
+  // form, piecewise exponential), K: what walls, floor, ceiling and the room's reflections add.
+  double SurfaceOffsetK(double time_s) const;
+
+ private:
+  HvacOptions hvac_;
+  double mean_c_;
+  double phase_s_;       // time into the cycle at t = 0
+  double lag_start_k_;   // SurfaceOffsetK at the start of a heating phase
+};
+
+// World-frame boxes of the instances of class `radiator_class` (the radiators a scene placed).
+std::vector<Eigen::AlignedBox3f> RadiatorBoxes(const std::vector<InstanceInfo>& instances, int radiator_class);
+
+// The fields of the room's materials (0 floor, 1 ceiling, 2 walls, 3 + i window i) and their
+// base temperatures at time t. Radiators are given as world-frame boxes (those of the scene's
+// objects whose class is "radiator").
+class RoomSurfaces {
+ public:
+  RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators);
+  ~RoomSurfaces();
+
+  // The field of room material k, or null when none of its effects is on (the uniform fast path).
+  const SurfaceField* FieldOf(int material) const;
+  // Moves the climate and the sun to time t and sets each room material's base temperatures
+  // (its scene values plus the surfaces' HVAC offset; glass from its U-value). The caller then
+  // recomputes the materials' radiances. Call between frames only: fields read this state.
+  void SetTime(double time_s, std::vector<InstanceMaterial>* materials);
+  // The temperature the room's diffuse surfaces reflect at t (the environment's plus the
+  // surfaces' HVAC offset), C.
+  double EnvironmentTemperatureC(double time_s) const;
+  // Field offset of material k at world point p at the last SetTime, K (0 without a field).
+  float OffsetK(int material, const Eigen::Vector3f& p) const;
+
+  const RoomClimate& climate() const { return climate_; }
+
+ private:
+  class Field;
+  struct Radiator {
+    int wall;        // 0 south (y = 0), 1 north, 2 west (x = 0), 3 east
+    float lo_m, hi_m;  // extent along the wall
+    float top_m, bottom_m;
+  };
+  int WallAt(const Eigen::Vector3f& p) const;
+  float BridgeK(int material, const Eigen::Vector3f& p) const;
+  float PlumeK(const Eigen::Vector3f& p) const;
+  float SunK(int material, const Eigen::Vector3f& p) const;
+  float FrameK(int window, const Eigen::Vector3f& p) const;
+  float TextureK(int material, const Eigen::Vector3f& p) const;
+
+  RoomOptions room_;
+  uint64_t seed_;
+  RoomClimate climate_;
+  Eigen::Vector3f size_m_;
+  std::array<bool, 4> exterior_{};  // south, north, west, east
+  std::vector<Radiator> radiators_;
+  std::vector<std::unique_ptr<Field>> fields_;  // per material, null where none
+  // State at the last SetTime.
+  float bridge_k_ = 0;                  // edge cooling at an edge, K
+  std::vector<float> frame_minus_glass_k_;  // per window
+  Eigen::Vector3f sun_direction_ = Eigen::Vector3f::Zero();  // towards the sun, room frame
+  float sun_irradiance_wm2_ = 0;       // transmitted direct normal irradiance, W/m²
+};
+
+}  // namespace hoilcd
