@@ -7,6 +7,7 @@
 
 #include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/bench/report/camera_output.h"
+#include "hoilcd/bench/report/inspect_heat_traces.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -264,6 +265,9 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   // People ground truth is optional (render --outputs without persons): no people section then.
   if (dataset.manifest().outputs.persons) r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
   if (dataset.manifest().outputs.exr) r.sections.push_back(ViewSection(dataset, threads));
+  // Heat traces of left seats, when people left (turnover) and the EXRs show them.
+  const bool left = std::any_of(dataset.events().begin(), dataset.events().end(), [](const DatasetEvent& e) { return e.type == "leave"; });
+  if (dataset.manifest().outputs.exr && left) r.sections.push_back(HeatTraceSection(MeasureHeatTraces(dataset, threads)));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   CameraOutputOptions camera;
   camera.threads = threads;
