@@ -14,7 +14,7 @@ const OptionTable<ContactHeatOptions>& ContactHeatOptions::Table() {
                "(false: they keep their assets' temperatures)")
           .Add("seat_warm_time_constant_s", &O::seat_warm_time_constant_s, 120.0, "s", R::Closed(1, 36000),
                "a seat's and backrest's print warms toward its steady excess (furniture.seat_warmth_c) with this time constant")
-          .Add("back_excess_k", &O::back_excess_k, 2.5, "K", R::Closed(0, 20), "steady excess of a backrest's print where a back leans on it")
+          .Add("back_excess_k", &O::back_excess_k, 1.5, "K", R::Closed(0, 20), "steady excess of a backrest's print where a back leans on it")
           .Add("table_excess_k", &O::table_excess_k, 3.0, "K", R::Closed(0, 20), "steady excess of a table top under a resting forearm and hand")
           .Add("table_warm_time_constant_s", &O::table_warm_time_constant_s, 30.0, "s", R::Closed(1, 36000),
                "a table print warms with this time constant")
