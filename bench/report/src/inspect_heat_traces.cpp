@@ -11,7 +11,8 @@
 namespace hoilcd {
 namespace {
 
-constexpr double kWarmK = 1.0;  // a trace is "warm" while at least this far above the room
+constexpr double kWarmK = 1.0;      // a trace is "warm" while at least this far above the room
+constexpr double kSeatTopM = 0.45;  // a chair's seat height (assets/README.md)
 
 struct LeftSeat {
   std::string seat;
@@ -56,7 +57,7 @@ HeatTraceSample Sight(const Dataset& dataset, const LeftSeat& seat, int frame, d
       const Eigen::Vector3d p = world_from_cam * (k.Unproject(u, v) * z);
       const Eigen::Vector2d local = chair_from_world * (p.head<2>() - Eigen::Vector2d(f.centre_m[0], f.centre_m[1]));
       if (std::abs(local.x()) > f.half_size_m[0] + kMarginM || std::abs(local.y()) > f.half_size_m[1] + kMarginM) continue;
-      if (p.z() < 0.40 || p.z() > 0.90) continue;  // the seat and the backrest, not the legs
+      if (p.z() < kSeatTopM - 0.05 || p.z() > kSeatTopM + 0.05) continue;  // the seat's top, not the legs or the backrest
       excess.push_back(t_true.at<float>(v, u) - room_c);
     }
   }

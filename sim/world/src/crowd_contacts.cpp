@@ -105,24 +105,35 @@ void Crowd::PlanContactHeat() {
                     &seat_from_cup, &activity);
     };
     // Seat and backrest: thighs and buttocks on the seat while seated; the back on the
-    // backrest in the postures that lean on it.
+    // backrest in the postures that lean on it. A chair's frame is the seat's; a sofa (the
+    // seat's "table") holds its places side by side in its own frame.
     const auto seat = std::find_if(seats_.begin(), seats_.end(), [&](const Seat& s) { return s.table == p.table && s.seat == p.seat; });
-    if (seat != seats_.end() && seat->chair_instance >= 0 && !postures.empty()) {
-      const Asset& chair = *stage_.MutableInstance(seat->chair_instance).asset;
+    if (seat != seats_.end() && !postures.empty()) {
+      const bool chair = seat->chair_instance >= 0;
+      const int touched = chair ? seat->chair_instance : table_instance_.at(p.table);
+      const Eigen::Matrix4d object_from_seat = chair ? Eigen::Matrix4d::Identity() : p.table_from_seat;
+      const Eigen::Matrix3d turn = object_from_seat.topLeftCorner<3, 3>();
+      auto at = [&](const Eigen::Vector3d& in_seat) -> Eigen::Vector3d { return turn * in_seat + object_from_seat.topRightCorner<3, 1>(); };
+      const Asset& asset = *stage_.MutableInstance(touched).asset;
       const BodyPose pose = rest_pose(postures.front().first);
       const double s = p.height_scale, seat_top_m = 0.45;
-      field(seat->chair_instance).Add({Ellipse({pose.pelvis_m.x() + 0.05, pose.pelvis_m.y(), seat_top_m}, Eigen::Vector3d::UnitX(),
-                                               Eigen::Vector3d::UnitZ(), 0.17 * s, 0.15 * s, 0.02),
-                                       seat_response, {{from_s, to_s}}});
-      // The backrest's front face: the foremost vertices behind the seat centre, at back height.
-      const Eigen::AlignedBox3f backrest = VerticesIn(chair, Eigen::AlignedBox3f(Eigen::Vector3f(-1, -1, 0.55f), Eigen::Vector3f(0, 1, 0.8f)));
+      field(touched).Add({Ellipse(at({pose.pelvis_m.x() + 0.05, pose.pelvis_m.y(), seat_top_m}), turn * Eigen::Vector3d::UnitX(),
+                                  Eigen::Vector3d::UnitZ(), 0.17 * s, 0.15 * s, 0.02),
+                          seat_response, {{from_s, to_s}}});
+      // The backrest's front face: the foremost vertices behind the place, at back height (the
+      // meshes are boxes: their vertices are corners, so the search spans the piece's width).
+      const float place_x = static_cast<float>(at(Eigen::Vector3d::Zero()).x());
+      const Eigen::AlignedBox3f backrest =
+          VerticesIn(asset, Eigen::AlignedBox3f(Eigen::Vector3f(-2, -2, 0.55f), Eigen::Vector3f(place_x, 2, 0.8f)));
       std::vector<ContactInterval> leaning;
       for (const auto& [c, name] : postures)
         if (LeansOnBackrest(name)) leaning.push_back(c);
       if (!backrest.isEmpty() && !leaning.empty()) {
-        field(seat->chair_instance).Add({Ellipse({backrest.max().x(), pose.pelvis_m.y(), 0.66}, Eigen::Vector3d::UnitY(),
-                                                 Eigen::Vector3d::UnitX(), 0.15 * s, 0.12 * s, 0.05),
-                                         back_response, leaning});
+        // Chairs and sofas face their frame's +x: the face is at the box's largest x.
+        Eigen::Vector3d centre = at({0, pose.pelvis_m.y(), 0.66});
+        centre.x() = backrest.max().x();
+        field(touched).Add({Ellipse(centre, turn * Eigen::Vector3d::UnitY(), turn * Eigen::Vector3d::UnitX(), 0.15 * s, 0.12 * s, 0.05),
+                            back_response, leaning});
       }
     }
     // Forearms and hands on the table top, where the resting pose puts them, while the arm is

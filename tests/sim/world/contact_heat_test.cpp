@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/scene/scene_options.h"
@@ -122,6 +123,25 @@ TEST(ContactHeat, PrintsFollowTheSeatAndThePosture) {
   }
   EXPECT_EQ(table_contacts, 2);
   EXPECT_FLOAT_EQ(SurfaceC(world, table0, SeatPoint(world, 0, 0, {0.45f, 0, 0.74f})), room);
+}
+
+TEST(ContactHeat, ASofaShowsThePrintOfThePlaceSatOnOnly) {
+  nlohmann::json doc = {{"name", "sofa"},
+                        {"frames", 50},
+                        {"room", {{"size_m", {9.0, 6.0, 2.6}}}},
+                        {"objects", nlohmann::json::array()},
+                        {"tables", {{{"center_m", {7.0, 2.0}}, {"asset", "sofa"}, {"seats", "sofa"}, {"yaw_deg", 90}}}},
+                        {"crowd", {{"seating", {{{"table", 0}, {"seat", 2}, {"posture", "seated_upright"}}}}, {"posture_change_interval_s", 0}}},
+                        {"route", {{"waypoints_m", {{0.4, 0.4}, {0.4, 5.6}, {8.6, 5.6}, {8.6, 0.4}}}}}};
+  const Scene scene = SceneFromJson(doc, "sofa.json");
+  const BandRadianceTable table;
+  World world(scene, table);
+  world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
+  world.SetTime(10.0);
+  const int sofa = InstanceNamed(world, "table 0");
+  const float cushion_c = world.instance(sofa).materials.front().temperature_c;
+  EXPECT_GT(SurfaceC(world, sofa, SeatPoint(world, 0, 2, {0.03f, 0, 0.45f})), cushion_c + 1.5f);
+  EXPECT_FLOAT_EQ(SurfaceC(world, sofa, SeatPoint(world, 0, 0, {0.03f, 0, 0.45f})), cushion_c);
 }
 
 TEST(ContactHeat, NewcomersPrintsCupsAndLaptopsStartAtTheirArrival) {

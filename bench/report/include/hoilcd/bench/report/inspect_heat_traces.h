@@ -1,7 +1,7 @@
 // Heat traces of left seats, measured from a dataset folder alone (docs/models/contact_heat.md):
 // after each leave event whose seat nobody takes again, the chair's pixels are found in the
 // EXR (class chair, placed in the world by their depth Z and the true camera pose, inside the
-// chair's footprint from footprints.json, between seat and backrest-top height) and their
+// chair's footprint from footprints.json, within 5 cm of the seat's height) and their
 // warmest part (90th percentile of T_true) is compared with the room's air (scene.json's
 // room.environment_temperature_c). `hoilcd inspect` reports how long the traces stay ≥ 1 K.
 #pragma once
