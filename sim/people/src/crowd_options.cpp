@@ -58,7 +58,8 @@ const OptionTable<CrowdOptions>& CrowdOptions::Table() {
           .Add("turnover_probability", &O::turnover_probability, 0.0, "", R::Closed(0, 1),
                "chance per person and lap boundary of leaving (half of it: changing seats)")
           .Add("heat_print_time_constant_s", &O::heat_print_time_constant_s, 120.0, "s", R().AtLeast(0.001),
-               "how fast a seat cools after its person leaves")
+               "how fast a seat's print cools after its person leaves (docs/models/contact_heat.md)")
+          .Nest("contact_heat", &O::contact_heat, ContactHeatOptions::Table())
           .Add("walkers", &O::walkers, 0, "", R::Closed(0, 8), "people walking the robot's route ahead of it")
           .Nest("walker_behaviours", &O::walker_behaviours,
                 OptionTable<W>()

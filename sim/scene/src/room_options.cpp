@@ -173,7 +173,7 @@ const OptionTable<FurnitureOptions>& FurnitureOptions::Table() {
           .Add("chair_jitter_deg", &O::chair_jitter_deg, 12.0, "deg", R::Closed(0, 45),
                "each chair is also turned by up to this much either way")
           .Add("seat_warmth_c", &O::seat_warmth_c, 2.0, "C", R::Closed(0, 20),
-               "how much warmer than the room an occupied chair is (body heat through the plastic)");
+               "steady excess of the print a sitter warms on a chair seat (body heat through the plastic)");
   return table;
 }
 

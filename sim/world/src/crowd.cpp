@@ -62,6 +62,7 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
   frame_rate_hz_ = scene.frame_rate_hz;
   duration_s_ = scene.frames / scene.frame_rate_hz;
   seat_warmth_c_ = scene.furniture.seat_warmth_c;
+  room_c_ = scene.room.environment_temperature_c;
   sway_amplitude_rad_ = options_.sway_amplitude_deg * kDegToRad;
   // Each door faces into the room from the wall it is on (the nearest wall: the scene checked it
   // lies on one).
@@ -91,7 +92,8 @@ std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side)
 }
 
 void Crowd::AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::AlignedBox3f& table_bounds_m,
-                     SeatArrangement seats) {
+                     SeatArrangement seats, int table_instance) {
+  table_instance_.push_back(table_instance);
   world_from_table_.push_back(world_from_table);
   table_bounds_m_.push_back(table_bounds_m);
   table_seats_.push_back(seats);
@@ -251,6 +253,7 @@ void Crowd::Plan(const std::vector<RobotSample>& samples, const std::vector<Obst
   AimGlances();
   PlanWalkers(samples, obstacles);
   WarnIdleWalkers();
+  PlanContactHeat();
   std::sort(events_.begin(), events_.end(), [](const DatasetEvent& a, const DatasetEvent& b) {
     return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
   });
@@ -456,27 +459,6 @@ Person& Crowd::AddStandingPerson(const std::string& kind, Rng* rng) {
   return people_.back();
 }
 
-void Crowd::UpdateSeatWarmth(double time_s) {
-  for (const Seat& seat : seats_) {
-    // Body heat while someone sits; afterwards the seat cools exponentially (a heat print).
-    double warmth = 0;
-    for (const Person& p : people_) {
-      if (!p.seated || p.table != seat.table || p.seat != seat.seat || p.arrive_s > time_s) continue;
-      warmth = std::max(warmth, p.leave_s > time_s
-                                    ? seat_warmth_c_
-                                    : seat_warmth_c_ * std::exp(-(time_s - p.leave_s) / options_.heat_print_time_constant_s));
-    }
-    if (seat.chair_instance < 0) continue;  // a sofa's place: the sofa is not warmed seat by seat
-    std::vector<InstanceMaterial>& materials = stage_.MutableInstance(seat.chair_instance).materials;
-    for (size_t m = 0; m < materials.size(); ++m) {
-      if (seat.chair_materials[m].specular) continue;  // metal legs do not hold body heat
-      materials[m].temperature_c = seat.chair_materials[m].temperature_c + static_cast<float>(warmth);
-      materials[m].temperature_top_c = materials[m].temperature_c;
-      stage_.Finish(&materials[m]);
-    }
-  }
-}
-
 BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const {
   const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
   const double breath = options_.breathing_amplitude_m * std::sin(2 * M_PI * time_s / options_.breathing_period_s + p.breathing_phase_rad);
@@ -616,6 +598,38 @@ void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
   }
 }
 
+bool Crowd::ForearmOnTable(const Person& p, const Eigen::Vector3d& wrist) {
+  // Low enough to rest on the top and at least 3 cm in from its near edge (wherever the chair stands).
+  return p.at_table_top && wrist.z() <= 0.80 && wrist.x() >= p.table_edge_m + 0.03;
+}
+
+BodyPose Crowd::PoseAt(const Person& p, double time_s, Eigen::Matrix4d* world_from_person,
+                       Eigen::Matrix4d* seat_from_cup_out, std::string* activity) const {
+  BodyPose pose = PoseOf(p, time_s, world_from_person);
+  Eigen::Matrix4d seat_from_cup = Eigen::Matrix4d::Identity();
+  seat_from_cup.topRightCorner<3, 1>() = p.cup_at_m;
+  const auto episode = std::find_if(p.activities.begin(), p.activities.end(), [&](const ActivityEpisode& e) {
+    return e.start_s <= time_s && time_s < e.end_s;
+  });
+  if (episode != p.activities.end()) {
+    *activity = episode->name;
+    const Eigen::Vector2d robot = robot_.At(time_s);
+    const Eigen::Vector3d robot_in_seat =
+        Apply(world_from_person->inverse(), Eigen::Vector3d(robot.x(), robot.y(), 0.0));
+    // Talking: the gesturing hand on the side with more room.
+    ActivityEpisode e = *episode;
+    if (e.name == "talking" && p.side_room_m[e.side] < p.side_room_m[1 - e.side]) e.side = 1 - e.side;
+    pose = ApplyActivity(*skeleton_, pose, e, time_s, options_.activity.blend_s,
+                         {p.cup_at_m, p.laptop_at_m}, std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
+  }
+  if (p.seated) {
+    KeepOwnElbowRoom(p, &pose);
+    if (p.at_table_top) KeepClearOfTable(p, &pose);
+  }
+  *seat_from_cup_out = seat_from_cup;
+  return skeleton_->Limit(pose);
+}
+
 void Crowd::SetTime(double time_s) {
   for (Person& p : people_) {
     p.present = time_s >= p.arrive_s && time_s < p.leave_s;
@@ -632,30 +646,9 @@ void Crowd::SetTime(double time_s) {
         if (prop >= 0) stage_.Move(prop, kHidden);
       continue;
     }
-    Eigen::Matrix4d world_from_person;
-    BodyPose pose = PoseOf(p, time_s, &world_from_person);
+    Eigen::Matrix4d world_from_person, seat_from_cup;
+    const BodyPose pose = PoseAt(p, time_s, &world_from_person, &seat_from_cup, &p.activity);
     if (p.walker >= 0) p.posture = walker_plans_[p.walker].At(time_s).behaviour;
-    Eigen::Matrix4d seat_from_cup = Eigen::Matrix4d::Identity();
-    seat_from_cup.topRightCorner<3, 1>() = p.cup_at_m;
-    const auto episode = std::find_if(p.activities.begin(), p.activities.end(), [&](const ActivityEpisode& e) {
-      return e.start_s <= time_s && time_s < e.end_s;
-    });
-    if (episode != p.activities.end()) {
-      p.activity = episode->name;
-      const Eigen::Vector2d robot = robot_.At(time_s);
-      const Eigen::Vector3d robot_in_seat =
-          Apply(world_from_person.inverse(), Eigen::Vector3d(robot.x(), robot.y(), 0.0));
-      // Talking: the gesturing hand on the side with more room.
-      ActivityEpisode e = *episode;
-      if (e.name == "talking" && p.side_room_m[e.side] < p.side_room_m[1 - e.side]) e.side = 1 - e.side;
-      pose = ApplyActivity(*skeleton_, pose, e, time_s, options_.activity.blend_s,
-                           {p.cup_at_m, p.laptop_at_m}, std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
-    }
-    if (p.seated) {
-      KeepOwnElbowRoom(p, &pose);
-      if (p.at_table_top) KeepClearOfTable(p, &pose);
-    }
-    pose = skeleton_->Limit(pose);
     const auto parts = skeleton_->PartTransforms(pose);
     for (int i = 0; i < Skeleton::kPartCount; ++i) {
       stage_.Move(p.parts[i], (world_from_person * parts[i]).cast<float>());
@@ -667,9 +660,9 @@ void Crowd::SetTime(double time_s) {
       p.contacts_m.emplace_back("seat", Apply(world_from_person, Eigen::Vector3d(pose.pelvis_m.x() + 0.02, pose.pelvis_m.y(), 0.45)));
       for (int s = 0; s < 2 && p.at_table_top; ++s) {
         const Eigen::Vector3d elbow = keypoints[7 + s], wrist = keypoints[9 + s];
-        if (wrist.z() > 0.80 || wrist.x() < 0.33) continue;  // forearm not on the table top
+        if (!ForearmOnTable(p, wrist)) continue;
         const Eigen::Vector3d mid = 0.5 * (elbow + wrist);
-        p.contacts_m.emplace_back("table", Apply(world_from_person, Eigen::Vector3d(std::max(0.33, mid.x()), mid.y(), 0.74)));
+        p.contacts_m.emplace_back("table", Apply(world_from_person, Eigen::Vector3d(std::max(p.table_edge_m + 0.03, mid.x()), mid.y(), 0.74)));
       }
     }
     for (const auto& [name, at] : skeleton_->FootContacts(parts)) {
@@ -685,7 +678,7 @@ void Crowd::SetTime(double time_s) {
       stage_.Move(p.laptop, (world_from_seat * seat_from_laptop).cast<float>());
     }
   }
-  UpdateSeatWarmth(time_s);
+  UpdateContactHeat(time_s);
 }
 
 }  // namespace hoilcd

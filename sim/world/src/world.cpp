@@ -360,8 +360,9 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     const Asset& table_asset = *table_assets[t];
     const double yaw = spec.yaw_deg * kDegToRad;
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
-    Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
-    crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m, spec.seats);
+    const int table_instance =
+        Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
+    crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m, spec.seats, table_instance);
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
     for (int seat : SeatsOf(spec, per_side)) {
       Eigen::Vector3d seat_pos;

@@ -31,9 +31,13 @@ int ChairInstance(const World& world, int table, int seat) {
   return -1;
 }
 
+// The seat's temperature where a sitter's print is (its centre, 3 cm forward; contact_heat.md).
 float SeatTemperature(const World& world, int chair) {
-  for (const InstanceMaterial& m : world.instance(chair).materials)
-    if (!m.specular) return m.temperature_c;
+  const InstanceInfo& info = world.instance(chair);
+  const Eigen::Vector3f object_point(0.03f, 0, 0.45f);
+  const Eigen::Vector3f world_point = (info.object_from_world.inverse() * object_point.homogeneous()).head<3>();
+  for (const InstanceMaterial& m : info.materials)
+    if (!m.specular) return m.temperature_c + (m.field ? m.field->OffsetK(object_point, world_point) : 0.0f);
   return 0;
 }
 

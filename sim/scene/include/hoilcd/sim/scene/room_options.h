@@ -115,7 +115,7 @@ struct FurnitureOptions {
   double seat_spacing_6_m;      // m, the same at a table seating 6
   double chair_jitter_m;        // m, sd of a chair's offset from its nominal place
   double chair_jitter_deg;      // deg, sd of a chair's yaw from square
-  double seat_warmth_c;         // C, a seat just left is this much above the room, then cools
+  double seat_warmth_c;         // C, steady excess of a seat's print under a sitter (contact_heat.md)
   FurnitureOptions();
   static const OptionTable<FurnitureOptions>& Table();
 };

@@ -20,6 +20,7 @@
 #include "hoilcd/sim/people/walker_planner.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/scene.h"
+#include "hoilcd/sim/world/contact_heat.h"
 
 namespace hoilcd {
 
@@ -87,9 +88,10 @@ class Crowd {
   static std::vector<SeatingSpec> InitialSeating(const Scene& scene, int per_side);
 
   // The furniture as the World places it, in order: a table (its frame, its asset's bounds with
-  // the top at max z, how it seats people), then its seats (chair_instance -1: a sofa's place).
+  // the top at max z, how it seats people, its instance), then its seats (chair_instance -1: a
+  // sofa's place).
   void AddTable(const Eigen::Matrix4d& world_from_table, const Eigen::AlignedBox3f& table_bounds_m,
-                SeatArrangement seats);
+                SeatArrangement seats, int table_instance);
   void AddSeat(int table, int seat, int chair_instance, const Eigen::Matrix4f& world_from_seat);
   // Adds a seated person (instances for every posture they will take) and returns its index.
   // person_id < 0: a new person; else that person (same appearance) on another seat.
@@ -144,6 +146,10 @@ class Crowd {
   void KeepOwnElbowRoom(const Person& p, BodyPose* pose) const;
   // The pose (person frame) and world_from_person of a present person at time t.
   BodyPose PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const;
+  // PoseOf with the current activity overlaid and the table and neighbours kept clear: the pose
+  // SetTime shows; also the cup's pose (seat frame) and the activity's name ("" for none).
+  BodyPose PoseAt(const Person& p, double time_s, Eigen::Matrix4d* world_from_person, Eigen::Matrix4d* seat_from_cup,
+                  std::string* activity) const;
   // The steps of Plan: seat turnover at each lap boundary; each seated body's elbow room and the
   // scene's cap on body size between seats; glances at table neighbours; the walkers' bouts (and
   // a warning for walkers with little time in the room).
@@ -157,12 +163,24 @@ class Crowd {
   void WarnIdleWalkers();
   // The id a new person gets: one past the largest so far (0 for the first).
   int NextPersonId() const;
-  void UpdateSeatWarmth(double time_s);
+  // Contact heat (crowd_contacts.cpp): prints planned from the seats, postures and activities
+  // of the plan, cups' pouring and laptops' opening times; applied to the instances at time t.
+  void PlanContactHeat();
+  // Whether a seated person's forearm rests on their table top, by its wrist (seat frame).
+  static bool ForearmOnTable(const Person& p, const Eigen::Vector3d& wrist);
+  void UpdateContactHeat(double time_s);
+  struct PropHeat {
+    int instance = -1;
+    bool cup = false;
+    double from_s = 0, to_s = 0;  // cup: poured at from_s; laptop: open from from_s to to_s
+    std::vector<InstanceMaterial> steady;  // the asset's materials (a laptop in use, a cup as poured at the asset's drink temperature)
+  };
 
   AssetLibrary& assets_;
   CrowdStage& stage_;
   std::unique_ptr<Skeleton> skeleton_;
   std::vector<Eigen::Matrix4d> world_from_table_;  // per table
+  std::vector<int> table_instance_;                  // per table: its instance
   std::vector<Eigen::AlignedBox3f> table_bounds_m_;  // per table: its asset's bounds (top at max z)
   std::vector<SeatArrangement> table_seats_;         // per table: how it seats people
   std::vector<Person> people_;
@@ -176,6 +194,9 @@ class Crowd {
   double frame_rate_hz_ = 25, duration_s_ = 80;
   CrowdOptions options_;
   double seat_warmth_c_ = 2;
+  double room_c_ = 22;                        // the room's air, °C: what cups and laptops cool toward
+  std::map<int, std::unique_ptr<PrintField>> prints_;  // contact prints by instance
+  std::vector<PropHeat> prop_heat_;
   double sway_amplitude_rad_ = 0;
   std::string scene_file_;  // named in errors found by Plan
 };
