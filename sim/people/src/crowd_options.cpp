@@ -69,7 +69,8 @@ const OptionTable<CrowdOptions>& CrowdOptions::Table() {
                     .Add("cross", &W::cross, 0.0, "", R::Closed(0, 1000), "relative weight: crosses the robot's path")
                     .Add("overtake", &W::overtake, 0.0, "", R::Closed(0, 1000), "relative weight: passes the robot from behind"))
           .External("standing", "people standing still: [{position_m, yaw_deg}]")
-          .Add("bald_fraction", &O::bald_fraction, 0.15, "", R::Closed(0, 1), "people whose scalp reads as skin");
+          .Add("bald_fraction", &O::bald_fraction, 0.15, "", R::Closed(0, 1), "people whose scalp reads as skin")
+          .Nest("garments", &O::garments, GarmentOptions::Table());
   return table;
 }
 
