@@ -28,6 +28,7 @@ constexpr double kNoseK = -2.0, kEarK = -2.0, kChinK = -0.8;
 constexpr double kNeckK = -0.3, kCollarK = 0.3;
 constexpr double kHandBackK = -2.0, kFingertipK = -3.5, kForearmK = -1.2;
 constexpr double kMottleK = 0.15;
+constexpr double kHairK = 0.5;
 
 double Bump(const Eigen::Vector3f& p, const Eigen::Vector3f& centre, double radius_m) {
   const double r2 = (p - centre).squaredNorm() / (radius_m * radius_m);
@@ -139,6 +140,10 @@ double SkinField::OffsetAt(const Eigen::Vector3f& p) const {
       break;
   }
   return t + kMottleK * ValueNoise3(key_, p / 0.02f);
+}
+
+float HairField::OffsetK(const Eigen::Vector3f& object_point, const Eigen::Vector3f&) const {
+  return static_cast<float>(kHairK * ValueNoise3(key_, object_point / 0.02f));
 }
 
 }  // namespace hoilcd

@@ -66,7 +66,7 @@ const OptionTable<GarmentOptions>& GarmentOptions::Table() {
                "clothing temperatures from each person's garments (ISO 7730 heat balance) with folds, contact zones "
                "and hems; false: one temperature per clothing region (clothing_temperature_c)")
           .Add("skin_pattern", &O::skin_pattern, true,
-               "face, neck, hands and bare forearms at their published temperatures; false: one skin temperature")
+               "face, neck, hands and bare forearms at their published temperatures, hair by its thickness; false: one skin and one hair temperature")
           .Add("air_speed_m_s", &O::air_speed_m_s, 0.1, "m/s", R::Closed(0, 1),
                "air speed relative to the body in the heat balance (ISO 7730 h_c)")
           .Add("time_constant_s", &O::time_constant_s, 300.0, "s", R::Closed(1, 3600),

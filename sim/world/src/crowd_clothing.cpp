@@ -56,6 +56,8 @@ void Crowd::Dress(Person* person) {
       }
       if ((region == "skin" || bare_forearm) && g.skin_pattern) {
         fields_.push_back(std::make_unique<SkinField>(key, zone));
+      } else if (region == "hair" && g.skin_pattern) {
+        fields_.push_back(std::make_unique<HairField>(key));
       } else if (region.rfind("clothing", 0) == 0 && g.enabled && !bare_forearm) {
         fields_.push_back(std::make_unique<GarmentField>(key, zone, p.ensemble, p.seated, g));
       } else {

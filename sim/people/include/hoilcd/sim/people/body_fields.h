@@ -1,7 +1,7 @@
 // Temperature fields over a clothed body, in each body part's own frame (the rest pose: z up,
 // x forward, y to the left), so they move with the part: within a garment, folds banded along the
 // limb, broad air-gap patches, warmer contact zones and cooler hems; over skin, the face's regions,
-// neck, hands and fingers, bare forearms. docs/models/people.md has the figures and sources.
+// neck, hands and fingers, bare forearms; over hair, its thickness. docs/models/people.md has the figures and sources.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +46,17 @@ class SkinField : public SurfaceField {
  private:
   uint64_t key_;
   BodyZone zone_;
+};
+
+// Hair's offset from the person's hair temperature: thicker and thinner hair in keyed patches of
+// about 2 cm (estimate, docs/models/people.md).
+class HairField : public SurfaceField {
+ public:
+  explicit HairField(uint64_t key) : key_(key) {}
+  float OffsetK(const Eigen::Vector3f& object_point, const Eigen::Vector3f& world_point) const override;
+
+ private:
+  uint64_t key_;
 };
 
 }  // namespace hoilcd

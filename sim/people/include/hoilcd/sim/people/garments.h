@@ -16,7 +16,7 @@ namespace hoilcd {
 // The scene's /crowd/garments.
 struct GarmentOptions {
   bool enabled;                // clothing from the ensemble's heat balance and within-garment fields
-  bool skin_pattern;           // face, neck, hands and bare forearms at their published temperatures
+  bool skin_pattern;           // face, neck, hands, bare forearms at published temperatures; hair texture
   double air_speed_m_s;        // air speed relative to the body, m/s (ISO 7730 h_c)
   double time_constant_s;      // how fast a garment's surface follows an activity change, s
   double fold_amplitude_k;     // folds: banded pattern along a limb, peak K
