@@ -263,7 +263,10 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   r.sections.push_back(CameraSection(dataset.poses()));
   // People ground truth is optional (render --outputs without persons): no people section then.
   if (dataset.manifest().outputs.persons) r.sections.push_back(PeopleSection(dataset.persons(), dataset.num_frames()));
-  if (dataset.manifest().outputs.exr) r.sections.push_back(ViewSection(dataset, threads));
+  if (dataset.manifest().outputs.exr) {
+    r.sections.push_back(ViewSection(dataset, threads));
+    r.sections.push_back(ClothingSection(dataset, threads));
+  }
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   CameraOutputOptions camera;
   camera.threads = threads;

@@ -161,5 +161,18 @@ TEST(Inspect, ViewsCountTheBlankFramesOfTheEvenlySampledExrs) {
   ASSERT_NE(InspectDataset(dataset).Find("views"), nullptr);
 }
 
+// The tiny room's people wear garments (scene defaults): their clothing varies within itself.
+TEST(Inspect, ClothingSectionMeasuresTheSpreadWithinAPersonsClothing) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomDataset(temp / "dataset");
+  const InspectSection clothing = ClothingSection(dataset, 2);
+  EXPECT_GT(clothing.Find("neighbour_pairs")->value, 100);
+  EXPECT_LT(clothing.Find("equal_neighbours_percent")->value, 50);
+  EXPECT_GT(clothing.Find("spread_median_k")->value, 1.0);
+  EXPECT_EQ(ClothingSection(dataset, 1).Find("equal_neighbours_percent")->value,
+            clothing.Find("equal_neighbours_percent")->value);
+  ASSERT_NE(InspectDataset(dataset).Find("clothing"), nullptr);
+}
+
 }  // namespace
 }  // namespace hoilcd
