@@ -283,6 +283,7 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
     r.sections.push_back(ViewSection(dataset, threads));
     r.sections.push_back(WallSection(dataset, threads));
     r.sections.push_back(ReflectionSection(dataset, threads));
+    r.sections.push_back(ClothingSection(dataset, threads));
   }
   // Heat traces of left seats, when people left (turnover) and the EXRs show them.
   const bool left = std::any_of(dataset.events().begin(), dataset.events().end(), [](const DatasetEvent& e) { return e.type == "leave"; });

@@ -107,8 +107,10 @@ std::string SequenceOptions::Check() const { return Table().FirstProblem(*this);
 // chair jitter never squeezes neighbours together; 12: people 0.43 m across the shoulders instead
 // of 0.48, seated body sizes capped so that neighbours' shoulders never meet; 13: frame PNGs
 // deflated by libdeflate, every row Sub-filtered, one IDAT; 14: thermal.mp4 without x264's
-// macroblock tree, whose AVX-512 path made the video's bytes vary from run to run).
-constexpr int kSimulatorRevision = 16;
+// macroblock tree, whose AVX-512 path made the video's bytes vary from run to run; 15, 16: walkers
+// keep off the camera's nose and shorten their stride near furniture; 17: temperature fields —
+// garments and skin, contact prints, room surfaces (edges, plume, glass, sun, HVAC), rough mirrors).
+constexpr int kSimulatorRevision = 17;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

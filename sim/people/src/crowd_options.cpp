@@ -37,7 +37,7 @@ const OptionTable<CrowdOptions>& CrowdOptions::Table() {
           .Add("skin_temperature_c", &O::skin_temperature_c, 34.0, "°C", R::Closed(-50, 200), "mean skin temperature")
           .Add("skin_temperature_sd_c", &O::skin_temperature_sd_c, 0.5, "°C", R::Closed(0, 5), "skin temperature sd between people")
           .Add("clothing_temperature_c", &O::clothing_temperature_c, 28.5, "°C", R::Closed(-50, 200),
-               "mean upper clothing temperature")
+               "mean upper clothing temperature (only with garments.enabled false)")
           .Add("clothing_temperature_sd_c", &O::clothing_temperature_sd_c, 0.5, "°C", R::Closed(0, 5),
                "clothing temperature sd between people")
           .Add("hair_temperature_c", &O::hair_temperature_c, 30.0, "°C", R::Closed(-50, 200), "mean hair temperature")
@@ -70,7 +70,8 @@ const OptionTable<CrowdOptions>& CrowdOptions::Table() {
                     .Add("cross", &W::cross, 0.0, "", R::Closed(0, 1000), "relative weight: crosses the robot's path")
                     .Add("overtake", &W::overtake, 0.0, "", R::Closed(0, 1000), "relative weight: passes the robot from behind"))
           .External("standing", "people standing still: [{position_m, yaw_deg}]")
-          .Add("bald_fraction", &O::bald_fraction, 0.15, "", R::Closed(0, 1), "people whose scalp reads as skin");
+          .Add("bald_fraction", &O::bald_fraction, 0.15, "", R::Closed(0, 1), "people whose scalp reads as skin")
+          .Nest("garments", &O::garments, GarmentOptions::Table());
   return table;
 }
 

@@ -64,6 +64,8 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
   seat_warmth_c_ = scene.furniture.seat_warmth_c;
   room_c_ = scene.room.environment_temperature_c;
   sway_amplitude_rad_ = options_.sway_amplitude_deg * kDegToRad;
+  thermal_environment_ = {scene.room.environment_temperature_c, scene.room.environment_temperature_c,
+                          options_.garments.air_speed_m_s};
   // Each door faces into the room from the wall it is on (the nearest wall: the scene checked it
   // lies on one).
   const Eigen::Vector2d size = scene.room.size_m.head<2>();
@@ -120,6 +122,7 @@ std::vector<Obstacle2D> Crowd::AddStandingPeople(const Scene& scene) {
   for (const StandingSpec& spec : scene.crowd.standing) {
     Rng rng = KeyedRng(seed_, "crowd.standing", static_cast<uint64_t>(people_.size()));
     Person& person = AddStandingPerson("standing", &rng);
+    Dress(&person);
     const Eigen::Vector3d at(spec.position_m.x(), spec.position_m.y(), 0.0);
     person.world_from_seat = PlacementTransform(at, spec.yaw_deg * kDegToRad);
     DrawIdleMotion(options_, &rng, &person);
@@ -229,6 +232,7 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
     person.laptop_at_m = Eigen::Vector3d(person.table_edge_m + 0.22, 0.0, 0.74);
     person.laptop = stage_.Place(assets_.Get("laptop"), kHidden, InstanceRole::kObject, "laptop" + where, 0.0);
   }
+  Dress(&person);
   people_.push_back(person);
   return people_.size() - 1;
 }
@@ -376,6 +380,7 @@ void Crowd::PlanWalkers(const std::vector<RobotSample>& samples, const std::vect
     Rng rng = KeyedRng(seed_, "crowd.walker", w);
     Person& walker = AddStandingPerson("walker", &rng);
     walker.walker = w;
+    Dress(&walker);
     walker.lead_s = rng.Uniform(4.0, 9.0);
     walker.lead_amplitude_s = rng.Uniform(0.5, 1.5);
     walker.lead_period_s = rng.Uniform(15.0, 30.0);
@@ -653,6 +658,7 @@ void Crowd::SetTime(double time_s) {
     for (int i = 0; i < Skeleton::kPartCount; ++i) {
       stage_.Move(p.parts[i], (world_from_person * parts[i]).cast<float>());
     }
+    UpdateClothing(p, time_s);
     const auto keypoints = skeleton_->Keypoints(parts);
     for (int k = 0; k < kCocoKeypointCount; ++k) p.keypoints_m[k] = Apply(world_from_person, keypoints[k]);
     // Contacts with the chair, the table and the floor follow the moving parts.

@@ -188,5 +188,18 @@ TEST(Inspect, ReflectionSectionSeesPeopleMirroredInWhiteboards) {
   EXPECT_GT(spread_max[1], spread_max[0] + 0.5) << "a board behind seated people mirrors them: " << spread_max[1] << " K";
 }
 
+// The tiny room's people wear garments (scene defaults): their clothing varies within itself.
+TEST(Inspect, ClothingSectionMeasuresTheSpreadWithinAPersonsClothing) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomDataset(temp / "dataset");
+  const InspectSection clothing = ClothingSection(dataset, 2);
+  EXPECT_GT(clothing.Find("neighbour_pairs")->value, 100);
+  EXPECT_LT(clothing.Find("equal_neighbours_percent")->value, 50);
+  EXPECT_GT(clothing.Find("spread_median_k")->value, 1.0);
+  EXPECT_EQ(ClothingSection(dataset, 1).Find("equal_neighbours_percent")->value,
+            clothing.Find("equal_neighbours_percent")->value);
+  ASSERT_NE(InspectDataset(dataset).Find("clothing"), nullptr);
+}
+
 }  // namespace
 }  // namespace hoilcd

@@ -177,7 +177,9 @@ TEST_F(PaperRoomView, PeopleWallsAndCupsReadPlausibleTemperatures) {
   ASSERT_GT(cv::countNonZero(people), 500) << "the corridor view must show people";
   double lo, hi;
   cv::minMaxLoc(t, &lo, &hi, nullptr, nullptr, people);
-  EXPECT_GE(lo, 26.0);
+  // The coolest clothing is a loose jacket's hem: t_cl 25.7 °C less its hem and air-gap cooling
+  // (docs/models/people.md), read through ε = 0.90.
+  EXPECT_GE(lo, 23.0);
   EXPECT_LE(hi, 37.0);
   EXPECT_GT(hi, 32.0) << "exposed skin reads above 32 °C";
   // Walls and floor from the south corridor, where they fill most of the view.

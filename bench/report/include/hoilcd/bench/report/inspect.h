@@ -64,6 +64,19 @@ InspectSection ReflectionSection(const Dataset& dataset, int threads);
 // one (≥ 100 interior pixels) and the median and largest p98 − p2 of the true temperature over
 // its interior pixels: a plain one is nearly uniform, one that mirrors a warm body is not.
 std::vector<InspectFigure> ReflectionFigures(const Dataset& dataset, const std::vector<int>& frames, int threads);
+// Clothing within a person, from the same sampled frames' EXRs: the share of neighbouring
+// clothing pixel pairs of one person (4-neighbours) within kEqualClothingK of each other, and the
+// median over people and frames (with at least kClothingMinPixels clothing pixels) of the p95 - p5
+// spread of a person's clothing. The EXR's class channel has one "person" class for every body
+// part, so clothing is an interior person pixel (its four neighbours show the same person, so no
+// edge mixing) whose T_true is in [kClothingMinC, kClothingMaxC). Limits: hair (~29-30 °C as
+// seen), shoes (~25 °C) and the coolest skin (fingertips, ears, nose tip: 30.5-32 °C at the
+// surface, ~30-31 °C as seen through ε = 0.98) fall in the band, and clothing warmer than 31 °C
+// (a T-shirt where it presses on the shoulders) falls out; rooms far from 22 °C shift the band.
+constexpr float kClothingMinC = 24.0f, kClothingMaxC = 31.0f;
+constexpr float kEqualClothingK = 0.02f;
+constexpr size_t kClothingMinPixels = 30;
+InspectSection ClothingSection(const Dataset& dataset, int threads);
 // How the odometric and the true ground truth label the protocol's queries differently.
 InspectSection LabelSection(const std::vector<PoseRecord>& poses, const ProtocolOptions& protocol);
 

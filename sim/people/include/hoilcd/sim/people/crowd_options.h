@@ -10,6 +10,7 @@
 
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/people/crowd_motion.h"
+#include "hoilcd/sim/people/garments.h"
 
 namespace hoilcd {
 
@@ -73,6 +74,7 @@ struct CrowdOptions {
   WalkerWeights walker_behaviours;
   std::vector<StandingSpec> standing;   // people standing still (read by the scene)
   double bald_fraction;                 // people whose scalp reads as skin
+  GarmentOptions garments;              // clothing and skin temperature patterns (garments.h)
 
   CrowdOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /crowd), unit, default, range, description.

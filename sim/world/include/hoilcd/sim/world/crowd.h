@@ -17,6 +17,7 @@
 #include "hoilcd/sim/assets/skeleton.h"
 #include "hoilcd/sim/people/crowd_motion.h"
 #include "hoilcd/sim/people/crowd_options.h"
+#include "hoilcd/sim/people/garments.h"
 #include "hoilcd/sim/people/walker_planner.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -52,6 +53,8 @@ struct Person {
   double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
   double lateral_m = 0;                      // walkers: offset to the left of the route
   int walker = -1;                           // walkers: index of their plan (walker_planner.h)
+  Ensemble ensemble;                         // what they wear (garments.h)
+  std::vector<ClothingStep> clothing_steps;  // their garments' targets as their activity changes
   // State at the current time.
   bool present = false;
   std::string posture;                       // base posture ("seated_upright", "walking", ...)
@@ -175,6 +178,10 @@ class Crowd {
     double from_s = 0, to_s = 0;  // cup: poured at from_s; laptop: open from from_s to to_s
     std::vector<InstanceMaterial> steady;  // the asset's materials (a laptop in use, a cup as poured at the asset's drink temperature)
   };
+  // crowd_clothing.cpp: draws a person's garments and gives their parts' materials the garment
+  // and skin fields (crowd.garments); sets their garments' temperatures at a time.
+  void Dress(Person* person);
+  void UpdateClothing(const Person& person, double time_s);
 
   AssetLibrary& assets_;
   CrowdStage& stage_;
@@ -199,6 +206,8 @@ class Crowd {
   std::vector<PropHeat> prop_heat_;
   double sway_amplitude_rad_ = 0;
   std::string scene_file_;  // named in errors found by Plan
+  ThermalEnvironment thermal_environment_;             // the room as the garments' heat balance sees it
+  std::vector<std::unique_ptr<SurfaceField>> fields_;  // garment and skin fields the materials point to
 };
 
 // An open box in a table's frame, m: the table top slab a seated person's parts keep out of.
