@@ -7,10 +7,8 @@
 
 #include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/bench/report/camera_output.h"
+#include "hoilcd/bench/report/inspect_heat_traces.h"
 #include "hoilcd/bench/report/inspect_walls.h"
-  // Heat traces of left seats, when people left (turnover) and the EXRs show them.
-  const bool left = std::any_of(dataset.events().begin(), dataset.events().end(), [](const DatasetEvent& e) { return e.type == "leave"; });
-  if (dataset.manifest().outputs.exr && left) r.sections.push_back(HeatTraceSection(MeasureHeatTraces(dataset, threads)));
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"

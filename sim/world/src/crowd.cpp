@@ -645,6 +645,7 @@ void Crowd::SetTime(double time_s) {
       if (from <= time_s) p.posture = name;
     p.activity.clear();
     p.contacts_m.clear();
+    UpdateClothing(p, time_s);  // present or not, so that the state at a time is the same whatever came before
     if (!p.present) {
       for (int part : p.parts) stage_.Move(part, kHidden);
       for (int prop : {p.cup, p.laptop})
@@ -658,7 +659,6 @@ void Crowd::SetTime(double time_s) {
     for (int i = 0; i < Skeleton::kPartCount; ++i) {
       stage_.Move(p.parts[i], (world_from_person * parts[i]).cast<float>());
     }
-    UpdateClothing(p, time_s);
     const auto keypoints = skeleton_->Keypoints(parts);
     for (int k = 0; k < kCocoKeypointCount; ++k) p.keypoints_m[k] = Apply(world_from_person, keypoints[k]);
     // Contacts with the chair, the table and the floor follow the moving parts.

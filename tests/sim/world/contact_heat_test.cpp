@@ -56,7 +56,9 @@ TEST(ContactHeat, ClosedFormFollowsTheFirstOrderEquation) {
     bool in = false;
     for (const ContactInterval& c : contacts) in |= t >= c.start_s && t < c.end_s;
     e += dt * (in ? (r.steady_k - e) / r.warm_s : -e / r.cool_s);
-    if (std::fmod(t + dt / 2, 10.0) < dt) EXPECT_NEAR(ContactExcessK(contacts, r, t + dt), e, 2e-3) << t;
+    if (std::fmod(t + dt / 2, 10.0) < dt) {
+      EXPECT_NEAR(ContactExcessK(contacts, r, t + dt), e, 2e-3) << t;
+    }
   }
   // From −∞: steady at once; before any contact: nothing.
   EXPECT_DOUBLE_EQ(ContactExcessK({{-kInf, 10}}, r, 0), 3.0);
@@ -101,7 +103,9 @@ TEST(ContactHeat, PrintsFollowTheSeatAndThePosture) {
   EXPECT_GT(SurfaceC(world, chair0, SeatPoint(world, 0, 0, {0.03f, 0, 0.45f})), room + 1.5f);
   EXPECT_GT(SurfaceC(world, chair1, SeatPoint(world, 0, 1, {0.03f, 0, 0.45f})), room + 1.5f);
   EXPECT_FLOAT_EQ(SurfaceC(world, chair0, SeatPoint(world, 0, 0, {0.03f, 0.3f, 0.45f})), room);
-  if (chair2 >= 0) EXPECT_FLOAT_EQ(SurfaceC(world, chair2, SeatPoint(world, 0, 2, {0.03f, 0, 0.45f})), room);
+  if (chair2 >= 0) {
+    EXPECT_FLOAT_EQ(SurfaceC(world, chair2, SeatPoint(world, 0, 2, {0.03f, 0, 0.45f})), room);
+  }
   // The backrest of the upright sitter only.
   float back0 = 0, back1 = 0;
   for (float x = -0.3f; x < -0.15f; x += 0.005f) {
@@ -165,7 +169,9 @@ TEST(ContactHeat, NewcomersPrintsCupsAndLaptopsStartAtTheirArrival) {
     bool sat_before = false;
     for (const Person& p : world.people()) sat_before |= p.person_id != e.person && p.table == newcomer->table && p.seat == newcomer->seat;
     world.SetTime(t - 0.2);
-    if (!sat_before) EXPECT_FLOAT_EQ(SurfaceC(world, chair, seat), 22.0f) << e.seat;
+    if (!sat_before) {
+      EXPECT_FLOAT_EQ(SurfaceC(world, chair, seat), 22.0f) << e.seat;
+    }
     world.SetTime(t + 0.5 * o.seat_warm_time_constant_s);
     if (!sat_before) {
       // Warming toward furniture.seat_warmth_c with its time constant (±15 % texture).
