@@ -15,6 +15,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/scene/scene.h"
 
@@ -134,7 +135,13 @@ std::string SweepRunSpec::Name() const {
   return s + (s.empty() ? "" : ",") + "seed=" + std::to_string(seed);
 }
 
-std::string SweepRunSpec::FolderName() const { return SweepSafeName(Name()); }
+std::string SweepRunSpec::FolderName() const {
+  const std::string safe = SweepSafeName(Name());
+  if (safe.size() <= kMaxFolderName) return safe;
+  char hash[18];
+  std::snprintf(hash, sizeof hash, "~%016llx", static_cast<unsigned long long>(MixBits(HashString(Name()))));
+  return safe.substr(0, kMaxFolderName - 17) + hash;
+}
 
 std::vector<std::string> SweepRunSpec::Overrides() const {
   std::vector<std::string> out;

@@ -62,6 +62,29 @@ TEST(SweepOptions, HoldTheirTablesDefaultsAndNameAMissingFolderABadShardAndABadR
   EXPECT_EQ(options.Check(), "run/cache_dir: must not be empty");
 }
 
+// Eleven switches of the thermal effects in one run: the full name is over 255 bytes, which no
+// file system takes as a folder name, so the folder keeps a prefix and a hash of the whole name.
+TEST(SweepRunSpec, ALongRunNameGetsAShortDistinctFolderAndAShortOneKeepsItsName) {
+  SweepRunSpec a, b, short_run;
+  for (const char* key : {"crowd.garments.enabled", "crowd.garments.skin_pattern", "crowd.contact_heat.enabled",
+                          "room.surfaces.thermal_bridges", "room.surfaces.radiator_plume", "room.surfaces.glass_from_u_value",
+                          "room.surfaces.window_frames", "room.surfaces.texture", "room.hvac.enabled", "room.sun.enabled"}) {
+    a.settings.emplace_back(key, "false");
+    b.settings.emplace_back(key, "false");
+  }
+  a.settings.emplace_back("camera.specular_reflections", "false");
+  b.settings.emplace_back("camera.specular_reflections", "true");
+  a.seed = b.seed = 1;
+  ASSERT_GT(a.Name().size(), 255u);
+  EXPECT_EQ(a.FolderName().size(), SweepRunSpec::kMaxFolderName);
+  EXPECT_EQ(a.FolderName().substr(0, 40), a.Name().substr(0, 40));
+  EXPECT_NE(a.FolderName(), b.FolderName());  // they differ only beyond the kept prefix
+  EXPECT_EQ(a.FolderName(), a.FolderName());
+  short_run.settings.emplace_back("crowd.people_per_table", "2");
+  short_run.seed = 3;
+  EXPECT_EQ(short_run.FolderName(), "crowd.people_per_table=2,seed=3");
+}
+
 TEST(SweepPlanRuns, ShardsPartitionTheCrossProduct) {
   SweepPlan plan;
   plan.scene_path = "scene.json";

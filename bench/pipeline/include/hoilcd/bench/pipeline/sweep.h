@@ -36,7 +36,11 @@ struct SweepRunSpec {
   int seed = 1;                                               // scene seed override
 
   std::string Name() const;        // "key=value,...,seed=S": the run's identity
-  std::string FolderName() const;  // Name() with characters unsafe in paths replaced by '_'
+  // Name() with characters unsafe in paths replaced by '_'; a name longer than kMaxFolderName
+  // bytes (many --set keys) keeps its first bytes and ends in '~' and a hash of the whole name,
+  // so that it fits a file system's 255-byte limit and stays distinct.
+  static constexpr size_t kMaxFolderName = 200;
+  std::string FolderName() const;
   std::vector<std::string> Overrides() const;  // for LoadScene: "key=value"..., "seed=S"
   nlohmann::json ToJson() const;
   static SweepRunSpec FromJson(const nlohmann::json& j);  // throws InputError("sweep run", ...)
