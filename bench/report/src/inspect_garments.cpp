@@ -61,10 +61,7 @@ FrameClothing MeasureFrame(const Dataset& dataset, int frame) {
 
 InspectSection ClothingSection(const Dataset& dataset, int threads) {
   InspectSection s{"clothing", "Clothing within a person (true temperature, EXR)", {}};
-  const int frames = dataset.num_frames();
-  const int step = std::max(1, (frames + kViewFramesSampled - 1) / kViewFramesSampled);
-  std::vector<int> sampled;
-  for (int f = 0; f < frames; f += step) sampled.push_back(f);
+  const std::vector<int> sampled = SampledViewFrames(dataset);
   std::vector<FrameClothing> measured(sampled.size());
   ParallelFor(static_cast<int64_t>(sampled.size()), threads,
               [&](int64_t i) { measured[static_cast<size_t>(i)] = MeasureFrame(dataset, sampled[static_cast<size_t>(i)]); });

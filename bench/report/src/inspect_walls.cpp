@@ -53,10 +53,7 @@ double MedianOfKnown(const std::vector<double>& values, int* count) {
 
 InspectSection WallSection(const Dataset& dataset, int threads) {
   InspectSection s{"walls", "Room surfaces (true temperature, EXR)", {}};
-  const int frames = dataset.num_frames();
-  const int step = std::max(1, (frames + kViewFramesSampled - 1) / kViewFramesSampled);
-  std::vector<int> sampled;
-  for (int f = 0; f < frames; f += step) sampled.push_back(f);
+  const std::vector<int> sampled = SampledViewFrames(dataset);
   std::vector<SurfaceSpread> spreads(sampled.size());
   ParallelFor(static_cast<int64_t>(sampled.size()), threads,
               [&](int64_t i) { spreads[static_cast<size_t>(i)] = SpreadOf(dataset, sampled[static_cast<size_t>(i)]); });

@@ -92,12 +92,16 @@ RoomClimate::RoomClimate(const RoomOptions& room, uint64_t seed)
   lag_start_k_ = tau > 0 ? (a2 + e2 * a1) / (1 - e1 * e2) : -b / 2;
 }
 
+double RoomClimate::CycleTimeS(double time_s) const {
+  const double u = std::fmod(time_s + phase_s_, hvac_.period_s);
+  return u < 0 ? u + hvac_.period_s : u;
+}
+
 double RoomClimate::AirOffsetK(double time_s) const {
   if (!hvac_.enabled) return 0;
   const double b = hvac_.deadband_k, p = hvac_.period_s;
   const double t1 = hvac_.heating_fraction * p;
-  double u = std::fmod(time_s + phase_s_, p);
-  if (u < 0) u += p;
+  const double u = CycleTimeS(time_s);
   return u < t1 ? -b / 2 + b * u / t1 : b / 2 - b * (u - t1) / (p - t1);
 }
 
@@ -109,8 +113,7 @@ double RoomClimate::SurfaceOffsetK(double time_s) const {
   if (tau <= 0) return AirOffsetK(time_s);
   const double b = hvac_.deadband_k, p = hvac_.period_s;
   const double t1 = hvac_.heating_fraction * p;
-  double u = std::fmod(time_s + phase_s_, p);
-  if (u < 0) u += p;
+  const double u = CycleTimeS(time_s);
   const double air = AirOffsetK(time_s);
   const double k1 = b / t1, k2 = -b / (p - t1);
   if (u < t1) return air - k1 * tau + (lag_start_k_ + b / 2 + k1 * tau) * std::exp(-u / tau);

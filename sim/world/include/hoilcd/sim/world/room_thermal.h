@@ -49,6 +49,7 @@ class RoomClimate {
   double SurfaceOffsetK(double time_s) const;
 
  private:
+  double CycleTimeS(double time_s) const;  // time into the thermostat's cycle, [0, period_s)
   HvacOptions hvac_;
   double mean_c_;
   double phase_s_;       // time into the cycle at t = 0
