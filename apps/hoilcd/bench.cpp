@@ -6,6 +6,7 @@
 #include "hoilcd/bench/evaluation/evaluate.h"
 #include "hoilcd/bench/evaluation/scores_file.h"
 #include "hoilcd/bench/report/gate.h"
+#include "hoilcd/bench/report/online_report.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/file_io.h"
@@ -21,14 +22,29 @@ struct BenchCommandArgs {
   int threads = 0;
   BenchArgs bench;
   GateArgs gate;
+  bool online = false;
+  ShortlistOptions shortlist;
 };
+
+// --online: frames in order, each query against a shortlist of the past (online.h).
+int OnlineBenchCommand(const BenchCommandArgs& args, const Dataset& dataset, const std::string& out) {
+  const BenchOptions options = ResolveBench(args.bench, args.threads);
+  CheckReportFolder(out);
+  const OnlineResult result = RunOnlineBench(dataset, options, args.shortlist);
+  WriteOnlineReport(result, dataset, out);
+  PrintWarnings(result.skipped);
+  std::printf("%s", OnlineResultToMarkdown(result).c_str());
+  std::printf("report: %s/report.md\n", out.c_str());
+  return 0;
+}
 
 int BenchCommand(const BenchCommandArgs& args) {
   const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead, args.threads);
   PrintWarnings(dataset.warnings());
+  const std::string out = args.report_dir.empty() ? args.dataset + "/report" : args.report_dir;
+  if (args.online) return OnlineBenchCommand(args, dataset, out);
   const BenchOptions options = ResolveBench(args.bench, args.threads);
   const nlohmann::json baseline = ReadBaseline(args.gate);
-  const std::string out = args.report_dir.empty() ? args.dataset + "/report" : args.report_dir;
   ReportTiming timing;
   const BenchResult result = BenchAndWriteReport(dataset, options, &timing, out);
   if (!args.dump_scores.empty()) {
@@ -53,6 +69,15 @@ Command AddBenchCommand(CLI::App* app) {
       ->type_name("DIR");
   AddBenchFlags(cmd, &args->bench);
   AddGateFlags(cmd, &args->gate);
+  CLI::Option* online = cmd->add_flag(
+      "--online", args->online,
+      "online loop closure: frames in order, the database only frames older than the exclusion window, each "
+      "query scored on a FAISS shortlist of its past (docs/guide/protocol.md)");
+  const std::vector<OptionInfo> shortlist = ShortlistOptions::Table().List();
+  AddTableFlag(cmd, "--shortlist-k", shortlist, "k", &args->shortlist.k)->needs(online);
+  AddTableFlag(cmd, "--shortlist-index", shortlist, "index", &args->shortlist.index)->needs(online);
+  AddTableFlag(cmd, "--shortlist-search-depth", shortlist, "hnsw_search_depth", &args->shortlist.hnsw_search_depth)
+      ->needs(online);
   return {cmd, [args] { return BenchCommand(*args); }};
 }
 

@@ -79,24 +79,6 @@ void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol) {
       ->capture_default_str();
 }
 
-namespace {
-
-// `flag` for the registered field `name` of ProtocolOptions: its description, unit and range
-// come from the table, so they are written once.
-template <typename T>
-void AddProtocolTableFlag(CLI::App* cmd, const std::string& flag, const std::string& name, T* member) {
-  for (const OptionInfo& info : ProtocolOptions::Table().List()) {
-    if (info.name != name) continue;
-    cmd->add_option(flag, *member, info.description + (info.unit.empty() ? "" : ", " + info.unit))
-        ->check(NumberIn(info.range))
-        ->capture_default_str();
-    return;
-  }
-  HOILCD_CHECK_MSG(false, "no protocol option " + name);
-}
-
-}  // namespace
-
 void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
   AddProtocolAndRadiusFlags(cmd, protocol);
   cmd->add_option("--exclusion-window", protocol->exclusion_window_s,
@@ -108,10 +90,10 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
                   "(the share of the query's static view the reference sees)")
       ->check(CLI::IsMember({"odometry", "true", "overlap"}))
       ->capture_default_str();
-  AddProtocolTableFlag(cmd, "--overlap-threshold", "overlap_threshold", &protocol->overlap_threshold);
-  AddProtocolTableFlag(cmd, "--overlap-stride", "overlap_stride_px", &protocol->overlap_stride_px);
-  AddProtocolTableFlag(cmd, "--overlap-depth-tolerance", "overlap_depth_tolerance_m",
-                       &protocol->overlap_depth_tolerance_m);
+  AddTableFlag(cmd, "--overlap-threshold", ProtocolOptions::Table().List(), "overlap_threshold", &protocol->overlap_threshold);
+  AddTableFlag(cmd, "--overlap-stride", ProtocolOptions::Table().List(), "overlap_stride_px", &protocol->overlap_stride_px);
+  AddTableFlag(cmd, "--overlap-depth-tolerance", ProtocolOptions::Table().List(), "overlap_depth_tolerance_m",
+               &protocol->overlap_depth_tolerance_m);
   cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
                   "max heading difference of a true match, deg (negative: off)")
       ->check(NumberIn(OptionRange()))

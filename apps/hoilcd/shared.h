@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/pipeline/run.h"
 #include "hoilcd/bench/runner/runner.h"
+#include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/scene/scene.h"
 
@@ -38,6 +40,26 @@ Scene LoadSceneArgs(const SceneArgs& args);
 
 // The evaluation protocol's flags (bench, run, sweep, evaluate): --protocol and --radius (alone
 // in inspect, which labels under both ground truths itself) and the rest.
+// `flag` for the registered field `name` of an options table (`fields`: its List()): its
+// description, unit and range (or choices) come from the table, so they are written once; the help
+// shows the value *member holds.
+template <typename T>
+CLI::Option* AddTableFlag(CLI::App* cmd, const std::string& flag, const std::vector<OptionInfo>& fields,
+                          const std::string& name, T* member) {
+  for (const OptionInfo& info : fields) {
+    if (info.name != name) continue;
+    CLI::Option* option = cmd->add_option(flag, *member, info.description + (info.unit.empty() ? "" : ", " + info.unit));
+    if constexpr (std::is_same_v<T, std::string>) {
+      if (!info.choices.empty()) option->check(CLI::IsMember(info.choices));
+    } else {
+      option->check(NumberIn(info.range));
+    }
+    return option->capture_default_str();
+  }
+  HOILCD_CHECK_MSG(false, "no option " + name + " in the table of " + flag);
+  return nullptr;
+}
+
 void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol);
 void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol);
 

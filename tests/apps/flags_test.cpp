@@ -38,6 +38,8 @@ TEST(Flags, EveryNumberFlagRefusesNanAndOutOfRangeValuesNamingTheFlagBriefly) {
       {"bench", temp.str(), "--heading-tolerance", "nan"},
       {"bench", temp.str(), "--loop-threshold", "nan"},
       {"bench", temp.str(), "--threads", "-1"},
+      {"bench", temp.str(), "--online", "--shortlist-k", "-1"},
+      {"bench", temp.str(), "--online", "--shortlist-search-depth", "nan"},
       {"render", scene, "-o", temp / "out", "--frames", "-3"},
       {"render", scene, "-o", temp / "out", "--seed", "-1"},
       {"sweep", scene, "-o", temp / "sweep", "--seeds", "0"},
@@ -54,6 +56,16 @@ TEST(Flags, EveryNumberFlagRefusesNanAndOutOfRangeValuesNamingTheFlagBriefly) {
     EXPECT_LT(o.err.size(), 300u) << o.err;
     EXPECT_EQ(o.err.find("1797693"), std::string::npos) << o.err;
   }
+}
+
+TEST(Flags, ShortlistFlagsNeedOnlineAndTheIndexIsOneOfFaisssTwo) {
+  const test::TestDir temp;
+  const test::CliOutcome without = test::RunCli({"bench", temp.str(), "--shortlist-k", "5"});
+  EXPECT_NE(without.exit_code, 0);
+  EXPECT_NE(without.err.find("--online"), std::string::npos) << without.err;
+  const test::CliOutcome index = test::RunCli({"bench", temp.str(), "--online", "--shortlist-index", "ivf"});
+  EXPECT_NE(index.exit_code, 0);
+  EXPECT_NE(index.err.find("--shortlist-index"), std::string::npos) << index.err;
 }
 
 }  // namespace

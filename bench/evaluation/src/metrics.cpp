@@ -206,6 +206,38 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
   return SummariseQueries(std::move(records));
 }
 
+QueryRecord ShortlistRecord(const Query& shortlisted, const std::vector<double>& scores, int database_size,
+                            int true_matches, const std::vector<PoseRecord>& poses) {
+  const int listed = static_cast<int>(shortlisted.database.size());
+  const int listed_true = shortlisted.NumTrueMatches();
+  HOILCD_CHECK_MSG(scores.size() == shortlisted.database.size() && shortlisted.is_true_match.size() == scores.size() &&
+                       database_size >= listed && true_matches >= listed_true,
+                   "shortlist of frame " << shortlisted.frame << ": " << listed << " frames (" << listed_true
+                                         << " true) of " << database_size << " (" << true_matches << " true)");
+  QueryRecord r = Top1Record(shortlisted, scores, [&](int frame) -> const PoseRecord& {
+    HOILCD_CHECK_MSG(frame >= 0 && frame < static_cast<int>(poses.size()), "no pose for frame " << frame);
+    return poses[frame];
+  });
+  r.database_size = database_size;
+  r.true_matches = true_matches;
+  r.scored = true_matches > 0;
+  if (!r.scored) return r;
+  FirstTrueRank rank;
+  if (listed_true > 0) {
+    rank = RankFirstTrueMatch(scores, shortlisted.is_true_match);
+  } else {
+    rank.above = listed;
+    rank.tie_size = database_size - listed;
+    rank.tie_true = true_matches;
+  }
+  r.first_true_rank = rank.ExpectedRank();
+  r.reciprocal_rank = rank.ExpectedReciprocalRank();
+  r.recall_at_1 = rank.RecallAtK(1);
+  r.recall_at_5 = rank.RecallAtK(5);
+  r.recall_at_10 = rank.RecallAtK(10);
+  return r;
+}
+
 MethodMetrics SummariseQueries(std::vector<QueryRecord> records) {
   MethodMetrics m;
   m.queries_total = static_cast<int>(records.size());

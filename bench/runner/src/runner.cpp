@@ -15,11 +15,10 @@
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/parallel.h"
+#include "steps.h"
 
 namespace hoilcd {
-namespace {
 
-// The methods to score: the asked ones and, before each, the methods it combines (Inputs()).
 std::vector<const LoopClosureMethod*> ScoringOrder(const std::vector<std::string>& asked) {
   std::vector<const LoopClosureMethod*> order;
   std::set<std::string> seen;
@@ -32,6 +31,8 @@ std::vector<const LoopClosureMethod*> ScoringOrder(const std::vector<std::string
   for (const std::string& name : asked) visit(name);
   return order;
 }
+
+namespace {
 
 // What a method (with the methods it combines) needs from the dataset that it lacks: the first
 // missing output and the front end that wants it; empty when it has everything.
@@ -46,9 +47,8 @@ std::pair<std::string, FrontEnd> MissingOutput(const Dataset& dataset, const std
   return {"", FrontEnd::kKeypoints};
 }
 
-// Before step 1 of RunBench: the methods the dataset lacks the ground truth for. A named one stops the
-// bench with an InputError naming the output and the method; an optional one (from "all",
-// "paper" or the default) is left out of options->methods, with a line in the returned notes.
+}  // namespace
+
 std::vector<std::string> LeaveOutUnavailable(const Dataset& dataset, BenchOptions* options) {
   std::vector<std::string> kept, notes;
   for (const std::string& m : options->methods) {
@@ -77,6 +77,8 @@ std::set<FrontEnd> NeededFrontEnds(const std::vector<const LoopClosureMethod*>& 
   return needed;
 }
 
+namespace {
+
 // `options` with the --param values of the front ends in `needed`.
 BenchOptions WithNeededFrontEndParams(const BenchOptions& options, const std::set<FrontEnd>& needed) {
   BenchOptions front = options;
@@ -84,11 +86,9 @@ BenchOptions WithNeededFrontEndParams(const BenchOptions& options, const std::se
   return front;
 }
 
-// Before any work: the sizes the front ends' options ask of this dataset fit its image and this
-// machine's memory (a thumbnail no larger than the frame; its database within reach).
-void CheckFrontEndSizes(const Dataset& dataset, const BenchOptions& options,
-                        const std::vector<const LoopClosureMethod*>& order) {
-  const std::set<FrontEnd> needed = NeededFrontEnds(order);
+}  // namespace
+
+void CheckFrontEndSizes(const Dataset& dataset, const BenchOptions& options, const std::set<FrontEnd>& needed) {
   if (!needed.count(FrontEnd::kThumbnails)) return;
   const ThumbnailOptions& thumbnail = WithNeededFrontEndParams(options, needed).thumbnail;
   const std::string scope = FrontEndName(FrontEnd::kThumbnails);
@@ -102,10 +102,8 @@ void CheckFrontEndSizes(const Dataset& dataset, const BenchOptions& options,
                       std::to_string(thumbnail.width_px) + " x " + std::to_string(thumbnail.height_px) + " px)");
 }
 
-// Step 2 of RunBench: the front ends the methods need, once each, with their --param values.
-FrontEndOutput RunNeededFrontEnds(const Dataset& dataset, const BenchOptions& options,
-                                  const std::vector<const LoopClosureMethod*>& order) {
-  const std::set<FrontEnd> needed = NeededFrontEnds(order);
+FrontEndOutput RunFrontEndsWithParams(const Dataset& dataset, const BenchOptions& options,
+                                      const std::set<FrontEnd>& needed) {
   const BenchOptions front = WithNeededFrontEndParams(options, needed);
   FrontEndOptions front_options;
   front_options.keypoints = front.keypoints;
@@ -116,6 +114,8 @@ FrontEndOutput RunNeededFrontEnds(const Dataset& dataset, const BenchOptions& op
   front_options.threads = options.threads;
   return RunFrontEnds(dataset, needed, front_options);
 }
+
+namespace {
 
 // The front ends' features per frame and the ground truth's person views, into *result; the
 // tracking metrics when the dataset has people and the person front end ran.
@@ -142,22 +142,26 @@ void AddFeaturesAndTracking(const Dataset& dataset, const BenchOptions& options,
   }
 }
 
-// Step 3: every method's scores, inputs before the methods that combine them; methods that
-// share a pass (PassKey) are scored together when the first of them comes up. *resolved: each
-// method's own options as it ran (for the report; methods without options are absent).
-std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const BenchOptions& options,
-                                                 const std::vector<const LoopClosureMethod*>& order,
-                                                 const Labelling& labelling, const FrontEndOutput& front_ends,
-                                                 std::map<std::string, nlohmann::json>* resolved) {
-  std::map<std::string, MethodScores> scored;
-  std::vector<std::unique_ptr<MethodOptions>> own;  // each method's own options with its --param values
-  for (const LoopClosureMethod* m : order) {
-    own.push_back(OptionsWithParams(*m, options.params));
-    if (own.back() != nullptr) (*resolved)[m->Name()] = own.back()->ToJson();
+}  // namespace
+
+ResolvedMethods ResolveMethods(const BenchOptions& options, std::vector<const LoopClosureMethod*> order) {
+  ResolvedMethods methods;
+  methods.order = std::move(order);
+  for (const LoopClosureMethod* m : methods.order) {
+    methods.own.push_back(OptionsWithParams(*m, options.params));
+    if (methods.own.back() != nullptr) methods.resolved[m->Name()] = methods.own.back()->ToJson();
   }
+  return methods;
+}
+
+std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const BenchOptions& options,
+                                                 const ResolvedMethods& methods, const Labelling& labelling,
+                                                 const FrontEndOutput& front_ends) {
+  const std::vector<const LoopClosureMethod*>& order = methods.order;
+  std::map<std::string, MethodScores> scored;
   const auto context_of = [&](size_t i) {
-    return MethodContext{dataset, options, own[i].get(), labelling, front_ends, scored, dataset.manifest().seed,
-                         options.threads};
+    return MethodContext{dataset, options, methods.own[i].get(), labelling, front_ends, scored,
+                         dataset.manifest().seed, options.threads};
   };
   std::vector<std::string> pass_keys;
   for (size_t i = 0; i < order.size(); ++i) {
@@ -179,6 +183,8 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
   }
   return scored;
 }
+
+namespace {
 
 // Step 5: the metrics per stratum of the queries' conditions (query_conditions.h), a 95 % interval
 // on every headline metric and the paired comparison of every pair of methods, all from the same
@@ -221,7 +227,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
   std::vector<std::string> skipped = LeaveOutUnavailable(dataset, &options);
   const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
-  CheckFrontEndSizes(dataset, options, order);
+  CheckFrontEndSizes(dataset, options, NeededFrontEnds(order));
   const auto start = std::chrono::steady_clock::now();
 
   // Step 1: the protocol's queries, labelled under both ground truths.
@@ -245,11 +251,11 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
                       std::to_string(static_cast<int64_t>(pairs)) + " query pairs");
 
   // Step 2: the front ends the methods need, once each; step 3: every method's scores.
-  const FrontEndOutput front_ends = RunNeededFrontEnds(dataset, options, order);
+  const FrontEndOutput front_ends = RunFrontEndsWithParams(dataset, options, NeededFrontEnds(order));
   AddFeaturesAndTracking(dataset, options, front_ends, &result);
-  std::map<std::string, nlohmann::json> resolved;
-  std::map<std::string, MethodScores> scored =
-      ScoreMethods(dataset, options, order, labelling, front_ends, &resolved);
+  const ResolvedMethods methods = ResolveMethods(options, order);
+  const std::map<std::string, nlohmann::json>& resolved = methods.resolved;
+  std::map<std::string, MethodScores> scored = ScoreMethods(dataset, options, methods, labelling, front_ends);
 
   // Step 4: metrics of the asked methods under both labellings, one method per task.
   result.runs.resize(options.methods.size());

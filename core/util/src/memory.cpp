@@ -1,5 +1,7 @@
 #include "hoilcd/core/util/memory.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
@@ -83,6 +85,12 @@ void CheckAllocation(double bytes, const std::string& where, const std::string& 
   if (!available || bytes <= *available) return;
   throw InputError(where, what + " needs " + FormatBytes(bytes) + "; this process may allocate " +
                               FormatBytes(*available) + " (MemAvailable and the cgroup's memory limit)");
+}
+
+double PeakResidentBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return 1024.0 * static_cast<double>(usage.ru_maxrss);  // Linux gives kilobytes
 }
 
 }  // namespace hoilcd

@@ -14,6 +14,7 @@ std::atomic<bool> g_quiet_default{false};
 std::mutex g_terminal_mutex;
 std::vector<const ProgressReporter*> g_on_terminal;
 thread_local std::string g_title_prefix;
+thread_local int g_thread_quiet = 0;
 
 std::string FormatSeconds(double s) {
   char buf[32];
@@ -32,11 +33,15 @@ ProgressReporter::ThreadTitlePrefix::ThreadTitlePrefix(std::string prefix) : pre
 
 ProgressReporter::ThreadTitlePrefix::~ThreadTitlePrefix() { g_title_prefix = previous_; }
 
+ProgressReporter::ThreadQuiet::ThreadQuiet() { ++g_thread_quiet; }
+
+ProgressReporter::ThreadQuiet::~ThreadQuiet() { --g_thread_quiet; }
+
 ProgressReporter::ProgressReporter(std::string title, int64_t total, std::string unit, bool quiet)
     : title_(g_title_prefix + title),
       unit_(std::move(unit)),
       total_(total),
-      quiet_(quiet || g_quiet_default.load()),
+      quiet_(quiet || g_quiet_default.load() || g_thread_quiet > 0),
       tty_(isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()),
       last_print_(start_) {}

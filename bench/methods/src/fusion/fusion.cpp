@@ -25,6 +25,7 @@ class Fusion : public LoopClosureMethod {
   std::string Description() const override { return "reciprocal rank fusion of SLCD and DLCD"; }
   bool FromPaper() const override { return true; }
   std::vector<std::string> Inputs() const override { return {"slcd", "dlcd"}; }
+  bool Online() const override { return true; }
   std::unique_ptr<MethodOptions> Options() const override {
     return std::make_unique<OptionsOf<FusionOptions>>(FusionOptions::Table());
   }

@@ -32,6 +32,7 @@ class PointSetMethod : public LoopClosureMethod {
 
   ShownFeatures Features() const override;
   std::set<FrontEnd> FrontEnds() const override { return {front_end_}; }
+  bool Online() const override { return true; }
   std::unique_ptr<MethodOptions> Options() const override;
   MethodScores Score(const MethodContext& context) const override;
   std::string PassKey(const MethodContext& context) const override;

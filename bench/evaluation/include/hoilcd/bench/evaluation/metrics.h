@@ -99,6 +99,15 @@ MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
                              const std::vector<std::vector<double>>& scores,
                              const std::vector<PoseRecord>& poses);
 
+// The record of a query ranked over a shortlist of its database (the online bench, online.h):
+// `shortlisted.database` holds the shortlisted frames (ascending) with their labels, `scores` is
+// parallel to it. The database's other database_size - shortlisted.database.size() frames, holding
+// the true_matches the shortlist missed, are unranked: they tie below every shortlisted frame, and
+// their expected rank counts as metrics.h does for any tie. With the whole database shortlisted it
+// is ComputeMetrics' record.
+QueryRecord ShortlistRecord(const Query& shortlisted, const std::vector<double>& scores, int database_size,
+                            int true_matches, const std::vector<PoseRecord>& poses);
+
 // queries.csv: header then one row per query; empty fields for values a skipped query lacks.
 std::string QueryRecordsToCsv(const std::vector<QueryRecord>& records);
 

@@ -62,6 +62,10 @@ class LoopClosureMethod {
   virtual ShownFeatures Features() const { return ShownFeatures::kNone; }
   virtual std::set<FrontEnd> FrontEnds() const { return {}; }
   virtual std::vector<std::string> Inputs() const { return {}; }  // scored before this one
+  // Whether a query's scores depend only on that query and its database's frames (not on other
+  // queries or later frames), so the online bench (bench/runner online.h) can score each query
+  // against its shortlist as it comes.
+  virtual bool Online() const { return false; }
   // The method's own options at their defaults, a fresh copy per call (null: none). The runner
   // sets --param <name>.<field>=VALUE on it and hands it to Score as MethodContext::own; the
   // report prints its resolved values. Declared in the method's folder (method_options.h).

@@ -25,6 +25,9 @@ std::optional<double> MemAvailableBytes(const std::string& meminfo);
 // "max", absent, unreadable, or v1's "no limit" (a number near 2^63).
 std::optional<double> CgroupMemoryRoom(const std::string& limit, const std::string& usage);
 
+// This process's peak resident memory so far (getrusage's ru_maxrss), bytes.
+double PeakResidentBytes();
+
 // "40.0 GB", "512 MB", "3 KB" (decimal units).
 std::string FormatBytes(double bytes);
 

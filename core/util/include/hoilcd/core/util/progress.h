@@ -39,6 +39,16 @@ class ProgressReporter {
     std::string previous_;
   };
 
+  // While it lives, reporters made on this thread are quiet: work done in many small calls (the
+  // online bench scores each query alone) would print a line per call.
+  class ThreadQuiet {
+   public:
+    ThreadQuiet();
+    ~ThreadQuiet();
+    ThreadQuiet(const ThreadQuiet&) = delete;
+    ThreadQuiet& operator=(const ThreadQuiet&) = delete;
+  };
+
  private:
   void Print(bool final_line);
   // Title, count, rate and time left (or taken, on the final line), with a bar `bar_width`
