@@ -2,6 +2,7 @@
 
 #include <faiss/IndexFlat.h>
 #include <faiss/IndexHNSW.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,23 @@
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
+namespace {
+
+// FAISS parallelises over the queries of a call with OpenMP; hoilcd adds and searches one frame at
+// a time, so a team of threads only costs its wake-up (about a scheduler slice, ~10 ms, on a busy
+// machine) and a visited table per thread. While it lives, this thread's FAISS calls run alone.
+class OneOpenMpThread {
+ public:
+  OneOpenMpThread() : before_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~OneOpenMpThread() { omp_set_num_threads(before_); }
+  OneOpenMpThread(const OneOpenMpThread&) = delete;
+  OneOpenMpThread& operator=(const OneOpenMpThread&) = delete;
+
+ private:
+  int before_;
+};
+
+}  // namespace
 
 ShortlistOptions::ShortlistOptions() { Table().FillDefaults(this); }
 
@@ -54,7 +72,8 @@ void ShortlistIndex::Add(int id, const std::vector<float>& descriptor) {
   HOILCD_CHECK_MSG(static_cast<int>(descriptor.size()) == dimension_,
                    "descriptor of " << descriptor.size() << " values, the index holds " << dimension_);
   for (float v : descriptor) HOILCD_CHECK_MSG(std::isfinite(v), "descriptor values must be finite");
-  // One vector per call: FAISS links it in on this thread, so the graph depends only on the order.
+  // One vector per call on this thread alone: the graph depends only on the order of the calls.
+  const OneOpenMpThread alone;
   index_->add(1, descriptor.data());
   ids_.push_back(id);
 }
@@ -70,6 +89,7 @@ std::vector<int> ShortlistIndex::Search(const std::vector<float>& descriptor, in
   if (want == n) {
     if (const auto* hnsw = dynamic_cast<const faiss::IndexHNSW*>(index_.get())) searched = hnsw->storage;
   }
+  const OneOpenMpThread alone;
   std::vector<float> similarity(want);
   std::vector<faiss::Index::idx_t> labels(want, -1);
   if (const auto* hnsw = dynamic_cast<const faiss::IndexHNSW*>(searched)) {
