@@ -1,4 +1,4 @@
-// hoilcd generate --layout TYPE|mixed --count N --seed S -o DIR: seeded scene files of varied rooms.
+// hoilcd generate --layout TYPE|mixed|floor --count N --seed S -o DIR: seeded scene files of varied rooms.
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -72,7 +72,7 @@ Command AddGenerateCommand(CLI::App* app) {
   std::string layouts;
   for (const std::string& f : LayoutFamilies()) layouts += f + ", ";
   CLI::App* cmd = app->add_subcommand("generate", "write seeded scene files of varied rooms (six layout families)");
-  cmd->add_option("--layout", args->layout, "layout family: " + layouts + "or mixed (drawn per scene)")->capture_default_str();
+  cmd->add_option("--layout", args->layout, "layout family: " + layouts + "or mixed (drawn per scene), or floor (a building floor of such rooms along a corridor)")->capture_default_str();
   cmd->add_option("--count", args->count, "scenes to write")
       ->check(NumberIn(OptionRange::Closed(1, kMaxScenes)))
       ->capture_default_str();

@@ -5,7 +5,20 @@
 
 namespace hoilcd {
 
-bool IsWall(const Obstacle2D& o) { return o.name.size() > 5 && o.name.compare(o.name.size() - 5, 5, " wall") == 0; }
+namespace {
+bool IsInteriorWall(const Obstacle2D& o) { return o.name.rfind("interior wall ", 0) == 0; }
+}  // namespace
+
+bool IsWall(const Obstacle2D& o) {
+  return IsInteriorWall(o) || (o.name.size() > 5 && o.name.compare(o.name.size() - 5, 5, " wall") == 0);
+}
+
+std::vector<Obstacle2D> InteriorWalls(const World& world) {
+  std::vector<Obstacle2D> out;
+  for (const Obstacle2D& o : world.obstacles())
+    if (IsInteriorWall(o)) out.push_back(o);
+  return out;
+}
 
 std::vector<Obstacle2D> Furniture(const World& world) {
   std::vector<Obstacle2D> out;

@@ -12,8 +12,11 @@ namespace hoilcd {
 
 constexpr double kAccessRadiusM = 0.18;  // a person squeezing to their seat, m
 
-// Whether a footprint is one of the room's walls.
+// Whether a footprint is one of the room's walls (outer or, on a building floor, interior).
 bool IsWall(const Obstacle2D& o);
+
+// The footprints of a building floor's interior walls (none in a single room).
+std::vector<Obstacle2D> InteriorWalls(const World& world);
 
 // The furniture, objects and standing people: every footprint but the walls.
 std::vector<Obstacle2D> Furniture(const World& world);

@@ -16,6 +16,7 @@
 #include "floor_plan.h"
 #include "layouts.h"
 #include "room_objects.h"
+#include "route_laps.h"
 
 namespace hoilcd {
 namespace {
@@ -103,6 +104,8 @@ std::vector<std::string> ObjectProblems(const Scene& scene) {
   std::vector<std::string> problems;
   AssetLibrary assets(scene.assets_dir);
   const Eigen::Vector3d room = scene.room.size_m;
+  std::vector<WallPart> interior = WallParts(scene.floor, room.z());
+  interior.erase(std::remove_if(interior.begin(), interior.end(), [](const WallPart& p) { return p.lintel; }), interior.end());
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     if (!o.enabled) continue;
@@ -120,26 +123,22 @@ std::vector<std::string> ObjectProblems(const Scene& scene) {
       const Eigen::Vector3d front = rotation.col(0);
       const bool on_wall = (std::abs(back.x()) < kTouchM && front.x() > 0.999) || (std::abs(back.x() - room.x()) < kTouchM && front.x() < -0.999) ||
                            (std::abs(back.y()) < kTouchM && front.y() > 0.999) || (std::abs(back.y() - room.y()) < kTouchM && front.y() < -0.999);
-      if (!on_wall) problems.push_back(name + " is wall-mounted but its back is not on a wall facing into the room");
+      const bool on_interior_wall = std::any_of(interior.begin(), interior.end(), [&](const WallPart& part) {
+        const Eigen::AlignedBox3d& b = part.box_m;
+        const bool along_y = back.y() >= b.min().y() - kTouchM && back.y() <= b.max().y() + kTouchM;
+        const bool along_x = back.x() >= b.min().x() - kTouchM && back.x() <= b.max().x() + kTouchM;
+        return (along_y && std::abs(back.x() - b.max().x()) < kTouchM && front.x() > 0.999) ||
+               (along_y && std::abs(back.x() - b.min().x()) < kTouchM && front.x() < -0.999) ||
+               (along_x && std::abs(back.y() - b.max().y()) < kTouchM && front.y() > 0.999) ||
+               (along_x && std::abs(back.y() - b.min().y()) < kTouchM && front.y() < -0.999);
+      });
+      if (!on_wall && !on_interior_wall) problems.push_back(name + " is wall-mounted but its back is not on a wall facing into the room");
     }
     if (asset.class_name == "ceiling_light" && std::abs(box.max().z() - room.z()) > kTouchM) {
       problems.push_back(name + " does not touch the ceiling");
     }
   }
   return problems;
-}
-
-// Frames for `laps` laps of the route: the robot is simulated until it has driven them.
-int FramesForLaps(const Scene& scene, const World& world, const std::vector<Eigen::Vector2d>& route, double laps) {
-  RouteOptions options = scene.route;
-  options.waypoints_m = route;
-  double length_m = 0;
-  for (size_t i = 0; i < route.size(); ++i) length_m += (route[(i + 1) % route.size()] - route[i]).norm();
-  options.frames = static_cast<int>(std::ceil(1.5 * laps * length_m / options.cruise_speed_m_s * scene.frame_rate_hz)) + 50;
-  const RobotRun run = SimulateRobot(scene.robot, options, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
-  for (const RobotSample& s : run.samples)
-    if (s.lap >= laps) return s.frame + 1;
-  throw InputError("route", "the robot to complete " + std::to_string(laps) + " laps");
 }
 
 // The windows of the north wall: one to three, evenly spread.
@@ -240,7 +239,8 @@ ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorO
   const Layout layout = DrawLayout(family, room.head<2>(), o, rng);
   *layout_out = layout;
   const Eigen::Vector4d& box = layout.route_box_m;
-  const ojson options = ojson::parse(GeneratorOptions::Table().ToJson(o).dump());
+  ojson options = ojson::parse(GeneratorOptions::Table().ToJson(o).dump());
+  options.erase("floor");  // the building floor's options: not a room's
   // The scene's own seed (render noise, people, robot) from the run's seed and the index.
   const uint64_t scene_seed = HashCombine(HashString("generate.scene_seed"), seed, static_cast<uint64_t>(index)) >> 11;
   return {
@@ -262,6 +262,7 @@ ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorO
 }  // namespace
 
 std::string FamilyOf(const std::string& layout, uint64_t seed, int index) {
+  if (layout == "floor") return layout;
   const std::vector<std::string>& families = LayoutFamilies();
   if (layout == "mixed") {
     Rng rng = KeyedRng(seed, "generate.family", index);
@@ -270,7 +271,7 @@ std::string FamilyOf(const std::string& layout, uint64_t seed, int index) {
   if (std::find(families.begin(), families.end(), layout) != families.end()) return layout;
   std::string expected;
   for (const std::string& f : families) expected += f + ", ";
-  throw InputError("--layout", "one of: " + expected + "mixed; got '" + layout + "'");
+  throw InputError("--layout", "one of: " + expected + "mixed, floor; got '" + layout + "'");
 }
 
 std::string GeneratedSceneFileName(int index, const std::string& family) {
@@ -285,6 +286,7 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
   std::vector<std::string> problems;
   const double size_x = scene.room.size_m.x(), size_y = scene.room.size_m.y();
   const std::vector<Obstacle2D> furniture = Furniture(world);
+  const std::vector<Obstacle2D> interior = InteriorWalls(world);
   // Inside the room, and apart: a chair "chair T.S" may stand under its own "table T".
   for (size_t i = 0; i < furniture.size(); ++i) {
     const Obstacle2D& a = furniture[i];
@@ -319,7 +321,7 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
         problems.push_back("the route passes " + ShortestDouble(Mm(clearance)) + " m from " + nearest + " on leg " + std::to_string(i));
         break;
       }
-      if (std::min({p.x(), p.y(), size_x - p.x(), size_y - p.y()}) < wall_m - 1e-6) {
+      if (std::min({p.x(), p.y(), size_x - p.x(), size_y - p.y(), Clearance(p, interior)}) < wall_m - 1e-6) {
         problems.push_back("the route comes closer than " + ShortestDouble(wall_m) + " m to a wall on leg " + std::to_string(i));
         break;
       }
@@ -334,7 +336,7 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
     for (int i = 0; i < nx; ++i) {
       const Eigen::Vector2d p((i + 0.5) * kGridM, (j + 0.5) * kGridM);
       const bool in_room = std::min({p.x(), p.y(), size_x - p.x(), size_y - p.y()}) >= kAccessRadiusM;
-      if (in_room && Clearance(p, furniture) >= kAccessRadiusM) floor.at<uint8_t>(j, i) = kFree;
+      if (in_room && Clearance(p, furniture) >= kAccessRadiusM && Clearance(p, interior) >= kAccessRadiusM) floor.at<uint8_t>(j, i) = kFree;
     }
   }
   auto cell_of = [&](const Eigen::Vector2d& p) {
@@ -355,6 +357,7 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
 }
 
 ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const GeneratorOptions& options) {
+  if (layout == "floor") return GenerateFloorScene(seed, index, options);
   const std::string family = FamilyOf(layout, seed, index);
   const std::string where = "scene " + std::to_string(index) + " (" + family + ")";
   std::string last_problem;

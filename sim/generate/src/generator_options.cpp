@@ -102,7 +102,31 @@ const OptionTable<GeneratorOptions>& GeneratorOptions::Table() {
           .Add("route_clearance_m", &O::route_clearance_m, 0.4, "m", R::Closed(0.3, 1.5),
                "least distance from the route's centre line to any footprint (the robot is 0.34 m wide)")
           .Add("attempts", &O::attempts, 20, "", R::Closed(1, 1000), "draws of a scene before it is given up")
-          .Nest("objects", &O::objects, RoomObjectOptions::Table());
+          .Nest("objects", &O::objects, RoomObjectOptions::Table())
+          .Nest("floor", &O::floor, FloorLayoutOptions::Table());
+  return table;
+}
+
+const OptionTable<FloorLayoutOptions>& FloorLayoutOptions::Table() {
+  using O = FloorLayoutOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("rooms_per_side", &O::rooms_per_side, 4, "", R::Closed(1, 8), "rooms along each side of the corridor")
+          .Add("corridor_width_m", &O::corridor_width_m, 2.4, "m", R::Closed(2.0, 5.0),
+               "the corridor's width between its walls (the route runs in two lanes 0.6 m from them)")
+          .Add("wall_thickness_m", &O::wall_thickness_m, 0.12, "m", R::Closed(0.05, 0.5), "thickness of the interior walls")
+          .Add("door_width_m", &O::door_width_m, 1.3, "m", R::Closed(1.0, 3.0),
+               "width of each room's two doorways onto the corridor (the route drives through them)")
+          .Add("height_m", &O::height_m, 2.8, "m", R::Closed(2.5, 3.2), "the floor's ceiling height, every room's")
+          .Add("north_depth_m", &O::north_depth_m, 5.6, "m", R::Closed(3.4, 8.0),
+               "depth of the rooms north of the corridor: only families whose width range holds it are drawn there")
+          .Add("south_depth_m", &O::south_depth_m, 5.0, "m", R::Closed(3.2, 8.0),
+               "depth of the rooms south of the corridor (meeting_row rooms are at most 5 m deep, open_office at least 5.6)")
+          .Add("room_length_max_m", &O::room_length_max_m, 9.0, "m", R::Closed(5.0, 15.0),
+               "longest room along the corridor (each family's length range is cut to it)")
+          .Add("turnover_probability", &O::turnover_probability, 0.3, "", R::Closed(0, 1),
+               "the floor's crowd.turnover_probability: at every lap people leave, arrive and change seats");
   return table;
 }
 

@@ -292,6 +292,7 @@ void CheckConsistency(const Scene& scene, ProblemCollector* problems) {
   CheckTables(scene, problems);
   CheckOpenings(scene, problems);
   CheckPlacements(scene, problems);
+  CheckFloorPlan(scene.floor, scene.room.size_m, scene.route.waypoints_m, scene.file, problems);
 }
 
 // The camera profile the scene names once the overrides are applied ("" when none).
@@ -471,6 +472,7 @@ void ReadRoomAndFurniture(const std::string& file, json* doc_in, Scene* s_out, P
                                         {{"position_m", {s.room.size_m.x(), mid_y}}, {"width_m", 0.9}}});
   }
   for (const json& d : doc["room"]["doors"]) s.room.doors.push_back({Vec2(d["position_m"]), d["width_m"].get<double>()});
+  s.floor = ReadFloorPlan(doc.contains("floor") ? doc["floor"] : json());
   for (const json& t : doc["tables"]) s.tables.push_back(ReadTable(t));
   FurnitureOptions::Table().Read(doc["furniture"], file + ": /furniture", &s.furniture, &consistency);
 

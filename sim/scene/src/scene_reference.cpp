@@ -80,6 +80,14 @@ std::string SceneReferenceMarkdown() {
   out << "## generator\n\n" << top["generator"].value("description", "") << ". Its `options` are listed by "
       << "`hoilcd reference generate` ([generate.md](generate.md)).\n\n"
       << SchemaTable(top["generator"]["properties"], /*skip_objects=*/true) << "\n";
+  const json& floor = top["floor"];
+  out << "## floor\n\n" << floor.value("description", "") << ".\n\n"
+      << "### floor.rooms[]\n\n" << floor["properties"]["rooms"].value("description", "") << "; each element:\n\n"
+      << SchemaTable(floor["properties"]["rooms"]["items"]["properties"]) << "\n"
+      << "### floor.walls[]\n\n" << floor["properties"]["walls"].value("description", "") << "; each element:\n\n"
+      << SchemaTable(floor["properties"]["walls"]["items"]["properties"]) << "\n"
+      << "### floor.walls[].doors[]\n\n" << floor["properties"]["walls"]["items"]["properties"]["doors"].value("description", "")
+      << "; each element:\n\n" << SchemaTable(floor["properties"]["walls"]["items"]["properties"]["doors"]["items"]["properties"]) << "\n";
   out << "## distractors\n\n" << top["distractors"].value("description", "") << ".\n\n"
       << SchemaTable(top["distractors"]["properties"]) << "\n";
   for (const char* array : {"tables", "objects"}) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hoilcd/core/util/random.h"
+#include "hoilcd/sim/scene/building_floor.h"
 
 namespace hoilcd {
 namespace {
@@ -135,8 +136,9 @@ class RoomSurfaces::Field : public SurfaceField {
   int material_;
 };
 
-RoomSurfaces::RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators)
-    : room_(room), seed_(seed), climate_(room, seed), size_m_(room.size_m.cast<float>()) {
+RoomSurfaces::RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators,
+                           const std::vector<Eigen::AlignedBox2f>& interior_walls)
+    : room_(room), seed_(seed), climate_(room, seed), size_m_(room.size_m.cast<float>()), interior_walls_(interior_walls) {
   const RoomSurfaceOptions& s = room_.surfaces;
   for (const WindowSpec& w : room_.windows) {
     if (s.exterior_walls == "windowed") exterior_[WallIndex(w.wall)] = true;
@@ -162,11 +164,13 @@ RoomSurfaces::RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::ve
   const bool sun = room_.sun.enabled && !room_.windows.empty();
   const bool texture = s.texture && s.texture_k > 0;
   const int materials = 3 + static_cast<int>(room_.windows.size());
-  fields_.resize(static_cast<size_t>(materials));
+  if (!interior_walls_.empty()) interior_material_ = materials;
+  fields_.resize(static_cast<size_t>(materials + (interior_walls_.empty() ? 0 : 1)));
   for (int k = 0; k < materials; ++k) {
     const bool on = k < 3 ? (bridges || sun || texture || (k == 2 && plume)) : (s.window_frames && s.frame_width_m > 0);
     if (on) fields_[static_cast<size_t>(k)] = std::make_unique<Field>(this, k);
   }
+  if (interior_material_ >= 0 && texture) fields_.back() = std::make_unique<Field>(this, interior_material_);
   frame_minus_glass_k_.assign(room_.windows.size(), 0.0f);
 }
 
@@ -195,6 +199,7 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
   set(0, room_.floor.temperature_c + offset, room_.floor.temperature_c + offset);
   set(1, room_.ceiling.temperature_c + offset, room_.ceiling.temperature_c + offset);
   set(2, room_.walls.temperature_bottom_c + offset, room_.walls.temperature_top_c + offset);
+  if (interior_material_ >= 0) set(interior_material_, room_.walls.temperature_bottom_c + offset, room_.walls.temperature_top_c + offset);
   const double frame_c = InsideSurfaceTemperatureC(s.frame_u_value_w_m2k, inside_c, outside_c);
   for (size_t i = 0; i < room_.windows.size(); ++i) {
     const WindowSpec& w = room_.windows[i];
@@ -221,6 +226,7 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
 
 float RoomSurfaces::OffsetK(int material, const Eigen::Vector3f& p) const {
   if (FieldOf(material) == nullptr) return 0;
+  if (material == interior_material_) return TextureK(material, p);
   if (material >= 3) return FrameK(material - 3, p);
   float offset = BridgeK(material, p) + SunK(material, p) + TextureK(material, p);
   if (material == 2) offset += PlumeK(p);
@@ -294,6 +300,10 @@ float RoomSurfaces::SunK(int material, const Eigen::Vector3f& p) const {
   }
   if (exit_axis == 2) return 0;  // through the ceiling
   const Eigen::Vector3f q = p + travel * sun_direction_;
+  // An interior wall between the point and the window shades it.
+  for (const Eigen::AlignedBox2f& wall : interior_walls_) {
+    if (SegmentMeetsBox(p.head<2>().cast<double>(), q.head<2>().cast<double>(), wall.cast<double>())) return 0;
+  }
   const int wall = exit_axis == 1 ? (sun_direction_.y() < 0 ? 0 : 1) : (sun_direction_.x() < 0 ? 2 : 3);
   const float blur_m = std::max(kSharpestEdgeM, kPenumbraPerM * travel);
   const float inset = room_.surfaces.window_frames ? static_cast<float>(room_.surfaces.frame_width_m) : 0.0f;

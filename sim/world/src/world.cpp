@@ -202,7 +202,11 @@ World::World(const Scene& scene, const BandRadianceTable& table)
   }
   // People standing still (chatting by a wall): present all the time, obstacles for the robot.
   for (Obstacle2D& o : crowd_->AddStandingPeople(scene)) obstacles_.push_back(std::move(o));
-  room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")));
+  std::vector<Eigen::AlignedBox2f> interior_walls;
+  for (const WallPart& part : WallParts(scene.floor, room_size_m_.z())) {
+    if (!part.lintel) interior_walls.emplace_back(part.box_m.min().head<2>().cast<float>(), part.box_m.max().head<2>().cast<float>());
+  }
+  room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")), interior_walls);
   SetTime(0.0);
 }
 
@@ -282,6 +286,17 @@ void World::BuildRoom(const Scene& scene) {
     if (w.wall == "west") AddQuad(&room_mesh_, V(inset, a, z0), V(inset, b, z0), V(inset, b, z1), V(inset, a, z1), material);
     if (w.wall == "east") AddQuad(&room_mesh_, V(X - inset, a, z0), V(X - inset, a, z1), V(X - inset, b, z1), V(X - inset, b, z0), material);
   }
+  // Interior walls (a building floor): boxes in the walls' material, after the windows'.
+  const std::vector<WallPart> wall_parts = WallParts(scene.floor, room_size_m_.z());
+  const auto interior_material = static_cast<uint32_t>(3 + scene.room.windows.size());
+  for (const WallPart& part : wall_parts) {
+    const Eigen::Vector3f lo = part.box_m.min().cast<float>(), hi = part.box_m.max().cast<float>();
+    AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(lo.x(), lo.y(), hi.z()), V(hi.x(), lo.y(), hi.z()), V(hi.x(), lo.y(), lo.z()), interior_material);  // -y
+    AddQuad(&room_mesh_, V(lo.x(), hi.y(), lo.z()), V(hi.x(), hi.y(), lo.z()), V(hi.x(), hi.y(), hi.z()), V(lo.x(), hi.y(), hi.z()), interior_material);  // +y
+    AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(lo.x(), hi.y(), lo.z()), V(lo.x(), hi.y(), hi.z()), V(lo.x(), lo.y(), hi.z()), interior_material);  // -x
+    AddQuad(&room_mesh_, V(hi.x(), lo.y(), lo.z()), V(hi.x(), lo.y(), hi.z()), V(hi.x(), hi.y(), hi.z()), V(hi.x(), hi.y(), lo.z()), interior_material);  // +x
+    if (part.lintel) AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(hi.x(), lo.y(), lo.z()), V(hi.x(), hi.y(), lo.z()), V(lo.x(), hi.y(), lo.z()), interior_material);  // soffit
+  }
   const int prototype = caster_->AddPrototype(room_mesh_);
   caster_->AddInstance(prototype, Eigen::Matrix4f::Identity());
   InstanceInfo info;
@@ -311,6 +326,9 @@ void World::BuildRoom(const Scene& scene) {
   info.materials.push_back(
       surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
   for (const WindowSpec& w : scene.room.windows) info.materials.push_back(plain(w.surface, "window"));
+  if (!wall_parts.empty()) {
+    info.materials.push_back(surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
+  }
   room_instance_ = static_cast<int>(instances_.size());
   instances_.push_back(std::move(info));
   const double t = 0.05;  // walls as thin obstacles just outside the room
@@ -326,6 +344,13 @@ void World::BuildRoom(const Scene& scene) {
   wall("north wall", 0.5 * X, Y + t, 0.5 * X + t, t);
   wall("west wall", -t, 0.5 * Y, t, 0.5 * Y + t);
   wall("east wall", X + t, 0.5 * Y, t, 0.5 * Y + t);
+  for (size_t i = 0; i < wall_parts.size(); ++i) {
+    const WallPart& part = wall_parts[i];
+    if (part.lintel) continue;
+    const Eigen::Vector2d lo = part.box_m.min().head<2>(), hi = part.box_m.max().head<2>();
+    wall("interior wall " + std::to_string(part.wall) + "." + std::to_string(i), 0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()),
+         0.5 * (hi.x() - lo.x()), 0.5 * (hi.y() - lo.y()));
+  }
 }
 
 void World::BuildFurnitureAndPeople(const Scene& scene) {

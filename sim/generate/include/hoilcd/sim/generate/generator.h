@@ -44,6 +44,22 @@ struct RoomObjectOptions {
   static const OptionTable<RoomObjectOptions>& Table();
 };
 
+// The building floor of `--layout floor` (the scene's /generator/options/floor): generated rooms of
+// the six families side by side along both sides of a corridor (docs/guide/floor.md).
+struct FloorLayoutOptions {
+  int rooms_per_side;           // rooms along each side of the corridor
+  double corridor_width_m;      // m, between the corridor's walls
+  double wall_thickness_m;      // m, of the interior walls
+  double door_width_m;          // m, each room's two doorways onto the corridor
+  double height_m;              // m, the floor's ceiling height (every room's)
+  double north_depth_m;         // m, depth of the rooms north of the corridor
+  double south_depth_m;         // m, depth of the rooms south of it
+  double room_length_max_m;     // m, longest room along the corridor
+  double turnover_probability;  // the floor's crowd.turnover_probability (the crowd changes each lap)
+
+  static const OptionTable<FloorLayoutOptions>& Table();
+};
+
 // Every parameter of the generator but the layout, seed and count (the scene's /generator/options).
 struct GeneratorOptions {
   RoomSizeRange meeting_row, classroom, cafeteria, open_office, seminar_u, lounge;
@@ -59,6 +75,7 @@ struct GeneratorOptions {
   double route_clearance_m;                       // m, route centre line from every footprint
   int attempts;                                   // draws of a scene before it is given up
   RoomObjectOptions objects;                      // doors, wall and ceiling fittings, people's things
+  FloorLayoutOptions floor;                       // --layout floor: the building's plan
 
   GeneratorOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /generator/options), unit, default, range, description.
@@ -70,6 +87,10 @@ struct GeneratorOptions {
 // index). A scene depends on (seed, index, family, options) only, so `--layout FAMILY` regenerates
 // what `mixed` drew. Throws InputError when no draw in options.attempts passes every check.
 nlohmann::ordered_json GenerateScene(const std::string& layout, uint64_t seed, int index, const GeneratorOptions& options);
+
+// Scene `index` of `--layout floor`: a building floor of 2 x options.floor.rooms_per_side generated
+// rooms joined by a corridor, with a closed route through every room (floor_layout.cpp).
+nlohmann::ordered_json GenerateFloorScene(uint64_t seed, int index, const GeneratorOptions& options);
 
 // The family scene `index` gets (layout itself unless it is "mixed"); InputError naming --layout
 // when layout is neither a family nor "mixed".

@@ -11,6 +11,7 @@
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/people/crowd_options.h"
 #include "hoilcd/sim/robot/robot.h"
+#include "hoilcd/sim/scene/building_floor.h"
 #include "hoilcd/sim/scene/camera_options.h"
 #include "hoilcd/sim/scene/room_options.h"
 
@@ -68,6 +69,7 @@ struct Scene {
   double frame_rate_hz = 25;
 
   RoomOptions room;                 // /room
+  FloorPlan floor;                  // /floor: rooms and interior walls (empty: one room)
   std::vector<TableSpec> tables;
   FurnitureOptions furniture;       // /furniture (asset names resolved to paths)
 

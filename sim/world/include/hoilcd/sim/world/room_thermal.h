@@ -59,12 +59,15 @@ class RoomClimate {
 // World-frame boxes of the instances of class `radiator_class` (the radiators a scene placed).
 std::vector<Eigen::AlignedBox3f> RadiatorBoxes(const std::vector<InstanceInfo>& instances, int radiator_class);
 
-// The fields of the room's materials (0 floor, 1 ceiling, 2 walls, 3 + i window i) and their
-// base temperatures at time t. Radiators are given as world-frame boxes (those of the scene's
-// objects whose class is "radiator").
+// The fields of the room's materials (0 floor, 1 ceiling, 2 walls, 3 + i window i, then the
+// interior walls of a building floor when there are any) and their base temperatures at time t.
+// Radiators are given as world-frame boxes (those of the scene's objects whose class is
+// "radiator"); interior walls as their footprints: they are inside walls (no thermal bridges, no
+// sun of their own; texture only) and they shade the sun from what lies behind them.
 class RoomSurfaces {
  public:
-  RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators);
+  RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators,
+               const std::vector<Eigen::AlignedBox2f>& interior_walls = {});
   ~RoomSurfaces();
 
   // The field of room material k, or null when none of its effects is on (the uniform fast path).
@@ -101,6 +104,8 @@ class RoomSurfaces {
   Eigen::Vector3f size_m_;
   std::array<bool, 4> exterior_{};  // south, north, west, east
   std::vector<Radiator> radiators_;
+  std::vector<Eigen::AlignedBox2f> interior_walls_;
+  int interior_material_ = -1;  // -1: no interior walls
   std::vector<std::unique_ptr<Field>> fields_;  // per material, null where none
   // State at the last SetTime.
   float bridge_k_ = 0;                  // edge cooling at an edge, K
