@@ -19,10 +19,10 @@ struct RenderArgs {
 };
 
 int RenderCommand(const RenderArgs& args) {
-  const Scene scene = LoadSceneArgs(args.scene);
   SequenceOptions o = args.options;
+  if (!args.shard.empty()) o.shard = ParseShard(args.shard);  // before the scene: a bad flag fails first
+  const Scene scene = LoadSceneArgs(args.scene);
   o.cancel = CancelOnInterrupt();
-  if (!args.shard.empty()) o.shard = ParseShard(args.shard);
   const SequenceResult r = RenderSequence(scene, o);
   PrintWarnings(r.warnings);
   const int threads = ResolveThreadCount(o.threads);

@@ -6,6 +6,8 @@
 #include <map>
 #include <optional>
 
+#include <unistd.h>
+
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/parallel.h"
@@ -147,6 +149,39 @@ std::string VerifiedBytes(const ShardFolder& shard, const std::string& relative)
   return bytes;
 }
 
+// The shard's DIR/relative placed at `target` atomically, after checking it against the shard's
+// checksum: hard-linked when both folders are on one file system (a dataset file is never changed
+// in place, only replaced by a rename, so the two names keep the same bytes), else copied. True
+// when linked: its bytes are durable already (the shard synced them), only its folder needs a sync.
+bool PlaceFile(const ShardFolder& shard, const std::string& relative, const std::string& target) {
+  const std::string source = shard.dir + "/" + relative;
+  const auto listed = shard.manifest.files.find(relative);
+  if (listed == shard.manifest.files.end()) {
+    throw InputError(shard.dir, "lists no " + relative + " in its manifest.json; re-run its hoilcd render command");
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(source, ec)) {
+    throw InputError(source, "listed in manifest.json but missing; re-run its hoilcd render command");
+  }
+  if (ChecksumOfFile(source) != listed->second) {
+    throw InputError(source, "does not match its checksum in manifest.json (damaged); re-run its hoilcd render command");
+  }
+  const std::string tmp = target + ".tmp." + std::to_string(::getpid());  // a temp name a re-run removes
+  fs::create_directories(fs::path(target).parent_path(), ec);
+  fs::remove(tmp, ec);
+  fs::create_hard_link(source, tmp, ec);
+  if (ec) {
+    WriteFileAtomicUnsynced(target, VerifiedBytes(shard, relative));
+    return false;
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw InputError(target, "cannot rename temporary file into place: " + ec.message());
+  }
+  return true;
+}
+
 }  // namespace
 
 MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::string& output_dir, int threads) {
@@ -171,7 +206,7 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   // First, so a merge stopped half way leaves a folder a re-run recognises as its own.
   WriteFileAtomic(output_dir + "/manifest.json", merged.ToJson());
 
-  // Frame files, copied in parallel and synced as one batch before the manifest lists them.
+  // Frame files, placed in parallel and synced as one batch before the manifest lists them.
   std::vector<std::pair<const ShardFolder*, std::string>> copies;  // shard, relative path
   for (const ShardFolder& shard : shards) {
     for (int f = shard.part().first_frame; f < shard.part().end_frame; ++f) {
@@ -182,13 +217,22 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   }
   ProgressReporter progress("merge", static_cast<int64_t>(copies.size()), "files");
   std::vector<std::string> paths(copies.size());
+  std::vector<char> linked(copies.size());
   ParallelFor(static_cast<int64_t>(copies.size()), threads, [&](int64_t i) {
     const auto& [shard, relative] = copies[static_cast<size_t>(i)];
     paths[static_cast<size_t>(i)] = output_dir + "/" + relative;
-    WriteFileAtomicUnsynced(paths[static_cast<size_t>(i)], VerifiedBytes(*shard, relative));
+    linked[static_cast<size_t>(i)] = PlaceFile(*shard, relative, paths[static_cast<size_t>(i)]);
     progress.Update();
   });
-  SyncFiles(paths);
+  // Copies are synced, links only through their folders (one journal commit, not one per file).
+  std::vector<std::string> to_sync;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    if (!linked[i]) to_sync.push_back(paths[i]);
+  }
+  for (const char* folder : {"thermal", "radiometric", "exr"}) {
+    if (fs::is_directory(output_dir + "/" + folder, ec)) to_sync.push_back(output_dir + "/" + folder);
+  }
+  SyncFiles(to_sync);
   for (const auto& [shard, relative] : copies) merged.files[relative] = shard->manifest.files.at(relative);
   progress.Done();
 

@@ -1,6 +1,7 @@
 // hoilcd merge: joins the shard folders of one sequence (`hoilcd render --shard I/N`) into the
-// dataset the unsharded render writes, byte for byte, manifest included: frame and side files
-// copied (each checked against its shard's checksum), persons.json joined, thermal.mp4 encoded
+// dataset the unsharded render writes, byte for byte, manifest included: frame files hard-linked
+// (copied across file systems) and side files copied, each checked against its shard's checksum,
+// persons.json joined, thermal.mp4 encoded
 // from every frame (in video mode the thermal PNGs then replaced by its decoded frames) and the
 // manifest. Every shard and the output folder are checked before anything is written.
 #pragma once
