@@ -241,12 +241,13 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
     for (const ShardFolder& shard : shards) {
       const std::string path = shard.dir + "/persons.json";
       const std::vector<FramePersons> part = PersonsFromJson(VerifiedBytes(shard, "persons.json"), path, threads);
-      for (size_t k = 0; k < part.size(); ++k) {
-        if (part.size() != static_cast<size_t>(shard.part().end_frame - shard.part().first_frame) ||
-            part[k].frame != shard.part().first_frame + static_cast<int>(k)) {
-          throw InputError(path, "expected the persons of " + FramesText(shard.part().first_frame, shard.part().end_frame) +
-                                     " in order");
-        }
+      bool in_order = part.size() == static_cast<size_t>(shard.part().end_frame - shard.part().first_frame);
+      for (size_t k = 0; k < part.size() && in_order; ++k) {
+        in_order = part[k].frame == shard.part().first_frame + static_cast<int>(k);
+      }
+      if (!in_order) {
+        throw InputError(path, "expected the persons of " + FramesText(shard.part().first_frame, shard.part().end_frame) +
+                                   ", one entry a frame in order");
       }
       persons.insert(persons.end(), part.begin(), part.end());
     }

@@ -156,6 +156,23 @@ TEST(ShardedRender, AShardStoppedHalfWayAndRerunAloneMergesToTheSameBytes) {
   ExpectSameFiles(whole.str(), root / "merged");
 }
 
+TEST(ShardedRender, MoreShardsThanFramesGiveEmptyShardsThatMergeToo) {
+  const Scene scene = PaperRoom();
+  const test::TestDir whole("whole"), root("shards");
+  SequenceOptions options = Options(whole.str(), 0);
+  options.frames = 2;
+  RenderSequence(scene, options);
+  std::vector<std::string> shards;
+  for (int i = 0; i < 3; ++i) {  // frames: none, 0, 1
+    shards.push_back(root / ("shard_" + std::to_string(i)));
+    options = Options(shards.back(), 0, Shard{i, 3});
+    options.frames = 2;
+    EXPECT_EQ(RenderSequence(scene, options).frames_total, i == 0 ? 0 : 1);
+  }
+  MergeShards(shards, root / "merged", 0);
+  ExpectSameFiles(whole.str(), root / "merged");
+}
+
 // Three shards of the default render and the refusals a merge of them must give.
 class MergeRefusal : public ::testing::Test {
  protected:
