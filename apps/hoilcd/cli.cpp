@@ -21,7 +21,7 @@ int RunCommandLine(int argc, char** argv) {
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress bars");
   const std::vector<Command> commands = {
-      AddValidateCommand(&app), AddRenderCommand(&app),     AddBenchCommand(&app),
+      AddValidateCommand(&app), AddRenderCommand(&app),     AddMergeCommand(&app),    AddBenchCommand(&app),
       AddRunCommand(&app),      AddEvaluateCommand(&app),   AddInspectCommand(&app),
       AddSweepCommand(&app),    AddExportCocoCommand(&app), AddParamsCommand(&app),
       AddExportMotCommand(&app), AddReferenceCommand(&app), AddGenerateCommand(&app),

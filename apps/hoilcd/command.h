@@ -17,6 +17,7 @@ struct Command {
 
 Command AddValidateCommand(CLI::App* app);
 Command AddRenderCommand(CLI::App* app);
+Command AddMergeCommand(CLI::App* app);
 Command AddBenchCommand(CLI::App* app);
 Command AddRunCommand(CLI::App* app);
 Command AddEvaluateCommand(CLI::App* app);

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# scripts/cluster/{sweep,suite}.sbatch (the one given) against stand-ins for sinfo and sbatch (no
+# scripts/cluster/{sweep,suite,render}.sbatch (the one given) against stand-ins for sinfo and sbatch (no
 # Slurm here): a request no node can hold is refused before anything is submitted; a request that
 # fits submits the shard array and a merge that Slurm cancels if a shard fails, with logs under the
 # output folder; ONLY resubmits chosen shards; each step passes its settings from the environment
-# to hoilcd (a sweep's values and frames, a suite's file, split and methods) with the cores.
+# to hoilcd (a sweep's values and frames, a suite's file, split and methods, a render's scene, frames
+# and --set) with the cores.
 set -euo pipefail
 script=$1
 kind=$(basename "$script" .sbatch)
@@ -26,18 +27,32 @@ echo "$*" > "$HOILCD_LOG"
 SH
 chmod +x "$work/bin/"*
 echo '{}' > "$work/my_suite.json"
+echo '{}' > "$work/my_scene.json"
 export PATH="$work/bin:$PATH" SBATCH_LOG="$work/sbatch.log" HOILCD_LOG="$work/hoilcd.log"
 # The settings of each kind's steps, and what its shard and merge must pass to hoilcd.
 case "$kind" in
   sweep)
     export FRAMES=400 VALUES=0,2
-    shard_wants=("sweep scenes/crowded_room.json" "--set crowd.people_per_table=0,2" "--set frames=400")
-    merge_wants=("sweep scenes/crowded_room.json --set crowd.people_per_table=0,2 --seeds 3 --methods paper --set frames=400")
+    shard_wants=("sweep scenes/crowded_room.json" "--set crowd.people_per_table=0,2" "--set frames=400"
+                 "--cache $work/out/cache" "-o $work/out/shard-1")
+    merge_wants=("sweep scenes/crowded_room.json --set crowd.people_per_table=0,2 --seeds 3 --methods paper --set frames=400"
+                 "--merge $work/out/shard-0 $work/out/shard-1 $work/out/shard-2 -o $work/out")
+    plain_out="$work/out"
     ;;
   suite)
     export SUITE="$work/my_suite.json" SPLIT=test METHODS=slcd,dlcd
-    shard_wants=("suite $work/my_suite.json --split test --methods slcd,dlcd")
-    merge_wants=("suite $work/my_suite.json --split test --methods slcd,dlcd")
+    shard_wants=("suite $work/my_suite.json --split test --methods slcd,dlcd" "--cache $work/out/cache"
+                 "-o $work/out/shard-1")
+    merge_wants=("suite $work/my_suite.json --split test --methods slcd,dlcd"
+                 "--merge $work/out/shard-0 $work/out/shard-1 $work/out/shard-2 -o $work/out")
+    plain_out="$work/out"
+    ;;
+  render)
+    export SCENE="$work/my_scene.json" FRAMES=300 SET="crowd.walkers=4 camera.video.enabled=true"
+    shard_wants=("render $work/my_scene.json --frames 300 --set crowd.walkers=4 --set camera.video.enabled=true"
+                 "-o $work/out/shard-1")
+    merge_wants=("merge $work/out/shard-0 $work/out/shard-1 $work/out/shard-2 -o $work/out/dataset")
+    plain_out="$work/out/dataset"
     ;;
   *) fail "unknown script $script" ;;
 esac
@@ -62,6 +77,12 @@ if [ "$kind" = suite ]; then
   fi
   grep -q "SUITE: cannot read '$work/nowhere.json'" "$work/out.txt" || fail "missing suite not named: $(cat "$work/out.txt")"
 fi
+if [ "$kind" = render ]; then
+  if CPUS=4 MEM=7G SCENE="$work/nowhere.json" OUT="$work/out" bash "$script" > "$work/out.txt" 2>&1; then
+    fail "a missing scene file was submitted"
+  fi
+  grep -q "SCENE: cannot read '$work/nowhere.json'" "$work/out.txt" || fail "missing scene not named: $(cat "$work/out.txt")"
+fi
 [ ! -e "$SBATCH_LOG" ] || fail "sbatch was called for a refused request"
 
 # A request that fits: the array and the merge, logs under OUT/logs, merge cancelled on failure.
@@ -85,15 +106,15 @@ case "$(sed -n 4p "$SBATCH_LOG")" in *"--dependency=afterok:42423 "*) ;; *) fail
 
 # Inside the jobs: a shard and the merge call hoilcd with the settings and cores.
 SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=1 SLURM_CPUS_PER_TASK=4 SHARDS=3 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
-for want in "${shard_wants[@]}" "--shard 1/3" "--threads 4" "--cache $work/out/cache" "-o $work/out/shard-1"; do
+for want in "${shard_wants[@]}" "--shard 1/3" "--threads 4"; do
   grep -q -- "$want" "$HOILCD_LOG" || fail "shard runs hoilcd without $want: $(cat "$HOILCD_LOG")"
 done
 SLURM_JOB_ID=2 HOILCD_STEP=merge SHARDS=3 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
-for want in "${merge_wants[@]}" "--merge $work/out/shard-0 $work/out/shard-1 $work/out/shard-2 -o $work/out"; do
+for want in "${merge_wants[@]}"; do
   grep -q -- "$want" "$HOILCD_LOG" || fail "merge runs hoilcd without $want: $(cat "$HOILCD_LOG")"
 done
 # A plain sbatch of the file (no array): the whole job in one, its output straight into OUT.
 SLURM_JOB_ID=3 SLURM_CPUS_PER_TASK=4 OUT="$work/out" HOILCD=fake-hoilcd bash "$script"
-grep -q -- "-o $work/out\$" "$HOILCD_LOG" || fail "a plain job does not write into OUT: $(cat "$HOILCD_LOG")"
+grep -q -- "-o $plain_out\$" "$HOILCD_LOG" || fail "a plain job does not write into OUT: $(cat "$HOILCD_LOG")"
 if grep -q -- "--shard" "$HOILCD_LOG"; then fail "a plain job runs a shard: $(cat "$HOILCD_LOG")"; fi
 echo "1 passed, 0 failed"

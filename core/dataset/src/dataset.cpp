@@ -129,11 +129,17 @@ std::string DatasetManifest::ToJson() const {
   j["files"] = files;
   j["outputs"] = outputs.Names();
   j["complete"] = complete;
+  if (shard) {
+    j["shard"] = {{"index", shard->shard.index},
+                  {"count", shard->shard.count},
+                  {"first_frame", shard->first_frame},
+                  {"end_frame", shard->end_frame}};
+  }
   j[kManifestChecksumKey] = ChecksumOf(j.dump(2));  // of the manifest without this key
   return j.dump(2) + "\n";
 }
 
-// 82 lines: one read and check per manifest key, in the file's order; a list, not steps.
+// 95 lines: one read and check per manifest key, in the file's order; a list, not steps.
 DatasetManifest DatasetManifest::FromJson(const std::string& text,
                                           const std::string& path_for_errors) {
   JsonReader reader(path_for_errors);
@@ -142,7 +148,7 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
   if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
   reader.CheckKeys(j, "", {"hoilcd_version", "scene_hash", "seed", "intrinsics", "frame_rate_hz",
                            "frame_count", "window_min_c", "window_max_c", "classes", "files",
-                           "outputs", "complete", kManifestChecksumKey});
+                           "outputs", "complete", "shard", kManifestChecksumKey});
   std::string checksum;
   reader.Read(j, "", kManifestChecksumKey, &checksum);
   if (!checksum.empty()) {
@@ -213,6 +219,19 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
     if (!problem.empty()) reader.Add("/outputs", problem);
   }
   reader.Read(j, "", "complete", &m.complete);
+  if (j.contains("shard") && reader.ExpectObject(j["shard"], "/shard")) {
+    DatasetShard s;
+    reader.CheckKeys(j["shard"], "/shard", {"index", "count", "first_frame", "end_frame"});
+    reader.Read(j["shard"], "/shard", "index", &s.shard.index);
+    reader.Read(j["shard"], "/shard", "count", &s.shard.count);
+    reader.Read(j["shard"], "/shard", "first_frame", &s.first_frame);
+    reader.Read(j["shard"], "/shard", "end_frame", &s.end_frame);
+    if (const std::string problem = s.shard.Check(); !problem.empty()) reader.Add("/shard", problem);
+    if (!(0 <= s.first_frame && s.first_frame <= s.end_frame && s.end_frame <= m.frame_count)) {
+      reader.Add("/shard", "expected 0 <= first_frame <= end_frame <= frame_count");
+    }
+    m.shard = s;
+  }
   reader.problems().ThrowIfAny();
   return m;
 }
@@ -752,6 +771,12 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
   }
   ds.manifest_ = DatasetManifest::FromJson(ReadFileBytes(manifest_path), manifest_path);
   const DatasetManifest& m = ds.manifest_;
+  if (m.shard) {
+    throw InputError(dir, "is shard " + m.shard->shard.Name() + " of a sequence (frames " +
+                              std::to_string(m.shard->first_frame) + " to " + std::to_string(m.shard->end_frame - 1) +
+                              " of " + std::to_string(m.frame_count) +
+                              "), not a dataset; join the shards with hoilcd merge DIR... -o DIR");
+  }
   if (!m.complete) {
     throw InputError(dir, "dataset is partial: " + std::to_string(m.FramesWritten()) + " of " +
                               std::to_string(m.frame_count) +

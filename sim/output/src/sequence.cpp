@@ -8,7 +8,6 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/dataset/exr_io.h"
-#include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/dataset/video.h"
 #include "hoilcd/core/util/allocator.h"
 #include "hoilcd/core/util/memory.h"
@@ -16,6 +15,7 @@
 #include "hoilcd/core/util/progress.h"
 #include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/output/frame_writer.h"
+#include "hoilcd/sim/output/video_files.h"
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/render/visibility.h"
 #include "hoilcd/sim/scene/scene_options.h"
@@ -54,22 +54,6 @@ bool FrameDone(const std::string& dir, const DatasetManifest& manifest, int fram
   return true;
 }
 
-// The uncompressed 8-bit frame, as the render wrote it: from the EXR's T channel (float32, so
-// exactly the temperature the thermal PNG was made from), else from the thermal PNG itself (the
-// caller makes sure it is still the uncompressed frame: not in video mode).
-cv::Mat UncompressedFrame(const std::string& dir, int frame, const SensorOptions& sensor_options,
-                          const DatasetManifest& manifest) {
-  if (!manifest.outputs.exr) {
-    const std::string path = dir + "/" + FramePath("thermal", frame, "png");
-    return DecodeFramePng(ReadFileBytes(path), path, CV_8UC1, manifest.intrinsics);
-  }
-  const std::string path = dir + "/" + FramePath("exr", frame, "exr");
-  for (const auto& [name, channel] : ReadExr(path, {manifest.intrinsics.width, manifest.intrinsics.height})) {
-    if (name == "T") return ToDisplay8Bit(channel, sensor_options.display_min_c, sensor_options.display_max_c);
-  }
-  throw InputError(path, "no T channel");
-}
-
 }  // namespace
 
 SequenceOptions::SequenceOptions() { Table().FillDefaults(this); }
@@ -94,7 +78,11 @@ const OptionTable<SequenceOptions>& SequenceOptions::Table() {
   return table;
 }
 
-std::string SequenceOptions::Check() const { return Table().FirstProblem(*this); }
+std::string SequenceOptions::Check() const {
+  if (std::string problem = Table().FirstProblem(*this); !problem.empty()) return problem;
+  if (shard && !shard->Check().empty()) return "shard: " + shard->Check();
+  return "";
+}
 
 // Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
 // camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people;
@@ -139,6 +127,9 @@ class SequenceRender {
         dir_(options.output_dir),
         manifest_path_(options.output_dir + "/manifest.json"),
         frames_(options.frames > 0 ? std::min(options.frames, scene.frames) : scene.frames),
+        range_(options.shard ? ContiguousPart(*options.shard, frames_) : IndexRange{0, frames_}),
+        manifest_shard_(options.shard ? std::optional<DatasetShard>({*options.shard, range_.begin, range_.end})
+                                      : std::nullopt),
         outputs_(ParseOutputs(options.outputs)),
         world_(scene, table_),
         intrinsics_(IntrinsicsFromScene(scene)),
@@ -147,8 +138,14 @@ class SequenceRender {
     FrameSetUp set_up = SetUpFrames(scene, &world_, run_, options.threads);
     sensor_options_ = set_up.sensor;
     video_options_ = set_up.video;
-    // thermal.mp4 is encoded when it is an output, or to make video mode's thermal PNGs.
-    encode_video_ = outputs_.video || (video_options_.enabled && outputs_.thermal);
+    // thermal.mp4 is encoded when it is an output, or to make video mode's thermal PNGs; from
+    // every frame, so a shard leaves it to the merge, which reads its uncompressed frames.
+    encode_video_ = !options.shard && (outputs_.video || (video_options_.enabled && outputs_.thermal));
+    if (options.shard && outputs_.video && !outputs_.thermal && !outputs_.exr) {
+      throw InputError("--shard", "with --outputs " + outputs_.ToText() +
+                                      " a shard keeps no frames that hoilcd merge could encode thermal.mp4 from; "
+                                      "add thermal or exr to --outputs");
+    }
     sensor_ = NewSensor();
     renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, set_up.render);
   }
@@ -156,11 +153,11 @@ class SequenceRender {
   SequenceResult Run() {
     CheckFramesInFlightFit(ResolveThreadCount(options_.threads));
     OpenOrResume();
-    result_.frames_total = frames_;
+    result_.frames_total = range_.end - range_.begin;
     result_.warnings = scene_.warnings;
     result_.warnings.insert(result_.warnings.end(), world_.warnings().begin(), world_.warnings().end());
     persons_.resize(frames_);
-    ProgressReporter progress("render", frames_, "frames");
+    ProgressReporter progress("render", range_.end - range_.begin, "frames");
     // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
     // written when every frame is rendered by this call, else at the end from the EXRs on disk.
     // Both feed the encoder the same frames, so a resumed render gives the same file.
@@ -177,11 +174,12 @@ class SequenceRender {
     writer_options.radiometric = outputs_.radiometric;
     writer_options.exr = outputs_.exr;
     writer_ = std::make_unique<FrameWriter>(writer_options, &manifest_, streaming_video_.get());
-    for (int f = 0; f < frames_; ++f) {
+    for (int f = range_.begin; f < range_.end; ++f) {
       if (options_.cancel && options_.cancel->load()) {
         writer_->Finish();
         WriteFileAtomic(manifest_path_, manifest_.ToJson());
-        throw RenderInterrupted("interrupted after " + std::to_string(f) + " frames; re-run the same command to resume");
+        throw RenderInterrupted("interrupted after " + std::to_string(f - range_.begin) +
+                                " frames; re-run the same command to resume");
       }
       world_.SetTime(run_.samples[f].time_s);
       if (done_[f]) {
@@ -212,6 +210,11 @@ class SequenceRender {
                         " x " + std::to_string(intrinsics_.height) + " px, /camera/width_px and /camera/height_px)");
   }
 
+  // "shard I/N" or "a whole sequence", for messages.
+  static std::string ShardText(const std::optional<DatasetShard>& shard) {
+    return shard ? "shard " + shard->shard.Name() : "a whole sequence (rendered without --shard)";
+  }
+
   static DatasetOutputs ParseOutputs(const std::string& text) {
     DatasetOutputs outputs;
     HOILCD_CHECK(DatasetOutputs::Parse(text, &outputs).empty());  // SequenceOptions::Check ran
@@ -239,6 +242,11 @@ class SequenceRender {
         throw InputError(dir_, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
                                    ", seed " + std::to_string(old.seed) +
                                    "); choose another output folder or delete this one");
+      }
+      if (ShardText(old.shard) != ShardText(manifest_shard_)) {
+        throw InputError(dir_, "holds " + ShardText(old.shard) + " (this render asks for " +
+                                   ShardText(manifest_shard_) + "); use the same --shard, another "
+                                   "output folder, or delete this one");
       }
       if (old.outputs != outputs_) {
         throw InputError(dir_, "holds a dataset with --outputs " + old.outputs.ToText() + " (this render asks for " +
@@ -270,19 +278,20 @@ class SequenceRender {
     manifest_.classes = world_.classes();
     manifest_.outputs = outputs_;
     manifest_.complete = false;
+    manifest_.shard = manifest_shard_;
 
     done_.assign(frames_, false);
     // The video of a resumed render is made from the kept frames' EXRs, else from their thermal
     // PNGs outside video mode; with neither, every frame is rendered again.
     const bool video_from_disk = outputs_.exr || (outputs_.thermal && !video_options_.enabled);
-    for (int f = 0; f < frames_ && (video_from_disk || !encode_video_); ++f) {
+    for (int f = range_.begin; f < range_.end && (video_from_disk || !encode_video_); ++f) {
       done_[f] = FrameDone(dir_, manifest_, f);
       any_done_ = any_done_ || done_[f];
     }
     // Drop listings of files that are not (or no longer) valid frames or side files.
     for (auto it = manifest_.files.begin(); it != manifest_.files.end();) {
       bool keep = false;
-      for (int f = 0; f < frames_ && !keep; ++f) {
+      for (int f = range_.begin; f < range_.end && !keep; ++f) {
         const std::vector<std::string> files = FrameFiles(outputs_, f);
         keep = done_[f] && std::find(files.begin(), files.end(), it->first) != files.end();
       }
@@ -367,30 +376,16 @@ class SequenceRender {
     if (streaming_video_ && streaming_video_->frames_added() == frames_) {
       mp4 = streaming_video_->Finish();
     } else {
-      VideoEncoder encoder(video_options_, intrinsics_.width, intrinsics_.height, scene_.frame_rate_hz);
-      for (int f = 0; f < frames_; ++f) encoder.Add(UncompressedFrame(dir_, f, sensor_options_, manifest_));
-      mp4 = encoder.Finish();
+      mp4 = EncodeVideo(video_options_, manifest_, frames_,
+                        [&](int f) { return UncompressedFrame(dir_, f, manifest_, outputs_.exr); });
     }
-    if (outputs_.video) WriteDatasetFile(dir_, "thermal.mp4", mp4, &manifest_);
-    if (video_options_.enabled && outputs_.thermal) {
-      const DecodedVideo video = DecodeVideo(mp4, dir_ + "/thermal.mp4", ResolveThreadCount(options_.threads));
-      HOILCD_CHECK_MSG(static_cast<int>(video.frames.size()) == frames_,
-                       "decoded " << video.frames.size() << " of " << frames_ << " frames");
-      // Written in parallel, synced as one batch, listed in the manifest in order.
-      std::vector<std::string> checksums(frames_), paths(frames_);
-      ParallelFor(frames_, ResolveThreadCount(options_.threads), [&](int64_t f) {
-        const std::string bytes = EncodePng(video.frames[f]);
-        paths[f] = dir_ + "/" + FramePath("thermal", static_cast<int>(f), "png");
-        WriteFileAtomicUnsynced(paths[f], bytes);
-        checksums[f] = ChecksumOf(bytes);
-      });
-      SyncFiles(paths);
-      for (int f = 0; f < frames_; ++f) manifest_.files[FramePath("thermal", f, "png")] = checksums[f];
-    }
+    WriteVideoFiles(dir_, mp4, video_options_, frames_, options_.threads, &manifest_);
     video_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
   }
 
-  // thermal.mp4, the side files, then the manifest that declares the dataset complete.
+  // thermal.mp4, the side files, then the manifest that declares the dataset complete. A shard
+  // writes the whole sequence's poses, events and footprints (the same in every shard: its world
+  // was planned for all frames) and persons.json of its own frames.
   void Finish() {
     if (encode_video_) WriteVideo();
     const std::vector<PoseRecord> poses = PoseRecordsOf(run_, frames_);
@@ -409,7 +404,10 @@ class SequenceRender {
                      [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
     WriteDatasetFile(dir_, "poses.csv", PosesToCsv(poses), &manifest_);
     WriteDatasetFile(dir_, "poses_tum.txt", PosesToTum(poses), &manifest_);
-    if (outputs_.persons) WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons_, options_.threads), &manifest_);
+    if (outputs_.persons) {
+      const std::vector<FramePersons> persons(persons_.begin() + range_.begin, persons_.begin() + range_.end);
+      WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons, options_.threads), &manifest_);
+    }
     WriteDatasetFile(dir_, "events.json", EventsToJson(events), &manifest_);
     WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(FootprintRecordsOf(world_.obstacles())), &manifest_);
     WriteDatasetFile(dir_, "scene.json", scene_.resolved.dump(2), &manifest_);
@@ -423,7 +421,9 @@ class SequenceRender {
   const SequenceOptions& options_;
   const std::string dir_;
   const std::string manifest_path_;
-  const int frames_;
+  const int frames_;          // of the sequence
+  const IndexRange range_;    // the frames this render writes: all, or its shard's
+  const std::optional<DatasetShard> manifest_shard_;  // what the manifest says of the shard (none: whole)
   const DatasetOutputs outputs_;
   const BandRadianceTable table_;
   World world_;

@@ -1,28 +1,13 @@
-// Shards (`--shard I/N`): the syntax, refused by flag name when wrong, and the round robin over a
-// sorted run list, which covers every run exactly once for any number of shards.
+// The round robin of sweep's and suite's shards over a sorted run list, which covers every run
+// exactly once for any number of shards (the syntax: tests/core/util/shard_test.cpp).
 #include "hoilcd/bench/pipeline/shard.h"
 
 #include <gtest/gtest.h>
 
-#include <string>
 #include <vector>
-
-#include "input_error_of.h"
 
 namespace hoilcd {
 namespace {
-
-TEST(ShardSyntax, BadShardIsAnErrorNamingTheFlagAndWhatWasExpected) {
-  const Shard ok = ParseShard("3/4");
-  EXPECT_EQ(ok.index, 3);
-  EXPECT_EQ(ok.count, 4);
-  EXPECT_EQ(ok.Name(), "3/4");
-  for (const std::string bad : {"4/4", "3/2", "1", "x", "a/2", "1/0", "-1/2", "1/2/3", "/2", "1/", ""}) {
-    const std::string message = test::InputErrorOf([&] { ParseShard(bad); });
-    EXPECT_NE(message.find("--shard"), std::string::npos) << bad << " gave: " << message;
-    EXPECT_NE(message.find("'" + bad + "'"), std::string::npos) << bad << " gave: " << message;
-  }
-}
 
 TEST(ShardOf, ShardsOfOneToFiveCoverEveryRunExactlyOnceInOrder) {
   std::vector<int> runs(11);

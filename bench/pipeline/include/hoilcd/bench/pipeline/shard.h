@@ -1,6 +1,6 @@
-// Shards for job arrays (`--shard I/N` of sweep and suite): the I-th of N disjoint parts of a run
-// list sorted by name, every N-th run starting at I, so the parts depend on neither the thread count
-// nor the machine and together cover the list once.
+// Shards of sweep and suite (`--shard I/N`, parsed by core/util/shard.h): the I-th of N disjoint
+// parts of a run list sorted by name, every N-th run starting at I, so the parts depend on neither
+// the thread count nor the machine and together cover the list once.
 #pragma once
 
 #include <cstddef>
@@ -8,20 +8,9 @@
 #include <vector>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/shard.h"  // Shard and its parser, shared with render
 
 namespace hoilcd {
-
-// The I-th of N parts (0-based, as Slurm array task ids and Kubernetes JOB_COMPLETION_INDEX are).
-struct Shard {
-  int index = 0;  // which part, 0 <= index < count
-  int count = 1;  // number of parts, >= 1
-  // A value parsed from --shard or an output marker, not options: no table, its check is by hand.
-  std::string Check() const;
-  std::string Name() const;  // "I/N"
-};
-
-// Parses "I/N"; throws InputError("--shard", ...) saying what was expected.
-Shard ParseShard(const std::string& text);
 
 // The shard's runs: sorted_runs[k] for k % count == index (round robin over the sorted list).
 template <typename Run>

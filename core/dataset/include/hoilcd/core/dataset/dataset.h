@@ -8,12 +8,14 @@
 #include <opencv2/core.hpp>
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "hoilcd/core/geometry/camera.h"
 #include "hoilcd/core/util/file_io.h"  // the dataset's files are written and checked with it
+#include "hoilcd/core/util/shard.h"
 
 namespace hoilcd {
 
@@ -47,6 +49,14 @@ struct DatasetOutputs {
   bool operator!=(const DatasetOutputs& other) const { return !(*this == other); }
 };
 
+// What a shard's folder (`hoilcd render --shard I/N`) holds of its sequence: frames [first_frame,
+// end_frame) of the manifest's frame_count; `hoilcd merge` joins the N folders into the dataset.
+struct DatasetShard {
+  Shard shard;          // I/N
+  int first_frame = 0;  // first frame of its range
+  int end_frame = 0;    // one past its last frame
+};
+
 struct DatasetManifest {
   std::string hoilcd_version;               // version of the hoilcd that wrote the dataset
   std::string scene_hash;                   // ChecksumOf(resolved scene JSON)
@@ -60,6 +70,7 @@ struct DatasetManifest {
   std::map<std::string, std::string> files; // relative path -> checksum, every file written so far
   DatasetOutputs outputs;                   // which outputs were written (absent in older manifests: all)
   bool complete = false;                    // true once every frame and side file is written
+  std::optional<DatasetShard> shard;        // set in a shard's folder only: not a dataset until merged
 
   std::string ToJson() const;
   // Every problem found (type errors, unknown keys) is reported with its JSON pointer.

@@ -3,14 +3,17 @@
 // written atomically. Re-running the same command resumes: frames already written and listed
 // in the manifest with matching checksums are kept, the rest are rendered. thermal.mp4 is
 // written last, from the uncompressed 8-bit frames; in video mode (camera.video.enabled) the
-// thermal PNGs are then replaced by its decoded frames.
+// thermal PNGs are then replaced by its decoded frames. A shard renders a part of the frames
+// (options.shard); hoilcd merge (merge.h) joins the shards.
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hoilcd/core/util/option_table.h"
+#include "hoilcd/core/util/shard.h"
 #include "hoilcd/sim/scene/scene.h"
 
 namespace hoilcd {
@@ -23,6 +26,9 @@ struct SequenceOptions {
   int checkpoint_every_frames;   // frames: the manifest is rewritten this often (resume granularity)
   std::string outputs;           // comma-separated: thermal, radiometric, exr, video, persons (default all)
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame; not in the table
+  // --shard I/N: render only the I-th contiguous part of the frames into a shard folder, which
+  // hoilcd merge joins with the others (none: the whole sequence); not in the table.
+  std::optional<Shard> shard;
 
   SequenceOptions();  // the registered defaults
   // Every field once: name, unit, default, range, description.
@@ -58,7 +64,12 @@ std::string SimulatorVersion();
 // `hoilcd validate` runs it, so a scene it passes renders.
 std::vector<std::string> CheckSceneRenders(const Scene& scene);
 
-// Throws InputError when the folder holds a dataset of another scene, seed or simulator version.
+// Throws InputError when the folder holds a dataset of another scene, seed, simulator version,
+// --outputs or --shard. With options.shard, the folder is a shard: frames ContiguousPart(shard,
+// frames), the whole sequence's poses, events and footprints, persons.json of its frames and no
+// thermal.mp4 (in video mode its thermal PNGs stay uncompressed); the state a frame carries over
+// from earlier ones (the sensor model's) is replayed as a resume does, so its frames are those
+// of the unsharded render, byte for byte.
 SequenceResult RenderSequence(const Scene& scene, const SequenceOptions& options);
 
 }  // namespace hoilcd

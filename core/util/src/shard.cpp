@@ -1,4 +1,8 @@
-#include "hoilcd/bench/pipeline/shard.h"
+#include "hoilcd/core/util/shard.h"
+
+#include <cstdint>
+
+#include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
 
@@ -26,6 +30,12 @@ Shard ParseShard(const std::string& text) {
   shard.count = parse(text.substr(slash + 1));
   if (const std::string problem = shard.Check(); !problem.empty()) throw InputError("--shard", problem + " (got '" + text + "')");
   return shard;
+}
+
+IndexRange ContiguousPart(const Shard& shard, int total) {
+  HOILCD_CHECK_MSG(shard.Check().empty() && total >= 0, shard.Check());
+  auto bound = [&](int i) { return static_cast<int>(static_cast<int64_t>(i) * total / shard.count); };
+  return {bound(shard.index), bound(shard.index + 1)};
 }
 
 }  // namespace hoilcd
