@@ -151,7 +151,9 @@ TEST(ShardedRender, AShardStoppedHalfWayAndRerunAloneMergesToTheSameBytes) {
   const SequenceResult r = RenderSequence(scene, options);
   EXPECT_EQ(r.frames_total, 13);
   EXPECT_EQ(r.frames_rendered + r.frames_reused, 13);
-  if (interrupted) EXPECT_GT(r.frames_reused, 0) << "the checkpoint after each frame kept some";
+  if (interrupted) {
+    EXPECT_GT(r.frames_reused, 0) << "the checkpoint after each frame kept some";
+  }
   MergeShards(shards, root / "merged", 2);
   ExpectSameFiles(whole.str(), root / "merged");
 }
