@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <mutex>
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -800,8 +799,14 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
     throw InputError(poses_path, "expected one row per frame, frames 0 to " +
                                      std::to_string(m.frame_count - 1) + " in order");
   }
-  ds.persons_ = std::make_shared<LazyPersons>();
-  ds.threads_ = threads;
+  const std::string persons_path = JoinPath(dir, "persons.json");
+  if (m.outputs.persons) ds.persons_ = PersonsFromJson(ds.ReadFile("persons.json"), persons_path, threads);
+  for (const FramePersons& f : ds.persons_) {
+    if (f.frame < 0 || f.frame >= m.frame_count) {
+      throw InputError(persons_path, "frame " + std::to_string(f.frame) + " outside 0.." +
+                                         std::to_string(m.frame_count - 1));
+    }
+  }
   const std::string events_path = JoinPath(dir, "events.json");
   ds.events_ = EventsFromJson(ds.ReadFile("events.json"), events_path);
   for (const DatasetEvent& e : ds.events_) {
@@ -863,25 +868,9 @@ void Dataset::RequireOutput(const std::string& output, const std::string& needed
                              "; render it again with " + output + " among --outputs");
 }
 
-struct Dataset::LazyPersons {
-  std::once_flag once;
-  std::vector<FramePersons> frames;
-};
-
 const std::vector<FramePersons>& Dataset::persons() const {
   RequireOutput("persons", "the people ground truth (persons.json)");
-  // A throw leaves the flag unset: the next call reads the file again and throws the same error.
-  std::call_once(persons_->once, [&] {
-    const std::string path = JoinPath(dir_, "persons.json");
-    std::vector<FramePersons> frames = PersonsFromJson(ReadFile("persons.json"), path, threads_);
-    for (const FramePersons& f : frames) {
-      if (f.frame < 0 || f.frame >= num_frames()) {
-        throw InputError(path, "frame " + std::to_string(f.frame) + " outside 0.." + std::to_string(num_frames() - 1));
-      }
-    }
-    persons_->frames = std::move(frames);
-  });
-  return persons_->frames;
+  return persons_;
 }
 
 cv::Mat Dataset::FramePng(const std::string& output, int frame, int type, const std::string& needed_for) const {

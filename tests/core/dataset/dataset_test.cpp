@@ -225,23 +225,6 @@ TEST(Dataset, VerifyOnReadChecksTheSideFilesOpenReads) {
   EXPECT_NO_THROW(Dataset::Open(dir.str(), Verify::kNothing));
 }
 
-TEST(Dataset, PersonsJsonIsReadOnFirstUseAndADamagedOneIsAnErrorThenAndOnEveryCall) {
-  test::TestDir dir;
-  WriteTinyDataset(dir.str(), 3, true);
-  EXPECT_EQ(Dataset::Open(dir.str(), Verify::kOnRead).persons().size(), SamplePersons().size());
-  std::string persons = ReadFileBytes(dir / "persons.json");
-  persons[persons.find('[')] = '{';  // no longer JSON; its checksum mismatches too
-  WriteFileAtomic(dir / "persons.json", persons);
-  const Dataset dataset = Dataset::Open(dir.str(), Verify::kOnRead);  // a bench of SLCD never reads it
-  EXPECT_EQ(dataset.num_frames(), 3);
-  for (int call = 0; call < 2; ++call) {
-    const std::string message = InputErrorOf([&] { dataset.persons(); });
-    EXPECT_EQ(message.rfind(dir / "persons.json: checksum mismatch", 0), 0u) << message;
-  }
-  const Dataset unchecked = Dataset::Open(dir.str(), Verify::kNothing);
-  EXPECT_NE(InputErrorOf([&] { unchecked.persons(); }).find(dir / "persons.json"), std::string::npos);
-}
-
 TEST(Dataset, VerifyOnReadRefusesAFileTheManifestDoesNotList) {
   test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, true);

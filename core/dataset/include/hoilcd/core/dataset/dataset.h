@@ -7,7 +7,6 @@
 #include <map>
 #include <opencv2/core.hpp>
 #include <array>
-#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -175,8 +174,8 @@ std::string PosesToTum(const std::vector<PoseRecord>& poses);
 // file is an InputError naming it).
 enum class Verify {
   kEveryFile,  // every listed file up front, in parallel, before anything is read
-  kOnRead,     // each file when it is read through the Dataset: poses, events, scene and footprints
-               // in Open, persons.json on first use, a frame's PNG or EXR and thermal.mp4 when read (ReadFile).
+  kOnRead,     // each file when it is read through the Dataset: poses, persons, events, scene and
+               // footprints in Open, a frame's PNG or EXR and thermal.mp4 when read (ReadFile).
                // Files nobody reads (a bench never reads most EXRs) are never read at all.
   kNothing,    // nothing: for readers that must see damaged bytes (decoder tests, fuzzing, inspect)
 };
@@ -185,9 +184,8 @@ enum class Verify {
 class Dataset {
  public:
   // Parses manifest.json; a partial dataset is an InputError ("dataset is partial: N of M
-  // frames; re-run hoilcd render to finish it"). Checks files as `verify` says. Loads poses and
-  // events; persons.json is read when persons() is first called (at 100,000 frames it is
-  // gigabytes that a bench of SLCD never needs). A missing or damaged thermal.mp4 (a view of the frames, not their
+  // frames; re-run hoilcd render to finish it"). Checks files as `verify` says. Loads poses,
+  // persons and events. A missing or damaged thermal.mp4 (a view of the frames, not their
   // source) is not an error but a line in warnings(). Checks and reads on `threads` threads
   // (0: every core).
   static Dataset Open(const std::string& dir, Verify verify = Verify::kEveryFile, int threads = 0);
@@ -196,8 +194,7 @@ class Dataset {
   const std::string& dir() const { return dir_; }
   int num_frames() const { return manifest_.frame_count; }
   const std::vector<PoseRecord>& poses() const { return poses_; }
-  // persons.json, read and checked on the first call (thread-safe); InputError naming the missing
-  // output when it was not rendered, or naming the file and what is wrong in it.
+  // persons.json; InputError naming the missing output when it was not rendered.
   const std::vector<FramePersons>& persons() const;
   const std::vector<DatasetEvent>& events() const { return events_; }
   // The obstacle footprints from footprints.json; empty for datasets written before it existed.
@@ -227,9 +224,7 @@ class Dataset {
   Verify verify_ = Verify::kEveryFile;
   DatasetManifest manifest_;
   std::vector<PoseRecord> poses_;
-  struct LazyPersons;  // persons.json, parsed once on first use
-  std::shared_ptr<LazyPersons> persons_;
-  int threads_ = 0;
+  std::vector<FramePersons> persons_;
   std::vector<DatasetEvent> events_;
   std::vector<FootprintRecord> footprints_;
   std::vector<std::string> warnings_;
