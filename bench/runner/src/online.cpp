@@ -28,29 +28,20 @@ double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// The asked methods that can run online (with the methods they combine); a named one that cannot
-// is an InputError, an optional one is left out with a note.
+// The asked methods that can run online (with the methods they combine): KeepMethods' rules.
 std::vector<std::string> KeepOnlineMethods(BenchOptions* options) {
-  std::vector<std::string> kept, notes;
-  for (const std::string& m : options->methods) {
+  return KeepMethods(options, "online", [](const std::string& m, bool named) {
     std::string not_online;
     for (const LoopClosureMethod* part : ScoringOrder({m})) {
       if (!part->Online()) not_online = part->Name();
     }
-    if (not_online.empty()) {
-      kept.push_back(m);
-      continue;
-    }
+    if (not_online.empty()) return std::string();
     const std::string why = "cannot run online: " +
                             (not_online == m ? "it scores" : "it combines " + not_online + ", which scores") +
                             " from more than a query and its database (online methods: point-set methods and fusion)";
-    const auto& optional = options->optional_methods;
-    if (std::find(optional.begin(), optional.end(), m) == optional.end()) throw InputError("--methods", m + " " + why);
-    notes.push_back(m + ": not run, " + why);
-  }
-  if (kept.empty()) throw InputError("--methods", "no method can run online: " + notes.front());
-  options->methods = kept;
-  return notes;
+    if (named) throw InputError("--methods", m + " " + why);
+    return why;
+  });
 }
 
 // Frames by cell of a grid as fine as the true-match radius, so a query's true matches among the
@@ -85,8 +76,6 @@ class PositionGrid {
   double cell_m_;
   std::unordered_map<int64_t, std::vector<int>> cells_;
 };
-
-double Percentile(const std::vector<double>& ms, double q) { return ms.empty() ? 0.0 : Quantile(ms, q); }
 
 nlohmann::json TimingRowsJson(const std::vector<OnlineTimingRow>& rows) {
   nlohmann::json out = nlohmann::json::array();
@@ -136,8 +125,8 @@ std::vector<OnlineTimingRow> TimingByDatabaseSize(const std::vector<int64_t>& da
     row.database_from = range.first;
     row.database_to = range.second;
     row.queries = static_cast<int>(values.size());
-    row.p50_ms = Percentile(values, 0.5);
-    row.p99_ms = Percentile(values, 0.99);
+    row.p50_ms = Quantile(values, 0.5);
+    row.p99_ms = Quantile(values, 0.99);
     rows.push_back(row);
   }
   return rows;
@@ -157,10 +146,11 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   result.shortlist = shortlist;
   result.skipped = KeepOnlineMethods(&options);
   for (std::string& note : LeaveOutUnavailable(dataset, &options)) result.skipped.push_back(std::move(note));
-  std::set<FrontEnd> needed = NeededFrontEnds(ScoringOrder(options.methods));
+  const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
+  std::set<FrontEnd> needed = NeededFrontEnds(order);
   needed.insert(FrontEnd::kThumbnails);  // the shortlist's global descriptors
   CheckFrontEndSizes(dataset, options, needed);
-  const ResolvedMethods methods = ResolveMethods(options, ScoringOrder(options.methods));
+  const ResolvedMethods methods = ResolveMethods(options, order);
   const FrontEndOutput front_ends = RunFrontEndsWithParams(dataset, options, needed);
 
   const ProtocolOptions& protocol = options.protocol;
@@ -232,8 +222,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
 
   result.shortlist_recall = result.queries_scored ? static_cast<double>(result.shortlist_hits) / result.queries_scored : NAN;
   result.search_by_database_size = TimingByDatabaseSize(processed_sizes, result.search_ms);
-  result.insert_p50_ms = Percentile(insert_ms, 0.5);
-  result.insert_p99_ms = Percentile(insert_ms, 0.99);
+  result.insert_p50_ms = Quantile(insert_ms, 0.5);
+  result.insert_p99_ms = Quantile(insert_ms, 0.99);
   result.index_bytes = index.MemoryBytes();
   std::vector<const std::vector<QueryRecord>*> all_records;
   for (size_t m = 0; m < runs; ++m) {
@@ -241,8 +231,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
     run.name = options.methods[m];
     run.metrics = SummariseQueries(records[m]);
     run.query_ms = std::move(query_ms[m]);
-    run.p50_ms = Percentile(run.query_ms, 0.5);
-    run.p99_ms = Percentile(run.query_ms, 0.99);
+    run.p50_ms = Quantile(run.query_ms, 0.5);
+    run.p99_ms = Quantile(run.query_ms, 0.99);
     run.by_database_size = TimingByDatabaseSize(processed_sizes, run.query_ms);
     if (methods.resolved.count(run.name)) run.options = methods.resolved.at(run.name);
     result.runs.push_back(std::move(run));
@@ -259,12 +249,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
 
 nlohmann::json OnlineResultToJson(const OnlineResult& result) {
   nlohmann::json j;
-  j["shortlist"] = {{"k", result.shortlist.k},
-                    {"index", result.shortlist.index},
-                    {"hnsw_neighbours", result.shortlist.hnsw_neighbours},
-                    {"hnsw_build_depth", result.shortlist.hnsw_build_depth},
-                    {"hnsw_search_depth", result.shortlist.hnsw_search_depth},
-                    {"descriptor", "thumbnail (the thumbnails front end)"}};
+  j["shortlist"] = ShortlistOptions::Table().ToJson(result.shortlist);
+  j["shortlist"]["descriptor"] = "thumbnail (the thumbnails front end)";
   j["protocol"] = result.protocol;
   j["database"] = "every frame older than the exclusion window";
   j["unranked"] = "frames outside the shortlist tie below every shortlisted frame";
@@ -274,8 +260,8 @@ nlohmann::json OnlineResultToJson(const OnlineResult& result) {
   j["queries_scored"] = result.queries_scored;
   j["shortlist_hits"] = result.shortlist_hits;
   j["shortlist_recall"] = JsonNumber(result.shortlist_recall);
-  j["search_p50_ms"] = JsonNumber(Percentile(result.search_ms, 0.5));
-  j["search_p99_ms"] = JsonNumber(Percentile(result.search_ms, 0.99));
+  j["search_p50_ms"] = JsonNumber(Quantile(result.search_ms, 0.5));
+  j["search_p99_ms"] = JsonNumber(Quantile(result.search_ms, 0.99));
   j["search_by_database_size"] = TimingRowsJson(result.search_by_database_size);
   j["insert_p50_ms"] = JsonNumber(result.insert_p50_ms);
   j["insert_p99_ms"] = JsonNumber(result.insert_p99_ms);

@@ -49,23 +49,33 @@ std::pair<std::string, FrontEnd> MissingOutput(const Dataset& dataset, const std
 
 }  // namespace
 
-std::vector<std::string> LeaveOutUnavailable(const Dataset& dataset, BenchOptions* options) {
+std::vector<std::string> KeepMethods(BenchOptions* options, const std::string& context,
+                                     const std::function<std::string(const std::string&, bool)>& why_not) {
   std::vector<std::string> kept, notes;
+  const auto& optional = options->optional_methods;
   for (const std::string& m : options->methods) {
-    const auto [output, front_end] = MissingOutput(dataset, m);
-    if (output.empty()) {
+    const bool named = std::find(optional.begin(), optional.end(), m) == optional.end();
+    const std::string why = why_not(m, named);
+    if (why.empty()) {
       kept.push_back(m);
-      continue;
+    } else {
+      notes.push_back(m + ": not run, " + why);
     }
-    const std::string needed_for = "method " + m + " (its " + FrontEndName(front_end) + " front end)";
-    const auto& optional = options->optional_methods;
-    if (std::find(optional.begin(), optional.end(), m) == optional.end()) dataset.RequireOutput(output, needed_for);
-    notes.push_back(m + ": not run, the dataset has no " + output + " output, which " + needed_for +
-                    " needs (rendered with --outputs " + dataset.manifest().outputs.ToText() + ")");
   }
-  if (kept.empty()) throw InputError("--methods", "no method can run on " + dataset.dir() + ": " + notes.front());
+  if (kept.empty()) throw InputError("--methods", "no method can run " + context + ": " + notes.front());
   options->methods = kept;
   return notes;
+}
+
+std::vector<std::string> LeaveOutUnavailable(const Dataset& dataset, BenchOptions* options) {
+  return KeepMethods(options, "on " + dataset.dir(), [&](const std::string& m, bool named) {
+    const auto [output, front_end] = MissingOutput(dataset, m);
+    if (output.empty()) return std::string();
+    const std::string needed_for = "method " + m + " (its " + FrontEndName(front_end) + " front end)";
+    if (named) dataset.RequireOutput(output, needed_for);
+    return "the dataset has no " + output + " output, which " + needed_for + " needs (rendered with --outputs " +
+           dataset.manifest().outputs.ToText() + ")";
+  });
 }
 
 std::set<FrontEnd> NeededFrontEnds(const std::vector<const LoopClosureMethod*>& order) {

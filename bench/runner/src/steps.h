@@ -3,6 +3,7 @@
 // ends with their --param values, and one scoring pass of every method over a labelling.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -20,6 +21,13 @@ namespace hoilcd {
 
 // The methods to score: the asked ones and, before each, the methods it combines (Inputs()).
 std::vector<const LoopClosureMethod*> ScoringOrder(const std::vector<std::string>& asked);
+
+// Keeps the methods `why_not` has nothing against: why_not(method, named) returns "" to keep it,
+// else why it cannot run; for a method named on the command line (not brought in by "all",
+// "paper" or the default) it throws its InputError instead. Returns "<method>: not run, <why>" per
+// method left out; InputError on --methods when none is kept ("no method can run <context>: ...").
+std::vector<std::string> KeepMethods(BenchOptions* options, const std::string& context,
+                                     const std::function<std::string(const std::string&, bool)>& why_not);
 
 // The methods the dataset lacks the ground truth for: a named one is an InputError naming the
 // output and the method; an optional one (from "all", "paper" or the default) is left out of

@@ -21,7 +21,8 @@
 
 namespace hoilcd {
 
-// Time per query of queries whose database size lies in [database_from, database_to).
+// Time per query of queries whose database size lies in [database_from, database_to). Every
+// percentile here is stats.h's Quantile: NaN (null in JSON, "–" in report.md) over no values.
 struct OnlineTimingRow {
   int64_t database_from = 0;
   int64_t database_to = 0;
@@ -51,7 +52,7 @@ struct OnlineResult {
   double shortlist_recall = 0;     // shortlist_hits / queries_scored
   std::vector<double> search_ms;   // per processed query: the shortlist search alone
   std::vector<OnlineTimingRow> search_by_database_size;
-  double insert_p50_ms = 0, insert_p99_ms = 0;  // adding one frame to the shortlist index
+  double insert_p50_ms = 0, insert_p99_ms = 0;  // adding one frame to the shortlist index (NaN: none added)
   double index_bytes = 0;          // the shortlist index at the end (ShortlistIndex::MemoryBytes)
   double peak_rss_bytes = 0;       // this process's peak resident memory when done
   std::vector<OnlineMethodRun> runs;  // in the order asked for
