@@ -12,8 +12,8 @@
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/generate/generator.h"
-#include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/robot/robot.h"
+#include "draw_until_valid.h"
 #include "floor_plan.h"
 #include "route_laps.h"
 
@@ -342,35 +342,23 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
 
 ojson GenerateFloorScene(uint64_t seed, int index, const GeneratorOptions& options) {
   const std::string where = "scene " + std::to_string(index) + " (floor)";
-  std::string last_problem;
-  for (int attempt = 0; attempt < options.attempts; ++attempt) {
-    try {
-      ojson doc = DrawFloor(seed, index, attempt, options);
-      Scene scene = SceneFromJson(nlohmann::json::parse(doc.dump()), where);
-      const BandRadianceTable table;
-      const World world(scene, table);
-      // The rooms' routes kept route_clearance_m from their chairs; a chair's jitter is keyed by its
-      // table's index, which is another on the floor, so it may stand up to chair_jitter_m nearer.
-      const double clearance_m = options.route_clearance_m - scene.furniture.chair_jitter_m;
-      std::vector<std::string> problems = GeneratedSceneProblems(scene, world, options.route_wall_m, clearance_m);
-      for (const std::string& p : FloorRouteProblems(scene, options.route_wall_m)) problems.push_back(p);
-      if (!problems.empty()) {
-        last_problem = problems.front();
-        continue;
-      }
-      doc["frames"] = FramesForLaps(scene, world, scene.route.waypoints_m, options.laps);
-      const std::vector<std::string> warnings = CheckSceneRenders(SceneFromJson(nlohmann::json::parse(doc.dump()), where));
-      if (!warnings.empty()) {
-        last_problem = warnings.front();
-        continue;
-      }
-      return doc;
-    } catch (const InputError& e) {
-      last_problem = e.what();
+  return DrawUntilValid(where, "floor", options.attempts, [&](int attempt, std::string* problem) {
+    ojson doc = DrawFloor(seed, index, attempt, options);
+    Scene scene = SceneFromJson(nlohmann::json::parse(doc.dump()), where);
+    const BandRadianceTable table;
+    const World world(scene, table);
+    // The rooms' routes kept route_clearance_m from their chairs; a chair's jitter is keyed by its
+    // table's index, which is another on the floor, so it may stand up to chair_jitter_m nearer.
+    const double clearance_m = options.route_clearance_m - scene.furniture.chair_jitter_m;
+    std::vector<std::string> problems = GeneratedSceneProblems(scene, world, options.route_wall_m, clearance_m);
+    for (const std::string& p : FloorRouteProblems(scene, options.route_wall_m)) problems.push_back(p);
+    if (!problems.empty()) {
+      *problem = problems.front();
+      return ojson();
     }
-  }
-  throw InputError(where, "a floor passing every check within generator.attempts = " + std::to_string(options.attempts) +
-                              " draws; the last draw failed: " + last_problem);
+    doc["frames"] = FramesForLaps(scene, world, scene.route.waypoints_m, options.laps);
+    return doc;
+  });
 }
 
 }  // namespace hoilcd

@@ -11,8 +11,8 @@
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
-#include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/people/walker_planner.h"
+#include "draw_until_valid.h"
 #include "floor_plan.h"
 #include "layouts.h"
 #include "room_objects.h"
@@ -360,66 +360,53 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
   if (layout == "floor") return GenerateFloorScene(seed, index, options);
   const std::string family = FamilyOf(layout, seed, index);
   const std::string where = "scene " + std::to_string(index) + " (" + family + ")";
-  std::string last_problem;
-  for (int attempt = 0; attempt < options.attempts; ++attempt) {
+  return DrawUntilValid(where, "scene", options.attempts, [&](int attempt, std::string* problem) {
     Rng rng = KeyedRng(seed, "generate.scene", index, HashString(family), attempt);
     Layout layout;
     ojson doc = Draw(family, seed, index, options, &rng, &layout);
-    try {
-      Scene scene = SceneFromJson(nlohmann::json::parse(doc.dump()), where);
-      const BandRadianceTable table;
-      const World world(scene, table);
-      const std::vector<Eigen::Vector2d> route = PlanRoute(layout.route_box_m, world, options.route_wall_m, options.route_clearance_m);
-      // The room's fittings and people's things, from their own stream: the furniture a draw
-      // gives does not depend on them.
-      Rng things_rng = KeyedRng(seed, "generate.objects", index, HashString(family), attempt);
-      const Eigen::Vector3d room = scene.room.size_m;
-      const bool whiteboard = HasFrontWall(family) && things_rng.Uniform() < options.objects.whiteboard_probability;
-      const std::vector<Eigen::Vector2d> doors = RoomDoors(room.head<2>(), whiteboard);
-      std::vector<PlacedObject> added =
-          RoomFittings(room, layout, doc["room"]["windows"], doors, whiteboard, world, route, options, &things_rng);
-      std::vector<std::pair<int, int>> occupied;
-      for (const ojson& s : doc["crowd"]["seating"]) occupied.emplace_back(s["table"].get<int>(), s["seat"].get<int>());
-      for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng)) added.push_back(o);
-      doc["room"]["doors"] = ojson::array();
-      for (const Eigen::Vector2d& d : doors) doc["room"]["doors"].push_back({{"position_m", Point(d)}});
-      // With every object, else without the floor-standing ones (bags and cabinets, the only ones
-      // that can block a seat's access the checks below find).
-      std::vector<std::string> problems;
-      bool placed = false;
-      for (const bool floor : {true, false}) {
-        ojson candidate = doc;
-        for (const PlacedObject& o : added)
-          if (floor || !OnTheFloor(o)) candidate["objects"].push_back(ObjectJson(o));
-        Scene final_scene = SceneFromJson(nlohmann::json::parse(candidate.dump()), where);
-        final_scene.route.waypoints_m = route;
-        const World final_world(final_scene, table);
-        problems = GeneratedSceneProblems(final_scene, final_world, options.route_wall_m, options.route_clearance_m);
-        if (!problems.empty()) continue;
-        doc = candidate;
-        doc["frames"] = FramesForLaps(final_scene, final_world, route, options.laps);
-        placed = true;
-        break;
-      }
-      if (!placed) {
-        last_problem = problems.front();
-        continue;
-      }
-      doc["route"]["waypoints_m"] = ojson::array();
-      for (const Eigen::Vector2d& p : route) doc["route"]["waypoints_m"].push_back(Point(p));
-      // What `hoilcd validate` checks: the scene loads, its robot runs clear, its crowd plans.
-      const std::vector<std::string> warnings = CheckSceneRenders(SceneFromJson(nlohmann::json::parse(doc.dump()), where));
-      if (!warnings.empty()) {
-        last_problem = warnings.front();
-        continue;
-      }
-      return doc;
-    } catch (const InputError& e) {
-      last_problem = e.what();
+    Scene scene = SceneFromJson(nlohmann::json::parse(doc.dump()), where);
+    const BandRadianceTable table;
+    const World world(scene, table);
+    const std::vector<Eigen::Vector2d> route = PlanRoute(layout.route_box_m, world, options.route_wall_m, options.route_clearance_m);
+    // The room's fittings and people's things, from their own stream: the furniture a draw
+    // gives does not depend on them.
+    Rng things_rng = KeyedRng(seed, "generate.objects", index, HashString(family), attempt);
+    const Eigen::Vector3d room = scene.room.size_m;
+    const bool whiteboard = HasFrontWall(family) && things_rng.Uniform() < options.objects.whiteboard_probability;
+    const std::vector<Eigen::Vector2d> doors = RoomDoors(room.head<2>(), whiteboard);
+    std::vector<PlacedObject> added =
+        RoomFittings(room, layout, doc["room"]["windows"], doors, whiteboard, world, route, options, &things_rng);
+    std::vector<std::pair<int, int>> occupied;
+    for (const ojson& s : doc["crowd"]["seating"]) occupied.emplace_back(s["table"].get<int>(), s["seat"].get<int>());
+    for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng)) added.push_back(o);
+    doc["room"]["doors"] = ojson::array();
+    for (const Eigen::Vector2d& d : doors) doc["room"]["doors"].push_back({{"position_m", Point(d)}});
+    // With every object, else without the floor-standing ones (bags and cabinets, the only ones
+    // that can block a seat's access the checks below find).
+    std::vector<std::string> problems;
+    bool placed = false;
+    for (const bool floor : {true, false}) {
+      ojson candidate = doc;
+      for (const PlacedObject& o : added)
+        if (floor || !OnTheFloor(o)) candidate["objects"].push_back(ObjectJson(o));
+      Scene final_scene = SceneFromJson(nlohmann::json::parse(candidate.dump()), where);
+      final_scene.route.waypoints_m = route;
+      const World final_world(final_scene, table);
+      problems = GeneratedSceneProblems(final_scene, final_world, options.route_wall_m, options.route_clearance_m);
+      if (!problems.empty()) continue;
+      doc = candidate;
+      doc["frames"] = FramesForLaps(final_scene, final_world, route, options.laps);
+      placed = true;
+      break;
     }
-  }
-  throw InputError(where, "a scene passing every check within generator.attempts = " + std::to_string(options.attempts) +
-                              " draws; the last draw failed: " + last_problem);
+    if (!placed) {
+      *problem = problems.front();
+      return ojson();
+    }
+    doc["route"]["waypoints_m"] = ojson::array();
+    for (const Eigen::Vector2d& p : route) doc["route"]["waypoints_m"].push_back(Point(p));
+    return doc;  // DrawUntilValid then checks what `hoilcd validate` does
+  });
 }
 
 void CheckGenerateFolder(const std::string& dir) {
