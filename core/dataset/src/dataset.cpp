@@ -819,6 +819,10 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
     const std::string footprints_path = JoinPath(dir, "footprints.json");
     ds.footprints_ = FootprintsFromJson(ds.ReadFile("footprints.json"), footprints_path);
   }
+  ds.runs_ = m.files.count("runs.json") ? RunsFromJson(ds.ReadFile("runs.json"), JoinPath(dir, "runs.json"), m.frame_count)
+                                        : SingleRun(m.frame_count);
+  const std::vector<int> run_of_frame = RunOfFrames(ds.runs_);
+  for (PoseRecord& p : ds.poses_) p.run = run_of_frame[static_cast<size_t>(p.frame)];
   return ds;
 }
 

@@ -11,7 +11,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kSideFiles[] = {"manifest.json", "scene.json",  "poses.csv",       "poses_tum.txt",
-                                      "persons.json",  "events.json", "footprints.json", "thermal.mp4"};
+                                      "persons.json",  "events.json", "footprints.json", "runs.json",
+                                      "thermal.mp4"};
 constexpr const char* kFrameFolders[] = {"thermal", "radiometric", "exr"};
 
 bool AllDigits(const std::string& text, size_t min_length) {

@@ -21,8 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The whole sequence's side files: the same in every shard, copied from the first.
-const char* const kSideFiles[] = {"poses.csv", "poses_tum.txt", "events.json", "footprints.json", "scene.json"};
+// The whole sequence's side files: the same in every shard, copied from the first; runs.json only
+// in a sequence of several recording runs.
+const char* const kSideFiles[] = {"poses.csv", "poses_tum.txt", "events.json", "footprints.json", "scene.json", "runs.json"};
+bool Optional(const std::string& side_file) { return side_file == "runs.json"; }
 
 struct ShardFolder {
   std::string dir;
@@ -91,7 +93,8 @@ std::vector<ShardFolder> ReadShards(const std::vector<std::string>& dirs) {
     const auto [at, inserted] = by_index.emplace(b.shard->shard.index, shard.dir);
     if (!inserted) throw InputError(shard.dir, "repeats shard " + b.shard->shard.Name() + ", which " + at->second + " holds");
     for (const char* name : kSideFiles) {
-      if (b.files.count(name) == 0 || b.files.at(name) != a.files.at(name)) {
+      if (Optional(name) && a.files.count(name) == 0 && b.files.count(name) == 0) continue;
+      if (a.files.count(name) == 0 || b.files.count(name) == 0 || b.files.at(name) != a.files.at(name)) {
         throw InputError(shard.dir + "/" + name, std::string("differs from ") + first.dir + "/" + name +
                                                      ": every shard of one render writes the same");
       }
@@ -266,6 +269,7 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
     result.video_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
   }
   for (const char* name : kSideFiles) {
+    if (Optional(name) && shards.front().manifest.files.count(name) == 0) continue;
     WriteDatasetFile(output_dir, name, VerifiedBytes(shards.front(), name), &merged);
   }
   merged.complete = true;

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hoilcd/core/dataset/runs.h"
 #include "hoilcd/core/geometry/camera.h"
 #include "hoilcd/core/util/file_io.h"  // the dataset's files are written and checked with it
 #include "hoilcd/core/util/shard.h"
@@ -158,6 +159,7 @@ struct PoseRecord {
   double cam_yaw_rad = 0, cam_pitch_rad = 0;         // camera, ground truth (REP 103)
   double cam_roll_rad = 0;                           // camera roll about its optical axis
   double odo_x_m = 0, odo_y_m = 0, odo_theta_rad = 0;  // noisy wheel odometry
+  int run = 0;  // recording run (runs.h): not a poses.csv column, set from runs.json by Dataset::Open
 
   CameraPose Camera() const;  // the cam_* fields (world_from_cam through CameraPose::WorldFromCam)
 };
@@ -199,6 +201,8 @@ class Dataset {
   const std::vector<DatasetEvent>& events() const { return events_; }
   // The obstacle footprints from footprints.json; empty for datasets written before it existed.
   const std::vector<FootprintRecord>& footprints() const { return footprints_; }
+  // The recording runs from runs.json; one run over every frame when the dataset has no runs.json.
+  const std::vector<RunRecord>& runs() const { return runs_; }
   // Problems that do not stop reading (each "path: what"), for the caller to print.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -227,6 +231,7 @@ class Dataset {
   std::vector<FramePersons> persons_;
   std::vector<DatasetEvent> events_;
   std::vector<FootprintRecord> footprints_;
+  std::vector<RunRecord> runs_;
   std::vector<std::string> warnings_;
 };
 
