@@ -119,6 +119,47 @@ FrameSetUp SetUpFrames(const Scene& scene, World* world, const RobotRun& run, in
   return {SensorOptionsFromScene(scene), VideoOptionsFromScene(scene), RenderOptionsFromScene(scene, threads)};
 }
 
+// One recording run of the sequence (the whole sequence when the scene has no runs): its scene,
+// world, robot run and camera, and where its frames lie in the sequence.
+struct RunRender {
+  Scene scene;                              // SceneOfRun
+  std::unique_ptr<World> world;
+  RobotRun run;
+  std::unique_ptr<FrameRenderer> renderer;
+  std::unique_ptr<SensorModel> sensor;      // switched on at the run's first frame
+  int sensor_frame = -1;                    // the run's last frame the sensor has seen
+  int first_frame = 0;                      // in the sequence
+  int frames = 0;                           // its frames in the sequence (--frames may cut the last)
+  int person_id_offset = 0;                 // its people's ids in the dataset are their own plus this
+};
+
+int RunCount(const Scene& scene) { return scene.runs.empty() ? 1 : static_cast<int>(scene.runs.size()); }
+
+// Run k's scene, world, robot run among its obstacles and the crowd's plan (in that order: each
+// may throw the InputError that stops a render before its first frame).
+FrameSetUp PlanRun(const Scene& scene, int k, const BandRadianceTable& table, int threads, RunRender* r) {
+  try {
+    r->scene = SceneOfRun(scene, k);
+    r->world = std::make_unique<World>(r->scene, table);
+    r->run = SimulateSceneRobot(r->scene, r->world->obstacles());
+    return SetUpFrames(r->scene, r->world.get(), r->run, threads);
+  } catch (const InputError& e) {
+    throw LocatedInRun(scene, k, e);
+  }
+}
+
+// The first run's class ids number the EXR's class channel of every run.
+void CheckClassesOfRun(const Scene& scene, const RunRender& first, const RunRender& r, int k) {
+  if (r.world->classes() == first.world->classes()) return;
+  throw InputError(scene.file + ": /runs/" + std::to_string(k),
+                   "its objects give the EXR's class channel other ids than the first run's (one list serves every "
+                   "run); place the same kinds of objects in every run");
+}
+
+// "" with one run; "run K: " before what belongs to run K of several.
+std::string RunPrefix(size_t k, size_t runs) { return runs > 1 ? "run " + std::to_string(k) + ": " : ""; }
+
+
 class SequenceRender {
  public:
   SequenceRender(const Scene& scene, const SequenceOptions& options)
@@ -131,11 +172,21 @@ class SequenceRender {
         manifest_shard_(options.shard ? std::optional<DatasetShard>({*options.shard, range_.begin, range_.end})
                                       : std::nullopt),
         outputs_(ParseOutputs(options.outputs)),
-        world_(scene, table_),
-        intrinsics_(IntrinsicsFromScene(scene)),
-        run_(SimulateSceneRobot(scene, world_.obstacles())) {
-    HOILCD_CHECK(static_cast<int>(run_.samples.size()) >= frames_);
-    FrameSetUp set_up = SetUpFrames(scene, &world_, run_, options.threads);
+        intrinsics_(IntrinsicsFromScene(scene)) {
+    FrameSetUp set_up;
+    for (int k = 0, first = 0, person_ids = 0; k < RunCount(scene) && first < frames_; ++k) {
+      RunRender& r = runs_.emplace_back();
+      set_up = PlanRun(scene, k, table_, options.threads, &r);
+      CheckClassesOfRun(scene, runs_.front(), r, k);
+      r.first_frame = first;
+      r.frames = std::min(r.scene.frames, frames_ - first);
+      HOILCD_CHECK(static_cast<int>(r.run.samples.size()) >= r.frames);
+      r.renderer = std::make_unique<FrameRenderer>(*r.world, intrinsics_, set_up.render);
+      r.person_id_offset = person_ids;
+      for (const Person& p : r.world->people()) person_ids = std::max(person_ids, r.person_id_offset + p.person_id + 1);
+      run_of_frame_.insert(run_of_frame_.end(), static_cast<size_t>(r.frames), k);
+      first += r.frames;
+    }
     sensor_options_ = set_up.sensor;
     video_options_ = set_up.video;
     // thermal.mp4 is encoded when it is an output, or to make video mode's thermal PNGs; from
@@ -146,8 +197,7 @@ class SequenceRender {
                                       " a shard keeps no frames that hoilcd merge could encode thermal.mp4 from; "
                                       "add thermal or exr to --outputs");
     }
-    sensor_ = NewSensor();
-    renderer_ = std::make_unique<FrameRenderer>(world_, intrinsics_, set_up.render);
+    for (RunRender& r : runs_) r.sensor = NewSensor(r);
   }
 
   SequenceResult Run() {
@@ -155,7 +205,9 @@ class SequenceRender {
     OpenOrResume();
     result_.frames_total = range_.end - range_.begin;
     result_.warnings = scene_.warnings;
-    result_.warnings.insert(result_.warnings.end(), world_.warnings().begin(), world_.warnings().end());
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      for (const std::string& w : runs_[k].world->warnings()) result_.warnings.push_back(RunPrefix(k) + w);
+    }
     persons_.resize(frames_);
     ProgressReporter progress("render", range_.end - range_.begin, "frames");
     // thermal.mp4 is encoded from the uncompressed 8-bit frames in frame order: while they are
@@ -181,7 +233,8 @@ class SequenceRender {
         throw RenderInterrupted("interrupted after " + std::to_string(f - range_.begin) +
                                 " frames; re-run the same command to resume");
       }
-      world_.SetTime(run_.samples[f].time_s);
+      RunRender& r = RunOf(f);
+      r.world->SetTime(r.run.samples[f - r.first_frame].time_s);
       if (done_[f]) {
         ReuseFrame(f);
       } else {
@@ -221,9 +274,22 @@ class SequenceRender {
     return outputs;
   }
 
-  std::unique_ptr<SensorModel> NewSensor() const {
-    return std::make_unique<SensorModel>(sensor_options_, intrinsics_.width, intrinsics_.height,
-                                         scene_.frame_rate_hz, scene_.seed, &table_, options_.threads);
+  // The camera of run r, as switched on at its first frame: its fixed pattern the scene's, its
+  // noise and drift the run's.
+  std::unique_ptr<SensorModel> NewSensor(const RunRender& r) const {
+    return std::make_unique<SensorModel>(sensor_options_, intrinsics_.width, intrinsics_.height, scene_.frame_rate_hz,
+                                         scene_.seed, &table_, options_.threads, r.scene.run_seed);
+  }
+
+  RunRender& RunOf(int frame) { return runs_[static_cast<size_t>(run_of_frame_[static_cast<size_t>(frame)])]; }
+
+  std::string RunPrefix(size_t k) const { return hoilcd::RunPrefix(k, runs_.size()); }
+
+  // The people of run r that frame f sees, with their ids in the dataset.
+  FramePersons PersonsOf(const RunRender& r, int f, const CameraPose& camera, const cv::Mat& ids, const cv::Mat& depth) const {
+    FramePersons persons{f, VisiblePersons(*r.world, intrinsics_, camera, ids, depth, options_.threads)};
+    for (PersonRecord& p : persons.persons) p.id += r.person_id_offset;
+    return persons;
   }
 
   // An existing folder must be an earlier run of this very scene; anything else is the user's.
@@ -275,7 +341,7 @@ class SequenceRender {
     manifest_.frame_count = frames_;
     manifest_.window_min_c = sensor_options_.display_min_c;
     manifest_.window_max_c = sensor_options_.display_max_c;
-    manifest_.classes = world_.classes();
+    manifest_.classes = runs_.front().world->classes();
     manifest_.outputs = outputs_;
     manifest_.complete = false;
     manifest_.shard = manifest_shard_;
@@ -305,6 +371,8 @@ class SequenceRender {
   void ReuseFrame(int f) {
     ++result_.frames_reused;
     if (!outputs_.persons) return;
+    const RunRender& r = RunOf(f);
+    const CameraPose& camera = r.run.samples[f - r.first_frame].camera;
     cv::Mat ids, depth;
     if (outputs_.exr) {
       for (const auto& [name, channel] : ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height})) {
@@ -312,11 +380,11 @@ class SequenceRender {
         if (name == "Z") channel.convertTo(depth, CV_32F);
       }
     } else {
-      const FrameBuffers buffers = renderer_->Render(run_.samples[f].camera);
+      const FrameBuffers buffers = r.renderer->Render(camera);
       ids = buffers.instance;
       depth = StoredDepth(buffers.depth_m);
     }
-    if (!ids.empty()) persons_[f] = {f, VisiblePersons(world_, intrinsics_, run_.samples[f].camera, ids, depth, options_.threads)};
+    if (!ids.empty()) persons_[f] = PersonsOf(r, f, camera, ids, depth);
   }
 
   // The depth as the EXR stores it (half), which the persons' ground truth reads, so that a
@@ -331,30 +399,29 @@ class SequenceRender {
   // Ray casts frame f (the world is at its time), applies the sensor model and finds the
   // visible people.
   FrameImages RenderFrame(int f) {
-    const RobotSample& sample = run_.samples[f];
-    if (f > 0 && sensor_frame_ != f - 1) {
+    RunRender& r = RunOf(f);
+    const int local = f - r.first_frame;  // the run's own frame: its sensor's
+    const RobotSample& sample = r.run.samples[local];
+    if (local > 0 && r.sensor_frame != local - 1) {
       // Resuming after kept frames: a fresh model replays the frames its state depends on (the
       // previous frame; during an FFC freeze, back to the frame it shows): the resume contract.
-      sensor_ = NewSensor();
-      for (int replay = sensor_->ReplayFrom(f); replay < f; ++replay) {
-        world_.SetTime(run_.samples[replay].time_s);
-        sensor_->Apply(replay, renderer_->Render(run_.samples[replay].camera).radiance);
+      r.sensor = NewSensor(r);
+      for (int replay = r.sensor->ReplayFrom(local); replay < local; ++replay) {
+        r.world->SetTime(r.run.samples[replay].time_s);
+        r.sensor->Apply(replay, r.renderer->Render(r.run.samples[replay].camera).radiance);
       }
-      world_.SetTime(sample.time_s);
+      r.world->SetTime(sample.time_s);
     }
-    const FrameBuffers buffers = renderer_->Render(sample.camera);
+    const FrameBuffers buffers = r.renderer->Render(sample.camera);
     FrameImages out;
     out.frame = f;
-    out.temperature_c = sensor_->Apply(f, buffers.radiance);
-    sensor_frame_ = f;
+    out.temperature_c = r.sensor->Apply(local, buffers.radiance);
+    r.sensor_frame = local;
     if (outputs_.exr) {
-      out.exr = FrameExrChannels(out.temperature_c, sensor_->IdealTemperature(buffers.radiance), buffers.depth_m,
+      out.exr = FrameExrChannels(out.temperature_c, r.sensor->IdealTemperature(buffers.radiance), buffers.depth_m,
                                  buffers.instance, buffers.class_id);
     }
-    if (outputs_.persons) {
-      persons_[f] = {f, VisiblePersons(world_, intrinsics_, sample.camera, buffers.instance, StoredDepth(buffers.depth_m),
-                                        options_.threads)};
-    }
+    if (outputs_.persons) persons_[f] = PersonsOf(r, f, sample.camera, buffers.instance, StoredDepth(buffers.depth_m));
     return out;
   }
 
@@ -367,6 +434,35 @@ class SequenceRender {
       writer_->Checkpoint();
       since_checkpoint_ = 0;
     }
+  }
+
+  // The first run's obstacles, then those of later runs that are not the first's (people standing
+  // elsewhere), each named "run K: NAME".
+  std::vector<FootprintRecord> Footprints() const {
+    const auto same = [](const FootprintRecord& a, const FootprintRecord& b) {
+      return a.name == b.name && a.kind == b.kind && a.centre_m == b.centre_m && a.half_size_m == b.half_size_m &&
+             a.yaw_deg == b.yaw_deg && a.radius_m == b.radius_m;
+    };
+    const std::vector<FootprintRecord> first = FootprintRecordsOf(runs_.front().world->obstacles());
+    std::vector<FootprintRecord> footprints = first;
+    for (size_t k = 1; k < runs_.size(); ++k) {
+      for (FootprintRecord f : FootprintRecordsOf(runs_[k].world->obstacles())) {
+        if (std::any_of(first.begin(), first.end(), [&](const FootprintRecord& g) { return same(f, g); })) continue;
+        f.name = RunPrefix(k) + f.name;
+        footprints.push_back(std::move(f));
+      }
+    }
+    return footprints;
+  }
+
+  // runs.json: where each run's frames lie and when it was recorded.
+  std::vector<RunRecord> RunRecords() const {
+    std::vector<RunRecord> records;
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      const RunSpec& spec = scene_.runs[k];
+      records.push_back({runs_[k].first_frame, runs_[k].frames, spec.time_of_day_h, spec.day, spec.start_time_s, spec.seed});
+    }
+    return records;
   }
 
   // The video; in video mode its decoded frames become the thermal PNGs that methods read.
@@ -388,20 +484,37 @@ class SequenceRender {
   // was planned for all frames) and persons.json of its own frames.
   void Finish() {
     if (encode_video_) WriteVideo();
-    const std::vector<PoseRecord> poses = PoseRecordsOf(run_, frames_);
+    std::vector<PoseRecord> poses;
     std::vector<DatasetEvent> events;
-    for (const DatasetEvent& e : world_.events())
-      if (e.frame < frames_) events.push_back(e);
-    for (int f : sensor_->FfcFrames(frames_)) {
-      events.push_back({f, "ffc", -1, "", "flat-field correction (shutter)"});
-      for (int frozen = f; frozen < frames_ && sensor_->ShownFrame(frozen) != frozen; ++frozen) {
-        events.push_back({frozen, "freeze", -1, "",
-                          "output repeats frame " + std::to_string(sensor_->ShownFrame(frozen)) +
-                              " (FFC shutter closed)"});
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      const RunRender& r = runs_[k];
+      const double start_time_s = scene_.runs.empty() ? 0.0 : scene_.runs[k].start_time_s;
+      for (PoseRecord p : PoseRecordsOf(r.run, r.frames)) {
+        p.frame += r.first_frame;
+        p.time_s += start_time_s;
+        p.run = static_cast<int>(k);
+        poses.push_back(p);
       }
+      std::vector<DatasetEvent> run_events;
+      for (DatasetEvent e : r.world->events()) {
+        if (e.frame >= r.frames) continue;
+        e.frame += r.first_frame;
+        e.person += r.person_id_offset;
+        run_events.push_back(std::move(e));
+      }
+      // The sensor's frames are the run's own; the shown frame of a freeze is named in the sequence.
+      for (int f : r.sensor->FfcFrames(r.frames)) {
+        run_events.push_back({r.first_frame + f, "ffc", -1, "", "flat-field correction (shutter)"});
+        for (int frozen = f; frozen < r.frames && r.sensor->ShownFrame(frozen) != frozen; ++frozen) {
+          run_events.push_back({r.first_frame + frozen, "freeze", -1, "",
+                                "output repeats frame " + std::to_string(r.first_frame + r.sensor->ShownFrame(frozen)) +
+                                    " (FFC shutter closed)"});
+        }
+      }
+      std::stable_sort(run_events.begin(), run_events.end(),
+                       [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
+      events.insert(events.end(), run_events.begin(), run_events.end());
     }
-    std::stable_sort(events.begin(), events.end(),
-                     [](const DatasetEvent& a, const DatasetEvent& b) { return a.frame < b.frame; });
     WriteDatasetFile(dir_, "poses.csv", PosesToCsv(poses), &manifest_);
     WriteDatasetFile(dir_, "poses_tum.txt", PosesToTum(poses), &manifest_);
     if (outputs_.persons) {
@@ -409,8 +522,9 @@ class SequenceRender {
       WriteDatasetFile(dir_, "persons.json", PersonsToJson(persons, options_.threads), &manifest_);
     }
     WriteDatasetFile(dir_, "events.json", EventsToJson(events), &manifest_);
-    WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(FootprintRecordsOf(world_.obstacles())), &manifest_);
+    WriteDatasetFile(dir_, "footprints.json", FootprintsToJson(Footprints()), &manifest_);
     WriteDatasetFile(dir_, "scene.json", scene_.resolved.dump(2), &manifest_);
+    if (!scene_.runs.empty()) WriteDatasetFile(dir_, "runs.json", RunsToJson(RunRecords()), &manifest_);
     manifest_.complete = true;
     WriteFileAtomic(manifest_path_, manifest_.ToJson());
     result_.complete = true;
@@ -426,19 +540,16 @@ class SequenceRender {
   const std::optional<DatasetShard> manifest_shard_;  // what the manifest says of the shard (none: whole)
   const DatasetOutputs outputs_;
   const BandRadianceTable table_;
-  World world_;
   const CameraIntrinsics intrinsics_;
-  const RobotRun run_;
+  std::vector<RunRender> runs_;    // those the frames reach
+  std::vector<int> run_of_frame_;  // the run of each frame
   SensorOptions sensor_options_;
   VideoOptions video_options_;
-  std::unique_ptr<SensorModel> sensor_;
-  std::unique_ptr<FrameRenderer> renderer_;
 
   DatasetManifest manifest_;
   std::vector<bool> done_;  // frames kept from an earlier run
   bool any_done_ = false;
   std::vector<FramePersons> persons_;
-  int sensor_frame_ = -1;       // last frame the sensor model has seen
   int since_checkpoint_ = 0;
   bool encode_video_ = true;  // thermal.mp4 is an output or makes video mode's thermal PNGs
   std::unique_ptr<VideoEncoder> streaming_video_;
@@ -451,15 +562,16 @@ class SequenceRender {
 }  // namespace
 
 std::vector<std::string> CheckSceneRenders(const Scene& scene) {
-  // SequenceRender's set-up, in its order: the world, the robot's run among its obstacles, then
-  // SetUpFrames.
+  // SequenceRender's set-up, in its order: the camera, then each run's world, robot run and crowd.
   const BandRadianceTable table;
-  World world(scene, table);
   IntrinsicsFromScene(scene);
-  const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
-  SetUpFrames(scene, &world, run, 1);
   std::vector<std::string> warnings = scene.warnings;
-  warnings.insert(warnings.end(), world.warnings().begin(), world.warnings().end());
+  std::vector<RunRender> runs(static_cast<size_t>(RunCount(scene)));
+  for (size_t k = 0; k < runs.size(); ++k) {
+    PlanRun(scene, static_cast<int>(k), table, 1, &runs[k]);
+    CheckClassesOfRun(scene, runs.front(), runs[k], static_cast<int>(k));
+    for (const std::string& w : runs[k].world->warnings()) warnings.push_back(RunPrefix(k, runs.size()) + w);
+  }
   return warnings;
 }
 

@@ -16,6 +16,7 @@
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/assets/asset.h"
 #include "hoilcd/sim/scene/camera_profiles.h"
+#include "scene_runs.h"
 #include "scene_schema_text.h"
 
 namespace hoilcd {
@@ -328,12 +329,8 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
   const std::string where = "--set " + key_equals_value;
   const size_t eq = key_equals_value.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError(where, "expected KEY=VALUE");
-  std::string key = key_equals_value.substr(0, eq);
+  const std::string key = OverridePointer(key_equals_value.substr(0, eq));
   const std::string value_text = key_equals_value.substr(eq + 1);
-  if (key.front() != '/') {
-    std::replace(key.begin(), key.end(), '.', '/');
-    key = "/" + key;
-  }
   json value = json::parse(value_text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded()) value = value_text;
   try {
@@ -550,11 +547,15 @@ Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::st
   ReadRoomAndFurniture(file, &doc, &s, &consistency);
   ReadCameraRobotAndCrowd(file, doc, &s, &consistency);
   CheckOptionTables(file, s, &consistency);
+  s.run_seed = s.seed;
+  ReadRuns(&doc, written, overrides, &s, &consistency);
   s.resolved = doc;
   s.hash = ChecksumOf(doc.dump());
   if (profile != NamedCameraProfile(written, {})) s.warnings = CameraProfileOverrides(written, doc, profile, file);
 
   CheckConsistency(s, &consistency);
+  consistency.ThrowIfAny();
+  CheckRunScenes(s, &consistency);
   consistency.ThrowIfAny();
   return s;
 }

@@ -158,13 +158,15 @@ double FfcPeriodS(const SensorOptions& options) {
 }
 
 SensorModel::SensorModel(SensorOptions options, int width, int height, double frame_rate_hz,
-                         uint64_t seed, const BandRadianceTable* table, int num_threads)
+                         uint64_t seed, const BandRadianceTable* table, int num_threads,
+                         std::optional<uint64_t> session_seed)
     : options_(std::move(options)),
       width_(width),
       height_(height),
       frame_rate_hz_(frame_rate_hz),
       ffc_period_s_(FfcPeriodS(options_)),
       seed_(seed),
+      session_seed_(session_seed.value_or(seed)),
       table_(table),
       num_threads_(ResolveThreadCount(num_threads)),
       noise_scratch_(static_cast<size_t>(num_threads_) * std::max(width, 0)),
@@ -248,7 +250,7 @@ double SensorModel::DriftK(int frame) const {
   const int64_t index = FfcIndex(frame);
   const double since_ffc_s = static_cast<double>(frame - FfcFrame(index)) / frame_rate_hz_;
   const double slope_k_per_s =
-      options_.drift_k_per_min / 60.0 * KeyedRng(seed_, "sensor.drift", index).Normal();
+      options_.drift_k_per_min / 60.0 * KeyedRng(session_seed_, "sensor.drift", index).Normal();
   return slope_k_per_s * since_ffc_s;
 }
 
@@ -329,7 +331,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   effects.correct = CorrectionOf(options_, reflected_radiance_);
   const double step_k = options_.quantisation ? options_.quantisation_step_k : 0.0;
   const uint64_t noise_key =
-      HashCombine(seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
+      HashCombine(session_seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
 
   cv::Mat temperature(height_, width_, CV_32F);
   ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int worker) {

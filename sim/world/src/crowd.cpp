@@ -58,7 +58,7 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
     : assets_(*assets), stage_(*stage), skeleton_(std::make_unique<Skeleton>(*assets)) {
   options_ = scene.crowd;
   scene_file_ = scene.file;
-  seed_ = scene.seed;
+  seed_ = scene.run_seed;  // each recording run its own occupants
   frame_rate_hz_ = scene.frame_rate_hz;
   duration_s_ = scene.frames / scene.frame_rate_hz;
   seat_warmth_c_ = scene.furniture.seat_warmth_c;
@@ -82,7 +82,7 @@ std::vector<SeatingSpec> Crowd::InitialSeating(const Scene& scene, int per_side)
   if (!seating.empty()) return seating;
   for (int t = 0; t < static_cast<int>(scene.tables.size()); ++t) {
     std::vector<int> seats = SeatsOf(scene.tables[t], per_side);
-    Rng rng = KeyedRng(scene.seed, "crowd.seats", t);
+    Rng rng = KeyedRng(scene.run_seed, "crowd.seats", t);
     for (int i = static_cast<int>(seats.size()) - 1; i > 0; --i) {
       std::swap(seats[i], seats[rng.UniformInt(static_cast<uint32_t>(i + 1))]);
     }

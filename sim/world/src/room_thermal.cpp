@@ -79,9 +79,9 @@ std::vector<Eigen::AlignedBox3f> RadiatorBoxes(const std::vector<InstanceInfo>& 
   return boxes;
 }
 
-RoomClimate::RoomClimate(const RoomOptions& room, uint64_t seed)
+RoomClimate::RoomClimate(const RoomOptions& room, uint64_t seed, double clock_offset_s)
     : hvac_(room.hvac), mean_c_(room.environment_temperature_c) {
-  phase_s_ = KeyedRng(seed, "room.hvac.phase").Uniform() * hvac_.period_s;
+  phase_s_ = KeyedRng(seed, "room.hvac.phase").Uniform() * hvac_.period_s + clock_offset_s;
   // Periodic steady state of y' = (u − y)/τ for the triangle u: the lagged value y0 at the start
   // of a heating phase maps to y1 at its end and back to y0 after the cooling phase.
   const double b = hvac_.deadband_k, tau = hvac_.surface_lag_s;
@@ -137,8 +137,8 @@ class RoomSurfaces::Field : public SurfaceField {
 };
 
 RoomSurfaces::RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators,
-                           const std::vector<Eigen::AlignedBox2f>& interior_walls)
-    : room_(room), seed_(seed), climate_(room, seed), size_m_(room.size_m.cast<float>()), interior_walls_(interior_walls) {
+                           const std::vector<Eigen::AlignedBox2f>& interior_walls, double clock_offset_s)
+    : room_(room), seed_(seed), climate_(room, seed, clock_offset_s), size_m_(room.size_m.cast<float>()), interior_walls_(interior_walls) {
   const RoomSurfaceOptions& s = room_.surfaces;
   for (const WindowSpec& w : room_.windows) {
     if (s.exterior_walls == "windowed") exterior_[WallIndex(w.wall)] = true;

@@ -206,7 +206,8 @@ World::World(const Scene& scene, const BandRadianceTable& table)
   for (const WallPart& part : WallParts(scene.floor, room_size_m_.z())) {
     if (!part.lintel) interior_walls.emplace_back(part.box_m.min().head<2>().cast<float>(), part.box_m.max().head<2>().cast<float>());
   }
-  room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")), interior_walls);
+  room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")), interior_walls,
+                                                  scene.clock_offset_s);
   SetTime(0.0);
 }
 

@@ -101,6 +101,17 @@ TEST(ShardedRender, MergedShardsAreTheUnshardedRenderByteForByteAtOneAndTwoThrea
   }
 }
 
+// Two recording runs of 20 frames: the second starts inside shard 1 (frames 13 to 25), whose render
+// switches the second run's camera on there; the last run is cut to 19 frames.
+TEST(ShardedRender, ASequenceOfRunsMergesToTheUnshardedBytesAcrossARunBoundary) {
+  const Scene scene = PaperRoom({R"(runs=[{"time_of_day_h": 9, "frames": 20}, {"time_of_day_h": 15, "frames": 20}])"});
+  const test::TestDir whole("whole"), root("shards");
+  RenderSequence(scene, Options(whole.str(), 2));
+  MergeShards(RenderShards(scene, root, 2), root / "merged", 2);
+  ExpectSameFiles(whole.str(), root / "merged");
+  EXPECT_EQ(Dataset::Open(root / "merged").runs().size(), 2u);
+}
+
 TEST(ShardedRender, VideoModeMergeEncodesAndDecodesTheWholeSequenceAsTheUnshardedRender) {
   const Scene scene = PaperRoom({"camera.video.enabled=true"});
   const test::TestDir whole("whole"), root("shards");

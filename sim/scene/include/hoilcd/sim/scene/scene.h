@@ -55,6 +55,16 @@ struct ObjectSpec {
   bool enabled = true;
 };
 
+// One recording run of /runs, resolved (docs/guide/runs.md).
+struct RunSpec {
+  double time_of_day_h = 10;  // h, local solar time at the run's start
+  int day = 0;                // days after the first run's day
+  int frames = 0;             // frames of the run
+  uint64_t seed = 0;          // the run's seed (Scene::run_seed of its scene)
+  std::vector<std::string> overrides;  // /runs/N/set as "KEY=VALUE", applied to the run's scene only
+  double start_time_s = 0;    // s, its start after the first run's
+};
+
 // The typed, fully resolved scene. Field meanings and units: scenes/scene.schema.json.
 struct Scene {
   std::string file;                 // where it was loaded from (for messages)
@@ -80,7 +90,19 @@ struct Scene {
   TricycleOptions robot;            // /robot
   RouteOptions route;               // /route (frames = the scene's frames)
   OdometryErrorOptions odometry;    // /odometry
+  // /runs: the recording runs, each rendered from SceneOfRun (empty: one run, this scene; then
+  // frames is the sequence's, else the runs' total).
+  std::vector<RunSpec> runs;
+  uint64_t run_seed = 1;      // what differs between runs (crowd, robot and camera noise) draws from it: seed, or the run's
+  double clock_offset_s = 0;  // s, this run's start after the first run's (the HVAC cycle runs on through it)
 };
+
+// Run k of a scene with /runs, as a scene of one run: its /runs/k/set overrides applied, its frames,
+// time of day (room.sun.time_of_day_h, day_of_year counted on by its day), run_seed and
+// clock_offset_s; the scene itself when it has no runs (k = 0). Throws InputError at /runs/k.
+Scene SceneOfRun(const Scene& scene, int k);
+// `error`, found in run k's scene, as problems at /runs/k (itself when the scene has no runs).
+InputError LocatedInRun(const Scene& scene, int k, const InputError& error);
 
 // Reads, overrides, validates (all problems at once), fills defaults, and types a scene file.
 // Throws InputError listing every problem as "FILE: /json/pointer: what was expected".

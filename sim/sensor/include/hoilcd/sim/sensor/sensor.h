@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,7 +82,7 @@ double FfcPeriodS(const SensorOptions& options);
 //      lens (narcissus: a cold spot at the centre) grow until the next FFC. Corner minus centre
 //      is ShadingCornerToCentreK(k) = ΔT_h·(v + n);
 //   6. temporal noise: + R·NETD·n(k, p), n standard normal: value p of KeyedNormals for the
-//      key HashCombine(seed, HashString("sensor.noise"), k) (random.h; p = y·width + x);
+//      key HashCombine(session_seed, HashString("sensor.noise"), k) (random.h; p = y·width + x);
 //   7. conversion to apparent temperature with the emissivity setting, then quantisation;
 //   8. FFC freeze: for FreezeFrames() frames from each FFC frame on, the output is the output of
 //      the frame before the FFC (the bolometer state still follows the scene).
@@ -91,8 +92,10 @@ double FfcPeriodS(const SensorOptions& options);
 class SensorModel {
  public:
   // `table` must outlive the model. num_threads: 0 = every core; output does not depend on it.
+  // seed keys the camera's own fixed pattern; session_seed (default: seed) what is new each time it
+  // is switched on, its temporal noise and drift (a recording run's seed).
   SensorModel(SensorOptions options, int width, int height, double frame_rate_hz, uint64_t seed,
-              const BandRadianceTable* table, int num_threads = 1);
+              const BandRadianceTable* table, int num_threads = 1, std::optional<uint64_t> session_seed = {});
 
   // Scene radiance (CV_32F, W·m⁻²·sr⁻¹, width×height) to apparent temperature (CV_32F, °C).
   // frame: 0 or more, and one more than the previous call's (a new model accepts any frame).
@@ -140,7 +143,8 @@ class SensorModel {
   int width_, height_;
   double frame_rate_hz_;
   double ffc_period_s_;        // FfcPeriodS(options_)
-  uint64_t seed_;
+  uint64_t seed_;          // fixed pattern
+  uint64_t session_seed_;  // temporal noise, drift
   const BandRadianceTable* table_;
   int num_threads_;
   double responsivity_;        // dL/dT at the reference temperature, W·m⁻²·sr⁻¹·K⁻¹

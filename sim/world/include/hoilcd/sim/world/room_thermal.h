@@ -37,7 +37,9 @@ double ClearSkyDirectNormalWm2(double elevation_rad);
 // (it holds no state but the scene's): the garments' model asks it for the air at time t.
 class RoomClimate {
  public:
-  RoomClimate(const RoomOptions& room, uint64_t seed);
+  // clock_offset_s: how long the cycle has run before t = 0 beyond its keyed phase (a recording
+  // run's start after the first run's: the thermostat ran on in between).
+  RoomClimate(const RoomOptions& room, uint64_t seed, double clock_offset_s = 0);
   // Air temperature at time t: environment_temperature_c plus the thermostat's triangle cycle
   // (rising for heating_fraction of each period through the deadband, then falling), a phase
   // keyed by the seed. Without hvac: environment_temperature_c.
@@ -67,7 +69,7 @@ std::vector<Eigen::AlignedBox3f> RadiatorBoxes(const std::vector<InstanceInfo>& 
 class RoomSurfaces {
  public:
   RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators,
-               const std::vector<Eigen::AlignedBox2f>& interior_walls = {});
+               const std::vector<Eigen::AlignedBox2f>& interior_walls = {}, double clock_offset_s = 0);
   ~RoomSurfaces();
 
   // The field of room material k, or null when none of its effects is on (the uniform fast path).
