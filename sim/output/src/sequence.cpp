@@ -159,7 +159,6 @@ void CheckClassesOfRun(const Scene& scene, const RunRender& first, const RunRend
 // "" with one run; "run K: " before what belongs to run K of several.
 std::string RunPrefix(size_t k, size_t runs) { return runs > 1 ? "run " + std::to_string(k) + ": " : ""; }
 
-
 class SequenceRender {
  public:
   SequenceRender(const Scene& scene, const SequenceOptions& options)
@@ -174,6 +173,7 @@ class SequenceRender {
         outputs_(ParseOutputs(options.outputs)),
         intrinsics_(IntrinsicsFromScene(scene)) {
     FrameSetUp set_up;
+    runs_.reserve(static_cast<size_t>(RunCount(scene)));  // a run's world may refer to its scene: never moved
     for (int k = 0, first = 0, person_ids = 0; k < RunCount(scene) && first < frames_; ++k) {
       RunRender& r = runs_.emplace_back();
       set_up = PlanRun(scene, k, table_, options.threads, &r);

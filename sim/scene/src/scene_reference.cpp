@@ -90,7 +90,7 @@ std::string SceneReferenceMarkdown() {
       << "; each element:\n\n" << SchemaTable(floor["properties"]["walls"]["items"]["properties"]["doors"]["items"]["properties"]) << "\n";
   out << "## distractors\n\n" << top["distractors"].value("description", "") << ".\n\n"
       << SchemaTable(top["distractors"]["properties"]) << "\n";
-  for (const char* array : {"tables", "objects"}) {
+  for (const char* array : {"tables", "objects", "runs"}) {
     out << "## " << array << "[]\n\n" << top[array].value("description", "") << "; each element:\n\n"
         << SchemaTable(top[array]["items"]["properties"]) << "\n";
   }

@@ -1,6 +1,7 @@
 // Renders a whole recording session into a dataset folder (SPEC.md "Dataset folder"): the robot
 // drives its route, people move, each frame is ray cast, passed through the sensor model and
-// written atomically. Re-running the same command resumes: frames already written and listed
+// written atomically; a scene with runs (SceneOfRun) renders each run after the other, each with
+// its own world, robot run and camera, and writes runs.json. Re-running the same command resumes: frames already written and listed
 // in the manifest with matching checksums are kept, the rest are rendered. thermal.mp4 is
 // written last, from the uncompressed 8-bit frames; in video mode (camera.video.enabled) the
 // thermal PNGs are then replaced by its decoded frames. A shard renders a part of the frames
