@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "hoilcd/sim/scene/scene.h"
+#include "input_error_of.h"
 
 namespace hoilcd {
 namespace {
@@ -13,19 +14,9 @@ json TwoRuns() {
               {"runs", json::array({{{"time_of_day_h", 9.0}}, {{"time_of_day_h", 14.5}, {"frames", 50}, {"set", {{"crowd.people_per_table", 2}}}}})}};
 }
 
-std::vector<Problem> ProblemsOf(const json& doc, const std::vector<std::string>& overrides = {}) {
-  try {
-    SceneFromJson(doc, "test.json", overrides);
-  } catch (const InputError& e) {
-    return e.problems();
-  }
-  return {};
-}
-
-std::string Joined(const std::vector<Problem>& problems) {
-  std::string text;
-  for (const Problem& p : problems) text += p.ToString() + "\n";
-  return text;
+// Every problem the scene has, one a line ("" when it loads).
+std::string ErrorOf(const json& doc, const std::vector<std::string>& overrides = {}) {
+  return test::InputErrorOf([&] { SceneFromJson(doc, "test.json", overrides); });
 }
 
 TEST(SceneRuns, EachRunIsTheSceneAtItsTimeWithItsFramesSeedAndOverrides) {
@@ -82,20 +73,20 @@ TEST(SceneRuns, ARunBeforeThePreviousEndedIsAnErrorAtItsTime) {
   json doc = TwoRuns();
   doc["frames"] = 25 * 3600;  // the first run lasts an hour: 09:00 to 10:00
   doc["runs"][1]["time_of_day_h"] = 9.5;
-  const std::string text = Joined(ProblemsOf(doc));
+  const std::string text = ErrorOf(doc);
   EXPECT_NE(text.find("test.json: /runs/1/time_of_day_h: run 1 starts at day 0 09:30, before run 0 ends at day 0 10:00; "
                       "expected a later time or day (/runs/1/day)"),
             std::string::npos)
       << text;
   doc["runs"][0]["day"] = 1;
-  EXPECT_NE(Joined(ProblemsOf(doc)).find("test.json: /runs/0/day: the first run's day is day 0"), std::string::npos);
+  EXPECT_NE(ErrorOf(doc).find("test.json: /runs/0/day: the first run's day is day 0"), std::string::npos);
 }
 
 TEST(SceneRuns, OverridesOfWhatAllRunsShareAreRefusedAndABadOneIsReportedUnderItsRun) {
   json doc = TwoRuns();
   doc["runs"][1]["set"] = {{"camera.width_px", 320}, {"/room/size_m", {8, 3, 2.6}}, {"room", json::object()},
                            {"room.sun.time_of_day_h", 3}};
-  std::string text = Joined(ProblemsOf(doc));
+  std::string text = ErrorOf(doc);
   for (const char* expected :
        {"test.json: /runs/1/set/camera.width_px: sets /camera, which is one for all runs",
         "test.json: /runs/1/set//room/size_m: sets /room/size_m, which is one for all runs",
@@ -105,7 +96,7 @@ TEST(SceneRuns, OverridesOfWhatAllRunsShareAreRefusedAndABadOneIsReportedUnderIt
     EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
   }
   doc["runs"][1]["set"] = {{"crowd.people_per_table", 99}};
-  text = Joined(ProblemsOf(doc));
+  text = ErrorOf(doc);
   EXPECT_NE(text.find("test.json: /runs/1: its scene (the scene with /runs/1/set applied): test.json: /crowd/people_per_table"),
             std::string::npos)
       << text;
@@ -122,10 +113,10 @@ TEST(SceneRuns, TheSunsTimeIsTheFirstRunsAndAnotherIsRefused) {
   doc["room"]["sun"]["time_of_day_h"] = 12;
   const std::string where = "test.json: /room/sun/time_of_day_h: is 12.00, but a scene with runs takes each run's time "
                             "of day from /runs/N/time_of_day_h (the first run's is 9.00); remove it";
-  EXPECT_NE(Joined(ProblemsOf(doc)).find(where), std::string::npos) << Joined(ProblemsOf(doc));
-  EXPECT_NE(Joined(ProblemsOf(TwoRuns(), {"room.sun.time_of_day_h=12"})).find(where), std::string::npos);
-  EXPECT_TRUE(ProblemsOf(TwoRuns(), {"runs.1.time_of_day_h=20"}).empty());
-  EXPECT_TRUE(ProblemsOf(TwoRuns(), {"room.sun.time_of_day_h=9"}).empty());
+  EXPECT_NE(ErrorOf(doc).find(where), std::string::npos) << ErrorOf(doc);
+  EXPECT_NE(ErrorOf(TwoRuns(), {"room.sun.time_of_day_h=12"}).find(where), std::string::npos);
+  EXPECT_TRUE(ErrorOf(TwoRuns(), {"runs.1.time_of_day_h=20"}).empty());
+  EXPECT_TRUE(ErrorOf(TwoRuns(), {"room.sun.time_of_day_h=9"}).empty());
 }
 
 TEST(SceneRuns, MoreThanAMillionFramesInAllIsAnError) {
@@ -133,7 +124,7 @@ TEST(SceneRuns, MoreThanAMillionFramesInAllIsAnError) {
   doc["frames"] = 600000;
   doc["runs"][1]["frames"] = 600000;
   doc["runs"][1]["day"] = 1;
-  EXPECT_NE(Joined(ProblemsOf(doc)).find("test.json: /runs: the runs hold 1200000 frames in all; expected at most 1000000"),
+  EXPECT_NE(ErrorOf(doc).find("test.json: /runs: the runs hold 1200000 frames in all; expected at most 1000000"),
             std::string::npos);
 }
 
