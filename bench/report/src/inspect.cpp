@@ -272,6 +272,7 @@ InspectSection LabelSection(const std::vector<PoseRecord>& poses, const Protocol
 
 InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol, int threads) {
   if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("inspect", problem);
+  CheckProtocolFits(dataset, protocol);
   InspectReport r;
   r.sections.push_back(TrajectorySection(dataset.poses()));
   r.sections.push_back(CameraSection(dataset.poses()));

@@ -627,6 +627,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
 BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
+  CheckProtocolFits(dataset, options.protocol);  // as does a protocol the dataset cannot take
   // The report's dataset checks read only the dataset: they run beside the bench, on the core
   // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it. With one
   // thread asked for there is no such core: they run after the bench, on the same thread.

@@ -138,6 +138,7 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  CheckProtocolFits(dataset, options.protocol);
   if (options.protocol.ground_truth == "overlap") {
     throw InputError("--ground-truth", "online: overlap labels pairs from the EXR frames, which a robot does not "
                                        "have; use odometry (the paper's) or true");
@@ -179,11 +180,13 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
       insert_ms.push_back(MsSince(t));
       ++inserted;
     }
-    const bool is_query = protocol.protocol == "revisit" || laps[q] > 0;
+    const bool is_query =
+        protocol.protocol == "revisit" || (protocol.protocol == "runs" ? poses[q].run > 0 : laps[q] > 0);
     if (!is_query) continue;
     Query query;
     query.frame = q;
     query.lap = laps[q];
+    query.run = poses[q].run;
     const int true_matches = inserted > 0 ? grid.CountTrueMatches(q, inserted, protocol) : 0;
     if (inserted == 0) {
       for (size_t m = 0; m < runs; ++m) {

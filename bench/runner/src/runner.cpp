@@ -235,6 +235,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  CheckProtocolFits(dataset, options.protocol);
   std::vector<std::string> skipped = LeaveOutUnavailable(dataset, &options);
   const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
   CheckFrontEndSizes(dataset, options, NeededFrontEnds(order));

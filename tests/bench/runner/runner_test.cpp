@@ -13,6 +13,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/matching/matching.h"
 #include "hoilcd/bench/report/diagnosis.h"
+#include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -21,6 +22,8 @@
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
 #include "hoilcd/sim/world/world.h"
+#include "hoilcd/bench/runner/online.h"
+#include "input_error_of.h"
 #include "test_dir.h"
 #include "tiny_room.h"
 
@@ -242,6 +245,23 @@ TEST(Runner, AThumbnailLargerThanTheCameraImageIsRefusedByNameBeforeAnyWork) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(Runner, TheRunsProtocolOnOneRecordingRunIsRefusedNamingTheDatasetBeforeAnyWork) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "ds", {"frames=12"});
+  BenchOptions options;
+  options.methods = {"slcd"};
+  options.protocol.protocol = "runs";
+  const std::string expected =
+      dataset.dir() + ": holds one recording run; --protocol runs needs two or more (render a scene with /runs)";
+  EXPECT_EQ(test::InputErrorOf([&] { RunBench(dataset, options); }), expected);
+  EXPECT_EQ(test::InputErrorOf([&] { RunOnlineBench(dataset, options, ShortlistOptions()); }), expected);
+  EXPECT_EQ(test::InputErrorOf([&] { LabelQueries(dataset, options.protocol); }), expected);
+  EXPECT_EQ(test::InputErrorOf([&] { InspectDataset(dataset, options.protocol); }), expected);
+  ReportTiming timing;
+  EXPECT_EQ(test::InputErrorOf([&] { BenchAndWriteReport(dataset, options, &timing, temp / "report"); }), expected);
+  EXPECT_FALSE(fs::exists(temp / "report"));
 }
 
 TEST(Runner, UnknownMethodsAreInputErrorsNamingThem) {

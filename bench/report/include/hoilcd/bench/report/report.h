@@ -39,9 +39,10 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                  const ReportTiming& timing, const std::string& dir);
 
 // RunBench, then WriteReport with *timing (its bench_s set from the result), with the report's
-// dataset checks run beside the bench. A report folder that cannot be used fails before the
-// bench. `before_slam`, if given, runs once the methods are scored and before the SLAM step, and
-// may change its options and *timing (hoilcd run waits there for its calibration's thresholds).
+// dataset checks run beside the bench. A report folder that cannot be used, or a protocol the
+// dataset cannot take (CheckProtocolFits), fails before the bench. `before_slam`, if given, runs
+// once the methods are scored and before the SLAM step, and may change its options and *timing
+// (hoilcd run waits there for its calibration's thresholds).
 BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam = {});
 

@@ -3,9 +3,10 @@
 // shortlist of K frames from a FAISS index of global descriptors (the thumbnails, shortlist_index.h),
 // then every method scores only those K (the point-set methods' RANSAC, fusion's ranks). A frame
 // the shortlist left out is unranked: it ties below every shortlisted one (metrics.h ShortlistRecord).
-// Queries are the protocol's (laps: the later laps; revisit: every frame); the database is every
-// older frame, in both. Reported per method: the metrics with their intervals, the shortlist's recall,
-// and ms per query at p50 and p99 as the database grows. The offline runner (runner.h) is unchanged.
+// Queries are the protocol's (laps: the later laps; revisit: every frame; runs: the later recording
+// runs); the database is every older frame, in all. Reported per method: the metrics with their
+// intervals (and per recording run), the shortlist's recall, and ms per query at p50 and p99 as the
+// database grows. The offline runner (runner.h) is unchanged.
 #pragma once
 
 #include <cstdint>
