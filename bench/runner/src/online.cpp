@@ -245,6 +245,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   for (OnlineMethodRun& run : result.runs) {
     run.intervals = BootstrapHeadline(run.metrics.queries, result.bootstrap, options.bootstrap.seed, options.threads);
   }
+  result.per_run = MetricsPerRun(dataset.runs(), options.methods, all_records, result.bootstrap,
+                                 options.bootstrap.seed, options.threads);
   result.peak_rss_bytes = PeakResidentBytes();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
@@ -287,7 +289,9 @@ nlohmann::json OnlineResultToJson(const OnlineResult& result) {
     m["options"] = run.options;
     methods[run.name] = m;
   }
-  return {{"mode", "online"}, {"online", j}, {"methods", methods}};
+  nlohmann::json out = {{"mode", "online"}, {"online", j}, {"methods", methods}};
+  if (!result.per_run.empty()) out["recording_runs"] = MetricsPerRunJson(result.per_run);
+  return out;
 }
 
 std::string OnlineResultToMarkdown(const OnlineResult& result) {
@@ -309,6 +313,7 @@ std::string OnlineResultToMarkdown(const OnlineResult& result) {
        << Fixed(run.intervals.mrr.high, 3) << "] | " << Fixed(run.metrics.recall_at_1, 3) << " | "
        << Fixed(run.p50_ms, 2) << " | " << Fixed(run.p99_ms, 2) << " |\n";
   }
+  md << MetricsPerRunMarkdown(result.per_run, result.bootstrap.confidence);
   md << "\nms per query (shortlist search plus the method's scoring; extraction not included) as the database "
         "grows:\n\n| database frames | queries | search p50 / p99 |";
   for (const OnlineMethodRun& run : result.runs) md << " " << run.name << " p50 / p99 |";

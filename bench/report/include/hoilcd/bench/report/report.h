@@ -30,8 +30,9 @@ std::string FormatResultTable(const BenchResult& result);
 void CheckReportFolder(const std::string& dir);
 
 // report.json's results: protocol, methods (metrics, intervals, options), bootstrap, strata,
-// comparisons, the other ground truth and label_agreement. WriteReport adds the dataset, inspect,
-// tracking, SLAM, timing and the diagnosis; Python's hoilcd.bench without a folder returns this.
+// recording_runs (a dataset of 2+ runs), comparisons, the other ground truth and label_agreement.
+// WriteReport adds the dataset, inspect, tracking, SLAM, timing and the diagnosis; Python's
+// hoilcd.bench without a folder returns this.
 nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& options);
 
 // Writes the report folder (created if missing; files written atomically).

@@ -16,6 +16,7 @@
 
 #include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/metrics.h"
+#include "hoilcd/bench/evaluation/run_metrics.h"
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/place_recognition/shortlist_index.h"
@@ -59,6 +60,7 @@ struct OnlineResult {
   std::vector<OnlineMethodRun> runs;  // in the order asked for
   std::vector<std::string> skipped;   // optional methods left out, each "<method>: <why>"
   BootstrapPlan bootstrap;
+  std::vector<RunMetrics> per_run;  // per recording run of the dataset (none for one run)
   double seconds = 0;              // wall time, front ends included
   const OnlineMethodRun* Find(const std::string& name) const;
 };
@@ -74,7 +76,8 @@ std::vector<OnlineTimingRow> TimingByDatabaseSize(const std::vector<int64_t>& da
                                                   const std::vector<double>& ms);
 
 // The result for report.json: {"mode": "online", "online": {shortlist, recall, timing, ...},
-// "methods": {name: metrics, intervals, p50/p99 ms, ...}}; and as report.md.
+// "methods": {name: metrics, intervals, p50/p99 ms, ...}, "recording_runs" (2+ runs only)}; and as
+// report.md.
 nlohmann::json OnlineResultToJson(const OnlineResult& result);
 std::string OnlineResultToMarkdown(const OnlineResult& result);
 
