@@ -22,6 +22,7 @@
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
 #include "hoilcd/sim/world/world.h"
+#include "hoilcd/bench/methods/front_ends.h"
 #include "hoilcd/bench/runner/online.h"
 #include "input_error_of.h"
 #include "recording_runs.h"
@@ -337,6 +338,22 @@ TEST(Report, ADatasetOfTwoRecordingRunsIsScoredPerRunUnderEveryProtocol) {
   const nlohmann::json evaluated = nlohmann::json::parse(ReadFileBytes(temp / "evaluate/report.json"));
   EXPECT_EQ(evaluated["recording_runs"][1]["methods"]["thumb"]["mrr"], later.mrr[1]);
   EXPECT_NE(ReadFileBytes(temp / "evaluate/report.md").find("### Results by recording run"), std::string::npos);
+}
+
+// After the robot is carried back to its dock, the tracker starts afresh: no track of the first
+// run goes on in the second, though the second starts where the first ended, at the same table.
+TEST(Runner, NoPersonTrackCarriesOverFromOneRecordingRunToTheNext) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomTwoRuns(temp.str(), 220);
+  FrontEndOptions options;
+  const FrontEndOutput out = RunFrontEnds(dataset, {FrontEnd::kPersons}, options);
+  std::set<int> first_run, second_run;
+  for (const FrameTracks& f : out.tracks) {
+    for (const TrackedBox& t : f.tracks) (f.frame < 220 ? first_run : second_run).insert(t.id);
+  }
+  ASSERT_FALSE(first_run.empty());
+  ASSERT_FALSE(second_run.empty());
+  EXPECT_LT(*first_run.rbegin(), *second_run.begin());
 }
 
 // A single-run dataset's reports hold no per-run block.
