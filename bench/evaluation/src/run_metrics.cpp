@@ -92,6 +92,10 @@ std::string MetricsPerRunMarkdown(const std::vector<RunMetrics>& rows, double co
     md << "| " << r.run << " | " << WhenRecorded(r.record) << " | " << r.record.first_frame << "-"
        << r.record.end_frame() - 1 << " | " << r.queries_scored << " of " << r.queries << " |";
     for (size_t m = 0; m < r.methods.size(); ++m) {
+      if (r.queries_scored == 0) {
+        md << " - |";
+        continue;
+      }
       md << " " << Fixed(r.mrr[m]) << " [" << Fixed(r.mrr_interval[m].low) << ", " << Fixed(r.mrr_interval[m].high)
          << "] / " << Fixed(r.recall_at_1[m]) << " |";
     }
