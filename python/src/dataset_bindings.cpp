@@ -79,7 +79,8 @@ void BindDataset(py::module_& m) {
                              "poses.csv as {column: numpy array}: frame, t, x, y, theta (robot base, ground "
                              "truth; m, rad), cam_*, odo_x, odo_y, odo_theta (wheel odometry), and run (each "
                              "frame's recording run, from runs.json; 0 throughout without it)")
-      .def_property_readonly("runs", [](const Dataset& d) -> py::list { return JsonToPython(RunsToJson(d.runs()))["runs"]; },
+      .def_property_readonly("runs",
+                             [](const Dataset& d) -> py::list { return JsonToPython(RunsToJson(d.runs()))["runs"]; },
                              "the recording runs (runs.json) as a list of dicts: first_frame, frames, "
                              "time_of_day_h (-1: not stated), day, start_time_s, seed; one run over every frame "
                              "when the dataset has no runs.json")

@@ -55,8 +55,12 @@ const OptionTable<BootstrapOptions>& BootstrapOptions::Table() {
 std::string BootstrapOptions::Check() const { return Table().FirstProblem(*this); }
 
 nlohmann::json HeadlineIntervals::ToJson() const {
-  return {{"mrr", mrr.ToJson()},         {"recall_at_1", recall_at_1.ToJson()}, {"recall_at_5", recall_at_5.ToJson()},
-          {"recall_at_10", recall_at_10.ToJson()}, {"pr_auc", pr_auc.ToJson()}, {"recall_at_100p", recall_at_100p.ToJson()}};
+  return {{"mrr", mrr.ToJson()},
+          {"recall_at_1", recall_at_1.ToJson()},
+          {"recall_at_5", recall_at_5.ToJson()},
+          {"recall_at_10", recall_at_10.ToJson()},
+          {"pr_auc", pr_auc.ToJson()},
+          {"recall_at_100p", recall_at_100p.ToJson()}};
 }
 
 nlohmann::json BootstrapPlan::ToJson() const {

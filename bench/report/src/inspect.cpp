@@ -277,7 +277,8 @@ std::vector<InspectRun> InspectRuns(const std::vector<RunRecord>& runs, const st
   std::vector<InspectRun> out;
   if (runs.size() < 2) return out;
   const std::vector<int> laps = LapIndexFromPoses(poses);
-  const std::vector<int> people = persons ? PeoplePerFrame(*persons, static_cast<int>(poses.size())) : std::vector<int>();
+  const std::vector<int> people =
+      persons ? PeoplePerFrame(*persons, static_cast<int>(poses.size())) : std::vector<int>();
   for (size_t k = 0; k < runs.size(); ++k) {
     InspectRun r;
     r.run = static_cast<int>(k);
@@ -385,7 +386,8 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   CameraOutputOptions camera;
   camera.threads = threads;
   r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset, camera)));
-  r.runs = InspectRuns(dataset.runs(), dataset.poses(), dataset.manifest().outputs.persons ? &dataset.persons() : nullptr);
+  const bool persons = dataset.manifest().outputs.persons;
+  r.runs = InspectRuns(dataset.runs(), dataset.poses(), persons ? &dataset.persons() : nullptr);
   return r;
 }
 

@@ -183,8 +183,8 @@ PoseGraphSolution OptimisePoseGraph(const PoseGraph& graph, const PoseGraphOptio
     problem.AddResidualBlock(EdgeResidual::Create(e), LoopLoss(options).release(), &state[3 * e.from],
                              &state[3 * e.to]);
   }
-  for (int f : graph.fixed) {
-    if (problem.HasParameterBlock(&state[3 * f])) problem.SetParameterBlockConstant(&state[3 * f]);  // else no edge moves it
+  for (int f : graph.fixed) {  // a fixed node no edge reaches is not in the problem, and stays put anyway
+    if (problem.HasParameterBlock(&state[3 * f])) problem.SetParameterBlockConstant(&state[3 * f]);
   }
 
   ceres::Solver::Options solver;

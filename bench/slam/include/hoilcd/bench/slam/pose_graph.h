@@ -1,7 +1,8 @@
 // An SE(2) pose graph optimised with Ceres Solver: one node per frame, odometry edges between
-// consecutive frames and loop edges from accepted loop closures; fixed nodes anchor the gauge. Back ends differ only in how loop
-// edges are weighted: plain least squares, a Cauchy robust loss, or Dynamic Covariance Scaling
-// (Agarwal et al. 2013), which scales a loop's information by min(1, 2Φ/(Φ+χ²))².
+// consecutive frames and loop edges from accepted loop closures; fixed nodes anchor the gauge. Back
+// ends differ only in how loop edges are weighted: plain least squares, a Cauchy robust loss, or
+// Dynamic Covariance Scaling (Agarwal et al. 2013), which scales a loop's information by
+// min(1, 2Φ/(Φ+χ²))².
 #pragma once
 
 #include <Eigen/Core>
