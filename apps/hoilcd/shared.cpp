@@ -71,9 +71,7 @@ Scene LoadSceneArgs(const SceneArgs& args) {
 
 // Each flag's help shows its default, the value in the ProtocolOptions the command starts from.
 void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol) {
-  cmd->add_option("--protocol", protocol->protocol, "laps (database = first lap) or revisit")
-      ->check(CLI::IsMember({"laps", "revisit"}))
-      ->capture_default_str();
+  AddTableFlag(cmd, "--protocol", ProtocolOptions::Table().List(), "protocol", &protocol->protocol);
   cmd->add_option("--radius", protocol->radius_m, "true-match radius, m (the default is the paper's)")
       ->check(NumberIn(OptionRange().Above(0)))
       ->capture_default_str();

@@ -41,6 +41,9 @@ py::dict PosesToDict(const std::vector<PoseRecord>& poses) {
     for (size_t i = 0; i < poses.size(); ++i) column.mutable_data()[i] = poses[i].*member;
     out[name] = column;
   }
+  py::array_t<int32_t> runs(static_cast<py::ssize_t>(poses.size()));  // not a poses.csv column: from runs.json
+  for (size_t i = 0; i < poses.size(); ++i) runs.mutable_data()[i] = poses[i].run;
+  out["run"] = runs;
   return out;
 }
 
@@ -74,7 +77,13 @@ void BindDataset(py::module_& m) {
                              "the resolved scene (scene.json) as a dict")
       .def_property_readonly("poses", [](const Dataset& d) { return PosesToDict(d.poses()); },
                              "poses.csv as {column: numpy array}: frame, t, x, y, theta (robot base, ground "
-                             "truth; m, rad), cam_*, odo_x, odo_y, odo_theta (wheel odometry)")
+                             "truth; m, rad), cam_*, odo_x, odo_y, odo_theta (wheel odometry), and run (each "
+                             "frame's recording run, from runs.json; 0 throughout without it)")
+      .def_property_readonly("runs",
+                             [](const Dataset& d) -> py::list { return JsonToPython(RunsToJson(d.runs()))["runs"]; },
+                             "the recording runs (runs.json) as a list of dicts: first_frame, frames, "
+                             "time_of_day_h (-1: not stated), day, start_time_s, seed; one run over every frame "
+                             "when the dataset has no runs.json")
       .def_property_readonly("events", [](const Dataset& d) { return JsonToPython(EventsToJson(d.events())); },
                              "events.json as a list of dicts")
       .def_property_readonly("warnings", &Dataset::warnings)

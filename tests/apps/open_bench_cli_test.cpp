@@ -243,6 +243,26 @@ TEST(OpenBenchCli, EvaluateOfADatasetWithoutATrueMatchFailsSayingWhyBeforeReadin
   }
 }
 
+TEST(OpenBenchCli, TheRunsProtocolOnADatasetOfOneRecordingRunIsAnErrorNamingItBeforeAnyWork) {
+  const test::TestDir temp;
+  const std::string dataset = test::RenderTinyRoom(temp / "short", {"frames=12"});
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"bench", dataset, "-o", temp / "report"},
+        std::vector<std::string>{"bench", dataset, "--online", "-o", temp / "report"},
+        std::vector<std::string>{"evaluate", dataset, "--scores", temp / "never_written.csv", "-o", temp / "report"},
+        std::vector<std::string>{"inspect", dataset, "-o", temp / "report"}}) {
+    std::vector<std::string> args = command;
+    args.insert(args.end(), {"--protocol", "runs"});
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(Hoilcd(args), 1) << command[0];
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(err, "error: " + dataset + ": holds one recording run; --protocol runs needs two or more (render a "
+                                         "scene with /runs)\n")
+        << command[0];
+    EXPECT_FALSE(std::filesystem::exists(temp / "report")) << command[0];
+  }
+}
+
 TEST(OpenBenchCli, BenchOfADatasetWithoutATrueMatchWarnsWhyMrrIsUndefined) {
   const test::TestDir temp;
   const std::string dataset = test::RenderTinyRoom(temp / "short", {"frames=150"});

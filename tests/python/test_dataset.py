@@ -88,3 +88,52 @@ def test_a_missing_folder_is_an_input_error_naming_it(tmp_path, hoilcd_exe):
     assert missing in str(error.value)
     code, _, stderr = run_cli(hoilcd_exe, "bench", missing)
     assert code == 1 and stderr.strip() == "error: " + str(error.value)
+
+
+def _checksum(data):
+    """hoilcd's file checksum (ChecksumOf): XXH3-128, canonical (big-endian) hex, from libxxhash."""
+    import ctypes
+
+    class Hash128(ctypes.Structure):
+        _fields_ = [("low64", ctypes.c_uint64), ("high64", ctypes.c_uint64)]
+
+    xxhash = ctypes.CDLL("libxxhash.so.0")
+    xxhash.XXH3_128bits.restype = Hash128
+    xxhash.XXH3_128bits.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
+    h = xxhash.XXH3_128bits(data, len(data))
+    return f"xxh3-128:{h.high64:016x}{h.low64:016x}"
+
+
+def _with_runs(source, folder, runs):
+    """A copy of the dataset `source` in `folder` with runs.json listed in its manifest."""
+    import shutil
+    shutil.copytree(source, folder)
+    text = json.dumps({"runs": runs}, indent=1).encode()
+    with open(os.path.join(folder, "runs.json"), "wb") as f:
+        f.write(text)
+    path = os.path.join(folder, "manifest.json")
+    with open(path) as f:
+        manifest = json.load(f)
+    manifest["files"]["runs.json"] = _checksum(text)
+    del manifest["manifest_checksum"]
+    manifest["manifest_checksum"] = _checksum(json.dumps(manifest, indent=2, sort_keys=True,
+                                                         ensure_ascii=False).encode())
+    with open(path, "w") as f:
+        json.dump(manifest, f, indent=2, sort_keys=True, ensure_ascii=False)
+    return folder
+
+
+def test_runs_come_from_runs_json_and_number_each_pose(ds, tiny_dataset, tmp_path):
+    assert ds.runs == [{"first_frame": 0, "frames": 440, "time_of_day_h": -1, "day": 0, "start_time_s": 0,
+                        "seed": 0}]
+    assert ds.poses["run"].dtype == np.int32
+    np.testing.assert_array_equal(ds.poses["run"], np.zeros(440))
+    runs = [{"first_frame": 0, "frames": 300, "time_of_day_h": 9.0, "day": 0, "start_time_s": 0, "seed": 1},
+            {"first_frame": 300, "frames": 140, "time_of_day_h": 14.5, "day": 1, "start_time_s": 106200.5,
+             "seed": 2}]
+    two = hoilcd.Dataset(_with_runs(tiny_dataset, str(tmp_path / "two"), runs))
+    assert two.runs == runs
+    np.testing.assert_array_equal(two.poses["run"], np.repeat([0, 1], [300, 140]))
+    runs[1]["first_frame"] = 301
+    with pytest.raises(hoilcd.InputError, match=r"runs.json: /runs/1/first_frame: expected 300"):
+        hoilcd.Dataset(_with_runs(tiny_dataset, str(tmp_path / "gap"), runs))

@@ -33,9 +33,9 @@ Interval PercentileInterval(const std::vector<double>& values, double confidence
   return {Quantile(finite, tail), Quantile(std::move(finite), 1 - tail)};
 }
 
-nlohmann::json Ends(const Interval& i) { return nlohmann::json::array({JsonNumber(i.low), JsonNumber(i.high)}); }
-
 }  // namespace
+
+nlohmann::json Interval::ToJson() const { return nlohmann::json::array({JsonNumber(low), JsonNumber(high)}); }
 
 BootstrapOptions::BootstrapOptions() { Table().FillDefaults(this); }
 
@@ -55,8 +55,12 @@ const OptionTable<BootstrapOptions>& BootstrapOptions::Table() {
 std::string BootstrapOptions::Check() const { return Table().FirstProblem(*this); }
 
 nlohmann::json HeadlineIntervals::ToJson() const {
-  return {{"mrr", Ends(mrr)},       {"recall_at_1", Ends(recall_at_1)},   {"recall_at_5", Ends(recall_at_5)},
-          {"recall_at_10", Ends(recall_at_10)}, {"pr_auc", Ends(pr_auc)}, {"recall_at_100p", Ends(recall_at_100p)}};
+  return {{"mrr", mrr.ToJson()},
+          {"recall_at_1", recall_at_1.ToJson()},
+          {"recall_at_5", recall_at_5.ToJson()},
+          {"recall_at_10", recall_at_10.ToJson()},
+          {"pr_auc", pr_auc.ToJson()},
+          {"recall_at_100p", recall_at_100p.ToJson()}};
 }
 
 nlohmann::json BootstrapPlan::ToJson() const {
@@ -207,7 +211,7 @@ std::string PairedComparison::ToString() const {
 }
 
 nlohmann::json PairedComparison::ToJson() const {
-  return {{"better", a}, {"worse", b}, {"delta_mrr", JsonNumber(delta)}, {"interval", Ends(interval)},
+  return {{"better", a}, {"worse", b}, {"delta_mrr", JsonNumber(delta)}, {"interval", interval.ToJson()},
           {"queries", queries}, {"separated", Separated()}};
 }
 

@@ -22,6 +22,7 @@ nlohmann::json LabelAgreement::ToJson() const {
 
 Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol, int threads) {
   if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("protocol", problem);
+  CheckProtocolFits(dataset, protocol);
   Labelling l;
   l.protocol = protocol;
   l.frame_rate_hz = dataset.manifest().frame_rate_hz;
@@ -90,6 +91,10 @@ std::string NoTrueMatchReason(const Labelling& labelling) {
         << (overlap ? "shares " : "lies ") << match.str()
         << " a first-lap frame by the " << positions << " poses (frames within " << p.exclusion_window_s
         << " s of a query are left out); " << larger << " may find some";
+  } else if (p.protocol == "runs") {
+    why << "none of the " << labelling.queries.size() << " frames of the later recording runs "
+        << (overlap ? "shares " : "lies ") << match.str() << " a frame of the first run by the " << positions
+        << " poses; " << larger << " may find some";
   } else {
     why << "no frame " << (overlap ? "shares " : "comes back ") << match.str() << " a frame more than " << p.exclusion_window_s << " s older by the "
         << positions << " poses; render more frames, or " << larger << " or a shorter "

@@ -19,8 +19,9 @@ const OptionTable<ProtocolOptions>& ProtocolOptions::Table() {
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("protocol", &O::protocol, "laps", {"laps", "revisit"},
-               "laps: database = first lap, queries = later laps; revisit: every frame older than the exclusion window")
+          .Add("protocol", &O::protocol, "laps", {"laps", "revisit", "runs"},
+               "laps: database = first lap, queries = later laps; revisit: every frame older than the exclusion "
+               "window; runs: database = the first recording run, queries = the later runs")
           .Add("radius_m", &O::radius_m, 0.2, "m", R::Any().Above(0),
                "base positions this close make a true match (paper)")
           .Add("heading_tolerance_deg", &O::heading_tolerance_deg, -1, "deg", R::Any().AtMost(180),
@@ -39,6 +40,13 @@ const OptionTable<ProtocolOptions>& ProtocolOptions::Table() {
 }
 
 std::string ProtocolOptions::Check() const { return Table().FirstProblem(*this); }
+
+void CheckProtocolFits(const Dataset& dataset, const ProtocolOptions& options) {
+  if (options.protocol == "runs" && dataset.runs().size() < 2) {
+    throw InputError(dataset.dir(), "holds one recording run; --protocol runs needs two or more (render a scene "
+                                    "with /runs)");
+  }
+}
 
 int Query::NumTrueMatches() const {
   return static_cast<int>(std::count(is_true_match.begin(), is_true_match.end(), 1));
@@ -63,19 +71,23 @@ std::string OtherGroundTruth(const std::string& ground_truth) {
 }
 
 std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses) {
+  // The heading turned since the start of the frame's run: each run starts at the dock afresh.
   std::vector<double> turned_rad(poses.size(), 0.0);
-  for (size_t i = 1; i < poses.size(); ++i) {
-    turned_rad[i] =
-        turned_rad[i - 1] + WrapAngleRad(poses[i].theta_rad - poses[i - 1].theta_rad);
+  double turned_by_all_runs_rad = 0;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const bool run_starts = i == 0 || poses[i].run != poses[i - 1].run;
+    if (!run_starts) turned_rad[i] = turned_rad[i - 1] + WrapAngleRad(poses[i].theta_rad - poses[i - 1].theta_rad);
+    if (i + 1 == poses.size() || poses[i + 1].run != poses[i].run) turned_by_all_runs_rad += turned_rad[i];
   }
-  const double direction = (!turned_rad.empty() && turned_rad.back() < 0) ? -1.0 : 1.0;
+  const double direction = turned_by_all_runs_rad < 0 ? -1.0 : 1.0;
   // A lap that ends exactly at 2π (up to rounding) belongs to the next lap.
   constexpr double kToleranceRad = 1e-9;
   std::vector<int> laps(poses.size(), 0);
-  int lap = 0;
+  int lap = 0, run_first_lap = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
+    if (i > 0 && poses[i].run != poses[i - 1].run) run_first_lap = ++lap;  // a run's first lap is a new one
     const double laps_turned = (direction * turned_rad[i] + kToleranceRad) / (2.0 * M_PI);
-    lap = std::max(lap, static_cast<int>(std::floor(std::max(0.0, laps_turned))));
+    lap = std::max(lap, run_first_lap + static_cast<int>(std::floor(std::max(0.0, laps_turned))));
     laps[i] = lap;
   }
   return laps;
@@ -100,17 +112,21 @@ std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
   HOILCD_CHECK_MSG(problem.empty(), problem);
   const std::vector<PoseRecord> label = LabelPoses(poses, options.ground_truth);
   const std::vector<int> laps = LapIndexFromPoses(label);
-  const bool laps_protocol = options.protocol == "laps";
+  // In the database of every query: the first lap (laps), the first run (runs); revisit: older frames.
+  const bool revisit = options.protocol == "revisit", by_lap = options.protocol == "laps";
+  std::vector<uint8_t> first(poses.size());
+  for (size_t f = 0; f < poses.size(); ++f) first[f] = by_lap ? laps[f] == 0 : poses[f].run == 0;
   std::vector<Query> queries;
   for (size_t q = 0; q < poses.size(); ++q) {
-    if (laps_protocol && laps[q] == 0) continue;
+    if (!revisit && first[q]) continue;
     Query query;
     query.frame = poses[q].frame;
     query.lap = laps[q];
+    query.run = poses[q].run;
     for (size_t r = 0; r < poses.size(); ++r) {
       const double dt_s = poses[q].time_s - poses[r].time_s;
       if (std::abs(dt_s) <= options.exclusion_window_s) continue;
-      if (laps_protocol ? laps[r] != 0 : dt_s < 0) continue;
+      if (revisit ? dt_s < 0 : !first[r]) continue;
       query.database.push_back(poses[r].frame);
       query.is_true_match.push_back(IsTrueMatch(label[q], label[r], options) ? 1 : 0);
     }

@@ -62,10 +62,13 @@ void AddImageConditions(const Dataset& dataset, int frame, QueryConditions* c) {
   c->blank = structure_only && c->temperature_spread_k < kBlankSpreadK;
 }
 
-// Turn rate, lap and the nearest true match, from the true poses.
+// Turn rate, lap and the nearest true match, from the true poses. The turn rate is over the frames
+// beside the query in its own recording run (the next run starts hours later, at the dock).
 void AddPoseConditions(const std::vector<PoseRecord>& poses, const Query& q, QueryConditions* c) {
   const int n = static_cast<int>(poses.size());
-  const int a = std::max(0, q.frame - 1), b = std::min(n - 1, q.frame + 1);
+  int a = std::max(0, q.frame - 1), b = std::min(n - 1, q.frame + 1);
+  if (poses[a].run != poses[q.frame].run) a = q.frame;
+  if (poses[b].run != poses[q.frame].run) b = q.frame;
   if (b > a && poses[b].time_s > poses[a].time_s) {
     c->turn_rate_deg_s =
         std::abs(WrapRad(poses[b].theta_rad - poses[a].theta_rad)) * 180 / kPi / (poses[b].time_s - poses[a].time_s);

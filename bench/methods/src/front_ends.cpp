@@ -19,11 +19,16 @@ double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::
 constexpr int kBlockFrames = 64;
 
 // DLCD's tracking over one block after its detections: ByteTrack in frame order (the tracker
-// carries state), then each frame's HOI points from its tracks in parallel.
-void TrackBlock(int block, int size, const FrontEndOptions& options, ByteTracker* tracker,
-                std::vector<PersonDetections>* detections, std::vector<std::vector<Track>>* tracks,
-                FrontEndOutput* out) {
+// carries state), then each frame's HOI points from its tracks in parallel. At a later recording
+// run's first frame (run_starts) the robot was carried to its dock hours later: the tracker first
+// sees nothing for longer than it keeps a lost track, so no track carries over and ids stay unique.
+void TrackBlock(int block, int size, const FrontEndOptions& options, const std::vector<bool>& run_starts,
+                ByteTracker* tracker, std::vector<PersonDetections>* detections,
+                std::vector<std::vector<Track>>* tracks, FrontEndOutput* out) {
   for (int i = 0; i < size; ++i) {  // the tracker in frame order
+    if (block + i > 0 && run_starts[block + i]) {
+      for (int k = 0; k <= tracker->max_time_lost_frames() + 1; ++k) tracker->Update({});
+    }
     const auto t = Clock::now();
     (*tracks)[i] = tracker->Update((*detections)[i].detections);
     out->persons_ms[block + i] += MsSince(t);
@@ -129,6 +134,8 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
   const bool camera = keypoints || thumbnails || persons;
   std::vector<std::vector<float>> descriptors(thumbnails ? n : 0);
   ByteTracker tracker(options.tracker);
+  std::vector<bool> run_starts(n, false);
+  for (const RunRecord& r : dataset.runs()) run_starts[r.first_frame] = true;
   std::vector<PersonDetections> detections(persons ? kBlockFrames : 0);
   std::vector<std::vector<Track>> tracks(persons ? kBlockFrames : 0);
   ProgressReporter progress("front ends", n, "frames");
@@ -158,7 +165,7 @@ FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& ne
         out.persons_ms[f] = MsSince(t);
       }
     });
-    if (persons) TrackBlock(block, size, options, &tracker, &detections, &tracks, &out);
+    if (persons) TrackBlock(block, size, options, run_starts, &tracker, &detections, &tracks, &out);
     progress.Update(size);
   }
   progress.Done();

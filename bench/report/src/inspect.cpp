@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/bench/evaluation/query_conditions.h"
+#include "hoilcd/bench/evaluation/run_metrics.h"
 #include "hoilcd/bench/report/camera_output.h"
 #include "hoilcd/bench/report/inspect_heat_traces.h"
 #include "hoilcd/bench/report/inspect_walls.h"
@@ -60,7 +63,44 @@ std::string FormatHistogram(const InspectFigure& f) {
   return out.str();
 }
 
+// People listed in persons.json per frame (PeopleSection's "in view").
+std::vector<int> PeoplePerFrame(const std::vector<FramePersons>& persons, int frames) {
+  std::vector<int> per_frame(std::max(frames, 0), 0);
+  for (const FramePersons& f : persons) {
+    if (f.frame >= 0 && f.frame < frames) per_frame[f.frame] += static_cast<int>(f.persons.size());
+  }
+  return per_frame;
+}
+
+// One line of the terminal's or a row of report.md's runs: its figures in words.
+std::vector<std::string> RunCells(const InspectRun& r) {
+  return {std::to_string(r.run),
+          WhenRecorded(r.record),
+          std::to_string(r.record.first_frame) + "-" + std::to_string(r.record.end_frame() - 1),
+          Fixed(r.record.start_time_s / 3600, 2) + " h",
+          std::to_string(r.laps),
+          Fixed(r.path_length_m, 1) + " m",
+          Fixed(r.people_per_frame_mean, 2),
+          Fixed(r.odometry_drift_end_m, 3) + " m (" + Fixed(r.odometry_drift_end_pct, 2) + " %)"};
+}
+const char* const kRunColumns[] = {"run", "recorded", "frames", "starts after", "laps", "true distance",
+                                   "people in view per frame", "odometry drift at its end"};
+
 }  // namespace
+
+nlohmann::json InspectRun::ToJson() const {
+  return {{"run", run},
+          {"time_of_day_h", record.time_of_day_h},
+          {"day", record.day},
+          {"start_time_s", record.start_time_s},
+          {"first_frame", record.first_frame},
+          {"frames", record.frames},
+          {"laps", laps},
+          {"path_length_m", path_length_m},
+          {"people_per_frame_mean", JsonNumber(people_per_frame_mean)},
+          {"odometry_drift_end_m", odometry_drift_end_m},
+          {"odometry_drift_end_pct", odometry_drift_end_pct}};
+}
 
 InspectFigure NumberFigure(std::string key, std::string label, double value, std::string unit) {
   InspectFigure f;
@@ -96,6 +136,7 @@ nlohmann::json InspectReport::ToJson() const {
     }
     out[s.key] = section;
   }
+  for (const InspectRun& r : runs) out["runs"].push_back(r.ToJson());
   return out;
 }
 
@@ -107,6 +148,13 @@ std::string InspectReport::ToText() const {
       out << "  " << f.label << ": " << (f.counts.empty() ? FormatValue(f) : FormatHistogram(f)) << "\n";
     }
   }
+  if (!runs.empty()) out << "Recording runs\n";
+  for (const InspectRun& r : runs) {
+    const std::vector<std::string> cells = RunCells(r);
+    out << "  run " << cells[0];
+    for (size_t c = 1; c < cells.size(); ++c) out << (c == 1 ? ": " : ", ") << kRunColumns[c] << " " << cells[c];
+    out << "\n";
+  }
   return out.str();
 }
 
@@ -116,6 +164,19 @@ std::string InspectReport::ToMarkdown() const {
     out << "### " << s.title << "\n\n| figure | value |\n|---|---|\n";
     for (const InspectFigure& f : s.figures) {
       out << "| " << f.label << " | " << (f.counts.empty() ? FormatValue(f) : FormatHistogram(f)) << " |\n";
+    }
+    out << "\n";
+  }
+  if (!runs.empty()) {
+    out << "### Recording runs\n\n|";
+    for (const char* column : kRunColumns) out << " " << column << " |";
+    out << "\n|";
+    for (size_t c = 0; c < std::size(kRunColumns); ++c) out << "---|";
+    out << "\n";
+    for (const InspectRun& r : runs) {
+      out << "|";
+      for (const std::string& cell : RunCells(r)) out << " " << cell << " |";
+      out << "\n";
     }
     out << "\n";
   }
@@ -136,9 +197,16 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses) {
     for (size_t k = 1; k < first_lap.size(); ++k) best = std::min(best, DistanceToSegment(p, first_lap[k - 1], first_lap[k]));
     lap_difference_m.push_back(best);
   }
-  double path_m = 0, max_drift_m = 0, end_drift_m = 0;
+  // The robot is carried back to its dock between recording runs, where its odometry restarts: the
+  // path leaves out the carrying, and the drift at the end is over the last run's path.
+  double path_m = 0, run_path_m = 0, max_drift_m = 0, end_drift_m = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
-    if (i > 0) path_m += std::hypot(poses[i].x_m - poses[i - 1].x_m, poses[i].y_m - poses[i - 1].y_m);
+    if (i > 0 && poses[i].run != poses[i - 1].run) run_path_m = 0;
+    const double step_m = i == 0 || poses[i].run != poses[i - 1].run
+                              ? 0.0
+                              : std::hypot(poses[i].x_m - poses[i - 1].x_m, poses[i].y_m - poses[i - 1].y_m);
+    path_m += step_m;
+    run_path_m += step_m;
     end_drift_m = std::hypot(poses[i].odo_x_m - poses[i].x_m, poses[i].odo_y_m - poses[i].y_m);
     max_drift_m = std::max(max_drift_m, end_drift_m);
   }
@@ -152,7 +220,8 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses) {
       NumberFigure("lap_difference_p90_m", "lap-to-lap true path difference, p90", Quantile(lap_difference_m, 0.9), "m"),
       NumberFigure("odometry_drift_end_m", "odometry drift at the end", end_drift_m, "m"),
       NumberFigure("odometry_drift_max_m", "odometry drift, max", max_drift_m, "m"),
-      NumberFigure("odometry_drift_end_pct", "odometry drift at the end, % of distance", path_m > 0 ? 100 * end_drift_m / path_m : 0, "%"),
+      NumberFigure("odometry_drift_end_pct", "odometry drift at the end, % of distance",
+                   run_path_m > 0 ? 100 * end_drift_m / run_path_m : 0, "%"),
       NumberFigure("odometry_heading_error_end_deg", "odometry heading error at the end", end_heading_deg, "deg"),
   };
   return s;
@@ -178,14 +247,13 @@ InspectSection CameraSection(const std::vector<PoseRecord>& poses) {
 
 InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frames) {
   InspectSection s{"people", "People in view", {}};
-  std::vector<int> per_frame(std::max(frames, 0), 0);
+  const std::vector<int> per_frame = PeoplePerFrame(persons, frames);
   InspectFigure occlusion;
   occlusion.key = "occlusion_histogram";
   occlusion.label = "people by occlusion fraction";
   occlusion.bin_edges = {0.0, 0.2, 0.4, 0.6, 0.8, 1.0};  // the last bin includes 1
   occlusion.counts.assign(5, 0);
   for (const FramePersons& f : persons) {
-    if (f.frame >= 0 && f.frame < frames) per_frame[f.frame] += static_cast<int>(f.persons.size());
     for (const PersonRecord& p : f.persons) {
       const int bin = std::clamp(static_cast<int>(p.occlusion_fraction / 0.2), 0, 4);
       ++occlusion.counts[bin];
@@ -202,6 +270,33 @@ InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frame
       occlusion,
   };
   return s;
+}
+
+std::vector<InspectRun> InspectRuns(const std::vector<RunRecord>& runs, const std::vector<PoseRecord>& poses,
+                                    const std::vector<FramePersons>* persons) {
+  std::vector<InspectRun> out;
+  if (runs.size() < 2) return out;
+  const std::vector<int> laps = LapIndexFromPoses(poses);
+  const std::vector<int> people =
+      persons ? PeoplePerFrame(*persons, static_cast<int>(poses.size())) : std::vector<int>();
+  for (size_t k = 0; k < runs.size(); ++k) {
+    InspectRun r;
+    r.run = static_cast<int>(k);
+    r.record = runs[k];
+    const int first = r.record.first_frame, last = r.record.end_frame() - 1;
+    HOILCD_CHECK(first >= 0 && last < static_cast<int>(poses.size()) && first <= last);
+    r.laps = laps[last] - laps[first] + 1;
+    double people_sum = 0;
+    for (int f = first; f <= last; ++f) {
+      if (f > first) r.path_length_m += std::hypot(poses[f].x_m - poses[f - 1].x_m, poses[f].y_m - poses[f - 1].y_m);
+      if (persons) people_sum += people[f];
+    }
+    if (persons) r.people_per_frame_mean = people_sum / r.record.frames;
+    r.odometry_drift_end_m = std::hypot(poses[last].odo_x_m - poses[last].x_m, poses[last].odo_y_m - poses[last].y_m);
+    r.odometry_drift_end_pct = r.path_length_m > 0 ? 100 * r.odometry_drift_end_m / r.path_length_m : 0;
+    out.push_back(r);
+  }
+  return out;
 }
 
 std::vector<int> SampledViewFrames(const Dataset& dataset) {
@@ -272,6 +367,7 @@ InspectSection LabelSection(const std::vector<PoseRecord>& poses, const Protocol
 
 InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& protocol, int threads) {
   if (const std::string problem = protocol.Check(); !problem.empty()) throw InputError("inspect", problem);
+  CheckProtocolFits(dataset, protocol);
   InspectReport r;
   r.sections.push_back(TrajectorySection(dataset.poses()));
   r.sections.push_back(CameraSection(dataset.poses()));
@@ -290,6 +386,8 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   CameraOutputOptions camera;
   camera.threads = threads;
   r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset, camera)));
+  const bool persons = dataset.manifest().outputs.persons;
+  r.runs = InspectRuns(dataset.runs(), dataset.poses(), persons ? &dataset.persons() : nullptr);
   return r;
 }
 

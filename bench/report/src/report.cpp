@@ -207,6 +207,7 @@ nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& option
   }
   report["bootstrap"] = result.bootstrap.ToJson();
   report["strata"] = StrataJson(result.strata);
+  if (!result.per_run.empty()) report["recording_runs"] = MetricsPerRunJson(result.per_run);
   report["conditions"] = {{"blank_spread_k", kBlankSpreadK}, {"contrast_k", kContrastK},
                           {"per_query", "queries.csv, one row per method and query"}};
   for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
@@ -509,7 +510,8 @@ std::string AgreementsMarkdown(const std::vector<LabelAgreement>& agreements) {
 // Table 1 and the same scores under the other ground truth.
 std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapPlan& plan,
                             const std::vector<PairedComparison>& comparisons,
-                            const std::vector<StratumRow>& strata, const Dataset& dataset, const ProtocolOptions& protocol,
+                            const std::vector<StratumRow>& strata, const std::vector<RunMetrics>& per_run,
+                            const Dataset& dataset, const ProtocolOptions& protocol,
                             const std::string& other_ground_truth, const LabelDisagreement& labels,
                             const std::vector<LabelAgreement>& agreements) {
   const DatasetManifest& manifest = dataset.manifest();
@@ -538,7 +540,7 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapP
   if (!runs.empty()) {
     md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
        << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs, plan) << ComparisonsMarkdown(comparisons)
-       << StrataMarkdown(strata);
+       << StrataMarkdown(strata) << MetricsPerRunMarkdown(per_run, plan.confidence);
   }
   md << "\n### The same scores under " << other_ground_truth << " ground truth\n\n"
      << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
@@ -561,7 +563,8 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
                            const ReportTiming& timing, const InspectReport& inspect, const Diagnosis& diagnosis,
                            const std::vector<std::string>& figures) {
   std::ostringstream md;
-  md << ResultsMarkdown(result.runs, result.bootstrap, result.comparisons, result.strata, dataset, options.protocol,
+  md << ResultsMarkdown(result.runs, result.bootstrap, result.comparisons, result.strata, result.per_run, dataset,
+                        options.protocol,
                         result.other_ground_truth, result.label_disagreement, result.label_agreements);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
      << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
@@ -627,6 +630,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
 BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam) {
   CheckReportFolder(dir);  // a folder the report may not use fails before the work
+  CheckProtocolFits(dataset, options.protocol);  // as does a protocol the dataset cannot take
   // The report's dataset checks read only the dataset: they run beside the bench, on the core
   // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it. With one
   // thread asked for there is no such core: they run after the bench, on the same thread.
@@ -659,9 +663,12 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   const std::vector<QueryConditions> conditions = ComputeQueryConditions(dataset, labelling.queries);
   const std::vector<StratumRow> strata =
       Stratify(conditions, {report.name}, {&report.metrics.queries}, DefaultStratifications());
+  const std::vector<RunMetrics> per_run = MetricsPerRun(dataset.runs(), {report.name}, {&report.metrics.queries},
+                                                        report.bootstrap, BootstrapOptions().seed);
   CreateOutputFolder(dir);
   nlohmann::json json = EvaluateReportJson(dataset, protocol, report, description);
   json["strata"] = StrataJson(strata);
+  if (!per_run.empty()) json["recording_runs"] = MetricsPerRunJson(per_run);
   json["label_agreement"] = nlohmann::json::array();
   for (const LabelAgreement& g : labelling.agreements) json["label_agreement"].push_back(g.ToJson());
   WriteFileAtomic(dir + "/report.json", json.dump(2) + "\n");
@@ -669,8 +676,8 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   const FigureJobs figures = MetricFigures(runs);
   WriteFigureJobs(figures, /*threads=*/1, dir);
   std::ostringstream md;
-  md << ResultsMarkdown(runs, report.bootstrap, {}, strata, dataset, protocol, labelling.other_ground_truth, labelling.disagreement,
-                        labelling.agreements)
+  md << ResultsMarkdown(runs, report.bootstrap, {}, strata, per_run, dataset, protocol, labelling.other_ground_truth,
+                        labelling.disagreement, labelling.agreements)
      << "\n## Methods\n\n- `" << SafeText(report.name) << "`: " << SafeText(description) << "\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";

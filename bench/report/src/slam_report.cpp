@@ -18,10 +18,16 @@ nlohmann::json ScoreJson(const SlamScore& s) {
           {"loops_accepted", s.loops_accepted}, {"false_loops", s.false_loops}};
 }
 
-Series Path(const std::string& label, const std::vector<Pose2d>& poses, cv::Scalar colour) {
+// A trajectory (one pose per frame of `frames`), with a gap between recording runs: the robot was
+// carried to its dock, not driven there.
+Series Path(const std::string& label, const std::vector<Pose2d>& poses, const std::vector<PoseRecord>& frames,
+            cv::Scalar colour) {
   Series s;
   s.label = label;
-  for (const Pose2d& p : poses) s.x.push_back(p.x_m), s.y.push_back(p.y_m);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (i > 0 && i < frames.size() && frames[i].run != frames[i - 1].run) s.x.push_back(NAN), s.y.push_back(NAN);
+    s.x.push_back(poses[i].x_m), s.y.push_back(poses[i].y_m);
+  }
   s.colour = colour;
   return s;
 }
@@ -110,11 +116,11 @@ std::vector<std::string> WriteSlamFiles(const SlamResult& slam, const std::vecto
   }
   // Trajectories: truth, odometry and the optimised path (headline back end) of each method that
   // accepted a loop; the others' paths are the odometry's and would only hide it.
-  std::vector<Series> series = {Path("true", truth, cv::Scalar(0, 0, 0)),
-                                Path("odometry", slam.odometry.poses, cv::Scalar(160, 160, 160))};
+  std::vector<Series> series = {Path("true", truth, poses, cv::Scalar(0, 0, 0)),
+                                Path("odometry", slam.odometry.poses, poses, cv::Scalar(160, 160, 160))};
   for (size_t i = 0; i < slam.methods.size(); ++i) {
     const SlamScore& s = slam.methods[i].Headline(slam.backend);
-    if (s.loops_accepted > 0) series.push_back(Path(slam.methods[i].method, s.poses, PaletteColour(i)));
+    if (s.loops_accepted > 0) series.push_back(Path(slam.methods[i].method, s.poses, poses, PaletteColour(i)));
   }
   PlotOptions o;
   o.title = "Trajectories after pose-graph optimisation (" + slam.backend + ")";

@@ -138,6 +138,7 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  CheckProtocolFits(dataset, options.protocol);
   if (options.protocol.ground_truth == "overlap") {
     throw InputError("--ground-truth", "online: overlap labels pairs from the EXR frames, which a robot does not "
                                        "have; use odometry (the paper's) or true");
@@ -179,11 +180,13 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
       insert_ms.push_back(MsSince(t));
       ++inserted;
     }
-    const bool is_query = protocol.protocol == "revisit" || laps[q] > 0;
+    const bool is_query =
+        protocol.protocol == "revisit" || (protocol.protocol == "runs" ? poses[q].run > 0 : laps[q] > 0);
     if (!is_query) continue;
     Query query;
     query.frame = q;
     query.lap = laps[q];
+    query.run = poses[q].run;
     const int true_matches = inserted > 0 ? grid.CountTrueMatches(q, inserted, protocol) : 0;
     if (inserted == 0) {
       for (size_t m = 0; m < runs; ++m) {
@@ -242,6 +245,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   for (OnlineMethodRun& run : result.runs) {
     run.intervals = BootstrapHeadline(run.metrics.queries, result.bootstrap, options.bootstrap.seed, options.threads);
   }
+  result.per_run = MetricsPerRun(dataset.runs(), options.methods, all_records, result.bootstrap,
+                                 options.bootstrap.seed, options.threads);
   result.peak_rss_bytes = PeakResidentBytes();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
@@ -284,7 +289,9 @@ nlohmann::json OnlineResultToJson(const OnlineResult& result) {
     m["options"] = run.options;
     methods[run.name] = m;
   }
-  return {{"mode", "online"}, {"online", j}, {"methods", methods}};
+  nlohmann::json out = {{"mode", "online"}, {"online", j}, {"methods", methods}};
+  if (!result.per_run.empty()) out["recording_runs"] = MetricsPerRunJson(result.per_run);
+  return out;
 }
 
 std::string OnlineResultToMarkdown(const OnlineResult& result) {
@@ -306,6 +313,7 @@ std::string OnlineResultToMarkdown(const OnlineResult& result) {
        << Fixed(run.intervals.mrr.high, 3) << "] | " << Fixed(run.metrics.recall_at_1, 3) << " | "
        << Fixed(run.p50_ms, 2) << " | " << Fixed(run.p99_ms, 2) << " |\n";
   }
+  md << MetricsPerRunMarkdown(result.per_run, result.bootstrap.confidence);
   md << "\nms per query (shortlist search plus the method's scoring; extraction not included) as the database "
         "grows:\n\n| database frames | queries | search p50 / p99 |";
   for (const OnlineMethodRun& run : result.runs) md << " " << run.name << " p50 / p99 |";

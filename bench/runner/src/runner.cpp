@@ -197,8 +197,8 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
 namespace {
 
 // Step 5: the metrics per stratum of the queries' conditions (query_conditions.h), a 95 % interval
-// on every headline metric and the paired comparison of every pair of methods, all from the same
-// resampled blocks of queries (bootstrap.h).
+// on every headline metric, the metrics per recording run (run_metrics.h) and the paired comparison
+// of every pair of methods, all from the same resampled blocks of queries (bootstrap.h).
 void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResult* result) {
   std::vector<const std::vector<QueryRecord>*> records;
   std::vector<std::string> names;
@@ -211,6 +211,7 @@ void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResu
   for (MethodRun& run : result->runs) {
     run.intervals = BootstrapHeadline(run.metrics.queries, result->bootstrap, seed, options.threads);
   }
+  result->per_run = MetricsPerRun(dataset.runs(), names, records, result->bootstrap, seed, options.threads);
   for (size_t a = 0; a < result->runs.size(); ++a) {
     for (size_t b = a + 1; b < result->runs.size(); ++b) {
       const MethodRun& ra = result->runs[a];
@@ -235,6 +236,7 @@ BenchResult RunBench(const Dataset& dataset, const BenchOptions& options_in) {
   BenchOptions options = WithManifest(options_in, dataset.manifest());
   if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  CheckProtocolFits(dataset, options.protocol);
   std::vector<std::string> skipped = LeaveOutUnavailable(dataset, &options);
   const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
   CheckFrontEndSizes(dataset, options, NeededFrontEnds(order));

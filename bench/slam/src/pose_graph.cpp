@@ -111,6 +111,13 @@ std::string PoseGraph::Check() const {
   if (n == 0) return "the graph has no node";
   for (int i = 0; i < n; ++i)
     if (!Finite(nodes[i])) return "node " + std::to_string(i) + " is not finite";
+  if (fixed.empty()) return "no node is fixed: the graph's gauge is free";
+  std::string fixed_text;  // "node 0", "a fixed node (0, 40)"
+  for (int f : fixed) {
+    if (f < 0 || f >= n) return "fixed node " + std::to_string(f) + " does not exist";
+    fixed_text += (fixed_text.empty() ? "" : ", ") + std::to_string(f);
+  }
+  fixed_text = fixed.size() == 1 ? "node " + fixed_text : "a fixed node (" + fixed_text + ")";
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](int i) {
@@ -125,9 +132,11 @@ std::string PoseGraph::Check() const {
       parent[root(e.from)] = root(e.to);
     }
   }
-  for (int i = 1; i < n; ++i) {
-    if (root(i) != root(0)) {
-      return "singular graph: node " + std::to_string(i) + " is not connected to node 0 by any edge";
+  std::vector<bool> anchored(n, false);  // by root: holds a fixed node
+  for (int f : fixed) anchored[root(f)] = true;
+  for (int i = 0; i < n; ++i) {
+    if (!anchored[root(i)]) {
+      return "singular graph: node " + std::to_string(i) + " is not connected to " + fixed_text + " by any edge";
     }
   }
   return "";
@@ -174,7 +183,9 @@ PoseGraphSolution OptimisePoseGraph(const PoseGraph& graph, const PoseGraphOptio
     problem.AddResidualBlock(EdgeResidual::Create(e), LoopLoss(options).release(), &state[3 * e.from],
                              &state[3 * e.to]);
   }
-  problem.SetParameterBlockConstant(&state[0]);
+  for (int f : graph.fixed) {  // a fixed node no edge reaches is not in the problem, and stays put anyway
+    if (problem.HasParameterBlock(&state[3 * f])) problem.SetParameterBlockConstant(&state[3 * f]);
+  }
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
@@ -220,7 +231,11 @@ std::string PoseGraphToG2o(const PoseGraph& graph, const std::vector<Pose2d>& po
                   poses[i].theta_rad);
     out += line;
   }
-  if (!poses.empty()) out += "FIX 0\n";
+  if (!poses.empty() && !graph.fixed.empty()) {
+    out += "FIX";
+    for (int f : graph.fixed) out += " " + std::to_string(f);
+    out += "\n";
+  }
   for (const auto* edges : {&graph.odometry, &graph.loops}) {
     for (const PoseEdge& e : *edges) {
       const Eigen::Matrix3d& m = e.information;

@@ -24,6 +24,57 @@ double Number(const nlohmann::json& doc, const std::string& section, const std::
   return doc.at(p).get<double>();
 }
 
+// The graph's nodes by recording run: each run's frames [first, last] hold nodes [first_node,
+// first_node + nodes), at its first frame, every keyframe_every-th frame after and its last frame.
+// No node stands for frames of two runs: the robot was carried to its dock between them.
+class KeyframeLayout {
+ public:
+  KeyframeLayout(const std::vector<PoseRecord>& poses, int keyframe_every) : every_(keyframe_every) {
+    HOILCD_CHECK(keyframe_every >= 1);
+    for (size_t f = 0; f < poses.size(); ++f) {
+      HOILCD_CHECK_MSG(poses[f].frame == static_cast<int>(f), "poses are indexed by frame");
+      if (f == 0 || poses[f].run != poses[f - 1].run) runs_.push_back({static_cast<int>(f), 0, 0, 0});
+      runs_.back().last = static_cast<int>(f);
+      run_of_frame_.push_back(static_cast<int>(runs_.size()) - 1);
+    }
+    for (Run& r : runs_) {
+      r.first_node = static_cast<int>(keyframes_.size());
+      for (int f = r.first; f <= r.last; f += every_) keyframes_.push_back(f);
+      if (keyframes_.back() != r.last) keyframes_.push_back(r.last);
+      r.nodes = static_cast<int>(keyframes_.size()) - r.first_node;
+    }
+  }
+  const std::vector<int>& keyframes() const { return keyframes_; }
+  // Each run's first node: where the run starts, at the dock.
+  std::vector<int> FirstNodes() const {
+    std::vector<int> out;
+    for (const Run& r : runs_) out.push_back(r.first_node);
+    return out;
+  }
+  // Whether nodes i - 1 and i are consecutive nodes of one run.
+  bool SameRun(int i) const { return run_of_frame_[keyframes_[i - 1]] == run_of_frame_[keyframes_[i]]; }
+  // The node of the keyframe at or before frame f (the run's last node for its last frame).
+  int NodeAtOrBefore(int f) const {
+    const Run& r = runs_[run_of_frame_[f]];
+    return f == r.last ? r.first_node + r.nodes - 1 : r.first_node + (f - r.first) / every_;
+  }
+  // The node of the keyframe nearest to frame f in its run, counted in keyframe spacings.
+  int NearestNode(int f) const {
+    const Run& r = runs_[run_of_frame_[f]];
+    const int k = static_cast<int>(std::lround(static_cast<double>(f - r.first) / every_));
+    return r.first_node + std::min(k, r.nodes - 1);
+  }
+
+ private:
+  struct Run {
+    int first, last, first_node, nodes;
+  };
+  int every_;
+  std::vector<Run> runs_;
+  std::vector<int> run_of_frame_;
+  std::vector<int> keyframes_;
+};
+
 }  // namespace
 
 Eigen::Matrix3d OdometryNoise::Information(const Pose2d& step) const {
@@ -181,22 +232,19 @@ std::vector<Pose2d> OdometryPoses(const std::vector<PoseRecord>& poses) {
   return out;
 }
 
-std::vector<int> Keyframes(int num_frames, int keyframe_every) {
-  HOILCD_CHECK(keyframe_every >= 1);
-  std::vector<int> frames;
-  for (int f = 0; f < num_frames; f += keyframe_every) frames.push_back(f);
-  if (num_frames > 0 && frames.back() != num_frames - 1) frames.push_back(num_frames - 1);
-  return frames;
+std::vector<int> Keyframes(const std::vector<PoseRecord>& poses, int keyframe_every) {
+  return KeyframeLayout(poses, keyframe_every).keyframes();
 }
 
 std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
                                             int keyframe_every) {
   const std::vector<Pose2d> odometry = OdometryPoses(poses);
-  const std::vector<int> keyframes = Keyframes(static_cast<int>(poses.size()), keyframe_every);
+  const KeyframeLayout layout(poses, keyframe_every);
+  const std::vector<int>& keyframes = layout.keyframes();
   HOILCD_CHECK(keyframes.size() == keyframe_poses.size());
   std::vector<Pose2d> out;
   for (size_t f = 0; f < poses.size(); ++f) {
-    const size_t k = f == poses.size() - 1 ? keyframes.size() - 1 : f / keyframe_every;
+    const size_t k = static_cast<size_t>(layout.NodeAtOrBefore(static_cast<int>(f)));
     out.push_back(Compose(keyframe_poses[k], Between(odometry[keyframes[k]], odometry[f])));
   }
   return out;
@@ -207,24 +255,22 @@ PoseGraph BuildPoseGraph(const std::vector<PoseRecord>& poses, const std::vector
   PoseGraph graph;
   const std::vector<Pose2d> odometry = OdometryPoses(poses);
   const int n = static_cast<int>(poses.size());
-  const std::vector<int> keyframes = Keyframes(n, options.keyframe_every);
+  const KeyframeLayout layout(poses, options.keyframe_every);
+  const std::vector<int>& keyframes = layout.keyframes();
   for (int f : keyframes) graph.nodes.push_back(odometry[f]);
+  graph.fixed = layout.FirstNodes();  // node 0 (the gauge) and each later run's start at the dock
   for (size_t i = 1; i < graph.nodes.size(); ++i) {
+    if (!layout.SameRun(static_cast<int>(i))) continue;  // carried to the dock: no odometry between runs
     const Pose2d step = Between(graph.nodes[i - 1], graph.nodes[i]);
     graph.odometry.push_back({static_cast<int>(i - 1), static_cast<int>(i), step, noise.Information(step)});
   }
-  // Node of the keyframe nearest to frame f.
-  auto node_of = [&](int f) {
-    const int k = static_cast<int>(std::lround(static_cast<double>(f) / options.keyframe_every));
-    return std::min(k, static_cast<int>(keyframes.size()) - 1);
-  };
   const double yaw_sd = options.loop_yaw_sd_deg * kDegToRad;
   const Eigen::Matrix3d loop_information =
       Eigen::Vector3d(1 / std::pow(options.loop_sd_m, 2), 1 / std::pow(options.loop_sd_m, 2), 1 / (yaw_sd * yaw_sd))
           .asDiagonal();
   for (const LoopClosure& l : loops) {
     HOILCD_CHECK(l.query >= 0 && l.query < n && l.reference >= 0 && l.reference < n);
-    const int a = node_of(l.reference), b = node_of(l.query);
+    const int a = layout.NearestNode(l.reference), b = layout.NearestNode(l.query);
     if (a == b) continue;  // within one keyframe spacing: says nothing the odometry does not
     // keyframe_a⁻¹·keyframe_b = (keyframe_a⁻¹·reference)·(query⁻¹·keyframe_b), with query = reference.
     const Pose2d measurement = Compose(Between(odometry[keyframes[a]], odometry[l.reference]),
@@ -240,7 +286,9 @@ SlamScore Score(const std::vector<PoseRecord>& poses, std::vector<Pose2d> estima
   const std::vector<Pose2d> truth = TruePoses(poses);
   SlamScore s;
   s.ate_rmse_m = AteRmseM(estimate, truth);
-  s.rpe_rmse_m = RpeRmseM(estimate, truth, options.rpe_delta_m);
+  std::vector<int> runs;  // RPE pairs stay within a recording run
+  for (const PoseRecord& p : poses) runs.push_back(p.run);
+  s.rpe_rmse_m = RpeRmseM(estimate, truth, options.rpe_delta_m, nullptr, runs);
   s.poses = std::move(estimate);
   return s;
 }

@@ -37,14 +37,20 @@ double AteRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& 
 }
 
 double RpeRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& reference, double delta_m,
-                int* pairs) {
+                int* pairs, const std::vector<int>& segment) {
   HOILCD_CHECK(estimate.size() == reference.size());
+  HOILCD_CHECK(segment.empty() || segment.size() == reference.size());
   HOILCD_CHECK(delta_m > 0);
   double sum = 0;
   int count = 0;
   size_t i = 0;
   double travelled = 0;
   for (size_t j = 1; j < reference.size(); ++j) {
+    if (!segment.empty() && segment[j] != segment[j - 1]) {
+      i = j;
+      travelled = 0;
+      continue;
+    }
     travelled += std::hypot(reference[j].x_m - reference[j - 1].x_m, reference[j].y_m - reference[j - 1].y_m);
     if (travelled < delta_m) continue;
     const Pose2d error = Between(Between(reference[i], reference[j]), Between(estimate[i], estimate[j]));

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "option_properties.h"
 
@@ -54,11 +56,70 @@ TEST(LapIndexFromPoses, CountsOneLapPerFullTurnInEitherDirection) {
   }
 }
 
+// Two recording runs of the circle: run 0 drives 1.25 laps (125 frames, ending a quarter lap past
+// the dock), run 1 starts at the dock again an hour later and drives `laps_1` laps. At run 1's first
+// frame the heading jumps back to the dock's.
+std::vector<PoseRecord> TwoRuns(double laps_1 = 1) {
+  std::vector<PoseRecord> poses = CirclePoses(2);
+  poses.resize(125);
+  std::vector<PoseRecord> second = CirclePoses(2);
+  second.resize(static_cast<size_t>(laps_1 * kFramesPerLap));
+  for (PoseRecord& p : second) {
+    p.frame += 125;
+    p.time_s += 3600;
+    p.run = 1;
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+TEST(LapIndexFromPoses, EachRunUnwrapsItsHeadingFromTheDockAndCountsLapsOnFromTheRunBefore) {
+  const std::vector<int> laps = LapIndexFromPoses(TwoRuns(2));
+  ASSERT_EQ(laps.size(), 325u);
+  EXPECT_EQ(laps[99], 0);
+  EXPECT_EQ(laps[100], 1);
+  EXPECT_EQ(laps[124], 1);  // run 0's second lap, a quarter of it driven
+  EXPECT_EQ(laps[125], 2);  // run 1 starts a lap of its own at the dock
+  EXPECT_EQ(laps[224], 2);
+  EXPECT_EQ(laps[225], 3);
+  EXPECT_EQ(laps[324], 3);
+  EXPECT_TRUE(std::is_sorted(laps.begin(), laps.end()));
+  // Unwrapped through the jump, run 1 would have been in run 0's second lap for three quarters of a lap.
+  std::vector<PoseRecord> one_run = TwoRuns(2);
+  for (PoseRecord& p : one_run) p.run = 0;
+  EXPECT_EQ(LapIndexFromPoses(one_run)[200], 1);
+}
+
+TEST(BuildQueries, RunsProtocolQueriesEveryLaterRunFrameAgainstTheWholeFirstRun) {
+  ProtocolOptions options;
+  options.protocol = "runs";
+  const std::vector<PoseRecord> poses = TwoRuns();
+  const std::vector<Query> queries = BuildQueries(poses, options);
+  ASSERT_EQ(queries.size(), 100u);
+  std::vector<int> first_run(125);
+  std::iota(first_run.begin(), first_run.end(), 0);
+  for (const Query& q : queries) {
+    EXPECT_EQ(q.run, 1);
+    EXPECT_EQ(q.lap, 2);
+    EXPECT_EQ(q.database, first_run) << q.frame;
+  }
+  // Run 1's frame 10 is where run 0 was at frames 10 and 110.
+  EXPECT_EQ(queries[10].frame, 135);
+  EXPECT_EQ(TrueFrames(queries[10]), (std::vector<int>{7, 8, 9, 10, 11, 12, 13, 107, 108, 109, 110, 111, 112, 113}));
+  // laps: run 0's first lap is the database of run 0's second lap and of every run-1 frame.
+  const std::vector<Query> laps = BuildQueries(poses, ProtocolOptions());
+  ASSERT_EQ(laps.size(), 125u);
+  EXPECT_EQ(laps.front().frame, 100);
+  EXPECT_EQ(laps.front().run, 0);
+  EXPECT_EQ(laps.back().run, 1);
+  EXPECT_EQ(laps.back().database.back(), 99);
+}
+
 TEST(ProtocolOptions, CheckNamesWhatIsWrong) {
   ProtocolOptions options;
   EXPECT_EQ(options.Check(), "");
   options.protocol = "lap";
-  EXPECT_EQ(options.Check(), "protocol: must be one of: laps, revisit (got 'lap')");
+  EXPECT_EQ(options.Check(), "protocol: must be one of: laps, revisit, runs (got 'lap')");
   options = ProtocolOptions();
   options.radius_m = 0;
   EXPECT_NE(options.Check().find("radius_m"), std::string::npos);

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "hoilcd/bench/evaluation/evaluate.h"
+#include "recording_runs.h"
 #include "test_dir.h"
 #include "tiny_room.h"
 
@@ -122,6 +124,23 @@ TEST(QueryConditions, ConditionsAgreeWithTheDatasetsGroundTruth) {
   const std::vector<QueryConditions> two = ComputeQueryConditions(dataset, labelling.queries, 2);
   for (size_t i = 0; i < one.size(); ++i) EXPECT_EQ(ConditionsCsvRow(one[i]), ConditionsCsvRow(two[i]));
   (void)blank;
+}
+
+// A run's first frame turns as fast as the frames after it say: the frame before it is another
+// run's, hours earlier.
+TEST(QueryConditions, TheTurnRateOfARunsFirstFrameIsMeasuredWithinItsRun) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomTwoRuns(temp.str(), 60);
+  ProtocolOptions runs;
+  runs.protocol = "runs";
+  const Labelling labelling = LabelQueries(dataset, runs);
+  ASSERT_EQ(labelling.queries.front().frame, 60);
+  const QueryConditions c = ComputeQueryConditions(dataset, {labelling.queries.front()}).front();
+  const PoseRecord &first = dataset.poses()[60], &next = dataset.poses()[61];
+  const double expected_deg_s = std::abs(std::remainder(next.theta_rad - first.theta_rad, 2 * M_PI)) * 180 / M_PI /
+                                (next.time_s - first.time_s);
+  EXPECT_GT(expected_deg_s, 0);
+  EXPECT_DOUBLE_EQ(c.turn_rate_deg_s, expected_deg_s);
 }
 
 }  // namespace

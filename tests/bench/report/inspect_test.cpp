@@ -105,6 +105,78 @@ TEST(Inspect, JsonHasOneObjectPerSectionAndHistogramsWithEdges) {
   EXPECT_NE(r.ToMarkdown().find("| odometry drift at the end |"), std::string::npos);
 }
 
+// Two recording runs: run 0 drives 1.25 laps of TwoLaps (its odometry drifting to 0.2 m over 400
+// frames) with one person in view, run 1 starts at the dock again two hours later, its odometry
+// restarting, and drives 1.5 laps (drift to 0.1 m over 400 frames) with three people in view.
+struct TwoRuns {
+  std::vector<RunRecord> runs = {{0, 250, 9.0, 0, 0, 1}, {250, 300, 15.5, 0, 7200, 2}};
+  std::vector<PoseRecord> poses;
+  std::vector<FramePersons> persons;
+  TwoRuns() {
+    const std::vector<PoseRecord> first = TwoLaps(0, 0.2, 0), second = TwoLaps(0, 0.1, 0);
+    poses.assign(first.begin(), first.begin() + 250);
+    for (int i = 0; i < 300; ++i) {
+      PoseRecord p = second[i];
+      p.frame += 250;
+      p.time_s += 7200;
+      p.run = 1;
+      poses.push_back(p);
+    }
+    for (const PoseRecord& p : poses) persons.push_back({p.frame, std::vector<PersonRecord>(p.run == 0 ? 1 : 3)});
+  }
+};
+
+TEST(Inspect, EachRecordingRunGetsItsLapsPathPeopleAndDriftAtItsEnd) {
+  const TwoRuns two;
+  const std::vector<InspectRun> runs = InspectRuns(two.runs, two.poses, &two.persons);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].laps, 2);  // a lap and a quarter
+  EXPECT_EQ(runs[1].laps, 2);  // a lap and a half, counted from the dock again
+  const double step_m = 2 * std::sin(M_PI / kFramesPerLap);  // a chord of the circle
+  EXPECT_NEAR(runs[0].path_length_m, 249 * step_m, 1e-9);
+  EXPECT_NEAR(runs[1].path_length_m, 299 * step_m, 1e-9);
+  EXPECT_NEAR(runs[0].odometry_drift_end_m, 0.2 * 249 / 399, 1e-12);
+  EXPECT_NEAR(runs[1].odometry_drift_end_m, 0.1 * 299 / 399, 1e-12);
+  EXPECT_NEAR(runs[1].odometry_drift_end_pct, 100 * runs[1].odometry_drift_end_m / runs[1].path_length_m, 1e-12);
+  EXPECT_EQ(runs[0].people_per_frame_mean, 1);
+  EXPECT_EQ(runs[1].people_per_frame_mean, 3);
+  EXPECT_TRUE(std::isnan(InspectRuns(two.runs, two.poses, nullptr)[1].people_per_frame_mean));
+  // The whole sequence: the carrying back to the dock (1.4 m) is not driven, and the drift at the
+  // end is over the last run's path, since its odometry restarted at the dock.
+  const InspectSection t = TrajectorySection(two.poses);
+  EXPECT_EQ(Figure(t, "laps"), 4);
+  EXPECT_NEAR(Figure(t, "path_length_m"), runs[0].path_length_m + runs[1].path_length_m, 1e-9);
+  EXPECT_NEAR(Figure(t, "odometry_drift_end_pct"), runs[1].odometry_drift_end_pct, 1e-9);
+
+  InspectReport r;
+  r.sections.push_back(t);
+  r.runs = runs;
+  const nlohmann::json j = r.ToJson();
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_EQ(j["runs"][1]["first_frame"], 250);
+  EXPECT_EQ(j["runs"][1]["time_of_day_h"], 15.5);
+  EXPECT_EQ(j["runs"][1]["start_time_s"], 7200);
+  EXPECT_EQ(j["runs"][1]["laps"], 2);
+  EXPECT_EQ(j["runs"][1]["people_per_frame_mean"], 3);
+  EXPECT_NE(r.ToText().find("Recording runs\n  run 0: recorded day 0, 09:00, frames 0-249, starts after 0.00 h, laps 2"),
+            std::string::npos)
+      << r.ToText();
+  EXPECT_NE(r.ToMarkdown().find("### Recording runs"), std::string::npos);
+  EXPECT_NE(r.ToMarkdown().find("| 1 | day 0, 15:30 | 250-549 | 2.00 h | 2 | 9.4 m | 3.00 | 0.075 m (0.80 %) |"),
+            std::string::npos)
+      << r.ToMarkdown();
+}
+
+TEST(Inspect, OneRecordingRunAddsNothing) {
+  const std::vector<PoseRecord> poses = TwoLaps(0, 0.2, 0);
+  EXPECT_TRUE(InspectRuns(SingleRun(400), poses, nullptr).empty());
+  InspectReport r;
+  r.sections.push_back(TrajectorySection(poses));
+  EXPECT_FALSE(r.ToJson().contains("runs"));
+  EXPECT_EQ(r.ToText().find("Recording runs"), std::string::npos);
+  EXPECT_EQ(r.ToMarkdown().find("Recording runs"), std::string::npos);
+}
+
 // The paper room's robot as rendered (scene defaults, furniture as obstacles).
 std::vector<PoseRecord> ScenePoses(const std::string& scene_name, const std::vector<std::string>& overrides = {}) {
   const Scene scene = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + scene_name, overrides);

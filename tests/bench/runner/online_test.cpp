@@ -9,6 +9,7 @@
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "input_error_of.h"
+#include "recording_runs.h"
 #include "test_dir.h"
 #include "tiny_room.h"
 
@@ -107,6 +108,36 @@ TEST(Online, TheReportFolderHoldsItsJsonAndMarkdown) {
   EXPECT_TRUE(json["methods"]["fusion"]["p99_ms"].is_number());
   EXPECT_NE(ReadFileBytes(temp / "report/report.md").find("shortlist recall"), std::string::npos);
   WriteOnlineReport(result, dataset, temp / "report");  // over its own earlier report
+}
+
+// Two recording runs: the runs protocol queries the second run only (its database every older
+// frame, as online always); each run's figures with every frame shortlisted are the offline ones.
+TEST(Online, ADatasetOfRecordingRunsIsReportedPerRunAsOffline) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomTwoRuns(temp.str(), 230);
+  BenchOptions options;
+  options.methods = {"slcd"};
+  options.protocol.protocol = "runs";
+  const OnlineResult runs = RunOnlineBench(dataset, options, Shortlist(5));
+  EXPECT_EQ(runs.queries_processed, 230);
+  ASSERT_EQ(runs.per_run.size(), 2u);
+  EXPECT_EQ(runs.per_run[0].queries, 0);
+  EXPECT_EQ(runs.per_run[1].queries, 230);
+  WriteOnlineReport(runs, dataset, temp / "report");
+  EXPECT_EQ(nlohmann::json::parse(ReadFileBytes(temp / "report/report.json"))["recording_runs"].size(), 2u);
+  EXPECT_NE(ReadFileBytes(temp / "report/report.md").find("### Results by recording run"), std::string::npos);
+
+  options.protocol.protocol = "revisit";
+  const OnlineResult online = RunOnlineBench(dataset, options, Shortlist(0));
+  const BenchResult offline = RunBench(dataset, options);
+  ASSERT_EQ(online.per_run.size(), 2u);
+  EXPECT_GT(online.per_run[1].queries_scored, 0);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(online.per_run[k].queries_scored, offline.per_run[k].queries_scored) << k;
+    if (online.per_run[k].queries_scored == 0) continue;  // a run without a revisit: no figures
+    EXPECT_DOUBLE_EQ(online.per_run[k].mrr[0], offline.per_run[k].mrr[0]) << k;
+    EXPECT_DOUBLE_EQ(online.per_run[k].recall_at_1[0], offline.per_run[k].recall_at_1[0]) << k;
+  }
 }
 
 TEST(Online, TimingRowsSplitDecadesOneTwoFive) {

@@ -13,6 +13,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/matching/matching.h"
 #include "hoilcd/bench/report/diagnosis.h"
+#include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -21,6 +22,10 @@
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
 #include "hoilcd/sim/world/world.h"
+#include "hoilcd/bench/methods/front_ends.h"
+#include "hoilcd/bench/runner/online.h"
+#include "input_error_of.h"
+#include "recording_runs.h"
 #include "test_dir.h"
 #include "tiny_room.h"
 
@@ -242,6 +247,126 @@ TEST(Runner, AThumbnailLargerThanTheCameraImageIsRefusedByNameBeforeAnyWork) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(Runner, TheRunsProtocolOnOneRecordingRunIsRefusedNamingTheDatasetBeforeAnyWork) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "ds", {"frames=12"});
+  BenchOptions options;
+  options.methods = {"slcd"};
+  options.protocol.protocol = "runs";
+  const std::string expected =
+      dataset.dir() + ": holds one recording run; --protocol runs needs two or more (render a scene with /runs)";
+  EXPECT_EQ(test::InputErrorOf([&] { RunBench(dataset, options); }), expected);
+  EXPECT_EQ(test::InputErrorOf([&] { RunOnlineBench(dataset, options, ShortlistOptions()); }), expected);
+  EXPECT_EQ(test::InputErrorOf([&] { LabelQueries(dataset, options.protocol); }), expected);
+  EXPECT_EQ(test::InputErrorOf([&] { InspectDataset(dataset, options.protocol); }), expected);
+  ReportTiming timing;
+  EXPECT_EQ(test::InputErrorOf([&] { BenchAndWriteReport(dataset, options, &timing, temp / "report"); }), expected);
+  EXPECT_FALSE(fs::exists(temp / "report"));
+}
+
+// The tiny room recorded at 09:00 and 14:30: the report gives every method's MRR and R@1 per run,
+// with intervals, under every protocol; hoilcd evaluate of the same scores gives the same.
+TEST(Report, ADatasetOfTwoRecordingRunsIsScoredPerRunUnderEveryProtocol) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomTwoRuns(temp.str(), 230);
+  ASSERT_EQ(dataset.runs().size(), 2u);
+  BenchOptions options;
+  options.methods = {"thumb"};
+  for (const char* protocol : {"laps", "revisit"}) {
+    options.protocol.protocol = protocol;
+    const BenchResult result = RunBench(dataset, options);
+    ASSERT_EQ(result.per_run.size(), 2u) << protocol;
+    EXPECT_EQ(result.per_run[0].queries + result.per_run[1].queries, static_cast<int>(result.queries.size()));
+    EXPECT_EQ(result.per_run[1].queries, 230) << protocol;  // every frame of run 1 is a query
+    EXPECT_GT(result.per_run[1].queries_scored, 0) << protocol;
+  }
+  options.methods = {"slcd", "thumb"};
+  options.protocol.protocol = "runs";
+  const BenchResult result = RunBench(dataset, options);
+  for (const Query& q : result.queries) {
+    ASSERT_EQ(q.run, 1);
+    ASSERT_EQ(q.database.size(), 230u);  // run 0, all of it
+    ASSERT_EQ(q.database.back(), 229);
+  }
+  ASSERT_EQ(result.per_run.size(), 2u);
+  const RunMetrics& first = result.per_run[0];
+  const RunMetrics& later = result.per_run[1];
+  EXPECT_EQ(first.queries, 0);  // the database
+  EXPECT_TRUE(std::isnan(first.mrr[0]));
+  EXPECT_EQ(later.queries, 230);
+  EXPECT_EQ(later.queries_scored, result.runs[0].metrics.queries_scored);
+  EXPECT_EQ(later.methods, options.methods);
+  for (size_t m = 0; m < later.methods.size(); ++m) {
+    EXPECT_DOUBLE_EQ(later.mrr[m], result.runs[m].metrics.mrr) << later.methods[m];  // the only run queried
+    EXPECT_TRUE(later.mrr_interval[m].Contains(later.mrr[m])) << later.methods[m];
+    EXPECT_TRUE(later.recall_at_1_interval[m].Contains(later.recall_at_1[m])) << later.methods[m];
+  }
+
+  WriteReport(result, dataset, options, ReportTiming{}, temp / "report");
+  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(temp / "report/report.json"));
+  ASSERT_EQ(json["recording_runs"].size(), 2u);
+  const nlohmann::json& run = json["recording_runs"][1];
+  EXPECT_EQ(run["run"], 1);
+  EXPECT_EQ(run["time_of_day_h"], 14.5);
+  EXPECT_EQ(run["start_time_s"], 5.5 * 3600);
+  EXPECT_EQ(run["first_frame"], 230);
+  EXPECT_EQ(run["frames"], 230);
+  EXPECT_EQ(run["queries_scored"], later.queries_scored);
+  EXPECT_EQ(run["methods"]["slcd"]["mrr"], later.mrr[0]);
+  EXPECT_EQ(run["methods"]["thumb"]["intervals"]["mrr"].size(), 2u);
+  EXPECT_TRUE(json["recording_runs"][0]["methods"]["slcd"]["mrr"].is_null());
+  EXPECT_EQ(json["inspect"]["runs"].size(), 2u);
+  const std::string markdown = ReadFileBytes(temp / "report/report.md");
+  EXPECT_NE(markdown.find("### Results by recording run"), std::string::npos);
+  EXPECT_NE(markdown.find("| 1 | day 0, 14:30 | 230-459 | " + std::to_string(later.queries_scored) + " of 230 |"),
+            std::string::npos)
+      << markdown;
+  EXPECT_NE(markdown.find("### Recording runs"), std::string::npos);
+
+  // hoilcd evaluate of thumb's scores: the same per-run figures.
+  const Labelling labelling = LabelQueries(dataset, options.protocol);
+  ScoreMatrix scores = ScoreMatrix::Unscored(dataset.num_frames());
+  const MethodRun& thumb = *result.Find("thumb");
+  for (size_t i = 0; i < result.queries.size(); ++i) {
+    for (size_t j = 0; j < result.queries[i].database.size(); ++j) {
+      scores.At(result.queries[i].frame, result.queries[i].database[j]) = thumb.scores[i][j];
+    }
+  }
+  EvaluateAndWriteReport(dataset, labelling, scores, "thumb", "thumb's scores", temp / "evaluate");
+  const nlohmann::json evaluated = nlohmann::json::parse(ReadFileBytes(temp / "evaluate/report.json"));
+  EXPECT_EQ(evaluated["recording_runs"][1]["methods"]["thumb"]["mrr"], later.mrr[1]);
+  EXPECT_NE(ReadFileBytes(temp / "evaluate/report.md").find("### Results by recording run"), std::string::npos);
+}
+
+// After the robot is carried back to its dock, the tracker starts afresh: no track of the first
+// run goes on in the second, though the second starts where the first ended, at the same table.
+TEST(Runner, NoPersonTrackCarriesOverFromOneRecordingRunToTheNext) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomTwoRuns(temp.str(), 220);
+  FrontEndOptions options;
+  const FrontEndOutput out = RunFrontEnds(dataset, {FrontEnd::kPersons}, options);
+  std::set<int> first_run, second_run;
+  for (const FrameTracks& f : out.tracks) {
+    for (const TrackedBox& t : f.tracks) (f.frame < 220 ? first_run : second_run).insert(t.id);
+  }
+  ASSERT_FALSE(first_run.empty());
+  ASSERT_FALSE(second_run.empty());
+  EXPECT_LT(*first_run.rbegin(), *second_run.begin());
+}
+
+// A single-run dataset's reports hold no per-run block.
+TEST(Report, OneRecordingRunAddsNoPerRunBlock) {
+  const test::TestDir temp;
+  const Dataset dataset = TinyDataset(temp, "short", {"frames=60"});
+  BenchOptions options;
+  options.methods = {"thumb"};
+  const BenchResult result = RunBench(dataset, options);
+  EXPECT_TRUE(result.per_run.empty());
+  WriteReport(result, dataset, options, ReportTiming{}, temp / "report");
+  EXPECT_FALSE(nlohmann::json::parse(ReadFileBytes(temp / "report/report.json")).contains("recording_runs"));
+  EXPECT_EQ(ReadFileBytes(temp / "report/report.md").find("recording run"), std::string::npos);
 }
 
 TEST(Runner, UnknownMethodsAreInputErrorsNamingThem) {

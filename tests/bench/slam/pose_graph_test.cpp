@@ -123,6 +123,31 @@ TEST(PoseGraphTest, UnusableGraphsAreClearErrorsNotNaN) {
   EXPECT_NE(ProblemOf(nan_node).find("node 1 is not finite"), std::string::npos);
 }
 
+// Two chains joined by no edge (two recording runs): each needs a fixed node of its own, which
+// stays where it is while the chain's loose end follows its measurement.
+TEST(PoseGraphTest, EveryChainNeedsAFixedNodeAndFixedNodesStayPut) {
+  PoseGraph g;
+  g.nodes = {Pose2d{}, Pose2d{1, 0, 0}, Pose2d{5, 5, 0}, Pose2d{6.5, 5, 0}};
+  g.odometry = {{0, 1, Pose2d{1, 0, 0}, Eigen::Matrix3d::Identity()},
+                {2, 3, Pose2d{1, 0, 0}, Eigen::Matrix3d::Identity()}};
+  EXPECT_EQ(g.Check(), "singular graph: node 2 is not connected to node 0 by any edge");
+  g.fixed = {0, 2};
+  EXPECT_EQ(g.Check(), "");
+  const PoseGraphSolution solution = OptimisePoseGraph(g, PoseGraphOptions());
+  EXPECT_EQ(solution.poses[2].x_m, 5);  // held, not averaged with its neighbour
+  EXPECT_NEAR(solution.poses[3].x_m, 6, 1e-6);
+  EXPECT_NE(PoseGraphToG2o(g, g.nodes).find("FIX 0 2\n"), std::string::npos);
+  g.fixed = {2};
+  EXPECT_EQ(g.Check(), "singular graph: node 0 is not connected to node 2 by any edge");
+  g.fixed = {0, 3};
+  g.odometry.pop_back();
+  EXPECT_EQ(g.Check(), "singular graph: node 2 is not connected to a fixed node (0, 3) by any edge");
+  g.fixed = {0, 4};
+  EXPECT_EQ(g.Check(), "fixed node 4 does not exist");
+  g.fixed.clear();
+  EXPECT_EQ(g.Check(), "no node is fixed: the graph's gauge is free");
+}
+
 TEST(PoseGraphTest, UnknownBackendIsRejected) {
   PoseGraphOptions options;
   options.backend = "gauss";

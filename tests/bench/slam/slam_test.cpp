@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -155,9 +156,85 @@ TEST(SlamTest, FullPrecisionThresholdIsNaNWhenTheBestMatchIsFalse) {
   EXPECT_TRUE(std::isnan(ThresholdAtFullPrecision(queries, scores, poses, kRadiusM)));
 }
 
+// Frames 0..n-1 of recording runs of the given lengths (only frame and run are set).
+std::vector<PoseRecord> Frames(const std::vector<int>& run_lengths) {
+  std::vector<PoseRecord> poses;
+  for (size_t r = 0; r < run_lengths.size(); ++r) {
+    for (int i = 0; i < run_lengths[r]; ++i) {
+      PoseRecord p;
+      p.frame = static_cast<int>(poses.size());
+      p.run = static_cast<int>(r);
+      poses.push_back(p);
+    }
+  }
+  return poses;
+}
+
+// Two recording runs of a lap each from the same dock an hour apart: run 0's odometry is exact, run
+// 1's drifts (DriftingLaps) from the dock, where it restarted.
+std::vector<PoseRecord> TwoRuns() {
+  std::vector<PoseRecord> poses = DriftingLaps(1);
+  for (PoseRecord& p : poses) p.odo_x_m = p.x_m, p.odo_y_m = p.y_m, p.odo_theta_rad = p.theta_rad;
+  const int first = static_cast<int>(poses.size());
+  for (PoseRecord p : DriftingLaps(1)) {
+    p.frame += first;
+    p.time_s += 3600;
+    p.run = 1;
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+TEST(SlamTest, EachRunsFirstAndLastFramesAreKeyframesAndNoOdometryEdgeJoinsTwoRuns) {
+  EXPECT_EQ(Keyframes(Frames({11, 7}), 5), (std::vector<int>{0, 5, 10, 11, 16, 17}));
+  const std::vector<PoseRecord> poses = TwoRuns();
+  const int second = static_cast<int>(poses.size()) / 2;  // run 1's first frame
+  const SlamOptions options;
+  const PoseGraph graph = BuildPoseGraph(poses, {}, DriftNoise(), options);
+  const std::vector<int> keyframes = Keyframes(poses, options.keyframe_every);
+  const int second_node = static_cast<int>(std::find(keyframes.begin(), keyframes.end(), second) - keyframes.begin());
+  ASSERT_LT(second_node, static_cast<int>(keyframes.size()));
+  EXPECT_EQ(keyframes[second_node - 1], second - 1);  // run 0's last frame
+  EXPECT_EQ(graph.fixed, (std::vector<int>{0, second_node}));  // each run starts at the known dock
+  EXPECT_EQ(graph.odometry.size(), graph.nodes.size() - 2);
+  for (const PoseEdge& e : graph.odometry) EXPECT_NE(e.to, second_node);
+  // Each frame's pose comes from a keyframe of its own run: moving run 1's nodes moves its frames
+  // alone.
+  std::vector<Pose2d> moved = graph.nodes;
+  for (size_t k = second_node; k < moved.size(); ++k) moved[k].x_m += 1;
+  const std::vector<Pose2d> frames = FramePosesFromKeyframes(poses, moved, options.keyframe_every);
+  for (size_t f = 0; f < poses.size(); ++f) {
+    EXPECT_NEAR(frames[f].x_m, poses[f].odo_x_m + (poses[f].run == 1 ? 1 : 0), 1e-9) << f;
+    EXPECT_NEAR(frames[f].y_m, poses[f].odo_y_m, 1e-9) << f;
+  }
+}
+
+TEST(SlamTest, LoopsFromALaterRunToTheFirstPullTheLaterRunsDriftOut) {
+  const std::vector<PoseRecord> poses = TwoRuns();
+  ProtocolOptions protocol;
+  protocol.protocol = "runs";
+  protocol.ground_truth = "true";
+  const std::vector<LoopClosure> oracle = OracleLoops(BuildQueries(poses, protocol), poses, kRadiusM);
+  ASSERT_GT(oracle.size(), 100u);
+  for (const LoopClosure& l : oracle) ASSERT_EQ(poses[l.query].run, 1);
+  const SlamOptions options;
+  const SlamScore odometry = ScoreOdometry(poses, options);
+  ASSERT_GT(odometry.ate_rmse_m, 0.05);  // run 1 drifts
+  for (const std::string& backend : PoseGraphBackends()) {
+    const SlamScore s = SolveSlam(poses, oracle, DriftNoise(), options, backend);
+    EXPECT_LE(s.ate_rmse_m, 0.5 * odometry.ate_rmse_m) << backend;
+    EXPECT_LT(s.rpe_rmse_m, odometry.rpe_rmse_m) << backend;
+    // Both runs start at the dock, where they were anchored.
+    for (const size_t first : {size_t{0}, poses.size() / 2}) {
+      EXPECT_NEAR(s.poses[first].x_m, poses[first].x_m, 1e-12) << backend;
+      EXPECT_NEAR(s.poses[first].y_m, poses[first].y_m, 1e-12) << backend;
+    }
+  }
+}
+
 TEST(SlamTest, KeyframesCoverEveryFrameAndFramePosesFollowTheOdometry) {
-  EXPECT_EQ(Keyframes(11, 5), (std::vector<int>{0, 5, 10}));
-  EXPECT_EQ(Keyframes(12, 5), (std::vector<int>{0, 5, 10, 11}));
+  EXPECT_EQ(Keyframes(Frames({11}), 5), (std::vector<int>{0, 5, 10}));
+  EXPECT_EQ(Keyframes(Frames({12}), 5), (std::vector<int>{0, 5, 10, 11}));
   const auto poses = DriftingLaps(1);
   const SlamOptions options;
   const PoseGraph graph = BuildPoseGraph(poses, {}, DriftNoise(), options);

@@ -50,5 +50,23 @@ TEST(TrajectoryMetricsTest, RpePairsAreOneMetreApartAlongTheReferenceAndMeasureS
   EXPECT_EQ(pairs, 0);
 }
 
+// Recording runs: the robot is carried from the first run's end back to its start. The estimate's
+// jump there is not the reference's, but no RPE pair spans it when the runs are segments.
+TEST(TrajectoryMetricsTest, RpePairsNeverSpanTwoSegments) {
+  std::vector<Pose2d> truth, estimate;
+  std::vector<int> run;
+  for (int r = 0; r < 2; ++r) {
+    for (int i = 0; i < 11; ++i) {
+      truth.push_back({0.25 * i, 0, 0});
+      estimate.push_back({0.25 * i, r == 0 ? 0.0 : 0.5, 0});  // the second run offset, not distorted
+      run.push_back(r);
+    }
+  }
+  int pairs = 0;
+  EXPECT_GT(RpeRmseM(estimate, truth, 1.0, &pairs), 0.1);
+  EXPECT_NEAR(RpeRmseM(estimate, truth, 1.0, &pairs, run), 0, 1e-12);
+  EXPECT_EQ(pairs, 4);  // 0 -> 4, 4 -> 8 in each run
+}
+
 }  // namespace
 }  // namespace hoilcd

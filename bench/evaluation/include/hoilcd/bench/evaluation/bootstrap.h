@@ -33,6 +33,7 @@ struct Interval {
   double low = NAN;
   double high = NAN;
   bool Contains(double value) const { return value >= low && value <= high; }
+  nlohmann::json ToJson() const;  // [low, high]; null ends when not computed
 };
 
 // The interval of every headline metric of one method.

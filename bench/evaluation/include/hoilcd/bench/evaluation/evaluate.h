@@ -41,8 +41,8 @@ struct Labelling {
   std::vector<bool> to_score;
 };
 
-// InputError("protocol", ...) when protocol.Check() fails. Overlap labels read the EXRs on
-// `threads` threads (0: every CPU).
+// InputError("protocol", ...) when protocol.Check() fails, and CheckProtocolFits' error. Overlap
+// labels read the EXRs on `threads` threads (0: every CPU).
 Labelling LabelQueries(const Dataset& dataset, const ProtocolOptions& protocol, int threads = 0);
 
 // Empty when a query has a true match under labelling.ground_truth. Else why none has, in words

@@ -1,7 +1,9 @@
 // Evaluation protocol: which database frames each query is ranked against, and which of them are
 // true loop closures (robot positions within radius_m, optionally headings within a tolerance).
 // Positions are the odometry's, as the paper's ground truth (section 5.1), or the true poses'.
-// Frames within the temporal exclusion window of a query never enter its database.
+// Frames within the temporal exclusion window of a query never enter its database. A dataset of
+// several recording runs (runs.h) is one sequence of frames: laps count on across its runs, and the
+// runs protocol asks the first run for the later runs' places.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +18,8 @@ namespace hoilcd {
 // Defaults and ranges: Table() in protocol.cpp.
 struct ProtocolOptions {
   // "laps": database = first lap, queries = later laps; "revisit": every frame is a query and its
-  // database is every frame older than the exclusion window (SLAM style).
+  // database is every frame older than the exclusion window (SLAM style); "runs": database = the
+  // first recording run, queries = every frame of the later runs (CheckProtocolFits: 2+ runs).
   std::string protocol;
   double radius_m;               // m, base positions this close make a true match (paper)
   double heading_tolerance_deg;  // deg, max heading difference of a true match; < 0 = off
@@ -36,9 +39,14 @@ struct ProtocolOptions {
   std::string Check() const;
 };
 
+// InputError naming the dataset when `options` cannot be applied to it: the runs protocol on a
+// dataset of one recording run. Callers check before any work.
+void CheckProtocolFits(const Dataset& dataset, const ProtocolOptions& options);
+
 struct Query {
   int frame = 0;                      // query frame
   int lap = 0;                        // lap of the query frame, 0 = first (LapIndexFromPoses)
+  int run = 0;                        // recording run of the query frame (PoseRecord::run)
   std::vector<int> database;          // frames to rank, ascending
   std::vector<uint8_t> is_true_match; // parallel to database: 1 when a true loop closure
   int NumTrueMatches() const;         // 0 => the query is skipped (not scored)
@@ -55,7 +63,9 @@ std::string OtherGroundTruth(const std::string& ground_truth);
 
 // Lap number per pose (0 = first lap), from the cumulative unwrapped ground-truth heading: a new
 // lap starts each time the heading has turned a further 2π in the sequence's overall turning
-// direction (−2π per clockwise lap). Never decreases along the sequence.
+// direction (−2π per clockwise lap). A recording run (PoseRecord::run) starts at the dock: the
+// heading is unwrapped afresh from its first frame, and its first lap is one more than the last of
+// the run before. Never decreases along the sequence.
 std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses);
 
 // Euclidean distance between the robot base positions (x, y) of two poses, in metres.

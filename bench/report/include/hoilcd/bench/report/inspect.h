@@ -1,9 +1,11 @@
 // What a user checks before trusting a sequence (`hoilcd inspect`, and a section of every bench
 // report): laps, lap-to-lap true path difference, odometry drift, camera jitter, people in view,
-// occlusion, blank views, and how the odometric and true ground truths disagree. Each topic is one section of
-// named figures; a new topic is a new section builder added to InspectDataset.
+// occlusion, blank views, how the odometric and true ground truths disagree, and each recording run.
+// Each topic is one section of named figures; a new topic is a new section builder added to
+// InspectDataset. Recording runs are rows of their own (InspectRun), one per run.
 #pragma once
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -33,10 +35,24 @@ struct InspectSection {
   const InspectFigure* Find(const std::string& key) const;
 };
 
+// One recording run of a dataset of several (runs.h): when it was recorded and how it went.
+struct InspectRun {
+  int run = 0;                         // index in runs.json
+  RunRecord record;                    // as runs.json states it (frames, time of day, start time)
+  int laps = 0;                        // laps started in the run (true heading, LapIndexFromPoses)
+  double path_length_m = 0;            // true distance driven in the run
+  double people_per_frame_mean = NAN;  // people in view per frame (PeopleSection's count); NaN: no persons.json
+  double odometry_drift_end_m = 0;     // |odometric - true position| at the run's last frame
+  double odometry_drift_end_pct = 0;   // of the run's true distance driven
+  nlohmann::json ToJson() const;       // the fields above, the record's flattened; null for NaN
+};
+
 struct InspectReport {
   std::vector<InspectSection> sections;
+  std::vector<InspectRun> runs;      // a dataset of 2+ recording runs only
   const InspectSection* Find(const std::string& key) const;
-  nlohmann::json ToJson() const;     // {section: {figure: value | {bin_edges, counts}}}
+  // {section: {figure: value | {bin_edges, counts}}, "runs": [run, ...] (when there are runs)}
+  nlohmann::json ToJson() const;
   std::string ToText() const;        // for the terminal
   std::string ToMarkdown() const;    // for report.md
 };
@@ -50,6 +66,9 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses);
 InspectSection CameraSection(const std::vector<PoseRecord>& poses);
 // People in view per frame (mean, min, max) and a histogram of their occlusion fractions.
 InspectSection PeopleSection(const std::vector<FramePersons>& persons, int frames);
+// Each recording run's figures; none for fewer than two runs. `persons`: null without persons.json.
+std::vector<InspectRun> InspectRuns(const std::vector<RunRecord>& runs, const std::vector<PoseRecord>& poses,
+                                    const std::vector<FramePersons>* persons);
 // What the camera sees, from the EXR ground truth of up to kViewFramesSampled evenly spaced
 // frames: the share of blank views (query_conditions.h: true temperature spread below
 // kBlankSpreadK with nothing but walls, floor and ceiling in view), the median spread, the median

@@ -30,8 +30,9 @@ std::string FormatResultTable(const BenchResult& result);
 void CheckReportFolder(const std::string& dir);
 
 // report.json's results: protocol, methods (metrics, intervals, options), bootstrap, strata,
-// comparisons, the other ground truth and label_agreement. WriteReport adds the dataset, inspect,
-// tracking, SLAM, timing and the diagnosis; Python's hoilcd.bench without a folder returns this.
+// recording_runs (a dataset of 2+ runs), comparisons, the other ground truth and label_agreement.
+// WriteReport adds the dataset, inspect, tracking, SLAM, timing and the diagnosis; Python's
+// hoilcd.bench without a folder returns this.
 nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& options);
 
 // Writes the report folder (created if missing; files written atomically).
@@ -39,9 +40,10 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
                  const ReportTiming& timing, const std::string& dir);
 
 // RunBench, then WriteReport with *timing (its bench_s set from the result), with the report's
-// dataset checks run beside the bench. A report folder that cannot be used fails before the
-// bench. `before_slam`, if given, runs once the methods are scored and before the SLAM step, and
-// may change its options and *timing (hoilcd run waits there for its calibration's thresholds).
+// dataset checks run beside the bench. A report folder that cannot be used, or a protocol the
+// dataset cannot take (CheckProtocolFits), fails before the bench. `before_slam`, if given, runs
+// once the methods are scored and before the SLAM step, and may change its options and *timing
+// (hoilcd run waits there for its calibration's thresholds).
 BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam = {});
 

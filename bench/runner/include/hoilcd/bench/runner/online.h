@@ -3,9 +3,10 @@
 // shortlist of K frames from a FAISS index of global descriptors (the thumbnails, shortlist_index.h),
 // then every method scores only those K (the point-set methods' RANSAC, fusion's ranks). A frame
 // the shortlist left out is unranked: it ties below every shortlisted one (metrics.h ShortlistRecord).
-// Queries are the protocol's (laps: the later laps; revisit: every frame); the database is every
-// older frame, in both. Reported per method: the metrics with their intervals, the shortlist's recall,
-// and ms per query at p50 and p99 as the database grows. The offline runner (runner.h) is unchanged.
+// Queries are the protocol's (laps: the later laps; revisit: every frame; runs: the later recording
+// runs); the database is every older frame, in all. Reported per method: the metrics with their
+// intervals (and per recording run), the shortlist's recall, and ms per query at p50 and p99 as the
+// database grows. The offline runner (runner.h) is unchanged.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +16,7 @@
 
 #include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/metrics.h"
+#include "hoilcd/bench/evaluation/run_metrics.h"
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/place_recognition/shortlist_index.h"
@@ -58,6 +60,7 @@ struct OnlineResult {
   std::vector<OnlineMethodRun> runs;  // in the order asked for
   std::vector<std::string> skipped;   // optional methods left out, each "<method>: <why>"
   BootstrapPlan bootstrap;
+  std::vector<RunMetrics> per_run;  // per recording run of the dataset (none for one run)
   double seconds = 0;              // wall time, front ends included
   const OnlineMethodRun* Find(const std::string& name) const;
 };
@@ -73,7 +76,8 @@ std::vector<OnlineTimingRow> TimingByDatabaseSize(const std::vector<int64_t>& da
                                                   const std::vector<double>& ms);
 
 // The result for report.json: {"mode": "online", "online": {shortlist, recall, timing, ...},
-// "methods": {name: metrics, intervals, p50/p99 ms, ...}}; and as report.md.
+// "methods": {name: metrics, intervals, p50/p99 ms, ...}, "recording_runs" (2+ runs only)}; and as
+// report.md.
 nlohmann::json OnlineResultToJson(const OnlineResult& result);
 std::string OnlineResultToMarkdown(const OnlineResult& result);
 

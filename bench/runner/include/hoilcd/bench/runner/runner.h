@@ -14,6 +14,7 @@
 #include "hoilcd/bench/evaluation/metrics.h"
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/evaluation/query_conditions.h"
+#include "hoilcd/bench/evaluation/run_metrics.h"
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
 #include "hoilcd/bench/methods/bench_options.h"
 #include "hoilcd/bench/slam/slam_run.h"
@@ -53,6 +54,7 @@ struct BenchResult {
   std::vector<PairedComparison> comparisons;  // MRR of every pair of runs, in run order
   std::vector<QueryConditions> conditions;    // per query, parallel to queries
   std::vector<StratumRow> strata;             // every run's MRR and R@1 per stratum (options.strata)
+  std::vector<RunMetrics> per_run;            // per recording run of the dataset (none for one run)
   std::vector<FrameFeatures> features;     // per frame
   TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)
   bool tracking_evaluated = false;

@@ -1,7 +1,8 @@
 // An SE(2) pose graph optimised with Ceres Solver: one node per frame, odometry edges between
-// consecutive frames and loop edges from accepted loop closures. Back ends differ only in how loop
-// edges are weighted: plain least squares, a Cauchy robust loss, or Dynamic Covariance Scaling
-// (Agarwal et al. 2013), which scales a loop's information by min(1, 2Φ/(Φ+χ²))².
+// consecutive frames and loop edges from accepted loop closures; fixed nodes anchor the gauge. Back
+// ends differ only in how loop edges are weighted: plain least squares, a Cauchy robust loss, or
+// Dynamic Covariance Scaling (Agarwal et al. 2013), which scales a loop's information by
+// min(1, 2Φ/(Φ+χ²))².
 #pragma once
 
 #include <Eigen/Core>
@@ -30,12 +31,16 @@ struct PoseEdge {
 };
 
 struct PoseGraph {
-  std::vector<Pose2d> nodes;        // initial estimates; node 0 is held fixed (gauge)
+  std::vector<Pose2d> nodes;        // initial estimates
+  // Nodes held at their initial estimate: node 0 fixes the gauge; with recording runs, each run's
+  // first node too (the run starts at the known dock, where its odometry restarts).
+  std::vector<int> fixed = {0};
   std::vector<PoseEdge> odometry;   // sequential, always trusted (squared loss)
   std::vector<PoseEdge> loops;      // weighted by the back end
-  // Empty when usable, else what is wrong (no node, an edge naming a missing node or itself, a
-  // non-finite measurement, an information matrix that is not symmetric positive definite, a
-  // node no edge connects to node 0). A graph is data, not options: no table, checked by hand.
+  // Empty when usable, else what is wrong (no node, no fixed node or one that does not exist, an
+  // edge naming a missing node or itself, a non-finite measurement, an information matrix that is
+  // not symmetric positive definite, a node no edge connects to a fixed node). A graph is data,
+  // not options: no table, checked by hand.
   std::string Check() const;
 };
 
@@ -67,8 +72,9 @@ struct PoseGraphSolution {
 // return finite poses; never returns NaN.
 PoseGraphSolution OptimisePoseGraph(const PoseGraph& graph, const PoseGraphOptions& options);
 
-// The graph in g2o's text format (VERTEX_SE2 / EDGE_SE2 with the upper triangle of the
-// information matrix), nodes at `poses` (pass graph.nodes for the initial estimate).
+// The graph in g2o's text format (VERTEX_SE2, one FIX line naming the fixed nodes, EDGE_SE2 with the
+// upper triangle of the information matrix), nodes at `poses` (pass graph.nodes for the initial
+// estimate).
 std::string PoseGraphToG2o(const PoseGraph& graph, const std::vector<Pose2d>& poses);
 
 }  // namespace hoilcd

@@ -81,17 +81,23 @@ std::vector<double> ThresholdCandidates(const std::vector<Query>& queries,
 std::vector<Pose2d> TruePoses(const std::vector<PoseRecord>& poses);
 std::vector<Pose2d> OdometryPoses(const std::vector<PoseRecord>& poses);
 
-// Frames that are graph nodes: every keyframe_every-th frame and the last one.
-std::vector<int> Keyframes(int num_frames, int keyframe_every);
+// Frames that are graph nodes: in each recording run (PoseRecord::run; poses indexed by frame),
+// its first frame, every keyframe_every-th frame after it and its last frame. One run: every
+// keyframe_every-th frame and the last one.
+std::vector<int> Keyframes(const std::vector<PoseRecord>& poses, int keyframe_every);
 
-// Nodes = odometry poses of the keyframes, odometry edges between consecutive keyframes, one loop
-// edge per loop from the reference's nearest keyframe to the query's: the appearance loop says
-// "query pose = reference pose" (σ loop_sd_m per axis, loop_yaw_sd_deg in yaw), carried to the
-// keyframes through the odometry between them.
+// Nodes = odometry poses of the keyframes, odometry edges between consecutive keyframes of a run,
+// one loop edge per loop from the reference's nearest keyframe to the query's (each in its own
+// run): the appearance loop says "query pose = reference pose" (σ loop_sd_m per axis,
+// loop_yaw_sd_deg in yaw), carried to the keyframes through the odometry between them. Each run's
+// first node is fixed at its odometry pose: node 0 fixes the gauge, and a later run starts at the
+// same known dock, where its odometry restarts (the robot was carried there, so no odometry edge
+// joins two runs; loops between runs tie them together).
 PoseGraph BuildPoseGraph(const std::vector<PoseRecord>& poses, const std::vector<LoopClosure>& loops,
                          const OdometryNoise& noise, const SlamOptions& options);
 
-// Every frame's pose from optimised keyframe poses: keyframe pose · odometry since the keyframe.
+// Every frame's pose from optimised keyframe poses: the pose of the keyframe at or before it in its
+// own run · odometry since that keyframe.
 std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
                                             int keyframe_every);
 

@@ -27,7 +27,9 @@ double AteRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& 
 // RPE RMSE (translation, metres) over pairs chosen as evo does with --delta D --delta_unit m
 // (all_pairs off): from i, j is the first pose whose path length along the reference from i is
 // ≥ delta_m, then i = j. 0 pairs (path shorter than delta): returns 0 and sets *pairs = 0.
+// `segment` (empty, or one value per pose): pairs never span two segments (recording runs, whose
+// poses are not joined by a path); the pairing starts again at each segment's first pose.
 double RpeRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& reference, double delta_m,
-                int* pairs = nullptr);
+                int* pairs = nullptr, const std::vector<int>& segment = {});
 
 }  // namespace hoilcd
