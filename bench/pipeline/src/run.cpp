@@ -239,6 +239,10 @@ Calibration CalibrateLoopThresholds(const Scene& scene, const BenchOptions& benc
 
 RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("run", problem);
+  if (bench.protocol.protocol == "runs" && scene.runs.size() < 2) {  // refused before the render, not after
+    throw InputError(scene.file, "has one recording run; --protocol runs needs two or more (give the scene /runs, "
+                                 "docs/guide/runs.md)");
+  }
   RunOutcome out;
   const std::string folder = RunFolder(scene, options.cache_dir);
   out.dataset_dir = folder + "/dataset";

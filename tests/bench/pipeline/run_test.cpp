@@ -13,6 +13,7 @@
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "option_properties.h"
+#include "input_error_of.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -296,6 +297,18 @@ TEST(RunScene, ACalibrationOfTheSceneItselfIsBenchedAfterItsRender) {
   EXPECT_TRUE(run.timing.calibration_render_cached);
   EXPECT_FALSE(run.timing.calibration_bench_cached);
   for (const MethodSlam& m : run.result.slam.methods) EXPECT_EQ(m.threshold_source, "calibration") << m.method;
+}
+
+// The runs protocol on a scene of one run is refused before anything is rendered.
+TEST(RunScene, TheRunsProtocolOnASceneOfOneRunIsRefusedBeforeTheRender) {
+  const test::TestDir cache;
+  BenchOptions bench = SlcdOnly();
+  bench.protocol.protocol = "runs";
+  const Scene scene = TinyRoom();
+  const std::string message = test::InputErrorOf([&] { RunScene(scene, bench, CachedIn(cache.str())); });
+  EXPECT_NE(message.find(scene.file + ": has one recording run; --protocol runs needs two or more"), std::string::npos)
+      << message;
+  EXPECT_TRUE(std::filesystem::is_empty(cache.str()) || !std::filesystem::exists(cache.str()));
 }
 
 }  // namespace
