@@ -48,6 +48,11 @@ void CheckProtocolFits(const Dataset& dataset, const ProtocolOptions& options) {
   }
 }
 
+bool IsQueryFrame(const ProtocolOptions& options, int lap, int run) {
+  if (options.protocol == "revisit") return true;
+  return options.protocol == "runs" ? run > 0 : lap > 0;
+}
+
 int Query::NumTrueMatches() const {
   return static_cast<int>(std::count(is_true_match.begin(), is_true_match.end(), 1));
 }
@@ -112,13 +117,13 @@ std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
   HOILCD_CHECK_MSG(problem.empty(), problem);
   const std::vector<PoseRecord> label = LabelPoses(poses, options.ground_truth);
   const std::vector<int> laps = LapIndexFromPoses(label);
-  // In the database of every query: the first lap (laps), the first run (runs); revisit: older frames.
-  const bool revisit = options.protocol == "revisit", by_lap = options.protocol == "laps";
-  std::vector<uint8_t> first(poses.size());
-  for (size_t f = 0; f < poses.size(); ++f) first[f] = by_lap ? laps[f] == 0 : poses[f].run == 0;
+  // The database of every query: the frames that are not queries (laps, runs); revisit: older frames.
+  const bool revisit = options.protocol == "revisit";
+  std::vector<uint8_t> is_query(poses.size());
+  for (size_t f = 0; f < poses.size(); ++f) is_query[f] = IsQueryFrame(options, laps[f], poses[f].run);
   std::vector<Query> queries;
   for (size_t q = 0; q < poses.size(); ++q) {
-    if (!revisit && first[q]) continue;
+    if (!is_query[q]) continue;
     Query query;
     query.frame = poses[q].frame;
     query.lap = laps[q];
@@ -126,7 +131,7 @@ std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
     for (size_t r = 0; r < poses.size(); ++r) {
       const double dt_s = poses[q].time_s - poses[r].time_s;
       if (std::abs(dt_s) <= options.exclusion_window_s) continue;
-      if (revisit ? dt_s < 0 : !first[r]) continue;
+      if (revisit ? dt_s < 0 : is_query[r]) continue;
       query.database.push_back(poses[r].frame);
       query.is_true_match.push_back(IsTrueMatch(label[q], label[r], options) ? 1 : 0);
     }

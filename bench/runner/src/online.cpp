@@ -180,9 +180,7 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
       insert_ms.push_back(MsSince(t));
       ++inserted;
     }
-    const bool is_query =
-        protocol.protocol == "revisit" || (protocol.protocol == "runs" ? poses[q].run > 0 : laps[q] > 0);
-    if (!is_query) continue;
+    if (!IsQueryFrame(protocol, laps[q], poses[q].run)) continue;
     Query query;
     query.frame = q;
     query.lap = laps[q];

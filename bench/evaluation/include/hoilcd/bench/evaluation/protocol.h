@@ -43,6 +43,10 @@ struct ProtocolOptions {
 // dataset of one recording run. Callers check before any work.
 void CheckProtocolFits(const Dataset& dataset, const ProtocolOptions& options);
 
+// Whether a frame of lap `lap` and recording run `run` is a query: revisit every frame; laps the
+// later laps; runs the later runs. Under laps and runs the other frames are every query's database.
+bool IsQueryFrame(const ProtocolOptions& options, int lap, int run);
+
 struct Query {
   int frame = 0;                      // query frame
   int lap = 0;                        // lap of the query frame, 0 = first (LapIndexFromPoses)
