@@ -20,15 +20,13 @@ constexpr int kBlockFrames = 64;
 
 // DLCD's tracking over one block after its detections: ByteTrack in frame order (the tracker
 // carries state), then each frame's HOI points from its tracks in parallel. At a later recording
-// run's first frame (run_starts) the robot was carried to its dock hours later: the tracker first
-// sees nothing for longer than it keeps a lost track, so no track carries over and ids stay unique.
+// run's first frame (run_starts) the robot was carried to its dock hours later: the tracker drops
+// every track, so none carries over, and its ids count on, so they stay unique.
 void TrackBlock(int block, int size, const FrontEndOptions& options, const std::vector<bool>& run_starts,
                 ByteTracker* tracker, std::vector<PersonDetections>* detections,
                 std::vector<std::vector<Track>>* tracks, FrontEndOutput* out) {
   for (int i = 0; i < size; ++i) {  // the tracker in frame order
-    if (block + i > 0 && run_starts[block + i]) {
-      for (int k = 0; k <= tracker->max_time_lost_frames() + 1; ++k) tracker->Update({});
-    }
+    if (block + i > 0 && run_starts[block + i]) tracker->DropTracks();
     const auto t = Clock::now();
     (*tracks)[i] = tracker->Update((*detections)[i].detections);
     out->persons_ms[block + i] += MsSince(t);

@@ -138,6 +138,11 @@ Assignment Associate(const std::vector<std::vector<double>>& cost, size_t num_de
 
 }  // namespace
 
+void ByteTracker::DropTracks() {
+  tracked_.clear();
+  lost_.clear();
+}
+
 std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections) {
   ++frame_id_;
   std::vector<Detection> high, low;

@@ -109,6 +109,19 @@ TEST(ByteTracker, ASingleFrameSpuriousDetectionIsNeverOutput) {
   EXPECT_EQ(tracker.Update({{{50, 50, 20, 40}, 0.9f}, {{150, 50, 20, 40}, 0.9f}}).size(), 1u);
 }
 
+TEST(ByteTracker, DroppedTracksDoNotCarryOverAndIdsCountOn) {
+  ByteTracker tracker;
+  const Detection d{{50, 50, 20, 40}, 0.9f};
+  const int first_id = tracker.Update({d}).at(0).id;
+  EXPECT_EQ(tracker.Update({d}).at(0).id, first_id);
+  tracker.DropTracks();
+  // The same box after the drop is a new, unconfirmed track: nothing out, then a new id.
+  EXPECT_TRUE(tracker.Update({d}).empty());
+  const std::vector<Track> again = tracker.Update({d});
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_GT(again[0].id, first_id);
+}
+
 TEST(ByteTracker, HighDetectionsBetweenLowAndNewTrackThresholdsKeepButDoNotStartTracks) {
   ByteTracker tracker;
   EXPECT_TRUE(tracker.Update({{{50, 50, 20, 40}, 0.55f}}).empty());

@@ -73,6 +73,10 @@ class ByteTracker {
   // output_stracks). Detections scoring at most track_low_thresh are ignored.
   std::vector<Track> Update(const std::vector<Detection>& detections);
 
+  // Forgets every track, tracked and lost (a new recording: nothing in view carries over); ids count
+  // on, so none is given twice.
+  void DropTracks();
+
   int frame_count() const { return frame_id_; }
   // How many frames a track may stay lost before it is removed.
   int max_time_lost_frames() const { return max_time_lost_; }
