@@ -488,10 +488,9 @@ class SequenceRender {
     std::vector<DatasetEvent> events;
     for (size_t k = 0; k < runs_.size(); ++k) {
       const RunRender& r = runs_[k];
-      const double start_time_s = scene_.runs.empty() ? 0.0 : scene_.runs[k].start_time_s;
       for (PoseRecord p : PoseRecordsOf(r.run, r.frames)) {
         p.frame += r.first_frame;
-        p.time_s += start_time_s;
+        p.time_s += r.scene.clock_offset_s;  // the run's start after the first run's
         p.run = static_cast<int>(k);
         poses.push_back(p);
       }
