@@ -208,6 +208,12 @@ class GltfReader {
             } else {
               material.roughness_um = value.GetNumberAsDouble();
             }
+          } else if (key == "power_w") {
+            if (!value.IsNumber() || !(value.GetNumberAsDouble() >= 0 && value.GetNumberAsDouble() <= 5000)) {
+              Fail(where, "must be a number in [0, 5000] (heat released in this part, W)");
+            } else {
+              material.power_w = value.GetNumberAsDouble();
+            }
           } else if (key == "region") {
             if (!value.IsString() || value.Get<std::string>().empty()) {
               Fail(where, "must be a non-empty string");
@@ -215,7 +221,7 @@ class GltfReader {
               material.region = value.Get<std::string>();
             }
           } else {
-            Fail(where, "unknown key (expected temperature_c, emissivity, specular, roughness_um, region)");
+            Fail(where, "unknown key (expected temperature_c, emissivity, specular, roughness_um, power_w, region)");
           }
         }
       }

@@ -49,13 +49,14 @@ float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
   const Eigen::Vector3f point = origin + hit.distance_m * direction;
   const float h = std::clamp(point.z() / static_cast<float>(world_.room_height_m()), 0.0f, 1.0f);
   const float blackbody = Blackbody(info, m, point, h);
-  float reflected = environment;
+  const float surroundings = m.environment_radiance >= 0 ? m.environment_radiance : environment;
+  float reflected = surroundings;
   if (m.specular && allow_reflection && m.emissivity < 1.0f) {
     const Eigen::Vector3f r = direction - 2.0f * direction.dot(hit.normal_world) * hit.normal_world;
     const Eigen::Vector3f o = point + 1e-3f * hit.normal_world;
     const RayHit second = world_.caster().Intersect(o, r);
     const float mirror = MirrorShare(m.roughness_um, std::abs(direction.dot(hit.normal_world)));
-    reflected = mirror * Shade(second, o, r, /*allow_reflection=*/false) + (1.0f - mirror) * environment;
+    reflected = mirror * Shade(second, o, r, /*allow_reflection=*/false) + (1.0f - mirror) * surroundings;
   }
   return m.emissivity * blackbody + (1.0f - m.emissivity) * reflected;
 }
@@ -96,14 +97,15 @@ void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vect
     const Eigen::Vector3f point = origin + hits.distance_m[i] * direction;
     const float h = std::clamp(point.z() / room_height_m, 0.0f, 1.0f);
     const float blackbody = Blackbody(info, m, point, h);
+    const float surroundings = m.environment_radiance >= 0 ? m.environment_radiance : environment;
     if (pending != nullptr && m.specular && m.emissivity < 1.0f) {
       const Eigen::Vector3f n = world_.caster().Hit(hits, i, direction).normal_world;
       pending->push_back({&radiance, m.emissivity, MirrorShare(m.roughness_um, std::abs(direction.dot(n))), blackbody,
-                          point + 1e-3f * n,
+                          surroundings, point + 1e-3f * n,
                           direction - 2.0f * direction.dot(n) * n});
       continue;
     }
-    radiance = m.emissivity * blackbody + (1.0f - m.emissivity) * environment;
+    radiance = m.emissivity * blackbody + (1.0f - m.emissivity) * surroundings;
   }
 }
 
@@ -111,7 +113,6 @@ void FrameRenderer::CastReflections(std::vector<PendingReflection>* pending) con
   Eigen::Vector3f origins[kRayPacketSize], directions[kRayPacketSize];
   RayHitPacket hits, one;
   float reflected = 0.0f;
-  const float environment = world_.environment_radiance();
   const int slot = 0;
   for (size_t begin = 0; begin < pending->size(); begin += kRayPacketSize) {
     const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, pending->size() - begin));
@@ -128,7 +129,7 @@ void FrameRenderer::CastReflections(std::vector<PendingReflection>* pending) con
       ShadePacket(origins[i], &directions[i], 1, one, &reflected, &slot, nullptr);
       const PendingReflection& p = (*pending)[begin + i];
       *p.radiance = p.emissivity * p.blackbody +
-                    (1.0f - p.emissivity) * (p.mirror * reflected + (1.0f - p.mirror) * environment);
+                    (1.0f - p.emissivity) * (p.mirror * reflected + (1.0f - p.mirror) * p.environment);
     }
   }
   pending->clear();

@@ -122,6 +122,44 @@ const OptionTable<HvacOptions>& HvacOptions::Table() {
   return table;
 }
 
+ThermalSolutionOptions::ThermalSolutionOptions() { Table().FillDefaults(this); }
+
+const OptionTable<ThermalSolutionOptions>& ThermalSolutionOptions::Table() {
+  using O = ThermalSolutionOptions;
+  using R = OptionRange;
+  static const OptionTable<O> table =
+      OptionTable<O>()
+          .Add("enabled", &O::enabled, false,
+               "solve every static surface's energy balance (convection, radiation exchange by view factors, "
+               "conduction outdoors, heat capacity) instead of the per-surface estimates")
+          .Add("patch_size_m", &O::patch_size_m, 0.25, "m", R::Closed(0.05, 2), "side of a wall, floor or ceiling patch")
+          .Add("rays_per_node", &O::rays_per_node, 256, "", R::Closed(16, 65536), "view-factor rays cast from each node")
+          .Add("step_s", &O::step_s, 60.0, "s", R::Closed(1, 3600), "time step of the solution (frames interpolate)")
+          .Add("spin_up_s", &O::spin_up_s, 21600.0, "s", R::Closed(0, 604800),
+               "history solved before the sequence starts, from a steady state")
+          .Add("air_gradient_k_per_m", &O::air_gradient_k_per_m, 0.8, "K/m", R::Closed(-5, 5),
+               "vertical air temperature gradient about the room's mid-height")
+          .Add("convection_wall_w_m2k", &O::convection_wall_w_m2k, 2.5, "W/(m2 K)", R::Closed(0, 50),
+               "convective coefficient of walls and windows (ISO 6946, horizontal heat flow)")
+          .Add("convection_floor_w_m2k", &O::convection_floor_w_m2k, 0.7, "W/(m2 K)", R::Closed(0, 50),
+               "convective coefficient of the floor (ISO 6946, heat flowing down)")
+          .Add("convection_ceiling_w_m2k", &O::convection_ceiling_w_m2k, 5.0, "W/(m2 K)", R::Closed(0, 50),
+               "convective coefficient of the ceiling (ISO 6946, heat flowing up)")
+          .Add("convection_object_w_m2k", &O::convection_object_w_m2k, 3.0, "W/(m2 K)", R::Closed(0, 50),
+               "convective coefficient of furniture and objects")
+          .Add("capacity_wall_j_m2k", &O::capacity_wall_j_m2k, 30000.0, "J/(m2 K)", R::Closed(0, 1e7),
+               "effective areal heat capacity of walls")
+          .Add("capacity_floor_j_m2k", &O::capacity_floor_j_m2k, 40000.0, "J/(m2 K)", R::Closed(0, 1e7),
+               "effective areal heat capacity of the floor")
+          .Add("capacity_ceiling_j_m2k", &O::capacity_ceiling_j_m2k, 30000.0, "J/(m2 K)", R::Closed(0, 1e7),
+               "effective areal heat capacity of the ceiling")
+          .Add("capacity_glass_j_m2k", &O::capacity_glass_j_m2k, 17000.0, "J/(m2 K)", R::Closed(0, 1e7),
+               "areal heat capacity of the glazing (two 4 mm panes)")
+          .Add("capacity_object_j_m2k", &O::capacity_object_j_m2k, 10000.0, "J/(m2 K)", R::Closed(0, 1e7),
+               "effective areal heat capacity of furniture and objects");
+  return table;
+}
+
 RoomOptions::RoomOptions() : size_m(7.0, 3.0, 2.6) {
   Table().FillDefaults(this);
   // The schema's default window: one cold window in the north wall.
@@ -148,6 +186,7 @@ const OptionTable<RoomOptions>& RoomOptions::Table() {
           .Nest("surfaces", &O::surfaces, RoomSurfaceOptions::Table())
           .Nest("sun", &O::sun, SunOptions::Table())
           .Nest("hvac", &O::hvac, HvacOptions::Table())
+          .Nest("thermal", &O::thermal, ThermalSolutionOptions::Table())
           .External("windows", "cold windows set into walls (glass: opaque and reflective in LWIR)")
           .External("doors", "doorways walkers enter and leave by (none: one in the middle of each end wall)");
   return table;

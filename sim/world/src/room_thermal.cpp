@@ -5,6 +5,7 @@
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/scene/building_floor.h"
+#include "hoilcd/sim/world/room_network.h"
 
 namespace hoilcd {
 namespace {
@@ -176,6 +177,13 @@ RoomSurfaces::RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::ve
 
 RoomSurfaces::~RoomSurfaces() = default;
 
+void RoomSurfaces::AttachNetwork(const RoomNetwork* network) {
+  network_ = network;
+  for (size_t k = 0; k < fields_.size(); ++k) {
+    if (fields_[k] == nullptr) fields_[k] = std::make_unique<Field>(this, static_cast<int>(k));
+  }
+}
+
 const SurfaceField* RoomSurfaces::FieldOf(int material) const {
   if (material < 0 || material >= static_cast<int>(fields_.size())) return nullptr;
   return fields_[static_cast<size_t>(material)].get();
@@ -196,16 +204,25 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
     m.temperature_top_c = static_cast<float>(top_c);
     m.field = FieldOf(k);
   };
-  set(0, room_.floor.temperature_c + offset, room_.floor.temperature_c + offset);
-  set(1, room_.ceiling.temperature_c + offset, room_.ceiling.temperature_c + offset);
-  set(2, room_.walls.temperature_bottom_c + offset, room_.walls.temperature_top_c + offset);
-  if (interior_material_ >= 0) set(interior_material_, room_.walls.temperature_bottom_c + offset, room_.walls.temperature_top_c + offset);
   const double frame_c = InsideSurfaceTemperatureC(s.frame_u_value_w_m2k, inside_c, outside_c);
+  if (network_ != nullptr) {
+    for (size_t k = 0; k < fields_.size(); ++k) {
+      const float mean_c = network_->RoomMeanTemperatureC(static_cast<int>(k));
+      set(static_cast<int>(k), mean_c, mean_c);
+    }
+  } else {
+    set(0, room_.floor.temperature_c + offset, room_.floor.temperature_c + offset);
+    set(1, room_.ceiling.temperature_c + offset, room_.ceiling.temperature_c + offset);
+    set(2, room_.walls.temperature_bottom_c + offset, room_.walls.temperature_top_c + offset);
+    if (interior_material_ >= 0) {
+      set(interior_material_, room_.walls.temperature_bottom_c + offset, room_.walls.temperature_top_c + offset);
+    }
+  }
   for (size_t i = 0; i < room_.windows.size(); ++i) {
     const WindowSpec& w = room_.windows[i];
     const double glass_c =
         s.glass_from_u_value ? InsideSurfaceTemperatureC(w.u_value_w_m2k, inside_c, outside_c) : w.surface.temperature_c;
-    set(3 + static_cast<int>(i), glass_c, glass_c);
+    if (network_ == nullptr) set(3 + static_cast<int>(i), glass_c, glass_c);
     frame_minus_glass_k_[i] = static_cast<float>(frame_c - glass_c);
   }
   const double wall_f = 1 - s.wall_u_value_w_m2k * kInsideSurfaceResistance;
@@ -226,9 +243,14 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
 
 float RoomSurfaces::OffsetK(int material, const Eigen::Vector3f& p) const {
   if (FieldOf(material) == nullptr) return 0;
-  if (material == interior_material_) return TextureK(material, p);
-  if (material >= 3) return FrameK(material - 3, p);
-  float offset = BridgeK(material, p) + SunK(material, p) + TextureK(material, p);
+  float solved = 0;  // the solution's patches about the material's mean (set as its base)
+  if (network_ != nullptr) {
+    const float at = network_->RoomTemperatureC(material, p);
+    if (!std::isnan(at)) solved = at - network_->RoomMeanTemperatureC(material);
+  }
+  if (material == interior_material_) return solved + TextureK(material, p);
+  if (material >= 3) return solved + FrameK(material - 3, p);
+  float offset = solved + BridgeK(material, p) + SunK(material, p) + TextureK(material, p);
   if (material == 2) offset += PlumeK(p);
   return offset;
 }
@@ -317,6 +339,7 @@ float RoomSurfaces::SunK(int material, const Eigen::Vector3f& p) const {
 }
 
 float RoomSurfaces::FrameK(int window, const Eigen::Vector3f& p) const {
+  if (!room_.surfaces.window_frames) return 0;
   const WindowSpec& w = room_.windows[static_cast<size_t>(window)];
   const int wall = WallIndex(w.wall);
   const float inside = InsideWindowM(w, AlongWall(wall, p), p.z(), 0.0f);

@@ -193,8 +193,9 @@ World::World(const Scene& scene, const BandRadianceTable& table)
     const ObjectSpec& o = scene.objects[i];
     const Asset& asset = assets_.Get(o.asset);
     const double yaw = o.yaw_deg * kDegToRad;
-    Place(asset, PlacementTransform(o.position_m, yaw), InstanceRole::kObject,
-          asset.class_name + " " + std::to_string(i), o.temperature_offset_c);
+    const int id = Place(asset, PlacementTransform(o.position_m, yaw), InstanceRole::kObject,
+                         asset.class_name + " " + std::to_string(i), o.temperature_offset_c);
+    instances_[static_cast<size_t>(id)].fixture = true;
     if (asset.mount == "floor" && o.position_m.z() < 0.2) {
       obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset,
                                        o.position_m, yaw));
@@ -208,15 +209,87 @@ World::World(const Scene& scene, const BandRadianceTable& table)
   }
   room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")), interior_walls,
                                                   scene.clock_offset_s);
+  if (scene.room.thermal.enabled) {
+    room_network_ = std::make_unique<RoomNetwork>(scene.room, scene.room.thermal, scene.seed, room_surfaces_->climate(),
+                                                  RoomQuads(scene), instances_, room_instance_,
+                                                  room_surfaces_->exterior_walls(), table_, 1);
+    room_surfaces_->AttachNetwork(room_network_.get());
+  }
   SetTime(0.0);
+}
+
+void World::PlanCrowd(const std::vector<RobotSample>& samples) {
+  crowd_->Plan(samples, obstacles_);
+  if (room_network_ == nullptr) return;
+  // Seated people as spheres of a seated body's radiating area, 1.8 m² (DuBois) × 0.7 (the
+  // effective radiation area of a seated person, ISO 7726 / Fanger), about the chest, at a
+  // clothed surface's 28 °C (ISO 7730 at 22 °C air: clothing surfaces 27–30 °C).
+  constexpr double kRadiatingAreaM2 = 1.8 * 0.7;
+  constexpr double kChestHeightM = 0.8;
+  std::vector<PersonSource> sources;
+  for (const Person& person : crowd_->people()) {
+    if (!person.seated) continue;
+    PersonSource source;
+    const Eigen::Vector4f chest = person.world_from_seat * Eigen::Vector4f(0, 0, static_cast<float>(kChestHeightM * person.height_scale), 1);
+    source.centre_m = chest.head<3>();
+    source.radius_m = std::sqrt(kRadiatingAreaM2 / (4 * M_PI)) * person.height_scale;
+    source.arrive_s = person.arrive_s;
+    source.leave_s = person.leave_s;
+    sources.push_back(source);
+  }
+  room_network_->SetPeople(sources);
+}
+
+std::vector<RoomQuad> World::RoomQuads(const Scene& scene) const {
+  const std::vector<WallPart> parts = WallParts(scene.floor, room_size_m_.z());
+  const Eigen::Vector3f size = room_size_m_.cast<float>();
+  // In the room's air: inside its shell and in no interior wall.
+  auto in_air = [&](const Eigen::Vector3f& p) {
+    if ((p.array() < 0).any() || (p.array() > size.array()).any()) return false;
+    for (const WallPart& part : parts) {
+      if (part.box_m.contains(p.cast<double>())) return false;
+    }
+    return true;
+  };
+  std::vector<RoomQuad> quads;
+  for (size_t q = 0; 2 * q < room_mesh_.TriangleCount(); ++q) {
+    RoomQuad quad;
+    for (size_t k = 0; k < 4; ++k) quad.corners[k] = room_mesh_.positions_m[4 * q + k];
+    quad.material = static_cast<int>(room_mesh_.triangle_material[2 * q]);
+    quad.normal = (quad.corners[1] - quad.corners[0]).cross(quad.corners[3] - quad.corners[0]).normalized();
+    const Eigen::Vector3f centre = 0.25f * (quad.corners[0] + quad.corners[1] + quad.corners[2] + quad.corners[3]);
+    if (!in_air(centre + 0.01f * quad.normal)) quad.normal = -quad.normal;
+    quads.push_back(quad);
+  }
+  return quads;
+}
+
+void World::ApplyRoomNetwork() {
+  const RoomNetwork& network = *room_network_;
+  for (size_t w = 0; w < instances_.size(); ++w) {
+    InstanceInfo& info = instances_[w];
+    for (size_t k = 0; k < info.materials.size(); ++k) {
+      InstanceMaterial& m = info.materials[k];
+      const float incident = network.IncidentRadiance(static_cast<int>(w), static_cast<int>(k));
+      if (!std::isnan(incident)) m.environment_radiance = incident;
+      if (w == static_cast<size_t>(room_instance_)) continue;
+      const float solved_c = network.InstanceTemperatureC(static_cast<int>(w), static_cast<int>(k));
+      if (std::isnan(solved_c)) continue;
+      m.temperature_c = m.temperature_top_c = solved_c;
+      Finish(&m);
+    }
+  }
+  environment_radiance_ = network.MeanIncidentRadiance();
 }
 
 void World::SetTime(double time_s) {
   crowd_->SetTime(time_s);
+  if (room_network_ != nullptr) room_network_->SetTime(time_s);
   std::vector<InstanceMaterial>& room = instances_[static_cast<size_t>(room_instance_)].materials;
   room_surfaces_->SetTime(time_s, &room);
   for (InstanceMaterial& m : room) Finish(&m);
   environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(room_surfaces_->EnvironmentTemperatureC(time_s)));
+  if (room_network_ != nullptr) ApplyRoomNetwork();
   caster_->Commit();
 }
 
@@ -388,6 +461,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
     const int table_instance =
         Place(table_asset, PlacementTransform(center, yaw), InstanceRole::kTable, "table " + std::to_string(t), 0.0);
+    instances_[static_cast<size_t>(table_instance)].fixture = true;
     crowd_->AddTable(PlacementTransform(center, yaw).cast<double>(), table_asset.bounds_m, spec.seats, table_instance);
     obstacles_.push_back(FootprintOf("table " + std::to_string(t), table_asset, center, yaw));
     for (int seat : SeatsOf(spec, per_side)) {
@@ -405,6 +479,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
         layout.Pose(plan, &seat_pos, &seat_yaw);
         const std::string chair_name = "chair " + std::to_string(t) + "." + std::to_string(seat);
         chair = Place(chair_asset, PlacementTransform(seat_pos, seat_yaw), InstanceRole::kChair, chair_name, 0.0);
+        instances_[static_cast<size_t>(chair)].fixture = true;
         obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
       }
       crowd_->AddSeat(t, seat, chair, PlacementTransform(seat_pos, seat_yaw));

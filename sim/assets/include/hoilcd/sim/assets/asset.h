@@ -23,6 +23,9 @@ struct ThermalMaterial {
   double emissivity = 0.9;    // 8–14 µm band emissivity, in (0, 1]
   bool specular = false;      // true: reflections are traced (metal, glass), else diffuse
   double roughness_um = 0;    // specular: rms roughness, µm (mirror-like share: MirrorShare)
+  // Heat released in this part, W, in [0, 5000] (a datasheet's power turned to heat): with the
+  // room's thermal solution its temperature comes from its balance; without, temperature_c.
+  double power_w = 0;
 };
 
 // Where the asset touches its support: "seat", "table" or "floor" (HOI ground truth).

@@ -24,6 +24,9 @@ struct InstanceMaterial {
   float blackbody_bottom = 0;  // band radiance at z = 0, W·m⁻²·sr⁻¹
   float blackbody_top = 0;     // band radiance at z = room height
   const SurfaceField* field = nullptr;  // not owned; null: uniform (fast path)
+  // Band radiance this material reflects diffusely, W·m⁻²·sr⁻¹ (what its surroundings send it,
+  // from the room's thermal solution); negative: the world's uniform environment.
+  float environment_radiance = -1;
 };
 
 enum class InstanceRole { kRoom, kTable, kChair, kPerson, kObject };
@@ -35,6 +38,7 @@ struct InstanceInfo {
   int person_id = -1;                   // stable id for people, else -1
   int label = -1;                       // id written to the frame's instance channel: the
                                         // instance itself, or a person's pelvis for every body part
+  bool fixture = false;                 // stands still all run (table, chair, scene object)
   const Asset* asset = nullptr;         // null for the room
   std::vector<InstanceMaterial> materials;  // per prototype material
   const TriangleMesh* mesh = nullptr;   // the prototype's mesh (triangle -> material index)

@@ -42,6 +42,7 @@ class FrameRenderer {
   struct PendingReflection {
     float* radiance;  // where the finished radiance goes
     float emissivity, mirror, blackbody;  // mirror: MirrorShare of the hit
+    float environment;                    // what the hit's material reflects diffusely
     Eigen::Vector3f origin, direction;  // the reflection ray
   };
   // Band radiance a material emits as a blackbody at a hit `point` (world frame) at relative

@@ -91,6 +91,28 @@ struct HvacOptions {
   static const OptionTable<HvacOptions>& Table();
 };
 
+// The thermal solution of the room's static surfaces (thermal_solution.md): patches, view
+// factors, air, convection and heat capacities.
+struct ThermalSolutionOptions {
+  bool enabled;                       // solve every static surface's energy balance
+  double patch_size_m;                // m, side of a wall, floor or ceiling patch
+  int rays_per_node;                  // view-factor rays cast from each node
+  double step_s;                      // s, the time grid
+  double spin_up_s;                   // s, history solved before t = 0
+  double air_gradient_k_per_m;        // K/m, the air's stratification
+  double convection_wall_w_m2k;       // W/(m²·K), h_c of vertical surfaces (ISO 6946)
+  double convection_floor_w_m2k;      // W/(m²·K), h_c of the floor (heat flowing down)
+  double convection_ceiling_w_m2k;    // W/(m²·K), h_c of the ceiling (heat flowing up)
+  double convection_object_w_m2k;     // W/(m²·K), h_c of furniture and objects
+  double capacity_wall_j_m2k;         // J/(m²·K), effective areal heat capacity
+  double capacity_floor_j_m2k;
+  double capacity_ceiling_j_m2k;
+  double capacity_glass_j_m2k;
+  double capacity_object_j_m2k;
+  ThermalSolutionOptions();
+  static const OptionTable<ThermalSolutionOptions>& Table();
+};
+
 struct RoomOptions {
   Eigen::Vector3d size_m;             // m, x (length), y (width), z (height)
   double environment_temperature_c;   // C, the air (and what surfaces reflect)
@@ -98,6 +120,7 @@ struct RoomOptions {
   RoomSurfaceOptions surfaces;
   SunOptions sun;
   HvacOptions hvac;
+  ThermalSolutionOptions thermal;
   SurfaceSpec floor, ceiling;
   WallOptions walls;
   std::vector<WindowSpec> windows;    // read by hand (an array); default: the schema's window

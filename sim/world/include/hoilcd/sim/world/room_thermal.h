@@ -16,6 +16,8 @@
 
 namespace hoilcd {
 
+class RoomNetwork;
+
 // R_si, m²·K/W: the inside surface resistance of ISO 6946 / ISO 13788 (horizontal heat flow).
 constexpr double kInsideSurfaceResistance = 0.13;
 
@@ -85,6 +87,13 @@ class RoomSurfaces {
   float OffsetK(int material, const Eigen::Vector3f& p) const;
 
   const RoomClimate& climate() const { return climate_; }
+  // Which walls face outdoors: south, north, west, east.
+  const std::array<bool, 4>& exterior_walls() const { return exterior_; }
+  // With the room's thermal solution, the materials' temperatures are its patches' (SetTime
+  // moves them only after the network's SetTime): it replaces the walls' gradient, the HVAC lag
+  // and the glass's closed form; bridges, plumes, sun patches, frames and texture stay on top.
+  // Not owned; it must outlive this.
+  void AttachNetwork(const RoomNetwork* network);
 
  private:
   class Field;
@@ -102,6 +111,7 @@ class RoomSurfaces {
 
   RoomOptions room_;
   uint64_t seed_;
+  const RoomNetwork* network_ = nullptr;
   RoomClimate climate_;
   Eigen::Vector3f size_m_;
   std::array<bool, 4> exterior_{};  // south, north, west, east

@@ -17,6 +17,7 @@
 #include "hoilcd/sim/sensor/radiometry.h"
 #include "hoilcd/sim/world/crowd.h"
 #include "hoilcd/sim/world/ray_caster.h"
+#include "hoilcd/sim/world/room_network.h"
 #include "hoilcd/sim/world/room_thermal.h"
 
 namespace hoilcd {
@@ -29,7 +30,8 @@ class World : private CrowdStage {
   // arrive, change seats; events recorded) and the walkers' bouts around the robot. Call once,
   // before SetTime, with the run's per-frame samples. Throws InputError naming /route/waypoints_m
   // when walkers are asked for but a walker's body cannot follow the route clear of furniture.
-  void PlanCrowd(const std::vector<RobotSample>& samples) { crowd_->Plan(samples, obstacles_); }
+  // With the room's thermal solution, the seated people then warm what faces them.
+  void PlanCrowd(const std::vector<RobotSample>& samples);
 
   // Moves people (posture, breathing, sway, walking), warms and cools seats, to time t, and
   // recommits the ray caster.
@@ -56,6 +58,9 @@ class World : private CrowdStage {
   // The room's air temperature at time t (the thermostat's cycle, room_thermal.h), C.
   double AirTemperatureC(double time_s) const { return room_surfaces_->climate().AirTemperatureC(time_s); }
   const RoomSurfaces& room_surfaces() const { return *room_surfaces_; }
+  // The thermal solution of the static surfaces (room.thermal.enabled), else null.
+  const RoomNetwork* room_network() const { return room_network_.get(); }
+  int room_instance() const { return room_instance_; }
   const BandRadianceTable& radiance_table() const { return table_; }
 
  private:
@@ -67,6 +72,10 @@ class World : private CrowdStage {
   void Move(int instance, const Eigen::Matrix4f& world_from_object) override;
   void Finish(InstanceMaterial* m) const override;
   void BuildRoom(const Scene& scene);
+  // The room mesh's rectangles, each with the normal of its side that faces the room's air.
+  std::vector<RoomQuad> RoomQuads(const Scene& scene) const;
+  // Sets the fixtures' solved temperatures and every node's reflected surroundings.
+  void ApplyRoomNetwork();
   void BuildFurnitureAndPeople(const Scene& scene);
 
   const BandRadianceTable& table_;
@@ -78,6 +87,7 @@ class World : private CrowdStage {
   TriangleMesh room_mesh_;
   int room_instance_ = -1;
   std::unique_ptr<RoomSurfaces> room_surfaces_;
+  std::unique_ptr<RoomNetwork> room_network_;
   std::map<std::string, int> classes_;
   std::vector<Obstacle2D> obstacles_;
   Eigen::Vector3d room_size_m_;

@@ -1,0 +1,356 @@
+#include "hoilcd/sim/world/room_network.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "hoilcd/core/util/random.h"
+
+namespace hoilcd {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+// How far a point may lie off a quad's plane and still be on it (windows sit 2 mm inside walls).
+constexpr float kOnPlaneM = 1e-3f;
+
+// Which outside wall a room quad belongs to by its inward normal: 0 south (y = 0), 1 north, 2 west
+// (x = 0), 3 east; -1 for a floor, a ceiling or anything not axis-aligned.
+int WallOfNormal(const Eigen::Vector3f& n) {
+  if (n.y() > 0.99f) return 0;
+  if (n.y() < -0.99f) return 1;
+  if (n.x() > 0.99f) return 2;
+  if (n.x() < -0.99f) return 3;
+  return -1;
+}
+
+float TriangleArea(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c) {
+  return 0.5f * (b - a).cross(c - a).norm();
+}
+
+}  // namespace
+
+struct RoomNetwork::Patches {
+  Eigen::Vector3f origin, u_axis, v_axis;  // corner a, b − a, d − a
+  int nu = 1, nv = 1;
+  int first_node = 0;
+  int Node(int iu, int iv) const { return first_node + iv * nu + iu; }
+  // The quad's (u, v) in [0, 1]² of a world point, when it lies on the quad.
+  bool Locate(const Eigen::Vector3f& p, const Eigen::Vector3f& normal, float* u, float* v) const {
+    const Eigen::Vector3f d = p - origin;
+    if (std::abs(d.dot(normal)) > kOnPlaneM) return false;
+    *u = d.dot(u_axis) / u_axis.squaredNorm();
+    *v = d.dot(v_axis) / v_axis.squaredNorm();
+    constexpr float kSlack = 1e-4f;
+    return *u >= -kSlack && *u <= 1 + kSlack && *v >= -kSlack && *v <= 1 + kSlack;
+  }
+};
+
+RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& options, uint64_t seed,
+                         const RoomClimate& climate, const std::vector<RoomQuad>& quads,
+                         const std::vector<InstanceInfo>& instances, int room_instance,
+                         const std::array<bool, 4>& exterior_walls, const BandRadianceTable& table, int threads)
+    : table_(table), room_height_m_(room.size_m.z()), quads_(quads), options_(options), seed_(seed),
+      room_instance_(room_instance) {
+  std::vector<ThermalNode> nodes;
+  std::vector<std::vector<ThermalTriangle>> triangles;
+  const std::vector<InstanceMaterial>& room_materials = instances[static_cast<size_t>(room_instance)].materials;
+  const int windows = static_cast<int>(room.windows.size());
+  quads_of_material_.resize(room_materials.size());
+  // Room patches: each quad cut into cells of about patch_size_m.
+  for (size_t q = 0; q < quads_.size(); ++q) {
+    const RoomQuad& quad = quads_[q];
+    Patches p;
+    p.origin = quad.corners[0];
+    p.u_axis = quad.corners[1] - quad.corners[0];
+    p.v_axis = quad.corners[3] - quad.corners[0];
+    p.nu = std::max(1, static_cast<int>(std::lround(p.u_axis.norm() / options.patch_size_m)));
+    p.nv = std::max(1, static_cast<int>(std::lround(p.v_axis.norm() / options.patch_size_m)));
+    p.first_node = static_cast<int>(nodes.size());
+    quads_of_material_[static_cast<size_t>(quad.material)].push_back(static_cast<int>(q));
+    const InstanceMaterial& m = room_materials[static_cast<size_t>(quad.material)];
+    const bool floor = quad.material == 0, ceiling = quad.material == 1;
+    const bool window = quad.material >= 3 && quad.material < 3 + windows;
+    const int wall = WallOfNormal(quad.normal);
+    // Outside walls (and every window) lose heat through the envelope: from the inner surface to
+    // outdoor air the conductance is 1 / (1/U − R_si) per m².
+    double u_value = 0;
+    if (window) {
+      u_value = room.windows[static_cast<size_t>(quad.material - 3)].u_value_w_m2k;
+    } else if (quad.material == 2 && wall >= 0 && exterior_walls[static_cast<size_t>(wall)]) {
+      u_value = room.surfaces.wall_u_value_w_m2k;
+    }
+    const double h_c = floor ? options.convection_floor_w_m2k
+                             : ceiling ? options.convection_ceiling_w_m2k : options.convection_wall_w_m2k;
+    const double capacity = floor ? options.capacity_floor_j_m2k
+                                  : ceiling ? options.capacity_ceiling_j_m2k
+                                            : window ? options.capacity_glass_j_m2k : options.capacity_wall_j_m2k;
+    for (int iv = 0; iv < p.nv; ++iv) {
+      for (int iu = 0; iu < p.nu; ++iu) {
+        const Eigen::Vector3f a = p.origin + (static_cast<float>(iu) / p.nu) * p.u_axis + (static_cast<float>(iv) / p.nv) * p.v_axis;
+        const Eigen::Vector3f du = p.u_axis / static_cast<float>(p.nu), dv = p.v_axis / static_cast<float>(p.nv);
+        ThermalNode node;
+        node.area_m2 = du.cross(dv).norm();
+        node.emissivity = m.emissivity;
+        node.convection_w_m2k = h_c;
+        node.heat_capacity_j_k = capacity * node.area_m2;
+        node.height_m = (a + 0.5f * du + 0.5f * dv).z();
+        if (u_value > 0) node.outdoor_conductance_w_k = node.area_m2 / (1.0 / u_value - kInsideSurfaceResistance);
+        nodes.push_back(node);
+        triangles.push_back({ThermalTriangle{{a, a + du, a + du + dv}, quad.normal},
+                             ThermalTriangle{{a, a + du + dv, a + dv}, quad.normal}});
+      }
+    }
+    patches_.push_back(p);
+  }
+  // Furniture and objects: a node per material of each instance that stands still.
+  node_of_material_.resize(instances.size());
+  mesh_of_.resize(instances.size(), nullptr);
+  caster_ = std::make_unique<RayCaster>();
+  RayCaster& caster = *caster_;
+  std::map<const TriangleMesh*, int> prototypes;
+  std::vector<int> world_instance_of{room_instance};
+  TriangleMesh room_mesh;  // the room's prototype, from its quads
+  for (const RoomQuad& quad : quads_) {
+    const auto base = static_cast<uint32_t>(room_mesh.positions_m.size());
+    for (const Eigen::Vector3f& c : quad.corners) room_mesh.positions_m.push_back(c);
+    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) room_mesh.indices.push_back(base + i);
+    room_mesh.triangle_material.push_back(static_cast<uint32_t>(quad.material));
+    room_mesh.triangle_material.push_back(static_cast<uint32_t>(quad.material));
+  }
+  caster.AddInstance(caster.AddPrototype(room_mesh), Eigen::Matrix4f::Identity());
+  for (size_t w = 0; w < instances.size(); ++w) {
+    const InstanceInfo& info = instances[w];
+    if (!info.fixture || info.mesh == nullptr) continue;
+    const Eigen::Matrix4f world_from_object = info.object_from_world.inverse();
+    const Eigen::Matrix3f rotation = world_from_object.topLeftCorner<3, 3>();
+    const Eigen::Vector3f translation = world_from_object.topRightCorner<3, 1>();
+    std::vector<std::vector<ThermalTriangle>> by_material(info.materials.size());
+    const TriangleMesh& mesh = *info.mesh;
+    for (size_t t = 0; t < mesh.TriangleCount(); ++t) {
+      std::array<Eigen::Vector3f, 3> c;
+      for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = rotation * mesh.positions_m[mesh.indices[3 * t + static_cast<size_t>(k)]] + translation;
+      const Eigen::Vector3f n = (c[1] - c[0]).cross(c[2] - c[0]);
+      if (n.squaredNorm() <= 0) continue;
+      by_material[mesh.triangle_material[t]].push_back(ThermalTriangle{c, n.normalized()});
+    }
+    node_of_material_[w].assign(info.materials.size(), -1);
+    mesh_of_[w] = info.mesh;
+    for (size_t k = 0; k < info.materials.size(); ++k) {
+      if (by_material[k].empty()) continue;
+      const InstanceMaterial& m = info.materials[k];
+      ThermalNode node;
+      double area = 0, height = 0;
+      for (const ThermalTriangle& t : by_material[k]) {
+        const double a = TriangleArea(t.corners[0], t.corners[1], t.corners[2]);
+        area += a;
+        height += a * (t.corners[0].z() + t.corners[1].z() + t.corners[2].z()) / 3.0;
+      }
+      node.area_m2 = area;
+      node.height_m = height / area;
+      node.emissivity = m.emissivity;
+      node.convection_w_m2k = options.convection_object_w_m2k;
+      node.heat_capacity_j_k = options.capacity_object_j_m2k * area;
+      // A part with a power of its own, or declared at room temperature (none), is solved; one
+      // declared warmer or colder without a power (a radiator's water, a cooling jet) is held there.
+      node.power_w = info.asset != nullptr ? info.asset->materials[k].power_w : 0.0;
+      node.fixed = node.power_w == 0 && std::abs(m.temperature_c - kDeclaredRoomTemperatureC) > 1e-6;
+      node.fixed_temperature_c = m.temperature_c;
+      node_of_material_[w][k] = static_cast<int>(nodes.size());
+      nodes.push_back(node);
+      triangles.push_back(std::move(by_material[k]));
+    }
+    auto [it, inserted] = prototypes.emplace(info.mesh, -1);
+    if (inserted) it->second = caster.AddPrototype(mesh);
+    caster.AddInstance(it->second, world_from_object);
+    world_instance_of.push_back(static_cast<int>(w));
+  }
+  caster.Commit();
+  node_area_.reserve(nodes.size());
+  std::vector<double> areas;
+  for (const ThermalNode& n : nodes) {
+    areas.push_back(n.area_m2);
+    node_area_.push_back(static_cast<float>(n.area_m2));
+  }
+  const ViewFactors view_factors = CastViewFactors(
+      caster, triangles, areas,
+      [&](const RayHit& hit, const Eigen::Vector3f& point) {
+        RayHit in_world = hit;
+        in_world.instance = world_instance_of[static_cast<size_t>(hit.instance)];
+        return NodeOfHit(in_world, point);
+      },
+      options.rays_per_node, HashCombine(seed, HashString("room.thermal.view_factors")), threads);
+  network_ = std::make_unique<ThermalNetwork>(std::move(nodes), view_factors);
+  triangles_ = std::move(triangles);
+  const RoomClimate air = climate;
+  const double gradient = options.air_gradient_k_per_m, mid_height = 0.5 * room_height_m_;
+  drivers_.air_c = [air, gradient, mid_height](double time_s, double height_m) {
+    return air.AirTemperatureC(time_s) + gradient * (height_m - mid_height);
+  };
+  drivers_.outdoor_c = room.outdoor_temperature_c;
+  drivers_.absorbed = [this](double time_s, std::vector<double>* absorbed_w) { PeopleHeat(time_s, absorbed_w); };
+  room_mean_c_.assign(room_materials.size(), kNaN);
+  room_incident_.assign(room_materials.size(), kNaN);
+}
+
+RoomNetwork::~RoomNetwork() = default;
+
+int RoomNetwork::NodeOfHit(const RayHit& hit, const Eigen::Vector3f& point) const {
+  if (hit.instance == room_instance_) {
+    const auto q = static_cast<size_t>(hit.triangle / 2);
+    const Patches& p = patches_[q];
+    const Eigen::Vector3f d = point - p.origin;
+    const float u = d.dot(p.u_axis) / p.u_axis.squaredNorm(), v = d.dot(p.v_axis) / p.v_axis.squaredNorm();
+    const int iu = std::clamp(static_cast<int>(u * static_cast<float>(p.nu)), 0, p.nu - 1);
+    const int iv = std::clamp(static_cast<int>(v * static_cast<float>(p.nv)), 0, p.nv - 1);
+    return p.Node(iu, iv);
+  }
+  const auto w = static_cast<size_t>(hit.instance);
+  if (node_of_material_[w].empty()) return -1;
+  return node_of_material_[w][mesh_of_[w]->triangle_material[static_cast<size_t>(hit.triangle)]];
+}
+
+void RoomNetwork::SetPeople(const std::vector<PersonSource>& people) {
+  people_ = people;
+  person_coupling_.assign(people_.size(), {});
+  constexpr int kSamples = 16;       // points per node at which a person's view factor is taken
+  constexpr float kReachM = 2.5f;    // beyond, a person's view factor is under 2 % of a node's view
+  for (size_t p = 0; p < people_.size(); ++p) {
+    const PersonSource& person = people_[p];
+    const auto radius = static_cast<float>(person.radius_m);
+    for (size_t i = 0; i < triangles_.size(); ++i) {
+      const std::vector<ThermalTriangle>& triangles = triangles_[i];
+      if (triangles.empty()) continue;
+      // Point-to-sphere view factor (r/d)² cos θ, averaged over points spread over the node's
+      // triangles (keyed, so the same every time), each blocked when the static geometry lies
+      // between it and the sphere's centre.
+      Rng rng = KeyedRng(seed_, "room.thermal.people", i);
+      double sum = 0;
+      bool near = false;
+      for (int k = 0; k < kSamples; ++k) {
+        const ThermalTriangle& t = triangles[rng.UniformInt(static_cast<uint32_t>(triangles.size()))];
+        const double r1 = std::sqrt(rng.Uniform()), r2 = rng.Uniform();
+        const Eigen::Vector3f point = static_cast<float>(1 - r1) * t.corners[0] +
+                                      static_cast<float>(r1 * (1 - r2)) * t.corners[1] +
+                                      static_cast<float>(r1 * r2) * t.corners[2];
+        const Eigen::Vector3f to = person.centre_m - point;
+        const float d = to.norm();
+        if (d > kReachM || d <= radius) continue;
+        near = true;
+        const float cos_theta = t.normal.dot(to) / d;
+        if (cos_theta <= 0) continue;
+        const Eigen::Vector3f origin = point + 1e-3f * t.normal;
+        const RayHit hit = caster_->Intersect(origin, to / d, 0.0f, d - radius);
+        if (hit.hit()) continue;
+        sum += (radius / d) * (radius / d) * cos_theta;
+      }
+      if (!near || sum <= 0) continue;
+      const ThermalNode& node = network_->node(static_cast<int>(i));
+      person_coupling_[p].emplace_back(static_cast<int>(i),
+                                       node.area_m2 * sum / kSamples * node.emissivity * person.emissivity);
+    }
+  }
+  started_ = false;
+}
+
+void RoomNetwork::PeopleHeat(double time_s, std::vector<double>* absorbed_w) const {
+  constexpr double kKelvin = 273.15;
+  for (size_t p = 0; p < people_.size(); ++p) {
+    const PersonSource& person = people_[p];
+    const bool present = time_s < 0 ? (person.arrive_s <= 0 && person.leave_s > 0)
+                                    : (person.arrive_s <= time_s && time_s < person.leave_s);
+    if (!present) continue;
+    const double tp = person.surface_c + kKelvin;
+    for (const auto& [i, coupling] : person_coupling_[p]) {
+      // The node's own emission towards the sphere is taken at the air by it: the exchange is
+      // a few watts, and the node's departure from the air changes it by a few per cent.
+      const double tn = drivers_.air_c(time_s, network_->node(i).height_m) + kKelvin;
+      (*absorbed_w)[static_cast<size_t>(i)] += coupling * kStefanBoltzmann * (tp * tp * tp * tp - tn * tn * tn * tn);
+    }
+  }
+}
+
+void RoomNetwork::SetTime(double time_s) {
+  if (!started_) {
+    network_->Start(drivers_, 0.0, options_.step_s, options_.spin_up_s);
+    started_ = true;
+  }
+  network_->AdvanceTo(time_s);
+  network_->TemperaturesAt(time_s, &temperature_c_);
+  const size_t n = temperature_c_.size();
+  std::vector<float> emitted(n), reflectivity(n);
+  for (size_t i = 0; i < n; ++i) {
+    const auto emissivity = static_cast<float>(network_->node(static_cast<int>(i)).emissivity);
+    emitted[i] = emissivity * table_.RadianceFromCelsius(static_cast<float>(temperature_c_[i]));
+    reflectivity[i] = 1 - emissivity;
+  }
+  const auto open = table_.RadianceFromCelsius(static_cast<float>(drivers_.air_c(time_s, 0.5 * room_height_m_)));
+  incident_ = network_->IncidentRadiance(emitted, reflectivity, open);
+  double sum = 0, area = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sum += static_cast<double>(incident_[i]) * node_area_[i];
+    area += node_area_[i];
+  }
+  mean_incident_ = area > 0 ? static_cast<float>(sum / area) : open;
+  for (size_t k = 0; k < quads_of_material_.size(); ++k) {
+    double t_sum = 0, l_sum = 0, a_sum = 0;
+    for (int q : quads_of_material_[k]) {
+      const Patches& p = patches_[static_cast<size_t>(q)];
+      for (int i = p.first_node; i < p.first_node + p.nu * p.nv; ++i) {
+        const auto node = static_cast<size_t>(i);
+        t_sum += temperature_c_[node] * node_area_[node];
+        l_sum += static_cast<double>(incident_[node]) * node_area_[node];
+        a_sum += node_area_[node];
+      }
+    }
+    room_mean_c_[k] = a_sum > 0 ? static_cast<float>(t_sum / a_sum) : kNaN;
+    room_incident_[k] = a_sum > 0 ? static_cast<float>(l_sum / a_sum) : kNaN;
+  }
+}
+
+float RoomNetwork::RoomTemperatureC(int material, const Eigen::Vector3f& p) const {
+  if (material < 0 || material >= static_cast<int>(quads_of_material_.size())) return kNaN;
+  for (int q : quads_of_material_[static_cast<size_t>(material)]) {
+    const Patches& patches = patches_[static_cast<size_t>(q)];
+    float u = 0, v = 0;
+    if (!patches.Locate(p, quads_[static_cast<size_t>(q)].normal, &u, &v)) continue;
+    // Bilinear between the centres of the four nearest patches (clamped at the quad's edges).
+    const float fu = std::clamp(u * static_cast<float>(patches.nu) - 0.5f, 0.0f, static_cast<float>(patches.nu - 1));
+    const float fv = std::clamp(v * static_cast<float>(patches.nv) - 0.5f, 0.0f, static_cast<float>(patches.nv - 1));
+    const int u0 = static_cast<int>(fu), v0 = static_cast<int>(fv);
+    const int u1 = std::min(u0 + 1, patches.nu - 1), v1 = std::min(v0 + 1, patches.nv - 1);
+    const float wu = fu - static_cast<float>(u0), wv = fv - static_cast<float>(v0);
+    auto at = [&](int iu, int iv) { return static_cast<float>(temperature_c_[static_cast<size_t>(patches.Node(iu, iv))]); };
+    return (1 - wv) * ((1 - wu) * at(u0, v0) + wu * at(u1, v0)) + wv * ((1 - wu) * at(u0, v1) + wu * at(u1, v1));
+  }
+  return kNaN;
+}
+
+float RoomNetwork::RoomMeanTemperatureC(int material) const {
+  if (material < 0 || material >= static_cast<int>(room_mean_c_.size())) return kNaN;
+  return room_mean_c_[static_cast<size_t>(material)];
+}
+
+float RoomNetwork::InstanceTemperatureC(int instance, int material) const {
+  const int node = NodeOf(instance, material);
+  if (node < 0 || network_->node(node).fixed) return kNaN;
+  return static_cast<float>(temperature_c_[static_cast<size_t>(node)]);
+}
+
+float RoomNetwork::IncidentRadiance(int instance, int material) const {
+  if (instance == room_instance_) {
+    if (material < 0 || material >= static_cast<int>(room_incident_.size())) return kNaN;
+    return room_incident_[static_cast<size_t>(material)];
+  }
+  const int node = NodeOf(instance, material);
+  return node < 0 ? kNaN : incident_[static_cast<size_t>(node)];
+}
+
+int RoomNetwork::NodeOf(int instance, int material) const {
+  if (instance < 0 || instance >= static_cast<int>(node_of_material_.size())) return -1;
+  const auto& materials = node_of_material_[static_cast<size_t>(instance)];
+  if (material < 0 || material >= static_cast<int>(materials.size())) return -1;
+  return materials[static_cast<size_t>(material)];
+}
+
+}  // namespace hoilcd

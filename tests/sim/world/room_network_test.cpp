@@ -1,0 +1,113 @@
+// The thermal solution of a world's static surfaces (room_network.h): it does not depend on the
+// order in which times are asked, a closed room at one temperature stays at it, and an outside
+// wall and its cold window cool what they should; the renderer reflects what surfaces face.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hoilcd/sim/scene/scene.h"
+#include "hoilcd/sim/sensor/radiometry.h"
+#include "hoilcd/sim/world/room_network.h"
+#include "hoilcd/sim/world/world.h"
+
+namespace hoilcd {
+namespace {
+
+Scene PaperRoom(std::vector<std::string> overrides) {
+  overrides.emplace_back("room.thermal.enabled=true");
+  overrides.emplace_back("room.thermal.spin_up_s=7200");
+  return LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides);
+}
+
+const BandRadianceTable& Table() {
+  static const BandRadianceTable table(8.0, 14.0);
+  return table;
+}
+
+TEST(RoomNetwork, TheStateAtATimeDoesNotDependOnTheTimesAskedBefore) {
+  const Scene scene = PaperRoom({});
+  World direct(scene, Table()), stepped(scene, Table());
+  direct.SetTime(150.0);
+  for (double t : {0.0, 30.0, 61.0, 120.5, 150.0}) stepped.SetTime(t);
+  const RoomNetwork& a = *direct.room_network();
+  const RoomNetwork& b = *stepped.room_network();
+  for (const Eigen::Vector3f& p : {Eigen::Vector3f(3.5f, 0.0f, 1.2f), Eigen::Vector3f(1.0f, 3.0f, 0.3f),
+                                   Eigen::Vector3f(7.0f, 1.3f, 2.0f)}) {
+    ASSERT_FALSE(std::isnan(a.RoomTemperatureC(2, p))) << "a point on a wall";
+    EXPECT_EQ(a.RoomTemperatureC(2, p), b.RoomTemperatureC(2, p));
+  }
+  for (int i = 0; i < direct.num_instances(); ++i) {
+    for (int k = 0; k < static_cast<int>(direct.instance(i).materials.size()); ++k) {
+      const float ta = a.InstanceTemperatureC(i, k), tb = b.InstanceTemperatureC(i, k);
+      if (std::isnan(ta)) {
+        EXPECT_TRUE(std::isnan(tb));
+      } else {
+        EXPECT_EQ(ta, tb) << direct.instance(i).name;
+      }
+    }
+  }
+}
+
+TEST(RoomNetwork, AClosedRoomWithNoOutsideWallAndStillAirStaysAtTheAirsTemperature) {
+  // The scene's hot cups and radiator (held at their temperatures) are left out.
+  const Scene scene = PaperRoom({"objects=[]", "room.windows=[]", "room.surfaces.exterior_walls=none", "room.hvac.enabled=false",
+                                 "room.thermal.air_gradient_k_per_m=0", "room.environment_temperature_c=20.5"});
+  World world(scene, Table());
+  world.SetTime(40.0);
+  const RoomNetwork& network = *world.room_network();
+  std::vector<double> t;
+  network.network().TemperaturesAt(40.0, &t);
+  ASSERT_GT(t.size(), 1000u);
+  for (double value : t) EXPECT_NEAR(value, 20.5, 1e-4);
+}
+
+TEST(RoomNetwork, TheOutsideWallAndTheFloorUnderItsWindowAreColderThanTheirCounterparts) {
+  const Scene scene = PaperRoom({"room.hvac.enabled=false"});
+  World world(scene, Table());
+  world.SetTime(0.0);
+  const RoomNetwork& network = *world.room_network();
+  // The north wall (its window makes it an outside wall) against the south wall, away from both
+  // the window and the corners: T_i − U·R_si·(T_i − T_e) = 0.6 · 0.13 · 17 K ≈ 1.3 K colder.
+  const float north = network.RoomTemperatureC(2, Eigen::Vector3f(4.5f, 3.0f, 1.4f));
+  const float south = network.RoomTemperatureC(2, Eigen::Vector3f(4.5f, 0.0f, 1.4f));
+  EXPECT_GT(south - north, 0.8f);
+  EXPECT_LT(south - north, 2.0f);
+  // The floor under the window sees the cold glass; the floor across the room far less.
+  const float under = network.RoomTemperatureC(0, Eigen::Vector3f(1.8f, 2.8f, 0.0f));
+  const float across = network.RoomTemperatureC(0, Eigen::Vector3f(5.5f, 0.3f, 0.0f));
+  EXPECT_LT(under, across - 0.1f);
+  // The glass is near its U-value's closed form (it also sees a room slightly off 22 °C).
+  const float glass = network.RoomMeanTemperatureC(3);
+  EXPECT_NEAR(glass, InsideSurfaceTemperatureC(2.8, 22.0, 5.0), 1.0);
+  // The ceiling is warmer than the floor: the air is stratified.
+  EXPECT_GT(network.RoomMeanTemperatureC(1), network.RoomMeanTemperatureC(0) + 0.5f);
+  // The glass reflects what it faces: less than a black body at the room's air would send.
+  EXPECT_LT(network.IncidentRadiance(world.room_instance(), 3), Table().RadianceFromCelsius(22.5f));
+}
+
+TEST(RoomNetwork, EveryFixtureMaterialDeclaredAtRoomTemperatureIsSolvedAndTheRestHeld) {
+  const Scene scene = PaperRoom({});
+  World world(scene, Table());
+  world.SetTime(10.0);
+  const RoomNetwork& network = *world.room_network();
+  int solved = 0;
+  for (int i = 0; i < world.num_instances(); ++i) {
+    const InstanceInfo& info = world.instance(i);
+    for (int k = 0; k < static_cast<int>(info.materials.size()); ++k) {
+      const float t = network.InstanceTemperatureC(i, k);
+      if (info.fixture && !std::isnan(t)) {
+        ++solved;
+        EXPECT_GT(t, 19.0f) << info.name;
+        EXPECT_LT(t, 25.0f) << info.name;
+        EXPECT_EQ(info.materials[static_cast<size_t>(k)].temperature_c, t) << "the world shows the solution";
+      }
+      if (!info.fixture) {
+        EXPECT_TRUE(std::isnan(t)) << info.name << " is no node";
+      }
+    }
+  }
+  EXPECT_GT(solved, 30) << "six tables and their chairs";
+}
+
+}  // namespace
+}  // namespace hoilcd
