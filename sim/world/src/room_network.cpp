@@ -273,28 +273,30 @@ void RoomNetwork::PeopleHeat(double time_s, std::vector<double>* absorbed_w) con
 void RoomNetwork::SetTime(double time_s) {
   if (!started_) {
     network_->Start(drivers_, 0.0, options_.step_s, options_.spin_up_s);
+    incident_of_state_.clear();
     started_ = true;
   }
   network_->AdvanceTo(time_s);
   network_->TemperaturesAt(time_s, &temperature_c_);
+  // What each node receives, linear between the grid states' (each solved once).
+  size_t k = 0;
+  double w = 0;
+  network_->GridPlace(time_s, &k, &w);
+  const size_t k1 = std::min(k + 1, network_->grid_size() - 1);
+  const std::vector<float>& a = IncidentOfState(k);
+  const std::vector<float>& b = IncidentOfState(k1);
   const size_t n = temperature_c_.size();
-  std::vector<float> emitted(n), reflectivity(n);
-  for (size_t i = 0; i < n; ++i) {
-    const auto emissivity = static_cast<float>(network_->node(static_cast<int>(i)).emissivity);
-    emitted[i] = emissivity * table_.RadianceFromCelsius(static_cast<float>(temperature_c_[i]));
-    reflectivity[i] = 1 - emissivity;
-  }
-  const auto open = table_.RadianceFromCelsius(static_cast<float>(drivers_.air_c(time_s, 0.5 * room_height_m_)));
-  incident_ = network_->IncidentRadiance(emitted, reflectivity, open);
+  incident_.resize(n);
+  for (size_t i = 0; i < n; ++i) incident_[i] = static_cast<float>((1 - w) * a[i] + w * b[i]);
   double sum = 0, area = 0;
   for (size_t i = 0; i < n; ++i) {
     sum += static_cast<double>(incident_[i]) * node_area_[i];
     area += node_area_[i];
   }
-  mean_incident_ = area > 0 ? static_cast<float>(sum / area) : open;
-  for (size_t k = 0; k < quads_of_material_.size(); ++k) {
+  mean_incident_ = static_cast<float>(sum / std::max(area, 1e-12));
+  for (size_t m = 0; m < quads_of_material_.size(); ++m) {
     double t_sum = 0, l_sum = 0, a_sum = 0;
-    for (int q : quads_of_material_[k]) {
+    for (int q : quads_of_material_[m]) {
       const Patches& p = patches_[static_cast<size_t>(q)];
       for (int i = p.first_node; i < p.first_node + p.nu * p.nv; ++i) {
         const auto node = static_cast<size_t>(i);
@@ -303,9 +305,29 @@ void RoomNetwork::SetTime(double time_s) {
         a_sum += node_area_[node];
       }
     }
-    room_mean_c_[k] = a_sum > 0 ? static_cast<float>(t_sum / a_sum) : kNaN;
-    room_incident_[k] = a_sum > 0 ? static_cast<float>(l_sum / a_sum) : kNaN;
+    room_mean_c_[m] = a_sum > 0 ? static_cast<float>(t_sum / a_sum) : kNaN;
+    room_incident_[m] = a_sum > 0 ? static_cast<float>(l_sum / a_sum) : kNaN;
   }
+}
+
+const std::vector<float>& RoomNetwork::IncidentOfState(size_t k) {
+  // Frames move forwards: states before the earliest one asked are not asked again.
+  while (!incident_of_state_.empty() && incident_of_state_.begin()->first + 1 < k) {
+    incident_of_state_.erase(incident_of_state_.begin());
+  }
+  auto it = incident_of_state_.find(k);
+  if (it != incident_of_state_.end()) return it->second;
+  const std::vector<double>& state = network_->GridState(k);
+  const size_t n = state.size();
+  std::vector<float> emitted(n), reflectivity(n);
+  for (size_t i = 0; i < n; ++i) {
+    const auto emissivity = static_cast<float>(network_->node(static_cast<int>(i)).emissivity);
+    emitted[i] = emissivity * table_.RadianceFromCelsius(static_cast<float>(state[i]));
+    reflectivity[i] = 1 - emissivity;
+  }
+  const double time_s = network_->GridTime(k);
+  const auto open = table_.RadianceFromCelsius(static_cast<float>(drivers_.air_c(time_s, 0.5 * room_height_m_)));
+  return incident_of_state_.emplace(k, network_->IncidentRadiance(emitted, reflectivity, open)).first->second;
 }
 
 float RoomNetwork::RoomTemperatureC(int material, const Eigen::Vector3f& p) const {

@@ -12,7 +12,8 @@ namespace hoilcd {
 namespace {
 
 constexpr double kKelvin = 273.15;
-constexpr double kToleranceK = 1e-6;
+// Far below what a camera resolves (its NETD is tens of mK; radiometric frames hold 0.01 K).
+constexpr double kToleranceK = 1e-4;
 constexpr int kMaxSweeps = 20000;
 
 // A unit vector about `n`, cosine-weighted (Malley's method), from two uniforms.
@@ -134,7 +135,7 @@ ThermalNetwork::ThermalNetwork(std::vector<ThermalNode> nodes, ViewFactors view_
 }
 
 void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double step_s, const std::vector<double>& prev_c,
-                          std::vector<double>* next_c) const {
+                          std::vector<double>* next_c, std::vector<double>* irradiance) const {
   const size_t n = nodes_.size();
   std::vector<double> absorbed(n, 0.0);
   if (drivers.absorbed) drivers.absorbed(time_s, &absorbed);
@@ -156,11 +157,14 @@ void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double s
   // The open share sees a black body at the air's mid-height temperature.
   const double open_k = drivers.air_c(time_s, 1.0) + kKelvin;
   const double open_emission = kStefanBoltzmann * open_k * open_k * open_k * open_k;
-  std::vector<double> t_k(n), h(n), j(n);
+  std::vector<double> t_k(n), j(n);
+  std::vector<double>& h = *irradiance;  // starts from the last step's, or from σT⁴
   auto emission = [](double t) { return kStefanBoltzmann * t * t * t * t; };
+  const bool warm = h.size() == n;
+  h.resize(n);
   for (size_t i = 0; i < n; ++i) {
     t_k[i] = (nodes_[i].fixed ? nodes_[i].fixed_temperature_c : prev_c[i]) + kKelvin;
-    h[i] = emission(t_k[i]);
+    if (!warm) h[i] = emission(t_k[i]);
   }
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     for (size_t i = 0; i < n; ++i) j[i] = nodes_[i].emissivity * emission(t_k[i]) + (1 - nodes_[i].emissivity) * h[i];
@@ -189,8 +193,8 @@ void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double s
 }
 
 std::vector<double> ThermalNetwork::SteadyState(const ThermalDrivers& drivers, double time_s) const {
-  std::vector<double> guess(nodes_.size(), drivers.air_c(time_s, 1.0)), result;
-  Step(drivers, time_s, 0.0, guess, &result);
+  std::vector<double> guess(nodes_.size(), drivers.air_c(time_s, 1.0)), result, irradiance;
+  Step(drivers, time_s, 0.0, guess, &result, &irradiance);
   return result;
 }
 
@@ -203,9 +207,10 @@ void ThermalNetwork::Start(ThermalDrivers drivers, double t0_s, double step_s, d
   double time = t0_s - static_cast<double>(spin_steps) * step_s;
   std::vector<double> state = SteadyState(drivers_, time);
   std::vector<double> next;
+  irradiance_.clear();
   for (int64_t k = 0; k < spin_steps; ++k) {
     time = t0_s - static_cast<double>(spin_steps - k - 1) * step_s;
-    Step(drivers_, time, step_s, state, &next);
+    Step(drivers_, time, step_s, state, &next, &irradiance_);
     state.swap(next);
   }
   grid_c_.clear();
@@ -216,7 +221,7 @@ void ThermalNetwork::AdvanceTo(double time_s) {
   HOILCD_CHECK_MSG(!grid_c_.empty(), "ThermalNetwork::AdvanceTo before Start");
   std::vector<double> next;
   while (t0_s_ + static_cast<double>(grid_c_.size() - 1) * step_s_ < time_s) {
-    Step(drivers_, t0_s_ + static_cast<double>(grid_c_.size()) * step_s_, step_s_, grid_c_.back(), &next);
+    Step(drivers_, t0_s_ + static_cast<double>(grid_c_.size()) * step_s_, step_s_, grid_c_.back(), &next, &irradiance_);
     grid_c_.push_back(next);
   }
 }
@@ -226,12 +231,18 @@ void ThermalNetwork::Solve(ThermalDrivers drivers, double t0_s, double t1_s, dou
   AdvanceTo(t1_s);
 }
 
-void ThermalNetwork::TemperaturesAt(double time_s, std::vector<double>* temperatures_c) const {
-  HOILCD_CHECK_MSG(!grid_c_.empty(), "ThermalNetwork::TemperaturesAt before Solve");
+void ThermalNetwork::GridPlace(double time_s, size_t* k, double* weight) const {
+  HOILCD_CHECK_MSG(!grid_c_.empty(), "ThermalNetwork asked for a state before Start");
   const double u = std::clamp((time_s - t0_s_) / step_s_, 0.0, static_cast<double>(grid_c_.size() - 1));
-  const auto k = std::min(static_cast<size_t>(u), grid_c_.size() - 1);
+  *k = std::min(static_cast<size_t>(u), grid_c_.size() - 1);
+  *weight = u - static_cast<double>(*k);
+}
+
+void ThermalNetwork::TemperaturesAt(double time_s, std::vector<double>* temperatures_c) const {
+  size_t k = 0;
+  double w = 0;
+  GridPlace(time_s, &k, &w);
   const size_t k1 = std::min(k + 1, grid_c_.size() - 1);
-  const double w = u - static_cast<double>(k);
   temperatures_c->resize(nodes_.size());
   for (size_t i = 0; i < nodes_.size(); ++i) (*temperatures_c)[i] = (1 - w) * grid_c_[k][i] + w * grid_c_[k1][i];
 }

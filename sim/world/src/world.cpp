@@ -213,9 +213,10 @@ World::World(const Scene& scene, const BandRadianceTable& table)
     room_network_ = std::make_unique<RoomNetwork>(scene.room, scene.room.thermal, scene.seed, room_surfaces_->climate(),
                                                   RoomQuads(scene), instances_, room_instance_,
                                                   room_surfaces_->exterior_walls(), table_, 1);
-    room_surfaces_->AttachNetwork(room_network_.get());
   }
-  SetTime(0.0);
+  // The materials' first state; the thermal solution waits for the first SetTime, after
+  // PlanCrowd has told it who sits where (its spin-up is solved once).
+  MoveTo(0.0, /*solve=*/false);
 }
 
 void World::PlanCrowd(const std::vector<RobotSample>& samples) {
@@ -282,14 +283,20 @@ void World::ApplyRoomNetwork() {
   environment_radiance_ = network.MeanIncidentRadiance();
 }
 
-void World::SetTime(double time_s) {
+void World::SetTime(double time_s) { MoveTo(time_s, /*solve=*/true); }
+
+void World::MoveTo(double time_s, bool solve) {
   crowd_->SetTime(time_s);
-  if (room_network_ != nullptr) room_network_->SetTime(time_s);
+  solve = solve && room_network_ != nullptr;
+  if (solve) {
+    room_network_->SetTime(time_s);
+    room_surfaces_->AttachNetwork(room_network_.get());
+  }
   std::vector<InstanceMaterial>& room = instances_[static_cast<size_t>(room_instance_)].materials;
   room_surfaces_->SetTime(time_s, &room);
   for (InstanceMaterial& m : room) Finish(&m);
   environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(room_surfaces_->EnvironmentTemperatureC(time_s)));
-  if (room_network_ != nullptr) ApplyRoomNetwork();
+  if (solve) ApplyRoomNetwork();
   caster_->Commit();
 }
 

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -79,6 +80,8 @@ class RoomNetwork {
   struct Patches;  // a room quad's grid of patches
   int NodeOfHit(const RayHit& hit, const Eigen::Vector3f& point) const;
   int NodeOf(int instance, int material) const;  // -1: no node
+  // The band radiance each node receives at grid state k (solved once, kept while frames need it).
+  const std::vector<float>& IncidentOfState(size_t k);
   // What the people present at t send each node, W (the drivers' absorbed heat).
   void PeopleHeat(double time_s, std::vector<double>* absorbed_w) const;
 
@@ -103,6 +106,7 @@ class RoomNetwork {
   double solved_until_s_ = 0;
   std::vector<double> temperature_c_;   // per node, at the last SetTime
   std::vector<float> incident_;         // per node, at the last SetTime
+  std::map<size_t, std::vector<float>> incident_of_state_;  // per grid state, as asked
   std::vector<float> room_mean_c_, room_incident_;  // per room material
   float mean_incident_ = 0;
   int room_instance_ = -1;

@@ -76,8 +76,13 @@ class ThermalNetwork {
   void AdvanceTo(double time_s);
   // Start, then AdvanceTo(t1).
   void Solve(ThermalDrivers drivers, double t0_s, double t1_s, double step_s, double spin_up_s);
-  // Node temperatures at time t, linear between grid states (clamped to [t0, t1]), °C.
+  // Node temperatures at time t, linear between grid states (clamped to the grid), °C.
   void TemperaturesAt(double time_s, std::vector<double>* temperatures_c) const;
+  // Where time t lies on the grid: state k and the weight of state k + 1 (clamped to the grid).
+  void GridPlace(double time_s, size_t* k, double* weight) const;
+  size_t grid_size() const { return grid_c_.size(); }
+  const std::vector<double>& GridState(size_t k) const { return grid_c_[k]; }
+  double GridTime(size_t k) const { return t0_s_ + static_cast<double>(k) * step_s_; }
   // Steady state of the drivers at time t (no history), °C.
   std::vector<double> SteadyState(const ThermalDrivers& drivers, double time_s) const;
   // The radiance arriving at each node, averaged over its hemisphere by cosine (E_in/π), when
@@ -93,15 +98,17 @@ class ThermalNetwork {
 
  private:
   // One implicit step (capacity_over_dt: C/Δt per node, all zero for a steady state) from `prev`,
-  // iterating the balance with the radiosities until the largest change is under 1e-6 K.
+  // iterating the balance with the radiosities until the largest change is under 1e-4 K;
+  // irradiance: each node's H, W/m², the last step's on entry (empty: start from σT⁴).
   void Step(const ThermalDrivers& drivers, double time_s, double step_s, const std::vector<double>& prev_c,
-            std::vector<double>* next_c) const;
+            std::vector<double>* next_c, std::vector<double>* irradiance) const;
 
   std::vector<ThermalNode> nodes_;
   ViewFactors view_factors_;
   ThermalDrivers drivers_;
   double t0_s_ = 0, step_s_ = 1;
   std::vector<std::vector<double>> grid_c_;  // per grid time, per node
+  std::vector<double> irradiance_;            // H of the last step, W/m²: where the next starts
 };
 
 }  // namespace hoilcd

@@ -76,6 +76,8 @@ class World : private CrowdStage {
   std::vector<RoomQuad> RoomQuads(const Scene& scene) const;
   // Sets the fixtures' solved temperatures and every node's reflected surroundings.
   void ApplyRoomNetwork();
+  // SetTime; without `solve`, the room's thermal solution is left as it is.
+  void MoveTo(double time_s, bool solve);
   void BuildFurnitureAndPeople(const Scene& scene);
 
   const BandRadianceTable& table_;
