@@ -57,7 +57,7 @@ TEST(NumberFlags, EveryBoundOfEveryCommandHoldsForTextADoubleWouldRound) {
   const std::regex interval(R"(in ([\[(])(-?[0-9.e+]+), (-?[0-9.e+]+)([\])]).*)");
   const std::regex one_side(R"((at least|above|at most|below) (-?[0-9.e+]+).*)");
   int bounds = 0;
-  for (CLI::App* command : app.get_subcommands()) {
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
     for (CLI::Option* option : command->get_options()) {
       for (int i = 0;; ++i) {
         CLI::Validator* validator = nullptr;

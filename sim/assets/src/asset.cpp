@@ -529,7 +529,8 @@ bool HasGltfExtension(const std::string& path) {
 
 // tinygltf turns "extras" into its own values recursively, and keeps the last of a repeated key:
 // the glTF's JSON (a .glb's JSON chunk) goes through ParseJson first, which bounds the nesting and
-// refuses repeated keys. A .glb too short for its chunk is left for tinygltf to refuse.
+// refuses repeated keys. Text that is not JSON, and a .glb too short for its chunk, are left for
+// tinygltf to refuse ("cannot parse glTF").
 void CheckGltfJson(const std::string& path, bool binary) {
   const std::string bytes = ReadFileBytes(path);
   std::string_view text = bytes;
@@ -541,7 +542,10 @@ void CheckGltfJson(const std::string& path, bool binary) {
     if (length > bytes.size() - 20) return;
     text = text.substr(20, static_cast<size_t>(length));
   }
-  ParseJson(text, path);
+  try {
+    ParseJson(text, path);
+  } catch (const JsonSyntaxError&) {
+  }
 }
 
 }  // namespace

@@ -142,19 +142,40 @@ void CheckRequired(const json& doc, const json& schema, const std::string& point
   }
 }
 
+// Lists longer than the schema's maxItems (objects with more keys than its maxProperties), checked
+// first: 10^5 tables would otherwise be copied, filled with defaults and validated one by one.
+void CheckListLengths(const json& doc, const json& schema, const std::string& pointer, const std::string& file,
+                      ProblemCollector* problems) {
+  const char* bound = doc.is_array() ? "maxItems" : doc.is_object() ? "maxProperties" : nullptr;
+  if (bound != nullptr && schema.contains(bound) && doc.size() > schema[bound].get<size_t>()) {
+    problems->Add(file + ": " + (pointer.empty() ? "/" : pointer),
+                  "holds " + std::to_string(doc.size()) + (doc.is_array() ? " items" : " keys") + "; expected at most " +
+                      schema[bound].dump());
+    return;
+  }
+  if (doc.is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (doc.contains(key)) CheckListLengths(doc[key], sub, pointer + "/" + key, file, problems);
+    }
+  } else if (doc.is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (size_t i = 0; i < doc.size(); ++i) {
+      CheckListLengths(doc[i], schema["items"], pointer + "/" + std::to_string(i), file, problems);
+    }
+  }
+}
+
 // The schema's integer bounds, compared as integers: valijson compares through a double, which
 // rounds 2^53 + 1 down to a maximum of 2^53 and lets it through.
 void CheckIntegerBounds(const json& doc, const json& schema, const std::string& pointer, const std::string& file,
                         ProblemCollector* problems) {
   if (doc.is_number_integer() && schema.value("type", "") == "integer") {
-    const auto beyond = [&doc](const json& bound, bool above) {
+    // A long double holds every 64-bit integer exactly.
+    const auto exact = [](const json& v) {
+      return v.is_number_unsigned() ? static_cast<long double>(v.get<uint64_t>()) : static_cast<long double>(v.get<int64_t>());
+    };
+    const auto beyond = [&](const json& bound, bool above) {
       if (!bound.is_number_integer()) return false;
-      if (doc.is_number_unsigned() && bound.is_number_unsigned()) {
-        return above ? doc.get<uint64_t>() > bound.get<uint64_t>() : doc.get<uint64_t>() < bound.get<uint64_t>();
-      }
-      if (doc.is_number_unsigned()) return above;  // beyond every signed bound below it
-      if (bound.is_number_unsigned()) return !above;
-      return above ? doc.get<int64_t>() > bound.get<int64_t>() : doc.get<int64_t>() < bound.get<int64_t>();
+      return above ? exact(doc) > exact(bound) : exact(doc) < exact(bound);
     };
     const std::string at = file + ": " + (pointer.empty() ? "/" : pointer);
     if (schema.contains("maximum") && beyond(schema["maximum"], true)) {
@@ -431,9 +452,12 @@ std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
     if (generic && errors.size() > 1) continue;
     problems.push_back({file + ": " + pointer, Describe(pointer, description)});
   }
+  // What valijson let through, and only that: a value it refused is reported once.
   ProblemCollector integers;
   CheckIntegerBounds(doc, SceneSchema(), "", file, &integers);
-  problems.insert(problems.end(), integers.problems().begin(), integers.problems().end());
+  for (const Problem& p : integers.problems()) {
+    if (pointers.count(p.where.substr(file.size() + 2)) == 0) problems.push_back(p);
+  }
   std::sort(problems.begin(), problems.end(),
             [](const Problem& a, const Problem& b) { return a.where < b.where; });
   problems.erase(std::unique(problems.begin(), problems.end(),
@@ -560,6 +584,8 @@ void CheckOptionTables(const std::string& file, const Scene& s, ProblemCollector
 Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
   ProblemCollector problems;
+  CheckListLengths(doc, SceneSchema(), "", file, &problems);
+  problems.ThrowIfAny();
   CheckRequired(doc, SceneSchema(), "", file, &problems);
   // The camera profile's values go in where the scene leaves them out, before the schema's
   // defaults, so an explicit value or an override wins over the profile and the profile over the

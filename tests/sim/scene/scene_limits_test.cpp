@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/scene/scene.h"
 #include "input_error_of.h"
@@ -93,7 +94,7 @@ TEST(SceneLimits, ARunsOverrideKeyHoldingAnEqualsSignIsRefused) {
     const json doc = {{"frames", 10},
                       {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 12}, {"set", {{key, 1}}}}})}};
     const std::string error = ErrorOf(doc);
-    EXPECT_NE(error.find(std::string("test.json: /runs/1/set/") + key + ": a scene path, which never holds '='"),
+    EXPECT_NE(error.find("test.json: /runs/1/set/" + JsonPointerToken(key) + ": a scene path, which never holds '='"),
               std::string::npos)
         << key << ": " << error;
   }
@@ -205,10 +206,6 @@ TEST(SceneLimits, RunsThatOverlapWithinAMinuteAreReportedToTheSecond) {
   EXPECT_NE(ErrorOf(half_second).find("run 1 starts at day 0 09:00:00.000, before run 0 ends at day 0 09:00:00.500"),
             std::string::npos)
       << ErrorOf(half_second);
-  const json later = {{"frames", 1000}, {"frame_rate_hz", 10},
-                      {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.0 + 30.0 / 3600}}})}};
-  EXPECT_NE(ErrorOf(later).find("run 1 starts at day 0 09:00:30, before run 0 ends at day 0 09:01:40"), std::string::npos)
-      << ErrorOf(later);
   const json apart = {{"frames", 10000}, {"frame_rate_hz", 10},
                       {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.25}}})}};
   EXPECT_NE(ErrorOf(apart).find("run 1 starts at day 0 09:15, before run 0 ends at day 0 09:16"), std::string::npos)

@@ -38,8 +38,9 @@ TEST(FurnitureOverlap, TablesStackedOnOneSpotAreRefusedNamingBoth) {
 }
 
 TEST(FurnitureOverlap, TablesPushedTogetherOrApartAreFine) {
-  EXPECT_EQ(WorldError(TwoTables({2.75, 1.5})), "");  // the table is 0.75 m long: the two touch
-  EXPECT_EQ(WorldError(TwoTables({3.0, 1.5})), "");
+  EXPECT_EQ(WorldError(TwoTables({2.9, 1.5})), "");  // the table is 0.9 m long: the two touch
+  EXPECT_EQ(WorldError(TwoTables({3.2, 1.5})), "");
+  EXPECT_EQ(WorldError(TwoTables({2.0, 2.3})), "");  // 0.75 m wide: side by side
 }
 
 TEST(FurnitureOverlap, TheSweepFindsThePairsEveryPairTestFinds) {
