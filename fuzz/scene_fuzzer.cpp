@@ -1,13 +1,13 @@
-// Fuzzes the scene loader: JSON parsing, the schema validator, required properties, the
+// Fuzzes the scene loader: JSON parsing (ParseJson, as LoadScene), the schema validator, required properties, the
 // cross-field checks and --set overrides. Input: optional leading lines "--set KEY=VALUE", then
 // the scene JSON. Only InputError may come out; anything else (or a sanitizer report) is a bug.
 #include <cstddef>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/sim/scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -18,10 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     overrides.push_back(text.substr(6, end == std::string::npos ? std::string::npos : end - 6));
     text = end == std::string::npos ? "" : text.substr(end + 1);
   }
-  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (doc.is_discarded()) return 0;  // malformed JSON: LoadScene's own message (unit-tested)
   try {
-    hoilcd::SceneFromJson(doc, "fuzz.json", overrides);
+    hoilcd::SceneFromJson(hoilcd::ParseJson(text, "fuzz.json"), "fuzz.json", overrides);
   } catch (const hoilcd::InputError&) {
   }
   return 0;

@@ -10,13 +10,13 @@
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
+#include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "shared.h"
 
 namespace hoilcd {
 namespace {
 
-constexpr int kMaxScenes = 10000;  // the largest scene index (the schema's /generator/index)
 
 struct GenerateArgs {
   std::string layout = "mixed";
@@ -30,9 +30,9 @@ struct GenerateArgs {
 
 int GenerateCommand(const GenerateArgs& args) {
   FamilyOf(args.layout, static_cast<uint64_t>(args.seed), args.start);  // a bad --layout fails first
-  if (args.start + args.count - 1 > kMaxScenes) {
+  if (args.start + args.count - 1 > kMaxGeneratedSceneIndex) {
     throw InputError("--start " + std::to_string(args.start) + " --count " + std::to_string(args.count),
-                     "scene indices up to " + std::to_string(kMaxScenes) + " (the last would be " +
+                     "scene indices up to " + std::to_string(kMaxGeneratedSceneIndex) + " (the last would be " +
                          std::to_string(args.start + args.count - 1) + ")");
   }
   GeneratorOptions options;
@@ -74,13 +74,13 @@ Command AddGenerateCommand(CLI::App* app) {
   CLI::App* cmd = app->add_subcommand("generate", "write seeded scene files of varied rooms (six layout families)");
   cmd->add_option("--layout", args->layout, "layout family: " + layouts + "or mixed (drawn per scene), or floor (a building floor of such rooms along a corridor)")->capture_default_str();
   cmd->add_option("--count", args->count, "scenes to write")
-      ->check(NumberIn(OptionRange::Closed(1, kMaxScenes)))
+      ->check(NumberIn(OptionRange::Closed(1, kMaxGeneratedSceneIndex)))
       ->capture_default_str();
   cmd->add_option("--start", args->start, "index of the first scene (scene i of a run is the same whatever the count)")
-      ->check(NumberIn(OptionRange::Closed(0, kMaxScenes)))
+      ->check(NumberIn(OptionRange::Closed(0, kMaxGeneratedSceneIndex)))
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the run")
-      ->check(NumberIn(OptionRange::Closed(0, 9007199254740992.0)))
+      ->check(NumberIn(OptionRange::Closed(0, static_cast<double>(kMaxSeed))))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output,
                   "folder of scene files (created when missing; a folder may hold only earlier generated scenes)")

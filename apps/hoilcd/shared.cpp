@@ -1,11 +1,12 @@
 #include "shared.h"
 
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstdio>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
@@ -14,6 +15,7 @@
 #include "hoilcd/bench/slam/pose_graph.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
 namespace {
@@ -27,6 +29,22 @@ extern "C" void OnInterrupt(int) {
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
+
+// Whether whole-number text is in `range`, compared exactly (a long double holds every 64-bit
+// integer and every double): through a double, 2^53 + 1 would pass a maximum of 2^53 and then be
+// used as itself. Text beyond 64 bits is outside any bound on its side.
+bool WholeNumberIn(const std::string& text, const OptionRange& range) {
+  errno = 0;
+  char* end = nullptr;
+  const bool negative = text[0] == '-';
+  const long double value = negative ? static_cast<long double>(std::strtoll(text.c_str(), &end, 10))
+                                     : static_cast<long double>(std::strtoull(text.c_str(), &end, 10));
+  if (errno == ERANGE) return negative ? !range.min : !range.max;
+  if (range.min && (range.min->exclusive ? !(value > range.min->value) : !(value >= range.min->value))) return false;
+  if (range.max && (range.max->exclusive ? !(value < range.max->value) : !(value <= range.max->value))) return false;
+  return true;
+}
+
 }  // namespace
 
 CLI::Validator NumberIn(const OptionRange& range) {
@@ -36,7 +54,9 @@ CLI::Validator NumberIn(const OptionRange& range) {
         char* end = nullptr;
         const double value = std::strtod(begin, &end);
         const bool parsed = end != begin && *end == '\0';
-        if (parsed && std::isfinite(value) && range.Contains(value)) return "";
+        const size_t digits = text.find_first_not_of("0123456789", text[0] == '-' || text[0] == '+' ? 1 : 0);
+        const bool whole = digits == std::string::npos && text.find_first_of("0123456789") != std::string::npos;
+        if (whole ? WholeNumberIn(text, range) : parsed && std::isfinite(value) && range.Contains(value)) return "";
         const bool bounded = range.min || range.max;
         return std::string("expected ") + (bounded ? "a number " : "") + range.ToString() + ", got '" + text + "'";
       },
@@ -60,7 +80,8 @@ void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
   cmd->add_option("--set", args->overrides,
                   "override a scene value by its path, e.g. --set crowd.people_per_table=2 (repeatable)")
       ->type_name("KEY=VALUE");
-  cmd->add_option("--seed", args->seed, "override the scene's seed")->check(NumberIn(OptionRange().AtLeast(0)));
+  cmd->add_option("--seed", args->seed, "override the scene's seed")
+      ->check(NumberIn(OptionRange::Closed(0, static_cast<double>(kMaxSeed))));
 }
 
 Scene LoadSceneArgs(const SceneArgs& args) {

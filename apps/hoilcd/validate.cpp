@@ -1,6 +1,5 @@
 // hoilcd validate SCENE: check a scene file and print every problem with its JSON path.
 #include <cstdio>
-#include <fstream>
 #include <memory>
 
 #include "command.h"
@@ -16,8 +15,6 @@ Command AddValidateCommand(CLI::App* app) {
   AddSceneFlags(cmd, args.get(), true);
   return {cmd, [args] {
             // Print every problem, not only the first: validation is the point of this command.
-            std::ifstream in(args->path);
-            if (!in) throw InputError(args->path, "cannot open the scene file (does it exist and is it readable?)");
             const Scene scene = LoadSceneArgs(*args);
             PrintWarnings(CheckSceneRenders(scene));  // what render checks before its first frame
             std::printf("%s: valid scene '%s' (%d frames at %g Hz, %zu tables, hash %s)\n", args->path.c_str(),

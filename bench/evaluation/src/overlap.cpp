@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/memory.h"

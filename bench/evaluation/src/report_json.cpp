@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/json_reader.h"
@@ -11,27 +11,15 @@ namespace hoilcd {
 namespace {
 
 constexpr uint64_t kMaxReportJsonBytes = uint64_t{64} << 20;  // a bench report of every method: ~1 MB
-constexpr int kMaxDepth = 64;                                  // a report nests ~5 deep
 
 }  // namespace
 
 nlohmann::json ReportJsonFromText(std::string_view text, const std::string& source) {
   nlohmann::json j;
   try {
-    const auto limit_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-      if (depth > kMaxDepth) {
-        throw InputError(source, "nests deeper than " + std::to_string(kMaxDepth) +
-                                     " levels: expected a hoilcd report.json");
-      }
-      return true;
-    };
-    j = nlohmann::json::parse(text, limit_depth);
-  } catch (const nlohmann::json::exception& e) {  // parse errors and number overflow (1e400)
-    std::string what = e.what();
-    if (const size_t end = what.find("] "); what.rfind("[json.exception.", 0) == 0 && end != std::string::npos) {
-      what = what.substr(end + 2);
-    }
-    throw InputError(source, "is not JSON: expected a hoilcd report.json (" + SafeText(what) + ")");
+    j = ParseJson(text, source);
+  } catch (const JsonSyntaxError& e) {  // parse errors and number overflow (1e400)
+    throw InputError(source, "is not JSON: expected a hoilcd report.json (" + SafeText(e.detail()) + ")");
   }
   if (!j.is_object() || !j.contains("methods") || !j["methods"].is_object()) {
     throw InputError(source, "/methods: expected an object of methods (a hoilcd report.json)");

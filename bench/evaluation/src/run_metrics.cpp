@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "hoilcd/bench/evaluation/json_number.h"
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/text.h"
 

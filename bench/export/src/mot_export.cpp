@@ -10,6 +10,7 @@
 #include "hoilcd/bench/methods/manifest_options.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
 namespace {
@@ -48,7 +49,7 @@ std::string MotTracks(const std::vector<FrameTracks>& tracks) {
 }
 
 std::string MotSequenceName(const Dataset& dataset) {
-  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json scene = ParseJsonOrDiscarded(dataset.scene_json());
   const bool named = scene.is_object() && scene.contains("name") && scene["name"].is_string();
   const DatasetManifest& m = dataset.manifest();
   const std::string& hash = m.scene_hash;

@@ -5,11 +5,12 @@
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
 
 bool IsVideoMode(const Dataset& dataset) {
-  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, false);
+  const nlohmann::json scene = ParseJsonOrDiscarded(dataset.scene_json());
   const nlohmann::json::json_pointer enabled("/camera/video/enabled");
   return !scene.is_discarded() && scene.contains(enabled) && scene[enabled].is_boolean() &&
          scene[enabled].get<bool>();

@@ -15,6 +15,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -149,7 +150,7 @@ std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& b
 std::optional<std::map<std::string, double>> ReadCachedThresholds(const std::string& path, const std::string& key) {
   std::error_code ec;
   if (key.empty() || !std::filesystem::exists(path, ec)) return std::nullopt;
-  const nlohmann::json doc = nlohmann::json::parse(ReadFileBytes(path), nullptr, false);
+  const nlohmann::json doc = ParseJsonOrDiscarded(ReadFileBytes(path));
   if (doc.is_discarded() || !doc.is_object() || doc.value("key", "") != key || !doc.contains("thresholds") ||
       !doc["thresholds"].is_object()) {
     return std::nullopt;
@@ -318,7 +319,7 @@ bool RecordedRun::Kept() const {
   std::error_code ec;
   if (!fs::exists(path, ec) || !fs::exists(dir + "/report.json", ec)) return false;
   try {
-    return nlohmann::json::parse(ReadFileBytes(path)) == record;
+    return ParseJsonOrDiscarded(ReadFileBytes(path)) == record;
   } catch (const std::exception&) {
     return false;  // unreadable: run again
   }

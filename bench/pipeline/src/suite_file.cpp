@@ -5,16 +5,29 @@
 #include <filesystem>
 #include <set>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/json_reader.h"
+#include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/generate/generator.h"
 
 namespace hoilcd {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The longest lists a suite file may hold: more is a mistake, and is refused before it is read.
+constexpr size_t kMaxSequences = 10000;
+constexpr size_t kMaxSeedsPerSequence = 10000;  // as sweep's --seeds
+constexpr size_t kMaxSetsPerSequence = 256;     // as a scene's /runs/N/set
+
+// False, with a problem at `pointer`, when `list` holds more than `max` items.
+bool WithinCount(JsonReader* r, const nlohmann::json& list, const std::string& pointer, size_t max) {
+  if (list.size() <= max) return true;
+  r->Add(pointer, "holds " + std::to_string(list.size()) + " items; expected at most " + std::to_string(max));
+  return false;
+}
 
 bool SafeName(const std::string& name) {
   if (name.empty() || name.size() > 100 || name[0] == '.') return false;
@@ -54,14 +67,21 @@ void ReadSequence(JsonReader* r, const nlohmann::json& j, const std::string& ptr
         r->Add(gptr + "/layout", "expected a layout family (" + list + "or mixed), got \"" + SafeText(s->layout) + "\"");
       }
       r->Read(g, gptr, "seed", &s->generator_seed);
+      if (g.contains("seed") && g["seed"].is_number_unsigned() && s->generator_seed > kMaxSeed) {
+        r->Add(gptr + "/seed", "expected a seed in [0, " + std::to_string(kMaxSeed) + "], got " + g["seed"].dump());
+      }
       r->Read(g, gptr, "index", &s->generator_index);
-      if (s->generator_index < 0) r->Add(gptr + "/index", "expected a non-negative integer");
+      if (g.contains("index") && g["index"].is_number_integer() &&
+          (s->generator_index < 0 || s->generator_index > kMaxGeneratedSceneIndex)) {
+        r->Add(gptr + "/index", "expected a scene index in [0, " + std::to_string(kMaxGeneratedSceneIndex) + "], got " +
+                                    g["index"].dump());
+      }
     }
   }
   const std::string sptr = ptr + "/seeds";
   if (!j.contains("seeds")) {
     r->Add(sptr, "missing");
-  } else if (r->ExpectArray(j["seeds"], sptr)) {
+  } else if (r->ExpectArray(j["seeds"], sptr) && WithinCount(r, j["seeds"], sptr, kMaxSeedsPerSequence)) {
     if (j["seeds"].empty()) r->Add(sptr, "expected at least one seed");
     std::set<int> seen;
     for (size_t k = 0; k < j["seeds"].size(); ++k) {
@@ -75,7 +95,8 @@ void ReadSequence(JsonReader* r, const nlohmann::json& j, const std::string& ptr
       if (seed >= 0) s->seeds.push_back(seed);
     }
   }
-  if (j.contains("set") && r->ExpectArray(j["set"], ptr + "/set")) {
+  if (j.contains("set") && r->ExpectArray(j["set"], ptr + "/set") &&
+      WithinCount(r, j["set"], ptr + "/set", kMaxSetsPerSequence)) {
     for (size_t k = 0; k < j["set"].size(); ++k) {
       const std::string where = ptr + "/set/" + std::to_string(k);
       std::string set;
@@ -111,7 +132,7 @@ Suite ParseSuite(const std::string& text, const std::string& path) {
     if (j.contains("description")) r.ReadValue(j["description"], "/description", &suite.description);
     if (!j.contains("sequences")) {
       r.Add("/sequences", "missing");
-    } else if (r.ExpectArray(j["sequences"], "/sequences")) {
+    } else if (r.ExpectArray(j["sequences"], "/sequences") && WithinCount(&r, j["sequences"], "/sequences", kMaxSequences)) {
       if (j["sequences"].empty()) r.Add("/sequences", "expected at least one sequence");
       const fs::path base = fs::path(path).parent_path();
       std::set<std::string> names;

@@ -134,8 +134,7 @@ std::string WhyUnfinished(const std::string& run_dir, const std::string& run, co
   if (!fs::is_regular_file(run_dir + "/report.json", ec)) return "no report.json in " + run_dir;
   nlohmann::json record;
   try {
-    record = nlohmann::json::parse(ReadFileBytes(run_dir + "/suite_run.json", kMaxMarkerBytes), nullptr,
-                                   /*allow_exceptions=*/false);
+    record = ParseJsonOrDiscarded(ReadFileBytes(run_dir + "/suite_run.json", kMaxMarkerBytes));
   } catch (const InputError&) {
     record = nullptr;
   }

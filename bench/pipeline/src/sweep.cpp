@@ -11,10 +11,11 @@
 #include <set>
 #include <sstream>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -36,8 +37,8 @@ std::string Trim(const std::string& s) {
 // string value, as ApplyOverride takes it.
 std::string CanonicalValue(const std::string& text) {
   const std::string t = Trim(text);
-  if (nlohmann::json::accept(t)) return nlohmann::json::parse(t).dump();
-  return t;
+  const nlohmann::json value = ParseJsonOrDiscarded(t);
+  return value.is_discarded() ? t : value.dump();
 }
 
 }  // namespace
@@ -64,11 +65,7 @@ nlohmann::json ReadSweepJson(const std::string& path) {
   } catch (const std::exception&) {
     throw InputError(path, "cannot read the file (is this a hoilcd sweep output folder?)");
   }
-  try {
-    return nlohmann::json::parse(bytes);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path, std::string("not valid JSON (") + e.what() + ")");
-  }
+  return ParseJson(bytes, path);
 }
 
 std::vector<std::string> SplitTopLevelCommas(const std::string& text, const std::string& where) {

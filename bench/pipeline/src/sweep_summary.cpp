@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/report/chart.h"
 #include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/bench/report/output_folder.h"
@@ -331,11 +331,11 @@ void WriteSweepSummary(const SweepSummary& summary, const std::string& out_dir) 
     if (axis.values.size() < 2) continue;
     // Numeric values are the abscissae; otherwise their position in the list is.
     bool numeric = true;
-    for (const std::string& v : axis.values) numeric = numeric && nlohmann::json::parse(v, nullptr, false).is_number();
+    for (const std::string& v : axis.values) numeric = numeric && ParseJsonOrDiscarded(v).is_number();
     std::vector<double> x_of(axis.values.size());
     std::string x_label = axis.key;
     for (size_t i = 0; i < axis.values.size(); ++i) {
-      x_of[i] = numeric ? nlohmann::json::parse(axis.values[i]).get<double>() : static_cast<double>(i);
+      x_of[i] = numeric ? ParseJsonOrDiscarded(axis.values[i]).get<double>() : static_cast<double>(i);
       if (!numeric) x_label += (i ? ", " : " (") + std::to_string(i) + " = " + axis.values[i];
     }
     if (!numeric) x_label += ")";

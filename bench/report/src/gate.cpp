@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset/exr_io.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/stats.h"
 
@@ -73,7 +74,7 @@ HeatTraceSample Sight(const Dataset& dataset, const LeftSeat& seat, int frame, d
 
 std::vector<HeatTrace> MeasureHeatTraces(const Dataset& dataset, int threads, int max_frames) {
   dataset.RequireOutput("exr", "heat traces");
-  const nlohmann::json scene = nlohmann::json::parse(dataset.scene_json(), nullptr, false);
+  const nlohmann::json scene = ParseJsonOrDiscarded(dataset.scene_json());
   double room_c = 22.0;
   if (scene.is_object() && scene.contains("room") && scene["room"].contains("environment_temperature_c"))
     room_c = scene["room"]["environment_temperature_c"].get<double>();

@@ -1,6 +1,6 @@
 #include "hoilcd/bench/report/online_report.h"
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/util/file_io.h"

@@ -7,6 +7,7 @@
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
 namespace {
@@ -30,7 +31,7 @@ bool IsEarlierOutput(const std::string& dir, const OutputMarker& marker) {
   std::error_code ec;
   const std::string path = dir + "/" + marker.file;
   if (!fs::is_regular_file(path, ec)) return false;
-  const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(path), nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json json = ParseJsonOrDiscarded(ReadFileBytes(path));
   return json.is_object() && std::all_of(marker.keys.begin(), marker.keys.end(),
                                          [&](const std::string& key) { return json.contains(key); });
 }

@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/figures.h"

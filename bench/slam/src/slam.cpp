@@ -7,6 +7,7 @@
 
 #include "hoilcd/bench/slam/trajectory_metrics.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
@@ -88,7 +89,7 @@ Eigen::Matrix3d OdometryNoise::Information(const Pose2d& step) const {
 
 OdometryNoise OdometryNoise::FromSceneJson(const std::string& scene_json, const std::string& path,
                                            double frame_rate_hz) {
-  const nlohmann::json doc = nlohmann::json::parse(scene_json, nullptr, false);
+  const nlohmann::json doc = ParseJsonOrDiscarded(scene_json);
   if (doc.is_discarded() || !doc.is_object()) throw InputError(path, "expected the resolved scene as a JSON object");
   if (!doc.contains("odometry") || !doc["odometry"].is_object()) {
     throw InputError(path + ": /odometry", "expected the odometry error model (an object); the pose graph needs it");

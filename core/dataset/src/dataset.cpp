@@ -460,9 +460,7 @@ std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::st
     ParallelFor(static_cast<int64_t>(ranges->size()), threads, [&](int64_t k) {
       if (failed) return;
       const auto [begin, end] = (*ranges)[static_cast<size_t>(k)];
-      const json frame = json::parse(text.begin() + static_cast<std::ptrdiff_t>(begin),
-                                     text.begin() + static_cast<std::ptrdiff_t>(end), nullptr,
-                                     /*allow_exceptions=*/false);
+      const json frame = ParseJsonOrDiscarded(std::string_view(text).substr(begin, end - begin));
       JsonReader reader(path);
       if (frame.is_discarded() || !frame.is_object()) {
         failed = true;

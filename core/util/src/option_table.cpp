@@ -298,10 +298,14 @@ void OptionTableBase::ReadInto(const json& object, const std::string& where, voi
         }
         break;
       case Field::Kind::kInteger: {
+        // Compared as integers: through a double, 2^53 + 1 would pass as 2^53.
         const bool wide = f.storage == Storage::kUint64;
-        const double lowest = wide ? 0.0 : std::numeric_limits<int>::min();
-        const double highest = wide ? kMaxExactInteger : std::numeric_limits<int>::max();
-        if (value.is_number_integer() && value.get<double>() >= lowest && value.get<double>() <= highest) {
+        const int64_t lowest = wide ? 0 : std::numeric_limits<int>::min();
+        const int64_t highest = wide ? static_cast<int64_t>(kMaxExactInteger) : std::numeric_limits<int>::max();
+        const bool in_range = value.is_number_unsigned()
+                                  ? value.get<uint64_t>() <= static_cast<uint64_t>(highest)
+                                  : value.is_number_integer() && value.get<int64_t>() >= lowest && value.get<int64_t>() <= highest;
+        if (in_range) {
           StoreNumber(f, options, value.get<double>());
         } else {
           problems->Add(at, wide ? "expected a whole number, 0 or more" : "expected a whole number");

@@ -18,8 +18,11 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/sim/assets/data_dir.h"
 
 namespace hoilcd {
@@ -530,6 +533,27 @@ bool HasGltfExtension(const std::string& path) {
   return extension == ".gltf" || extension == ".glb";
 }
 
+// tinygltf turns "extras" into its own values recursively, and keeps the last of a repeated key:
+// the glTF's JSON (a .glb's JSON chunk) goes through ParseJson first, which bounds the nesting and
+// refuses repeated keys. Text that is not JSON, and a .glb too short for its chunk, are left for
+// tinygltf to refuse ("cannot parse glTF").
+void CheckGltfJson(const std::string& path, bool binary) {
+  const std::string bytes = ReadFileBytes(path);
+  std::string_view text = bytes;
+  if (binary) {
+    // 12-byte header, then the JSON chunk: its length (uint32, little-endian), "JSON", the text.
+    if (bytes.size() < 20 || bytes.compare(16, 4, "JSON") != 0) return;
+    uint64_t length = 0;
+    for (int k = 3; k >= 0; --k) length = length << 8 | static_cast<unsigned char>(bytes[static_cast<size_t>(12 + k)]);
+    if (length > bytes.size() - 20) return;
+    text = text.substr(20, static_cast<size_t>(length));
+  }
+  try {
+    ParseJson(text, path);
+  } catch (const JsonSyntaxError&) {
+  }
+}
+
 }  // namespace
 
 int Asset::MaterialIndex(std::string_view region) const {
@@ -552,6 +576,7 @@ Asset LoadAsset(const std::string& path) {
   std::string errors;
   std::string warnings;
   const bool binary = fs::path(path).extension() == ".glb";
+  CheckGltfJson(path, binary);
   const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, path)
                              : loader.LoadASCIIFromFile(&model, &errors, &warnings, path);
   if (!loaded) {

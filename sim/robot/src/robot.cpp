@@ -595,6 +595,28 @@ bool FootprintsOverlap(const Obstacle2D& a, const Obstacle2D& b) {
   return true;
 }
 
+std::vector<std::pair<size_t, size_t>> OverlappingFootprints(const std::vector<Obstacle2D>& footprints) {
+  const auto reach = [](const Obstacle2D& o) {
+    return o.shape == Obstacle2D::Shape::kCircle ? o.radius_m : o.half_size_m.norm();
+  };
+  std::vector<size_t> order(footprints.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto left = [&](size_t i) { return footprints[i].center_m.x() - reach(footprints[i]); };
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return left(a) < left(b) || (left(a) == left(b) && a < b); });
+  std::vector<std::pair<size_t, size_t>> pairs;
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Obstacle2D& a = footprints[order[k]];
+    const double right = a.center_m.x() + reach(a);
+    for (size_t m = k + 1; m < order.size() && left(order[m]) <= right; ++m) {
+      const Obstacle2D& b = footprints[order[m]];
+      if (std::abs(a.center_m.y() - b.center_m.y()) > reach(a) + reach(b)) continue;
+      if (FootprintsOverlap(a, b)) pairs.emplace_back(std::min(order[k], order[m]), std::max(order[k], order[m]));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& o) {
   const double c = std::cos(base.theta_rad), s = std::sin(base.theta_rad);
   CameraPose cam;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <valijson/adapters/nlohmann_json_adapter.hpp>
 #include <valijson/schema.hpp>
@@ -13,6 +14,8 @@
 #include <valijson/validator.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/assets/asset.h"
 #include "hoilcd/sim/scene/camera_profiles.h"
@@ -135,6 +138,60 @@ void CheckRequired(const json& doc, const json& schema, const std::string& point
   } else if (doc.is_array() && schema.contains("items") && schema["items"].is_object()) {
     for (size_t i = 0; i < doc.size(); ++i) {
       CheckRequired(doc[i], schema["items"], pointer + "/" + std::to_string(i), file, problems);
+    }
+  }
+}
+
+// Lists longer than the schema's maxItems (objects with more keys than its maxProperties), checked
+// first: 10^5 tables would otherwise be copied, filled with defaults and validated one by one.
+void CheckListLengths(const json& doc, const json& schema, const std::string& pointer, const std::string& file,
+                      ProblemCollector* problems) {
+  const char* bound = doc.is_array() ? "maxItems" : doc.is_object() ? "maxProperties" : nullptr;
+  if (bound != nullptr && schema.contains(bound) && doc.size() > schema[bound].get<size_t>()) {
+    problems->Add(file + ": " + (pointer.empty() ? "/" : pointer),
+                  "holds " + std::to_string(doc.size()) + (doc.is_array() ? " items" : " keys") + "; expected at most " +
+                      schema[bound].dump());
+    return;
+  }
+  if (doc.is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (doc.contains(key)) CheckListLengths(doc[key], sub, pointer + "/" + key, file, problems);
+    }
+  } else if (doc.is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (size_t i = 0; i < doc.size(); ++i) {
+      CheckListLengths(doc[i], schema["items"], pointer + "/" + std::to_string(i), file, problems);
+    }
+  }
+}
+
+// The schema's integer bounds, compared as integers: valijson compares through a double, which
+// rounds 2^53 + 1 down to a maximum of 2^53 and lets it through.
+void CheckIntegerBounds(const json& doc, const json& schema, const std::string& pointer, const std::string& file,
+                        ProblemCollector* problems) {
+  if (doc.is_number_integer() && schema.value("type", "") == "integer") {
+    // A long double holds every 64-bit integer exactly.
+    const auto exact = [](const json& v) {
+      return v.is_number_unsigned() ? static_cast<long double>(v.get<uint64_t>()) : static_cast<long double>(v.get<int64_t>());
+    };
+    const auto beyond = [&](const json& bound, bool above) {
+      if (!bound.is_number_integer()) return false;
+      return above ? exact(doc) > exact(bound) : exact(doc) < exact(bound);
+    };
+    const std::string at = file + ": " + (pointer.empty() ? "/" : pointer);
+    if (schema.contains("maximum") && beyond(schema["maximum"], true)) {
+      problems->Add(at, "expected at most " + schema["maximum"].dump() + ", got " + doc.dump());
+    }
+    if (schema.contains("minimum") && beyond(schema["minimum"], false)) {
+      problems->Add(at, "expected at least " + schema["minimum"].dump() + ", got " + doc.dump());
+    }
+  }
+  if (doc.is_object() && schema.contains("properties")) {
+    for (const auto& [key, sub] : schema["properties"].items()) {
+      if (doc.contains(key)) CheckIntegerBounds(doc[key], sub, pointer + "/" + key, file, problems);
+    }
+  } else if (doc.is_array() && schema.contains("items") && schema["items"].is_object()) {
+    for (size_t i = 0; i < doc.size(); ++i) {
+      CheckIntegerBounds(doc[i], schema["items"], pointer + "/" + std::to_string(i), file, problems);
     }
   }
 }
@@ -331,8 +388,13 @@ void ApplyOverride(json* doc, const std::string& key_equals_value) {
   if (eq == std::string::npos || eq == 0) throw InputError(where, "expected KEY=VALUE");
   const std::string key = OverridePointer(key_equals_value.substr(0, eq));
   const std::string value_text = key_equals_value.substr(eq + 1);
-  json value = json::parse(value_text, nullptr, /*allow_exceptions=*/false);
-  if (value.is_discarded()) value = value_text;
+  // Text that is not JSON is a string; JSON nested too deep or with a repeated key is refused.
+  json value;
+  try {
+    value = ParseJson(value_text, where);
+  } catch (const JsonSyntaxError&) {
+    value = value_text;
+  }
   try {
     const json::json_pointer pointer(key);
     // Arrays may be indexed only within their size ("-" appends), at every level of the path.
@@ -375,21 +437,26 @@ std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
   }
   // valijson also reports each failing ancestor ("Failed to validate against schema associated
   // with property name 'room'"); keep only the deepest messages, which say what was expected.
+  // The pointers in order, so that whether one has a deeper one is a search, not a scan of every
+  // error (a list of 10^5 bad items gives 10^5 errors).
+  std::set<std::string> pointers;
+  for (const auto& error_at : errors) pointers.insert(error_at.first);
   std::vector<Problem> problems;
   for (const auto& [pointer, description] : errors) {
-    bool has_deeper = false;
-    for (const auto& other : errors) {
-      if (other.first.size() > pointer.size() &&
-          other.first.compare(0, pointer.size(), pointer) == 0 &&
-          (pointer == "/" || other.first[pointer.size()] == '/')) {
-        has_deeper = true;
-        break;
-      }
-    }
+    const std::string below = pointer == "/" ? "/" : pointer + "/";
+    auto deeper = pointers.lower_bound(below);
+    if (deeper != pointers.end() && *deeper == pointer) ++deeper;  // the root is its own "below"
+    const bool has_deeper = deeper != pointers.end() && deeper->compare(0, below.size(), below) == 0;
     const bool generic = description.rfind("Failed to validate", 0) == 0;
     if (has_deeper && generic) continue;
     if (generic && errors.size() > 1) continue;
     problems.push_back({file + ": " + pointer, Describe(pointer, description)});
+  }
+  // What valijson let through, and only that: a value it refused is reported once.
+  ProblemCollector integers;
+  CheckIntegerBounds(doc, SceneSchema(), "", file, &integers);
+  for (const Problem& p : integers.problems()) {
+    if (pointers.count(p.where.substr(file.size() + 2)) == 0) problems.push_back(p);
   }
   std::sort(problems.begin(), problems.end(),
             [](const Problem& a, const Problem& b) { return a.where < b.where; });
@@ -517,6 +584,8 @@ void CheckOptionTables(const std::string& file, const Scene& s, ProblemCollector
 Scene SceneFromJson(json doc, const std::string& file, const std::vector<std::string>& overrides) {
   if (!doc.is_object()) throw InputError(file + ": /", "a JSON object (the scene)");
   ProblemCollector problems;
+  CheckListLengths(doc, SceneSchema(), "", file, &problems);
+  problems.ThrowIfAny();
   CheckRequired(doc, SceneSchema(), "", file, &problems);
   // The camera profile's values go in where the scene leaves them out, before the schema's
   // defaults, so an explicit value or an override wins over the profile and the profile over the
@@ -582,17 +651,9 @@ InputError LocatedInScene(const Scene& scene, const InputError& error) {
 }
 
 Scene LoadScene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the scene file (does it exist and is it readable?)");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(buffer.str());
-  } catch (const json::exception& e) {  // parse errors and number overflow (1e400)
-    throw InputError(path, std::string("valid JSON (") + e.what() + ")");
-  }
-  return SceneFromJson(std::move(doc), path, overrides);
+  // A folder, FIFO or device is refused by name; a scene of every list at its longest is ~10 MB.
+  constexpr uint64_t kMaxSceneBytes = uint64_t{64} << 20;
+  return SceneFromJson(ParseJson(ReadFileBytes(path, kMaxSceneBytes), path), path, overrides);
 }
 
 }  // namespace hoilcd

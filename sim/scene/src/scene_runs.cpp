@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
+#include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/sizes.h"
 #include "hoilcd/core/util/text.h"
@@ -24,14 +27,33 @@ bool StartsWithPointer(const std::string& pointer, const std::string& prefix) {
                                pointer[prefix.size()] == '/');
 }
 
-// "day D HH:MM" of a time since the first run's day began.
-std::string ClockText(double seconds_since_first_day) {
-  const auto minutes = static_cast<int64_t>(std::floor(seconds_since_first_day / 60.0 + 1e-9));
+// "day D HH:MM" of a time since the first run's day began; with `second_digits` >= 0, "day D
+// HH:MM:SS" with that many decimals of the second.
+std::string ClockText(double seconds_since_first_day, int second_digits = -1) {
+  const double scale = second_digits < 0 ? 1.0 / 60.0 : std::pow(10.0, second_digits);
+  const auto ticks = static_cast<int64_t>(std::floor(seconds_since_first_day * scale + 1e-9));
+  const int64_t per_minute = second_digits < 0 ? 1 : 60 * static_cast<int64_t>(scale);
+  const int64_t minutes = ticks / per_minute;
   const int64_t day = minutes / (24 * 60), hour = minutes / 60 % 24, minute = minutes % 60;
-  char text[64];
+  char text[96];
   std::snprintf(text, sizeof text, "day %lld %02lld:%02lld", static_cast<long long>(day), static_cast<long long>(hour),
                 static_cast<long long>(minute));
-  return text;
+  if (second_digits < 0) return text;
+  const double second = static_cast<double>(ticks % per_minute) / scale;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, ":%0*.*f", second_digits > 0 ? second_digits + 3 : 2, second_digits, second);
+  return text + std::string(seconds);
+}
+
+// Two times as ClockText writes them, to the minute unless that shows them equal, then to the
+// second, then to the millisecond: an overlap is never reported as "starts at 09:00, before the
+// other ends at 09:00".
+std::pair<std::string, std::string> TwoClockTexts(double a_s, double b_s) {
+  for (int digits : {-1, 0, 3}) {
+    std::pair<std::string, std::string> texts{ClockText(a_s, digits), ClockText(b_s, digits)};
+    if (texts.first != texts.second || digits == 3) return texts;
+  }
+  return {};
 }
 
 }  // namespace
@@ -82,15 +104,20 @@ void ReadRuns(json* doc, const json& written, const std::vector<std::string>& ov
       const RunSpec& previous = s->runs.back();
       const double previous_end_s = previous.start_time_s + previous.frames / s->frame_rate_hz;
       if (run.start_time_s < previous_end_s) {
-        problems->Add(at + "/time_of_day_h",
-                      "run " + std::to_string(k) + " starts at " + ClockText(run.start_time_s + first_time_h * 3600) +
-                          ", before run " + std::to_string(k - 1) + " ends at " +
-                          ClockText(previous_end_s + first_time_h * 3600) + "; expected a later time or day (/runs/" +
-                          std::to_string(k) + "/day)");
+        const auto [start, end] = TwoClockTexts(run.start_time_s + first_time_h * 3600, previous_end_s + first_time_h * 3600);
+        problems->Add(at + "/time_of_day_h", "run " + std::to_string(k) + " starts at " + start + ", before run " +
+                                                 std::to_string(k - 1) + " ends at " + end +
+                                                 "; expected a later time or day (/runs/" + std::to_string(k) + "/day)");
       }
     }
     if (r.contains("set")) {
       for (const auto& [key, value] : r["set"].items()) {
+        // An override is applied as KEY=VALUE, split at the first '=': a key holding one would be
+        // checked as one path and applied as another.
+        if (key.find('=') != std::string::npos) {
+          problems->Add(at + "/set/" + JsonPointerToken(key), "a scene path, which never holds '='");
+          continue;
+        }
         const std::string pointer = OverridePointer(key);
         std::string shared;
         for (const char* p : kSharedByRuns) {

@@ -133,22 +133,25 @@ class ChairLayout {
   void Settle() {
     constexpr double kCloseSeatsM = 0.6, kSqueezeM = 0.01;
     constexpr int kHalvings = 6;
+    // Seats closer than kCloseSeatsM when straight: discs of half that radius that meet.
+    std::vector<Obstacle2D> straight_seats;
+    for (const Chair& c : chairs_) straight_seats.push_back(Obstacle2D::Circle("", SeatAt(c, 0), 0.5 * kCloseSeatsM));
+    const std::vector<std::pair<size_t, size_t>> close_seats = OverlappingFootprints(straight_seats);
     for (int round = 0; round <= kHalvings; ++round) {
       std::vector<Obstacle2D> footprints;
       for (const Chair& c : chairs_) footprints.push_back(Footprint(c));
       std::vector<bool> overlapping(chairs_.size(), false), squeezed(chairs_.size(), false);
       bool any = false;
-      for (size_t i = 0; i < chairs_.size(); ++i) {
-        for (size_t j = i + 1; j < chairs_.size(); ++j) {
-          if (chairs_[i].scale == 0 && chairs_[j].scale == 0) continue;
-          const double straight_m = (SeatAt(chairs_[i], 0) - SeatAt(chairs_[j], 0)).norm();
-          if (straight_m < kCloseSeatsM && (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
-            squeezed[i] = squeezed[j] = any = true;
-          }
-          if (FootprintsOverlap(footprints[i], footprints[j])) {
-            overlapping[i] = overlapping[j] = any = true;
-          }
+      for (const auto& [i, j] : close_seats) {
+        if (chairs_[i].scale == 0 && chairs_[j].scale == 0) continue;
+        const double straight_m = (SeatAt(chairs_[i], 0) - SeatAt(chairs_[j], 0)).norm();
+        if (straight_m < kCloseSeatsM && (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
+          squeezed[i] = squeezed[j] = any = true;
         }
+      }
+      for (const auto& [i, j] : OverlappingFootprints(footprints)) {
+        if (chairs_[i].scale == 0 && chairs_[j].scale == 0) continue;
+        overlapping[i] = overlapping[j] = any = true;
       }
       if (!any) break;
       for (size_t i = 0; i < chairs_.size(); ++i) {
@@ -166,6 +169,26 @@ class ChairLayout {
   double chair_half_width_m_ = 0;
   std::vector<Chair> chairs_;
 };
+
+// Tables may touch (pushed together into one long table) but not stand in one another: footprints
+// overlapping by more than kTouchM are refused, naming both tables' JSON paths.
+void CheckTablesApart(const Scene& scene, const std::vector<const Asset*>& table_assets) {
+  constexpr double kTouchM = 0.01;
+  std::vector<Obstacle2D> footprints;
+  for (size_t t = 0; t < scene.tables.size(); ++t) {
+    const TableSpec& spec = scene.tables[t];
+    const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
+    footprints.push_back(FootprintOf("table " + std::to_string(t), *table_assets[t], center, spec.yaw_deg * kDegToRad, -kTouchM));
+  }
+  ProblemCollector problems;
+  for (const auto& [i, j] : OverlappingFootprints(footprints)) {
+    const Eigen::Vector2d& a = scene.tables[i].center_m;
+    problems.Add(scene.file + ": /tables/" + std::to_string(j),
+                 "stands in /tables/" + std::to_string(i) + " (centred at (" + ShortestDouble(a.x()) + ", " +
+                     ShortestDouble(a.y()) + ")): their footprints overlap; expected tables apart or touching");
+  }
+  problems.ThrowIfAny();
+}
 
 }  // namespace
 
@@ -439,6 +462,7 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
   for (const TableSpec& spec : scene.tables) {
     table_assets.push_back(&assets_.Get(spec.asset.empty() ? scene.furniture.table_asset : spec.asset));
   }
+  CheckTablesApart(scene, table_assets);
   const Asset& chair_asset = assets_.Get(scene.furniture.chair_asset);
   bool three_per_side = scene.crowd.people_per_table > 4;
   for (const SeatingSpec& s : scene.crowd.seating) {

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <set>
 #include <string>
 
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "input_error_of.h"
 #include "test_dir.h"
@@ -85,7 +87,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadSuite{One(R"({"name": "a", "generate": {"layout": "castle", "seed": 1, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/layout: expected a layout family"},
         BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: missing"},
         BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": -1, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: expected a non-negative integer"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": -2}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/index: expected a non-negative integer"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": -2}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/index: expected a scene index in [0, 10000], got -2"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": 10001}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/index: expected a scene index in [0, 10000], got 10001"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 9007199254740993, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: expected a seed in [0, 9007199254740992], got 9007199254740993"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "seeds": [2], "split": "dev"})"), "/sequences/0/seeds: the key \"seeds\" is repeated in one object"},
+        BadSuite{R"({"name": "s", "name": "t", "sequences": []})", "my_suite.json: /name: the key \"name\" is repeated"},
         BadSuite{One(R"({"name": "a", "scene": "x.json", "split": "dev"})"), "/sequences/0/seeds: missing"},
         BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": 1, "split": "dev"})"), "/sequences/0/seeds: expected an array"},
         BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [], "split": "dev"})"), "/sequences/0/seeds: expected at least one seed"},
@@ -101,6 +107,38 @@ INSTANTIATE_TEST_SUITE_P(
         BadSuite{R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"},
                                                   {"name": "a", "scene": "y.json", "seeds": [1], "split": "dev"}]})",
                  "/sequences/1/name: sequence name \"a\" is used twice"}));
+
+TEST(Suite, AGeneratedSceneIndexAndSeedAtTheirBoundsAreRead) {
+  const Suite suite = ParseSuite(One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 9007199254740992, "index": 10000}, "seeds": [1], "split": "dev"})"), "s.json");
+  EXPECT_EQ(suite.sequences[0].generator_seed, kMaxSeed);
+  EXPECT_EQ(suite.sequences[0].generator_index, kMaxGeneratedSceneIndex);
+}
+
+TEST(Suite, NestingAHundredThousandDeepOrAHundredThousandItemsIsRefusedWithinTwoSeconds) {
+  const auto seconds_and_error = [](const std::string& text) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string error = test::InputErrorOf([&] { ParseSuite(text, "my_suite.json"); });
+    return std::make_pair(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), error);
+  };
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string many_seeds, many_sets, many_sequences;
+  for (int i = 0; i < 100000; ++i) {
+    many_seeds += (i ? "," : "") + std::to_string(i);
+    many_sets += std::string(i ? "," : "") + "\"crowd.walkers=" + std::to_string(i) + "\"";
+    many_sequences += std::string(i ? "," : "") + R"({"name": "a)" + std::to_string(i) + R"(", "scene": "x.json", "seeds": [1], "split": "dev"})";
+  }
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"name": "s", "description": )" + deep + "}", "my_suite.json: /description/0/0/"},
+      {One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": )" + deep + R"(, "split": "dev"})"), "my_suite.json: /sequences/0/set/0/"},
+      {One(R"({"name": "a", "scene": "x.json", "seeds": [)" + many_seeds + R"(], "split": "dev"})"), "my_suite.json: /sequences/0/seeds: holds 100000 items; expected at most 10000"},
+      {One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": [)" + many_sets + R"(], "split": "dev"})"), "my_suite.json: /sequences/0/set: holds 100000 items; expected at most 256"},
+      {R"({"name": "s", "sequences": [)" + many_sequences + "]}", "my_suite.json: /sequences: holds 100000 items; expected at most 10000"}};
+  for (const auto& [text, expected] : cases) {
+    const auto [seconds, error] = seconds_and_error(text);
+    EXPECT_LT(seconds, 2.0) << expected;
+    EXPECT_NE(error.find(expected), std::string::npos) << error.substr(0, 300);
+  }
+}
 
 TEST(Suite, ShippedSuitesReadAndNameSceneFilesThatExist) {
   for (const char* name : {"ci", "standard"}) {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "test_dir.h"

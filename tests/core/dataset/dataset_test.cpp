@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "hoilcd/core/dataset/runs.h"
 #include "hoilcd/core/util/error.h"
 #include "input_error_of.h"
 #include "test_dir.h"
@@ -564,6 +566,48 @@ TEST(Dataset, PngDeclaringAHugeImageIsRefusedBeforeDecoding) {
   const std::string message = InputErrorOf([&] { ds.Thermal(1); });
   EXPECT_NE(message.find("expected 8x6 px as in manifest.json, the PNG is 30000x30000"),
             std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+// Every JSON file of a dataset folder, read by its reader: nesting 10^5 deep and a repeated key
+// are refused naming the file and pointer, and 10^5 list items are read or refused, each within
+// two seconds (issue 45).
+TEST(Dataset, EverySideFileRefusesDeepNestingAndRepeatedKeysAndReadsLongListsQuickly) {
+  const std::vector<std::pair<std::string, std::function<void(const std::string&)>>> readers = {
+      {"manifest.json", [](const std::string& t) { DatasetManifest::FromJson(t, "DIR/manifest.json"); }},
+      {"persons.json", [](const std::string& t) { PersonsFromJson(t, "DIR/persons.json"); }},
+      {"events.json", [](const std::string& t) { EventsFromJson(t, "DIR/events.json"); }},
+      {"footprints.json", [](const std::string& t) { FootprintsFromJson(t, "DIR/footprints.json"); }},
+      {"runs.json", [](const std::string& t) { RunsFromJson(t, "DIR/runs.json", 100000); }}};
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string long_list = "[";
+  for (int i = 0; i < 100000; ++i) long_list += std::string(i ? "," : "") + R"({"frame": 1})";
+  long_list += "]";
+  for (const auto& [file, read] : readers) {
+    const auto error_within_two_seconds = [&, &read = read](const std::string& text) {
+      const auto start = std::chrono::steady_clock::now();
+      std::string error;
+      try {
+        read(text);
+      } catch (const InputError& e) {
+        error = e.what();
+      }
+      EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0) << file;
+      return error;
+    };
+    std::string error = error_within_two_seconds(R"({"frames": )" + deep + "}");
+    EXPECT_NE(error.find("DIR/" + file + ": /frames/0/0/"), std::string::npos) << error.substr(0, 200);
+    EXPECT_NE(error.find("nests deeper than 64 levels"), std::string::npos) << error.substr(0, 200);
+    error = error_within_two_seconds(R"({"frames": [], "frames": []})");
+    EXPECT_NE(error.find("DIR/" + file + ": /frames: the key \"frames\" is repeated"), std::string::npos) << error;
+    error_within_two_seconds(long_list);
+    error_within_two_seconds(R"({"frames": )" + long_list + ", \"runs\": " + long_list + ", \"events\": " + long_list + "}");
+  }
 }
 
 }  // namespace

@@ -601,3 +601,45 @@ TEST_F(GltfFileTest, BufferUriNamingAFifoIsRefusedWithoutWaiting) {
 
 }  // namespace
 }  // namespace hoilcd
+
+namespace hoilcd {
+namespace {
+
+// A glTF (or a .glb's JSON chunk) nested 10^5 deep in its extras, or repeating a key, is refused
+// naming the file and pointer before tinygltf reads it (issue 45).
+TEST(GltfJson, DeepNestingAndRepeatedKeysAreRefusedAtTheirPointers) {
+  const test::TestDir dir;
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const std::string gltf = dir / "deep.gltf";
+  std::ofstream(gltf) << R"({"asset": {"version": "2.0", "extras": )" << deep << "}}";
+  std::string error;
+  try {
+    LoadAsset(gltf);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find(gltf + ": /asset/extras/0/"), std::string::npos) << error.substr(0, 200);
+  EXPECT_NE(error.find("nests deeper than 64 levels"), std::string::npos) << error.substr(0, 200);
+
+  const std::string json = R"({"asset": {"version": "2.0", "version": "1.0"}})";
+  std::string glb = std::string("glTF") + std::string("\x02\x00\x00\x00", 4) + std::string(4, '\0');
+  const auto le32 = [](size_t n) {
+    std::string out;
+    for (int k = 0; k < 4; ++k) out += static_cast<char>((n >> (8 * k)) & 0xff);
+    return out;
+  };
+  glb += le32(json.size()) + "JSON" + json;
+  glb.replace(8, 4, le32(glb.size()));
+  const std::string glb_path = dir / "twice.glb";
+  std::ofstream(glb_path, std::ios::binary) << glb;
+  error.clear();
+  try {
+    LoadAsset(glb_path);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find(glb_path + ": /asset/version: the key \"version\" is repeated"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace hoilcd

@@ -1,4 +1,5 @@
-// Reading typed fields from parsed JSON, every problem collected with its file and JSON pointer
+// The one way hoilcd parses the JSON it reads (ParseJson: nesting bounded, repeated keys refused),
+// and reading typed fields from it, every problem collected with its file and JSON pointer
 // ("FILE: /json/pointer") in a ProblemCollector; unknown keys are errors, so typos fail loudly.
 #pragma once
 
@@ -6,6 +7,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "hoilcd/core/util/error.h"
@@ -34,6 +36,27 @@ inline std::string JsonFirstDifference(const nlohmann::json& a, const nlohmann::
   return patch.empty() ? "/" : patch.front().value("path", "/");
 }
 
+// Text that is not JSON (a syntax error, or a number beyond a double such as 1e400): what() is
+// "SOURCE: invalid JSON (DETAIL)"; a reader with its own wording uses detail().
+class JsonSyntaxError : public InputError {
+ public:
+  JsonSyntaxError(const std::string& source, std::string detail);
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string detail_;
+};
+
+// Parses JSON text that `source` (a file, or a flag) holds, for every reader of user input.
+// Refuses, each as an InputError("SOURCE: /json/pointer", ...), before the document is built
+// further: nesting deeper than kMaxJsonDepth (sizes.h) and a key an object repeats (JSON leaves
+// its meaning open; nlohmann would keep the last silently). A syntax error: JsonSyntaxError.
+nlohmann::json ParseJson(std::string_view text, const std::string& source);
+
+// ParseJson's document, or a discarded value (is_discarded()) for text it refuses: for files whose
+// being unreadable is itself the answer (a cache record, an earlier output's marker).
+nlohmann::json ParseJsonOrDiscarded(std::string_view text);
+
 // Reads typed JSON fields and reports each problem as "FILE: /json/pointer".
 class JsonReader {
  public:
@@ -45,13 +68,7 @@ class JsonReader {
     problems_.Add(path_ + ": " + (pointer.empty() ? "/" : pointer), std::move(message));
   }
 
-  nlohmann::json Parse(const std::string& text) {
-    try {
-      return nlohmann::json::parse(text);
-    } catch (const nlohmann::json::exception& e) {  // parse errors and number overflow (1e400)
-      throw InputError(path_, std::string("invalid JSON: ") + e.what());
-    }
-  }
+  nlohmann::json Parse(std::string_view text) { return ParseJson(text, path_); }
 
   bool ExpectObject(const nlohmann::json& value, const std::string& pointer) {
     if (value.is_object()) return true;

@@ -83,6 +83,10 @@ struct GeneratorOptions {
   const RoomSizeRange& SizeOf(const std::string& family) const;
 };
 
+// The largest scene index of a run (--start, a suite's generate.index; the schema's
+// /generator/index).
+constexpr int kMaxGeneratedSceneIndex = 10000;
+
 // Scene `index` of the run (seed, layout): layout is a family or "mixed" (the family drawn per
 // index). A scene depends on (seed, index, family, options) only, so `--layout FAMILY` regenerates
 // what `mixed` drew. Throws InputError when no draw in options.attempts passes every check.

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hoilcd/core/dataset/dataset.h"
@@ -179,6 +180,11 @@ double DistanceToObstacle(const Eigen::Vector2d& point_m, const Obstacle2D& obst
 
 // Whether two footprints overlap (touching counts as overlapping).
 bool FootprintsOverlap(const Obstacle2D& a, const Obstacle2D& b);
+
+// Every pair (i, j), i < j, of `footprints` that overlap (FootprintsOverlap), in increasing order:
+// a sweep along x over their bounding discs tests only footprints whose discs meet in x, so
+// thousands of footprints spread over a floor take O(n log n) plus the pairs found, not n^2 tests.
+std::vector<std::pair<size_t, size_t>> OverlappingFootprints(const std::vector<Obstacle2D>& footprints);
 
 // The camera's world pose for a base pose (rigid front mount from the options).
 CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& options);

@@ -1,4 +1,4 @@
-#include "hoilcd/bench/evaluation/safe_text.h"
+#include "hoilcd/core/util/safe_text.h"
 
 #include <gtest/gtest.h>
 
