@@ -22,6 +22,7 @@ struct SweepArgs {
   std::string output;
   RunOptions run;
   BenchArgs bench;
+  const CLI::App* cmd = nullptr;
 };
 
 void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
@@ -31,6 +32,14 @@ void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
 
 int MergeCommand(const SweepArgs& args) {
   if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+  const std::string renders_nothing = "not with --merge: a merge renders and benches nothing";
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.cmd, flag, renders_nothing);
+  if (args.scene.empty()) {
+    const std::string needs_scene =
+        "with --merge, the sweep's flags are only checked against the shards when SCENE is given too";
+    RefuseIfGiven(*args.cmd, "--seeds", needs_scene);
+    RefuseBenchFlags(args.bench, needs_scene);
+  }
   std::optional<SweepPlan> expected;
   if (!args.scene.empty()) {
     expected = MakeSweepPlan(args.scene, args.sets, args.seeds, ResolveBench(args.bench, args.run.threads));
@@ -105,6 +114,7 @@ Command AddSweepCommand(CLI::App* app) {
   cmd->add_option("--merge", args->merge, "combine these sweep output folders into OUT")->type_name("DIR...");
   AddThreadsFlag(cmd, &args->run.threads);
   AddBenchFlags(cmd, &args->bench);
+  args->cmd = cmd;
   return {cmd, [args] { return SweepCommand(*args); }};
 }
 
