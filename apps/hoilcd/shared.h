@@ -75,7 +75,7 @@ void CheckProtocolFlagsApply(const CLI::App& cmd, const ProtocolOptions& protoco
 struct BenchArgs {
   std::string methods;
   BenchOptions options;
-  const CLI::App* cmd = nullptr;   // AddBenchFlags's command: which of its flags were given
+  const CLI::App* cmd = nullptr;   // the command AddBenchFlags added to: which of its flags were given
   std::vector<std::string> flags;  // the flags AddBenchFlags added, protocol flags included
 };
 void AddBenchFlags(CLI::App* cmd, BenchArgs* args);

@@ -23,7 +23,6 @@ struct SuiteArgs {
   std::vector<std::string> merge;
   RunOptions run;
   BenchArgs bench;
-  const CLI::App* cmd = nullptr;
 };
 
 // Writes and prints the report; 1 when a run failed, as the unsharded suite and the merge exit.
@@ -45,11 +44,11 @@ int WriteAndPrintReport(const SuiteSummary& summary, const std::string& out) {
 int MergeCommand(const SuiteArgs& args) {
   if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
   const std::string runs_nothing = "not with --merge: a merge renders and benches nothing";
-  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.cmd, flag, runs_nothing);
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, runs_nothing);
   if (args.suite.empty()) {
     const std::string needs_suite =
         "with --merge, the suite's flags are only checked against the shards when SUITE is given too";
-    RefuseIfGiven(*args.cmd, "--split", needs_suite);
+    RefuseIfGiven(*args.bench.cmd, "--split", needs_suite);
     RefuseBenchFlags(args.bench, needs_suite);
   }
   std::optional<nlohmann::json> expected;
@@ -128,7 +127,6 @@ Command AddSuiteCommand(CLI::App* app) {
   cmd->add_option("--merge", args->merge, "write the report of these suite or shard folders into OUT")->type_name("DIR...");
   AddThreadsFlag(cmd, &args->run.threads);
   AddBenchFlags(cmd, &args->bench);
-  args->cmd = cmd;
   return {cmd, [args] { return SuiteCommand(*args); }};
 }
 

@@ -22,7 +22,6 @@ struct SweepArgs {
   std::string output;
   RunOptions run;
   BenchArgs bench;
-  const CLI::App* cmd = nullptr;
 };
 
 void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
@@ -33,11 +32,11 @@ void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
 int MergeCommand(const SweepArgs& args) {
   if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
   const std::string renders_nothing = "not with --merge: a merge renders and benches nothing";
-  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.cmd, flag, renders_nothing);
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, renders_nothing);
   if (args.scene.empty()) {
     const std::string needs_scene =
         "with --merge, the sweep's flags are only checked against the shards when SCENE is given too";
-    RefuseIfGiven(*args.cmd, "--seeds", needs_scene);
+    RefuseIfGiven(*args.bench.cmd, "--seeds", needs_scene);
     RefuseBenchFlags(args.bench, needs_scene);
   }
   std::optional<SweepPlan> expected;
@@ -114,7 +113,6 @@ Command AddSweepCommand(CLI::App* app) {
   cmd->add_option("--merge", args->merge, "combine these sweep output folders into OUT")->type_name("DIR...");
   AddThreadsFlag(cmd, &args->run.threads);
   AddBenchFlags(cmd, &args->bench);
-  args->cmd = cmd;
   return {cmd, [args] { return SweepCommand(*args); }};
 }
 
