@@ -26,16 +26,32 @@ struct BenchCommandArgs {
   ShortlistOptions shortlist;
 };
 
-// --online: frames in order, each query against a shortlist of the past (online.h).
+// --online: frames in order, each query against a shortlist of the past (online.h). The gate and
+// --junit read its report.json as they read the offline one's; the flags of what it does not
+// compute (SLAM, strata, every pair's scores) are refused by name.
 int OnlineBenchCommand(const BenchCommandArgs& args, const Dataset& dataset, const std::string& out) {
+  const CLI::App& cmd = *args.bench.cmd;
+  RefuseIfGiven(cmd, "--dump-scores",
+                "not with --online: an online query is scored against its shortlist only, so there is no score of "
+                "every pair for hoilcd evaluate; drop --online to dump them");
+  const std::string no_slam = "not with --online: the online bench runs no SLAM back end";
+  for (const char* flag : {"--slam", "--slam-backend", "--loop-threshold"}) RefuseIfGiven(cmd, flag, no_slam);
+  RefuseIfGiven(cmd, "--strata",
+                "not with --online: the online report has no strata (its figures are per method and per recording "
+                "run); drop --online to split by conditions");
+  if (args.shortlist.index == "flat") {
+    RefuseIfGiven(cmd, "--shortlist-search-depth",
+                  "applies to --shortlist-index hnsw only (the flat index searches every frame)");
+  }
   const BenchOptions options = ResolveBench(args.bench, args.threads);
+  const nlohmann::json baseline = ReadBaseline(args.gate, "online");
   CheckReportFolder(out);
   const OnlineResult result = RunOnlineBench(dataset, options, args.shortlist);
   WriteOnlineReport(result, dataset, out);
   PrintWarnings(result.skipped);
   std::printf("%s", OnlineResultToMarkdown(result).c_str());
   std::printf("report: %s/report.md\n", out.c_str());
-  return 0;
+  return ApplyGate(args.gate, baseline, ReadReportJson(out + "/report.json"));
 }
 
 int BenchCommand(const BenchCommandArgs& args) {

@@ -5,7 +5,6 @@
 #include <exception>
 #include <vector>
 
-#include "command.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
@@ -13,19 +12,21 @@
 
 namespace hoilcd {
 
+std::vector<Command> AddCommands(CLI::App* app, bool* quiet) {
+  app->set_version_flag("--version", HOILCD_VERSION);
+  app->require_subcommand(1);
+  app->add_flag("-q,--quiet", *quiet, "no progress bars");
+  return {AddValidateCommand(app),   AddRenderCommand(app),     AddMergeCommand(app),    AddBenchCommand(app),
+          AddRunCommand(app),        AddEvaluateCommand(app),   AddInspectCommand(app),  AddSweepCommand(app),
+          AddExportCocoCommand(app), AddParamsCommand(app),     AddExportMotCommand(app), AddReferenceCommand(app),
+          AddGenerateCommand(app),   AddSuiteCommand(app)};
+}
+
 int RunCommandLine(int argc, char** argv) {
   KeepOpenCvOnCallingThread();  // every command's loops run on its --threads
   CLI::App app{"hoilcd: synthetic thermal scene simulator and loop-closure benchmark"};
-  app.set_version_flag("--version", HOILCD_VERSION);
-  app.require_subcommand(1);
   bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "no progress bars");
-  const std::vector<Command> commands = {
-      AddValidateCommand(&app), AddRenderCommand(&app),     AddMergeCommand(&app),    AddBenchCommand(&app),
-      AddRunCommand(&app),      AddEvaluateCommand(&app),   AddInspectCommand(&app),
-      AddSweepCommand(&app),    AddExportCocoCommand(&app), AddParamsCommand(&app),
-      AddExportMotCommand(&app), AddReferenceCommand(&app), AddGenerateCommand(&app),
-      AddSuiteCommand(&app)};
+  const std::vector<Command> commands = AddCommands(&app, &quiet);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

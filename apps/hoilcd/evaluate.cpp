@@ -21,9 +21,11 @@ struct EvaluateArgs {
   std::string output;
   ProtocolOptions protocol;
   GateArgs gate;
+  const CLI::App* cmd = nullptr;
 };
 
 int EvaluateCommand(const EvaluateArgs& args) {
+  CheckProtocolFlagsApply(*args.cmd, args.protocol);
   const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead);
   PrintWarnings(dataset.warnings());
   const nlohmann::json baseline = ReadBaseline(args.gate);
@@ -66,6 +68,7 @@ Command AddEvaluateCommand(CLI::App* app) {
       ->type_name("DIR");
   AddProtocolFlags(cmd, &args->protocol);
   AddGateFlags(cmd, &args->gate);
+  args->cmd = cmd;
   return {cmd, [args] { return EvaluateCommand(*args); }};
 }
 

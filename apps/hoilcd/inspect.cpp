@@ -19,7 +19,10 @@ struct InspectArgs {
 
 int InspectCommand(const InspectArgs& args) {
   if (!args.output.empty()) CheckInspectFolder(args.output);  // a folder it may not use fails before the work
-  const Dataset dataset = Dataset::Open(args.dataset, Verify::kNothing);  // inspect looks at what is there
+  // Every file inspect reads is checked against manifest.json as the bench checks it: figures of a
+  // changed poses.csv would describe a dataset nobody rendered.
+  const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead);
+  PrintWarnings(dataset.warnings());
   const InspectReport report = InspectDataset(dataset, args.protocol);
   if (!args.output.empty()) WriteInspectFolder(report, args.output);
   const std::string text =

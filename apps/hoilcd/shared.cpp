@@ -5,8 +5,9 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstdio>
+#include <set>
 
-#include "hoilcd/core/util/safe_text.h"
+#include "hoilcd/bench/methods/front_ends.h"
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
@@ -15,6 +16,7 @@
 #include "hoilcd/bench/slam/pose_graph.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
@@ -61,6 +63,16 @@ CLI::Validator NumberIn(const OptionRange& range) {
         return std::string("expected ") + (bounded ? "a number " : "") + range.ToString() + ", got '" + text + "'";
       },
       range.ToString());
+}
+
+bool Given(const CLI::App& cmd, const std::string& flag) {
+  const CLI::Option* option = cmd.get_option_no_throw(flag);
+  HOILCD_CHECK_MSG(option != nullptr, "no flag " + flag + " on hoilcd " + cmd.get_name());
+  return option->count() > 0;
+}
+
+void RefuseIfGiven(const CLI::App& cmd, const std::string& flag, const std::string& why) {
+  if (Given(cmd, flag)) throw InputError(flag, why);
 }
 
 void AddThreadsFlag(CLI::App* cmd, int* threads) {
@@ -119,7 +131,16 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
       ->capture_default_str();
 }
 
+void CheckProtocolFlagsApply(const CLI::App& cmd, const ProtocolOptions& protocol) {
+  if (protocol.ground_truth == "overlap") return;
+  for (const char* flag : {"--overlap-threshold", "--overlap-stride", "--overlap-depth-tolerance"}) {
+    RefuseIfGiven(cmd, flag, "applies to --ground-truth overlap only (the ground truth is " + protocol.ground_truth +
+                                 "); drop it or add --ground-truth overlap");
+  }
+}
+
 void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
+  const size_t before = cmd->get_options().size();
   cmd->add_option("--methods", args->methods,
                   "comma-separated methods, or 'paper' / 'all' (default: all; see the report)");
   AddProtocolFlags(cmd, &args->options.protocol);
@@ -142,7 +163,26 @@ void AddBenchFlags(CLI::App* cmd, BenchArgs* args) {
                   "accept a method's top-1 match as a loop when its score is at least this (default: the "
                   "threshold of 100 % precision on the calibration sequence)")
       ->check(NumberIn(OptionRange()));
+  args->cmd = cmd;
+  const std::vector<CLI::Option*> options = cmd->get_options();
+  for (size_t i = before; i < options.size(); ++i) args->flags.push_back(options[i]->get_name());
 }
+
+namespace {
+
+// Whether a method of `methods`, or one it combines, reads one of `front_ends`.
+bool UsesFrontEnd(const std::vector<std::string>& methods, const std::set<FrontEnd>& front_ends) {
+  for (const std::string& m : methods) {
+    const LoopClosureMethod& method = FindMethod(m);
+    for (FrontEnd f : method.FrontEnds()) {
+      if (front_ends.count(f)) return true;
+    }
+    if (UsesFrontEnd(method.Inputs(), front_ends)) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 BenchOptions ResolveBench(const BenchArgs& args, int threads) {
   BenchOptions o = args.options;
@@ -151,7 +191,21 @@ BenchOptions ResolveBench(const BenchArgs& args, int threads) {
   o.threads = threads;
   CheckParams(o.params, o.methods);
   if (const std::string problem = o.Check(); !problem.empty()) throw InputError("bench options", problem);
+  if (args.cmd == nullptr) return o;
+  CheckProtocolFlagsApply(*args.cmd, o.protocol);
+  if (!o.slam) {
+    for (const char* flag : {"--slam-backend", "--loop-threshold"}) {
+      RefuseIfGiven(*args.cmd, flag, "applies to the SLAM back end, which is off; drop it or add --slam");
+    }
+  }
+  if (!UsesFrontEnd(o.methods, {FrontEnd::kKeypoints, FrontEnd::kIdealKeypoints})) {
+    RefuseIfGiven(*args.cmd, "--detector", "none of the methods run uses keypoints; add slcd to --methods or drop it");
+  }
   return o;
+}
+
+void RefuseBenchFlags(const BenchArgs& args, const std::string& why) {
+  for (const std::string& flag : args.flags) RefuseIfGiven(*args.cmd, flag, why);
 }
 
 void AddGateFlags(CLI::App* cmd, GateArgs* args) {
@@ -175,8 +229,17 @@ void AddGateFlags(CLI::App* cmd, GateArgs* args) {
   cmd->add_option("--junit", args->junit, "write JUnit XML here (one test case per method)");
 }
 
-nlohmann::json ReadBaseline(const GateArgs& args) {
-  return args.baseline.empty() ? nlohmann::json() : ReadReportJson(args.baseline);
+nlohmann::json ReadBaseline(const GateArgs& args, const std::string& mode) {
+  if (args.baseline.empty()) return nlohmann::json();
+  nlohmann::json baseline = ReadReportJson(args.baseline);
+  const auto it = baseline.find("mode");
+  const std::string of = it != baseline.end() && it->is_string() ? it->get<std::string>() : "offline";
+  if (of != mode) {
+    throw InputError(args.baseline, "is the report of an " + of + " bench, this is an " + mode +
+                                        " one: --baseline needs a report of the same mode (their figures measure "
+                                        "different things)");
+  }
+  return baseline;
 }
 
 int ApplyGate(const GateArgs& args, const nlohmann::json& baseline, const nlohmann::json& report) {

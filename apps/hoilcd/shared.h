@@ -24,6 +24,12 @@ namespace hoilcd {
 // the bounds of a double in full).
 CLI::Validator NumberIn(const OptionRange& range);
 
+// Whether `flag` (one of the names of an option of `cmd`, e.g. "--strata") was on the command line.
+bool Given(const CLI::App& cmd, const std::string& flag);
+// InputError "`flag`: `why`" when `flag` was given: a flag that the mode it was given in does not
+// use is refused by name before any work, never accepted and ignored.
+void RefuseIfGiven(const CLI::App& cmd, const std::string& flag, const std::string& why);
+
 // --threads N (0: the CPUs this process may use) on `cmd`, into `threads`.
 void AddThreadsFlag(CLI::App* cmd, int* threads);
 // --cache and --drop-datasets of the commands that render many runs (sweep, suite).
@@ -62,15 +68,23 @@ CLI::Option* AddTableFlag(CLI::App* cmd, const std::string& flag, const std::vec
 
 void AddProtocolAndRadiusFlags(CLI::App* cmd, ProtocolOptions* protocol);
 void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol);
+// Refuses the --overlap-* flags of AddProtocolFlags when the ground truth is not overlap.
+void CheckProtocolFlagsApply(const CLI::App& cmd, const ProtocolOptions& protocol);
 
 // The methods and their options (bench, run, sweep).
 struct BenchArgs {
   std::string methods;
   BenchOptions options;
+  const CLI::App* cmd = nullptr;   // the command AddBenchFlags added to: which of its flags were given
+  std::vector<std::string> flags;  // the flags AddBenchFlags added, protocol flags included
 };
 void AddBenchFlags(CLI::App* cmd, BenchArgs* args);
-// The options asked for, checked; InputError naming what is wrong.
+// The options asked for, checked; InputError naming what is wrong, or naming a flag given that
+// would change nothing: --slam-backend and --loop-threshold with SLAM off, an --overlap-* flag
+// without --ground-truth overlap, --detector when no method run uses keypoints.
 BenchOptions ResolveBench(const BenchArgs& args, int threads);
+// RefuseIfGiven on each of AddBenchFlags's flags, for a mode that runs no bench.
+void RefuseBenchFlags(const BenchArgs& args, const std::string& why);
 
 // The CI gate (bench, run, evaluate).
 struct GateArgs {
@@ -79,8 +93,10 @@ struct GateArgs {
   std::string junit;
 };
 void AddGateFlags(CLI::App* cmd, GateArgs* args);
-// The --baseline report (null without one), read before the work so a bad one fails first.
-nlohmann::json ReadBaseline(const GateArgs& args);
+// The --baseline report (null without one), read before the work so a bad one fails first; one
+// of another bench mode (`mode`: "online" or "offline", report.json's "mode", offline when absent)
+// is refused, since its figures measure something else.
+nlohmann::json ReadBaseline(const GateArgs& args, const std::string& mode = "offline");
 // Compares `report` with `baseline` (ReadBaseline's) and writes JUnit XML, as asked; the exit
 // code (0, or 3 on any regression).
 int ApplyGate(const GateArgs& args, const nlohmann::json& baseline, const nlohmann::json& report);

@@ -43,6 +43,14 @@ int WriteAndPrintReport(const SuiteSummary& summary, const std::string& out) {
 
 int MergeCommand(const SuiteArgs& args) {
   if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+  const std::string runs_nothing = "not with --merge: a merge renders and benches nothing";
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, runs_nothing);
+  if (args.suite.empty()) {
+    const std::string needs_suite =
+        "with --merge, the suite's flags are only checked against the shards when SUITE is given too";
+    RefuseIfGiven(*args.bench.cmd, "--split", needs_suite);
+    RefuseBenchFlags(args.bench, needs_suite);
+  }
   std::optional<nlohmann::json> expected;
   if (!args.suite.empty()) {
     expected = SuiteIdentity(ReadSuite(args.suite), args.split, BenchSettingsJson(ResolveBench(args.bench, args.run.threads)));

@@ -31,6 +31,14 @@ void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
 
 int MergeCommand(const SweepArgs& args) {
   if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+  const std::string renders_nothing = "not with --merge: a merge renders and benches nothing";
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, renders_nothing);
+  if (args.scene.empty()) {
+    const std::string needs_scene =
+        "with --merge, the sweep's flags are only checked against the shards when SCENE is given too";
+    RefuseIfGiven(*args.bench.cmd, "--seeds", needs_scene);
+    RefuseBenchFlags(args.bench, needs_scene);
+  }
   std::optional<SweepPlan> expected;
   if (!args.scene.empty()) {
     expected = MakeSweepPlan(args.scene, args.sets, args.seeds, ResolveBench(args.bench, args.run.threads));

@@ -66,6 +66,40 @@ TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSame
   EXPECT_EQ(ReadFileBytes(report_path), bytes);
 }
 
+// Issue 45: a run's report is kept on a rerun only when everything that made it is unchanged; the
+// strata and the SLAM settings were not compared, so a rerun asking for them kept the old report.
+TEST(SuiteCli, ARerunWithOtherStrataOrSlamSettingsBenchesTheRunAgain) {
+  const test::TestDir temp;
+  const std::string tiny = std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json";
+  WriteFileAtomic(temp / "suite.json", R"({"name": "tiny", "sequences": [
+      {"name": "tiny", "scene": ")" + tiny + R"(", "seeds": [1], "split": "dev", "set": ["frames=30"]}]})");
+  const std::vector<std::string> args = {"suite", temp / "suite.json", "-o", temp / "out", "--cache", temp / "cache",
+                                         "--methods", "thumb"};
+  ASSERT_EQ(test::RunCli(args).exit_code, 0);
+  const std::string report = temp / "out/runs/tiny-seed1/report.json";
+  for (const std::vector<std::string>& changed : {std::vector<std::string>{"--strata", "lap"},
+                                                  std::vector<std::string>{"--slam", "--loop-threshold", "5"},
+                                                  std::vector<std::string>{"--slam", "--loop-threshold", "7"},
+                                                  std::vector<std::string>{"--slam", "--loop-threshold", "7",
+                                                                           "--slam-backend", "cauchy"}}) {
+    std::vector<std::string> again = args;
+    again.insert(again.end(), changed.begin(), changed.end());
+    const test::CliOutcome o = test::RunCli(again);
+    EXPECT_EQ(o.exit_code, 0) << o.err;
+    EXPECT_EQ(o.out.find("kept from an earlier run"), std::string::npos) << changed[0] << "\n" << o.out;
+    const nlohmann::json j = nlohmann::json::parse(ReadFileBytes(report));
+    if (changed[0] == "--strata") {
+      EXPECT_TRUE(j.contains("strata")) << j.dump().substr(0, 300);
+    } else {
+      ASSERT_TRUE(j.contains("slam")) << j.dump().substr(0, 300);
+    }
+  }
+  // Unchanged settings keep it.
+  std::vector<std::string> same = args;
+  same.insert(same.end(), {"--slam", "--loop-threshold", "7", "--slam-backend", "cauchy"});
+  EXPECT_NE(test::RunCli(same).out.find("tiny-seed1 (kept from an earlier run)"), std::string::npos);
+}
+
 TEST(SuiteCli, RefusesABadSuiteFileAFolderOfTheUsersAndAnEmptySplit) {
   const test::TestDir temp;
   WriteFileAtomic(temp / "bad.json", R"({"name": "s", "sequences": [{"name": "a", "seeds": [1], "split": "dev"}]})");

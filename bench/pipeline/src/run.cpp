@@ -49,6 +49,14 @@ nlohmann::json BenchSettingsJson(const BenchOptions& options) {
   settings["methods"] = methods;
   settings["keypoint_detector"] = options.keypoints.detector;
   settings["params"] = options.params;  // every method's own options are set only by --param
+  // What else changes a report: a rerun with other strata or SLAM settings must not keep the old one.
+  settings["strata"] = options.strata;
+  settings["slam"] = options.slam;
+  if (options.slam) {
+    const SlamOptions& slam = options.slam_options.slam;
+    settings["slam_backend"] = slam.graph.backend;
+    settings["loop_threshold"] = std::isnan(slam.loop_threshold) ? nlohmann::json() : nlohmann::json(slam.loop_threshold);
+  }
   return settings;
 }
 

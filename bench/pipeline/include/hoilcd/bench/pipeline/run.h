@@ -46,8 +46,9 @@ struct RunOutcome {
 // The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.
 std::string RunFolder(const Scene& scene, const std::string& cache_dir);
 
-// The bench settings a user can set that change metrics (methods, protocol, keypoint detector,
-// fusion constant, -lo refits, --param), as JSON: what a sweep plan records and what keys the
+// The bench settings a user can set that change a report (methods, protocol, keypoint detector,
+// --param, strata, SLAM and its back end and loop threshold), as JSON: what a sweep plan and a
+// suite's identity record, what decides whether a rerun keeps a run's report, and what keys the
 // SLAM calibration's cache.
 nlohmann::json BenchSettingsJson(const BenchOptions& options);
 
