@@ -4,8 +4,9 @@
 # finishes, or is refused naming the folder ("DIR: is in use by another hoilcd process (pid N),
 # which holds its lock file hoilcd.lock; ..."); the folder then holds exactly the bytes one process
 # alone writes, with no temp or lock file left. Suites and sweeps sharing a --cache (each its own
-# -o) both finish, the second waiting for the dataset the first renders. KIND = shard checks that
-# render, suite and sweep refuse --shard '' (issue 45, defect 13).
+# -o) both finish, the second waiting for the dataset the first renders. KIND = export-mot: two
+# datasets exported into one folder at once both reach its seqmap. KIND = shard checks that render,
+# suite and sweep refuse --shard '' (issue 45, defect 13).
 # Usage: two_processes_test.sh HOILCD SCENE KIND [TRIALS]
 set -euo pipefail
 hoilcd=$1
@@ -109,6 +110,18 @@ suite | sweep) # odd trials: the same -o (one may be refused); even trials: two 
     done
   done
   ;;
+export-mot) # two datasets into one folder at once: the seqmap they share lists both
+  for seed in 1 2; do
+    "$hoilcd" -q render "$scene" -o "$work/seed$seed" --set frames=$frames --seed $seed --threads 1 > /dev/null
+    "$hoilcd" -q export-mot "$work/seed$seed" -o "$work/mot_ref" --threads 1 > /dev/null
+  done
+  for t in $(seq "$trials"); do
+    rm -rf "$work/mot"
+    pair "export-mot $work/seed1 -o $work/mot --threads 1" "export-mot $work/seed2 -o $work/mot --threads 1" \
+      "$work/mot" must-finish
+    same_tree "$work/mot_ref" "$work/mot" "export-mot trial $t"
+  done
+  ;;
 shard) # --shard '' is refused by name, as any bad --shard, and writes nothing
   trials=0
   for command in "render $scene -o $work/bad" "suite $work/suite.json -o $work/bad" "sweep $scene -o $work/bad"; do
@@ -118,6 +131,6 @@ shard) # --shard '' is refused by name, as any bad --shard, and writes nothing
     [ ! -e "$work/bad" ] || fail "$command --shard '' wrote $work/bad"
   done
   ;;
-*) fail "unknown KIND $kind: expected render, merge, suite, sweep or shard" ;;
+*) fail "unknown KIND $kind: expected render, merge, suite, sweep, export-mot or shard" ;;
 esac
 echo "$kind: $trials trials, $refused refused by name, $((SECONDS - start)) s; all passed"

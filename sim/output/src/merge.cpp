@@ -204,9 +204,6 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   merged.files.clear();
   merged.complete = false;
   // One merge at a time into a folder (a render's rule): the second is refused by name.
-  if (std::error_code ec; fs::exists(output_dir, ec) && !fs::is_directory(output_dir, ec)) {
-    throw InputError(output_dir, "is a file: expected a dataset folder (new, empty, or holding an earlier merge of these shards)");
-  }
   const FolderLock lock(output_dir, FolderLock::IfBusy::kRefuse);
   CheckOutputFolder(output_dir, merged);
   const std::string scene_path = shards.front().dir + "/scene.json";

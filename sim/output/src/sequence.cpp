@@ -298,11 +298,8 @@ class SequenceRender {
   // ends: a second render of the folder is refused by name. Marks the frames an earlier run
   // finished (done_) and writes the first manifest.
   void OpenOrResume() {
-    std::error_code ec;
-    if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) {
-      throw InputError(dir_, "is a file: expected a dataset folder (new, empty, or holding an earlier render of this scene)");
-    }
     lock_.emplace(dir_, FolderLock::IfBusy::kRefuse);
+    std::error_code ec;
     if (fs::exists(manifest_path_, ec)) {
       DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path_), manifest_path_);
       if (old.hoilcd_version != SimulatorVersion()) {
