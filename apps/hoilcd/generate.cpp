@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "command.h"
-#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
 #include "hoilcd/core/util/sizes.h"
@@ -41,7 +41,7 @@ int GenerateCommand(const GenerateArgs& args) {
   GeneratorOptions::Table().Check(options, "--set", &problems);
   problems.ThrowIfAny();
   CheckGenerateFolder(args.output);
-  CreateOutputFolder(args.output);
+  const FolderLock lock(args.output, FolderLock::IfBusy::kRefuse);  // a second generate into it is refused
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> families(static_cast<size_t>(args.count));
   ProgressReporter progress("generate", args.count, "scenes");

@@ -2,6 +2,7 @@
 // with --shard I/N only the I-th contiguous part of its frames, into a shard folder for hoilcd merge.
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "command.h"
 #include "hoilcd/core/util/parallel.h"
@@ -15,12 +16,12 @@ namespace {
 struct RenderArgs {
   SceneArgs scene;
   SequenceOptions options;
-  std::string shard;  // --shard I/N ("": the whole sequence)
+  std::optional<std::string> shard;  // --shard I/N (unset: the whole sequence)
 };
 
 int RenderCommand(const RenderArgs& args) {
   SequenceOptions o = args.options;
-  if (!args.shard.empty()) o.shard = ParseShard(args.shard);  // before the scene: a bad flag fails first
+  if (args.shard) o.shard = ParseShard(*args.shard);  // before the scene: a bad flag fails first
   const Scene scene = LoadSceneArgs(args.scene);
   o.cancel = CancelOnInterrupt();
   const SequenceResult r = RenderSequence(scene, o);
@@ -47,9 +48,9 @@ Command AddRenderCommand(CLI::App* app) {
   cmd->add_option("--frames", args->options.frames, "render only the first N frames (0: all)")
       ->check(NumberIn(OptionRange().AtLeast(0)));
   AddThreadsFlag(cmd, &args->options.threads);
-  cmd->add_option("--shard", args->shard,
-                  "I/N: render only the I-th of N contiguous parts of the frames (0 <= I < N) into a shard folder; "
-                  "hoilcd merge joins the N folders into the dataset the whole render writes");
+  AddShardFlag(cmd, &args->shard,
+               "I/N: render only the I-th of N contiguous parts of the frames (0 <= I < N) into a shard folder; "
+               "hoilcd merge joins the N folders into the dataset the whole render writes");
   cmd->add_option("--outputs", args->options.outputs,
                   "comma-separated outputs to write: thermal, radiometric, exr, video, persons (default: all; "
                   "the manifest lists them, and hoilcd bench needs thermal)");

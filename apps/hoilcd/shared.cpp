@@ -79,6 +79,11 @@ void AddThreadsFlag(CLI::App* cmd, int* threads) {
   cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")->check(NumberIn(OptionRange::Closed(0, kMaxThreadsFlag)));
 }
 
+void AddShardFlag(CLI::App* cmd, std::optional<std::string>* shard, const std::string& description) {
+  cmd->add_option_function<std::string>("--shard", [shard](const std::string& text) { *shard = text; }, description)
+      ->type_name("I/N");
+}
+
 void AddManyRunsCacheFlags(CLI::App* cmd, RunOptions* run) {
   cmd->add_option("--cache", run->cache_dir, "folder of cached datasets (shared by every run and shard)");
   cmd->add_flag("--drop-datasets", [run](std::int64_t) { run->keep_datasets = false; },

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -32,6 +33,9 @@ void RefuseIfGiven(const CLI::App& cmd, const std::string& flag, const std::stri
 
 // --threads N (0: the CPUs this process may use) on `cmd`, into `threads`.
 void AddThreadsFlag(CLI::App* cmd, int* threads);
+// --shard I/N of render, suite and sweep, into `shard`: set whenever the flag is given, even as
+// --shard '' (which ParseShard then refuses), unset without it.
+void AddShardFlag(CLI::App* cmd, std::optional<std::string>* shard, const std::string& description);
 // --cache and --drop-datasets of the commands that render many runs (sweep, suite).
 void AddManyRunsCacheFlags(CLI::App* cmd, RunOptions* run);
 

@@ -9,6 +9,7 @@
 #include "hoilcd/bench/pipeline/suite.h"
 #include "hoilcd/bench/pipeline/suite_report.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/text.h"
 #include "shared.h"
 
@@ -19,7 +20,7 @@ struct SuiteArgs {
   std::string suite;
   std::string output;
   std::string split = "all";
-  std::string shard;
+  std::optional<std::string> shard;
   std::vector<std::string> merge;
   RunOptions run;
   BenchArgs bench;
@@ -42,7 +43,7 @@ int WriteAndPrintReport(const SuiteSummary& summary, const std::string& out) {
 }
 
 int MergeCommand(const SuiteArgs& args) {
-  if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+  if (args.shard) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
   const std::string runs_nothing = "not with --merge: a merge renders and benches nothing";
   for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, runs_nothing);
   if (args.suite.empty()) {
@@ -56,6 +57,7 @@ int MergeCommand(const SuiteArgs& args) {
     expected = SuiteIdentity(ReadSuite(args.suite), args.split, BenchSettingsJson(ResolveBench(args.bench, args.run.threads)));
   }
   CheckSuiteReportFolder(args.output);
+  const FolderLock lock(args.output, FolderLock::IfBusy::kRefuse);
   return WriteAndPrintReport(MergeSuite(args.merge, expected ? &*expected : nullptr), args.output);
 }
 
@@ -67,7 +69,7 @@ int SuiteCommand(const SuiteArgs& args) {
   options.output_dir = args.output;
   options.split = args.split;
   options.run = args.run;
-  if (!args.shard.empty()) options.shard = ParseShard(args.shard);
+  if (args.shard) options.shard = ParseShard(*args.shard);
   const BenchOptions bench = ResolveBench(args.bench, args.run.threads);
   options.run.cancel = CancelOnInterrupt();
   const std::vector<SuiteRunSpec> runs = SuiteRuns(suite, options.split);
@@ -77,6 +79,9 @@ int SuiteCommand(const SuiteArgs& args) {
     std::printf(", shard %s does %zu", options.shard.Name().c_str(), ShardOf(runs, options.shard).size());
   }
   std::printf("\n");
+  // Held from the first run to the report (RunSuite and WriteSuiteReport take it again): a second
+  // suite into this folder is refused by name.
+  const FolderLock lock(args.output, FolderLock::IfBusy::kRefuse);
   const std::vector<SuiteRunResult> results =
       RunSuite(suite, bench, options, [](int position, int total, const SuiteRunSpec& run, bool kept) {
         std::printf("run %d/%d: %s%s\n", position, total, run.name.c_str(), kept ? " (kept from an earlier run)" : "");
@@ -122,8 +127,7 @@ Command AddSuiteCommand(CLI::App* app) {
       ->check(CLI::IsMember({"dev", "test", "all"}))
       ->capture_default_str();
   AddManyRunsCacheFlags(cmd, &args->run);
-  cmd->add_option("--shard", args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
-      ->type_name("I/N");
+  AddShardFlag(cmd, &args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)");
   cmd->add_option("--merge", args->merge, "write the report of these suite or shard folders into OUT")->type_name("DIR...");
   AddThreadsFlag(cmd, &args->run.threads);
   AddBenchFlags(cmd, &args->bench);

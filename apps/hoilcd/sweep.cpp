@@ -8,6 +8,7 @@
 #include "hoilcd/bench/pipeline/sweep.h"
 #include "hoilcd/bench/pipeline/sweep_summary.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "shared.h"
 
 namespace hoilcd {
@@ -17,7 +18,7 @@ struct SweepArgs {
   std::string scene;
   std::vector<std::string> sets;
   int seeds = 1;
-  std::string shard;
+  std::optional<std::string> shard;
   std::vector<std::string> merge;
   std::string output;
   RunOptions run;
@@ -30,7 +31,7 @@ void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
 }
 
 int MergeCommand(const SweepArgs& args) {
-  if (!args.shard.empty()) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
+  if (args.shard) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
   const std::string renders_nothing = "not with --merge: a merge renders and benches nothing";
   for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, renders_nothing);
   if (args.scene.empty()) {
@@ -46,6 +47,7 @@ int MergeCommand(const SweepArgs& args) {
     throw InputError("--set", "with --merge, --set is only checked against the shards when SCENE is given too");
   }
   CheckSweepSummaryFolder(args.output);
+  const FolderLock lock(args.output, FolderLock::IfBusy::kRefuse);
   const SweepSummary summary = MergeSweep(args.merge, expected ? &*expected : nullptr);
   WriteSweepSummary(summary, args.output);
   PrintSweepSummary(summary, args.output);
@@ -58,7 +60,7 @@ int SweepCommand(const SweepArgs& args) {
   SweepOptions options;
   options.output_dir = args.output;
   options.run = args.run;
-  if (!args.shard.empty()) options.shard = ParseShard(args.shard);
+  if (args.shard) options.shard = ParseShard(*args.shard);
   const BenchOptions bench = ResolveBench(args.bench, args.run.threads);
   const SweepPlan plan = MakeSweepPlan(args.scene, args.sets, args.seeds, bench);
   options.run.cancel = CancelOnInterrupt();
@@ -66,6 +68,9 @@ int SweepCommand(const SweepArgs& args) {
               plan.Combinations().size(), plan.seeds);
   if (options.shard.count > 1) std::printf(", shard %d/%d does %zu", options.shard.index, options.shard.count, plan.ShardRuns(options.shard).size());
   std::printf("\n");
+  // Held from the first run to the summary (RunSweep and WriteSweepSummary take it again): a second
+  // sweep into this folder is refused by name.
+  const FolderLock lock(args.output, FolderLock::IfBusy::kRefuse);
   RunSweep(plan, bench, options, [](int position, int total, const SweepRunSpec& run, bool kept) {
     std::printf("run %d/%d: %s%s\n", position, total, run.Name().c_str(), kept ? " (kept from an earlier sweep)" : "");
     std::fflush(stdout);
@@ -108,8 +113,7 @@ Command AddSweepCommand(CLI::App* app) {
   AddManyRunsCacheFlags(cmd, &args->run);
   cmd->add_option("-o,--output", args->output, "sweep folder: runs/<KEY=V,...,seed=S>/, summary.csv, summary.md, plots")
       ->required();
-  cmd->add_option("--shard", args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)")
-      ->type_name("I/N");
+  AddShardFlag(cmd, &args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)");
   cmd->add_option("--merge", args->merge, "combine these sweep output folders into OUT")->type_name("DIR...");
   AddThreadsFlag(cmd, &args->run.threads);
   AddBenchFlags(cmd, &args->bench);

@@ -156,7 +156,7 @@ TEST(SuiteCli, ShardsExitZeroWithTheirFailedRunsAndMergeIntoTheUnshardedReportBy
 TEST(SuiteCli, RefusesABadShardAShardWithAMergeAndAMissingSuite) {
   const test::TestDir temp;
   const std::string suite = WriteFailingSuite(temp);
-  for (const std::string bad : {"3/2", "x"}) {
+  for (const std::string bad : {"3/2", "x", ""}) {  // issue 45, defect 13: '' ran the whole suite
     const test::CliOutcome outcome = test::RunCli({"suite", suite, "-o", temp / "out", "--shard", bad});
     EXPECT_EQ(outcome.exit_code, 1) << bad;
     EXPECT_NE(outcome.err.find("--shard: "), std::string::npos) << outcome.err;

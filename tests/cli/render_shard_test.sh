@@ -13,7 +13,7 @@ frames=90  # shards of 30 frames: a checkpoint (every 25 frames) lands inside ea
 
 "$hoilcd" -q render "$scene" -o "$work/whole" --frames $frames "$@"
 
-for bad in 0/0 3/2 x; do
+for bad in 0/0 3/2 x ''; do  # issue 45, defect 13: '' rendered the whole sequence
   if "$hoilcd" -q render "$scene" -o "$work/bad" --frames $frames --shard "$bad" "$@" 2> "$work/err.txt"; then
     echo "--shard $bad was accepted" >&2
     exit 1

@@ -10,6 +10,7 @@
 #include "hoilcd/bench/methods/manifest_options.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
@@ -97,6 +98,9 @@ MotExport ExportMot(const Dataset& dataset, const BenchOptions& options_in, cons
   const DatasetManifest& m = dataset.manifest();
   const std::string gt_root = out_dir + "/gt/mot_challenge";
   const std::string seq_dir = gt_root + "/" + kBenchmark + "/" + sequence;
+  // Exports of several datasets into one folder share its seqmap, read, added to and written back:
+  // one process at a time, or one of two sequences exported at once would be lost from it.
+  const FolderLock lock(out_dir, FolderLock::IfBusy::kWait);
   MotExport e;
   e.sequence = sequence;
   e.ground_truth = seq_dir + "/gt/gt.txt";

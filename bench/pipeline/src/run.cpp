@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <future>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +16,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
@@ -79,17 +81,28 @@ DatasetOutputs CalibrationOutputs() {
   return outputs;
 }
 
+// A dataset of the cache, opened, with the shared lock of its folder that keeps it while it is read
+// (no --drop-datasets of another process deletes it meanwhile).
+struct CachedDataset {
+  std::unique_ptr<FolderLock> lock;  // first: let go of after the dataset
+  Dataset dataset;
+};
+
 // Renders `scene` into dataset_dir with `outputs` unless a complete, intact dataset of this very
 // scene with at least those outputs is cached there, and returns it opened (checksums verified
 // once). *cached says whether it was cached; *render_s gets the rendering time; the render's
 // warnings (SequenceResult) go to *warnings.
-Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const DatasetOutputs& outputs,
-                      const RunOptions& options, bool* cached, double* render_s, std::vector<std::string>* warnings) {
+CachedDataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const DatasetOutputs& outputs,
+                            const RunOptions& options, bool* cached, double* render_s,
+                            std::vector<std::string>* warnings) {
   // Reuse the cached dataset only when it is complete, intact, of this very scene and rendered
   // by this simulator. One rendered by another simulator (or with an unreadable manifest) is
   // stale: its files are deleted by their exact names and it is rendered anew. Anything else in
   // the folder is the user's: it is kept, and named in an error.
   *cached = false;
+  // One process at a time decides, renders and checks: a second one (another suite sharing the
+  // cache) waits, then finds the dataset cached. Shared while the dataset is read.
+  auto lock = std::make_unique<FolderLock>(dataset_dir, FolderLock::IfBusy::kWait);
   std::error_code ec;
   const std::string manifest_path = dataset_dir + "/manifest.json";
   if (std::filesystem::exists(manifest_path, ec)) {
@@ -102,7 +115,7 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
     // its own outputs. Otherwise it is stale too.
     bool has_outputs = old.has_value();
     for (const std::string& name : outputs.Names()) has_outputs = has_outputs && old->outputs.Has(name);
-    if (!old || old->hoilcd_version != SimulatorVersion() || !has_outputs ||
+    if (!old || old->hoilcd_version != SimulatorVersion() || !has_outputs || old->frame_count != scene.frames ||
         (!old->complete && old->outputs != outputs)) {
       const std::vector<std::string> left = RemoveDatasetFiles(dataset_dir);
       if (!left.empty()) {
@@ -114,7 +127,8 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
         Dataset existing = Dataset::Open(dataset_dir, Verify::kEveryFile, options.threads);
         if (existing.manifest().scene_hash == scene.hash && existing.num_frames() == scene.frames) {
           *cached = true;
-          return existing;
+          lock->Share();
+          return {std::move(lock), std::move(existing)};
         }
       } catch (const InputError&) {
         // partial or damaged: RenderSequence resumes or re-renders what is bad
@@ -132,7 +146,9 @@ Dataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, const 
   // Not verified up front: the render just checksummed every byte it wrote, and every frame it
   // kept from an interrupted run (re-reading ~0.9 GB cost 5-9 s per dataset on 2 cores). What
   // the bench reads is still checked as it is read.
-  return Dataset::Open(dataset_dir, Verify::kOnRead, options.threads);
+  Dataset dataset = Dataset::Open(dataset_dir, Verify::kOnRead, options.threads);
+  lock->Share();
+  return {std::move(lock), std::move(dataset)};
 }
 
 // What the calibration's thresholds depend on: the calibration dataset (its manifest lists the
@@ -218,8 +234,9 @@ Calibration CalibrateLoopThresholds(const Scene& scene, const BenchOptions& benc
     std::vector<std::string> calibration_warnings;  // the test sequence's say the same
     // Only what the thresholds need (CalibrationOutputs): on paper_room the people's ground truth
     // alone would add 28 % to the render's CPU, the EXRs and video far more.
-    const Dataset dataset = EnsureDataset(calibration, out.dataset_dir, CalibrationOutputs(), options,
-                                          &out.render_cached, &render_s, &calibration_warnings);
+    const CachedDataset cached = EnsureDataset(calibration, out.dataset_dir, CalibrationOutputs(), options,
+                                               &out.render_cached, &render_s, &calibration_warnings);
+    const Dataset& dataset = cached.dataset;
     const std::string key = CalibrationKey(out.dataset_dir, bench);
     BenchOptions b = bench;
     b.slam = false;
@@ -242,6 +259,20 @@ Calibration CalibrateLoopThresholds(const Scene& scene, const BenchOptions& benc
   out.thresholds = std::move(*thresholds);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+// Deletes a cached dataset's files (by their names, as a stale one's) and its folder when that is
+// left empty, unless another process holds the folder (rendering or reading it for its own run): a
+// dataset that is not removed only costs disk.
+void DropDataset(const std::string& dataset_dir) {
+  try {
+    const FolderLock lock(dataset_dir, FolderLock::IfBusy::kRefuse);
+    RemoveDatasetFiles(dataset_dir);
+  } catch (const InputError&) {
+    return;
+  }
+  std::error_code ec;
+  if (std::filesystem::is_empty(dataset_dir, ec)) std::filesystem::remove(dataset_dir, ec);
 }
 
 }  // namespace
@@ -283,7 +314,7 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
                                return CalibrateLoopThresholds(scene, b, calibration_options);
                              });
   }
-  const Dataset dataset = [&] {
+  CachedDataset cached = [&] {
     try {
       return EnsureDataset(scene, out.dataset_dir, DatasetOutputs(), options, &out.timing.render_cached,
                            &out.timing.render_s, &out.warnings);
@@ -292,6 +323,7 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
       throw;
     }
   }();
+  const Dataset& dataset = cached.dataset;
   out.warnings.insert(out.warnings.end(), dataset.warnings().begin(), dataset.warnings().end());
   // The SLAM step waits for the calibration; report.json's timing then has its figures.
   const auto take_thresholds = [&](SlamRunOptions* slam) {
@@ -313,9 +345,9 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
     throw;
   }
   if (!options.keep_datasets) {
-    std::error_code ec;  // a dataset that cannot be removed only costs disk
-    std::filesystem::remove_all(out.dataset_dir, ec);
-    if (!out.calibration_dir.empty()) std::filesystem::remove_all(out.calibration_dir, ec);
+    cached.lock.reset();  // read: another process's reading lock alone keeps it now
+    DropDataset(out.dataset_dir);
+    if (!out.calibration_dir.empty()) DropDataset(out.calibration_dir);
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -96,6 +97,9 @@ std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& ben
   const std::string& out = options.output_dir;
   // "suite" and "runs": the keys of every suite.json, this one's and an older hoilcd's.
   CheckOutputFolder(out, {"suite.json", {"suite", "runs"}, "suite"});
+  // One suite at a time in a folder: a second is refused by name. Suites sharing a --cache share
+  // its datasets through their own locks (RunScene).
+  const FolderLock lock(out, FolderLock::IfBusy::kRefuse);
   CreateOutputFolder(out + "/runs");
   CreateOutputFolder(out + "/scenes");
   const nlohmann::json bench_json = BenchSettingsJson(bench);

@@ -13,6 +13,7 @@
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
@@ -265,7 +266,7 @@ void CheckSuiteReportFolder(const std::string& out_dir) {
 
 void WriteSuiteReport(const SuiteSummary& summary, const std::string& out_dir) {
   CheckSuiteReportFolder(out_dir);
-  CreateOutputFolder(out_dir);
+  const FolderLock lock(out_dir, FolderLock::IfBusy::kRefuse);  // held already by `hoilcd suite`'s thread
   WriteFileAtomic(out_dir + "/suite_report.json", summary.ToJson().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   WriteFileAtomic(out_dir + "/suite_report.md", summary.ToMarkdown());
 }

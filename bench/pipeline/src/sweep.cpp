@@ -15,6 +15,7 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
@@ -287,6 +288,7 @@ void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptio
   HOILCD_CHECK_MSG(BenchSettingsJson(bench) == plan.bench, "the plan was made with other bench options");
   // A folder of the user's is refused before any work: only an earlier sweep (sweep.json) is ours.
   CheckOutputFolder(options.output_dir, {"sweep.json", {"plan", "shard", "runs"}, "sweep"});
+  const FolderLock lock(options.output_dir, FolderLock::IfBusy::kRefuse);  // one sweep at a time in a folder
   std::error_code ec;
   fs::create_directories(options.output_dir + "/runs", ec);
   if (ec) throw InputError(options.output_dir, "cannot create the sweep folder (" + ec.message() + ")");

@@ -16,6 +16,8 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/stats.h"
 #include "hoilcd/core/util/text.h"
@@ -299,14 +301,12 @@ void CheckSweepSummaryFolder(const std::string& out_dir) {
     if (IsEarlierOutput(out_dir, marker)) return;
   }
   std::vector<std::string> taken;
-  for (const fs::directory_entry& e : fs::directory_iterator(out_dir, ec)) {
-    const std::string name = e.path().filename().string();
+  for (const std::string& name : ListFolder(out_dir)) {  // refused by name when it cannot be listed
     if (name == "summary.csv" || name == "summary.md" || name == "summary.json" ||
-        (name.rfind("plot_", 0) == 0 && e.path().extension() == ".png")) {
+        (name.rfind("plot_", 0) == 0 && fs::path(name).extension() == ".png")) {
       taken.push_back(name);
     }
   }
-  std::sort(taken.begin(), taken.end());
   if (!taken.empty()) {
     throw InputError(out_dir, "holds " + JoinFileList(taken) +
                                   ", which the sweep's summary would overwrite, and no earlier hoilcd sweep "
@@ -316,9 +316,7 @@ void CheckSweepSummaryFolder(const std::string& out_dir) {
 
 void WriteSweepSummary(const SweepSummary& summary, const std::string& out_dir) {
   CheckSweepSummaryFolder(out_dir);
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw InputError(out_dir, "cannot create the sweep folder (" + ec.message() + ")");
+  const FolderLock lock(out_dir, FolderLock::IfBusy::kRefuse);  // held already by `hoilcd sweep`'s thread
   WriteFileAtomic(out_dir + "/summary.json", summary.ToJson().dump(2) + "\n");
   WriteFileAtomic(out_dir + "/summary.csv", summary.ToCsv());
   std::string md = summary.ToMarkdown();

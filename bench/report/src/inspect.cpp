@@ -15,6 +15,7 @@
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/stats.h"
 #include "hoilcd/core/util/text.h"
@@ -395,7 +396,7 @@ void CheckInspectFolder(const std::string& dir) { CheckOutputFolder(dir, Inspect
 
 void WriteInspectFolder(const InspectReport& report, const std::string& dir) {
   CheckInspectFolder(dir);
-  CreateOutputFolder(dir);
+  const FolderLock lock(dir, FolderLock::IfBusy::kWait);
   WriteFileAtomic(dir + "/" + InspectMarker().file, report.ToJson().dump(2) + "\n");
 }
 

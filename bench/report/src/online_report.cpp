@@ -4,6 +4,7 @@
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 
 namespace hoilcd {
 
@@ -15,7 +16,7 @@ void WriteOnlineReport(const OnlineResult& result, const Dataset& dataset, const
                        {"scene_hash", dataset.manifest().scene_hash},
                        {"seed", dataset.manifest().seed},
                        {"frames", dataset.num_frames()}};
-  CreateOutputFolder(dir);
+  const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   WriteFileAtomic(dir + "/report.json", report.dump(2) + "\n");
   WriteFileAtomic(dir + "/report.md", OnlineResultToMarkdown(result));
 }

@@ -1,6 +1,7 @@
 #include "hoilcd/bench/report/output_folder.h"
 
 #include <algorithm>
+#include <vector>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -10,22 +11,8 @@
 #include "hoilcd/core/util/json_reader.h"
 
 namespace hoilcd {
-namespace {
 
 namespace fs = std::filesystem;
-
-// The folder's entries (sorted names, a folder with a trailing '/'), for the message.
-std::vector<std::string> Entries(const std::string& dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-    names.push_back(e.path().filename().string() + (e.is_directory(ec) ? "/" : ""));
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-}  // namespace
 
 bool IsEarlierOutput(const std::string& dir, const OutputMarker& marker) {
   std::error_code ec;
@@ -42,8 +29,10 @@ void CheckOutputFolder(const std::string& dir, const OutputMarker& marker) {
   if (!fs::is_directory(dir, ec)) {
     throw InputError(dir, "is a file: expected a folder (new, empty, or holding an earlier hoilcd " + marker.what + ")");
   }
-  if (fs::is_empty(dir, ec) || IsEarlierOutput(dir, marker)) return;
-  throw InputError(dir, "exists, is not empty (it holds " + JoinFileList(Entries(dir)) +
+  // Listed first: a folder that cannot be listed is refused by name, never taken as empty.
+  const std::vector<std::string> entries = ListFolder(dir);
+  if (entries.empty() || IsEarlierOutput(dir, marker)) return;
+  throw InputError(dir, "exists, is not empty (it holds " + JoinFileList(entries) +
                             ") and holds no earlier hoilcd " + marker.what + " (" + marker.file +
                             "); refusing to overwrite files in it: choose a new or empty folder");
 }

@@ -18,6 +18,7 @@
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/slam_report.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/text.h"
 
@@ -609,7 +610,7 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
 // Each caller has checked the folder (CheckReportFolder) before its own work.
 void WriteReportInspected(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                           const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
-  CreateOutputFolder(dir);
+  const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   const Diagnosis diagnosis = Diagnose(result);
   WriteFileAtomic(dir + "/report.json", ReportJson(result, dataset, options, timing, inspect, diagnosis).dump(2));
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result.runs, result.conditions));
@@ -665,7 +666,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
       Stratify(conditions, {report.name}, {&report.metrics.queries}, DefaultStratifications());
   const std::vector<RunMetrics> per_run = MetricsPerRun(dataset.runs(), {report.name}, {&report.metrics.queries},
                                                         report.bootstrap, BootstrapOptions().seed);
-  CreateOutputFolder(dir);
+  const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   nlohmann::json json = EvaluateReportJson(dataset, protocol, report, description);
   json["strata"] = StrataJson(strata);
   if (!per_run.empty()) json["recording_runs"] = MetricsPerRunJson(per_run);

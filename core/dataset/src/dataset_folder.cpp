@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <utility>
+
+#include <unistd.h>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/folder_lock.h"
 
 namespace hoilcd {
 namespace {
@@ -20,18 +24,30 @@ bool AllDigits(const std::string& text, size_t min_length) {
          std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-// Every entry under dir that is not a folder, as relative paths; symlinks are not followed.
+// Every entry under dir that is not a folder, as relative paths; symlinks are not followed. The
+// folder's lock file (folder_lock.h) is hoilcd's bookkeeping, not a file of the dataset: left out.
 std::vector<std::string> FilesUnder(const std::string& dir) {
   std::vector<std::string> files;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return files;
   for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     if (it->is_directory(ec) && !it->is_symlink(ec)) continue;
-    files.push_back(fs::relative(it->path(), dir, ec).generic_string());
+    std::string relative = fs::relative(it->path(), dir, ec).generic_string();
+    if (relative != kFolderLockFile) files.push_back(std::move(relative));
   }
   if (ec) throw InputError(dir, "cannot list the folder (" + ec.message() + ")");
   std::sort(files.begin(), files.end());
   return files;
+}
+
+// "NAME.tmp.PID" of a process that runs and is not this one: still being written (by a process
+// that took no folder lock, such as an older hoilcd), so not to be removed. This process's own are
+// left over: it removes them before it writes any.
+bool TempFileOfAnotherLiveProcess(const std::string& temp_name) {
+  const std::string digits = temp_name.substr(temp_name.rfind(".tmp.") + 5);
+  if (digits.size() > 9) return false;  // no pid is that long
+  const long pid = std::stol(digits);
+  return pid != static_cast<long>(::getpid()) && ProcessAlive(pid);
 }
 
 void Remove(const fs::path& path) {
@@ -84,7 +100,7 @@ std::vector<std::string> NonTempFiles(const std::string& dir) {
 
 void RemoveDatasetTempFiles(const std::string& dir) {
   for (const std::string& file : FilesUnder(dir)) {
-    if (IsDatasetTempFileName(file)) Remove(fs::path(dir) / file);
+    if (IsDatasetTempFileName(file) && !TempFileOfAnotherLiveProcess(file)) Remove(fs::path(dir) / file);
   }
 }
 

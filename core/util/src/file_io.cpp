@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/png.h"
 
 namespace hoilcd {
@@ -194,6 +195,20 @@ void Sync(const std::string& path) {
 void WriteFileAtomic(const std::string& path, std::string_view bytes) { WriteAtomic(path, bytes, true); }
 
 void WriteFileAtomicUnsynced(const std::string& path, std::string_view bytes) { WriteAtomic(path, bytes, false); }
+
+std::vector<std::string> ListFolder(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name == kFolderLockFile) continue;
+    std::error_code kind;
+    names.push_back(name + (it->is_directory(kind) ? "/" : ""));
+  }
+  if (ec) throw InputError(dir, "cannot list the folder (" + ec.message() + ")");
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 void SyncFiles(const std::vector<std::string>& paths) {
   std::set<std::string> folders;

@@ -411,21 +411,23 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
 
 void CheckGenerateFolder(const std::string& dir) {
   std::error_code ec;
-  if (!fs::exists(dir, ec)) return;
+  if (!fs::exists(dir, ec)) {
+    if (ec) throw InputError(dir, "cannot check the folder (" + ec.message() + ")");
+    return;
+  }
   if (!fs::is_directory(dir, ec)) {
     throw InputError(dir, "is a file: expected a folder (new, empty, or holding scenes hoilcd generate wrote)");
   }
   std::vector<std::string> others;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
+  for (const std::string& name : ListFolder(dir)) {  // a folder it cannot list is refused, not taken as empty
+    const fs::path path = fs::path(dir) / name;
     bool ours = false;
-    if (e.is_regular_file(ec) && e.path().extension() == ".json" && e.file_size(ec) < (64u << 20)) {
-      const nlohmann::json doc = nlohmann::json::parse(ReadFileBytes(e.path().string()), nullptr, false);
+    if (fs::is_regular_file(path, ec) && path.extension() == ".json" && fs::file_size(path, ec) < (64u << 20)) {
+      const nlohmann::json doc = nlohmann::json::parse(ReadFileBytes(path.string()), nullptr, false);
       ours = doc.is_object() && doc.contains("generator") && doc["generator"].is_object();
     }
-    if (!ours) others.push_back(name + (e.is_directory(ec) ? "/" : ""));
+    if (!ours) others.push_back(name);
   }
-  std::sort(others.begin(), others.end());
   if (!others.empty()) {
     throw InputError(dir, "holds files that are not scenes hoilcd generate wrote (" + JoinFileList(others) +
                               "); refusing to write among them: choose a new or empty folder");

@@ -10,6 +10,7 @@
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -123,6 +124,10 @@ void CheckOutputFolder(const std::string& dir, const DatasetManifest& merged) {
     if (old.shard) {
       throw InputError(dir, "holds shard " + old.shard->shard.Name() + ", not a dataset; choose another output folder");
     }
+    if (old.frame_count != merged.frame_count) {
+      throw InputError(dir, "holds a dataset of " + std::to_string(old.frame_count) + " frames, but the shards are of " +
+                                std::to_string(merged.frame_count) + "; choose another output folder or delete this one");
+    }
     if (old.hoilcd_version != merged.hoilcd_version || old.scene_hash != merged.scene_hash ||
         old.seed != merged.seed || old.outputs != merged.outputs) {
       throw InputError(dir, "holds a dataset of another scene, seed, simulator version or --outputs (scene hash " +
@@ -169,6 +174,9 @@ bool PlaceFile(const ShardFolder& shard, const std::string& relative, const std:
   if (ChecksumOfFile(source) != listed->second) {
     throw InputError(source, "does not match its checksum in manifest.json (damaged); re-run its hoilcd render command");
   }
+  // Placed already (a merge re-run into its own output, or one killed after this file): rename(2)
+  // of two names of one file does nothing, so a link made now would be left behind as a temp file.
+  if (fs::equivalent(source, target, ec)) return true;
   const std::string tmp = target + ".tmp." + std::to_string(::getpid());  // a temp name a re-run removes
   fs::create_directories(fs::path(target).parent_path(), ec);
   fs::remove(tmp, ec);
@@ -195,6 +203,8 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   merged.shard.reset();
   merged.files.clear();
   merged.complete = false;
+  // One merge at a time into a folder (a render's rule): the second is refused by name.
+  const FolderLock lock(output_dir, FolderLock::IfBusy::kRefuse);
   CheckOutputFolder(output_dir, merged);
   const std::string scene_path = shards.front().dir + "/scene.json";
   const Scene scene =
@@ -203,8 +213,6 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   const bool encode_video = merged.outputs.video || (video.enabled && merged.outputs.thermal);
 
   std::error_code ec;
-  fs::create_directories(output_dir, ec);
-  if (ec) throw InputError(output_dir, "cannot create the output folder (" + ec.message() + ")");
   RemoveDatasetTempFiles(output_dir);
   // First, so a merge stopped half way leaves a folder a re-run recognises as its own.
   WriteFileAtomic(output_dir + "/manifest.json", merged.ToJson());

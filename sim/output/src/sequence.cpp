@@ -10,6 +10,7 @@
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/dataset/video.h"
 #include "hoilcd/core/util/allocator.h"
+#include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
@@ -292,9 +293,12 @@ class SequenceRender {
     return persons;
   }
 
-  // An existing folder must be an earlier run of this very scene; anything else is the user's.
-  // Marks the frames an earlier run finished (done_) and writes the first manifest.
+  // An existing folder must be an earlier run of this very render (scene, seed, frame count,
+  // shard, outputs); anything else is the user's. Under the folder's lock, held until the render
+  // ends: a second render of the folder is refused by name. Marks the frames an earlier run
+  // finished (done_) and writes the first manifest.
   void OpenOrResume() {
+    lock_.emplace(dir_, FolderLock::IfBusy::kRefuse);
     std::error_code ec;
     if (fs::exists(manifest_path_, ec)) {
       DatasetManifest old = DatasetManifest::FromJson(ReadFileBytes(manifest_path_), manifest_path_);
@@ -308,6 +312,12 @@ class SequenceRender {
         throw InputError(dir_, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
                                    ", seed " + std::to_string(old.seed) +
                                    "); choose another output folder or delete this one");
+      }
+      if (old.frame_count != frames_) {
+        throw InputError(dir_, "holds a dataset of " + std::to_string(old.frame_count) +
+                                   " frames (this render asks for " + std::to_string(frames_) +
+                                   ", from --frames or the scene's frames); use the same --frames, another output "
+                                   "folder, or delete this one");
       }
       if (ShardText(old.shard) != ShardText(manifest_shard_)) {
         throw InputError(dir_, "holds " + ShardText(old.shard) + " (this render asks for " +
@@ -327,8 +337,6 @@ class SequenceRender {
                                  " and no manifest.json); refusing to overwrite files in it: choose a new or "
                                  "empty folder");
     }
-    fs::create_directories(dir_, ec);
-    if (ec) throw InputError(dir_, "cannot create the output folder (" + ec.message() + ")");
     // A killed run may leave temp files of atomic writes ("NAME.tmp.PID"); they were never
     // renamed into place, so nothing refers to them. Only those exact names are removed.
     RemoveDatasetTempFiles(dir_);
@@ -554,6 +562,7 @@ class SequenceRender {
   std::unique_ptr<VideoEncoder> streaming_video_;
   double video_s_ = 0.0;  // thermal.mp4 outside the writer
   SequenceResult result_;
+  std::optional<FolderLock> lock_;  // the output folder's, from OpenOrResume on; let go after the writer stops
   // Last, so it is destroyed (stopping its workers) before the manifest and video it writes to.
   std::unique_ptr<FrameWriter> writer_;
 };

@@ -1,10 +1,12 @@
 #include "hoilcd/core/dataset/dataset_folder.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "processes.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -38,16 +40,43 @@ TEST(DatasetFolder, OwnNamesAreExactlyTheFilesHoilcdWrites) {
 
 TEST(DatasetFolder, RemovingTempFilesKeepsUserFilesWithTmpInTheirName) {
   test::TestDir dir;
-  for (const char* f : {"manifest.json.tmp.77", "thermal/000001.png.tmp.77", "notes.tmp.txt",
-                        "data/x.tmp.5", "thermal/000001.png"}) {
+  const std::string dead = std::to_string(test::DeadPid());
+  for (const std::string& f : {"manifest.json.tmp." + dead, "thermal/000001.png.tmp." + dead,
+                               std::string("notes.tmp.txt"), std::string("data/x.tmp.5"), std::string("thermal/000001.png")}) {
     Touch(dir, f);
   }
   RemoveDatasetTempFiles(dir.str());
-  EXPECT_FALSE(fs::exists(dir / "manifest.json.tmp.77"));
-  EXPECT_FALSE(fs::exists(dir / "thermal/000001.png.tmp.77"));
+  EXPECT_FALSE(fs::exists(dir / ("manifest.json.tmp." + dead)));
+  EXPECT_FALSE(fs::exists(dir / ("thermal/000001.png.tmp." + dead)));
   EXPECT_TRUE(fs::exists(dir / "notes.tmp.txt"));
   EXPECT_TRUE(fs::exists(dir / "data/x.tmp.5"));
   EXPECT_TRUE(fs::exists(dir / "thermal/000001.png"));
+}
+
+// Issue 45, defect 4: a second render of the folder deleted the first one's temp files, whose
+// rename then failed. Only those of processes that have ended (or this one's own) are removed.
+TEST(DatasetFolder, RemovingTempFilesSparesThoseOfAProcessThatStillRuns) {
+  test::TestDir dir;
+  const test::LiveProcess writer;
+  const std::string live = "thermal/000001.png.tmp." + std::to_string(writer.pid());
+  const std::string dead = "thermal/000002.png.tmp." + std::to_string(test::DeadPid());
+  const std::string own = "manifest.json.tmp." + std::to_string(::getpid());
+  for (const std::string& f : {live, dead, own}) Touch(dir, f);
+  RemoveDatasetTempFiles(dir.str());
+  EXPECT_TRUE(fs::exists(dir / live));
+  EXPECT_FALSE(fs::exists(dir / dead));
+  EXPECT_FALSE(fs::exists(dir / own));
+}
+
+// The folder's lock file (hoilcd.lock, core/util/folder_lock.h) is hoilcd's: never named as the
+// user's, and never deleted by a clean-up (only its holder deletes it).
+TEST(DatasetFolder, TheFolderLockFileIsNeitherTheUsersNorCleanedUp) {
+  test::TestDir dir;
+  for (const char* f : {"hoilcd.lock", "manifest.json", "thermal/000000.png"}) Touch(dir, f);
+  EXPECT_TRUE(ForeignFiles(dir.str()).empty());
+  EXPECT_EQ(NonTempFiles(dir.str()), (std::vector<std::string>{"manifest.json", "thermal/000000.png"}));
+  EXPECT_TRUE(RemoveDatasetFiles(dir.str()).empty());
+  EXPECT_TRUE(fs::exists(dir / "hoilcd.lock"));
 }
 
 TEST(DatasetFolder, RemovingADatasetLeavesAndNamesWhatTheUserPutBesideIt) {

@@ -4,20 +4,25 @@
 // `mixed` draws is what the family alone gives.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
+#include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene_options.h"
+#include "processes.h"
 #include "test_dir.h"
 
 namespace hoilcd {
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr int kSeeds = 50;
 
@@ -113,6 +118,27 @@ TEST(Generator, TheGeneratorObjectRecordsTheRunAndRenderingIgnoresIt) {
     EXPECT_EQ(a.obstacles()[i].center_m, b.obstacles()[i].center_m);
   }
   EXPECT_EQ(a.people().size(), b.people().size());
+}
+
+// Issue 45, defect 1: a folder that cannot be listed (mode 333, here as user nobody) was taken as
+// empty, and generate overwrote the scene files in it. It is refused, naming the folder.
+TEST(Generator, AFolderItCannotListIsRefusedNotTakenAsEmpty) {
+  const test::TestDir temp;
+  const std::string dir = temp / "unlistable";
+  fs::create_directories(dir);
+  WriteFileAtomic(dir + "/scene_0000_lounge.json", "{\"the user's\": 1}");
+  fs::permissions(temp.path(), fs::perms::all);  // nobody reaches the folder, and cannot list it
+  fs::permissions(dir, fs::perms::owner_write | fs::perms::owner_exec | fs::perms::group_write |
+                           fs::perms::group_exec | fs::perms::others_write | fs::perms::others_exec);
+  const test::Unprivileged outcome = test::RunUnprivileged([&] {
+    CheckGenerateFolder(dir);
+    return std::string("accepted");
+  });
+  fs::permissions(dir, fs::perms::all);
+  if (!outcome.dropped) GTEST_SKIP() << "cannot run as an unprivileged user here (" << outcome.result << ")";
+  EXPECT_NE(outcome.result.find(dir + ": cannot list the folder (Permission denied)"), std::string::npos)
+      << outcome.result;
+  EXPECT_EQ(ReadFileBytes(dir + "/scene_0000_lounge.json"), "{\"the user's\": 1}");
 }
 
 // GeneratedSceneProblems' object rules: inside the room, wall objects' backs on a wall facing in,

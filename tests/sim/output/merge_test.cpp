@@ -17,6 +17,7 @@
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "input_error_of.h"
+#include "processes.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -281,6 +282,38 @@ TEST_F(MergeRefusal, AnOutputFolderHoldingTheUsersFilesOrAnotherDataset) {
   EXPECT_NO_THROW(Dataset::Open(Dir("whole")));
 }
 
+// Issue 45, defect 2: a merge over a longer dataset rewrote its manifest and left its later frames
+// on disk. Refused, naming the folder and both frame counts.
+TEST_F(MergeRefusal, AnOutputFolderHoldingADatasetOfAnotherFrameCount) {
+  const test::TestDir longer("longer");
+  fs::copy(Dir("whole"), longer.str(), fs::copy_options::recursive);
+  DatasetManifest m = DatasetManifest::FromJson(ReadFileBytes(longer / "manifest.json"), "manifest.json");
+  m.frame_count = kFrames + 1;
+  WriteFileAtomic(longer / "manifest.json", m.ToJson());
+  const std::string message = test::InputErrorOf([&] { MergeShards(shards_, longer.str(), 0); });
+  EXPECT_SAYS(message, longer.str() + ": holds a dataset of 40 frames, but the shards are of 39");
+  EXPECT_EQ(ReadFileBytes(longer / "manifest.json"), m.ToJson());
+}
+
+// Issue 45, defect 3: a merge re-run over its own output, or over what a killed merge left, made a
+// second hard link of each placed frame as its temp file, which rename(2) left behind (both names
+// were one file). Neither leaves a temp file, and the result is the unsharded render's bytes.
+TEST_F(MergeRefusal, ARerunOverItsOwnOutputOrAfterAKillLeavesNoTempFileAndTheUnshardedBytes) {
+  const test::TestDir out("rerun");
+  const std::string dir = out / "merged";
+  MergeShards(shards_, dir, 0);
+  MergeShards(shards_, dir, 0);
+  ExpectSameFiles(Dir("whole"), dir);
+  // What a merge killed half way leaves: its first manifest, and a temp link of a frame it placed.
+  DatasetManifest m = DatasetManifest::FromJson(ReadFileBytes(dir + "/manifest.json"), "manifest.json");
+  m.complete = false;
+  m.files.clear();
+  WriteFileAtomic(dir + "/manifest.json", m.ToJson());
+  fs::create_hard_link(dir + "/exr/000001.exr", dir + "/exr/000001.exr.tmp." + std::to_string(test::DeadPid()));
+  MergeShards(shards_, dir, 0);
+  ExpectSameFiles(Dir("whole"), dir);
+}
+
 TEST(ShardedRender, RefusesAnotherShardsFolderAndAVideoItCouldNotMerge) {
   const Scene scene = PaperRoom();
   const test::TestDir root("shards");
@@ -293,6 +326,13 @@ TEST(ShardedRender, RefusesAnotherShardsFolderAndAVideoItCouldNotMerge) {
   options.shard.reset();
   EXPECT_SAYS(test::InputErrorOf([&] { RenderSequence(scene, options); }),
               "(this render asks for a whole sequence (rendered without --shard))");
+  // Issue 45, defect 2: the same shard of another --frames (another range) is another folder.
+  options.shard = Shard{0, 3};
+  options.frames = 4;
+  EXPECT_SAYS(test::InputErrorOf([&] { RenderSequence(scene, options); }),
+              root / "s" + ": holds a dataset of 3 frames (this render asks for 4");
+  options.frames = 3;
+  options.shard.reset();
   options = Options(root / "v", 0, Shard{0, 3}, "video,persons");
   EXPECT_SAYS(test::InputErrorOf([&] { RenderSequence(scene, options); }),
               "--shard: with --outputs video,persons a shard keeps no frames");

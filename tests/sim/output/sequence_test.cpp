@@ -11,6 +11,7 @@
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
+#include "processes.h"
 #include "test_dir.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/dataset/video.h"
@@ -41,6 +42,29 @@ DatasetManifest Render(const Scene& scene, const std::string& dir, int frames, i
   options.threads = threads;
   RenderSequence(scene, options);
   return Dataset::Open(dir).manifest();
+}
+
+// What a render of `frames` frames into dir stopped after its first `written` leaves: those frames'
+// files (and maybe later ones, unlisted), listed by a manifest that says it is partial. Made from
+// shard 0/1 of the sequence, whose frames are the render's bytes, with thermal PNGs uncompressed as
+// while a render runs (video mode replaces them only at the end).
+void RenderStoppedAfter(const Scene& scene, const std::string& dir, int frames, int written,
+                        const std::string& outputs = "thermal,radiometric,exr,video,persons") {
+  SequenceOptions options;
+  options.output_dir = dir;
+  options.frames = frames;
+  options.outputs = outputs;
+  options.shard = Shard{0, 1};
+  RenderSequence(scene, options);
+  DatasetManifest m = DatasetManifest::FromJson(ReadFileBytes(dir + "/manifest.json"), "manifest.json");
+  m.shard.reset();
+  m.complete = false;
+  for (auto it = m.files.begin(); it != m.files.end();) {
+    const size_t slash = it->first.find('/');
+    const bool kept = slash != std::string::npos && std::stoi(it->first.substr(slash + 1, 6)) < written;
+    it = kept ? std::next(it) : m.files.erase(it);
+  }
+  WriteFileAtomic(dir + "/manifest.json", m.ToJson());
 }
 
 TEST_F(Sequence, SameSceneAndSeedGiveByteIdenticalDatasetsAtOneAndTwoThreads) {
@@ -95,11 +119,11 @@ TEST_F(Sequence, AnotherSeedChangesNoiseCrowdAndOdometry) {
   EXPECT_NE(a.files.at("scene.json"), b.files.at("scene.json"));
 }
 
-TEST_F(Sequence, ResumingAShorterRenderGivesTheSameBytesAsOneRun) {
+TEST_F(Sequence, ResumingAnInterruptedRenderGivesTheSameBytesAsOneRun) {
   const Scene scene = PaperRoom();
   const DatasetManifest whole = Render(scene, TempDir("whole"), 6, 0);
   const std::string dir = TempDir("resumed");
-  Render(scene, dir, 4, 0);
+  RenderStoppedAfter(scene, dir, 6, 4);
   // Damage two finished frames apart: the resumed run must notice and render both again.
   WriteFileAtomic(dir + "/thermal/000001.png", "not a png");
   WriteFileAtomic(dir + "/exr/000003.exr", "not an exr");
@@ -169,9 +193,9 @@ TEST_F(Sequence, VideoModeThermalFramesAreTheDecodedVideoWithinTheDocumentedPsnr
     EXPECT_GT(psnr_db, 35.0) << f;
     EXPECT_LT(psnr_db, 50.0) << f;
   }
-  // Resuming a shorter video-mode render gives the same dataset, decoded frames included.
+  // Resuming a video-mode render stopped after 4 frames gives the same dataset, decoded frames included.
   const std::string dir = TempDir("video_resumed");
-  Render(scene, dir, 4, 0);
+  RenderStoppedAfter(scene, dir, 6, 4);
   EXPECT_EQ(Render(scene, dir, 6, 0).files, whole.files);
 }
 
@@ -315,19 +339,47 @@ TEST_F(Sequence, ResumesAFolderWhereAKillLeftOnlyTheFirstManifestsTempFile) {
   // What `strace -e inject=rename:signal=SIGKILL:when=1 hoilcd render` leaves behind.
   const std::string dir = TempDir("first_manifest_killed");
   fs::create_directories(dir);
-  WriteFileAtomic(dir + "/manifest.json.tmp.99999", "{\"hoilcd_version\"");
+  const std::string temp = dir + "/manifest.json.tmp." + std::to_string(test::DeadPid());
+  WriteFileAtomic(temp, "{\"hoilcd_version\"");
   Render(PaperRoom(), dir, 1, 0);
-  EXPECT_FALSE(fs::exists(dir + "/manifest.json.tmp.99999"));
+  EXPECT_FALSE(fs::exists(temp));
 }
 
 TEST_F(Sequence, ResumingDeletesOnlyItsOwnTempFiles) {
   const std::string dir = TempDir("own_temp");
-  Render(PaperRoom(), dir, 1, 0);
+  Render(PaperRoom(), dir, 2, 0);
   WriteFileAtomic(dir + "/notes.tmp.txt", "mine");
-  WriteFileAtomic(dir + "/thermal/000001.png.tmp.4242", "half a frame");
+  const std::string temp = dir + "/thermal/000001.png.tmp." + std::to_string(test::DeadPid());
+  WriteFileAtomic(temp, "half a frame");
   Render(PaperRoom(), dir, 2, 0);
   EXPECT_EQ(ReadFileBytes(dir + "/notes.tmp.txt"), "mine");
-  EXPECT_FALSE(fs::exists(dir + "/thermal/000001.png.tmp.4242"));
+  EXPECT_FALSE(fs::exists(temp));
+}
+
+// Issue 45, defect 2: a render with another --frames over a finished dataset rewrote its manifest
+// and left the other frames on disk, unlisted. The frame count is part of the folder's identity:
+// refused, naming the folder and both counts, and the folder is left as it was.
+TEST_F(Sequence, AnotherFrameCountOverADatasetIsRefusedNamingBothCounts) {
+  const Scene scene = PaperRoom();
+  const std::string dir = TempDir("three");
+  const DatasetManifest three = Render(scene, dir, 3, 0);
+  for (int frames : {2, 4}) {
+    SequenceOptions options;
+    options.output_dir = dir;
+    options.frames = frames;
+    try {
+      RenderSequence(scene, options);
+      ADD_FAILURE() << "--frames " << frames << " over a dataset of 3 frames was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(dir + ": holds a dataset of 3 frames (this render asks for " +
+                                           std::to_string(frames)),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(Dataset::Open(dir).manifest().files, three.files);
+  }
+  EXPECT_FALSE(fs::exists(dir + "/thermal/000003.png"));
+  EXPECT_FALSE(fs::exists(dir + "/hoilcd.lock"));
 }
 
 TEST_F(Sequence, RefusalNamesTheFilesThatAreNotItsOwn) {
@@ -393,9 +445,7 @@ TEST_F(Sequence, ResumingWithoutExrsGivesTheSameBytesAsOneRun) {
   options.frames = 5;
   RenderSequence(scene, options);
   options.output_dir = TempDir("resumed");
-  options.frames = 3;
-  RenderSequence(scene, options);
-  options.frames = 5;
+  RenderStoppedAfter(scene, options.output_dir, 5, 3, options.outputs);
   const SequenceResult r = RenderSequence(scene, options);
   EXPECT_EQ(r.frames_reused, 3);
   EXPECT_EQ(Dataset::Open(TempDir("resumed")).manifest().files, Dataset::Open(TempDir("whole")).manifest().files);

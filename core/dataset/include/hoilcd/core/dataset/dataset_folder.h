@@ -16,7 +16,9 @@ bool IsDatasetFileName(const std::string& relative_path);
 bool IsDatasetTempFileName(const std::string& relative_path);
 
 // Relative paths (sorted) of entries under dir that hoilcd did not write: neither dataset
-// files nor their temp files. Folders count only through what they hold. Missing dir: none.
+// files nor their temp files (nor the folder's lock file, folder_lock.h, which no listing here
+// includes). Folders count only through what they hold. Missing dir: none; a folder that cannot
+// be listed: InputError(dir, "cannot list the folder ...").
 std::vector<std::string> ForeignFiles(const std::string& dir);
 
 // Relative paths (sorted) of entries under dir other than temp files: what a folder without
@@ -24,7 +26,8 @@ std::vector<std::string> ForeignFiles(const std::string& dir);
 // file, so even a file with a dataset file's name, such as scene.json, is the user's there).
 std::vector<std::string> NonTempFiles(const std::string& dir);
 
-// Deletes the temp files of a killed run (IsDatasetTempFileName) under dir, nothing else.
+// Deletes the temp files of a killed run (IsDatasetTempFileName) under dir, nothing else: not
+// those of another process that still runs (ProcessAlive). Called under the folder's lock.
 void RemoveDatasetTempFiles(const std::string& dir);
 
 // Deletes hoilcd's own files under dir (dataset files and their temp files) and the frame

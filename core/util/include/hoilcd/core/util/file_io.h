@@ -60,6 +60,11 @@ void WriteFileAtomic(const std::string& path, std::string_view bytes);
 // flushed it. For many files whose listing (a manifest) is written after one SyncFiles of them.
 void WriteFileAtomicUnsynced(const std::string& path, std::string_view bytes);
 
+// The names of dir's entries, sorted, a folder's with a trailing '/', without hoilcd's lock file
+// (folder_lock.h): what an output folder's guard looks at. A folder that cannot be listed is an
+// InputError(dir, "cannot list the folder (...)"), never an empty folder.
+std::vector<std::string> ListFolder(const std::string& dir);
+
 // fsyncs every file, then each distinct folder holding one (so their renames are durable).
 // InputError(path, ...) on failure.
 void SyncFiles(const std::vector<std::string>& paths);

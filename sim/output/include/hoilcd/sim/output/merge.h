@@ -21,7 +21,9 @@ struct MergeResult {
 // Throws InputError, before writing to output_dir, naming the folder and what was expected when
 // the shards are of different scenes, seeds, simulator versions, --outputs, --frames or shard
 // counts, when a shard is repeated, missing or incomplete, or when output_dir holds anything but
-// an earlier dataset of the same render (the rules of a render's folder). A file that does not
+// an earlier dataset of the same render, frame count included, or another process writes into
+// it (the rules of a render's folder, its lock included). A re-run over its own output, whole or
+// killed half way, gives the same bytes and leaves no temp file. A file that does not
 // match its shard's checksum is an InputError naming it, found while copying: the output is then
 // left partial (its manifest says so) and a re-run after re-rendering that shard finishes it.
 MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::string& output_dir, int threads);

@@ -66,7 +66,8 @@ std::string SimulatorVersion();
 std::vector<std::string> CheckSceneRenders(const Scene& scene);
 
 // Throws InputError when the folder holds a dataset of another scene, seed, simulator version,
-// --outputs or --shard. With options.shard, the folder is a shard: frames ContiguousPart(shard,
+// frame count, --outputs or --shard, or when another process renders into it (the folder's lock,
+// core/util/folder_lock.h, is held from the first check to the last write). With options.shard, the folder is a shard: frames ContiguousPart(shard,
 // frames), the whole sequence's poses, events and footprints, persons.json of its frames and no
 // thermal.mp4 (in video mode its thermal PNGs stay uncompressed); the state a frame carries over
 // from earlier ones (the sensor model's) is replayed as a resume does, so its frames are those
