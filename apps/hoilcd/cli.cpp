@@ -25,7 +25,7 @@ int RunCommandLine(int argc, char** argv) {
       AddRunCommand(&app),      AddEvaluateCommand(&app),   AddInspectCommand(&app),
       AddSweepCommand(&app),    AddExportCocoCommand(&app), AddParamsCommand(&app),
       AddExportMotCommand(&app), AddReferenceCommand(&app), AddGenerateCommand(&app),
-      AddSuiteCommand(&app)};
+      AddSuiteCommand(&app),    AddRealismCommand(&app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
