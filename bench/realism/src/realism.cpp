@@ -9,6 +9,7 @@
 #include "hoilcd/bench/evaluation/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/progress.h"
 #include "hoilcd/core/util/stats.h"
 
 namespace hoilcd {
@@ -137,16 +138,19 @@ FrameSet MeasureDatasetFrames(const Dataset& dataset, const std::vector<int>& fr
   set.source = dataset.dir();
   set.statistics.resize(frames.size());
   std::vector<double> noise(frames.size(), NAN);
+  ProgressReporter progress("frame statistics", static_cast<int64_t>(frames.size()), "frames");
   ParallelFor(static_cast<int64_t>(frames.size()), threads, [&](int64_t i) {
     const int frame = frames[static_cast<size_t>(i)];
     if (!radiometric) {
       set.statistics[static_cast<size_t>(i)] = MeasureGreyFrame(dataset.Thermal(frame));
-      return;
+    } else {
+      const cv::Mat t = dataset.RadiometricC(frame);
+      set.statistics[static_cast<size_t>(i)] = MeasureTemperatureFrame(t);
+      if (IsStaticPair(dataset.poses(), frame)) noise[static_cast<size_t>(i)] = TemporalNoiseK(t, dataset.RadiometricC(frame + 1));
     }
-    const cv::Mat t = dataset.RadiometricC(frame);
-    set.statistics[static_cast<size_t>(i)] = MeasureTemperatureFrame(t);
-    if (IsStaticPair(dataset.poses(), frame)) noise[static_cast<size_t>(i)] = TemporalNoiseK(t, dataset.RadiometricC(frame + 1));
+    progress.Update();
   });
+  progress.Done();
   for (int f : frames) set.frames.push_back(std::to_string(f));
   set.temporal_noise_k = Known(noise);
   return set;
@@ -158,19 +162,25 @@ FrameSet MeasureRealFrames(const std::string& dir, const RealFrameOptions& optio
   set.name = "real";
   set.source = dir;
   set.frames = ListRealFrames(dir, &set.skipped);
-  std::vector<RealFrame> frames(set.frames.size());
   set.statistics.resize(set.frames.size());
+  const auto path = [&](size_t i) { return (std::filesystem::path(dir) / set.frames[i]).string(); };
+  ProgressReporter progress("real frames", static_cast<int64_t>(set.frames.size()), "frames");
   ParallelFor(static_cast<int64_t>(set.frames.size()), threads, [&](int64_t i) {
-    RealFrame f = ReadRealFrame((std::filesystem::path(dir) / set.frames[static_cast<size_t>(i)]).string(), options);
+    const RealFrame f = ReadRealFrame(path(static_cast<size_t>(i)), options);
     set.statistics[static_cast<size_t>(i)] = f.radiometric ? MeasureTemperatureFrame(f.image) : MeasureGreyFrame(f.image);
-    if (static_sequence && f.radiometric) frames[static_cast<size_t>(i)] = std::move(f);
+    progress.Update();
   });
-  if (static_sequence) {
-    for (size_t i = 0; i + 1 < frames.size(); ++i) {
-      const cv::Mat& a = frames[i].image;
-      const cv::Mat& b = frames[i + 1].image;
-      if (!a.empty() && !b.empty() && a.size() == b.size()) set.temporal_noise_k.push_back(TemporalNoiseK(a, b));
-    }
+  progress.Done();
+  if (static_sequence && set.frames.size() > 1) {
+    // Each pair reads its two frames again: a long sequence is never held whole.
+    std::vector<double> noise(set.frames.size() - 1, NAN);
+    ParallelFor(static_cast<int64_t>(noise.size()), threads, [&](int64_t i) {
+      const size_t k = static_cast<size_t>(i);
+      if (!set.statistics[k].radiometric || !set.statistics[k + 1].radiometric) return;
+      const RealFrame a = ReadRealFrame(path(k), options), b = ReadRealFrame(path(k + 1), options);
+      if (a.image.size() == b.image.size()) noise[k] = TemporalNoiseK(a.image, b.image);
+    });
+    set.temporal_noise_k = Known(noise);
   }
   return set;
 }

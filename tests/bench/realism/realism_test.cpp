@@ -5,6 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include <opencv2/imgcodecs.hpp>
+
+#include "test_dir.h"
+
 namespace hoilcd {
 namespace {
 
@@ -88,6 +92,29 @@ TEST(Realism, StaticPairsAreFramesWhoseCameraBarelyMoved) {
   EXPECT_TRUE(IsStaticPair(poses, 2));
   EXPECT_FALSE(IsStaticPair(poses, 3));           // no next frame
   EXPECT_EQ(StridedFrames(7, 3), (std::vector<int>{0, 3, 6}));
+}
+
+TEST(Realism, AStaticRealSequenceGivesItsTemporalNoise) {
+  const test::TestDir dir;
+  std::mt19937 rng(3);
+  std::normal_distribution<float> noise(22.0f, 0.05f);
+  for (int i = 0; i < 4; ++i) {
+    cv::Mat t(kStatisticsHeightPx, kStatisticsWidthPx, CV_32F);
+    for (int y = 0; y < t.rows; ++y)
+      for (int x = 0; x < t.cols; ++x) t.at<float>(y, x) = noise(rng) + 0.01f * static_cast<float>(x);
+    ASSERT_TRUE(cv::imwrite(dir / ("frame_" + std::to_string(i) + ".tiff"), t));
+  }
+  ASSERT_TRUE(cv::imwrite(dir / "frame_9.png", cv::Mat(120, 160, CV_8U, cv::Scalar(7))));  // 8-bit: no pair
+  FrameSet still = MeasureRealFrames(dir.str(), {}, true, 1);
+  ASSERT_EQ(still.frames.size(), 5u);
+  EXPECT_EQ(still.Radiometric(), 4);
+  ASSERT_EQ(still.temporal_noise_k.size(), 3u);
+  for (double k : still.temporal_noise_k) EXPECT_NEAR(k, 0.05, 0.003);
+  EXPECT_TRUE(MeasureRealFrames(dir.str(), {}, false, 2).temporal_noise_k.empty());
+  // The same statistics at any thread count.
+  const FrameSet two = MeasureRealFrames(dir.str(), {}, true, 2);
+  EXPECT_EQ(two.temporal_noise_k, still.temporal_noise_k);
+  EXPECT_EQ(two.statistics[0].spectrum_slope, still.statistics[0].spectrum_slope);
 }
 
 }  // namespace
