@@ -1,6 +1,6 @@
 // End to end through the command line: hoilcd realism on a tiny rendered dataset against real-frame
-// folders the test writes itself (the dataset's own frames as 16-bit centikelvin PNGs, as .npy
-// kelvin, and as 8-bit PNGs), the report folder's files, its guard and its errors.
+// folders the test writes itself (the dataset's own frames as 16-bit centikelvin PNGs, as a float
+// TIFF in kelvin, and as 8-bit PNG and JPEG), the report folder's files, its guard and its errors.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -86,20 +86,25 @@ TEST_F(RealismCli, TheDatasetsOwnFramesAsRealFramesAreAtDistanceZero) {
             0);
 }
 
-TEST_F(RealismCli, EightBitAndKelvinNpyFramesAreReadAndTemperatureStatisticsSkippedForGrey) {
+TEST_F(RealismCli, EightBitFramesSkipTemperatureStatisticsBesideAKelvinTiff) {
   const test::TestDir temp;
   const hoilcd::Dataset dataset = hoilcd::Dataset::Open(Dataset());
   std::filesystem::create_directories(temp / "real");
   ASSERT_TRUE(cv::imwrite(temp / "real/a.png", dataset.Thermal(0)));
   ASSERT_TRUE(cv::imwrite(temp / "real/b.jpg", dataset.Thermal(5)));
+  cv::Mat kelvin;
+  dataset.RadiometricC(10).convertTo(kelvin, CV_32F, 1.0, 273.15);
+  ASSERT_TRUE(cv::imwrite(temp / "real/c.tiff", kelvin));  // float TIFF, read as kelvin by its median
   const test::CliOutcome r = RunCli({"realism", Dataset(), temp / "real", "-o", temp / "out", "--stride", "6"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("2 real frames are 8-bit: no temperature statistics for those"), std::string::npos) << r.out;
   const nlohmann::json j = ReadJson(temp / "out/realism.json");
-  EXPECT_EQ(j["real"]["radiometric"], 0);
-  EXPECT_TRUE(j["real"]["blank_share"].is_null());
-  EXPECT_EQ(Statistic(j, "temperature_spread_k")["all_views"]["real"]["count"], 0);
-  EXPECT_EQ(Statistic(j, "shi_tomasi_corners")["all_views"]["real"]["count"], 2);
+  EXPECT_EQ(j["real"]["radiometric"], 1);
+  EXPECT_EQ(Statistic(j, "temperature_spread_k")["all_views"]["real"]["count"], 1);
+  EXPECT_EQ(Statistic(j, "shi_tomasi_corners")["all_views"]["real"]["count"], 3);
+  const nlohmann::json& c = j["real"]["per_frame"][2];
+  EXPECT_EQ(c["frame"], "c.tiff");
+  EXPECT_NEAR(c["temperature_p50_c"].get<double>(), j["synthetic"]["per_frame"][0]["temperature_p50_c"].get<double>(), 10.0);
   EXPECT_NE(ReadFileBytes(temp / "out/realism.md").find("2 8-bit: no temperature statistics for those"), std::string::npos);
 }
 

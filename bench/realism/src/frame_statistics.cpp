@@ -202,7 +202,7 @@ cv::Mat MedianFilter15(const cv::Mat& temperature_c) {
   return out;
 }
 
-double WallResidualK(const cv::Mat& temperature_c) {
+double WallResidualK(const cv::Mat& temperature_c, double* share) {
   const cv::Mat t = AsFloat(temperature_c);
   const double median = ImageQuantile(t, 0.5);
   const cv::Mat filtered = MedianFilter15(t);
@@ -218,6 +218,7 @@ double WallResidualK(const cv::Mat& temperature_c) {
       ++n;
     }
   }
+  if (share != nullptr) *share = static_cast<double>(n) / static_cast<double>(t.total());
   if (n < kMinWallPixels) return NAN;
   const double mean = sum / n;
   return std::sqrt(std::max(0.0, sum_sq / n - mean * mean));
@@ -233,7 +234,8 @@ FrameStatistics MeasureTemperatureFrame(const cv::Mat& temperature_c) {
   s.p95_c = ImageQuantile(t, 0.95);
   s.p99_c = ImageQuantile(t, 0.99);
   s.spread_k = s.p95_c - s.p5_c;
-  s.wall_residual_k = WallResidualK(t);
+  s.wall_residual_k = WallResidualK(t, &s.wall_share);
+  s.wall_dominated = s.wall_share >= kWallDominatedShare;
   s.blank = s.spread_k < kBlankViewSpreadK;
   return s;
 }
@@ -261,6 +263,9 @@ const std::vector<StatisticInfo>& FrameStatisticList() {
       {"temperature_p95_c", "temperature p95", "°C", true, [](const FrameStatistics& s) { return s.p95_c; }},
       {"temperature_spread_k", "temperature spread (p95 - p5)", "K", true, [](const FrameStatistics& s) { return s.spread_k; }},
       {"wall_residual_k", "wall high-pass residual", "K", true, [](const FrameStatistics& s) { return s.wall_residual_k; }},
+      {"wall_residual_wall_views_k", "wall high-pass residual, wall-dominated views", "K", true,
+       [](const FrameStatistics& s) { return s.wall_dominated ? s.wall_residual_k : NAN; }},
+      {"wall_share", "share of pixels within 1.5 K of the median", "", true, [](const FrameStatistics& s) { return s.wall_share; }},
   };
   return kList;
 }

@@ -57,7 +57,8 @@ nlohmann::json ComparisonJson(const StatisticComparison& c) {
 }
 
 nlohmann::json FrameJson(const std::string& frame, const FrameStatistics& s) {
-  nlohmann::json j = {{"frame", SafeText(frame)}, {"radiometric", s.radiometric}, {"blank", s.blank}};
+  nlohmann::json j = {{"frame", SafeText(frame)}, {"radiometric", s.radiometric}, {"blank", s.blank},
+                      {"wall_dominated", s.wall_dominated}};
   for (const StatisticInfo& info : FrameStatisticList()) j[info.key] = Number(info.value(s));
   j["temperature_p1_c"] = Number(s.p1_c);
   j["temperature_p99_c"] = Number(s.p99_c);

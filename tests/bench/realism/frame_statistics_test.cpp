@@ -143,8 +143,16 @@ TEST(FrameStatistics, WallResidualOfWhiteNoiseIsItsStdAndIgnoresHotObjects) {
   cv::Mat t = Noise(22.0, 0.1, 11);
   // The median of 225 samples scatters by sqrt(pi/2) * 0.1 / 15 = 0.008 K: the residual is ~0.1.
   EXPECT_NEAR(WallResidualK(t), 0.1, 0.005);
+  double share = 0;
+  EXPECT_NEAR(WallResidualK(t, &share), 0.1, 0.005);
+  EXPECT_EQ(share, 1.0);
   t(cv::Rect(10, 10, 60, 60)) = 34.0f;  // a person: outside the +-1.5 K band
-  EXPECT_NEAR(WallResidualK(t), 0.1, 0.006);
+  EXPECT_NEAR(WallResidualK(t, &share), 0.1, 0.006);
+  EXPECT_DOUBLE_EQ(share, 1.0 - 3600.0 / (kW * kH));
+  const FrameStatistics s = MeasureTemperatureFrame(t);
+  EXPECT_TRUE(s.wall_dominated);  // 93 % of the pixels are wall
+  t(cv::Rect(0, 0, kW, kH / 4)) = 34.0f;
+  EXPECT_FALSE(MeasureTemperatureFrame(t).wall_dominated);
 }
 
 TEST(FrameStatistics, BlankRuleIsASpreadUnderTwoKelvin) {

@@ -20,6 +20,9 @@ constexpr double kBlankViewSpreadK = 2.0;
 // Wall residual: pixels within this of the frame's median temperature, minus their 15x15 median.
 constexpr double kWallBandK = 1.5;
 constexpr int kWallMedianWindowPx = 15;
+// A view is wall-dominated when at least this share of its pixels is within kWallBandK of its
+// median: mostly wall, floor or ceiling, the views whose residual shows the walls' own detail.
+constexpr double kWallDominatedShare = 0.8;
 
 // One frame's statistics. Temperature figures are NaN for a frame without temperatures (8-bit).
 struct FrameStatistics {
@@ -33,6 +36,8 @@ struct FrameStatistics {
   double p1_c = NAN, p5_c = NAN, p50_c = NAN, p95_c = NAN, p99_c = NAN;  // temperature percentiles, °C
   double spread_k = NAN;              // p95 - p5
   double wall_residual_k = NAN;       // std of T - median15(T) over pixels within kWallBandK of the median
+  double wall_share = NAN;            // share of pixels within kWallBandK of the median
+  bool wall_dominated = false;        // wall_share >= kWallDominatedShare
   bool blank = false;                 // radiometric and spread_k < kBlankViewSpreadK
 };
 
@@ -56,8 +61,9 @@ double SpectrumSlope(const cv::Mat& stretched_u8);
 // 15x15 median of CV_32F temperatures, borders replicated, exact on the values quantised to 0.01 K
 // (Huang's sliding histogram: OpenCV's medianBlur takes only 8-bit images for windows over 5).
 cv::Mat MedianFilter15(const cv::Mat& temperature_c);
-// The std of T - MedianFilter15(T) over pixels within kWallBandK of T's median; NaN under 100 such pixels.
-double WallResidualK(const cv::Mat& temperature_c);
+// The std of T - MedianFilter15(T) over pixels within kWallBandK of T's median; NaN under 100 such
+// pixels. `share`, when given, receives the share of such pixels.
+double WallResidualK(const cv::Mat& temperature_c, double* share = nullptr);
 
 // Every statistic of a frame: temperatures (CV_32F °C, any size; radiometric) or grey levels
 // (CV_8U or CV_16U without a temperature scale).
