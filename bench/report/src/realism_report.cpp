@@ -44,8 +44,14 @@ cv::Mat Panel(const StatisticRow& row, const std::vector<double>& synthetic, con
       hi = std::max(hi, v);
     }
   }
-  if (!(lo <= hi)) lo = 0, hi = 1;
-  if (hi - lo < 1e-9) lo -= 0.5, hi += 0.5;
+  if (!(lo <= hi)) {  // neither side has a value
+    lo = 0;
+    hi = 1;
+  }
+  if (hi - lo < 1e-9) {  // one value: a bin around it
+    lo -= 0.5;
+    hi += 0.5;
+  }
   const double width = (hi - lo) / kBins;
   PlotOptions o;
   o.title = title;
