@@ -133,5 +133,19 @@ TEST_F(RealismCli, BadInputIsRefusedNamingWhatWasExpected) {
   EXPECT_FALSE(std::filesystem::exists(temp / "busy/realism.json"));
 }
 
+TEST_F(RealismCli, InspectGivesTheSyntheticSideOfTheFrameStatistics) {
+  const test::CliOutcome r = RunCli({"inspect", Dataset(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("frame_statistics")) << r.out;
+  const nlohmann::json& s = j["frame_statistics"];
+  EXPECT_EQ(s["frames"], 24);
+  for (const char* key : {"shi_tomasi_corners_median", "shi_tomasi_corners_median_not_blank", "spectrum_slope_median",
+                          "strong_edge_fraction_median", "wall_residual_k_median", "blank_views_pct", "static_pairs"}) {
+    EXPECT_TRUE(s.contains(key)) << key;
+  }
+  EXPECT_GT(s["shi_tomasi_corners_median"].get<double>(), 0);
+}
+
 }  // namespace
 }  // namespace hoilcd
