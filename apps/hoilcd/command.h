@@ -22,6 +22,7 @@ Command AddBenchCommand(CLI::App* app);
 Command AddRunCommand(CLI::App* app);
 Command AddEvaluateCommand(CLI::App* app);
 Command AddInspectCommand(CLI::App* app);
+Command AddRealismCommand(CLI::App* app);
 Command AddSweepCommand(CLI::App* app);
 Command AddExportMotCommand(CLI::App* app);
 Command AddExportCocoCommand(CLI::App* app);

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/npy.h"
 #include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -21,9 +22,6 @@ constexpr int kMaxProblems = 10;         // a broken file of a million lines nam
 // The longest CSV line: two frame indices and a score of 17 significant digits take ~45 bytes.
 constexpr size_t kMaxCsvLineBytes = 128;
 constexpr size_t kCsvReadBlockBytes = size_t{1} << 20;
-// numpy writes a header of ~120 bytes and reads none longer than 10000 by default.
-constexpr size_t kMaxNpyHeaderBytes = size_t{1} << 16;
-constexpr size_t kNpyPreambleBytes = 12;  // magic, version, header length (2 or 4 bytes)
 constexpr size_t kQuoteBytes = 80;        // of a file's text quoted in a message
 
 std::string Quoted(std::string_view bytes) {
@@ -185,161 +183,18 @@ ScoreMatrix ReadCsvFile(RegularFile* file, int frames) {
   return csv.Finish();
 }
 
-// Where a .npy file's header lies, from its first kNpyPreambleBytes (or all of a shorter file).
-struct NpyPreamble {
-  size_t header_start = 0;
-  size_t header_bytes = 0;
-};
-
-InputError TruncatedHeader(const std::string& source, size_t needed, size_t held) {
-  return InputError(source, "truncated .npy header: expected " + std::to_string(needed) +
-                                " bytes up to the header's end, the file holds " + std::to_string(held));
-}
-
-NpyPreamble ReadNpyPreamble(std::string_view bytes, const std::string& source) {
-  if (bytes.size() < 10 || bytes.substr(0, 6) != std::string_view("\x93NUMPY", 6)) {
-    throw InputError(source, "expected a NumPy .npy file (magic \\x93NUMPY)");
-  }
-  const auto byte = [&](size_t i) { return static_cast<size_t>(static_cast<unsigned char>(bytes[i])); };
-  NpyPreamble p;
-  const size_t major = byte(6);
-  if (major == 1) {
-    p.header_bytes = byte(8) | byte(9) << 8;
-    p.header_start = 10;
-  } else if (major == 2 || major == 3) {
-    if (bytes.size() < kNpyPreambleBytes) throw TruncatedHeader(source, kNpyPreambleBytes, bytes.size());
-    for (int i = 3; i >= 0; --i) p.header_bytes = p.header_bytes << 8 | byte(8 + static_cast<size_t>(i));
-    p.header_start = 12;
-  } else {
-    throw InputError(source, ".npy format version " + std::to_string(major) + ": expected 1, 2 or 3");
-  }
-  if (p.header_bytes > kMaxNpyHeaderBytes) {
-    throw InputError(source, ".npy header of " + std::to_string(p.header_bytes) + " bytes: expected at most " +
-                                 std::to_string(kMaxNpyHeaderBytes) + " (numpy writes ~120)");
-  }
-  return p;
-}
-
-// The fields of a .npy header, a Python dict literal such as
-// {'descr': '<f8', 'fortran_order': False, 'shape': (5, 5), }, each value as written (quotes and
-// brackets kept). Exactly numpy's three keys, each once.
-std::map<std::string, std::string> NpyHeaderFields(const std::string& header, const std::string& source) {
-  const auto fail = [&](const std::string& what) {
-    throw InputError(source, ".npy header " + Quoted(header) + ": " + what);
-  };
-  size_t i = 0;
-  const auto skip_space = [&] {
-    while (i < header.size() && (header[i] == ' ' || header[i] == '\n' || header[i] == '\t')) ++i;
-  };
-  const auto quoted = [&]() -> std::string {  // a Python string literal without escapes
-    const char quote = header[i];
-    const size_t close = header.find(quote, i + 1);
-    if (close == std::string::npos) fail("a string is not closed");
-    std::string text = header.substr(i, close + 1 - i);
-    i = close + 1;
-    return text;
-  };
-  const auto value = [&]() -> std::string {
-    if (i < header.size() && (header[i] == '\'' || header[i] == '"')) return quoted();
-    const size_t start = i;
-    int depth = 0;  // of (...) and [...]
-    while (i < header.size()) {
-      const char c = header[i];
-      if (c == '\'' || c == '"') {
-        quoted();
-        continue;
-      }
-      if (c == '(' || c == '[') ++depth;
-      if (c == ')' || c == ']') --depth;
-      if (depth < 0 || (depth == 0 && (c == ',' || c == '}'))) break;
-      ++i;
-    }
-    if (depth != 0) fail("its brackets do not match");
-    std::string text = header.substr(start, i - start);
-    while (!text.empty() && (text.back() == ' ' || text.back() == '\n' || text.back() == '\t')) text.pop_back();
-    if (text.empty()) fail("a key has no value");
-    return text;
-  };
-  skip_space();
-  if (i == header.size() || header[i] != '{') fail("expected a Python dict {'descr': ..., 'fortran_order': ..., 'shape': ...}");
-  ++i;
-  std::map<std::string, std::string> fields;
-  for (;;) {
-    skip_space();
-    if (i < header.size() && header[i] == '}') break;
-    if (i == header.size() || (header[i] != '\'' && header[i] != '"')) fail("expected a quoted key or '}'");
-    const std::string quoted_key = quoted();
-    const std::string key = quoted_key.substr(1, quoted_key.size() - 2);
-    if (key != "descr" && key != "fortran_order" && key != "shape") {
-      fail("key " + Quoted(key) + ": expected only 'descr', 'fortran_order' and 'shape'");
-    }
-    skip_space();
-    if (i == header.size() || header[i] != ':') fail("expected ':' after '" + key + "'");
-    ++i;
-    skip_space();
-    if (!fields.emplace(key, value()).second) fail("'" + key + "' is given twice");
-    skip_space();
-    if (i < header.size() && header[i] == ',') {
-      ++i;
-    } else if (i == header.size() || header[i] != '}') {
-      fail("expected ',' or '}' after the value of '" + key + "'");
-    }
-  }
-  ++i;
-  skip_space();
-  if (i != header.size()) fail("text after the dict's '}'");
-  for (const char* key : {"descr", "fortran_order", "shape"}) {
-    if (fields.count(key) == 0) throw InputError(source, ".npy header has no '" + std::string(key) + "'");
-  }
-  return fields;
-}
-
-// A shape tuple as written, "(5, 5)", "(5,)" or "()": its dimensions, or false when it is not a
-// tuple of non-negative decimal integers.
-bool ParseShape(const std::string& text, std::vector<int64_t>* dims) {
-  if (text.size() < 2 || text.front() != '(' || text.back() != ')') return false;
-  const std::string inside = text.substr(1, text.size() - 2);
-  size_t start = 0;
-  bool trailing_comma = false;
-  while (start < inside.size()) {
-    const size_t comma = std::min(inside.find(',', start), inside.size());
-    std::string_view item(inside.data() + start, comma - start);
-    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-    if (item.empty()) {
-      // Only "(5,)" may end in a comma: nothing after it, and something before it.
-      if (comma != inside.size() || dims->empty()) return false;
-      break;
-    }
-    int64_t v = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    if (ec != std::errc() || end != item.data() + item.size() || v < 0) return false;
-    dims->push_back(v);
-    trailing_comma = comma != inside.size();
-    start = comma + 1;
-  }
-  // A one-dimensional tuple needs its comma, "(5,)"; "(5)" is a number in parentheses.
-  return !(dims->size() == 1 && !trailing_comma);
-}
-
-// The text inside a quoted string value ('<f8' or "<f8"), or "" when `value` is no string.
-std::string Unquoted(const std::string& value) {
-  const bool quoted = value.size() >= 2 && (value.front() == '\'' || value.front() == '"') && value.back() == value.front();
-  return quoted ? value.substr(1, value.size() - 2) : "";
-}
-
 // The bytes per element of a .npy header that describes this dataset's frames x frames matrix.
 size_t CheckNpyHeader(const std::string& header, const std::string& source, int frames) {
   const std::map<std::string, std::string> fields = NpyHeaderFields(header, source);
   const std::string& descr = fields.at("descr");
   size_t item = 0;
-  if (Unquoted(descr) == "<f8") {
+  if (NpyUnquoted(descr) == "<f8") {
     item = 8;
-  } else if (Unquoted(descr) == "<f4") {
+  } else if (NpyUnquoted(descr) == "<f4") {
     item = 4;
   } else {
     throw InputError(source, "dtype " + SafeText(descr) + ": expected float64 ('<f8') or float32 ('<f4')" +
-                                 (Unquoted(descr) == "|O" ? " (an object array holds Python objects, not numbers)" : ""));
+                                 (NpyUnquoted(descr) == "|O" ? " (an object array holds Python objects, not numbers)" : ""));
   }
   const std::string& fortran_order = fields.at("fortran_order");
   if (fortran_order == "True") {
@@ -351,7 +206,7 @@ size_t CheckNpyHeader(const std::string& header, const std::string& source, int 
   const std::string& shape = fields.at("shape");
   const std::string want = "(" + std::to_string(frames) + ", " + std::to_string(frames) + ")";
   std::vector<int64_t> dims;
-  if (!ParseShape(shape, &dims)) {
+  if (!ParseNpyShape(shape, &dims)) {
     throw InputError(source, "shape " + Quoted(shape) + ": expected a tuple of non-negative integers, " + want +
                                  " for this dataset");
   }
@@ -408,7 +263,7 @@ ScoreMatrix ReadNpyFile(RegularFile* file, int frames) {
   std::string header = preamble.substr(std::min(preamble.size(), p.header_start));
   if (header.size() < p.header_bytes) header += file->Read(p.header_bytes - header.size());
   if (header.size() < p.header_bytes) {
-    throw TruncatedHeader(source, p.header_start + p.header_bytes, p.header_start + header.size());
+    throw NpyTruncatedHeader(source, p.header_start + p.header_bytes, p.header_start + header.size());
   }
   const std::string rest = header.substr(p.header_bytes);  // the body's first bytes
   header.resize(p.header_bytes);
@@ -460,7 +315,7 @@ ScoreMatrix ScoresFromCsv(std::string_view text, const std::string& source, int 
 ScoreMatrix ScoresFromNpy(std::string_view bytes, const std::string& source, int frames) {
   const NpyPreamble p = ReadNpyPreamble(bytes, source);
   if (p.header_bytes > bytes.size() - p.header_start) {
-    throw TruncatedHeader(source, p.header_start + p.header_bytes, bytes.size());
+    throw NpyTruncatedHeader(source, p.header_start + p.header_bytes, bytes.size());
   }
   const size_t item = CheckNpyHeader(std::string(bytes.substr(p.header_start, p.header_bytes)), source, frames);
   const std::string_view data = bytes.substr(p.header_start + p.header_bytes);

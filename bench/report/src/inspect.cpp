@@ -13,6 +13,7 @@
 #include "hoilcd/bench/report/inspect_heat_traces.h"
 #include "hoilcd/bench/report/inspect_walls.h"
 #include "hoilcd/bench/report/output_folder.h"
+#include "hoilcd/bench/report/realism_report.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/folder_lock.h"
@@ -384,6 +385,10 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
   const bool left = std::any_of(dataset.events().begin(), dataset.events().end(), [](const DatasetEvent& e) { return e.type == "leave"; });
   if (dataset.manifest().outputs.exr && left) r.sections.push_back(HeatTraceSection(MeasureHeatTraces(dataset, threads)));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
+  // The synthetic side of `hoilcd realism`'s statistics, from the frames themselves.
+  if (dataset.manifest().outputs.radiometric || dataset.manifest().outputs.thermal) {
+    r.sections.push_back(FrameStatisticsSection(dataset, threads));
+  }
   CameraOutputOptions camera;
   camera.threads = threads;
   r.sections.push_back(CameraOutputSection(MeasureCameraOutput(dataset, camera)));
