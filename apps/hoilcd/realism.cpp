@@ -1,10 +1,13 @@
 // hoilcd realism DATASET REAL_DIR -o DIR: the statistics that tell a rendered room from a real
 // one, on a dataset's frames and on a folder of real thermal frames, and their distances.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "command.h"
+#include "hoilcd/bench/realism/real_frames.h"
 #include "hoilcd/bench/realism/realism.h"
 #include "hoilcd/bench/report/realism_report.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -23,10 +26,29 @@ struct RealismArgs {
   RealFrameOptions real;
   bool static_sequence = false;
   int threads = 0;
+  const CLI::Option* float_unit_flag = nullptr;  // given: the folder must hold float frames
 };
+
+// Whether `name` may hold float frames (.npy, TIFF): the only ones --float-unit applies to.
+bool MayHoldFloats(std::string name) {
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* ext : {".npy", ".tif", ".tiff"}) {
+    const std::string e(ext);
+    if (name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0) return true;
+  }
+  return false;
+}
 
 int RealismCommand(const RealismArgs& args) {
   if (const std::string problem = args.real.Check(); !problem.empty()) throw InputError("realism", problem);
+  if (args.float_unit_flag != nullptr && args.float_unit_flag->count() > 0) {
+    std::vector<std::string> skipped;
+    const std::vector<std::string> files = ListRealFrames(args.real_dir, &skipped);
+    if (std::none_of(files.begin(), files.end(), MayHoldFloats)) {
+      throw InputError("--float-unit", "applies to float frames (.npy, 32-bit TIFF), and " + args.real_dir +
+                                           " holds none: leave it out");
+    }
+  }
   CheckRealismFolder(args.output);  // a folder it may not use fails before the work
   const Dataset dataset = Dataset::Open(args.dataset, Verify::kOnRead, args.threads);
   PrintWarnings(dataset.warnings());
@@ -73,7 +95,7 @@ Command AddRealismCommand(CLI::App* app) {
   cmd->add_option("--scale", args->real.scale,
                   "16-bit frames: kelvin per count, T[°C] = value * scale + offset (centikelvin: 0.01)");
   cmd->add_option("--offset", args->real.offset_c, "16-bit frames: °C at count 0 (centikelvin: -273.15)");
-  cmd->add_option("--float-unit", args->real.float_unit,
+  args->float_unit_flag = cmd->add_option("--float-unit", args->real.float_unit,
                   "float frames (.npy, 32-bit TIFF): c, k, or auto (median above 150: kelvin)")
       ->capture_default_str();
   cmd->add_flag("--static", args->static_sequence,

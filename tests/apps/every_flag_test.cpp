@@ -428,6 +428,22 @@ std::vector<Mode> Modes() {
   modes.push_back({"export-coco", "export-coco", {"-q", "export-coco", "{dataset}", "-o", "{out}/x"}, {kDataset},
                    {{"--help", {"--help"}, Expect::kActs, help}, {"--output", {}, Expect::kRequired}}});
   modes.push_back({"params", "params", {"-q", "params"}, {}, {{"--help", {"--help"}, Expect::kActs, help}}});
+  {
+    // The dataset's own radiometric frames (16-bit centikelvin) serve as the "real" folder.
+    const Probe report = [](const CommandRun& r) { return TextOf(r.out + "/r/realism.json"); };
+    modes.push_back({"realism", "realism",
+                     {"-q", "realism", "{dataset}", "{dataset}/radiometric", "-o", "{out}/r", "--scale", "0.01", "--offset",
+                      "-273.15"},
+                     {kDataset},
+                     {{"--help", {"--help"}, Expect::kActs, help},
+                      {"--output", {}, Expect::kRequired},
+                      {"--stride", {"--stride", "2"}, Expect::kActs, report},
+                      {"--scale", {}, Expect::kActs, Exit()},   // 16-bit frames without it are refused
+                      {"--offset", {}, Expect::kActs, Exit()},
+                      {"--float-unit", {"--float-unit", "k"}, Expect::kRefused},
+                      {"--static", {"--static"}, Expect::kActs, report},
+                      {"--threads", {}, Expect::kThreads}}});
+  }
   modes.push_back({"reference", "reference", {"-q", "reference", "cameras"}, {},
                    {{"--help", {"--help"}, Expect::kActs, help}}});
 

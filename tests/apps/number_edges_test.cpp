@@ -50,7 +50,8 @@ TEST(NumberFlags, EveryBoundOfEveryCommandHoldsForTextADoubleWouldRound) {
   CLI::App app;
   for (auto add : {AddValidateCommand, AddRenderCommand, AddMergeCommand, AddBenchCommand, AddRunCommand,
                    AddEvaluateCommand, AddInspectCommand, AddSweepCommand, AddExportCocoCommand, AddParamsCommand,
-                   AddExportMotCommand, AddReferenceCommand, AddGenerateCommand, AddSuiteCommand}) {
+                   AddExportMotCommand, AddReferenceCommand, AddGenerateCommand, AddSuiteCommand,
+                   AddRealismCommand}) {
     add(&app);
   }
   // NumberIn's description: "in [0, 10]", "in (0, 1]", "at least 0", "above 0", "at most 5", "below 5".
