@@ -379,10 +379,10 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
     for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng)) added.push_back(o);
     // The clutter, from its own stream: at density 0 the room is what it was without it.
     Rng clutter_rng = KeyedRng(seed, "generate.clutter", index, HashString(family), attempt);
-    std::vector<PlacedObject> placed = layout.objects;
-    placed.insert(placed.end(), added.begin(), added.end());
+    std::vector<PlacedObject> so_far = layout.objects;
+    so_far.insert(so_far.end(), added.begin(), added.end());
     AssetLibrary assets(scene.assets_dir);
-    for (const PlacedObject& o : Clutter(room, layout, doc["room"]["windows"], doors, placed, world, &assets, route, options, &clutter_rng))
+    for (const PlacedObject& o : Clutter(room, layout, doc["room"]["windows"], doors, so_far, world, &assets, route, options, &clutter_rng))
       added.push_back(o);
     doc["room"]["doors"] = ojson::array();
     for (const Eigen::Vector2d& d : doors) doc["room"]["doors"].push_back({{"position_m", Point(d)}});
