@@ -218,7 +218,7 @@ class ClutterPlanner {
     for (size_t t = 0; t < layout_.pieces.size(); ++t) {
       const Piece& piece = layout_.pieces[t];
       const std::string& a = piece.asset;
-      if (!(a.empty() || a == "square_table" || a == "round_table" || a == "desk" || a == "low_table")) continue;
+      if (!(a.empty() || a == "table" || a == "square_table" || a == "round_table" || a == "desk" || a == "low_table")) continue;
       const std::string name = "table " + std::to_string(t);
       const auto top = std::find_if(world_.obstacles().begin(), world_.obstacles().end(), [&](const Obstacle2D& f) { return f.name == name; });
       if (top == world_.obstacles().end()) continue;
@@ -389,7 +389,7 @@ class ClutterPlanner {
     const Asset& asset = assets_->Get(name);
     const bool round = piece.asset == "round_table";
     const Eigen::Vector2d half = round ? Eigen::Vector2d(0.45, 0.45) : top.half_size_m;
-    for (int tries = 0; tries < 30; ++tries) {
+    for (int tries = 0; tries < 80; ++tries) {
       const Eigen::Vector2d local(rng_->Uniform(-half.x(), half.x()), rng_->Uniform(-half.y(), half.y()));
       const Eigen::Vector2d at = top.center_m + Rotate(round ? 0 : top.yaw_rad, local);
       const double yaw_deg = piece.yaw_deg + 90 * static_cast<double>(rng_->UniformInt(4)) + rng_->Uniform(-12, 12);
