@@ -195,6 +195,7 @@ struct ThermalSpec {
   bool specular;
   std::array<double, 4> base_color;  // for ordinary glTF viewers only
   double metallic;
+  double power_w = 0;  // W released inside the part (written only when above 0)
 };
 
 struct Contact {
@@ -268,8 +269,8 @@ const ThermalSpec kCoffee{"coffee", 55.0, 0.95, false, {0.30, 0.18, 0.08, 1}, 0}
 const ThermalSpec kLaptopBase{"laptop_base", 32.0, 0.90, false, {0.55, 0.55, 0.58, 1}, 0};
 const ThermalSpec kLaptopLid{"laptop_lid", 30.0, 0.90, false, {0.55, 0.55, 0.58, 1}, 0};
 const ThermalSpec kLaptopScreen{"laptop_screen", 30.0, 0.94, true, {0.05, 0.05, 0.08, 1}, 0};
-const ThermalSpec kMonitorBack{"monitor_back", 30.0, 0.94, false, {0.12, 0.12, 0.12, 1}, 0};
-const ThermalSpec kMonitorScreen{"monitor_screen", 27.0, 0.94, true, {0.03, 0.03, 0.05, 1}, 0};
+const ThermalSpec kMonitorBack{"monitor_back", 30.0, 0.94, false, {0.12, 0.12, 0.12, 1}, 0, 13.0};
+const ThermalSpec kMonitorScreen{"monitor_screen", 27.0, 0.94, true, {0.03, 0.03, 0.05, 1}, 0, 4.0};
 const ThermalSpec kRadiator{"radiator", 42.0, 0.93, false, {0.95, 0.95, 0.95, 1}, 0};
 const ThermalSpec kUpholstery{"upholstery", 22.0, 0.95, false, {0.35, 0.30, 0.45, 1}, 0};
 const ThermalSpec kFelt{"felt", 22.0, 0.92, false, {0.45, 0.50, 0.45, 1}, 0};
@@ -287,6 +288,26 @@ const ThermalSpec kLightFrame{"light_frame", 30.0, 0.93, false, {0.95, 0.95, 0.9
 const ThermalSpec kBagFabric{"bag_fabric", 22.0, 0.90, false, {0.15, 0.20, 0.30, 1}, 0};
 const ThermalSpec kCoat{"coat", 25.0, 0.90, false, {0.30, 0.25, 0.20, 1}, 0};
 const ThermalSpec kCharger{"charger", 40.0, 0.94, false, {0.10, 0.10, 0.10, 1}, 0};
+// The clutter of lived-in rooms (docs/models/room_objects.md gives each figure's source). Powered
+// parts carry power_w for the room's thermal solution and temperature_c for renders without it.
+const ThermalSpec kPcCase{"pc_case", 24.0, 0.93, false, {0.15, 0.15, 0.16, 1}, 0, 10.0};
+const ThermalSpec kPcExhaust{"pc_exhaust", 34.0, 0.93, false, {0.05, 0.05, 0.05, 1}, 0};
+const ThermalSpec kPhone{"phone", 26.0, 0.94, false, {0.10, 0.10, 0.11, 1}, 0, 6.0};
+const ThermalSpec kRouter{"router", 33.0, 0.94, false, {0.90, 0.90, 0.90, 1}, 0, 8.0};
+const ThermalSpec kMug{"mug", 22.0, 0.92, false, {0.85, 0.30, 0.25, 1}, 0};
+const ThermalSpec kBottle{"bottle", 22.0, 0.94, false, {0.70, 0.85, 0.95, 1}, 0};
+const ThermalSpec kPaper{"paper", 22.0, 0.93, false, {0.98, 0.98, 0.98, 1}, 0};
+const ThermalSpec kBinder{"binder", 22.0, 0.94, false, {0.20, 0.30, 0.60, 1}, 0};
+const ThermalSpec kPoster{"poster", 22.0, 0.89, false, {0.40, 0.60, 0.80, 1}, 0};
+const ThermalSpec kGlass{"glass", 22.0, 0.94, true, {0.85, 0.90, 0.90, 1}, 0};
+const ThermalSpec kPinboard{"pinboard", 22.0, 0.90, false, {0.35, 0.45, 0.55, 1}, 0};
+const ThermalSpec kSupplyAir{"supply_air", 30.0, 0.93, false, {0.90, 0.90, 0.90, 1}, 0};
+const ThermalSpec kHeatingFlow{"heating_flow", 45.0, 0.93, false, {0.95, 0.95, 0.95, 1}, 0};
+const ThermalSpec kHeatingReturn{"heating_return", 37.0, 0.93, false, {0.95, 0.95, 0.95, 1}, 0};
+const ThermalSpec kBlindFabric{"blind_fabric", 22.0, 0.90, false, {0.85, 0.83, 0.78, 1}, 0};
+const ThermalSpec kCardboard{"cardboard", 22.0, 0.93, false, {0.65, 0.50, 0.32, 1}, 0};
+const ThermalSpec kRug{"rug", 22.0, 0.90, false, {0.50, 0.20, 0.20, 1}, 0};
+const ThermalSpec kPaintedPlaster{"painted_plaster", 22.0, 0.93, false, {0.95, 0.95, 0.93, 1}, 0};
 
 // ---------------------------------------------------------------------------------------------
 // People.
@@ -1018,6 +1039,323 @@ AssetBuilder Charger() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The clutter of lived-in rooms: things on desks, on walls, on floors, on ceilings and on shelves.
+
+// A closed cylinder with flat ends from `a` to `b`.
+Shape Cylinder(const Vec3& a, const Vec3& b, double radius, int around) {
+  const Vec3 w = (b - a).normalized();
+  const Vec3 u = Perpendicular(w) * radius;
+  const Vec3 v = w.cross(u.normalized()) * radius;
+  return Loft({{a, u, v}, {b, u, v}}, a, b, around);
+}
+
+// The shape without its downward-facing triangles (a rug's underside lies on the floor).
+Shape WithoutUnderside(const Shape& shape) {
+  Shape out;
+  out.positions = shape.positions;
+  for (size_t t = 0; t < shape.indices.size(); t += 3) {
+    const Vec3& a = shape.positions[shape.indices[t]];
+    const Vec3& b = shape.positions[shape.indices[t + 1]];
+    const Vec3& c = shape.positions[shape.indices[t + 2]];
+    if ((b - a).cross(c - a).normalized().z() < -0.99) continue;
+    out.indices.insert(out.indices.end(), {shape.indices[t], shape.indices[t + 1], shape.indices[t + 2]});
+  }
+  return out;
+}
+
+// A desktop PC tower standing on the floor, 0.45 m deep (x, front at +x) × 0.20 m × 0.45 m, its
+// exhaust grille high on the back.
+AssetBuilder PcTower() {
+  AssetBuilder asset = RoomObject("pc_tower", "pc", "");
+  const int body = asset.Material(kPcCase);
+  const int exhaust = asset.Material(kPcExhaust);
+  asset.Add(Slab(Vec3(-0.225, -0.10, 0), Vec3(0.225, 0.10, 0.45)), body);
+  asset.Add(Slab(Vec3(-0.232, -0.06, 0.29), Vec3(-0.225, 0.06, 0.41)), exhaust);
+  return asset;
+}
+
+// A desk phone, 0.20 m deep × 0.22 m, its keypad sloping up towards the back, the handset on
+// its left (-y).
+AssetBuilder DeskPhone() {
+  AssetBuilder asset = RoomObject("desk_phone", "phone", "");
+  const int phone = asset.Material(kPhone);
+  asset.Add(Slab(Vec3(-0.10, -0.11, 0), Vec3(0.10, 0.11, 0.03)), phone);
+  asset.Add(Box(Vec3(-0.01, 0.02, 0.045), PitchForward(Deg(-15)), Vec3(0.085, 0.075, 0.018)), phone);
+  asset.Add(Capsule(Vec3(-0.075, -0.075, 0.055), Vec3(0.075, -0.075, 0.055), 0.022, 0.022, 10, 2), phone);
+  return asset;
+}
+
+// A six-way power strip, 0.30 × 0.056 × 0.04 m, with its switch at one end.
+AssetBuilder PowerStrip() {
+  AssetBuilder asset = RoomObject("power_strip", "power_strip", "");
+  const int plastic = asset.Material(kPlastic);
+  asset.Add(Slab(Vec3(-0.028, -0.15, 0), Vec3(0.028, 0.15, 0.04)), plastic);
+  asset.Add(Slab(Vec3(-0.012, 0.115, 0.04), Vec3(0.012, 0.14, 0.048)), plastic);
+  return asset;
+}
+
+// An empty mug left on a desk: Ø 8.2 cm, 9.5 cm tall, handle at -y.
+AssetBuilder Mug() {
+  AssetBuilder asset = RoomObject("mug", "mug", "");
+  const int mug = asset.Material(kMug);
+  asset.Add(Lathe(Vec3::Zero(), {{0.041, 0.0}, {0.041, 0.095}, {0.037, 0.095}, {0.037, 0.008}}, 0.0, 0.008, 20), mug);
+  std::vector<Ring> rings;
+  constexpr int kSteps = 8;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double a = -kPi / 2 + kPi * i / kSteps;
+    const Vec3 center(0, -(0.037 + 0.024 * std::cos(a)), 0.048 + 0.027 * std::sin(a));
+    rings.push_back({center, Vec3(0.007, 0, 0), Vec3(0, -std::cos(a), std::sin(a)) * 0.0055});
+  }
+  asset.Add(Loft(rings, rings.front().center, rings.back().center, 8), mug);
+  return asset;
+}
+
+// A half-litre water bottle, Ø 6.6 cm, 0.225 m tall with its cap.
+AssetBuilder Bottle() {
+  AssetBuilder asset = RoomObject("bottle", "bottle", "");
+  const int bottle = asset.Material(kBottle);
+  asset.Add(Lathe(Vec3::Zero(), {{0.031, 0.0}, {0.033, 0.01}, {0.033, 0.15}, {0.022, 0.185}, {0.014, 0.20}, {0.015, 0.20}, {0.015, 0.225}},
+                  0.0, 0.225, 16),
+            bottle);
+  return asset;
+}
+
+// A stack of A4 paper, 2 cm high, its top sheet askew.
+AssetBuilder Papers() {
+  AssetBuilder asset = RoomObject("papers", "papers", "");
+  const int paper = asset.Material(kPaper);
+  asset.Add(Slab(Vec3(-0.105, -0.1485, 0), Vec3(0.105, 0.1485, 0.02)), paper);
+  asset.Add(Box(Vec3(0.0, 0.0, 0.0205), Eigen::AngleAxisd(Deg(8), Vec3::UnitZ()).toRotationMatrix(), Vec3(0.1, 0.14, 0.0005)), paper);
+  return asset;
+}
+
+// Five lever-arch binders standing side by side, spines at +x: 0.29 m deep × 0.39 m × 0.32 m.
+AssetBuilder BinderRow() {
+  AssetBuilder asset = RoomObject("binder_row", "binders", "");
+  const int binder = asset.Material(kBinder);
+  for (int i = 0; i < 5; ++i) {
+    const double y = -0.195 + 0.078 * i;
+    asset.Add(Slab(Vec3(-0.145, y + 0.001, 0), Vec3(0.145, y + 0.077, 0.32)), binder);
+  }
+  return asset;
+}
+
+// Nine books standing side by side, spines at +x, 0.34 m along y, 0.20 to 0.28 m tall.
+AssetBuilder BookRow() {
+  AssetBuilder asset = RoomObject("book_row", "books", "");
+  const int books = asset.Material(kBooks);
+  const double widths[] = {0.03, 0.045, 0.025, 0.04, 0.035, 0.05, 0.03, 0.04, 0.045};
+  const double heights[] = {0.24, 0.28, 0.21, 0.26, 0.23, 0.27, 0.20, 0.25, 0.24};
+  const double depths[] = {0.17, 0.20, 0.15, 0.19, 0.16, 0.20, 0.15, 0.18, 0.17};
+  double y = -0.17;
+  for (int i = 0; i < 9; ++i) {
+    asset.Add(Slab(Vec3(0.10 - depths[i], y + 0.001, 0), Vec3(0.10, y + widths[i] - 0.001, heights[i])), books);
+    y += widths[i];
+  }
+  return asset;
+}
+
+// An open wooden bookcase against a wall, 0.32 m deep (x, open at +x) × 0.80 m × 1.80 m, with a
+// back panel and shelf boards whose tops are at 0.22, 0.62, 1.02, 1.42 and 1.80 m (the top).
+AssetBuilder Bookcase() {
+  AssetBuilder asset = RoomObject("bookcase", "bookcase", "");
+  const int wood = asset.Material(kWood);
+  for (double y : {-0.391, 0.391}) asset.Add(Slab(Vec3(-0.16, y - 0.009, 0), Vec3(0.16, y + 0.009, 1.78)), wood);
+  asset.Add(Slab(Vec3(-0.16, -0.382, 0), Vec3(-0.152, 0.382, 1.78)), wood);
+  asset.Add(Slab(Vec3(0.14, -0.382, 0), Vec3(0.16, 0.382, 0.202)), wood);  // the plinth
+  for (double top : {0.22, 0.62, 1.02, 1.42}) asset.Add(Slab(Vec3(-0.152, -0.382, top - 0.018), Vec3(0.16, 0.382, top)), wood);
+  asset.Add(Slab(Vec3(-0.16, -0.40, 1.78), Vec3(0.16, 0.40, 1.80)), wood);
+  return asset;
+}
+
+// An A1 poster (0.594 × 0.841 m) on the wall.
+AssetBuilder Poster() {
+  AssetBuilder asset = RoomObject("poster", "poster", "wall");
+  asset.Add(Slab(Vec3(0, -0.297, 0), Vec3(0.002, 0.297, 0.841)), asset.Material(kPoster));
+  return asset;
+}
+
+// A framed picture 0.50 × 0.40 m behind glass, 27 mm deep.
+AssetBuilder FramedPicture() {
+  AssetBuilder asset = RoomObject("framed_picture", "picture", "wall");
+  const int frame = asset.Material(kPaintedWood);
+  const int glass = asset.Material(kGlass);
+  asset.Add(Slab(Vec3(0, -0.25, 0), Vec3(0.025, 0.25, 0.40)), frame);
+  asset.Add(Slab(Vec3(0.025, -0.22, 0.03), Vec3(0.027, 0.22, 0.37)), glass);
+  return asset;
+}
+
+// A wall clock, Ø 0.30 m and 4 cm deep: a plastic rim round a glass face.
+AssetBuilder WallClock() {
+  AssetBuilder asset = RoomObject("wall_clock", "clock", "wall");
+  const int rim = asset.Material(kPlastic);
+  const int glass = asset.Material(kGlass);
+  asset.Add(Cylinder(Vec3(0, 0, 0.15), Vec3(0.04, 0, 0.15), 0.15, 24),
+            [&](const Vec3&, const Vec3& n) { return n.x() > 0.99 ? glass : rim; });
+  return asset;
+}
+
+// A notice board 0.90 × 0.60 m: a fabric pin board in a wooden frame with four A4 sheets pinned on.
+AssetBuilder NoticeBoard() {
+  AssetBuilder asset = RoomObject("notice_board", "notice_board", "wall");
+  const int wood = asset.Material(kWood);
+  const int board = asset.Material(kPinboard);
+  const int paper = asset.Material(kPaper);
+  asset.Add(Slab(Vec3(0, -0.45, 0), Vec3(0.02, 0.45, 0.60)), wood);
+  asset.Add(Slab(Vec3(0.02, -0.43, 0.02), Vec3(0.022, 0.43, 0.58)), board);
+  const double sheets[][2] = {{-0.40, 0.26}, {-0.15, 0.22}, {0.12, 0.27}, {0.20, 0.04}};
+  for (const auto& s : sheets) asset.Add(Slab(Vec3(0.022, s[0], s[1]), Vec3(0.0235, s[0] + 0.21, s[1] + 0.297)), paper);
+  return asset;
+}
+
+// A room thermostat, 80 × 80 × 25 mm.
+AssetBuilder Thermostat() {
+  AssetBuilder asset = RoomObject("thermostat", "thermostat", "wall");
+  asset.Add(Slab(Vec3(0, -0.04, 0), Vec3(0.025, 0.04, 0.08)), asset.Material(kPlastic));
+  return asset;
+}
+
+// A 600 × 600 mm square ceiling diffuser hanging from its top face: a painted frame, the vanes
+// the supply air leaves through, a painted centre plate.
+AssetBuilder CeilingDiffuser() {
+  AssetBuilder asset = RoomObject("ceiling_diffuser", "diffuser", "hanging");
+  const int steel = asset.Material(kPaintedSteel);
+  const int vanes = asset.Material(kSupplyAir);
+  asset.Add(Slab(Vec3(-0.30, -0.30, -0.02), Vec3(0.30, 0.30, 0)), steel);
+  asset.Add(Slab(Vec3(-0.24, -0.24, -0.045), Vec3(0.24, 0.24, -0.02)), vanes);
+  asset.Add(Slab(Vec3(-0.10, -0.10, -0.06), Vec3(0.10, 0.10, -0.045)), steel);
+  return asset;
+}
+
+// A supply-air wall grille 0.40 × 0.15 m, its louvres in the supply air.
+AssetBuilder SupplyGrille() {
+  AssetBuilder asset = RoomObject("supply_grille", "grille", "wall");
+  const int steel = asset.Material(kPaintedSteel);
+  const int vanes = asset.Material(kSupplyAir);
+  asset.Add(Slab(Vec3(0, -0.20, 0), Vec3(0.02, 0.20, 0.15)), steel);
+  asset.Add(Slab(Vec3(0.02, -0.18, 0.015), Vec3(0.025, 0.18, 0.135)), vanes);
+  return asset;
+}
+
+// A return-air wall grille 0.40 × 0.30 m with six horizontal slats, all at the room's air.
+AssetBuilder ReturnGrille() {
+  AssetBuilder asset = RoomObject("return_grille", "grille", "wall");
+  const int steel = asset.Material(kPaintedSteel);
+  asset.Add(Slab(Vec3(0, -0.20, 0), Vec3(0.015, 0.20, 0.30)), steel);
+  for (int i = 0; i < 6; ++i) {
+    const double z = 0.035 + 0.045 * i;
+    asset.Add(Slab(Vec3(0.015, -0.18, z), Vec3(0.03, 0.18, z + 0.012)), steel);
+  }
+  return asset;
+}
+
+// One metre of a heating pipe run along a wall: the flow pipe over the return, both Ø 22 mm,
+// 45 mm off the wall on two clips. Runs are placed end to end.
+AssetBuilder HeatingPipe() {
+  AssetBuilder asset = RoomObject("heating_pipe", "pipe", "wall");
+  const int flow = asset.Material(kHeatingFlow);
+  const int ret = asset.Material(kHeatingReturn);
+  const int clip = asset.Material(kPlastic);
+  asset.Add(Cylinder(Vec3(0.045, -0.5, 0.105), Vec3(0.045, 0.5, 0.105), 0.011, 10), flow);
+  asset.Add(Cylinder(Vec3(0.045, -0.5, 0.035), Vec3(0.045, 0.5, 0.035), 0.011, 10), ret);
+  for (double y : {-0.25, 0.25}) asset.Add(Slab(Vec3(0, y - 0.01, 0), Vec3(0.035, y + 0.01, 0.13)), clip);
+  return asset;
+}
+
+// One metre of PVC cable trunking, 60 mm high and 40 mm deep. Runs are placed end to end.
+AssetBuilder CableTrunking() {
+  AssetBuilder asset = RoomObject("cable_trunking", "trunking", "wall");
+  asset.Add(Slab(Vec3(0, -0.5, 0), Vec3(0.04, 0.5, 0.06)), asset.Material(kPlastic));
+  return asset;
+}
+
+// A painted skirting board 80 mm high and 15 mm deep, `length_m` long.
+AssetBuilder SkirtingBoard(const std::string& name, double length_m) {
+  AssetBuilder asset = RoomObject(name, "skirting", "wall");
+  asset.Add(Slab(Vec3(0, -0.5 * length_m, 0), Vec3(0.015, 0.5 * length_m, 0.08)), asset.Material(kPaintedWood));
+  return asset;
+}
+
+// 0.20 m of a painted window sill, 0.16 m deep and 30 mm thick. Sills are placed end to end under
+// a window, their tops at its bottom edge.
+AssetBuilder WindowSill() {
+  AssetBuilder asset = RoomObject("window_sill", "sill", "wall");
+  asset.Add(Slab(Vec3(0, -0.10, 0), Vec3(0.16, 0.10, 0.03)), asset.Material(kPaintedWood));
+  return asset;
+}
+
+// 0.20 m of a roller blind: the cassette 70 mm square over the window and the fabric hanging
+// 0.60 m down 5 cm in front of the glass, with its bottom rail. Placed end to end across a window.
+AssetBuilder Blind() {
+  AssetBuilder asset = RoomObject("blind", "blind", "wall");
+  const int steel = asset.Material(kPaintedSteel);
+  const int fabric = asset.Material(kBlindFabric);
+  asset.Add(Slab(Vec3(0, -0.10, 0.60), Vec3(0.07, 0.10, 0.67)), steel);
+  asset.Add(Slab(Vec3(0.05, -0.10, 0.02), Vec3(0.052, 0.10, 0.60)), fabric);
+  asset.Add(Slab(Vec3(0.045, -0.10, 0), Vec3(0.058, 0.10, 0.02)), steel);
+  return asset;
+}
+
+// A round waste bin, Ø 0.30 m at the rim and 0.35 m tall, open at the top.
+AssetBuilder Bin() {
+  AssetBuilder asset = RoomObject("bin", "bin", "");
+  asset.Add(Lathe(Vec3::Zero(), {{0.13, 0.0}, {0.15, 0.35}, {0.142, 0.35}, {0.122, 0.01}}, 0.0, 0.01, 20), asset.Material(kPlastic));
+  return asset;
+}
+
+// A closed cardboard box, 0.40 × 0.30 × 0.30 m.
+AssetBuilder CardboardBox() {
+  AssetBuilder asset = RoomObject("cardboard_box", "box", "");
+  const int board = asset.Material(kCardboard);
+  asset.Add(Slab(Vec3(-0.20, -0.15, 0), Vec3(0.20, 0.15, 0.30)), board);
+  asset.Add(Slab(Vec3(-0.20, -0.025, 0.30), Vec3(0.20, 0.025, 0.301)), board);
+  return asset;
+}
+
+// A rug 1.60 × 1.20 m and 10 mm thick lying on the floor (the robot drives over it).
+AssetBuilder Rug() {
+  AssetBuilder asset = RoomObject("rug", "rug", "");
+  asset.Add(WithoutUnderside(Slab(Vec3(-0.80, -0.60, 0), Vec3(0.80, 0.60, 0.01))), asset.Material(kRug));
+  return asset;
+}
+
+// A smoke detector on the ceiling, Ø 0.11 m and 50 mm deep, hanging from its top face.
+AssetBuilder SmokeDetector() {
+  AssetBuilder asset = RoomObject("smoke_detector", "detector", "hanging");
+  asset.Add(Lathe(Vec3(0, 0, -0.05), {{0.045, 0.0}, {0.055, 0.015}, {0.055, 0.05}}, 0.0, 0.05, 16), asset.Material(kPlastic));
+  return asset;
+}
+
+// A pendent sprinkler head: a Ø 70 mm escutcheon on the ceiling, the body and its deflector
+// 60 mm below.
+AssetBuilder Sprinkler() {
+  AssetBuilder asset = RoomObject("sprinkler", "sprinkler", "hanging");
+  const int metal = asset.Material(kMetal);
+  asset.Add(Cylinder(Vec3(0, 0, -0.008), Vec3(0, 0, 0), 0.035, 16), metal);
+  asset.Add(Cylinder(Vec3(0, 0, -0.05), Vec3(0, 0, -0.008), 0.008, 8), metal);
+  asset.Add(Cylinder(Vec3(0, 0, -0.06), Vec3(0, 0, -0.055), 0.016, 12), metal);
+  asset.Add(Slab(Vec3(-0.012, -0.003, -0.058), Vec3(0.012, 0.003, -0.05)), metal);
+  return asset;
+}
+
+// One metre of a painted plasterboard bulkhead boxing in a duct along a wall: 0.40 m wide (x)
+// and 0.25 m deep, hanging from its top face. Runs are placed end to end.
+AssetBuilder Bulkhead() {
+  AssetBuilder asset = RoomObject("bulkhead", "bulkhead", "hanging");
+  asset.Add(Slab(Vec3(-0.20, -0.5, -0.25), Vec3(0.20, 0.5, 0)), asset.Material(kPaintedPlaster));
+  return asset;
+}
+
+// A Wi-Fi router, 0.14 m deep × 0.20 m × 35 mm, two antennas up at its back.
+AssetBuilder Router() {
+  AssetBuilder asset = RoomObject("router", "router", "");
+  const int router = asset.Material(kRouter);
+  asset.Add(Slab(Vec3(-0.07, -0.10, 0), Vec3(0.07, 0.10, 0.035)), router);
+  for (double y : {-0.08, 0.08}) asset.Add(Cylinder(Vec3(-0.06, y, 0.035), Vec3(-0.06, y, 0.18), 0.006, 8), router);
+  return asset;
+}
+
+// ---------------------------------------------------------------------------------------------
 // glTF output.
 
 tinygltf::Value Vec3Value(const Vec3& p_hoilcd) {
@@ -1052,11 +1390,12 @@ tinygltf::Material GltfMaterial(const ThermalSpec& spec) {
   material.pbrMetallicRoughness.baseColorFactor.assign(spec.base_color.begin(), spec.base_color.end());
   material.pbrMetallicRoughness.metallicFactor = spec.metallic;
   material.pbrMetallicRoughness.roughnessFactor = spec.specular ? 0.2 : 0.8;
-  material.extras = tinygltf::Value(
-      tinygltf::Value::Object{{"temperature_c", tinygltf::Value(spec.temperature_c)},
-                              {"emissivity", tinygltf::Value(spec.emissivity)},
-                              {"specular", tinygltf::Value(spec.specular)},
-                              {"region", tinygltf::Value(spec.region)}});
+  tinygltf::Value::Object extras{{"temperature_c", tinygltf::Value(spec.temperature_c)},
+                                 {"emissivity", tinygltf::Value(spec.emissivity)},
+                                 {"specular", tinygltf::Value(spec.specular)},
+                                 {"region", tinygltf::Value(spec.region)}};
+  if (spec.power_w > 0) extras["power_w"] = tinygltf::Value(spec.power_w);
+  material.extras = tinygltf::Value(extras);
   return material;
 }
 
@@ -1204,7 +1543,37 @@ int main(int argc, char** argv) {
       CeilingLight(),
       Bag(),
       Coat(),
-      Charger()};
+      Charger(),
+      PcTower(),
+      DeskPhone(),
+      PowerStrip(),
+      Mug(),
+      Bottle(),
+      Papers(),
+      BinderRow(),
+      BookRow(),
+      Bookcase(),
+      Poster(),
+      FramedPicture(),
+      WallClock(),
+      NoticeBoard(),
+      Thermostat(),
+      CeilingDiffuser(),
+      SupplyGrille(),
+      ReturnGrille(),
+      HeatingPipe(),
+      CableTrunking(),
+      SkirtingBoard("skirting_board", 1.0),
+      SkirtingBoard("skirting_board_short", 0.2),
+      WindowSill(),
+      Blind(),
+      Bin(),
+      CardboardBox(),
+      Rug(),
+      SmokeDetector(),
+      Sprinkler(),
+      Bulkhead(),
+      Router()};
   for (AssetBuilder& part : PersonParts()) assets.push_back(std::move(part));
   tinygltf::TinyGLTF writer;
   for (const AssetBuilder& asset : assets) {

@@ -12,6 +12,7 @@
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/people/walker_planner.h"
+#include "clutter.h"
 #include "draw_until_valid.h"
 #include "floor_plan.h"
 #include "layouts.h"
@@ -134,7 +135,7 @@ std::vector<std::string> ObjectProblems(const Scene& scene) {
       });
       if (!on_wall && !on_interior_wall) problems.push_back(name + " is wall-mounted but its back is not on a wall facing into the room");
     }
-    if (asset.class_name == "ceiling_light" && std::abs(box.max().z() - room.z()) > kTouchM) {
+    if (asset.mount == "hanging" && asset.class_name != "coat" && std::abs(box.max().z() - room.z()) > kTouchM) {
       problems.push_back(name + " does not touch the ceiling");
     }
   }
@@ -224,9 +225,6 @@ ojson Objects(const Layout& layout) {
   for (const PlacedObject& o : layout.objects) objects.push_back(ObjectJson(o));
   return objects;
 }
-
-// Floor-standing room objects: footprints the route, walkers and seats must keep clear of.
-bool OnTheFloor(const PlacedObject& o) { return o.asset == "cabinet" || o.asset == "bag"; }
 
 // One draw of a scene: the document, with the frames still to count, the route still to plan round
 // the layout's route box (its corners stand in for it) and the room objects still to place.
@@ -379,16 +377,24 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
     std::vector<std::pair<int, int>> occupied;
     for (const ojson& s : doc["crowd"]["seating"]) occupied.emplace_back(s["table"].get<int>(), s["seat"].get<int>());
     for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng)) added.push_back(o);
+    // The clutter, from its own stream: at density 0 the room is what it was without it.
+    Rng clutter_rng = KeyedRng(seed, "generate.clutter", index, HashString(family), attempt);
+    std::vector<PlacedObject> so_far = layout.objects;
+    so_far.insert(so_far.end(), added.begin(), added.end());
+    AssetLibrary assets(scene.assets_dir);
+    for (const PlacedObject& o : Clutter(room, layout, doc["room"]["windows"], doors, so_far, world, &assets, route, options, &clutter_rng))
+      added.push_back(o);
     doc["room"]["doors"] = ojson::array();
     for (const Eigen::Vector2d& d : doors) doc["room"]["doors"].push_back({{"position_m", Point(d)}});
-    // With every object, else without the floor-standing ones (bags and cabinets, the only ones
-    // that can block a seat's access the checks below find).
+    // With every object, else without the floor-standing ones and what stands on them (bags,
+    // cabinets, bookcases and their books, PCs, bins, boxes: the only ones that can block a seat's
+    // access the checks below find).
     std::vector<std::string> problems;
     bool placed = false;
     for (const bool floor : {true, false}) {
       ojson candidate = doc;
       for (const PlacedObject& o : added)
-        if (floor || !OnTheFloor(o)) candidate["objects"].push_back(ObjectJson(o));
+        if (floor || !StandsOnTheFloor(o.asset)) candidate["objects"].push_back(ObjectJson(o));
       Scene final_scene = SceneFromJson(nlohmann::json::parse(candidate.dump()), where);
       final_scene.route.waypoints_m = route;
       const World final_world(final_scene, table);

@@ -44,7 +44,10 @@ const OptionTable<RoomObjectOptions>& RoomObjectOptions::Table() {
           .Add("coat_probability", &O::coat_probability, 0.25, "", R::Closed(0, 1),
                "chance of a coat over an occupied chair's backrest")
           .Add("charger_probability", &O::charger_probability, 0.2, "", R::Closed(0, 1),
-               "chance of a charger on the table top beside an occupied seat");
+               "chance of a charger on the table top beside an occupied seat")
+          .Add("clutter_density", &O::clutter_density, 1.0, "", R::Closed(0, 2),
+               "the clutter of lived-in rooms (things on tables, walls, floors, ceilings and shelves): 0 none, 1 typical, "
+               "2 twice that");
   return table;
 }
 

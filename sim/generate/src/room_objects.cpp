@@ -1,5 +1,7 @@
 #include "room_objects.h"
 
+#include "room_plan.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -22,106 +24,6 @@ constexpr double kSwitchBottomM = 1.05 - kPlateHeightM / 2, kSocketBottomM = 0.3
 // chair.gltf: the seat is 0.42 m wide; the backrest's top edge is 0.253 m behind the seat centre,
 // 0.86 m up. Table tops are at 0.74 m.
 constexpr double kChairHalfWidthM = 0.21, kBackrestBackM = 0.253, kBackrestTopM = 0.86, kTableTopM = 0.74;
-constexpr double kCornerM = 0.1;      // fittings keep this far from a room corner
-constexpr double kGapM = 0.1;         // and from each other along a wall
-constexpr double kDoorwayM = 1.0;     // floor objects keep this far from a doorway's centre
-
-enum Wall { kSouth, kNorth, kWest, kEast };
-
-// The stretches of wall taken: along the wall (x for south and north, y for west and east) and
-// in height.
-struct Span {
-  Wall wall;
-  double a, b, z0, z1;
-};
-
-class WallPlan {
- public:
-  explicit WallPlan(const Eigen::Vector3d& size_m) : size_m_(size_m) {}
-
-  double Length(Wall wall) const { return wall == kSouth || wall == kNorth ? size_m_.x() : size_m_.y(); }
-
-  bool Free(Wall wall, double a, double b, double z0, double z1) const {
-    if (a < kCornerM || b > Length(wall) - kCornerM || z1 > size_m_.z()) return false;
-    for (const Span& s : spans_)
-      if (s.wall == wall && a < s.b + kGapM && s.a < b + kGapM && z0 < s.z1 && s.z0 < z1) return false;
-    return true;
-  }
-
-  void Take(Wall wall, double a, double b, double z0, double z1) { spans_.push_back({wall, a, b, z0, z1}); }
-
-  // An object with its back on `wall` at `along_m`, its bottom at z_m: the asset's origin and yaw.
-  PlacedObject On(const std::string& asset, Wall wall, double along_m, double z_m) const {
-    switch (wall) {
-      case kSouth: return {asset, Eigen::Vector3d(along_m, 0, z_m), 90};
-      case kNorth: return {asset, Eigen::Vector3d(along_m, size_m_.y(), z_m), -90};
-      case kWest: return {asset, Eigen::Vector3d(0, along_m, z_m), 0};
-      case kEast: break;
-    }
-    return {asset, Eigen::Vector3d(size_m_.x(), along_m, z_m), 180};
-  }
-
- private:
-  Eigen::Vector3d size_m_;
-  std::vector<Span> spans_;
-};
-
-// Takes the stretch and places the object when the stretch is free.
-bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& asset, Wall wall, double along_m, double half_m,
-           double bottom_m, double height_m) {
-  if (!plan->Free(wall, along_m - half_m, along_m + half_m, bottom_m, bottom_m + height_m)) return false;
-  plan->Take(wall, along_m - half_m, along_m + half_m, bottom_m, bottom_m + height_m);
-  out->push_back(plan->On(asset, wall, along_m, bottom_m));
-  return true;
-}
-
-// The route's centre line, every 2 cm.
-std::vector<Eigen::Vector2d> RoutePoints(const std::vector<Eigen::Vector2d>& route) {
-  std::vector<Eigen::Vector2d> out;
-  for (size_t i = 0; i < route.size(); ++i) {
-    const std::vector<Eigen::Vector2d> leg = Along(route[i], route[(i + 1) % route.size()]);
-    out.insert(out.end(), leg.begin(), leg.end());
-  }
-  return out;
-}
-
-// A floor object's footprint clear of the walls, every other footprint, the doorways, the seats'
-// access and the route.
-struct FloorCheck {
-  Eigen::Vector2d room_m;
-  std::vector<Obstacle2D> footprints;
-  std::vector<Eigen::Vector2d> doors, access, route;
-  double clearance_m;
-
-  bool Clear(const Obstacle2D& o) const {
-    const double c = std::cos(o.yaw_rad), s = std::sin(o.yaw_rad);
-    const Eigen::Vector2d reach(std::abs(c) * o.half_size_m.x() + std::abs(s) * o.half_size_m.y(),
-                                std::abs(s) * o.half_size_m.x() + std::abs(c) * o.half_size_m.y());
-    if ((o.center_m - reach).minCoeff() < 0.01 || o.center_m.x() + reach.x() > room_m.x() - 0.01 ||
-        o.center_m.y() + reach.y() > room_m.y() - 0.01) {
-      return false;
-    }
-    Obstacle2D grown = o;
-    grown.half_size_m += Eigen::Vector2d(0.02, 0.02);
-    for (const Obstacle2D& f : footprints)
-      if (FootprintsOverlap(grown, f)) return false;
-    for (const Eigen::Vector2d& d : doors)
-      if (DistanceToObstacle(d, o) < kDoorwayM) return false;
-    for (const Eigen::Vector2d& a : access)
-      if (DistanceToObstacle(a, o) < kAccessRadiusM + 0.05) return false;
-    for (const Eigen::Vector2d& p : route)
-      if (DistanceToObstacle(p, o) < clearance_m + 0.01) return false;
-    return true;
-  }
-};
-
-FloorCheck MakeFloorCheck(const Eigen::Vector2d& room_m, const World& world, const std::vector<Eigen::Vector2d>& doors,
-                          const std::vector<Eigen::Vector2d>& route, double clearance_m) {
-  return {room_m, Furniture(world), doors, SeatAccess(world), RoutePoints(route), clearance_m};
-}
-
-Eigen::Vector2d Rotate(double yaw_rad, const Eigen::Vector2d& v) { return Eigen::Rotation2Dd(yaw_rad) * v; }
-
 }  // namespace
 
 bool HasFrontWall(const std::string& family) {

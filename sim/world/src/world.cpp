@@ -12,6 +12,7 @@ namespace hoilcd {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
+constexpr float kDriveOverM = 0.02f;  // m: a floor object no higher than this (a rug) is driven over
 
 void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
              const Eigen::Vector3f& c, const Eigen::Vector3f& d, uint32_t material) {
@@ -219,7 +220,8 @@ World::World(const Scene& scene, const BandRadianceTable& table)
     const int id = Place(asset, PlacementTransform(o.position_m, yaw), InstanceRole::kObject,
                          asset.class_name + " " + std::to_string(i), o.temperature_offset_c);
     instances_[static_cast<size_t>(id)].fixture = true;
-    if (asset.mount == "floor" && o.position_m.z() < 0.2) {
+    // A floor object the robot drives over (a rug, at most kDriveOverM high) is no obstacle.
+    if (asset.mount == "floor" && o.position_m.z() < 0.2 && asset.bounds_m.max().z() > kDriveOverM) {
       obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset,
                                        o.position_m, yaw));
     }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -308,7 +309,38 @@ TEST(ShippedAssets, RoomObjectsHaveTheirDocumentedClassMountSizeAndThermalRegion
       {"ceiling_light", "ceiling_light", "hanging", {0.60f, 0.60f, 0.041f}, {{"light_frame", 30, 0.93, false}, {"light_diffuser", 26, 0.94, false}}},
       {"bag", "bag", "floor", {0.32f, 0.14f, 0.488f}, {{"bag_fabric", 22, 0.90, false}}},
       {"coat", "coat", "hanging", {0.102f, 0.44f, 0.492f}, {{"coat", 25, 0.90, false}}},
-      {"charger", "charger", "floor", {0.11f, 0.05f, 0.03f}, {{"charger", 40, 0.94, false}}}};
+      {"charger", "charger", "floor", {0.11f, 0.05f, 0.03f}, {{"charger", 40, 0.94, false}}},
+      // The clutter of lived-in rooms.
+      {"pc_tower", "pc", "floor", {0.457f, 0.20f, 0.45f}, {{"pc_case", 24, 0.93, false}, {"pc_exhaust", 34, 0.93, false}}},
+      {"desk_phone", "phone", "floor", {0.20f, 0.22f, 0.084f}, {{"phone", 26, 0.94, false}}},
+      {"router", "router", "floor", {0.14f, 0.20f, 0.18f}, {{"router", 33, 0.94, false}}},
+      {"power_strip", "power_strip", "floor", {0.056f, 0.30f, 0.048f}, {{"plastic", 22, 0.94, false}}},
+      {"mug", "mug", "floor", {0.082f, 0.1075f, 0.095f}, {{"mug", 22, 0.92, false}}},
+      {"bottle", "bottle", "floor", {0.066f, 0.066f, 0.225f}, {{"bottle", 22, 0.94, false}}},
+      {"papers", "papers", "floor", {0.237f, 0.305f, 0.021f}, {{"paper", 22, 0.93, false}}},
+      {"binder_row", "binders", "floor", {0.29f, 0.388f, 0.32f}, {{"binder", 22, 0.94, false}}},
+      {"book_row", "books", "floor", {0.20f, 0.338f, 0.28f}, {{"books", 22, 0.93, false}}},
+      {"bookcase", "bookcase", "floor", {0.32f, 0.80f, 1.80f}, {{"wood", 22, 0.90, false}}},
+      {"poster", "poster", "wall", {0.002f, 0.594f, 0.841f}, {{"poster", 22, 0.89, false}}},
+      {"framed_picture", "picture", "wall", {0.027f, 0.50f, 0.40f}, {{"painted_wood", 22, 0.93, false}, {"glass", 22, 0.94, true}}},
+      {"wall_clock", "clock", "wall", {0.04f, 0.30f, 0.30f}, {{"plastic", 22, 0.94, false}, {"glass", 22, 0.94, true}}},
+      {"notice_board", "notice_board", "wall", {0.0235f, 0.90f, 0.60f}, {{"wood", 22, 0.90, false}, {"pinboard", 22, 0.90, false}, {"paper", 22, 0.93, false}}},
+      {"thermostat", "thermostat", "wall", {0.025f, 0.08f, 0.08f}, {{"plastic", 22, 0.94, false}}},
+      {"supply_grille", "grille", "wall", {0.025f, 0.40f, 0.15f}, {{"painted_steel", 22, 0.93, false}, {"supply_air", 30, 0.93, false}}},
+      {"return_grille", "grille", "wall", {0.03f, 0.40f, 0.30f}, {{"painted_steel", 22, 0.93, false}}},
+      {"heating_pipe", "pipe", "wall", {0.056f, 1.0f, 0.13f}, {{"heating_flow", 45, 0.93, false}, {"heating_return", 37, 0.93, false}, {"plastic", 22, 0.94, false}}},
+      {"cable_trunking", "trunking", "wall", {0.04f, 1.0f, 0.06f}, {{"plastic", 22, 0.94, false}}},
+      {"skirting_board", "skirting", "wall", {0.015f, 1.0f, 0.08f}, {{"painted_wood", 22, 0.93, false}}},
+      {"skirting_board_short", "skirting", "wall", {0.015f, 0.20f, 0.08f}, {{"painted_wood", 22, 0.93, false}}},
+      {"window_sill", "sill", "wall", {0.16f, 0.20f, 0.03f}, {{"painted_wood", 22, 0.93, false}}},
+      {"blind", "blind", "wall", {0.07f, 0.20f, 0.67f}, {{"painted_steel", 22, 0.93, false}, {"blind_fabric", 22, 0.90, false}}},
+      {"bin", "bin", "floor", {0.30f, 0.30f, 0.35f}, {{"plastic", 22, 0.94, false}}},
+      {"cardboard_box", "box", "floor", {0.40f, 0.30f, 0.301f}, {{"cardboard", 22, 0.93, false}}},
+      {"rug", "rug", "floor", {1.60f, 1.20f, 0.01f}, {{"rug", 22, 0.90, false}}},
+      {"ceiling_diffuser", "diffuser", "hanging", {0.60f, 0.60f, 0.06f}, {{"painted_steel", 22, 0.93, false}, {"supply_air", 30, 0.93, false}}},
+      {"smoke_detector", "detector", "hanging", {0.11f, 0.11f, 0.05f}, {{"plastic", 22, 0.94, false}}},
+      {"sprinkler", "sprinkler", "hanging", {0.07f, 0.07f, 0.06f}, {{"metal", 22, 0.10, true}}},
+      {"bulkhead", "bulkhead", "hanging", {0.40f, 1.0f, 0.25f}, {{"painted_plaster", 22, 0.93, false}}}};
   for (const Expected& e : expected) {
     SCOPED_TRACE(e.name);
     const Asset& asset = Shipped(e.name);
@@ -333,10 +365,34 @@ TEST(ShippedAssets, RoomObjectsHaveTheirDocumentedClassMountSizeAndThermalRegion
     }
   }
   EXPECT_NEAR(Shipped("ceiling_light").bounds_m.max().z(), 0.0f, 1e-4f) << "hangs from its top face";
+  for (const char* ceiling : {"ceiling_diffuser", "smoke_detector", "sprinkler", "bulkhead"}) {
+    EXPECT_NEAR(Shipped(ceiling).bounds_m.max().z(), 0.0f, 1e-4f) << ceiling << " hangs from its top face";
+  }
+  // The exhaust grille is on the PC's back (-x), the monitor's and PC's heat where it leaves.
+  EXPECT_LT(RegionCentroid(Shipped("pc_tower"), "pc_exhaust").x(), -0.2f);
+  // A rug is low enough to be driven over (it is no footprint, world.cpp).
+  EXPECT_LE(Shipped("rug").bounds_m.max().z(), 0.02f);
   EXPECT_NEAR(Shipped("coat").bounds_m.max().z(), 0.04f, 2e-3f) << "folded over the backrest's top edge";
   // The louvre is the unit's underside, facing the floor in front of the casing.
   EXPECT_LT(RegionCentroid(Shipped("ac_unit"), "ac_louvre").z(), 0.03f);
   EXPECT_GT(RegionCentroid(Shipped("whiteboard"), "whiteboard").x(), 0.0f);
+}
+
+// The powered parts' heat (docs/models/room_objects.md): with the room's thermal solution their
+// temperature comes from it; every other part of the shipped assets states none.
+TEST(ShippedAssets, PoweredPartsStateTheirDocumentedPowerAndNoOtherPartStatesOne) {
+  const std::map<std::pair<std::string, std::string>, double> powered = {
+      {{"monitor", "monitor_back"}, 13.0}, {{"monitor", "monitor_screen"}, 4.0}, {{"pc_tower", "pc_case"}, 10.0},
+      {{"desk_phone", "phone"}, 6.0},      {{"router", "router"}, 8.0}};
+  for (const fs::directory_entry& e : fs::directory_iterator(kAssetDir)) {
+    if (e.path().extension() != ".gltf") continue;
+    const std::string name = e.path().stem().string();
+    const Asset& asset = Shipped(name);
+    for (const ThermalMaterial& m : asset.materials) {
+      const auto it = powered.find({name, m.region});
+      EXPECT_DOUBLE_EQ(m.power_w, it == powered.end() ? 0.0 : it->second) << name << " " << m.region;
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

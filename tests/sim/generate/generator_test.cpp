@@ -28,12 +28,28 @@ constexpr int kSeeds = 50;
 
 Scene Load(const nlohmann::ordered_json& doc) { return SceneFromJson(nlohmann::json::parse(doc.dump()), "generated.json"); }
 
+// The clutter's assets by where they go (docs/guide/generate.md); "" for every other asset.
+std::string ClutterCategory(const std::string& asset) {
+  for (const char* a : {"papers", "mug", "bottle", "desk_phone", "power_strip"})
+    if (asset == a) return "table top";
+  for (const char* a : {"skirting_board", "skirting_board_short", "window_sill", "blind", "heating_pipe", "cable_trunking", "thermostat",
+                        "return_grille", "supply_grille", "poster", "framed_picture", "notice_board", "wall_clock"})
+    if (asset == a) return "wall";
+  for (const char* a : {"bookcase", "pc_tower", "bin", "cardboard_box", "rug", "router"})
+    if (asset == a) return "floor";
+  for (const char* a : {"ceiling_diffuser", "smoke_detector", "sprinkler", "bulkhead"})
+    if (asset == a) return "ceiling";
+  if (asset == "book_row" || asset == "binder_row") return "shelf";
+  return "";
+}
+
 class EveryLayout : public testing::TestWithParam<std::string> {};
 
 TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClosedRouteOver50Seeds) {
   const GeneratorOptions options;
   std::vector<std::string> failures(kSeeds);
   std::vector<int> whiteboards(kSeeds, 0), people_things(kSeeds, 0);
+  std::vector<std::map<std::string, int>> clutter(kSeeds);  // per seed, category: count
   ParallelFor(kSeeds, 0, [&](int64_t seed) {
     try {
       const nlohmann::ordered_json doc = GenerateScene(GetParam(), static_cast<uint64_t>(seed), 0, options);
@@ -54,6 +70,7 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
       if (!problems.empty()) failures[static_cast<size_t>(seed)] = "seed " + std::to_string(seed) + ": " + problems;
       whiteboards[static_cast<size_t>(seed)] = count["whiteboard"];
       people_things[static_cast<size_t>(seed)] = count["bag"] + count["coat"] + count["charger"];
+      for (const auto& [asset, n] : count) clutter[static_cast<size_t>(seed)][ClutterCategory(asset)] += n;
     } catch (const std::exception& e) {
       failures[static_cast<size_t>(seed)] = "seed " + std::to_string(seed) + ": " + e.what();
     }
@@ -67,6 +84,16 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
     EXPECT_GE(with_whiteboard, kSeeds * 7 / 10);
   } else {
     EXPECT_EQ(with_whiteboard, 0);
+  }
+  // The clutter (density 1, the default): walls, floors and ceilings in most rooms, bookcases'
+  // shelves in some; table tops in some, but for meeting rows, whose tables are seated all round
+  // (every seat's place is kept for its person's props and forearms).
+  const std::map<std::string, int> least = {
+      {"wall", kSeeds * 9 / 10}, {"floor", kSeeds * 7 / 10}, {"ceiling", kSeeds * 9 / 10}, {"shelf", kSeeds / 10},
+      {"table top", GetParam() == "meeting_row" ? 0 : kSeeds / 5}};
+  for (const auto& [category, rooms_least] : least) {
+    const int rooms = static_cast<int>(std::count_if(clutter.begin(), clutter.end(), [&](auto& c) { return c[category] > 0; }));
+    EXPECT_GE(rooms, rooms_least) << category;
   }
   const int with_things = static_cast<int>(std::count_if(people_things.begin(), people_things.end(), [](int n) { return n > 0; }));
   if (GetParam() != "lounge") {
@@ -88,6 +115,45 @@ TEST(Generator, TheSameArgumentsGiveTheSameBytesAndMixedDrawsWhatTheFamilyGives)
     EXPECT_EQ(text.rfind("{\n  \"name\": ", 0), 0u) << "keys in the generator's order, indented";
   }
   EXPECT_NE(SceneFileText(GenerateScene("classroom", 11, 0, options)), SceneFileText(GenerateScene("classroom", 12, 0, options)));
+}
+
+// At density 0 a room holds none of the clutter, and the rest of it is what density 1 gives (the
+// clutter has its own stream): the same furniture, fittings and people's things.
+TEST(Generator, AtClutterDensity0ARoomHoldsNoClutterAndTheRestIsUnchanged) {
+  GeneratorOptions none;
+  none.objects.clutter_density = 0;
+  const GeneratorOptions typical;
+  int same = 0;
+  for (int index = 0; index < 6; ++index) {
+    const nlohmann::ordered_json bare = GenerateScene("mixed", 5, index, none), full = GenerateScene("mixed", 5, index, typical);
+    nlohmann::ordered_json kept = nlohmann::ordered_json::array();
+    for (const auto& o : bare["objects"]) EXPECT_EQ(ClutterCategory(o["asset"]), "") << o["asset"];
+    for (const auto& o : full["objects"])
+      if (ClutterCategory(o["asset"]).empty()) kept.push_back(o);
+    EXPECT_EQ(bare["tables"], full["tables"]);
+    EXPECT_EQ(bare["crowd"], full["crowd"]);
+    EXPECT_EQ(bare["route"], full["route"]);
+    same += bare["objects"] == kept;
+    EXPECT_GT(full["objects"].size(), bare["objects"].size() + 20) << "density 1 adds the clutter";
+  }
+  EXPECT_GE(same, 5) << "only a room that had to leave its floor objects out may differ";
+}
+
+// Twice the density gives more clutter than the typical room, half of it less (over six rooms).
+TEST(Generator, TheClutterGrowsWithItsDensity) {
+  auto clutter = [](double density) {
+    GeneratorOptions o;
+    o.objects.clutter_density = density;
+    size_t n = 0;
+    for (int index = 0; index < 6; ++index) {
+      const nlohmann::ordered_json scene = GenerateScene("mixed", 9, index, o);
+      for (const auto& obj : scene["objects"]) n += !ClutterCategory(obj["asset"]).empty();
+    }
+    return n;
+  };
+  const size_t half = clutter(0.5), one = clutter(1.0), twice = clutter(2.0);
+  EXPECT_LT(half, one);
+  EXPECT_LT(one, twice);
 }
 
 TEST(Generator, MixedDrawsEveryFamily) {

@@ -20,7 +20,9 @@ const std::vector<std::string>& LayoutFamilies();
 // Version 2: rooms hold doors in frames, switches, sockets, a whiteboard, an air conditioner,
 // shelves, cabinets, ceiling lights, and bags, coats and chargers by occupied seats.
 // Version 3: the floor is matte or one of four glossy finishes (room.floor.roughness_um).
-constexpr int kGeneratorVersion = 3;
+// Version 4: the clutter of lived-in rooms (objects.clutter_density, 1 by default); at density 0
+// a room is version 3's.
+constexpr int kGeneratorVersion = 4;
 
 // A family's room size, drawn uniformly per scene: length along x, width along y.
 struct RoomSizeRange {
@@ -40,6 +42,7 @@ struct RoomObjectOptions {
   double bag_probability;          // a bag on the floor beside an occupied chair
   double coat_probability;         // a coat over an occupied chair's backrest
   double charger_probability;      // a charger on the table top beside an occupied seat
+  double clutter_density;          // the clutter of lived-in rooms: 0 none, 1 typical (docs/guide/generate.md)
 
   static const OptionTable<RoomObjectOptions>& Table();
 };
