@@ -228,10 +228,12 @@ TEST(Walkers, TurnSmoothlyWhereADoorWalkJoinsTheRouteOrTheyTurnBack) {
 }
 
 TEST(Walkers, FurnitureInADoorwayIsAnErrorNamingTheDoor) {
-  // Someone standing in the paper room's east door (x = 7, y = 1.5); the last table and the
-  // route moved west so that the robot passes them.
+  // Someone standing in the paper room's east door (x = 7, y = 1.5); the last table removed and
+  // the route moved west so that the robot passes them.
   const Scene scene = LoadShipped("paper_room", {"crowd.walkers=1", R"(crowd.standing=[{"position_m": [6.98, 1.5]}])",
-                                                 "tables.5.center_m=[5.5,1.5]", "route.waypoints_m=[[0.38,0.38],[0.38,2.62],[6.3,2.62],[6.3,0.38]]"});
+                                                 R"(tables=[{"center_m": [1.2, 1.5]}, {"center_m": [2.12, 1.5]}, {"center_m": [3.04, 1.5]},
+                                                            {"center_m": [3.96, 1.5]}, {"center_m": [4.88, 1.5]}])",
+                                                 "route.waypoints_m=[[0.38,0.38],[0.38,2.62],[6.3,2.62],[6.3,0.38]]"});
   const BandRadianceTable table;
   World world(scene, table);
   const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
