@@ -266,6 +266,56 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   room_network_->SetPeople(sources);
 }
 
+namespace {
+
+// A window sits 2 mm in front of its wall, whose rectangle runs on behind the glass: cuts each
+// wall quad on the lines of the windows in front of it and drops the cells behind a window, so
+// that no patch of the thermal solution is hidden from the room.
+std::vector<RoomQuad> SplitAroundWindows(const std::vector<RoomQuad>& quads, size_t windows) {
+  constexpr float kInFrontM = 0.01f;
+  std::vector<RoomQuad> out;
+  for (const RoomQuad& quad : quads) {
+    const Eigen::Vector3f origin = quad.corners[0], u = quad.corners[1] - origin, v = quad.corners[3] - origin;
+    auto uv = [&](const Eigen::Vector3f& p) { return Eigen::Vector2f((p - origin).dot(u) / u.squaredNorm(), (p - origin).dot(v) / v.squaredNorm()); };
+    std::vector<Eigen::AlignedBox2f> holes;  // windows in front of this quad, in its (u, v)
+    for (const RoomQuad& other : quads) {
+      const bool window = other.material >= 3 && other.material < 3 + static_cast<int>(windows);
+      if (!window || quad.material != 2 || other.normal.dot(quad.normal) < 0.99f) continue;
+      if (std::abs((other.corners[0] - origin).dot(quad.normal)) > kInFrontM) continue;
+      Eigen::AlignedBox2f box;
+      for (const Eigen::Vector3f& c : other.corners) box.extend(uv(c));
+      box = box.intersection(Eigen::AlignedBox2f(Eigen::Vector2f::Zero(), Eigen::Vector2f::Ones()));
+      if (!box.isEmpty() && box.volume() > 0) holes.push_back(box);
+    }
+    if (holes.empty()) {
+      out.push_back(quad);
+      continue;
+    }
+    std::vector<float> us = {0, 1}, vs = {0, 1};
+    for (const Eigen::AlignedBox2f& h : holes) {
+      us.insert(us.end(), {h.min().x(), h.max().x()});
+      vs.insert(vs.end(), {h.min().y(), h.max().y()});
+    }
+    for (std::vector<float>* cuts : {&us, &vs}) {
+      std::sort(cuts->begin(), cuts->end());
+      cuts->erase(std::unique(cuts->begin(), cuts->end(), [](float a, float b) { return b - a < 1e-4f; }), cuts->end());
+    }
+    for (size_t j = 0; j + 1 < vs.size(); ++j) {
+      for (size_t i = 0; i + 1 < us.size(); ++i) {
+        const Eigen::Vector2f mid(0.5f * (us[i] + us[i + 1]), 0.5f * (vs[j] + vs[j + 1]));
+        if (std::any_of(holes.begin(), holes.end(), [&](const Eigen::AlignedBox2f& h) { return h.contains(mid); })) continue;
+        RoomQuad cell = quad;
+        cell.corners = {origin + us[i] * u + vs[j] * v, origin + us[i + 1] * u + vs[j] * v,
+                        origin + us[i + 1] * u + vs[j + 1] * v, origin + us[i] * u + vs[j + 1] * v};
+        out.push_back(cell);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<RoomQuad> World::RoomQuads(const Scene& scene) const {
   const std::vector<WallPart> parts = WallParts(scene.floor, room_size_m_.z());
   const Eigen::Vector3f size = room_size_m_.cast<float>();
@@ -287,7 +337,7 @@ std::vector<RoomQuad> World::RoomQuads(const Scene& scene) const {
     if (!in_air(centre + 0.01f * quad.normal)) quad.normal = -quad.normal;
     quads.push_back(quad);
   }
-  return quads;
+  return SplitAroundWindows(quads, scene.room.windows.size());
 }
 
 void World::ApplyRoomNetwork() {

@@ -87,6 +87,25 @@ TEST(RoomNetwork, TheOutsideWallAndTheFloorUnderItsWindowAreColderThanTheirCount
   EXPECT_LT(network.IncidentRadiance(world.room_instance(), 3), Table().RadianceFromCelsius(22.5f));
 }
 
+TEST(RoomNetwork, NoWallPatchHidesBehindTheWindowAndTheWallBesideItIsTheWalls) {
+  // paper_room's window: the north wall, x 1.0 to 2.6 m, z 0.9 to 2.2 m, 2 mm in front of the wall.
+  const Scene scene = PaperRoom({"room.hvac.enabled=false"});
+  World world(scene, Table());
+  world.SetTime(0.0);
+  const RoomNetwork& network = *world.room_network();
+  EXPECT_TRUE(std::isnan(network.RoomTemperatureC(2, Eigen::Vector3f(1.8f, 3.0f, 1.5f)))) << "the wall behind the glass";
+  EXPECT_FALSE(std::isnan(network.RoomTemperatureC(3, Eigen::Vector3f(1.8f, 2.998f, 1.5f)))) << "the glass";
+  // Just above and beside the glass the wall reads the wall's own patches, within a kelvin of the
+  // wall away from the window, not a blend with patches that only see the back of the glass.
+  const float away = network.RoomTemperatureC(2, Eigen::Vector3f(5.0f, 3.0f, 1.5f));
+  for (const Eigen::Vector3f& p : {Eigen::Vector3f(1.8f, 3.0f, 2.25f), Eigen::Vector3f(0.95f, 3.0f, 1.5f),
+                                   Eigen::Vector3f(2.65f, 3.0f, 1.5f)}) {
+    const float beside = network.RoomTemperatureC(2, p);
+    ASSERT_FALSE(std::isnan(beside)) << p.transpose();
+    EXPECT_NEAR(beside, away, 1.0f) << p.transpose();
+  }
+}
+
 TEST(RoomNetwork, EveryFixtureMaterialDeclaredAtRoomTemperatureIsSolvedAndTheRestHeld) {
   const Scene scene = PaperRoom({});
   World world(scene, Table());
