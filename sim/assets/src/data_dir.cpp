@@ -37,14 +37,28 @@ int FindObject(dl_phdr_info* info, size_t, void* data) {
 
 }  // namespace
 
+std::string ProgramPathFromLink(const std::string& link_target) {
+  const std::string suffix = " (deleted)";
+  if (link_target.size() > suffix.size() && link_target.compare(link_target.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    return link_target.substr(0, link_target.size() - suffix.size());
+  }
+  return link_target;
+}
+
 std::string BinaryPath() {
   Lookup lookup;
   lookup.address = reinterpret_cast<uintptr_t>(&BinaryPath);
   dl_iterate_phdr(FindObject, &lookup);
   std::error_code error;
-  const fs::path path = lookup.found && !lookup.name.empty() ? fs::path(lookup.name) : fs::path("/proc/self/exe");
-  const fs::path resolved = fs::canonical(path, error);
-  return error ? path.string() : resolved.string();
+  if (!lookup.found || lookup.name.empty()) {
+    // The running program, also once a rebuild or an upgrade has replaced its file (a long suite):
+    // its folder, and the share/hoilcd beside it, are still there.
+    const fs::path target = fs::read_symlink("/proc/self/exe", error);
+    if (!error) return ProgramPathFromLink(target.string());
+    return "/proc/self/exe";
+  }
+  const fs::path resolved = fs::canonical(lookup.name, error);
+  return error ? lookup.name : resolved.string();
 }
 
 std::string DataDir() {

@@ -29,6 +29,13 @@ TEST(DataDir, BinaryPathIsThisTestProgram) {
   EXPECT_EQ(fs::path(BinaryPath()), fs::canonical("/proc/self/exe"));
 }
 
+TEST(DataDir, AProgramWhoseFileWasReplacedWhileItRunsIsStillFoundWhereItWas) {
+  // A rebuild during a long suite replaced the binary: every later run failed to find share/hoilcd.
+  EXPECT_EQ(ProgramPathFromLink("/opt/hoilcd/bin/hoilcd (deleted)"), "/opt/hoilcd/bin/hoilcd");
+  EXPECT_EQ(ProgramPathFromLink("/opt/hoilcd/bin/hoilcd"), "/opt/hoilcd/bin/hoilcd");
+  EXPECT_EQ(ProgramPathFromLink(" (deleted)"), " (deleted)");
+}
+
 TEST(DataDir, TheVariableOverridesTheSearch) {
   test::TestDir dir;
   setenv(kDataDirVariable, dir.str().c_str(), 1);

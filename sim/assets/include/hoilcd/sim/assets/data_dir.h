@@ -18,4 +18,8 @@ std::string DataDir();
 // The executable or shared object (e.g. the Python module) that this code was loaded from.
 std::string BinaryPath();
 
+// The program's path from the target of /proc/self/exe, which Linux suffixes " (deleted)" once
+// the file has been replaced or removed while the program runs.
+std::string ProgramPathFromLink(const std::string& link_target);
+
 }  // namespace hoilcd
