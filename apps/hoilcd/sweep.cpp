@@ -28,6 +28,8 @@ struct SweepArgs {
 void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
   std::printf("%s", summary.FormatTable().c_str());
   std::printf("summary: %s/summary.md (and summary.csv, plot_*.png)\n", out.c_str());
+  std::fflush(stdout);  // the warning follows the table, also where stdout and stderr share a log
+  if (const std::string warning = summary.Warning(); !warning.empty()) PrintWarnings({warning});
 }
 
 int MergeCommand(const SweepArgs& args) {

@@ -162,6 +162,7 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
   // values[combination name][method][metric] over seeds
   std::map<std::string, std::vector<std::vector<std::vector<double>>>> values;
   std::map<std::string, std::vector<int>> seeds;
+  std::vector<std::string> runs_without_queries;
   for (const auto& [name, copies] : shards.found) {
     const ShardContents::Copy& f = copies.front();
     const std::string path = f.dir + "/runs/" + f.spec.FolderName() + "/report.json";
@@ -176,10 +177,15 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
       }
       for (size_t k = 0; k < metrics.size(); ++k) v[m][k].push_back(JsonNumberOrNan(report["methods"][methods[m]], metrics[k].key));
     }
+    // Every method is scored on the same queries: those with a true match in their database.
+    if (!methods.empty() && JsonNumberOrNan(report["methods"][methods.front()], "queries_scored") == 0) {
+      runs_without_queries.push_back(name);
+    }
   }
 
   SweepSummary summary;
   summary.plan = plan;
+  summary.runs_without_queries = runs_without_queries;
   for (const Settings& s : plan.Combinations()) {
     const std::string combo = SweepSettingsName(s);
     std::vector<int> seed_list = seeds[combo];
@@ -194,6 +200,16 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
     }
   }
   return summary;
+}
+
+std::string SweepSummary::Warning() const {
+  if (runs_without_queries.empty()) return "";
+  std::string names;
+  for (const std::string& run : runs_without_queries) names += (names.empty() ? "" : ", ") + run;
+  return std::to_string(runs_without_queries.size()) + " of " + std::to_string(plan.Runs().size()) +
+         " runs scored no query (no query had a true match in its database), so their metrics are \"-\": " + names +
+         ". Under the laps protocol a run must last longer than its first lap: set more frames (--set frames=N) "
+         "or another --protocol";
 }
 
 std::string SweepSummary::ToCsv() const {
@@ -221,7 +237,9 @@ std::string SweepSummary::ToMarkdown() const {
   out << "# hoilcd sweep of " << plan.scene_name << "\n\n"
       << "Scene `" << SafeText(plan.scene_path) << "` (hash `" << plan.scene_hash << "`), seeds 1.." << plan.seeds
       << ", methods " << plan.bench.at("methods").dump() << ", protocol `" << plan.bench.value("protocol", "")
-      << "`. Each cell: mean ± sample std [min, max] over the seeds. Every run's report is in runs/.\n\n|";
+      << "`. Each cell: mean ± sample std [min, max] over the seeds. Every run's report is in runs/.\n\n";
+  if (const std::string warning = Warning(); !warning.empty()) out << "**Warning:** " << SafeText(warning) << ".\n\n";
+  out << "|";
   for (const SweepAxis& axis : plan.axes) out << " `" << axis.key << "` |";
   out << " method | seeds |";
   for (const SweepMetric& metric : metrics) out << " " << metric.label << " |";
@@ -288,7 +306,7 @@ nlohmann::json SweepSummary::ToJson() const {
     }
     rows_json.push_back({{"settings", settings}, {"method", row.method}, {"seeds", row.seeds}, {"stats", stats}});
   }
-  return {{"plan", plan.ToJson()}, {"rows", rows_json}};
+  return {{"plan", plan.ToJson()}, {"rows", rows_json}, {"runs_without_queries", runs_without_queries}};
 }
 
 void CheckSweepSummaryFolder(const std::string& out_dir) {

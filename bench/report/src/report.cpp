@@ -427,16 +427,18 @@ std::string IntervalsMarkdown(const std::vector<MethodRun>& runs, const Bootstra
   return md.str();
 }
 
-// Every pair of methods on MRR, the paired difference and its interval, separated pairs first.
+// Every pair of methods on MRR, the paired difference and its interval, separated pairs first;
+// pairs without a query both methods scored have no difference and are left out.
 std::string ComparisonsMarkdown(const std::vector<PairedComparison>& comparisons) {
-  if (comparisons.empty()) return "";
+  const auto scored = [](const PairedComparison& c) { return c.queries > 0; };
+  if (std::none_of(comparisons.begin(), comparisons.end(), scored)) return "";
   std::ostringstream md;
   md << "\n### Paired comparisons (MRR)\n\nThe difference of per-query reciprocal ranks over the queries both "
         "methods scored, with its interval from the same resampled blocks. Where the interval holds 0, this "
         "sequence cannot tell the two methods apart.\n\n";
   for (bool separated : {true, false}) {
     for (const PairedComparison& c : comparisons) {
-      if (c.Separated() != separated) continue;
+      if (!scored(c) || c.Separated() != separated) continue;
       md << "- " << SafeText(c.ToString()) << (separated ? "" : " (not separated)") << "\n";
     }
   }
@@ -538,7 +540,11 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapP
        << Fixed(m.recall_at_100p) << " | " << Fixed(m.ms_per_query, 2) << " (" << Fixed(m.extract_ms_mean, 2)
        << " + " << Fixed(m.match_ms_mean, 2) << ") |\n";
   }
-  if (!runs.empty()) {
+  if (!runs.empty() && runs.front().metrics.queries_scored == 0) {
+    md << "\n**No query was scored**: none has a true match in its database, so every metric above is \"-\". "
+       << "Under the `laps` protocol the sequence must run past its first lap: render more frames, or use "
+       << "another protocol.\n";
+  } else if (!runs.empty()) {
     md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
        << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs, plan) << ComparisonsMarkdown(comparisons)
        << StrataMarkdown(strata) << MetricsPerRunMarkdown(per_run, plan.confidence);

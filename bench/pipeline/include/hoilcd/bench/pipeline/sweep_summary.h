@@ -39,7 +39,11 @@ struct SweepSummaryRow {
 struct SweepSummary {
   SweepPlan plan;
   std::vector<SweepSummaryRow> rows;  // combinations in Combinations() order, methods in plan order
+  std::vector<std::string> runs_without_queries;  // runs (by name, sorted) whose report scored no query
 
+  // "" when every run scored queries; else which runs scored none and what to do (the summary
+  // shows it above the table; `hoilcd sweep` prints it on stderr).
+  std::string Warning() const;
   std::string ToCsv() const;       // one row per combination and method: mean, std, min, max
   std::string ToMarkdown() const;  // the same as a table of "mean ± std [min, max]"
   std::string FormatTable() const; // terminal: mean ± std per metric
