@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -64,8 +65,11 @@ int main(int argc, char** argv) {
       if (arg == "--set" && i + 1 < argc) {
         overrides.push_back(argv[++i]);
       } else {
-        step_s = std::stod(arg);
-        if (!(step_s > 0)) throw std::invalid_argument("STEP_S must be above 0");
+        char* end = nullptr;
+        step_s = std::strtod(arg.c_str(), &end);
+        if (end == arg.c_str() || *end != '\0' || !(step_s > 0) || !std::isfinite(step_s)) {
+          throw std::invalid_argument("STEP_S '" + arg + "': expected seconds, a number above 0");
+        }
       }
     }
     const hoilcd::Scene scene = hoilcd::LoadScene(argv[1], overrides);
