@@ -10,7 +10,8 @@
 
 namespace hoilcd {
 
-// How raw values become temperatures. Defaults and ranges: Check() in real_frames.cpp.
+// How raw values become temperatures. Defaults and ranges: Check() in real_frames.cpp. FLIR
+// radiometric JPEGs carry their own calibration and ignore these.
 struct RealFrameOptions {
   // 16-bit integer frames (PNG, TIFF, .npy uint16): T[°C] = value * scale + offset_c. NaN (the
   // default) refuses 16-bit frames, since a 16-bit file alone does not say its unit; hoilcd's own
