@@ -116,25 +116,34 @@ std::string Fff(const std::vector<std::pair<uint16_t, std::string>>& records) {
   return f;
 }
 
-// A JPEG whose APP1 "FLIR" segments carry `fff` in chunks of `chunk_bytes`, leaving out chunk
-// `missing` (-1: none), then a small grey picture.
-std::string FlirJpeg(const std::string& fff, size_t chunk_bytes = 60000, int missing = -1) {
+// An APP1 segment of `payload`.
+std::string App1(const std::string& payload) {
+  std::string segment("\xff\xe1", 2);
+  Put(&segment, segment.size(), payload.size() + 2, 2, false);
+  return segment + payload;
+}
+
+// The payload of FLIR chunk `index` of 0..`last`.
+std::string Chunk(int index, int last, const std::string& data) {
+  return std::string("FLIR\0\x01", 6) + static_cast<char>(index) + static_cast<char>(last) + data;
+}
+
+// A JPEG of `segments`, then a small grey picture.
+std::string Jpeg(const std::string& segments) {
   std::vector<uchar> picture;
   EXPECT_TRUE(cv::imencode(".jpg", cv::Mat(24, 32, CV_8U, cv::Scalar(128)), picture));
-  std::string jpeg("\xff\xd8", 2);
-  const size_t chunks = (fff.size() + chunk_bytes - 1) / chunk_bytes;
-  for (size_t i = 0; i < chunks; ++i) {
-    if (static_cast<int>(i) == missing) continue;
-    std::string payload("FLIR\0\x01", 6);
-    payload += static_cast<char>(i);
-    payload += static_cast<char>(chunks - 1);
-    payload += fff.substr(i * chunk_bytes, chunk_bytes);
-    jpeg += "\xff\xe1";
-    Put(&jpeg, jpeg.size(), payload.size() + 2, 2, false);
-    jpeg += payload;
+  return std::string("\xff\xd8", 2) + segments + std::string(picture.begin() + 2, picture.end());
+}
+
+// A JPEG whose APP1 "FLIR" segments carry `fff` in chunks of `chunk_bytes`, leaving out chunk
+// `missing` (-1: none).
+std::string FlirJpeg(const std::string& fff, size_t chunk_bytes = 60000, int missing = -1) {
+  const int chunks = static_cast<int>((fff.size() + chunk_bytes - 1) / chunk_bytes);
+  std::string segments;
+  for (int i = 0; i < chunks; ++i) {
+    if (i != missing) segments += App1(Chunk(i, chunks - 1, fff.substr(i * chunk_bytes, chunk_bytes)));
   }
-  jpeg.append(picture.begin() + 2, picture.end());
-  return jpeg;
+  return Jpeg(segments);
 }
 
 // 32 x 24 px of 15..45 °C, a ramp along x, as raw values of LinearLoadCalibration.
@@ -167,8 +176,8 @@ TEST(FlirJpeg, LinearLoadMatchesThePythonReferenceConverterToAHundredthOfAKelvin
   ASSERT_TRUE(f.radiometric);
   ASSERT_EQ(f.image.type(), CV_32F);
   ASSERT_EQ(f.image.size(), cv::Size(120, 120));
-  // From `flir_to_npy.py OUT "15 - Linear_load.jpg"` (the reference converter beside the real
-  // frames of docs/results, numpy float64 then float32): the .npy's min, max, median and pixels.
+  // From the Python reference converter, outside the repository (numpy, float64 then float32):
+  // `flir_to_npy.py OUT "15 - Linear_load.jpg"`, the .npy's min, max, median and some pixels.
   double lo = 0, hi = 0;
   cv::minMaxLoc(f.image, &lo, &hi);
   EXPECT_NEAR(lo, 29.938461303710938, 0.01);
@@ -266,6 +275,12 @@ TEST(FlirJpeg, MalformedFilesAreInputErrorsNamingTheFileAndWhatWasExpected) {
   Put(&many, 0x1c, 1000000, 4, false);
   expect("directory.jpg", FlirJpeg(many), {"FLIR FFF directory of 1000000 entries at byte 64 runs past the end"});
   expect("missing_chunk.jpg", FlirJpeg(good, 500, 1), {"FLIR APP1 chunk 1 of 0..", "is missing"});
+  expect("short_chunk.jpg", Jpeg(App1(std::string("FLIR\0\x01", 6))),
+         {"FLIR APP1 segment at byte 2 holds 6 bytes: expected at least 8 (its chunk header)"});
+  expect("two_lasts.jpg", Jpeg(App1(Chunk(0, 1, good)) + App1(Chunk(1, 2, ""))),
+         {"FLIR APP1 chunks give 1 and 2 as the last chunk's index"});
+  expect("beyond_last.jpg", Jpeg(App1(Chunk(2, 1, good))), {"FLIR APP1 chunk 2 of 0..1: expected an index up to the last"});
+  expect("twice.jpg", Jpeg(App1(Chunk(0, 0, good)) + App1(Chunk(0, 0, good))), {"FLIR APP1 chunk 0 appears twice"});
   expect("no_raw.jpg", FlirJpeg(Fff({{0x20, camera_info}})), {"no FLIR record 0x1 (raw thermal image)"});
   expect("no_camera_info.jpg", FlirJpeg(Fff({{0x01, raw_record}})), {"no FLIR record 0x20 (camera info)"});
   expect("raw_size.jpg", FlirJpeg(Fff({{0x01, raw_record.substr(0, raw_record.size() - 2)}, {0x20, camera_info}})),
@@ -278,6 +293,9 @@ TEST(FlirJpeg, MalformedFilesAreInputErrorsNamingTheFileAndWhatWasExpected) {
   Put(&png_record, 2, 30, 2, true);  // the record says 30 px wide, its PNG 32
   expect("png_size.jpg", FlirJpeg(Fff({{0x01, png_record}, {0x20, camera_info}})),
          {"holds a PNG of 32x24 px: expected the record's 30x24"});
+  const std::string headless_png = raw_record.substr(0, 32) + "\x89PNG\r\n\x1a\n" + std::string(40, '\0');
+  expect("headless_png.jpg", FlirJpeg(Fff({{0x01, headless_png}, {0x20, camera_info}})),
+         {"holds a PNG without its IHDR header: expected a 16-bit grey PNG"});
   std::string broken_png = RawRecord(raw, true, true);
   broken_png.resize(broken_png.size() - 40);
   expect("broken_png.jpg", FlirJpeg(Fff({{0x01, broken_png}, {0x20, camera_info}})),
@@ -288,6 +306,10 @@ TEST(FlirJpeg, MalformedFilesAreInputErrorsNamingTheFileAndWhatWasExpected) {
   no_emissivity.emissivity = 0;
   expect("emissivity.jpg", FlirJpeg(Fff({{0x01, raw_record}, {0x20, CameraInfoRecord(no_emissivity, true)}})),
          {"emissivity 0: expected above 0, at most 1"});
+  FlirCalibration sun = c;
+  sun.reflected_temperature_k = 5800;
+  expect("reflected.jpg", FlirJpeg(Fff({{0x01, raw_record}, {0x20, CameraInfoRecord(sun, true)}})),
+         {"FLIR record 0x20 (camera info): reflected temperature 5800 K: expected 173.15 to 1273.15 K"});
   FlirCalibration no_planck = c;
   no_planck.planck_r1 = 0;
   expect("planck.jpg", FlirJpeg(Fff({{0x01, raw_record}, {0x20, CameraInfoRecord(no_planck, true)}})),
