@@ -1,7 +1,8 @@
 // Fuzzes the real-frame reader of `hoilcd realism`. The first byte picks the file's extension
-// (bits 0-1: .npy, .png, .tif, .jpg) and the reading options (bit 2: a centikelvin scale and
-// offset or none; bits 3-4: float unit auto, c, k); the rest is the file. Only InputError may come
-// out; anything else is a bug.
+// (bits 0-1: .npy, .png, .tif, .jpg; .jpg reaches the FLIR radiometric JPEG reader, whose seeds
+// start with byte 3) and the reading options (bit 2: a centikelvin scale and offset or none;
+// bits 3-4: float unit auto, c, k); the rest is the file. Only InputError may come out; anything
+// else is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -82,7 +82,7 @@ Command AddRealismCommand(CLI::App* app) {
   cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
   cmd->add_option("real_dir", args->real_dir,
                   "folder of real frames: 16-bit PNG/TIFF (with --scale and --offset), .npy (°C or K), "
-                  "32-bit float TIFF, 8-bit PNG/JPEG (no temperature statistics)")
+                  "32-bit float TIFF, FLIR radiometric JPEG, other 8-bit PNG/JPEG (no temperature statistics)")
       ->required();
   cmd->add_option("-o,--output", args->output,
                   "folder for realism.json, realism.md and histograms/ (a new or empty folder, or an earlier "

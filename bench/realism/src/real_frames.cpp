@@ -5,12 +5,15 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/bench/evaluation/npy.h"
+#include "hoilcd/bench/realism/flir_jpeg.h"
 #include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -79,18 +82,11 @@ cv::Mat FromFloat(const cv::Mat& values, const std::string& path, const RealFram
   return t;
 }
 
-void CheckSize(int rows, int cols, const std::string& path) {
-  if (rows < 16 || cols < 16 || rows > kMaxImageSidePx || cols > kMaxImageSidePx) {
-    throw InputError(path, "frame of " + std::to_string(cols) + "x" + std::to_string(rows) +
-                               " px: expected 16 to " + std::to_string(kMaxImageSidePx) + " px a side");
-  }
-}
-
 RealFrame ReadImage(const std::string& path, const std::string& bytes, const RealFrameOptions& o) {
   const std::vector<uchar> buffer(bytes.begin(), bytes.end());
   const cv::Mat image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
   if (image.empty()) throw InputError(path, "cannot decode: expected a PNG, TIFF or JPEG image");
-  CheckSize(image.rows, image.cols, path);
+  CheckRealFrameSize(image.rows, image.cols, path);
   RealFrame f;
   const int depth = image.depth();
   if (image.channels() != 1 && !(depth == CV_8U && (image.channels() == 3 || image.channels() == 4))) {
@@ -141,7 +137,7 @@ RealFrame ReadNpy(const std::string& path, const std::string& bytes, const RealF
   if (!(h.shape.size() == 2 || one_channel)) {
     throw InputError(path, "shape " + SafeText(h.shape_as_written) + ": expected (height, width) of one frame");
   }
-  CheckSize(static_cast<int>(std::min<int64_t>(h.shape[0], kMaxImageSidePx + 1)),
+  CheckRealFrameSize(static_cast<int>(std::min<int64_t>(h.shape[0], kMaxImageSidePx + 1)),
             static_cast<int>(std::min<int64_t>(h.shape[1], kMaxImageSidePx + 1)), path);
   const int rows = static_cast<int>(h.shape[0]), cols = static_cast<int>(h.shape[1]);
   const size_t body = static_cast<size_t>(rows) * static_cast<size_t>(cols) * dtype->bytes;
@@ -162,7 +158,25 @@ RealFrame ReadNpy(const std::string& path, const std::string& bytes, const RealF
   return f;
 }
 
+// A .jpg or .jpeg: a FLIR radiometric JPEG's temperatures, any other JPEG's grey levels.
+RealFrame ReadJpeg(const std::string& path, const std::string& bytes, const RealFrameOptions& o) {
+  std::optional<cv::Mat> temperature_c = ReadFlirTemperatures(path, bytes);
+  if (!temperature_c) return ReadImage(path, bytes, o);
+  CheckPlausible(*temperature_c, path, "FLIR radiometric JPEG, with the file's emissivity and reflected temperature");
+  RealFrame f;
+  f.radiometric = true;
+  f.image = std::move(*temperature_c);
+  return f;
+}
+
 }  // namespace
+
+void CheckRealFrameSize(int rows, int cols, const std::string& path) {
+  if (rows < 16 || cols < 16 || rows > kMaxImageSidePx || cols > kMaxImageSidePx) {
+    throw InputError(path, "frame of " + std::to_string(cols) + "x" + std::to_string(rows) +
+                               " px: expected 16 to " + std::to_string(kMaxImageSidePx) + " px a side");
+  }
+}
 
 std::string RealFrameOptions::Check() const {
   if (std::isnan(scale) != std::isnan(offset_c)) return "--scale and --offset: give both or neither";
@@ -185,7 +199,10 @@ bool IsRealFrameFile(const std::string& name) {
 
 RealFrame ReadRealFrame(const std::string& path, const RealFrameOptions& options) {
   const std::string bytes = ReadFileBytes(path, kMaxRealFrameBytes);
-  RealFrame f = Extension(path) == ".npy" ? ReadNpy(path, bytes, options) : ReadImage(path, bytes, options);
+  const std::string extension = Extension(path);
+  RealFrame f = extension == ".npy"                          ? ReadNpy(path, bytes, options)
+                : extension == ".jpg" || extension == ".jpeg" ? ReadJpeg(path, bytes, options)
+                                                              : ReadImage(path, bytes, options);
   f.file = std::filesystem::path(path).filename().string();
   return f;
 }

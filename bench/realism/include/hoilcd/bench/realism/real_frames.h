@@ -1,6 +1,7 @@
 // Reading a folder of real thermal frames for `hoilcd realism`: 16-bit radiometric PNG or TIFF
 // (with the camera's stated scale and offset), 32-bit float TIFF and .npy arrays of temperatures
-// (°C or K), and 8-bit PNG or JPEG (grey levels only: no temperature statistics for those).
+// (°C or K), FLIR radiometric JPEGs (temperatures, flir_jpeg.h), and 8-bit PNG or other JPEG
+// (grey levels only: no temperature statistics for those).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -9,7 +10,8 @@
 
 namespace hoilcd {
 
-// How raw values become temperatures. Defaults and ranges: Check() in real_frames.cpp.
+// How raw values become temperatures. Defaults and ranges: Check() in real_frames.cpp. FLIR
+// radiometric JPEGs carry their own calibration and ignore these.
 struct RealFrameOptions {
   // 16-bit integer frames (PNG, TIFF, .npy uint16): T[°C] = value * scale + offset_c. NaN (the
   // default) refuses 16-bit frames, since a 16-bit file alone does not say its unit; hoilcd's own
@@ -36,10 +38,14 @@ struct RealFrame {
   cv::Mat image;     // CV_32F °C when radiometric, else CV_8U grey
 };
 
-// The frame in `path` by its extension (.png, .tif, .tiff, .npy, .jpg, .jpeg, any case).
-// InputError(path, what was expected) for an unreadable file, a wrong dtype, shape or channel
-// count, a 16-bit frame without a scale, or temperatures outside kMinPlausibleC..kMaxPlausibleC.
+// The frame in `path` by its extension (.png, .tif, .tiff, .npy, .jpg, .jpeg, any case); a JPEG
+// with FLIR APP1 segments is radiometric, any other 8-bit grey. InputError(path, what was
+// expected) for an unreadable file, a wrong dtype, shape or channel count, a 16-bit frame without
+// a scale, a malformed FLIR record, or temperatures outside kMinPlausibleC..kMaxPlausibleC.
 RealFrame ReadRealFrame(const std::string& path, const RealFrameOptions& options);
+
+// InputError(path, ...) unless a frame of rows x cols px is 16 to kMaxImageSidePx px a side.
+void CheckRealFrameSize(int rows, int cols, const std::string& path);
 
 // Whether a file name has one of the extensions ReadRealFrame reads.
 bool IsRealFrameFile(const std::string& name);

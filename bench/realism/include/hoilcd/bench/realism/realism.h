@@ -40,9 +40,10 @@ bool IsStaticPair(const std::vector<PoseRecord>& poses, int frame);
 // is a static pair. On `threads` threads (0: every core); the same at any count.
 FrameSet MeasureDatasetFrames(const Dataset& dataset, const std::vector<int>& frames, int threads);
 
-// The real side: every frame file of `dir` (ListRealFrames), read with `options`. With
-// `static_sequence`, the folder is one static view in name order: temporal noise over each pair of
-// consecutive radiometric frames of one size.
+// The real side: every frame file of `dir` (ListRealFrames), read with `options` (FLIR radiometric
+// JPEGs with the calibration they carry, ReadRealFrame). With `static_sequence`, the folder is one
+// static view in name order: temporal noise over each pair of consecutive radiometric frames of
+// one size.
 FrameSet MeasureRealFrames(const std::string& dir, const RealFrameOptions& options, bool static_sequence, int threads);
 
 // W1 distance between two empirical distributions (the area between their CDFs); NaN if either is empty.
