@@ -14,6 +14,7 @@
 
 #include "hoilcd/bench/realism/real_frames.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/safe_text.h"
 
 // Hand-written: no Debian library reads FLIR's FFF record. Layout as ExifTool's FLIR.pm reads it.
 namespace hoilcd {
@@ -206,7 +207,12 @@ cv::Mat DecodePng(const std::string& path, std::string_view png, int rows, int c
                                " px: expected the record's " + std::to_string(cols) + "x" + std::to_string(rows));
   }
   const std::vector<uchar> buffer(png.begin(), png.end());
-  cv::Mat raw = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  cv::Mat raw;
+  try {
+    raw = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {  // a decoder's assertion on a malformed PNG
+    throw InputError(path, what + " holds a PNG that OpenCV refuses (" + SafeText(e.err) + "): expected a 16-bit grey PNG");
+  }
   if (raw.type() != CV_16UC1 || raw.rows != rows || raw.cols != cols) {
     throw InputError(path, what + " holds a PNG that does not decode to " + std::to_string(cols) + "x" +
                                std::to_string(rows) + " px of one 16-bit channel: expected a 16-bit grey PNG");

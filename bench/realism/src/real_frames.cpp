@@ -83,8 +83,14 @@ cv::Mat FromFloat(const cv::Mat& values, const std::string& path, const RealFram
 }
 
 RealFrame ReadImage(const std::string& path, const std::string& bytes, const RealFrameOptions& o) {
+  if (bytes.empty()) throw InputError(path, "is empty: expected a PNG, TIFF or JPEG image");
   const std::vector<uchar> buffer(bytes.begin(), bytes.end());
-  const cv::Mat image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  cv::Mat image;
+  try {
+    image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {  // a decoder's assertion on a malformed file
+    throw InputError(path, "cannot decode (" + SafeText(e.err) + "): expected a PNG, TIFF or JPEG image");
+  }
   if (image.empty()) throw InputError(path, "cannot decode: expected a PNG, TIFF or JPEG image");
   CheckRealFrameSize(image.rows, image.cols, path);
   RealFrame f;

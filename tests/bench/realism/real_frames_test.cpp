@@ -154,6 +154,12 @@ TEST(RealFrames, ErrorsNameTheFileAndWhatWasExpected) {
   ExpectError([&] { ReadRealFrame(dir / "text.npy", {}); }, {dir / "text.npy", "expected a NumPy .npy file"});
   ASSERT_TRUE(cv::imwrite(dir / "tiny.png", cv::Mat(8, 8, CV_8U, cv::Scalar(0))));
   ExpectError([&] { ReadRealFrame(dir / "tiny.png", {}); }, {dir / "tiny.png", "frame of 8x8 px: expected 16 to"});
+  // An empty image file (the fuzzer's crash: OpenCV's imdecode asserts on an empty buffer).
+  for (const char* name : {"empty.png", "empty.tif", "empty.jpg", "empty.npy"}) {
+    std::ofstream(dir / name).flush();
+    ExpectError([&] { ReadRealFrame(dir / name, {}); }, {dir / name});
+  }
+  ExpectError([&] { ReadRealFrame(dir / "empty.jpg", {}); }, {dir / "empty.jpg", "is empty: expected a PNG, TIFF or JPEG image"});
 }
 
 TEST(RealFrames, NonsenseScaleOffsetOrUnitIsRefusedNamingTheFlag) {
