@@ -28,6 +28,99 @@ float TriangleArea(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eig
   return 0.5f * (b - a).cross(c - a).norm();
 }
 
+// What every patch of one room quad shares: its material's emissivity, the convection and heat
+// capacity of its kind of surface, and the U-value of the envelope behind it (0: none).
+struct QuadThermals {
+  double emissivity = 0.9, convection_w_m2k = 0, capacity_j_m2k = 0, u_value_w_m2k = 0;
+};
+
+QuadThermals ThermalsOfQuad(const RoomQuad& quad, const RoomOptions& room, const ThermalSolutionOptions& options,
+                            const std::vector<InstanceMaterial>& room_materials, const std::array<bool, 4>& exterior_walls) {
+  const bool floor = quad.material == 0, ceiling = quad.material == 1;
+  const bool window = quad.material >= 3 && quad.material < 3 + static_cast<int>(room.windows.size());
+  const int wall = WallOfNormal(quad.normal);
+  QuadThermals q;
+  q.emissivity = room_materials[static_cast<size_t>(quad.material)].emissivity;
+  // Outside walls (and every window) lose heat through the envelope.
+  if (window) {
+    q.u_value_w_m2k = room.windows[static_cast<size_t>(quad.material - 3)].u_value_w_m2k;
+  } else if (quad.material == 2 && wall >= 0 && exterior_walls[static_cast<size_t>(wall)]) {
+    q.u_value_w_m2k = room.surfaces.wall_u_value_w_m2k;
+  }
+  q.convection_w_m2k = floor ? options.convection_floor_w_m2k
+                             : ceiling ? options.convection_ceiling_w_m2k : options.convection_wall_w_m2k;
+  q.capacity_j_m2k = floor ? options.capacity_floor_j_m2k
+                           : ceiling ? options.capacity_ceiling_j_m2k
+                                     : window ? options.capacity_glass_j_m2k : options.capacity_wall_j_m2k;
+  return q;
+}
+
+// The node of the patch spanned by du and dv from corner a.
+ThermalNode PatchNode(const QuadThermals& q, const Eigen::Vector3f& a, const Eigen::Vector3f& du, const Eigen::Vector3f& dv) {
+  ThermalNode node;
+  node.area_m2 = du.cross(dv).norm();
+  node.emissivity = q.emissivity;
+  node.convection_w_m2k = q.convection_w_m2k;
+  node.heat_capacity_j_k = q.capacity_j_m2k * node.area_m2;
+  node.height_m = (a + 0.5f * du + 0.5f * dv).z();
+  // From the inner surface to outdoor air the conductance is 1 / (1/U − R_si) per m².
+  if (q.u_value_w_m2k > 0) node.outdoor_conductance_w_k = node.area_m2 / (1.0 / q.u_value_w_m2k - kInsideSurfaceResistance);
+  return node;
+}
+
+// The room's quads as one mesh (triangles 2q and 2q + 1 are quad q).
+TriangleMesh MeshOfQuads(const std::vector<RoomQuad>& quads) {
+  TriangleMesh mesh;
+  for (const RoomQuad& quad : quads) {
+    const auto base = static_cast<uint32_t>(mesh.positions_m.size());
+    for (const Eigen::Vector3f& c : quad.corners) mesh.positions_m.push_back(c);
+    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+    mesh.triangle_material.push_back(static_cast<uint32_t>(quad.material));
+    mesh.triangle_material.push_back(static_cast<uint32_t>(quad.material));
+  }
+  return mesh;
+}
+
+// An instance's triangles in the world frame, per material (degenerate ones left out).
+std::vector<std::vector<ThermalTriangle>> WorldTrianglesByMaterial(const InstanceInfo& info,
+                                                                   const Eigen::Matrix4f& world_from_object) {
+  const Eigen::Matrix3f rotation = world_from_object.topLeftCorner<3, 3>();
+  const Eigen::Vector3f translation = world_from_object.topRightCorner<3, 1>();
+  std::vector<std::vector<ThermalTriangle>> by_material(info.materials.size());
+  const TriangleMesh& mesh = *info.mesh;
+  for (size_t t = 0; t < mesh.TriangleCount(); ++t) {
+    std::array<Eigen::Vector3f, 3> c;
+    for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = rotation * mesh.positions_m[mesh.indices[3 * t + static_cast<size_t>(k)]] + translation;
+    const Eigen::Vector3f n = (c[1] - c[0]).cross(c[2] - c[0]);
+    if (n.squaredNorm() <= 0) continue;
+    by_material[mesh.triangle_material[t]].push_back(ThermalTriangle{c, n.normalized()});
+  }
+  return by_material;
+}
+
+// The node of one material of a fixture, from its world triangles. A part with a power of its own,
+// or declared at room temperature (none), is solved; one declared warmer or colder without a power
+// (a radiator's water, a cooling jet) is held there.
+ThermalNode FixtureNode(const std::vector<ThermalTriangle>& triangles, const InstanceMaterial& m, double power_w,
+                        const ThermalSolutionOptions& options) {
+  ThermalNode node;
+  double area = 0, height = 0;
+  for (const ThermalTriangle& t : triangles) {
+    const double a = TriangleArea(t.corners[0], t.corners[1], t.corners[2]);
+    area += a;
+    height += a * (t.corners[0].z() + t.corners[1].z() + t.corners[2].z()) / 3.0;
+  }
+  node.area_m2 = area;
+  node.height_m = height / area;
+  node.emissivity = m.emissivity;
+  node.convection_w_m2k = options.convection_object_w_m2k;
+  node.heat_capacity_j_k = options.capacity_object_j_m2k * area;
+  node.power_w = power_w;
+  node.fixed = node.power_w == 0 && std::abs(m.temperature_c - kDeclaredRoomTemperatureC) > 1e-6;
+  node.fixed_temperature_c = m.temperature_c;
+  return node;
+}
+
 }  // namespace
 
 struct RoomNetwork::Patches {
@@ -55,7 +148,6 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
   std::vector<ThermalNode> nodes;
   std::vector<std::vector<ThermalTriangle>> triangles;
   const std::vector<InstanceMaterial>& room_materials = instances[static_cast<size_t>(room_instance)].materials;
-  const int windows = static_cast<int>(room.windows.size());
   quads_of_material_.resize(room_materials.size());
   // Room patches: each quad cut into cells of about patch_size_m.
   for (size_t q = 0; q < quads_.size(); ++q) {
@@ -68,35 +160,12 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
     p.nv = std::max(1, static_cast<int>(std::lround(p.v_axis.norm() / options.patch_size_m)));
     p.first_node = static_cast<int>(nodes.size());
     quads_of_material_[static_cast<size_t>(quad.material)].push_back(static_cast<int>(q));
-    const InstanceMaterial& m = room_materials[static_cast<size_t>(quad.material)];
-    const bool floor = quad.material == 0, ceiling = quad.material == 1;
-    const bool window = quad.material >= 3 && quad.material < 3 + windows;
-    const int wall = WallOfNormal(quad.normal);
-    // Outside walls (and every window) lose heat through the envelope: from the inner surface to
-    // outdoor air the conductance is 1 / (1/U − R_si) per m².
-    double u_value = 0;
-    if (window) {
-      u_value = room.windows[static_cast<size_t>(quad.material - 3)].u_value_w_m2k;
-    } else if (quad.material == 2 && wall >= 0 && exterior_walls[static_cast<size_t>(wall)]) {
-      u_value = room.surfaces.wall_u_value_w_m2k;
-    }
-    const double h_c = floor ? options.convection_floor_w_m2k
-                             : ceiling ? options.convection_ceiling_w_m2k : options.convection_wall_w_m2k;
-    const double capacity = floor ? options.capacity_floor_j_m2k
-                                  : ceiling ? options.capacity_ceiling_j_m2k
-                                            : window ? options.capacity_glass_j_m2k : options.capacity_wall_j_m2k;
+    const QuadThermals thermals = ThermalsOfQuad(quad, room, options, room_materials, exterior_walls);
+    const Eigen::Vector3f du = p.u_axis / static_cast<float>(p.nu), dv = p.v_axis / static_cast<float>(p.nv);
     for (int iv = 0; iv < p.nv; ++iv) {
       for (int iu = 0; iu < p.nu; ++iu) {
         const Eigen::Vector3f a = p.origin + (static_cast<float>(iu) / p.nu) * p.u_axis + (static_cast<float>(iv) / p.nv) * p.v_axis;
-        const Eigen::Vector3f du = p.u_axis / static_cast<float>(p.nu), dv = p.v_axis / static_cast<float>(p.nv);
-        ThermalNode node;
-        node.area_m2 = du.cross(dv).norm();
-        node.emissivity = m.emissivity;
-        node.convection_w_m2k = h_c;
-        node.heat_capacity_j_k = capacity * node.area_m2;
-        node.height_m = (a + 0.5f * du + 0.5f * dv).z();
-        if (u_value > 0) node.outdoor_conductance_w_k = node.area_m2 / (1.0 / u_value - kInsideSurfaceResistance);
-        nodes.push_back(node);
+        nodes.push_back(PatchNode(thermals, a, du, dv));
         triangles.push_back({ThermalTriangle{{a, a + du, a + du + dv}, quad.normal},
                              ThermalTriangle{{a, a + du + dv, a + dv}, quad.normal}});
       }
@@ -110,58 +179,23 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
   RayCaster& caster = *caster_;
   std::map<const TriangleMesh*, int> prototypes;
   std::vector<int> world_instance_of{room_instance};
-  TriangleMesh room_mesh;  // the room's prototype, from its quads
-  for (const RoomQuad& quad : quads_) {
-    const auto base = static_cast<uint32_t>(room_mesh.positions_m.size());
-    for (const Eigen::Vector3f& c : quad.corners) room_mesh.positions_m.push_back(c);
-    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) room_mesh.indices.push_back(base + i);
-    room_mesh.triangle_material.push_back(static_cast<uint32_t>(quad.material));
-    room_mesh.triangle_material.push_back(static_cast<uint32_t>(quad.material));
-  }
-  caster.AddInstance(caster.AddPrototype(room_mesh), Eigen::Matrix4f::Identity());
+  caster.AddInstance(caster.AddPrototype(MeshOfQuads(quads_)), Eigen::Matrix4f::Identity());
   for (size_t w = 0; w < instances.size(); ++w) {
     const InstanceInfo& info = instances[w];
     if (!info.fixture || info.mesh == nullptr) continue;
     const Eigen::Matrix4f world_from_object = info.object_from_world.inverse();
-    const Eigen::Matrix3f rotation = world_from_object.topLeftCorner<3, 3>();
-    const Eigen::Vector3f translation = world_from_object.topRightCorner<3, 1>();
-    std::vector<std::vector<ThermalTriangle>> by_material(info.materials.size());
-    const TriangleMesh& mesh = *info.mesh;
-    for (size_t t = 0; t < mesh.TriangleCount(); ++t) {
-      std::array<Eigen::Vector3f, 3> c;
-      for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = rotation * mesh.positions_m[mesh.indices[3 * t + static_cast<size_t>(k)]] + translation;
-      const Eigen::Vector3f n = (c[1] - c[0]).cross(c[2] - c[0]);
-      if (n.squaredNorm() <= 0) continue;
-      by_material[mesh.triangle_material[t]].push_back(ThermalTriangle{c, n.normalized()});
-    }
+    std::vector<std::vector<ThermalTriangle>> by_material = WorldTrianglesByMaterial(info, world_from_object);
     node_of_material_[w].assign(info.materials.size(), -1);
     mesh_of_[w] = info.mesh;
     for (size_t k = 0; k < info.materials.size(); ++k) {
       if (by_material[k].empty()) continue;
-      const InstanceMaterial& m = info.materials[k];
-      ThermalNode node;
-      double area = 0, height = 0;
-      for (const ThermalTriangle& t : by_material[k]) {
-        const double a = TriangleArea(t.corners[0], t.corners[1], t.corners[2]);
-        area += a;
-        height += a * (t.corners[0].z() + t.corners[1].z() + t.corners[2].z()) / 3.0;
-      }
-      node.area_m2 = area;
-      node.height_m = height / area;
-      node.emissivity = m.emissivity;
-      node.convection_w_m2k = options.convection_object_w_m2k;
-      node.heat_capacity_j_k = options.capacity_object_j_m2k * area;
-      // A part with a power of its own, or declared at room temperature (none), is solved; one
-      // declared warmer or colder without a power (a radiator's water, a cooling jet) is held there.
-      node.power_w = info.asset != nullptr ? info.asset->materials[k].power_w : 0.0;
-      node.fixed = node.power_w == 0 && std::abs(m.temperature_c - kDeclaredRoomTemperatureC) > 1e-6;
-      node.fixed_temperature_c = m.temperature_c;
+      const double power_w = info.asset != nullptr ? info.asset->materials[k].power_w : 0.0;
       node_of_material_[w][k] = static_cast<int>(nodes.size());
-      nodes.push_back(node);
+      nodes.push_back(FixtureNode(by_material[k], info.materials[k], power_w, options));
       triangles.push_back(std::move(by_material[k]));
     }
     auto [it, inserted] = prototypes.emplace(info.mesh, -1);
-    if (inserted) it->second = caster.AddPrototype(mesh);
+    if (inserted) it->second = caster.AddPrototype(*info.mesh);
     caster.AddInstance(it->second, world_from_object);
     world_instance_of.push_back(static_cast<int>(w));
   }
