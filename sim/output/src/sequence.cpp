@@ -142,7 +142,7 @@ int RunCount(const Scene& scene) { return scene.runs.empty() ? 1 : static_cast<i
 FrameSetUp PlanRun(const Scene& scene, int k, const BandRadianceTable& table, int threads, RunRender* r) {
   try {
     r->scene = SceneOfRun(scene, k);
-    r->world = std::make_unique<World>(r->scene, table);
+    r->world = std::make_unique<World>(r->scene, table, threads);
     r->run = SimulateSceneRobot(r->scene, r->world->obstacles());
     return SetUpFrames(r->scene, r->world.get(), r->run, threads);
   } catch (const InputError& e) {

@@ -201,20 +201,10 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
   }
   caster.Commit();
   node_area_.reserve(nodes.size());
-  std::vector<double> areas;
-  for (const ThermalNode& n : nodes) {
-    areas.push_back(n.area_m2);
-    node_area_.push_back(static_cast<float>(n.area_m2));
-  }
-  const ViewFactors view_factors = CastViewFactors(
-      caster, triangles, areas,
-      [&](const RayHit& hit, const Eigen::Vector3f& point) {
-        RayHit in_world = hit;
-        in_world.instance = world_instance_of[static_cast<size_t>(hit.instance)];
-        return NodeOfHit(in_world, point);
-      },
-      options.rays_per_node, HashCombine(seed, HashString("room.thermal.view_factors")), threads);
-  network_ = std::make_unique<ThermalNetwork>(std::move(nodes), view_factors);
+  for (const ThermalNode& n : nodes) node_area_.push_back(static_cast<float>(n.area_m2));
+  nodes_ = std::move(nodes);
+  world_instance_of_ = std::move(world_instance_of);
+  threads_ = threads;
   triangles_ = std::move(triangles);
   const RoomClimate air = climate;
   const double gradient = options.air_gradient_k_per_m, mid_height = 0.5 * room_height_m_;
@@ -279,7 +269,7 @@ void RoomNetwork::SetPeople(const std::vector<PersonSource>& people) {
         sum += (radius / d) * (radius / d) * cos_theta;
       }
       if (!near || sum <= 0) continue;
-      const ThermalNode& node = network_->node(static_cast<int>(i));
+      const ThermalNode& node = nodes_[i];
       person_coupling_[p].emplace_back(static_cast<int>(i),
                                        node.area_m2 * sum / kSamples * node.emissivity * person.emissivity);
     }
@@ -298,13 +288,29 @@ void RoomNetwork::PeopleHeat(double time_s, std::vector<double>* absorbed_w) con
     for (const auto& [i, coupling] : person_coupling_[p]) {
       // The node's own emission towards the sphere is taken at the air by it: the exchange is
       // a few watts, and the node's departure from the air changes it by a few per cent.
-      const double tn = drivers_.air_c(time_s, network_->node(i).height_m) + kKelvin;
+      const double tn = drivers_.air_c(time_s, nodes_[static_cast<size_t>(i)].height_m) + kKelvin;
       (*absorbed_w)[static_cast<size_t>(i)] += coupling * kStefanBoltzmann * (tp * tp * tp * tp - tn * tn * tn * tn);
     }
   }
 }
 
+void RoomNetwork::CastViewFactorsOnce() {
+  if (network_ != nullptr) return;
+  std::vector<double> areas;
+  for (const ThermalNode& n : nodes_) areas.push_back(n.area_m2);
+  const ViewFactors view_factors = CastViewFactors(
+      *caster_, triangles_, areas,
+      [&](const RayHit& hit, const Eigen::Vector3f& point) {
+        RayHit in_world = hit;
+        in_world.instance = world_instance_of_[static_cast<size_t>(hit.instance)];
+        return NodeOfHit(in_world, point);
+      },
+      options_.rays_per_node, HashCombine(seed_, HashString("room.thermal.view_factors")), threads_);
+  network_ = std::make_unique<ThermalNetwork>(nodes_, view_factors, threads_);
+}
+
 void RoomNetwork::SetTime(double time_s) {
+  CastViewFactorsOnce();
   if (!started_) {
     network_->Start(drivers_, 0.0, options_.step_s, options_.spin_up_s);
     incident_of_state_.clear();
@@ -355,7 +361,7 @@ const std::vector<float>& RoomNetwork::IncidentOfState(size_t k) {
   const size_t n = state.size();
   std::vector<float> emitted(n), reflectivity(n);
   for (size_t i = 0; i < n; ++i) {
-    const auto emissivity = static_cast<float>(network_->node(static_cast<int>(i)).emissivity);
+    const auto emissivity = static_cast<float>(nodes_[i].emissivity);
     emitted[i] = emissivity * table_.RadianceFromCelsius(static_cast<float>(state[i]));
     reflectivity[i] = 1 - emissivity;
   }
@@ -389,7 +395,7 @@ float RoomNetwork::RoomMeanTemperatureC(int material) const {
 
 float RoomNetwork::InstanceTemperatureC(int instance, int material) const {
   const int node = NodeOf(instance, material);
-  if (node < 0 || network_->node(node).fixed) return kNaN;
+  if (node < 0 || nodes_[static_cast<size_t>(node)].fixed) return kNaN;
   return static_cast<float>(temperature_c_[static_cast<size_t>(node)]);
 }
 

@@ -15,6 +15,8 @@ constexpr double kKelvin = 273.15;
 // Far below what a camera resolves (its NETD is tens of mK; radiometric frames hold 0.01 K).
 constexpr double kToleranceK = 1e-4;
 constexpr int kMaxSweeps = 20000;
+// Nodes per chunk of a parallel sweep: a few hundred microseconds of work.
+constexpr int64_t kNodesPerChunk = 512;
 
 // A unit vector about `n`, cosine-weighted (Malley's method), from two uniforms.
 Eigen::Vector3f CosineDirection(const Eigen::Vector3f& n, double u1, double u2) {
@@ -128,10 +130,25 @@ ViewFactors CastViewFactors(const RayCaster& caster, const std::vector<std::vect
   return result;
 }
 
-ThermalNetwork::ThermalNetwork(std::vector<ThermalNode> nodes, ViewFactors view_factors)
-    : nodes_(std::move(nodes)), view_factors_(std::move(view_factors)) {
-  HOILCD_CHECK_MSG(view_factors_.rows.size() == nodes_.size() && view_factors_.open_share.size() == nodes_.size(),
+ThermalNetwork::ThermalNetwork(std::vector<ThermalNode> nodes, const ViewFactors& view_factors, int threads)
+    : nodes_(std::move(nodes)), open_share_(view_factors.open_share), threads_(threads) {
+  HOILCD_CHECK_MSG(view_factors.rows.size() == nodes_.size() && view_factors.open_share.size() == nodes_.size(),
                    "one view-factor row per node");
+  row_begin_.reserve(nodes_.size() + 1);
+  row_begin_.push_back(0);
+  for (const auto& row : view_factors.rows) {
+    for (const auto& [k, f] : row) {
+      column_.push_back(k);
+      factor_.push_back(f);
+    }
+    row_begin_.push_back(column_.size());
+  }
+}
+
+double ThermalNetwork::Gather(size_t i, const std::vector<double>& value, double open) const {
+  double sum = open_share_[i] * open;
+  for (size_t e = row_begin_[i]; e < row_begin_[i + 1]; ++e) sum += factor_[e] * value[static_cast<size_t>(column_[e])];
+  return sum;
 }
 
 void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double step_s, const std::vector<double>& prev_c,
@@ -166,27 +183,33 @@ void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double s
     t_k[i] = (nodes_[i].fixed ? nodes_[i].fixed_temperature_c : prev_c[i]) + kKelvin;
     if (!warm) h[i] = emission(t_k[i]);
   }
+  // Each sweep in two passes over the nodes, each node from the last pass's values alone.
+  const int workers = ResolveThreadCount(threads_);
+  std::vector<double> change_of_worker(static_cast<size_t>(workers));
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
-    for (size_t i = 0; i < n; ++i) j[i] = nodes_[i].emissivity * emission(t_k[i]) + (1 - nodes_[i].emissivity) * h[i];
-    for (size_t i = 0; i < n; ++i) {
-      double sum = view_factors_.open_share[i] * open_emission;
-      for (const auto& [k, f] : view_factors_.rows[i]) sum += f * j[static_cast<size_t>(k)];
-      h[i] = sum;
-    }
+    ParallelForChunks(static_cast<int64_t>(n), kNodesPerChunk, threads_, [&](int64_t begin, int64_t end, int) {
+      for (auto i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
+        j[i] = nodes_[i].emissivity * emission(t_k[i]) + (1 - nodes_[i].emissivity) * h[i];
+      }
+    });
     // Each free node from its balance, its own emission linearised about its current value (a
     // Newton step, so the sweeps converge to the exact σT⁴ balance).
-    double change = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const ThermalNode& node = nodes_[i];
-      if (node.fixed) continue;
-      const double t0 = t_k[i];
-      const double b = 4 * kStefanBoltzmann * t0 * t0 * t0, a = emission(t0) - b * t0;
-      const double exchange = node.area_m2 * node.emissivity;
-      const double t = (rhs[i] + exchange * (h[i] - a)) / (diagonal[i] + exchange * b);
-      change = std::max(change, std::abs(t - t0));
-      t_k[i] = t;
-    }
-    if (change < kToleranceK) break;
+    std::fill(change_of_worker.begin(), change_of_worker.end(), 0.0);
+    ParallelForChunks(static_cast<int64_t>(n), kNodesPerChunk, threads_, [&](int64_t begin, int64_t end, int worker) {
+      double& change = change_of_worker[static_cast<size_t>(worker)];
+      for (auto i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
+        h[i] = Gather(i, j, open_emission);
+        const ThermalNode& node = nodes_[i];
+        if (node.fixed) continue;
+        const double t0 = t_k[i];
+        const double b = 4 * kStefanBoltzmann * t0 * t0 * t0, a = emission(t0) - b * t0;
+        const double exchange = node.area_m2 * node.emissivity;
+        const double t = (rhs[i] + exchange * (h[i] - a)) / (diagonal[i] + exchange * b);
+        change = std::max(change, std::abs(t - t0));
+        t_k[i] = t;
+      }
+    });
+    if (*std::max_element(change_of_worker.begin(), change_of_worker.end()) < kToleranceK) break;
   }
   next_c->resize(n);
   for (size_t i = 0; i < n; ++i) (*next_c)[i] = t_k[i] - kKelvin;
@@ -251,19 +274,24 @@ std::vector<float> ThermalNetwork::IncidentRadiance(const std::vector<float>& em
                                                     float open) const {
   const size_t n = nodes_.size();
   std::vector<float> incident(n, 0.0f), next(n);
+  const int workers = ResolveThreadCount(threads_);
+  std::vector<float> change_of_worker(static_cast<size_t>(workers));
   for (int sweep = 0; sweep < 100; ++sweep) {
-    float change = 0;
-    for (size_t i = 0; i < n; ++i) {
-      float sum = view_factors_.open_share[i] * open;
-      for (const auto& [k, f] : view_factors_.rows[i]) {
-        const auto j = static_cast<size_t>(k);
-        sum += f * (emitted[j] + reflectivity[j] * incident[j]);
+    std::fill(change_of_worker.begin(), change_of_worker.end(), 0.0f);
+    ParallelForChunks(static_cast<int64_t>(n), kNodesPerChunk, threads_, [&](int64_t begin, int64_t end, int worker) {
+      float& change = change_of_worker[static_cast<size_t>(worker)];
+      for (auto i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
+        float sum = open_share_[i] * open;
+        for (size_t e = row_begin_[i]; e < row_begin_[i + 1]; ++e) {
+          const auto j = static_cast<size_t>(column_[e]);
+          sum += factor_[e] * (emitted[j] + reflectivity[j] * incident[j]);
+        }
+        next[i] = sum;
+        change = std::max(change, std::abs(sum - incident[i]));
       }
-      next[i] = sum;
-      change = std::max(change, std::abs(sum - incident[i]));
-    }
+    });
     incident.swap(next);
-    if (change <= 1e-6f * std::max(1.0f, open)) break;
+    if (*std::max_element(change_of_worker.begin(), change_of_worker.end()) <= 1e-6f * std::max(1.0f, open)) break;
   }
   return incident;
 }

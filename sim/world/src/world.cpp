@@ -202,7 +202,7 @@ Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw
   return m;
 }
 
-World::World(const Scene& scene, const BandRadianceTable& table)
+World::World(const Scene& scene, const BandRadianceTable& table, int threads)
     : table_(table), assets_(scene.assets_dir), caster_(std::make_unique<RayCaster>()),
       room_size_m_(scene.room.size_m) {
   crowd_ = std::make_unique<Crowd>(scene, &assets_, static_cast<CrowdStage*>(this));
@@ -237,7 +237,7 @@ World::World(const Scene& scene, const BandRadianceTable& table)
   if (scene.room.thermal.enabled) {
     room_network_ = std::make_unique<RoomNetwork>(scene.room, scene.room.thermal, scene.seed, room_surfaces_->climate(),
                                                   RoomQuads(scene), instances_, room_instance_,
-                                                  room_surfaces_->exterior_walls(), table_, 1);
+                                                  room_surfaces_->exterior_walls(), table_, threads);
   }
   // The materials' first state; the thermal solution waits for the first SetTime, after
   // PlanCrowd has told it who sits where (its spin-up is solved once).

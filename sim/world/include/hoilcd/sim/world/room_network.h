@@ -47,7 +47,8 @@ class RoomNetwork {
  public:
   // quads: the room mesh's rectangles (triangles 2q and 2q + 1 are quad q); instances: the world's
   // instances, of which those of role table, chair and object are nodes; room_instance: the
-  // room's. Casts the view factors and solves the spin-up to t = 0.
+  // room's. The view factors are cast, and the spin-up to t = 0 solved, at the first SetTime: a
+  // world that is only looked at (the generator's checks) never pays for them.
   RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& options, uint64_t seed, const RoomClimate& climate,
               const std::vector<RoomQuad>& quads, const std::vector<InstanceInfo>& instances, int room_instance,
               const std::array<bool, 4>& exterior_walls, const BandRadianceTable& table, int threads);
@@ -73,13 +74,16 @@ class RoomNetwork {
   // The area-weighted mean of every node's incident band radiance.
   float MeanIncidentRadiance() const { return mean_incident_; }
 
-  int num_nodes() const { return network_->size(); }
+  int num_nodes() const { return static_cast<int>(nodes_.size()); }
+  // The solved network; after the first SetTime.
   const ThermalNetwork& network() const { return *network_; }
 
  private:
   struct Patches;  // a room quad's grid of patches
   int NodeOfHit(const RayHit& hit, const Eigen::Vector3f& point) const;
   int NodeOf(int instance, int material) const;  // -1: no node
+  // Casts the view factors and makes the network, the first time it is called.
+  void CastViewFactorsOnce();
   // The band radiance each node receives at grid state k (solved once, kept while frames need it).
   const std::vector<float>& IncidentOfState(size_t k);
   // What the people present at t send each node, W (the drivers' absorbed heat).
@@ -93,7 +97,10 @@ class RoomNetwork {
   std::vector<std::vector<int>> node_of_material_;    // instance -> material -> node (-1: none)
   std::vector<const TriangleMesh*> mesh_of_;          // instance -> its mesh (fixtures only)
   std::vector<float> node_area_;
-  std::unique_ptr<ThermalNetwork> network_;
+  std::vector<ThermalNode> nodes_;
+  std::vector<int> world_instance_of_;                // caster instance -> world instance
+  int threads_ = 1;
+  std::unique_ptr<ThermalNetwork> network_;           // from CastViewFactorsOnce
   std::unique_ptr<RayCaster> caster_;                 // the static geometry: room and fixtures
   std::vector<std::vector<ThermalTriangle>> triangles_;  // per node
   // Per person, the nodes they warm: (node, A_i·F_i→person·ε_i·ε_person), m².

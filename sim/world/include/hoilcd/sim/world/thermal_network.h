@@ -65,8 +65,9 @@ struct ThermalDrivers {
 class ThermalNetwork {
  public:
   // Radiation is exact (σT⁴): each sweep of a step linearises a node's own emission about its
-  // current value, a Newton step.
-  ThermalNetwork(std::vector<ThermalNode> nodes, ViewFactors view_factors);
+  // current value, a Newton step. Each sweep's nodes are shared among `threads`; every node is
+  // computed from the last sweep's values alone, so the result does not depend on `threads`.
+  ThermalNetwork(std::vector<ThermalNode> nodes, const ViewFactors& view_factors, int threads = 1);
 
   // Steps from t0 − spin_up_s (starting from the steady state of the drivers at that time) to t0
   // on the grid t0 + k·step_s, keeping the state at t0; AdvanceTo then steps on. The drivers are
@@ -94,7 +95,6 @@ class ThermalNetwork {
 
   int size() const { return static_cast<int>(nodes_.size()); }
   const ThermalNode& node(int i) const { return nodes_[static_cast<size_t>(i)]; }
-  const ViewFactors& view_factors() const { return view_factors_; }
 
  private:
   // One implicit step (capacity_over_dt: C/Δt per node, all zero for a steady state) from `prev`,
@@ -103,8 +103,17 @@ class ThermalNetwork {
   void Step(const ThermalDrivers& drivers, double time_s, double step_s, const std::vector<double>& prev_c,
             std::vector<double>* next_c, std::vector<double>* irradiance) const;
 
+  // Σ_k F_ik·value_k + open_share_i·open over node i's row.
+  double Gather(size_t i, const std::vector<double>& value, double open) const;
+
   std::vector<ThermalNode> nodes_;
-  ViewFactors view_factors_;
+  // The view factors' rows, one after another (row i is [row_begin_[i], row_begin_[i + 1])):
+  // a sweep reads them in order instead of chasing a vector per row.
+  std::vector<size_t> row_begin_;
+  std::vector<int> column_;
+  std::vector<float> factor_;
+  std::vector<float> open_share_;
+  int threads_ = 1;
   ThermalDrivers drivers_;
   double t0_s_ = 0, step_s_ = 1;
   std::vector<std::vector<double>> grid_c_;  // per grid time, per node

@@ -24,7 +24,9 @@ namespace hoilcd {
 
 class World : private CrowdStage {
  public:
-  World(const Scene& scene, const BandRadianceTable& table);
+  // `threads` share the room's thermal solution (its view factors and time steps); the world is
+  // the same at any count.
+  World(const Scene& scene, const BandRadianceTable& table, int threads = 1);
 
   // Plans what depends on the robot's run: seat turnover at each lap boundary (people leave,
   // arrive, change seats; events recorded) and the walkers' bouts around the robot. Call once,
