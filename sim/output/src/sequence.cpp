@@ -99,8 +99,9 @@ std::string SequenceOptions::Check() const {
 // macroblock tree, whose AVX-512 path made the video's bytes vary from run to run; 15, 16: walkers
 // keep off the camera's nose and shorten their stride near furniture; 17: temperature fields —
 // garments and skin, contact prints, room surfaces (edges, plume, glass, sun, HVAC), rough mirrors);
-// 18: paper_room holds what a meeting room holds (its objects list: the clutter of issue 43).
-constexpr int kSimulatorRevision = 18;
+// 18: paper_room holds what a meeting room holds (its objects list: the clutter of issue 43);
+// 19: the room's thermal solution on by default (room.thermal.enabled).
+constexpr int kSimulatorRevision = 19;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

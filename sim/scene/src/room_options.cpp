@@ -129,7 +129,7 @@ const OptionTable<ThermalSolutionOptions>& ThermalSolutionOptions::Table() {
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("enabled", &O::enabled, false,
+          .Add("enabled", &O::enabled, true,
                "solve every static surface's energy balance (convection, radiation exchange by view factors, "
                "conduction outdoors, heat capacity) instead of the per-surface estimates")
           .Add("patch_size_m", &O::patch_size_m, 0.25, "m", R::Closed(0.05, 2), "side of a wall, floor or ceiling patch")

@@ -260,6 +260,7 @@ nlohmann::ordered_json ClearedClassroom(double pitch_deg, bool lights) {
   // The board mirrors the room: every surface exactly 22 °C (no texture, edges, plume or HVAC cycle).
   doc["room"]["surfaces"] = {{"texture", false}, {"thermal_bridges", false}, {"radiator_plume", false}};
   doc["room"]["hvac"] = {{"enabled", false}};
+  doc["room"]["thermal"] = {{"enabled", false}};  // the declared temperatures, not the solution's
   doc["robot"] = {{"camera_pitch_deg", pitch_deg}};
   doc["route"]["waypoints_m"] = {{3.5, middle}, {1.2, middle}, {1.2, middle + 1.5}, {3.5, middle + 1.5}};
   return doc;

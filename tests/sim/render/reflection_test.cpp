@@ -22,7 +22,9 @@ Scene WhiteboardScene(double floor_roughness_um = 0.0) {
               {"room",
                {{"size_m", {7.0, 4.0, 2.6}},
                 {"windows", json::array()},
-                {"floor", {{"specular", true}, {"emissivity", 0.90}, {"roughness_um", floor_roughness_um}}}}}};
+                {"floor", {{"specular", true}, {"emissivity", 0.90}, {"roughness_um", floor_roughness_um}}},
+                // The mirror law alone: the board at its declared 22 °C, not the solution's.
+                {"thermal", {{"enabled", false}}}}}};
   return SceneFromJson(doc, "whiteboard.json");
 }
 
