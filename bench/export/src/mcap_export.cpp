@@ -235,7 +235,7 @@ FrameMessages MessagesOf(const ExportInputs& in, int f) {
   if (in.topic[kImageRaw]) m.emplace_back(kImageRaw, ImageMessage(optical, d.RadiometricCentikelvin(f), "mono16"));
   if (in.topic[kImageMono8]) m.emplace_back(kImageMono8, ImageMessage(optical, d.Thermal(f), "mono8"));
   if (in.topic[kDepth]) {
-    const ExrChannels exr = ReadDatasetExr(d, f);
+    const ExrChannels exr = ReadDatasetExr(d, f, {"Z", "id"});
     const std::string path = DatasetExrPath(d, f);
     m.emplace_back(kDepth, ImageMessage(optical, ExrChannel(exr, "Z", path), "32FC1"));
     cv::Mat instance;
@@ -272,6 +272,7 @@ McapExportResult ExportMcap(const std::string& dataset_dir, const std::string& o
   McapWriterOptions writer_options;
   writer_options.compression = options.compression;
   writer_options.library = std::string("hoilcd ") + HOILCD_VERSION;
+  writer_options.threads = options.threads;
   McapWriter writer([&file](std::string_view bytes) { file.Write(bytes); }, writer_options);
   uint16_t channel[kTopicCount] = {};
   std::map<std::string, uint16_t> schema;

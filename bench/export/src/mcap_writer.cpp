@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/parallel.h"
 
 namespace hoilcd {
 namespace {
@@ -145,36 +146,48 @@ void McapWriter::AddMessage(uint16_t channel_id, uint64_t log_time_ns, uint64_t 
   statistics_.message_end_time = std::max(statistics_.message_end_time, log_time_ns);
   ++statistics_.message_count;
   ++statistics_.channel_message_counts[channel_id];
-  if (chunk_.size() >= options_.chunk_size_bytes) FlushChunk();
+  if (chunk_.size() >= options_.chunk_size_bytes) CloseChunk();
 }
 
-void McapWriter::FlushChunk() {
+void McapWriter::CloseChunk() {
   if (chunk_.empty()) return;
-  const bool zstd = options_.compression == McapCompression::kZstd;
-  const std::string compressed = zstd ? ZstdCompress(chunk_, options_.zstd_level) : std::string();
-  const std::string& records = zstd ? compressed : chunk_;
-  ChunkIndex index{chunk_start_time_, chunk_end_time_, position_, 0, 0, records.size(), chunk_.size(), {}};
-  Fields f;
-  f.U64(chunk_start_time_).U64(chunk_end_time_).U64(chunk_.size()).U32(Crc32(0, chunk_));
-  f.Str(zstd ? "zstd" : "").U64(records.size()).Raw(records.data(), records.size());
-  const std::string chunk_record = Record(kChunk, f.text());
-  index.length = chunk_record.size();
-  Emit(chunk_record);
-  const uint64_t indexes_start = position_;
-  for (const auto& [channel, entries] : chunk_index_) {  // by channel id
-    Fields m;
-    m.U16(channel);
-    MapField(&m, [&](Fields* e) {
-      for (const auto& [time, offset] : entries) e->U64(time).U64(offset);
-    });
-    index.message_index_offsets[channel] = position_;
-    Emit(Record(kMessageIndex, m.text()));
-  }
-  index.message_index_length = position_ - indexes_start;
-  chunk_indexes_.push_back(std::move(index));
-  ++statistics_.chunk_count;
+  closed_.push_back({std::move(chunk_), std::move(chunk_index_), chunk_start_time_, chunk_end_time_, {}, 0});
   chunk_.clear();
   chunk_index_.clear();
+  if (closed_.size() >= static_cast<size_t>(2 * ResolveThreadCount(options_.threads))) WriteClosedChunks();
+}
+
+void McapWriter::WriteClosedChunks() {
+  const bool zstd = options_.compression == McapCompression::kZstd;
+  ParallelFor(static_cast<int64_t>(closed_.size()), options_.threads, [&](int64_t i) {
+    ClosedChunk& c = closed_[static_cast<size_t>(i)];
+    c.crc = Crc32(0, c.records);
+    if (zstd) c.compressed = ZstdCompress(c.records, options_.zstd_level);
+  });
+  for (const ClosedChunk& c : closed_) {
+    const std::string& records = zstd ? c.compressed : c.records;
+    ChunkIndex index{c.start_time, c.end_time, position_, 0, 0, records.size(), c.records.size(), {}};
+    Fields f;
+    f.U64(c.start_time).U64(c.end_time).U64(c.records.size()).U32(c.crc);
+    f.Str(zstd ? "zstd" : "").U64(records.size()).Raw(records.data(), records.size());
+    const std::string chunk_record = Record(kChunk, f.text());
+    index.length = chunk_record.size();
+    Emit(chunk_record);
+    const uint64_t indexes_start = position_;
+    for (const auto& [channel, entries] : c.index) {  // by channel id
+      Fields m;
+      m.U16(channel);
+      MapField(&m, [&](Fields* e) {
+        for (const auto& [time, offset] : entries) e->U64(time).U64(offset);
+      });
+      index.message_index_offsets[channel] = position_;
+      Emit(Record(kMessageIndex, m.text()));
+    }
+    index.message_index_length = position_ - indexes_start;
+    chunk_indexes_.push_back(std::move(index));
+    ++statistics_.chunk_count;
+  }
+  closed_.clear();
 }
 
 // The summary section's records, group by group; offsets gets (opcode, (start, length)) per group,
@@ -215,7 +228,8 @@ std::string McapWriter::SummaryGroups(std::vector<std::pair<uint8_t, std::pair<u
 
 McapStatistics McapWriter::Finish() {
   HOILCD_CHECK_MSG(!finished_, "McapWriter::Finish twice");
-  FlushChunk();
+  CloseChunk();
+  WriteClosedChunks();
   finished_ = true;
   Fields data_end;
   data_end.U32(data_crc_);

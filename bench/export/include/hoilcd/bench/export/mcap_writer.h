@@ -24,6 +24,7 @@ struct McapWriterOptions {
   McapCompression compression = McapCompression::kZstd;  // of each chunk's records
   uint64_t chunk_size_bytes = 4u << 20;  // bytes: a chunk is closed once its uncompressed records reach this
   int zstd_level = 1;                    // zstd level (1: fastest of the standard levels)
+  int threads = 1;                       // chunks compressed at once, one a thread (0: every core); same bytes at any count
   std::string profile = "ros2";          // the Header's profile
   std::string library;                   // the Header's library (the writer's name and version)
 };
@@ -59,13 +60,21 @@ class McapWriter {
     uint16_t id;
     std::string record;  // the whole Schema record, as written in the data section
   };
+  struct ClosedChunk {  // a full chunk waiting to be compressed and written
+    std::string records;
+    std::map<uint16_t, std::vector<std::pair<uint64_t, uint64_t>>> index;
+    uint64_t start_time, end_time;
+    std::string compressed;  // set by WriteClosedChunks
+    uint32_t crc = 0;        // of records
+  };
   struct ChunkIndex {
     uint64_t start_time, end_time, offset, length, message_index_length, compressed_size, uncompressed_size;
     std::map<uint16_t, uint64_t> message_index_offsets;
   };
 
   void Emit(std::string_view bytes);  // to the sink, counted and (in the data section) CRC'd
-  void FlushChunk();
+  void CloseChunk();          // the open chunk joins closed_, written once enough are there
+  void WriteClosedChunks();  // compresses closed_ in parallel, then writes each with its indexes
   std::string SummaryGroups(std::vector<std::pair<uint8_t, std::pair<uint64_t, uint64_t>>>* offsets) const;
 
   Sink sink_;
@@ -81,6 +90,7 @@ class McapWriter {
   std::string chunk_;
   std::map<uint16_t, std::vector<std::pair<uint64_t, uint64_t>>> chunk_index_;
   uint64_t chunk_start_time_ = 0, chunk_end_time_ = 0;
+  std::vector<ClosedChunk> closed_;
   std::vector<ChunkIndex> chunk_indexes_;
   McapStatistics statistics_;
 };
