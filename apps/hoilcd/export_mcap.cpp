@@ -16,7 +16,9 @@ void PrintMcapExport(const McapExportResult& r) {
   std::printf("wrote %s: %d frames, %llu messages, %.1f MB in %.1f s (%.0f frames/s)\n", r.path.c_str(), r.frames,
               static_cast<unsigned long long>(r.messages), r.bytes / 1e6, r.seconds,
               r.seconds > 0 ? r.frames / r.seconds : 0.0);
-  for (const auto& [topic, count] : r.topics) std::printf("  %-28s %llu\n", topic.c_str(), static_cast<unsigned long long>(count));
+  for (const auto& [topic, count] : r.topics) {
+    std::printf("  %-28s %llu\n", topic.c_str(), static_cast<unsigned long long>(count));
+  }
 }
 
 Command AddExportMcapCommand(CLI::App* app) {

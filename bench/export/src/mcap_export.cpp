@@ -1,5 +1,6 @@
 #include "hoilcd/bench/export/mcap_export.h"
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -7,6 +8,7 @@
 #include "hoilcd/bench/export/ros2_messages.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
+#include "hoilcd/core/util/allocator.h"
 #include "hoilcd/core/util/atomic_file.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/json_reader.h"
@@ -146,17 +148,18 @@ ExportInputs ReadInputs(const Dataset& dataset) {
   in.camera = {static_cast<uint32_t>(k.width), static_cast<uint32_t>(k.height), k.fx, k.fy, k.cx, k.cy, {}};
   const SceneNumbers scene(dataset);
   in.noise = ReadOdometryNoise(scene);
-  const CameraPose mount{scene.Number("/robot/camera_forward_m"),       scene.Number("/robot/camera_lateral_m"),
-                         scene.Number("/robot/camera_height_m"),        scene.Number("/robot/camera_yaw_deg") * M_PI / 180,
-                         scene.Number("/robot/camera_pitch_deg") * M_PI / 180, scene.Number("/robot/camera_roll_deg") * M_PI / 180};
+  const double deg = M_PI / 180;
+  const CameraPose mount{scene.Number("/robot/camera_forward_m"),    scene.Number("/robot/camera_lateral_m"),
+                         scene.Number("/robot/camera_height_m"),     scene.Number("/robot/camera_yaw_deg") * deg,
+                         scene.Number("/robot/camera_pitch_deg") * deg, scene.Number("/robot/camera_roll_deg") * deg};
   in.base_from_camera = mount.WorldFromCam();
   in.base_from_camera.rotation = in.base_from_camera.rotation * Eigen::Quaterniond(BodyFromCamRotation()).conjugate();
   const std::vector<PoseRecord>& poses = dataset.poses();
   in.odometry_distance_m.assign(poses.size(), 0.0);
   for (size_t f = 1; f < poses.size(); ++f) {
     if (poses[f].run != poses[f - 1].run) continue;
-    in.odometry_distance_m[f] = in.odometry_distance_m[f - 1] +
-                                std::hypot(poses[f].odo_x_m - poses[f - 1].odo_x_m, poses[f].odo_y_m - poses[f - 1].odo_y_m);
+    const double step_m = std::hypot(poses[f].odo_x_m - poses[f - 1].odo_x_m, poses[f].odo_y_m - poses[f - 1].odo_y_m);
+    in.odometry_distance_m[f] = in.odometry_distance_m[f - 1] + step_m;
   }
   in.persons.assign(poses.size(), nullptr);
   if (outputs.persons) {
@@ -245,8 +248,9 @@ FrameMessages MessagesOf(const ExportInputs& in, int f) {
   const Ros2Odometry odometry = OdometryOf(in, static_cast<size_t>(f));
   m.emplace_back(kOdom, SerializeOdometry({stamp, kOdomFrame}, odometry));
   m.emplace_back(kTf, SerializeTfMessage({{{stamp, kOdomFrame}, kBaseFrame, odometry.pose}}));
-  m.emplace_back(kGroundTruthPose, SerializePoseStamped({stamp, kMapFrame}, PlanarPose(pose.x_m, pose.y_m, pose.theta_rad)));
-  m.emplace_back(kGroundTruthCameraPose, SerializePoseStamped({stamp, kMapFrame}, PoseOf(pose.Camera().WorldFromCam())));
+  const Ros2Header map{stamp, kMapFrame};
+  m.emplace_back(kGroundTruthPose, SerializePoseStamped(map, PlanarPose(pose.x_m, pose.y_m, pose.theta_rad)));
+  m.emplace_back(kGroundTruthCameraPose, SerializePoseStamped(map, PoseOf(pose.Camera().WorldFromCam())));
   if (in.topic[kPersons]) {
     m.emplace_back(kPersons, SerializeDetection2DArray(optical, DetectionsOf(in.persons[static_cast<size_t>(f)])));
   }
@@ -264,7 +268,9 @@ void CheckOutputPath(const std::string& out_path) {
 
 McapExportResult ExportMcap(const std::string& dataset_dir, const std::string& out_path,
                             const McapExportOptions& options) {
+  const auto start = std::chrono::steady_clock::now();  // the result's seconds: opening the dataset included
   CheckOutputPath(out_path);
+  KeepFreedMemoryForReuse();  // frames, messages and chunks of a few MB come and go on every thread
   const Dataset dataset = Dataset::Open(dataset_dir, Verify::kOnRead, options.threads);
   const ExportInputs in = ReadInputs(dataset);
   const int frames = dataset.num_frames();
@@ -279,7 +285,9 @@ McapExportResult ExportMcap(const std::string& dataset_dir, const std::string& o
   for (int t = 0; t < kTopicCount; ++t) {
     if (!in.topic[t]) continue;
     const std::string type = kTopics[t].type;
-    if (!schema.count(type)) schema[type] = writer.AddSchema(Ros2SchemaName(type), "ros2msg", Ros2MessageDefinition(type));
+    if (!schema.count(type)) {
+      schema[type] = writer.AddSchema(Ros2SchemaName(type), "ros2msg", Ros2MessageDefinition(type));
+    }
     channel[t] = writer.AddChannel(schema[type], kTopics[t].topic, "cdr",
                                    {{"offered_qos_profiles", OfferedQos(t == kTfStatic)}});
   }
@@ -299,10 +307,13 @@ McapExportResult ExportMcap(const std::string& dataset_dir, const std::string& o
   const McapStatistics statistics = writer.Finish();
   file.Commit();
   progress.Done();
-  McapExportResult result{out_path,         frames, {}, statistics.message_count, statistics.bytes,
-                          statistics.message_start_time, statistics.message_end_time, progress.ElapsedSeconds()};
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  McapExportResult result{out_path, frames, {}, statistics.message_count, statistics.bytes,
+                          statistics.message_start_time, statistics.message_end_time, seconds};
   for (int t = 0; t < kTopicCount; ++t) {
-    if (in.topic[t]) result.topics.emplace_back(kTopics[t].topic, statistics.channel_message_counts.count(channel[t]) ? statistics.channel_message_counts.at(channel[t]) : 0);
+    const auto count = statistics.channel_message_counts.find(channel[t]);
+    const uint64_t n = count == statistics.channel_message_counts.end() ? 0 : count->second;
+    if (in.topic[t]) result.topics.emplace_back(kTopics[t].topic, n);
   }
   return result;
 }

@@ -71,12 +71,13 @@ uint32_t Crc32(uint32_t crc, std::string_view bytes) {
   return libdeflate_crc32(crc, bytes.data(), bytes.size());
 }
 
-std::string ZstdCompress(const std::string& bytes, int level) {
-  std::string out(ZSTD_compressBound(bytes.size()), '\0');
-  const size_t n = ZSTD_compress(out.data(), out.size(), bytes.data(), bytes.size(), level);
+// zstd's frame of bytes into a buffer of its own (not zero-filled first); returns its size.
+size_t ZstdCompress(const std::string& bytes, int level, std::unique_ptr<char[]>* out) {
+  const size_t bound = ZSTD_compressBound(bytes.size());
+  out->reset(new char[bound]);
+  const size_t n = ZSTD_compress(out->get(), bound, bytes.data(), bytes.size(), level);
   HOILCD_CHECK_MSG(!ZSTD_isError(n), "zstd: " << ZSTD_getErrorName(n));
-  out.resize(n);
-  return out;
+  return n;
 }
 
 }  // namespace
@@ -131,7 +132,8 @@ uint16_t McapWriter::AddChannel(uint16_t schema_id, const std::string& topic, co
 void McapWriter::AddMessage(uint16_t channel_id, uint64_t log_time_ns, uint64_t publish_time_ns,
                             std::string_view data) {
   HOILCD_CHECK_MSG(!finished_, "McapWriter: message after Finish");
-  HOILCD_CHECK_MSG(channel_id >= 1 && channel_id <= channel_records_.size(), "McapWriter: unknown channel " << channel_id);
+  HOILCD_CHECK_MSG(channel_id >= 1 && channel_id <= channel_records_.size(),
+                   "McapWriter: unknown channel " << channel_id);
   if (chunk_.empty()) chunk_start_time_ = chunk_end_time_ = log_time_ns;
   chunk_start_time_ = std::min(chunk_start_time_, log_time_ns);
   chunk_end_time_ = std::max(chunk_end_time_, log_time_ns);
@@ -151,8 +153,9 @@ void McapWriter::AddMessage(uint16_t channel_id, uint64_t log_time_ns, uint64_t 
 
 void McapWriter::CloseChunk() {
   if (chunk_.empty()) return;
-  closed_.push_back({std::move(chunk_), std::move(chunk_index_), chunk_start_time_, chunk_end_time_, {}, 0});
-  chunk_.clear();
+  closed_.push_back({std::move(chunk_), std::move(chunk_index_), chunk_start_time_, chunk_end_time_, nullptr, 0, 0});
+  chunk_ = std::string();
+  chunk_.reserve(options_.chunk_size_bytes + (options_.chunk_size_bytes >> 2));
   chunk_index_.clear();
   if (closed_.size() >= static_cast<size_t>(2 * ResolveThreadCount(options_.threads))) WriteClosedChunks();
 }
@@ -162,17 +165,19 @@ void McapWriter::WriteClosedChunks() {
   ParallelFor(static_cast<int64_t>(closed_.size()), options_.threads, [&](int64_t i) {
     ClosedChunk& c = closed_[static_cast<size_t>(i)];
     c.crc = Crc32(0, c.records);
-    if (zstd) c.compressed = ZstdCompress(c.records, options_.zstd_level);
+    if (zstd) c.compressed_size = ZstdCompress(c.records, options_.zstd_level, &c.compressed);
   });
   for (const ClosedChunk& c : closed_) {
-    const std::string& records = zstd ? c.compressed : c.records;
-    ChunkIndex index{c.start_time, c.end_time, position_, 0, 0, records.size(), c.records.size(), {}};
+    const std::string_view records = zstd ? std::string_view(c.compressed.get(), c.compressed_size) : c.records;
+    // The Chunk record's fields, then its records as they are (no copy).
     Fields f;
-    f.U64(c.start_time).U64(c.end_time).U64(c.records.size()).U32(c.crc);
-    f.Str(zstd ? "zstd" : "").U64(records.size()).Raw(records.data(), records.size());
-    const std::string chunk_record = Record(kChunk, f.text());
-    index.length = chunk_record.size();
-    Emit(chunk_record);
+    f.U64(c.start_time).U64(c.end_time).U64(c.records.size()).U32(c.crc).Str(zstd ? "zstd" : "").U64(records.size());
+    Fields head;
+    head.U8(kChunk).U64(f.size() + records.size()).Raw(f.text().data(), f.size());
+    const uint64_t length = head.size() + records.size();
+    ChunkIndex index{c.start_time, c.end_time, position_, length, 0, records.size(), c.records.size(), {}};
+    Emit(head.text());
+    Emit(records);
     const uint64_t indexes_start = position_;
     for (const auto& [channel, entries] : c.index) {  // by channel id
       Fields m;

@@ -304,7 +304,8 @@ bool ReadRleLines(const std::string& bytes, const Imf::Header& header, ExrChanne
   // Version flags: tiled 0x02, deep 0x08, multi-part 0x10 (bits 9, 11, 12 of the version field).
   if (header.compression() != Imf::RLE_COMPRESSION || (static_cast<unsigned char>(bytes[5]) & 0x1A) != 0) return false;
   const Imath::Box2i dw = header.dataWindow();
-  const size_t width = static_cast<size_t>(dw.max.x - dw.min.x + 1), height = static_cast<size_t>(dw.max.y - dw.min.y + 1);
+  const size_t width = static_cast<size_t>(dw.max.x - dw.min.x + 1);
+  const size_t height = static_cast<size_t>(dw.max.y - dw.min.y + 1);
   struct Part {
     size_t offset, bytes;
     Imf::PixelType type;
@@ -331,8 +332,8 @@ bool ReadRleLines(const std::string& bytes, const Imf::Header& header, ExrChanne
     if (offset < table || offset > bytes.size() - 8) return false;
     std::memcpy(&line_y, data + offset, 4);
     std::memcpy(&size, data + offset + 4, 4);
-    if (line_y != dw.min.y + static_cast<int>(y) || size < 0 || static_cast<uint64_t>(size) > bytes.size() - offset - 8 ||
-        static_cast<size_t>(size) > line_bytes) {
+    if (line_y != dw.min.y + static_cast<int>(y) || size < 0 ||
+        static_cast<uint64_t>(size) > bytes.size() - offset - 8 || static_cast<size_t>(size) > line_bytes) {
       return false;
     }
     const unsigned char* block = data + offset + 8;
@@ -349,7 +350,8 @@ bool ReadRleLines(const std::string& bytes, const Imf::Header& header, ExrChanne
       if (part.image == nullptr) continue;
       void* row = part.image->ptr(static_cast<int>(y));
       if (part.type == Imf::HALF) {
-        cv::Mat(1, static_cast<int>(width), CV_16F, line.data() + part.offset).convertTo(cv::Mat(1, static_cast<int>(width), CV_32F, row), CV_32F);
+        const cv::Mat halves(1, static_cast<int>(width), CV_16F, line.data() + part.offset);
+        halves.convertTo(cv::Mat(1, static_cast<int>(width), CV_32F, row), CV_32F);
       } else {
         std::memcpy(row, line.data() + part.offset, part.bytes);
       }

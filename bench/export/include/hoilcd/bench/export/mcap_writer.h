@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,9 +23,9 @@ bool ParseMcapCompression(const std::string& text, McapCompression* compression)
 
 struct McapWriterOptions {
   McapCompression compression = McapCompression::kZstd;  // of each chunk's records
-  uint64_t chunk_size_bytes = 4u << 20;  // bytes: a chunk is closed once its uncompressed records reach this
+  uint64_t chunk_size_bytes = 1u << 20;  // bytes: a chunk is closed once its uncompressed records reach this
   int zstd_level = 1;                    // zstd level (1: fastest of the standard levels)
-  int threads = 1;                       // chunks compressed at once, one a thread (0: every core); same bytes at any count
+  int threads = 1;                       // threads compressing chunks (0: every core); the same bytes at any count
   std::string profile = "ros2";          // the Header's profile
   std::string library;                   // the Header's library (the writer's name and version)
 };
@@ -64,7 +65,8 @@ class McapWriter {
     std::string records;
     std::map<uint16_t, std::vector<std::pair<uint64_t, uint64_t>>> index;
     uint64_t start_time, end_time;
-    std::string compressed;  // set by WriteClosedChunks
+    std::unique_ptr<char[]> compressed;  // set by WriteClosedChunks (zstd)
+    size_t compressed_size = 0;
     uint32_t crc = 0;        // of records
   };
   struct ChunkIndex {
