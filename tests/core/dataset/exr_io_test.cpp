@@ -262,16 +262,20 @@ TEST(Exr, MoreChannelsThanAFrameCanHaveAreRefused) {
 namespace hoilcd {
 namespace {
 
-// `only` reads just the channels asked for, in the order asked, the values those of a full read
-// (RLE frames through the hand-laid reader, ZIP ones through OpenEXR); a channel the file lacks is
+// `only` reads just the channels asked for, in the order asked, the values those of a full read (which
+// equal the frame: RLE through the hand-laid reader, ZIP through OpenEXR); a channel the file lacks is
 // an InputError naming it.
 TEST(Exr, ReadingOnlySomeChannelsGivesThemInTheOrderAskedWithTheFullReadsValues) {
-  cv::Mat t(6, 8, CV_32F), ids(6, 8, CV_32S);
+  cv::Mat t(5, 7, CV_32F), ids(5, 7, CV_32S);  // odd sizes: lines of 126 bytes, not a multiple of 16
   cv::randu(t, 18.0f, 36.0f);
   cv::randu(ids, -1, 40);
   for (ExrCompression c : {ExrCompression::kRle, ExrCompression::kZip}) {
     const std::string bytes = EncodeExr(FrameExrChannels(t, t, t, ids, ids), {c, 1});
     const ExrChannels all = DecodeExr(bytes, "f.exr", t.size());
+    EXPECT_EQ(cv::norm(ExrChannel(all, "T", "f.exr"), t, cv::NORM_INF), 0.0);
+    cv::Mat ids_as_read;
+    ids.convertTo(ids_as_read, CV_32F);
+    EXPECT_EQ(cv::norm(ExrChannel(all, "id", "f.exr"), ids_as_read, cv::NORM_INF), 0.0);
     const ExrChannels two = DecodeExr(bytes, "f.exr", t.size(), {"id", "Z"});
     ASSERT_EQ(two.size(), 2u);
     EXPECT_EQ(two[0].first, "id");
