@@ -19,7 +19,7 @@ std::vector<Command> AddCommands(CLI::App* app, bool* quiet) {
   return {AddValidateCommand(app),   AddRenderCommand(app),     AddMergeCommand(app),    AddBenchCommand(app),
           AddRunCommand(app),        AddEvaluateCommand(app),   AddInspectCommand(app),  AddSweepCommand(app),
           AddExportCocoCommand(app), AddParamsCommand(app),     AddExportMotCommand(app), AddReferenceCommand(app),
-          AddGenerateCommand(app),   AddSuiteCommand(app),     AddRealismCommand(app)};
+          AddGenerateCommand(app),   AddSuiteCommand(app),     AddRealismCommand(app),  AddExportMcapCommand(app)};
 }
 
 int RunCommandLine(int argc, char** argv) {

@@ -26,6 +26,7 @@ Command AddRealismCommand(CLI::App* app);
 Command AddSweepCommand(CLI::App* app);
 Command AddExportMotCommand(CLI::App* app);
 Command AddExportCocoCommand(CLI::App* app);
+Command AddExportMcapCommand(CLI::App* app);
 Command AddParamsCommand(CLI::App* app);
 Command AddReferenceCommand(CLI::App* app);
 Command AddGenerateCommand(CLI::App* app);

@@ -1,10 +1,14 @@
 // hoilcd render SCENE -o DIR: render a scene's sequence (or its first N frames) into a dataset folder;
 // with --shard I/N only the I-th contiguous part of its frames, into a shard folder for hoilcd merge.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "command.h"
+#include "export_mcap.h"
+#include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/shard.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -12,6 +16,29 @@
 
 namespace hoilcd {
 namespace {
+
+// The bag `--outputs ...,mcap` writes into the dataset folder (a name dataset_folder.h counts as hoilcd's).
+constexpr char kRenderBagName[] = "ros2.mcap";
+
+// Takes "mcap" out of a comma-separated --outputs list: the rest chooses the dataset's outputs as
+// before ("" for mcap alone: all of them); true when it was there.
+bool TakeMcapOutput(std::string* outputs) {
+  std::string rest;
+  bool mcap = false;
+  size_t start = 0;
+  while (start <= outputs->size()) {
+    const size_t comma = std::min(outputs->find(',', start), outputs->size());
+    const std::string name = outputs->substr(start, comma - start);
+    if (name == "mcap") {
+      mcap = true;
+    } else {
+      rest += (rest.empty() ? "" : ",") + name;
+    }
+    start = comma + 1;
+  }
+  if (mcap) *outputs = rest;
+  return mcap;
+}
 
 struct RenderArgs {
   SceneArgs scene;
@@ -22,6 +49,11 @@ struct RenderArgs {
 int RenderCommand(const RenderArgs& args) {
   SequenceOptions o = args.options;
   if (args.shard) o.shard = ParseShard(*args.shard);  // before the scene: a bad flag fails first
+  const bool mcap = TakeMcapOutput(&o.outputs);
+  if (mcap && args.shard) {
+    throw InputError("--outputs", "mcap needs the whole sequence, not a shard: run hoilcd export-mcap on the "
+                                  "dataset hoilcd merge writes");
+  }
   const Scene scene = LoadSceneArgs(args.scene);
   o.cancel = CancelOnInterrupt();
   const SequenceResult r = RenderSequence(scene, o);
@@ -33,6 +65,11 @@ int RenderCommand(const RenderArgs& args) {
   // The encoder runs on a writer thread while later frames render: its time is not all added.
   std::printf("thermal.mp4: %.2f s of work, %.1f %% of the render's wall time (its encoding runs beside the rendering)\n",
               r.video_seconds, r.seconds > 0 ? 100.0 * r.video_seconds / r.seconds : 0.0);
+  if (mcap) {
+    McapExportOptions mcap_options;
+    mcap_options.threads = o.threads;
+    PrintMcapExport(ExportMcap(o.output_dir, o.output_dir + "/" + kRenderBagName, mcap_options));
+  }
   return 0;
 }
 
@@ -53,7 +90,8 @@ Command AddRenderCommand(CLI::App* app) {
                "hoilcd merge joins the N folders into the dataset the whole render writes");
   cmd->add_option("--outputs", args->options.outputs,
                   "comma-separated outputs to write: thermal, radiometric, exr, video, persons (default: all; "
-                  "the manifest lists them, and hoilcd bench needs thermal)");
+                  "the manifest lists them, and hoilcd bench needs thermal), and mcap: also DIR/ros2.mcap, the "
+                  "dataset as a ROS 2 bag (hoilcd export-mcap; with mcap alone, every other output too)");
   return {cmd, [args] { return RenderCommand(*args); }};
 }
 

@@ -427,6 +427,14 @@ std::vector<Mode> Modes() {
                     {"--threads", {}, Expect::kThreads}}});
   modes.push_back({"export-coco", "export-coco", {"-q", "export-coco", "{dataset}", "-o", "{out}/x"}, {kDataset},
                    {{"--help", {"--help"}, Expect::kActs, help}, {"--output", {}, Expect::kRequired}}});
+  {
+    const Probe bag = [](const CommandRun& r) { return TextOf(r.out + "/x.mcap"); };
+    modes.push_back({"export-mcap", "export-mcap", {"-q", "export-mcap", "{dataset}", "-o", "{out}/x.mcap"}, {kDataset},
+                     {{"--help", {"--help"}, Expect::kActs, help},
+                      {"--output", {}, Expect::kRequired},
+                      {"--compression", {"--compression", "none"}, Expect::kActs, bag},
+                      {"--threads", {}, Expect::kThreads}}});
+  }
   modes.push_back({"params", "params", {"-q", "params"}, {}, {{"--help", {"--help"}, Expect::kActs, help}}});
   {
     // The dataset's own radiometric frames (16-bit centikelvin) serve as the "real" folder.

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kSideFiles[] = {"manifest.json", "scene.json",  "poses.csv",       "poses_tum.txt",
                                       "persons.json",  "events.json", "footprints.json", "runs.json",
-                                      "thermal.mp4"};
+                                      "thermal.mp4",   "ros2.mcap"};
 constexpr const char* kFrameFolders[] = {"thermal", "radiometric", "exr"};
 
 bool AllDigits(const std::string& text, size_t min_length) {

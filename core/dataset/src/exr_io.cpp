@@ -274,6 +274,125 @@ std::string EncodeRleExr(const ExrChannels& channels, int width, int height) {
   return out;
 }
 
+// OpenEXR's RLE decode of one block: (n - 1, byte) runs and (-n, n bytes) literals into exactly
+// `size` bytes; false when the block is malformed (the caller then lets OpenEXR report it).
+bool UnRunLengths(const unsigned char* in, size_t in_size, unsigned char* out, size_t size) {
+  size_t done = 0;
+  for (size_t at = 0; at < in_size;) {
+    const int count = static_cast<signed char>(in[at++]);
+    if (count < 0) {
+      const size_t n = static_cast<size_t>(-count);
+      if (n > in_size - at || n > size - done) return false;
+      std::memcpy(out + done, in + at, n);
+      at += n;
+      done += n;
+    } else {
+      const size_t n = static_cast<size_t>(count) + 1;
+      if (at >= in_size || n > size - done) return false;
+      std::memset(out + done, in[at++], n);
+      done += n;
+    }
+  }
+  return done == size;
+}
+
+// OpenEXR's predictor undone in place: byte i becomes byte i - 1 + byte i - 128 (mod 256), i.e. 128
+// plus the prefix sum of (byte - 128). Sixteen bytes at a time: a prefix sum in four shifted adds,
+// plus the running byte carried from the block before.
+void UndoPredictor(unsigned char* p, size_t n) {
+  unsigned char previous = 128;  // so that byte 0 stays as it is
+  size_t i = 0;
+#if defined(__SSE2__)
+  __m128i carry = _mm_set1_epi8(static_cast<char>(previous));
+  const __m128i bias = _mm_set1_epi8(static_cast<char>(128));
+  for (; i + 16 <= n; i += 16) {
+    __m128i v = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i)), bias);
+    v = _mm_add_epi8(v, _mm_slli_si128(v, 1));
+    v = _mm_add_epi8(v, _mm_slli_si128(v, 2));
+    v = _mm_add_epi8(v, _mm_slli_si128(v, 4));
+    v = _mm_add_epi8(v, _mm_slli_si128(v, 8));
+    v = _mm_add_epi8(v, carry);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), v);
+    previous = p[i + 15];
+    carry = _mm_set1_epi8(static_cast<char>(previous));
+  }
+#endif
+  for (; i < n; ++i) p[i] = previous = static_cast<unsigned char>(previous + p[i] - 128);
+}
+
+// The lines of a single-part scanline RLE file read without OpenEXR's byte-at-a-time reorder and
+// predictor (a dataset frame: ~4x faster), into `out`'s images (a subset of the header's channels,
+// FLOAT or HALF into CV_32F, UINT into CV_32S). The header was parsed by OpenEXR already; false for
+// any other layout or a malformed block, so that OpenEXR reads (or refuses) the file as before.
+bool ReadRleLines(const std::string& bytes, const Imf::Header& header, ExrChannels* out) {
+  // Version flags: tiled 0x02, deep 0x08, multi-part 0x10 (bits 9, 11, 12 of the version field).
+  if (header.compression() != Imf::RLE_COMPRESSION || (static_cast<unsigned char>(bytes[5]) & 0x1A) != 0) return false;
+  const Imath::Box2i dw = header.dataWindow();
+  const size_t width = static_cast<size_t>(dw.max.x - dw.min.x + 1);
+  const size_t height = static_cast<size_t>(dw.max.y - dw.min.y + 1);
+  struct Part {
+    size_t offset, bytes;
+    Imf::PixelType type;
+    cv::Mat* image;  // nullptr: not asked for
+  };
+  std::vector<Part> parts;
+  size_t line_bytes = 0;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+    if (it.channel().xSampling != 1 || it.channel().ySampling != 1) return false;
+    const size_t bytes_per_sample = it.channel().type == Imf::HALF ? 2 : 4;
+    cv::Mat* image = nullptr;
+    for (auto& [name, mat] : *out) image = name == it.name() ? &mat : image;
+    parts.push_back({line_bytes, bytes_per_sample * width, it.channel().type, image});
+    line_bytes += bytes_per_sample * width;
+  }
+  const size_t table = HeaderEnd(bytes);
+  if (table == 0 || (bytes.size() - table) / 8 < height) return false;
+  std::vector<unsigned char> coded(line_bytes), line(line_bytes);
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  for (size_t y = 0; y < height; ++y) {
+    uint64_t offset = 0;
+    std::memcpy(&offset, data + table + 8 * y, 8);
+    int32_t line_y = 0, size = 0;
+    if (offset < table || offset > bytes.size() - 8) return false;
+    std::memcpy(&line_y, data + offset, 4);
+    std::memcpy(&size, data + offset + 4, 4);
+    if (line_y != dw.min.y + static_cast<int>(y) || size < 0 ||
+        static_cast<uint64_t>(size) > bytes.size() - offset - 8 || static_cast<size_t>(size) > line_bytes) {
+      return false;
+    }
+    const unsigned char* block = data + offset + 8;
+    const bool raw = static_cast<size_t>(size) == line_bytes;  // stored as it is: it did not shrink
+    if (!raw) {
+      if (!UnRunLengths(block, static_cast<size_t>(size), coded.data(), line_bytes)) return false;
+      UndoPredictor(coded.data(), line_bytes);
+    }
+    // Line byte k is byte k / 2 of the coded line's first half (k even) or of its second half (k
+    // odd); parts start at even bytes (samples are 2 or 4 bytes), so only the asked-for ones are made.
+    const size_t half = (line_bytes + 1) / 2;
+    for (const Part& part : parts) {
+      if (part.image == nullptr) continue;
+      if (raw) {
+        std::memcpy(line.data(), block + part.offset, part.bytes);
+      } else {
+        const unsigned char* even = coded.data() + part.offset / 2;
+        const unsigned char* odd = coded.data() + half + part.offset / 2;
+        for (size_t j = 0; j < part.bytes / 2; ++j) {
+          line[2 * j] = even[j];
+          line[2 * j + 1] = odd[j];
+        }
+      }
+      void* row = part.image->ptr(static_cast<int>(y));
+      if (part.type == Imf::HALF) {
+        const cv::Mat halves(1, static_cast<int>(width), CV_16F, line.data());
+        halves.convertTo(cv::Mat(1, static_cast<int>(width), CV_32F, row), CV_32F);
+      } else {
+        std::memcpy(row, line.data(), part.bytes);
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string EncodeExr(const ExrChannels& channels, const ExrWriteOptions& options) {
@@ -340,7 +459,8 @@ class StringIStream : public Imf::IStream {
 
 ExrChannels ReadExr(const std::string& path, cv::Size size) { return DecodeExr(ReadFileBytes(path), path, size); }
 
-ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Size size) {
+ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Size size,
+                      const std::vector<std::string>& only) {
   if (HeaderEnd(bytes) == 0) {
     throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end or "
                            "disagrees with its type's size, or the data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
@@ -366,15 +486,27 @@ ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Siz
     ExrChannels out;
     Imf::FrameBuffer fb;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+      if (!only.empty() && std::find(only.begin(), only.end(), it.name()) == only.end()) continue;
       const bool uint = it.channel().type == Imf::UINT;
       out.emplace_back(it.name(), cv::Mat(static_cast<int>(height), static_cast<int>(width), uint ? CV_32S : CV_32F));
+    }
+    if (!only.empty()) {
+      ExrChannels ordered;
+      for (const std::string& name : only) {
+        const auto it = std::find_if(out.begin(), out.end(), [&](const auto& c) { return c.first == name; });
+        if (it == out.end()) throw InputError(path, "has no channel '" + name + "'");
+        ordered.push_back(*it);
+      }
+      out = std::move(ordered);
     }
     for (auto& [name, mat] : out) {
       char* base = mat.ptr<char>() - (dw.min.x + static_cast<ptrdiff_t>(dw.min.y) * width) * 4;
       fb.insert(name, Imf::Slice(mat.type() == CV_32S ? Imf::UINT : Imf::FLOAT, base, 4, 4 * width));
     }
-    file.setFrameBuffer(fb);
-    file.readPixels(dw.min.y, dw.max.y);
+    if (!ReadRleLines(bytes, file.header(), &out)) {
+      file.setFrameBuffer(fb);
+      file.readPixels(dw.min.y, dw.max.y);
+    }
     for (auto& [name, mat] : out) {
       if (mat.type() == CV_32S) mat.convertTo(mat, CV_32F);
     }
@@ -386,11 +518,11 @@ ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Siz
   }
 }
 
-ExrChannels ReadDatasetExr(const Dataset& dataset, int frame) {
+ExrChannels ReadDatasetExr(const Dataset& dataset, int frame, const std::vector<std::string>& only) {
   dataset.RequireOutput("exr", "reading the EXR frames");
   const CameraIntrinsics& size = dataset.manifest().intrinsics;
   return DecodeExr(dataset.ReadFile("exr/" + FrameFileName(frame, "exr")), DatasetExrPath(dataset, frame),
-                   {size.width, size.height});
+                   {size.width, size.height}, only);
 }
 
 std::string DatasetExrPath(const Dataset& dataset, int frame) {

@@ -16,6 +16,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
+#include "hoilcd/core/util/atomic_file.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/png.h"
@@ -142,42 +143,9 @@ std::string ReadFileBytes(const std::string& path, uint64_t max_bytes) {
 namespace {
 
 void WriteAtomic(const std::string& path, std::string_view bytes, bool sync) {
-  const fs::path target(path);
-  if (target.has_parent_path()) {
-    std::error_code ec;
-    fs::create_directories(target.parent_path(), ec);
-    if (ec) throw InputError(path, "cannot create directory: " + ec.message());
-  }
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError(path, std::string("cannot write file: ") + std::strerror(errno));
-  auto fail = [&](const char* what) {
-    const int err = errno;
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw InputError(path, std::string(what) + std::strerror(err));
-  };
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("cannot write file: ");
-    }
-    done += static_cast<size_t>(n);
-  }
-  if (sync && ::fsync(fd) != 0) fail("cannot flush file to disk: ");
-  if (::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    throw InputError(path, std::string("cannot write file: ") + std::strerror(err));
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    throw InputError(path, std::string("cannot rename temporary file into place: ") +
-                               std::strerror(err));
-  }
+  AtomicFile file(path);
+  file.Write(bytes);
+  file.Commit(sync);
 }
 
 // fsync of an existing file or folder (opened read-only: enough for fsync on Linux).
