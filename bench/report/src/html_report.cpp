@@ -165,6 +165,26 @@ HtmlReport BenchReportHtml(const BenchResult& result, const Dataset& dataset, co
   return {HtmlPage("hoilcd report: " + dataset.dir(), body), gallery.sampled};
 }
 
+std::string OnlineReportHtml(const OnlineResult& result, const Dataset& dataset) {
+  std::vector<std::vector<HtmlCell>> rows;
+  for (const OnlineMethodRun& run : result.runs) {
+    const MethodMetrics& m = run.metrics;
+    const HeadlineIntervals& i = run.intervals;
+    rows.push_back({TextCell(run.name), IntervalCell(m.mrr, i.mrr), IntervalCell(m.recall_at_1, i.recall_at_1),
+                    IntervalCell(m.recall_at_5, i.recall_at_5), NumberCell(run.p50_ms, 2), NumberCell(run.p99_ms, 2)});
+  }
+  const std::string body =
+      "<h1>hoilcd online loop-closure report</h1>\n<p>Dataset <code>" + EscapeHtml(dataset.dir()) + "</code> (" +
+      std::to_string(result.frames) + " frames), protocol <code>" + EscapeHtml(result.protocol) + "</code>, " +
+      EscapeHtml(result.ground_truth) + " ground truth. The same report as text: <a href=\"report.md\">report.md</a>, "
+      "<a href=\"report.json\">report.json</a>.</p>\n<p>" + std::to_string(result.queries_processed) +
+      " queries processed, " + std::to_string(result.queries_scored) + " scored; the shortlist held a true match for " +
+      std::to_string(result.shortlist_hits) + " of them (recall " + Fixed(result.shortlist_recall) + ").</p>\n" +
+      SortableTable({"method", "MRR", "R@1", "R@5", "ms/query p50", "ms/query p99"}, rows) +
+      RecordingRunsSection(result.per_run);
+  return HtmlPage("hoilcd online report: " + dataset.dir(), body);
+}
+
 HtmlReport EvaluateReportHtml(const MethodRun& run, const BootstrapPlan& plan, const std::vector<Query>& queries,
                               const std::vector<QueryConditions>& conditions, const std::vector<StratumRow>& strata,
                               const Dataset& dataset, const ProtocolOptions& protocol, const std::string& description,

@@ -11,6 +11,7 @@
 
 #include "hoilcd/bench/evaluation/evaluate.h"
 #include "hoilcd/bench/evaluation/suite_summary.h"
+#include "hoilcd/bench/runner/online.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/dataset.h"
 
@@ -38,6 +39,10 @@ HtmlReport EvaluateReportHtml(const MethodRun& run, const BootstrapPlan& plan, c
                               const std::vector<QueryConditions>& conditions, const std::vector<StratumRow>& strata,
                               const Dataset& dataset, const ProtocolOptions& protocol, const std::string& description,
                               const HtmlReportInput& input);
+
+// The online bench's page (bench --online): the shortlist's figures and each method's results with
+// intervals and ms per query; no gallery (the online bench keeps no databases to draw from).
+std::string OnlineReportHtml(const OnlineResult& result, const Dataset& dataset);
 
 // The inline SVG of the SLAM trajectories: ground truth, odometry and each method's optimised path
 // (headline back end), x right and y up in metres; "" when SLAM did not run.
