@@ -203,7 +203,7 @@ std::string FeatureDefs(const GalleryInput& in, const std::set<std::pair<ShownFe
     std::string d;
     for (const Point2& p : points) d += "M" + Coord(p.x + 0.5) + " " + Coord(p.y + 0.5) + "h0";
     html += "<path id=\"" + FeatureId(kind, frame) +
-            "\" stroke=\"#4cf\" stroke-width=\"3\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
+            "\" stroke=\"#4cf\" stroke-width=\"3.5\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
   }
   return html + "</defs></svg>\n";
 }
