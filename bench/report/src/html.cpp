@@ -23,7 +23,7 @@ tr:nth-child(even) td { background: #fafafa; }
 .entry { border: 1px solid #ccc; border-radius: 4px; margin: 1em 0; padding: .5em .8em; }
 .entry h4 { margin: .2em 0; } .entry .conditions { color: #555; font-size: 12px; margin: .2em 0 .5em; }
 .tiles { display: flex; flex-wrap: wrap; gap: 8px; }
-.tile { margin: 0; width: 200px; } .tile.pair { width: 404px; }
+.tile { margin: 0; width: 190px; } .tile.pair { width: 384px; }
 .wide { overflow-x: auto; } details summary { cursor: pointer; }
 .tile svg { width: 100%; display: block; background: #000; }
 .tile figcaption { font-size: 12px; } .hit { color: #176d17; } .miss { color: #b01010; }
