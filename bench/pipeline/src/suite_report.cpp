@@ -9,6 +9,7 @@
 #include "hoilcd/bench/evaluation/report_json.h"
 #include "hoilcd/bench/pipeline/shard.h"
 #include "hoilcd/bench/pipeline/suite_file.h"
+#include "hoilcd/bench/report/html_report.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/error.h"
@@ -232,6 +233,7 @@ SuiteSummary MergeSuite(const std::vector<std::string>& dirs, const nlohmann::js
   if (!problems.empty()) throw InputError(problems);
 
   std::vector<SuiteRunResult> results;
+  std::map<std::string, std::string> run_dirs;
   for (const std::string& run : view.runs) {
     const ShardFolder& f = *owner.at(run);
     const auto failed = f.failed.find(run);
@@ -239,12 +241,14 @@ SuiteSummary MergeSuite(const std::vector<std::string>& dirs, const nlohmann::js
       results.push_back({run, failed->second, {}, {}, ""});
     } else {
       results.push_back(ReadSuiteRunResult(run, f.dir + "/runs/" + run + "/report.json", view.methods));
+      run_dirs[run] = f.dir + "/runs/" + run;
     }
     const auto sequence = view.sequence_of_run.find(run);
     if (sequence != view.sequence_of_run.end()) results.back().sequence = sequence->second;
   }
   SuiteSummary summary = SummariseSuite(view.name, view.description, view.methods, results);
   summary.settings = {{"split", view.split}, {"bench", view.bench}};
+  summary.run_dirs = std::move(run_dirs);
   return summary;
 }
 
@@ -254,7 +258,7 @@ void CheckSuiteReportFolder(const std::string& out_dir) {
   if (!fs::is_directory(out_dir, ec)) throw InputError(out_dir, "is a file: expected a folder for the suite's report");
   if (IsEarlierOutput(out_dir, kSuiteFolder) || IsEarlierOutput(out_dir, kSuiteReport)) return;
   std::vector<std::string> taken;
-  for (const char* name : {"suite_report.json", "suite_report.md"}) {
+  for (const char* name : {"suite_report.json", "suite_report.md", "suite_report.html"}) {
     if (fs::exists(out_dir + "/" + name, ec)) taken.push_back(name);
   }
   if (!taken.empty()) {
@@ -269,6 +273,13 @@ void WriteSuiteReport(const SuiteSummary& summary, const std::string& out_dir) {
   const FolderLock lock(out_dir, FolderLock::IfBusy::kRefuse);  // held already by `hoilcd suite`'s thread
   WriteFileAtomic(out_dir + "/suite_report.json", summary.ToJson().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   WriteFileAtomic(out_dir + "/suite_report.md", summary.ToMarkdown());
+  // Each run's folder as a link relative to the report's, so the folders can move together.
+  std::map<std::string, std::string> links;
+  const fs::path base = fs::absolute(out_dir).lexically_normal();
+  for (const auto& [run, dir] : summary.run_dirs) {
+    links[run] = fs::absolute(dir).lexically_normal().lexically_relative(base).generic_string();
+  }
+  WriteFileAtomic(out_dir + "/suite_report.html", SuiteReportHtml(summary, links));
 }
 
 }  // namespace hoilcd

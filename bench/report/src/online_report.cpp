@@ -1,6 +1,7 @@
 #include "hoilcd/bench/report/online_report.h"
 
 #include "hoilcd/core/util/safe_text.h"
+#include "hoilcd/bench/report/html_report.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/util/file_io.h"
@@ -19,6 +20,7 @@ void WriteOnlineReport(const OnlineResult& result, const Dataset& dataset, const
   const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   WriteFileAtomic(dir + "/report.json", report.dump(2) + "\n");
   WriteFileAtomic(dir + "/report.md", OnlineResultToMarkdown(result));
+  WriteFileAtomic(dir + "/report.html", OnlineReportHtml(result, dataset));
 }
 
 }  // namespace hoilcd

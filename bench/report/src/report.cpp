@@ -14,6 +14,8 @@
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/figures.h"
+#include "hoilcd/bench/report/gallery_sample.h"
+#include "hoilcd/bench/report/html_report.h"
 #include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/slam_report.h"
@@ -322,6 +324,13 @@ cv::Mat StrataFigure(const std::vector<StratumRow>& strata) {
   return BarPlot(groups, series, options);
 }
 
+// report.json's "gallery": the queries report.html's gallery shows (gallery_sample.h).
+nlohmann::json GalleryJson(const std::vector<Query>& queries, const std::vector<size_t>& sampled) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (size_t q : sampled) frames.push_back(queries[q].frame);
+  return {{"per_group", kGalleryPerGroup}, {"query_frames", frames}};
+}
+
 // Figures to draw: file name and how to draw it.
 using FigureJobs = std::vector<std::pair<std::string, std::function<cv::Mat()>>>;
 
@@ -618,11 +627,16 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
                           const ReportTiming& timing, const std::string& dir, const InspectReport& inspect) {
   const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   const Diagnosis diagnosis = Diagnose(result);
-  WriteFileAtomic(dir + "/report.json", ReportJson(result, dataset, options, timing, inspect, diagnosis).dump(2));
+  nlohmann::json json = ReportJson(result, dataset, options, timing, inspect, diagnosis);
+  std::vector<const std::vector<QueryRecord>*> records;
+  for (const MethodRun& run : result.runs) records.push_back(&run.metrics.queries);
+  json["gallery"] = GalleryJson(result.queries, SampleGallery(records, result.conditions, StratificationsOf(result.strata)));
+  WriteFileAtomic(dir + "/report.json", json.dump(2));
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result.runs, result.conditions));
   const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
   WriteFileAtomic(dir + "/report.md",
                   ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
+  WriteFileAtomic(dir + "/report.html", BenchReportHtml(result, dataset, options, {dir, figures, kGalleryPerGroup}).html);
 }
 
 }  // namespace
@@ -675,6 +689,8 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   nlohmann::json json = EvaluateReportJson(dataset, protocol, report, description);
   json["strata"] = StrataJson(strata);
+  json["gallery"] = GalleryJson(labelling.queries,
+                                SampleGallery({&report.metrics.queries}, conditions, StratificationsOf(strata)));
   if (!per_run.empty()) json["recording_runs"] = MetricsPerRunJson(per_run);
   json["label_agreement"] = nlohmann::json::array();
   for (const LabelAgreement& g : labelling.agreements) json["label_agreement"].push_back(g.ToJson());
@@ -690,6 +706,12 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   md << "\n## Figures\n\n";
   for (const auto& figure : figures) md << "![" << figure.first << "](" << figure.first << ")\n\n";
   WriteFileAtomic(dir + "/report.md", md.str());
+  std::vector<std::string> figure_names;
+  for (const auto& figure : figures) figure_names.push_back(figure.first);
+  WriteFileAtomic(dir + "/report.html", EvaluateReportHtml(runs[0], report.bootstrap, labelling.queries, conditions,
+                                                           strata, dataset, protocol, description,
+                                                           {dir, figure_names, kGalleryPerGroup})
+                                            .html);
   return report;
 }
 

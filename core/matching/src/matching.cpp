@@ -518,4 +518,22 @@ int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& refer
                       ransac_options, PairSeed(seed, query_id, reference_id));
 }
 
+PairMatches MatchPair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                      const MatchOptions& match_options, const RansacOptions& ransac_options, uint64_t seed,
+                      int query_id, int reference_id) {
+  const std::string match_problem = match_options.Check();
+  HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
+  PairMatches out;
+  out.matches = FilterVertical(query, reference, MutualNearestNeighbours(query, reference), match_options);
+  if (out.matches.size() < 4) {  // as the scorer: fewer than 4 matches run no RANSAC and score 0
+    out.inlier.assign(out.matches.size(), 0);
+    return out;
+  }
+  HomographyResult ransac =
+      EstimateHomographyRansac(query, reference, out.matches, ransac_options, PairSeed(seed, query_id, reference_id));
+  out.inlier = std::move(ransac.inlier_mask);
+  out.inliers = ransac.inliers;
+  return out;
+}
+
 }  // namespace hoilcd

@@ -83,6 +83,14 @@ class SuiteShards : public ::testing::Test {
     for (const char* file : {"/suite_report.json", "/suite_report.md"}) {
       EXPECT_EQ(ReadFileBytes(Dir(out) + file), ReadFileBytes(Dir("whole") + file)) << file;
     }
+    // The page links each finished run's report.html in the shard that ran it.
+    const std::string html = ReadFileBytes(Dir(out) + "/suite_report.html");
+    for (const std::string& dir : dirs) {
+      const std::string link = std::filesystem::path(dir).filename().string() + "/runs/tiny-seed1/report.html";
+      if (std::filesystem::exists(dir + "/runs/tiny-seed1/report.html")) {
+        EXPECT_NE(html.find("<a href=\"../" + link + "\">"), std::string::npos) << link;
+      }
+    }
   }
 
   static test::TestDir* root_;
@@ -97,6 +105,9 @@ bool SuiteShards::setup_done_ = false;
 
 TEST_F(SuiteShards, TheWholeReportScoresEveryFinishedRunAndListsTheFailedOne) {
   const nlohmann::json report = nlohmann::json::parse(ReadFileBytes(Dir("whole/suite_report.json")));
+  const std::string html = ReadFileBytes(Dir("whole/suite_report.html"));
+  EXPECT_NE(html.find("<a href=\"runs/tiny-seed1/report.html\">"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(Dir("whole/runs/tiny-seed1/report.html")));
   EXPECT_EQ(report["runs"], (nlohmann::json{"pairs-seed4", "tiny-seed1", "tiny-seed2", "tiny-seed3"}));
   ASSERT_EQ(report["failed"].size(), 1u);
   EXPECT_EQ(report["failed"][0]["run"], "missing-seed1");

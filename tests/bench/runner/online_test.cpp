@@ -96,7 +96,7 @@ TEST(Online, MethodsThatNeedTheWholeSequenceAreRefusedByNameOrLeftOutWithANote) 
             std::string::npos);
 }
 
-TEST(Online, TheReportFolderHoldsItsJsonAndMarkdown) {
+TEST(Online, TheReportFolderHoldsItsJsonMarkdownAndHtml) {
   const test::TestDir temp;
   const Dataset dataset = test::TinyRoomDataset(temp / "d");
   const OnlineResult result = RunOnlineBench(dataset, PaperOptions("laps"), Shortlist(5));
@@ -107,6 +107,9 @@ TEST(Online, TheReportFolderHoldsItsJsonAndMarkdown) {
   EXPECT_TRUE(json["methods"]["slcd"]["mrr"].is_number());
   EXPECT_TRUE(json["methods"]["fusion"]["p99_ms"].is_number());
   EXPECT_NE(ReadFileBytes(temp / "report/report.md").find("shortlist recall"), std::string::npos);
+  const std::string html = ReadFileBytes(temp / "report/report.html");
+  EXPECT_NE(html.find("<td>slcd</td>"), std::string::npos);
+  EXPECT_NE(html.find("shortlist held a true match"), std::string::npos);
   WriteOnlineReport(result, dataset, temp / "report");  // over its own earlier report
 }
 

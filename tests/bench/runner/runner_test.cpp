@@ -338,6 +338,12 @@ TEST(Report, ADatasetOfTwoRecordingRunsIsScoredPerRunUnderEveryProtocol) {
   const nlohmann::json evaluated = nlohmann::json::parse(ReadFileBytes(temp / "evaluate/report.json"));
   EXPECT_EQ(evaluated["recording_runs"][1]["methods"]["thumb"]["mrr"], later.mrr[1]);
   EXPECT_NE(ReadFileBytes(temp / "evaluate/report.md").find("### Results by recording run"), std::string::npos);
+  const std::string html = ReadFileBytes(temp / "evaluate/report.html");
+  EXPECT_NE(html.find("hoilcd evaluate: thumb"), std::string::npos);
+  size_t entries = 0;
+  for (size_t at = html.find("<div class=\"entry\""); at != std::string::npos; at = html.find("<div class=\"entry\"", at + 1)) ++entries;
+  EXPECT_EQ(entries, evaluated["gallery"]["query_frames"].size());
+  EXPECT_GT(entries, 0u);
 }
 
 // After the robot is carried back to its dock, the tracker starts afresh: no track of the first

@@ -232,6 +232,32 @@ TEST(ScorePair, EqualsTheComposedPipelineWithThePairKeyedStream) {
   }
 }
 
+TEST(MatchPair, ItsInliersAreThePairsScoreAndItsMatchesTheFilteredMutualPairs) {
+  Rng rng = KeyedRng(5, "test.match_pair");
+  const MatchOptions match_options;
+  RansacOptions lo;
+  lo.local_optimisation_refits = 2;
+  for (const RansacOptions& ransac_options : {RansacOptions(), lo}) {
+    for (int t = 0; t < 30; ++t) {
+      const std::vector<Point2> query = MakePoints(rng, 20 + t * 4, Layout::kUniform);
+      std::vector<Point2> reference = query;
+      for (Point2& p : reference) p += Point2(static_cast<float>(rng.Normal(2, 1)), static_cast<float>(rng.Normal(0, 1)));
+      reference.resize(reference.size() - rng.UniformInt(10));
+      const PairMatches pair = MatchPair(query, reference, match_options, ransac_options, 7, t, 2 * t);
+      EXPECT_EQ(pair.matches, FilterVertical(query, reference, MutualNearestNeighbours(query, reference), match_options));
+      ASSERT_EQ(pair.inlier.size(), pair.matches.size());
+      int counted = 0;
+      for (uint8_t in : pair.inlier) counted += in;
+      EXPECT_EQ(counted, pair.inliers);
+      EXPECT_EQ(pair.inliers, ScorePair(query, reference, match_options, ransac_options, 7, t, 2 * t));
+    }
+  }
+  const PairMatches few = MatchPair({{1, 1}, {50, 9}}, {{1, 2}, {51, 9}}, match_options, RansacOptions(), 1, 0, 1);
+  EXPECT_EQ(few.matches.size(), 2u);
+  EXPECT_EQ(few.inliers, 0);
+  EXPECT_EQ(few.inlier, std::vector<uint8_t>(2, 0));
+}
+
 TEST(ScorePair, ShiftedCopyScoresFarAboveAnUnrelatedFrame) {
   Rng rng = KeyedRng(4, "test.score");
   const std::vector<Point2> query = MakePoints(rng, 200, Layout::kUniform);

@@ -62,6 +62,17 @@ MethodScores PointSetMethod::Score(const MethodContext& context) const {
   return ScoreTogether({this}, {context}).front();
 }
 
+// The pair's MNN, vertical filter and RANSAC as ScoreDatabases runs them (the same key, options
+// and stream), on the shown features, which are the index's points for the camera's front ends.
+std::optional<PairMatches> PointSetMethod::MatchPair(const PairMatchInput& input) const {
+  if (Features() == ShownFeatures::kNone) return std::nullopt;
+  const PointSetOptions& own = OptionsValue<PointSetOptions>(input.own);
+  MatchOptions match = own.match;
+  match.image_height_px = input.image_height_px;
+  return hoilcd::MatchPair(input.query_points, input.reference_points, match, own.ransac, input.seed,
+                           input.query_frame, input.reference_frame);
+}
+
 // The index and the matching decide the MNN; the seed is the dataset's for every method.
 std::string PointSetMethod::PassKey(const MethodContext& context) const {
   const MatchOptions match = MatchOf(context);

@@ -35,6 +35,7 @@ class PointSetMethod : public LoopClosureMethod {
   bool Online() const override { return true; }
   std::unique_ptr<MethodOptions> Options() const override;
   MethodScores Score(const MethodContext& context) const override;
+  std::optional<PairMatches> MatchPair(const PairMatchInput& input) const override;
   std::string PassKey(const MethodContext& context) const override;
   std::vector<MethodScores> ScoreTogether(const std::vector<const LoopClosureMethod*>& methods,
                                           const std::vector<MethodContext>& contexts) const override;

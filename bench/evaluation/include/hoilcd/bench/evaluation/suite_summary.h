@@ -61,6 +61,9 @@ struct SuiteSummary {
   std::vector<SuiteMethodSummary> methods;  // in the order given
   std::vector<SuiteWins> wins;            // every pair (i < j) in method order
   std::vector<std::pair<std::string, std::string>> failed;  // (run, error)
+  // Finished run -> its report folder, for suite_report.html's links; not in the JSON or Markdown,
+  // which stay the same bytes however the runs were sharded.
+  std::map<std::string, std::string> run_dirs;
 
   nlohmann::json ToJson() const;   // suite_report.json
   std::string ToMarkdown() const;  // suite_report.md

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "hoilcd/bench/methods/front_ends.h"
 #include "hoilcd/bench/methods/method_options.h"
 #include "hoilcd/core/dataset/dataset.h"
+#include "hoilcd/core/matching/matching.h"
 #include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
@@ -53,6 +55,16 @@ struct MethodContext {
 // Which per-frame features the report draws for a method's matches.
 enum class ShownFeatures { kNone, kKeypoints, kHoiPoints };
 
+// One (query, reference) pair as the report's gallery asks a method to match it again.
+struct PairMatchInput {
+  const MethodOptions* own;                  // the method's own options as it ran (null: none)
+  const std::vector<Point2>& query_points;   // the query frame's shown features (Features()), px
+  const std::vector<Point2>& reference_points;  // the reference frame's, px
+  int query_frame, reference_frame;          // frame indices (they key RANSAC's stream)
+  int image_height_px;                       // the dataset's
+  uint64_t seed;                             // the dataset's, as in MethodContext
+};
+
 class LoopClosureMethod {
  public:
   virtual ~LoopClosureMethod() = default;
@@ -71,6 +83,14 @@ class LoopClosureMethod {
   // report prints its resolved values. Declared in the method's folder (method_options.h).
   virtual std::unique_ptr<MethodOptions> Options() const { return nullptr; }
   virtual MethodScores Score(const MethodContext& context) const = 0;
+  // The matches behind one pair's score, for the report's gallery (report.html), which re-runs
+  // only its sampled pairs: a method whose Features() are shown may return the matches its Score
+  // found between those features of the two frames, with their RANSAC inliers (inliers equal to
+  // its score). nullopt (the default): nothing to draw but the features.
+  virtual std::optional<PairMatches> MatchPair(const PairMatchInput& input) const {
+    (void)input;
+    return std::nullopt;
+  }
 
   // Scoring in one pass with other methods. Methods without Inputs() whose PassKey (under their
   // own options) is the same non-empty text are scored by one ScoreTogether call on the first of

@@ -129,6 +129,18 @@ int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& refer
               const MatchOptions& match_options, const RansacOptions& ransac_options,
               uint64_t seed, int query_id, int reference_id);
 
+// The matches behind one pair's score, for pictures (the report's gallery): the pairs kept by MNN
+// and the vertical filter (indices into query and reference), and which of them RANSAC counts as
+// inliers. inliers equals ScorePair(...) with the same arguments.
+struct PairMatches {
+  std::vector<Correspondence> matches;  // after the vertical filter, sorted by query index
+  std::vector<uint8_t> inlier;          // per match: 1 when a RANSAC inlier
+  int inliers = 0;                      // the pair's score
+};
+PairMatches MatchPair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                      const MatchOptions& match_options, const RansacOptions& ransac_options, uint64_t seed,
+                      int query_id, int reference_id);
+
 // Scores pairs of prebuilt grids, reusing its scratch buffers between calls (one per thread).
 // Score() equals ScorePair() on the same points; options are not re-checked here.
 class PairScorer {

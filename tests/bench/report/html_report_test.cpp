@@ -1,0 +1,140 @@
+#include "hoilcd/bench/report/html_report.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <string>
+
+#include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/gallery_sample.h"
+#include "hoilcd/bench/report/html.h"
+#include "hoilcd/bench/runner/runner.h"
+#include "test_dir.h"
+#include "tiny_room.h"
+
+namespace hoilcd {
+namespace {
+
+TEST(EscapeHtml, EscapesTheFiveMarkupCharactersAndMakesBytesSafe) {
+  EXPECT_EQ(EscapeHtml("<a href=\"x\">Tom's & Jerry's</a>"),
+            "&lt;a href=&quot;x&quot;&gt;Tom&#39;s &amp; Jerry&#39;s&lt;/a&gt;");
+  EXPECT_EQ(EscapeHtml("caf\xe9"), "caf\\xe9");  // not UTF-8: SafeText's escape
+  EXPECT_EQ(EscapeHtml("plain text"), "plain text");
+}
+
+TEST(Base64, MatchesTheRfc4648TestVectors) {
+  const std::map<std::string, std::string> vectors = {{"", ""},           {"f", "Zg=="},         {"fo", "Zm8="},
+                                                      {"foo", "Zm9v"},    {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
+                                                      {"foobar", "Zm9vYmFy"}};
+  for (const auto& [in, out] : vectors) EXPECT_EQ(Base64(in), out) << in;
+  EXPECT_EQ(Base64(std::string("\xff\x00\xfe", 3)), "/wD+");
+  EXPECT_EQ(DataUri("image/png", "foo"), "data:image/png;base64,Zm9v");
+}
+
+TEST(SortableTable, EveryNumberCellCarriesItsSortKeyAndTextSortsByItself) {
+  const std::string html = SortableTable({"a<b", "n"}, {{TextCell("x&y"), NumberCell(0.25)}, {TextCell("z"), NumberCell(NAN)}});
+  EXPECT_NE(html.find("<th>a&lt;b</th>"), std::string::npos);
+  EXPECT_NE(html.find("<td>x&amp;y</td><td data-sort=\"0.25\">0.250</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>-</td>"), std::string::npos);  // NaN: no key, sorted after the numbers
+}
+
+// Records of one method: query i is a hit when hits[i], every query scored.
+std::vector<QueryRecord> Records(const std::vector<bool>& hits) {
+  std::vector<QueryRecord> records(hits.size());
+  for (size_t i = 0; i < hits.size(); ++i) {
+    records[i].frame = static_cast<int>(i);
+    records[i].scored = true;
+    records[i].top1_is_true_match = hits[i];
+  }
+  return records;
+}
+
+TEST(SampleGallery, TakesAtMostPerGroupFromEachMethodOutcomeAndStratumAndAllOfSmallGroups) {
+  std::vector<QueryConditions> conditions(40);
+  std::vector<bool> a_hits(40), b_hits(40);
+  for (int i = 0; i < 40; ++i) {
+    conditions[i].frame = i;
+    conditions[i].people_in_view = i < 30 ? 0 : 3;
+    conditions[i].walkers_in_view = 0;
+    a_hits[i] = i % 3 == 0;
+    b_hits[i] = i == 7;  // one hit: its group has one member, which is taken
+  }
+  const std::vector<QueryRecord> a = Records(a_hits), b = Records(b_hits);
+  const std::vector<size_t> sample = SampleGallery({&a, &b}, conditions, {"walkers"}, 2);
+  EXPECT_EQ(sample, SampleGallery({&a, &b}, conditions, {"walkers"}, 2));  // deterministic
+  EXPECT_TRUE(std::is_sorted(sample.begin(), sample.end()));
+  EXPECT_NE(std::find(sample.begin(), sample.end(), 7u), sample.end());
+  std::map<std::string, int> per_group;
+  for (size_t q : sample) {
+    per_group[std::string("a:") + GalleryOutcome(a[q])]++;
+    per_group[std::string("b:") + GalleryOutcome(b[q])]++;
+  }
+  // One stratification with one stratum ("none") and the groups of all queries, which hold the same
+  // queries: two groups per method, two queries each, b's hit group one: at most 2 + 2 + 2 + 1.
+  EXPECT_LE(sample.size(), 7u);
+  EXPECT_GE(per_group["a:hit"], 2);
+  EXPECT_GE(per_group["a:miss"], 2);
+  EXPECT_GE(per_group["b:hit"], 1);
+  const std::vector<QueryRecord> unscored(40);
+  EXPECT_TRUE(SampleGallery({&unscored}, conditions, {"walkers"}, 2).empty());  // no outcome, no group
+}
+
+TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEachPointSetMethodsInliersAsItsScore) {
+  const test::TestDir temp;
+  const Dataset dataset = test::TinyRoomDataset(temp / "data");
+  BenchOptions options;
+  options.methods = {"slcd", "dlcd", "fusion"};
+  const BenchResult result = RunBench(dataset, options);
+  const HtmlReportInput input{temp.str(), {}, kGalleryPerGroup};
+  const HtmlReport a = BenchReportHtml(result, dataset, options, input), b = BenchReportHtml(result, dataset, options, input);
+  EXPECT_EQ(a.html, b.html);
+  ASSERT_FALSE(a.gallery.empty());
+  size_t entries = 0;
+  for (size_t at = a.html.find("<div class=\"entry\""); at != std::string::npos; at = a.html.find("<div class=\"entry\"", at + 1)) ++entries;
+  EXPECT_EQ(entries, a.gallery.size());
+  EXPECT_EQ(a.html.find("http://"), std::string::npos);  // nothing from the network
+  EXPECT_EQ(a.html.find("https://"), std::string::npos);
+  // The matches re-run for a sampled pair give the top-1's score as their inlier count.
+  int drawn = 0;
+  for (const std::string name : {"slcd", "dlcd"}) {
+    const LoopClosureMethod& method = FindMethod(name);
+    const MethodRun& run = *result.Find(name);
+    const std::unique_ptr<MethodOptions> own = method.Options();
+    for (size_t q : a.gallery) {
+      const QueryRecord& rec = run.metrics.queries[q];
+      if (!rec.scored || rec.top1_frame < 0) continue;
+      const auto points = [&](int frame) {
+        std::vector<Point2> p = result.features[frame].keypoints;
+        if (name == "dlcd") {
+          p.clear();
+          for (const HoiFeature& h : result.features[frame].hoi) p.push_back(h.point);
+        }
+        return p;
+      };
+      const std::vector<Point2> qp = points(rec.frame), rp = points(rec.top1_frame);
+      const std::optional<PairMatches> m = method.MatchPair(
+          {own.get(), qp, rp, rec.frame, rec.top1_frame, dataset.manifest().intrinsics.height, dataset.manifest().seed});
+      ASSERT_TRUE(m.has_value());
+      EXPECT_EQ(m->inliers, rec.top1_score) << name << " query " << rec.frame;
+      ++drawn;
+    }
+  }
+  EXPECT_GT(drawn, 0);
+  EXPECT_FALSE(FindMethod("fusion").MatchPair({nullptr, {}, {}, 0, 1, 96, 1}).has_value());
+}
+
+TEST(SuiteReportHtml, HoldsOneRowPerRunLinkingToItsReport) {
+  const SuiteSummary summary = SummariseSuite(
+      "rooms<1>", "two rooms", {"slcd"},
+      {{"a-seed1", "", {{"slcd", 0.5}}, {{"slcd", 0.4}}, "a"}, {"b-seed1", "", {{"slcd", 0.25}}, {{"slcd", 0.2}}, "b"},
+       {"c-seed1", "no frames", {}, {}, "c"}});
+  const std::string html = SuiteReportHtml(summary, {{"a-seed1", "runs/a-seed1"}, {"b-seed1", "../shard/runs/b-seed1"}});
+  EXPECT_NE(html.find("<a href=\"runs/a-seed1/report.html\">"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"../shard/runs/b-seed1/report.html\">"), std::string::npos);
+  EXPECT_NE(html.find("rooms&lt;1&gt;"), std::string::npos);
+  EXPECT_NE(html.find("c-seed1: no frames"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hoilcd
