@@ -1,6 +1,6 @@
 // The bench tests' small dataset: tests/data/tiny_room.json (with optional --set overrides)
 // rendered into a folder of the test's own, and opened. The render is cached within a ctest run
-// (render_cache.h): each test gets its own copy.
+// (render_cache.h): each test gets a folder of its own, of hard links to the cached files.
 #pragma once
 
 #include <string>
