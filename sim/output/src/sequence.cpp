@@ -230,7 +230,7 @@ class SequenceRender {
     writer_options.exr = outputs_.exr;
     writer_ = std::make_unique<FrameWriter>(writer_options, &manifest_, streaming_video_.get());
     for (int f = range_.begin; f < range_.end; ++f) {
-      if (options_.cancel && options_.cancel->load()) {
+      if ((options_.cancel && options_.cancel->load()) || f - range_.begin == options_.cancel_after_frames) {
         writer_->Finish();
         WriteFileAtomic(manifest_path_, manifest_.ToJson());
         throw RenderInterrupted("interrupted after " + std::to_string(f - range_.begin) +

@@ -5,21 +5,22 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <random>
 #include <set>
+
+#include "hoilcd/core/util/random.h"
 
 namespace hoilcd {
 namespace {
 
-// Unit vectors of `dimension` values, seeded.
+// Unit vectors of `dimension` values, drawn from the keyed RNG (the same on every standard
+// library, unlike std::normal_distribution): vector i from KeyedRng(seed, purpose, i).
 std::vector<std::vector<float>> RandomUnitVectors(int count, int dimension, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<float> normal;
   std::vector<std::vector<float>> out(count, std::vector<float>(dimension));
-  for (auto& v : out) {
+  for (int i = 0; i < count; ++i) {
+    Rng rng = KeyedRng(seed, "test.shortlist_vectors", i);
     double norm = 0;
-    for (float& x : v) x = normal(rng), norm += x * x;
-    for (float& x : v) x = static_cast<float>(x / std::sqrt(norm));
+    for (float& x : out[static_cast<size_t>(i)]) x = static_cast<float>(rng.Normal()), norm += x * x;
+    for (float& x : out[static_cast<size_t>(i)]) x = static_cast<float>(x / std::sqrt(norm));
   }
   return out;
 }

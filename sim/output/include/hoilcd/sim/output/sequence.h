@@ -27,6 +27,7 @@ struct SequenceOptions {
   int checkpoint_every_frames;   // frames: the manifest is rewritten this often (resume granularity)
   std::string outputs;           // comma-separated: thermal, radiometric, exr, video, persons (default all)
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after the current frame; not in the table
+  int cancel_after_frames = -1;  // test hook: frames: stop as `cancel` does once this call has done this many (-1 = never); not in the table
   // --shard I/N: render only the I-th contiguous part of the frames into a shard folder, which
   // hoilcd merge joins with the others (none: the whole sequence); not in the table.
   std::optional<Shard> shard;
