@@ -18,8 +18,6 @@
 namespace hoilcd {
 namespace {
 
-nlohmann::json Json(const std::string& path) { return nlohmann::json::parse(ReadFileBytes(path)); }
-
 // A report.json holding one method at MRR and R@1 `value`, of bench mode `mode` ("" : no mode key,
 // as the offline bench writes).
 std::string Baseline(const test::TestDir& temp, const std::string& name, const std::string& method, double value,
