@@ -316,7 +316,7 @@ TEST(OpenBenchCli, EvaluateOutputIsAReportFolderWithTheBenchsReportJsonAndQuerie
             0);
   ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", temp / "new/thumb"}), 0);
   EXPECT_EQ(Listing(temp / "new/thumb"), (std::vector<std::string>{"mrr_per_lap.png", "pr_curves.png", "queries.csv",
-                                                                   "report.json", "report.md"}));
+                                                                   "report.html", "report.json", "report.md"}));
   const nlohmann::json report = Json(temp / "new/thumb/report.json");
   EXPECT_EQ(report["methods"]["thumb"]["mrr"], Json(temp / "report/report.json")["methods"]["thumb"]["mrr"]);
   EXPECT_EQ(report["methods"]["thumb"]["description"], "scores from " + temp / "scores/thumb.csv");
