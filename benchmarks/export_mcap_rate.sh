@@ -12,8 +12,7 @@ scene=${SCENE:-$root/scenes/paper_room.json}
 threads=${THREADS:-2}
 work=$(mktemp -d /tmp/hoilcd_mcap_rate.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-TIMEFORMAT='%R %U %S'
-seconds() { { time "$@" > /dev/null; } 2>&1 | tail -1; }  # "wall user system" of a command
+source "$root/benchmarks/seconds.sh"
 for ((round = 1; round <= rounds; round++)); do
   rm -rf "$work"/*
   sync

@@ -18,8 +18,7 @@ threads=${THREADS:-2}
 shard_threads=$(( threads / shards > 0 ? threads / shards : 1 ))
 work=$(mktemp -d /tmp/hoilcd_shards.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-TIMEFORMAT='%R %U %S'
-seconds() { { time "$@" > /dev/null; } 2>&1 | tail -1; }  # "wall user system" of a command
+source "$root/benchmarks/seconds.sh"
 for ((round = 1; round <= rounds; round++)); do
   rm -rf "$work"/*
   sync
