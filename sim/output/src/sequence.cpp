@@ -85,23 +85,8 @@ std::string SequenceOptions::Check() const {
   return "";
 }
 
-// Bump when a change alters rendered bytes (2: irregular chairs; 3: robot steers on odometry,
-// camera vibration, cam_roll in poses.csv; 4: lens shading, FFC freeze; 5: articulated people;
-// 6: the robot steers on localised odometry by default; 7: walkers planned in free space, clear of
-// each other by distance, with cross and overtake bouts; 8: seated arms kept within their own
-// half of the gap to each neighbour, gestures on the roomier side; 9: EXR RLE-compressed with Z
-// half and id, class uint, keypoint visibility from that half depth, PNGs with OpenCV's default
-// parameters; 10: temporal sensor noise drawn in vector lanes by KeyedNormals; 11: walkers enter and
-// leave through the room's doors, seated people look at whichever neighbours sit at their table,
-// chair jitter never squeezes neighbours together; 12: people 0.43 m across the shoulders instead
-// of 0.48, seated body sizes capped so that neighbours' shoulders never meet; 13: frame PNGs
-// deflated by libdeflate, every row Sub-filtered, one IDAT; 14: thermal.mp4 without x264's
-// macroblock tree, whose AVX-512 path made the video's bytes vary from run to run; 15, 16: walkers
-// keep off the camera's nose and shorten their stride near furniture; 17: temperature fields —
-// garments and skin, contact prints, room surfaces (edges, plume, glass, sun, HVAC), rough mirrors);
-// 18: paper_room holds what a meeting room holds (its objects list: the clutter of issue 43);
-// 19: the room's thermal solution on by default (room.thermal.enabled).
-constexpr int kSimulatorRevision = 19;
+// Bump when a change alters rendered bytes; CHANGELOG.md lists what each revision changed.
+constexpr int kSimulatorRevision = 20;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

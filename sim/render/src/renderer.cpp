@@ -31,13 +31,15 @@ Eigen::Vector3f FrameRenderer::CameraRay(double u, double v) const {
   return d;
 }
 
-float FrameRenderer::Blackbody(const InstanceInfo& info, const InstanceMaterial& m, const Eigen::Vector3f& point,
-                               float h) const {
-  if (m.field == nullptr) return m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom);
+FrameRenderer::SurfaceRadiance FrameRenderer::SurfaceAt(const InstanceInfo& info, const InstanceMaterial& m,
+                                                        const Eigen::Vector3f& point, float h, float environment) const {
+  const float surroundings = m.environment_radiance >= 0 ? m.environment_radiance : environment;
+  if (m.field == nullptr) return {m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom), surroundings};
   const Eigen::Vector3f object_point = info.object_from_world.topLeftCorner<3, 3>() * point +
                                        info.object_from_world.topRightCorner<3, 1>();
-  const float t = m.temperature_c + h * (m.temperature_top_c - m.temperature_c) + m.field->OffsetK(object_point, point);
-  return world_.radiance_table().RadianceFromCelsius(t);
+  const FieldSample field = m.field->Sample(object_point, point);
+  const float t = m.temperature_c + h * (m.temperature_top_c - m.temperature_c) + field.offset_k;
+  return {world_.radiance_table().RadianceFromCelsius(t), surroundings + field.incident_offset};
 }
 
 float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
@@ -48,8 +50,7 @@ float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
   const InstanceMaterial& m = info.materials[info.mesh->triangle_material[hit.triangle]];
   const Eigen::Vector3f point = origin + hit.distance_m * direction;
   const float h = std::clamp(point.z() / static_cast<float>(world_.room_height_m()), 0.0f, 1.0f);
-  const float blackbody = Blackbody(info, m, point, h);
-  const float surroundings = m.environment_radiance >= 0 ? m.environment_radiance : environment;
+  const auto [blackbody, surroundings] = SurfaceAt(info, m, point, h, environment);
   float reflected = surroundings;
   if (m.specular && allow_reflection && m.emissivity < 1.0f) {
     const Eigen::Vector3f r = direction - 2.0f * direction.dot(hit.normal_world) * hit.normal_world;
@@ -96,8 +97,7 @@ void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vect
     }
     const Eigen::Vector3f point = origin + hits.distance_m[i] * direction;
     const float h = std::clamp(point.z() / room_height_m, 0.0f, 1.0f);
-    const float blackbody = Blackbody(info, m, point, h);
-    const float surroundings = m.environment_radiance >= 0 ? m.environment_radiance : environment;
+    const auto [blackbody, surroundings] = SurfaceAt(info, m, point, h, environment);
     if (pending != nullptr && m.specular && m.emissivity < 1.0f) {
       const Eigen::Vector3f n = world_.caster().Hit(hits, i, direction).normal_world;
       pending->push_back({&radiance, m.emissivity, MirrorShare(m.roughness_um, std::abs(direction.dot(n))), blackbody,

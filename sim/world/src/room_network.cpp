@@ -371,7 +371,13 @@ const std::vector<float>& RoomNetwork::IncidentOfState(size_t k) {
 }
 
 float RoomNetwork::RoomTemperatureC(int material, const Eigen::Vector3f& p) const {
-  if (material < 0 || material >= static_cast<int>(quads_of_material_.size())) return kNaN;
+  float temperature_c = kNaN, incident = kNaN;
+  RoomSurfaceAt(material, p, &temperature_c, &incident);
+  return temperature_c;
+}
+
+bool RoomNetwork::RoomSurfaceAt(int material, const Eigen::Vector3f& p, float* temperature_c, float* incident) const {
+  if (material < 0 || material >= static_cast<int>(quads_of_material_.size())) return false;
   for (int q : quads_of_material_[static_cast<size_t>(material)]) {
     const Patches& patches = patches_[static_cast<size_t>(q)];
     float u = 0, v = 0;
@@ -382,15 +388,25 @@ float RoomNetwork::RoomTemperatureC(int material, const Eigen::Vector3f& p) cons
     const int u0 = static_cast<int>(fu), v0 = static_cast<int>(fv);
     const int u1 = std::min(u0 + 1, patches.nu - 1), v1 = std::min(v0 + 1, patches.nv - 1);
     const float wu = fu - static_cast<float>(u0), wv = fv - static_cast<float>(v0);
-    auto at = [&](int iu, int iv) { return static_cast<float>(temperature_c_[static_cast<size_t>(patches.Node(iu, iv))]); };
-    return (1 - wv) * ((1 - wu) * at(u0, v0) + wu * at(u1, v0)) + wv * ((1 - wu) * at(u0, v1) + wu * at(u1, v1));
+    auto bilinear = [&](auto&& at) {
+      return (1 - wv) * ((1 - wu) * at(u0, v0) + wu * at(u1, v0)) + wv * ((1 - wu) * at(u0, v1) + wu * at(u1, v1));
+    };
+    auto node = [&](int iu, int iv) { return static_cast<size_t>(patches.Node(iu, iv)); };
+    *temperature_c = bilinear([&](int iu, int iv) { return static_cast<float>(temperature_c_[node(iu, iv)]); });
+    *incident = bilinear([&](int iu, int iv) { return incident_[node(iu, iv)]; });
+    return true;
   }
-  return kNaN;
+  return false;
 }
 
 float RoomNetwork::RoomMeanTemperatureC(int material) const {
   if (material < 0 || material >= static_cast<int>(room_mean_c_.size())) return kNaN;
   return room_mean_c_[static_cast<size_t>(material)];
+}
+
+float RoomNetwork::RoomMeanIncidentRadiance(int material) const {
+  if (material < 0 || material >= static_cast<int>(room_incident_.size())) return kNaN;
+  return room_incident_[static_cast<size_t>(material)];
 }
 
 float RoomNetwork::InstanceTemperatureC(int instance, int material) const {
@@ -400,10 +416,7 @@ float RoomNetwork::InstanceTemperatureC(int instance, int material) const {
 }
 
 float RoomNetwork::IncidentRadiance(int instance, int material) const {
-  if (instance == room_instance_) {
-    if (material < 0 || material >= static_cast<int>(room_incident_.size())) return kNaN;
-    return room_incident_[static_cast<size_t>(material)];
-  }
+  if (instance == room_instance_) return RoomMeanIncidentRadiance(material);
   const int node = NodeOf(instance, material);
   return node < 0 ? kNaN : incident_[static_cast<size_t>(node)];
 }

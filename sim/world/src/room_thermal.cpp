@@ -131,6 +131,9 @@ class RoomSurfaces::Field : public SurfaceField {
   float OffsetK(const Eigen::Vector3f& /*object_point*/, const Eigen::Vector3f& world_point) const override {
     return owner_->OffsetK(material_, world_point);
   }
+  FieldSample Sample(const Eigen::Vector3f& /*object_point*/, const Eigen::Vector3f& world_point) const override {
+    return owner_->Sample(material_, world_point);
+  }
 
  private:
   const RoomSurfaces* owner_;
@@ -241,18 +244,22 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
   }
 }
 
-float RoomSurfaces::OffsetK(int material, const Eigen::Vector3f& p) const {
-  if (FieldOf(material) == nullptr) return 0;
+FieldSample RoomSurfaces::Sample(int material, const Eigen::Vector3f& p) const {
+  if (FieldOf(material) == nullptr) return {};
   float solved = 0;  // the solution's patches about the material's mean (set as its base)
+  float incident = 0;
   if (network_ != nullptr) {
-    const float at = network_->RoomTemperatureC(material, p);
-    if (!std::isnan(at)) solved = at - network_->RoomMeanTemperatureC(material);
+    float at_c = 0, received = 0;
+    if (network_->RoomSurfaceAt(material, p, &at_c, &received)) {
+      solved = at_c - network_->RoomMeanTemperatureC(material);
+      incident = received - network_->RoomMeanIncidentRadiance(material);
+    }
   }
-  if (material == interior_material_) return solved + TextureK(material, p);
-  if (material >= 3) return solved + FrameK(material - 3, p);
+  if (material == interior_material_) return {solved + TextureK(material, p), incident};
+  if (material >= 3) return {solved + FrameK(material - 3, p), incident};
   float offset = solved + BridgeK(material, p) + SunK(material, p) + TextureK(material, p);
   if (material == 2) offset += PlumeK(p);
-  return offset;
+  return {offset, incident};
 }
 
 int RoomSurfaces::WallAt(const Eigen::Vector3f& p) const {

@@ -247,18 +247,24 @@ World::World(const Scene& scene, const BandRadianceTable& table, int threads)
 void World::PlanCrowd(const std::vector<RobotSample>& samples) {
   crowd_->Plan(samples, obstacles_);
   if (room_network_ == nullptr) return;
-  // Seated people as spheres of a seated body's radiating area, 1.8 m² (DuBois) × 0.7 (the
-  // effective radiation area of a seated person, ISO 7726 / Fanger), about the chest, at a
-  // clothed surface's 28 °C (ISO 7730 at 22 °C air: clothing surfaces 27–30 °C).
-  constexpr double kRadiatingAreaM2 = 1.8 * 0.7;
-  constexpr double kChestHeightM = 0.8;
+  // Seated and standing people as spheres of a body's radiating area: 1.8 m² (DuBois) times the
+  // effective radiation area factor, 0.70 seated and 0.73 standing (ISO 7726 / Fanger), about the
+  // chest, at a clothed surface's 28 °C (ISO 7730 at 22 °C air: clothing surfaces 27–30 °C).
+  // Walkers are left out: one passes a patch within seconds, and a few W/m² for ten seconds warm
+  // a plaster skin of about 2.7 kJ/(m²·K) by about 0.02 K, well under the sensor's NETD.
+  constexpr double kBodyAreaM2 = 1.8;
+  constexpr double kSeatedAreaFactor = 0.70, kStandingAreaFactor = 0.73;
+  constexpr double kSeatedChestM = 0.8, kStandingChestM = 1.3;
   std::vector<PersonSource> sources;
   for (const Person& person : crowd_->people()) {
-    if (!person.seated) continue;
+    const bool standing_still = !person.seated && person.lead_s < 0;
+    if (!person.seated && !standing_still) continue;
+    const double chest_m = person.seated ? kSeatedChestM : kStandingChestM;
+    const double area_m2 = kBodyAreaM2 * (person.seated ? kSeatedAreaFactor : kStandingAreaFactor);
     PersonSource source;
-    const Eigen::Vector4f chest = person.world_from_seat * Eigen::Vector4f(0, 0, static_cast<float>(kChestHeightM * person.height_scale), 1);
+    const Eigen::Vector4f chest = person.world_from_seat * Eigen::Vector4f(0, 0, static_cast<float>(chest_m * person.height_scale), 1);
     source.centre_m = chest.head<3>();
-    source.radius_m = std::sqrt(kRadiatingAreaM2 / (4 * M_PI)) * person.height_scale;
+    source.radius_m = std::sqrt(area_m2 / (4 * M_PI)) * person.height_scale;
     source.arrive_s = person.arrive_s;
     source.leave_s = person.leave_s;
     sources.push_back(source);

@@ -9,6 +9,7 @@
 #include "hoilcd/sim/sensor/radiometry.h"
 #include "hoilcd/sim/world/room_network.h"
 #include "hoilcd/sim/world/world.h"
+#include "planned_world.h"
 
 namespace hoilcd {
 namespace {
@@ -120,7 +121,9 @@ TEST(RoomNetwork, EveryFixtureMaterialDeclaredAtRoomTemperatureIsSolvedAndTheRes
       if (info.fixture && !std::isnan(t)) {
         ++solved;
         EXPECT_GT(t, 19.0f) << info.name;
-        if (!powered) EXPECT_LT(t, 25.0f) << info.name << ": a part without heat of its own";
+        if (!powered) {
+          EXPECT_LT(t, 25.0f) << info.name << ": a part without heat of its own";
+        }
         EXPECT_EQ(info.materials[static_cast<size_t>(k)].temperature_c, t) << "the world shows the solution";
       }
       if (!info.fixture) {
@@ -158,6 +161,55 @@ TEST(RoomNetwork, APoweredMonitorWarmsAboveTheAirAndAPassivePosterStaysNearIt) {
   EXPECT_LT(screen, back);
   EXPECT_LT(stand, 23.0f) << "the stand has no heat of its own";
   EXPECT_NEAR(poster, 22.0f, 1.0f);
+}
+
+TEST(RoomNetwork, EachPatchReflectsWhatItFacesNotItsMaterialsMean) {
+  // The window alone: paper_room's radiator and pipes under it would warm the floor there.
+  const Scene scene = PaperRoom({"room.hvac.enabled=false", "objects=[]"});
+  World world(scene, Table());
+  world.SetTime(0.0);
+  const RoomNetwork& network = *world.room_network();
+  // The floor in front of the cold window receives less than the floor across the room; the
+  // field that the renderer reads gives each point its own patches' difference from the mean.
+  const Eigen::Vector3f under(1.8f, 2.7f, 0.0f), across(5.5f, 0.3f, 0.0f);
+  float t_under = 0, l_under = 0, t_across = 0, l_across = 0;
+  ASSERT_TRUE(network.RoomSurfaceAt(0, under, &t_under, &l_under));
+  ASSERT_TRUE(network.RoomSurfaceAt(0, across, &t_across, &l_across));
+  EXPECT_EQ(t_under, network.RoomTemperatureC(0, under));
+  // In band radiance: 8-14 µm radiance changes by about 0.6 % per kelvin near 22 °C.
+  const float per_kelvin = Table().RadianceFromCelsius(22.5f) - Table().RadianceFromCelsius(21.5f);
+  EXPECT_LT(l_under, l_across - 0.2f * per_kelvin) << "the window takes a share of the floor's view";
+  const float mean = network.RoomMeanIncidentRadiance(0);
+  const FieldSample at_under = world.room_surfaces().Sample(0, under);
+  EXPECT_FLOAT_EQ(at_under.incident_offset, l_under - mean);
+  EXPECT_LT(at_under.incident_offset, 0.0f);
+  EXPECT_GT(world.room_surfaces().Sample(0, across).incident_offset, at_under.incident_offset);
+  // Without the solution every point reflects the material's one environment.
+  const Scene closed_form = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json",
+                                      {"room.thermal.enabled=false"});
+  World plain(closed_form, Table());
+  plain.SetTime(0.0);
+  EXPECT_EQ(plain.room_surfaces().Sample(0, under).incident_offset, 0.0f);
+}
+
+TEST(RoomNetwork, APersonStandingByAWallWarmsThePatchTheyFaceAndAWalkerDoesNot) {
+  // One person standing still 0.5 m from the west wall (chest to wall); no tables and no objects
+  // (a picture on that wall would take the warmth), and the robot laps the east half.
+  auto wall_by_them = [](const std::string& standing, const std::string& walkers) {
+    const Scene scene = PaperRoom({"room.hvac.enabled=false", "tables=[]", "objects=[]", "route.waypoints_m=[[3.5, 0.5], [3.5, 2.5], [6.5, 2.5], [6.5, 0.5]]",
+                                   "crowd.standing=" + standing, "crowd.walkers=" + walkers});
+    test::PlannedWorld planned(scene);
+    planned.world.SetTime(0.0);
+    return planned.world.room_network()->RoomTemperatureC(2, Eigen::Vector3f(0.0f, 1.5f, 1.3f));
+  };
+  const float alone = wall_by_them("[]", "0");
+  const float beside = wall_by_them(R"([{"position_m": [0.5, 1.5], "yaw_deg": 180}])", "0");
+  ASSERT_FALSE(std::isnan(alone));
+  // A body's clothing at 28 °C 0.5 m away fills a good share of the patch's view: a few tenths of
+  // a kelvin to a couple of kelvin, against the wall's convection and its view of the rest.
+  EXPECT_GT(beside - alone, 0.2f);
+  EXPECT_LT(beside - alone, 3.0f);
+  EXPECT_EQ(wall_by_them("[]", "2"), alone) << "walkers pass in seconds and are left out";
 }
 
 }  // namespace

@@ -45,9 +45,15 @@ class FrameRenderer {
     float environment;                    // what the hit's material reflects diffusely
     Eigen::Vector3f origin, direction;  // the reflection ray
   };
-  // Band radiance a material emits as a blackbody at a hit `point` (world frame) at relative
-  // height h: linear in height between its bottom and top values, or through its field.
-  float Blackbody(const InstanceInfo& info, const InstanceMaterial& m, const Eigen::Vector3f& point, float h) const;
+  // At a hit `point` (world frame) at relative height h: the band radiance the material emits as a
+  // blackbody (linear in height between its bottom and top values, or through its field), and the
+  // radiance its surroundings send it (its environment_radiance, or `environment` when it has none,
+  // plus its field's incident offset).
+  struct SurfaceRadiance {
+    float blackbody, surroundings;
+  };
+  SurfaceRadiance SurfaceAt(const InstanceInfo& info, const InstanceMaterial& m, const Eigen::Vector3f& point, float h,
+                            float environment) const;
   // Per worker, kept between frames.
   struct Scratch {
     std::vector<int> edge_pixels;        // a chunk's edge pixels, 4×4 block by block

@@ -63,8 +63,14 @@ class RoomNetwork {
   // At the last SetTime: the temperature of the room's surface of `material` at world point p,
   // bilinear between patch centres (NaN when p lies on no patch of that material), °C.
   float RoomTemperatureC(int material, const Eigen::Vector3f& p) const;
+  // At the last SetTime, at world point p on a patch of room `material`: its temperature, °C, and
+  // the band radiance it receives from its surroundings, W·m⁻²·sr⁻¹, each bilinear between patch
+  // centres; false when p lies on no patch of that material.
+  bool RoomSurfaceAt(int material, const Eigen::Vector3f& p, float* temperature_c, float* incident) const;
   // The area-weighted mean temperature of a room material, °C.
   float RoomMeanTemperatureC(int material) const;
+  // The area-weighted mean band radiance a room material receives, W·m⁻²·sr⁻¹.
+  float RoomMeanIncidentRadiance(int material) const;
   // The solved temperature of an instance's material, or NaN when it is no node (people, props,
   // parts held at their declared temperature).
   float InstanceTemperatureC(int instance, int material) const;

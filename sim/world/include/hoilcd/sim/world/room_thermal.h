@@ -84,7 +84,10 @@ class RoomSurfaces {
   // surfaces' HVAC offset), C.
   double EnvironmentTemperatureC(double time_s) const;
   // Field offset of material k at world point p at the last SetTime, K (0 without a field).
-  float OffsetK(int material, const Eigen::Vector3f& p) const;
+  float OffsetK(int material, const Eigen::Vector3f& p) const { return Sample(material, p).offset_k; }
+  // The same, with what the solution's patch at p receives about the material's mean (what its
+  // environment_radiance holds), W·m⁻²·sr⁻¹ (0 without the solution).
+  FieldSample Sample(int material, const Eigen::Vector3f& p) const;
 
   const RoomClimate& climate() const { return climate_; }
   // Which walls face outdoors: south, north, west, east.
