@@ -156,7 +156,13 @@ const OptionTable<ThermalSolutionOptions>& ThermalSolutionOptions::Table() {
           .Add("capacity_glass_j_m2k", &O::capacity_glass_j_m2k, 17000.0, "J/(m2 K)", R::Closed(0, 1e7),
                "areal heat capacity of the glazing (two 4 mm panes)")
           .Add("capacity_object_j_m2k", &O::capacity_object_j_m2k, 10000.0, "J/(m2 K)", R::Closed(0, 1e7),
-               "effective areal heat capacity of furniture and objects");
+               "effective areal heat capacity of furniture and objects")
+          .Add("solar_absorptance_floor", &O::solar_absorptance_floor, 0.6, "", R::Closed(0, 1),
+               "share of the transmitted sun a floor absorbs (ISO 52016-1's default for opaque surfaces)")
+          .Add("solar_absorptance_walls", &O::solar_absorptance_walls, 0.3, "", R::Closed(0, 1),
+               "share of the transmitted sun light-painted walls and the ceiling absorb (white paint 0.2-0.3)")
+          .Add("solar_absorptance_object", &O::solar_absorptance_object, 0.6, "", R::Closed(0, 1),
+               "share of the transmitted sun furniture and objects absorb");
   return table;
 }
 

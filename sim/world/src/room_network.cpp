@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 
+#include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/random.h"
 
 namespace hoilcd {
@@ -13,6 +14,11 @@ namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 // How far a point may lie off a quad's plane and still be on it (windows sit 2 mm inside walls).
 constexpr float kOnPlaneM = 1e-3f;
+// The sun's lit shares are cast at every kSunStepS of the sequence's clock and linear between:
+// the sun moves 3.75° in that time.
+constexpr double kSunStepS = 900;
+// Points per node at which the sun's lit share is taken.
+constexpr int kSunSamples = 16;
 
 // Which outside wall a room quad belongs to by its inward normal: 0 south (y = 0), 1 north, 2 west
 // (x = 0), 3 east; -1 for a floor, a ceiling or anything not axis-aligned.
@@ -161,11 +167,15 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
     p.first_node = static_cast<int>(nodes.size());
     quads_of_material_[static_cast<size_t>(quad.material)].push_back(static_cast<int>(q));
     const QuadThermals thermals = ThermalsOfQuad(quad, room, options, room_materials, exterior_walls);
+    // The glass transmits the sun (its own absorption is left out); interior walls are walls.
+    const bool window = quad.material >= 3 && quad.material < 3 + static_cast<int>(room.windows.size());
     const Eigen::Vector3f du = p.u_axis / static_cast<float>(p.nu), dv = p.v_axis / static_cast<float>(p.nv);
     for (int iv = 0; iv < p.nv; ++iv) {
       for (int iu = 0; iu < p.nu; ++iu) {
         const Eigen::Vector3f a = p.origin + (static_cast<float>(iu) / p.nu) * p.u_axis + (static_cast<float>(iv) / p.nv) * p.v_axis;
         nodes.push_back(PatchNode(thermals, a, du, dv));
+        solar_absorptance_.push_back(static_cast<float>(quad.material == 0 ? options.solar_absorptance_floor
+                                                        : window ? 0.0 : options.solar_absorptance_walls));
         triangles.push_back({ThermalTriangle{{a, a + du, a + du + dv}, quad.normal},
                              ThermalTriangle{{a, a + du + dv, a + dv}, quad.normal}});
       }
@@ -192,6 +202,7 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
       const double power_w = info.asset != nullptr ? info.asset->materials[k].power_w : 0.0;
       node_of_material_[w][k] = static_cast<int>(nodes.size());
       nodes.push_back(FixtureNode(by_material[k], info.materials[k], power_w, options));
+      solar_absorptance_.push_back(static_cast<float>(options.solar_absorptance_object));
       triangles.push_back(std::move(by_material[k]));
     }
     auto [it, inserted] = prototypes.emplace(info.mesh, -1);
@@ -212,7 +223,14 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
     return air.AirTemperatureC(time_s) + gradient * (height_m - mid_height);
   };
   drivers_.outdoor_c = room.outdoor_temperature_c;
-  drivers_.absorbed = [this](double time_s, std::vector<double>* absorbed_w) { PeopleHeat(time_s, absorbed_w); };
+  sun_ = room.sun;
+  sun_can_enter_ = room.sun.enabled && !room.windows.empty();
+  frame_width_m_ = room.surfaces.window_frames ? room.surfaces.frame_width_m : 0.0;
+  window_count_ = static_cast<int>(room.windows.size());
+  drivers_.absorbed = [this](double time_s, std::vector<double>* absorbed_w) {
+    PeopleHeat(time_s, absorbed_w);
+    SolarHeat(time_s, absorbed_w);
+  };
   room_mean_c_.assign(room_materials.size(), kNaN);
   room_incident_.assign(room_materials.size(), kNaN);
 }
@@ -294,6 +312,81 @@ void RoomNetwork::PeopleHeat(double time_s, std::vector<double>* absorbed_w) con
   }
 }
 
+bool RoomNetwork::SunlitThroughWindow(const Eigen::Vector3f& p, const Eigen::Vector3f& n,
+                                      const Eigen::Vector3f& sun) const {
+  const Eigen::Vector3f origin = p + 1e-3f * n;
+  const RayHit hit = caster_->Intersect(origin, sun);
+  if (!hit.hit() || world_instance_of_[static_cast<size_t>(hit.instance)] != room_instance_) return false;
+  const auto q = static_cast<size_t>(hit.triangle / 2);
+  const RoomQuad& quad = quads_[q];
+  if (quad.material < 3 || quad.material >= 3 + window_count_) return false;
+  const Patches& glass = patches_[q];
+  float u = 0, v = 0;
+  if (!glass.Locate(origin + hit.distance_m * sun, quad.normal, &u, &v)) return false;
+  const float to_edge = std::min(std::min(u, 1 - u) * glass.u_axis.norm(), std::min(v, 1 - v) * glass.v_axis.norm());
+  return to_edge >= static_cast<float>(frame_width_m_);
+}
+
+const std::vector<float>& RoomNetwork::SunSharesOfKey(int64_t key) {
+  // Time moves forwards: grid times two steps back are not asked again.
+  while (!sun_shares_of_key_.empty() && sun_shares_of_key_.begin()->first + 1 < key) {
+    sun_shares_of_key_.erase(sun_shares_of_key_.begin());
+  }
+  auto it = sun_shares_of_key_.find(key);
+  if (it != sun_shares_of_key_.end()) return it->second;
+  std::vector<float> shares(nodes_.size(), 0.0f);
+  const SunInRoom sun = SunAt(sun_, static_cast<double>(key) * kSunStepS);
+  if (sun.irradiance_wm2 > 0) {
+    ParallelFor(static_cast<int64_t>(nodes_.size()), threads_, [&](int64_t i) {
+      const std::vector<ThermalTriangle>& triangles = triangles_[static_cast<size_t>(i)];
+      if (triangles.empty() || solar_absorptance_[static_cast<size_t>(i)] <= 0) return;
+      // Keyed points spread over the node's triangles by area, so the same at any thread count.
+      std::vector<float> cumulative;
+      float total = 0;
+      for (const ThermalTriangle& t : triangles) cumulative.push_back(total += TriangleArea(t.corners[0], t.corners[1], t.corners[2]));
+      Rng rng = KeyedRng(seed_, "room.thermal.sun", static_cast<uint64_t>(i));
+      double sum = 0;
+      for (int k = 0; k < kSunSamples; ++k) {
+        const auto pick = static_cast<float>(rng.Uniform()) * total;
+        const size_t at = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(),
+                                           triangles.size() - 1);
+        const ThermalTriangle& t = triangles[at];
+        const double r1 = std::sqrt(rng.Uniform()), r2 = rng.Uniform();
+        const float cos_incidence = t.normal.dot(sun.direction);
+        if (cos_incidence <= 0) continue;
+        const Eigen::Vector3f point = static_cast<float>(1 - r1) * t.corners[0] +
+                                      static_cast<float>(r1 * (1 - r2)) * t.corners[1] +
+                                      static_cast<float>(r1 * r2) * t.corners[2];
+        if (SunlitThroughWindow(point, t.normal, sun.direction)) sum += cos_incidence;
+      }
+      shares[static_cast<size_t>(i)] = static_cast<float>(sum / kSunSamples);
+    });
+  }
+  return sun_shares_of_key_.emplace(key, std::move(shares)).first->second;
+}
+
+std::vector<float> RoomNetwork::SunShares(double time_s) {
+  if (!sun_can_enter_) return {};
+  const double at = time_s / kSunStepS;
+  const auto key = static_cast<int64_t>(std::floor(at));
+  const auto w = static_cast<float>(at - static_cast<double>(key));
+  const std::vector<float> a = SunSharesOfKey(key);
+  const std::vector<float>& b = SunSharesOfKey(key + 1);
+  std::vector<float> shares(a.size());
+  for (size_t i = 0; i < a.size(); ++i) shares[i] = (1 - w) * a[i] + w * b[i];
+  return shares;
+}
+
+void RoomNetwork::SolarHeat(double time_s, std::vector<double>* absorbed_w) {
+  if (!sun_can_enter_) return;
+  const SunInRoom sun = SunAt(sun_, time_s);
+  if (sun.irradiance_wm2 <= 0) return;
+  const std::vector<float> shares = SunShares(time_s);
+  for (size_t i = 0; i < shares.size(); ++i) {
+    (*absorbed_w)[i] += static_cast<double>(solar_absorptance_[i]) * nodes_[i].area_m2 * sun.irradiance_wm2 * shares[i];
+  }
+}
+
 void RoomNetwork::CastViewFactorsOnce() {
   if (network_ != nullptr) return;
   std::vector<double> areas;
@@ -334,6 +427,7 @@ void RoomNetwork::SetTime(double time_s) {
     area += node_area_[i];
   }
   mean_incident_ = static_cast<float>(sum / std::max(area, 1e-12));
+  sun_share_ = SunShares(time_s);
   for (size_t m = 0; m < quads_of_material_.size(); ++m) {
     double t_sum = 0, l_sum = 0, a_sum = 0;
     for (int q : quads_of_material_[m]) {
@@ -371,12 +465,11 @@ const std::vector<float>& RoomNetwork::IncidentOfState(size_t k) {
 }
 
 float RoomNetwork::RoomTemperatureC(int material, const Eigen::Vector3f& p) const {
-  float temperature_c = kNaN, incident = kNaN;
-  RoomSurfaceAt(material, p, &temperature_c, &incident);
-  return temperature_c;
+  PatchState state;
+  return RoomSurfaceAt(material, p, &state) ? state.temperature_c : kNaN;
 }
 
-bool RoomNetwork::RoomSurfaceAt(int material, const Eigen::Vector3f& p, float* temperature_c, float* incident) const {
+bool RoomNetwork::RoomSurfaceAt(int material, const Eigen::Vector3f& p, PatchState* state) const {
   if (material < 0 || material >= static_cast<int>(quads_of_material_.size())) return false;
   for (int q : quads_of_material_[static_cast<size_t>(material)]) {
     const Patches& patches = patches_[static_cast<size_t>(q)];
@@ -392,8 +485,9 @@ bool RoomNetwork::RoomSurfaceAt(int material, const Eigen::Vector3f& p, float* t
       return (1 - wv) * ((1 - wu) * at(u0, v0) + wu * at(u1, v0)) + wv * ((1 - wu) * at(u0, v1) + wu * at(u1, v1));
     };
     auto node = [&](int iu, int iv) { return static_cast<size_t>(patches.Node(iu, iv)); };
-    *temperature_c = bilinear([&](int iu, int iv) { return static_cast<float>(temperature_c_[node(iu, iv)]); });
-    *incident = bilinear([&](int iu, int iv) { return incident_[node(iu, iv)]; });
+    state->temperature_c = bilinear([&](int iu, int iv) { return static_cast<float>(temperature_c_[node(iu, iv)]); });
+    state->incident = bilinear([&](int iu, int iv) { return incident_[node(iu, iv)]; });
+    state->sun_share = sun_share_.empty() ? 0.0f : bilinear([&](int iu, int iv) { return sun_share_[node(iu, iv)]; });
     return true;
   }
   return false;

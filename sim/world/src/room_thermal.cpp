@@ -58,6 +58,21 @@ SunPosition SolarPosition(double latitude_deg, int day_of_year, double solar_hou
   return sun;
 }
 
+SunInRoom SunAt(const SunOptions& sun, double time_s) {
+  SunInRoom in_room;
+  if (!sun.enabled) return in_room;
+  const double hour = std::fmod(sun.time_of_day_h + time_s / 3600.0, 24.0);
+  const SunPosition at = SolarPosition(sun.latitude_deg, sun.day_of_year, hour);
+  const double east = std::sin(at.azimuth_rad) * std::cos(at.elevation_rad);
+  const double north = std::cos(at.azimuth_rad) * std::cos(at.elevation_rad);
+  const double y_axis = sun.north_wall_azimuth_deg * kDegToRad;
+  in_room.direction = Eigen::Vector3d(east * std::cos(y_axis) - north * std::sin(y_axis),
+                                      east * std::sin(y_axis) + north * std::cos(y_axis), std::sin(at.elevation_rad))
+                          .cast<float>();
+  in_room.irradiance_wm2 = static_cast<float>(ClearSkyDirectNormalWm2(at.elevation_rad) * sun.glass_transmittance);
+  return in_room;
+}
+
 double ClearSkyDirectNormalWm2(double elevation_rad) {
   if (elevation_rad <= 0) return 0;
   const double elevation_deg = elevation_rad / kDegToRad;
@@ -230,34 +245,29 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
   }
   const double wall_f = 1 - s.wall_u_value_w_m2k * kInsideSurfaceResistance;
   bridge_k_ = static_cast<float>(std::max(0.0, wall_f - s.edge_f_rsi) * (inside_c - outside_c));
-  sun_irradiance_wm2_ = 0;
-  if (room_.sun.enabled) {
-    const double hour = std::fmod(room_.sun.time_of_day_h + time_s / 3600.0, 24.0);
-    const SunPosition sun = SolarPosition(room_.sun.latitude_deg, room_.sun.day_of_year, hour);
-    const double east = std::sin(sun.azimuth_rad) * std::cos(sun.elevation_rad);
-    const double north = std::cos(sun.azimuth_rad) * std::cos(sun.elevation_rad);
-    const double y_axis = room_.sun.north_wall_azimuth_deg * kDegToRad;
-    sun_direction_ = Eigen::Vector3d(east * std::cos(y_axis) - north * std::sin(y_axis),
-                                     east * std::sin(y_axis) + north * std::cos(y_axis), std::sin(sun.elevation_rad))
-                         .cast<float>();
-    sun_irradiance_wm2_ = static_cast<float>(ClearSkyDirectNormalWm2(sun.elevation_rad) * room_.sun.glass_transmittance);
-  }
+  const SunInRoom sun = SunAt(room_.sun, time_s);
+  sun_direction_ = sun.direction;
+  sun_irradiance_wm2_ = sun.irradiance_wm2;
 }
 
 FieldSample RoomSurfaces::Sample(int material, const Eigen::Vector3f& p) const {
   if (FieldOf(material) == nullptr) return {};
-  float solved = 0;  // the solution's patches about the material's mean (set as its base)
-  float incident = 0;
-  if (network_ != nullptr) {
-    float at_c = 0, received = 0;
-    if (network_->RoomSurfaceAt(material, p, &at_c, &received)) {
-      solved = at_c - network_->RoomMeanTemperatureC(material);
-      incident = received - network_->RoomMeanIncidentRadiance(material);
-    }
+  float solved = 0;    // the solution's patches about the material's mean (set as its base)
+  float incident = 0;  // what they receive about the material's mean
+  float sun_share = 0;  // the patches' sunlit share (the sun in their balance)
+  RoomNetwork::PatchState patch;
+  if (network_ != nullptr && network_->RoomSurfaceAt(material, p, &patch)) {
+    solved = patch.temperature_c - network_->RoomMeanTemperatureC(material);
+    incident = patch.incident - network_->RoomMeanIncidentRadiance(material);
+    sun_share = patch.sun_share;
   }
   if (material == interior_material_) return {solved + TextureK(material, p), incident};
   if (material >= 3) return {solved + FrameK(material - 3, p), incident};
-  float offset = solved + BridgeK(material, p) + SunK(material, p) + TextureK(material, p);
+  // With the sun in the patches' balance, the closed form adds only the sunlit shape within them,
+  // about their lit share, so that their heat is not counted twice.
+  float sun = SunK(material, p);
+  if (sun_share > 0) sun -= static_cast<float>(room_.sun.warming_k_per_kw_m2) * sun_irradiance_wm2_ * sun_share / 1000.0f;
+  float offset = solved + BridgeK(material, p) + sun + TextureK(material, p);
   if (material == 2) offset += PlumeK(p);
   return {offset, incident};
 }

@@ -8,6 +8,7 @@
 #include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/sim/sensor/radiometry.h"
 #include "hoilcd/sim/world/room_network.h"
+#include "hoilcd/sim/world/room_thermal.h"
 #include "hoilcd/sim/world/world.h"
 #include "planned_world.h"
 
@@ -172,10 +173,11 @@ TEST(RoomNetwork, EachPatchReflectsWhatItFacesNotItsMaterialsMean) {
   // The floor in front of the cold window receives less than the floor across the room; the
   // field that the renderer reads gives each point its own patches' difference from the mean.
   const Eigen::Vector3f under(1.8f, 2.7f, 0.0f), across(5.5f, 0.3f, 0.0f);
-  float t_under = 0, l_under = 0, t_across = 0, l_across = 0;
-  ASSERT_TRUE(network.RoomSurfaceAt(0, under, &t_under, &l_under));
-  ASSERT_TRUE(network.RoomSurfaceAt(0, across, &t_across, &l_across));
-  EXPECT_EQ(t_under, network.RoomTemperatureC(0, under));
+  RoomNetwork::PatchState at_under_patch, at_across_patch;
+  ASSERT_TRUE(network.RoomSurfaceAt(0, under, &at_under_patch));
+  ASSERT_TRUE(network.RoomSurfaceAt(0, across, &at_across_patch));
+  EXPECT_EQ(at_under_patch.temperature_c, network.RoomTemperatureC(0, under));
+  const float l_under = at_under_patch.incident, l_across = at_across_patch.incident;
   // In band radiance: 8-14 µm radiance changes by about 0.6 % per kelvin near 22 °C.
   const float per_kelvin = Table().RadianceFromCelsius(22.5f) - Table().RadianceFromCelsius(21.5f);
   EXPECT_LT(l_under, l_across - 0.2f * per_kelvin) << "the window takes a share of the floor's view";
@@ -210,6 +212,48 @@ TEST(RoomNetwork, APersonStandingByAWallWarmsThePatchTheyFaceAndAWalkerDoesNot) 
   EXPECT_GT(beside - alone, 0.2f);
   EXPECT_LT(beside - alone, 3.0f);
   EXPECT_EQ(wall_by_them("[]", "2"), alone) << "walkers pass in seconds and are left out";
+}
+
+TEST(RoomNetwork, TheSunThroughTheWindowWarmsThePatchesItLightsAndEveryBeamLandsSomewhere) {
+  // paper_room turned so that its window faces south, at noon on 20 January at 35.7° N; no
+  // furniture, objects or blind in the beam.
+  auto room = [](bool sun) {
+    return PaperRoom({"room.hvac.enabled=false", "tables=[]", "objects=[]", "room.sun.north_wall_azimuth_deg=180",
+                      "room.sun.time_of_day_h=12", std::string("room.sun.enabled=") + (sun ? "true" : "false")});
+  };
+  World lit(room(true), Table()), dark(room(false), Table());
+  lit.SetTime(0.0);
+  dark.SetTime(0.0);
+  const RoomNetwork& network = *lit.room_network();
+  const std::vector<float>& shares = network.sun_shares();
+  ASSERT_EQ(static_cast<int>(shares.size()), network.num_nodes());
+  // What the glass lets in, A·cos θ of the window's clear glass (1.6 × 1.3 m less a frame on
+  // every side), lands on the room's surfaces: Σ A_i·share_i, up to the 16 keyed points per node.
+  const SunInRoom sun = SunAt(room(true).room.sun, 0.0);
+  ASSERT_GT(sun.irradiance_wm2, 300.0f);
+  const double frame = room(true).room.surfaces.frame_width_m;
+  const double beam_m2 = (1.6 - 2 * frame) * (1.3 - 2 * frame) * std::abs(sun.direction.y());
+  double landed_m2 = 0;
+  int brightest = 0;
+  for (int i = 0; i < network.num_nodes(); ++i) {
+    landed_m2 += network.network().node(i).area_m2 * shares[static_cast<size_t>(i)];
+    if (shares[static_cast<size_t>(i)] > shares[static_cast<size_t>(brightest)]) brightest = i;
+  }
+  EXPECT_NEAR(landed_m2, beam_m2, 0.12 * beam_m2);
+  // The brightest patch lies on the floor in front of the window, and the sun warms it by kelvins:
+  // 0.6 · E · share absorbed against the floor's convection and radiation, with its heat capacity.
+  std::vector<double> with_sun, without;
+  network.network().TemperaturesAt(0.0, &with_sun);
+  dark.room_network()->network().TemperaturesAt(0.0, &without);
+  const double rise = with_sun[static_cast<size_t>(brightest)] - without[static_cast<size_t>(brightest)];
+  EXPECT_GT(network.network().node(brightest).height_m, -0.01);
+  EXPECT_LT(network.network().node(brightest).height_m, 0.01) << "a floor patch";
+  EXPECT_GT(rise, 3.0);
+  EXPECT_LT(rise, 30.0);
+  // A patch the beam never reaches (the window's own wall) warms by far less: only through
+  // what the lit patches send it.
+  const Eigen::Vector3f beside_window(4.5f, 3.0f, 1.4f);
+  EXPECT_LT(network.RoomTemperatureC(2, beside_window) - dark.room_network()->RoomTemperatureC(2, beside_window), 0.5 * rise);
 }
 
 }  // namespace

@@ -109,6 +109,9 @@ struct ThermalSolutionOptions {
   double capacity_ceiling_j_m2k;
   double capacity_glass_j_m2k;
   double capacity_object_j_m2k;
+  double solar_absorptance_floor;     // share of the sun's short-wave light a floor absorbs
+  double solar_absorptance_walls;     // the same for walls and the ceiling
+  double solar_absorptance_object;    // the same for furniture and objects
   ThermalSolutionOptions();
   static const OptionTable<ThermalSolutionOptions>& Table();
 };

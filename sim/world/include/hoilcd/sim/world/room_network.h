@@ -2,8 +2,9 @@
 // floor, ceiling and windows cut into patches of about room.thermal.patch_size_m, each material of
 // each table, chair and object a node, with their view factors cast once against the static
 // geometry alone, solved as a ThermalNetwork under the room's stratified air, the thermostat's
-// cycle and the outdoor air through the envelope. The renderer reads each node's temperature and
-// the band radiance it receives from its surroundings (what a diffuse surface reflects).
+// cycle, the outdoor air through the envelope, the people who sit or stand still and the sun
+// through the windows. The renderer reads each node's temperature, the band radiance it receives
+// from its surroundings (what a diffuse surface reflects) and its sunlit share.
 #pragma once
 
 #include <Eigen/Core>
@@ -63,10 +64,15 @@ class RoomNetwork {
   // At the last SetTime: the temperature of the room's surface of `material` at world point p,
   // bilinear between patch centres (NaN when p lies on no patch of that material), °C.
   float RoomTemperatureC(int material, const Eigen::Vector3f& p) const;
-  // At the last SetTime, at world point p on a patch of room `material`: its temperature, °C, and
-  // the band radiance it receives from its surroundings, W·m⁻²·sr⁻¹, each bilinear between patch
-  // centres; false when p lies on no patch of that material.
-  bool RoomSurfaceAt(int material, const Eigen::Vector3f& p, float* temperature_c, float* incident) const;
+  // At the last SetTime, at a world point on a patch of a room material, each bilinear between
+  // patch centres.
+  struct PatchState {
+    float temperature_c = 0;  // °C
+    float incident = 0;       // band radiance received from the surroundings, W·m⁻²·sr⁻¹
+    float sun_share = 0;      // the patches' sunlit share times the sun's cosine on them
+  };
+  // False when p lies on no patch of that material.
+  bool RoomSurfaceAt(int material, const Eigen::Vector3f& p, PatchState* state) const;
   // The area-weighted mean temperature of a room material, °C.
   float RoomMeanTemperatureC(int material) const;
   // The area-weighted mean band radiance a room material receives, W·m⁻²·sr⁻¹.
@@ -81,6 +87,9 @@ class RoomNetwork {
   float MeanIncidentRadiance() const { return mean_incident_; }
 
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
+  // Each node's sunlit share times the sun's cosine on it at the last SetTime (empty when the sun
+  // cannot enter: off, or no window).
+  const std::vector<float>& sun_shares() const { return sun_share_; }
   // The solved network; after the first SetTime.
   const ThermalNetwork& network() const { return *network_; }
 
@@ -94,6 +103,15 @@ class RoomNetwork {
   const std::vector<float>& IncidentOfState(size_t k);
   // What the people present at t send each node, W (the drivers' absorbed heat).
   void PeopleHeat(double time_s, std::vector<double>* absorbed_w) const;
+  // What the sun through the windows gives each node at t, W (the drivers' absorbed heat).
+  void SolarHeat(double time_s, std::vector<double>* absorbed_w);
+  // Each node's sunlit share times the sun's cosine on it at t, linear between the sun's grid
+  // times (every kSunStepS; each cast once, kept while the solution needs it); empty without sun.
+  std::vector<float> SunShares(double time_s);
+  const std::vector<float>& SunSharesOfKey(int64_t key);
+  // Whether the ray from p (on a surface facing along n) towards the sun leaves through a window's
+  // glass, clear of its frame, missing every wall and fixture.
+  bool SunlitThroughWindow(const Eigen::Vector3f& p, const Eigen::Vector3f& n, const Eigen::Vector3f& sun) const;
 
   const BandRadianceTable& table_;
   double room_height_m_;
@@ -121,6 +139,13 @@ class RoomNetwork {
   std::vector<float> incident_;         // per node, at the last SetTime
   std::map<size_t, std::vector<float>> incident_of_state_;  // per grid state, as asked
   std::vector<float> room_mean_c_, room_incident_;  // per room material
+  SunOptions sun_;
+  bool sun_can_enter_ = false;        // the sun is on and the room has windows
+  double frame_width_m_ = 0;          // of each window's frame (0: none)
+  int window_count_ = 0;              // room materials 3 .. 3 + window_count_ − 1
+  std::vector<float> solar_absorptance_;             // per node
+  std::map<int64_t, std::vector<float>> sun_shares_of_key_;  // per sun grid time, as asked
+  std::vector<float> sun_share_;                     // per node, at the last SetTime
   float mean_incident_ = 0;
   int room_instance_ = -1;
 };

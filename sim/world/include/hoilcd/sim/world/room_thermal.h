@@ -35,6 +35,15 @@ SunPosition SolarPosition(double latitude_deg, int day_of_year, double solar_hou
 // Clear-sky direct normal irradiance, W/m² (Meinel and Meinel with Kasten–Young air mass); 0 at night.
 double ClearSkyDirectNormalWm2(double elevation_rad);
 
+// The sun as the room sees it at time t of the sequence (room.sun; its clock starts at
+// time_of_day_h): the unit vector towards it in the room's frame and the direct irradiance the
+// glazing transmits, W/m² normal to the beam (0 at night or with the sun off).
+struct SunInRoom {
+  Eigen::Vector3f direction = Eigen::Vector3f::UnitZ();
+  float irradiance_wm2 = 0;
+};
+SunInRoom SunAt(const SunOptions& sun, double time_s);
+
 // The air's thermostat cycle and how the surfaces follow it. Anyone may build one from the scene
 // (it holds no state but the scene's): the garments' model asks it for the air at time t.
 class RoomClimate {
