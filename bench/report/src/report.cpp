@@ -136,16 +136,9 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
                                 const Dataset& dataset) {
   const Query& q = result.queries[query_index];
   const QueryRecord& rec = run.metrics.queries[query_index];
-  const bool hoi = FindMethod(run.name).Features() == ShownFeatures::kHoiPoints;
-  auto features = [&](int frame) {
-    std::vector<cv::Point2f> pts;
-    if (hoi) {
-      for (const HoiFeature& h : result.features[frame].hoi) pts.push_back(h.point);
-    } else {
-      pts = result.features[frame].keypoints;
-    }
-    return pts;
-  };
+  const ShownFeatures shown = FindMethod(run.name).Features();
+  const bool hoi = IsHoi(shown);
+  auto features = [&](int frame) { return result.features[frame].Points(shown); };
   int best_true = -1;
   double best_score = -1;
   for (size_t j = 0; j < q.database.size(); ++j) {
@@ -379,11 +372,10 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
     if (!run || m->Features() == ShownFeatures::kNone) continue;
     // Queries whose frame has features for this method show the matching (like the paper's
     // figure 6); a wall with no features makes a dull example.
-    const bool hoi = m->Features() == ShownFeatures::kHoiPoints;
     std::vector<size_t> scored;
     for (size_t i = 0; i < result.queries.size(); ++i) {
       const FrameFeatures& f = result.features[result.queries[i].frame];
-      if (run->metrics.queries[i].scored && !(hoi ? f.hoi.empty() : f.keypoints.empty())) scored.push_back(i);
+      if (run->metrics.queries[i].scored && !f.Points(m->Features()).empty()) scored.push_back(i);
     }
     if (scored.empty()) {
       for (size_t i = 0; i < result.queries.size(); ++i)

@@ -80,11 +80,11 @@ TEST(SampleGallery, TakesAtMostPerGroupFromEachMethodOutcomeAndStratumAndAllOfSm
   EXPECT_TRUE(SampleGallery({&unscored}, conditions, {"walkers"}, 2).empty());  // no outcome, no group
 }
 
-TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEachPointSetMethodsInliersAsItsScore) {
+TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEveryPointMethodsInliersOrSaysItHasNone) {
   const test::TestDir temp;
   const Dataset dataset = test::TinyRoomDataset(temp / "data");
   BenchOptions options;
-  options.methods = {"slcd", "dlcd", "fusion"};
+  options.methods = ParseMethodList("all", &options.optional_methods);
   const BenchResult result = RunBench(dataset, options);
   const HtmlReportInput input{temp.str(), {}, kGalleryPerGroup};
   const HtmlReport a = BenchReportHtml(result, dataset, options, input), b = BenchReportHtml(result, dataset, options, input);
@@ -95,33 +95,47 @@ TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEachPointSetMethodsIn
   EXPECT_EQ(entries, a.gallery.size());
   EXPECT_EQ(a.html.find("http://"), std::string::npos);  // nothing from the network
   EXPECT_EQ(a.html.find("https://"), std::string::npos);
-  // The matches re-run for a sampled pair give the top-1's score as their inlier count.
-  int drawn = 0;
-  for (const std::string name : {"slcd", "dlcd"}) {
-    const LoopClosureMethod& method = FindMethod(name);
-    const MethodRun& run = *result.Find(name);
+  // Every method that matches points (the point-set methods, their oracles, dlcd-track): the matches
+  // re-run for a sampled pair give the top-1's score as their inlier count, and the page draws them.
+  // The others' tiles say that they match no points.
+  std::map<std::string, int> drawn, matched;
+  for (const MethodRun& run : result.runs) {
+    const LoopClosureMethod& method = FindMethod(run.name);
+    const ShownFeatures shown = method.Features();
     const std::unique_ptr<MethodOptions> own = method.Options();
+    const std::string tile = "<figure class=\"tile pair\" data-method=\"" + run.name + "\">";
+    size_t tiles = 0, with_inliers = 0, saying_none = 0;
+    for (size_t at = a.html.find(tile); at != std::string::npos; at = a.html.find(tile, at + 1)) {
+      const std::string caption = a.html.substr(at, a.html.find("</figure>", at) - at);
+      ++tiles;
+      with_inliers += caption.find("RANSAC inliers") != std::string::npos ? 1 : 0;
+      saying_none += caption.find("class=\"no-matches\"") != std::string::npos ? 1 : 0;
+    }
+    EXPECT_EQ(tiles, a.gallery.size()) << run.name;
+    if (shown == ShownFeatures::kNone) {
+      EXPECT_EQ(saying_none, tiles) << run.name << ": a tile without matches says why";
+      continue;
+    }
+    EXPECT_EQ(with_inliers, tiles) << run.name;
     for (size_t q : a.gallery) {
       const QueryRecord& rec = run.metrics.queries[q];
       if (!rec.scored || rec.top1_frame < 0) continue;
-      const auto points = [&](int frame) {
-        std::vector<Point2> p = result.features[frame].keypoints;
-        if (name == "dlcd") {
-          p.clear();
-          for (const HoiFeature& h : result.features[frame].hoi) p.push_back(h.point);
-        }
-        return p;
-      };
-      const std::vector<Point2> qp = points(rec.frame), rp = points(rec.top1_frame);
-      const std::optional<PairMatches> m = method.MatchPair(
-          {own.get(), qp, rp, rec.frame, rec.top1_frame, dataset.manifest().intrinsics.height, dataset.manifest().seed});
-      ASSERT_TRUE(m.has_value());
-      EXPECT_EQ(m->inliers, rec.top1_score) << name << " query " << rec.frame;
-      ++drawn;
+      const FrameFeatures &qf = result.features[rec.frame], &rf = result.features[rec.top1_frame];
+      const std::vector<Point2> qp = qf.Points(shown), rp = rf.Points(shown);
+      const std::optional<PairMatches> m =
+          method.MatchPair({own.get(), qp, rp, qf.Hoi(shown), rf.Hoi(shown), rec.frame, rec.top1_frame,
+                            dataset.manifest().intrinsics.height, dataset.manifest().seed});
+      ASSERT_TRUE(m.has_value()) << run.name;
+      EXPECT_EQ(m->inliers, rec.top1_score) << run.name << " query " << rec.frame;
+      ++drawn[run.name];
+      matched[run.name] += m->matches.empty() ? 0 : 1;
     }
   }
-  EXPECT_GT(drawn, 0);
-  EXPECT_FALSE(FindMethod("fusion").MatchPair({nullptr, {}, {}, 0, 1, 96, 1}).has_value());
+  for (const std::string name : {"slcd", "dlcd", "dlcd-track", "dlcd-oracle", "slcd-ideal"}) {
+    EXPECT_GT(drawn[name], 0) << name;
+    EXPECT_GT(matched[name], 0) << name << " matched no points in any sampled pair";
+  }
+  EXPECT_NE(a.html.find("The tiles of fusion, fusion-tc, thumb, thumb-seq show the two frames alone"), std::string::npos);
 }
 
 TEST(SuiteReportHtml, HoldsOneRowPerRunLinkingToItsReport) {
