@@ -250,7 +250,7 @@ Gallery MakeGallery(const GalleryInput& in) {
     }
     methods.push_back(std::move(drawn));
   }
-  gallery.sampled = SampleGallery(records, in.conditions, in.stratifications, in.per_group);
+  gallery.sampled = SampleGallery(records, in.conditions, in.stratifications, in.sampling);
   const int width = in.dataset.manifest().intrinsics.width, height = in.dataset.manifest().intrinsics.height;
   std::set<int> frames;
   std::vector<std::string> strata;
@@ -278,9 +278,10 @@ Gallery MakeGallery(const GalleryInput& in) {
   std::string& html = gallery.html;
   html = "<h2 id=\"gallery-section\">Gallery of queries</h2>\n<p class=\"note\">" + std::to_string(gallery.sampled.size()) +
          " of " + std::to_string(in.queries.size()) + " queries: for every method, outcome (hit: its top-1 is a true "
-         "match; miss) and stratum (and blank views), up to " + std::to_string(in.per_group) +
-         " scored queries at evenly spaced places in time. Each shows the query, its true match nearest in "
-         "position, and every method's top-1 beside the query." + pointless + "</p>\n"
+         "match; miss) and stratum (and blank views), up to " + std::to_string(in.sampling.per_group) +
+         " scored queries spread in time, no two within " + std::to_string(in.sampling.min_gap_frames) +
+         " frames of each other. Each shows the query, its true match nearest in position, and every method's "
+         "top-1 beside the query." + pointless + "</p>\n"
          "<p class=\"legend note\"><span style=\"color:#08a\">&#9679; features the method matches</span>"
          "<span style=\"color:#1a1\">&#9472; RANSAC inlier</span><span style=\"color:#d22\">&#9472; match RANSAC "
          "rejects</span></p>\n" + Filters(methods, strata) + FrameDefs(in.dataset, frames, width, height);

@@ -321,7 +321,8 @@ cv::Mat StrataFigure(const std::vector<StratumRow>& strata) {
 nlohmann::json GalleryJson(const std::vector<Query>& queries, const std::vector<size_t>& sampled) {
   nlohmann::json frames = nlohmann::json::array();
   for (size_t q : sampled) frames.push_back(queries[q].frame);
-  return {{"per_group", kGalleryPerGroup}, {"query_frames", frames}};
+  const GallerySampling sampling;
+  return {{"per_group", sampling.per_group}, {"min_gap_frames", sampling.min_gap_frames}, {"query_frames", frames}};
 }
 
 // Figures to draw: file name and how to draw it.
@@ -628,7 +629,7 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
   const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
   WriteFileAtomic(dir + "/report.md",
                   ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
-  WriteFileAtomic(dir + "/report.html", BenchReportHtml(result, dataset, options, {dir, figures, kGalleryPerGroup}).html);
+  WriteFileAtomic(dir + "/report.html", BenchReportHtml(result, dataset, options, {dir, figures, GallerySampling()}).html);
 }
 
 }  // namespace
@@ -702,7 +703,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   for (const auto& figure : figures) figure_names.push_back(figure.first);
   WriteFileAtomic(dir + "/report.html", EvaluateReportHtml(runs[0], report.bootstrap, labelling.queries, conditions,
                                                            strata, dataset, protocol, description,
-                                                           {dir, figure_names, kGalleryPerGroup})
+                                                           {dir, figure_names, GallerySampling()})
                                             .html);
   return report;
 }

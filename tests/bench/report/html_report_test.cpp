@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
@@ -61,8 +62,9 @@ TEST(SampleGallery, TakesAtMostPerGroupFromEachMethodOutcomeAndStratumAndAllOfSm
     b_hits[i] = i == 7;  // one hit: its group has one member, which is taken
   }
   const std::vector<QueryRecord> a = Records(a_hits), b = Records(b_hits);
-  const std::vector<size_t> sample = SampleGallery({&a, &b}, conditions, {"walkers"}, 2);
-  EXPECT_EQ(sample, SampleGallery({&a, &b}, conditions, {"walkers"}, 2));  // deterministic
+  const GallerySampling any_gap{2, 1};
+  const std::vector<size_t> sample = SampleGallery({&a, &b}, conditions, {"walkers"}, any_gap);
+  EXPECT_EQ(sample, SampleGallery({&a, &b}, conditions, {"walkers"}, any_gap));  // deterministic
   EXPECT_TRUE(std::is_sorted(sample.begin(), sample.end()));
   EXPECT_NE(std::find(sample.begin(), sample.end(), 7u), sample.end());
   std::map<std::string, int> per_group;
@@ -77,7 +79,76 @@ TEST(SampleGallery, TakesAtMostPerGroupFromEachMethodOutcomeAndStratumAndAllOfSm
   EXPECT_GE(per_group["a:miss"], 2);
   EXPECT_GE(per_group["b:hit"], 1);
   const std::vector<QueryRecord> unscored(40);
-  EXPECT_TRUE(SampleGallery({&unscored}, conditions, {"walkers"}, 2).empty());  // no outcome, no group
+  EXPECT_TRUE(SampleGallery({&unscored}, conditions, {"walkers"}, any_gap).empty());  // no outcome, no group
+}
+
+// Frames from `first` on, one query each; conditions[i].walkers_in_view cycles 0, 1, 2 every 40.
+std::vector<QueryConditions> ConsecutiveQueries(int count, int first) {
+  std::vector<QueryConditions> conditions(count);
+  for (int i = 0; i < count; ++i) {
+    conditions[i].frame = first + i;
+    conditions[i].people_in_view = 2;
+    conditions[i].walkers_in_view = (i / 40) % 3;
+  }
+  return conditions;
+}
+
+TEST(SampleGallery, NoTwoEntriesAreWithinTheGapAndAGroupComesOutShortOnlyWhenTheGapCrowdsItOut) {
+  // Three methods whose hits interleave frame by frame: each group's evenly spaced picks land on
+  // neighbouring frames of the other methods' picks, the near-duplicate rows the gap prevents.
+  const int n = 300;
+  const std::vector<QueryConditions> conditions = ConsecutiveQueries(n, 1000);
+  std::vector<std::vector<QueryRecord>> records;
+  for (int m = 0; m < 3; ++m) {
+    std::vector<bool> hits(n);
+    for (int i = 0; i < n; ++i) hits[i] = i % 3 == m;
+    records.push_back(Records(hits));
+  }
+  // A fourth method with one hit, next to where the first method's hit group would pick: the
+  // smallest group picks first, so this rare hit is shown.
+  std::vector<bool> rare(n);
+  rare[76] = true;
+  records.push_back(Records(rare));
+  std::vector<const std::vector<QueryRecord>*> pointers;
+  for (const auto& r : records) pointers.push_back(&r);
+  const std::vector<std::string> stratifications = {"walkers"};
+  for (const GallerySampling sampling : {GallerySampling(), GallerySampling{3, 25}}) {
+    const std::vector<size_t> sample = SampleGallery(pointers, conditions, stratifications, sampling);
+    EXPECT_EQ(sample, SampleGallery(pointers, conditions, stratifications, sampling));  // deterministic
+    ASSERT_FALSE(sample.empty());
+    EXPECT_TRUE(std::is_sorted(sample.begin(), sample.end()));
+    for (size_t k = 1; k < sample.size(); ++k) {
+      EXPECT_GE(conditions[sample[k]].frame - conditions[sample[k - 1]].frame, sampling.min_gap_frames)
+          << "queries " << sample[k - 1] << " and " << sample[k];
+    }
+    EXPECT_TRUE(std::binary_search(sample.begin(), sample.end(), 76u)) << "the rare hit is not sampled";
+    // Each group (method, outcome, and all queries or one stratum) holds min(per_group, its size)
+    // sampled queries, or each of its other queries is within the gap of a sampled one.
+    std::map<std::string, std::vector<size_t>> groups;
+    for (size_t m = 0; m < records.size(); ++m) {
+      for (size_t i = 0; i < conditions.size(); ++i) {
+        const std::string key = std::to_string(m) + GalleryOutcome(records[m][i]);
+        groups[key].push_back(i);
+        groups[key + StratumOf("walkers", conditions[i])].push_back(i);
+      }
+    }
+    const auto near_sample = [&](size_t i) {
+      for (size_t s : sample)
+        if (std::abs(conditions[s].frame - conditions[i].frame) < sampling.min_gap_frames) return true;
+      return false;
+    };
+    int full = 0;
+    for (const auto& [key, members] : groups) {
+      size_t held = 0;
+      for (size_t i : members) held += std::binary_search(sample.begin(), sample.end(), i) ? 1 : 0;
+      if (held >= std::min(members.size(), static_cast<size_t>(sampling.per_group))) {
+        ++full;
+        continue;
+      }
+      for (size_t i : members) EXPECT_TRUE(near_sample(i)) << "group " << key << ": query " << i << " could be sampled";
+    }
+    EXPECT_GT(full, static_cast<int>(groups.size()) / 2);
+  }
 }
 
 TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEveryPointMethodsInliersOrSaysItHasNone) {
@@ -86,7 +157,7 @@ TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEveryPointMethodsInli
   BenchOptions options;
   options.methods = ParseMethodList("all", &options.optional_methods);
   const BenchResult result = RunBench(dataset, options);
-  const HtmlReportInput input{temp.str(), {}, kGalleryPerGroup};
+  const HtmlReportInput input{temp.str(), {}, GallerySampling()};
   const HtmlReport a = BenchReportHtml(result, dataset, options, input), b = BenchReportHtml(result, dataset, options, input);
   EXPECT_EQ(a.html, b.html);
   ASSERT_FALSE(a.gallery.empty());
