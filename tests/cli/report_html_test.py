@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """report.html in a real browser: `hoilcd run` on the tiny room, then headless Chromium (Debian's
 chromium, which scripts/setup installs) loads the page. It must log nothing to the console, its
-gallery must hold exactly the queries report.json lists (and at least min(n, per_group) hits and
-misses of each method, from queries.csv), a click on a results header must sort the column both
+gallery must hold exactly the queries report.json lists (no two within min_gap_frames, and at least
+min(n, per_group) hits and misses of each method from queries.csv, or each of the others within the
+gap of a sampled query), a click on a results header must sort the column both
 ways, the gallery's filters must work, every image must decode, and a screenshot must be taken.
 When Chromium is missing or cannot run, the test fails: it never skips.
 
@@ -99,7 +100,7 @@ def main():
         expected = gallery["query_frames"]
         if not expected:
             fail("report.json lists an empty gallery")
-        check_sampling(os.path.join(report, "queries.csv"), expected, gallery["per_group"])
+        check_sampling(os.path.join(report, "queries.csv"), expected, gallery["per_group"], gallery["min_gap_frames"])
 
         profile = os.path.join(temp, "profile")
         loaded = chromium(["--virtual-time-budget=10000", "--dump-dom", "file://" + page], profile)
@@ -136,22 +137,28 @@ def main():
         shutil.rmtree(temp, ignore_errors=True)
 
 
-def check_sampling(queries_csv, sampled, per_group):
-    """Every method's hits and misses: at least min(their count, per_group) of them are sampled."""
-    counts = {}
+def check_sampling(queries_csv, sampled, per_group, min_gap_frames):
+    """No two sampled queries within the gap; every method's hits and misses: at least
+    min(their count, per_group) of them are sampled, or each of the others is within the gap of a
+    sampled query."""
+    for a, b in zip(sampled, sampled[1:]):
+        if b - a < min_gap_frames:
+            fail("sampled queries %d and %d are closer than %d frames" % (a, b, min_gap_frames))
+    near_sample = lambda frame: any(abs(frame - s) < min_gap_frames for s in sampled)
+    groups = {}
     with open(queries_csv) as f:
         for row in csv.DictReader(f):
             if row["scored"] != "1":
                 continue
             key = (row["method"], "hit" if row["top1_is_true_match"] == "1" else "miss")
-            frame = int(row["frame"])
-            total, in_sample = counts.get(key, (0, 0))
-            counts[key] = (total + 1, in_sample + (frame in sampled))
-    if not counts:
+            groups.setdefault(key, []).append(int(row["frame"]))
+    if not groups:
         fail("queries.csv holds no scored query")
-    for key, (total, in_sample) in counts.items():
-        if in_sample < min(total, per_group):
-            fail("%s %s: %d of %d queries sampled, fewer than %d" % (key + (in_sample, total, per_group)))
+    for key, frames in groups.items():
+        in_sample = sum(frame in sampled for frame in frames)
+        crowded_out = all(near_sample(frame) for frame in frames if frame not in sampled)
+        if in_sample < min(len(frames), per_group) and not crowded_out:
+            fail("%s %s: %d of %d queries sampled, fewer than %d" % (key + (in_sample, len(frames), per_group)))
 
 
 def check_verdict(v, expected):

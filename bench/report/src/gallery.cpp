@@ -44,11 +44,16 @@ std::string FrameDefs(const Dataset& dataset, const std::set<int>& frames, int w
 // A pixel coordinate in the page, to a tenth of a pixel.
 std::string Coord(double v) { return Fixed(v, 1); }
 
-// Each frame's features once, as a path of round dots the tiles reference (<use href="#kp-N">
-// or "#hoi-N"): a frame's keypoints are drawn in every entry that shows it, for every method on
-// them, and a path of "M x y h0" dots is a third of the size of circles.
+// Each frame's features once, as a path of round dots the tiles reference (<use href="#kp-N">,
+// "#hoi-N", and the oracles' "#ikp-N" and "#thoi-N"): a frame's keypoints are drawn in every entry
+// that shows it, for every method on them, and a path of "M x y h0" dots is a third of the size of
+// circles.
 std::string FeatureId(ShownFeatures kind, int frame) {
-  return (kind == ShownFeatures::kHoiPoints ? "hoi-" : "kp-") + std::to_string(frame);
+  const char* prefix = "kp-";
+  if (kind == ShownFeatures::kHoiPoints) prefix = "hoi-";
+  if (kind == ShownFeatures::kIdealKeypoints) prefix = "ikp-";
+  if (kind == ShownFeatures::kTrueHoiPoints) prefix = "thoi-";
+  return prefix + std::to_string(frame);
 }
 
 // A line's path data between two pixel centres, the second shifted right by dx.
@@ -56,16 +61,26 @@ std::string Segment(const Point2& a, const Point2& b, double dx) {
   return "M" + Coord(a.x + 0.5) + " " + Coord(a.y + 0.5) + "L" + Coord(b.x + 0.5 + dx) + " " + Coord(b.y + 0.5);
 }
 
-// A method's features of one frame (empty when it shows none or none were kept).
-std::vector<Point2> FeaturesOf(const GalleryInput& in, const LoopClosureMethod* method, int frame) {
-  if (method == nullptr || in.features == nullptr || frame < 0 || frame >= static_cast<int>(in.features->size())) return {};
-  const FrameFeatures& f = (*in.features)[frame];
-  if (method->Features() == ShownFeatures::kKeypoints) return f.keypoints;
-  std::vector<Point2> points;
-  if (method->Features() == ShownFeatures::kHoiPoints) {
-    for (const HoiFeature& h : f.hoi) points.push_back(h.point);
+// A method's features of one frame (null when it shows none or none were kept).
+const FrameFeatures* FeaturesOf(const GalleryInput& in, const LoopClosureMethod* method, int frame) {
+  if (method == nullptr || method->Features() == ShownFeatures::kNone || in.features == nullptr || frame < 0 ||
+      frame >= static_cast<int>(in.features->size()))
+    return nullptr;
+  return &(*in.features)[frame];
+}
+
+// Why a method's tile draws no matches, in plain words for its caption.
+std::string NoMatchesNote(const GalleryInput& in, const LoopClosureMethod* method, int top1) {
+  if (method == nullptr) return "scored outside hoilcd: no points to draw";
+  if (method->Features() == ShownFeatures::kNone) {
+    if (method->Inputs().empty()) return "matches no keypoints or HOI points: nothing to draw";
+    std::string inputs;
+    for (const std::string& name : method->Inputs()) inputs += (inputs.empty() ? "" : ", ") + name;
+    return "fuses the rankings of " + inputs + ": no point matches of its own";
   }
-  return points;
+  if (in.features == nullptr) return "its features are not in this report: no points to draw";
+  if (top1 < 0) return "no top-1 to match";
+  return "gives no matches for the gallery (no MatchPair): its features alone";
 }
 
 // One method as the gallery draws it: the registered method (null: scored outside hoilcd) and its
@@ -83,22 +98,26 @@ std::string PairTile(const GalleryInput& in, const DrawnMethod& m, size_t q, int
   const QueryRecord& rec = (*m.shown->records)[q];
   const int top1 = rec.top1_frame;
   const int dx = width + kPairGapPx;
-  const std::vector<Point2> qp = FeaturesOf(in, m.method, query.frame), rp = FeaturesOf(in, m.method, top1);
+  const FrameFeatures *qf = FeaturesOf(in, m.method, query.frame), *rf = FeaturesOf(in, m.method, top1);
+  const ShownFeatures shown = m.method != nullptr ? m.method->Features() : ShownFeatures::kNone;
+  const std::vector<Point2> qp = qf ? qf->Points(shown) : std::vector<Point2>();
+  const std::vector<Point2> rp = rf ? rf->Points(shown) : std::vector<Point2>();
   std::optional<PairMatches> matches;
-  if (m.method != nullptr && top1 >= 0 && m.method->Features() != ShownFeatures::kNone && in.features != nullptr) {
-    matches = m.method->MatchPair({m.own.get(), qp, rp, query.frame, top1, height, in.dataset.manifest().seed});
+  if (qf != nullptr && rf != nullptr) {
+    matches = m.method->MatchPair({m.own.get(), qp, rp, qf->Hoi(shown), rf->Hoi(shown), query.frame, top1, height,
+                                   in.dataset.manifest().seed});
   }
   const std::string outcome = GalleryOutcome(rec);
   std::string svg = "<svg viewBox=\"0 0 " + std::to_string(width + dx) + " " + std::to_string(height) +
                     "\"><use href=\"#frame-" + std::to_string(query.frame) + "\"/>";
   if (top1 >= 0) svg += "<use href=\"#frame-" + std::to_string(top1) + "\" x=\"" + std::to_string(dx) + "\"/>";
   if (!qp.empty()) {
-    svg += "<use href=\"#" + FeatureId(m.method->Features(), query.frame) + "\"/>";
-    drawn_features->insert({m.method->Features(), query.frame});
+    svg += "<use href=\"#" + FeatureId(shown, query.frame) + "\"/>";
+    drawn_features->insert({shown, query.frame});
   }
   if (!rp.empty()) {
-    svg += "<use href=\"#" + FeatureId(m.method->Features(), top1) + "\" x=\"" + std::to_string(dx) + "\"/>";
-    drawn_features->insert({m.method->Features(), top1});
+    svg += "<use href=\"#" + FeatureId(shown, top1) + "\" x=\"" + std::to_string(dx) + "\"/>";
+    drawn_features->insert({shown, top1});
   }
   std::string caption = EscapeHtml(m.shown->name) + " top-1 " + (top1 >= 0 ? std::to_string(top1) : "none") +
                         ": <b class=\"" + outcome + "\">" + outcome + "</b>, score " + Fixed(rec.top1_score, 2) +
@@ -118,6 +137,8 @@ std::string PairTile(const GalleryInput& in, const DrawnMethod& m, size_t q, int
     }
     caption += "; " + std::to_string(matches->matches.size()) + " matches, <span class=\"inliers\">" +
                std::to_string(matches->inliers) + "</span> RANSAC inliers";
+  } else {
+    caption += "; <span class=\"no-matches\">" + EscapeHtml(NoMatchesNote(in, m.method, top1)) + "</span>";
   }
   return "<figure class=\"tile pair\" data-method=\"" + EscapeHtml(m.shown->name) + "\">" + svg +
          "</svg><figcaption>" + caption + "</figcaption></figure>";
@@ -194,14 +215,8 @@ std::string Entry(const GalleryInput& in, const std::vector<DrawnMethod>& method
 std::string FeatureDefs(const GalleryInput& in, const std::set<std::pair<ShownFeatures, int>>& used) {
   std::string html = "<svg width=\"0\" height=\"0\" style=\"position:absolute\" aria-hidden=\"true\"><defs>\n";
   for (const auto& [kind, frame] : used) {
-    const FrameFeatures& f = (*in.features)[frame];
-    std::vector<Point2> points = f.keypoints;
-    if (kind == ShownFeatures::kHoiPoints) {
-      points.clear();
-      for (const HoiFeature& h : f.hoi) points.push_back(h.point);
-    }
     std::string d;
-    for (const Point2& p : points) d += "M" + Coord(p.x + 0.5) + " " + Coord(p.y + 0.5) + "h0";
+    for (const Point2& p : (*in.features)[frame].Points(kind)) d += "M" + Coord(p.x + 0.5) + " " + Coord(p.y + 0.5) + "h0";
     html += "<path id=\"" + FeatureId(kind, frame) +
             "\" stroke=\"#4cf\" stroke-width=\"3.5\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
   }
@@ -235,7 +250,7 @@ Gallery MakeGallery(const GalleryInput& in) {
     }
     methods.push_back(std::move(drawn));
   }
-  gallery.sampled = SampleGallery(records, in.conditions, in.stratifications, in.per_group);
+  gallery.sampled = SampleGallery(records, in.conditions, in.stratifications, in.sampling);
   const int width = in.dataset.manifest().intrinsics.width, height = in.dataset.manifest().intrinsics.height;
   std::set<int> frames;
   std::vector<std::string> strata;
@@ -251,12 +266,22 @@ Gallery MakeGallery(const GalleryInput& in) {
       if (!stratum.empty() && std::find(strata.begin(), strata.end(), label) == strata.end()) strata.push_back(label);
     }
   }
+  std::string pointless;  // the methods that match no points
+  for (const DrawnMethod& m : methods) {
+    if (m.method == nullptr || m.method->Features() == ShownFeatures::kNone)
+      pointless += (pointless.empty() ? "" : ", ") + m.shown->name;
+  }
+  if (!pointless.empty()) {
+    pointless = " The tiles of " + EscapeHtml(pointless) + " show the two frames alone: these methods match no "
+                "keypoints or HOI points (each tile says why).";
+  }
   std::string& html = gallery.html;
   html = "<h2 id=\"gallery-section\">Gallery of queries</h2>\n<p class=\"note\">" + std::to_string(gallery.sampled.size()) +
          " of " + std::to_string(in.queries.size()) + " queries: for every method, outcome (hit: its top-1 is a true "
-         "match; miss) and stratum (and blank views), up to " + std::to_string(in.per_group) +
-         " scored queries at evenly spaced places in time. Each shows the query, its true match nearest in "
-         "position, and every method's top-1 beside the query.</p>\n"
+         "match; miss) and stratum (and blank views), up to " + std::to_string(in.sampling.per_group) +
+         " scored queries spread in time, no two within " + std::to_string(in.sampling.min_gap_frames) +
+         " frames of each other. Each shows the query, its true match nearest in position, and every method's "
+         "top-1 beside the query." + pointless + "</p>\n"
          "<p class=\"legend note\"><span style=\"color:#08a\">&#9679; features the method matches</span>"
          "<span style=\"color:#1a1\">&#9472; RANSAC inlier</span><span style=\"color:#d22\">&#9472; match RANSAC "
          "rejects</span></p>\n" + Filters(methods, strata) + FrameDefs(in.dataset, frames, width, height);

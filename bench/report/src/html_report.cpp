@@ -148,7 +148,7 @@ std::string DatasetLine(const Dataset& dataset, const ProtocolOptions& protocol)
 HtmlReport BenchReportHtml(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                            const HtmlReportInput& input) {
   GalleryInput gallery_input{dataset, result.queries, result.conditions, StratificationsOf(result.strata), {}, &result.features,
-                             options.params, input.gallery_per_group};
+                             options.params, input.gallery};
   for (const MethodRun& run : result.runs) gallery_input.methods.push_back({run.name, &run.metrics.queries});
   const Gallery gallery = MakeGallery(gallery_input);
   std::string body = "<h1>hoilcd loop-closure report</h1>\n" + DatasetLine(dataset, options.protocol) + Links() +
@@ -190,7 +190,7 @@ HtmlReport EvaluateReportHtml(const MethodRun& run, const BootstrapPlan& plan, c
                               const Dataset& dataset, const ProtocolOptions& protocol, const std::string& description,
                               const HtmlReportInput& input) {
   GalleryInput gallery_input{dataset, queries, conditions, StratificationsOf(strata), {{run.name, &run.metrics.queries}},
-                             nullptr, {}, input.gallery_per_group};
+                             nullptr, {}, input.gallery};
   const Gallery gallery = MakeGallery(gallery_input);
   const std::string body = "<h1>hoilcd evaluate: " + EscapeHtml(run.name) + "</h1>\n<p>" + EscapeHtml(description) +
                            "</p>\n" + DatasetLine(dataset, protocol) + Links() + ResultsSection({run}, plan) +

@@ -136,16 +136,9 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
                                 const Dataset& dataset) {
   const Query& q = result.queries[query_index];
   const QueryRecord& rec = run.metrics.queries[query_index];
-  const bool hoi = FindMethod(run.name).Features() == ShownFeatures::kHoiPoints;
-  auto features = [&](int frame) {
-    std::vector<cv::Point2f> pts;
-    if (hoi) {
-      for (const HoiFeature& h : result.features[frame].hoi) pts.push_back(h.point);
-    } else {
-      pts = result.features[frame].keypoints;
-    }
-    return pts;
-  };
+  const ShownFeatures shown = FindMethod(run.name).Features();
+  const bool hoi = IsHoi(shown);
+  auto features = [&](int frame) { return result.features[frame].Points(shown); };
   int best_true = -1;
   double best_score = -1;
   for (size_t j = 0; j < q.database.size(); ++j) {
@@ -328,7 +321,8 @@ cv::Mat StrataFigure(const std::vector<StratumRow>& strata) {
 nlohmann::json GalleryJson(const std::vector<Query>& queries, const std::vector<size_t>& sampled) {
   nlohmann::json frames = nlohmann::json::array();
   for (size_t q : sampled) frames.push_back(queries[q].frame);
-  return {{"per_group", kGalleryPerGroup}, {"query_frames", frames}};
+  const GallerySampling sampling;
+  return {{"per_group", sampling.per_group}, {"min_gap_frames", sampling.min_gap_frames}, {"query_frames", frames}};
 }
 
 // Figures to draw: file name and how to draw it.
@@ -379,11 +373,10 @@ std::vector<std::string> WriteFigures(const BenchResult& result, const Dataset& 
     if (!run || m->Features() == ShownFeatures::kNone) continue;
     // Queries whose frame has features for this method show the matching (like the paper's
     // figure 6); a wall with no features makes a dull example.
-    const bool hoi = m->Features() == ShownFeatures::kHoiPoints;
     std::vector<size_t> scored;
     for (size_t i = 0; i < result.queries.size(); ++i) {
       const FrameFeatures& f = result.features[result.queries[i].frame];
-      if (run->metrics.queries[i].scored && !(hoi ? f.hoi.empty() : f.keypoints.empty())) scored.push_back(i);
+      if (run->metrics.queries[i].scored && !f.Points(m->Features()).empty()) scored.push_back(i);
     }
     if (scored.empty()) {
       for (size_t i = 0; i < result.queries.size(); ++i)
@@ -636,7 +629,7 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
   const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
   WriteFileAtomic(dir + "/report.md",
                   ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
-  WriteFileAtomic(dir + "/report.html", BenchReportHtml(result, dataset, options, {dir, figures, kGalleryPerGroup}).html);
+  WriteFileAtomic(dir + "/report.html", BenchReportHtml(result, dataset, options, {dir, figures, GallerySampling()}).html);
 }
 
 }  // namespace
@@ -710,7 +703,7 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   for (const auto& figure : figures) figure_names.push_back(figure.first);
   WriteFileAtomic(dir + "/report.html", EvaluateReportHtml(runs[0], report.bootstrap, labelling.queries, conditions,
                                                            strata, dataset, protocol, description,
-                                                           {dir, figure_names, kGalleryPerGroup})
+                                                           {dir, figure_names, GallerySampling()})
                                             .html);
   return report;
 }

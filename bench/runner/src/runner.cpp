@@ -137,6 +137,8 @@ void AddFeaturesAndTracking(const Dataset& dataset, const BenchOptions& options,
   for (int f = 0; f < n; ++f) {
     if (front_ends.Ran(FrontEnd::kKeypoints)) result->features[f].keypoints = front_ends.keypoints[f];
     if (front_ends.Ran(FrontEnd::kPersons)) result->features[f].hoi = front_ends.hoi[f];
+    if (front_ends.Ran(FrontEnd::kIdealKeypoints)) result->features[f].ideal_keypoints = front_ends.ideal_keypoints[f];
+    if (front_ends.Ran(FrontEnd::kTruePersons)) result->features[f].true_hoi = front_ends.true_hoi[f];
     kp += result->features[f].keypoints.size(), hp += result->features[f].hoi.size();
   }
   result->mean_keypoints_per_frame = n ? kp / n : 0;
@@ -224,6 +226,23 @@ void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResu
 }
 
 }  // namespace
+
+std::vector<Point2> FrameFeatures::Points(ShownFeatures shown) const {
+  switch (shown) {
+    case ShownFeatures::kKeypoints: return keypoints;
+    case ShownFeatures::kIdealKeypoints: return ideal_keypoints;
+    default: break;
+  }
+  std::vector<Point2> points;
+  for (const HoiFeature& h : Hoi(shown)) points.push_back(h.point);
+  return points;
+}
+
+const std::vector<HoiFeature>& FrameFeatures::Hoi(ShownFeatures shown) const {
+  static const std::vector<HoiFeature> kNoHoi;
+  if (shown == ShownFeatures::kHoiPoints) return hoi;
+  return shown == ShownFeatures::kTrueHoiPoints ? true_hoi : kNoHoi;
+}
 
 const MethodRun* BenchResult::Find(const std::string& name) const {
   for (const MethodRun& r : runs)

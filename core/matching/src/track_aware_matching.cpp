@@ -198,4 +198,17 @@ int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& ref
                             TrackAwarePairSeed(seed, query_id, reference_id));
 }
 
+PairMatches MatchTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
+                                const TrackAwareOptions& options, const RansacOptions& ransac_options,
+                                uint64_t seed, int query_id, int reference_id) {
+  PairMatches out;
+  out.matches = TrackAwareCorrespondences(query.persons, reference.persons, options);
+  // EstimateHomographyRansac checks the options and gives 0 inliers below 4 matches, as the scorer.
+  HomographyResult ransac = EstimateHomographyRansac(query.points, reference.points, out.matches, ransac_options,
+                                                     TrackAwarePairSeed(seed, query_id, reference_id));
+  out.inlier = std::move(ransac.inlier_mask);
+  out.inliers = ransac.inliers;
+  return out;
+}
+
 }  // namespace hoilcd

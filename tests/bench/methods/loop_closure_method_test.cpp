@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <set>
+
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/runner/runner.h"
@@ -54,6 +57,46 @@ TEST(LoopClosureMethod, TheBuiltInsAreRegisteredInReportOrderWithThePapersThreeM
   EXPECT_TRUE(FindMethod("fusion").FromPaper());
   EXPECT_FALSE(FindMethod("thumb").FromPaper());
   EXPECT_EQ(FindMethod("dlcd-track").Features(), ShownFeatures::kHoiPoints);
+}
+
+// The report's gallery draws a method's matches through MatchPair: every method that shows
+// features (the point-set methods, their oracles and dlcd-track) replays its matching on them, and
+// one that shows none (thumbnails, fusions of rankings) has nothing to replay.
+TEST(LoopClosureMethod, EveryMethodThatShowsFeaturesGivesAPairsMatchesThroughMatchPair) {
+  // Three seated persons' bottom contours, a point every 6 px, and the same persons 2 px right and
+  // 1 px down under other track ids: every point method pairs them all, a pure translation.
+  std::vector<HoiFeature> query_hoi, reference_hoi;
+  for (int person = 0; person < 3; ++person) {
+    for (int i = 0; i < 10; ++i) {
+      const float x = 40.0f + 80.0f * person + 6.0f * i, y = 120.0f + 10.0f * person + 0.3f * (i - 5) * (i - 5);
+      query_hoi.push_back({Point2(x, y), person + 1});
+      reference_hoi.push_back({Point2(x + 2.0f, y + 1.0f), person + 11});
+    }
+  }
+  std::vector<Point2> query_points, reference_points;
+  for (const HoiFeature& h : query_hoi) query_points.push_back(h.point);
+  for (const HoiFeature& h : reference_hoi) reference_points.push_back(h.point);
+  const std::vector<HoiFeature> no_hoi;
+  const std::set<std::string> showing = {"slcd",        "dlcd",       "slcd-lo",    "dlcd-lo",
+                                         "dlcd-track",  "dlcd-oracle", "slcd-ideal"};
+  for (const auto& method : RegisteredMethods()) {
+    const std::string& name = method->Name();
+    EXPECT_EQ(method->Features() != ShownFeatures::kNone, showing.count(name) > 0) << name;
+    const bool hoi = IsHoi(method->Features());
+    const std::unique_ptr<MethodOptions> own = method->Options();
+    const std::optional<PairMatches> pair =
+        method->MatchPair({own.get(), query_points, reference_points, hoi ? query_hoi : no_hoi,
+                           hoi ? reference_hoi : no_hoi, 5, 9, 192, 7});
+    if (method->Features() == ShownFeatures::kNone) {
+      EXPECT_FALSE(pair.has_value()) << name;
+      continue;
+    }
+    ASSERT_TRUE(pair.has_value()) << name;
+    EXPECT_EQ(pair->matches.size(), query_points.size()) << name;
+    ASSERT_EQ(pair->inlier.size(), pair->matches.size()) << name;
+    EXPECT_EQ(pair->inliers, static_cast<int>(query_points.size())) << name;
+    for (const Correspondence& m : pair->matches) EXPECT_EQ(m.query, m.reference) << name;
+  }
 }
 
 TEST(LoopClosureMethod, ARegisteredMethodIsScoredByTheBenchLikeABuiltInAndCompositesGetTheirInputs) {

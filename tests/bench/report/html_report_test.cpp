@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
@@ -61,8 +62,9 @@ TEST(SampleGallery, TakesAtMostPerGroupFromEachMethodOutcomeAndStratumAndAllOfSm
     b_hits[i] = i == 7;  // one hit: its group has one member, which is taken
   }
   const std::vector<QueryRecord> a = Records(a_hits), b = Records(b_hits);
-  const std::vector<size_t> sample = SampleGallery({&a, &b}, conditions, {"walkers"}, 2);
-  EXPECT_EQ(sample, SampleGallery({&a, &b}, conditions, {"walkers"}, 2));  // deterministic
+  const GallerySampling any_gap{2, 1};
+  const std::vector<size_t> sample = SampleGallery({&a, &b}, conditions, {"walkers"}, any_gap);
+  EXPECT_EQ(sample, SampleGallery({&a, &b}, conditions, {"walkers"}, any_gap));  // deterministic
   EXPECT_TRUE(std::is_sorted(sample.begin(), sample.end()));
   EXPECT_NE(std::find(sample.begin(), sample.end(), 7u), sample.end());
   std::map<std::string, int> per_group;
@@ -77,16 +79,85 @@ TEST(SampleGallery, TakesAtMostPerGroupFromEachMethodOutcomeAndStratumAndAllOfSm
   EXPECT_GE(per_group["a:miss"], 2);
   EXPECT_GE(per_group["b:hit"], 1);
   const std::vector<QueryRecord> unscored(40);
-  EXPECT_TRUE(SampleGallery({&unscored}, conditions, {"walkers"}, 2).empty());  // no outcome, no group
+  EXPECT_TRUE(SampleGallery({&unscored}, conditions, {"walkers"}, any_gap).empty());  // no outcome, no group
 }
 
-TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEachPointSetMethodsInliersAsItsScore) {
+// Frames from `first` on, one query each; conditions[i].walkers_in_view cycles 0, 1, 2 every 40.
+std::vector<QueryConditions> ConsecutiveQueries(int count, int first) {
+  std::vector<QueryConditions> conditions(count);
+  for (int i = 0; i < count; ++i) {
+    conditions[i].frame = first + i;
+    conditions[i].people_in_view = 2;
+    conditions[i].walkers_in_view = (i / 40) % 3;
+  }
+  return conditions;
+}
+
+TEST(SampleGallery, NoTwoEntriesAreWithinTheGapAndAGroupComesOutShortOnlyWhenTheGapCrowdsItOut) {
+  // Three methods whose hits interleave frame by frame: each group's evenly spaced picks land on
+  // neighbouring frames of the other methods' picks, the near-duplicate rows the gap prevents.
+  const int n = 300;
+  const std::vector<QueryConditions> conditions = ConsecutiveQueries(n, 1000);
+  std::vector<std::vector<QueryRecord>> records;
+  for (int m = 0; m < 3; ++m) {
+    std::vector<bool> hits(n);
+    for (int i = 0; i < n; ++i) hits[i] = i % 3 == m;
+    records.push_back(Records(hits));
+  }
+  // A fourth method with one hit, next to where the first method's hit group would pick: the
+  // smallest group picks first, so this rare hit is shown.
+  std::vector<bool> rare(n);
+  rare[76] = true;
+  records.push_back(Records(rare));
+  std::vector<const std::vector<QueryRecord>*> pointers;
+  for (const auto& r : records) pointers.push_back(&r);
+  const std::vector<std::string> stratifications = {"walkers"};
+  for (const GallerySampling sampling : {GallerySampling(), GallerySampling{3, 25}}) {
+    const std::vector<size_t> sample = SampleGallery(pointers, conditions, stratifications, sampling);
+    EXPECT_EQ(sample, SampleGallery(pointers, conditions, stratifications, sampling));  // deterministic
+    ASSERT_FALSE(sample.empty());
+    EXPECT_TRUE(std::is_sorted(sample.begin(), sample.end()));
+    for (size_t k = 1; k < sample.size(); ++k) {
+      EXPECT_GE(conditions[sample[k]].frame - conditions[sample[k - 1]].frame, sampling.min_gap_frames)
+          << "queries " << sample[k - 1] << " and " << sample[k];
+    }
+    EXPECT_TRUE(std::binary_search(sample.begin(), sample.end(), 76u)) << "the rare hit is not sampled";
+    // Each group (method, outcome, and all queries or one stratum) holds min(per_group, its size)
+    // sampled queries, or each of its other queries is within the gap of a sampled one.
+    std::map<std::string, std::vector<size_t>> groups;
+    for (size_t m = 0; m < records.size(); ++m) {
+      for (size_t i = 0; i < conditions.size(); ++i) {
+        const std::string key = std::to_string(m) + GalleryOutcome(records[m][i]);
+        groups[key].push_back(i);
+        groups[key + StratumOf("walkers", conditions[i])].push_back(i);
+      }
+    }
+    const auto near_sample = [&](size_t i) {
+      for (size_t s : sample)
+        if (std::abs(conditions[s].frame - conditions[i].frame) < sampling.min_gap_frames) return true;
+      return false;
+    };
+    int full = 0;
+    for (const auto& [key, members] : groups) {
+      size_t held = 0;
+      for (size_t i : members) held += std::binary_search(sample.begin(), sample.end(), i) ? 1 : 0;
+      if (held >= std::min(members.size(), static_cast<size_t>(sampling.per_group))) {
+        ++full;
+        continue;
+      }
+      for (size_t i : members) EXPECT_TRUE(near_sample(i)) << "group " << key << ": query " << i << " could be sampled";
+    }
+    EXPECT_GT(full, static_cast<int>(groups.size()) / 2);
+  }
+}
+
+TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEveryPointMethodsInliersOrSaysItHasNone) {
   const test::TestDir temp;
   const Dataset dataset = test::TinyRoomDataset(temp / "data");
   BenchOptions options;
-  options.methods = {"slcd", "dlcd", "fusion"};
+  options.methods = ParseMethodList("all", &options.optional_methods);
   const BenchResult result = RunBench(dataset, options);
-  const HtmlReportInput input{temp.str(), {}, kGalleryPerGroup};
+  const HtmlReportInput input{temp.str(), {}, GallerySampling()};
   const HtmlReport a = BenchReportHtml(result, dataset, options, input), b = BenchReportHtml(result, dataset, options, input);
   EXPECT_EQ(a.html, b.html);
   ASSERT_FALSE(a.gallery.empty());
@@ -95,33 +166,47 @@ TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEachPointSetMethodsIn
   EXPECT_EQ(entries, a.gallery.size());
   EXPECT_EQ(a.html.find("http://"), std::string::npos);  // nothing from the network
   EXPECT_EQ(a.html.find("https://"), std::string::npos);
-  // The matches re-run for a sampled pair give the top-1's score as their inlier count.
-  int drawn = 0;
-  for (const std::string name : {"slcd", "dlcd"}) {
-    const LoopClosureMethod& method = FindMethod(name);
-    const MethodRun& run = *result.Find(name);
+  // Every method that matches points (the point-set methods, their oracles, dlcd-track): the matches
+  // re-run for a sampled pair give the top-1's score as their inlier count, and the page draws them.
+  // The others' tiles say that they match no points.
+  std::map<std::string, int> drawn, matched;
+  for (const MethodRun& run : result.runs) {
+    const LoopClosureMethod& method = FindMethod(run.name);
+    const ShownFeatures shown = method.Features();
     const std::unique_ptr<MethodOptions> own = method.Options();
+    const std::string tile = "<figure class=\"tile pair\" data-method=\"" + run.name + "\">";
+    size_t tiles = 0, with_inliers = 0, saying_none = 0;
+    for (size_t at = a.html.find(tile); at != std::string::npos; at = a.html.find(tile, at + 1)) {
+      const std::string caption = a.html.substr(at, a.html.find("</figure>", at) - at);
+      ++tiles;
+      with_inliers += caption.find("RANSAC inliers") != std::string::npos ? 1 : 0;
+      saying_none += caption.find("class=\"no-matches\"") != std::string::npos ? 1 : 0;
+    }
+    EXPECT_EQ(tiles, a.gallery.size()) << run.name;
+    if (shown == ShownFeatures::kNone) {
+      EXPECT_EQ(saying_none, tiles) << run.name << ": a tile without matches says why";
+      continue;
+    }
+    EXPECT_EQ(with_inliers, tiles) << run.name;
     for (size_t q : a.gallery) {
       const QueryRecord& rec = run.metrics.queries[q];
       if (!rec.scored || rec.top1_frame < 0) continue;
-      const auto points = [&](int frame) {
-        std::vector<Point2> p = result.features[frame].keypoints;
-        if (name == "dlcd") {
-          p.clear();
-          for (const HoiFeature& h : result.features[frame].hoi) p.push_back(h.point);
-        }
-        return p;
-      };
-      const std::vector<Point2> qp = points(rec.frame), rp = points(rec.top1_frame);
-      const std::optional<PairMatches> m = method.MatchPair(
-          {own.get(), qp, rp, rec.frame, rec.top1_frame, dataset.manifest().intrinsics.height, dataset.manifest().seed});
-      ASSERT_TRUE(m.has_value());
-      EXPECT_EQ(m->inliers, rec.top1_score) << name << " query " << rec.frame;
-      ++drawn;
+      const FrameFeatures &qf = result.features[rec.frame], &rf = result.features[rec.top1_frame];
+      const std::vector<Point2> qp = qf.Points(shown), rp = rf.Points(shown);
+      const std::optional<PairMatches> m =
+          method.MatchPair({own.get(), qp, rp, qf.Hoi(shown), rf.Hoi(shown), rec.frame, rec.top1_frame,
+                            dataset.manifest().intrinsics.height, dataset.manifest().seed});
+      ASSERT_TRUE(m.has_value()) << run.name;
+      EXPECT_EQ(m->inliers, rec.top1_score) << run.name << " query " << rec.frame;
+      ++drawn[run.name];
+      matched[run.name] += m->matches.empty() ? 0 : 1;
     }
   }
-  EXPECT_GT(drawn, 0);
-  EXPECT_FALSE(FindMethod("fusion").MatchPair({nullptr, {}, {}, 0, 1, 96, 1}).has_value());
+  for (const std::string name : {"slcd", "dlcd", "dlcd-track", "dlcd-oracle", "slcd-ideal"}) {
+    EXPECT_GT(drawn[name], 0) << name;
+    EXPECT_GT(matched[name], 0) << name << " matched no points in any sampled pair";
+  }
+  EXPECT_NE(a.html.find("The tiles of fusion, fusion-tc, thumb, thumb-seq show the two frames alone"), std::string::npos);
 }
 
 TEST(SuiteReportHtml, HoldsOneRowPerRunLinkingToItsReport) {

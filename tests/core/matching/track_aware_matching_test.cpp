@@ -180,6 +180,31 @@ TEST(TrackAwareMatching, SeedKeyDiffersFromPairToPairAndScoreIsRepeatable) {
   EXPECT_LT(first, static_cast<int>(query.size()));
 }
 
+TEST(TrackAwareMatching, MatchTrackAwarePairGivesTheCorrespondencesAndInliersBehindTheScore) {
+  // The report's gallery draws these: the contour correspondences, and as many RANSAC inliers
+  // (from the same stream) as ScoreTrackAwarePair counts, with some correspondences rejected.
+  const TrackAwareOptions options;
+  const RansacOptions ransac;
+  const std::vector<HoiFeature> query = ThreePersons(1, Point2(0, 0));
+  std::vector<HoiFeature> reference = ThreePersons(7, Point2(4, 2));
+  for (size_t i = 0; i < reference.size(); i += 3) reference[i].point.y += 9.0f;  // outliers
+  const TrackAwareFrame q = PrepareTrackAwareFrame(query, options), r = PrepareTrackAwareFrame(reference, options);
+  const PairMatches pair = MatchTrackAwarePair(q, r, options, ransac, 9, 4, 5);
+  EXPECT_EQ(pair.matches, TrackAwareCorrespondences(query, reference, options));
+  ASSERT_EQ(pair.inlier.size(), pair.matches.size());
+  int marked = 0;
+  for (uint8_t inlier : pair.inlier) marked += inlier;
+  EXPECT_EQ(marked, pair.inliers);
+  EXPECT_EQ(pair.inliers, ScoreTrackAwarePair(q, r, options, ransac, 9, 4, 5));
+  EXPECT_GT(pair.inliers, 0);
+  EXPECT_LT(pair.inliers, static_cast<int>(pair.matches.size()));
+  // No persons: no matches, no inliers.
+  const PairMatches empty = MatchTrackAwarePair(q, PrepareTrackAwareFrame({}, options), options, ransac, 9, 4, 5);
+  EXPECT_TRUE(empty.matches.empty());
+  EXPECT_TRUE(empty.inlier.empty());
+  EXPECT_EQ(empty.inliers, 0);
+}
+
 TEST(TrackAwareMatching, OptionChecksNameTheBadField) {
   TrackAwareOptions options;
   EXPECT_EQ(options.Check(), "");

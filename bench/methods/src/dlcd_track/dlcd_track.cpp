@@ -92,6 +92,14 @@ class DlcdTrack : public LoopClosureMethod {
     out.extract_ms = c.PerQuery(extract_ms);
     return out;
   }
+  // The pair's contour correspondences and RANSAC as Score runs them (same options and stream),
+  // on the HOI points with their track ids.
+  std::optional<PairMatches> MatchPair(const PairMatchInput& input) const override {
+    const DlcdTrackOptions& own = OptionsValue<DlcdTrackOptions>(input.own);
+    return MatchTrackAwarePair(PrepareTrackAwareFrame(input.query_hoi, own.track_aware),
+                               PrepareTrackAwareFrame(input.reference_hoi, own.track_aware), own.track_aware,
+                               own.ransac, input.seed, input.query_frame, input.reference_frame);
+  }
 };
 
 }  // namespace

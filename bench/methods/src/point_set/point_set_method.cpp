@@ -36,10 +36,15 @@ MatchOptions MatchOf(const MethodContext& context) {
 
 }  // namespace
 
-// The report draws the camera's front ends' features; the oracles' are not kept in the result.
+// The features of the front end the method's index holds (the bench keeps each one's per frame).
 ShownFeatures PointSetMethod::Features() const {
-  if (front_end_ == FrontEnd::kKeypoints) return ShownFeatures::kKeypoints;
-  return front_end_ == FrontEnd::kPersons ? ShownFeatures::kHoiPoints : ShownFeatures::kNone;
+  switch (front_end_) {
+    case FrontEnd::kKeypoints: return ShownFeatures::kKeypoints;
+    case FrontEnd::kPersons: return ShownFeatures::kHoiPoints;
+    case FrontEnd::kIdealKeypoints: return ShownFeatures::kIdealKeypoints;
+    case FrontEnd::kTruePersons: return ShownFeatures::kTrueHoiPoints;
+    default: return ShownFeatures::kNone;
+  }
 }
 
 const OptionTable<PointSetOptions>& PointSetOptions::Table(bool lo) {
@@ -63,7 +68,7 @@ MethodScores PointSetMethod::Score(const MethodContext& context) const {
 }
 
 // The pair's MNN, vertical filter and RANSAC as ScoreDatabases runs them (the same key, options
-// and stream), on the shown features, which are the index's points for the camera's front ends.
+// and stream), on the shown features, which are the index's points.
 std::optional<PairMatches> PointSetMethod::MatchPair(const PairMatchInput& input) const {
   if (Features() == ShownFeatures::kNone) return std::nullopt;
   const PointSetOptions& own = OptionsValue<PointSetOptions>(input.own);

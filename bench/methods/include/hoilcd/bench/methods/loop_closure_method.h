@@ -52,14 +52,29 @@ struct MethodContext {
   }
 };
 
-// Which per-frame features the report draws for a method's matches.
-enum class ShownFeatures { kNone, kKeypoints, kHoiPoints };
+// Which per-frame features the report draws for a method's matches: a front end's, as the
+// bench keeps them per frame (runner.h FrameFeatures).
+enum class ShownFeatures {
+  kNone,            // none: the method matches no points (thumbnails, fusion of rankings)
+  kKeypoints,       // FrontEnd::kKeypoints' corners
+  kHoiPoints,       // FrontEnd::kPersons' HOI points
+  kIdealKeypoints,  // FrontEnd::kIdealKeypoints' corners (an oracle's)
+  kTrueHoiPoints,   // FrontEnd::kTruePersons' HOI points (an oracle's)
+};
+// Whether the features are HOI points (with their persons' track ids).
+inline bool IsHoi(ShownFeatures features) {
+  return features == ShownFeatures::kHoiPoints || features == ShownFeatures::kTrueHoiPoints;
+}
 
 // One (query, reference) pair as the report's gallery asks a method to match it again.
 struct PairMatchInput {
   const MethodOptions* own;                  // the method's own options as it ran (null: none)
   const std::vector<Point2>& query_points;   // the query frame's shown features (Features()), px
   const std::vector<Point2>& reference_points;  // the reference frame's, px
+  // When Features() are HOI points, the same points with their persons' track ids, in the same
+  // order; empty otherwise.
+  const std::vector<HoiFeature>& query_hoi;
+  const std::vector<HoiFeature>& reference_hoi;
   int query_frame, reference_frame;          // frame indices (they key RANSAC's stream)
   int image_height_px;                       // the dataset's
   uint64_t seed;                             // the dataset's, as in MethodContext
@@ -86,7 +101,7 @@ class LoopClosureMethod {
   // The matches behind one pair's score, for the report's gallery (report.html), which re-runs
   // only its sampled pairs: a method whose Features() are shown may return the matches its Score
   // found between those features of the two frames, with their RANSAC inliers (inliers equal to
-  // its score). nullopt (the default): nothing to draw but the features.
+  // its score). nullopt (the default): nothing to draw but the features; the page says so.
   virtual std::optional<PairMatches> MatchPair(const PairMatchInput& input) const {
     (void)input;
     return std::nullopt;

@@ -10,6 +10,7 @@
 
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/evaluation/query_conditions.h"
+#include "hoilcd/bench/report/gallery_sample.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/dataset.h"
 
@@ -29,7 +30,7 @@ struct GalleryInput {
   std::vector<GalleryMethod> methods;              // in report order
   const std::vector<FrameFeatures>* features;      // per frame (BenchResult::features); null: none
   std::vector<std::string> params;                 // the run's --param values (the methods' own options)
-  int per_group;                                   // SampleGallery's
+  GallerySampling sampling;                        // SampleGallery's
 };
 
 struct Gallery {

@@ -11,6 +11,7 @@
 
 #include "hoilcd/bench/evaluation/evaluate.h"
 #include "hoilcd/bench/evaluation/suite_summary.h"
+#include "hoilcd/bench/report/gallery_sample.h"
 #include "hoilcd/bench/runner/online.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -18,11 +19,11 @@
 namespace hoilcd {
 
 // What a report page shows besides the result: its figures (PNG files already written in `dir`,
-// in report.md's order) and the gallery's sample size per group.
+// in report.md's order) and how the gallery samples its queries.
 struct HtmlReportInput {
   std::string dir;                   // the report folder
   std::vector<std::string> figures;  // file names in dir
-  int gallery_per_group;             // SampleGallery's
+  GallerySampling gallery;           // SampleGallery's
 };
 
 // The bench's page (hoilcd bench and run) and its gallery's sample (query indices), which report.json

@@ -17,6 +17,7 @@
 #include "hoilcd/bench/evaluation/run_metrics.h"
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
 #include "hoilcd/bench/methods/bench_options.h"
+#include "hoilcd/bench/methods/loop_closure_method.h"
 #include "hoilcd/bench/slam/slam_run.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/features/hoi_features.h"
@@ -24,10 +25,18 @@
 
 namespace hoilcd {
 
-// Features a method computed for one frame (for the report's match pictures).
+// The point front ends' features of one frame (for the report's match pictures); empty for a
+// front end that did not run.
 struct FrameFeatures {
-  std::vector<Point2> keypoints;   // SLCD
-  std::vector<HoiFeature> hoi;     // DLCD
+  std::vector<Point2> keypoints;        // SLCD's (FrontEnd::kKeypoints)
+  std::vector<HoiFeature> hoi;          // DLCD's (FrontEnd::kPersons)
+  std::vector<Point2> ideal_keypoints;  // slcd-ideal's (FrontEnd::kIdealKeypoints)
+  std::vector<HoiFeature> true_hoi;     // dlcd-oracle's (FrontEnd::kTruePersons)
+
+  // The points a method with these Features() matches, in feature order (empty for kNone).
+  std::vector<Point2> Points(ShownFeatures shown) const;
+  // The same HOI points with their track ids when IsHoi(shown); else empty.
+  const std::vector<HoiFeature>& Hoi(ShownFeatures shown) const;
 };
 
 struct MethodRun {

@@ -129,14 +129,15 @@ int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& refer
               const MatchOptions& match_options, const RansacOptions& ransac_options,
               uint64_t seed, int query_id, int reference_id);
 
-// The matches behind one pair's score, for pictures (the report's gallery): the pairs kept by MNN
-// and the vertical filter (indices into query and reference), and which of them RANSAC counts as
-// inliers. inliers equals ScorePair(...) with the same arguments.
+// The matches behind one pair's score, for pictures (the report's gallery): the matches RANSAC
+// ran on (indices into query and reference) and which of them it counts as inliers.
 struct PairMatches {
-  std::vector<Correspondence> matches;  // after the vertical filter, sorted by query index
+  std::vector<Correspondence> matches;  // MatchPair's: after the vertical filter, sorted by query index
   std::vector<uint8_t> inlier;          // per match: 1 when a RANSAC inlier
   int inliers = 0;                      // the pair's score
 };
+// The pairs kept by MNN and the vertical filter, and RANSAC's inliers among them; inliers equals
+// ScorePair(...) with the same arguments.
 PairMatches MatchPair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
                       const MatchOptions& match_options, const RansacOptions& ransac_options, uint64_t seed,
                       int query_id, int reference_id);

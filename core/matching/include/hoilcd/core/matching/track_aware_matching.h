@@ -9,6 +9,7 @@
 
 #include "hoilcd/core/estimators/homography_ransac.h"
 #include "hoilcd/core/features/hoi_features.h"
+#include "hoilcd/core/matching/matching.h"
 #include "hoilcd/core/tracking/lapjv.h"
 #include "hoilcd/core/util/option_table.h"
 
@@ -88,5 +89,12 @@ int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
 int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
                         const TrackAwareOptions& options, const RansacOptions& ransac_options,
                         uint64_t seed, int query_id, int reference_id);
+
+// The matches behind ScoreTrackAwarePair's score, for pictures (the report's gallery): the
+// contour correspondences (person pair by person pair) and which of them RANSAC counts as
+// inliers, from the same stream; inliers equals ScoreTrackAwarePair(...) with the same arguments.
+PairMatches MatchTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
+                                const TrackAwareOptions& options, const RansacOptions& ransac_options,
+                                uint64_t seed, int query_id, int reference_id);
 
 }  // namespace hoilcd
