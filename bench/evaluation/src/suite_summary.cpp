@@ -25,7 +25,7 @@ nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 nlohmann::json IntervalJson(const Interval& i) { return nlohmann::json::array({Number(i.low), Number(i.high)}); }
 
-std::string Cell(double v) { return std::isfinite(v) ? Fixed(v, 3) : "—"; }
+std::string Cell(double v) { return Fixed(v, 3); }
 
 std::string IntervalCell(double mean, const Interval& i) {
   return Cell(mean) + " [" + Cell(i.low) + ", " + Cell(i.high) + "]";

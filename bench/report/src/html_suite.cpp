@@ -18,7 +18,7 @@ std::string RunsTable(const SuiteSummary& summary, const std::map<std::string, s
     }
     const auto report = run_reports.find(summary.runs[r]);
     cells.push_back(report == run_reports.end()
-                        ? TextCell("-")
+                        ? TextCell(kMissingFigure)
                         : HtmlCell{"<a href=\"" + EscapeHtml(report->second + "/report.html") + "\">report.html</a>", NAN});
     rows.push_back(std::move(cells));
   }

@@ -46,7 +46,7 @@ double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, con
 }
 
 std::string FormatValue(const InspectFigure& f) {
-  if (!std::isfinite(f.value)) return "-";  // nothing to measure (no second lap, no person), as in the tables
+  if (!std::isfinite(f.value)) return kMissingFigure;  // nothing to measure (no second lap, no person)
   char text[64];
   if (f.unit.empty() && f.value == std::round(f.value)) {
     std::snprintf(text, sizeof(text), "%.0f", f.value);

@@ -17,6 +17,7 @@
 #include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/progress.h"
 #include "hoilcd/core/util/stats.h"
+#include "hoilcd/core/util/text.h"
 #include "steps.h"
 
 namespace hoilcd {
@@ -84,13 +85,6 @@ nlohmann::json TimingRowsJson(const std::vector<OnlineTimingRow>& rows) {
                    {"p50_ms", JsonNumber(r.p50_ms)}, {"p99_ms", JsonNumber(r.p99_ms)}});
   }
   return out;
-}
-
-std::string Fixed(double v, int digits) {
-  if (!std::isfinite(v)) return "–";
-  char buf[48];
-  std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
-  return buf;
 }
 
 }  // namespace

@@ -8,7 +8,7 @@
 namespace hoilcd {
 
 std::string Fixed(double value, int digits) {
-  if (!std::isfinite(value)) return "-";
+  if (!std::isfinite(value)) return kMissingFigure;
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
   return buffer;

@@ -7,6 +7,7 @@
 // east one, turns in the corridor's east end and comes back westwards through the south rooms.
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "hoilcd/core/util/random.h"

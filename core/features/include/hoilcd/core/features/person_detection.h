@@ -1,21 +1,6 @@
 // Person detection in thermal frames for the dynamic-landmark loop closure (DLCD): threshold at
 // clothing temperature, clean up, split blobs where seated neighbours touch, reject warm objects
 // by shape and temperature, and score each person in (0, 1] for ByteTrack.
-//
-// Tuning: the rules were first written on synthetic shapes, then tuned on 400 rendered frames of
-// scenes/paper_room.json (hoilcd render --frames 400), scored against persons.json ignoring
-// persons under 20 % visible or with a visible box under 16 px high. There, people sit in rows
-// behind a table: their torsos overlap without a column valley, and the table hides their laps
-// while legs show below it. Splitting between skin-temperature faces (radiometric frames only)
-// and joining headless parts below a person raised detection precision/recall at IoU 0.5 from
-// 0.34/0.31 to 0.76/0.53. Threshold, clean-up and rejection values were already near their best.
-//
-// The skin-or-clothing rule (min_top_skin_px ...) was written for scenes/empty_room.json, where
-// warm laptops and a monitor screen passed every shape rule in 410 of 1996 frames; with it none
-// does. Detection precision/recall (bench ComputeTrackingMetrics on raw detections, same frames
-// and filter) went from 0.670/0.440 to 0.676/0.440 on 400 paper-room frames and from 0.612/0.330
-// to 0.644/0.325 on all 1996, where DLCD's MRR fell from 0.497 to 0.486: legs seen alone below a
-// table (trousers read like a monitor screen) had given it stable floor contacts.
 #pragma once
 
 #include <string>

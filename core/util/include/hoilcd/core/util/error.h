@@ -1,4 +1,4 @@
-// Errors, three kinds kept apart (STYLE.md):
+// Errors, three kinds kept apart (docs/design.md, "Errors"):
 //  - InputError: bad user input (scene file, glTF, dataset, CLI argument); carries where + what.
 //  - HOILCD_CHECK*: API misuse by our own callers; throws std::logic_error with file:line.
 //  - assert: internal invariants in hot loops (debug only).

@@ -98,10 +98,11 @@ class Rng {
     }
     return static_cast<uint32_t>(m >> 32);
   }
-  // Standard normal (Box–Muller, one value per call for simplicity of keying).
+  // Uniform in [lo, hi).
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
   // Uniform in [0, 1) with 24 bits, one draw: for hot loops (sensor noise).
   float UniformFloat() { return static_cast<float>(NextU32() >> 8) * (1.0f / 16777216.0f); }
+  // Standard normal (Box–Muller, one value per call for simplicity of keying).
   double Normal() {
     const double u1 = 1.0 - Uniform();
     const double u2 = Uniform();

@@ -6,7 +6,10 @@
 
 namespace hoilcd {
 
-// `value` with `digits` decimals ("%.*f"); "-" when it is not finite (a missing figure).
+// What every table and report shows for a missing figure.
+inline constexpr char kMissingFigure[] = "-";
+
+// `value` with `digits` decimals ("%.*f"); kMissingFigure when it is not finite.
 std::string Fixed(double value, int digits = 3);
 
 // The shortest decimal text that reads back as exactly the same double (std::to_chars).
