@@ -271,10 +271,7 @@ void RoomNetwork::SetPeople(const std::vector<PersonSource>& people) {
       bool near = false;
       for (int k = 0; k < kSamples; ++k) {
         const ThermalTriangle& t = triangles[rng.UniformInt(static_cast<uint32_t>(triangles.size()))];
-        const double r1 = std::sqrt(rng.Uniform()), r2 = rng.Uniform();
-        const Eigen::Vector3f point = static_cast<float>(1 - r1) * t.corners[0] +
-                                      static_cast<float>(r1 * (1 - r2)) * t.corners[1] +
-                                      static_cast<float>(r1 * r2) * t.corners[2];
+        const Eigen::Vector3f point = UniformPointOn(t, &rng);
         const Eigen::Vector3f to = person.centre_m - point;
         const float d = to.norm();
         if (d > kReachM || d <= radius) continue;
@@ -341,22 +338,14 @@ const std::vector<float>& RoomNetwork::SunSharesOfKey(int64_t key) {
       const std::vector<ThermalTriangle>& triangles = triangles_[static_cast<size_t>(i)];
       if (triangles.empty() || solar_absorptance_[static_cast<size_t>(i)] <= 0) return;
       // Keyed points spread over the node's triangles by area, so the same at any thread count.
-      std::vector<float> cumulative;
-      float total = 0;
-      for (const ThermalTriangle& t : triangles) cumulative.push_back(total += TriangleArea(t.corners[0], t.corners[1], t.corners[2]));
+      const AreaSampler sampler(triangles);
       Rng rng = KeyedRng(seed_, "room.thermal.sun", static_cast<uint64_t>(i));
       double sum = 0;
       for (int k = 0; k < kSunSamples; ++k) {
-        const auto pick = static_cast<float>(rng.Uniform()) * total;
-        const size_t at = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(),
-                                           triangles.size() - 1);
-        const ThermalTriangle& t = triangles[at];
-        const double r1 = std::sqrt(rng.Uniform()), r2 = rng.Uniform();
+        Eigen::Vector3f point;
+        const ThermalTriangle& t = sampler.Draw(&rng, &point);
         const float cos_incidence = t.normal.dot(sun.direction);
         if (cos_incidence <= 0) continue;
-        const Eigen::Vector3f point = static_cast<float>(1 - r1) * t.corners[0] +
-                                      static_cast<float>(r1 * (1 - r2)) * t.corners[1] +
-                                      static_cast<float>(r1 * r2) * t.corners[2];
         if (SunlitThroughWindow(point, t.normal, sun.direction)) sum += cos_incidence;
       }
       shares[static_cast<size_t>(i)] = static_cast<float>(sum / kSunSamples);
@@ -370,7 +359,7 @@ std::vector<float> RoomNetwork::SunShares(double time_s) {
   const double at = time_s / kSunStepS;
   const auto key = static_cast<int64_t>(std::floor(at));
   const auto w = static_cast<float>(at - static_cast<double>(key));
-  const std::vector<float> a = SunSharesOfKey(key);
+  const std::vector<float>& a = SunSharesOfKey(key);  // kept: the next call erases only older keys
   const std::vector<float>& b = SunSharesOfKey(key + 1);
   std::vector<float> shares(a.size());
   for (size_t i = 0; i < a.size(); ++i) shares[i] = (1 - w) * a[i] + w * b[i];

@@ -31,6 +31,29 @@ Eigen::Vector3f CosineDirection(const Eigen::Vector3f& n, double u1, double u2) 
 
 }  // namespace
 
+Eigen::Vector3f UniformPointOn(const ThermalTriangle& t, Rng* rng) {
+  const double r1 = std::sqrt(rng->Uniform()), r2 = rng->Uniform();
+  return static_cast<float>(1 - r1) * t.corners[0] + static_cast<float>(r1 * (1 - r2)) * t.corners[1] +
+         static_cast<float>(r1 * r2) * t.corners[2];
+}
+
+AreaSampler::AreaSampler(const std::vector<ThermalTriangle>& triangles) : triangles_(triangles) {
+  for (const ThermalTriangle& t : triangles) {
+    total_ += 0.5 * (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).norm();
+    cumulative_.push_back(total_);
+  }
+}
+
+const ThermalTriangle& AreaSampler::Draw(Rng* rng, Eigen::Vector3f* point) const {
+  const double pick = rng->Uniform() * total_;
+  const size_t which = std::min(
+      static_cast<size_t>(std::lower_bound(cumulative_.begin(), cumulative_.end(), pick) - cumulative_.begin()),
+      triangles_.size() - 1);
+  const ThermalTriangle& t = triangles_[which];
+  *point = UniformPointOn(t, rng);
+  return t;
+}
+
 ViewFactors CastViewFactors(const RayCaster& caster, const std::vector<std::vector<ThermalTriangle>>& node_triangles,
                             const std::vector<double>& areas_m2,
                             const std::function<int(const RayHit&, const Eigen::Vector3f&)>& node_of_hit,
@@ -41,34 +64,21 @@ ViewFactors CastViewFactors(const RayCaster& caster, const std::vector<std::vect
   std::vector<std::vector<std::pair<int, float>>> hits(static_cast<size_t>(n));
   std::vector<float> open(static_cast<size_t>(n), 0.0f);
   ParallelForChunks(n, 16, threads, [&](int64_t begin, int64_t end, int /*worker*/) {
-    std::vector<double> cumulative;
     std::vector<int> counts;
     Eigen::Vector3f origins[kRayPacketSize], directions[kRayPacketSize];
     RayHitPacket packet;
     for (int64_t i = begin; i < end; ++i) {
       const std::vector<ThermalTriangle>& triangles = node_triangles[static_cast<size_t>(i)];
       if (triangles.empty()) continue;
-      cumulative.clear();
-      double total = 0;
-      for (const ThermalTriangle& t : triangles) {
-        total += 0.5 * (t.corners[1] - t.corners[0]).cross(t.corners[2] - t.corners[0]).norm();
-        cumulative.push_back(total);
-      }
+      const AreaSampler sampler(triangles);
       counts.assign(static_cast<size_t>(n), 0);
       int missed = 0;
       Rng rng = KeyedRng(seed, "thermal.view_factors", static_cast<uint64_t>(i));
       for (int first = 0; first < rays_per_node; first += kRayPacketSize) {
         const int count = std::min(kRayPacketSize, rays_per_node - first);
         for (int k = 0; k < count; ++k) {
-          const double pick = rng.Uniform() * total;
-          const size_t which = std::min(static_cast<size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), pick) -
-                                                            cumulative.begin()),
-                                        triangles.size() - 1);
-          const ThermalTriangle& t = triangles[which];
-          const double r1 = std::sqrt(rng.Uniform()), r2 = rng.Uniform();
-          const Eigen::Vector3f p = static_cast<float>(1 - r1) * t.corners[0] +
-                                    static_cast<float>(r1 * (1 - r2)) * t.corners[1] +
-                                    static_cast<float>(r1 * r2) * t.corners[2];
+          Eigen::Vector3f p;
+          const ThermalTriangle& t = sampler.Draw(&rng, &p);
           origins[k] = p + 1e-4f * t.normal;
           const double u1 = rng.Uniform(), u2 = rng.Uniform();
           directions[k] = CosineDirection(t.normal, u1, u2);

@@ -13,6 +13,7 @@
 #include <functional>
 #include <vector>
 
+#include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/world/ray_caster.h"
 
 namespace hoilcd {
@@ -36,6 +37,24 @@ struct ThermalNode {
 struct ThermalTriangle {
   std::array<Eigen::Vector3f, 3> corners;
   Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();
+};
+
+// A point drawn uniformly on a triangle from two keyed draws (√u1 and u2, in that order).
+Eigen::Vector3f UniformPointOn(const ThermalTriangle& t, Rng* rng);
+
+// Points drawn uniformly by area over one node's triangles: a triangle by its share of the area
+// (one draw), then a point on it (two draws). The view factors and the sun's lit shares sample a
+// node with it.
+class AreaSampler {
+ public:
+  explicit AreaSampler(const std::vector<ThermalTriangle>& triangles);
+  // The triangle the next point lies on, and the point.
+  const ThermalTriangle& Draw(Rng* rng, Eigen::Vector3f* point) const;
+
+ private:
+  const std::vector<ThermalTriangle>& triangles_;
+  std::vector<double> cumulative_;
+  double total_ = 0;
 };
 
 // F_ij, the share of what node i emits that first lands on node j: sparse rows, each summing to
