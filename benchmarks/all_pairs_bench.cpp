@@ -5,10 +5,10 @@
 // replaced, so a tenth of the pairs are true revisits with many inliers and the rest score low.
 // Counters: pairs_per_s (wall clock), cpu_us_per_pair (process CPU time over all threads, which
 // a busy shared machine inflates less than wall time) and mean_score (inliers per pair).
-#include <benchmark/benchmark.h>
-
 #include <ctime>
 #include <vector>
+
+#include <benchmark/benchmark.h>
 
 #include "hoilcd/core/place_recognition/retrieval_index.h"
 #include "hoilcd/core/util/random.h"
@@ -23,8 +23,7 @@ constexpr int kPlaces = 100;
 std::vector<Point2> RandomPoints(Rng& rng, int n) {
   std::vector<Point2> points;
   for (int i = 0; i < n; ++i) {
-    points.emplace_back(static_cast<float>(rng.Uniform(0, 256)),
-                        static_cast<float>(rng.Uniform(0, 192)));
+    points.emplace_back(static_cast<float>(rng.Uniform(0, 256)), static_cast<float>(rng.Uniform(0, 192)));
   }
   return points;
 }
@@ -44,8 +43,7 @@ RetrievalIndex BuildIndex() {
     std::vector<Point2> frame;
     for (const Point2& p : places[f % kPlaces]) {
       if (rng.Uniform() < 0.3) {
-        frame.emplace_back(static_cast<float>(rng.Uniform(0, 256)),
-                           static_cast<float>(rng.Uniform(0, 192)));
+        frame.emplace_back(static_cast<float>(rng.Uniform(0, 256)), static_cast<float>(rng.Uniform(0, 192)));
       } else {
         frame.emplace_back(p.x + shift_x + static_cast<float>(rng.Normal(0, 1)),
                            p.y + shift_y + static_cast<float>(rng.Normal(0, 1)));
@@ -77,8 +75,7 @@ void BM_AllPairs(benchmark::State& state) {
   const double cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   const double pairs = static_cast<double>(queries.size()) * database.size();
   state.counters["cpu_us_per_pair"] = cpu_s * 1e6 / (pairs * state.iterations());
-  state.counters["pairs_per_s"] =
-      benchmark::Counter(pairs * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["pairs_per_s"] = benchmark::Counter(pairs * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["mean_score"] = score_sum / pairs;
 }
 

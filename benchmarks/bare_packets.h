@@ -2,14 +2,14 @@
 // renderer's primary rays as 4x4-pixel rtcIntersect16 packets (coherent), hits stored, no shading.
 #pragma once
 
-#include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
-
-#include <Eigen/Core>
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
+
+#include <Eigen/Core>
+#include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
 
 #include "hoilcd/core/geometry/camera.h"
 #include "hoilcd/core/util/parallel.h"
@@ -26,8 +26,8 @@ struct BareHits {
 // `cam_directions`: unit ray directions in the camera frame, one per pixel, row by row. Packets
 // past the image's right or bottom edge repeat its last column or row.
 inline void CastBarePackets(const World& world, const CameraIntrinsics& intrinsics,
-                            const std::vector<Eigen::Vector3f>& cam_directions, const CameraPose& pose,
-                            int threads, BareHits* hits) {
+                            const std::vector<Eigen::Vector3f>& cam_directions, const CameraPose& pose, int threads,
+                            BareHits* hits) {
   const int W = intrinsics.width, H = intrinsics.height;
   RTCScene scene = world.caster().embree_scene();
   const Rigid3 world_from_cam = pose.WorldFromCam();

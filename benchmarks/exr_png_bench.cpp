@@ -7,16 +7,15 @@
 // spread along the route, each rendered and passed through the sensor model once, up front.
 // After the table: the largest error of Z stored as half over those frames, in metres.
 // Run: build/bin/exr_png_bench            (scene: DataDir()/scenes/paper_room.json)
-#include <benchmark/benchmark.h>
-
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <string>
 #include <vector>
+
+#include <benchmark/benchmark.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
@@ -52,9 +51,10 @@ struct Setup {
       world.SetTime(run.samples[f].time_s);
       const FrameBuffers buffers = renderer.Render(run.samples[f].camera);
       // A fresh model per frame (the model takes frames in order); its noise is a frame's noise.
-      SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz, scene.seed, &table, 0);
-      frames.push_back({sensor.Apply(0, buffers.radiance), sensor.IdealTemperature(buffers.radiance),
-                        buffers.depth_m, buffers.instance, buffers.class_id});
+      SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz, scene.seed, &table,
+                         0);
+      frames.push_back({sensor.Apply(0, buffers.radiance), sensor.IdealTemperature(buffers.radiance), buffers.depth_m,
+                        buffers.instance, buffers.class_id});
     }
   }
   Scene scene;
@@ -77,12 +77,17 @@ cv::Mat As(const cv::Mat& m, int type) {
 
 // All float32, as datasets were written before sim revision 9.
 ExrChannels Float32Layout(const Frame& f) {
-  return {{"T", f.temperature}, {"T_true", f.ideal}, {"Z", f.depth_m},
-          {"id", As(f.instance, CV_32F)}, {"class", As(f.class_id, CV_32F)}};
+  return {{"T", f.temperature},
+          {"T_true", f.ideal},
+          {"Z", f.depth_m},
+          {"id", As(f.instance, CV_32F)},
+          {"class", As(f.class_id, CV_32F)}};
 }
 
 // The dataset's layout (FrameExrChannels): Z half, id and class uint.
-ExrChannels DatasetLayout(const Frame& f) { return FrameExrChannels(f.temperature, f.ideal, f.depth_m, f.instance, f.class_id); }
+ExrChannels DatasetLayout(const Frame& f) {
+  return FrameExrChannels(f.temperature, f.ideal, f.depth_m, f.instance, f.class_id);
+}
 
 // Per-frame CPU time of the calling thread (encoders run on one thread each).
 double ThreadCpuSeconds() {
@@ -121,8 +126,9 @@ std::vector<cv::Mat> PngImages(int bits) {
   Setup& s = Shared();
   std::vector<cv::Mat> images;
   for (const Frame& f : s.frames) {
-    images.push_back(bits == 8 ? ToDisplay8Bit(f.temperature, s.sensor_options.display_min_c, s.sensor_options.display_max_c)
-                               : ToCentikelvin16(f.temperature));
+    images.push_back(bits == 8
+                         ? ToDisplay8Bit(f.temperature, s.sensor_options.display_min_c, s.sensor_options.display_max_c)
+                         : ToCentikelvin16(f.temperature));
   }
   return images;
 }
@@ -142,8 +148,10 @@ void BM_Png(benchmark::State& state, int bits, int level) {
       std::vector<uchar> png;
       std::string grey;
       const double start = ThreadCpuSeconds();
-      if (level == kLibdeflate) grey = EncodeGreyPng(image);
-      else cv::imencode(".png", image, png, params);
+      if (level == kLibdeflate)
+        grey = EncodeGreyPng(image);
+      else
+        cv::imencode(".png", image, png, params);
       cpu_s += ThreadCpuSeconds() - start;
       bytes += png.size() + grey.size();  // one of them is empty
       benchmark::DoNotOptimize(png.data());
@@ -165,8 +173,10 @@ void BM_PngDecode(benchmark::State& state, int bits, bool fast) {
     for (const std::string& file : files) {
       cv::Mat image;
       const double start = ThreadCpuSeconds();
-      if (fast) HOILCD_CHECK(DecodeGreyPng(file, image_size.width, image_size.height, type, &image));
-      else image = cv::imdecode(std::vector<uchar>(file.begin(), file.end()), cv::IMREAD_UNCHANGED);
+      if (fast)
+        HOILCD_CHECK(DecodeGreyPng(file, image_size.width, image_size.height, type, &image));
+      else
+        image = cv::imdecode(std::vector<uchar>(file.begin(), file.end()), cv::IMREAD_UNCHANGED);
       cpu_s += ThreadCpuSeconds() - start;
       bytes += file.size();
       benchmark::DoNotOptimize(image.data);

@@ -6,9 +6,9 @@
 // spread holding 3/4 of its points, the rest uniform. A frame sees its place with a shift of up
 // to +-8 px, 1 px jitter and 30 % of the points replaced, so an eighth of the pairs share a place.
 // Counters: items_per_second (pairs) and matches_per_pair.
-#include <benchmark/benchmark.h>
-
 #include <vector>
+
+#include <benchmark/benchmark.h>
 
 #include "hoilcd/core/matching/matching.h"
 #include "hoilcd/core/util/random.h"

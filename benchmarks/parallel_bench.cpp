@@ -1,10 +1,10 @@
 // Cost of one parallel loop call (core/util/parallel.h) with almost no work in it: what every row-chunked
 // render pass, sensor pass and per-query matching call pays on top of its work.
 // Run: build/bin/parallel_bench --benchmark_min_time=0.5
-#include <benchmark/benchmark.h>
-
 #include <atomic>
 #include <cstdint>
+
+#include <benchmark/benchmark.h>
 
 #include "hoilcd/core/util/parallel.h"
 

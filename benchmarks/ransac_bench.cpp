@@ -1,11 +1,9 @@
 // One RANSAC homography call (100 hypotheses, 5 px) at 50, 200 and 500 matches: ours (plain, LO
-// with 2 refits, and without redrawing degenerate samples, where each uses up a trial) against cv::findHomography with RANSAC and USAC_FAST (maxIters = 100), in
-// the same run. Problems have 40 % inliers with 1 px noise, so OpenCV's adaptive stop (needs
-// ~200 iterations at 99.5 % confidence) never cuts its 100 short. Counter `recovery` is the
+// with 2 refits, and without redrawing degenerate samples, where each uses up a trial) against cv::findHomography with
+// RANSAC and USAC_FAST (maxIters = 100), in the same run. Problems have 40 % inliers with 1 px noise, so OpenCV's
+// adaptive stop (needs ~200 iterations at 99.5 % confidence) never cuts its 100 short. Counter `recovery` is the
 // fraction of 400 problems where >= 90 % of the true inliers are in the returned inlier set.
 // After the table, the speed ratios of this one run are printed.
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -13,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <benchmark/benchmark.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
@@ -36,9 +35,8 @@ struct Problem {
 Problem MakeProblem(uint64_t seed, int n) {
   Rng rng = KeyedRng(seed, "bench.ransac", n);
   Eigen::Matrix3d h;
-  h << rng.Uniform(0.8, 1.2), rng.Uniform(-0.15, 0.15), rng.Uniform(-25, 25),
-      rng.Uniform(-0.15, 0.15), rng.Uniform(0.8, 1.2), rng.Uniform(-20, 20),
-      rng.Uniform(-6e-4, 6e-4), rng.Uniform(-6e-4, 6e-4), 1.0;
+  h << rng.Uniform(0.8, 1.2), rng.Uniform(-0.15, 0.15), rng.Uniform(-25, 25), rng.Uniform(-0.15, 0.15),
+      rng.Uniform(0.8, 1.2), rng.Uniform(-20, 20), rng.Uniform(-6e-4, 6e-4), rng.Uniform(-6e-4, 6e-4), 1.0;
   Problem p;
   p.num_inliers = static_cast<int>(n * kInlierFraction);
   for (int i = 0; i < n; ++i) {
@@ -67,8 +65,7 @@ std::vector<uint8_t> Run(Method method, const Problem& p, uint64_t call) {
     return EstimateHomographyRansac(p.query, p.reference, p.matches, options, call).inlier_mask;
   }
   std::vector<uint8_t> mask;
-  cv::findHomography(p.reference, p.query, method == Method::kCvRansac ? cv::RANSAC : cv::USAC_FAST,
-                     5.0, mask, 100);
+  cv::findHomography(p.reference, p.query, method == Method::kCvRansac ? cv::RANSAC : cv::USAC_FAST, 5.0, mask, 100);
   return mask;
 }
 
@@ -99,9 +96,17 @@ void BM_Ransac(benchmark::State& state, Method method) {
 
 BENCHMARK_CAPTURE(BM_Ransac, ours, Method::kOurs)->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Ransac, ours_lo2, Method::kOursLo)->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_Ransac, ours_no_redraw, Method::kOursNoRedraw)->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Ransac, ours_no_redraw, Method::kOursNoRedraw)
+    ->Arg(50)
+    ->Arg(200)
+    ->Arg(500)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Ransac, cv_ransac, Method::kCvRansac)->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_Ransac, cv_usac_fast, Method::kCvUsacFast)->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Ransac, cv_usac_fast, Method::kCvUsacFast)
+    ->Arg(50)
+    ->Arg(200)
+    ->Arg(500)
+    ->Unit(benchmark::kMicrosecond);
 
 // Console output as usual, plus the real time per run kept for the ratio table.
 class RatioReporter : public benchmark::ConsoleReporter {

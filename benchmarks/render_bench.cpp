@@ -8,21 +8,20 @@
 // same thread count and the same row chunks (ParallelForChunks, 8 rows). BM_Pipeline is (c), the
 // whole per-frame work of `hoilcd render` (World::SetTime, render, sensor, T_true, persons
 // ground truth, 8- and 16-bit PNG, EXR, checksums) without the disk; BM_PipelinePart times its
-// pieces on one thread; BM_WorldSetTime times moving the articulated people alone. Counter x_bare = time / bare rtcIntersect1 time (wall; _cpu: process CPU
-// time, all threads). A summary of ratios, frames per second and the projected time of the
-// scene's 1996 frames follows the table.
-// Run: build/bin/render_bench            (scene: DataDir()/scenes/paper_room.json)
-#include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
-
-#include <opencv2/imgcodecs.hpp>
-
+// pieces on one thread; BM_WorldSetTime times moving the articulated people alone. Counter x_bare = time / bare
+// rtcIntersect1 time (wall; _cpu: process CPU time, all threads). A summary of ratios, frames per second and the
+// projected time of the scene's 1996 frames follows the table. Run: build/bin/render_bench            (scene:
+// DataDir()/scenes/paper_room.json)
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "bare_packets.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -78,8 +77,7 @@ class FrameClock {
  public:
   FrameClock() : wall_start_(std::chrono::steady_clock::now()), cpu_start_(std::clock()) {}
   double WallPerFrame(const benchmark::State& state) const {
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
     return s / static_cast<double>(state.iterations() * kPoses);
   }
   double CpuPerFrame(const benchmark::State& state) const {
@@ -191,8 +189,8 @@ void BM_FullVsBareInterleaved(benchmark::State& state) {
   FixWorldTime(s);
   const int threads = static_cast<int>(state.range(0));
   const FrameRenderer renderer(s.world, s.intrinsics, RenderOptionsFromScene(s.scene, threads));
-  SensorModel sensor(SensorOptionsFromScene(s.scene), s.intrinsics.width, s.intrinsics.height,
-                     s.scene.frame_rate_hz, s.scene.seed, &s.table, threads);
+  SensorModel sensor(SensorOptionsFromScene(s.scene), s.intrinsics.width, s.intrinsics.height, s.scene.frame_rate_hz,
+                     s.scene.seed, &s.table, threads);
   BareHits hits(s.intrinsics.width * s.intrinsics.height);
   const bool native16 = Native16(s);
   enum { kBare, kPackets, kRender, kSensor, kParts };
@@ -205,11 +203,11 @@ void BM_FullVsBareInterleaved(benchmark::State& state) {
         const auto wall_start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
         if (part == kBare) CastBare(s, sample.camera, threads, &hits);
-        if (part == kPackets && native16) CastBarePackets(s.world, s.intrinsics, s.cam_directions, sample.camera, threads, &hits);
+        if (part == kPackets && native16)
+          CastBarePackets(s.world, s.intrinsics, s.cam_directions, sample.camera, threads, &hits);
         if (part == kRender) radiance = renderer.Render(sample.camera).radiance;
         if (part == kSensor) benchmark::DoNotOptimize(sensor.Apply(frame++, radiance).data);
-        wall[part] +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        wall[part] += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
         cpu[part] += static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
       }
     }
@@ -258,8 +256,8 @@ void BM_FullFrame(benchmark::State& state) {
   FixWorldTime(s);
   const int threads = static_cast<int>(state.range(0));
   const FrameRenderer renderer(s.world, s.intrinsics, RenderOptionsFromScene(s.scene, threads));
-  SensorModel sensor(SensorOptionsFromScene(s.scene), s.intrinsics.width, s.intrinsics.height,
-                     s.scene.frame_rate_hz, s.scene.seed, &s.table, threads);
+  SensorModel sensor(SensorOptionsFromScene(s.scene), s.intrinsics.width, s.intrinsics.height, s.scene.frame_rate_hz,
+                     s.scene.seed, &s.table, threads);
   int frame = 0;
   FrameClock clock;
   for (auto _ : state) {
@@ -284,8 +282,8 @@ void BM_Pipeline(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const FrameRenderer renderer(s.world, s.intrinsics, RenderOptionsFromScene(s.scene, threads));
   const SensorOptions options = SensorOptionsFromScene(s.scene);
-  SensorModel sensor(options, s.intrinsics.width, s.intrinsics.height, s.scene.frame_rate_hz,
-                     s.scene.seed, &s.table, threads);
+  SensorModel sensor(options, s.intrinsics.width, s.intrinsics.height, s.scene.frame_rate_hz, s.scene.seed, &s.table,
+                     threads);
   int frame = 0;
   size_t bytes = 0;
   FrameClock clock;
@@ -297,14 +295,13 @@ void BM_Pipeline(benchmark::State& state) {
       const cv::Mat ideal = sensor.IdealTemperature(buffers.radiance);
       const std::vector<PersonRecord> persons =
           VisiblePersons(s.world, s.intrinsics, sample.camera, buffers.instance, buffers.depth_m);
-      const std::string files[3] = {
-          EncodePng(ToDisplay8Bit(temperature, options.display_min_c, options.display_max_c)),
-          EncodePng(ToCentikelvin16(temperature)),
-          EncodeExr({{"T", temperature},
-                     {"T_true", ideal},
-                     {"Z", buffers.depth_m},
-                     {"id", ToFloat(buffers.instance)},
-                     {"class", ToFloat(buffers.class_id)}})};
+      const std::string files[3] = {EncodePng(ToDisplay8Bit(temperature, options.display_min_c, options.display_max_c)),
+                                    EncodePng(ToCentikelvin16(temperature)),
+                                    EncodeExr({{"T", temperature},
+                                               {"T_true", ideal},
+                                               {"Z", buffers.depth_m},
+                                               {"id", ToFloat(buffers.instance)},
+                                               {"class", ToFloat(buffers.class_id)}})};
       for (const std::string& f : files) {
         bytes += f.size();
         benchmark::DoNotOptimize(ChecksumOf(f));
@@ -322,8 +319,8 @@ void BM_PipelinePart(benchmark::State& state, int part) {
   FixWorldTime(s);
   const FrameRenderer renderer(s.world, s.intrinsics, RenderOptionsFromScene(s.scene, 1));
   const SensorOptions options = SensorOptionsFromScene(s.scene);
-  SensorModel sensor(options, s.intrinsics.width, s.intrinsics.height, s.scene.frame_rate_hz,
-                     s.scene.seed, &s.table, 1);
+  SensorModel sensor(options, s.intrinsics.width, s.intrinsics.height, s.scene.frame_rate_hz, s.scene.seed, &s.table,
+                     1);
   std::vector<FrameBuffers> buffers;
   std::vector<cv::Mat> temperature;
   for (int i = 0; i < kPoses; ++i) {
@@ -339,16 +336,13 @@ void BM_PipelinePart(benchmark::State& state, int part) {
       if (part == 0) {
         benchmark::DoNotOptimize(sensor.Apply(frame++, buffers[i].radiance).data);
       } else if (part == 1) {
-        encoded = EncodePng(
-            ToDisplay8Bit(temperature[i], options.display_min_c, options.display_max_c));
+        encoded = EncodePng(ToDisplay8Bit(temperature[i], options.display_min_c, options.display_max_c));
       } else if (part == 2) {
         encoded = EncodePng(ToCentikelvin16(temperature[i]));
       } else if (part == 5 || part == 6 || part == 7) {
         std::vector<uchar> png;
-        const cv::Mat image =
-            part == 7
-                ? ToDisplay8Bit(temperature[i], options.display_min_c, options.display_max_c)
-                : ToCentikelvin16(temperature[i]);
+        const cv::Mat image = part == 7 ? ToDisplay8Bit(temperature[i], options.display_min_c, options.display_max_c)
+                                        : ToCentikelvin16(temperature[i]);
         cv::imencode(".png", image, png, {cv::IMWRITE_PNG_COMPRESSION, part == 6 ? 3 : 1});
         encoded.assign(png.begin(), png.end());
       } else if (part == 3) {
@@ -411,21 +405,22 @@ void PrintSummary() {
     const auto it = s.seconds_per_frame.find(key);
     return it == s.seconds_per_frame.end() ? 0.0 : it->second;
   };
-  std::printf("\nSummary of this run (per frame over %d poses along the route; wall ms with process "
-              "CPU ms in brackets; ratios wall / CPU):\n", kPoses);
+  std::printf(
+      "\nSummary of this run (per frame over %d poses along the route; wall ms with process "
+      "CPU ms in brackets; ratios wall / CPU):\n",
+      kPoses);
   for (const char* t : {"1", "2"}) {
     const std::string key = std::string("interleaved/") + t + "/";
     const double bare = get(key + "bare"), bare_cpu = get(key + "bare/cpu");
     if (bare <= 0) continue;
-    std::printf("  %s thread(s): bare rtcIntersect1 %.2f [%.2f], rtcIntersect16 %.2f [%.2f]; "
-                "render %.2f [%.2f]; render + sensor %.2f [%.2f] = %.2fx / %.2fx bare "
-                "rtcIntersect1 (target <= 2x), %.2fx / %.2fx bare rtcIntersect16\n",
-                t, 1e3 * bare, 1e3 * bare_cpu, 1e3 * get(key + "bare16"),
-                1e3 * get(key + "bare16/cpu"), 1e3 * get(key + "render"),
-                1e3 * get(key + "render/cpu"), 1e3 * get(key + "full"), 1e3 * get(key + "full/cpu"),
-                get(key + "full") / bare, get(key + "full/cpu") / bare_cpu,
-                get(key + "full") / get(key + "bare16"),
-                get(key + "full/cpu") / get(key + "bare16/cpu"));
+    std::printf(
+        "  %s thread(s): bare rtcIntersect1 %.2f [%.2f], rtcIntersect16 %.2f [%.2f]; "
+        "render %.2f [%.2f]; render + sensor %.2f [%.2f] = %.2fx / %.2fx bare "
+        "rtcIntersect1 (target <= 2x), %.2fx / %.2fx bare rtcIntersect16\n",
+        t, 1e3 * bare, 1e3 * bare_cpu, 1e3 * get(key + "bare16"), 1e3 * get(key + "bare16/cpu"),
+        1e3 * get(key + "render"), 1e3 * get(key + "render/cpu"), 1e3 * get(key + "full"), 1e3 * get(key + "full/cpu"),
+        get(key + "full") / bare, get(key + "full/cpu") / bare_cpu, get(key + "full") / get(key + "bare16"),
+        get(key + "full/cpu") / get(key + "bare16/cpu"));
   }
   for (const char* t : {"1", "2"}) {
     const double pipeline = get(std::string("pipeline/") + t);
@@ -436,9 +431,10 @@ void PrintSummary() {
   const double pipeline2 = get("pipeline/2");
   const double full2 = get("interleaved/2/full");
   if (pipeline2 > 0 && full2 > 0) {
-    std::printf("  2 threads: %.1f frames/s (pipeline), %.1f frames/s (render + sensor); "
-                "%d frames projected %.0f s (pipeline, without disk writes)\n",
-                1.0 / pipeline2, 1.0 / full2, s.scene.frames, s.scene.frames * pipeline2);
+    std::printf(
+        "  2 threads: %.1f frames/s (pipeline), %.1f frames/s (render + sensor); "
+        "%d frames projected %.0f s (pipeline, without disk writes)\n",
+        1.0 / pipeline2, 1.0 / full2, s.scene.frames, s.scene.frames * pipeline2);
   }
 }
 

@@ -38,9 +38,9 @@ using Clock = std::chrono::steady_clock;
 double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 struct Args {
-  std::string dataset;                         // empty: render paper_room into a temporary folder
+  std::string dataset;  // empty: render paper_room into a temporary folder
   std::vector<int> sizes = {1000, 10000, 100000};
-  int queries = 1000;                          // timed per size
+  int queries = 1000;  // timed per size
   ShortlistOptions shortlist;
   int threads = 0;
 };
@@ -72,8 +72,9 @@ Args Parse(int argc, char** argv) {
     } else if (flag == "--threads") {
       a.threads = std::stoi(value());
     } else {
-      throw InputError(flag, "unknown flag (scale_bench [--dataset DIR] [--sizes 1000,10000,100000] "
-                             "[--queries N] [--k K] [--index hnsw|flat] [--threads N])");
+      throw InputError(flag,
+                       "unknown flag (scale_bench [--dataset DIR] [--sizes 1000,10000,100000] "
+                       "[--queries N] [--k K] [--index hnsw|flat] [--threads N])");
     }
   }
   if (const std::string problem = a.shortlist.Check(); !problem.empty()) throw InputError("--k/--index", problem);
@@ -131,11 +132,12 @@ void MeasureSize(const FrontEndOutput& features, int sources, int size, const Ar
     const double r = MsSince(t_ransac);
     search_ms.push_back(s), ransac_ms.push_back(r), query_ms.push_back(s + r);
   }
-  std::printf("size %7d: insert p50 %.3f p99 %.3f ms | query p50 %.2f p99 %.2f ms (search p50 %.2f, RANSAC p50 "
-              "%.2f) | index %s | peak memory %s\n",
-              size, Quantile(insert_ms, 0.5), Quantile(insert_ms, 0.99), Quantile(query_ms, 0.5),
-              Quantile(query_ms, 0.99), Quantile(search_ms, 0.5), Quantile(ransac_ms, 0.5),
-              FormatBytes(shortlist.MemoryBytes()).c_str(), FormatBytes(PeakResidentBytes()).c_str());
+  std::printf(
+      "size %7d: insert p50 %.3f p99 %.3f ms | query p50 %.2f p99 %.2f ms (search p50 %.2f, RANSAC p50 "
+      "%.2f) | index %s | peak memory %s\n",
+      size, Quantile(insert_ms, 0.5), Quantile(insert_ms, 0.99), Quantile(query_ms, 0.5), Quantile(query_ms, 0.99),
+      Quantile(search_ms, 0.5), Quantile(ransac_ms, 0.5), FormatBytes(shortlist.MemoryBytes()).c_str(),
+      FormatBytes(PeakResidentBytes()).c_str());
   std::fflush(stdout);
 }
 
@@ -169,8 +171,7 @@ int Main(int argc, char** argv) {
   match.image_height_px = dataset.manifest().intrinsics.height;
   const RansacOptions ransac;
   std::printf("replaying %d frames of %s (%.0f keypoints a frame), K = %d (%s), %d queries a size\n", sources,
-              dir.c_str(), points / std::max(1, sources), args.shortlist.k, args.shortlist.index.c_str(),
-              args.queries);
+              dir.c_str(), points / std::max(1, sources), args.shortlist.k, args.shortlist.index.c_str(), args.queries);
   for (int size : args.sizes) MeasureSize(features, sources, size, args, match, ransac);
   return 0;
 }

@@ -4,11 +4,11 @@
 // Scores are synthetic (keyed RNG): the true match scores high with probability 0.5, so each
 // method accepts a realistic mix of true and false loops. Compare the time with `hoilcd run`'s
 // (docs/performance.md): the issue asks for <= 10 %.
-#include <benchmark/benchmark.h>
-
 #include <cmath>
 #include <string>
 #include <vector>
+
+#include <benchmark/benchmark.h>
 
 #include "hoilcd/bench/slam/slam_run.h"
 #include "hoilcd/core/util/random.h"
@@ -28,10 +28,14 @@ std::vector<PoseRecord> Laps() {
   for (int i = 0; i < kFrames; ++i) {
     const double s = std::fmod(2.0 * perimeter * i / kFrames, perimeter);
     Pose2d t;
-    if (s < 6) t = {0.5 + s, 2.5, 0};
-    else if (s < 8) t = {6.5, 2.5 - (s - 6), -M_PI / 2};
-    else if (s < 14) t = {6.5 - (s - 8), 0.5, M_PI};
-    else t = {0.5, 0.5 + (s - 14), M_PI / 2};
+    if (s < 6)
+      t = {0.5 + s, 2.5, 0};
+    else if (s < 8)
+      t = {6.5, 2.5 - (s - 6), -M_PI / 2};
+    else if (s < 14)
+      t = {6.5 - (s - 8), 0.5, M_PI};
+    else
+      t = {0.5, 0.5 + (s - 14), M_PI / 2};
     if (i == 0) {
       odo = t;
     } else {

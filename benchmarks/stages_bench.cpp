@@ -9,10 +9,6 @@
 // Rounds alternate the two parts. Options after Google Benchmark's own:
 //   build/bin/stages_bench [--frames=N (200)] [--threads=N (2)] [--rounds=N (2)]
 //                            [--scene=FILE (paper_room)] [--out=DIR (system temp folder)]
-#include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -21,6 +17,10 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
+#include <unistd.h>
 
 #include "bare_packets.h"
 #include "hoilcd/core/util/allocator.h"
@@ -37,9 +37,9 @@ namespace hoilcd {
 namespace {
 
 struct Settings {
-  int frames = 200;   // frames of the scene's route timed per round
-  int threads = 2;    // threads of every stage (RenderSequence's --threads)
-  int rounds = 2;     // rounds of (per-frame stages, dataset writing)
+  int frames = 200;  // frames of the scene's route timed per round
+  int threads = 2;   // threads of every stage (RenderSequence's --threads)
+  int rounds = 2;    // rounds of (per-frame stages, dataset writing)
   std::string scene = DataDir() + "/scenes/paper_room.json";
   std::string out = std::filesystem::temp_directory_path().string();  // writing goes under here
 };
@@ -50,8 +50,7 @@ Settings& TheSettings() {
 }
 
 enum Stage { kBarePackets, kRender, kRenderSensor, kWholeFrame, kWriting, kStages };
-const char* const kStageNames[kStages] = {"bare Embree packets (rtcIntersect16)", "render",
-                                          "render + sensor",
+const char* const kStageNames[kStages] = {"bare Embree packets (rtcIntersect16)", "render", "render + sensor",
                                           "whole frame (SetTime, render, sensor, T_true, persons)",
                                           "dataset writing, all outputs (RenderSequence)"};
 const char* const kStageKeys[kStages] = {"fps_bare_packets", "fps_render", "fps_render_sensor", "fps_whole_frame",
@@ -115,26 +114,26 @@ void BM_Stages(benchmark::State& state) {
   for (auto _ : state) {
     for (int round = 0; round < settings.rounds; ++round) {
       // Fresh sensors per round: the sensor's time constant and drift carry state frame to frame.
-      SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz, scene.seed,
-                         &table, settings.threads);
-      SensorModel whole_sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz,
-                               scene.seed, &table, settings.threads);
+      SensorModel sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz, scene.seed, &table,
+                         settings.threads);
+      SensorModel whole_sensor(sensor_options, intrinsics.width, intrinsics.height, scene.frame_rate_hz, scene.seed,
+                               &table, settings.threads);
       for (int f = 0; f < settings.frames; ++f) {
         const RobotSample& sample = run.samples[f];
         world.SetTime(sample.time_s);
         Time(&g_timers[kBarePackets], 1,
              [&] { CastBarePackets(world, intrinsics, cam_directions, sample.camera, settings.threads, &hits); });
         Time(&g_timers[kRender], 1, [&] { benchmark::DoNotOptimize(renderer.Render(sample.camera).radiance.data); });
-        Time(&g_timers[kRenderSensor], 1, [&] {
-          benchmark::DoNotOptimize(sensor.Apply(f, renderer.Render(sample.camera).radiance).data);
-        });
+        Time(&g_timers[kRenderSensor], 1,
+             [&] { benchmark::DoNotOptimize(sensor.Apply(f, renderer.Render(sample.camera).radiance).data); });
         Time(&g_timers[kWholeFrame], 1, [&] {
           world.SetTime(sample.time_s);
           const FrameBuffers buffers = renderer.Render(sample.camera);
           benchmark::DoNotOptimize(whole_sensor.Apply(f, buffers.radiance).data);
           benchmark::DoNotOptimize(whole_sensor.IdealTemperature(buffers.radiance).data);
           benchmark::DoNotOptimize(
-              VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m, settings.threads).data());
+              VisiblePersons(world, intrinsics, sample.camera, buffers.instance, buffers.depth_m, settings.threads)
+                  .data());
         });
       }
       // Writing: N frames less 1 frame, so set-up (assets, BVH, the route) cancels out.
@@ -156,9 +155,10 @@ void PrintTable() {
   const Timer& bare = g_timers[kBarePackets];
   if (bare.frames == 0) return;
   const double bare_fps = bare.frames / bare.wall_s, bare_cpu_fps = bare.frames / bare.cpu_s;
-  std::printf("\nStages of one run: %s, first %d frames, %d thread(s), %d round(s); wall time (process CPU "
-              "time of all threads in brackets)\n\n",
-              settings.scene.c_str(), settings.frames, settings.threads, settings.rounds);
+  std::printf(
+      "\nStages of one run: %s, first %d frames, %d thread(s), %d round(s); wall time (process CPU "
+      "time of all threads in brackets)\n\n",
+      settings.scene.c_str(), settings.frames, settings.threads, settings.rounds);
   std::printf("| stage | ms per frame | frames/s | of bare packets (wall) | of bare packets (CPU) |\n");
   std::printf("|---|---|---|---|---|\n");
   for (int s = 0; s < kStages; ++s) {
@@ -167,8 +167,10 @@ void PrintTable() {
     std::printf("| %s | %.2f [%.2f] | %.1f | %.1f %% | %.1f %% |\n", kStageNames[s], 1e3 * t.wall_s / t.frames,
                 1e3 * t.cpu_s / t.frames, fps, 100.0 * fps / bare_fps, 100.0 * cpu_fps / bare_cpu_fps);
   }
-  std::printf("\nDataset writing: RenderSequence of %d frames less RenderSequence of 1 frame, into %s "
-              "(removed after).\n", settings.frames, settings.out.c_str());
+  std::printf(
+      "\nDataset writing: RenderSequence of %d frames less RenderSequence of 1 frame, into %s "
+      "(removed after).\n",
+      settings.frames, settings.out.c_str());
 }
 
 BENCHMARK(BM_Stages)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
@@ -194,8 +196,10 @@ bool ParseSettings(int argc, char** argv) {
       } else if (!value("--out").empty()) {
         s.out = value("--out");
       } else {
-        std::fprintf(stderr, "stages_bench: unknown argument %s (--frames=N --threads=N --rounds=N "
-                             "--scene=FILE --out=DIR)\n", arg.c_str());
+        std::fprintf(stderr,
+                     "stages_bench: unknown argument %s (--frames=N --threads=N --rounds=N "
+                     "--scene=FILE --out=DIR)\n",
+                     arg.c_str());
         return false;
       }
     } catch (const std::exception&) {

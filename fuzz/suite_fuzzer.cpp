@@ -9,7 +9,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
-    const hoilcd::Suite suite = hoilcd::ParseSuite(std::string(reinterpret_cast<const char*>(data), size), "suite.json");
+    const hoilcd::Suite suite =
+        hoilcd::ParseSuite(std::string(reinterpret_cast<const char*>(data), size), "suite.json");
     hoilcd::SuiteRuns(suite, "all");
   } catch (const hoilcd::InputError&) {
   }

@@ -1,9 +1,10 @@
 #include "cli.h"
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
@@ -16,10 +17,10 @@ std::vector<Command> AddCommands(CLI::App* app, bool* quiet) {
   app->set_version_flag("--version", HOILCD_VERSION);
   app->require_subcommand(1);
   app->add_flag("-q,--quiet", *quiet, "no progress bars");
-  return {AddValidateCommand(app),   AddRenderCommand(app),     AddMergeCommand(app),    AddBenchCommand(app),
-          AddRunCommand(app),        AddEvaluateCommand(app),   AddInspectCommand(app),  AddSweepCommand(app),
-          AddExportCocoCommand(app), AddParamsCommand(app),     AddExportMotCommand(app), AddReferenceCommand(app),
-          AddGenerateCommand(app),   AddSuiteCommand(app),     AddRealismCommand(app),  AddExportMcapCommand(app)};
+  return {AddValidateCommand(app),   AddRenderCommand(app),   AddMergeCommand(app),     AddBenchCommand(app),
+          AddRunCommand(app),        AddEvaluateCommand(app), AddInspectCommand(app),   AddSweepCommand(app),
+          AddExportCocoCommand(app), AddParamsCommand(app),   AddExportMotCommand(app), AddReferenceCommand(app),
+          AddGenerateCommand(app),   AddSuiteCommand(app),    AddRealismCommand(app),   AddExportMcapCommand(app)};
 }
 
 int RunCommandLine(int argc, char** argv) {

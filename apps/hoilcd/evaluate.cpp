@@ -1,11 +1,12 @@
 // hoilcd evaluate DATASET --scores FILE: the benchmark's protocol, labels and metrics applied to
 // the scores of a method hoilcd did not run.
+#include "hoilcd/bench/evaluation/evaluate.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "command.h"
-#include "hoilcd/bench/evaluation/evaluate.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
@@ -38,9 +39,9 @@ int EvaluateCommand(const EvaluateArgs& args) {
   if (const std::string why = NoTrueMatchReason(labelling); !why.empty()) throw InputError(args.dataset, why);
   const ScoreMatrix scores = ReadScoresFile(args.scores, dataset.num_frames());
   const std::string description = "scores from " + args.scores;
-  const MethodReport report =
-      args.output.empty() ? EvaluateLabelled(dataset, labelling, scores, name)
-                          : EvaluateAndWriteReport(dataset, labelling, scores, name, description, args.output);
+  const MethodReport report = args.output.empty()
+                                  ? EvaluateLabelled(dataset, labelling, scores, name)
+                                  : EvaluateAndWriteReport(dataset, labelling, scores, name, description, args.output);
   PrintWarnings(report.warnings);
   const MethodMetrics& m = report.metrics;
   std::printf("%s (%s ground truth): MRR %.4f, R@1 %.4f, R@5 %.4f, PR-AUC %.4f; %d queries scored, %d skipped\n",

@@ -1,9 +1,9 @@
 // hoilcd export-mcap DATASET -o FILE.mcap: the dataset as a ROS 2 bag (MCAP) for ros2 bag play and
 // Foxglove (docs/guide/ros2.md).
+#include "export_mcap.h"
+
 #include <cstdio>
 #include <memory>
-
-#include "export_mcap.h"
 
 #include "command.h"
 #include "hoilcd/core/util/error.h"

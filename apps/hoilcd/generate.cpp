@@ -17,7 +17,6 @@
 namespace hoilcd {
 namespace {
 
-
 struct GenerateArgs {
   std::string layout = "mixed";
   int count = 1;
@@ -51,14 +50,16 @@ int GenerateCommand(const GenerateArgs& args) {
     const int index = args.start + static_cast<int>(i);
     const nlohmann::ordered_json scene = GenerateScene(args.layout, static_cast<uint64_t>(args.seed), index, options);
     families[static_cast<size_t>(i)] = scene["generator"]["layout"].get<std::string>();
-    WriteFileAtomic(args.output + "/" + GeneratedSceneFileName(index, families[static_cast<size_t>(i)]), SceneFileText(scene));
+    WriteFileAtomic(args.output + "/" + GeneratedSceneFileName(index, families[static_cast<size_t>(i)]),
+                    SceneFileText(scene));
     progress.Update();
   });
   progress.Done();
   std::map<std::string, int> per_family;
   for (const std::string& f : families) ++per_family[f];
   std::string summary;
-  for (const auto& [family, n] : per_family) summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + family;
+  for (const auto& [family, n] : per_family)
+    summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + family;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("generated %d scene%s (%s) into %s in %.1f s\n", args.count, args.count == 1 ? "" : "s", summary.c_str(),
               args.output.c_str(), seconds);
@@ -72,7 +73,10 @@ Command AddGenerateCommand(CLI::App* app) {
   std::string layouts;
   for (const std::string& f : LayoutFamilies()) layouts += f + ", ";
   CLI::App* cmd = app->add_subcommand("generate", "write seeded scene files of varied rooms (six layout families)");
-  cmd->add_option("--layout", args->layout, "layout family: " + layouts + "or mixed (drawn per scene), or floor (a building floor of such rooms along a corridor)")->capture_default_str();
+  cmd->add_option("--layout", args->layout,
+                  "layout family: " + layouts +
+                      "or mixed (drawn per scene), or floor (a building floor of such rooms along a corridor)")
+      ->capture_default_str();
   cmd->add_option("--count", args->count, "scenes to write")
       ->check(NumberIn(OptionRange::Closed(1, kMaxGeneratedSceneIndex)))
       ->capture_default_str();
@@ -86,9 +90,10 @@ Command AddGenerateCommand(CLI::App* app) {
                   "folder of scene files (created when missing; a folder may hold only earlier generated scenes)")
       ->required()
       ->type_name("DIR");
-  cmd->add_option("--set", args->settings,
-                  "a generator option by its name, e.g. --set occupancy_min=0.8 or --set lounge.width_max_m=6 (repeatable; "
-                  "`hoilcd reference generate` lists them)")
+  cmd->add_option(
+         "--set", args->settings,
+         "a generator option by its name, e.g. --set occupancy_min=0.8 or --set lounge.width_max_m=6 (repeatable; "
+         "`hoilcd reference generate` lists them)")
       ->type_name("NAME=VALUE");
   AddThreadsFlag(cmd, &args->threads);
   return {cmd, [args] { return GenerateCommand(*args); }};

@@ -1,9 +1,10 @@
 // hoilcd inspect DATASET: what a user checks before trusting a sequence.
+#include "hoilcd/bench/report/inspect.h"
+
 #include <cstdio>
 #include <memory>
 
 #include "command.h"
-#include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "shared.h"
 
@@ -35,9 +36,10 @@ int InspectCommand(const InspectArgs& args) {
 
 Command AddInspectCommand(CLI::App* app) {
   auto args = std::make_shared<InspectArgs>();
-  CLI::App* cmd = app->add_subcommand(
-      "inspect", "what to check before trusting a dataset: laps, lap-to-lap path difference, odometry drift, "
-                 "camera jitter, people in view, occlusion, odometric vs true ground truth");
+  CLI::App* cmd =
+      app->add_subcommand("inspect",
+                          "what to check before trusting a dataset: laps, lap-to-lap path difference, odometry drift, "
+                          "camera jitter, people in view, occlusion, odometric vs true ground truth");
   cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
   cmd->add_flag("--json", args->json, "print the figures as JSON instead of text");
   cmd->add_option("-o,--output", args->output,

@@ -1,12 +1,13 @@
 // hoilcd merge DIR... -o DIR: join the shard folders of one sequence (hoilcd render --shard I/N)
 // into the dataset the unsharded render writes, byte for byte.
+#include "hoilcd/sim/output/merge.h"
+
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "hoilcd/sim/output/merge.h"
 #include "shared.h"
 
 namespace hoilcd {

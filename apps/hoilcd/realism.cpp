@@ -1,5 +1,7 @@
 // hoilcd realism DATASET REAL_DIR -o DIR: the statistics that tell a rendered room from a real
 // one, on a dataset's frames and on a folder of real thermal frames, and their distances.
+#include "hoilcd/bench/realism/realism.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -8,7 +10,6 @@
 
 #include "command.h"
 #include "hoilcd/bench/realism/real_frames.h"
-#include "hoilcd/bench/realism/realism.h"
 #include "hoilcd/bench/report/realism_report.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
@@ -76,9 +77,10 @@ int RealismCommand(const RealismArgs& args) {
 
 Command AddRealismCommand(CLI::App* app) {
   auto args = std::make_shared<RealismArgs>();
-  CLI::App* cmd = app->add_subcommand(
-      "realism", "compare a dataset's frames with a folder of real thermal frames: corners, edges, entropy, "
-                 "spectrum slope, temperatures, wall residual, blank views, temporal noise");
+  CLI::App* cmd =
+      app->add_subcommand("realism",
+                          "compare a dataset's frames with a folder of real thermal frames: corners, edges, entropy, "
+                          "spectrum slope, temperatures, wall residual, blank views, temporal noise");
   cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
   cmd->add_option("real_dir", args->real_dir,
                   "folder of real frames: 16-bit PNG/TIFF (with --scale and --offset), .npy (°C or K), "
@@ -96,8 +98,8 @@ Command AddRealismCommand(CLI::App* app) {
                   "16-bit frames: kelvin per count, T[°C] = value * scale + offset (centikelvin: 0.01)");
   cmd->add_option("--offset", args->real.offset_c, "16-bit frames: °C at count 0 (centikelvin: -273.15)");
   args->float_unit_flag = cmd->add_option("--float-unit", args->real.float_unit,
-                  "float frames (.npy, 32-bit TIFF): c, k, or auto (median above 150: kelvin)")
-      ->capture_default_str();
+                                          "float frames (.npy, 32-bit TIFF): c, k, or auto (median above 150: kelvin)")
+                              ->capture_default_str();
   cmd->add_flag("--static", args->static_sequence,
                 "the real frames, in name order, are one static view: measure their temporal noise");
   AddThreadsFlag(cmd, &args->threads);

@@ -23,9 +23,10 @@ Command AddReferenceCommand(CLI::App* app) {
       ->required()
       ->check(CLI::IsMember({"scene", "cameras", "generate"}));
   return {cmd, [topic] {
-            const std::string text = *topic == "scene"     ? SceneReferenceMarkdown()
-                                     : *topic == "cameras" ? CameraProfilesMarkdown()
-                                                           : FormatOptionTableMarkdown(GeneratorOptions::Table().List());
+            const std::string text = *topic == "scene" ? SceneReferenceMarkdown()
+                                     : *topic == "cameras"
+                                         ? CameraProfilesMarkdown()
+                                         : FormatOptionTableMarkdown(GeneratorOptions::Table().List());
             std::printf("%s", text.c_str());
             return 0;
           }};

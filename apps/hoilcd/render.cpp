@@ -51,8 +51,9 @@ int RenderCommand(const RenderArgs& args) {
   if (args.shard) o.shard = ParseShard(*args.shard);  // before the scene: a bad flag fails first
   const bool mcap = TakeMcapOutput(&o.outputs);
   if (mcap && args.shard) {
-    throw InputError("--outputs", "mcap needs the whole sequence, not a shard: run hoilcd export-mcap on the "
-                                  "dataset hoilcd merge writes");
+    throw InputError("--outputs",
+                     "mcap needs the whole sequence, not a shard: run hoilcd export-mcap on the "
+                     "dataset hoilcd merge writes");
   }
   const Scene scene = LoadSceneArgs(args.scene);
   o.cancel = CancelOnInterrupt();
@@ -63,8 +64,9 @@ int RenderCommand(const RenderArgs& args) {
               r.frames_rendered, r.frames_reused, o.output_dir.c_str(), r.seconds,
               r.seconds > 0 ? r.frames_rendered / r.seconds : 0.0, threads, threads == 1 ? "" : "s");
   // The encoder runs on a writer thread while later frames render: its time is not all added.
-  std::printf("thermal.mp4: %.2f s of work, %.1f %% of the render's wall time (its encoding runs beside the rendering)\n",
-              r.video_seconds, r.seconds > 0 ? 100.0 * r.video_seconds / r.seconds : 0.0);
+  std::printf(
+      "thermal.mp4: %.2f s of work, %.1f %% of the render's wall time (its encoding runs beside the rendering)\n",
+      r.video_seconds, r.seconds > 0 ? 100.0 * r.video_seconds / r.seconds : 0.0);
   if (mcap) {
     McapExportOptions mcap_options;
     mcap_options.threads = o.threads;

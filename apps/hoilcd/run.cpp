@@ -1,10 +1,11 @@
 // hoilcd run [SCENE]: render a scene (or reuse its cached dataset), benchmark it, report.
+#include "hoilcd/bench/pipeline/run.h"
+
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "command.h"
-#include "hoilcd/bench/pipeline/run.h"
 #include "hoilcd/bench/report/gate.h"
 #include "hoilcd/sim/assets/data_dir.h"
 #include "shared.h"
@@ -35,8 +36,8 @@ int RunCommand(const RunArgs& args) {
   std::string calibration;
   if (!outcome.calibration_dir.empty()) {
     char text[160];
-    std::snprintf(text, sizeof(text), "; the SLAM calibration beside them, %.1f s (dataset %s, thresholds %s)", t.calibration_s,
-                  t.calibration_render_cached ? "cached" : "rendered",
+    std::snprintf(text, sizeof(text), "; the SLAM calibration beside them, %.1f s (dataset %s, thresholds %s)",
+                  t.calibration_s, t.calibration_render_cached ? "cached" : "rendered",
                   t.calibration_bench_cached ? "cached" : "benched");
     calibration = text;
   }

@@ -3,8 +3,8 @@
 #include <cerrno>
 #include <cmath>
 #include <csignal>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
 
 #include "hoilcd/bench/methods/front_ends.h"
@@ -30,7 +30,6 @@ extern "C" void OnInterrupt(int) {
   g_interrupted = true;
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
-
 
 // Whether whole-number text is in `range`, compared exactly (a long double holds every 64-bit
 // integer and every double): through a double, 2^53 + 1 would pass a maximum of 2^53 and then be
@@ -76,19 +75,22 @@ void RefuseIfGiven(const CLI::App& cmd, const std::string& flag, const std::stri
 }
 
 void AddThreadsFlag(CLI::App* cmd, int* threads) {
-  cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")->check(NumberIn(OptionRange::Closed(0, kMaxThreadsFlag)));
+  cmd->add_option("--threads", *threads, "worker threads (0: the CPUs this process may use)")
+      ->check(NumberIn(OptionRange::Closed(0, kMaxThreadsFlag)));
 }
 
 void AddShardFlag(CLI::App* cmd, std::optional<std::string>* shard, const std::string& description) {
-  cmd->add_option_function<std::string>("--shard", [shard](const std::string& text) { *shard = text; }, description)
+  cmd->add_option_function<std::string>(
+         "--shard", [shard](const std::string& text) { *shard = text; }, description)
       ->type_name("I/N");
 }
 
 void AddManyRunsCacheFlags(CLI::App* cmd, RunOptions* run) {
   cmd->add_option("--cache", run->cache_dir, "folder of cached datasets (shared by every run and shard)");
-  cmd->add_flag("--drop-datasets", [run](std::int64_t) { run->keep_datasets = false; },
-                "delete each run's dataset once its report is written (a large suite or sweep needs ~1 GB of disk a "
-                "thousand frames otherwise); reports are kept and a rerun keeps them");
+  cmd->add_flag(
+      "--drop-datasets", [run](std::int64_t) { run->keep_datasets = false; },
+      "delete each run's dataset once its report is written (a large suite or sweep needs ~1 GB of disk a "
+      "thousand frames otherwise); reports are kept and a rerun keeps them");
 }
 
 void AddSceneFlags(CLI::App* cmd, SceneArgs* args, bool scene_required) {
@@ -126,8 +128,10 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
                   "(the share of the query's static view the reference sees)")
       ->check(CLI::IsMember({"odometry", "true", "overlap"}))
       ->capture_default_str();
-  AddTableFlag(cmd, "--overlap-threshold", ProtocolOptions::Table().List(), "overlap_threshold", &protocol->overlap_threshold);
-  AddTableFlag(cmd, "--overlap-stride", ProtocolOptions::Table().List(), "overlap_stride_px", &protocol->overlap_stride_px);
+  AddTableFlag(cmd, "--overlap-threshold", ProtocolOptions::Table().List(), "overlap_threshold",
+               &protocol->overlap_threshold);
+  AddTableFlag(cmd, "--overlap-stride", ProtocolOptions::Table().List(), "overlap_stride_px",
+               &protocol->overlap_stride_px);
   AddTableFlag(cmd, "--overlap-depth-tolerance", ProtocolOptions::Table().List(), "overlap_depth_tolerance_m",
                &protocol->overlap_depth_tolerance_m);
   cmd->add_option("--heading-tolerance", protocol->heading_tolerance_deg,
@@ -139,8 +143,9 @@ void AddProtocolFlags(CLI::App* cmd, ProtocolOptions* protocol) {
 void CheckProtocolFlagsApply(const CLI::App& cmd, const ProtocolOptions& protocol) {
   if (protocol.ground_truth == "overlap") return;
   for (const char* flag : {"--overlap-threshold", "--overlap-stride", "--overlap-depth-tolerance"}) {
-    RefuseIfGiven(cmd, flag, "applies to --ground-truth overlap only (the ground truth is " + protocol.ground_truth +
-                                 "); drop it or add --ground-truth overlap");
+    RefuseIfGiven(cmd, flag,
+                  "applies to --ground-truth overlap only (the ground truth is " + protocol.ground_truth +
+                      "); drop it or add --ground-truth overlap");
   }
 }
 
@@ -214,9 +219,10 @@ void RefuseBenchFlags(const BenchArgs& args, const std::string& why) {
 }
 
 void AddGateFlags(CLI::App* cmd, GateArgs* args) {
-  CLI::Option* baseline = cmd->add_option("--baseline", args->baseline,
-                  "earlier report.json: exit 3 when a headline metric (MRR, R@1) of a method in both dropped by "
-                  "more than --max-drop");
+  CLI::Option* baseline =
+      cmd->add_option("--baseline", args->baseline,
+                      "earlier report.json: exit 3 when a headline metric (MRR, R@1) of a method in both dropped by "
+                      "more than --max-drop");
   cmd->add_option("--max-drop", args->max_drop,
                   "largest allowed drop of MRR or R@1 against --baseline (default 0), or 'ci': a drop is a regression "
                   "only when the baseline's value lies above this run's 95 % interval")

@@ -58,7 +58,8 @@ CLI::Option* AddTableFlag(CLI::App* cmd, const std::string& flag, const std::vec
                           const std::string& name, T* member) {
   for (const OptionInfo& info : fields) {
     if (info.name != name) continue;
-    CLI::Option* option = cmd->add_option(flag, *member, info.description + (info.unit.empty() ? "" : ", " + info.unit));
+    CLI::Option* option =
+        cmd->add_option(flag, *member, info.description + (info.unit.empty() ? "" : ", " + info.unit));
     if constexpr (std::is_same_v<T, std::string>) {
       if (!info.choices.empty()) option->check(CLI::IsMember(info.choices));
     } else {

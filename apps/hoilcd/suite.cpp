@@ -1,12 +1,13 @@
 // hoilcd suite SUITE -o OUT: every (sequence, seed) of a suite file rendered and benched, and a
 // report of each method's mean over runs with its interval, ranks and paired wins; --shard and
 // --merge split the runs over machines.
+#include "hoilcd/bench/pipeline/suite.h"
+
 #include <cstdio>
 #include <memory>
 #include <optional>
 
 #include "command.h"
-#include "hoilcd/bench/pipeline/suite.h"
 #include "hoilcd/bench/pipeline/suite_report.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/folder_lock.h"
@@ -31,12 +32,14 @@ int WriteAndPrintReport(const SuiteSummary& summary, const std::string& out) {
   WriteSuiteReport(summary, out);
   for (const SuiteMethodSummary& m : summary.methods) {
     std::printf("%-16s MRR %s [%s, %s]  mean rank %s\n", m.method.c_str(), Fixed(m.mean_mrr, 3).c_str(),
-                Fixed(m.mrr_interval.low, 3).c_str(), Fixed(m.mrr_interval.high, 3).c_str(), Fixed(m.mean_rank, 2).c_str());
+                Fixed(m.mrr_interval.low, 3).c_str(), Fixed(m.mrr_interval.high, 3).c_str(),
+                Fixed(m.mean_rank, 2).c_str());
   }
   for (const auto& [run, error] : summary.failed) std::fprintf(stderr, "failed: %s: %s\n", run.c_str(), error.c_str());
   std::printf("report: %s/suite_report.md (and suite_report.json)\n", out.c_str());
   if (!summary.failed.empty()) {
-    std::fprintf(stderr, "error: %zu of %zu runs failed\n", summary.failed.size(), summary.failed.size() + summary.runs.size());
+    std::fprintf(stderr, "error: %zu of %zu runs failed\n", summary.failed.size(),
+                 summary.failed.size() + summary.runs.size());
     return 1;
   }
   return 0;
@@ -45,7 +48,8 @@ int WriteAndPrintReport(const SuiteSummary& summary, const std::string& out) {
 int MergeCommand(const SuiteArgs& args) {
   if (args.shard) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
   const std::string runs_nothing = "not with --merge: a merge renders and benches nothing";
-  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, runs_nothing);
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"})
+    RefuseIfGiven(*args.bench.cmd, flag, runs_nothing);
   if (args.suite.empty()) {
     const std::string needs_suite =
         "with --merge, the suite's flags are only checked against the shards when SUITE is given too";
@@ -54,7 +58,8 @@ int MergeCommand(const SuiteArgs& args) {
   }
   std::optional<nlohmann::json> expected;
   if (!args.suite.empty()) {
-    expected = SuiteIdentity(ReadSuite(args.suite), args.split, BenchSettingsJson(ResolveBench(args.bench, args.run.threads)));
+    expected =
+        SuiteIdentity(ReadSuite(args.suite), args.split, BenchSettingsJson(ResolveBench(args.bench, args.run.threads)));
   }
   CheckSuiteReportFolder(args.output);
   const FolderLock lock(args.output, FolderLock::IfBusy::kRefuse);
@@ -63,7 +68,8 @@ int MergeCommand(const SuiteArgs& args) {
 
 int SuiteCommand(const SuiteArgs& args) {
   if (!args.merge.empty()) return MergeCommand(args);
-  if (args.suite.empty()) throw InputError("suite", "a SUITE file is needed (or --merge DIR... to combine shard outputs)");
+  if (args.suite.empty())
+    throw InputError("suite", "a SUITE file is needed (or --merge DIR... to combine shard outputs)");
   const Suite suite = ReadSuite(args.suite);
   SuiteOptions options;
   options.output_dir = args.output;
@@ -96,9 +102,10 @@ int SuiteCommand(const SuiteArgs& args) {
     ++failed;
     std::fprintf(stderr, "failed: %s: %s\n", r.name.c_str(), r.error.c_str());
   }
-  std::printf("shard %s done in %s (runs: %zu, failed: %zu, listed by the merged report); when every shard is done: "
-              "hoilcd suite --merge DIR... -o OUT\n",
-              options.shard.Name().c_str(), args.output.c_str(), results.size(), failed);
+  std::printf(
+      "shard %s done in %s (runs: %zu, failed: %zu, listed by the merged report); when every shard is done: "
+      "hoilcd suite --merge DIR... -o OUT\n",
+      options.shard.Name().c_str(), args.output.c_str(), results.size(), failed);
   return 0;
 }
 
@@ -128,7 +135,8 @@ Command AddSuiteCommand(CLI::App* app) {
       ->capture_default_str();
   AddManyRunsCacheFlags(cmd, &args->run);
   AddShardFlag(cmd, &args->shard, "run only part I of N (0-based, e.g. $SLURM_ARRAY_TASK_ID/4)");
-  cmd->add_option("--merge", args->merge, "write the report of these suite or shard folders into OUT")->type_name("DIR...");
+  cmd->add_option("--merge", args->merge, "write the report of these suite or shard folders into OUT")
+      ->type_name("DIR...");
   AddThreadsFlag(cmd, &args->run.threads);
   AddBenchFlags(cmd, &args->bench);
   return {cmd, [args] { return SuiteCommand(*args); }};

@@ -1,11 +1,12 @@
 // hoilcd sweep SCENE --set KEY=V1,V2 --seeds N -o OUT: a scene over the cross product of values
 // and seeds, with a summary table and plots; --shard and --merge split it over machines.
+#include "hoilcd/bench/pipeline/sweep.h"
+
 #include <cstdio>
 #include <memory>
 #include <optional>
 
 #include "command.h"
-#include "hoilcd/bench/pipeline/sweep.h"
 #include "hoilcd/bench/pipeline/sweep_summary.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/folder_lock.h"
@@ -35,7 +36,8 @@ void PrintSweepSummary(const SweepSummary& summary, const std::string& out) {
 int MergeCommand(const SweepArgs& args) {
   if (args.shard) throw InputError("--shard", "cannot be combined with --merge (a merge reads every shard)");
   const std::string renders_nothing = "not with --merge: a merge renders and benches nothing";
-  for (const char* flag : {"--cache", "--drop-datasets", "--threads"}) RefuseIfGiven(*args.bench.cmd, flag, renders_nothing);
+  for (const char* flag : {"--cache", "--drop-datasets", "--threads"})
+    RefuseIfGiven(*args.bench.cmd, flag, renders_nothing);
   if (args.scene.empty()) {
     const std::string needs_scene =
         "with --merge, the sweep's flags are only checked against the shards when SCENE is given too";
@@ -58,7 +60,8 @@ int MergeCommand(const SweepArgs& args) {
 
 int SweepCommand(const SweepArgs& args) {
   if (!args.merge.empty()) return MergeCommand(args);
-  if (args.scene.empty()) throw InputError("sweep", "a SCENE file is needed (or --merge DIR... to combine shard outputs)");
+  if (args.scene.empty())
+    throw InputError("sweep", "a SCENE file is needed (or --merge DIR... to combine shard outputs)");
   SweepOptions options;
   options.output_dir = args.output;
   options.run = args.run;
@@ -68,7 +71,9 @@ int SweepCommand(const SweepArgs& args) {
   options.run.cancel = CancelOnInterrupt();
   std::printf("sweep of %s: %zu runs (%zu combinations x %d seeds)", plan.scene_name.c_str(), plan.Runs().size(),
               plan.Combinations().size(), plan.seeds);
-  if (options.shard.count > 1) std::printf(", shard %d/%d does %zu", options.shard.index, options.shard.count, plan.ShardRuns(options.shard).size());
+  if (options.shard.count > 1)
+    std::printf(", shard %d/%d does %zu", options.shard.index, options.shard.count,
+                plan.ShardRuns(options.shard).size());
   std::printf("\n");
   // Held from the first run to the summary (RunSweep and WriteSweepSummary take it again): a second
   // sweep into this folder is refused by name.

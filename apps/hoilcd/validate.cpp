@@ -18,8 +18,7 @@ Command AddValidateCommand(CLI::App* app) {
             const Scene scene = LoadSceneArgs(*args);
             PrintWarnings(CheckSceneRenders(scene));  // what render checks before its first frame
             std::printf("%s: valid scene '%s' (%d frames at %g Hz, %zu tables, hash %s)\n", args->path.c_str(),
-                        scene.name.c_str(), scene.frames, scene.frame_rate_hz, scene.tables.size(),
-                        scene.hash.c_str());
+                        scene.name.c_str(), scene.frames, scene.frame_rate_hz, scene.tables.size(), scene.hash.c_str());
             return 0;
           }};
 }

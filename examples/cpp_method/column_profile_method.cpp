@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+
 #include <opencv2/core.hpp>
 
 #include "hoilcd/bench/runner/runner.h"

@@ -2,11 +2,11 @@
 // JSON text, and the functions that add each group of bindings to the module.
 #pragma once
 
-#include <pybind11/numpy.h>
-#include <pybind11/pybind11.h>
+#include <string>
 
 #include <opencv2/core.hpp>
-#include <string>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
 
 namespace hoilcd::python {
 

@@ -1,8 +1,8 @@
 // hoilcd.render, hoilcd.bench, hoilcd.evaluate and hoilcd.methods: the command line's render,
 // bench and evaluate as functions; the long C++ work runs without the GIL.
-#include <pybind11/stl.h>
-
 #include <optional>
+
+#include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "hoilcd/bench/evaluation/evaluate.h"
@@ -129,8 +129,8 @@ py::dict Bench(const Dataset& dataset, std::optional<std::vector<std::string>> m
 
 void BindRun(py::module_& m) {
   const ProtocolOptions defaults = ProtocolOptions();  // the protocol's defaults, as the command line's
-  m.def("render", &Render, py::arg("scene"), py::arg("output"), py::arg("frames") = 0,
-        py::arg("seed") = py::none(), py::arg("set") = py::dict(), py::arg("threads") = 0,
+  m.def("render", &Render, py::arg("scene"), py::arg("output"), py::arg("frames") = 0, py::arg("seed") = py::none(),
+        py::arg("set") = py::dict(), py::arg("threads") = 0,
         "Renders SCENE (a scene file) into the dataset folder OUTPUT, as `hoilcd render`: the first "
         "`frames` frames (0: all), `seed` overriding the scene's, `set` overriding scene values by path "
         "({'crowd.people_per_table': 2}). Resumes an interrupted render. Returns the Dataset.");
@@ -150,14 +150,17 @@ void BindRun(py::module_& m) {
         "unscored). Returns the method's metrics as report.json's methods.<name> (mrr, recall_at_1, ...); "
         "with `output`, also writes the report folder there, as `hoilcd evaluate -o` (report.json, "
         "queries.csv, report.md, figures; a new or empty folder, or an earlier report's).");
-  m.def("methods", [] {
+  m.def(
+      "methods",
+      [] {
         py::list out;
         for (const auto& method : RegisteredMethods()) {
           out.append(py::dict(py::arg("name") = method->Name(), py::arg("description") = method->Description(),
                               py::arg("from_paper") = method->FromPaper()));
         }
         return out;
-      }, "The built-in methods hoilcd.bench can run: a list of {name, description, from_paper}.");
+      },
+      "The built-in methods hoilcd.bench can run: a list of {name, description, from_paper}.");
 }
 
 }  // namespace hoilcd::python

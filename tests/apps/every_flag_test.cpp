@@ -4,10 +4,6 @@
 // of what it wrote, printed or exited with differs from the same run without the flag) or be
 // refused by an error naming it. The flags come from the CLI11 app itself: a new flag without a
 // row in every mode of its command fails EveryFlagOfEveryModeHasARow.
-#include <gtest/gtest.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -22,7 +18,10 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "hoilcd/core/util/file_io.h"
@@ -107,7 +106,8 @@ Probe OutLines(const std::string& prefix) {
     std::string lines = "exit " + std::to_string(r.outcome.exit_code) + "\n";
     size_t start = 0;
     for (size_t end; (end = r.outcome.out.find('\n', start)) != std::string::npos; start = end + 1) {
-      if (r.outcome.out.compare(start, prefix.size(), prefix) == 0) lines += r.outcome.out.substr(start, end - start + 1);
+      if (r.outcome.out.compare(start, prefix.size(), prefix) == 0)
+        lines += r.outcome.out.substr(start, end - start + 1);
     }
     return lines;
   };
@@ -119,7 +119,8 @@ Probe Exists(const std::string& path) {
 Probe Json(const std::string& path, const std::vector<std::string>& pointers) {
   return [path, pointers](const CommandRun& r) {
     const std::string text = TextOf(Replace(path, "{out}", r.out));
-    if (text.rfind("<no file", 0) == 0) return text + " (exit " + std::to_string(r.outcome.exit_code) + ": " + r.outcome.err + ")";
+    if (text.rfind("<no file", 0) == 0)
+      return text + " (exit " + std::to_string(r.outcome.exit_code) + ": " + r.outcome.err + ")";
     const nlohmann::json j = nlohmann::json::parse(text);
     std::string values;
     for (const std::string& p : pointers) {
@@ -197,9 +198,7 @@ test::CliOutcome Invoke(Args args) {
 class Flags {
  public:
   Flags() { commands_ = AddCommands(&app_, &quiet_); }
-  const CLI::App* Command(const std::string& name) const {
-    return name.empty() ? &app_ : app_.get_subcommand(name);
-  }
+  const CLI::App* Command(const std::string& name) const { return name.empty() ? &app_ : app_.get_subcommand(name); }
   // Every named (not positional) option of `command`, by Option::get_name().
   std::set<std::string> Of(const std::string& command) const {
     std::set<std::string> names;
@@ -280,7 +279,10 @@ std::vector<Mode> Modes() {
         {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kRefused},
         {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kActs, labels, {"--ground-truth", "overlap"}},
         {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kRefused},
-        {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kActs, labels,
+        {"--overlap-depth-tolerance",
+         {"--overlap-depth-tolerance", "0.5"},
+         Expect::kActs,
+         labels,
          {"--ground-truth", "overlap"}},
         {"--strata", {"--strata", "lap"}, Expect::kActs, Json(report_json, {"/strata"})},
         {"--param", {"--param", "thumbnail.width_px=8"}, Expect::kActs, metrics},
@@ -288,10 +290,17 @@ std::vector<Mode> Modes() {
         {"--detector", {"--detector", "fast"}, Expect::kActs, Json(report_json, {"/features"}), {"--methods", "slcd"}},
         {"--slam", {"--slam"}, Expect::kActs, Json(report_json, {"/slam"})},
         {"--slam-backend", {"--slam-backend", "cauchy"}, Expect::kRefused},
-        {"--slam-backend", {"--slam-backend", "cauchy"}, Expect::kActs, Json(report_json, {"/slam/backend"}), {"--slam"}},
+        {"--slam-backend",
+         {"--slam-backend", "cauchy"},
+         Expect::kActs,
+         Json(report_json, {"/slam/backend"}),
+         {"--slam"}},
         {"--loop-threshold", {"--loop-threshold", "5"}, Expect::kRefused},
-        {"--loop-threshold", {"--loop-threshold", "5"}, Expect::kActs,
-         Json(report_json, {"/methods/" + method + "/slam"}), {"--slam"}},
+        {"--loop-threshold",
+         {"--loop-threshold", "5"},
+         Expect::kActs,
+         Json(report_json, {"/methods/" + method + "/slam"}),
+         {"--slam"}},
         {"--baseline", {"--baseline", "{better}"}, Expect::kActs, Exit()},
         {"--max-drop", {"--max-drop", "1"}, Expect::kActs, OutLines("regression"), {"--baseline", "{better}"}},
         {"--junit", {"--junit", "{out}/junit.xml"}, Expect::kActs, Exists("{out}/junit.xml")},
@@ -306,13 +315,20 @@ std::vector<Mode> Modes() {
               {"--quiet", {"--quiet"}, Expect::kActs, Err()}};
     modes.push_back(m);
   }
-  modes.push_back({"validate", "validate", {"-q", "validate", scene}, {},
+  modes.push_back({"validate",
+                   "validate",
+                   {"-q", "validate", scene},
+                   {},
                    {{"--help", {"--help"}, Expect::kActs, help},
                     {"--set", {"--set", "name=other"}, Expect::kActs, Out()},
                     {"--seed", {"--seed", "7"}, Expect::kActs, Out()}}});
   {
-    const Probe manifest = Json("{out}/d/manifest.json", {"/scene_hash", "/seed", "/frame_count", "/outputs", "/shard"});
-    modes.push_back({"render", "render", {"-q", "render", scene, "-o", "{out}/d", "--frames", "3"}, {},
+    const Probe manifest =
+        Json("{out}/d/manifest.json", {"/scene_hash", "/seed", "/frame_count", "/outputs", "/shard"});
+    modes.push_back({"render",
+                     "render",
+                     {"-q", "render", scene, "-o", "{out}/d", "--frames", "3"},
+                     {},
                      {{"--help", {"--help"}, Expect::kActs, help},
                       {"--set", {"--set", "crowd.people_per_table=2"}, Expect::kActs, manifest},
                       {"--seed", {"--seed", "7"}, Expect::kActs, manifest},
@@ -322,58 +338,75 @@ std::vector<Mode> Modes() {
                       {"--shard", {"--shard", "0/2"}, Expect::kActs, manifest},
                       {"--outputs", {"--outputs", "thermal"}, Expect::kActs, manifest}}});
   }
-  modes.push_back({"merge", "merge", {"-q", "merge", "{shard0}", "{shard1}", "-o", "{out}/m"}, {kShards},
+  modes.push_back({"merge",
+                   "merge",
+                   {"-q", "merge", "{shard0}", "{shard1}", "-o", "{out}/m"},
+                   {kShards},
                    {{"--help", {"--help"}, Expect::kActs, help},
                     {"--output", {}, Expect::kRequired},
                     {"--threads", {}, Expect::kThreads}}});
   {
-    Mode m{"bench", "bench", {"-q", "bench", "{dataset}", "-o", "{out}/r", "--methods", "thumb"}, {kDataset, kBaselines}, {}};
+    Mode m{"bench",
+           "bench",
+           {"-q", "bench", "{dataset}", "-o", "{out}/r", "--methods", "thumb"},
+           {kDataset, kBaselines},
+           {}};
     m.rows = bench_rows(report, "thumb");
-    m.rows.insert(m.rows.end(),
-                  {{"--help", {"--help"}, Expect::kActs, help},
-                   {"--output", {}, Expect::kActs, Exists(report)},
-                   {"--threads", {}, Expect::kThreads},
-                   {"--dump-scores", {"--dump-scores", "{out}/scores"}, Expect::kActs, Exists("{out}/scores/thumb.csv")},
-                   {"--online", {"--online"}, Expect::kActs, Json(report, {"/mode"}), {"--methods", "slcd"}},
-                   {"--shortlist-k", {"--shortlist-k", "5"}, Expect::kRefused},
-                   {"--shortlist-index", {"--shortlist-index", "flat"}, Expect::kRefused},
-                   {"--shortlist-search-depth", {"--shortlist-search-depth", "8"}, Expect::kRefused}});
+    m.rows.insert(
+        m.rows.end(),
+        {{"--help", {"--help"}, Expect::kActs, help},
+         {"--output", {}, Expect::kActs, Exists(report)},
+         {"--threads", {}, Expect::kThreads},
+         {"--dump-scores", {"--dump-scores", "{out}/scores"}, Expect::kActs, Exists("{out}/scores/thumb.csv")},
+         {"--online", {"--online"}, Expect::kActs, Json(report, {"/mode"}), {"--methods", "slcd"}},
+         {"--shortlist-k", {"--shortlist-k", "5"}, Expect::kRefused},
+         {"--shortlist-index", {"--shortlist-index", "flat"}, Expect::kRefused},
+         {"--shortlist-search-depth", {"--shortlist-search-depth", "8"}, Expect::kRefused}});
     modes.push_back(m);
   }
   {
-    Mode m{"bench --online", "bench",
-           {"-q", "bench", "{dataset}", "-o", "{out}/r", "--online", "--methods", "slcd"}, {kDataset, kBaselines}, {}};
+    Mode m{"bench --online",
+           "bench",
+           {"-q", "bench", "{dataset}", "-o", "{out}/r", "--online", "--methods", "slcd"},
+           {kDataset, kBaselines},
+           {}};
     const Probe metrics = Metrics(report, "slcd");
     const Probe online = Json(report, {"/online/shortlist_hits", "/online/index_bytes", "/methods/slcd/mrr"});
-    m.rows = {{"--help", {"--help"}, Expect::kActs, help},
-              {"--output", {}, Expect::kActs, Exists(report)},
-              {"--threads", {}, Expect::kThreads},
-              {"--dump-scores", {"--dump-scores", "{out}/scores"}, Expect::kRefused},
-              {"--online", {}, Expect::kActs, Json(report, {"/mode"})},
-              {"--shortlist-k", {"--shortlist-k", "2"}, Expect::kActs, online},
-              {"--shortlist-index", {"--shortlist-index", "flat"}, Expect::kActs, online},
-              {"--shortlist-search-depth", {"--shortlist-search-depth", "8"}, Expect::kActs,
-               Json(report, {"/online/shortlist"})},
-              {"--shortlist-search-depth", {"--shortlist-search-depth", "8"}, Expect::kRefused,
-               nullptr, {"--shortlist-index", "flat"}},
-              {"--methods", {"--methods", "dlcd"}, Expect::kActs, Json(report, {"/methods/dlcd/mrr"})},
-              {"--protocol", {"--protocol", "revisit"}, Expect::kActs, metrics},
-              {"--radius", {"--radius", "0.6"}, Expect::kActs, metrics},
-              {"--exclusion-window", {"--exclusion-window", "30"}, Expect::kActs, metrics},
-              {"--ground-truth", {"--ground-truth", "true"}, Expect::kActs, metrics},
-              {"--heading-tolerance", {"--heading-tolerance", "5"}, Expect::kActs, metrics},
-              {"--overlap-threshold", {"--overlap-threshold", "0.9"}, Expect::kRefused},
-              {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kRefused},
-              {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kRefused},
-              {"--strata", {"--strata", "lap"}, Expect::kRefused},
-              {"--param", {"--param", "slcd.ransac_trials=5"}, Expect::kActs, metrics},
-              {"--detector", {"--detector", "fast"}, Expect::kActs, metrics},
-              {"--slam", {"--slam"}, Expect::kRefused},
-              {"--slam-backend", {"--slam-backend", "cauchy"}, Expect::kRefused},
-              {"--loop-threshold", {"--loop-threshold", "5"}, Expect::kRefused},
-              {"--baseline", {"--baseline", "{better_online}"}, Expect::kActs, Exit()},
-              {"--max-drop", {"--max-drop", "1"}, Expect::kActs, OutLines("regression"), {"--baseline", "{better_online}"}},
-              {"--junit", {"--junit", "{out}/junit.xml"}, Expect::kActs, Exists("{out}/junit.xml")}};
+    m.rows = {
+        {"--help", {"--help"}, Expect::kActs, help},
+        {"--output", {}, Expect::kActs, Exists(report)},
+        {"--threads", {}, Expect::kThreads},
+        {"--dump-scores", {"--dump-scores", "{out}/scores"}, Expect::kRefused},
+        {"--online", {}, Expect::kActs, Json(report, {"/mode"})},
+        {"--shortlist-k", {"--shortlist-k", "2"}, Expect::kActs, online},
+        {"--shortlist-index", {"--shortlist-index", "flat"}, Expect::kActs, online},
+        {"--shortlist-search-depth",
+         {"--shortlist-search-depth", "8"},
+         Expect::kActs,
+         Json(report, {"/online/shortlist"})},
+        {"--shortlist-search-depth",
+         {"--shortlist-search-depth", "8"},
+         Expect::kRefused,
+         nullptr,
+         {"--shortlist-index", "flat"}},
+        {"--methods", {"--methods", "dlcd"}, Expect::kActs, Json(report, {"/methods/dlcd/mrr"})},
+        {"--protocol", {"--protocol", "revisit"}, Expect::kActs, metrics},
+        {"--radius", {"--radius", "0.6"}, Expect::kActs, metrics},
+        {"--exclusion-window", {"--exclusion-window", "30"}, Expect::kActs, metrics},
+        {"--ground-truth", {"--ground-truth", "true"}, Expect::kActs, metrics},
+        {"--heading-tolerance", {"--heading-tolerance", "5"}, Expect::kActs, metrics},
+        {"--overlap-threshold", {"--overlap-threshold", "0.9"}, Expect::kRefused},
+        {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kRefused},
+        {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kRefused},
+        {"--strata", {"--strata", "lap"}, Expect::kRefused},
+        {"--param", {"--param", "slcd.ransac_trials=5"}, Expect::kActs, metrics},
+        {"--detector", {"--detector", "fast"}, Expect::kActs, metrics},
+        {"--slam", {"--slam"}, Expect::kRefused},
+        {"--slam-backend", {"--slam-backend", "cauchy"}, Expect::kRefused},
+        {"--loop-threshold", {"--loop-threshold", "5"}, Expect::kRefused},
+        {"--baseline", {"--baseline", "{better_online}"}, Expect::kActs, Exit()},
+        {"--max-drop", {"--max-drop", "1"}, Expect::kActs, OutLines("regression"), {"--baseline", "{better_online}"}},
+        {"--junit", {"--junit", "{out}/junit.xml"}, Expect::kActs, Exists("{out}/junit.xml")}};
     modes.push_back(m);
   }
   {
@@ -381,7 +414,9 @@ std::vector<Mode> Modes() {
     const Probe metrics = Metrics(evaluated, "thumb");
     const Probe labels = Json(evaluated, {"/label_agreement"});
     modes.push_back(
-        {"evaluate", "evaluate", {"-q", "evaluate", "{dataset}", "--scores", "{scores}", "-o", "{out}/e"},
+        {"evaluate",
+         "evaluate",
+         {"-q", "evaluate", "{dataset}", "--scores", "{scores}", "-o", "{out}/e"},
          {kDataset, kScores, kBaselines},
          {{"--help", {"--help"}, Expect::kActs, help},
           {"--scores", {}, Expect::kRequired},
@@ -397,13 +432,19 @@ std::vector<Mode> Modes() {
           {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kRefused},
           {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kActs, labels, {"--ground-truth", "overlap"}},
           {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kRefused},
-          {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kActs, labels,
+          {"--overlap-depth-tolerance",
+           {"--overlap-depth-tolerance", "0.5"},
+           Expect::kActs,
+           labels,
            {"--ground-truth", "overlap"}},
           {"--baseline", {"--baseline", "{better}"}, Expect::kActs, Exit()},
           {"--max-drop", {"--max-drop", "1"}, Expect::kActs, OutLines("regression"), {"--baseline", "{better}"}},
           {"--junit", {"--junit", "{out}/junit.xml"}, Expect::kActs, Exists("{out}/junit.xml")}}});
   }
-  modes.push_back({"inspect", "inspect", {"-q", "inspect", "{dataset}", "--json"}, {kDataset},
+  modes.push_back({"inspect",
+                   "inspect",
+                   {"-q", "inspect", "{dataset}", "--json"},
+                   {kDataset},
                    {{"--help", {"--help"}, Expect::kActs, help},
                     {"--json", {}, Expect::kActs, Out()},
                     {"--output", {"-o", "{out}/i"}, Expect::kActs, Exists("{out}/i/inspect.json")},
@@ -411,7 +452,10 @@ std::vector<Mode> Modes() {
                     {"--radius", {"--radius", "0.6"}, Expect::kActs, Out()}}});
   {
     const Probe files = Files("{out}/g");
-    modes.push_back({"generate", "generate", {"-q", "generate", "--layout", "lounge", "--count", "2", "-o", "{out}/g"}, {},
+    modes.push_back({"generate",
+                     "generate",
+                     {"-q", "generate", "--layout", "lounge", "--count", "2", "-o", "{out}/g"},
+                     {},
                      {{"--help", {"--help"}, Expect::kActs, help},
                       {"--layout", {"--layout", "office"}, Expect::kActs, files},
                       {"--count", {"--count", "3"}, Expect::kActs, files},
@@ -421,15 +465,24 @@ std::vector<Mode> Modes() {
                       {"--set", {"--set", "occupancy_min=0.9"}, Expect::kActs, files},
                       {"--threads", {}, Expect::kThreads}}});
   }
-  modes.push_back({"export-mot", "export-mot", {"-q", "export-mot", "{dataset}", "-o", "{out}/x"}, {kDataset},
+  modes.push_back({"export-mot",
+                   "export-mot",
+                   {"-q", "export-mot", "{dataset}", "-o", "{out}/x"},
+                   {kDataset},
                    {{"--help", {"--help"}, Expect::kActs, help},
                     {"--output", {}, Expect::kRequired},
                     {"--threads", {}, Expect::kThreads}}});
-  modes.push_back({"export-coco", "export-coco", {"-q", "export-coco", "{dataset}", "-o", "{out}/x"}, {kDataset},
+  modes.push_back({"export-coco",
+                   "export-coco",
+                   {"-q", "export-coco", "{dataset}", "-o", "{out}/x"},
+                   {kDataset},
                    {{"--help", {"--help"}, Expect::kActs, help}, {"--output", {}, Expect::kRequired}}});
   {
     const Probe bag = [](const CommandRun& r) { return TextOf(r.out + "/x.mcap"); };
-    modes.push_back({"export-mcap", "export-mcap", {"-q", "export-mcap", "{dataset}", "-o", "{out}/x.mcap"}, {kDataset},
+    modes.push_back({"export-mcap",
+                     "export-mcap",
+                     {"-q", "export-mcap", "{dataset}", "-o", "{out}/x.mcap"},
+                     {kDataset},
                      {{"--help", {"--help"}, Expect::kActs, help},
                       {"--output", {}, Expect::kRequired},
                       {"--compression", {"--compression", "none"}, Expect::kActs, bag},
@@ -439,21 +492,22 @@ std::vector<Mode> Modes() {
   {
     // The dataset's own radiometric frames (16-bit centikelvin) serve as the "real" folder.
     const Probe report = [](const CommandRun& r) { return TextOf(r.out + "/r/realism.json"); };
-    modes.push_back({"realism", "realism",
-                     {"-q", "realism", "{dataset}", "{dataset}/radiometric", "-o", "{out}/r", "--scale", "0.01", "--offset",
-                      "-273.15"},
+    modes.push_back({"realism",
+                     "realism",
+                     {"-q", "realism", "{dataset}", "{dataset}/radiometric", "-o", "{out}/r", "--scale", "0.01",
+                      "--offset", "-273.15"},
                      {kDataset},
                      {{"--help", {"--help"}, Expect::kActs, help},
                       {"--output", {}, Expect::kRequired},
                       {"--stride", {"--stride", "2"}, Expect::kActs, report},
-                      {"--scale", {}, Expect::kActs, Exit()},   // 16-bit frames without it are refused
+                      {"--scale", {}, Expect::kActs, Exit()},  // 16-bit frames without it are refused
                       {"--offset", {}, Expect::kActs, Exit()},
                       {"--float-unit", {"--float-unit", "k"}, Expect::kRefused},
                       {"--static", {"--static"}, Expect::kActs, report},
                       {"--threads", {}, Expect::kThreads}}});
   }
-  modes.push_back({"reference", "reference", {"-q", "reference", "cameras"}, {},
-                   {{"--help", {"--help"}, Expect::kActs, help}}});
+  modes.push_back(
+      {"reference", "reference", {"-q", "reference", "cameras"}, {}, {{"--help", {"--help"}, Expect::kActs, help}}});
 
   // The commands that render and bench (30 frames: no true match, so the protocol's flags show in
   // what each report says it ran with).
@@ -471,20 +525,32 @@ std::vector<Mode> Modes() {
         {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kRefused},
         {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kActs, settings, {"--ground-truth", "overlap"}},
         {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kRefused},
-        {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kActs, settings,
+        {"--overlap-depth-tolerance",
+         {"--overlap-depth-tolerance", "0.5"},
+         Expect::kActs,
+         settings,
          {"--ground-truth", "overlap"}},
         // A few queries of the revisit protocol in 30 frames, so that there are strata to report.
-        {"--strata", {"--strata", "lap"}, Expect::kActs, Json(report_json, {"/strata"}),
+        {"--strata",
+         {"--strata", "lap"},
+         Expect::kActs,
+         Json(report_json, {"/strata"}),
          {"--protocol", "revisit", "--exclusion-window", "0.5"}},
         {"--param", {"--param", "thumbnail.width_px=8"}, Expect::kActs, settings},
         {"--detector", {"--detector", "fast"}, Expect::kRefused},
         {"--detector", {"--detector", "fast"}, Expect::kActs, settings, {"--methods", "slcd"}},
         {"--slam", {"--slam", "--loop-threshold", "5"}, Expect::kActs, Json(report_json, {"/slam/backend"})},
         {"--slam-backend", {"--slam-backend", "cauchy"}, Expect::kRefused},
-        {"--slam-backend", {"--slam-backend", "cauchy"}, Expect::kActs, Json(report_json, {"/slam/backend"}),
+        {"--slam-backend",
+         {"--slam-backend", "cauchy"},
+         Expect::kActs,
+         Json(report_json, {"/slam/backend"}),
          {"--slam", "--loop-threshold", "5"}},
         {"--loop-threshold", {"--loop-threshold", "5"}, Expect::kRefused},
-        {"--loop-threshold", {"--loop-threshold", "7"}, Expect::kActs, Json(report_json, {"/methods/thumb/slam"}),
+        {"--loop-threshold",
+         {"--loop-threshold", "7"},
+         Expect::kActs,
+         Json(report_json, {"/methods/thumb/slam"}),
          {"--slam", "--loop-threshold", "5"}},
     };
   };
@@ -500,11 +566,18 @@ std::vector<Mode> Modes() {
         {"--ground-truth", {"--ground-truth", "true"}, Expect::kActs, acted},
         {"--heading-tolerance", {"--heading-tolerance", "5"}, Expect::kActs, acted},
         {"--overlap-threshold", {"--overlap-threshold", "0.9"}, Expect::kActs, acted},
-        {"--overlap-threshold", {"--overlap-threshold", "0.9"}, Expect::kRefused, nullptr, {"--ground-truth", "odometry"}},
+        {"--overlap-threshold",
+         {"--overlap-threshold", "0.9"},
+         Expect::kRefused,
+         nullptr,
+         {"--ground-truth", "odometry"}},
         {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kActs, acted},
         {"--overlap-stride", {"--overlap-stride", "16"}, Expect::kRefused, nullptr, {"--ground-truth", "odometry"}},
         {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kActs, acted},
-        {"--overlap-depth-tolerance", {"--overlap-depth-tolerance", "0.5"}, Expect::kRefused, nullptr,
+        {"--overlap-depth-tolerance",
+         {"--overlap-depth-tolerance", "0.5"},
+         Expect::kRefused,
+         nullptr,
          {"--ground-truth", "odometry"}},
         {"--strata", {"--strata", "lap"}, Expect::kActs, acted},
         {"--param", {"--param", "slcd.ransac_trials=5"}, Expect::kActs, acted},
@@ -519,33 +592,42 @@ std::vector<Mode> Modes() {
   };
   {
     const std::string run_report = "{out}/r/report.json";
-    Mode m{"run", "run",
-           {"-q", "run", scene, "--set", "frames=30", "--cache", "{cache}", "-o", "{out}/r", "--methods", "thumb", "--no-slam"},
-           {kBaselines}, pipeline_rows(run_report)};
-    m.rows.insert(m.rows.end(),
-                  {{"--help", {"--help"}, Expect::kActs, help},
-                   {"--set", {"--set", "crowd.people_per_table=2"}, Expect::kActs, Json(run_report, {"/dataset"})},
-                   {"--seed", {"--seed", "7"}, Expect::kActs, Json(run_report, {"/dataset"})},
-                   {"--cache", {"--cache", "{out}/cache"}, Expect::kActs, Exists("{out}/cache")},
-                   {"--output", {"-o", "{out}/elsewhere"}, Expect::kActs, Exists("{out}/elsewhere/report.json")},
-                   {"--threads", {}, Expect::kThreads},
-                   {"--baseline", {"--baseline", "{better}"}, Expect::kActs, Exit()},
-                   {"--max-drop", {"--max-drop", "1"}, Expect::kActs, OutLines("regression"), {"--baseline", "{better}"}},
-                   {"--junit", {"--junit", "{out}/junit.xml"}, Expect::kActs, Exists("{out}/junit.xml")}});
+    Mode m{"run",
+           "run",
+           {"-q", "run", scene, "--set", "frames=30", "--cache", "{cache}", "-o", "{out}/r", "--methods", "thumb",
+            "--no-slam"},
+           {kBaselines},
+           pipeline_rows(run_report)};
+    m.rows.insert(
+        m.rows.end(),
+        {{"--help", {"--help"}, Expect::kActs, help},
+         {"--set", {"--set", "crowd.people_per_table=2"}, Expect::kActs, Json(run_report, {"/dataset"})},
+         {"--seed", {"--seed", "7"}, Expect::kActs, Json(run_report, {"/dataset"})},
+         {"--cache", {"--cache", "{out}/cache"}, Expect::kActs, Exists("{out}/cache")},
+         {"--output", {"-o", "{out}/elsewhere"}, Expect::kActs, Exists("{out}/elsewhere/report.json")},
+         {"--threads", {}, Expect::kThreads},
+         {"--baseline", {"--baseline", "{better}"}, Expect::kActs, Exit()},
+         {"--max-drop", {"--max-drop", "1"}, Expect::kActs, OutLines("regression"), {"--baseline", "{better}"}},
+         {"--junit", {"--junit", "{out}/junit.xml"}, Expect::kActs, Exists("{out}/junit.xml")}});
     modes.push_back(m);
   }
   {
     const std::string run_report = "{out}/s/runs/frames=30,seed=1/report.json";
-    Mode m{"sweep", "sweep",
+    Mode m{"sweep",
+           "sweep",
            {"-q", "sweep", scene, "--set", "frames=30", "--cache", "{cache}", "-o", "{out}/s", "--methods", "thumb"},
-           {}, pipeline_rows(run_report)};
+           {},
+           pipeline_rows(run_report)};
     m.rows.insert(m.rows.end(),
                   {{"--help", {"--help"}, Expect::kActs, help},
                    {"--set", {"--set", "crowd.people_per_table=2"}, Expect::kActs, Files("{out}/s/runs")},
                    {"--seeds", {"--seeds", "2"}, Expect::kActs, Files("{out}/s/runs")},
                    {"--cache", {"--cache", "{out}/cache"}, Expect::kActs, Exists("{out}/cache")},
-                   {"--drop-datasets", {"--drop-datasets", "--cache", "{out}/cache"}, Expect::kActs,
-                    Files("{out}/cache"), {"--cache", "{out}/cache"}},
+                   {"--drop-datasets",
+                    {"--drop-datasets", "--cache", "{out}/cache"},
+                    Expect::kActs,
+                    Files("{out}/cache"),
+                    {"--cache", "{out}/cache"}},
                    {"--output", {}, Expect::kRequired},
                    {"--shard", {"--shard", "1/2"}, Expect::kActs, Files("{out}/s/runs")},
                    {"--merge", {"--merge", "{sweep_output}"}, Expect::kActs, Exists("{out}/s/summary.csv")},
@@ -585,18 +667,23 @@ std::vector<Mode> Modes() {
   }
   {
     const std::string run_report = "{out}/s/runs/tiny-seed1/report.json";
-    Mode m{"suite", "suite", {"-q", "suite", "{suite}", "--cache", "{cache}", "-o", "{out}/s", "--methods", "thumb"},
-           {kSuiteFiles}, pipeline_rows(run_report)};
-    m.rows.insert(m.rows.end(),
-                  {{"--help", {"--help"}, Expect::kActs, help},
-                   {"--output", {}, Expect::kRequired},
-                   {"--split", {"--split", "test"}, Expect::kActs, Exit()},
-                   {"--cache", {"--cache", "{out}/cache"}, Expect::kActs, Exists("{out}/cache")},
-                   {"--drop-datasets", {"--drop-datasets", "--cache", "{out}/cache"}, Expect::kActs,
-                    Files("{out}/cache"), {"--cache", "{out}/cache"}},
-                   {"--shard", {"--shard", "1/2"}, Expect::kActs, Exists("{out}/s/suite_report.json")},
-                   {"--merge", {"--merge", "{suite_output}"}, Expect::kActs, Exists("{out}/s/runs")},
-                   {"--threads", {}, Expect::kThreads}});
+    Mode m{"suite",
+           "suite",
+           {"-q", "suite", "{suite}", "--cache", "{cache}", "-o", "{out}/s", "--methods", "thumb"},
+           {kSuiteFiles},
+           pipeline_rows(run_report)};
+    m.rows.insert(m.rows.end(), {{"--help", {"--help"}, Expect::kActs, help},
+                                 {"--output", {}, Expect::kRequired},
+                                 {"--split", {"--split", "test"}, Expect::kActs, Exit()},
+                                 {"--cache", {"--cache", "{out}/cache"}, Expect::kActs, Exists("{out}/cache")},
+                                 {"--drop-datasets",
+                                  {"--drop-datasets", "--cache", "{out}/cache"},
+                                  Expect::kActs,
+                                  Files("{out}/cache"),
+                                  {"--cache", "{out}/cache"}},
+                                 {"--shard", {"--shard", "1/2"}, Expect::kActs, Exists("{out}/s/suite_report.json")},
+                                 {"--merge", {"--merge", "{suite_output}"}, Expect::kActs, Exists("{out}/s/runs")},
+                                 {"--threads", {}, Expect::kThreads}});
     modes.push_back(m);
   }
   {
@@ -646,14 +733,14 @@ std::map<std::string, std::string> MakeFixtures(const Mode& mode, const test::Te
   if (needed.count(kScores)) needed.insert(kDataset);
   if (needed.count(kDataset)) vars["{dataset}"] = test::RenderTinyRoom(temp / "dataset");
   if (needed.count(kScores)) {
-    const test::CliOutcome o =
-        test::RunCli({"bench", vars["{dataset}"], "--methods", "thumb", "-o", temp / "scores_report", "--dump-scores", temp / "scores"});
+    const test::CliOutcome o = test::RunCli({"bench", vars["{dataset}"], "--methods", "thumb", "-o",
+                                             temp / "scores_report", "--dump-scores", temp / "scores"});
     EXPECT_EQ(o.exit_code, 0) << o.err;
     vars["{scores}"] = temp / "scores/thumb.csv";
   }
   if (needed.count(kBaselines)) {
-    for (const auto& [name, method, mode_key] :
-         std::vector<std::tuple<std::string, std::string, std::string>>{{"better", "thumb", ""}, {"better_online", "slcd", "online"}}) {
+    for (const auto& [name, method, mode_key] : std::vector<std::tuple<std::string, std::string, std::string>>{
+             {"better", "thumb", ""}, {"better_online", "slcd", "online"}}) {
       nlohmann::json report = {{"methods", {{method, {{"mrr", 0.99}, {"recall_at_1", 0.99}}}}}};
       if (!mode_key.empty()) report["mode"] = mode_key;
       WriteFileAtomic(temp / (name + ".json"), report.dump());
@@ -676,7 +763,8 @@ std::map<std::string, std::string> MakeFixtures(const Mode& mode, const test::Te
   }
   vars["{sweep_output}"] = temp / "sweep_output";
   WriteFileAtomic(temp / "suite.json", R"({"name": "tiny", "sequences": [
-      {"name": "tiny", "scene": ")" + tiny + R"(", "seeds": [1], "split": "dev", "set": ["frames=30"]}]})");
+      {"name": "tiny", "scene": ")" + tiny +
+                                           R"(", "seeds": [1], "split": "dev", "set": ["frames=30"]}]})");
   vars["{suite}"] = temp / "suite.json";
   WriteFileAtomic(temp / "failing.json", R"({"name": "failing", "sequences": [
       {"name": "a", "scene": "no_a.json", "seeds": [1], "split": "dev"},
@@ -721,7 +809,8 @@ TEST_P(EveryFlag, ChangesWhatTheCommandDoesOrIsRefusedByName) {
     return text;
   };
   for (const Row& row : mode.rows) {
-    SCOPED_TRACE(mode.name + ": " + row.flag + line(row.args) + (row.context.empty() ? "" : " with" + line(row.context)));
+    SCOPED_TRACE(mode.name + ": " + row.flag + line(row.args) +
+                 (row.context.empty() ? "" : " with" + line(row.context)));
     const Args base = Merge(flags, mode, mode.base, row.context);
     switch (row.expect) {
       case Expect::kActs: {
@@ -729,7 +818,8 @@ TEST_P(EveryFlag, ChangesWhatTheCommandDoesOrIsRefusedByName) {
         const Args without = row.args.empty() ? Without(flags, mode, base, row.flag) : base;
         const CommandRun a = invoke(without), b = invoke(with);
         const std::string before = row.probe(a), after = row.probe(b);
-        EXPECT_NE(before, after) << "the flag changed nothing: " << line(with) << "\n" << after << "\nerr: " << b.outcome.err;
+        EXPECT_NE(before, after) << "the flag changed nothing: " << line(with) << "\n"
+                                 << after << "\nerr: " << b.outcome.err;
         break;
       }
       case Expect::kRefused: {
@@ -750,7 +840,9 @@ TEST_P(EveryFlag, ChangesWhatTheCommandDoesOrIsRefusedByName) {
       case Expect::kThreads: {
         CommandRun one, three;
         const int helpers_one = HelpersThatWorked([&] { one = invoke(Merge(flags, mode, base, {"--threads", "1"})); });
-        const int helpers_three = HelpersThatWorked([&] { three = invoke(Merge(flags, mode, base, {"--threads", "3"})); });
+        const int helpers_three = HelpersThatWorked([&] {
+          three = invoke(Merge(flags, mode, base, {"--threads", "3"}));
+        });
         EXPECT_EQ(one.outcome.exit_code, 0) << one.outcome.err;
         EXPECT_EQ(three.outcome.exit_code, 0) << three.outcome.err;
         EXPECT_GT(helpers_three, helpers_one);

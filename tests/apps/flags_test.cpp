@@ -1,13 +1,13 @@
 // Number flags: every one refuses NaN, infinities, text and values out of its range before any
 // work, naming the flag and the range in a few words (issue 32: --max-drop nan turned the CI gate
 // off; --max-drop -0.1 printed the bounds of a double in 309 digits).
-#include <gtest/gtest.h>
-
 #include <string>
 #include <vector>
 
-#include "shared.h"
+#include <gtest/gtest.h>
+
 #include "run_cli.h"
+#include "shared.h"
 #include "test_dir.h"
 
 namespace hoilcd {

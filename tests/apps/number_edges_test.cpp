@@ -1,14 +1,14 @@
 // Every number flag of every command at the edges of its range, given as text that a double would
 // round (issue 45): a bound itself is taken when it is inclusive and refused when exclusive, and
 // the first value beyond it is refused, 2^53 + 1 included, which a double holds as 2^53.
-#include <gtest/gtest.h>
-
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <regex>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <vector>
+
+#include <CLI/CLI.hpp>
+#include <gtest/gtest.h>
 
 #include "command.h"
 #include "hoilcd/core/util/sizes.h"
@@ -50,8 +50,7 @@ TEST(NumberFlags, EveryBoundOfEveryCommandHoldsForTextADoubleWouldRound) {
   CLI::App app;
   for (auto add : {AddValidateCommand, AddRenderCommand, AddMergeCommand, AddBenchCommand, AddRunCommand,
                    AddEvaluateCommand, AddInspectCommand, AddSweepCommand, AddExportCocoCommand, AddParamsCommand,
-                   AddExportMotCommand, AddReferenceCommand, AddGenerateCommand, AddSuiteCommand,
-                   AddRealismCommand}) {
+                   AddExportMotCommand, AddReferenceCommand, AddGenerateCommand, AddSuiteCommand, AddRealismCommand}) {
     add(&app);
   }
   // NumberIn's description: "in [0, 10]", "in (0, 1]", "at least 0", "above 0", "at most 5", "below 5".

@@ -1,13 +1,12 @@
 // Issue 45, defects 10 and 11: `bench --online` gates against --baseline and writes --junit as the
 // offline bench does, and refuses by name the flags of what it does not compute; `inspect` checks
 // the files it reads against manifest.json as the bench does.
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/file_io.h"
@@ -35,7 +34,8 @@ TEST(OnlineBenchCli, TheGateFailsAgainstABetterBaselineAndWritesJunit) {
   const std::vector<std::string> online = {"bench", dataset, "--online", "--methods", "slcd"};
 
   std::vector<std::string> gated = online;
-  gated.insert(gated.end(), {"-o", temp / "r1", "--baseline", better, "--max-drop", "0", "--junit", temp / "junit.xml"});
+  gated.insert(gated.end(),
+               {"-o", temp / "r1", "--baseline", better, "--max-drop", "0", "--junit", temp / "junit.xml"});
   const test::CliOutcome regressed = test::RunCli(gated);
   EXPECT_EQ(regressed.exit_code, 3) << regressed.err;
   EXPECT_NE(regressed.out.find("regression: method slcd, mrr old 0.9900"), std::string::npos) << regressed.out;
@@ -60,8 +60,8 @@ TEST(OnlineBenchCli, AMissingOrOfflineBaselineIsRefusedBeforeAnyWork) {
   EXPECT_FALSE(std::filesystem::exists(temp / "r"));
 
   const std::string offline = Baseline(temp, "offline.json", "slcd", 0.5, "");
-  const test::CliOutcome other = test::RunCli(
-      {"bench", dataset, "--online", "--methods", "slcd", "-o", temp / "r", "--baseline", offline});
+  const test::CliOutcome other =
+      test::RunCli({"bench", dataset, "--online", "--methods", "slcd", "-o", temp / "r", "--baseline", offline});
   EXPECT_EQ(other.exit_code, 1);
   EXPECT_NE(other.err.find(offline + ": is the report of an offline bench, this is an online one"), std::string::npos)
       << other.err;
@@ -69,7 +69,8 @@ TEST(OnlineBenchCli, AMissingOrOfflineBaselineIsRefusedBeforeAnyWork) {
 
   // And the other way round: the offline bench refuses an online report.
   const std::string online = Baseline(temp, "online.json", "slcd", 0.5, "online");
-  const test::CliOutcome back = test::RunCli({"bench", dataset, "--methods", "slcd", "-o", temp / "r", "--baseline", online});
+  const test::CliOutcome back =
+      test::RunCli({"bench", dataset, "--methods", "slcd", "-o", temp / "r", "--baseline", online});
   EXPECT_EQ(back.exit_code, 1);
   EXPECT_NE(back.err.find(online + ": is the report of an online bench, this is an offline one"), std::string::npos)
       << back.err;

@@ -1,22 +1,21 @@
 // End to end through the command line: bench --dump-scores -> evaluate --scores reproduces every
 // method's metrics exactly; the CI gate's exit codes; evaluate's errors; evaluate's and inspect's
 // -o folders and the guard they share with bench; the protocol flags' defaults in the help.
-#include <gtest/gtest.h>
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <chrono>
-#include <mutex>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "hoilcd/bench/evaluation/protocol.h"
@@ -76,7 +75,8 @@ TEST(OpenBenchCli, DumpedScoresThroughEvaluateReproduceEveryMethodsMetricsExactl
       EXPECT_EQ(mine[key], theirs[key]) << method << " " << key;
     }
     EXPECT_EQ(Json(out)["other_ground_truth"]["methods"][method]["mrr"],
-              report["other_ground_truth"]["methods"][method]["mrr"]) << method;
+              report["other_ground_truth"]["methods"][method]["mrr"])
+        << method;
   }
 }
 
@@ -100,8 +100,9 @@ TEST(OpenBenchCli, DumpedScoresOfEveryMethodAreByteIdenticalAtOneAndTwoThreads) 
 TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnReport) {
   const test::TestDir temp;
   const std::string dataset = RenderTiny(temp);
-  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "report", "--dump-scores", temp / "scores",
-                 "--junit", temp / "junit.xml"}), 0);
+  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "report", "--dump-scores",
+                    temp / "scores", "--junit", temp / "junit.xml"}),
+            0);
   const std::string own = temp / "report/report.json";
   nlohmann::json better = Json(own);
   better["methods"]["thumb"]["mrr"] = better["methods"]["thumb"]["mrr"].get<double>() + 0.05;
@@ -110,7 +111,7 @@ TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnRe
   EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "again", "--baseline", own}), 0);
   testing::internal::CaptureStdout();
   const int code = Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "again", "--baseline",
-                        temp / "better.json", "--max-drop", "0.01", "--junit", temp / "junit.xml"});
+                           temp / "better.json", "--max-drop", "0.01", "--junit", temp / "junit.xml"});
   const std::string out = testing::internal::GetCapturedStdout();
   EXPECT_EQ(code, 3);
   EXPECT_NE(out.find("regression: method thumb, mrr old "), std::string::npos) << out;
@@ -121,9 +122,11 @@ TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnRe
   // evaluate: the same gate on one method's scores.
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", own}), 0);
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "better.json",
-                 "--max-drop", "0.01"}), 3);
+                    "--max-drop", "0.01"}),
+            3);
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "better.json",
-                 "--max-drop", "0.1"}), 0);
+                    "--max-drop", "0.1"}),
+            0);
 
   // --max-drop ci: the run's own interval decides. Its own report passes; a baseline far above the
   // interval does not, and the line names the interval.
@@ -131,10 +134,12 @@ TEST(OpenBenchCli, TheGateExitsThreeAgainstABetterBaselineAndZeroAgainstItsOwnRe
   nlohmann::json above = Json(own);
   above["methods"]["thumb"]["mrr"] = high + 0.01;
   WriteFileAtomic(temp / "above.json", above.dump());
-  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", own, "--max-drop", "ci"}), 0);
+  EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", own, "--max-drop", "ci"}),
+            0);
   testing::internal::CaptureStdout();
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "--baseline", temp / "above.json",
-                 "--max-drop", "ci"}), 3);
+                    "--max-drop", "ci"}),
+            3);
   const std::string ci_out = testing::internal::GetCapturedStdout();
   EXPECT_NE(ci_out.find("(old above the new run's 95 % interval ["), std::string::npos) << ci_out;
 }
@@ -143,7 +148,8 @@ TEST(OpenBenchCli, TheOverlapGroundTruthLabelsTheRunAndTheReportComparesTheThree
   const test::TestDir temp;
   const std::string dataset = RenderTiny(temp);
   ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "--ground-truth", "overlap", "--overlap-threshold", "0.6",
-                 "-o", temp / "report"}), 0);
+                    "-o", temp / "report"}),
+            0);
   const nlohmann::json report = Json(temp / "report/report.json");
   EXPECT_EQ(report["protocol"]["ground_truth"], "overlap");
   EXPECT_EQ(report["protocol"]["overlap_threshold"], 0.6);
@@ -165,11 +171,13 @@ TEST(OpenBenchCli, EvaluateNamesTheBadScoresFileAndLineAndABadBaselineFailsBefor
   testing::internal::CaptureStderr();
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "bad.csv"}), 1);
   std::string err = testing::internal::GetCapturedStderr();
-  EXPECT_NE(err.find(temp / "bad.csv" + ":3: reference '99999': expected a frame index in 0.."), std::string::npos) << err;
+  EXPECT_NE(err.find(temp / "bad.csv" + ":3: reference '99999': expected a frame index in 0.."), std::string::npos)
+      << err;
 
   WriteFileAtomic(temp / "baseline.json", "[]");
   testing::internal::CaptureStderr();
-  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "r", "--baseline", temp / "baseline.json"}), 1);
+  EXPECT_EQ(Hoilcd({"bench", dataset, "--methods", "thumb", "-o", temp / "r", "--baseline", temp / "baseline.json"}),
+            1);
   err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("baseline.json: /methods: expected an object of methods"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists(temp / "r"));
@@ -225,7 +233,8 @@ TEST(OpenBenchCli, EvaluateRefusesScoresFilesWithoutAScore) {
   testing::internal::CaptureStderr();
   EXPECT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "header_only.csv", "-o", temp / "r"}), 1);
   const std::string err = testing::internal::GetCapturedStderr();
-  EXPECT_NE(err.find("error: " + temp / "header_only.csv" + ": holds the header and no pair"), std::string::npos) << err;
+  EXPECT_NE(err.find("error: " + temp / "header_only.csv" + ": holds the header and no pair"), std::string::npos)
+      << err;
   EXPECT_FALSE(std::filesystem::exists(temp / "r"));
 }
 
@@ -256,8 +265,9 @@ TEST(OpenBenchCli, TheRunsProtocolOnADatasetOfOneRecordingRunIsAnErrorNamingItBe
     testing::internal::CaptureStderr();
     EXPECT_EQ(Hoilcd(args), 1) << command[0];
     const std::string err = testing::internal::GetCapturedStderr();
-    EXPECT_EQ(err, "error: " + dataset + ": holds one recording run; --protocol runs needs two or more (render a "
-                                         "scene with /runs)\n")
+    EXPECT_EQ(err, "error: " + dataset +
+                       ": holds one recording run; --protocol runs needs two or more (render a "
+                       "scene with /runs)\n")
         << command[0];
     EXPECT_FALSE(std::filesystem::exists(temp / "report")) << command[0];
   }
@@ -311,9 +321,9 @@ std::vector<std::string> Listing(const std::string& dir) {
 TEST(OpenBenchCli, EvaluateOutputIsAReportFolderWithTheBenchsReportJsonAndQueriesCsv) {
   const test::TestDir temp;
   const std::string dataset = RenderTiny(temp);
-  ASSERT_EQ(Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "report", "--dump-scores",
-                    temp / "scores"}),
-            0);
+  ASSERT_EQ(
+      Hoilcd({"bench", dataset, "--methods", "slcd,thumb", "-o", temp / "report", "--dump-scores", temp / "scores"}),
+      0);
   ASSERT_EQ(Hoilcd({"evaluate", dataset, "--scores", temp / "scores/thumb.csv", "-o", temp / "new/thumb"}), 0);
   EXPECT_EQ(Listing(temp / "new/thumb"), (std::vector<std::string>{"mrr_per_lap.png", "pr_curves.png", "queries.csv",
                                                                    "report.html", "report.json", "report.md"}));

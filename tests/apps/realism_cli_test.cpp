@@ -1,12 +1,11 @@
 // End to end through the command line: hoilcd realism on a tiny rendered dataset against real-frame
 // folders the test writes itself (the dataset's own frames as 16-bit centikelvin PNGs, as a float
 // TIFF in kelvin, and as 8-bit PNG and JPEG), the report folder's files, its guard and its errors.
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -104,8 +103,10 @@ TEST_F(RealismCli, EightBitFramesSkipTemperatureStatisticsBesideAKelvinTiff) {
   EXPECT_EQ(Statistic(j, "shi_tomasi_corners")["all_views"]["real"]["count"], 3);
   const nlohmann::json& c = j["real"]["per_frame"][2];
   EXPECT_EQ(c["frame"], "c.tiff");
-  EXPECT_NEAR(c["temperature_p50_c"].get<double>(), j["synthetic"]["per_frame"][0]["temperature_p50_c"].get<double>(), 10.0);
-  EXPECT_NE(ReadFileBytes(temp / "out/realism.md").find("2 8-bit: no temperature statistics for those"), std::string::npos);
+  EXPECT_NEAR(c["temperature_p50_c"].get<double>(), j["synthetic"]["per_frame"][0]["temperature_p50_c"].get<double>(),
+              10.0);
+  EXPECT_NE(ReadFileBytes(temp / "out/realism.md").find("2 8-bit: no temperature statistics for those"),
+            std::string::npos);
 }
 
 TEST_F(RealismCli, BadInputIsRefusedNamingWhatWasExpected) {
@@ -121,14 +122,16 @@ TEST_F(RealismCli, BadInputIsRefusedNamingWhatWasExpected) {
   };
   EXPECT_NE(err({"realism", Dataset(), temp / "missing", "-o", temp / "o1"}).find("no such folder"), std::string::npos);
   EXPECT_NE(err({"realism", Dataset(), temp / "empty", "-o", temp / "o2"}).find("holds no frame"), std::string::npos);
-  EXPECT_NE(err({"realism", Dataset(), temp / "counts", "-o", temp / "o3"}).find(temp / "counts/f.png"), std::string::npos);
+  EXPECT_NE(err({"realism", Dataset(), temp / "counts", "-o", temp / "o3"}).find(temp / "counts/f.png"),
+            std::string::npos);
   EXPECT_NE(err({"realism", Dataset(), temp / "counts", "-o", temp / "o4", "--scale", "-1", "--offset", "0"})
                 .find("--scale -1: expected kelvin per count"),
             std::string::npos);
   // -o: a folder holding something else is refused before any work.
   std::filesystem::create_directories(temp / "busy");
   std::ofstream(temp / "busy/notes.txt") << "mine";
-  const std::string busy = err({"realism", Dataset(), temp / "counts", "-o", temp / "busy", "--scale", "0.01", "--offset", "-273.15"});
+  const std::string busy =
+      err({"realism", Dataset(), temp / "counts", "-o", temp / "busy", "--scale", "0.01", "--offset", "-273.15"});
   EXPECT_NE(busy.find("notes.txt"), std::string::npos) << busy;
   EXPECT_FALSE(std::filesystem::exists(temp / "busy/realism.json"));
 }

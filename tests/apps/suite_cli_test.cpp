@@ -2,12 +2,12 @@
 // scene reports that failure, summarises the other runs and exits non-zero; a rerun keeps the
 // finished runs and writes the same suite_report.json bytes. Shards and their merge: the merged
 // report has the unsharded bytes, and every refusal names the flag or the folder.
-#include <gtest/gtest.h>
-
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/file_io.h"
 #include "run_cli.h"
@@ -24,12 +24,14 @@ TEST(SuiteCli, ReportsAFailedRunSummarisesTheOthersAndARerunKeepsThemWithTheSame
   WriteFileAtomic(temp / "suite.json", R"({
     "name": "tiny",
     "sequences": [
-      {"name": "tiny", "scene": ")" + tiny + R"(", "seeds": [1, 2], "split": "dev"},
+      {"name": "tiny", "scene": ")" + tiny +
+                                           R"(", "seeds": [1, 2], "split": "dev"},
       {"name": "missing", "scene": "does_not_exist.json", "seeds": [1], "split": "test"}
     ]
   })");
-  const std::vector<std::string> args = {"suite", temp / "suite.json", "-o", temp / "out", "--cache", temp / "cache",
-                                         "--methods", "slcd,dlcd", "--no-slam", "--threads", "2"};
+  const std::vector<std::string> args = {"suite",     temp / "suite.json", "-o",        temp / "out",
+                                         "--cache",   temp / "cache",      "--methods", "slcd,dlcd",
+                                         "--no-slam", "--threads",         "2"};
   const test::CliOutcome first = test::RunCli(args);
   EXPECT_NE(first.exit_code, 0) << first.out << first.err;
   EXPECT_NE(first.err.find("missing-seed1"), std::string::npos) << first.err;
@@ -72,16 +74,16 @@ TEST(SuiteCli, ARerunWithOtherStrataOrSlamSettingsBenchesTheRunAgain) {
   const test::TestDir temp;
   const std::string tiny = std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/tiny_room.json";
   WriteFileAtomic(temp / "suite.json", R"({"name": "tiny", "sequences": [
-      {"name": "tiny", "scene": ")" + tiny + R"(", "seeds": [1], "split": "dev", "set": ["frames=30"]}]})");
-  const std::vector<std::string> args = {"suite", temp / "suite.json", "-o", temp / "out", "--cache", temp / "cache",
-                                         "--methods", "thumb"};
+      {"name": "tiny", "scene": ")" + tiny +
+                                           R"(", "seeds": [1], "split": "dev", "set": ["frames=30"]}]})");
+  const std::vector<std::string> args = {"suite",   temp / "suite.json", "-o",        temp / "out",
+                                         "--cache", temp / "cache",      "--methods", "thumb"};
   ASSERT_EQ(test::RunCli(args).exit_code, 0);
   const std::string report = temp / "out/runs/tiny-seed1/report.json";
-  for (const std::vector<std::string>& changed : {std::vector<std::string>{"--strata", "lap"},
-                                                  std::vector<std::string>{"--slam", "--loop-threshold", "5"},
-                                                  std::vector<std::string>{"--slam", "--loop-threshold", "7"},
-                                                  std::vector<std::string>{"--slam", "--loop-threshold", "7",
-                                                                           "--slam-backend", "cauchy"}}) {
+  for (const std::vector<std::string>& changed :
+       {std::vector<std::string>{"--strata", "lap"}, std::vector<std::string>{"--slam", "--loop-threshold", "5"},
+        std::vector<std::string>{"--slam", "--loop-threshold", "7"},
+        std::vector<std::string>{"--slam", "--loop-threshold", "7", "--slam-backend", "cauchy"}}) {
     std::vector<std::string> again = args;
     again.insert(again.end(), changed.begin(), changed.end());
     const test::CliOutcome o = test::RunCli(again);
@@ -107,7 +109,8 @@ TEST(SuiteCli, RefusesABadSuiteFileAFolderOfTheUsersAndAnEmptySplit) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("bad.json: /sequences/0: expected exactly one of"), std::string::npos) << bad.err;
 
-  WriteFileAtomic(temp / "dev.json", R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"}]})");
+  WriteFileAtomic(temp / "dev.json",
+                  R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"}]})");
   const test::CliOutcome empty = test::RunCli({"suite", temp / "dev.json", "-o", temp / "out", "--split", "test"});
   EXPECT_EQ(empty.exit_code, 1);
   EXPECT_NE(empty.err.find("no sequence in split test"), std::string::npos) << empty.err;
@@ -195,13 +198,14 @@ TEST(SuiteCli, AMergeRefusesMissingRepeatedAndForeignShardsAndAnUnfinishedRunNam
   EXPECT_NE(repeated.find(shards[1] + ": is shard 1/3, as " + shards[1] + " is"), std::string::npos) << repeated;
   const std::string foreign = merge(shards, {suite, "--split", "dev"});
   EXPECT_NE(foreign.find(shards[0] + ": ran another suite than the suite file and flags given to the merge: /split is "
-                         "\"dev\" there and \"all\" here"),
+                                     "\"dev\" there and \"all\" here"),
             std::string::npos)
       << foreign;
   const test::CliOutcome dev = test::RunCli({"suite", suite, "-o", temp / "dev", "--split", "dev", "--shard", "1/3"});
   ASSERT_EQ(dev.exit_code, 0) << dev.err;
   const std::string mixed = merge({shards[0], temp / "dev", shards[2]});
-  EXPECT_NE(mixed.find(temp / "dev" + ": ran another suite than " + shards[0] + "/suite.json"), std::string::npos) << mixed;
+  EXPECT_NE(mixed.find(temp / "dev" + ": ran another suite than " + shards[0] + "/suite.json"), std::string::npos)
+      << mixed;
   const std::string no_suite = merge({shards[0], temp / "nowhere", shards[2]});
   EXPECT_NE(no_suite.find(temp / "nowhere" + ": holds no suite"), std::string::npos) << no_suite;
 

@@ -2,9 +2,9 @@
 // bounds a step's cost measures, because a loaded machine stretches wall time but not CPU time.
 #pragma once
 
-#include <time.h>
-
 #include <functional>
+
+#include <time.h>
 
 namespace hoilcd::test {
 

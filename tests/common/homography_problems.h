@@ -16,9 +16,8 @@ constexpr float kWidthPx = 256, kHeightPx = 192;
 // A plausible reference -> query homography: scale/shear near 1, shift, mild perspective.
 inline Eigen::Matrix3d RandomHomography(Rng& rng) {
   Eigen::Matrix3d h;
-  h << rng.Uniform(0.8, 1.2), rng.Uniform(-0.15, 0.15), rng.Uniform(-25, 25),
-      rng.Uniform(-0.15, 0.15), rng.Uniform(0.8, 1.2), rng.Uniform(-20, 20),
-      rng.Uniform(-6e-4, 6e-4), rng.Uniform(-6e-4, 6e-4), 1.0;
+  h << rng.Uniform(0.8, 1.2), rng.Uniform(-0.15, 0.15), rng.Uniform(-25, 25), rng.Uniform(-0.15, 0.15),
+      rng.Uniform(0.8, 1.2), rng.Uniform(-20, 20), rng.Uniform(-6e-4, 6e-4), rng.Uniform(-6e-4, 6e-4), 1.0;
   return h;
 }
 
@@ -28,8 +27,7 @@ inline Point2 Apply(const Eigen::Matrix3d& h, Point2 p) {
 }
 
 inline Point2 RandomPoint(Rng& rng) {
-  return Point2(static_cast<float>(rng.Uniform(0, kWidthPx)),
-                static_cast<float>(rng.Uniform(0, kHeightPx)));
+  return Point2(static_cast<float>(rng.Uniform(0, kWidthPx)), static_cast<float>(rng.Uniform(0, kHeightPx)));
 }
 
 // Matches 0..n-1 pair reference[i] with query[i]; the first `num_inliers` follow h plus Gaussian

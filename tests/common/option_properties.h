@@ -3,12 +3,12 @@
 // field's range is the first problem Check() names, at that field.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/option_table.h"
 

@@ -9,7 +9,8 @@
 namespace hoilcd::test {
 
 struct PlannedWorld {
-  explicit PlannedWorld(const Scene& s) : scene(s), world(scene, table), run(SimulateSceneRobot(scene, world.obstacles())) {
+  explicit PlannedWorld(const Scene& s)
+      : scene(s), world(scene, table), run(SimulateSceneRobot(scene, world.obstacles())) {
     world.PlanCrowd(run.samples);
   }
   Scene scene;

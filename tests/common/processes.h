@@ -3,14 +3,14 @@
 // user (root lists any folder, whatever its mode).
 #pragma once
 
-#include <gtest/gtest.h>
+#include <functional>
+#include <string>
+
 #include <grp.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <functional>
-#include <string>
 
 namespace hoilcd::test {
 

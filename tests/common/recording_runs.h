@@ -15,10 +15,10 @@
 namespace hoilcd::test {
 
 struct RunSource {
-  std::string dir;            // a dataset folder: the run's frames
-  double time_of_day_h = 9;   // h, runs.json's
+  std::string dir;           // a dataset folder: the run's frames
+  double time_of_day_h = 9;  // h, runs.json's
   int day = 0;
-  double start_time_s = 0;    // s since the first run began (the first run: 0)
+  double start_time_s = 0;  // s since the first run began (the first run: 0)
 };
 
 // Writes the joined dataset into `out`; returns `out`.

@@ -6,8 +6,6 @@
 // variable (a test binary run by hand) every call renders. docs/guide/testing.md describes it.
 #pragma once
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
@@ -17,6 +15,8 @@
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include <unistd.h>
 
 #include "hoilcd/core/util/file_io.h"
 

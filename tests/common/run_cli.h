@@ -2,10 +2,10 @@
 // what it printed to stdout and stderr.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "cli.h"
 

@@ -2,11 +2,11 @@
 // by side (two checkouts, ctest -j) never share a path. Removed when the object goes away.
 #pragma once
 
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <filesystem>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
 
 namespace hoilcd::test {
 

@@ -12,15 +12,15 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "hoilcd/bench/evaluation/tracking_metrics.h"
 #include "hoilcd/bench/methods/front_end_input.h"
 #include "hoilcd/bench/methods/manifest_options.h"
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/error.h"
-
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 namespace hoilcd {
 namespace {
@@ -38,8 +38,10 @@ cv::Mat PersonPixels(const cv::Mat& ids, const cv::Mat& classes, int person_clas
       if (static_cast<int>(classes.at<float>(y, x)) != person_class) continue;
       const int id = static_cast<int>(ids.at<float>(y, x));
       auto it = boxes.find(id);
-      if (it == boxes.end()) boxes[id] = cv::Rect(x, y, 1, 1);
-      else it->second |= cv::Rect(x, y, 1, 1);
+      if (it == boxes.end())
+        boxes[id] = cv::Rect(x, y, 1, 1);
+      else
+        it->second |= cv::Rect(x, y, 1, 1);
     }
   }
   int best = -1, best_area = -1;
@@ -58,20 +60,30 @@ void SetOption(PersonDetectorOptions* o, const std::string& assignment) {
   const size_t eq = assignment.find('=');
   const std::string name = assignment.substr(0, eq);
   const double v = std::stod(assignment.substr(eq + 1));
-  const std::map<std::string, double*> doubles = {
-      {"threshold_c", &o->threshold_c}, {"split_valley_ratio", &o->split_valley_ratio},
-      {"min_peak_ratio", &o->min_peak_ratio}, {"head_min_c", &o->head_min_c},
-      {"head_zone_ratio", &o->head_zone_ratio}, {"merge_min_overlap", &o->merge_min_overlap},
-      {"min_aspect_hw", &o->min_aspect_hw}, {"max_flat_top_fraction", &o->max_flat_top_fraction},
-      {"min_clothing_fraction", &o->min_clothing_fraction}, {"valley_tolerance_ratio", &o->valley_tolerance_ratio}};
-  const std::map<std::string, int*> ints = {
-      {"open_kernel_px", &o->open_kernel_px}, {"close_kernel_px", &o->close_kernel_px},
-      {"min_head_area_px", &o->min_head_area_px}, {"min_split_width_px", &o->min_split_width_px},
-      {"min_area_px", &o->min_area_px}, {"min_height_px", &o->min_height_px},
-      {"profile_smooth_px", &o->profile_smooth_px}, {"min_top_skin_px", &o->min_top_skin_px}};
-  if (doubles.count(name)) *doubles.at(name) = v;
-  else if (ints.count(name)) *ints.at(name) = static_cast<int>(v);
-  else throw InputError(assignment, "not a detector option this tool can set");
+  const std::map<std::string, double*> doubles = {{"threshold_c", &o->threshold_c},
+                                                  {"split_valley_ratio", &o->split_valley_ratio},
+                                                  {"min_peak_ratio", &o->min_peak_ratio},
+                                                  {"head_min_c", &o->head_min_c},
+                                                  {"head_zone_ratio", &o->head_zone_ratio},
+                                                  {"merge_min_overlap", &o->merge_min_overlap},
+                                                  {"min_aspect_hw", &o->min_aspect_hw},
+                                                  {"max_flat_top_fraction", &o->max_flat_top_fraction},
+                                                  {"min_clothing_fraction", &o->min_clothing_fraction},
+                                                  {"valley_tolerance_ratio", &o->valley_tolerance_ratio}};
+  const std::map<std::string, int*> ints = {{"open_kernel_px", &o->open_kernel_px},
+                                            {"close_kernel_px", &o->close_kernel_px},
+                                            {"min_head_area_px", &o->min_head_area_px},
+                                            {"min_split_width_px", &o->min_split_width_px},
+                                            {"min_area_px", &o->min_area_px},
+                                            {"min_height_px", &o->min_height_px},
+                                            {"profile_smooth_px", &o->profile_smooth_px},
+                                            {"min_top_skin_px", &o->min_top_skin_px}};
+  if (doubles.count(name))
+    *doubles.at(name) = v;
+  else if (ints.count(name))
+    *ints.at(name) = static_cast<int>(v);
+  else
+    throw InputError(assignment, "not a detector option this tool can set");
 }
 
 // Why people were missed and what false detections were on, counted over the frames.
@@ -114,8 +126,9 @@ struct MissTally {
         for (const PersonRecord* q : scored)
           if (q != p && BoxIoU(best->box, q->box_px) > 0.1) ++others;
         const double area_ratio = best->box.area() / std::max(1.0f, p->box_px.area());
-        misses[others > 0 ? "merged with a neighbour" : area_ratio < 1 ? "detection covers part of it (cut/split)"
-                                                                      : "detection too large (joined other warm parts)"]++;
+        misses[others > 0       ? "merged with a neighbour"
+               : area_ratio < 1 ? "detection covers part of it (cut/split)"
+                                : "detection too large (joined other warm parts)"]++;
       }
     }
     for (const TrackedBox& b : d.tracks) {
@@ -145,9 +158,11 @@ void DrawFrame(const std::string& draw_dir, int frame, const cv::Mat& temperatur
   for (int half = 0; half < 2; ++half) {
     const cv::Point2f shift(0, half * temperature.rows);
     for (const PersonRecord* p : scored)
-      cv::rectangle(both, cv::Rect((p->box_px.tl() + shift) * 3, cv::Size2f(p->box_px.width * 3, p->box_px.height * 3)), {0, 255, 0}, 1);
+      cv::rectangle(both, cv::Rect((p->box_px.tl() + shift) * 3, cv::Size2f(p->box_px.width * 3, p->box_px.height * 3)),
+                    {0, 255, 0}, 1);
     for (const TrackedBox& b : d.tracks)
-      cv::rectangle(both, cv::Rect((b.box.tl() + shift) * 3, cv::Size2f(b.box.width * 3, b.box.height * 3)), {0, 0, 255}, 1);
+      cv::rectangle(both, cv::Rect((b.box.tl() + shift) * 3, cv::Size2f(b.box.width * 3, b.box.height * 3)),
+                    {0, 0, 255}, 1);
   }
   cv::imwrite(draw_dir + "/" + FrameFileName(frame, "png"), both);
 }
@@ -158,8 +173,8 @@ void PrintSummary(const TrackingMetrics& det, const TrackingMetrics& trk, const 
               tally.scored_people ? tally.warm_fraction_sum / tally.scored_people : 0.0);
   std::printf("detections: precision %.3f recall %.3f (TP %d FP %d FN %d)\n", det.precision, det.recall,
               det.true_positives, det.false_positives, det.false_negatives);
-  std::printf("tracks:     precision %.3f recall %.3f MOTA %.3f IDF1 %.3f id switches %d\n", trk.precision,
-              trk.recall, trk.mota, trk.idf1, trk.id_switches);
+  std::printf("tracks:     precision %.3f recall %.3f MOTA %.3f IDF1 %.3f id switches %d\n", trk.precision, trk.recall,
+              trk.mota, trk.idf1, trk.id_switches);
   std::printf("HOI points: median %.2f px from the true contact, %.3f within %.0f px (%d contacts)\n",
               trk.hoi_median_error_px, trk.hoi_fraction_within_tolerance, scoring.hoi_tolerance_px, trk.hoi_contacts);
   std::printf("misses (raw detections, IoU < %.1f):\n", scoring.iou_threshold);
@@ -168,7 +183,8 @@ void PrintSummary(const TrackingMetrics& det, const TrackingMetrics& trk, const 
   for (const auto& [why, n] : tally.false_positives) std::printf("  %5d  %s\n", n, why.c_str());
   std::printf("recall by posture:\n");
   for (const auto& [posture, n] : tally.by_posture)
-    std::printf("  %-22s %.3f (%d of %d)\n", posture.c_str(), n.second ? double(n.first) / n.second : 0.0, n.first, n.second);
+    std::printf("  %-22s %.3f (%d of %d)\n", posture.c_str(), n.second ? double(n.first) / n.second : 0.0, n.first,
+                n.second);
 }
 
 // The raw detections (ids f·100 + k) and the tracks with their HOI points of the front end's last frame.
@@ -199,10 +215,14 @@ int Main(int argc, char** argv) {
   BenchOptions options = WithManifest(BenchOptions{}, dataset.manifest());
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg.rfind("--draw=", 0) == 0) draw_dir = arg.substr(7);
-    else if (arg == "--u8") u8_only = true;
-    else if (arg.find('=') != std::string::npos) SetOption(&options.detector, arg);
-    else range.push_back(std::stoi(arg));
+    if (arg.rfind("--draw=", 0) == 0)
+      draw_dir = arg.substr(7);
+    else if (arg == "--u8")
+      u8_only = true;
+    else if (arg.find('=') != std::string::npos)
+      SetOption(&options.detector, arg);
+    else
+      range.push_back(std::stoi(arg));
   }
   if (const std::string problem = options.detector.Check(); !problem.empty()) throw InputError("detector", problem);
   const int first = range.size() > 0 ? range[0] : 0;

@@ -1,11 +1,12 @@
 // floor_plan: a docs picture of a scene from above: rooms and corridors, walls, every footprint
 // (furniture, objects, standing people), the seated people at t = 0 and the robot's route.
 // Usage: floor_plan SCENE OUT.png [PIXELS_PER_M] (HOILCD_DATA_DIR as for hoilcd).
-#include <Eigen/Geometry>
 #include <iostream>
+#include <string>
+
+#include <Eigen/Geometry>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <string>
 
 #include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/sim/world/world.h"
@@ -26,13 +27,16 @@ int main(int argc, char** argv) {
     cv::Mat image(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
     // Floor frame (y north, up in the picture) to pixels.
     auto px = [&](const Eigen::Vector2d& p) {
-      return cv::Point(static_cast<int>(kMarginPx + p.x() * scale), static_cast<int>(height - kMarginPx - p.y() * scale));
+      return cv::Point(static_cast<int>(kMarginPx + p.x() * scale),
+                       static_cast<int>(height - kMarginPx - p.y() * scale));
     };
     for (const hoilcd::FloorRoom& room : scene.floor.rooms) {
-      cv::rectangle(image, px(room.box_m.min()), px(room.box_m.max()), room.corridor ? cv::Scalar(225, 235, 240) : cv::Scalar(240, 245, 235), cv::FILLED);
+      cv::rectangle(image, px(room.box_m.min()), px(room.box_m.max()),
+                    room.corridor ? cv::Scalar(225, 235, 240) : cv::Scalar(240, 245, 235), cv::FILLED);
       if (!room.corridor) {
-        cv::putText(image, room.layout.empty() ? room.name : room.layout, px({room.box_m.min().x() + 0.2, room.box_m.max().y() - 0.5}),
-                    cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
+        cv::putText(image, room.layout.empty() ? room.name : room.layout,
+                    px({room.box_m.min().x() + 0.2, room.box_m.max().y() - 0.5}), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                    cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
       }
     }
     for (const hoilcd::Obstacle2D& o : world.obstacles()) {
@@ -44,7 +48,8 @@ int main(int argc, char** argv) {
       }
       const Eigen::Rotation2Dd rotation(o.yaw_rad);
       std::vector<cv::Point> corners;
-      for (const Eigen::Vector2d& c : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)}) {
+      for (const Eigen::Vector2d& c :
+           {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)}) {
         corners.push_back(px(o.center_m + rotation * Eigen::Vector2d(c.cwiseProduct(o.half_size_m))));
       }
       cv::fillConvexPoly(image, corners, colour, cv::LINE_AA);

@@ -1,13 +1,13 @@
 // frame_strip: a README picture of a dataset's frames side by side, inferno colour map, scaled.
 // Usage: frame_strip DATASET OUT.png SCALE FRAME... (frames by index, from thermal/NNNNNN.png).
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 int main(int argc, char** argv) {
   if (argc < 5) {

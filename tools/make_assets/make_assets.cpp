@@ -8,9 +8,6 @@
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,6 +18,9 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+#include <tiny_gltf.h>
+
 namespace {
 
 using Vec3 = Eigen::Vector3d;
@@ -30,9 +30,7 @@ constexpr double kPi = 3.14159265358979323846;
 double Deg(double degrees) { return degrees * kPi / 180.0; }
 
 // Rotation about the hoilcd y axis (left) that tips +z towards +x by `angle_rad`.
-Mat3 PitchForward(double angle_rad) {
-  return Eigen::AngleAxisd(angle_rad, Vec3::UnitY()).toRotationMatrix();
-}
+Mat3 PitchForward(double angle_rad) { return Eigen::AngleAxisd(angle_rad, Vec3::UnitY()).toRotationMatrix(); }
 
 // ---------------------------------------------------------------------------------------------
 // Shapes: closed triangle surfaces in the hoilcd frame.
@@ -70,9 +68,7 @@ struct Ring {
 };
 
 // Superellipse coordinate: exponent 2 is an ellipse, larger values are boxier.
-double SuperCoord(double c, double exponent) {
-  return std::copysign(std::pow(std::abs(c), 2.0 / exponent), c);
-}
+double SuperCoord(double c, double exponent) { return std::copysign(std::pow(std::abs(c), 2.0 / exponent), c); }
 
 // Closed surface through `rings` (each sampled at `around` points), closed by a pole at each end.
 Shape Loft(const std::vector<Ring>& rings, const Vec3& start_pole, const Vec3& end_pole, int around,
@@ -93,8 +89,7 @@ Shape Loft(const std::vector<Ring>& rings, const Vec3& start_pole, const Vec3& e
   auto at = [n](uint32_t ring, uint32_t j) { return 1 + ring * n + (j % n); };
   for (uint32_t j = 0; j < n; ++j) {
     shape.indices.insert(shape.indices.end(), {0, at(0, j + 1), at(0, j)});
-    shape.indices.insert(shape.indices.end(),
-                         {end_index, at(ring_count - 1, j), at(ring_count - 1, j + 1)});
+    shape.indices.insert(shape.indices.end(), {end_index, at(ring_count - 1, j), at(ring_count - 1, j + 1)});
   }
   for (uint32_t r = 0; r + 1 < ring_count; ++r) {
     for (uint32_t j = 0; j < n; ++j) {
@@ -111,8 +106,7 @@ Shape Ellipsoid(const Vec3& center, const Mat3& axes, const Vec3& radii, int aro
   std::vector<Ring> sections;
   for (int i = 1; i < rings; ++i) {
     const double phi = -kPi / 2 + kPi * i / rings;
-    sections.push_back({center + axes.col(2) * radii.z() * std::sin(phi),
-                        axes.col(0) * radii.x() * std::cos(phi),
+    sections.push_back({center + axes.col(2) * radii.z() * std::sin(phi), axes.col(0) * radii.x() * std::cos(phi),
                         axes.col(1) * radii.y() * std::cos(phi)});
   }
   return Loft(sections, center - axes.col(2) * radii.z(), center + axes.col(2) * radii.z(), around);
@@ -125,8 +119,7 @@ Vec3 Perpendicular(const Vec3& w) {
 }
 
 // Tapered capsule: sphere of radius ra around joint a, rb around joint b, joined by a cone.
-Shape Capsule(const Vec3& a, const Vec3& b, double ra, double rb, int around = 16,
-              int cap_rings = 4) {
+Shape Capsule(const Vec3& a, const Vec3& b, double ra, double rb, int around = 16, int cap_rings = 4) {
   const Vec3 w = (b - a).normalized();
   const Vec3 u = Perpendicular(w);
   const Vec3 v = w.cross(u);
@@ -152,8 +145,7 @@ Shape Rod(const Vec3& a, const Vec3& b, double radius, int around = 12) {
 
 // Solid of revolution about the z axis through `base`: profile (radius, height) from the bottom
 // pole to the top pole (radius 0 at both ends is implied).
-Shape Lathe(const Vec3& base, const std::vector<Eigen::Vector2d>& profile, double bottom_z,
-            double top_z, int around) {
+Shape Lathe(const Vec3& base, const std::vector<Eigen::Vector2d>& profile, double bottom_z, double top_z, int around) {
   std::vector<Ring> sections;
   for (const Eigen::Vector2d& p : profile) {
     sections.push_back({base + Vec3(0, 0, p.y()), Vec3(p.x(), 0, 0), Vec3(0, p.x(), 0)});
@@ -173,11 +165,9 @@ Shape Box(const Vec3& center, const Mat3& axes, const Vec3& half) {
       const auto first = static_cast<uint32_t>(shape.positions.size());
       shape.positions.insert(shape.positions.end(), {c - s - t, c + s - t, c + s + t, c - s + t});
       if (sign > 0) {
-        shape.indices.insert(shape.indices.end(),
-                             {first, first + 1, first + 2, first, first + 2, first + 3});
+        shape.indices.insert(shape.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
       } else {
-        shape.indices.insert(shape.indices.end(),
-                             {first, first + 2, first + 1, first, first + 3, first + 2});
+        shape.indices.insert(shape.indices.end(), {first, first + 2, first + 1, first, first + 3, first + 2});
       }
     }
   }
@@ -229,8 +219,7 @@ struct AssetBuilder {
 
   // Adds the shape's triangles to the material `pick(centroid, normal)` returns for each.
   void Add(const Shape& shape, const std::function<int(const Vec3&, const Vec3&)>& pick) {
-    std::vector<std::vector<int64_t>> remap(parts.size(),
-                                            std::vector<int64_t>(shape.positions.size(), -1));
+    std::vector<std::vector<int64_t>> remap(parts.size(), std::vector<int64_t>(shape.positions.size(), -1));
     for (size_t t = 0; t < shape.indices.size(); t += 3) {
       const Vec3& a = shape.positions[shape.indices[t]];
       const Vec3& b = shape.positions[shape.indices[t + 1]];
@@ -365,11 +354,9 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
       {0.46, 0.155, 0.088, -0.005}, {0.485, 0.125, 0.075, -0.01}, {0.505, 0.075, 0.062, -0.01}};
   std::vector<Ring> rings;
   for (const TorsoSection& s : sections) {
-    rings.push_back(
-        {torso_point(s.forward, 0, s.height), t.col(1) * s.half_width, t.col(0) * s.half_depth});
+    rings.push_back({torso_point(s.forward, 0, s.height), t.col(1) * s.half_width, t.col(0) * s.half_depth});
   }
-  asset.Add(Loft(rings, torso_point(-0.01, 0, -0.06), torso_point(-0.01, 0, 0.515), 32, 2.6),
-            upper);
+  asset.Add(Loft(rings, torso_point(-0.01, 0, -0.06), torso_point(-0.01, 0, 0.515), 32, 2.6), upper);
 
   // Pelvis and buttocks.
   asset.Add(Ellipsoid(torso_point(-0.01, 0, 0.0), t, Vec3(0.115, 0.15, 0.10), 24, 12), lower);
@@ -387,21 +374,17 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
     const bool is_hair = u > 0.45 || (f < 0.35 && u > 0.15) || (f < -0.15 && u > -0.55);
     return is_hair ? hair : skin;
   });
-  asset.Add(
-      Ellipsoid(head_center + h * Vec3(0.095, 0, -0.015), h, Vec3(0.025, 0.014, 0.032), 12, 8),
-      skin);
+  asset.Add(Ellipsoid(head_center + h * Vec3(0.095, 0, -0.015), h, Vec3(0.025, 0.014, 0.032), 12, 8), skin);
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
-    asset.Add(Ellipsoid(head_center + h * Vec3(-0.005, sign * 0.081, -0.005), h,
-                        Vec3(0.02, 0.012, 0.032), 10, 6),
+    asset.Add(Ellipsoid(head_center + h * Vec3(-0.005, sign * 0.081, -0.005), h, Vec3(0.02, 0.012, 0.032), 10, 6),
               skin);
   }
 
   for (int side = 0; side < 2; ++side) {
     const Vec3 shoulder = Shoulder(pose, side);
     // Shoulder cap, upper arm, forearm (long sleeves), hand.
-    asset.Add(Ellipsoid(shoulder + t * Vec3(0, 0, -0.01), t, Vec3(0.06, 0.05, 0.055), 16, 10),
-              upper);
+    asset.Add(Ellipsoid(shoulder + t * Vec3(0, 0, -0.01), t, Vec3(0.06, 0.05, 0.055), 16, 10), upper);
     asset.Add(Capsule(shoulder, pose.elbow[side], 0.052, 0.042), upper);
     asset.Add(Capsule(pose.elbow[side], pose.wrist[side], 0.041, 0.031), upper);
     const Vec3 along = (pose.hand_tip[side] - pose.wrist[side]).normalized();
@@ -411,8 +394,8 @@ void AddPerson(AssetBuilder& asset, const Pose& pose) {
     hand_axes.col(0) = back;
     hand_axes.col(1) = along.cross(back);
     const double hand_half_length = (pose.hand_tip[side] - pose.wrist[side]).norm() / 2;
-    asset.Add(Ellipsoid((pose.wrist[side] + pose.hand_tip[side]) / 2, hand_axes,
-                        Vec3(0.017, 0.043, hand_half_length), 16, 10),
+    asset.Add(Ellipsoid((pose.wrist[side] + pose.hand_tip[side]) / 2, hand_axes, Vec3(0.017, 0.043, hand_half_length),
+                        16, 10),
               skin);
     // Thigh, shin (trousers), shoe.
     asset.Add(Capsule(pose.hip[side], pose.knee[side], 0.08, 0.055), lower);
@@ -597,10 +580,10 @@ void AddLimbParts(const RestSkeleton& rest, std::vector<AssetBuilder>* parts_out
   for (int side = 0; side < 2; ++side) {
     const std::string s = side == 0 ? "left" : "right";
     const double sign = side == 0 ? 1.0 : -1.0;
-    parts.push_back(LimbPart("upper_arm_" + s, "torso", rest.shoulder[side], rest.elbow[side], 0.052, 0.042,
-                             kClothingUpper, ""));
-    parts.push_back(LimbPart("lower_arm_" + s, "upper_arm_" + s, rest.elbow[side], rest.wrist[side], 0.041,
-                             0.031, kClothingUpper, s + "_elbow"));
+    parts.push_back(
+        LimbPart("upper_arm_" + s, "torso", rest.shoulder[side], rest.elbow[side], 0.052, 0.042, kClothingUpper, ""));
+    parts.push_back(LimbPart("lower_arm_" + s, "upper_arm_" + s, rest.elbow[side], rest.wrist[side], 0.041, 0.031,
+                             kClothingUpper, s + "_elbow"));
 
     // The hand hangs with its back outwards (palm towards the thigh).
     AssetBuilder hand = Part("hand_" + s, "lower_arm_" + s, rest.wrist[side]);
@@ -614,15 +597,15 @@ void AddLimbParts(const RestSkeleton& rest, std::vector<AssetBuilder>* parts_out
     hand.keypoints.push_back({s + "_wrist", rest.wrist[side] + Vec3(0, 0, -0.01)});
     parts.push_back(hand);
 
-    parts.push_back(LimbPart("thigh_" + s, "pelvis", rest.hip[side], rest.knee[side], 0.08, 0.055,
-                             kClothingLower, s + "_hip"));
-    parts.push_back(LimbPart("shin_" + s, "thigh_" + s, rest.knee[side], rest.ankle[side], 0.05, 0.038,
-                             kClothingLower, s + "_knee"));
+    parts.push_back(
+        LimbPart("thigh_" + s, "pelvis", rest.hip[side], rest.knee[side], 0.08, 0.055, kClothingLower, s + "_hip"));
+    parts.push_back(LimbPart("shin_" + s, "thigh_" + s, rest.knee[side], rest.ankle[side], 0.05, 0.038, kClothingLower,
+                             s + "_knee"));
 
     AssetBuilder foot = Part("foot_" + s, "shin_" + s, rest.ankle[side]);
-    foot.Add(Ellipsoid(Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.045), I,
-                       Vec3(0.135, 0.05, 0.045), 16, 10),
-             foot.Material(kShoes));
+    foot.Add(
+        Ellipsoid(Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.045), I, Vec3(0.135, 0.05, 0.045), 16, 10),
+        foot.Material(kShoes));
     foot.keypoints.push_back({s + "_ankle", rest.ankle[side] + Vec3(0, 0, -0.03)});
     foot.contacts.push_back({"floor", Vec3(rest.ankle[side].x() + 0.06, rest.ankle[side].y(), 0.0)});
     parts.push_back(foot);
@@ -646,12 +629,10 @@ std::vector<AssetBuilder> PersonParts() {
       {0.46, 0.155, 0.088, -0.005}, {0.485, 0.125, 0.075, -0.01}, {0.505, 0.075, 0.062, -0.01}};
   std::vector<Ring> rings;
   for (const TorsoSection& s : sections) {
-    rings.push_back({rest.pelvis + Vec3(s.forward, 0, s.height), Vec3(0, s.half_width, 0),
-                     Vec3(s.half_depth, 0, 0)});
+    rings.push_back({rest.pelvis + Vec3(s.forward, 0, s.height), Vec3(0, s.half_width, 0), Vec3(s.half_depth, 0, 0)});
   }
   const int upper = torso.Material(kClothingUpper);
-  torso.Add(Loft(rings, rest.pelvis + Vec3(-0.01, 0, -0.01), rest.pelvis + Vec3(-0.01, 0, 0.515), 32, 2.6),
-            upper);
+  torso.Add(Loft(rings, rest.pelvis + Vec3(-0.01, 0, -0.01), rest.pelvis + Vec3(-0.01, 0, 0.515), 32, 2.6), upper);
   for (int side = 0; side < 2; ++side) {
     torso.Add(Ellipsoid(rest.shoulder[side] + Vec3(0, 0, -0.01), I, Vec3(0.06, 0.05, 0.055), 16, 10), upper);
     torso.keypoints.push_back({side == 0 ? "left_shoulder" : "right_shoulder", rest.shoulder[side]});
@@ -811,13 +792,10 @@ AssetBuilder Cup() {
   constexpr double kInnerRadius = 0.036;
   constexpr double kHeight = 0.085;
   constexpr double kCoffeeLevel = 0.068;
-  const std::vector<Eigen::Vector2d> profile = {{kOuterRadius, 0.0},
-                                                {kOuterRadius, kHeight},
-                                                {kInnerRadius, kHeight},
-                                                {kInnerRadius, kCoffeeLevel}};
-  asset.Add(Lathe(Vec3::Zero(), profile, 0.0, kCoffeeLevel, 40), [&](const Vec3& c, const Vec3&) {
-    return std::abs(c.z() - kCoffeeLevel) < 1e-6 ? coffee : ceramic;
-  });
+  const std::vector<Eigen::Vector2d> profile = {
+      {kOuterRadius, 0.0}, {kOuterRadius, kHeight}, {kInnerRadius, kHeight}, {kInnerRadius, kCoffeeLevel}};
+  asset.Add(Lathe(Vec3::Zero(), profile, 0.0, kCoffeeLevel, 40),
+            [&](const Vec3& c, const Vec3&) { return std::abs(c.z() - kCoffeeLevel) < 1e-6 ? coffee : ceramic; });
   // Handle: a half torus on the -y side, ends sunk into the wall.
   std::vector<Ring> rings;
   constexpr int kSteps = 14;
@@ -1009,7 +987,8 @@ AssetBuilder Bag() {
   AssetBuilder asset = RoomObject("bag", "bag", "");
   const int fabric = asset.Material(kBagFabric);
   std::vector<Ring> rings;
-  for (const auto& [z, scale] : std::vector<std::pair<double, double>>{{0.0, 0.92}, {0.04, 1.0}, {0.30, 1.0}, {0.36, 0.85}}) {
+  for (const auto& [z, scale] :
+       std::vector<std::pair<double, double>>{{0.0, 0.92}, {0.04, 1.0}, {0.30, 1.0}, {0.36, 0.85}}) {
     rings.push_back({Vec3(0, 0, z), Vec3(0.16 * scale, 0, 0), Vec3(0, 0.07 * scale, 0)});
   }
   asset.Add(Loft(rings, Vec3(0, 0, 0), Vec3(0, 0, 0.36), 16, 4.0), fabric);
@@ -1114,9 +1093,11 @@ AssetBuilder Mug() {
 AssetBuilder Bottle() {
   AssetBuilder asset = RoomObject("bottle", "bottle", "");
   const int bottle = asset.Material(kBottle);
-  asset.Add(Lathe(Vec3::Zero(), {{0.031, 0.0}, {0.033, 0.01}, {0.033, 0.15}, {0.022, 0.185}, {0.014, 0.20}, {0.015, 0.20}, {0.015, 0.225}},
-                  0.0, 0.225, 16),
-            bottle);
+  asset.Add(
+      Lathe(Vec3::Zero(),
+            {{0.031, 0.0}, {0.033, 0.01}, {0.033, 0.15}, {0.022, 0.185}, {0.014, 0.20}, {0.015, 0.20}, {0.015, 0.225}},
+            0.0, 0.225, 16),
+      bottle);
   return asset;
 }
 
@@ -1125,7 +1106,9 @@ AssetBuilder Papers() {
   AssetBuilder asset = RoomObject("papers", "papers", "");
   const int paper = asset.Material(kPaper);
   asset.Add(Slab(Vec3(-0.105, -0.1485, 0), Vec3(0.105, 0.1485, 0.02)), paper);
-  asset.Add(Box(Vec3(0.0, 0.0, 0.0205), Eigen::AngleAxisd(Deg(8), Vec3::UnitZ()).toRotationMatrix(), Vec3(0.1, 0.14, 0.0005)), paper);
+  asset.Add(
+      Box(Vec3(0.0, 0.0, 0.0205), Eigen::AngleAxisd(Deg(8), Vec3::UnitZ()).toRotationMatrix(), Vec3(0.1, 0.14, 0.0005)),
+      paper);
   return asset;
 }
 
@@ -1163,7 +1146,8 @@ AssetBuilder Bookcase() {
   for (double y : {-0.391, 0.391}) asset.Add(Slab(Vec3(-0.16, y - 0.009, 0), Vec3(0.16, y + 0.009, 1.78)), wood);
   asset.Add(Slab(Vec3(-0.16, -0.382, 0), Vec3(-0.152, 0.382, 1.78)), wood);
   asset.Add(Slab(Vec3(0.14, -0.382, 0), Vec3(0.16, 0.382, 0.202)), wood);  // the plinth
-  for (double top : {0.22, 0.62, 1.02, 1.42}) asset.Add(Slab(Vec3(-0.152, -0.382, top - 0.018), Vec3(0.16, 0.382, top)), wood);
+  for (double top : {0.22, 0.62, 1.02, 1.42})
+    asset.Add(Slab(Vec3(-0.152, -0.382, top - 0.018), Vec3(0.16, 0.382, top)), wood);
   asset.Add(Slab(Vec3(-0.16, -0.40, 1.78), Vec3(0.16, 0.40, 1.80)), wood);
   return asset;
 }
@@ -1299,7 +1283,8 @@ AssetBuilder Blind() {
 // A round waste bin, Ø 0.30 m at the rim and 0.35 m tall, open at the top.
 AssetBuilder Bin() {
   AssetBuilder asset = RoomObject("bin", "bin", "");
-  asset.Add(Lathe(Vec3::Zero(), {{0.13, 0.0}, {0.15, 0.35}, {0.142, 0.35}, {0.122, 0.01}}, 0.0, 0.01, 20), asset.Material(kPlastic));
+  asset.Add(Lathe(Vec3::Zero(), {{0.13, 0.0}, {0.15, 0.35}, {0.142, 0.35}, {0.122, 0.01}}, 0.0, 0.01, 20),
+            asset.Material(kPlastic));
   return asset;
 }
 
@@ -1322,7 +1307,8 @@ AssetBuilder Rug() {
 // A smoke detector on the ceiling, Ø 0.11 m and 50 mm deep, hanging from its top face.
 AssetBuilder SmokeDetector() {
   AssetBuilder asset = RoomObject("smoke_detector", "detector", "hanging");
-  asset.Add(Lathe(Vec3(0, 0, -0.05), {{0.045, 0.0}, {0.055, 0.015}, {0.055, 0.05}}, 0.0, 0.05, 16), asset.Material(kPlastic));
+  asset.Add(Lathe(Vec3(0, 0, -0.05), {{0.045, 0.0}, {0.055, 0.015}, {0.055, 0.05}}, 0.0, 0.05, 16),
+            asset.Material(kPlastic));
   return asset;
 }
 
@@ -1360,8 +1346,8 @@ AssetBuilder Router() {
 
 tinygltf::Value Vec3Value(const Vec3& p_hoilcd) {
   const Vec3 p(p_hoilcd.y(), p_hoilcd.z(), p_hoilcd.x());
-  return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(p.x()), tinygltf::Value(p.y()),
-                                                tinygltf::Value(p.z())});
+  return tinygltf::Value(
+      tinygltf::Value::Array{tinygltf::Value(p.x()), tinygltf::Value(p.y()), tinygltf::Value(p.z())});
 }
 
 // Rounds to 0.1 mm so the JSON stays readable.
@@ -1415,8 +1401,8 @@ tinygltf::Primitive GltfPrimitive(const Shape& part, int material, tinygltf::Mod
     }
   }
   tinygltf::Accessor position_accessor;
-  position_accessor.bufferView = AddBufferView(*model, positions.data(), positions.size() * sizeof(float),
-                                               TINYGLTF_TARGET_ARRAY_BUFFER);
+  position_accessor.bufferView =
+      AddBufferView(*model, positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
   position_accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   position_accessor.type = TINYGLTF_TYPE_VEC3;
   position_accessor.count = part.positions.size();
@@ -1428,12 +1414,12 @@ tinygltf::Primitive GltfPrimitive(const Shape& part, int material, tinygltf::Mod
   tinygltf::Accessor index_accessor;
   if (part.positions.size() < 65536) {
     const std::vector<uint16_t> indices(part.indices.begin(), part.indices.end());
-    index_accessor.bufferView = AddBufferView(*model, indices.data(), indices.size() * 2,
-                                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    index_accessor.bufferView =
+        AddBufferView(*model, indices.data(), indices.size() * 2, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   } else {
-    index_accessor.bufferView = AddBufferView(*model, part.indices.data(), part.indices.size() * 4,
-                                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    index_accessor.bufferView =
+        AddBufferView(*model, part.indices.data(), part.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   }
   index_accessor.type = TINYGLTF_TYPE_SCALAR;
@@ -1457,8 +1443,8 @@ tinygltf::Value SceneExtras(const AssetBuilder& asset) {
   auto points = [](const std::vector<Contact>& list) {
     tinygltf::Value::Array out;
     for (const Contact& contact : list) {
-      out.push_back(tinygltf::Value(tinygltf::Value::Object{
-          {"name", tinygltf::Value(contact.name)}, {"position", Vec3Value(Rounded(contact.position))}}));
+      out.push_back(tinygltf::Value(tinygltf::Value::Object{{"name", tinygltf::Value(contact.name)},
+                                                            {"position", Vec3Value(Rounded(contact.position))}}));
     }
     return tinygltf::Value(out);
   };
@@ -1515,65 +1501,64 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out_dir = argv[1];
-  std::vector<AssetBuilder> assets = {
-      Person("person_seated_upright", SeatedUpright()),
-      Person("person_seated_leaning", SeatedLeaning()),
-      Person("person_seated_arms_on_table", SeatedArmsOnTable()),
-      Person("person_standing", Standing()),
-      Table(),
-      Chair(),
-      Cup(),
-      Laptop(),
-      Monitor(),
-      Radiator(),
-      RoundTable(),
-      SquareTable(),
-      Desk(),
-      Sofa(),
-      LowTable(),
-      Partition(),
-      Lectern(),
-      Whiteboard(),
-      DoorFrame(),
-      AcUnit(),
-      LightSwitch(),
-      WallSocket(),
-      Shelf(),
-      Cabinet(),
-      CeilingLight(),
-      Bag(),
-      Coat(),
-      Charger(),
-      PcTower(),
-      DeskPhone(),
-      PowerStrip(),
-      Mug(),
-      Bottle(),
-      Papers(),
-      BinderRow(),
-      BookRow(),
-      Bookcase(),
-      Poster(),
-      FramedPicture(),
-      WallClock(),
-      NoticeBoard(),
-      Thermostat(),
-      CeilingDiffuser(),
-      SupplyGrille(),
-      ReturnGrille(),
-      HeatingPipe(),
-      CableTrunking(),
-      SkirtingBoard("skirting_board", 1.0),
-      SkirtingBoard("skirting_board_short", 0.2),
-      WindowSill(),
-      Blind(),
-      Bin(),
-      CardboardBox(),
-      Rug(),
-      SmokeDetector(),
-      Sprinkler(),
-      Bulkhead(),
-      Router()};
+  std::vector<AssetBuilder> assets = {Person("person_seated_upright", SeatedUpright()),
+                                      Person("person_seated_leaning", SeatedLeaning()),
+                                      Person("person_seated_arms_on_table", SeatedArmsOnTable()),
+                                      Person("person_standing", Standing()),
+                                      Table(),
+                                      Chair(),
+                                      Cup(),
+                                      Laptop(),
+                                      Monitor(),
+                                      Radiator(),
+                                      RoundTable(),
+                                      SquareTable(),
+                                      Desk(),
+                                      Sofa(),
+                                      LowTable(),
+                                      Partition(),
+                                      Lectern(),
+                                      Whiteboard(),
+                                      DoorFrame(),
+                                      AcUnit(),
+                                      LightSwitch(),
+                                      WallSocket(),
+                                      Shelf(),
+                                      Cabinet(),
+                                      CeilingLight(),
+                                      Bag(),
+                                      Coat(),
+                                      Charger(),
+                                      PcTower(),
+                                      DeskPhone(),
+                                      PowerStrip(),
+                                      Mug(),
+                                      Bottle(),
+                                      Papers(),
+                                      BinderRow(),
+                                      BookRow(),
+                                      Bookcase(),
+                                      Poster(),
+                                      FramedPicture(),
+                                      WallClock(),
+                                      NoticeBoard(),
+                                      Thermostat(),
+                                      CeilingDiffuser(),
+                                      SupplyGrille(),
+                                      ReturnGrille(),
+                                      HeatingPipe(),
+                                      CableTrunking(),
+                                      SkirtingBoard("skirting_board", 1.0),
+                                      SkirtingBoard("skirting_board_short", 0.2),
+                                      WindowSill(),
+                                      Blind(),
+                                      Bin(),
+                                      CardboardBox(),
+                                      Rug(),
+                                      SmokeDetector(),
+                                      Sprinkler(),
+                                      Bulkhead(),
+                                      Router()};
   for (AssetBuilder& part : PersonParts()) assets.push_back(std::move(part));
   tinygltf::TinyGLTF writer;
   for (const AssetBuilder& asset : assets) {

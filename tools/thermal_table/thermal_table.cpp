@@ -45,7 +45,8 @@ bool BehindWindow(const hoilcd::Scene& scene, const std::string& wall, const Eig
   for (const hoilcd::WindowSpec& w : scene.room.windows) {
     if (w.wall != wall) continue;
     const double along = wall == "north" || wall == "south" ? p.x() : p.y();
-    if (std::abs(along - w.center_m) < 0.5 * w.width_m && p.z() > w.bottom_m && p.z() < w.bottom_m + w.height_m) return true;
+    if (std::abs(along - w.center_m) < 0.5 * w.width_m && p.z() > w.bottom_m && p.z() < w.bottom_m + w.height_m)
+      return true;
   }
   return false;
 }
@@ -78,21 +79,22 @@ int main(int argc, char** argv) {
     world.PlanCrowd(hoilcd::SimulateSceneRobot(scene, world.obstacles()).samples);
     const Eigen::Vector3f size = scene.room.size_m.cast<float>();
     const float X = size.x(), Y = size.y(), Z = size.z();
-    const std::vector<Face> faces = {
-        {"floor", {0, 0, 0}, {X, 0, 0}, {0, Y, 0}, ""},
-        {"ceiling", {0, 0, Z}, {X, 0, 0}, {0, Y, 0}, ""},
-        {"south wall (y = 0)", {0, 0, 0}, {X, 0, 0}, {0, 0, Z}, "south"},
-        {"north wall", {0, Y, 0}, {X, 0, 0}, {0, 0, Z}, "north"},
-        {"west wall (x = 0)", {0, 0, 0}, {0, Y, 0}, {0, 0, Z}, "west"},
-        {"east wall", {X, 0, 0}, {0, Y, 0}, {0, 0, Z}, "east"}};
+    const std::vector<Face> faces = {{"floor", {0, 0, 0}, {X, 0, 0}, {0, Y, 0}, ""},
+                                     {"ceiling", {0, 0, Z}, {X, 0, 0}, {0, Y, 0}, ""},
+                                     {"south wall (y = 0)", {0, 0, 0}, {X, 0, 0}, {0, 0, Z}, "south"},
+                                     {"north wall", {0, Y, 0}, {X, 0, 0}, {0, 0, Z}, "north"},
+                                     {"west wall (x = 0)", {0, 0, 0}, {0, Y, 0}, {0, 0, Z}, "west"},
+                                     {"east wall", {X, 0, 0}, {0, Y, 0}, {0, 0, Z}, "east"}};
     const hoilcd::InstanceInfo& room = world.instance(world.room_instance());
     const char* kRoomMaterial[] = {"floor", "ceiling", "wall"};
     auto room_material_name = [&](int m) {
-      return m < 3 ? std::string(kRoomMaterial[m]) : m < 3 + static_cast<int>(scene.room.windows.size()) ? "window" : "interior wall";
+      return m < 3                                                 ? std::string(kRoomMaterial[m])
+             : m < 3 + static_cast<int>(scene.room.windows.size()) ? "window"
+                                                                   : "interior wall";
     };
     std::map<std::pair<std::string, std::string>, Range> room_ranges;    // (face, material)
     std::map<std::pair<std::string, std::string>, Range> object_ranges;  // (asset, material)
-    std::map<std::pair<std::string, std::string>, double> held;  // declared °C
+    std::map<std::pair<std::string, std::string>, double> held;          // declared °C
     std::map<std::string, int> instances_of;
     Range air;
     const double duration_s = scene.frames / scene.frame_rate_hz;
@@ -101,7 +103,8 @@ int main(int argc, char** argv) {
       const hoilcd::RoomNetwork& network = *world.room_network();
       air.Add(world.AirTemperatureC(t));
       for (const Face& face : faces) {
-        const int nu = std::max(2, static_cast<int>(face.u.norm() / 0.1f)), nv = std::max(2, static_cast<int>(face.v.norm() / 0.1f));
+        const int nu = std::max(2, static_cast<int>(face.u.norm() / 0.1f)),
+                  nv = std::max(2, static_cast<int>(face.v.norm() / 0.1f));
         for (int m = 0; m < static_cast<int>(room.materials.size()); ++m) {
           Range& range = room_ranges[{face.name, room_material_name(m)}];
           for (int a = 0; a < nu; ++a) {
@@ -133,21 +136,25 @@ int main(int argc, char** argv) {
       }
       if (t >= duration_s) break;
     }
-    std::printf("Air, over the run: %.2f to %.2f °C. Sampled every %g s over %g s.\n\n", air.lo, air.hi, step_s, duration_s);
-    std::printf("| room surface | material | °C, over its patches and the run | coldest at (x, y, z), m | warmest at |\n|---|---|---|---|---|\n");
+    std::printf("Air, over the run: %.2f to %.2f °C. Sampled every %g s over %g s.\n\n", air.lo, air.hi, step_s,
+                duration_s);
+    std::printf(
+        "| room surface | material | °C, over its patches and the run | coldest at (x, y, z), m | warmest at "
+        "|\n|---|---|---|---|---|\n");
     for (const auto& [key, r] : room_ranges) {
       if (r.empty()) continue;
       if (key.first == "mean over the material") {
         std::printf("| %s | %s | %.1f – %.1f | | |\n", key.first.c_str(), key.second.c_str(), r.lo, r.hi);
         continue;
       }
-      std::printf("| %s | %s | %.1f – %.1f | (%.2f, %.2f, %.2f) | (%.2f, %.2f, %.2f) |\n", key.first.c_str(), key.second.c_str(), r.lo,
-                  r.hi, r.lo_at.x(), r.lo_at.y(), r.lo_at.z(), r.hi_at.x(), r.hi_at.y(), r.hi_at.z());
+      std::printf("| %s | %s | %.1f – %.1f | (%.2f, %.2f, %.2f) | (%.2f, %.2f, %.2f) |\n", key.first.c_str(),
+                  key.second.c_str(), r.lo, r.hi, r.lo_at.x(), r.lo_at.y(), r.lo_at.z(), r.hi_at.x(), r.hi_at.y(),
+                  r.hi_at.z());
     }
     std::printf("\n| object (instances) | material | °C, over its instances and the run |\n|---|---|---|\n");
     for (const auto& [key, range] : object_ranges) {
-      std::printf("| %s (%d) | %s | %.1f – %.1f |\n", key.first.c_str(), instances_of[key.first], key.second.c_str(), range.lo,
-                  range.hi);
+      std::printf("| %s (%d) | %s | %.1f – %.1f |\n", key.first.c_str(), instances_of[key.first], key.second.c_str(),
+                  range.lo, range.hi);
     }
     for (const auto& [key, value] : held) {
       if (object_ranges.count(key) == 0) {

@@ -67,8 +67,9 @@ nlohmann::json BootstrapPlan::ToJson() const {
   return {{"method", "circular block bootstrap over the queries in time order"},
           {"block_queries", block_queries},
           {"block_s", block_s},
-          {"block_length", "Politis & White (2004, corrected 2009): the longest over the methods of the optimal "
-                           "circular-block length of their per-query reciprocal ranks"},
+          {"block_length",
+           "Politis & White (2004, corrected 2009): the longest over the methods of the optimal "
+           "circular-block length of their per-query reciprocal ranks"},
           {"resamples", resamples},
           {"confidence", confidence},
           {"interval", "percentile"}};
@@ -140,8 +141,8 @@ BootstrapPlan PlanBootstrap(const std::vector<const std::vector<QueryRecord>*>& 
   return plan;
 }
 
-HeadlineIntervals BootstrapHeadline(const std::vector<QueryRecord>& records, const BootstrapPlan& plan,
-                                    uint64_t seed, int threads) {
+HeadlineIntervals BootstrapHeadline(const std::vector<QueryRecord>& records, const BootstrapPlan& plan, uint64_t seed,
+                                    int threads) {
   HeadlineIntervals out;
   const int n = static_cast<int>(records.size());
   if (n == 0 || plan.resamples <= 0) return out;
@@ -167,8 +168,8 @@ HeadlineIntervals BootstrapHeadline(const std::vector<QueryRecord>& records, con
 PairedComparison PairedBootstrap(const std::string& name_a, const std::vector<QueryRecord>& a,
                                  const std::string& name_b, const std::vector<QueryRecord>& b,
                                  const BootstrapPlan& plan, uint64_t seed, int threads) {
-  HOILCD_CHECK_MSG(a.size() == b.size(), "a paired comparison needs the same queries (" << a.size() << " vs "
-                                                                                          << b.size() << ")");
+  HOILCD_CHECK_MSG(a.size() == b.size(),
+                   "a paired comparison needs the same queries (" << a.size() << " vs " << b.size() << ")");
   const int n = static_cast<int>(a.size());
   // Per query: RR(a) - RR(b) where both scored it, else not counted.
   std::vector<double> difference(n, NAN);
@@ -211,8 +212,12 @@ std::string PairedComparison::ToString() const {
 }
 
 nlohmann::json PairedComparison::ToJson() const {
-  return {{"better", a}, {"worse", b}, {"delta_mrr", JsonNumber(delta)}, {"interval", interval.ToJson()},
-          {"queries", queries}, {"separated", Separated()}};
+  return {{"better", a},
+          {"worse", b},
+          {"delta_mrr", JsonNumber(delta)},
+          {"interval", interval.ToJson()},
+          {"queries", queries},
+          {"separated", Separated()}};
 }
 
 }  // namespace hoilcd

@@ -5,17 +5,22 @@
 #include <sstream>
 
 #include "hoilcd/bench/evaluation/overlap.h"
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/memory.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
 
 nlohmann::json LabelAgreement::ToJson() const {
-  return {{"a", a}, {"b", b}, {"pairs", counts.pairs}, {"pairs_true_in_a", counts.pairs_true_in_a},
-          {"pairs_true_in_b", counts.pairs_true_in_b}, {"pairs_only_in_a", counts.pairs_only_in_a},
-          {"pairs_only_in_b", counts.pairs_only_in_b}, {"queries", counts.queries},
+  return {{"a", a},
+          {"b", b},
+          {"pairs", counts.pairs},
+          {"pairs_true_in_a", counts.pairs_true_in_a},
+          {"pairs_true_in_b", counts.pairs_true_in_b},
+          {"pairs_only_in_a", counts.pairs_only_in_a},
+          {"pairs_only_in_b", counts.pairs_only_in_b},
+          {"queries", counts.queries},
           {"queries_with_match_only_in_a", counts.scored_only_in_a},
           {"queries_with_match_only_in_b", counts.scored_only_in_b}};
 }
@@ -88,16 +93,17 @@ std::string NoTrueMatchReason(const Labelling& labelling) {
         << "revisit";
   } else if (p.protocol == "laps") {
     why << "none of the " << labelling.queries.size() << " frames after the first lap "
-        << (overlap ? "shares " : "lies ") << match.str()
-        << " a first-lap frame by the " << positions << " poses (frames within " << p.exclusion_window_s
-        << " s of a query are left out); " << larger << " may find some";
+        << (overlap ? "shares " : "lies ") << match.str() << " a first-lap frame by the " << positions
+        << " poses (frames within " << p.exclusion_window_s << " s of a query are left out); " << larger
+        << " may find some";
   } else if (p.protocol == "runs") {
     why << "none of the " << labelling.queries.size() << " frames of the later recording runs "
         << (overlap ? "shares " : "lies ") << match.str() << " a frame of the first run by the " << positions
         << " poses; " << larger << " may find some";
   } else {
-    why << "no frame " << (overlap ? "shares " : "comes back ") << match.str() << " a frame more than " << p.exclusion_window_s << " s older by the "
-        << positions << " poses; render more frames, or " << larger << " or a shorter "
+    why << "no frame " << (overlap ? "shares " : "comes back ") << match.str() << " a frame more than "
+        << p.exclusion_window_s << " s older by the " << positions << " poses; render more frames, or " << larger
+        << " or a shorter "
         << "--exclusion-window may find some";
   }
   const auto other = std::count_if(labelling.other_queries.begin(), labelling.other_queries.end(), has_true_match);
@@ -116,8 +122,8 @@ MethodReport EvaluateQueryScores(const Labelling& labelling, const std::string& 
   return r;
 }
 
-std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const ScoreMatrix& matrix,
-                                             int dataset_frames, std::vector<std::string>* warnings) {
+std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const ScoreMatrix& matrix, int dataset_frames,
+                                             std::vector<std::string>* warnings) {
   if (matrix.frames != dataset_frames ||
       matrix.values.size() != static_cast<size_t>(matrix.frames) * static_cast<size_t>(matrix.frames)) {
     throw InputError(matrix.source, "a " + std::to_string(matrix.frames) + " x " + std::to_string(matrix.frames) +
@@ -136,7 +142,8 @@ std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const S
       if (std::isnan(v)) continue;
       if (!(std::fabs(v) <= kMaxAbsScore)) {
         const std::string pair = "pair query " + std::to_string(q.frame) + ", reference " + std::to_string(r);
-        if (std::isinf(v)) throw InputError(matrix.source, pair + " is infinite: expected a finite score, or NaN for unscored");
+        if (std::isinf(v))
+          throw InputError(matrix.source, pair + " is infinite: expected a finite score, or NaN for unscored");
         throw InputError(matrix.source, pair + " is " + ShortestDouble(v) + ": expected a score of magnitude at most " +
                                             "1e300, or NaN for unscored");
       }
@@ -163,8 +170,8 @@ std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const S
                                         "in a random order)");
   }
   if (queries_unscored > 0 && warnings != nullptr) {
-    warnings->push_back(matrix.source + ": " + std::to_string(queries_unscored) + " of the " +
-                        std::to_string(queries) + " queries with a true match have no scored pair in their " +
+    warnings->push_back(matrix.source + ": " + std::to_string(queries_unscored) + " of the " + std::to_string(queries) +
+                        " queries with a true match have no scored pair in their " +
                         "database; each ranks it all tied (the expected rank of a random order)");
   }
   return out;
@@ -188,12 +195,14 @@ MethodReport Evaluate(const Dataset& dataset, const ScoreMatrix& scores, const s
   return EvaluateLabelled(dataset, LabelQueries(dataset, protocol), scores, name);
 }
 
-nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions& protocol,
-                                  const MethodReport& report, const std::string& description) {
+nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions& protocol, const MethodReport& report,
+                                  const std::string& description) {
   nlohmann::json j;
   j["hoilcd_version"] = HOILCD_VERSION;
-  j["dataset"] = {{"dir", SafeText(dataset.dir())}, {"scene_hash", dataset.manifest().scene_hash},
-                  {"seed", dataset.manifest().seed}, {"frames", dataset.num_frames()}};
+  j["dataset"] = {{"dir", SafeText(dataset.dir())},
+                  {"scene_hash", dataset.manifest().scene_hash},
+                  {"seed", dataset.manifest().seed},
+                  {"frames", dataset.num_frames()}};
   j["protocol"] = ProtocolOptions::Table().ToJson(protocol);
   j["bootstrap"] = report.bootstrap.ToJson();
   nlohmann::json m = report.metrics.ToJson();

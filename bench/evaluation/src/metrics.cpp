@@ -49,9 +49,8 @@ void AddPrCurve(MethodMetrics* m) {
   for (const QueryRecord& r : m->queries) {
     if (r.scored) claims.push_back(&r);
   }
-  std::sort(claims.begin(), claims.end(), [](const QueryRecord* a, const QueryRecord* b) {
-    return a->top1_score > b->top1_score;
-  });
+  std::sort(claims.begin(), claims.end(),
+            [](const QueryRecord* a, const QueryRecord* b) { return a->top1_score > b->top1_score; });
   const double n = m->queries_scored;
   double correct = 0, previous_recall = 0;
   m->pr_auc = 0;
@@ -107,8 +106,7 @@ double FirstTrueRank::RecallAtK(int k) const {
   return 1.0 - none;
 }
 
-FirstTrueRank RankFirstTrueMatch(const std::vector<double>& scores,
-                                 const std::vector<uint8_t>& is_true_match) {
+FirstTrueRank RankFirstTrueMatch(const std::vector<double>& scores, const std::vector<uint8_t>& is_true_match) {
   HOILCD_CHECK(scores.size() == is_true_match.size());
   double best_true = -INFINITY;
   for (size_t i = 0; i < scores.size(); ++i) {
@@ -127,8 +125,7 @@ FirstTrueRank RankFirstTrueMatch(const std::vector<double>& scores,
   return rank;
 }
 
-void MethodMetrics::SetTiming(const std::vector<double>& extract_ms,
-                              const std::vector<double>& match_ms) {
+void MethodMetrics::SetTiming(const std::vector<double>& extract_ms, const std::vector<double>& match_ms) {
   HOILCD_CHECK(extract_ms.size() == match_ms.size());
   std::vector<double> total_ms(extract_ms.size());
   for (size_t i = 0; i < total_ms.size(); ++i) total_ms[i] = extract_ms[i] + match_ms[i];
@@ -161,8 +158,7 @@ nlohmann::json MethodMetrics::ToJson() const {
   j["match_ms_median"] = JsonNumber(match_ms_median);
   nlohmann::json laps = nlohmann::json::object();
   for (const auto& [lap, m] : per_lap) {
-    laps[std::to_string(lap)] = {{"mrr", JsonNumber(m.mrr)},
-                                 {"queries_scored", m.queries_scored}};
+    laps[std::to_string(lap)] = {{"mrr", JsonNumber(m.mrr)}, {"queries_scored", m.queries_scored}};
   }
   j["per_lap"] = laps;
   nlohmann::json curve = nlohmann::json::array();
@@ -175,13 +171,11 @@ nlohmann::json MethodMetrics::ToJson() const {
   return j;
 }
 
-MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
-                             const std::vector<std::vector<double>>& scores,
+MethodMetrics ComputeMetrics(const std::vector<Query>& queries, const std::vector<std::vector<double>>& scores,
                              const std::vector<PoseRecord>& poses) {
   HOILCD_CHECK(scores.size() == queries.size());
   auto pose_of = [&](int frame) -> const PoseRecord& {
-    HOILCD_CHECK_MSG(frame >= 0 && frame < static_cast<int>(poses.size()) &&
-                         poses[frame].frame == frame,
+    HOILCD_CHECK_MSG(frame >= 0 && frame < static_cast<int>(poses.size()) && poses[frame].frame == frame,
                      "no pose for frame " << frame);
     return poses[frame];
   };
@@ -276,15 +270,13 @@ std::string QueryRecordsToCsv(const std::vector<QueryRecord>& records) {
       "top1_score,top1_distance_m,top1_is_true_match,top1_tie_size,top1_expected_correct,recall_at_1,"
       "recall_at_5,recall_at_10\n";
   for (const QueryRecord& r : records) {
-    out += std::to_string(r.frame) + ',' + std::to_string(r.lap) + ',' +
-           std::to_string(r.database_size) + ',' + std::to_string(r.true_matches) + ',' +
-           (r.scored ? "1" : "0") + ',' + CsvNumber(r.first_true_rank) + ',' +
-           CsvNumber(r.reciprocal_rank) + ',' +
-           (r.top1_frame >= 0 ? std::to_string(r.top1_frame) : "") + ',' +
+    out += std::to_string(r.frame) + ',' + std::to_string(r.lap) + ',' + std::to_string(r.database_size) + ',' +
+           std::to_string(r.true_matches) + ',' + (r.scored ? "1" : "0") + ',' + CsvNumber(r.first_true_rank) + ',' +
+           CsvNumber(r.reciprocal_rank) + ',' + (r.top1_frame >= 0 ? std::to_string(r.top1_frame) : "") + ',' +
            CsvNumber(r.top1_score) + ',' + CsvNumber(r.top1_distance_m) + ',' +
-           (r.top1_frame >= 0 ? (r.top1_is_true_match ? "1" : "0") : "") + ',' +
-           std::to_string(r.top1_tie_size) + ',' + CsvNumber(r.top1_expected_correct) + ',' +
-           CsvNumber(r.recall_at_1) + ',' + CsvNumber(r.recall_at_5) + ',' + CsvNumber(r.recall_at_10) + '\n';
+           (r.top1_frame >= 0 ? (r.top1_is_true_match ? "1" : "0") : "") + ',' + std::to_string(r.top1_tie_size) + ',' +
+           CsvNumber(r.top1_expected_correct) + ',' + CsvNumber(r.recall_at_1) + ',' + CsvNumber(r.recall_at_5) + ',' +
+           CsvNumber(r.recall_at_10) + '\n';
   }
   return out;
 }

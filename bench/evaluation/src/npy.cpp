@@ -82,7 +82,8 @@ std::map<std::string, std::string> NpyHeaderFields(const std::string& header, co
     return text;
   };
   skip_space();
-  if (i == header.size() || header[i] != '{') fail("expected a Python dict {'descr': ..., 'fortran_order': ..., 'shape': ...}");
+  if (i == header.size() || header[i] != '{')
+    fail("expected a Python dict {'descr': ..., 'fortran_order': ..., 'shape': ...}");
   ++i;
   std::map<std::string, std::string> fields;
   for (;;) {
@@ -142,7 +143,8 @@ bool ParseNpyShape(const std::string& text, std::vector<int64_t>* dims) {
 }
 
 std::string NpyUnquoted(const std::string& value) {
-  const bool quoted = value.size() >= 2 && (value.front() == '\'' || value.front() == '"') && value.back() == value.front();
+  const bool quoted =
+      value.size() >= 2 && (value.front() == '\'' || value.front() == '"') && value.back() == value.front();
   return quoted ? value.substr(1, value.size() - 2) : "";
 }
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/safe_text.h"
 
 namespace hoilcd {
 namespace {
@@ -106,8 +106,8 @@ bool SharesAtLeast(const OverlapView& query, const OverlapView& reference, const
 
 }  // namespace
 
-double OverlapFraction(const OverlapView& query, const OverlapView& reference,
-                       const CameraIntrinsics& intrinsics, double depth_tolerance_m) {
+double OverlapFraction(const OverlapView& query, const OverlapView& reference, const CameraIntrinsics& intrinsics,
+                       double depth_tolerance_m) {
   if (query.static_points_world.empty()) return 0;
   const ReferenceView view(reference, intrinsics, depth_tolerance_m);
   int64_t seen = 0;
@@ -118,8 +118,9 @@ double OverlapFraction(const OverlapView& query, const OverlapView& reference,
 std::vector<Query> OverlapLabels(const Dataset& dataset, const std::vector<Query>& queries,
                                  const ProtocolOptions& options, int threads) {
   if (!dataset.manifest().outputs.exr) {
-    throw InputError(SafeText(dataset.dir()), "EXR frames (the depth and class channels) for --ground-truth overlap; "
-                                              "the dataset was rendered without the 'exr' output");
+    throw InputError(SafeText(dataset.dir()),
+                     "EXR frames (the depth and class channels) for --ground-truth overlap; "
+                     "the dataset was rendered without the 'exr' output");
   }
   const CameraIntrinsics& intrinsics = dataset.manifest().intrinsics;
   const int person_class = dataset.manifest().ClassId("person");
@@ -142,10 +143,9 @@ std::vector<Query> OverlapLabels(const Dataset& dataset, const std::vector<Query
     const int frame = needed[static_cast<size_t>(i)];
     const ExrChannels channels = ReadDatasetExr(dataset, frame);
     const std::string path = DatasetExrPath(dataset, frame);
-    OverlapView view = MakeOverlapView(ExrChannel(channels, "Z", path), ExrChannel(channels, "class", path),
-                                       person_class, intrinsics,
-                                       dataset.poses()[static_cast<size_t>(frame)].Camera().WorldFromCam(),
-                                       options.overlap_stride_px);
+    OverlapView view =
+        MakeOverlapView(ExrChannel(channels, "Z", path), ExrChannel(channels, "class", path), person_class, intrinsics,
+                        dataset.poses()[static_cast<size_t>(frame)].Camera().WorldFromCam(), options.overlap_stride_px);
     if (!(roles[static_cast<size_t>(frame)] & kReference)) view.depth_m = cv::Mat();
     if (!(roles[static_cast<size_t>(frame)] & kQuery)) view.static_points_world = {};
     views[static_cast<size_t>(frame)] = std::move(view);
@@ -156,7 +156,9 @@ std::vector<Query> OverlapLabels(const Dataset& dataset, const std::vector<Query
     const OverlapView& query = views[static_cast<size_t>(q.frame)];
     for (size_t j = 0; j < q.database.size(); ++j) {
       q.is_true_match[j] = SharesAtLeast(query, views[static_cast<size_t>(q.database[j])], intrinsics,
-                                         options.overlap_depth_tolerance_m, options.overlap_threshold) ? 1 : 0;
+                                         options.overlap_depth_tolerance_m, options.overlap_threshold)
+                               ? 1
+                               : 0;
     }
   });
   return out;

@@ -43,8 +43,9 @@ std::string ProtocolOptions::Check() const { return Table().FirstProblem(*this);
 
 void CheckProtocolFits(const Dataset& dataset, const ProtocolOptions& options) {
   if (options.protocol == "runs" && dataset.runs().size() < 2) {
-    throw InputError(dataset.dir(), "holds one recording run; --protocol runs needs two or more (render a scene "
-                                    "with /runs)");
+    throw InputError(dataset.dir(),
+                     "holds one recording run; --protocol runs needs two or more (render a scene "
+                     "with /runs)");
   }
 }
 
@@ -57,8 +58,7 @@ int Query::NumTrueMatches() const {
   return static_cast<int>(std::count(is_true_match.begin(), is_true_match.end(), 1));
 }
 
-std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
-                                   const std::string& ground_truth) {
+std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses, const std::string& ground_truth) {
   HOILCD_CHECK_MSG(ground_truth == "odometry" || ground_truth == "true" || ground_truth == "overlap", ground_truth);
   std::vector<PoseRecord> out = poses;
   if (ground_truth == "odometry") {
@@ -98,21 +98,16 @@ std::vector<int> LapIndexFromPoses(const std::vector<PoseRecord>& poses) {
   return laps;
 }
 
-double BaseDistanceM(const PoseRecord& a, const PoseRecord& b) {
-  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
-}
+double BaseDistanceM(const PoseRecord& a, const PoseRecord& b) { return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m); }
 
-bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
-                 const ProtocolOptions& options) {
+bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference, const ProtocolOptions& options) {
   if (BaseDistanceM(query, reference) > options.radius_m) return false;
   if (options.heading_tolerance_deg < 0) return true;
-  const double difference_deg =
-      std::abs(WrapAngleRad(query.theta_rad - reference.theta_rad)) * 180.0 / M_PI;
+  const double difference_deg = std::abs(WrapAngleRad(query.theta_rad - reference.theta_rad)) * 180.0 / M_PI;
   return difference_deg <= options.heading_tolerance_deg;
 }
 
-std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
-                                const ProtocolOptions& options) {
+std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses, const ProtocolOptions& options) {
   const std::string problem = options.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
   const std::vector<PoseRecord> label = LabelPoses(poses, options.ground_truth);
@@ -140,8 +135,7 @@ std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
   return queries;
 }
 
-std::vector<Query> RelabelQueries(const std::vector<Query>& queries,
-                                  const std::vector<PoseRecord>& poses,
+std::vector<Query> RelabelQueries(const std::vector<Query>& queries, const std::vector<PoseRecord>& poses,
                                   const ProtocolOptions& options, const std::string& ground_truth) {
   HOILCD_CHECK_MSG(ground_truth != "overlap", "RelabelQueries labels by position; overlap needs OverlapLabels");
   const std::vector<PoseRecord> label = LabelPoses(poses, ground_truth);

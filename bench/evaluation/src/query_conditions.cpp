@@ -128,7 +128,8 @@ std::vector<QueryConditions> ComputeQueryConditions(const Dataset& dataset, cons
 
 std::string ConditionsCsvHeader() {
   return ",people_in_view,walkers_in_view,mean_occlusion,person_pixels,temperature_spread_k,blank_view,"
-         "structure_contrast_pixels,structure_contrast_fraction,ffc_or_frozen,turn_rate_deg_s,nearest_true_distance_m,nearest_true_heading_deg";
+         "structure_contrast_pixels,structure_contrast_fraction,ffc_or_frozen,turn_rate_deg_s,nearest_true_distance_m,"
+         "nearest_true_heading_deg";
 }
 
 std::string ConditionsCsvRow(const QueryConditions& c) {
@@ -137,9 +138,8 @@ std::string ConditionsCsvRow(const QueryConditions& c) {
          CsvNumber(c.mean_occlusion, 6) + "," + (exr ? std::to_string(c.person_pixels) : "") + "," +
          CsvNumber(c.temperature_spread_k, 6) + "," + (exr ? (c.blank ? "1" : "0") : "") + "," +
          (exr ? std::to_string(c.structure_contrast_pixels) : "") + "," + CsvNumber(c.structure_contrast_fraction, 6) +
-         "," + (c.ffc_or_frozen ? "1" : "0") + "," +
-         CsvNumber(c.turn_rate_deg_s, 6) + "," + CsvNumber(c.nearest_true_distance_m, 6) + "," +
-         CsvNumber(c.nearest_true_heading_deg, 6);
+         "," + (c.ffc_or_frozen ? "1" : "0") + "," + CsvNumber(c.turn_rate_deg_s, 6) + "," +
+         CsvNumber(c.nearest_true_distance_m, 6) + "," + CsvNumber(c.nearest_true_heading_deg, 6);
 }
 
 std::vector<std::string> StratificationNames() {
@@ -213,8 +213,7 @@ double ChanceReciprocalRank(int database_size, int true_matches) {
   return expected;
 }
 
-std::vector<StratumRow> Stratify(const std::vector<QueryConditions>& conditions,
-                                 const std::vector<std::string>& names,
+std::vector<StratumRow> Stratify(const std::vector<QueryConditions>& conditions, const std::vector<std::string>& names,
                                  const std::vector<const std::vector<QueryRecord>*>& records,
                                  const std::vector<std::string>& stratifications) {
   std::vector<StratumRow> rows;
@@ -258,8 +257,11 @@ nlohmann::json StrataJson(const std::vector<StratumRow>& rows) {
     for (size_t m = 0; m < r.methods.size(); ++m) {
       methods[r.methods[m]] = {{"mrr", JsonNumber(r.mrr[m])}, {"recall_at_1", JsonNumber(r.recall_at_1[m])}};
     }
-    out.push_back({{"stratification", r.stratification}, {"stratum", r.stratum}, {"queries", r.queries},
-                   {"chance_mrr", JsonNumber(r.chance_mrr)}, {"methods", methods}});
+    out.push_back({{"stratification", r.stratification},
+                   {"stratum", r.stratum},
+                   {"queries", r.queries},
+                   {"chance_mrr", JsonNumber(r.chance_mrr)},
+                   {"methods", methods}});
   }
   return out;
 }

@@ -2,10 +2,10 @@
 
 #include <cstdint>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/json_reader.h"
+#include "hoilcd/core/util/safe_text.h"
 
 namespace hoilcd {
 namespace {
@@ -29,8 +29,8 @@ nlohmann::json ReportJsonFromText(std::string_view text, const std::string& sour
     if (!method.is_object()) throw InputError(where, "expected an object of the method's metrics");
     for (const char* metric : kHeadlineMetrics) {
       const auto it = method.find(metric);
-      const bool valid = it != method.end() && (it->is_null() || (it->is_number() && it->get<double>() >= 0 &&
-                                                                   it->get<double>() <= 1));
+      const bool valid = it != method.end() &&
+                         (it->is_null() || (it->is_number() && it->get<double>() >= 0 && it->get<double>() <= 1));
       if (!valid) throw InputError(where + "/" + metric, "expected a number or null (a fraction, in [0, 1])");
     }
   }

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "hoilcd/bench/evaluation/json_number.h"
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/text.h"
 
 namespace hoilcd {

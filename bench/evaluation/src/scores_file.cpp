@@ -10,19 +10,19 @@
 #include <sstream>
 
 #include "hoilcd/bench/evaluation/npy.h"
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/safe_text.h"
 
 namespace hoilcd {
 namespace {
 
 constexpr const char* kCsvHeader = "query,reference,score";
-constexpr int kMaxProblems = 10;         // a broken file of a million lines names its first few
+constexpr int kMaxProblems = 10;  // a broken file of a million lines names its first few
 // The longest CSV line: two frame indices and a score of 17 significant digits take ~45 bytes.
 constexpr size_t kMaxCsvLineBytes = 128;
 constexpr size_t kCsvReadBlockBytes = size_t{1} << 20;
-constexpr size_t kQuoteBytes = 80;        // of a file's text quoted in a message
+constexpr size_t kQuoteBytes = 80;  // of a file's text quoted in a message
 
 std::string Quoted(std::string_view bytes) {
   return "'" + SafeText(bytes.substr(0, kQuoteBytes)) + (bytes.size() > kQuoteBytes ? "...'" : "'");
@@ -111,7 +111,8 @@ class CsvScores {
     double score = 0;
     const auto [score_end, ec] = std::from_chars(fields[2].data(), fields[2].data() + fields[2].size(), score);
     if (ec == std::errc::result_out_of_range) {
-      return Report("score " + Quoted(fields[2]) + ": beyond the range of a double; expected a finite number of "
+      return Report("score " + Quoted(fields[2]) +
+                    ": beyond the range of a double; expected a finite number of "
                     "magnitude at most 1e300");
     }
     if (ec != std::errc() || score_end != fields[2].data() + fields[2].size()) {
@@ -156,7 +157,7 @@ ScoreMatrix ReadCsvFile(RegularFile* file, int frames) {
   };
   if (file->size() > max_bytes) throw too_long(std::to_string(file->size()));
   CsvScores csv(file->path(), frames);
-  std::string line;       // the start of a line whose end is in a later block
+  std::string line;            // the start of a line whose end is in a later block
   bool too_long_line = false;  // the rest of a line already reported as too long is skipped
   uint64_t read = 0;
   for (std::string block; !(block = file->Read(kCsvReadBlockBytes)).empty();) {
@@ -193,8 +194,9 @@ size_t CheckNpyHeader(const std::string& header, const std::string& source, int 
   } else if (NpyUnquoted(descr) == "<f4") {
     item = 4;
   } else {
-    throw InputError(source, "dtype " + SafeText(descr) + ": expected float64 ('<f8') or float32 ('<f4')" +
-                                 (NpyUnquoted(descr) == "|O" ? " (an object array holds Python objects, not numbers)" : ""));
+    throw InputError(source,
+                     "dtype " + SafeText(descr) + ": expected float64 ('<f8') or float32 ('<f4')" +
+                         (NpyUnquoted(descr) == "|O" ? " (an object array holds Python objects, not numbers)" : ""));
   }
   const std::string& fortran_order = fields.at("fortran_order");
   if (fortran_order == "True") {
@@ -211,8 +213,8 @@ size_t CheckNpyHeader(const std::string& header, const std::string& source, int 
                                  " for this dataset");
   }
   if (dims.size() != 2 || dims[0] != frames || dims[1] != frames) {
-    throw InputError(source, "matrix shape " + SafeText(shape) + ": expected " + want +
-                                 " (the dataset's frames x frames)");
+    throw InputError(source,
+                     "matrix shape " + SafeText(shape) + ": expected " + want + " (the dataset's frames x frames)");
   }
   return item;
 }
@@ -249,8 +251,9 @@ ScoreMatrix NpyScores(std::string_view data, size_t item, const std::string& sou
     any = true;
   }
   if (!any) {
-    throw InputError(source, "every element is NaN (unscored): expected at least one score (a matrix without "
-                             "scores would rank every database in a random order)");
+    throw InputError(source,
+                     "every element is NaN (unscored): expected at least one score (a matrix without "
+                     "scores would rank every database in a random order)");
   }
   return m;
 }
@@ -272,23 +275,21 @@ ScoreMatrix ReadNpyFile(RegularFile* file, int frames) {
   const uint64_t data_bytes = static_cast<uint64_t>(frames) * static_cast<uint64_t>(frames) * item;
   // The size against the header before the body is read: a huge or sparse file stops here.
   if (file->size() != 0 && file->size() != data_start + data_bytes) {
-    throw InputError(source, NpyDataBytesError(file->size() < data_start ? 0 : file->size() - data_start,
-                                               data_bytes, item, frames));
+    throw InputError(
+        source, NpyDataBytesError(file->size() < data_start ? 0 : file->size() - data_start, data_bytes, item, frames));
   }
   // One byte more than the body tells a file that grew since fstat.
   const size_t wanted = static_cast<size_t>(data_bytes) + 1;
   std::string data = rest + file->Read(wanted > rest.size() ? wanted - rest.size() : 0);
   if (data.size() != data_bytes) {
-    throw InputError(source, data.size() > data_bytes ? "grew while read: expected " + std::to_string(data_bytes) +
-                                                            " data bytes"
-                                                      : NpyDataBytesError(data.size(), data_bytes, item, frames));
+    throw InputError(source, data.size() > data_bytes
+                                 ? "grew while read: expected " + std::to_string(data_bytes) + " data bytes"
+                                 : NpyDataBytesError(data.size(), data_bytes, item, frames));
   }
   return NpyScores(data, item, source, frames);
 }
 
-bool IsNpyPath(const std::string& path) {
-  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".npy") == 0;
-}
+bool IsNpyPath(const std::string& path) { return path.size() >= 4 && path.compare(path.size() - 4, 4, ".npy") == 0; }
 
 }  // namespace
 
@@ -337,7 +338,8 @@ std::string ScoresToCsv(const std::vector<Query>& queries, const std::vector<std
     HOILCD_CHECK(queries[i].database.size() == scores[i].size());
     for (size_t j = 0; j < scores[i].size(); ++j) {
       // %.17g prints every double so that it parses back to the same bits.
-      const int n = std::snprintf(line, sizeof(line), "%d,%d,%.17g\n", queries[i].frame, queries[i].database[j], scores[i][j]);
+      const int n =
+          std::snprintf(line, sizeof(line), "%d,%d,%.17g\n", queries[i].frame, queries[i].database[j], scores[i][j]);
       out.append(line, static_cast<size_t>(n));
     }
   }

@@ -36,8 +36,10 @@ std::string IntervalCell(double mean, const Interval& i) {
 std::string SuiteWins::ToString() const {
   const int total = a_wins + b_wins + ties;
   const bool a_leads = a_wins >= b_wins;
-  std::string s = a_wins == b_wins ? a + " and " + b + " each win " + std::to_string(a_wins) + " of " + std::to_string(total) : (a_leads ? a : b) + " beats " + (a_leads ? b : a) + " on " +
-                  std::to_string(a_leads ? a_wins : b_wins) + " of " + std::to_string(total);
+  std::string s = a_wins == b_wins
+                      ? a + " and " + b + " each win " + std::to_string(a_wins) + " of " + std::to_string(total)
+                      : (a_leads ? a : b) + " beats " + (a_leads ? b : a) + " on " +
+                            std::to_string(a_leads ? a_wins : b_wins) + " of " + std::to_string(total);
   if (ties > 0) s += " (" + std::to_string(ties) + (ties == 1 ? " tie)" : " ties)");
   return s;
 }
@@ -188,17 +190,19 @@ nlohmann::json SuiteSummary::ToJson() const {
                                     {"recall_at_1", Number(m.sequence_recall_at_1[q])},
                                     {"rank", m.sequence_rank[q]}};
     }
-    ms.push_back({{"method", m.method},
-                  {"mrr", {{"mean", Number(m.mean_mrr)}, {"interval", IntervalJson(m.mrr_interval)}}},
-                  {"recall_at_1", {{"mean", Number(m.mean_recall_at_1)}, {"interval", IntervalJson(m.recall_at_1_interval)}}},
-                  {"mean_rank", Number(m.mean_rank)},
-                  {"sequences", per_sequence},
-                  {"runs", per_run}});
+    ms.push_back(
+        {{"method", m.method},
+         {"mrr", {{"mean", Number(m.mean_mrr)}, {"interval", IntervalJson(m.mrr_interval)}}},
+         {"recall_at_1", {{"mean", Number(m.mean_recall_at_1)}, {"interval", IntervalJson(m.recall_at_1_interval)}}},
+         {"mean_rank", Number(m.mean_rank)},
+         {"sequences", per_sequence},
+         {"runs", per_run}});
   }
   j["methods"] = ms;
   nlohmann::json ws = nlohmann::json::array();
   for (const SuiteWins& w : wins) {
-    ws.push_back({{"a", w.a}, {"b", w.b}, {"a_wins", w.a_wins}, {"b_wins", w.b_wins}, {"ties", w.ties}, {"text", w.ToString()}});
+    ws.push_back(
+        {{"a", w.a}, {"b", w.b}, {"a_wins", w.a_wins}, {"b_wins", w.b_wins}, {"ties", w.ties}, {"text", w.ToString()}});
   }
   j["wins"] = ws;
   nlohmann::json f = nlohmann::json::array();

@@ -20,8 +20,7 @@ constexpr double kForbiddenCost = 2.0;
 // Matches persons (rows) to predicted boxes (columns) with IoU >= threshold: as many as
 // possible, then the largest total IoU.
 std::vector<std::pair<int, int>> MatchByIoU(const std::vector<cv::Rect2f>& persons,
-                                            const std::vector<cv::Rect2f>& boxes,
-                                            double iou_threshold) {
+                                            const std::vector<cv::Rect2f>& boxes, double iou_threshold) {
   if (persons.empty() || boxes.empty()) return {};
   std::vector<std::vector<double>> cost(persons.size(), std::vector<double>(boxes.size()));
   for (size_t i = 0; i < persons.size(); ++i) {
@@ -36,7 +35,6 @@ std::vector<std::pair<int, int>> MatchByIoU(const std::vector<cv::Rect2f>& perso
   }
   return matches;
 }
-
 
 std::vector<cv::Rect2f> PersonBoxes(const std::vector<const PersonRecord*>& persons) {
   std::vector<cv::Rect2f> out;
@@ -81,8 +79,7 @@ std::map<int, FrameBoxes> FramesOf(const std::vector<FramePersons>& ground_truth
 // Leaves out the persons too hidden or too low to score, and the predictions matching them.
 void DropIgnored(const TrackingMetricsOptions& options, FrameBoxes* frame) {
   const auto is_ignored = [&](const PersonRecord* p) {
-    return p->visible_fraction < options.min_visible_fraction ||
-           p->box_px.height < options.min_box_height_px;
+    return p->visible_fraction < options.min_visible_fraction || p->box_px.height < options.min_box_height_px;
   };
   std::vector<const PersonRecord*>& persons = frame->persons;
   if (std::none_of(persons.begin(), persons.end(), is_ignored)) return;
@@ -101,8 +98,7 @@ void DropIgnored(const TrackingMetricsOptions& options, FrameBoxes* frame) {
 // CLEAR MOT's matches of one frame (person index, track index): last frame's correspondences
 // (person id -> track id) that are still valid, then an IoU assignment of the rest.
 std::vector<std::pair<int, int>> ClearMotMatches(const FrameBoxes& frame,
-                                                 const std::map<int, int>& previous_frame_match,
-                                                 double iou_threshold) {
+                                                 const std::map<int, int>& previous_frame_match, double iou_threshold) {
   const std::vector<const PersonRecord*>& persons = frame.persons;
   const std::vector<const TrackedBox*>& tracks = frame.tracks;
   std::vector<std::pair<int, int>> matches;
@@ -238,8 +234,8 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
 
   TrackingMetrics m;
   m.frames = static_cast<int>(frames.size());
-  std::map<int, int> last_match;            // person id -> track id of its latest match
-  std::map<int, int> previous_frame_match;  // person id -> track id matched in the last frame
+  std::map<int, int> last_match;                      // person id -> track id of its latest match
+  std::map<int, int> previous_frame_match;            // person id -> track id matched in the last frame
   std::map<std::pair<int, int>, int> overlap_frames;  // (person, track) -> frames at IoU >= thr
   std::map<int, int> person_boxes, track_boxes;
   HoiScore hoi;
@@ -257,7 +253,8 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
     }
     for (const TrackedBox* t : tracks) ++track_boxes[t->id];
 
-    const std::vector<std::pair<int, int>> matches = ClearMotMatches(boxes, previous_frame_match, options.iou_threshold);
+    const std::vector<std::pair<int, int>> matches =
+        ClearMotMatches(boxes, previous_frame_match, options.iou_threshold);
     std::map<int, int> this_frame_match;
     for (const auto& [i, j] : matches) {
       const PersonRecord& person = *persons[i];
@@ -281,8 +278,7 @@ TrackingMetrics ComputeTrackingMetrics(const std::vector<FramePersons>& ground_t
   }
   if (m.gt_boxes > 0) {
     m.recall = static_cast<double>(m.true_positives) / m.gt_boxes;
-    m.mota = 1.0 - static_cast<double>(m.false_negatives + m.false_positives + m.id_switches) /
-                       m.gt_boxes;
+    m.mota = 1.0 - static_cast<double>(m.false_negatives + m.false_positives + m.id_switches) / m.gt_boxes;
   }
   m.idtp = IdTruePositives(person_boxes, track_boxes, overlap_frames);
   m.idfn = m.gt_boxes - m.idtp;

@@ -1,6 +1,7 @@
 #include "hoilcd/bench/export/coco_export.h"
 
 #include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset/dataset_folder.h"
@@ -10,9 +11,9 @@ namespace hoilcd {
 
 namespace {
 // COCO's names and limb list (1-based keypoint indices), as in person_keypoints_*.json.
-const char* const kNames[17] = {"nose",          "left_eye",      "right_eye",  "left_ear",    "right_ear",
+const char* const kNames[17] = {"nose",          "left_eye",       "right_eye",  "left_ear",    "right_ear",
                                 "left_shoulder", "right_shoulder", "left_elbow", "right_elbow", "left_wrist",
-                                "right_wrist",   "left_hip",      "right_hip",  "left_knee",   "right_knee",
+                                "right_wrist",   "left_hip",       "right_hip",  "left_knee",   "right_knee",
                                 "left_ankle",    "right_ankle"};
 const int kSkeleton[19][2] = {{16, 14}, {14, 12}, {17, 15}, {15, 13}, {12, 13}, {6, 12}, {7, 13},
                               {6, 7},   {6, 8},   {7, 9},   {8, 10},  {9, 11},  {2, 3},  {1, 2},
@@ -80,7 +81,8 @@ std::string CocoKeypointsJson(const Dataset& dataset) {
       {"images", images},
       {"annotations", annotations},
       {"categories",
-       json::array({{{"id", 1}, {"name", "person"}, {"supercategory", "person"}, {"keypoints", names}, {"skeleton", limbs}}})}};
+       json::array(
+           {{{"id", 1}, {"name", "person"}, {"supercategory", "person"}, {"keypoints", names}, {"skeleton", limbs}}})}};
   return doc.dump(1) + "\n";
 }
 

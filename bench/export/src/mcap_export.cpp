@@ -130,8 +130,8 @@ struct ExportInputs {
   bool topic[kTopicCount] = {};
   PinholeCamera camera;
   OdometryNoise noise;
-  Rigid3 base_from_camera;                 // the rigid mount (body axes)
-  std::vector<double> odometry_distance_m;  // per frame: odometry path length since its run began
+  Rigid3 base_from_camera;                   // the rigid mount (body axes)
+  std::vector<double> odometry_distance_m;   // per frame: odometry path length since its run began
   std::vector<const FramePersons*> persons;  // per frame (nullptr: nobody listed)
 };
 
@@ -149,8 +149,8 @@ ExportInputs ReadInputs(const Dataset& dataset) {
   const SceneNumbers scene(dataset);
   in.noise = ReadOdometryNoise(scene);
   const double deg = M_PI / 180;
-  const CameraPose mount{scene.Number("/robot/camera_forward_m"),    scene.Number("/robot/camera_lateral_m"),
-                         scene.Number("/robot/camera_height_m"),     scene.Number("/robot/camera_yaw_deg") * deg,
+  const CameraPose mount{scene.Number("/robot/camera_forward_m"),       scene.Number("/robot/camera_lateral_m"),
+                         scene.Number("/robot/camera_height_m"),        scene.Number("/robot/camera_yaw_deg") * deg,
                          scene.Number("/robot/camera_pitch_deg") * deg, scene.Number("/robot/camera_roll_deg") * deg};
   in.base_from_camera = mount.WorldFromCam();
   in.base_from_camera.rotation = in.base_from_camera.rotation * Eigen::Quaterniond(BodyFromCamRotation()).conjugate();
@@ -218,8 +218,8 @@ std::vector<Ros2Detection> DetectionsOf(const FramePersons* frame) {
   if (frame == nullptr) return detections;
   for (const PersonRecord& p : frame->persons) {
     const cv::Rect2f& b = p.box_px;
-    detections.push_back({std::to_string(p.id), "person", p.visible_fraction, b.x + b.width / 2.0,
-                          b.y + b.height / 2.0, b.width, b.height});
+    detections.push_back({std::to_string(p.id), "person", p.visible_fraction, b.x + b.width / 2.0, b.y + b.height / 2.0,
+                          b.width, b.height});
   }
   return detections;
 }
@@ -308,8 +308,14 @@ McapExportResult ExportMcap(const std::string& dataset_dir, const std::string& o
   file.Commit();
   progress.Done();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  McapExportResult result{out_path, frames, {}, statistics.message_count, statistics.bytes,
-                          statistics.message_start_time, statistics.message_end_time, seconds};
+  McapExportResult result{out_path,
+                          frames,
+                          {},
+                          statistics.message_count,
+                          statistics.bytes,
+                          statistics.message_start_time,
+                          statistics.message_end_time,
+                          seconds};
   for (int t = 0; t < kTopicCount; ++t) {
     const auto count = statistics.channel_message_counts.find(channel[t]);
     const uint64_t n = count == statistics.channel_message_counts.end() ? 0 : count->second;

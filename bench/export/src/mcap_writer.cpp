@@ -1,10 +1,10 @@
 // No Debian package writes MCAP, so this writer is hand-written from the specification.
 #include "hoilcd/bench/export/mcap_writer.h"
 
+#include <algorithm>
+
 #include <libdeflate.h>
 #include <zstd.h>
-
-#include <algorithm>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
@@ -67,9 +67,7 @@ void MapField(Fields* f, const Write& write_entries) {
   f->U32(static_cast<uint32_t>(entries.size())).Raw(entries.text().data(), entries.size());
 }
 
-uint32_t Crc32(uint32_t crc, std::string_view bytes) {
-  return libdeflate_crc32(crc, bytes.data(), bytes.size());
-}
+uint32_t Crc32(uint32_t crc, std::string_view bytes) { return libdeflate_crc32(crc, bytes.data(), bytes.size()); }
 
 // zstd's frame of bytes into a buffer of its own (not zero-filled first); returns its size.
 size_t ZstdCompress(const std::string& bytes, int level, std::unique_ptr<char[]>* out) {
@@ -83,9 +81,12 @@ size_t ZstdCompress(const std::string& bytes, int level, std::unique_ptr<char[]>
 }  // namespace
 
 bool ParseMcapCompression(const std::string& text, McapCompression* compression) {
-  if (text == "zstd") *compression = McapCompression::kZstd;
-  else if (text == "none") *compression = McapCompression::kNone;
-  else return false;
+  if (text == "zstd")
+    *compression = McapCompression::kZstd;
+  else if (text == "none")
+    *compression = McapCompression::kNone;
+  else
+    return false;
   return true;
 }
 

@@ -31,7 +31,8 @@ std::string MotGroundTruth(const std::vector<FramePersons>& persons, const Track
   char tail[64];
   for (const FramePersons& f : persons) {
     for (const PersonRecord& p : f.persons) {
-      const bool scored = p.visible_fraction >= options.min_visible_fraction && p.box_px.height >= options.min_box_height_px;
+      const bool scored =
+          p.visible_fraction >= options.min_visible_fraction && p.box_px.height >= options.min_box_height_px;
       std::snprintf(tail, sizeof(tail), ",%d,%d,%.4f\n", scored ? 1 : 0, scored ? 1 : 8, p.visible_fraction);
       out += std::to_string(f.frame + 1) + "," + std::to_string(p.id + 1) + "," + Box(p.box_px) + tail;
     }

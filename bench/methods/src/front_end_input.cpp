@@ -12,8 +12,7 @@ namespace hoilcd {
 bool IsVideoMode(const Dataset& dataset) {
   const nlohmann::json scene = ParseJsonOrDiscarded(dataset.scene_json());
   const nlohmann::json::json_pointer enabled("/camera/video/enabled");
-  return !scene.is_discarded() && scene.contains(enabled) && scene[enabled].is_boolean() &&
-         scene[enabled].get<bool>();
+  return !scene.is_discarded() && scene.contains(enabled) && scene[enabled].is_boolean() && scene[enabled].get<bool>();
 }
 
 FrontEndInput ReadFrontEndInput(const Dataset& dataset, int frame, bool video_mode, bool detector) {
@@ -32,7 +31,8 @@ GroundTruthInput ReadGroundTruthInput(const Dataset& dataset, int frame, bool id
     throw InputError(dataset.dir() + "/manifest.json", "no \"person\" in /classes, which the true person masks need");
   }
   for (const auto& [name, channel] : ReadDatasetExr(dataset, frame)) {
-    if (ideal && name == "T_true") input.ideal_u8 = ToDisplay8Bit(channel, manifest.window_min_c, manifest.window_max_c);
+    if (ideal && name == "T_true")
+      input.ideal_u8 = ToDisplay8Bit(channel, manifest.window_min_c, manifest.window_max_c);
     if (persons && name == "class") input.person_mask = channel == static_cast<float>(person);
   }
   const std::string path = DatasetExrPath(dataset, frame);

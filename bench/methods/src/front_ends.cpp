@@ -111,9 +111,12 @@ void SizeOutputs(int n, FrontEndOutput* out) {
 
 std::vector<std::string> GroundTruthOutputs(FrontEnd front_end) {
   switch (front_end) {
-    case FrontEnd::kIdealKeypoints: return {"exr"};
-    case FrontEnd::kTruePersons: return {"exr", "persons"};
-    default: return {};
+    case FrontEnd::kIdealKeypoints:
+      return {"exr"};
+    case FrontEnd::kTruePersons:
+      return {"exr", "persons"};
+    default:
+      return {};
   }
 }
 

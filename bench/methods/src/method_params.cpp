@@ -24,8 +24,10 @@ void CheckScope(const std::string& scope, const std::string& param) {
   std::string known;
   for (const auto& m : RegisteredMethods()) known += (known.empty() ? "" : ", ") + m->Name();
   for (FrontEnd f : kFrontEnds) known += ", " + FrontEndName(f);
-  throw InputError("--param", "'" + param + "': expected NAME=VALUE with NAME = <method or front end>.<field>, "
-                              "the method or front end one of: " + known);
+  throw InputError("--param", "'" + param +
+                                  "': expected NAME=VALUE with NAME = <method or front end>.<field>, "
+                                  "the method or front end one of: " +
+                                  known);
 }
 
 // Splits "scope.field=value" at the first dot before the '='.
@@ -63,11 +65,16 @@ FrontEnd FrontEndOf(const std::string& name) {
 
 std::string FrontEndName(FrontEnd front_end) {
   switch (front_end) {
-    case FrontEnd::kKeypoints: return "keypoints";
-    case FrontEnd::kPersons: return "persons";
-    case FrontEnd::kThumbnails: return "thumbnails";
-    case FrontEnd::kIdealKeypoints: return "ideal-keypoints";
-    case FrontEnd::kTruePersons: return "true-persons";
+    case FrontEnd::kKeypoints:
+      return "keypoints";
+    case FrontEnd::kPersons:
+      return "persons";
+    case FrontEnd::kThumbnails:
+      return "thumbnails";
+    case FrontEnd::kIdealKeypoints:
+      return "ideal-keypoints";
+    case FrontEnd::kTruePersons:
+      return "true-persons";
   }
   return "";
 }
@@ -110,8 +117,9 @@ void CheckParams(const std::vector<std::string>& params, const std::vector<std::
   for (const std::string& param : params) {
     std::string scope, rest;
     if (!SplitParam(param, &scope, &rest)) {
-      throw InputError("--param", "'" + param + "': expected NAME=VALUE with NAME = <method or front end>.<field>, "
-                                  "e.g. slcd.ransac_trials=50");
+      throw InputError("--param", "'" + param +
+                                      "': expected NAME=VALUE with NAME = <method or front end>.<field>, "
+                                      "e.g. slcd.ransac_trials=50");
     }
     CheckScope(scope, param);
     if (IsMethod(scope)) {
@@ -164,9 +172,11 @@ std::unique_ptr<MethodOptions> OptionsWithParams(const LoopClosureMethod& method
 std::string FormatParams() {
   std::string out;
   for (const auto& m : RegisteredMethods()) {
-    if (const std::unique_ptr<MethodOptions> own = m->Options()) out += m->Name() + ".\n" + FormatOptionList(own->List());
+    if (const std::unique_ptr<MethodOptions> own = m->Options())
+      out += m->Name() + ".\n" + FormatOptionList(own->List());
   }
-  for (FrontEnd f : kFrontEnds) out += FrontEndName(f) + ". (every method on this front end)\n" + FormatOptionList(FrontEndParams(f).List());
+  for (FrontEnd f : kFrontEnds)
+    out += FrontEndName(f) + ". (every method on this front end)\n" + FormatOptionList(FrontEndParams(f).List());
   return out;
 }
 

@@ -37,8 +37,7 @@ void RegisterMethod(const MethodFactory& factory) {
   std::unique_ptr<LoopClosureMethod> method = factory();
   HOILCD_CHECK_MSG(method != nullptr, "a method factory returned no method");
   const std::string name = method->Name();
-  HOILCD_CHECK_MSG(std::none_of(r.methods.begin(), r.methods.end(),
-                                [&](const auto& m) { return m->Name() == name; }),
+  HOILCD_CHECK_MSG(std::none_of(r.methods.begin(), r.methods.end(), [&](const auto& m) { return m->Name() == name; }),
                    "a method called " << name << " is registered already");
   HOILCD_CHECK_MSG(name != "all" && name != "paper" && !name.empty() && name.find(',') == std::string::npos,
                    "method name '" << name << "' is reserved or has a comma");

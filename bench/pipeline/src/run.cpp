@@ -57,7 +57,8 @@ nlohmann::json BenchSettingsJson(const BenchOptions& options) {
   if (options.slam) {
     const SlamOptions& slam = options.slam_options.slam;
     settings["slam_backend"] = slam.graph.backend;
-    settings["loop_threshold"] = std::isnan(slam.loop_threshold) ? nlohmann::json() : nlohmann::json(slam.loop_threshold);
+    settings["loop_threshold"] =
+        std::isnan(slam.loop_threshold) ? nlohmann::json() : nlohmann::json(slam.loop_threshold);
   }
   return settings;
 }
@@ -119,8 +120,10 @@ CachedDataset EnsureDataset(const Scene& scene, const std::string& dataset_dir, 
         (!old->complete && old->outputs != outputs)) {
       const std::vector<std::string> left = RemoveDatasetFiles(dataset_dir);
       if (!left.empty()) {
-        throw InputError(dataset_dir, "held a stale cached dataset (now deleted) beside files hoilcd did not "
-                                      "write (" + JoinFileList(left) + "); move them away and run again");
+        throw InputError(dataset_dir,
+                         "held a stale cached dataset (now deleted) beside files hoilcd did not "
+                         "write (" +
+                             JoinFileList(left) + "); move them away and run again");
       }
     } else {
       try {
@@ -162,11 +165,10 @@ std::string CalibrationKey(const std::string& dataset_dir, const BenchOptions& b
   } catch (const InputError&) {
     return "";  // the program cannot be identified: never reuse a cached result
   }
-  nlohmann::json key = {
-      {"dataset", ChecksumOfFile(dataset_dir + "/manifest.json")},
-      {"program", program},
-      {"version", HOILCD_VERSION},
-      {"bench", BenchSettingsJson(bench)}};
+  nlohmann::json key = {{"dataset", ChecksumOfFile(dataset_dir + "/manifest.json")},
+                        {"program", program},
+                        {"version", HOILCD_VERSION},
+                        {"bench", BenchSettingsJson(bench)}};
   return ChecksumOf(key.dump());
 }
 
@@ -247,8 +249,7 @@ Calibration CalibrateLoopThresholds(const Scene& scene, const BenchOptions& benc
     thresholds.emplace();
     nlohmann::json saved = nlohmann::json::object();
     for (const MethodRun& run : result.runs) {
-      const double t =
-          ThresholdAtFullPrecision(result.queries, run.scores, dataset.poses(), bench.protocol.radius_m);
+      const double t = ThresholdAtFullPrecision(result.queries, run.scores, dataset.poses(), bench.protocol.radius_m);
       (*thresholds)[run.name] = t;
       saved[run.name] = std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
     }
@@ -280,8 +281,9 @@ void DropDataset(const std::string& dataset_dir) {
 RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOptions& options) {
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("run", problem);
   if (bench.protocol.protocol == "runs" && scene.runs.size() < 2) {  // refused before the render, not after
-    throw InputError(scene.file, "has one recording run; --protocol runs needs two or more (give the scene /runs, "
-                                 "docs/guide/runs.md)");
+    throw InputError(scene.file,
+                     "has one recording run; --protocol runs needs two or more (give the scene /runs, "
+                     "docs/guide/runs.md)");
   }
   RunOutcome out;
   const std::string folder = RunFolder(scene, options.cache_dir);
@@ -308,11 +310,10 @@ RunOutcome RunScene(const Scene& scene, const BenchOptions& bench, const RunOpti
   }
   std::future<Calibration> calibration;  // waited for even if the render or bench throws
   if (calibrate) {
-    calibration = std::async(beside ? std::launch::async : std::launch::deferred,
-                             [&scene, &calibration_options, b] {
-                               const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
-                               return CalibrateLoopThresholds(scene, b, calibration_options);
-                             });
+    calibration = std::async(beside ? std::launch::async : std::launch::deferred, [&scene, &calibration_options, b] {
+      const ProgressReporter::ThreadTitlePrefix prefix("calibration ");
+      return CalibrateLoopThresholds(scene, b, calibration_options);
+    });
   }
   CachedDataset cached = [&] {
     try {

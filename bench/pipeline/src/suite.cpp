@@ -2,12 +2,12 @@
 
 #include <filesystem>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/pipeline/suite_report.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/folder_lock.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -31,7 +31,8 @@ Scene LoadRunScene(const SuiteSequence& seq, int seed, const std::string& out_di
   std::string path = seq.scene_path;
   if (seq.generated) {
     path = out_dir + "/scenes/" + seq.name + ".json";
-    const std::string text = SceneFileText(GenerateScene(seq.layout, seq.generator_seed, seq.generator_index, GeneratorOptions()));
+    const std::string text =
+        SceneFileText(GenerateScene(seq.layout, seq.generator_seed, seq.generator_index, GeneratorOptions()));
     std::error_code ec;
     bool same = false;
     if (fs::exists(path, ec)) {
@@ -87,8 +88,9 @@ nlohmann::json SuiteIdentity(const Suite& suite, const std::string& split, const
   }
   nlohmann::json runs = nlohmann::json::array();
   for (const SuiteRunSpec& run : SuiteRuns(suite, split)) runs.push_back(run.name);
-  return {{"name", suite.name}, {"description", suite.description}, {"sequences", sequences},
-          {"split", split},     {"bench", bench},                   {"runs", runs}};
+  return {{"name", suite.name},     {"description", suite.description},
+          {"sequences", sequences}, {"split", split},
+          {"bench", bench},         {"runs", runs}};
 }
 
 std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& bench, const SuiteOptions& options,
@@ -113,7 +115,9 @@ std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& ben
                            {"failed", nlohmann::json::array()},
                            {"finished", false}};
   for (const SuiteRunSpec& run : runs) marker["runs"].push_back(run.name);
-  const auto write_marker = [&] { WriteFileAtomic(out + "/suite.json", marker.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"); };
+  const auto write_marker = [&] {
+    WriteFileAtomic(out + "/suite.json", marker.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  };
   write_marker();
 
   const std::vector<std::string> methods = bench_json.at("methods").get<std::vector<std::string>>();
@@ -126,7 +130,9 @@ std::vector<SuiteRunResult> RunSuite(const Suite& suite, const BenchOptions& ben
     try {
       const Scene scene = LoadRunScene(seq, run.seed, out);
       const RecordedRun recorded{
-          dir, "suite_run.json", {{"sequence", seq.name}, {"seed", run.seed}, {"scene_hash", scene.hash}, {"bench", bench_json}}};
+          dir,
+          "suite_run.json",
+          {{"sequence", seq.name}, {"seed", run.seed}, {"scene_hash", scene.hash}, {"bench", bench_json}}};
       const bool kept = recorded.Kept();
       if (before_run) before_run(static_cast<int>(i) + 1, static_cast<int>(runs.size()), run, kept);
       if (!kept) recorded.Run(scene, bench, options.run);

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <set>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/json_reader.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/generate/generator.h"
 
@@ -42,7 +42,8 @@ void ReadSequence(JsonReader* r, const nlohmann::json& j, const std::string& ptr
   r->CheckKeys(j, ptr, {"name", "scene", "generate", "seeds", "set", "split"});
   r->Read(j, ptr, "name", &s->name);
   if (j.contains("name") && j["name"].is_string() && !SafeName(s->name)) {
-    r->Add(ptr + "/name", "expected 1-100 letters, digits, '.', '_' or '-' (not starting with '.'): it names the run folders");
+    r->Add(ptr + "/name",
+           "expected 1-100 letters, digits, '.', '_' or '-' (not starting with '.'): it names the run folders");
   }
   const bool has_scene = j.contains("scene"), has_generate = j.contains("generate");
   if (has_scene == has_generate) {
@@ -51,7 +52,8 @@ void ReadSequence(JsonReader* r, const nlohmann::json& j, const std::string& ptr
     std::string scene;
     r->Read(j, ptr, "scene", &scene);
     if (j["scene"].is_string() && scene.empty()) r->Add(ptr + "/scene", "expected a scene file path, got \"\"");
-    if (!scene.empty()) s->scene_path = fs::path(scene).is_absolute() ? scene : (base / scene).lexically_normal().string();
+    if (!scene.empty())
+      s->scene_path = fs::path(scene).is_absolute() ? scene : (base / scene).lexically_normal().string();
   } else {
     const std::string gptr = ptr + "/generate";
     const nlohmann::json& g = j["generate"];
@@ -64,7 +66,8 @@ void ReadSequence(JsonReader* r, const nlohmann::json& j, const std::string& ptr
           std::find(families.begin(), families.end(), s->layout) == families.end()) {
         std::string list;
         for (const std::string& f : families) list += f + ", ";
-        r->Add(gptr + "/layout", "expected a layout family (" + list + "or mixed), got \"" + SafeText(s->layout) + "\"");
+        r->Add(gptr + "/layout",
+               "expected a layout family (" + list + "or mixed), got \"" + SafeText(s->layout) + "\"");
       }
       r->Read(g, gptr, "seed", &s->generator_seed);
       if (g.contains("seed") && g["seed"].is_number_unsigned() && s->generator_seed > kMaxSeed) {
@@ -132,7 +135,8 @@ Suite ParseSuite(const std::string& text, const std::string& path) {
     if (j.contains("description")) r.ReadValue(j["description"], "/description", &suite.description);
     if (!j.contains("sequences")) {
       r.Add("/sequences", "missing");
-    } else if (r.ExpectArray(j["sequences"], "/sequences") && WithinCount(&r, j["sequences"], "/sequences", kMaxSequences)) {
+    } else if (r.ExpectArray(j["sequences"], "/sequences") &&
+               WithinCount(&r, j["sequences"], "/sequences", kMaxSequences)) {
       if (j["sequences"].empty()) r.Add("/sequences", "expected at least one sequence");
       const fs::path base = fs::path(path).parent_path();
       std::set<std::string> names;
@@ -140,7 +144,8 @@ Suite ParseSuite(const std::string& text, const std::string& path) {
         const std::string ptr = "/sequences/" + std::to_string(k);
         SuiteSequence s;
         ReadSequence(&r, j["sequences"][k], ptr, base, &s);
-        if (!s.name.empty() && !names.insert(s.name).second) r.Add(ptr + "/name", "sequence name \"" + s.name + "\" is used twice");
+        if (!s.name.empty() && !names.insert(s.name).second)
+          r.Add(ptr + "/name", "sequence name \"" + s.name + "\" is used twice");
         suite.sequences.push_back(s);
       }
     }
@@ -159,7 +164,9 @@ Suite ReadSuite(const std::string& path) {
   return ParseSuite(text, path);
 }
 
-std::string SuiteRunName(const std::string& sequence, int64_t seed) { return sequence + "-seed" + std::to_string(seed); }
+std::string SuiteRunName(const std::string& sequence, int64_t seed) {
+  return sequence + "-seed" + std::to_string(seed);
+}
 
 std::vector<SuiteRunSpec> SuiteRuns(const Suite& suite, const std::string& split) {
   std::vector<SuiteRunSpec> runs;

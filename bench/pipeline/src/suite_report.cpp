@@ -78,7 +78,8 @@ IdentityView ViewIdentity(const nlohmann::json& identity, const std::string& sou
     v.runs = identity.at("runs").get<std::vector<std::string>>();
     for (const nlohmann::json& seq : identity.at("sequences")) {
       const std::string name = seq.at("name").get<std::string>();
-      for (const nlohmann::json& seed : seq.at("seeds")) v.sequence_of_run[SuiteRunName(name, seed.get<int64_t>())] = name;
+      for (const nlohmann::json& seed : seq.at("seeds"))
+        v.sequence_of_run[SuiteRunName(name, seed.get<int64_t>())] = name;
     }
     return v;
   } catch (const nlohmann::json::exception& e) {
@@ -104,8 +105,8 @@ ShardFolder ReadShardFolder(const std::string& dir) {
   try {
     text = ReadFileBytes(f.marker_path, kMaxMarkerBytes);
   } catch (const InputError& e) {
-    throw InputError(dir, std::string("holds no suite: expected the suite.json that `hoilcd suite -o` writes (") +
-                              e.what() + ")");
+    throw InputError(
+        dir, std::string("holds no suite: expected the suite.json that `hoilcd suite -o` writes (") + e.what() + ")");
   }
   const nlohmann::json marker = JsonReader(f.marker_path).Parse(text);
   for (const char* key : {"identity", "shard", "runs", "failed", "finished"}) {
@@ -120,12 +121,14 @@ ShardFolder ReadShardFolder(const std::string& dir) {
     f.identity = marker.at("identity");
     f.shard = {marker.at("shard").at("index").get<int>(), marker.at("shard").at("count").get<int>()};
     f.runs = marker.at("runs").get<std::vector<std::string>>();
-    for (const nlohmann::json& r : marker.at("failed")) f.failed[r.at("run").get<std::string>()] = r.at("error").get<std::string>();
+    for (const nlohmann::json& r : marker.at("failed"))
+      f.failed[r.at("run").get<std::string>()] = r.at("error").get<std::string>();
     f.finished = marker.at("finished").get<bool>();
   } catch (const nlohmann::json::exception& e) {
     throw InputError(f.marker_path, std::string("malformed suite.json (") + e.what() + ")");
   }
-  if (const std::string problem = f.shard.Check(); !problem.empty()) throw InputError(f.marker_path, "/shard: " + problem);
+  if (const std::string problem = f.shard.Check(); !problem.empty())
+    throw InputError(f.marker_path, "/shard: " + problem);
   return f;
 }
 
@@ -141,7 +144,8 @@ std::string WhyUnfinished(const std::string& run_dir, const std::string& run, co
     record = nullptr;
   }
   if (!record.is_object()) return "no readable suite_run.json beside " + run_dir + "/report.json";
-  const nlohmann::json sequence = record.value("sequence", nlohmann::json()), seed = record.value("seed", nlohmann::json());
+  const nlohmann::json sequence = record.value("sequence", nlohmann::json()),
+                       seed = record.value("seed", nlohmann::json());
   if (!sequence.is_string() || !seed.is_number_integer() ||
       SuiteRunName(sequence.get<std::string>(), seed.get<int64_t>()) != run) {
     return run_dir + "/suite_run.json records another run";
@@ -180,7 +184,8 @@ SuiteSummary MergeSuite(const std::vector<std::string>& dirs, const nlohmann::js
       identity = f.identity;
       identity_source = f.marker_path;
     } else if (f.identity != identity) {
-      throw InputError(dir, "ran another suite than " + identity_source + ": " + IdentityDifference(identity, f.identity) +
+      throw InputError(dir, "ran another suite than " + identity_source + ": " +
+                                IdentityDifference(identity, f.identity) +
                                 " (the shards of one suite are run with the same suite file, --split and bench flags)");
     }
     shards.push_back(std::move(f));
@@ -193,13 +198,14 @@ SuiteSummary MergeSuite(const std::vector<std::string>& dirs, const nlohmann::js
   std::map<int, const ShardFolder*> by_index;
   for (const ShardFolder& f : shards) {
     if (f.shard.count != first.shard.count) {
-      problems.push_back({f.dir, "is shard " + f.shard.Name() + " but " + first.dir + " is shard " + first.shard.Name() +
-                                     ": the shards of one merge split the runs the same way"});
+      problems.push_back({f.dir, "is shard " + f.shard.Name() + " but " + first.dir + " is shard " +
+                                     first.shard.Name() + ": the shards of one merge split the runs the same way"});
       continue;
     }
     const auto [it, inserted] = by_index.emplace(f.shard.index, &f);
     if (!inserted) {
-      problems.push_back({f.dir, "is shard " + f.shard.Name() + ", as " + it->second->dir + " is: give each shard once"});
+      problems.push_back(
+          {f.dir, "is shard " + f.shard.Name() + ", as " + it->second->dir + " is: give each shard once"});
       continue;
     }
     if (f.runs != ShardOf(view.runs, f.shard)) {
@@ -224,9 +230,10 @@ SuiteSummary MergeSuite(const std::vector<std::string>& dirs, const nlohmann::js
       if (f->failed.count(run)) continue;
       const std::string why = WhyUnfinished(f->dir + "/runs/" + run, run, view.bench);
       if (!why.empty()) {
-        problems.push_back({f->dir, "shard " + f->shard.Name() + " has no finished run " + run + " (" + why + "); " +
-                                        (f->finished ? "its suite.json says it finished: run the shard again"
-                                                     : "the shard did not finish: run it again, it keeps its finished runs")});
+        problems.push_back(
+            {f->dir, "shard " + f->shard.Name() + " has no finished run " + run + " (" + why + "); " +
+                         (f->finished ? "its suite.json says it finished: run the shard again"
+                                      : "the shard did not finish: run it again, it keeps its finished runs")});
       }
     }
   }
@@ -271,7 +278,8 @@ void CheckSuiteReportFolder(const std::string& out_dir) {
 void WriteSuiteReport(const SuiteSummary& summary, const std::string& out_dir) {
   CheckSuiteReportFolder(out_dir);
   const FolderLock lock(out_dir, FolderLock::IfBusy::kRefuse);  // held already by `hoilcd suite`'s thread
-  WriteFileAtomic(out_dir + "/suite_report.json", summary.ToJson().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  WriteFileAtomic(out_dir + "/suite_report.json",
+                  summary.ToJson().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   WriteFileAtomic(out_dir + "/suite_report.md", summary.ToMarkdown());
   // Each run's folder as a link relative to the report's, so the folders can move together.
   std::map<std::string, std::string> links;

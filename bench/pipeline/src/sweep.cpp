@@ -1,7 +1,5 @@
 #include "hoilcd/bench/pipeline/sweep.h"
 
-#include "hoilcd/bench/report/output_folder.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -11,13 +9,14 @@
 #include <set>
 #include <sstream>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
 #include "hoilcd/core/util/random.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/scene/scene.h"
 
@@ -100,7 +99,8 @@ std::vector<std::string> SplitTopLevelCommas(const std::string& text, const std:
     current += c;
   }
   if (in_string) throw InputError(where, "unterminated string in '" + text + "'");
-  if (!open.empty()) throw InputError(where, "unclosed '" + std::string(1, open.back() == ']' ? '[' : '{') + "' in '" + text + "'");
+  if (!open.empty())
+    throw InputError(where, "unclosed '" + std::string(1, open.back() == ']' ? '[' : '{') + "' in '" + text + "'");
   items.push_back(Trim(current));
   for (const std::string& item : items) {
     if (item.empty()) throw InputError(where, "empty value in '" + text + "' (values are separated by single commas)");
@@ -157,7 +157,8 @@ nlohmann::json SweepRunSpec::ToJson() const {
 SweepRunSpec SweepRunSpec::FromJson(const nlohmann::json& j) {
   try {
     SweepRunSpec spec;
-    for (const nlohmann::json& kv : j.at("settings")) spec.settings.emplace_back(kv.at(0).get<std::string>(), kv.at(1).get<std::string>());
+    for (const nlohmann::json& kv : j.at("settings"))
+      spec.settings.emplace_back(kv.at(0).get<std::string>(), kv.at(1).get<std::string>());
     spec.seed = j.at("seed").get<int>();
     return spec;
   } catch (const nlohmann::json::exception& e) {
@@ -209,8 +210,8 @@ std::string SweepPlan::Check() const {
   if (runs > kMaxRuns) {
     std::string product;
     for (const SweepAxis& axis : axes) product += std::to_string(axis.values.size()) + " values of " + axis.key + " x ";
-    return product + std::to_string(seeds) + " seeds is " + Fixed(runs, 0) + " runs; at most " +
-           Fixed(kMaxRuns, 0) + " (split a larger study into several sweeps)";
+    return product + std::to_string(seeds) + " seeds is " + Fixed(runs, 0) + " runs; at most " + Fixed(kMaxRuns, 0) +
+           " (split a larger study into several sweeps)";
   }
   for (const SweepRunSpec& run : Runs()) {
     if (!folders.insert(run.FolderName()).second) return "two runs share the folder name " + run.FolderName();
@@ -221,8 +222,12 @@ std::string SweepPlan::Check() const {
 nlohmann::json SweepPlan::ToJson() const {
   nlohmann::json a = nlohmann::json::array();
   for (const SweepAxis& axis : axes) a.push_back({{"key", axis.key}, {"values", axis.values}});
-  return {{"scene_path", SafeText(scene_path)}, {"scene_name", scene_name}, {"scene_hash", scene_hash},
-          {"axes", a}, {"seeds", seeds}, {"bench", bench}};
+  return {{"scene_path", SafeText(scene_path)},
+          {"scene_name", scene_name},
+          {"scene_hash", scene_hash},
+          {"axes", a},
+          {"seeds", seeds},
+          {"bench", bench}};
 }
 
 SweepPlan SweepPlan::FromJson(const nlohmann::json& j, const std::string& where) {
@@ -305,7 +310,8 @@ void RunSweep(const SweepPlan& plan, const BenchOptions& bench, const SweepOptio
     const SweepRunSpec& run = runs[i];
     const Scene scene = LoadScene(plan.scene_path, run.Overrides());
     const std::string dir = options.output_dir + "/runs/" + run.FolderName();
-    const RecordedRun recorded{dir, "sweep_run.json", {{"run", run.ToJson()}, {"scene_hash", scene.hash}, {"bench", plan.bench}}};
+    const RecordedRun recorded{
+        dir, "sweep_run.json", {{"run", run.ToJson()}, {"scene_hash", scene.hash}, {"bench", plan.bench}}};
     const bool kept = recorded.Kept();
     if (before_run) before_run(static_cast<int>(i) + 1, static_cast<int>(runs.size()), run, kept);
     if (!kept) recorded.Run(scene, bench, options.run);

@@ -9,9 +9,8 @@
 #include <set>
 #include <sstream>
 
-#include "hoilcd/core/util/safe_text.h"
-#include "hoilcd/bench/report/chart.h"
 #include "hoilcd/bench/evaluation/json_number.h"
+#include "hoilcd/bench/report/chart.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
@@ -19,6 +18,7 @@
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/json_reader.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/stats.h"
 #include "hoilcd/core/util/text.h"
 
@@ -64,7 +64,7 @@ SweepStats SweepStats::Of(const std::vector<double>& values) {
 
 const std::vector<SweepMetric>& SweepMetrics() {
   static const std::vector<SweepMetric> kMetrics = {
-      {"mrr", "MRR"},       {"recall_at_1", "R@1"},         {"recall_at_5", "R@5"},
+      {"mrr", "MRR"},       {"recall_at_1", "R@1"},        {"recall_at_5", "R@5"},
       {"pr_auc", "PR-AUC"}, {"recall_at_100p", "R@100%P"}, {"ms_per_query", "ms/query"}};
   return kMetrics;
 }
@@ -101,12 +101,13 @@ ShardContents ReadShards(const std::vector<std::string>& dirs, const SweepPlan* 
       out.plan = dir_plan;
       out.plan_source = marker_path;
     } else if (Identity(dir_plan) != Identity(*out.plan)) {
-      throw InputError(marker_path, "its sweep differs from the one in " + out.plan_source + " at " +
-                                        JsonFirstDifference(Identity(dir_plan), Identity(*out.plan)) +
-                                        " (shards of one sweep must be run with the same scene, --set, --seeds and bench flags)");
+      throw InputError(marker_path,
+                       "its sweep differs from the one in " + out.plan_source + " at " +
+                           JsonFirstDifference(Identity(dir_plan), Identity(*out.plan)) +
+                           " (shards of one sweep must be run with the same scene, --set, --seeds and bench flags)");
     }
-    const std::string shard = std::to_string(marker["shard"].value("index", 0)) + "/" +
-                              std::to_string(marker["shard"].value("count", 1));
+    const std::string shard =
+        std::to_string(marker["shard"].value("index", 0)) + "/" + std::to_string(marker["shard"].value("count", 1));
     for (const nlohmann::json& r : marker.at("runs")) {
       const SweepRunSpec spec = SweepRunSpec::FromJson(r);
       const std::string run_dir = dir + "/runs/" + spec.FolderName();
@@ -132,8 +133,9 @@ void CheckComplete(const ShardContents& shards) {
     const auto it = shards.found.find(run.Name());
     if (it == shards.found.end()) {
       const auto why = shards.unfinished.find(run.Name());
-      problems.push_back({"--merge", "missing run " + run.Name() +
-                                         (why != shards.unfinished.end() ? " (" + why->second + ")" : " (in no shard's run list)")});
+      problems.push_back(
+          {"--merge", "missing run " + run.Name() +
+                          (why != shards.unfinished.end() ? " (" + why->second + ")" : " (in no shard's run list)")});
     } else if (it->second.size() > 1) {
       std::string where;
       for (const ShardContents::Copy& f : it->second) where += (where.empty() ? "" : ", ") + f.dir;
@@ -175,7 +177,8 @@ SweepSummary MergeSweep(const std::vector<std::string>& dirs, const SweepPlan* e
       if (!report.contains("methods") || !report["methods"].contains(methods[m])) {
         throw InputError(path, "has no results of method " + methods[m]);
       }
-      for (size_t k = 0; k < metrics.size(); ++k) v[m][k].push_back(JsonNumberOrNan(report["methods"][methods[m]], metrics[k].key));
+      for (size_t k = 0; k < metrics.size(); ++k)
+        v[m][k].push_back(JsonNumberOrNan(report["methods"][methods[m]], metrics[k].key));
     }
     // Every method is scored on the same queries: those with a true match in their database.
     if (!methods.empty() && JsonNumberOrNan(report["methods"][methods.front()], "queries_scored") == 0) {
@@ -224,7 +227,8 @@ std::string SweepSummary::ToCsv() const {
     for (const auto& [key, value] : row.settings) out << CsvField(value) << ",";
     out << row.method << "," << row.seeds.size();
     for (const SweepStats& s : row.stats) {
-      out << "," << CsvNumber(s.mean, 6) << "," << CsvNumber(s.std, 6) << "," << CsvNumber(s.min, 6) << "," << CsvNumber(s.max, 6);
+      out << "," << CsvNumber(s.mean, 6) << "," << CsvNumber(s.std, 6) << "," << CsvNumber(s.min, 6) << ","
+          << CsvNumber(s.max, 6);
     }
     out << "\n";
   }
@@ -253,7 +257,8 @@ std::string SweepSummary::ToMarkdown() const {
     for (size_t k = 0; k < metrics.size(); ++k) {
       const SweepStats& s = row.stats[k];
       const int d = Digits(metrics[k]);
-      out << " " << Fixed(s.mean, d) << " ± " << Fixed(s.std, d) << " [" << Fixed(s.min, d) << ", " << Fixed(s.max, d) << "] |";
+      out << " " << Fixed(s.mean, d) << " ± " << Fixed(s.std, d) << " [" << Fixed(s.min, d) << ", " << Fixed(s.max, d)
+          << "] |";
     }
     out << "\n";
   }
@@ -301,8 +306,11 @@ nlohmann::json SweepSummary::ToJson() const {
     for (const auto& [key, value] : row.settings) settings[key] = value;
     for (size_t k = 0; k < row.stats.size() && k < SweepMetrics().size(); ++k) {
       const SweepStats& s = row.stats[k];
-      stats[SweepMetrics()[k].key] = {{"count", s.count}, {"mean", JsonNumber(s.mean)}, {"std", JsonNumber(s.std)},
-                                      {"min", JsonNumber(s.min)}, {"max", JsonNumber(s.max)}};
+      stats[SweepMetrics()[k].key] = {{"count", s.count},
+                                      {"mean", JsonNumber(s.mean)},
+                                      {"std", JsonNumber(s.std)},
+                                      {"min", JsonNumber(s.min)},
+                                      {"max", JsonNumber(s.max)}};
     }
     rows_json.push_back({{"settings", settings}, {"method", row.method}, {"seeds", row.seeds}, {"stats", stats}});
   }
@@ -362,13 +370,15 @@ void WriteSweepSummary(const SweepSummary& summary, const std::string& out_dir) 
       for (const SweepSummaryRow& row : summary.rows) {
         std::string others;
         for (size_t b = 0; b < axes.size(); ++b) {
-          if (b != a && axes[b].values.size() > 1) others += (others.empty() ? "" : ",") + row.settings[b].first + "=" + row.settings[b].second;
+          if (b != a && axes[b].values.size() > 1)
+            others += (others.empty() ? "" : ",") + row.settings[b].first + "=" + row.settings[b].second;
         }
         const std::string label = row.method + (others.empty() ? "" : " " + others);
         if (!series_by_label.count(label)) order.push_back(label);
         Series& s = series_by_label[label];
         s.label = label;
-        const size_t vi = static_cast<size_t>(std::find(axis.values.begin(), axis.values.end(), row.settings[a].second) - axis.values.begin());
+        const size_t vi = static_cast<size_t>(
+            std::find(axis.values.begin(), axis.values.end(), row.settings[a].second) - axis.values.begin());
         s.x.push_back(x_of[vi]);
         s.y.push_back(row.stats[k].mean);
         s.y_low.push_back(row.stats[k].min);

@@ -20,14 +20,14 @@
 namespace hoilcd {
 namespace {
 
-constexpr std::string_view kFlirMagic("FLIR\0", 5);     // opens the payload of each FLIR APP1 segment
-constexpr size_t kChunkHeaderBytes = 8;                 // the magic, a version byte, the chunk's index, the last index
+constexpr std::string_view kFlirMagic("FLIR\0", 5);  // opens the payload of each FLIR APP1 segment
+constexpr size_t kChunkHeaderBytes = 8;              // the magic, a version byte, the chunk's index, the last index
 constexpr std::string_view kFffMagic("FFF\0", 4);
 constexpr size_t kFffHeaderBytes = 0x40;
-constexpr size_t kEntryBytes = 0x20;                    // one FFF directory entry
+constexpr size_t kEntryBytes = 0x20;  // one FFF directory entry
 constexpr uint16_t kRawRecord = 0x01, kCameraInfoRecord = 0x20;
-constexpr size_t kRawHeaderBytes = 0x20;                // before the image: byte-order mark, width, height
-constexpr size_t kCameraInfoBytes = 0x310;              // up to the last field read, Planck R2
+constexpr size_t kRawHeaderBytes = 0x20;    // before the image: byte-order mark, width, height
+constexpr size_t kCameraInfoBytes = 0x310;  // up to the last field read, Planck R2
 constexpr std::string_view kPngMagic("\x89PNG\r\n\x1a\n", 8);
 
 std::string Number(double v) {
@@ -79,9 +79,7 @@ class ByteReader {
 };
 
 // FLIR records open with the uint16 2 in their own byte order (ExifTool's RawDataByteOrder).
-bool LittleEndianRecord(std::string_view record) {
-  return record.size() >= 2 && record[0] == 2 && record[1] == 0;
-}
+bool LittleEndianRecord(std::string_view record) { return record.size() >= 2 && record[0] == 2 && record[1] == 0; }
 
 // The FFF data: the payloads of the JPEG's APP1 "FLIR" segments joined in chunk order; nullopt for
 // a JPEG without them or no JPEG.
@@ -97,7 +95,7 @@ std::optional<std::string> FlirData(const std::string& path, std::string_view jp
       ++at;
       continue;
     }
-    if (marker == 0xDA || marker == 0xD9) break;  // start of scan or end of image: the metadata is over
+    if (marker == 0xDA || marker == 0xD9) break;                 // start of scan or end of image: the metadata is over
     if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {  // markers without a length
       at += 2;
       continue;
@@ -164,8 +162,8 @@ FffRecords FindRecords(const std::string& path, std::string_view fff) {
   const bool little_endian = !known(ByteReader(fff, false).U32(0x14));
   const ByteReader header(fff, little_endian);
   if (!known(header.U32(0x14))) {
-    throw InputError(path, "FLIR FFF version " + std::to_string(ByteReader(fff, false).U32(0x14)) +
-                               ": expected 100 to 199");
+    throw InputError(path,
+                     "FLIR FFF version " + std::to_string(ByteReader(fff, false).U32(0x14)) + ": expected 100 to 199");
   }
   const uint64_t directory = header.U32(0x18), entries = header.U32(0x1c);
   if (directory + entries * kEntryBytes > fff.size()) {
@@ -184,7 +182,9 @@ FffRecords FindRecords(const std::string& path, std::string_view fff) {
                                  " bytes, runs past the end of the FFF data (" + std::to_string(fff.size()) +
                                  " bytes)");
     }
-    std::string_view* slot = type == kRawRecord ? &records.raw : type == kCameraInfoRecord ? &records.camera_info : nullptr;
+    std::string_view* slot = type == kRawRecord          ? &records.raw
+                             : type == kCameraInfoRecord ? &records.camera_info
+                                                         : nullptr;
     if (slot != nullptr && slot->empty()) *slot = fff.substr(offset, length);
   }
   for (const uint16_t type : {kRawRecord, kCameraInfoRecord}) {
@@ -203,15 +203,17 @@ cv::Mat DecodePng(const std::string& path, std::string_view png, int rows, int c
   }
   const ByteReader ihdr(png, false);
   if (ihdr.U32(16) != static_cast<uint32_t>(cols) || ihdr.U32(20) != static_cast<uint32_t>(rows)) {
-    throw InputError(path, what + " holds a PNG of " + std::to_string(ihdr.U32(16)) + "x" + std::to_string(ihdr.U32(20)) +
-                               " px: expected the record's " + std::to_string(cols) + "x" + std::to_string(rows));
+    throw InputError(path, what + " holds a PNG of " + std::to_string(ihdr.U32(16)) + "x" +
+                               std::to_string(ihdr.U32(20)) + " px: expected the record's " + std::to_string(cols) +
+                               "x" + std::to_string(rows));
   }
   const std::vector<uchar> buffer(png.begin(), png.end());
   cv::Mat raw;
   try {
     raw = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {  // a decoder's assertion on a malformed PNG
-    throw InputError(path, what + " holds a PNG that OpenCV refuses (" + SafeText(e.err) + "): expected a 16-bit grey PNG");
+    throw InputError(path,
+                     what + " holds a PNG that OpenCV refuses (" + SafeText(e.err) + "): expected a 16-bit grey PNG");
   }
   if (raw.type() != CV_16UC1 || raw.rows != rows || raw.cols != cols) {
     throw InputError(path, what + " holds a PNG that does not decode to " + std::to_string(cols) + "x" +
@@ -244,8 +246,8 @@ cv::Mat RawImage(const std::string& path, std::string_view record) {
   const size_t expected = static_cast<size_t>(rows) * static_cast<size_t>(cols) * 2;
   if (data.size() != expected) {
     throw InputError(path, what + " holds " + std::to_string(data.size()) + " bytes of 16-bit values: expected " +
-                               std::to_string(cols) + " x " + std::to_string(rows) + " x 2 = " +
-                               std::to_string(expected) + " (or a PNG)");
+                               std::to_string(cols) + " x " + std::to_string(rows) +
+                               " x 2 = " + std::to_string(expected) + " (or a PNG)");
   }
   cv::Mat raw(rows, cols, CV_16U);
   const ByteReader values(data, little_endian);
@@ -290,7 +292,8 @@ FlirCalibration ReadCalibration(const std::string& path, std::string_view record
 }  // namespace
 
 double FlirCalibration::TemperatureC(double raw) const {
-  const double raw_reflected = planck_r1 / (planck_r2 * (std::exp(planck_b / reflected_temperature_k) - planck_f)) - planck_o;
+  const double raw_reflected =
+      planck_r1 / (planck_r2 * (std::exp(planck_b / reflected_temperature_k) - planck_f)) - planck_o;
   const double raw_object = (raw - (1 - emissivity) * raw_reflected) / emissivity;
   if (!(raw_object + planck_o > 0)) return NAN;  // no radiance: beyond the curve's asymptote
   const double temperature_k = planck_b / std::log(planck_r1 / (planck_r2 * (raw_object + planck_o)) + planck_f);

@@ -171,11 +171,10 @@ cv::Mat MedianFilter15(const cv::Mat& temperature_c) {
   const int bins = static_cast<int>(std::lround((hi - lo) / kQuantumK)) + 1;
   cv::Mat q(t.size(), CV_32S);
   for (int y = 0; y < t.rows; ++y) {
-    for (int x = 0; x < t.cols; ++x) q.at<int>(y, x) = static_cast<int>(std::lround((t.at<float>(y, x) - lo) / kQuantumK));
+    for (int x = 0; x < t.cols; ++x)
+      q.at<int>(y, x) = static_cast<int>(std::lround((t.at<float>(y, x) - lo) / kQuantumK));
   }
-  const auto at = [&](int y, int x) {
-    return q.at<int>(std::clamp(y, 0, t.rows - 1), std::clamp(x, 0, t.cols - 1));
-  };
+  const auto at = [&](int y, int x) { return q.at<int>(std::clamp(y, 0, t.rows - 1), std::clamp(x, 0, t.cols - 1)); };
   cv::Mat out(t.size(), CV_32F);
   std::vector<int> hist(static_cast<size_t>(bins));
   for (int y = 0; y < t.rows; ++y) {
@@ -252,20 +251,28 @@ double TemporalNoiseK(const cv::Mat& first_c, const cv::Mat& second_c) {
 
 const std::vector<StatisticInfo>& FrameStatisticList() {
   static const std::vector<StatisticInfo> kList = {
-      {"shi_tomasi_corners", "Shi-Tomasi corners", "", false, [](const FrameStatistics& s) { return s.shi_tomasi_corners; }},
-      {"slcd_corners", "corners of the SLCD detector (its defaults)", "", false, [](const FrameStatistics& s) { return s.slcd_corners; }},
-      {"fast_corners", "FAST corners (threshold 10)", "", false, [](const FrameStatistics& s) { return s.fast_corners; }},
-      {"strong_edge_fraction", "strong-edge fraction", "", false, [](const FrameStatistics& s) { return s.strong_edge_fraction; }},
+      {"shi_tomasi_corners", "Shi-Tomasi corners", "", false,
+       [](const FrameStatistics& s) { return s.shi_tomasi_corners; }},
+      {"slcd_corners", "corners of the SLCD detector (its defaults)", "", false,
+       [](const FrameStatistics& s) { return s.slcd_corners; }},
+      {"fast_corners", "FAST corners (threshold 10)", "", false,
+       [](const FrameStatistics& s) { return s.fast_corners; }},
+      {"strong_edge_fraction", "strong-edge fraction", "", false,
+       [](const FrameStatistics& s) { return s.strong_edge_fraction; }},
       {"entropy_bits", "entropy", "bits", false, [](const FrameStatistics& s) { return s.entropy_bits; }},
-      {"spectrum_slope", "spectrum slope (log power vs log frequency)", "", false, [](const FrameStatistics& s) { return s.spectrum_slope; }},
+      {"spectrum_slope", "spectrum slope (log power vs log frequency)", "", false,
+       [](const FrameStatistics& s) { return s.spectrum_slope; }},
       {"temperature_p5_c", "temperature p5", "°C", true, [](const FrameStatistics& s) { return s.p5_c; }},
       {"temperature_p50_c", "temperature median", "°C", true, [](const FrameStatistics& s) { return s.p50_c; }},
       {"temperature_p95_c", "temperature p95", "°C", true, [](const FrameStatistics& s) { return s.p95_c; }},
-      {"temperature_spread_k", "temperature spread (p95 - p5)", "K", true, [](const FrameStatistics& s) { return s.spread_k; }},
-      {"wall_residual_k", "wall high-pass residual", "K", true, [](const FrameStatistics& s) { return s.wall_residual_k; }},
+      {"temperature_spread_k", "temperature spread (p95 - p5)", "K", true,
+       [](const FrameStatistics& s) { return s.spread_k; }},
+      {"wall_residual_k", "wall high-pass residual", "K", true,
+       [](const FrameStatistics& s) { return s.wall_residual_k; }},
       {"wall_residual_wall_views_k", "wall high-pass residual, wall-dominated views", "K", true,
        [](const FrameStatistics& s) { return s.wall_dominated ? s.wall_residual_k : NAN; }},
-      {"wall_share", "share of pixels within 1.5 K of the median", "", true, [](const FrameStatistics& s) { return s.wall_share; }},
+      {"wall_share", "share of pixels within 1.5 K of the median", "", true,
+       [](const FrameStatistics& s) { return s.wall_share; }},
   };
   return kList;
 }

@@ -14,9 +14,9 @@
 
 #include "hoilcd/bench/evaluation/npy.h"
 #include "hoilcd/bench/realism/flir_jpeg.h"
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/sizes.h"
 
 namespace hoilcd {
@@ -113,7 +113,8 @@ RealFrame ReadImage(const std::string& path, const std::string& bytes, const Rea
       cv::cvtColor(image, f.image, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
     }
   } else {
-    throw InputError(path, "pixel type " + std::to_string(depth) + ": expected 8-bit grey, 16-bit counts or 32-bit float temperatures");
+    throw InputError(path, "pixel type " + std::to_string(depth) +
+                               ": expected 8-bit grey, 16-bit counts or 32-bit float temperatures");
   }
   return f;
 }
@@ -128,8 +129,8 @@ RealFrame ReadNpy(const std::string& path, const std::string& bytes, const RealF
     int type;
     size_t bytes;
   };
-  static const Dtype kDtypes[] = {{"<f4", CV_32F, 4}, {"<f8", CV_64F, 8}, {"<u2", CV_16U, 2},
-                                  {"<i2", CV_16S, 2}, {"|u1", CV_8U, 1}};
+  static const Dtype kDtypes[] = {
+      {"<f4", CV_32F, 4}, {"<f8", CV_64F, 8}, {"<u2", CV_16U, 2}, {"<i2", CV_16S, 2}, {"|u1", CV_8U, 1}};
   const Dtype* dtype = nullptr;
   for (const Dtype& d : kDtypes) {
     if (h.descr == d.descr) dtype = &d;
@@ -144,7 +145,7 @@ RealFrame ReadNpy(const std::string& path, const std::string& bytes, const RealF
     throw InputError(path, "shape " + SafeText(h.shape_as_written) + ": expected (height, width) of one frame");
   }
   CheckRealFrameSize(static_cast<int>(std::min<int64_t>(h.shape[0], kMaxImageSidePx + 1)),
-            static_cast<int>(std::min<int64_t>(h.shape[1], kMaxImageSidePx + 1)), path);
+                     static_cast<int>(std::min<int64_t>(h.shape[1], kMaxImageSidePx + 1)), path);
   const int rows = static_cast<int>(h.shape[0]), cols = static_cast<int>(h.shape[1]);
   const size_t body = static_cast<size_t>(rows) * static_cast<size_t>(cols) * dtype->bytes;
   if (bytes.size() - h.data_start != body) {
@@ -179,8 +180,8 @@ RealFrame ReadJpeg(const std::string& path, const std::string& bytes, const Real
 
 void CheckRealFrameSize(int rows, int cols, const std::string& path) {
   if (rows < 16 || cols < 16 || rows > kMaxImageSidePx || cols > kMaxImageSidePx) {
-    throw InputError(path, "frame of " + std::to_string(cols) + "x" + std::to_string(rows) +
-                               " px: expected 16 to " + std::to_string(kMaxImageSidePx) + " px a side");
+    throw InputError(path, "frame of " + std::to_string(cols) + "x" + std::to_string(rows) + " px: expected 16 to " +
+                               std::to_string(kMaxImageSidePx) + " px a side");
   }
 }
 
@@ -206,7 +207,7 @@ bool IsRealFrameFile(const std::string& name) {
 RealFrame ReadRealFrame(const std::string& path, const RealFrameOptions& options) {
   const std::string bytes = ReadFileBytes(path, kMaxRealFrameBytes);
   const std::string extension = Extension(path);
-  RealFrame f = extension == ".npy"                          ? ReadNpy(path, bytes, options)
+  RealFrame f = extension == ".npy"                           ? ReadNpy(path, bytes, options)
                 : extension == ".jpg" || extension == ".jpeg" ? ReadJpeg(path, bytes, options)
                                                               : ReadImage(path, bytes, options);
   f.file = std::filesystem::path(path).filename().string();
@@ -215,8 +216,10 @@ RealFrame ReadRealFrame(const std::string& path, const RealFrameOptions& options
 
 std::vector<std::string> ListRealFrames(const std::string& dir, std::vector<std::string>* skipped) {
   std::error_code ec;
-  if (!std::filesystem::exists(dir, ec)) throw InputError(dir, "no such folder: expected a folder of real thermal frames");
-  if (!std::filesystem::is_directory(dir, ec)) throw InputError(dir, "is a file: expected a folder of real thermal frames");
+  if (!std::filesystem::exists(dir, ec))
+    throw InputError(dir, "no such folder: expected a folder of real thermal frames");
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError(dir, "is a file: expected a folder of real thermal frames");
   std::vector<std::string> frames;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
@@ -228,7 +231,8 @@ std::vector<std::string> ListRealFrames(const std::string& dir, std::vector<std:
   }
   if (ec) throw InputError(dir, "cannot list the folder: " + ec.message());
   if (frames.empty()) {
-    throw InputError(dir, "holds no frame: expected .png or .tif/.tiff (16-bit radiometric or 8-bit), .npy, or .jpg/.jpeg files");
+    throw InputError(
+        dir, "holds no frame: expected .png or .tif/.tiff (16-bit radiometric or 8-bit), .npy, or .jpg/.jpeg files");
   }
   std::sort(frames.begin(), frames.end());
   if (skipped != nullptr) std::sort(skipped->begin(), skipped->end());

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <sstream>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/stats.h"
 
 namespace hoilcd {
@@ -38,7 +38,8 @@ StatisticComparison Compare(const std::vector<double>& synthetic, const std::vec
   StatisticComparison c;
   c.synthetic = Summarise(synthetic);
   c.real = Summarise(real);
-  if (c.real.count > 0 && c.synthetic.count > 0 && c.real.median != 0) c.median_ratio = c.synthetic.median / c.real.median;
+  if (c.real.count > 0 && c.synthetic.count > 0 && c.real.median != 0)
+    c.median_ratio = c.synthetic.median / c.real.median;
   c.wasserstein1 = Wasserstein1(synthetic, real);
   return c;
 }
@@ -57,7 +58,9 @@ nlohmann::json ComparisonJson(const StatisticComparison& c) {
 }
 
 nlohmann::json FrameJson(const std::string& frame, const FrameStatistics& s) {
-  nlohmann::json j = {{"frame", SafeText(frame)}, {"radiometric", s.radiometric}, {"blank", s.blank},
+  nlohmann::json j = {{"frame", SafeText(frame)},
+                      {"radiometric", s.radiometric},
+                      {"blank", s.blank},
                       {"wall_dominated", s.wall_dominated}};
   for (const StatisticInfo& info : FrameStatisticList()) j[info.key] = Number(info.value(s));
   j["temperature_p1_c"] = Number(s.p1_c);
@@ -71,14 +74,15 @@ nlohmann::json SetJson(const FrameSet& set) {
   nlohmann::json skipped = nlohmann::json::array();
   for (const std::string& name : set.skipped) skipped.push_back(SafeText(name));
   const int n = static_cast<int>(set.frames.size());
-  return {{"source", SafeText(set.source)},
-          {"frames", n},
-          {"radiometric", set.Radiometric()},
-          {"blank", set.Blank()},
-          {"blank_share", set.Radiometric() > 0 ? Number(static_cast<double>(set.Blank()) / set.Radiometric()) : nullptr},
-          {"static_pairs", static_cast<int>(set.temporal_noise_k.size())},
-          {"skipped", skipped},
-          {"per_frame", frames}};
+  return {
+      {"source", SafeText(set.source)},
+      {"frames", n},
+      {"radiometric", set.Radiometric()},
+      {"blank", set.Blank()},
+      {"blank_share", set.Radiometric() > 0 ? Number(static_cast<double>(set.Blank()) / set.Radiometric()) : nullptr},
+      {"static_pairs", static_cast<int>(set.temporal_noise_k.size())},
+      {"skipped", skipped},
+      {"per_frame", frames}};
 }
 
 std::string Format(double v, int digits) {
@@ -96,21 +100,26 @@ int DigitsOf(const StatisticRow& row) {
 
 std::string SideText(const SideSummary& s, int digits) {
   if (s.count == 0) return "–";
-  return Format(s.median, digits) + " (" + Format(s.p25, digits) + "–" + Format(s.p75, digits) + ", n " + std::to_string(s.count) + ")";
+  return Format(s.median, digits) + " (" + Format(s.p25, digits) + "–" + Format(s.p75, digits) + ", n " +
+         std::to_string(s.count) + ")";
 }
 
 std::string Share(int part, int whole) {
-  return whole > 0 ? Format(100.0 * part / whole, 1) + " % (" + std::to_string(part) + " of " + std::to_string(whole) + ")" : "–";
+  return whole > 0
+             ? Format(100.0 * part / whole, 1) + " % (" + std::to_string(part) + " of " + std::to_string(whole) + ")"
+             : "–";
 }
 
 }  // namespace
 
 int FrameSet::Radiometric() const {
-  return static_cast<int>(std::count_if(statistics.begin(), statistics.end(), [](const FrameStatistics& s) { return s.radiometric; }));
+  return static_cast<int>(
+      std::count_if(statistics.begin(), statistics.end(), [](const FrameStatistics& s) { return s.radiometric; }));
 }
 
 int FrameSet::Blank() const {
-  return static_cast<int>(std::count_if(statistics.begin(), statistics.end(), [](const FrameStatistics& s) { return s.blank; }));
+  return static_cast<int>(
+      std::count_if(statistics.begin(), statistics.end(), [](const FrameStatistics& s) { return s.blank; }));
 }
 
 std::vector<int> StridedFrames(int frame_count, int stride) {
@@ -124,11 +133,13 @@ bool IsStaticPair(const std::vector<PoseRecord>& poses, int frame) {
   if (frame < 0 || frame + 1 >= static_cast<int>(poses.size())) return false;
   const PoseRecord& a = poses[static_cast<size_t>(frame)];
   const PoseRecord& b = poses[static_cast<size_t>(frame) + 1];
-  const double moved = std::sqrt((b.cam_x_m - a.cam_x_m) * (b.cam_x_m - a.cam_x_m) + (b.cam_y_m - a.cam_y_m) * (b.cam_y_m - a.cam_y_m) +
-                                 (b.cam_z_m - a.cam_z_m) * (b.cam_z_m - a.cam_z_m));
+  const double moved =
+      std::sqrt((b.cam_x_m - a.cam_x_m) * (b.cam_x_m - a.cam_x_m) + (b.cam_y_m - a.cam_y_m) * (b.cam_y_m - a.cam_y_m) +
+                (b.cam_z_m - a.cam_z_m) * (b.cam_z_m - a.cam_z_m));
   const auto turn = [](double from, double to) { return std::fabs(std::remainder(to - from, 2 * M_PI)); };
   return moved < kStaticMoveM && turn(a.cam_yaw_rad, b.cam_yaw_rad) < kStaticTurnRad &&
-         turn(a.cam_pitch_rad, b.cam_pitch_rad) < kStaticTurnRad && turn(a.cam_roll_rad, b.cam_roll_rad) < kStaticTurnRad;
+         turn(a.cam_pitch_rad, b.cam_pitch_rad) < kStaticTurnRad &&
+         turn(a.cam_roll_rad, b.cam_roll_rad) < kStaticTurnRad;
 }
 
 FrameSet MeasureDatasetFrames(const Dataset& dataset, const std::vector<int>& frames, int threads) {
@@ -147,7 +158,8 @@ FrameSet MeasureDatasetFrames(const Dataset& dataset, const std::vector<int>& fr
     } else {
       const cv::Mat t = dataset.RadiometricC(frame);
       set.statistics[static_cast<size_t>(i)] = MeasureTemperatureFrame(t);
-      if (IsStaticPair(dataset.poses(), frame)) noise[static_cast<size_t>(i)] = TemporalNoiseK(t, dataset.RadiometricC(frame + 1));
+      if (IsStaticPair(dataset.poses(), frame))
+        noise[static_cast<size_t>(i)] = TemporalNoiseK(t, dataset.RadiometricC(frame + 1));
     }
     progress.Update();
   });
@@ -168,7 +180,8 @@ FrameSet MeasureRealFrames(const std::string& dir, const RealFrameOptions& optio
   ProgressReporter progress("real frames", static_cast<int64_t>(set.frames.size()), "frames");
   ParallelFor(static_cast<int64_t>(set.frames.size()), threads, [&](int64_t i) {
     const RealFrame f = ReadRealFrame(path(static_cast<size_t>(i)), options);
-    set.statistics[static_cast<size_t>(i)] = f.radiometric ? MeasureTemperatureFrame(f.image) : MeasureGreyFrame(f.image);
+    set.statistics[static_cast<size_t>(i)] =
+        f.radiometric ? MeasureTemperatureFrame(f.image) : MeasureGreyFrame(f.image);
     progress.Update();
   });
   progress.Done();
@@ -215,15 +228,29 @@ RealismComparison CompareFrameSets(FrameSet synthetic, FrameSet real) {
     return v;
   };
   for (const StatisticInfo& info : FrameStatisticList()) {
-    StatisticRow row{info.key, info.label, info.unit, values(synthetic, info, false), values(real, info, false),
-                     values(synthetic, info, true), values(real, info, true), {}, {}};
+    StatisticRow row{info.key,
+                     info.label,
+                     info.unit,
+                     values(synthetic, info, false),
+                     values(real, info, false),
+                     values(synthetic, info, true),
+                     values(real, info, true),
+                     {},
+                     {}};
     row.all = Compare(row.synthetic, row.real);
     row.not_blank = Compare(row.synthetic_not_blank, row.real_not_blank);
     c.rows.push_back(std::move(row));
   }
   // Temporal noise is a property of the camera on static pairs, blank or not.
-  StatisticRow noise{kNoiseKey, "temporal noise on static views (robust std of a frame difference / sqrt 2)", "K",
-                     synthetic.temporal_noise_k, real.temporal_noise_k, synthetic.temporal_noise_k, real.temporal_noise_k, {}, {}};
+  StatisticRow noise{kNoiseKey,
+                     "temporal noise on static views (robust std of a frame difference / sqrt 2)",
+                     "K",
+                     synthetic.temporal_noise_k,
+                     real.temporal_noise_k,
+                     synthetic.temporal_noise_k,
+                     real.temporal_noise_k,
+                     {},
+                     {}};
   noise.all = Compare(noise.synthetic, noise.real);
   noise.not_blank = noise.all;
   c.rows.push_back(std::move(noise));
@@ -242,7 +269,8 @@ nlohmann::json RealismComparison::ToJson() const {
                           {"views_not_blank", ComparisonJson(row.not_blank)}});
   }
   return {{"hoilcd_version", HOILCD_VERSION},
-          {"stretch", "each frame stretched from its 1st to its 99th percentile onto 0..255, resized to 256x192 (INTER_AREA)"},
+          {"stretch",
+           "each frame stretched from its 1st to its 99th percentile onto 0..255, resized to 256x192 (INTER_AREA)"},
           {"blank_rule", "radiometric p95 - p5 below 2 K"},
           {"synthetic", SetJson(synthetic)},
           {"real", SetJson(real)},
@@ -259,18 +287,21 @@ std::string RealismComparison::ToMarkdown() const {
      << " 8-bit: no temperature statistics for those), " << real.temporal_noise_k.size() << " static pairs\n";
   if (!real.skipped.empty()) md << "- skipped in the real folder (no frame file): " << real.skipped.size() << "\n";
   md << "- blank views (radiometric p95 - p5 < " << Format(kBlankViewSpreadK, 0) << " K): synthetic "
-     << Share(synthetic.Blank(), synthetic.Radiometric()) << ", real " << Share(real.Blank(), real.Radiometric()) << "\n\n"
-     << "Every frame is stretched from its 1st to its 99th percentile onto 0–255 and resized to 256×192 before the image "
+     << Share(synthetic.Blank(), synthetic.Radiometric()) << ", real " << Share(real.Blank(), real.Radiometric())
+     << "\n\n"
+     << "Every frame is stretched from its 1st to its 99th percentile onto 0–255 and resized to 256×192 before the "
+        "image "
         "statistics; temperatures are resized the same way. Each cell: median (p25–p75, n frames). Ratio: synthetic "
-        "median / real median; W1: Wasserstein-1 distance between the two sides' distributions, in the statistic's unit.\n";
+        "median / real median; W1: Wasserstein-1 distance between the two sides' distributions, in the statistic's "
+        "unit.\n";
   const auto table = [&](const char* title, bool not_blank) {
     md << "\n## " << title << "\n\n| statistic | real | synthetic | synthetic / real | W1 |\n|---|---|---|---|---|\n";
     for (const StatisticRow& row : rows) {
       const StatisticComparison& c = not_blank ? row.not_blank : row.all;
       const int digits = DigitsOf(row);
       md << "| " << row.label << (row.unit.empty() ? "" : ", " + row.unit) << " | " << SideText(c.real, digits) << " | "
-         << SideText(c.synthetic, digits) << " | " << Format(c.median_ratio, 2) << " | " << Format(c.wasserstein1, digits + 1)
-         << " |\n";
+         << SideText(c.synthetic, digits) << " | " << Format(c.median_ratio, 2) << " | "
+         << Format(c.wasserstein1, digits + 1) << " |\n";
     }
   };
   table("Views that are not blank", true);

@@ -25,8 +25,9 @@ double PatchMean(const cv::Mat& image, int x0, int y0, int size) {
 // Corners minus centre of a CV_32F image, each a size×size patch mean.
 double CornerMinusCentre(const cv::Mat& image, int size) {
   const int w = image.cols - size, h = image.rows - size;
-  const double corners = (PatchMean(image, 0, 0, size) + PatchMean(image, w, 0, size) +
-                          PatchMean(image, 0, h, size) + PatchMean(image, w, h, size)) / 4.0;
+  const double corners = (PatchMean(image, 0, 0, size) + PatchMean(image, w, 0, size) + PatchMean(image, 0, h, size) +
+                          PatchMean(image, w, h, size)) /
+                         4.0;
   return corners - PatchMean(image, w / 2, h / 2, size);
 }
 

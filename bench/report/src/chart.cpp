@@ -18,8 +18,8 @@ namespace chart {
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
-constexpr int kInkLevel = 35;        // grey level of frame, ticks and text
-constexpr int kGridLevel = 228;      // grey level of grid lines
+constexpr int kInkLevel = 35;    // grey level of frame, ticks and text
+constexpr int kGridLevel = 228;  // grey level of grid lines
 constexpr int kTickLengthPx = 5;
 constexpr int kLineThicknessPx = 2;
 constexpr double kMarkerRadiusPx = 4.5;
@@ -36,12 +36,9 @@ Range Drawable(Range r) {
 }
 
 double NiceStep(double lo, double hi, int max_count) {
-  auto count = [&](double step) {
-    return std::floor(hi / step + 1e-9) - std::ceil(lo / step - 1e-9) + 1.0;
-  };
+  auto count = [&](double step) { return std::floor(hi / step + 1e-9) - std::ceil(lo / step - 1e-9) + 1.0; };
   double previous = 0.0;
-  for (double decade = std::pow(10.0, std::floor(std::log10((hi - lo) / max_count)) - 1.0);;
-       decade *= 10.0) {
+  for (double decade = std::pow(10.0, std::floor(std::log10((hi - lo) / max_count)) - 1.0);; decade *= 10.0) {
     for (const double mantissa : {1.0, 2.0, 5.0}) {
       const double step = decade * mantissa;
       if (count(step) <= max_count) return count(step) < 2.0 && previous > 0.0 ? previous : step;
@@ -74,12 +71,10 @@ void PutTextVertical(cv::Mat& image, const std::string& text, cv::Point centre, 
   int baseline = 0;
   const cv::Size size = cv::getTextSize(text, kFont, scale, 1, &baseline);
   cv::Mat tile(size.height + baseline + 4, size.width + 4, CV_8UC3, White());
-  cv::putText(tile, text, cv::Point(2, size.height + 2), kFont, scale, Grey(kInkLevel), 1,
-              cv::LINE_AA);
+  cv::putText(tile, text, cv::Point(2, size.height + 2), kFont, scale, Grey(kInkLevel), 1, cv::LINE_AA);
   cv::Mat rotated;
   cv::rotate(tile, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-  const cv::Rect wanted(centre.x - rotated.cols / 2, centre.y - rotated.rows / 2, rotated.cols,
-                        rotated.rows);
+  const cv::Rect wanted(centre.x - rotated.cols / 2, centre.y - rotated.rows / 2, rotated.cols, rotated.rows);
   const cv::Rect visible = wanted & cv::Rect(0, 0, image.cols, image.rows);
   if (visible.empty()) return;
   cv::Mat target = image(visible);
@@ -87,10 +82,9 @@ void PutTextVertical(cv::Mat& image, const std::string& text, cv::Point centre, 
 }
 
 // Filled marker; shape 0 circle, 1 square, 2 triangle up, 3 diamond, 4 triangle down (cycling).
-void Marker(cv::Mat& image, cv::Point2d centre, int shape, double radius,
-            const cv::Scalar& colour) {
-  if (!Finite(centre) || centre.x < -radius || centre.y < -radius ||
-      centre.x > image.cols + radius || centre.y > image.rows + radius) {
+void Marker(cv::Mat& image, cv::Point2d centre, int shape, double radius, const cv::Scalar& colour) {
+  if (!Finite(centre) || centre.x < -radius || centre.y < -radius || centre.x > image.cols + radius ||
+      centre.y > image.rows + radius) {
     return;
   }
   static const std::array<std::vector<cv::Point2d>, 4> kShapes = {{
@@ -101,8 +95,7 @@ void Marker(cv::Mat& image, cv::Point2d centre, int shape, double radius,
   }};
   const int kind = shape % 5;
   if (kind == 0) {
-    cv::circle(image, SubPixel(centre), cvRound(radius * kSubPixels), colour, cv::FILLED,
-               cv::LINE_AA, kShift);
+    cv::circle(image, SubPixel(centre), cvRound(radius * kSubPixels), colour, cv::FILLED, cv::LINE_AA, kShift);
     return;
   }
   std::vector<cv::Point> polygon;
@@ -139,8 +132,7 @@ Axes MakeAxes(const PlotOptions& o, const AxesSpec& spec) {
   for (int pass = 0; pass < 2; ++pass) {
     const int left = kTickLengthPx + 7 + y_labels_w + (o.y_label.empty() ? 0 : 14 + label_h) + 10;
     const int right = std::max(20, x_label_half_w + 6);
-    a.frame = cv::Rect(left, top, std::max(20, o.width_px - left - right),
-                       std::max(20, o.height_px - top - bottom));
+    a.frame = cv::Rect(left, top, std::max(20, o.width_px - left - right), std::max(20, o.height_px - top - bottom));
     a.x = spec.x;
     a.y = spec.y;
     if (spec.equal_aspect) {
@@ -168,9 +160,7 @@ Axes MakeAxes(const PlotOptions& o, const AxesSpec& spec) {
       }
     }
     y_labels_w = WidestText(a.y_tick_labels, o.font_scale);
-    x_label_half_w = a.x_tick_labels.empty()
-                         ? 0
-                         : TextSize(a.x_tick_labels.back(), o.font_scale).width / 2;
+    x_label_half_w = a.x_tick_labels.empty() ? 0 : TextSize(a.x_tick_labels.back(), o.font_scale).width / 2;
   }
   a.y_tick_labels_width_px = y_labels_w;
   return a;
@@ -197,14 +187,14 @@ void DrawFrame(cv::Mat& canvas, const Axes& a, const PlotOptions& o) {
     const int u = f.x + cvRound(a.ToLocal(a.x_ticks[i], a.y.lo).x);
     const int bottom = f.y + f.height - 1;
     cv::line(canvas, {u, bottom}, {u, bottom + kTickLengthPx}, ink, 1);
-    PutText(canvas, a.x_tick_labels[i], {static_cast<double>(u), bottom + kTickLengthPx + 7.0},
-            0.5, 0.0, o.font_scale, ink);
+    PutText(canvas, a.x_tick_labels[i], {static_cast<double>(u), bottom + kTickLengthPx + 7.0}, 0.5, 0.0, o.font_scale,
+            ink);
   }
   for (std::size_t i = 0; i < a.y_ticks.size(); ++i) {
     const int v = f.y + cvRound(a.ToLocal(a.x.lo, a.y_ticks[i]).y);
     cv::line(canvas, {f.x - kTickLengthPx, v}, {f.x, v}, ink, 1);
-    PutText(canvas, a.y_tick_labels[i], {f.x - kTickLengthPx - 7.0, static_cast<double>(v)}, 1.0,
-            0.5, o.font_scale, ink);
+    PutText(canvas, a.y_tick_labels[i], {f.x - kTickLengthPx - 7.0, static_cast<double>(v)}, 1.0, 0.5, o.font_scale,
+            ink);
   }
   const int tick_h = TextSize("0", o.font_scale).height;
   if (!o.x_label.empty()) {
@@ -230,8 +220,8 @@ cv::Size LegendSize(const std::vector<LegendItem>& items, double font_scale) {
 
 // Puts the legend in the frame position (corners first) that covers the fewest data pixels;
 // returns how many it covers.
-int DrawLegend(cv::Mat& canvas, const Axes& a, const std::vector<LegendItem>& items,
-               const cv::Mat& data_mask, double font_scale) {
+int DrawLegend(cv::Mat& canvas, const Axes& a, const std::vector<LegendItem>& items, const cv::Mat& data_mask,
+               double font_scale) {
   if (items.empty()) return 0;
   const cv::Size size = LegendSize(items, font_scale);
   const double m = kLegendMarginPx;
@@ -239,14 +229,13 @@ int DrawLegend(cv::Mat& canvas, const Axes& a, const std::vector<LegendItem>& it
   const double bottom = a.frame.height - size.height - m;
   const double mid_x = 0.5 * (a.frame.width - size.width);
   const double mid_y = 0.5 * (a.frame.height - size.height);
-  const std::array<cv::Point2d, 8> candidates = {{{right, m}, {m, m}, {right, bottom},
-                                                  {m, bottom}, {mid_x, m}, {mid_x, bottom},
-                                                  {right, mid_y}, {m, mid_y}}};
+  const std::array<cv::Point2d, 8> candidates = {
+      {{right, m}, {m, m}, {right, bottom}, {m, bottom}, {mid_x, m}, {mid_x, bottom}, {right, mid_y}, {m, mid_y}}};
   cv::Rect best;
   int best_covered = std::numeric_limits<int>::max();
   for (const cv::Point2d& c : candidates) {
-    const cv::Rect r = cv::Rect(cvRound(c.x), cvRound(c.y), size.width, size.height) &
-                       cv::Rect(0, 0, a.frame.width, a.frame.height);
+    const cv::Rect r =
+        cv::Rect(cvRound(c.x), cvRound(c.y), size.width, size.height) & cv::Rect(0, 0, a.frame.width, a.frame.height);
     const int covered = r.empty() ? 0 : cv::countNonZero(data_mask(r));
     if (covered < best_covered) {
       best_covered = covered;
@@ -277,8 +266,8 @@ int DrawLegend(cv::Mat& canvas, const Axes& a, const std::vector<LegendItem>& it
 }
 
 cv::Mat RenderOnce(const PlotOptions& o, const AxesSpec& spec, bool vertical_grid,
-                   const std::vector<LegendItem>& legend, const DrawData& draw_data,
-                   cv::Rect* plot_area_px, int* legend_covered_px) {
+                   const std::vector<LegendItem>& legend, const DrawData& draw_data, cv::Rect* plot_area_px,
+                   int* legend_covered_px) {
   const Axes axes = MakeAxes(o, spec);
   cv::Mat canvas(o.height_px, o.width_px, CV_8UC3, White());
   DrawGrid(canvas, axes, vertical_grid);
@@ -299,8 +288,7 @@ bool HasSpread(const Series& s) { return !s.y_low.empty(); }
 
 void CheckSeries(const Series& s, std::size_t expected_y) {
   HOILCD_CHECK_MSG(s.y.size() == expected_y,
-                   "series '" << s.label << "' has " << s.y.size() << " y values, expected "
-                              << expected_y);
+                   "series '" << s.label << "' has " << s.y.size() << " y values, expected " << expected_y);
   HOILCD_CHECK_MSG(s.y_low.size() == s.y_high.size() && (s.y_low.empty() || s.y_low.size() == s.y.size()),
                    "series '" << s.label << "': y_low and y_high must both be empty or match y");
 }
@@ -309,8 +297,7 @@ cv::Scalar SeriesColour(const std::vector<Series>& series, std::size_t i) {
   return series[i].colour.value_or(PaletteColour(i));
 }
 
-void DrawErrorBar(cv::Mat& roi, cv::Point2d low, cv::Point2d high, double cap_half_px,
-                  const cv::Scalar& colour) {
+void DrawErrorBar(cv::Mat& roi, cv::Point2d low, cv::Point2d high, double cap_half_px, const cv::Scalar& colour) {
   Segment(roi, low, high, colour, 1);
   Segment(roi, low - cv::Point2d(cap_half_px, 0), low + cv::Point2d(cap_half_px, 0), colour, 1);
   Segment(roi, high - cv::Point2d(cap_half_px, 0), high + cv::Point2d(cap_half_px, 0), colour, 1);
@@ -322,8 +309,10 @@ void DrawBand(cv::Mat& roi, const Axes& a, const Series& s, const cv::Scalar& co
   auto close_run = [&] {
     runs.back().insert(runs.back().end(), lower.rbegin(), lower.rend());
     lower.clear();
-    if (runs.back().size() >= 3) runs.emplace_back();
-    else runs.back().clear();
+    if (runs.back().size() >= 3)
+      runs.emplace_back();
+    else
+      runs.back().clear();
   };
   for (std::size_t i = 0; i < s.y.size(); ++i) {
     const cv::Point2d high = a.ToLocal(s.x[i], s.y_high[i]);
@@ -360,19 +349,17 @@ cv::Size TextSize(const std::string& text, double scale) {
 
 // Text whose box (cap height, no descender) is placed so that the point at fractions
 // (h_align, v_align) of it lands on anchor: (0, 0) top-left, (0.5, 0.5) centre, (1, 1) bottom-right.
-void PutText(cv::Mat& image, const std::string& text, cv::Point2d anchor, double h_align,
-             double v_align, double scale, const cv::Scalar& colour) {
+void PutText(cv::Mat& image, const std::string& text, cv::Point2d anchor, double h_align, double v_align, double scale,
+             const cv::Scalar& colour) {
   const cv::Size size = TextSize(text, scale);
-  const cv::Point origin(cvRound(anchor.x - h_align * size.width),
-                         cvRound(anchor.y + (1.0 - v_align) * size.height));
+  const cv::Point origin(cvRound(anchor.x - h_align * size.width), cvRound(anchor.y + (1.0 - v_align) * size.height));
   cv::putText(image, text, origin, kFont, scale, colour, 1, cv::LINE_AA);
 }
 
 // Pixel coordinates in fixed point, kept far inside int range.
 cv::Point SubPixel(cv::Point2d p) {
   const double limit = 1e6 * kSubPixels;
-  return {cvRound(std::clamp(p.x * kSubPixels, -limit, limit)),
-          cvRound(std::clamp(p.y * kSubPixels, -limit, limit))};
+  return {cvRound(std::clamp(p.x * kSubPixels, -limit, limit)), cvRound(std::clamp(p.y * kSubPixels, -limit, limit))};
 }
 
 // Nearest whole pixel, kept far inside int range.
@@ -384,8 +371,7 @@ cv::Point Pixel(cv::Point2d p) {
 bool Finite(cv::Point2d p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
 // Anti-aliased segment clipped to the image first, so points far outside the range draw right.
-void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour,
-             int thickness) {
+void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour, int thickness) {
   if (!Finite(a) || !Finite(b)) return;
   const double limit = 1e15;
   auto to_long = [&](cv::Point2d p) {
@@ -398,23 +384,20 @@ void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& col
   const cv::Point2l offset(margin, margin);
   pa += offset;
   pb += offset;
-  if (!cv::clipLine(cv::Size2l(image.cols * (1 << kShift) + 2 * margin,
-                               image.rows * (1 << kShift) + 2 * margin),
-                    pa, pb)) {
+  if (!cv::clipLine(cv::Size2l(image.cols * (1 << kShift) + 2 * margin, image.rows * (1 << kShift) + 2 * margin), pa,
+                    pb)) {
     return;
   }
   pa -= offset;
   pb -= offset;
   cv::line(image, cv::Point(static_cast<int>(pa.x), static_cast<int>(pa.y)),
-           cv::Point(static_cast<int>(pb.x), static_cast<int>(pb.y)), colour, thickness,
-           cv::LINE_AA, kShift);
+           cv::Point(static_cast<int>(pb.x), static_cast<int>(pb.y)), colour, thickness, cv::LINE_AA, kShift);
 }
 
 // Draws the figure; when the legend would hide data, the y range is automatic and the legend
 // is small next to the plot, draws it again with room for the legend at the top.
-cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
-               const std::vector<LegendItem>& legend, const DrawData& draw_data,
-               cv::Rect* plot_area_px) {
+cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid, const std::vector<LegendItem>& legend,
+               const DrawData& draw_data, cv::Rect* plot_area_px) {
   HOILCD_CHECK_MSG(o.Check().empty(), o.Check());
   int covered = 0;
   cv::Mat canvas = RenderOnce(o, spec, vertical_grid, legend, draw_data, plot_area_px, &covered);
@@ -497,8 +480,7 @@ const OptionTable<PlotOptions>& PlotOptions::Table() {
 
 std::string PlotOptions::Check() const { return Table().FirstProblem(*this); }
 
-cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options,
-                 cv::Rect* plot_area_px) {
+cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options, cv::Rect* plot_area_px) {
   Range x, y;
   std::vector<LegendItem> legend;
   for (std::size_t i = 0; i < series.size(); ++i) {
@@ -514,8 +496,8 @@ cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options,
       }
     }
     if (!s.label.empty()) {
-      legend.push_back({s.label, SeriesColour(series, i), s.line || !s.markers,
-                        s.markers ? static_cast<int>(i) : -1, false});
+      legend.push_back(
+          {s.label, SeriesColour(series, i), s.line || !s.markers, s.markers ? static_cast<int>(i) : -1, false});
     }
   }
   AxesSpec spec;
@@ -532,12 +514,10 @@ cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options,
       const Series& s = series[i];
       const cv::Scalar colour = SeriesColour(series, i);
       for (std::size_t j = 0; s.line && j + 1 < s.y.size(); ++j) {
-        Segment(roi, a.ToLocal(s.x[j], s.y[j]), a.ToLocal(s.x[j + 1], s.y[j + 1]), colour,
-                kLineThicknessPx);
+        Segment(roi, a.ToLocal(s.x[j], s.y[j]), a.ToLocal(s.x[j + 1], s.y[j + 1]), colour, kLineThicknessPx);
       }
       for (std::size_t j = 0; HasSpread(s) && !s.band && j < s.y.size(); ++j) {
-        DrawErrorBar(roi, a.ToLocal(s.x[j], s.y_low[j]), a.ToLocal(s.x[j], s.y_high[j]), 4.0,
-                     colour);
+        DrawErrorBar(roi, a.ToLocal(s.x[j], s.y_low[j]), a.ToLocal(s.x[j], s.y_high[j]), 4.0, colour);
       }
       for (std::size_t j = 0; s.markers && j < s.y.size(); ++j) {
         Marker(roi, a.ToLocal(s.x[j], s.y[j]), static_cast<int>(i), kMarkerRadiusPx, colour);
@@ -547,8 +527,8 @@ cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options,
   return Render(options, spec, true, legend, draw, plot_area_px);
 }
 
-cv::Mat BarPlot(const std::vector<std::string>& groups, const std::vector<Series>& series,
-                const PlotOptions& options, cv::Rect* plot_area_px) {
+cv::Mat BarPlot(const std::vector<std::string>& groups, const std::vector<Series>& series, const PlotOptions& options,
+                cv::Rect* plot_area_px) {
   HOILCD_CHECK_MSG(!groups.empty(), "BarPlot needs at least one group");
   Range y;
   y.Add(0.0);
@@ -598,8 +578,8 @@ cv::Mat BarPlot(const std::vector<std::string>& groups, const std::vector<Series
       for (std::size_t g = 0; HasSpread(s) && g < s.y.size(); ++g) {
         const double centre = g - 0.5 * group_width + (i + 0.5) * bar_width;
         const double cap_px = 0.25 * bar_width * (a.frame.width - 1) / a.x.Span();
-        DrawErrorBar(roi, a.ToLocal(centre, s.y_low[g]), a.ToLocal(centre, s.y_high[g]),
-                     std::min(6.0, cap_px), Grey(kInkLevel));
+        DrawErrorBar(roi, a.ToLocal(centre, s.y_low[g]), a.ToLocal(centre, s.y_high[g]), std::min(6.0, cap_px),
+                     Grey(kInkLevel));
       }
     }
     if (a.y.lo < 0.0) {

@@ -41,9 +41,9 @@ std::string FindingExplanation(const BenchResult& result, const Diagnosis& diagn
     const MethodDiagnosis& sd = *FindDiagnosis(diagnosis, "slcd");
     const MethodDiagnosis& dd = *FindDiagnosis(diagnosis, "dlcd");
     md << "**Why DLCD does not beat SLCD here.** DLCD can only work where people are detected: on "
-          "the other queries it scores " << Fixed(dd.mrr_without_hoi) << " against SLCD's "
-       << Fixed(sd.mrr_without_hoi) << ". Where people are detected SLCD still leads ("
-       << Fixed(sd.mrr_with_hoi) << " vs " << Fixed(dd.mrr_with_hoi)
+          "the other queries it scores "
+       << Fixed(dd.mrr_without_hoi) << " against SLCD's " << Fixed(sd.mrr_without_hoi)
+       << ". Where people are detected SLCD still leads (" << Fixed(sd.mrr_with_hoi) << " vs " << Fixed(dd.mrr_with_hoi)
        << "): the static corners of this synthetic room (chairs, table edges, the people's "
           "outlines) repeat lap after lap, which real thermal rooms at equilibrium do not, while the "
           "detector behind DLCD merges people who overlap in the image";
@@ -59,9 +59,10 @@ std::string FindingExplanation(const BenchResult& result, const Diagnosis& diagn
     const FusionDiagnosis& fd = *diagnosis.fusion;
     md << "**Why fusion falls below " << fd.better << ".** Reciprocal rank fusion with k = "
        << "0 averages the two rankings, and a first rank in either list (1/1) outweighs anything "
-          "else: fusion ranks the true match lower than " << fd.better << " on " << fd.queries_ranked_lower
-       << " queries (on " << fd.queries_ranked_lower_weaker_top1_false << " of them " << fd.weaker
-       << " put a false match first) and higher on " << fd.queries_ranked_higher << ". With one method clearly "
+          "else: fusion ranks the true match lower than "
+       << fd.better << " on " << fd.queries_ranked_lower << " queries (on " << fd.queries_ranked_lower_weaker_top1_false
+       << " of them " << fd.weaker << " put a false match first) and higher on " << fd.queries_ranked_higher
+       << ". With one method clearly "
           "weaker, its confident mistakes cost more than its agreement adds.\n\n";
   }
   return md.str();
@@ -79,8 +80,9 @@ struct OracleSpec {
 constexpr OracleSpec kOracles[] = {
     {"dlcd-oracle", "dlcd", "ground-truth people", "detection and tracking are part of DLCD's deficit",
      "detection is not DLCD's deficit", "the HOI landmarks themselves limit it"},
-    {"slcd-ideal", "slcd", "noise-free image", "the sensor (noise, fixed pattern, blur, drift, FFC) is part of SLCD's deficit",
-     "the sensor is not SLCD's limit", "the corners and their matching limit it"},
+    {"slcd-ideal", "slcd", "noise-free image",
+     "the sensor (noise, fixed pattern, blur, drift, FFC) is part of SLCD's deficit", "the sensor is not SLCD's limit",
+     "the corners and their matching limit it"},
 };
 
 // Below this difference of MRR an oracle counts as no better, when no interval was computed.
@@ -116,7 +118,8 @@ OracleDiagnosis DiagnoseOracle(const BenchResult& result, const OracleSpec& spec
   const bool has_interval = !std::isnan(interval.low) && !std::isnan(interval.high);
   const bool separated = has_interval ? (interval.low > 0 || interval.high < 0) : std::abs(o.delta) >= kMrrNoise;
   o.helps = separated && o.delta > 0;
-  text << " vs " << spec.method << " " << Fixed(o.method_mrr) << " (\xce\x94 " << (o.delta >= 0 ? "+" : "") << Fixed(o.delta);
+  text << " vs " << spec.method << " " << Fixed(o.method_mrr) << " (\xce\x94 " << (o.delta >= 0 ? "+" : "")
+       << Fixed(o.delta);
   if (has_interval) text << " [" << Fixed(interval.low) << ", " << Fixed(interval.high) << "]";
   text << "): ";
   if (o.helps) {
@@ -154,8 +157,8 @@ std::string PaperFindingSummary(const BenchResult& result) {
       << (dm > sm ? " (holds, as in the paper)" : " (does NOT hold)");
   if (f) {
     const double fm = f->metrics.mrr, better = std::max(sm, dm);
-    out << "; fusion MRR " << Fixed(fm) << (fm >= better - 0.01 ? " >= " : " < ") << "better - 0.01 = "
-        << Fixed(better - 0.01) << (fm >= better - 0.01 ? " (holds)" : " (does NOT hold)");
+    out << "; fusion MRR " << Fixed(fm) << (fm >= better - 0.01 ? " >= " : " < ")
+        << "better - 0.01 = " << Fixed(better - 0.01) << (fm >= better - 0.01 ? " (holds)" : " (does NOT hold)");
   }
   // Whether the scene has people is known only from persons.json (tracking_evaluated: the dataset
   // has it and DLCD's front end ran).
@@ -165,7 +168,8 @@ std::string PaperFindingSummary(const BenchResult& result) {
         << (no_people ? ", and the scene has no people" : "")
         << "), so it has nothing to match: every query scores 0 and its ranks are pure ties.";
   } else if (no_people) {
-    out << ". The scene has no people, so every one of DLCD's HOI points (" << Fixed(result.mean_hoi_points_per_frame, 1)
+    out << ". The scene has no people, so every one of DLCD's HOI points ("
+        << Fixed(result.mean_hoi_points_per_frame, 1)
         << " a frame) comes from a warm object mistaken for a person: its score measures the detector's false "
            "positives, not human-object interaction.";
   }
@@ -257,8 +261,7 @@ std::string DiagnosisMarkdown(const BenchResult& result, const Diagnosis& diagno
           "MRR is that of a random order of the database. "
        << (result.ground_truth_person_views == 0
                ? "Correct here: the ground truth has no people either."
-               : "The ground truth has people (" +
-                     std::to_string(result.ground_truth_person_views) +
+               : "The ground truth has people (" + std::to_string(result.ground_truth_person_views) +
                      " person views): the detector missed them all.")
        << "\n\n";
   } else {

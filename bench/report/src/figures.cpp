@@ -35,8 +35,8 @@ cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptio
   const double radius = std::max(2.5, 1.5 * o.scale);
   for (const cv::Point2f& p : tile.points) {
     const cv::Point2d centre((p.x + 0.5) * o.scale - 0.5, (p.y + 0.5) * o.scale - 0.5);
-    cv::circle(shown, SubPixel(centre), cvRound(radius * kSubPixels), tile.point_colour, cv::FILLED,
-               cv::LINE_AA, kShift);
+    cv::circle(shown, SubPixel(centre), cvRound(radius * kSubPixels), tile.point_colour, cv::FILLED, cv::LINE_AA,
+               kShift);
   }
   if (!tile.caption.empty()) {
     // A caption wider than its tile is drawn smaller until it fits (5 px margin each side).
@@ -46,11 +46,9 @@ cv::Mat RenderTile(const MatchTile& tile, cv::Size empty_size, const MosaicOptio
       font_scale *= 0.9;
       text = TextSize(tile.caption, font_scale);
     }
-    const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) &
-                         cv::Rect(0, 0, shown.cols, shown.rows);
+    const cv::Rect box = cv::Rect(0, 0, text.width + 10, text.height + 10) & cv::Rect(0, 0, shown.cols, shown.rows);
     cv::Mat backing = shown(box);
-    cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0,
-                    backing);
+    cv::addWeighted(backing, 0.4, cv::Mat(backing.size(), backing.type(), Grey(0)), 0.6, 0.0, backing);
     PutText(shown, tile.caption, {5.0, 5.0}, 0.0, 0.0, font_scale, White());
   }
   return shown;
@@ -82,11 +80,9 @@ std::vector<std::vector<cv::Point2d>> FootprintOutlines(const std::vector<Footpr
 
 }  // namespace
 
-cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
-                       const std::vector<TrajectoryLink>& links,
-                       const std::vector<FootprintRecord>& footprints,
-                       const std::vector<LegendEntry>& legend, const PlotOptions& options,
-                       cv::Rect* plot_area_px) {
+cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points, const std::vector<TrajectoryLink>& links,
+                       const std::vector<FootprintRecord>& footprints, const std::vector<LegendEntry>& legend,
+                       const PlotOptions& options, cv::Rect* plot_area_px) {
   Range x, y;
   for (const TrajectoryPoint& p : points) {
     x.Add(p.x_m);
@@ -126,14 +122,12 @@ cv::Mat TrajectoryPlot(const std::vector<TrajectoryPoint>& points,
     for (const TrajectoryPoint& p : points) {
       const cv::Point2d c = a.ToLocal(p.x_m, p.y_m);
       if (!Finite(c)) continue;
-      cv::circle(roi, SubPixel(c), cvRound(kDotRadiusPx * kSubPixels), p.colour, cv::FILLED,
-                 cv::LINE_AA, kShift);
+      cv::circle(roi, SubPixel(c), cvRound(kDotRadiusPx * kSubPixels), p.colour, cv::FILLED, cv::LINE_AA, kShift);
     }
     if (links.empty()) return;
     cv::Mat overlay = roi.clone();
     for (const TrajectoryLink& l : links) {
-      Segment(overlay, a.ToLocal(l.from_m.x, l.from_m.y), a.ToLocal(l.to_m.x, l.to_m.y),
-              l.colour, 1);
+      Segment(overlay, a.ToLocal(l.from_m.x, l.from_m.y), a.ToLocal(l.to_m.x, l.to_m.y), l.colour, 1);
     }
     cv::addWeighted(overlay, 0.6, roi, 0.4, 0.0, roi);
   };

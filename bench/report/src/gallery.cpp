@@ -104,8 +104,8 @@ std::string PairTile(const GalleryInput& in, const DrawnMethod& m, size_t q, int
   const std::vector<Point2> rp = rf ? rf->Points(shown) : std::vector<Point2>();
   std::optional<PairMatches> matches;
   if (qf != nullptr && rf != nullptr) {
-    matches = m.method->MatchPair({m.own.get(), qp, rp, qf->Hoi(shown), rf->Hoi(shown), query.frame, top1, height,
-                                   in.dataset.manifest().seed});
+    matches = m.method->MatchPair(
+        {m.own.get(), qp, rp, qf->Hoi(shown), rf->Hoi(shown), query.frame, top1, height, in.dataset.manifest().seed});
   }
   const std::string outcome = GalleryOutcome(rec);
   std::string svg = "<svg viewBox=\"0 0 " + std::to_string(width + dx) + " " + std::to_string(height) +
@@ -140,8 +140,8 @@ std::string PairTile(const GalleryInput& in, const DrawnMethod& m, size_t q, int
   } else {
     caption += "; <span class=\"no-matches\">" + EscapeHtml(NoMatchesNote(in, m.method, top1)) + "</span>";
   }
-  return "<figure class=\"tile pair\" data-method=\"" + EscapeHtml(m.shown->name) + "\">" + svg +
-         "</svg><figcaption>" + caption + "</figcaption></figure>";
+  return "<figure class=\"tile pair\" data-method=\"" + EscapeHtml(m.shown->name) + "\">" + svg + "</svg><figcaption>" +
+         caption + "</figcaption></figure>";
 }
 
 // A single frame with a caption.
@@ -171,8 +171,8 @@ std::string ConditionsLine(const QueryConditions& c, const std::vector<std::stri
                      std::to_string(c.walkers_in_view) + "), mean occlusion " + Fixed(c.mean_occlusion, 2);
   if (c.person_pixels >= 0) {
     line += ", person pixels " + std::to_string(c.person_pixels) + ", temperature spread " +
-            Fixed(c.temperature_spread_k, 2) + " K, structure contrast " + Fixed(100 * c.structure_contrast_fraction, 1) +
-            " %" + (c.blank ? ", blank view" : "");
+            Fixed(c.temperature_spread_k, 2) + " K, structure contrast " +
+            Fixed(100 * c.structure_contrast_fraction, 1) + " %" + (c.blank ? ", blank view" : "");
   }
   line += std::string(c.ffc_or_frozen ? ", FFC or frozen frame" : "") + ", turning " + Fixed(c.turn_rate_deg_s, 1) +
           " deg/s, nearest true match " + Fixed(c.nearest_true_distance_m, 2) + " m / " +
@@ -216,7 +216,8 @@ std::string FeatureDefs(const GalleryInput& in, const std::set<std::pair<ShownFe
   std::string html = "<svg width=\"0\" height=\"0\" style=\"position:absolute\" aria-hidden=\"true\"><defs>\n";
   for (const auto& [kind, frame] : used) {
     std::string d;
-    for (const Point2& p : (*in.features)[frame].Points(kind)) d += "M" + Coord(p.x + 0.5) + " " + Coord(p.y + 0.5) + "h0";
+    for (const Point2& p : (*in.features)[frame].Points(kind))
+      d += "M" + Coord(p.x + 0.5) + " " + Coord(p.y + 0.5) + "h0";
     html += "<path id=\"" + FeatureId(kind, frame) +
             "\" stroke=\"#4cf\" stroke-width=\"3.5\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
   }
@@ -225,7 +226,8 @@ std::string FeatureDefs(const GalleryInput& in, const std::set<std::pair<ShownFe
 
 // The selects of the gallery's filters (the script in html.cpp reads their ids).
 std::string Filters(const std::vector<DrawnMethod>& methods, const std::vector<std::string>& strata) {
-  std::string html = "<div class=\"filters\"><label>method <select id=\"gallery-method\"><option value=\"*\">any</option>";
+  std::string html =
+      "<div class=\"filters\"><label>method <select id=\"gallery-method\"><option value=\"*\">any</option>";
   for (const DrawnMethod& m : methods) html += "<option>" + EscapeHtml(m.shown->name) + "</option>";
   html += "</select></label><label>stratum <select id=\"gallery-stratum\"><option value=\"*\">any</option>";
   for (const std::string& s : strata) html += "<option>" + EscapeHtml(s) + "</option>";
@@ -272,19 +274,25 @@ Gallery MakeGallery(const GalleryInput& in) {
       pointless += (pointless.empty() ? "" : ", ") + m.shown->name;
   }
   if (!pointless.empty()) {
-    pointless = " The tiles of " + EscapeHtml(pointless) + " show the two frames alone: these methods match no "
+    pointless = " The tiles of " + EscapeHtml(pointless) +
+                " show the two frames alone: these methods match no "
                 "keypoints or HOI points (each tile says why).";
   }
   std::string& html = gallery.html;
-  html = "<h2 id=\"gallery-section\">Gallery of queries</h2>\n<p class=\"note\">" + std::to_string(gallery.sampled.size()) +
-         " of " + std::to_string(in.queries.size()) + " queries: for every method, outcome (hit: its top-1 is a true "
-         "match; miss) and stratum (and blank views), up to " + std::to_string(in.sampling.per_group) +
-         " scored queries spread in time, no two within " + std::to_string(in.sampling.min_gap_frames) +
+  html = "<h2 id=\"gallery-section\">Gallery of queries</h2>\n<p class=\"note\">" +
+         std::to_string(gallery.sampled.size()) + " of " + std::to_string(in.queries.size()) +
+         " queries: for every method, outcome (hit: its top-1 is a true "
+         "match; miss) and stratum (and blank views), up to " +
+         std::to_string(in.sampling.per_group) + " scored queries spread in time, no two within " +
+         std::to_string(in.sampling.min_gap_frames) +
          " frames of each other. Each shows the query, its true match nearest in position, and every method's "
-         "top-1 beside the query." + pointless + "</p>\n"
+         "top-1 beside the query." +
+         pointless +
+         "</p>\n"
          "<p class=\"legend note\"><span style=\"color:#08a\">&#9679; features the method matches</span>"
          "<span style=\"color:#1a1\">&#9472; RANSAC inlier</span><span style=\"color:#d22\">&#9472; match RANSAC "
-         "rejects</span></p>\n" + Filters(methods, strata) + FrameDefs(in.dataset, frames, width, height);
+         "rejects</span></p>\n" +
+         Filters(methods, strata) + FrameDefs(in.dataset, frames, width, height);
   std::set<std::pair<ShownFeatures, int>> drawn_features;
   std::string entries;
   for (size_t q : gallery.sampled) entries += Entry(in, methods, q, width, height, &drawn_features);

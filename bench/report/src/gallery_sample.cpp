@@ -39,7 +39,7 @@ std::vector<size_t> SampleGallery(const std::vector<const std::vector<QueryRecor
   for (const auto& group : groups) order.push_back(&group.second);
   std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) { return a->size() < b->size(); });
   std::set<size_t> chosen;
-  std::set<int> frames;  // of the chosen queries
+  std::set<int> frames;                 // of the chosen queries
   const auto is_free = [&](size_t i) {  // at least the gap from every chosen query
     const int frame = conditions[i].frame;
     const auto next = frames.lower_bound(frame - sampling.min_gap_frames + 1);
@@ -63,8 +63,10 @@ std::vector<size_t> SampleGallery(const std::vector<const std::vector<QueryRecor
       const size_t middle = (2 * k + 1) * n / (2 * slots);
       size_t pick = n;
       for (size_t d = 0; d < n && pick == n; ++d) {
-        if (d <= middle && !sampled[middle - d] && is_free(members[middle - d])) pick = middle - d;
-        else if (middle + d < n && !sampled[middle + d] && is_free(members[middle + d])) pick = middle + d;
+        if (d <= middle && !sampled[middle - d] && is_free(members[middle - d]))
+          pick = middle - d;
+        else if (middle + d < n && !sampled[middle + d] && is_free(members[middle + d]))
+          pick = middle + d;
       }
       if (pick == n) break;
       sampled[pick] = 1;

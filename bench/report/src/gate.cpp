@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/safe_text.h"
 
 namespace hoilcd {
 namespace {
@@ -36,12 +36,23 @@ std::string XmlText(const std::string& s) {
       continue;
     }
     switch (safe[i]) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += safe[i];
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += safe[i];
     }
   }
   return out;
@@ -69,9 +80,10 @@ std::string DropAllowance::ToString() const {
 }
 
 std::string Regression::ToString(const DropAllowance& allowed) const {
-  const std::string why = allowed.interval && !std::isnan(new_high)
-                              ? "old above the new run's 95 % interval [" + Number(new_low) + ", " + Number(new_high) + "]"
-                              : "dropped " + allowed.ToString();
+  const std::string why =
+      allowed.interval && !std::isnan(new_high)
+          ? "old above the new run's 95 % interval [" + Number(new_low) + ", " + Number(new_high) + "]"
+          : "dropped " + allowed.ToString();
   return "regression: method " + method + ", " + metric + " old " + Number(old_value) + " new " + Number(new_value) +
          " (" + why + ")";
 }
@@ -132,8 +144,9 @@ std::string JUnitXml(const nlohmann::json& report, const std::vector<Regression>
           << Number(Value(method, "recall_at_1")) << "</system-out>\n  </testcase>\n";
   }
   std::ostringstream xml;
-  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"hoilcd\" tests=\"" << tests
-      << "\" failures=\"" << failures << "\" errors=\"0\">\n" << cases.str() << "</testsuite>\n";
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"hoilcd\" tests=\"" << tests << "\" failures=\""
+      << failures << "\" errors=\"0\">\n"
+      << cases.str() << "</testsuite>\n";
   return xml.str();
 }
 

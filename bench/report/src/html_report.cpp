@@ -24,9 +24,11 @@ std::string ResultsSection(const std::vector<MethodRun>& runs, const BootstrapPl
   }
   std::string html = "<h2>Results</h2>\n";
   if (intervals) {
-    html += "<p class=\"note\">In brackets: " + Fixed(100 * plan.confidence, 0) + " % intervals, a circular block "
-            "bootstrap of the queries in time order (" + std::to_string(plan.resamples) + " resamples, blocks of " +
-            std::to_string(plan.block_queries) + " queries). Click a header to sort.</p>\n";
+    html += "<p class=\"note\">In brackets: " + Fixed(100 * plan.confidence, 0) +
+            " % intervals, a circular block "
+            "bootstrap of the queries in time order (" +
+            std::to_string(plan.resamples) + " resamples, blocks of " + std::to_string(plan.block_queries) +
+            " queries). Click a header to sort.</p>\n";
   }
   if (!runs.empty()) {
     const MethodMetrics& m = runs.front().metrics;
@@ -51,7 +53,8 @@ std::string ComparisonsSection(const std::vector<PairedComparison>& comparisons)
   }
   if (rows.empty()) return "";
   return "<h3>Paired comparisons (MRR)</h3>\n<details><summary>" + std::to_string(rows.size()) + " pairs, " +
-         std::to_string(separated) + " separated (their interval excludes 0)</summary>\n<p class=\"note\">The "
+         std::to_string(separated) +
+         " separated (their interval excludes 0)</summary>\n<p class=\"note\">The "
          "difference of per-query reciprocal ranks over the queries both methods scored, with its interval from "
          "the same resampled blocks. Where the interval holds 0, this sequence cannot tell the two apart.</p>\n" +
          SortableTable({"pair (better first)", "MRR difference", "queries", "separated"}, rows) + "</details>\n";
@@ -70,7 +73,8 @@ std::string StrataSection(const std::vector<StratumRow>& strata) {
     }
     rows.push_back(std::move(cells));
   }
-  return "<h3>Results by condition</h3>\n<p class=\"note\">Each method's MRR / R@1 on the scored queries of each stratum "
+  return "<h3>Results by condition</h3>\n<p class=\"note\">Each method's MRR / R@1 on the scored queries of each "
+         "stratum "
          "(definitions in docs/guide/protocol.md); chance is the MRR of a random order.</p>\n" +
          SortableTable(headers, rows);
 }
@@ -104,17 +108,22 @@ std::string OtherGroundTruthSection(const BenchResult& result) {
 
 std::string SlamSection(const SlamResult& slam, const std::vector<PoseRecord>& poses) {
   const auto row = [](const std::string& name, const SlamScore& s, double threshold) {
-    return std::vector<HtmlCell>{TextCell(name), NumberCell(s.ate_rmse_m), NumberCell(s.rpe_rmse_m),
-                                 NumberCell(s.loops_accepted, 0), NumberCell(s.false_loops, 0),
+    return std::vector<HtmlCell>{TextCell(name),
+                                 NumberCell(s.ate_rmse_m),
+                                 NumberCell(s.rpe_rmse_m),
+                                 NumberCell(s.loops_accepted, 0),
+                                 NumberCell(s.false_loops, 0),
                                  NumberCell(threshold, 2)};
   };
   std::vector<std::vector<HtmlCell>> rows = {row("odometry alone", slam.odometry, NAN)};
   for (const SlamScore& s : slam.oracle)
     if (s.backend == slam.backend) rows.push_back(row("oracle loops", s, NAN));
   for (const MethodSlam& m : slam.methods) rows.push_back(row(m.method, m.Headline(slam.backend), m.threshold));
-  std::string html = "<h2>SLAM</h2>\n<p class=\"note\">Each method's accepted loops in an SE(2) pose graph with the "
-                     "wheel odometry (back end " + EscapeHtml(slam.backend) + "); ATE and RPE against the true poses.</p>\n" +
-                     SortableTable({"trajectory", "ATE RMSE (m)", "RPE RMSE (m)", "loops", "false loops", "threshold"}, rows);
+  std::string html =
+      "<h2>SLAM</h2>\n<p class=\"note\">Each method's accepted loops in an SE(2) pose graph with the "
+      "wheel odometry (back end " +
+      EscapeHtml(slam.backend) + "); ATE and RPE against the true poses.</p>\n" +
+      SortableTable({"trajectory", "ATE RMSE (m)", "RPE RMSE (m)", "loops", "false loops", "threshold"}, rows);
   for (const std::string& note : slam.notes) html += "<p class=\"note\">" + EscapeHtml(note) + "</p>\n";
   return html + SlamTrajectorySvg(slam, poses);
 }
@@ -147,8 +156,8 @@ std::string DatasetLine(const Dataset& dataset, const ProtocolOptions& protocol)
 
 HtmlReport BenchReportHtml(const BenchResult& result, const Dataset& dataset, const BenchOptions& options,
                            const HtmlReportInput& input) {
-  GalleryInput gallery_input{dataset, result.queries, result.conditions, StratificationsOf(result.strata), {}, &result.features,
-                             options.params, input.gallery};
+  GalleryInput gallery_input{dataset, result.queries,   result.conditions, StratificationsOf(result.strata),
+                             {},      &result.features, options.params,    input.gallery};
   for (const MethodRun& run : result.runs) gallery_input.methods.push_back({run.name, &run.metrics.queries});
   const Gallery gallery = MakeGallery(gallery_input);
   std::string body = "<h1>hoilcd loop-closure report</h1>\n" + DatasetLine(dataset, options.protocol) + Links() +
@@ -159,7 +168,8 @@ HtmlReport BenchReportHtml(const BenchResult& result, const Dataset& dataset, co
   body += gallery.html + FiguresSection(input);
   body += "<h2>Methods</h2>\n<ul>";
   for (const MethodRun& run : result.runs) {
-    body += "<li><code>" + EscapeHtml(run.name) + "</code>: " + EscapeHtml(FindMethod(run.name).Description()) + "</li>";
+    body +=
+        "<li><code>" + EscapeHtml(run.name) + "</code>: " + EscapeHtml(FindMethod(run.name).Description()) + "</li>";
   }
   body += "</ul>\n";
   return {HtmlPage("hoilcd report: " + dataset.dir(), body), gallery.sampled};
@@ -173,15 +183,17 @@ std::string OnlineReportHtml(const OnlineResult& result, const Dataset& dataset)
     rows.push_back({TextCell(run.name), IntervalCell(m.mrr, i.mrr), IntervalCell(m.recall_at_1, i.recall_at_1),
                     IntervalCell(m.recall_at_5, i.recall_at_5), NumberCell(run.p50_ms, 2), NumberCell(run.p99_ms, 2)});
   }
-  const std::string body =
-      "<h1>hoilcd online loop-closure report</h1>\n<p>Dataset <code>" + EscapeHtml(dataset.dir()) + "</code> (" +
-      std::to_string(result.frames) + " frames), protocol <code>" + EscapeHtml(result.protocol) + "</code>, " +
-      EscapeHtml(result.ground_truth) + " ground truth. The same report as text: <a href=\"report.md\">report.md</a>, "
-      "<a href=\"report.json\">report.json</a>.</p>\n<p>" + std::to_string(result.queries_processed) +
-      " queries processed, " + std::to_string(result.queries_scored) + " scored; the shortlist held a true match for " +
-      std::to_string(result.shortlist_hits) + " of them (recall " + Fixed(result.shortlist_recall) + ").</p>\n" +
-      SortableTable({"method", "MRR", "R@1", "R@5", "ms/query p50", "ms/query p99"}, rows) +
-      RecordingRunsSection(result.per_run);
+  const std::string body = "<h1>hoilcd online loop-closure report</h1>\n<p>Dataset <code>" + EscapeHtml(dataset.dir()) +
+                           "</code> (" + std::to_string(result.frames) + " frames), protocol <code>" +
+                           EscapeHtml(result.protocol) + "</code>, " + EscapeHtml(result.ground_truth) +
+                           " ground truth. The same report as text: <a href=\"report.md\">report.md</a>, "
+                           "<a href=\"report.json\">report.json</a>.</p>\n<p>" +
+                           std::to_string(result.queries_processed) + " queries processed, " +
+                           std::to_string(result.queries_scored) + " scored; the shortlist held a true match for " +
+                           std::to_string(result.shortlist_hits) + " of them (recall " +
+                           Fixed(result.shortlist_recall) + ").</p>\n" +
+                           SortableTable({"method", "MRR", "R@1", "R@5", "ms/query p50", "ms/query p99"}, rows) +
+                           RecordingRunsSection(result.per_run);
   return HtmlPage("hoilcd online report: " + dataset.dir(), body);
 }
 
@@ -189,8 +201,9 @@ HtmlReport EvaluateReportHtml(const MethodRun& run, const BootstrapPlan& plan, c
                               const std::vector<QueryConditions>& conditions, const std::vector<StratumRow>& strata,
                               const Dataset& dataset, const ProtocolOptions& protocol, const std::string& description,
                               const HtmlReportInput& input) {
-  GalleryInput gallery_input{dataset, queries, conditions, StratificationsOf(strata), {{run.name, &run.metrics.queries}},
-                             nullptr, {}, input.gallery};
+  GalleryInput gallery_input{
+      dataset, queries, conditions,   StratificationsOf(strata), {{run.name, &run.metrics.queries}},
+      nullptr, {},      input.gallery};
   const Gallery gallery = MakeGallery(gallery_input);
   const std::string body = "<h1>hoilcd evaluate: " + EscapeHtml(run.name) + "</h1>\n<p>" + EscapeHtml(description) +
                            "</p>\n" + DatasetLine(dataset, protocol) + Links() + ResultsSection({run}, plan) +

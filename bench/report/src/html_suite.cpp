@@ -17,16 +17,20 @@ std::string RunsTable(const SuiteSummary& summary, const std::map<std::string, s
       cells.push_back({Fixed(m.mrr[r]) + " (" + Fixed(m.rank[r], 1) + ")", m.mrr[r]});
     }
     const auto report = run_reports.find(summary.runs[r]);
-    cells.push_back(report == run_reports.end()
-                        ? TextCell(kMissingFigure)
-                        : HtmlCell{"<a href=\"" + EscapeHtml(report->second + "/report.html") + "\">report.html</a>", NAN});
+    cells.push_back(
+        report == run_reports.end()
+            ? TextCell(kMissingFigure)
+            : HtmlCell{"<a href=\"" + EscapeHtml(report->second + "/report.html") + "\">report.html</a>", NAN});
     rows.push_back(std::move(cells));
   }
-  std::string html = "<h2>Runs</h2>\n<p class=\"note\">One row per run (room and seed); each links to its own "
-                     "report.html.</p>\n" + SortableTable(headers, rows);
+  std::string html =
+      "<h2>Runs</h2>\n<p class=\"note\">One row per run (room and seed); each links to its own "
+      "report.html.</p>\n" +
+      SortableTable(headers, rows);
   if (!summary.failed.empty()) {
     html += "<h3>Failed runs</h3>\n<ul>";
-    for (const auto& [run, error] : summary.failed) html += "<li>" + EscapeHtml(run) + ": " + EscapeHtml(error) + "</li>";
+    for (const auto& [run, error] : summary.failed)
+      html += "<li>" + EscapeHtml(run) + ": " + EscapeHtml(error) + "</li>";
     html += "</ul>\n";
   }
   return html;
@@ -60,7 +64,8 @@ std::string SuiteReportHtml(const SuiteSummary& summary, const std::map<std::str
   body += "<p>" + std::to_string(summary.runs.size()) + " runs of " + std::to_string(summary.sequences.size()) +
           " sequences finished, " + std::to_string(summary.failed.size()) +
           " failed. Means over sequences (each the mean of its seeds) with " +
-          Fixed(100 * summary.bootstrap.confidence, 0) + " % percentile bootstrap intervals over the sequences. "
+          Fixed(100 * summary.bootstrap.confidence, 0) +
+          " % percentile bootstrap intervals over the sequences. "
           "The same numbers as text: <a href=\"suite_report.md\">suite_report.md</a>.</p>\n" +
           SortableTable({"method", "MRR", "R@1", "mean rank"}, rows);
   if (!summary.wins.empty()) {

@@ -86,8 +86,14 @@ std::vector<std::string> RunCells(const InspectRun& r) {
           Fixed(r.people_per_frame_mean, 2),
           Fixed(r.odometry_drift_end_m, 3) + " m (" + Fixed(r.odometry_drift_end_pct, 2) + " %)"};
 }
-const char* const kRunColumns[] = {"run", "recorded", "frames", "starts after", "laps", "true distance",
-                                   "people in view per frame", "odometry drift at its end"};
+const char* const kRunColumns[] = {"run",
+                                   "recorded",
+                                   "frames",
+                                   "starts after",
+                                   "laps",
+                                   "true distance",
+                                   "people in view per frame",
+                                   "odometry drift at its end"};
 
 }  // namespace
 
@@ -197,7 +203,8 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses) {
     if (laps[i] == 0 || first_lap.empty()) continue;
     const Eigen::Vector2d p(poses[i].x_m, poses[i].y_m);
     double best = (first_lap[0] - p).norm();
-    for (size_t k = 1; k < first_lap.size(); ++k) best = std::min(best, DistanceToSegment(p, first_lap[k - 1], first_lap[k]));
+    for (size_t k = 1; k < first_lap.size(); ++k)
+      best = std::min(best, DistanceToSegment(p, first_lap[k - 1], first_lap[k]));
     lap_difference_m.push_back(best);
   }
   // The robot is carried back to its dock between recording runs, where its odometry restarts: the
@@ -219,8 +226,10 @@ InspectSection TrajectorySection(const std::vector<PoseRecord>& poses) {
       NumberFigure("frames", "frames", static_cast<double>(poses.size()), ""),
       NumberFigure("laps", "laps started (true heading)", laps.empty() ? 0 : laps.back() + 1, ""),
       NumberFigure("path_length_m", "true distance driven", path_m, "m"),
-      NumberFigure("lap_difference_median_m", "lap-to-lap true path difference, median", Quantile(lap_difference_m, 0.5), "m"),
-      NumberFigure("lap_difference_p90_m", "lap-to-lap true path difference, p90", Quantile(lap_difference_m, 0.9), "m"),
+      NumberFigure("lap_difference_median_m", "lap-to-lap true path difference, median",
+                   Quantile(lap_difference_m, 0.5), "m"),
+      NumberFigure("lap_difference_p90_m", "lap-to-lap true path difference, p90", Quantile(lap_difference_m, 0.9),
+                   "m"),
       NumberFigure("odometry_drift_end_m", "odometry drift at the end", end_drift_m, "m"),
       NumberFigure("odometry_drift_max_m", "odometry drift, max", max_drift_m, "m"),
       NumberFigure("odometry_drift_end_pct", "odometry drift at the end, % of distance",
@@ -243,7 +252,8 @@ InspectSection CameraSection(const std::vector<PoseRecord>& poses) {
       NumberFigure("pitch_std_deg", "pitch std", StdDev(pitch_deg), "deg"),
       NumberFigure("height_std_m", "height std", StdDev(height_m), "m"),
       NumberFigure("roll_frame_to_frame_rms_deg", "roll change frame to frame, RMS", RmsFrameToFrame(roll_deg), "deg"),
-      NumberFigure("pitch_frame_to_frame_rms_deg", "pitch change frame to frame, RMS", RmsFrameToFrame(pitch_deg), "deg"),
+      NumberFigure("pitch_frame_to_frame_rms_deg", "pitch change frame to frame, RMS", RmsFrameToFrame(pitch_deg),
+                   "deg"),
   };
   return s;
 }
@@ -314,8 +324,9 @@ InspectSection ViewSection(const Dataset& dataset, int threads) {
   InspectSection s{"views", "What the camera sees (true temperature, EXR)", {}};
   const std::vector<int> sampled = SampledViewFrames(dataset);
   std::vector<QueryConditions> views(sampled.size());
-  ParallelFor(static_cast<int64_t>(sampled.size()), threads,
-              [&](int64_t i) { views[static_cast<size_t>(i)] = ImageConditionsOf(dataset, sampled[static_cast<size_t>(i)]); });
+  ParallelFor(static_cast<int64_t>(sampled.size()), threads, [&](int64_t i) {
+    views[static_cast<size_t>(i)] = ImageConditionsOf(dataset, sampled[static_cast<size_t>(i)]);
+  });
   std::vector<double> spread, contrast;
   int blank = 0, bare = 0, people = 0;
   for (const QueryConditions& c : views) {
@@ -328,7 +339,8 @@ InspectSection ViewSection(const Dataset& dataset, int threads) {
   const double n = std::max<double>(1, static_cast<double>(views.size()));
   s.figures = {
       NumberFigure("frames_sampled", "frames sampled (evenly spaced)", static_cast<double>(views.size()), ""),
-      NumberFigure("blank_percent", "blank views (spread < " + ShortestDouble(kBlankSpreadK) + " K, walls/floor/ceiling only)",
+      NumberFigure("blank_percent",
+                   "blank views (spread < " + ShortestDouble(kBlankSpreadK) + " K, walls/floor/ceiling only)",
                    100 * blank / n, "%"),
       NumberFigure("bare_percent", "bare views (walls/floor/ceiling only, whatever their spread)", 100 * bare / n, "%"),
       NumberFigure("with_people_percent", "views with a person", 100 * people / n, "%"),
@@ -362,8 +374,10 @@ InspectSection LabelSection(const std::vector<PoseRecord>& poses, const Protocol
       NumberFigure("queries_with_match_odometry", "queries with a true match, odometry labels", scored_odometry, ""),
       NumberFigure("queries_with_match_true", "queries with a true match, true labels", scored_truth, ""),
       NumberFigure("queries_differing", "queries whose true matches differ", d.queries_differing, ""),
-      NumberFigure("queries_differing_pct", "queries whose true matches differ, %", d.queries ? 100.0 * d.queries_differing / d.queries : 0, "%"),
-      NumberFigure("pairs_differing", "query-database pairs labelled differently", static_cast<double>(d.pairs_differing), ""),
+      NumberFigure("queries_differing_pct", "queries whose true matches differ, %",
+                   d.queries ? 100.0 * d.queries_differing / d.queries : 0, "%"),
+      NumberFigure("pairs_differing", "query-database pairs labelled differently",
+                   static_cast<double>(d.pairs_differing), ""),
   };
   return s;
 }
@@ -383,8 +397,10 @@ InspectReport InspectDataset(const Dataset& dataset, const ProtocolOptions& prot
     r.sections.push_back(ClothingSection(dataset, threads));
   }
   // Heat traces of left seats, when people left (turnover) and the EXRs show them.
-  const bool left = std::any_of(dataset.events().begin(), dataset.events().end(), [](const DatasetEvent& e) { return e.type == "leave"; });
-  if (dataset.manifest().outputs.exr && left) r.sections.push_back(HeatTraceSection(MeasureHeatTraces(dataset, threads)));
+  const bool left = std::any_of(dataset.events().begin(), dataset.events().end(),
+                                [](const DatasetEvent& e) { return e.type == "leave"; });
+  if (dataset.manifest().outputs.exr && left)
+    r.sections.push_back(HeatTraceSection(MeasureHeatTraces(dataset, threads)));
   r.sections.push_back(LabelSection(dataset.poses(), protocol));
   // The synthetic side of `hoilcd realism`'s statistics, from the frames themselves.
   if (dataset.manifest().outputs.radiometric || dataset.manifest().outputs.thermal) {

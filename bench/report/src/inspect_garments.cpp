@@ -63,8 +63,9 @@ InspectSection ClothingSection(const Dataset& dataset, int threads) {
   InspectSection s{"clothing", "Clothing within a person (true temperature, EXR)", {}};
   const std::vector<int> sampled = SampledViewFrames(dataset);
   std::vector<FrameClothing> measured(sampled.size());
-  ParallelFor(static_cast<int64_t>(sampled.size()), threads,
-              [&](int64_t i) { measured[static_cast<size_t>(i)] = MeasureFrame(dataset, sampled[static_cast<size_t>(i)]); });
+  ParallelFor(static_cast<int64_t>(sampled.size()), threads, [&](int64_t i) {
+    measured[static_cast<size_t>(i)] = MeasureFrame(dataset, sampled[static_cast<size_t>(i)]);
+  });
   int64_t pairs = 0, equal = 0;
   std::vector<double> spreads;
   for (const FrameClothing& f : measured) {
@@ -73,7 +74,8 @@ InspectSection ClothingSection(const Dataset& dataset, int threads) {
     spreads.insert(spreads.end(), f.spreads_k.begin(), f.spreads_k.end());
   }
   s.figures = {
-      NumberFigure("neighbour_pairs", "neighbouring clothing pixel pairs of one person", static_cast<double>(pairs), ""),
+      NumberFigure("neighbour_pairs", "neighbouring clothing pixel pairs of one person", static_cast<double>(pairs),
+                   ""),
       NumberFigure("equal_neighbours_percent", "of them within 0.02 K of each other",
                    pairs ? 100.0 * static_cast<double>(equal) / static_cast<double>(pairs) : 0, "%"),
       NumberFigure("spread_median_k", "p95 - p5 within a person's clothing in a frame, median", Median(spreads), "K"),

@@ -1,7 +1,8 @@
 #include "hoilcd/bench/report/inspect_heat_traces.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
+
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset/exr_io.h"
@@ -57,8 +58,10 @@ HeatTraceSample Sight(const Dataset& dataset, const LeftSeat& seat, int frame, d
       if (!std::isfinite(z) || z <= 0) continue;
       const Eigen::Vector3d p = world_from_cam * (k.Unproject(u, v) * z);
       const Eigen::Vector2d local = chair_from_world * (p.head<2>() - Eigen::Vector2d(f.centre_m[0], f.centre_m[1]));
-      if (std::abs(local.x()) > f.half_size_m[0] + kMarginM || std::abs(local.y()) > f.half_size_m[1] + kMarginM) continue;
-      if (p.z() < kSeatTopM - 0.05 || p.z() > kSeatTopM + 0.05) continue;  // the seat's top, not the legs or the backrest
+      if (std::abs(local.x()) > f.half_size_m[0] + kMarginM || std::abs(local.y()) > f.half_size_m[1] + kMarginM)
+        continue;
+      if (p.z() < kSeatTopM - 0.05 || p.z() > kSeatTopM + 0.05)
+        continue;  // the seat's top, not the legs or the backrest
       excess.push_back(t_true.at<float>(v, u) - room_c);
     }
   }
@@ -85,8 +88,9 @@ std::vector<HeatTrace> MeasureHeatTraces(const Dataset& dataset, int threads, in
     std::vector<int> frames;
     for (int f = seat.leave_frame; f < seat.until_frame; f += step) frames.push_back(f);
     std::vector<HeatTraceSample> sights(frames.size());
-    ParallelFor(static_cast<int64_t>(frames.size()), threads,
-                [&](int64_t i) { sights[static_cast<size_t>(i)] = Sight(dataset, seat, frames[static_cast<size_t>(i)], room_c); });
+    ParallelFor(static_cast<int64_t>(frames.size()), threads, [&](int64_t i) {
+      sights[static_cast<size_t>(i)] = Sight(dataset, seat, frames[static_cast<size_t>(i)], room_c);
+    });
     HeatTrace trace{seat.seat, seat.leave_frame, {}};
     for (const HeatTraceSample& s : sights)
       if (s.pixels >= kHeatTraceMinPixels) trace.samples.push_back(s);
@@ -135,16 +139,22 @@ InspectSection HeatTraceSection(const std::vector<HeatTrace>& traces) {
     }
   }
   const ExponentialFit fit = FitExponentialDecay(pooled, 0.1);
-  const double lifetime_s = std::isfinite(fit.tau_s) && fit.amplitude_k > kWarmK ? fit.tau_s * std::log(fit.amplitude_k / kWarmK) : 0;
+  const double lifetime_s =
+      std::isfinite(fit.tau_s) && fit.amplitude_k > kWarmK ? fit.tau_s * std::log(fit.amplitude_k / kWarmK) : 0;
   s.figures = {
       NumberFigure("left_seats", "left seats nobody takes again", static_cast<double>(traces.size()), ""),
       NumberFigure("left_seats_seen", "left seats seen afterwards", seen, ""),
       NumberFigure("sightings", "frames seeing a left seat", sightings, ""),
-      NumberFigure("warm_percent", "sightings at least 1 K above the room", sightings ? 100.0 * warm / sightings : 0, "%"),
-      NumberFigure("last_warm_s", "latest sighting at least 1 K above the room, after the leave (-1: none)", last_warm_s, "s"),
-      NumberFigure("first_cool_s", "earliest sighting less than 1 K above the room, after the leave (-1: none)", first_cool_s, "s"),
-      NumberFigure("fitted_amplitude_k", "exponential fit over the sightings: excess at the leave", std::isfinite(fit.amplitude_k) ? fit.amplitude_k : -1, "K"),
-      NumberFigure("fitted_tau_s", "exponential fit over the sightings: time constant (-1: too few)", std::isfinite(fit.tau_s) ? fit.tau_s : -1, "s"),
+      NumberFigure("warm_percent", "sightings at least 1 K above the room", sightings ? 100.0 * warm / sightings : 0,
+                   "%"),
+      NumberFigure("last_warm_s", "latest sighting at least 1 K above the room, after the leave (-1: none)",
+                   last_warm_s, "s"),
+      NumberFigure("first_cool_s", "earliest sighting less than 1 K above the room, after the leave (-1: none)",
+                   first_cool_s, "s"),
+      NumberFigure("fitted_amplitude_k", "exponential fit over the sightings: excess at the leave",
+                   std::isfinite(fit.amplitude_k) ? fit.amplitude_k : -1, "K"),
+      NumberFigure("fitted_tau_s", "exponential fit over the sightings: time constant (-1: too few)",
+                   std::isfinite(fit.tau_s) ? fit.tau_s : -1, "s"),
       NumberFigure("lifetime_s", "lifetime at least 1 K above the room, from the fit", lifetime_s, "s"),
   };
   return s;

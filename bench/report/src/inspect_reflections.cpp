@@ -54,11 +54,14 @@ std::vector<InspectFigure> ReflectionFigures(const Dataset& dataset, const std::
     for (const auto& s : spread)
       if (s[k] >= 0) seen.push_back(s[k]);
     const std::string kind = kinds[k];
-    figures.push_back(NumberFigure(kind + "_views", kind + " views (at least " + std::to_string(kMinPixels) + " interior pixels)",
+    figures.push_back(NumberFigure(kind + "_views",
+                                   kind + " views (at least " + std::to_string(kMinPixels) + " interior pixels)",
                                    static_cast<double>(seen.size()), ""));
     if (seen.empty()) continue;
-    figures.push_back(NumberFigure(kind + "_spread_median_k", kind + " true temperature spread (p98 - p2), median", Median(seen), "K"));
-    figures.push_back(NumberFigure(kind + "_spread_max_k", kind + " true temperature spread (p98 - p2), max: its strongest reflection",
+    figures.push_back(NumberFigure(kind + "_spread_median_k", kind + " true temperature spread (p98 - p2), median",
+                                   Median(seen), "K"));
+    figures.push_back(NumberFigure(kind + "_spread_max_k",
+                                   kind + " true temperature spread (p98 - p2), max: its strongest reflection",
                                    *std::max_element(seen.begin(), seen.end()), "K"));
   }
   return figures;

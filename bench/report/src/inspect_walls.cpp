@@ -69,7 +69,8 @@ InspectSection WallSection(const Dataset& dataset, int threads) {
   s.figures = {
       NumberFigure("wall_views", "views showing wall" + enough, wall_views, ""),
       NumberFigure("wall_spread_median_k", "wall true temperature spread (p95 - p5), median", wall_median, "K"),
-      NumberFigure("structure_spread_median_k", "wall, ceiling and floor spread (p95 - p5), median", structure_median, "K"),
+      NumberFigure("structure_spread_median_k", "wall, ceiling and floor spread (p95 - p5), median", structure_median,
+                   "K"),
   };
   return s;
 }

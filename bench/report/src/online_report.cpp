@@ -1,11 +1,11 @@
 #include "hoilcd/bench/report/online_report.h"
 
-#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/bench/report/html_report.h"
 #include "hoilcd/bench/report/output_folder.h"
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/folder_lock.h"
+#include "hoilcd/core/util/safe_text.h"
 
 namespace hoilcd {
 

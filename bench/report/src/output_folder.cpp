@@ -1,8 +1,9 @@
 #include "hoilcd/bench/report/output_folder.h"
 
 #include <algorithm>
-#include <vector>
 #include <filesystem>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset/dataset_folder.h"
@@ -27,13 +28,14 @@ void CheckOutputFolder(const std::string& dir, const OutputMarker& marker) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec)) {
-    throw InputError(dir, "is a file: expected a folder (new, empty, or holding an earlier hoilcd " + marker.what + ")");
+    throw InputError(dir,
+                     "is a file: expected a folder (new, empty, or holding an earlier hoilcd " + marker.what + ")");
   }
   // Listed first: a folder that cannot be listed is refused by name, never taken as empty.
   const std::vector<std::string> entries = ListFolder(dir);
   if (entries.empty() || IsEarlierOutput(dir, marker)) return;
-  throw InputError(dir, "exists, is not empty (it holds " + JoinFileList(entries) +
-                            ") and holds no earlier hoilcd " + marker.what + " (" + marker.file +
+  throw InputError(dir, "exists, is not empty (it holds " + JoinFileList(entries) + ") and holds no earlier hoilcd " +
+                            marker.what + " (" + marker.file +
                             "); refusing to overwrite files in it: choose a new or empty folder");
 }
 

@@ -12,7 +12,9 @@ namespace {
 
 constexpr int kBins = 30;
 
-OutputMarker RealismMarker() { return {"realism.json", {"hoilcd_version", "statistics", "real", "synthetic"}, "realism output"}; }
+OutputMarker RealismMarker() {
+  return {"realism.json", {"hoilcd_version", "statistics", "real", "synthetic"}, "realism output"};
+}
 
 // A histogram as a step line of densities (each side sums to 1 over the bins).
 Series StepSeries(const std::string& label, const std::vector<double>& values, double lo, double width, size_t colour) {
@@ -77,14 +79,16 @@ void WriteRealismFolder(const RealismComparison& comparison, const std::string& 
   CheckRealismFolder(dir);
   CreateOutputFolder(dir);
   CreateOutputFolder(dir + "/histograms");
-  for (const StatisticRow& row : comparison.rows) WritePng(dir + "/histograms/" + row.key + ".png", RealismHistogram(row));
+  for (const StatisticRow& row : comparison.rows)
+    WritePng(dir + "/histograms/" + row.key + ".png", RealismHistogram(row));
   WriteFileAtomic(dir + "/realism.md", comparison.ToMarkdown());
   // The marker last: a folder holding it holds a whole earlier output.
   WriteFileAtomic(dir + "/realism.json", comparison.ToJson().dump(2) + "\n");
 }
 
 InspectSection FrameStatisticsSection(const Dataset& dataset, int threads) {
-  InspectSection s{"frame_statistics", "Frame statistics (as hoilcd realism measures them; compare with real frames)", {}};
+  InspectSection s{
+      "frame_statistics", "Frame statistics (as hoilcd realism measures them; compare with real frames)", {}};
   const FrameSet frames = MeasureDatasetFrames(dataset, SampledViewFrames(dataset), threads);
   const RealismComparison c = CompareFrameSets(frames, {});
   s.figures.push_back(NumberFigure("frames", "frames measured", static_cast<double>(frames.frames.size()), ""));

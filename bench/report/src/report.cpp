@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <functional>
 #include <future>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
 
-#include "hoilcd/core/util/safe_text.h"
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/figures.h"
@@ -22,6 +22,7 @@
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/folder_lock.h"
 #include "hoilcd/core/util/parallel.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "hoilcd/core/util/text.h"
 
 namespace hoilcd {
@@ -126,8 +127,10 @@ cv::Mat TrajectoryFigure(const BenchResult& result, const MethodRun& run, const 
   o.x_label = "x (m)";
   o.y_label = "y (m)";
   return TrajectoryPlot(points, links, dataset.footprints(),
-                        {{"correct top-1", green}, {"wrong top-1 (line to it)", red},
-                         {"no true match", grey}, {"database only", database}},
+                        {{"correct top-1", green},
+                         {"wrong top-1 (line to it)", red},
+                         {"no true match", grey},
+                         {"database only", database}},
                         o);
 }
 
@@ -156,10 +159,10 @@ std::vector<MatchTile> MatchRow(const BenchResult& result, const MethodRun& run,
                  "top-1 " + std::to_string(rec.top1_frame) + (rec.top1_is_true_match ? " ok" : " wrong") +
                      " s=" + Fixed(rec.top1_score, 0) + tie,
                  features(rec.top1_frame), colour});
-  row.push_back({best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
-                 best_true >= 0 ? "true match " + std::to_string(best_true) + " s=" + Fixed(best_score, 0)
-                                : "no true match",
-                 best_true >= 0 ? features(best_true) : std::vector<cv::Point2f>{}, colour});
+  row.push_back(
+      {best_true >= 0 ? dataset.Thermal(best_true) : cv::Mat(),
+       best_true >= 0 ? "true match " + std::to_string(best_true) + " s=" + Fixed(best_score, 0) : "no true match",
+       best_true >= 0 ? features(best_true) : std::vector<cv::Point2f>{}, colour});
   return row;
 }
 
@@ -169,23 +172,26 @@ std::string FormatResultTable(const BenchResult& result) {
   std::ostringstream out;
   char line[256];
   const std::string other = "MRR(" + result.other_ground_truth + ")";
-  std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", "method", "MRR", "R@1", "R@5",
-                "PR-AUC", "R@100%P", "ms/query", other.c_str());
-  out << "ground truth: " << (result.ground_truth == "overlap" ? "overlap (the view two frames share)" : result.ground_truth + " positions")
-      << " (columns before the last)\n" << line;
+  std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", "method", "MRR", "R@1", "R@5", "PR-AUC",
+                "R@100%P", "ms/query", other.c_str());
+  out << "ground truth: "
+      << (result.ground_truth == "overlap" ? "overlap (the view two frames share)" : result.ground_truth + " positions")
+      << " (columns before the last)\n"
+      << line;
   for (const MethodRun& run : result.runs) {
     const MethodMetrics& m = run.metrics;
-    std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", run.name.c_str(),
-                  Fixed(m.mrr).c_str(), Fixed(m.recall_at_1).c_str(), Fixed(m.recall_at_5).c_str(),
-                  Fixed(m.pr_auc).c_str(), Fixed(m.recall_at_100p).c_str(), Fixed(m.ms_per_query, 2).c_str(),
+    std::snprintf(line, sizeof(line), "%-11s %6s %6s %6s %7s %8s %9s %14s\n", run.name.c_str(), Fixed(m.mrr).c_str(),
+                  Fixed(m.recall_at_1).c_str(), Fixed(m.recall_at_5).c_str(), Fixed(m.pr_auc).c_str(),
+                  Fixed(m.recall_at_100p).c_str(), Fixed(m.ms_per_query, 2).c_str(),
                   Fixed(run.other_metrics.mrr).c_str());
     out << line;
   }
   if (!result.runs.empty()) {
     const MethodMetrics& m = result.runs.front().metrics;
-    out << m.queries_scored << " queries scored, " << m.queries_skipped << " skipped (no true match in their database); "
-        << result.label_disagreement.queries_differing << " of " << result.label_disagreement.queries
-        << " queries have other true matches under " << result.other_ground_truth << " labels\n";
+    out << m.queries_scored << " queries scored, " << m.queries_skipped
+        << " skipped (no true match in their database); " << result.label_disagreement.queries_differing << " of "
+        << result.label_disagreement.queries << " queries have other true matches under " << result.other_ground_truth
+        << " labels\n";
   }
   return out.str();
 }
@@ -204,7 +210,8 @@ nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& option
   report["bootstrap"] = result.bootstrap.ToJson();
   report["strata"] = StrataJson(result.strata);
   if (!result.per_run.empty()) report["recording_runs"] = MetricsPerRunJson(result.per_run);
-  report["conditions"] = {{"blank_spread_k", kBlankSpreadK}, {"contrast_k", kContrastK},
+  report["conditions"] = {{"blank_spread_k", kBlankSpreadK},
+                          {"contrast_k", kContrastK},
                           {"per_query", "queries.csv, one row per method and query"}};
   for (const PairedComparison& c : result.comparisons) report["comparisons"].push_back(c.ToJson());
   report["other_ground_truth"] = {{"ground_truth", result.other_ground_truth},
@@ -214,7 +221,8 @@ nlohmann::json ResultsJson(const BenchResult& result, const BenchOptions& option
                                   {"queries_with_match_only_under_chosen", labels.scored_only_in_a},
                                   {"queries_with_match_only_under_other", labels.scored_only_in_b},
                                   {"methods", nlohmann::json::object()}};
-  for (const MethodRun& run : result.runs) report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
+  for (const MethodRun& run : result.runs)
+    report["other_ground_truth"]["methods"][run.name] = run.other_metrics.ToJson();
   report["label_agreement"] = nlohmann::json::array();
   for (const LabelAgreement& g : result.label_agreements) report["label_agreement"].push_back(g.ToJson());
   return report;
@@ -232,7 +240,7 @@ std::string OptionsText(const nlohmann::json& options) {
   std::string out;
   for (const auto& [name, value] : options.items()) {
     out += (out.empty() ? " (" : ", ") + name + " = " +
-           (value.is_string()            ? SafeText(value.get<std::string>())
+           (value.is_string()         ? SafeText(value.get<std::string>())
             : value.is_number_float() ? ShortestDouble(value.get<double>())
                                       : value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
@@ -245,8 +253,10 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
   const DatasetManifest& manifest = dataset.manifest();
   nlohmann::json report = ResultsJson(result, options);
   report["hoilcd_version"] = HOILCD_VERSION;
-  report["dataset"] = {{"dir", SafeText(dataset.dir())}, {"scene_hash", manifest.scene_hash},
-                       {"seed", manifest.seed}, {"frames", dataset.num_frames()}};
+  report["dataset"] = {{"dir", SafeText(dataset.dir())},
+                       {"scene_hash", manifest.scene_hash},
+                       {"seed", manifest.seed},
+                       {"frames", dataset.num_frames()}};
   report["parameters"] = {{"keypoint_detector", options.keypoints.detector}};
   for (const std::string& param : options.params) {  // --param NAME=VALUE
     report["parameters"]["param"].push_back(SafeText(param));
@@ -259,8 +269,10 @@ nlohmann::json ReportJson(const BenchResult& result, const Dataset& dataset, con
   }
   report["features"] = {{"mean_keypoints_per_frame", result.mean_keypoints_per_frame},
                         {"mean_hoi_points_per_frame", result.mean_hoi_points_per_frame}};
-  report["timing"] = {{"render_s", timing.render_s}, {"render_cached", timing.render_cached},
-                      {"bench_s", timing.bench_s}, {"calibration_s", timing.calibration_s},
+  report["timing"] = {{"render_s", timing.render_s},
+                      {"render_cached", timing.render_cached},
+                      {"bench_s", timing.bench_s},
+                      {"calibration_s", timing.calibration_s},
                       {"calibration_render_cached", timing.calibration_render_cached},
                       {"calibration_bench_cached", timing.calibration_bench_cached}};
   report["finding"] = PaperFindingSummary(result);
@@ -411,8 +423,9 @@ std::string IntervalsMarkdown(const std::vector<MethodRun>& runs, const Bootstra
   if (plan.resamples == 0) return "";
   std::ostringstream md;
   const auto cell = [](const Interval& i) { return "[" + Fixed(i.low) + ", " + Fixed(i.high) + "]"; };
-  md << "\n### Uncertainty\n\n" << Fixed(100 * plan.confidence, 0)
-     << " % intervals: a circular block bootstrap of the queries in time order (" << plan.resamples
+  md << "\n### Uncertainty\n\n"
+     << Fixed(100 * plan.confidence, 0) << " % intervals: a circular block bootstrap of the queries in time order ("
+     << plan.resamples
      << " resamples, percentile intervals). Neighbouring queries see nearly the same view and score alike, "
         "so resampling them one by one would claim more certainty than the sequence holds: they are "
         "resampled in blocks of "
@@ -486,7 +499,8 @@ std::string StrataMarkdown(const std::vector<StratumRow>& strata) {
   for (const StratumRow& row : strata) {
     md << "| " << row.stratification << ": " << row.stratum << " | " << row.queries << " | " << Fixed(row.chance_mrr)
        << " |";
-    for (size_t m = 0; m < row.methods.size(); ++m) md << " " << Fixed(row.mrr[m]) << " / " << Fixed(row.recall_at_1[m]) << " |";
+    for (size_t m = 0; m < row.methods.size(); ++m)
+      md << " " << Fixed(row.mrr[m]) << " / " << Fixed(row.recall_at_1[m]) << " |";
     md << "\n";
   }
   md << BlankViewSentence(strata);
@@ -500,7 +514,8 @@ std::string AgreementsMarkdown(const std::vector<LabelAgreement>& agreements) {
   md << "\n### How the ground truths agree\n\n"
      << "Over the same " << agreements.front().counts.pairs << " query-database pairs: odometry and true label by "
      << "position (within the radius), overlap by the share of the query's static view the reference sees.\n\n"
-     << "| a vs b | true pairs (a) | true pairs (b) | a adds | a removes | queries matched only under a | only under b |\n"
+     << "| a vs b | true pairs (a) | true pairs (b) | a adds | a removes | queries matched only under a | only under b "
+        "|\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const LabelAgreement& g : agreements) {
     const LabelDisagreement& c = g.counts;
@@ -514,11 +529,10 @@ std::string AgreementsMarkdown(const std::vector<LabelAgreement>& agreements) {
 // report.md's opening: the dataset and protocol, the results table shaped like the paper's
 // Table 1 and the same scores under the other ground truth.
 std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapPlan& plan,
-                            const std::vector<PairedComparison>& comparisons,
-                            const std::vector<StratumRow>& strata, const std::vector<RunMetrics>& per_run,
-                            const Dataset& dataset, const ProtocolOptions& protocol,
-                            const std::string& other_ground_truth, const LabelDisagreement& labels,
-                            const std::vector<LabelAgreement>& agreements) {
+                            const std::vector<PairedComparison>& comparisons, const std::vector<StratumRow>& strata,
+                            const std::vector<RunMetrics>& per_run, const Dataset& dataset,
+                            const ProtocolOptions& protocol, const std::string& other_ground_truth,
+                            const LabelDisagreement& labels, const std::vector<LabelAgreement>& agreements) {
   const DatasetManifest& manifest = dataset.manifest();
   std::ostringstream md;
   md << "# hoilcd loop-closure report\n\n"
@@ -537,25 +551,27 @@ std::string ResultsMarkdown(const std::vector<MethodRun>& runs, const BootstrapP
      << "|---|---|---|---|---|---|---|---|\n";
   for (const MethodRun& run : runs) {
     const MethodMetrics& m = run.metrics;
-    md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | "
-       << Fixed(m.recall_at_5) << " | " << Fixed(m.recall_at_10) << " | " << Fixed(m.pr_auc) << " | "
-       << Fixed(m.recall_at_100p) << " | " << Fixed(m.ms_per_query, 2) << " (" << Fixed(m.extract_ms_mean, 2)
-       << " + " << Fixed(m.match_ms_mean, 2) << ") |\n";
+    md << "| " << run.name << " | " << Fixed(m.mrr) << " | " << Fixed(m.recall_at_1) << " | " << Fixed(m.recall_at_5)
+       << " | " << Fixed(m.recall_at_10) << " | " << Fixed(m.pr_auc) << " | " << Fixed(m.recall_at_100p) << " | "
+       << Fixed(m.ms_per_query, 2) << " (" << Fixed(m.extract_ms_mean, 2) << " + " << Fixed(m.match_ms_mean, 2)
+       << ") |\n";
   }
   if (!runs.empty() && runs.front().metrics.queries_scored == 0) {
     md << "\n**No query was scored**: none has a true match in its database, so every metric above is \"-\". "
        << "Under the `laps` protocol the sequence must run past its first lap: render more frames, or use "
        << "another protocol.\n";
   } else if (!runs.empty()) {
-    md << "\n" << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
-       << " skipped (no true match in their database).\n" << IntervalsMarkdown(runs, plan) << ComparisonsMarkdown(comparisons)
-       << StrataMarkdown(strata) << MetricsPerRunMarkdown(per_run, plan.confidence);
+    md << "\n"
+       << runs.front().metrics.queries_scored << " queries scored, " << runs.front().metrics.queries_skipped
+       << " skipped (no true match in their database).\n"
+       << IntervalsMarkdown(runs, plan) << ComparisonsMarkdown(comparisons) << StrataMarkdown(strata)
+       << MetricsPerRunMarkdown(per_run, plan.confidence);
   }
   md << "\n### The same scores under " << other_ground_truth << " ground truth\n\n"
      << labels.queries_differing << " of " << labels.queries << " queries have a different set of true matches ("
      << labels.pairs_differing << " query-database pairs labelled differently; " << labels.scored_only_in_a
-     << " queries have a true match only under " << protocol.ground_truth << " labels, "
-     << labels.scored_only_in_b << " only under " << other_ground_truth << " labels).\n\n"
+     << " queries have a true match only under " << protocol.ground_truth << " labels, " << labels.scored_only_in_b
+     << " only under " << other_ground_truth << " labels).\n\n"
      << "| method | MRR | R@1 | R@5 | PR-AUC | MRR (" << protocol.ground_truth << ") |\n|---|---|---|---|---|---|\n";
   for (const MethodRun& run : runs) {
     const MethodMetrics& m = run.other_metrics;
@@ -573,27 +589,27 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
                            const std::vector<std::string>& figures) {
   std::ostringstream md;
   md << ResultsMarkdown(result.runs, result.bootstrap, result.comparisons, result.strata, result.per_run, dataset,
-                        options.protocol,
-                        result.other_ground_truth, result.label_disagreement, result.label_agreements);
+                        options.protocol, result.other_ground_truth, result.label_disagreement,
+                        result.label_agreements);
   md << "\nPaper (real data): DLCD 0.222, SLCD 0.124, DLCD+SLCD 0.224.\n\n"
-     << "**Finding:** " << PaperFindingSummary(result) << "\n\n" << DiagnosisMarkdown(result, diagnosis);
+     << "**Finding:** " << PaperFindingSummary(result) << "\n\n"
+     << DiagnosisMarkdown(result, diagnosis);
   if (result.tracking_evaluated && result.ground_truth_person_views == 0) {
     // Precision, recall and MOTA are 0/0 here; say what happened instead.
     const TrackingMetrics& t = result.tracking;
     md << "## Person tracking (DLCD front end vs ground truth)\n\n"
-       << "The ground truth has no people to track; the front end reported " << t.predicted_boxes
-       << " person boxes" << (t.predicted_boxes > 0 ? ", all false positives" : "")
-       << ". Mean HOI points per frame " << Fixed(result.mean_hoi_points_per_frame, 1)
-       << ", keypoints per frame " << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
+       << "The ground truth has no people to track; the front end reported " << t.predicted_boxes << " person boxes"
+       << (t.predicted_boxes > 0 ? ", all false positives" : "") << ". Mean HOI points per frame "
+       << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
+       << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   } else if (result.tracking_evaluated) {
     const TrackingMetrics& t = result.tracking;
     md << "## Person tracking (DLCD front end vs ground truth)\n\n"
        << "precision " << Fixed(t.precision) << ", recall " << Fixed(t.recall) << ", MOTA " << Fixed(t.mota)
        << ", IDF1 " << Fixed(t.idf1) << ", id switches " << t.id_switches << "; HOI points: median error "
        << Fixed(t.hoi_median_error_px, 1) << " px, " << Fixed(100 * t.hoi_fraction_within_tolerance, 1)
-       << " % of visible contacts within 3 px. Mean HOI points per frame "
-       << Fixed(result.mean_hoi_points_per_frame, 1) << ", keypoints per frame "
-       << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
+       << " % of visible contacts within 3 px. Mean HOI points per frame " << Fixed(result.mean_hoi_points_per_frame, 1)
+       << ", keypoints per frame " << Fixed(result.mean_keypoints_per_frame, 1) << ".\n\n";
   }
   if (result.slam_evaluated) md << SlamMarkdown(result.slam, options.slam_options.slam);
   md << "## Dataset (hoilcd inspect)\n\n" << inspect.ToMarkdown();
@@ -601,8 +617,9 @@ std::string ReportMarkdown(const BenchResult& result, const Dataset& dataset, co
   for (const MethodRun& run : result.runs) {
     md << "- `" << run.name << "`: " << FindMethod(run.name).Description() << OptionsText(run.options) << "\n";
   }
-  md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s" << (timing.render_cached ? " (cached dataset)" : "")
-     << ", bench " << Fixed(timing.bench_s, 1) << " s.\n\n## Notes\n\n";
+  md << "\n## Timing\n\nrender " << Fixed(timing.render_s, 1) << " s"
+     << (timing.render_cached ? " (cached dataset)" : "") << ", bench " << Fixed(timing.bench_s, 1)
+     << " s.\n\n## Notes\n\n";
   for (const char* note : kScoringNotes) md << "- " << note << "\n";
   for (const char* note : kMethodNotes) md << "- " << note << "\n";
   md << "\n## Figures\n\n";
@@ -623,13 +640,14 @@ void WriteReportInspected(const BenchResult& result, const Dataset& dataset, con
   nlohmann::json json = ReportJson(result, dataset, options, timing, inspect, diagnosis);
   std::vector<const std::vector<QueryRecord>*> records;
   for (const MethodRun& run : result.runs) records.push_back(&run.metrics.queries);
-  json["gallery"] = GalleryJson(result.queries, SampleGallery(records, result.conditions, StratificationsOf(result.strata)));
+  json["gallery"] =
+      GalleryJson(result.queries, SampleGallery(records, result.conditions, StratificationsOf(result.strata)));
   WriteFileAtomic(dir + "/report.json", json.dump(2));
   WriteFileAtomic(dir + "/queries.csv", QueriesCsv(result.runs, result.conditions));
   const std::vector<std::string> figures = WriteFigures(result, dataset, options, dir);
-  WriteFileAtomic(dir + "/report.md",
-                  ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
-  WriteFileAtomic(dir + "/report.html", BenchReportHtml(result, dataset, options, {dir, figures, GallerySampling()}).html);
+  WriteFileAtomic(dir + "/report.md", ReportMarkdown(result, dataset, options, timing, inspect, diagnosis, figures));
+  WriteFileAtomic(dir + "/report.html",
+                  BenchReportHtml(result, dataset, options, {dir, figures, GallerySampling()}).html);
 }
 
 }  // namespace
@@ -643,7 +661,7 @@ void WriteReport(const BenchResult& result, const Dataset& dataset, const BenchO
 
 BenchResult BenchAndWriteReport(const Dataset& dataset, BenchOptions options, ReportTiming* timing,
                                 const std::string& dir, const std::function<void(SlamRunOptions*)>& before_slam) {
-  CheckReportFolder(dir);  // a folder the report may not use fails before the work
+  CheckReportFolder(dir);                        // a folder the report may not use fails before the work
   CheckProtocolFits(dataset, options.protocol);  // as does a protocol the dataset cannot take
   // The report's dataset checks read only the dataset: they run beside the bench, on the core
   // its serial steps (ByteTrack, the pose graphs) leave idle, instead of after it. With one
@@ -682,8 +700,8 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   const FolderLock lock(dir, FolderLock::IfBusy::kWait);  // one writer at a time: never a mix of two reports
   nlohmann::json json = EvaluateReportJson(dataset, protocol, report, description);
   json["strata"] = StrataJson(strata);
-  json["gallery"] = GalleryJson(labelling.queries,
-                                SampleGallery({&report.metrics.queries}, conditions, StratificationsOf(strata)));
+  json["gallery"] =
+      GalleryJson(labelling.queries, SampleGallery({&report.metrics.queries}, conditions, StratificationsOf(strata)));
   if (!per_run.empty()) json["recording_runs"] = MetricsPerRunJson(per_run);
   json["label_agreement"] = nlohmann::json::array();
   for (const LabelAgreement& g : labelling.agreements) json["label_agreement"].push_back(g.ToJson());
@@ -701,10 +719,10 @@ MethodReport EvaluateAndWriteReport(const Dataset& dataset, const Labelling& lab
   WriteFileAtomic(dir + "/report.md", md.str());
   std::vector<std::string> figure_names;
   for (const auto& figure : figures) figure_names.push_back(figure.first);
-  WriteFileAtomic(dir + "/report.html", EvaluateReportHtml(runs[0], report.bootstrap, labelling.queries, conditions,
-                                                           strata, dataset, protocol, description,
-                                                           {dir, figure_names, GallerySampling()})
-                                            .html);
+  WriteFileAtomic(dir + "/report.html",
+                  EvaluateReportHtml(runs[0], report.bootstrap, labelling.queries, conditions, strata, dataset,
+                                     protocol, description, {dir, figure_names, GallerySampling()})
+                      .html);
   return report;
 }
 

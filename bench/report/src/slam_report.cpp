@@ -14,8 +14,10 @@ namespace hoilcd {
 namespace {
 
 nlohmann::json ScoreJson(const SlamScore& s) {
-  return {{"ate_rmse_m", JsonNumber(s.ate_rmse_m)}, {"rpe_rmse_m", JsonNumber(s.rpe_rmse_m)},
-          {"loops_accepted", s.loops_accepted}, {"false_loops", s.false_loops}};
+  return {{"ate_rmse_m", JsonNumber(s.ate_rmse_m)},
+          {"rpe_rmse_m", JsonNumber(s.rpe_rmse_m)},
+          {"loops_accepted", s.loops_accepted},
+          {"false_loops", s.false_loops}};
 }
 
 // A trajectory (one pose per frame of `frames`), with a gap between recording runs: the robot was
@@ -56,8 +58,8 @@ nlohmann::json MethodSlamJson(const MethodSlam& m) {
   j["loop_threshold"] = JsonNumber(m.threshold);
   j["threshold_source"] = m.threshold_source;
   for (const SlamScore& s : m.backends) j[s.backend] = ScoreJson(s);
-  j["ate_vs_threshold"] = {{"threshold", m.curve_threshold}, {"loops_accepted", m.curve_loops},
-                           {"ate_rmse_m", m.curve_ate_m}};
+  j["ate_vs_threshold"] = {
+      {"threshold", m.curve_threshold}, {"loops_accepted", m.curve_loops}, {"ate_rmse_m", m.curve_ate_m}};
   return j;
 }
 
@@ -73,14 +75,15 @@ std::string SlamMarkdown(const SlamResult& slam, const SlamOptions& options) {
   for (size_t i = 0; i < PoseGraphBackends().size(); ++i) md << "---|---|";
   md << "\n";
   for (const MethodSlam& m : slam.methods) {
-    md << "| " << m.method << " | " << Fixed(m.threshold, 2) << " (" << m.threshold_source << ") | "
-       << m.loops.size() << " | " << (m.backends.empty() ? 0 : m.backends.front().false_loops) << " |";
+    md << "| " << m.method << " | " << Fixed(m.threshold, 2) << " (" << m.threshold_source << ") | " << m.loops.size()
+       << " | " << (m.backends.empty() ? 0 : m.backends.front().false_loops) << " |";
     for (const SlamScore& s : m.backends) md << " " << Fixed(s.ate_rmse_m) << " | " << Fixed(s.rpe_rmse_m) << " |";
     md << "\n";
   }
   md << "\nLoop edges are appearance-only: zero relative pose, σ = " << options.loop_sd_m
-     << " m per axis (a uniform spread over the " << ProtocolOptions().radius_m << " m true-match disk) and a weak σ = "
-     << options.loop_yaw_sd_deg << "° on yaw; odometry edges are weighted by the scene's odometry "
+     << " m per axis (a uniform spread over the " << ProtocolOptions().radius_m
+     << " m true-match disk) and a weak σ = " << options.loop_yaw_sd_deg
+     << "° on yaw; odometry edges are weighted by the scene's odometry "
         "error model. Back ends: `plain` least squares, `cauchy` loss on loops, `dcs` (Dynamic Covariance "
         "Scaling). The graph (g2o) and optimised trajectories (TUM) are in `slam/`.\n\n";
   for (const std::string& note : slam.notes) md << "- " << note << "\n";
@@ -141,7 +144,8 @@ std::vector<std::string> WriteSlamFiles(const SlamResult& slam, const std::vecto
     if (!c.x.empty()) curves.push_back(c);
   }
   PlotOptions co;
-  co.title = "ATE as the loop threshold falls (" + slam.backend + "; odometry ATE " + Fixed(slam.odometry.ate_rmse_m) + " m)";
+  co.title =
+      "ATE as the loop threshold falls (" + slam.backend + "; odometry ATE " + Fixed(slam.odometry.ate_rmse_m) + " m)";
   co.x_label = "loops accepted (threshold lowered to the right)";
   co.y_label = "ATE RMSE (m)";
   std::vector<std::string> figures = {"slam_trajectories.png"};

@@ -37,9 +37,9 @@ std::vector<std::string> KeepOnlineMethods(BenchOptions* options) {
       if (!part->Online()) not_online = part->Name();
     }
     if (not_online.empty()) return std::string();
-    const std::string why = "cannot run online: " +
-                            (not_online == m ? "it scores" : "it combines " + not_online + ", which scores") +
-                            " from more than a query and its database (online methods: point-set methods and fusion)";
+    const std::string why =
+        "cannot run online: " + (not_online == m ? "it scores" : "it combines " + not_online + ", which scores") +
+        " from more than a query and its database (online methods: point-set methods and fusion)";
     if (named) throw InputError("--methods", m + " " + why);
     return why;
   });
@@ -50,7 +50,8 @@ std::vector<std::string> KeepOnlineMethods(BenchOptions* options) {
 class PositionGrid {
  public:
   PositionGrid(const std::vector<PoseRecord>& poses, double cell_m) : poses_(poses), cell_m_(cell_m) {
-    for (size_t f = 0; f < poses.size(); ++f) cells_[Key(Cell(poses[f].x_m), Cell(poses[f].y_m))].push_back(static_cast<int>(f));
+    for (size_t f = 0; f < poses.size(); ++f)
+      cells_[Key(Cell(poses[f].x_m), Cell(poses[f].y_m))].push_back(static_cast<int>(f));
   }
   // True matches of `query` among frames [0, before).
   int CountTrueMatches(int query, int before, const ProtocolOptions& protocol) const {
@@ -81,8 +82,11 @@ class PositionGrid {
 nlohmann::json TimingRowsJson(const std::vector<OnlineTimingRow>& rows) {
   nlohmann::json out = nlohmann::json::array();
   for (const OnlineTimingRow& r : rows) {
-    out.push_back({{"database_from", r.database_from}, {"database_to", r.database_to}, {"queries", r.queries},
-                   {"p50_ms", JsonNumber(r.p50_ms)}, {"p99_ms", JsonNumber(r.p99_ms)}});
+    out.push_back({{"database_from", r.database_from},
+                   {"database_to", r.database_to},
+                   {"queries", r.queries},
+                   {"p50_ms", JsonNumber(r.p50_ms)},
+                   {"p99_ms", JsonNumber(r.p99_ms)}});
   }
   return out;
 }
@@ -134,8 +138,9 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
   CheckProtocolFits(dataset, options.protocol);
   if (options.protocol.ground_truth == "overlap") {
-    throw InputError("--ground-truth", "online: overlap labels pairs from the EXR frames, which a robot does not "
-                                       "have; use odometry (the paper's) or true");
+    throw InputError("--ground-truth",
+                     "online: overlap labels pairs from the EXR frames, which a robot does not "
+                     "have; use odometry (the paper's) or true");
   }
   OnlineResult result;
   result.shortlist = shortlist;
@@ -215,7 +220,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   }
   progress.Done();
 
-  result.shortlist_recall = result.queries_scored ? static_cast<double>(result.shortlist_hits) / result.queries_scored : NAN;
+  result.shortlist_recall =
+      result.queries_scored ? static_cast<double>(result.shortlist_hits) / result.queries_scored : NAN;
   result.search_by_database_size = TimingByDatabaseSize(processed_sizes, result.search_ms);
   result.insert_p50_ms = Quantile(insert_ms, 0.5);
   result.insert_p99_ms = Quantile(insert_ms, 0.99);
@@ -237,8 +243,8 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   for (OnlineMethodRun& run : result.runs) {
     run.intervals = BootstrapHeadline(run.metrics.queries, result.bootstrap, options.bootstrap.seed, options.threads);
   }
-  result.per_run = MetricsPerRun(dataset.runs(), options.methods, all_records, result.bootstrap,
-                                 options.bootstrap.seed, options.threads);
+  result.per_run = MetricsPerRun(dataset.runs(), options.methods, all_records, result.bootstrap, options.bootstrap.seed,
+                                 options.threads);
   result.peak_rss_bytes = PeakResidentBytes();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
@@ -314,8 +320,8 @@ std::string OnlineResultToMarkdown(const OnlineResult& result) {
   md << "\n";
   for (size_t row = 0; row < result.search_by_database_size.size(); ++row) {
     const OnlineTimingRow& s = result.search_by_database_size[row];
-    md << "| " << s.database_from << "–" << s.database_to << " | " << s.queries << " | " << Fixed(s.p50_ms, 2)
-       << " / " << Fixed(s.p99_ms, 2) << " |";
+    md << "| " << s.database_from << "–" << s.database_to << " | " << s.queries << " | " << Fixed(s.p50_ms, 2) << " / "
+       << Fixed(s.p99_ms, 2) << " |";
     for (const OnlineMethodRun& run : result.runs) {
       const OnlineTimingRow& r = run.by_database_size[row];
       md << " " << Fixed(r.p50_ms, 2) << " / " << Fixed(r.p99_ms, 2) << " |";

@@ -172,8 +172,8 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
   const std::vector<const LoopClosureMethod*>& order = methods.order;
   std::map<std::string, MethodScores> scored;
   const auto context_of = [&](size_t i) {
-    return MethodContext{dataset, options, methods.own[i].get(), labelling, front_ends, scored,
-                         dataset.manifest().seed, options.threads};
+    return MethodContext{dataset,    options, methods.own[i].get(),    labelling,
+                         front_ends, scored,  dataset.manifest().seed, options.threads};
   };
   std::vector<std::string> pass_keys;
   for (size_t i = 0; i < order.size(); ++i) {
@@ -186,9 +186,8 @@ std::map<std::string, MethodScores> ScoreMethods(const Dataset& dataset, const B
     for (size_t j = i + 1; j < order.size() && !pass_keys[i].empty(); ++j) {
       if (pass_keys[j] == pass_keys[i]) pass.push_back(order[j]), contexts.push_back(context_of(j));
     }
-    std::vector<MethodScores> scores =
-        pass.size() == 1 ? std::vector<MethodScores>{order[i]->Score(contexts.front())}
-                         : order[i]->ScoreTogether(pass, contexts);
+    std::vector<MethodScores> scores = pass.size() == 1 ? std::vector<MethodScores>{order[i]->Score(contexts.front())}
+                                                        : order[i]->ScoreTogether(pass, contexts);
     HOILCD_CHECK_MSG(scores.size() == pass.size(), order[i]->Name() << " scored " << scores.size() << " of "
                                                                     << pass.size() << " methods in its pass");
     for (size_t k = 0; k < pass.size(); ++k) scored[pass[k]->Name()] = std::move(scores[k]);
@@ -206,8 +205,8 @@ void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResu
   std::vector<std::string> names;
   for (const MethodRun& run : result->runs) records.push_back(&run.metrics.queries), names.push_back(run.name);
   if (records.empty()) return;
-  result->strata = Stratify(result->conditions, names, records,
-                            options.strata.empty() ? DefaultStratifications() : options.strata);
+  result->strata =
+      Stratify(result->conditions, names, records, options.strata.empty() ? DefaultStratifications() : options.strata);
   result->bootstrap = PlanBootstrap(records, dataset.manifest().frame_rate_hz, options.bootstrap);
   const uint64_t seed = options.bootstrap.seed;
   for (MethodRun& run : result->runs) {
@@ -218,9 +217,8 @@ void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResu
     for (size_t b = a + 1; b < result->runs.size(); ++b) {
       const MethodRun& ra = result->runs[a];
       const MethodRun& rb = result->runs[b];
-      result->comparisons.push_back(
-          PairedBootstrap(ra.name, ra.metrics.queries, rb.name, rb.metrics.queries, result->bootstrap, seed,
-                          options.threads));
+      result->comparisons.push_back(PairedBootstrap(ra.name, ra.metrics.queries, rb.name, rb.metrics.queries,
+                                                    result->bootstrap, seed, options.threads));
     }
   }
 }
@@ -229,9 +227,12 @@ void AddIntervals(const Dataset& dataset, const BenchOptions& options, BenchResu
 
 std::vector<Point2> FrameFeatures::Points(ShownFeatures shown) const {
   switch (shown) {
-    case ShownFeatures::kKeypoints: return keypoints;
-    case ShownFeatures::kIdealKeypoints: return ideal_keypoints;
-    default: break;
+    case ShownFeatures::kKeypoints:
+      return keypoints;
+    case ShownFeatures::kIdealKeypoints:
+      return ideal_keypoints;
+    default:
+      break;
   }
   std::vector<Point2> points;
   for (const HoiFeature& h : Hoi(shown)) points.push_back(h.point);
@@ -316,9 +317,9 @@ void AddSlam(const Dataset& dataset, const BenchOptions& options, BenchResult* r
   for (const MethodRun& r : result->runs) named.push_back({r.name, &r.scores});
   SlamRunOptions slam_options = options.slam_options;
   slam_options.threads = options.threads;
-  result->slam = RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json",
-                         dataset.manifest().frame_rate_hz, options.protocol.radius_m, result->queries, named,
-                         slam_options);
+  result->slam =
+      RunSlam(dataset.poses(), dataset.scene_json(), dataset.dir() + "/scene.json", dataset.manifest().frame_rate_hz,
+              options.protocol.radius_m, result->queries, named, slam_options);
   result->slam_evaluated = true;
   result->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -1,12 +1,12 @@
 #include "hoilcd/bench/slam/pose_graph.h"
 
-#include <ceres/ceres.h>
-
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+
+#include <Eigen/Cholesky>
+#include <ceres/ceres.h>
 
 #include "hoilcd/core/util/error.h"
 
@@ -76,13 +76,11 @@ std::unique_ptr<ceres::LossFunction> LoopLoss(const PoseGraphOptions& options) {
   return nullptr;
 }
 
-bool Finite(const Pose2d& p) {
-  return std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.theta_rad);
-}
+bool Finite(const Pose2d& p) { return std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.theta_rad); }
 
 std::string EdgeProblem(const PoseEdge& e, int n, const char* kind, size_t index) {
-  const std::string where = std::string(kind) + " edge " + std::to_string(index) + " (" +
-                            std::to_string(e.from) + " -> " + std::to_string(e.to) + "): ";
+  const std::string where = std::string(kind) + " edge " + std::to_string(index) + " (" + std::to_string(e.from) +
+                            " -> " + std::to_string(e.to) + "): ";
   if (e.from < 0 || e.to < 0 || e.from >= n || e.to >= n) return where + "names a node that does not exist";
   if (e.from == e.to) return where + "joins a node to itself";
   if (!Finite(e.measurement)) return where + "measurement is not finite";
@@ -173,7 +171,7 @@ PoseGraphSolution OptimisePoseGraph(const PoseGraph& graph, const PoseGraphOptio
   std::vector<double> state(3 * n);
   for (int i = 0; i < n; ++i) {
     state[3 * i] = graph.nodes[i].x_m, state[3 * i + 1] = graph.nodes[i].y_m,
-    state[3 * i + 2] = graph.nodes[i].theta_rad;
+              state[3 * i + 2] = graph.nodes[i].theta_rad;
   }
   ceres::Problem problem;
   for (const PoseEdge& e : graph.odometry) {
@@ -240,8 +238,8 @@ std::string PoseGraphToG2o(const PoseGraph& graph, const std::vector<Pose2d>& po
     for (const PoseEdge& e : *edges) {
       const Eigen::Matrix3d& m = e.information;
       std::snprintf(line, sizeof(line), "EDGE_SE2 %d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n",
-                    e.from, e.to, e.measurement.x_m, e.measurement.y_m, e.measurement.theta_rad, m(0, 0),
-                    m(0, 1), m(0, 2), m(1, 1), m(1, 2), m(2, 2));
+                    e.from, e.to, e.measurement.x_m, e.measurement.y_m, e.measurement.theta_rad, m(0, 0), m(0, 1),
+                    m(0, 2), m(1, 1), m(1, 2), m(2, 2));
       out += line;
     }
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/slam/trajectory_metrics.h"
@@ -20,7 +21,8 @@ double Number(const nlohmann::json& doc, const std::string& section, const std::
   const std::string pointer = "/" + section + "/" + key;
   const nlohmann::json::json_pointer p(pointer);
   if (!doc.contains(p) || !doc.at(p).is_number()) {
-    throw InputError(path + ": " + pointer, "expected a number (the odometry noise model the pose graph weights odometry with)");
+    throw InputError(path + ": " + pointer,
+                     "expected a number (the odometry noise model the pose graph weights odometry with)");
   }
   return doc.at(p).get<double>();
 }
@@ -128,7 +130,8 @@ OdometryNoise OdometryNoise::FromSceneJson(const std::string& scene_json, const 
     const double turn_slip = Number(doc, "odometry", "turn_slip_per_lat_accel_s2_m", path);
     const double walk = Number(doc, "odometry", "heading_noise_deg_sqrt_m", path) * kDegToRad;
     noise.distance_sd_frac = scale * std::hypot(radius, slip);
-    noise.heading_sd_rad_per_m = scale * std::hypot(std::tan(offset) / wheelbase_m, std::hypot(wheelbase_err, turn_slip));
+    noise.heading_sd_rad_per_m =
+        scale * std::hypot(std::tan(offset) / wheelbase_m, std::hypot(wheelbase_err, turn_slip));
     noise.heading_var_rad2_per_m = std::pow(scale * walk, 2);
   }
   return noise;
@@ -155,9 +158,8 @@ const OptionTable<SlamOptions>& SlamOptions::Table() {
 
 std::string SlamOptions::Check() const { return Table().FirstProblem(*this); }
 
-std::vector<LoopClosure> AcceptLoops(const std::vector<Query>& queries,
-                                     const std::vector<std::vector<double>>& scores, double threshold,
-                                     const std::vector<PoseRecord>& poses, double radius_m) {
+std::vector<LoopClosure> AcceptLoops(const std::vector<Query>& queries, const std::vector<std::vector<double>>& scores,
+                                     double threshold, const std::vector<PoseRecord>& poses, double radius_m) {
   HOILCD_CHECK(queries.size() == scores.size());
   std::vector<LoopClosure> loops;
   for (size_t i = 0; i < queries.size(); ++i) {
@@ -237,8 +239,8 @@ std::vector<int> Keyframes(const std::vector<PoseRecord>& poses, int keyframe_ev
   return KeyframeLayout(poses, keyframe_every).keyframes();
 }
 
-std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
-                                            int keyframe_every) {
+std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses,
+                                            const std::vector<Pose2d>& keyframe_poses, int keyframe_every) {
   const std::vector<Pose2d> odometry = OdometryPoses(poses);
   const KeyframeLayout layout(poses, keyframe_every);
   const std::vector<int>& keyframes = layout.keyframes();
@@ -311,7 +313,8 @@ SlamScore SolveSlam(const std::vector<PoseRecord>& poses, const std::vector<Loop
     s = ScoreOdometry(poses, options);
   } else {
     const PoseGraph graph = BuildPoseGraph(poses, loops, noise, options);
-    s = Score(poses, FramePosesFromKeyframes(poses, OptimisePoseGraph(graph, graph_options).poses, options.keyframe_every),
+    s = Score(poses,
+              FramePosesFromKeyframes(poses, OptimisePoseGraph(graph, graph_options).poses, options.keyframe_every),
               options);
   }
   s.backend = backend;

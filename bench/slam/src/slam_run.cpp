@@ -26,15 +26,15 @@ const OptionTable<SlamRunOptions>& SlamRunOptions::Table() {
 std::string SlamRunOptions::Check() const { return Table().FirstProblem(*this); }
 
 const SlamScore& MethodSlam::Headline(const std::string& backend) const {
-  const auto it = std::find_if(backends.begin(), backends.end(), [&](const SlamScore& s) { return s.backend == backend; });
+  const auto it =
+      std::find_if(backends.begin(), backends.end(), [&](const SlamScore& s) { return s.backend == backend; });
   HOILCD_CHECK_MSG(it != backends.end(), "no back end " + backend);
   return *it;
 }
 
-SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scene_json,
-                   const std::string& scene_path, double frame_rate_hz, double radius_m,
-                   const std::vector<Query>& queries, const std::vector<NamedScores>& methods,
-                   const SlamRunOptions& options) {
+SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scene_json, const std::string& scene_path,
+                   double frame_rate_hz, double radius_m, const std::vector<Query>& queries,
+                   const std::vector<NamedScores>& methods, const SlamRunOptions& options) {
   if (const std::string p = options.Check(); !p.empty()) throw InputError("slam", p);
   const auto start = std::chrono::steady_clock::now();
   const SlamOptions& slam = options.slam;
@@ -44,7 +44,8 @@ SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scen
   out.odometry = ScoreOdometry(poses, slam);
   out.oracle_loops = OracleLoops(queries, poses, radius_m);
   if (out.oracle_loops.empty()) out.notes.push_back("the sequence has no true loop: the oracle is the odometry");
-  for (const std::string& b : PoseGraphBackends()) out.oracle.push_back(SolveSlam(poses, out.oracle_loops, out.noise, slam, b));
+  for (const std::string& b : PoseGraphBackends())
+    out.oracle.push_back(SolveSlam(poses, out.oracle_loops, out.noise, slam, b));
 
   // Each method's graphs are independent (one single-threaded Ceres solve each): methods run in
   // parallel, each writing only its own slot, so the result does not depend on the thread count.
@@ -69,7 +70,8 @@ SlamResult RunSlam(const std::vector<PoseRecord>& poses, const std::string& scen
                     m.name.c_str(), ms.threshold, ms.threshold_source.c_str());
       method_notes[static_cast<size_t>(i)] = text;
     }
-    for (const std::string& b : PoseGraphBackends()) ms.backends.push_back(SolveSlam(poses, ms.loops, out.noise, slam, b));
+    for (const std::string& b : PoseGraphBackends())
+      ms.backends.push_back(SolveSlam(poses, ms.loops, out.noise, slam, b));
     for (double t : ThresholdCandidates(queries, *m.scores, options.curve_points)) {
       const std::vector<LoopClosure> loops = AcceptLoops(queries, *m.scores, t, poses, radius_m);
       ms.curve_threshold.push_back(t);

@@ -1,7 +1,8 @@
 #include "hoilcd/bench/slam/trajectory_metrics.h"
 
-#include <Eigen/Geometry>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/core/util/error.h"
 
@@ -36,8 +37,8 @@ double AteRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& 
   return std::sqrt(sum / estimate.size());
 }
 
-double RpeRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& reference, double delta_m,
-                int* pairs, const std::vector<int>& segment) {
+double RpeRmseM(const std::vector<Pose2d>& estimate, const std::vector<Pose2d>& reference, double delta_m, int* pairs,
+                const std::vector<int>& segment) {
   HOILCD_CHECK(estimate.size() == reference.size());
   HOILCD_CHECK(segment.empty() || segment.size() == reference.size());
   HOILCD_CHECK(delta_m > 0);

@@ -9,11 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <string_view>
 #include <utility>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/util/error.h"
@@ -100,7 +101,8 @@ std::string DatasetOutputs::Parse(const std::string& text, DatasetOutputs* outpu
   while (std::getline(in, name, ',')) {
     const auto at = std::find(AllNames().begin(), AllNames().end(), name);
     if (at == AllNames().end()) {
-      return "unknown output '" + name + "' (expected a comma-separated list of thermal, radiometric, exr, video, persons)";
+      return "unknown output '" + name +
+             "' (expected a comma-separated list of thermal, radiometric, exr, video, persons)";
     }
     bool* flag = flags[at - AllNames().begin()];
     if (*flag) return "output '" + name + "' is listed twice";
@@ -117,9 +119,8 @@ std::string DatasetManifest::ToJson() const {
   j["hoilcd_version"] = hoilcd_version;
   j["scene_hash"] = scene_hash;
   j["seed"] = seed;
-  j["intrinsics"] = {{"width", intrinsics.width}, {"height", intrinsics.height},
-                     {"fx", intrinsics.fx},       {"fy", intrinsics.fy},
-                     {"cx", intrinsics.cx},       {"cy", intrinsics.cy}};
+  j["intrinsics"] = {{"width", intrinsics.width}, {"height", intrinsics.height}, {"fx", intrinsics.fx},
+                     {"fy", intrinsics.fy},       {"cx", intrinsics.cx},         {"cy", intrinsics.cy}};
   j["frame_rate_hz"] = frame_rate_hz;
   j["frame_count"] = frame_count;
   j["window_min_c"] = window_min_c;
@@ -139,15 +140,15 @@ std::string DatasetManifest::ToJson() const {
 }
 
 // 95 lines: one read and check per manifest key, in the file's order; a list, not steps.
-DatasetManifest DatasetManifest::FromJson(const std::string& text,
-                                          const std::string& path_for_errors) {
+DatasetManifest DatasetManifest::FromJson(const std::string& text, const std::string& path_for_errors) {
   JsonReader reader(path_for_errors);
   const json j = reader.Parse(text);
   DatasetManifest m;
   if (!reader.ExpectObject(j, "")) reader.problems().ThrowIfAny();
-  reader.CheckKeys(j, "", {"hoilcd_version", "scene_hash", "seed", "intrinsics", "frame_rate_hz",
-                           "frame_count", "window_min_c", "window_max_c", "classes", "files",
-                           "outputs", "complete", "shard", kManifestChecksumKey});
+  reader.CheckKeys(
+      j, "",
+      {"hoilcd_version", "scene_hash", "seed", "intrinsics", "frame_rate_hz", "frame_count", "window_min_c",
+       "window_max_c", "classes", "files", "outputs", "complete", "shard", kManifestChecksumKey});
   std::string checksum;
   reader.Read(j, "", kManifestChecksumKey, &checksum);
   if (!checksum.empty()) {
@@ -236,7 +237,10 @@ DatasetManifest DatasetManifest::FromJson(const std::string& text,
 }
 
 int DatasetManifest::FramesWritten() const {
-  const char* folder = outputs.thermal ? "thermal/" : outputs.radiometric ? "radiometric/" : outputs.exr ? "exr/" : nullptr;
+  const char* folder = outputs.thermal       ? "thermal/"
+                       : outputs.radiometric ? "radiometric/"
+                       : outputs.exr         ? "exr/"
+                                             : nullptr;
   if (folder == nullptr) return frame_count;
   int count = 0;
   for (auto it = files.lower_bound(folder); it != files.end(); ++it) {
@@ -246,8 +250,8 @@ int DatasetManifest::FramesWritten() const {
   return count;
 }
 
-void WriteDatasetFile(const std::string& dir, const std::string& relative_path,
-                      std::string_view bytes, DatasetManifest* manifest) {
+void WriteDatasetFile(const std::string& dir, const std::string& relative_path, std::string_view bytes,
+                      DatasetManifest* manifest) {
   HOILCD_CHECK(manifest != nullptr);
   HOILCD_CHECK_MSG(IsSafeRelativePath(relative_path), relative_path);
   WriteFileAtomic(JoinPath(dir, relative_path), bytes);
@@ -331,8 +335,9 @@ FramePersons FramePersonsFromJson(const json& frame, const std::string& fp, Json
     for (size_t k = 0; k < jp.size(); ++k) {
       const std::string pp = fp + "/persons/" + std::to_string(k);
       if (!reader.ExpectObject(jp[k], pp)) continue;
-      reader.CheckKeys(jp[k], pp, {"id", "box_px", "visible_fraction", "occlusion_fraction",
-                                   "seated", "posture", "contacts", "keypoints"});
+      reader.CheckKeys(
+          jp[k], pp,
+          {"id", "box_px", "visible_fraction", "occlusion_fraction", "seated", "posture", "contacts", "keypoints"});
       PersonRecord p;
       reader.Read(jp[k], pp, "id", &p.id);
       const auto box = jp[k].find("box_px");
@@ -425,8 +430,10 @@ std::optional<std::vector<std::pair<size_t, size_t>>> FrameElementRanges(const s
       for (; i < text.size(); ++i) {
         const char c = text[i];
         if (in_string) {
-          if (c == '\\') ++i;  // the escaped character
-          else if (c == '"') in_string = false;
+          if (c == '\\')
+            ++i;  // the escaped character
+          else if (c == '"')
+            in_string = false;
         } else if (c == '"') {
           in_string = true;
         } else if (c == '{' || c == '[') {
@@ -492,11 +499,7 @@ std::vector<FramePersons> PersonsFromJson(const std::string& text, const std::st
 std::string EventsToJson(const std::vector<DatasetEvent>& events) {
   json out = json::array();
   for (const DatasetEvent& e : events) {
-    out.push_back({{"frame", e.frame},
-                   {"type", e.type},
-                   {"person", e.person},
-                   {"seat", e.seat},
-                   {"detail", e.detail}});
+    out.push_back({{"frame", e.frame}, {"type", e.type}, {"person", e.person}, {"seat", e.seat}, {"detail", e.detail}});
   }
   return json{{"events", out}}.dump(1) + "\n";
 }
@@ -517,10 +520,9 @@ std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::str
       DatasetEvent e;
       reader.Read(je[i], ep, "frame", &e.frame);
       reader.Read(je[i], ep, "type", &e.type);
-      if (je[i].contains("type") && e.type != "arrive" && e.type != "leave" &&
-          e.type != "swap" && e.type != "ffc" && e.type != "freeze") {
-        reader.Add(ep + "/type",
-                   "expected one of arrive, leave, swap, ffc, freeze; got '" + e.type + "'");
+      if (je[i].contains("type") && e.type != "arrive" && e.type != "leave" && e.type != "swap" && e.type != "ffc" &&
+          e.type != "freeze") {
+        reader.Add(ep + "/type", "expected one of arrive, leave, swap, ffc, freeze; got '" + e.type + "'");
       }
       reader.Read(je[i], ep, "person", &e.person);
       reader.Read(je[i], ep, "seat", &e.seat);
@@ -601,9 +603,8 @@ std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
   std::string out = std::string(kPosesHeader) + "\n";
   for (const PoseRecord& p : poses) {
     out += std::to_string(p.frame);
-    for (double v : {p.time_s, p.x_m, p.y_m, p.theta_rad, p.cam_x_m, p.cam_y_m, p.cam_z_m,
-                     p.cam_yaw_rad, p.cam_pitch_rad, p.cam_roll_rad, p.odo_x_m, p.odo_y_m,
-                     p.odo_theta_rad}) {
+    for (double v : {p.time_s, p.x_m, p.y_m, p.theta_rad, p.cam_x_m, p.cam_y_m, p.cam_z_m, p.cam_yaw_rad,
+                     p.cam_pitch_rad, p.cam_roll_rad, p.odo_x_m, p.odo_y_m, p.odo_theta_rad}) {
       out += ',';
       out += ShortestDouble(v);
     }
@@ -613,9 +614,9 @@ std::string PosesToCsv(const std::vector<PoseRecord>& poses) {
 }
 
 std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string& path) {
-  static const std::array<const char*, kPosesColumns> kNames = {
-      "frame", "t",     "x",     "y",       "theta", "cam_x",    "cam_y",
-      "cam_z", "cam_yaw", "cam_pitch", "cam_roll", "odo_x", "odo_y", "odo_theta"};
+  static const std::array<const char*, kPosesColumns> kNames = {"frame",    "t",     "x",     "y",        "theta",
+                                                                "cam_x",    "cam_y", "cam_z", "cam_yaw",  "cam_pitch",
+                                                                "cam_roll", "odo_x", "odo_y", "odo_theta"};
   std::vector<PoseRecord> poses;
   ProblemCollector problems;
   std::istringstream in(text);
@@ -636,27 +637,27 @@ std::vector<PoseRecord> PosesFromCsv(const std::string& text, const std::string&
     while (std::getline(row, field, ',')) fields.push_back(field);
     if (line.back() == ',') fields.emplace_back();
     if (static_cast<int>(fields.size()) != kPosesColumns) {
-      problems.Add(where, "expected " + std::to_string(kPosesColumns) + " columns, got " +
-                              std::to_string(fields.size()));
+      problems.Add(where,
+                   "expected " + std::to_string(kPosesColumns) + " columns, got " + std::to_string(fields.size()));
       continue;
     }
     PoseRecord p;
-    double* const doubles[] = {&p.time_s,      &p.x_m,           &p.y_m,     &p.theta_rad,
-                               &p.cam_x_m,     &p.cam_y_m,       &p.cam_z_m, &p.cam_yaw_rad,
-                               &p.cam_pitch_rad, &p.cam_roll_rad, &p.odo_x_m, &p.odo_y_m,
-                               &p.odo_theta_rad};
+    double* const doubles[] = {&p.time_s,  &p.x_m,     &p.y_m,          &p.theta_rad,     &p.cam_x_m,
+                               &p.cam_y_m, &p.cam_z_m, &p.cam_yaw_rad,  &p.cam_pitch_rad, &p.cam_roll_rad,
+                               &p.odo_x_m, &p.odo_y_m, &p.odo_theta_rad};
     bool ok = true;
     for (int c = 0; c < kPosesColumns; ++c) {
       const std::string& s = fields[c];
       const char* end = s.data() + s.size();
       std::from_chars_result r{};
       double value = 0;
-      if (c == 0) r = std::from_chars(s.data(), end, p.frame);
-      else r = std::from_chars(s.data(), end, value);
+      if (c == 0)
+        r = std::from_chars(s.data(), end, p.frame);
+      else
+        r = std::from_chars(s.data(), end, value);
       if (s.empty() || r.ec != std::errc() || r.ptr != end || (c > 0 && !std::isfinite(value))) {
-        problems.Add(where, std::string("column ") + std::to_string(c + 1) + " '" + kNames[c] +
-                                "': expected " + (c == 0 ? "an integer" : "a finite number") +
-                                ", got '" + s + "'");
+        problems.Add(where, std::string("column ") + std::to_string(c + 1) + " '" + kNames[c] + "': expected " +
+                                (c == 0 ? "an integer" : "a finite number") + ", got '" + s + "'");
         ok = false;
         continue;
       }
@@ -711,9 +712,9 @@ void CheckListedFiles(const DatasetManifest& m, const std::string& manifest_path
   }
   // Bound the per-frame loop below by what is listed, not by frame_count alone.
   if (m.frame_count > m.FramesWritten()) {
-    problems.Add(manifest_path + ": /frame_count",
-                 "is " + std::to_string(m.frame_count) + " but /files lists " +
-                     std::to_string(m.FramesWritten()) + " " + m.outputs.Names().front() + " frames");
+    problems.Add(manifest_path + ": /frame_count", "is " + std::to_string(m.frame_count) + " but /files lists " +
+                                                       std::to_string(m.FramesWritten()) + " " +
+                                                       m.outputs.Names().front() + " frames");
     problems.ThrowIfAny();
   }
   for (int frame = 0; frame < m.frame_count; ++frame) {
@@ -776,14 +777,12 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
   }
   if (!m.complete) {
     throw InputError(dir, "dataset is partial: " + std::to_string(m.FramesWritten()) + " of " +
-                              std::to_string(m.frame_count) +
-                              " frames; re-run hoilcd render to finish it");
+                              std::to_string(m.frame_count) + " frames; re-run hoilcd render to finish it");
   }
 
   CheckListedFiles(m, manifest_path);
   if (m.outputs.video && !m.files.count(kVideoFile)) {
-    ds.warnings_.push_back(JoinPath(dir, kVideoFile) +
-                           ": not listed in manifest.json; the frames are read without it");
+    ds.warnings_.push_back(JoinPath(dir, kVideoFile) + ": not listed in manifest.json; the frames are read without it");
   }
   if (verify == Verify::kEveryFile) VerifyEveryFile(dir, m, threads, &ds.warnings_);
 
@@ -794,31 +793,32 @@ Dataset Dataset::Open(const std::string& dir, Verify verify, int threads) {
     frames_in_order = ds.poses_[i].frame == static_cast<int>(i);
   }
   if (!frames_in_order) {
-    throw InputError(poses_path, "expected one row per frame, frames 0 to " +
-                                     std::to_string(m.frame_count - 1) + " in order");
+    throw InputError(poses_path,
+                     "expected one row per frame, frames 0 to " + std::to_string(m.frame_count - 1) + " in order");
   }
   const std::string persons_path = JoinPath(dir, "persons.json");
   if (m.outputs.persons) ds.persons_ = PersonsFromJson(ds.ReadFile("persons.json"), persons_path, threads);
   for (const FramePersons& f : ds.persons_) {
     if (f.frame < 0 || f.frame >= m.frame_count) {
-      throw InputError(persons_path, "frame " + std::to_string(f.frame) + " outside 0.." +
-                                         std::to_string(m.frame_count - 1));
+      throw InputError(persons_path,
+                       "frame " + std::to_string(f.frame) + " outside 0.." + std::to_string(m.frame_count - 1));
     }
   }
   const std::string events_path = JoinPath(dir, "events.json");
   ds.events_ = EventsFromJson(ds.ReadFile("events.json"), events_path);
   for (const DatasetEvent& e : ds.events_) {
     if (e.frame < 0 || e.frame >= m.frame_count) {
-      throw InputError(events_path, "frame " + std::to_string(e.frame) + " outside 0.." +
-                                        std::to_string(m.frame_count - 1));
+      throw InputError(events_path,
+                       "frame " + std::to_string(e.frame) + " outside 0.." + std::to_string(m.frame_count - 1));
     }
   }
   if (m.files.count("footprints.json")) {  // absent from datasets written before it existed
     const std::string footprints_path = JoinPath(dir, "footprints.json");
     ds.footprints_ = FootprintsFromJson(ds.ReadFile("footprints.json"), footprints_path);
   }
-  ds.runs_ = m.files.count("runs.json") ? RunsFromJson(ds.ReadFile("runs.json"), JoinPath(dir, "runs.json"), m.frame_count)
-                                        : SingleRun(m.frame_count);
+  ds.runs_ = m.files.count("runs.json")
+                 ? RunsFromJson(ds.ReadFile("runs.json"), JoinPath(dir, "runs.json"), m.frame_count)
+                 : SingleRun(m.frame_count);
   const std::vector<int> run_of_frame = RunOfFrames(ds.runs_);
   for (PoseRecord& p : ds.poses_) p.run = run_of_frame[static_cast<size_t>(p.frame)];
   return ds;
@@ -831,9 +831,9 @@ cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int ex
   // Read before decoding, so that a small file that inflates to a huge image is refused first.
   if (!PngSize(bytes, &width, &height)) throw InputError(path, "cannot read PNG (not a PNG)");
   if (width != static_cast<uint32_t>(k.width) || height != static_cast<uint32_t>(k.height)) {
-    throw InputError(path, "expected " + std::to_string(k.width) + "x" +
-                               std::to_string(k.height) + " px as in manifest.json, the PNG is " +
-                               std::to_string(width) + "x" + std::to_string(height));
+    throw InputError(path, "expected " + std::to_string(k.width) + "x" + std::to_string(k.height) +
+                               " px as in manifest.json, the PNG is " + std::to_string(width) + "x" +
+                               std::to_string(height));
   }
   cv::Mat image;  // the dataset's own frames take the fast path; any other PNG goes to OpenCV
   if (DecodeGreyPng(bytes, k.width, k.height, expected_type, &image)) return image;
@@ -844,8 +844,8 @@ cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int ex
                                                     : "expected a 16-bit single-channel PNG");
   }
   if (image.cols != k.width || image.rows != k.height) {
-    throw InputError(path, "expected " + std::to_string(k.width) + "x" +
-                               std::to_string(k.height) + " px as in manifest.json");
+    throw InputError(
+        path, "expected " + std::to_string(k.width) + "x" + std::to_string(k.height) + " px as in manifest.json");
   }
   return image;
 }
@@ -890,9 +890,7 @@ cv::Mat Dataset::RadiometricCentikelvin(int frame) const {
   return FramePng("radiometric", frame, CV_16UC1, "reading the radiometric frames");
 }
 
-cv::Mat Dataset::RadiometricC(int frame) const {
-  return CelsiusFromCentikelvin16(RadiometricCentikelvin(frame));
-}
+cv::Mat Dataset::RadiometricC(int frame) const { return CelsiusFromCentikelvin16(RadiometricCentikelvin(frame)); }
 
 std::string Dataset::scene_json() const { return ReadFile("scene.json"); }
 

@@ -14,9 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kSideFiles[] = {"manifest.json", "scene.json",  "poses.csv",       "poses_tum.txt",
-                                      "persons.json",  "events.json", "footprints.json", "runs.json",
-                                      "thermal.mp4",   "ros2.mcap"};
+constexpr const char* kSideFiles[] = {"manifest.json", "scene.json",      "poses.csv", "poses_tum.txt", "persons.json",
+                                      "events.json",   "footprints.json", "runs.json", "thermal.mp4",   "ros2.mcap"};
 constexpr const char* kFrameFolders[] = {"thermal", "radiometric", "exr"};
 
 bool AllDigits(const std::string& text, size_t min_length) {
@@ -67,8 +66,7 @@ bool IsDatasetFileName(const std::string& relative_path) {
   const std::string folder = relative_path.substr(0, slash);
   const std::string name = relative_path.substr(slash + 1);
   const std::string extension = folder == "exr" ? ".exr" : ".png";
-  if (std::none_of(std::begin(kFrameFolders), std::end(kFrameFolders),
-                   [&](const char* f) { return folder == f; }) ||
+  if (std::none_of(std::begin(kFrameFolders), std::end(kFrameFolders), [&](const char* f) { return folder == f; }) ||
       name.size() <= extension.size() ||
       name.compare(name.size() - extension.size(), extension.size(), extension) != 0) {
     return false;

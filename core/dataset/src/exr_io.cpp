@@ -1,19 +1,19 @@
 #include "hoilcd/core/dataset/exr_io.h"
 
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfIO.h>
-#include <ImfInputFile.h>
-#include <ImfOutputFile.h>
-#include <ImfCompression.h>
-
 #include <algorithm>
 #include <cstring>
 #include <map>
 #include <mutex>
 #include <stdexcept>
 #include <string_view>
+
+#include <ImfChannelList.h>
+#include <ImfCompression.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -50,11 +50,16 @@ namespace {
 
 Imf::Compression ToImf(ExrCompression c) {
   switch (c) {
-    case ExrCompression::kNone: return Imf::NO_COMPRESSION;
-    case ExrCompression::kRle: return Imf::RLE_COMPRESSION;
-    case ExrCompression::kZips: return Imf::ZIPS_COMPRESSION;
-    case ExrCompression::kZip: return Imf::ZIP_COMPRESSION;
-    case ExrCompression::kPiz: return Imf::PIZ_COMPRESSION;
+    case ExrCompression::kNone:
+      return Imf::NO_COMPRESSION;
+    case ExrCompression::kRle:
+      return Imf::RLE_COMPRESSION;
+    case ExrCompression::kZips:
+      return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::kZip:
+      return Imf::ZIP_COMPRESSION;
+    case ExrCompression::kPiz:
+      return Imf::PIZ_COMPRESSION;
   }
   return Imf::ZIP_COMPRESSION;
 }
@@ -67,7 +72,7 @@ Imf::PixelType PixelTypeOf(const cv::Mat& mat) {
 }
 
 constexpr int kMaxExrSidePx = 4096;  // far above any thermal camera
-constexpr int kMaxExrChannels = 16;   // hoilcd writes 5
+constexpr int kMaxExrChannels = 16;  // hoilcd writes 5
 
 // OpenEXR 3.1 allocates an attribute's declared size before reading it: a 439-byte file that
 // declares a huge attribute takes seconds and gigabytes (found by fuzz_dataset). Hand-written
@@ -78,12 +83,30 @@ constexpr int kMaxExrChannels = 16;   // hoilcd writes 5
 // a size that disagrees with the value puts every later attribute at the wrong offset (and a
 // garbage size then allocates gigabytes). True when `value` is exactly what OpenEXR will read.
 bool ValueMatchesType(const std::string& type, std::string_view value) {
-  static const std::map<std::string, size_t> kFixedSize = {
-      {"box2i", 16}, {"box2f", 16}, {"compression", 1}, {"double", 8}, {"envmap", 1},
-      {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72},
-      {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},
-      {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24},
-      {"chromaticities", 32}, {"deepImageState", 1}};
+  static const std::map<std::string, size_t> kFixedSize = {{"box2i", 16},
+                                                           {"box2f", 16},
+                                                           {"compression", 1},
+                                                           {"double", 8},
+                                                           {"envmap", 1},
+                                                           {"float", 4},
+                                                           {"int", 4},
+                                                           {"keycode", 28},
+                                                           {"lineOrder", 1},
+                                                           {"m33f", 36},
+                                                           {"m33d", 72},
+                                                           {"m44f", 64},
+                                                           {"m44d", 128},
+                                                           {"rational", 8},
+                                                           {"tiledesc", 9},
+                                                           {"timecode", 8},
+                                                           {"v2i", 8},
+                                                           {"v2f", 8},
+                                                           {"v2d", 16},
+                                                           {"v3i", 12},
+                                                           {"v3f", 12},
+                                                           {"v3d", 24},
+                                                           {"chromaticities", 32},
+                                                           {"deepImageState", 1}};
   if (const auto fixed = kFixedSize.find(type); fixed != kFixedSize.end()) return value.size() == fixed->second;
   if (type == "chlist") {  // entries "name\0" + 16 bytes, ended by an empty name
     size_t at = 0;
@@ -143,7 +166,8 @@ size_t HeaderEnd(const std::string& bytes) {
     if (!ValueMatchesType(type, std::string_view(bytes).substr(at, size))) return 0;
     if (bytes.compare(name_at, 11, std::string("dataWindow\0", 11)) == 0 && size == 16) {
       const int64_t width = int64_t{static_cast<int32_t>(int32_at(at + 8))} - static_cast<int32_t>(int32_at(at)) + 1;
-      const int64_t height = int64_t{static_cast<int32_t>(int32_at(at + 12))} - static_cast<int32_t>(int32_at(at + 4)) + 1;
+      const int64_t height =
+          int64_t{static_cast<int32_t>(int32_at(at + 12))} - static_cast<int32_t>(int32_at(at + 4)) + 1;
       if (width < 1 || height < 1 || width > kMaxExrSidePx || height > kMaxExrSidePx) return 0;
     }
     at += size;
@@ -462,8 +486,10 @@ ExrChannels ReadExr(const std::string& path, cv::Size size) { return DecodeExr(R
 ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Size size,
                       const std::vector<std::string>& only) {
   if (HeaderEnd(bytes) == 0) {
-    throw InputError(path, "not a readable OpenEXR file (damaged header: an attribute runs past the end or "
-                           "disagrees with its type's size, or the data window is not 1 to " + std::to_string(kMaxExrSidePx) + " px a side)");
+    throw InputError(path,
+                     "not a readable OpenEXR file (damaged header: an attribute runs past the end or "
+                     "disagrees with its type's size, or the data window is not 1 to " +
+                         std::to_string(kMaxExrSidePx) + " px a side)");
   }
   try {
     StringIStream stream(bytes, path);
@@ -479,8 +505,8 @@ ExrChannels DecodeExr(const std::string& bytes, const std::string& path, cv::Siz
     int channels = 0;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) ++channels;
     if (channels > kMaxExrChannels) {
-      throw InputError(path, "expected at most " + std::to_string(kMaxExrChannels) + " channels, found " +
-                                 std::to_string(channels));
+      throw InputError(
+          path, "expected at most " + std::to_string(kMaxExrChannels) + " channels, found " + std::to_string(channels));
     }
     // UINT channels are read into int32 (EncodeExr's bits) and then converted, the rest as FLOAT.
     ExrChannels out;

@@ -6,8 +6,7 @@ namespace hoilcd {
 
 cv::Mat ToDisplay8Bit(const cv::Mat& temperature_c, double display_min_c, double display_max_c) {
   HOILCD_CHECK(temperature_c.type() == CV_32FC1);
-  HOILCD_CHECK_MSG(display_max_c > display_min_c,
-                   "display window [" << display_min_c << ", " << display_max_c << "]");
+  HOILCD_CHECK_MSG(display_max_c > display_min_c, "display window [" << display_min_c << ", " << display_max_c << "]");
   const double scale = 255.0 / (display_max_c - display_min_c);
   cv::Mat display;
   temperature_c.convertTo(display, CV_8U, scale, -display_min_c * scale);  // saturates, rounds

@@ -45,7 +45,8 @@ std::vector<RunRecord> RunsFromJson(const std::string& text, const std::string& 
       const int expected_first = runs.empty() ? 0 : runs.back().end_frame();
       if (r.first_frame != expected_first) {
         reader.Add(rp + "/first_frame", "expected " + std::to_string(expected_first) +
-                                            " (runs follow each other from frame 0), got " + std::to_string(r.first_frame));
+                                            " (runs follow each other from frame 0), got " +
+                                            std::to_string(r.first_frame));
       }
       if (r.frames < 1) reader.Add(rp + "/frames", "expected at least 1 frame");
       if (r.day < 0) reader.Add(rp + "/day", "expected a day >= 0");
@@ -74,7 +75,8 @@ std::vector<RunRecord> SingleRun(int frame_count) {
 
 std::vector<int> RunOfFrames(const std::vector<RunRecord>& runs) {
   std::vector<int> out;
-  for (size_t k = 0; k < runs.size(); ++k) out.insert(out.end(), static_cast<size_t>(runs[k].frames), static_cast<int>(k));
+  for (size_t k = 0; k < runs.size(); ++k)
+    out.insert(out.end(), static_cast<size_t>(runs[k].frames), static_cast<int>(k));
   return out;
 }
 

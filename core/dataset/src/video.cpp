@@ -23,7 +23,7 @@ namespace hoilcd {
 namespace {
 
 constexpr int kIoBufferBytes = 64 * 1024;
-const char* const kPresets[] = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+const char* const kPresets[] = {"ultrafast", "superfast", "veryfast", "faster",  "fast",
                                 "medium",    "slow",      "slower",   "veryslow"};
 
 // RAII owners of the libav objects used here.
@@ -94,10 +94,16 @@ struct MemoryFile {
     if (whence & AVSEEK_SIZE) return size;
     int64_t target = offset;
     switch (whence & ~AVSEEK_FORCE) {
-      case SEEK_SET: break;
-      case SEEK_CUR: target += file->position; break;
-      case SEEK_END: target += size; break;
-      default: return AVERROR(EINVAL);
+      case SEEK_SET:
+        break;
+      case SEEK_CUR:
+        target += file->position;
+        break;
+      case SEEK_END:
+        target += size;
+        break;
+      default:
+        return AVERROR(EINVAL);
     }
     if (target < 0) return AVERROR(EINVAL);
     file->position = target;
@@ -108,8 +114,7 @@ struct MemoryFile {
 IoContextPtr NewIoContext(MemoryFile* file, bool write) {
   auto* buffer = static_cast<unsigned char*>(av_malloc(kIoBufferBytes));
   HOILCD_CHECK_MSG(buffer != nullptr, "out of memory");
-  AVIOContext* io = avio_alloc_context(buffer, kIoBufferBytes, write ? 1 : 0, file,
-                                       write ? nullptr : &MemoryFile::Read,
+  AVIOContext* io = avio_alloc_context(buffer, kIoBufferBytes, write ? 1 : 0, file, write ? nullptr : &MemoryFile::Read,
                                        write ? &MemoryFile::Write : nullptr, &MemoryFile::Seek);
   if (io == nullptr) {
     av_free(buffer);
@@ -129,7 +134,8 @@ const OptionTable<VideoOptions>& VideoOptions::Table() {
   static const OptionTable<O> table =
       OptionTable<O>()
           .Add("enabled", &O::enabled, false, "video mode: the thermal PNGs are the decoded frames of thermal.mp4")
-          .Add("crf", &O::crf, 23, "", OptionRange::Closed(0, 51), "x264 constant rate factor (used when bitrate_kbps is 0)")
+          .Add("crf", &O::crf, 23, "", OptionRange::Closed(0, 51),
+               "x264 constant rate factor (used when bitrate_kbps is 0)")
           .Add("bitrate_kbps", &O::bitrate_kbps, 0, "kbit/s", OptionRange::Closed(0, 100000),
                "target average bitrate (0: constant quality, crf)")
           .Add("gop_frames", &O::gop_frames, 25, "frames", OptionRange::Closed(1, 600), "frames between keyframes")
@@ -153,8 +159,8 @@ std::string VideoFrameRateProblem(double frame_rate_hz) {
 
 std::string VideoFrameSizeProblem(int width, int height) {
   if (width % 2 == 0 && height % 2 == 0) return "";
-  return "thermal.mp4 (H.264, 4:2:0) needs an even width and height (got " +
-         std::to_string(width) + "x" + std::to_string(height) + ")";
+  return "thermal.mp4 (H.264, 4:2:0) needs an even width and height (got " + std::to_string(width) + "x" +
+         std::to_string(height) + ")";
 }
 
 struct VideoEncoder::State {
@@ -184,8 +190,7 @@ struct VideoEncoder::State {
   }
 };
 
-VideoEncoder::VideoEncoder(const VideoOptions& options, int width, int height,
-                           double frame_rate_hz)
+VideoEncoder::VideoEncoder(const VideoOptions& options, int width, int height, double frame_rate_hz)
     : state_(std::make_unique<State>()) {
   QuietLibav();
   const std::string problem = options.Check();
@@ -207,8 +212,8 @@ VideoEncoder::VideoEncoder(const VideoOptions& options, int width, int height,
   c.time_base = av_inv_q(rate);
   c.framerate = rate;
   c.gop_size = options.gop_frames;
-  c.max_b_frames = 0;      // a camera's real-time encoder: no B-frames
-  c.thread_count = 1;      // one x264 thread: its output then never depends on the machine
+  c.max_b_frames = 0;  // a camera's real-time encoder: no B-frames
+  c.thread_count = 1;  // one x264 thread: its output then never depends on the machine
   c.flags |= AV_CODEC_FLAG_BITEXACT | AV_CODEC_FLAG_GLOBAL_HEADER;
   av_opt_set(c.priv_data, "preset", options.preset.c_str(), 0);
   if (options.bitrate_kbps > 0) {
@@ -257,8 +262,7 @@ int VideoEncoder::frames_added() const { return state_->frames_added; }
 void VideoEncoder::Add(const cv::Mat& gray) {
   State& s = *state_;
   HOILCD_CHECK_MSG(!s.finished, "VideoEncoder::Add after Finish");
-  HOILCD_CHECK_MSG(gray.type() == CV_8UC1 && gray.cols == s.codec->width &&
-                       gray.rows == s.codec->height,
+  HOILCD_CHECK_MSG(gray.type() == CV_8UC1 && gray.cols == s.codec->width && gray.rows == s.codec->height,
                    "expected CV_8UC1 " << s.codec->width << "x" << s.codec->height);
   int rc = av_frame_make_writable(s.frame.get());  // the encoder may still hold the last one
   HOILCD_CHECK_MSG(rc >= 0, "av_frame_make_writable: " << AvError(rc));
@@ -305,8 +309,7 @@ DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for
   rc = avformat_find_stream_info(format.get(), nullptr);
   if (rc < 0) fail("cannot read stream information (" + AvError(rc) + ")");
   const AVCodec* decoder = nullptr;
-  const int stream_index =
-      av_find_best_stream(format.get(), AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
+  const int stream_index = av_find_best_stream(format.get(), AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
   if (stream_index < 0 || decoder == nullptr) fail("no video stream");
   const AVStream* stream = format->streams[stream_index];
   CodecContextPtr codec(avcodec_alloc_context3(decoder));
@@ -332,10 +335,10 @@ DecodedVideo DecodeVideo(std::string_view mp4_bytes, const std::string& path_for
       if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
       if (r < 0) fail("decoding failed (" + AvError(r) + ")");
       const AVPixelFormat pix = static_cast<AVPixelFormat>(frame->format);
-      if ((pix != AV_PIX_FMT_YUV420P && pix != AV_PIX_FMT_YUVJ420P) ||
-          frame->width != video.width || frame->height != video.height) {
-        fail("expected 8-bit 4:2:0 frames of " + std::to_string(video.width) + "x" +
-             std::to_string(video.height) + " px");
+      if ((pix != AV_PIX_FMT_YUV420P && pix != AV_PIX_FMT_YUVJ420P) || frame->width != video.width ||
+          frame->height != video.height) {
+        fail("expected 8-bit 4:2:0 frames of " + std::to_string(video.width) + "x" + std::to_string(video.height) +
+             " px");
       }
       cv::Mat gray(frame->height, frame->width, CV_8UC1);
       for (int y = 0; y < frame->height; ++y) {

@@ -48,7 +48,8 @@ struct ScalarOf<Floats8> {
 // *general = no triplet is (nearly) collinear: area² > sine² · |edge1|² · |edge2|² for the two
 // edges at the triplet's first vertex.
 template <typename Real, typename Mask>
-[[gnu::always_inline]] inline void GeneralPosition(const Real x[4], const Real y[4], const Real area[4], Mask* general) {
+[[gnu::always_inline]] inline void GeneralPosition(const Real x[4], const Real y[4], const Real area[4],
+                                                   Mask* general) {
   using Scalar = typename ScalarOf<Real>::Type;
   const Real ax = x[1] - x[0], ay = y[1] - y[0];
   const Real bx = x[2] - x[0], by = y[2] - y[0];
@@ -111,7 +112,7 @@ template <typename Real>
 // float range (relative precision is scale-invariant anyway).
 template <typename Real>
 [[gnu::always_inline]] inline void ClosedFormHomography(const Real sx[4], const Real sy[4], const Real dx[4],
-                                 const Real dy[4], Real h[9]) {
+                                                        const Real dy[4], Real h[9]) {
   using Scalar = typename ScalarOf<Real>::Type;
   const Scalar quarter = 0.25f;
   const Real scx = quarter * (sx[0] + sx[1] + sx[2] + sx[3]);
@@ -178,9 +179,8 @@ using Floats4 = float __attribute__((vector_size(16)));
 // (src x, src y, dst x, dst y) quadruples (src = reference, dst = query): one 16-byte load per
 // point, then a 4x4 transpose within each 128-bit half. Built in registers: vector loads of
 // scalar stores would stall on store forwarding.
-[[gnu::always_inline]] inline void GatherPoints(const SampleBatch& batch, const float* quads,
-                                                Floats8 sx[4], Floats8 sy[4], Floats8 dx[4],
-                                                Floats8 dy[4]) {
+[[gnu::always_inline]] inline void GatherPoints(const SampleBatch& batch, const float* quads, Floats8 sx[4],
+                                                Floats8 sy[4], Floats8 dx[4], Floats8 dy[4]) {
   for (int k = 0; k < 4; ++k) {
     Floats8 rows[4];  // rows[j] = quadruple of sample j | quadruple of sample j + 4
     for (int j = 0; j < 4; ++j) {
@@ -210,11 +210,9 @@ using Floats4 = float __attribute__((vector_size(16)));
 // Adds to *negative_count, lane by lane, minus one for each of the eight matches from `start`
 // that is an inlier of h and whose lane is set in `keep`. Division-free:
 // |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0).
-[[gnu::always_inline]] inline void CountEight(const Floats8 h[9], const float* ref_x,
-                                              const float* ref_y, const float* query_x,
-                                              const float* query_y, int start,
-                                              const Floats8& threshold_sq, const Ints8& keep,
-                                              Ints8* negative_count) {
+[[gnu::always_inline]] inline void CountEight(const Floats8 h[9], const float* ref_x, const float* ref_y,
+                                              const float* query_x, const float* query_y, int start,
+                                              const Floats8& threshold_sq, const Ints8& keep, Ints8* negative_count) {
   Floats8 x, y, qx, qy;
   std::memcpy(&x, ref_x + start, sizeof x);
   std::memcpy(&y, ref_y + start, sizeof y);
@@ -232,8 +230,7 @@ struct Normalisation {
 };
 
 // H = T_dst⁻¹ · Hn · T_src for similarity normalisations T (x' = s (x - c)).
-void Denormalise(const double hn[9], const Normalisation& src, const Normalisation& dst,
-                 double h[9]) {
+void Denormalise(const double hn[9], const Normalisation& src, const Normalisation& dst, double h[9]) {
   double t[9];
   for (int r = 0; r < 3; ++r) {
     t[3 * r] = hn[3 * r] * src.scale;
@@ -280,9 +277,8 @@ bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::M
   return true;
 }
 
-bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float* query_x,
-                            const float* query_y, const uint8_t* use, int count,
-                            Eigen::Matrix3d* h) {
+bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y,
+                            const uint8_t* use, int count, Eigen::Matrix3d* h) {
   HOILCD_CHECK(h != nullptr);
   // Hartley normalisation: centroid to the origin, mean distance sqrt(2).
   double rcx = 0, rcy = 0, qcx = 0, qcy = 0;
@@ -368,9 +364,11 @@ HomographyEstimator::Data HomographyEstimator::Prepare(const float* ref_x, const
 // others: no homography without a point at infinity between the images does that (OpenCV's
 // HomographyEstimatorCallback::checkSubset applies the same test). Float is enough: a sign can
 // only come out wrong for a nearly collinear triplet, rejected by Solve anyway.
-__attribute__((target_clones("avx2", "default"))) void HomographyEstimator::DrawAndScreen(
-    const RansacSampler& sampler, uint32_t first_draw, const Data& data, SampleBatch* batch,
-    int32_t keep[kRansacLanes]) {
+__attribute__((target_clones("avx2", "default"))) void HomographyEstimator::DrawAndScreen(const RansacSampler& sampler,
+                                                                                          uint32_t first_draw,
+                                                                                          const Data& data,
+                                                                                          SampleBatch* batch,
+                                                                                          int32_t keep[kRansacLanes]) {
   sampler.DrawBatch(first_draw, batch);
   Floats8 sx[4], sy[4], dx[4], dy[4];
   GatherPoints(*batch, data.quads, sx, sy, dx, dy);
@@ -379,17 +377,16 @@ __attribute__((target_clones("avx2", "default"))) void HomographyEstimator::Draw
   TripletAreas(dx, dy, dst_area);
   Floats8 products[4];
   for (int k = 0; k < 4; ++k) products[k] = src_area[k] * dst_area[k];
-  const Ints8 result =
-      ((products[0] < 0) & (products[1] < 0) & (products[2] < 0) & (products[3] < 0)) |
-      ((products[0] >= 0) & (products[1] >= 0) & (products[2] >= 0) & (products[3] >= 0));
+  const Ints8 result = ((products[0] < 0) & (products[1] < 0) & (products[2] < 0) & (products[3] < 0)) |
+                       ((products[0] >= 0) & (products[1] >= 0) & (products[2] >= 0) & (products[3] >= 0));
   std::memcpy(keep, &result, sizeof result);
 }
 
 // Eight samples in float, one per lane. A lane is invalid if three of its points are (nearly)
 // collinear in either image or if its closed-form solution is zero or not finite.
 __attribute__((target_clones("avx2", "default"))) void HomographyEstimator::Solve(const SampleBatch& batch,
-                                                                                   const Data& data,
-                                                                                   ModelBatch<kModelSize>* out) {
+                                                                                  const Data& data,
+                                                                                  ModelBatch<kModelSize>* out) {
   Floats8 sx[4], sy[4], dx[4], dy[4];
   GatherPoints(batch, data.quads, sx, sy, dx, dy);
   Floats8 src_area[4], dst_area[4];
@@ -417,8 +414,9 @@ __attribute__((target_clones("avx2", "default"))) void HomographyEstimator::Solv
 // Eight matches per step; for a count that is not a multiple of 8 the last step reloads the final
 // eight and masks those already counted. Stopping once the count cannot exceed the bar leaves the
 // RANSAC loop's result unchanged.
-__attribute__((target_clones("avx2", "default"))) int HomographyEstimator::CountInliers(
-    const float* model, const Data& data, float threshold_sq, int bar) {
+__attribute__((target_clones("avx2", "default"))) int HomographyEstimator::CountInliers(const float* model,
+                                                                                        const Data& data,
+                                                                                        float threshold_sq, int bar) {
   const float* h = model;
   const float *ref_x = data.ref_x, *ref_y = data.ref_y, *query_x = data.query_x, *query_y = data.query_y;
   const int count = data.count;
@@ -453,8 +451,7 @@ __attribute__((target_clones("avx2", "default"))) int HomographyEstimator::Count
   }
   if (whole < count) {
     const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    CountEight(hv, ref_x, ref_y, query_x, query_y, count - 8, threshold,
-               lane >= 8 - count % 8, &negative_count);
+    CountEight(hv, ref_x, ref_y, query_x, query_y, count - 8, threshold, lane >= 8 - count % 8, &negative_count);
   }
   return -HorizontalSum(negative_count);
 }

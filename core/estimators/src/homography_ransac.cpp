@@ -6,9 +6,8 @@
 
 namespace hoilcd {
 
-int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x,
-                        const float* query_y, int count, const RansacOptions& options,
-                        uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask) {
+int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+                        const RansacOptions& options, uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask) {
   using E = HomographyEstimator;
   if (count < E::kSampleSize) {
     if (best_h != nullptr) best_h->setIdentity();
@@ -31,8 +30,8 @@ int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* que
   return inliers;
 }
 
-void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y,
-                          int count, const RansacOptions* variants, int num_variants, uint64_t seed, int* inliers,
+void RansacCounter::Count(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+                          const RansacOptions* variants, int num_variants, uint64_t seed, int* inliers,
                           int64_t* alone_ns, int64_t* total_ns) {
   const auto prepare = [&] { return HomographyEstimator::Prepare(ref_x, ref_y, query_x, query_y, count, &quads_); };
   variants_.Count(count, prepare, variants, num_variants, seed, inliers, alone_ns, total_ns);
@@ -51,29 +50,27 @@ int RansacOnMatches(const std::vector<Point2>& query, const std::vector<Point2>&
   std::vector<float> xy(4 * static_cast<size_t>(count));  // reference x, reference y, query x, query y
   for (int i = 0; i < count; ++i) {
     const Correspondence& m = matches[i];
-    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
-                         m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
-                     "match " << i << " (" << m.query << ", " << m.reference
-                              << ") is out of range");
+    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) && m.reference >= 0 &&
+                         m.reference < static_cast<int>(reference.size()),
+                     "match " << i << " (" << m.query << ", " << m.reference << ") is out of range");
     xy[i] = reference[m.reference].x;
     xy[count + i] = reference[m.reference].y;
     xy[2 * count + i] = query[m.query].x;
     xy[3 * count + i] = query[m.query].y;
   }
-  return RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count, count,
-                             options, seed, best_h, inlier_mask);
+  return RansacHomographySoa(xy.data(), xy.data() + count, xy.data() + 2 * count, xy.data() + 3 * count, count, options,
+                             seed, best_h, inlier_mask);
 }
 
 }  // namespace
 
-HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
-                                          const std::vector<Point2>& reference,
-                                          const std::vector<Correspondence>& matches,
-                                          const RansacOptions& options, uint64_t seed) {
+HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                                          const std::vector<Correspondence>& matches, const RansacOptions& options,
+                                          uint64_t seed) {
   HomographyResult result;
   result.inlier_mask.resize(matches.size());
-  result.inliers = RansacOnMatches(query, reference, matches, options, seed, &result.reference_to_query,
-                                   result.inlier_mask.data());
+  result.inliers =
+      RansacOnMatches(query, reference, matches, options, seed, &result.reference_to_query, result.inlier_mask.data());
   return result;
 }
 

@@ -13,12 +13,11 @@ HoiOptions::HoiOptions() { Table().FillDefaults(this); }
 const OptionTable<HoiOptions>& HoiOptions::Table() {
   using O = HoiOptions;
   using R = OptionRange;
-  static const OptionTable<O> table =
-      OptionTable<O>()
-          .Add("min_points_per_person", &O::min_points_per_person, 3, "", R::Any().AtLeast(0),
-               "a person with fewer bottom points gives none")
-          .Add("column_step_px", &O::column_step_px, 1, "px", R::Any().AtLeast(1),
-               "take every n-th column of the track box (1: all, as the paper)");
+  static const OptionTable<O> table = OptionTable<O>()
+                                          .Add("min_points_per_person", &O::min_points_per_person, 3, "",
+                                               R::Any().AtLeast(0), "a person with fewer bottom points gives none")
+                                          .Add("column_step_px", &O::column_step_px, 1, "px", R::Any().AtLeast(1),
+                                               "take every n-th column of the track box (1: all, as the paper)");
   return table;
 }
 
@@ -35,8 +34,7 @@ std::pair<int, int> PixelRange(float start, float length, int size) {
 
 }  // namespace
 
-std::vector<HoiFeature> ExtractHoiFeatures(const cv::Mat& person_mask,
-                                           const std::vector<Track>& tracks,
+std::vector<HoiFeature> ExtractHoiFeatures(const cv::Mat& person_mask, const std::vector<Track>& tracks,
                                            const HoiOptions& options) {
   const std::string problem = options.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
@@ -61,8 +59,8 @@ std::vector<HoiFeature> ExtractHoiFeatures(const cv::Mat& person_mask,
   return features;
 }
 
-DlcdFrontEnd::DlcdFrontEnd(PersonDetectorOptions detector_options,
-                           ByteTrackOptions tracker_options, HoiOptions hoi_options)
+DlcdFrontEnd::DlcdFrontEnd(PersonDetectorOptions detector_options, ByteTrackOptions tracker_options,
+                           HoiOptions hoi_options)
     : detector_options_(std::move(detector_options)),
       hoi_options_(std::move(hoi_options)),
       tracker_(std::move(tracker_options)) {
@@ -72,8 +70,7 @@ DlcdFrontEnd::DlcdFrontEnd(PersonDetectorOptions detector_options,
   HOILCD_CHECK_MSG(problem.empty(), problem);
 }
 
-std::vector<HoiFeature> DlcdFrontEnd::Process(const cv::Mat& thermal_u8,
-                                              const cv::Mat& radiometric_c) {
+std::vector<HoiFeature> DlcdFrontEnd::Process(const cv::Mat& thermal_u8, const cv::Mat& radiometric_c) {
   last_detections_ = DetectPersons(thermal_u8, radiometric_c, detector_options_);
   last_tracks_ = tracker_.Update(last_detections_.detections);
   return ExtractHoiFeatures(last_detections_.mask, last_tracks_, hoi_options_);

@@ -1,6 +1,7 @@
 #include "hoilcd/core/features/keypoints.h"
 
 #include <algorithm>
+
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 

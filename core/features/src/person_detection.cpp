@@ -116,8 +116,7 @@ std::string PersonDetectorOptions::Check() const { return Table().FirstProblem(*
 // tall enough to be people, cutting in the middle of the valley floor. Chosen over
 // distance-transform peaks because touching torsos of equal width give one ridge there, not two
 // maxima.
-std::vector<int> FindSplitColumns(const std::vector<double>& column_counts,
-                                  const PersonDetectorOptions& options) {
+std::vector<int> FindSplitColumns(const std::vector<double>& column_counts, const PersonDetectorOptions& options) {
   const int n = static_cast<int>(column_counts.size());
   std::vector<double> p(n, 0.0);
   const int half = options.profile_smooth_px / 2;
@@ -188,8 +187,7 @@ struct ColumnSpan {
 
 // Skin-temperature components in the upper part of the blob, merged where they share columns
 // (a face and an ear, or two heads one behind the other that columns cannot separate anyway).
-std::vector<ColumnSpan> FindHeads(const cv::Mat& labels, int label, const cv::Rect& blob,
-                                  const cv::Mat& temperature_c,
+std::vector<ColumnSpan> FindHeads(const cv::Mat& labels, int label, const cv::Rect& blob, const cv::Mat& temperature_c,
                                   const PersonDetectorOptions& options) {
   const cv::Mat skin = (labels(blob) == label) & (temperature_c(blob) >= options.head_min_c) &
                        (temperature_c(blob) <= options.max_median_c);
@@ -202,8 +200,7 @@ std::vector<ColumnSpan> FindHeads(const cv::Mat& labels, int label, const cv::Re
     const int x0 = stats.at<int>(k, cv::CC_STAT_LEFT);
     heads.push_back({x0, x0 + stats.at<int>(k, cv::CC_STAT_WIDTH)});
   }
-  std::sort(heads.begin(), heads.end(),
-            [](const ColumnSpan& a, const ColumnSpan& b) { return a.x0 < b.x0; });
+  std::sort(heads.begin(), heads.end(), [](const ColumnSpan& a, const ColumnSpan& b) { return a.x0 < b.x0; });
   std::vector<ColumnSpan> merged;
   for (const ColumnSpan& h : heads) {
     if (!merged.empty()) {
@@ -284,8 +281,7 @@ double Score(const Part& part, double median_c, const PersonDetectorOptions& opt
   const double aspect = static_cast<double>(part.box.height) / part.box.width;
   const double log_ratio = std::log(aspect / options.typical_aspect_hw) / options.aspect_sigma_log;
   const double shape_score = std::exp(-0.5 * log_ratio * log_ratio);
-  const double outside_c = std::max({0.0, options.person_min_c - median_c,
-                                     median_c - options.person_max_c});
+  const double outside_c = std::max({0.0, options.person_min_c - median_c, median_c - options.person_max_c});
   const double z = outside_c / options.temperature_sigma_c;
   const double temperature_score = std::exp(-0.5 * z * z);
   const double score = std::cbrt(area_score * shape_score * temperature_score);
@@ -294,14 +290,12 @@ double Score(const Part& part, double median_c, const PersonDetectorOptions& opt
 
 // The part with a head that a headless part joins: it must lie lower (its top below the head
 // part's top) and share enough of its columns; the largest overlap wins. -1 when none.
-int HostOf(const Part& headless, const std::vector<Part>& parts,
-           const PersonDetectorOptions& options) {
+int HostOf(const Part& headless, const std::vector<Part>& parts, const PersonDetectorOptions& options) {
   int host = -1, best_overlap = 0;
   for (size_t k = 0; k < parts.size(); ++k) {
     const Part& p = parts[k];
     if (!p.has_head || headless.box.y <= p.box.y) continue;
-    const int overlap = std::min(p.box.br().x, headless.box.br().x) -
-                        std::max(p.box.x, headless.box.x);
+    const int overlap = std::min(p.box.br().x, headless.box.br().x) - std::max(p.box.x, headless.box.x);
     if (overlap < options.merge_min_overlap * headless.box.width) continue;
     if (overlap > best_overlap) {
       best_overlap = overlap;
@@ -321,11 +315,10 @@ void WarmMask(const cv::Mat& thermal_u8, const cv::Mat& radiometric_c, const Per
   } else {
     // Level v shows u8_min_c + v * (u8_max_c - u8_min_c) / 255 degC: the first at or above
     // threshold_c (256: none is).
-    const double level = std::ceil((options.threshold_c - options.u8_min_c) /
-                                   (options.u8_max_c - options.u8_min_c) * 255.0);
+    const double level =
+        std::ceil((options.threshold_c - options.u8_min_c) / (options.u8_max_c - options.u8_min_c) * 255.0);
     *mask = thermal_u8 >= std::clamp(level, 0.0, 256.0);
-    thermal_u8.convertTo(*temperature_c, CV_32F, (options.u8_max_c - options.u8_min_c) / 255.0,
-                         options.u8_min_c);
+    thermal_u8.convertTo(*temperature_c, CV_32F, (options.u8_max_c - options.u8_min_c) / 255.0, options.u8_min_c);
   }
   if (options.open_kernel_px > 1) {
     cv::morphologyEx(*mask, *mask, cv::MORPH_OPEN, Ellipse(options.open_kernel_px));
@@ -370,7 +363,8 @@ void SplitBlob(const cv::Mat& labels, int label, const cv::Rect& blob, const cv:
     for (const ColumnSpan& h : heads) {
       part.has_head |= blob.x + h.x0 < x1 && blob.x + h.x1 > x0;
     }
-    if (IsObject(part, Median(std::vector<double>(part.temperatures_c.begin(), part.temperatures_c.end())), options)) continue;
+    if (IsObject(part, Median(std::vector<double>(part.temperatures_c.begin(), part.temperatures_c.end())), options))
+      continue;
     parts->push_back(std::move(part));
   }
 }
@@ -402,8 +396,7 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
   HOILCD_CHECK_MSG(!thermal_u8.empty() || !radiometric_c.empty(), "no image given");
   HOILCD_CHECK(thermal_u8.empty() || thermal_u8.type() == CV_8UC1);
   HOILCD_CHECK(radiometric_c.empty() || radiometric_c.type() == CV_32FC1);
-  HOILCD_CHECK(thermal_u8.empty() || radiometric_c.empty() ||
-               thermal_u8.size() == radiometric_c.size());
+  HOILCD_CHECK(thermal_u8.empty() || radiometric_c.empty() || thermal_u8.size() == radiometric_c.size());
 
   cv::Mat mask, temperature_c;
   WarmMask(thermal_u8, radiometric_c, options, &mask, &temperature_c);
@@ -431,8 +424,7 @@ PersonDetections DetectPersons(const cv::Mat& thermal_u8, const cv::Mat& radiome
     if (median_c > options.max_median_c) continue;
     if (!radiometric_c.empty() && !LooksHuman(part, options)) continue;
     for (const cv::Point& q : part.pixels) result.mask.at<uint8_t>(q) = 255;
-    result.detections.push_back(
-        {cv::Rect2f(part.box), static_cast<float>(Score(part, median_c, options))});
+    result.detections.push_back({cv::Rect2f(part.box), static_cast<float>(Score(part, median_c, options))});
   }
   return result;
 }

@@ -17,16 +17,13 @@ Eigen::Matrix4d Rigid3::Matrix() const {
 Eigen::Matrix3d BodyFromCamRotation() {
   Eigen::Matrix3d m;
   // Columns: camera x (right) = body -y, camera y (down) = body -z, camera z (forward) = body x.
-  m << 0, 0, 1,
-      -1, 0, 0,
-       0, -1, 0;
+  m << 0, 0, 1, -1, 0, 0, 0, -1, 0;
   return m;
 }
 
 Rigid3 CameraPose::WorldFromCam() const {
   const Eigen::Matrix3d world_from_body =
-      (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) *
-       Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
+      (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
        Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
           .toRotationMatrix();
   Rigid3 out;
@@ -45,21 +42,15 @@ CameraIntrinsics CameraIntrinsics::FromHorizontalFov(int width, int height, doub
   return k;
 }
 
-double CameraIntrinsics::HorizontalFovDeg() const {
-  return 2.0 * std::atan(0.5 * width / fx) * 180.0 / M_PI;
-}
+double CameraIntrinsics::HorizontalFovDeg() const { return 2.0 * std::atan(0.5 * width / fx) * 180.0 / M_PI; }
 
-double CameraIntrinsics::VerticalFovDeg() const {
-  return 2.0 * std::atan(0.5 * height / fy) * 180.0 / M_PI;
-}
+double CameraIntrinsics::VerticalFovDeg() const { return 2.0 * std::atan(0.5 * height / fy) * 180.0 / M_PI; }
 
 Eigen::Vector2d CameraIntrinsics::Project(const Eigen::Vector3d& p) const {
   return {fx * p.x() / p.z() + cx, fy * p.y() / p.z() + cy};
 }
 
-Eigen::Vector3d CameraIntrinsics::Unproject(double u, double v) const {
-  return {(u - cx) / fx, (v - cy) / fy, 1.0};
-}
+Eigen::Vector3d CameraIntrinsics::Unproject(double u, double v) const { return {(u - cx) / fx, (v - cy) / fy, 1.0}; }
 
 std::string CameraIntrinsics::Check() const {
   if (width <= 0 || height <= 0) return "image size must be positive";

@@ -82,10 +82,10 @@ template <typename Vector>
 // lookups of a pass are independent, so they overlap; on paper_room's all-pairs scoring this
 // took 4 % less CPU than looking up each reference's nearest on demand.
 // Cloned for AVX2 with run-time dispatch, with the grid queries inlined into each clone.
-HOILCD_CLONES_FLATTENED void MutualNearestNeighboursOnGrids(
-    const Point2* query_points, const PointGrid& query_grid,
-    const Point2* reference_points, const PointGrid& reference_grid, std::vector<int>* nearest,
-    std::vector<Correspondence>* matches) {
+HOILCD_CLONES_FLATTENED void MutualNearestNeighboursOnGrids(const Point2* query_points, const PointGrid& query_grid,
+                                                            const Point2* reference_points,
+                                                            const PointGrid& reference_grid, std::vector<int>* nearest,
+                                                            std::vector<Correspondence>* matches) {
   matches->clear();
   const int nq = query_grid.size(), nr = reference_grid.size();
   if (nq == 0 || nr == 0) return;
@@ -153,8 +153,7 @@ PointGrid::PointGrid(const Point2* points, int count) {
   inv_cell_ = 1.0f / cell_px_;
   nx_ = std::min(kMaxCellsPerAxis, static_cast<int>(width * inv_cell_) + 1);
   ny_ = std::min(kMaxCellsPerAxis, static_cast<int>(height * inv_cell_) + 1);
-  slack_px_ = 1e-3f * cell_px_ +
-              1e-5f * (std::abs(origin_x_) + std::abs(origin_y_) + (nx_ + ny_) * cell_px_);
+  slack_px_ = 1e-3f * cell_px_ + 1e-5f * (std::abs(origin_x_) + std::abs(origin_y_) + (nx_ + ny_) * cell_px_);
   // Counting sort of the points by cell; stable, so each cell lists its points by index.
   std::vector<int> cell_of(count);
   stride_ = nx_ + 2;
@@ -185,8 +184,7 @@ int PointGrid::Nearest(Point2 p) const {
   if (count_ <= kScanAllMax) return NearestOfAll(p);
   const float fx = (p.x - lattice_origin_x_) * lattice_inv_;
   const float fy = (p.y - lattice_origin_y_) * lattice_inv_;
-  if (!(fx >= 0 && fy >= 0 && fx < static_cast<float>(lattice_nx_) &&
-        fy < static_cast<float>(lattice_ny_))) {
+  if (!(fx >= 0 && fy >= 0 && fx < static_cast<float>(lattice_nx_) && fy < static_cast<float>(lattice_ny_))) {
     return NearestInGrid(p);
   }
   const LatticeCell& c = lattice_[static_cast<int>(fy) * lattice_nx_ + static_cast<int>(fx)];
@@ -207,8 +205,7 @@ int PointGrid::Nearest(Point2 p) const {
 void PointGrid::BuildLattice() {
   if (count_ <= kScanAllMax) return;
   // Far from the origin, squared float distances could overflow; the grid alone stays exact.
-  const float far_corner = std::max({std::abs(origin_x_), std::abs(origin_y_),
-                                     std::abs(origin_x_ + nx_ * cell_px_),
+  const float far_corner = std::max({std::abs(origin_x_), std::abs(origin_y_), std::abs(origin_x_ + nx_ * cell_px_),
                                      std::abs(origin_y_ + ny_ * cell_px_)});
   if (!(far_corner <= kMaxLatticeCoordinate)) return;
   lattice_px_ = cell_px_ / kLatticeCellsPerGridCell;
@@ -384,9 +381,7 @@ int PointGrid::NearestByRings(Point2 p) const {
     for (int k = begin; k < end; ++k) best_key = std::min(best_key, DistanceKey(k, p));
   };
   // The cells x0..x1 of one row are consecutive in storage, so a row span is one range.
-  auto scan_row = [&](int y, int x0, int x1) {
-    scan(cell_start_[Slot(x0, y)], cell_start_[Slot(x1, y) + 1]);
-  };
+  auto scan_row = [&](int y, int x0, int x1) { scan(cell_start_[Slot(x0, y)], cell_start_[Slot(x1, y) + 1]); };
   // Ring 1 is the 3x3 block around the cell (scanned as three row spans); ring r > 1 adds the
   // top and bottom rows of the (2r+1)² block and the cells at its sides.
   for (int r = 1;; ++r) {
@@ -420,13 +415,11 @@ int PointGrid::NearestByRings(Point2 p) const {
   return static_cast<int>(best_key & 0xffffffffu);
 }
 
-void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,
-                             const Point2* reference_points, const PointGrid& reference_grid,
-                             std::vector<Correspondence>* matches) {
+void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+                             const PointGrid& reference_grid, std::vector<Correspondence>* matches) {
   HOILCD_CHECK(matches != nullptr);
   std::vector<int> nearest;
-  MutualNearestNeighboursOnGrids(query_points, query_grid, reference_points, reference_grid,
-                                &nearest, matches);
+  MutualNearestNeighboursOnGrids(query_points, query_grid, reference_points, reference_grid, &nearest, matches);
 }
 
 std::vector<Correspondence> MutualNearestNeighbours(const std::vector<Point2>& query,
@@ -438,18 +431,16 @@ std::vector<Correspondence> MutualNearestNeighbours(const std::vector<Point2>& q
   return matches;
 }
 
-std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query,
-                                           const std::vector<Point2>& reference,
-                                           const std::vector<Correspondence>& matches,
-                                           const MatchOptions& options) {
+std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                                           const std::vector<Correspondence>& matches, const MatchOptions& options) {
   const std::string problem = options.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
   const double tolerance_px = options.vertical_tolerance * options.image_height_px;
   std::vector<Correspondence> kept;
   kept.reserve(matches.size());
   for (const Correspondence& m : matches) {
-    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) &&
-                         m.reference >= 0 && m.reference < static_cast<int>(reference.size()),
+    HOILCD_CHECK_MSG(m.query >= 0 && m.query < static_cast<int>(query.size()) && m.reference >= 0 &&
+                         m.reference < static_cast<int>(reference.size()),
                      "match (" << m.query << ", " << m.reference << ") is out of range");
     if (WithinVerticalTolerance(query[m.query].y, reference[m.reference].y, tolerance_px)) {
       kept.push_back(m);
@@ -459,14 +450,12 @@ std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query,
 }
 
 uint64_t PairSeed(uint64_t seed, int query_id, int reference_id) {
-  return HashCombine(seed, HashString("ransac"), static_cast<uint64_t>(query_id),
-                     static_cast<uint64_t>(reference_id));
+  return HashCombine(seed, HashString("ransac"), static_cast<uint64_t>(query_id), static_cast<uint64_t>(reference_id));
 }
 
 int PairScorer::Match(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
                       const PointGrid& reference_grid, const MatchOptions& match_options) {
-  MutualNearestNeighboursOnGrids(query_points, query_grid, reference_points, reference_grid,
-                                &nearest_, &matches_);
+  MutualNearestNeighboursOnGrids(query_points, query_grid, reference_points, reference_grid, &nearest_, &matches_);
   const double tolerance_px = match_options.vertical_tolerance * match_options.image_height_px;
   const size_t capacity = matches_.size();
   ref_x_.resize(capacity);
@@ -485,28 +474,26 @@ int PairScorer::Match(const Point2* query_points, const PointGrid& query_grid, c
   return static_cast<int>(kept);
 }
 
-int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid,
-                      const Point2* reference_points, const PointGrid& reference_grid,
-                      const MatchOptions& match_options, const RansacOptions& ransac_options,
-                      uint64_t pair_seed) {
+int PairScorer::Score(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+                      const PointGrid& reference_grid, const MatchOptions& match_options,
+                      const RansacOptions& ransac_options, uint64_t pair_seed) {
   int inliers = 0;
   ScoreVariants(query_points, query_grid, reference_points, reference_grid, match_options, &ransac_options, 1,
                 pair_seed, &inliers, nullptr, nullptr);
   return inliers;
 }
 
-void PairScorer::ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
-                               const Point2* reference_points, const PointGrid& reference_grid,
-                               const MatchOptions& match_options, const RansacOptions* variants, int count,
-                               uint64_t pair_seed, int* inliers, int64_t* alone_ns, int64_t* total_ns) {
+void PairScorer::ScoreVariants(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+                               const PointGrid& reference_grid, const MatchOptions& match_options,
+                               const RansacOptions* variants, int count, uint64_t pair_seed, int* inliers,
+                               int64_t* alone_ns, int64_t* total_ns) {
   const int kept = Match(query_points, query_grid, reference_points, reference_grid, match_options);
   ransac_.Count(ref_x_.data(), ref_y_.data(), query_x_.data(), query_y_.data(), kept, variants, count, pair_seed,
                 inliers, alone_ns, total_ns);
 }
 
-int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
-              const MatchOptions& match_options, const RansacOptions& ransac_options,
-              uint64_t seed, int query_id, int reference_id) {
+int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference, const MatchOptions& match_options,
+              const RansacOptions& ransac_options, uint64_t seed, int query_id, int reference_id) {
   const std::string match_problem = match_options.Check();
   HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
   const std::string ransac_problem = ransac_options.Check();
@@ -514,8 +501,8 @@ int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& refer
   const PointGrid query_grid(query.data(), static_cast<int>(query.size()));
   const PointGrid reference_grid(reference.data(), static_cast<int>(reference.size()));
   PairScorer scorer;
-  return scorer.Score(query.data(), query_grid, reference.data(), reference_grid, match_options,
-                      ransac_options, PairSeed(seed, query_id, reference_id));
+  return scorer.Score(query.data(), query_grid, reference.data(), reference_grid, match_options, ransac_options,
+                      PairSeed(seed, query_id, reference_id));
 }
 
 PairMatches MatchPair(const std::vector<Point2>& query, const std::vector<Point2>& reference,

@@ -12,8 +12,7 @@ namespace hoilcd {
 namespace {
 
 // y of the contour at column x, linearly interpolated between its points (sorted by x).
-double ContourYAt(const std::vector<HoiFeature>& features, const std::vector<int>& indices,
-                  double x) {
+double ContourYAt(const std::vector<HoiFeature>& features, const std::vector<int>& indices, double x) {
   const auto point = [&](size_t i) { return features[static_cast<size_t>(indices[i])].point; };
   if (x <= point(0).x) return point(0).y;
   for (size_t i = 1; i < indices.size(); ++i) {
@@ -86,8 +85,7 @@ std::vector<PersonContour> GroupPersonContours(const std::vector<HoiFeature>& fe
       const Point2 p = features[static_cast<size_t>(indices[i])].point;
       if (i > 0) {
         const Point2 previous = features[static_cast<size_t>(indices[i - 1])].point;
-        arc_px += std::hypot(static_cast<double>(p.x) - previous.x,
-                             static_cast<double>(p.y) - previous.y);
+        arc_px += std::hypot(static_cast<double>(p.x) - previous.x, static_cast<double>(p.y) - previous.y);
       }
       person.arc_length_px.push_back(arc_px);
       sum_y += p.y;
@@ -96,8 +94,7 @@ std::vector<PersonContour> GroupPersonContours(const std::vector<HoiFeature>& fe
     person.x_max_px = features[static_cast<size_t>(indices.back())].point.x;
     person.mean_y_px = sum_y / static_cast<double>(indices.size());
     for (int s = 0; s < options.profile_samples; ++s) {
-      const double x = person.x_min_px +
-                       (person.x_max_px - person.x_min_px) * s / (options.profile_samples - 1);
+      const double x = person.x_min_px + (person.x_max_px - person.x_min_px) * s / (options.profile_samples - 1);
       person.profile_px.push_back(ContourYAt(features, indices, x) - person.mean_y_px);
     }
     persons.push_back(std::move(person));
@@ -105,27 +102,22 @@ std::vector<PersonContour> GroupPersonContours(const std::vector<HoiFeature>& fe
   return persons;
 }
 
-double PersonPairCost(const PersonContour& query, const PersonContour& reference,
-                      const TrackAwareOptions& options) {
-  HOILCD_CHECK_MSG(query.profile_px.size() == reference.profile_px.size() &&
-                       !query.profile_px.empty(),
+double PersonPairCost(const PersonContour& query, const PersonContour& reference, const TrackAwareOptions& options) {
+  HOILCD_CHECK_MSG(query.profile_px.size() == reference.profile_px.size() && !query.profile_px.empty(),
                    "contours built with different profile_samples");
-  const double centre_dx =
-      0.5 * ((query.x_min_px + query.x_max_px) - (reference.x_min_px + reference.x_max_px));
+  const double centre_dx = 0.5 * ((query.x_min_px + query.x_max_px) - (reference.x_min_px + reference.x_max_px));
   const double dy = query.mean_y_px - reference.mean_y_px;
-  const double width_diff =
-      (query.x_max_px - query.x_min_px) - (reference.x_max_px - reference.x_min_px);
+  const double width_diff = (query.x_max_px - query.x_min_px) - (reference.x_max_px - reference.x_min_px);
   double shape = 0.0;
   for (size_t s = 0; s < query.profile_px.size(); ++s) {
     shape += std::abs(query.profile_px[s] - reference.profile_px[s]);
   }
   shape /= static_cast<double>(query.profile_px.size());
-  return options.position_weight * (std::abs(centre_dx) + std::abs(dy)) +
-         options.width_weight * std::abs(width_diff) + options.shape_weight * shape;
+  return options.position_weight * (std::abs(centre_dx) + std::abs(dy)) + options.width_weight * std::abs(width_diff) +
+         options.shape_weight * shape;
 }
 
-Assignment PairPersons(const std::vector<PersonContour>& query,
-                       const std::vector<PersonContour>& reference,
+Assignment PairPersons(const std::vector<PersonContour>& query, const std::vector<PersonContour>& reference,
                        const TrackAwareOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
   std::vector<std::vector<double>> cost(query.size(), std::vector<double>(reference.size()));
@@ -154,13 +146,11 @@ std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<PersonCo
     const PersonContour& r = reference_persons[static_cast<size_t>(b)];
     const size_t count = std::min(q.indices.size(), r.indices.size());
     for (size_t i = 0; i < count; ++i) {
-      const double fraction =
-          count == 1 ? 0.5 : static_cast<double>(i) / static_cast<double>(count - 1);
+      const double fraction = count == 1 ? 0.5 : static_cast<double>(i) / static_cast<double>(count - 1);
       const size_t qi = NearestArcPosition(q.arc_length_px, fraction * q.arc_length_px.back());
       const size_t ri = NearestArcPosition(r.arc_length_px, fraction * r.arc_length_px.back());
       const Correspondence match{q.indices[qi], r.indices[ri]};
-      if (matches.empty() || matches.back().query != match.query ||
-          matches.back().reference != match.reference) {
+      if (matches.empty() || matches.back().query != match.query || matches.back().reference != match.reference) {
         matches.push_back(match);
       }
     }
@@ -181,17 +171,16 @@ uint64_t TrackAwarePairSeed(uint64_t seed, int query_id, int reference_id) {
                      static_cast<uint64_t>(reference_id));
 }
 
-int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
-                        const std::vector<HoiFeature>& reference,
-                        const TrackAwareOptions& options, const RansacOptions& ransac_options,
-                        uint64_t seed, int query_id, int reference_id) {
+int ScoreTrackAwarePair(const std::vector<HoiFeature>& query, const std::vector<HoiFeature>& reference,
+                        const TrackAwareOptions& options, const RansacOptions& ransac_options, uint64_t seed,
+                        int query_id, int reference_id) {
   return ScoreTrackAwarePair(PrepareTrackAwareFrame(query, options), PrepareTrackAwareFrame(reference, options),
                              options, ransac_options, seed, query_id, reference_id);
 }
 
 int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
-                        const TrackAwareOptions& options, const RansacOptions& ransac_options,
-                        uint64_t seed, int query_id, int reference_id) {
+                        const TrackAwareOptions& options, const RansacOptions& ransac_options, uint64_t seed,
+                        int query_id, int reference_id) {
   // CountRansacInliers checks the options (for pairs without matches too) and gives 0 below 4.
   const std::vector<Correspondence> matches = TrackAwareCorrespondences(query.persons, reference.persons, options);
   return CountRansacInliers(query.points, reference.points, matches, ransac_options,
@@ -199,8 +188,8 @@ int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& ref
 }
 
 PairMatches MatchTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
-                                const TrackAwareOptions& options, const RansacOptions& ransac_options,
-                                uint64_t seed, int query_id, int reference_id) {
+                                const TrackAwareOptions& options, const RansacOptions& ransac_options, uint64_t seed,
+                                int query_id, int reference_id) {
   PairMatches out;
   out.matches = TrackAwareCorrespondences(query.persons, reference.persons, options);
   // EstimateHomographyRansac checks the options and gives 0 inliers below 4 matches, as the scorer.

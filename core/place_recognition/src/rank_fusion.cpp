@@ -8,8 +8,7 @@
 
 namespace hoilcd {
 
-std::vector<double> ReciprocalRankFusion(const std::vector<std::vector<int>>& rankings,
-                                         int num_database, double k) {
+std::vector<double> ReciprocalRankFusion(const std::vector<std::vector<int>>& rankings, int num_database, double k) {
   HOILCD_CHECK_MSG(num_database >= 0, "num_database must be >= 0, got " << num_database);
   HOILCD_CHECK_MSG(std::isfinite(k) && k > -1.0, "RRF constant k must be > -1, got " << k);
   std::vector<double> scores(num_database, 0.0);
@@ -19,8 +18,7 @@ std::vector<double> ReciprocalRankFusion(const std::vector<std::vector<int>>& ra
     for (size_t position = 0; position < ranking.size(); ++position) {
       const int item = ranking[position];
       HOILCD_CHECK_MSG(item >= 0 && item < num_database,
-                       "ranking " << list << " holds index " << item << " outside [0, "
-                                  << num_database << ")");
+                       "ranking " << list << " holds index " << item << " outside [0, " << num_database << ")");
       HOILCD_CHECK_MSG(seen_in[item] != static_cast<int>(list),
                        "ranking " << list << " lists index " << item << " twice");
       seen_in[item] = static_cast<int>(list);
@@ -36,8 +34,7 @@ std::vector<int> RankByScore(const std::vector<double>& scores) {
   }
   std::vector<int> order(scores.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return scores[a] > scores[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return scores[a] > scores[b]; });
   return order;
 }
 
@@ -54,8 +51,7 @@ std::vector<double> FractionalRanks(const std::vector<double>& scores) {
   return ranks;
 }
 
-std::vector<double> ReciprocalRankFusionOfScores(const std::vector<std::vector<double>>& scores,
-                                                 double k) {
+std::vector<double> ReciprocalRankFusionOfScores(const std::vector<std::vector<double>>& scores, double k) {
   HOILCD_CHECK_MSG(std::isfinite(k) && k > -1.0, "RRF constant k must be > -1, got " << k);
   if (scores.empty()) return {};
   std::vector<double> fused(scores.front().size(), 0.0);

@@ -24,9 +24,8 @@ void RetrievalIndex::Add(const std::vector<Point2>& points) { AddAll({points}, 1
 void RetrievalIndex::AddAll(const std::vector<std::vector<Point2>>& frames, int threads) {
   const size_t first = grids_.size();
   grids_.resize(first + frames.size());
-  ParallelFor(static_cast<int64_t>(frames.size()), threads, [&](int64_t i) {
-    grids_[first + i] = PointGrid(frames[i].data(), static_cast<int>(frames[i].size()));
-  });
+  ParallelFor(static_cast<int64_t>(frames.size()), threads,
+              [&](int64_t i) { grids_[first + i] = PointGrid(frames[i].data(), static_cast<int>(frames[i].size())); });
   for (const std::vector<Point2>& points : frames) {
     points_.insert(points_.end(), points.begin(), points.end());
     offsets_.push_back(static_cast<int64_t>(points_.size()));
@@ -43,8 +42,8 @@ const Point2* RetrievalIndex::points(int frame, int* count) const {
 std::vector<std::vector<float>> RetrievalIndex::ScoreAll(const std::vector<int>& queries,
                                                          const std::vector<int>& database,
                                                          const MatchOptions& match_options,
-                                                         const RansacOptions& ransac_options,
-                                                         uint64_t seed, int threads) const {
+                                                         const RansacOptions& ransac_options, uint64_t seed,
+                                                         int threads) const {
   const std::string match_problem = match_options.Check();
   HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
   const std::string ransac_problem = ransac_options.Check();
@@ -61,26 +60,24 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreAll(const std::vector<int>&
   const int64_t num_queries = static_cast<int64_t>(queries.size());
   const int64_t query_tiles = (num_queries + kTileQueries - 1) / kTileQueries;
   const int64_t reference_tiles = (num_database + kTileReferences - 1) / kTileReferences;
-  ParallelForChunks(query_tiles * reference_tiles, 1, num_threads,
-                    [&](int64_t begin, int64_t end, int worker) {
-                      PairScorer& scorer = scorers[worker];
-                      for (int64_t tile = begin; tile < end; ++tile) {
-                        const int64_t q0 = (tile / reference_tiles) * kTileQueries;
-                        const int64_t d0 = (tile % reference_tiles) * kTileReferences;
-                        const int64_t q1 = std::min(num_queries, q0 + kTileQueries);
-                        const int64_t d1 = std::min(num_database, d0 + kTileReferences);
-                        for (int64_t di = d0; di < d1; ++di) {
-                          const int r = database[di];
-                          for (int64_t qi = q0; qi < q1; ++qi) {
-                            const int q = queries[qi];
-                            scores[qi][di] = static_cast<float>(scorer.Score(
-                                points_.data() + offsets_[q], grids_[q],
-                                points_.data() + offsets_[r], grids_[r], match_options,
-                                ransac_options, PairSeed(seed, q, r)));
-                          }
-                        }
-                      }
-                    });
+  ParallelForChunks(query_tiles * reference_tiles, 1, num_threads, [&](int64_t begin, int64_t end, int worker) {
+    PairScorer& scorer = scorers[worker];
+    for (int64_t tile = begin; tile < end; ++tile) {
+      const int64_t q0 = (tile / reference_tiles) * kTileQueries;
+      const int64_t d0 = (tile % reference_tiles) * kTileReferences;
+      const int64_t q1 = std::min(num_queries, q0 + kTileQueries);
+      const int64_t d1 = std::min(num_database, d0 + kTileReferences);
+      for (int64_t di = d0; di < d1; ++di) {
+        const int r = database[di];
+        for (int64_t qi = q0; qi < q1; ++qi) {
+          const int q = queries[qi];
+          scores[qi][di] =
+              static_cast<float>(scorer.Score(points_.data() + offsets_[q], grids_[q], points_.data() + offsets_[r],
+                                              grids_[r], match_options, ransac_options, PairSeed(seed, q, r)));
+        }
+      }
+    }
+  });
   return scores;
 }
 
@@ -99,9 +96,9 @@ std::vector<std::vector<float>> RetrievalIndex::ScoreDatabases(const std::vector
 }
 
 std::vector<std::vector<std::vector<float>>> RetrievalIndex::ScoreDatabases(
-    const std::vector<int>& queries, const std::vector<std::vector<int>>& databases,
-    const MatchOptions& match_options, const std::vector<RansacOptions>& variants, uint64_t seed, int threads,
-    std::vector<std::vector<int64_t>>* time_ns, ProgressReporter* progress) const {
+    const std::vector<int>& queries, const std::vector<std::vector<int>>& databases, const MatchOptions& match_options,
+    const std::vector<RansacOptions>& variants, uint64_t seed, int threads, std::vector<std::vector<int64_t>>* time_ns,
+    ProgressReporter* progress) const {
   const std::string match_problem = match_options.Check();
   HOILCD_CHECK_MSG(match_problem.empty(), match_problem);
   HOILCD_CHECK_MSG(!variants.empty(), "no RANSAC variant to score under");
@@ -109,8 +106,8 @@ std::vector<std::vector<std::vector<float>>> RetrievalIndex::ScoreDatabases(
     const std::string ransac_problem = ransac.Check();
     HOILCD_CHECK_MSG(ransac_problem.empty(), ransac_problem);
   }
-  HOILCD_CHECK_MSG(databases.size() == queries.size(),
-                   databases.size() << " databases for " << queries.size() << " queries");
+  HOILCD_CHECK_MSG(databases.size() == queries.size(), databases.size()
+                                                           << " databases for " << queries.size() << " queries");
   for (size_t i = 0; i < queries.size(); ++i) {
     HOILCD_CHECK_MSG(queries[i] >= 0 && queries[i] < size(), "frame " << queries[i] << " not in [0, " << size() << ")");
     for (size_t j = 0; j < databases[i].size(); ++j) {

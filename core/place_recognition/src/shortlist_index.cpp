@@ -1,12 +1,12 @@
 #include "hoilcd/core/place_recognition/shortlist_index.h"
 
-#include <faiss/IndexFlat.h>
-#include <faiss/IndexHNSW.h>
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+
+#include <faiss/IndexFlat.h>
+#include <faiss/IndexHNSW.h>
+#include <omp.h>
 
 #include "hoilcd/core/util/error.h"
 
@@ -40,8 +40,7 @@ const OptionTable<ShortlistOptions>& ShortlistOptions::Table() {
                "frames the global-descriptor shortlist hands to RANSAC; 0 = every frame (no shortlist)")
           .Add("index", &O::index, "hnsw", {"hnsw", "flat"},
                "the shortlist's FAISS index: hnsw (approximate nearest neighbours) or flat (exact)")
-          .Add("hnsw_neighbours", &O::hnsw_neighbours, 32, "", R::Closed(4, 256),
-               "HNSW links per frame (M)")
+          .Add("hnsw_neighbours", &O::hnsw_neighbours, 32, "", R::Closed(4, 256), "HNSW links per frame (M)")
           .Add("hnsw_build_depth", &O::hnsw_build_depth, 64, "", R::Closed(4, 4096),
                "HNSW candidates kept while a frame is linked in (efConstruction)")
           .Add("hnsw_search_depth", &O::hnsw_search_depth, 128, "", R::Closed(1, 100000),
@@ -58,8 +57,7 @@ ShortlistIndex::ShortlistIndex(int dimension, const ShortlistOptions& options)
   if (options.index == "flat") {
     index_ = std::make_unique<faiss::IndexFlatIP>(dimension);
   } else {
-    auto hnsw = std::make_unique<faiss::IndexHNSWFlat>(dimension, options.hnsw_neighbours,
-                                                       faiss::METRIC_INNER_PRODUCT);
+    auto hnsw = std::make_unique<faiss::IndexHNSWFlat>(dimension, options.hnsw_neighbours, faiss::METRIC_INNER_PRODUCT);
     hnsw->hnsw.efConstruction = options.hnsw_build_depth;
     hnsw->hnsw.efSearch = options.hnsw_search_depth;
     index_ = std::move(hnsw);
@@ -103,9 +101,8 @@ std::vector<int> ShortlistIndex::Search(const std::vector<float>& descriptor, in
   for (int i = 0; i < want; ++i) {
     if (labels[i] >= 0 && labels[i] < n) found.emplace_back(similarity[i], ids_[labels[i]]);
   }
-  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second < b.second;
-  });
+  std::sort(found.begin(), found.end(),
+            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   std::vector<int> out;
   out.reserve(found.size());
   for (const auto& f : found) out.push_back(f.second);

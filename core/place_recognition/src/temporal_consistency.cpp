@@ -15,8 +15,8 @@ std::vector<int> TopColumns(const std::vector<float>& row, int k) {
   std::vector<int> columns(row.size());
   std::iota(columns.begin(), columns.end(), 0);
   const size_t keep = std::min(columns.size(), static_cast<size_t>(k));
-  std::partial_sort(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(keep),
-                    columns.end(), [&](int a, int b) {
+  std::partial_sort(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(keep), columns.end(),
+                    [&](int a, int b) {
                       const float sa = row[static_cast<size_t>(a)];
                       const float sb = row[static_cast<size_t>(b)];
                       return sa > sb || (sa == sb && a < b);
@@ -26,8 +26,7 @@ std::vector<int> TopColumns(const std::vector<float>& row, int k) {
 }
 
 bool StrictlyAscending(const std::vector<int>& frames) {
-  return std::adjacent_find(frames.begin(), frames.end(),
-                            [](int a, int b) { return a >= b; }) == frames.end();
+  return std::adjacent_find(frames.begin(), frames.end(), [](int a, int b) { return a >= b; }) == frames.end();
 }
 
 }  // namespace
@@ -52,14 +51,14 @@ const OptionTable<TemporalConsistencyOptions>& TemporalConsistencyOptions::Table
 
 std::string TemporalConsistencyOptions::Check() const { return Table().FirstProblem(*this); }
 
-std::vector<std::vector<float>> TemporalConsistencyScores(
-    const std::vector<int>& query_frames, const std::vector<int>& database_frames,
-    const std::vector<std::vector<float>>& scores, const TemporalConsistencyOptions& options) {
+std::vector<std::vector<float>> TemporalConsistencyScores(const std::vector<int>& query_frames,
+                                                          const std::vector<int>& database_frames,
+                                                          const std::vector<std::vector<float>>& scores,
+                                                          const TemporalConsistencyOptions& options) {
   HOILCD_CHECK_MSG(options.Check().empty(), options.Check());
   HOILCD_CHECK_MSG(scores.size() == query_frames.size(), "one score row per query");
   HOILCD_CHECK_MSG(StrictlyAscending(query_frames), "query frames must be strictly ascending");
-  HOILCD_CHECK_MSG(StrictlyAscending(database_frames),
-                   "database frames must be strictly ascending");
+  HOILCD_CHECK_MSG(StrictlyAscending(database_frames), "database frames must be strictly ascending");
   float min_score = 0.0f, max_score = 0.0f;
   bool any = false;
   for (const auto& row : scores) {

@@ -67,8 +67,7 @@ std::vector<float> ThumbnailDescriptor(const cv::Mat& thermal_u8, const Thumbnai
   cv::Mat image_f32;
   thermal_u8.convertTo(image_f32, CV_32F);
   cv::Mat thumbnail;
-  cv::resize(image_f32, thumbnail, cv::Size(options.width_px, options.height_px), 0, 0,
-             cv::INTER_AREA);
+  cv::resize(image_f32, thumbnail, cv::Size(options.width_px, options.height_px), 0, 0, cv::INTER_AREA);
   for (int y = 0; y < thumbnail.rows; y += options.patch_px) {
     for (int x = 0; x < thumbnail.cols; x += options.patch_px) {
       const cv::Rect patch(x, y, std::min(options.patch_px, thumbnail.cols - x),
@@ -95,8 +94,7 @@ std::vector<float> ThumbnailDescriptor(const cv::Mat& thermal_u8, const Thumbnai
 }
 
 float ThumbnailSimilarity(const std::vector<float>& a, const std::vector<float>& b) {
-  HOILCD_CHECK_MSG(a.size() == b.size(), "descriptor lengths differ: " << a.size() << " vs "
-                                                                        << b.size());
+  HOILCD_CHECK_MSG(a.size() == b.size(), "descriptor lengths differ: " << a.size() << " vs " << b.size());
   // Eight independent partial sums in a fixed order: vectorises without -ffast-math and, unlike
   // a BLAS GEMM (which blocks by matrix size), gives the same bits for a pair in any call.
   constexpr size_t kLanes = 8;
@@ -133,13 +131,13 @@ const std::vector<float>& ThumbnailIndex::descriptor(int frame) const {
 }
 
 std::vector<std::vector<float>> ThumbnailIndex::ScoreAll(const std::vector<int>& queries,
-                                                         const std::vector<int>& database,
-                                                         int threads) const {
+                                                         const std::vector<int>& database, int threads) const {
   for (int frame : queries) descriptor(frame);
   for (int frame : database) descriptor(frame);
   CheckAllocation(static_cast<double>(queries.size()) * (database.size() * sizeof(float) + sizeof(std::vector<float>)),
-                  "", "the " + std::to_string(queries.size()) + " x " + std::to_string(database.size()) +
-                          " thumbnail similarity matrix");
+                  "",
+                  "the " + std::to_string(queries.size()) + " x " + std::to_string(database.size()) +
+                      " thumbnail similarity matrix");
   std::vector<std::vector<float>> scores(queries.size(), std::vector<float>(database.size()));
   ParallelForChunks(static_cast<int64_t>(queries.size()), 8, ResolveThreadCount(threads),
                     [&](int64_t begin, int64_t end, int) {
@@ -147,8 +145,7 @@ std::vector<std::vector<float>> ThumbnailIndex::ScoreAll(const std::vector<int>&
                         const auto& query = descriptors_[static_cast<size_t>(queries[i])];
                         auto& row = scores[static_cast<size_t>(i)];
                         for (size_t j = 0; j < database.size(); ++j) {
-                          row[j] = ThumbnailSimilarity(
-                              query, descriptors_[static_cast<size_t>(database[j])]);
+                          row[j] = ThumbnailSimilarity(query, descriptors_[static_cast<size_t>(database[j])]);
                         }
                       }
                     });
@@ -199,14 +196,12 @@ std::vector<std::vector<float>> SequenceScores(const std::vector<std::vector<flo
     const double v =
         options.velocity_steps == 1
             ? 0.5 * (options.min_velocity + options.max_velocity)
-            : options.min_velocity + (options.max_velocity - options.min_velocity) * s /
-                                         (options.velocity_steps - 1);
+            : options.min_velocity + (options.max_velocity - options.min_velocity) * s / (options.velocity_steps - 1);
     for (int k = 0; k < length; ++k) {
       column_offsets[static_cast<size_t>(s)].push_back(static_cast<int>(std::lround(v * k)));
     }
   }
-  std::vector<std::vector<float>> out(static_cast<size_t>(rows),
-                                      std::vector<float>(static_cast<size_t>(cols)));
+  std::vector<std::vector<float>> out(static_cast<size_t>(rows), std::vector<float>(static_cast<size_t>(cols)));
   ParallelForChunks(rows, 16, ResolveThreadCount(threads), [&](int64_t begin, int64_t end, int) {
     for (int64_t i = begin; i < end; ++i) {
       const int steps_in_rows = static_cast<int>(std::min<int64_t>(length, i + 1));

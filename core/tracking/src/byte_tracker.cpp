@@ -50,8 +50,7 @@ const OptionTable<ByteTrackOptions>& ByteTrackOptions::Table() {
 
 std::string ByteTrackOptions::Check() const { return Table().FirstProblem(*this); }
 
-std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
-                                             const std::vector<cv::Rect2f>& b,
+std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a, const std::vector<cv::Rect2f>& b,
                                              IouConvention convention) {
   std::vector<std::vector<double>> cost(a.size(), std::vector<double>(b.size(), 1.0));
   if (convention == IouConvention::kPlusOnePixel) {
@@ -61,13 +60,12 @@ std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
     };
     for (size_t i = 0; i < a.size(); ++i) {
       for (size_t j = 0; j < b.size(); ++j) {
-        const double iw = std::min(static_cast<double>(a[i].x) + a[i].width,
-                                   static_cast<double>(b[j].x) + b[j].width) -
+        const double iw = std::min(static_cast<double>(a[i].x) + a[i].width, static_cast<double>(b[j].x) + b[j].width) -
                           std::max<double>(a[i].x, b[j].x) + 1;
         if (!(iw > 0)) continue;
-        const double ih = std::min(static_cast<double>(a[i].y) + a[i].height,
-                                   static_cast<double>(b[j].y) + b[j].height) -
-                          std::max<double>(a[i].y, b[j].y) + 1;
+        const double ih =
+            std::min(static_cast<double>(a[i].y) + a[i].height, static_cast<double>(b[j].y) + b[j].height) -
+            std::max<double>(a[i].y, b[j].y) + 1;
         if (!(ih > 0)) continue;
         cost[i][j] = 1.0 - iw * ih / (area(a[i]) + area(b[j]) - iw * ih);
       }
@@ -128,8 +126,7 @@ void FuseScore(std::vector<std::vector<double>>& cost, const std::vector<Detecti
 
 // LinearAssignment, also when there are no tracks (a 0-row matrix cannot say how many
 // detections it has).
-Assignment Associate(const std::vector<std::vector<double>>& cost, size_t num_detections,
-                     double cost_limit) {
+Assignment Associate(const std::vector<std::vector<double>>& cost, size_t num_detections, double cost_limit) {
   if (!cost.empty()) return LinearAssignment(cost, cost_limit);
   Assignment none;
   for (size_t j = 0; j < num_detections; ++j) none.unmatched_cols.push_back(static_cast<int>(j));
@@ -180,8 +177,8 @@ std::vector<Track> ByteTracker::Update(const std::vector<Detection>& detections)
   for (int i : first.unmatched_rows) {
     if (pool[i]->state == TrackState::kTracked) remaining.push_back(pool[i]);
   }
-  const Assignment second = Associate(IouDistance(Boxes(remaining), Boxes(low), iou), low.size(),
-                                      options_.second_match_thresh);
+  const Assignment second =
+      Associate(IouDistance(Boxes(remaining), Boxes(low), iou), low.size(), options_.second_match_thresh);
   for (const auto& [i, j] : second.matches) Refresh(remaining[i].get(), low[j]);
   std::vector<TrackPtr> newly_lost;
   for (int i : second.unmatched_rows) {

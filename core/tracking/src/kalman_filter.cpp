@@ -8,8 +8,7 @@ namespace hoilcd {
 
 XyahVector BoxToXyah(const cv::Rect2f& box) {
   HOILCD_CHECK_MSG(box.height > 0, "box height " << box.height);
-  return {box.x + box.width / 2.0, box.y + box.height / 2.0,
-          static_cast<double>(box.width) / box.height, box.height};
+  return {box.x + box.width / 2.0, box.y + box.height / 2.0, static_cast<double>(box.width) / box.height, box.height};
 }
 
 cv::Rect2f XyahToBox(const XyahVector& xyah) {
@@ -26,9 +25,8 @@ KalmanFilterXYAH::KalmanFilterXYAH(double std_weight_position, double std_weight
 KalmanState KalmanFilterXYAH::Initiate(const XyahVector& measurement) const {
   const double h = measurement(3);
   Eigen::Matrix<double, 8, 1> std_dev;
-  std_dev << 2 * std_weight_position_ * h, 2 * std_weight_position_ * h, 1e-2,
-      2 * std_weight_position_ * h, 10 * std_weight_velocity_ * h, 10 * std_weight_velocity_ * h,
-      1e-5, 10 * std_weight_velocity_ * h;
+  std_dev << 2 * std_weight_position_ * h, 2 * std_weight_position_ * h, 1e-2, 2 * std_weight_position_ * h,
+      10 * std_weight_velocity_ * h, 10 * std_weight_velocity_ * h, 1e-5, 10 * std_weight_velocity_ * h;
   KalmanState state;
   state.mean << measurement, Eigen::Vector4d::Zero();
   state.covariance = std_dev.array().square().matrix().asDiagonal();
@@ -51,8 +49,7 @@ KalmanState KalmanFilterXYAH::Predict(const KalmanState& state) const {
 
 KalmanProjection KalmanFilterXYAH::Project(const KalmanState& state) const {
   const double h = state.mean(3);
-  const Eigen::Vector4d std_dev(std_weight_position_ * h, std_weight_position_ * h, 1e-1,
-                                std_weight_position_ * h);
+  const Eigen::Vector4d std_dev(std_weight_position_ * h, std_weight_position_ * h, 1e-1, std_weight_position_ * h);
   KalmanProjection projection;
   projection.mean = state.mean.head<4>();
   projection.covariance = state.covariance.topLeftCorner<4, 4>();
@@ -60,8 +57,7 @@ KalmanProjection KalmanFilterXYAH::Project(const KalmanState& state) const {
   return projection;
 }
 
-KalmanState KalmanFilterXYAH::Update(const KalmanState& state,
-                                     const XyahVector& measurement) const {
+KalmanState KalmanFilterXYAH::Update(const KalmanState& state, const XyahVector& measurement) const {
   const KalmanProjection projection = Project(state);
   // Gain K = P H^T S^-1 with H = [I 0]; solved through the Cholesky factor of S.
   const Eigen::Matrix<double, 8, 4> p_ht = state.covariance.leftCols<4>();

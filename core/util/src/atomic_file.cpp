@@ -1,11 +1,11 @@
 #include "hoilcd/core/util/atomic_file.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "hoilcd/core/util/error.h"
 

@@ -1,11 +1,11 @@
 #include "hoilcd/core/util/cpus.h"
 
-#include <sched.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <thread>
+
+#include <sched.h>
 
 #include "hoilcd/core/util/cgroup.h"
 

@@ -1,10 +1,5 @@
 #include "hoilcd/core/util/file_io.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-#include <xxhash.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -13,8 +8,13 @@
 #include <memory>
 #include <new>
 #include <set>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
+
+#include <fcntl.h>
+#include <opencv2/imgcodecs.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <xxhash.h>
 
 #include "hoilcd/core/util/atomic_file.h"
 #include "hoilcd/core/util/error.h"
@@ -188,9 +188,9 @@ void SyncFiles(const std::vector<std::string>& paths) {
 }
 
 std::string EncodePng(const cv::Mat& image) {
-  HOILCD_CHECK_MSG((image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U)) ||
-                       image.type() == CV_8UC3,
-                   "EncodePng takes a 1-channel CV_8U or CV_16U image or a CV_8UC3 one");
+  HOILCD_CHECK_MSG(
+      (image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U)) || image.type() == CV_8UC3,
+      "EncodePng takes a 1-channel CV_8U or CV_16U image or a CV_8UC3 one");
   if (image.channels() == 1) return EncodeGreyPng(image);  // the frames: libdeflate (core/util/png.h)
   std::vector<uchar> buffer;
   HOILCD_CHECK(cv::imencode(".png", image, buffer));  // colour figures: OpenCV's default parameters

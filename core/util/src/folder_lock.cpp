@@ -1,12 +1,5 @@
 #include "hoilcd/core/util/folder_lock.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <chrono>
 #include <climits>
@@ -18,6 +11,13 @@
 #include <mutex>
 #include <thread>
 #include <utility>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/progress.h"
@@ -134,7 +134,8 @@ FolderLock::FolderLock(const std::string& dir, IfBusy if_busy) : dir_(dir) {
     }
     // The file locked must still be the folder's lock file: a holder deletes it before letting go,
     // so a waiter may hold a file no longer in the folder, and must lock the new one.
-    struct stat locked {}, named {};
+    struct stat locked {
+    }, named{};
     if (::fstat(fd_, &locked) == 0 && ::stat(path.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
         locked.st_ino == named.st_ino) {
       break;

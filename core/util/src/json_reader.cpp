@@ -12,8 +12,8 @@ namespace {
 // One open object or array while parsing: where its current element is, and an object's keys.
 struct OpenValue {
   bool array = false;
-  size_t index = 0;       // an array's current element
-  std::string key;        // an object's current key
+  size_t index = 0;  // an array's current element
+  std::string key;   // an object's current key
   std::set<std::string> keys;
 };
 
@@ -44,7 +44,9 @@ class CheckingBuilder {
   bool boolean(bool value) { return Value(dom_.boolean(value)); }
   bool number_integer(json::number_integer_t value) { return Value(dom_.number_integer(value)); }
   bool number_unsigned(json::number_unsigned_t value) { return Value(dom_.number_unsigned(value)); }
-  bool number_float(json::number_float_t value, const json::string_t& text) { return Value(dom_.number_float(value, text)); }
+  bool number_float(json::number_float_t value, const json::string_t& text) {
+    return Value(dom_.number_float(value, text));
+  }
   bool string(json::string_t& value) { return Value(dom_.string(value)); }
   bool binary(json::binary_t& value) { return Value(dom_.binary(value)); }
   bool start_object(std::size_t size) { return Open(false) && dom_.start_object(size); }

@@ -1,11 +1,11 @@
 #include "hoilcd/core/util/memory.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
 #include <sstream>
+
+#include <sys/resource.h>
 
 #include "hoilcd/core/util/cgroup.h"
 #include "hoilcd/core/util/error.h"

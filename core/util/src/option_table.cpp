@@ -5,8 +5,9 @@
 #include <cstdlib>
 #include <iomanip>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/json_reader.h"
 
@@ -68,9 +69,12 @@ constexpr double kMaxExactInteger = 9007199254740992.0;  // 2^53: every whole nu
 double LoadNumber(const OptionTableBase::Field& f, const void* options) {
   const void* p = f.at(Mutable(options));
   switch (f.storage) {
-    case OptionTableBase::Storage::kDouble: return *static_cast<const double*>(p);
-    case OptionTableBase::Storage::kInt: return *static_cast<const int*>(p);
-    case OptionTableBase::Storage::kUint64: return static_cast<double>(*static_cast<const uint64_t*>(p));
+    case OptionTableBase::Storage::kDouble:
+      return *static_cast<const double*>(p);
+    case OptionTableBase::Storage::kInt:
+      return *static_cast<const int*>(p);
+    case OptionTableBase::Storage::kUint64:
+      return static_cast<double>(*static_cast<const uint64_t*>(p));
   }
   return 0;
 }
@@ -78,9 +82,15 @@ double LoadNumber(const OptionTableBase::Field& f, const void* options) {
 void StoreNumber(const OptionTableBase::Field& f, void* options, double value) {
   void* p = f.at(options);
   switch (f.storage) {
-    case OptionTableBase::Storage::kDouble: *static_cast<double*>(p) = value; break;
-    case OptionTableBase::Storage::kInt: *static_cast<int*>(p) = static_cast<int>(value); break;
-    case OptionTableBase::Storage::kUint64: *static_cast<uint64_t*>(p) = static_cast<uint64_t>(value); break;
+    case OptionTableBase::Storage::kDouble:
+      *static_cast<double*>(p) = value;
+      break;
+    case OptionTableBase::Storage::kInt:
+      *static_cast<int*>(p) = static_cast<int>(value);
+      break;
+    case OptionTableBase::Storage::kUint64:
+      *static_cast<uint64_t*>(p) = static_cast<uint64_t>(value);
+      break;
   }
 }
 
@@ -97,8 +107,8 @@ bool OptionRange::Contains(double value) const {
 std::string OptionRange::ToString(const std::string& unit) const {
   std::string text;
   if (min && max) {
-    text = std::string("in ") + (min->exclusive ? "(" : "[") + Number(min->value) + ", " +
-           Number(max->value) + (max->exclusive ? ")" : "]");
+    text = std::string("in ") + (min->exclusive ? "(" : "[") + Number(min->value) + ", " + Number(max->value) +
+           (max->exclusive ? ")" : "]");
   } else if (min) {
     text = (min->exclusive ? "above " : "at least ") + Number(min->value);
   } else if (max) {
@@ -114,8 +124,8 @@ OptionTableBase::~OptionTableBase() = default;
 OptionTableBase::OptionTableBase(const OptionTableBase& other) = default;
 OptionTableBase& OptionTableBase::operator=(const OptionTableBase& other) = default;
 
-void OptionTableBase::AddNumber(const char* name, Locate at, Storage storage, double default_value,
-                                const char* unit, OptionRange range, const char* description) {
+void OptionTableBase::AddNumber(const char* name, Locate at, Storage storage, double default_value, const char* unit,
+                                OptionRange range, const char* description) {
   Field f;
   f.kind = storage == Storage::kDouble ? Field::Kind::kNumber : Field::Kind::kInteger;
   f.storage = storage;
@@ -140,9 +150,8 @@ void OptionTableBase::AddBool(const char* name, Locate at, bool default_value, c
 }
 
 void OptionTableBase::AddString(const char* name, std::function<std::string(const void*)> get,
-                                std::function<void(void*, const std::string&)> set,
-                                std::string default_value, std::vector<std::string> choices,
-                                const char* description) {
+                                std::function<void(void*, const std::string&)> set, std::string default_value,
+                                std::vector<std::string> choices, const char* description) {
   Field f;
   f.kind = Field::Kind::kString;
   f.name = name;
@@ -227,9 +236,9 @@ void OptionTableBase::RenameField(const std::string& from, const std::string& to
 
 void OptionTableBase::ChangeDefault(const std::string& name, double default_value) {
   const auto field = std::find_if(fields_.begin(), fields_.end(), [&](const Field& f) { return f.name == name; });
-  HOILCD_CHECK_MSG(field != fields_.end() &&
-                       (field->kind == Field::Kind::kNumber || field->kind == Field::Kind::kInteger),
-                   "no number field '" << name << "'");
+  HOILCD_CHECK_MSG(
+      field != fields_.end() && (field->kind == Field::Kind::kNumber || field->kind == Field::Kind::kInteger),
+      "no number field '" << name << "'");
   HOILCD_CHECK_MSG(field->range.Contains(default_value), name << ": default " << default_value << " outside its range");
   HOILCD_CHECK_MSG(field->kind == Field::Kind::kNumber || default_value == std::floor(default_value),
                    name << ": default " << default_value << " is not a whole number");
@@ -240,11 +249,20 @@ void OptionTableBase::FillDefaultsOf(void* options) const {
   for (const Field& f : fields_) {
     switch (f.kind) {
       case Field::Kind::kNumber:
-      case Field::Kind::kInteger: StoreNumber(f, options, f.default_number); break;
-      case Field::Kind::kBoolean: *static_cast<bool*>(f.at(options)) = f.default_bool; break;
-      case Field::Kind::kString: f.set_string(options, f.default_string); break;
-      case Field::Kind::kExternal: break;
-      case Field::Kind::kNested: f.nested->FillDefaultsOf(f.at(options)); break;
+      case Field::Kind::kInteger:
+        StoreNumber(f, options, f.default_number);
+        break;
+      case Field::Kind::kBoolean:
+        *static_cast<bool*>(f.at(options)) = f.default_bool;
+        break;
+      case Field::Kind::kString:
+        f.set_string(options, f.default_string);
+        break;
+      case Field::Kind::kExternal:
+        break;
+      case Field::Kind::kNested:
+        f.nested->FillDefaultsOf(f.at(options));
+        break;
     }
   }
 }
@@ -253,7 +271,9 @@ json OptionTableBase::ToJsonOf(const void* options) const {
   json out = json::object();
   for (const Field& f : fields_) {
     switch (f.kind) {
-      case Field::Kind::kNumber: out[f.name] = LoadNumber(f, options); break;
+      case Field::Kind::kNumber:
+        out[f.name] = LoadNumber(f, options);
+        break;
       case Field::Kind::kInteger:
         if (f.storage == Storage::kUint64) {
           out[f.name] = *static_cast<const uint64_t*>(f.at(Mutable(options)));
@@ -261,10 +281,17 @@ json OptionTableBase::ToJsonOf(const void* options) const {
           out[f.name] = *static_cast<const int*>(f.at(Mutable(options)));
         }
         break;
-      case Field::Kind::kBoolean: out[f.name] = *static_cast<const bool*>(f.at(Mutable(options))); break;
-      case Field::Kind::kString: out[f.name] = f.get_string(options); break;
-      case Field::Kind::kExternal: break;
-      case Field::Kind::kNested: out[f.name] = f.nested->ToJsonOf(f.at(Mutable(options))); break;
+      case Field::Kind::kBoolean:
+        out[f.name] = *static_cast<const bool*>(f.at(Mutable(options)));
+        break;
+      case Field::Kind::kString:
+        out[f.name] = f.get_string(options);
+        break;
+      case Field::Kind::kExternal:
+        break;
+      case Field::Kind::kNested:
+        out[f.name] = f.nested->ToJsonOf(f.at(Mutable(options)));
+        break;
     }
   }
   return out;
@@ -302,9 +329,10 @@ void OptionTableBase::ReadInto(const json& object, const std::string& where, voi
         const bool wide = f.storage == Storage::kUint64;
         const int64_t lowest = wide ? 0 : std::numeric_limits<int>::min();
         const int64_t highest = wide ? static_cast<int64_t>(kMaxExactInteger) : std::numeric_limits<int>::max();
-        const bool in_range = value.is_number_unsigned()
-                                  ? value.get<uint64_t>() <= static_cast<uint64_t>(highest)
-                                  : value.is_number_integer() && value.get<int64_t>() >= lowest && value.get<int64_t>() <= highest;
+        const bool in_range =
+            value.is_number_unsigned()
+                ? value.get<uint64_t>() <= static_cast<uint64_t>(highest)
+                : value.is_number_integer() && value.get<int64_t>() >= lowest && value.get<int64_t>() <= highest;
         if (in_range) {
           StoreNumber(f, options, value.get<double>());
         } else {
@@ -322,14 +350,18 @@ void OptionTableBase::ReadInto(const json& object, const std::string& where, voi
       case Field::Kind::kString:
         if (!value.is_string()) {
           problems->Add(at, "expected a string");
-        } else if (!f.choices.empty() && std::count(f.choices.begin(), f.choices.end(), value.get<std::string>()) == 0) {
+        } else if (!f.choices.empty() &&
+                   std::count(f.choices.begin(), f.choices.end(), value.get<std::string>()) == 0) {
           problems->Add(at, "expected one of: " + JoinChoices(f.choices));
         } else {
           f.set_string(options, value.get<std::string>());
         }
         break;
-      case Field::Kind::kExternal: break;
-      case Field::Kind::kNested: f.nested->ReadInto(value, at, f.at(options), problems); break;
+      case Field::Kind::kExternal:
+        break;
+      case Field::Kind::kNested:
+        f.nested->ReadInto(value, at, f.at(options), problems);
+        break;
     }
   }
 }
@@ -355,8 +387,11 @@ void OptionTableBase::CheckOf(const void* options, const std::string& where, Pro
         break;
       }
       case Field::Kind::kBoolean:
-      case Field::Kind::kExternal: break;
-      case Field::Kind::kNested: f.nested->CheckOf(f.at(Mutable(options)), Join(where, f.name), problems); break;
+      case Field::Kind::kExternal:
+        break;
+      case Field::Kind::kNested:
+        f.nested->CheckOf(f.at(Mutable(options)), Join(where, f.name), problems);
+        break;
     }
   }
   for (const Rule& r : rules_) {
@@ -386,13 +421,15 @@ void OptionTableBase::SetOf(const std::string& name_equals_value, void* options)
     }
     const Field& f = *field;
     if (f.kind == Field::Kind::kNested) {
-      if (slash == std::string::npos) throw InputError(name_equals_value, "a field of '" + key + "' (e.g. " + key + "/...)");
+      if (slash == std::string::npos)
+        throw InputError(name_equals_value, "a field of '" + key + "' (e.g. " + key + "/...)");
       table = f.nested.get();
       target = f.at(target);
       name = name.substr(slash + 1);
       continue;
     }
-    if (slash != std::string::npos) throw InputError(name_equals_value, "no field after '" + key + "' (it is a value, not a group)");
+    if (slash != std::string::npos)
+      throw InputError(name_equals_value, "no field after '" + key + "' (it is a value, not a group)");
     char* end = nullptr;
     switch (f.kind) {
       case Field::Kind::kNumber: {
@@ -423,7 +460,8 @@ void OptionTableBase::SetOf(const std::string& name_equals_value, void* options)
         f.set_string(target, text);
         return;
       case Field::Kind::kExternal:
-      case Field::Kind::kNested: return;  // excluded above
+      case Field::Kind::kNested:
+        return;  // excluded above
     }
   }
 }
@@ -465,7 +503,9 @@ std::vector<OptionInfo> OptionTableBase::List() const {
         info.choices = f.choices;
         break;
       case Field::Kind::kExternal:
-      case Field::Kind::kNested: info.kind = OptionInfo::Kind::kExternal; break;
+      case Field::Kind::kNested:
+        info.kind = OptionInfo::Kind::kExternal;
+        break;
     }
     out.push_back(std::move(info));
   }
@@ -507,8 +547,8 @@ std::string FormatOptionTableMarkdown(const std::vector<OptionInfo>& options) {
     const bool shown = o.kind != OptionInfo::Kind::kExternal && !o.default_json.empty();
     const std::string default_text = shown ? "`" + o.default_json + "`" : "";
     const std::string accepted = OptionRangeText(o);
-    out << "| `" << o.name << "` | " << cell(default_text) << " | " << cell(accepted.empty() ? "any text" : accepted) << " | "
-        << cell(o.description) << " |\n";
+    out << "| `" << o.name << "` | " << cell(default_text) << " | " << cell(accepted.empty() ? "any text" : accepted)
+        << " | " << cell(o.description) << " |\n";
   }
   return out.str();
 }

@@ -1,7 +1,5 @@
 #include "hoilcd/core/util/parallel.h"
 
-#include "hoilcd/core/util/cpus.h"
-
 #include <algorithm>
 #include <map>
 #include <memory>
@@ -14,6 +12,8 @@
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
+#include "hoilcd/core/util/cpus.h"
+
 namespace hoilcd {
 namespace {
 
@@ -22,8 +22,7 @@ namespace {
 tbb::task_arena& ArenaFor(int threads) {
   // TBB starts at most one worker per core unless allowed more; --threads above the core count
   // gets its threads, as it did before TBB.
-  static const tbb::global_control allow_threads(tbb::global_control::max_allowed_parallelism,
-                                                 kMaxThreads);
+  static const tbb::global_control allow_threads(tbb::global_control::max_allowed_parallelism, kMaxThreads);
   static std::mutex mutex;
   static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
   std::lock_guard<std::mutex> lock(mutex);
@@ -49,8 +48,7 @@ void ParallelForChunks(int64_t count, int64_t chunk_size, int num_threads,
   if (count <= 0) return;
   chunk_size = std::max<int64_t>(1, chunk_size);
   const int64_t num_chunks = count / chunk_size + (count % chunk_size != 0 ? 1 : 0);
-  const int threads =
-      static_cast<int>(std::min<int64_t>(ResolveThreadCount(num_threads), num_chunks));
+  const int threads = static_cast<int>(std::min<int64_t>(ResolveThreadCount(num_threads), num_chunks));
   const auto run_chunk = [&](int64_t chunk, int worker) {
     const int64_t begin = chunk * chunk_size;
     fn(begin, begin + std::min(chunk_size, count - begin), worker);

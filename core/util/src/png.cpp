@@ -1,12 +1,12 @@
 #include "hoilcd/core/util/png.h"
 
-#include <libdeflate.h>
-
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <vector>
+
+#include <libdeflate.h>
 
 #include "hoilcd/core/util/error.h"
 
@@ -40,8 +40,7 @@ struct DecompressorDeleter {
 
 // One of each per thread, kept between frames (allocating a compressor costs more than a frame).
 libdeflate_compressor* ThreadCompressor() {
-  thread_local std::unique_ptr<libdeflate_compressor, CompressorDeleter> c(
-      libdeflate_alloc_compressor(kDeflateLevel));
+  thread_local std::unique_ptr<libdeflate_compressor, CompressorDeleter> c(libdeflate_alloc_compressor(kDeflateLevel));
   HOILCD_CHECK_MSG(c != nullptr, "libdeflate_alloc_compressor failed");
   return c.get();
 }

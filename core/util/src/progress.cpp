@@ -1,11 +1,11 @@
 #include "hoilcd/core/util/progress.h"
 
-#include <sys/ioctl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <vector>
+
+#include <sys/ioctl.h>
+#include <unistd.h>
 
 namespace hoilcd {
 namespace {
@@ -82,8 +82,9 @@ std::string ProgressReporter::Status(int bar_width, bool final_line) const {
   const char* took = final_line ? "took" : "left";
   char text[256];
   if (bar_width == 0) {
-    std::snprintf(text, sizeof(text), "%s: %lld/%lld %s, %.1f %s/s, %s %s", title_.c_str(), static_cast<long long>(done),
-                  static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(), took, time.c_str());
+    std::snprintf(text, sizeof(text), "%s: %lld/%lld %s, %.1f %s/s, %s %s", title_.c_str(),
+                  static_cast<long long>(done), static_cast<long long>(total_), unit_.c_str(), rate, unit_.c_str(),
+                  took, time.c_str());
     return text;
   }
   const int filled = total_ > 0 ? static_cast<int>(bar_width * std::min(done, total_) / total_) : 0;

@@ -1,8 +1,9 @@
 // Vector draws of the keyed streams declared in random.h.
 #include "hoilcd/core/util/random.h"
 
-#include <Eigen/Core>
 #include <algorithm>
+
+#include <Eigen/Core>
 
 #include "hoilcd/core/util/error.h"
 

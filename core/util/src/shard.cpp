@@ -28,7 +28,8 @@ Shard ParseShard(const std::string& text) {
   Shard shard;
   shard.index = parse(text.substr(0, slash));
   shard.count = parse(text.substr(slash + 1));
-  if (const std::string problem = shard.Check(); !problem.empty()) throw InputError("--shard", problem + " (got '" + text + "')");
+  if (const std::string problem = shard.Check(); !problem.empty())
+    throw InputError("--shard", problem + " (got '" + text + "')");
   return shard;
 }
 

@@ -8,17 +8,16 @@
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string_view>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -32,7 +31,7 @@ namespace fs = std::filesystem;
 
 constexpr double kMinTemperatureC = -50;
 constexpr double kMaxTemperatureC = 200;
-constexpr int kMaxNodeDepth = 256;  // deeper than any real file; stops cyclic node graphs
+constexpr int kMaxNodeDepth = 256;                   // deeper than any real file; stops cyclic node graphs
 constexpr size_t kMaxBufferBytes = size_t{1} << 30;  // 1 GiB: far above any room asset
 
 // tinygltf's file callbacks, confined to the glTF file's own folder: a buffer uri may name only a
@@ -54,8 +53,7 @@ bool RefuseWrite(std::string* err, const std::string&, const std::vector<unsigne
   return false;
 }
 
-bool ReadBufferFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                    void* user_data) {
+bool ReadBufferFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user_data) {
   const fs::path& root = static_cast<const BufferFolder*>(user_data)->root;
   std::error_code error;
   const fs::path real = fs::weakly_canonical(path, error);
@@ -83,8 +81,10 @@ bool ReadBufferFile(std::vector<unsigned char>* out, std::string* err, const std
       const ssize_t n = ::read(fd, out->data() + done, out->size() - done);
       if (n < 0 && errno == EINTR) continue;
       ok = n > 0;
-      if (ok) done += static_cast<size_t>(n);
-      else *err = n == 0 ? "file shrank while reading" : std::string("read error: ") + std::strerror(errno);
+      if (ok)
+        done += static_cast<size_t>(n);
+      else
+        *err = n == 0 ? "file shrank while reading" : std::string("read error: ") + std::strerror(errno);
     }
   }
   ::close(fd);
@@ -118,8 +118,7 @@ class GltfReader {
       Fail("/scenes", "the file has no scene");
       return;
     }
-    const size_t scene_index =
-        model_.defaultScene >= 0 ? static_cast<size_t>(model_.defaultScene) : 0;
+    const size_t scene_index = model_.defaultScene >= 0 ? static_cast<size_t>(model_.defaultScene) : 0;
     if (scene_index >= model_.scenes.size()) {
       Fail("/scene", "names scene " + std::to_string(scene_index) + " which does not exist");
       return;
@@ -155,14 +154,11 @@ class GltfReader {
  private:
   static constexpr uint32_t kNoMaterial = UINT32_MAX;
 
-  void Fail(const std::string& pointer, const std::string& message) {
-    problems_.Add(path_ + ": " + pointer, message);
-  }
+  void Fail(const std::string& pointer, const std::string& message) { problems_.Add(path_ + ": " + pointer, message); }
 
   bool ValidIndex(int index, size_t size, const std::string& pointer) {
     if (index >= 0 && static_cast<size_t>(index) < size) return true;
-    Fail(pointer, "index " + std::to_string(index) + " is out of range (" + std::to_string(size) +
-                      " entries)");
+    Fail(pointer, "index " + std::to_string(index) + " is out of range (" + std::to_string(size) + " entries)");
     return false;
   }
 
@@ -183,10 +179,8 @@ class GltfReader {
           if (key == "temperature_c") {
             if (!value.IsNumber()) {
               Fail(where, "must be a number (°C)");
-            } else if (value.GetNumberAsDouble() < kMinTemperatureC ||
-                       value.GetNumberAsDouble() > kMaxTemperatureC) {
-              Fail(where, "temperature " + FormatNumber(value.GetNumberAsDouble()) +
-                              " °C is outside [-50, 200]");
+            } else if (value.GetNumberAsDouble() < kMinTemperatureC || value.GetNumberAsDouble() > kMaxTemperatureC) {
+              Fail(where, "temperature " + FormatNumber(value.GetNumberAsDouble()) + " °C is outside [-50, 200]");
             } else {
               material.temperature_c = value.GetNumberAsDouble();
             }
@@ -194,8 +188,7 @@ class GltfReader {
             if (!value.IsNumber()) {
               Fail(where, "must be a number in (0, 1]");
             } else if (!(value.GetNumberAsDouble() > 0 && value.GetNumberAsDouble() <= 1)) {
-              Fail(where,
-                   "emissivity " + FormatNumber(value.GetNumberAsDouble()) + " is outside (0, 1]");
+              Fail(where, "emissivity " + FormatNumber(value.GetNumberAsDouble()) + " is outside (0, 1]");
             } else {
               material.emissivity = value.GetNumberAsDouble();
             }
@@ -245,7 +238,7 @@ class GltfReader {
         if (!value.IsString() || value.Get<std::string>().empty()) {
           Fail(where, "must be a non-empty string");
         } else {
-          std::string& field = key == "class" ? asset.class_name
+          std::string& field = key == "class"     ? asset.class_name
                                : key == "posture" ? asset.posture
                                : key == "part"    ? asset.part
                                                   : asset.parent;
@@ -277,8 +270,8 @@ class GltfReader {
       Fail(where, "must be an array of 3 numbers (glTF metres)");
       return std::nullopt;
     }
-    return ToAssetFrame({value.Get(0).GetNumberAsDouble(), value.Get(1).GetNumberAsDouble(),
-                         value.Get(2).GetNumberAsDouble()});
+    return ToAssetFrame(
+        {value.Get(0).GetNumberAsDouble(), value.Get(1).GetNumberAsDouble(), value.Get(2).GetNumberAsDouble()});
   }
 
   void ReadContacts(std::vector<ContactPoint>& out, const tinygltf::Value& contacts, const std::string& pointer) {
@@ -333,8 +326,7 @@ class GltfReader {
     }
     if (node.rotation.size() == 4) {
       trs.rotate(
-          Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])
-              .normalized());
+          Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]).normalized());
     }
     if (node.scale.size() == 3) {
       trs.scale(Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]));
@@ -345,8 +337,7 @@ class GltfReader {
   void AddNode(Asset& asset, size_t node_index, const Eigen::Matrix4d& parent, int depth) {
     const std::string pointer = Pointer("nodes", node_index);
     if (depth > kMaxNodeDepth) {
-      Fail(pointer,
-           "node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) + " levels (a cycle?)");
+      Fail(pointer, "node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) + " levels (a cycle?)");
       return;
     }
     const tinygltf::Node& node = model_.nodes[node_index];
@@ -380,18 +371,14 @@ class GltfReader {
     if (!ValidIndex(accessor.bufferView, model_.bufferViews.size(), where + "/bufferView")) {
       return false;
     }
-    const tinygltf::BufferView& buffer_view =
-        model_.bufferViews[static_cast<size_t>(accessor.bufferView)];
-    const std::string view_pointer =
-        Pointer("bufferViews", static_cast<size_t>(accessor.bufferView));
+    const tinygltf::BufferView& buffer_view = model_.bufferViews[static_cast<size_t>(accessor.bufferView)];
+    const std::string view_pointer = Pointer("bufferViews", static_cast<size_t>(accessor.bufferView));
     if (!ValidIndex(buffer_view.buffer, model_.buffers.size(), view_pointer + "/buffer")) {
       return false;
     }
-    const std::vector<unsigned char>& data =
-        model_.buffers[static_cast<size_t>(buffer_view.buffer)].data;
+    const std::vector<unsigned char>& data = model_.buffers[static_cast<size_t>(buffer_view.buffer)].data;
     const int stride = accessor.ByteStride(buffer_view);
-    const int component =
-        tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
+    const int component = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
     const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
     if (stride <= 0 || component <= 0 || components <= 0) {
       Fail(where, "has an invalid type, component type or byte stride");
@@ -401,12 +388,11 @@ class GltfReader {
     const size_t element = static_cast<size_t>(component) * static_cast<size_t>(components);
     const size_t view_offset = buffer_view.byteOffset;
     const size_t view_length = buffer_view.byteLength;
-    bool inside = view_offset <= data.size() && view_length <= data.size() - view_offset &&
-                  accessor.byteOffset <= view_length;
+    bool inside =
+        view_offset <= data.size() && view_length <= data.size() - view_offset && accessor.byteOffset <= view_length;
     if (inside && accessor.count > 0) {
       const size_t available = view_length - accessor.byteOffset;
-      inside = element <= available &&
-               accessor.count - 1 <= (available - element) / static_cast<size_t>(stride);
+      inside = element <= available && accessor.count - 1 <= (available - element) / static_cast<size_t>(stride);
     }
     if (!inside) {
       Fail(where, "reads past the end of its buffer view or buffer");
@@ -426,8 +412,8 @@ class GltfReader {
       const tinygltf::Primitive& primitive = mesh.primitives[p];
       const std::string pointer = Pointer("meshes", mesh_index, "/primitives/" + std::to_string(p));
       if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
-        Fail(pointer + "/mode", "is " + std::to_string(primitive.mode) +
-                                    "; only triangle lists (mode 4) are supported");
+        Fail(pointer + "/mode",
+             "is " + std::to_string(primitive.mode) + "; only triangle lists (mode 4) are supported");
         continue;
       }
       const auto position_it = primitive.attributes.find("POSITION");
@@ -437,12 +423,10 @@ class GltfReader {
       }
       View positions;
       if (!Locate(position_it->second, pointer + "/attributes/POSITION", positions)) continue;
-      const tinygltf::Accessor& position_accessor =
-          model_.accessors[static_cast<size_t>(position_it->second)];
+      const tinygltf::Accessor& position_accessor = model_.accessors[static_cast<size_t>(position_it->second)];
       if (position_accessor.type != TINYGLTF_TYPE_VEC3 ||
           position_accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-        Fail(Pointer("accessors", static_cast<size_t>(position_it->second)),
-             "POSITION must be a VEC3 of FLOAT");
+        Fail(Pointer("accessors", static_cast<size_t>(position_it->second)), "POSITION must be a VEC3 of FLOAT");
         continue;
       }
       std::vector<uint32_t> indices;
@@ -459,14 +443,12 @@ class GltfReader {
       bool in_range = true;
       for (uint32_t index : indices) in_range = in_range && index < positions.count;
       if (!in_range) {
-        Fail(pointer + "/indices",
-             "refers to a vertex past the " + std::to_string(positions.count) + " positions");
+        Fail(pointer + "/indices", "refers to a vertex past the " + std::to_string(positions.count) + " positions");
         continue;
       }
       uint32_t material = kNoMaterial;
       if (primitive.material >= 0) {
-        if (!ValidIndex(primitive.material, model_.materials.size(), pointer + "/material"))
-          continue;
+        if (!ValidIndex(primitive.material, model_.materials.size(), pointer + "/material")) continue;
         material = static_cast<uint32_t>(primitive.material);
       } else {
         needs_default_material_ = true;

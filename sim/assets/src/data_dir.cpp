@@ -1,9 +1,9 @@
 #include "hoilcd/sim/assets/data_dir.h"
 
-#include <link.h>
-
 #include <cstdlib>
 #include <filesystem>
+
+#include <link.h>
 
 #include "hoilcd/core/util/error.h"
 
@@ -39,7 +39,8 @@ int FindObject(dl_phdr_info* info, size_t, void* data) {
 
 std::string ProgramPathFromLink(const std::string& link_target) {
   const std::string suffix = " (deleted)";
-  if (link_target.size() > suffix.size() && link_target.compare(link_target.size() - suffix.size(), suffix.size(), suffix) == 0) {
+  if (link_target.size() > suffix.size() &&
+      link_target.compare(link_target.size() - suffix.size(), suffix.size(), suffix) == 0) {
     return link_target.substr(0, link_target.size() - suffix.size());
   }
   return link_target;
@@ -77,8 +78,10 @@ std::string DataDir() {
     if (fs::is_regular_file(candidate / "scenes" / "scene.schema.json", error)) return candidate.string();
     if (dir == dir.root_path()) break;
   }
-  throw InputError(kDataDirVariable, "hoilcd's data folder (share/hoilcd with scenes/ and assets/) was not found "
-                                     "above " + binary.string() + "; set " + kDataDirVariable + " to it");
+  throw InputError(kDataDirVariable,
+                   "hoilcd's data folder (share/hoilcd with scenes/ and assets/) was not found "
+                   "above " +
+                       binary.string() + "; set " + kDataDirVariable + " to it");
 }
 
 }  // namespace hoilcd

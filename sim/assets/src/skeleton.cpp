@@ -1,8 +1,9 @@
 #include "hoilcd/sim/assets/skeleton.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/core/util/error.h"
 
@@ -61,17 +62,27 @@ Vec3 Lerp(const Vec3& a, const Vec3& b, double w) { return a + w * (b - a); }
 }  // namespace
 
 const std::array<const char*, kCocoKeypointCount> kCocoKeypointNames = {
-    "nose",          "left_eye",       "right_eye",  "left_ear",    "right_ear",   "left_shoulder",
-    "right_shoulder", "left_elbow",    "right_elbow", "left_wrist", "right_wrist", "left_hip",
-    "right_hip",     "left_knee",      "right_knee", "left_ankle",  "right_ankle"};
+    "nose",           "left_eye",   "right_eye",   "left_ear",   "right_ear",   "left_shoulder",
+    "right_shoulder", "left_elbow", "right_elbow", "left_wrist", "right_wrist", "left_hip",
+    "right_hip",      "left_knee",  "right_knee",  "left_ankle", "right_ankle"};
 
 const std::array<DofLimit, kDofCount>& DofLimits() {
   static const std::array<DofLimit, kDofCount> kLimits = {{
-      {"lumbar_flex", -25, 70},   {"lumbar_bend", -30, 30},   {"lumbar_twist", -35, 35},
-      {"neck_flex", -50, 60},     {"neck_bend", -35, 35},     {"neck_twist", -70, 70},
-      {"head_nod", -20, 25},      {"hip_flex_left", -20, 120}, {"hip_flex_right", -20, 120},
-      {"hip_abduct_left", -25, 45}, {"hip_abduct_right", -25, 45}, {"knee_flex_left", 0, 140},
-      {"knee_flex_right", 0, 140}, {"ankle_flex_left", -45, 20}, {"ankle_flex_right", -45, 20},
+      {"lumbar_flex", -25, 70},
+      {"lumbar_bend", -30, 30},
+      {"lumbar_twist", -35, 35},
+      {"neck_flex", -50, 60},
+      {"neck_bend", -35, 35},
+      {"neck_twist", -70, 70},
+      {"head_nod", -20, 25},
+      {"hip_flex_left", -20, 120},
+      {"hip_flex_right", -20, 120},
+      {"hip_abduct_left", -25, 45},
+      {"hip_abduct_right", -25, 45},
+      {"knee_flex_left", 0, 140},
+      {"knee_flex_right", 0, 140},
+      {"ankle_flex_left", -45, 20},
+      {"ankle_flex_right", -45, 20},
   }};
   return kLimits;
 }
@@ -175,16 +186,29 @@ BodyPose PresetPose(const std::string& name) {
 
 const std::array<std::string, Skeleton::kPartCount>& Skeleton::PartNames() {
   static const std::array<std::string, kPartCount> kNames = {
-      "pelvis",          "torso",          "neck",       "head",       "upper_arm_left", "lower_arm_left",
-      "hand_left",       "thigh_left",     "shin_left",  "foot_left",  "upper_arm_right", "lower_arm_right",
-      "hand_right",      "thigh_right",    "shin_right", "foot_right"};
+      "pelvis",     "torso",       "neck",       "head",      "upper_arm_left",  "lower_arm_left",
+      "hand_left",  "thigh_left",  "shin_left",  "foot_left", "upper_arm_right", "lower_arm_right",
+      "hand_right", "thigh_right", "shin_right", "foot_right"};
   return kNames;
 }
 
 Skeleton::Skeleton(AssetLibrary& assets) {
-  static const std::array<std::string, kPartCount> kParents = {
-      "", "pelvis", "torso", "neck", "torso", "upper_arm_left", "lower_arm_left", "pelvis", "thigh_left",
-      "shin_left", "torso", "upper_arm_right", "lower_arm_right", "pelvis", "thigh_right", "shin_right"};
+  static const std::array<std::string, kPartCount> kParents = {"",
+                                                               "pelvis",
+                                                               "torso",
+                                                               "neck",
+                                                               "torso",
+                                                               "upper_arm_left",
+                                                               "lower_arm_left",
+                                                               "pelvis",
+                                                               "thigh_left",
+                                                               "shin_left",
+                                                               "torso",
+                                                               "upper_arm_right",
+                                                               "lower_arm_right",
+                                                               "pelvis",
+                                                               "thigh_right",
+                                                               "shin_right"};
   for (int i = 0; i < kPartCount; ++i) {
     const Asset& a = assets.Get("person_part_" + PartNames()[i]);
     if (a.part != PartNames()[i] || a.parent != kParents[i]) {
@@ -203,8 +227,9 @@ Skeleton::Skeleton(AssetLibrary& assets) {
       }
     }
     if (!found) {
-      throw InputError(assets.Resolve("person_part_pelvis"),
-                       std::string("no person_part_* asset carries the COCO keypoint \"") + kCocoKeypointNames[k] + "\"");
+      throw InputError(
+          assets.Resolve("person_part_pelvis"),
+          std::string("no person_part_* asset carries the COCO keypoint \"") + kCocoKeypointNames[k] + "\"");
     }
   }
 }
@@ -214,7 +239,8 @@ Eigen::Vector2d Skeleton::UpperBodyHalfExtentM() const {
   Eigen::Vector2d half = Eigen::Vector2d::Zero();
   for (int part : {kTorso, SidePart(0, kUpperArm), SidePart(1, kUpperArm)}) {
     const Eigen::AlignedBox3f& box = parts_[part]->bounds_m;  // the rest pose, body frame
-    const Eigen::Vector2f far = (box.max().head<2>() - axis).cwiseAbs().cwiseMax((box.min().head<2>() - axis).cwiseAbs());
+    const Eigen::Vector2f far =
+        (box.max().head<2>() - axis).cwiseAbs().cwiseMax((box.min().head<2>() - axis).cwiseAbs());
     half = half.cwiseMax(far.cast<double>());
   }
   return half;
@@ -281,15 +307,13 @@ std::array<Eigen::Matrix4d, Skeleton::kPartCount> Skeleton::PartTransforms(const
   };
   std::array<Mat4, kPartCount> joint;  // person_from_joint frames (rest axes at the joint)
   joint[kPelvis] = Translation(pose.pelvis_m);
-  auto child = [&](int parent, int part) -> Mat4 {
-    return joint[parent] * Translation(J(part) - J(parent));
-  };
+  auto child = [&](int parent, int part) -> Mat4 { return joint[parent] * Translation(J(part) - J(parent)); };
   // The spine flexes and bends in the pelvis's planes and twists about its own axis: a twist
   // turns the shoulders about a leaning trunk instead of swinging the lean sideways.
   joint[kTorso] = child(kPelvis, kTorso) * Rotation(q[kLumbarFlex], Vec3::UnitY()) *
                   Rotation(-q[kLumbarBend], Vec3::UnitX()) * Rotation(q[kLumbarTwist], Vec3::UnitZ());
-  joint[kNeck] = child(kTorso, kNeck) * Rotation(q[kNeckTwist], Vec3::UnitZ()) *
-                 Rotation(q[kNeckFlex], Vec3::UnitY()) * Rotation(-q[kNeckBend], Vec3::UnitX());
+  joint[kNeck] = child(kTorso, kNeck) * Rotation(q[kNeckTwist], Vec3::UnitZ()) * Rotation(q[kNeckFlex], Vec3::UnitY()) *
+                 Rotation(-q[kNeckBend], Vec3::UnitX());
   joint[kHead] = child(kNeck, kHead) * Rotation(q[kHeadNod], Vec3::UnitY());
   std::array<Mat4, kPartCount> out;
   for (int i : {kPelvis, kTorso, kNeck, kHead}) out[i] = mesh_transform(joint[i], i);
@@ -325,9 +349,12 @@ std::array<Eigen::Matrix4d, Skeleton::kPartCount> Skeleton::PartTransforms(const
     const Vec3 rest_back(0, sign, 0);
     Vec3 bend_dir = f - f.dot(u) * u;
     if (bend_dir.norm() < 1e-6) bend_dir = -h;
-    out[upper] = BoneTransform(BoneFrame(u, bend_dir), BoneFrame(rest_e - rest_s, Vec3::UnitX()), shoulder, rest_s, scale);
-    out[lower] = BoneTransform(BoneFrame(f, arm.back_hint), BoneFrame(rest_w - rest_e, rest_back), elbow, rest_e, scale);
-    out[hand] = BoneTransform(BoneFrame(hand_dir, arm.back_hint), BoneFrame(Vec3(0, 0, -1), rest_back), wrist, rest_w, scale);
+    out[upper] =
+        BoneTransform(BoneFrame(u, bend_dir), BoneFrame(rest_e - rest_s, Vec3::UnitX()), shoulder, rest_s, scale);
+    out[lower] =
+        BoneTransform(BoneFrame(f, arm.back_hint), BoneFrame(rest_w - rest_e, rest_back), elbow, rest_e, scale);
+    out[hand] =
+        BoneTransform(BoneFrame(hand_dir, arm.back_hint), BoneFrame(Vec3(0, 0, -1), rest_back), wrist, rest_w, scale);
   }
   return out;
 }
@@ -358,9 +385,7 @@ Eigen::Vector3d Skeleton::HeadPoint(const BodyPose& pose, const Eigen::Vector3d&
   return Apply(PartTransforms(pose)[kHead], rest_point);
 }
 
-double Skeleton::StrideAt(double speed_m_s) {
-  return std::max(0.5, 1.4 * std::sqrt(std::max(0.0, speed_m_s) / 1.3));
-}
+double Skeleton::StrideAt(double speed_m_s) { return std::max(0.5, 1.4 * std::sqrt(std::max(0.0, speed_m_s) / 1.3)); }
 
 BodyPose Skeleton::Walking(double phase_rad, double stride_m) const {
   BodyPose p = PresetPose("standing");

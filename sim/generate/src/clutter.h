@@ -6,10 +6,11 @@
 // docs/guide/generate.md says where each goes and what density 1 means.
 #pragma once
 
-#include <Eigen/Core>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/assets/asset.h"
@@ -24,10 +25,10 @@ namespace hoilcd {
 // route_clearance_m from the route and clear of every footprint, doorway and seat's access; wall
 // objects take free stretches of wall; table-top objects keep off every seat's place for its
 // person's props and forearms.
-std::vector<PlacedObject> Clutter(const Eigen::Vector3d& size_m, const Layout& layout, const nlohmann::ordered_json& windows,
-                                  const std::vector<Eigen::Vector2d>& doors, const std::vector<PlacedObject>& placed,
-                                  const World& world, AssetLibrary* assets, const std::vector<Eigen::Vector2d>& route,
-                                  const GeneratorOptions& options, Rng* rng);
+std::vector<PlacedObject> Clutter(const Eigen::Vector3d& size_m, const Layout& layout,
+                                  const nlohmann::ordered_json& windows, const std::vector<Eigen::Vector2d>& doors,
+                                  const std::vector<PlacedObject>& placed, const World& world, AssetLibrary* assets,
+                                  const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng);
 
 // Whether an object stands on the floor or on something that does (what the generator leaves out
 // when a room cannot keep every seat reachable with them).

@@ -5,17 +5,18 @@
 // the corridor, at its route's west and east legs; the route drives the corridor eastwards in its
 // north lane, entering each north room by its west doorway, round its furniture and out by its
 // east one, turns in the corridor's east end and comes back westwards through the south rooms.
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
+#include "draw_until_valid.h"
+#include "floor_plan.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/robot/robot.h"
-#include "draw_until_valid.h"
-#include "floor_plan.h"
 #include "route_laps.h"
 
 namespace hoilcd {
@@ -156,8 +157,11 @@ std::vector<std::string> FloorRouteProblems(const Scene& scene, double wall_m) {
   std::vector<std::string> problems;
   const std::vector<Eigen::Vector2d>& route = scene.route.waypoints_m;
   for (size_t i = 0; i < route.size(); ++i) {
-    const int wall = WallCrossedBy(scene.floor, route[i], route[(i + 1) % route.size()], wall_m - 1e-6, scene.room.size_m.z());
-    if (wall >= 0) problems.push_back("the route comes closer than " + ShortestDouble(wall_m) + " m to interior wall " + std::to_string(wall) + " on leg " + std::to_string(i));
+    const int wall =
+        WallCrossedBy(scene.floor, route[i], route[(i + 1) % route.size()], wall_m - 1e-6, scene.room.size_m.z());
+    if (wall >= 0)
+      problems.push_back("the route comes closer than " + ShortestDouble(wall_m) + " m to interior wall " +
+                         std::to_string(wall) + " on leg " + std::to_string(i));
   }
   for (const FloorRoom& room : scene.floor.rooms) {
     if (room.corridor) continue;
@@ -175,7 +179,9 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
   const double south_depth = f.south_depth_m, north_depth = f.north_depth_m;
   const double corridor_y0 = south_depth + t, corridor_y1 = corridor_y0 + corridor;  // the corridor's floor
   const double north_y0 = corridor_y1 + t;
-  const uint64_t rooms_seed = HashCombine(HashString("generate.floor.rooms"), seed, static_cast<uint64_t>(index), static_cast<uint64_t>(attempt)) >> 11;
+  const uint64_t rooms_seed = HashCombine(HashString("generate.floor.rooms"), seed, static_cast<uint64_t>(index),
+                                          static_cast<uint64_t>(attempt)) >>
+                              11;
   // Slot s: the north row west to east (s < n), then the south row east to west: the route's order.
   const int n = f.rooms_per_side;
   std::vector<PlacedRoom> rooms;
@@ -185,7 +191,9 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
     const bool is_north = s < n;
     const double depth = is_north ? north_depth : south_depth;
     const std::vector<std::string> families = FamiliesFor(depth, o);
-    if (families.empty()) throw InputError("--set floor." + std::string(is_north ? "north" : "south") + "_depth_m", "a depth some family's width range holds");
+    if (families.empty())
+      throw InputError("--set floor." + std::string(is_north ? "north" : "south") + "_depth_m",
+                       "a depth some family's width range holds");
     Rng rng = KeyedRng(rooms_seed, "generate.floor.family", s);
     PlacedRoom room;
     room.family = families[rng.UniformInt(static_cast<uint32_t>(families.size()))];
@@ -226,10 +234,14 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
         doors.push_back({{"center_m", Mm(x - kLobbyM)}, {"width_m", f.door_width_m}});  // from the wall's west end
       }
     }
-    std::sort(doors.begin(), doors.end(), [](const ojson& a, const ojson& b) { return a["center_m"].get<double>() < b["center_m"].get<double>(); });
+    std::sort(doors.begin(), doors.end(),
+              [](const ojson& a, const ojson& b) { return a["center_m"].get<double>() < b["center_m"].get<double>(); });
     const double end = row_end[static_cast<size_t>(row)] + t;
-    walls.push_back({{"from_m", Point({kLobbyM, wall_y})}, {"to_m", Point({end, wall_y})}, {"thickness_m", t}, {"doors", doors}});
-    walls.push_back({{"from_m", Point({kLobbyM + 0.5 * t, far_y})}, {"to_m", Point({kLobbyM + 0.5 * t, wall_y})}, {"thickness_m", t}});
+    walls.push_back(
+        {{"from_m", Point({kLobbyM, wall_y})}, {"to_m", Point({end, wall_y})}, {"thickness_m", t}, {"doors", doors}});
+    walls.push_back({{"from_m", Point({kLobbyM + 0.5 * t, far_y})},
+                     {"to_m", Point({kLobbyM + 0.5 * t, wall_y})},
+                     {"thickness_m", t}});
     for (const PlacedRoom& room : line) {
       const double x = room.where.origin_m.x() + room.where.size_m.x() + 0.5 * t;
       walls.push_back({{"from_m", Point({x, far_y})}, {"to_m", Point({x, wall_y})}, {"thickness_m", t}});
@@ -296,7 +308,10 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
   for (int row = 0; row < 2; ++row) {
     const double y0 = row == 0 ? 0.0 : corridor_y1, y1 = row == 0 ? corridor_y0 : width;
     const std::string side = row == 0 ? "south" : "north";
-    rooms_json.push_back({{"name", "west " + side + " lobby"}, {"kind", "corridor"}, {"min_m", Point({0, y0})}, {"max_m", Point({kLobbyM, y1})}});
+    rooms_json.push_back({{"name", "west " + side + " lobby"},
+                          {"kind", "corridor"},
+                          {"min_m", Point({0, y0})},
+                          {"max_m", Point({kLobbyM, y1})}});
     rooms_json.push_back({{"name", "east " + side + " lobby"},
                           {"kind", "corridor"},
                           {"min_m", Point({row_end[static_cast<size_t>(row)] + t, y0})},
@@ -319,10 +334,12 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
   for (const Eigen::Vector2d& p : Simplified(route)) route_json.push_back(Point(p));
   return {
       {"name", "floor_" + std::to_string(seed) + "_" + std::to_string(index)},
-      {"description", "Generated by hoilcd generate --layout floor: " + std::to_string(ordered.size()) + " rooms (" + families + ") along a " +
-                          ShortestDouble(corridor) + " m corridor, " + ShortestDouble(length) + " x " + ShortestDouble(width) +
+      {"description", "Generated by hoilcd generate --layout floor: " + std::to_string(ordered.size()) + " rooms (" +
+                          families + ") along a " + ShortestDouble(corridor) + " m corridor, " +
+                          ShortestDouble(length) + " x " + ShortestDouble(width) +
                           " m (generator.seed and generator.index regenerate it)."},
-      {"generator", {{"layout", "floor"}, {"seed", seed}, {"index", index}, {"version", kGeneratorVersion}, {"options", options}}},
+      {"generator",
+       {{"layout", "floor"}, {"seed", seed}, {"index", index}, {"version", kGeneratorVersion}, {"options", options}}},
       {"seed", scene_seed},
       {"frames", 1},
       {"frame_rate_hz", 25.0},
@@ -330,8 +347,9 @@ ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o
        {{"size_m", ojson::array({length, width, f.height_m})},
         {"windows", windows},
         {"floor", first["room"]["floor"]},
-        {"doors", ojson::array({{{"position_m", Point({0, 0.5 * (corridor_y0 + corridor_y1)})}, {"width_m", 1.2}},
-                                {{"position_m", Point({length, 0.5 * (corridor_y0 + corridor_y1)})}, {"width_m", 1.2}}})}}},
+        {"doors",
+         ojson::array({{{"position_m", Point({0, 0.5 * (corridor_y0 + corridor_y1)})}, {"width_m", 1.2}},
+                       {{"position_m", Point({length, 0.5 * (corridor_y0 + corridor_y1)})}, {"width_m", 1.2}}})}}},
       {"floor", {{"rooms", rooms_json}, {"walls", walls}}},
       {"tables", tables},
       {"crowd", crowd},

@@ -3,8 +3,9 @@
 // Shared by the scene checks (generator.cpp) and the room objects' placement (room_objects.cpp).
 #pragma once
 
-#include <Eigen/Core>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/sim/world/world.h"
 

@@ -1,20 +1,21 @@
 #include "hoilcd/sim/generate/generator.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+
+#include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
+#include "clutter.h"
+#include "draw_until_valid.h"
+#include "floor_plan.h"
 #include "hoilcd/core/dataset/dataset_folder.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
 #include "hoilcd/sim/people/walker_planner.h"
-#include "clutter.h"
-#include "draw_until_valid.h"
-#include "floor_plan.h"
 #include "layouts.h"
 #include "room_objects.h"
 #include "route_laps.h"
@@ -25,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
-constexpr double kGridM = 0.05;          // the reachability grid, m
+constexpr double kGridM = 0.05;             // the reachability grid, m
 constexpr uint8_t kFree = 1, kReached = 2;  // its cells: 0 blocked
 
 double Mm(double value) { return std::round(value * 1000) / 1000; }  // positions to the millimetre
@@ -44,7 +45,8 @@ double Clearance(const Eigen::Vector2d& p, const std::vector<Obstacle2D>& furnit
   return best;
 }
 
-bool LegClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::vector<Obstacle2D>& furniture, double clearance_m) {
+bool LegClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::vector<Obstacle2D>& furniture,
+              double clearance_m) {
   for (const Eigen::Vector2d& p : Along(a, b))
     if (Clearance(p, furniture) < clearance_m) return false;
   return true;
@@ -54,7 +56,8 @@ bool LegClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::vec
 // the paper's route passes its tables, so the camera sees them) and never outside the layout's
 // route box; a leg furniture blocks becomes the shortest free path of the walker planner
 // (FreeSpace) between its ends.
-std::vector<Eigen::Vector2d> PlanRoute(const Eigen::Vector4d& layout_box, const World& world, double wall_m, double clearance_m) {
+std::vector<Eigen::Vector2d> PlanRoute(const Eigen::Vector4d& layout_box, const World& world, double wall_m,
+                                       double clearance_m) {
   const std::vector<Obstacle2D> furniture = Furniture(world);
   // An empty room keeps the layout's box; a loop is at least kSmallestLoopM across (the robot turns).
   constexpr double kSmallestLoopM = 1.5;
@@ -106,24 +109,30 @@ std::vector<std::string> ObjectProblems(const Scene& scene) {
   AssetLibrary assets(scene.assets_dir);
   const Eigen::Vector3d room = scene.room.size_m;
   std::vector<WallPart> interior = WallParts(scene.floor, room.z());
-  interior.erase(std::remove_if(interior.begin(), interior.end(), [](const WallPart& p) { return p.lintel; }), interior.end());
+  interior.erase(std::remove_if(interior.begin(), interior.end(), [](const WallPart& p) { return p.lintel; }),
+                 interior.end());
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     if (!o.enabled) continue;
     const Asset& asset = assets.Get(o.asset);
     const std::string name = "object " + std::to_string(i) + " (" + o.asset + ")";
-    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(o.yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(o.yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     Eigen::AlignedBox3d box;
     for (int c = 0; c < 8; ++c) {
-      box.extend(o.position_m + rotation * asset.bounds_m.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>());
+      box.extend(o.position_m +
+                 rotation * asset.bounds_m.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>());
     }
-    if ((box.min().array() < -kTouchM).any() || (box.max() - room).maxCoeff() > kTouchM) problems.push_back(name + " reaches outside the room");
+    if ((box.min().array() < -kTouchM).any() || (box.max() - room).maxCoeff() > kTouchM)
+      problems.push_back(name + " reaches outside the room");
     if (asset.mount == "wall") {
       // The back face's centre and the way the front faces.
       const Eigen::Vector3d back = o.position_m + rotation * Eigen::Vector3d(asset.bounds_m.min().x(), 0, 0);
       const Eigen::Vector3d front = rotation.col(0);
-      const bool on_wall = (std::abs(back.x()) < kTouchM && front.x() > 0.999) || (std::abs(back.x() - room.x()) < kTouchM && front.x() < -0.999) ||
-                           (std::abs(back.y()) < kTouchM && front.y() > 0.999) || (std::abs(back.y() - room.y()) < kTouchM && front.y() < -0.999);
+      const bool on_wall = (std::abs(back.x()) < kTouchM && front.x() > 0.999) ||
+                           (std::abs(back.x() - room.x()) < kTouchM && front.x() < -0.999) ||
+                           (std::abs(back.y()) < kTouchM && front.y() > 0.999) ||
+                           (std::abs(back.y() - room.y()) < kTouchM && front.y() < -0.999);
       const bool on_interior_wall = std::any_of(interior.begin(), interior.end(), [&](const WallPart& part) {
         const Eigen::AlignedBox3d& b = part.box_m;
         const bool along_y = back.y() >= b.min().y() - kTouchM && back.y() <= b.max().y() + kTouchM;
@@ -133,7 +142,8 @@ std::vector<std::string> ObjectProblems(const Scene& scene) {
                (along_x && std::abs(back.y() - b.max().y()) < kTouchM && front.y() > 0.999) ||
                (along_x && std::abs(back.y() - b.min().y()) < kTouchM && front.y() < -0.999);
       });
-      if (!on_wall && !on_interior_wall) problems.push_back(name + " is wall-mounted but its back is not on a wall facing into the room");
+      if (!on_wall && !on_interior_wall)
+        problems.push_back(name + " is wall-mounted but its back is not on a wall facing into the room");
     }
     if (asset.mount == "hanging" && asset.class_name != "coat" && std::abs(box.max().z() - room.z()) > kTouchM) {
       problems.push_back(name + " does not touch the ceiling");
@@ -144,7 +154,8 @@ std::vector<std::string> ObjectProblems(const Scene& scene) {
 
 // The windows of the north wall: one to three, evenly spread.
 ojson Windows(double length_m, double height_m, Rng* rng) {
-  const int count = 1 + static_cast<int>(rng->UniformInt(static_cast<uint32_t>(std::clamp(static_cast<int>(length_m / 3.5), 1, 3))));
+  const int count =
+      1 + static_cast<int>(rng->UniformInt(static_cast<uint32_t>(std::clamp(static_cast<int>(length_m / 3.5), 1, 3))));
   const double width = std::min(rng->Uniform(1.2, 1.8), length_m / count - 0.4);
   ojson windows = ojson::array();
   for (int i = 0; i < count; ++i) {
@@ -163,7 +174,8 @@ ojson Floor(uint64_t seed, int index, const GeneratorOptions& o) {
   struct Finish {
     double emissivity, roughness_um;
   };
-  static constexpr Finish kGlossy[] = {{0.91, 0.2}, {0.92, 0.5}, {0.93, 1.0}, {0.92, 1.5}};  // epoxy, vinyl, concrete, wood
+  static constexpr Finish kGlossy[] = {
+      {0.91, 0.2}, {0.92, 0.5}, {0.93, 1.0}, {0.92, 1.5}};  // epoxy, vinyl, concrete, wood
   Rng rng = KeyedRng(seed, "generate.floor", index);
   if (rng.Uniform() >= o.glossy_floor_probability) return {{"specular", false}};
   const Finish& f = kGlossy[rng.UniformInt(4)];
@@ -185,13 +197,15 @@ ojson Crowd(const Layout& layout, const GeneratorOptions& o, Rng* rng) {
       if (rng->Uniform() < occupancy) seating.push_back({{"table", t}, {"seat", seat}});
   }
   ojson standing = ojson::array();
-  for (const StandingPerson& p : layout.standing) standing.push_back({{"position_m", Point(p.position_m)}, {"yaw_deg", Yaw(p.yaw_deg)}});
+  for (const StandingPerson& p : layout.standing)
+    standing.push_back({{"position_m", Point(p.position_m)}, {"yaw_deg", Yaw(p.yaw_deg)}});
   ojson postures;
   for (const char* name : {"seated_upright", "seated_leaning", "seated_arms_on_table", "seated_leaning_back"})
     postures[name] = Mm(rng->Uniform(o.posture_weight_min, o.posture_weight_max));
   ojson activities;
   for (const auto& [name, spec] : ActivityOptions().activities)
-    activities[name] = {{"weight", Mm(spec.weight * rng->Uniform(1 - o.activity_weight_spread, 1 + o.activity_weight_spread))}};
+    activities[name] = {
+        {"weight", Mm(spec.weight * rng->Uniform(1 - o.activity_weight_spread, 1 + o.activity_weight_spread))}};
   return {{"seating", seating},
           {"standing", standing},
           {"posture_weights", postures},
@@ -228,7 +242,8 @@ ojson Objects(const Layout& layout) {
 
 // One draw of a scene: the document, with the frames still to count, the route still to plan round
 // the layout's route box (its corners stand in for it) and the room objects still to place.
-ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorOptions& o, Rng* rng, Layout* layout_out) {
+ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorOptions& o, Rng* rng,
+           Layout* layout_out) {
   const RoomSizeRange& size = o.SizeOf(family);
   auto cm = [](double value) { return std::round(value * 100) / 100; };
   const Eigen::Vector3d room(cm(rng->Uniform(size.length_min_m, size.length_max_m)),
@@ -243,18 +258,24 @@ ojson Draw(const std::string& family, uint64_t seed, int index, const GeneratorO
   const uint64_t scene_seed = HashCombine(HashString("generate.scene_seed"), seed, static_cast<uint64_t>(index)) >> 11;
   return {
       {"name", family + "_" + std::to_string(seed) + "_" + std::to_string(index)},
-      {"description", "Generated by hoilcd generate: a " + family + " layout in a room of " + ShortestDouble(room.x()) + " x " +
-                          ShortestDouble(room.y()) + " m (generator.layout, generator.seed and generator.index regenerate it)."},
-      {"generator", {{"layout", family}, {"seed", seed}, {"index", index}, {"version", kGeneratorVersion}, {"options", options}}},
+      {"description", "Generated by hoilcd generate: a " + family + " layout in a room of " + ShortestDouble(room.x()) +
+                          " x " + ShortestDouble(room.y()) +
+                          " m (generator.layout, generator.seed and generator.index regenerate it)."},
+      {"generator",
+       {{"layout", family}, {"seed", seed}, {"index", index}, {"version", kGeneratorVersion}, {"options", options}}},
       {"seed", scene_seed},
       {"frames", 1},
       {"frame_rate_hz", 25.0},
-      {"room", {{"size_m", ojson::array({room.x(), room.y(), room.z()})}, {"windows", Windows(room.x(), room.z(), rng)}, {"floor", Floor(seed, index, o)}}},
+      {"room",
+       {{"size_m", ojson::array({room.x(), room.y(), room.z()})},
+        {"windows", Windows(room.x(), room.z(), rng)},
+        {"floor", Floor(seed, index, o)}}},
       {"tables", Tables(layout)},
       {"crowd", Crowd(layout, o, rng)},
       {"objects", Objects(layout)},
-      {"route", {{"waypoints_m", ojson::array({Point({box.x(), box.y()}), Point({box.x(), box.w()}), Point({box.z(), box.w()}),
-                                               Point({box.z(), box.y()})})}}}};
+      {"route",
+       {{"waypoints_m", ojson::array({Point({box.x(), box.y()}), Point({box.x(), box.w()}), Point({box.z(), box.w()}),
+                                      Point({box.z(), box.y()})})}}}};
 }
 
 }  // namespace
@@ -280,7 +301,8 @@ std::string GeneratedSceneFileName(int index, const std::string& family) {
 
 std::string SceneFileText(const nlohmann::ordered_json& scene) { return scene.dump(2) + "\n"; }
 
-std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World& world, double wall_m, double clearance_m) {
+std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World& world, double wall_m,
+                                                double clearance_m) {
   std::vector<std::string> problems;
   const double size_x = scene.room.size_m.x(), size_y = scene.room.size_m.y();
   const std::vector<Obstacle2D> furniture = Furniture(world);
@@ -290,9 +312,12 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
     const Obstacle2D& a = furniture[i];
     const Eigen::Vector2d reach = a.shape == Obstacle2D::Shape::kCircle
                                       ? Eigen::Vector2d(a.radius_m, a.radius_m)
-                                      : Eigen::Vector2d(std::abs(std::cos(a.yaw_rad)) * a.half_size_m.x() + std::abs(std::sin(a.yaw_rad)) * a.half_size_m.y(),
-                                                        std::abs(std::sin(a.yaw_rad)) * a.half_size_m.x() + std::abs(std::cos(a.yaw_rad)) * a.half_size_m.y());
-    if ((a.center_m - reach).minCoeff() < 0 || a.center_m.x() + reach.x() > size_x || a.center_m.y() + reach.y() > size_y) {
+                                      : Eigen::Vector2d(std::abs(std::cos(a.yaw_rad)) * a.half_size_m.x() +
+                                                            std::abs(std::sin(a.yaw_rad)) * a.half_size_m.y(),
+                                                        std::abs(std::sin(a.yaw_rad)) * a.half_size_m.x() +
+                                                            std::abs(std::cos(a.yaw_rad)) * a.half_size_m.y());
+    if ((a.center_m - reach).minCoeff() < 0 || a.center_m.x() + reach.x() > size_x ||
+        a.center_m.y() + reach.y() > size_y) {
       problems.push_back(a.name + " reaches outside the room");
     }
     for (size_t j = i + 1; j < furniture.size(); ++j) {
@@ -316,11 +341,13 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
       std::string nearest;
       const double clearance = Clearance(p, furniture, &nearest);
       if (clearance < clearance_m - 1e-6) {
-        problems.push_back("the route passes " + ShortestDouble(Mm(clearance)) + " m from " + nearest + " on leg " + std::to_string(i));
+        problems.push_back("the route passes " + ShortestDouble(Mm(clearance)) + " m from " + nearest + " on leg " +
+                           std::to_string(i));
         break;
       }
       if (std::min({p.x(), p.y(), size_x - p.x(), size_y - p.y(), Clearance(p, interior)}) < wall_m - 1e-6) {
-        problems.push_back("the route comes closer than " + ShortestDouble(wall_m) + " m to a wall on leg " + std::to_string(i));
+        problems.push_back("the route comes closer than " + ShortestDouble(wall_m) + " m to a wall on leg " +
+                           std::to_string(i));
         break;
       }
     }
@@ -334,11 +361,13 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
     for (int i = 0; i < nx; ++i) {
       const Eigen::Vector2d p((i + 0.5) * kGridM, (j + 0.5) * kGridM);
       const bool in_room = std::min({p.x(), p.y(), size_x - p.x(), size_y - p.y()}) >= kAccessRadiusM;
-      if (in_room && Clearance(p, furniture) >= kAccessRadiusM && Clearance(p, interior) >= kAccessRadiusM) floor.at<uint8_t>(j, i) = kFree;
+      if (in_room && Clearance(p, furniture) >= kAccessRadiusM && Clearance(p, interior) >= kAccessRadiusM)
+        floor.at<uint8_t>(j, i) = kFree;
     }
   }
   auto cell_of = [&](const Eigen::Vector2d& p) {
-    return cv::Point(std::clamp(static_cast<int>(p.x() / kGridM), 0, nx - 1), std::clamp(static_cast<int>(p.y() / kGridM), 0, ny - 1));
+    return cv::Point(std::clamp(static_cast<int>(p.x() / kGridM), 0, nx - 1),
+                     std::clamp(static_cast<int>(p.y() / kGridM), 0, ny - 1));
   };
   if (!route.empty() && floor.at<uint8_t>(cell_of(route.front())) == kFree) {
     cv::floodFill(floor, cell_of(route.front()), cv::Scalar(kReached), nullptr, cv::Scalar(0), cv::Scalar(0), 4);
@@ -348,7 +377,8 @@ std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World&
   for (size_t k = 0; k < access.size(); ++k) {
     const Crowd::SeatPlace& seat = seats[k];
     if (floor.at<uint8_t>(cell_of(access[k])) != kReached) {
-      problems.push_back("seat " + std::to_string(seat.table) + "." + std::to_string(seat.seat) + " cannot be reached on foot from the route");
+      problems.push_back("seat " + std::to_string(seat.table) + "." + std::to_string(seat.seat) +
+                         " cannot be reached on foot from the route");
     }
   }
   return problems;
@@ -365,7 +395,8 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
     Scene scene = SceneFromJson(nlohmann::json::parse(doc.dump()), where);
     const BandRadianceTable table;
     const World world(scene, table);
-    const std::vector<Eigen::Vector2d> route = PlanRoute(layout.route_box_m, world, options.route_wall_m, options.route_clearance_m);
+    const std::vector<Eigen::Vector2d> route =
+        PlanRoute(layout.route_box_m, world, options.route_wall_m, options.route_clearance_m);
     // The room's fittings and people's things, from their own stream: the furniture a draw
     // gives does not depend on them.
     Rng things_rng = KeyedRng(seed, "generate.objects", index, HashString(family), attempt);
@@ -376,13 +407,16 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
         RoomFittings(room, layout, doc["room"]["windows"], doors, whiteboard, world, route, options, &things_rng);
     std::vector<std::pair<int, int>> occupied;
     for (const ojson& s : doc["crowd"]["seating"]) occupied.emplace_back(s["table"].get<int>(), s["seat"].get<int>());
-    for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng)) added.push_back(o);
+    for (const PlacedObject& o :
+         PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng))
+      added.push_back(o);
     // The clutter, from its own stream: at density 0 the room is what it was without it.
     Rng clutter_rng = KeyedRng(seed, "generate.clutter", index, HashString(family), attempt);
     std::vector<PlacedObject> so_far = layout.objects;
     so_far.insert(so_far.end(), added.begin(), added.end());
     AssetLibrary assets(scene.assets_dir);
-    for (const PlacedObject& o : Clutter(room, layout, doc["room"]["windows"], doors, so_far, world, &assets, route, options, &clutter_rng))
+    for (const PlacedObject& o :
+         Clutter(room, layout, doc["room"]["windows"], doors, so_far, world, &assets, route, options, &clutter_rng))
       added.push_back(o);
     doc["room"]["doors"] = ojson::array();
     for (const Eigen::Vector2d& d : doors) doc["room"]["doors"].push_back({{"position_m", Point(d)}});

@@ -46,7 +46,8 @@ const OptionTable<RoomObjectOptions>& RoomObjectOptions::Table() {
           .Add("charger_probability", &O::charger_probability, 0.2, "", R::Closed(0, 1),
                "chance of a charger on the table top beside an occupied seat")
           .Add("clutter_density", &O::clutter_density, 1.0, "", R::Closed(0, 2),
-               "the clutter of lived-in rooms (things on tables, walls, floors, ceilings and shelves): 0 none, 1 typical, "
+               "the clutter of lived-in rooms (things on tables, walls, floors, ceilings and shelves): 0 none, 1 "
+               "typical, "
                "2 twice that");
   return table;
 }
@@ -82,16 +83,24 @@ const OptionTable<GeneratorOptions>& GeneratorOptions::Table() {
           .Nest("lounge", &O::lounge, SizeTable({5.0, 10.0, 3.4, 7.0}, 4.0, 3.4))
           .Add("height_min_m", &O::height_min_m, 2.5, "m", R::Closed(2.2, 6), "lowest ceiling (uniform)")
           .Add("height_max_m", &O::height_max_m, 3.2, "m", R::Closed(2.2, 6), "highest ceiling (uniform)")
-          .Rule("height_max_m", [](const O& o) { return o.height_max_m >= o.height_min_m ? "" : "at least height_min_m"; })
-          .Add("occupancy_min", &O::occupancy_min, 0.4, "", R::Closed(0, 1), "fewest seats taken, a fraction (uniform per room)")
-          .Add("occupancy_max", &O::occupancy_max, 1.0, "", R::Closed(0, 1), "most seats taken, a fraction (uniform per room)")
-          .Rule("occupancy_max", [](const O& o) { return o.occupancy_max >= o.occupancy_min ? "" : "at least occupancy_min"; })
+          .Rule("height_max_m",
+                [](const O& o) { return o.height_max_m >= o.height_min_m ? "" : "at least height_min_m"; })
+          .Add("occupancy_min", &O::occupancy_min, 0.4, "", R::Closed(0, 1),
+               "fewest seats taken, a fraction (uniform per room)")
+          .Add("occupancy_max", &O::occupancy_max, 1.0, "", R::Closed(0, 1),
+               "most seats taken, a fraction (uniform per room)")
+          .Rule("occupancy_max",
+                [](const O& o) { return o.occupancy_max >= o.occupancy_min ? "" : "at least occupancy_min"; })
           .Add("posture_weight_min", &O::posture_weight_min, 0.25, "", R::Closed(0, 100),
                "smallest weight of each seated posture (uniform per room)")
           .Add("posture_weight_max", &O::posture_weight_max, 1.5, "", R::Closed(0, 100),
                "largest weight of each seated posture (uniform per room)")
           .Rule("posture_weight_max",
-                [](const O& o) { return o.posture_weight_max >= o.posture_weight_min && o.posture_weight_max > 0 ? "" : "above 0 and at least posture_weight_min"; })
+                [](const O& o) {
+                  return o.posture_weight_max >= o.posture_weight_min && o.posture_weight_max > 0
+                             ? ""
+                             : "above 0 and at least posture_weight_min";
+                })
           .Add("activity_weight_spread", &O::activity_weight_spread, 0.5, "", R::Closed(0, 1),
                "each activity's weight is its default times a factor uniform in [1 - this, 1 + this] per room")
           .Add("walkers_max", &O::walkers_max, 2, "", R::Closed(0, 8), "most walkers in a room (uniform in 0..this)")
@@ -118,14 +127,16 @@ const OptionTable<FloorLayoutOptions>& FloorLayoutOptions::Table() {
           .Add("rooms_per_side", &O::rooms_per_side, 4, "", R::Closed(1, 8), "rooms along each side of the corridor")
           .Add("corridor_width_m", &O::corridor_width_m, 2.4, "m", R::Closed(2.0, 5.0),
                "the corridor's width between its walls (the route runs in two lanes 0.6 m from them)")
-          .Add("wall_thickness_m", &O::wall_thickness_m, 0.12, "m", R::Closed(0.05, 0.5), "thickness of the interior walls")
+          .Add("wall_thickness_m", &O::wall_thickness_m, 0.12, "m", R::Closed(0.05, 0.5),
+               "thickness of the interior walls")
           .Add("door_width_m", &O::door_width_m, 1.3, "m", R::Closed(1.0, 3.0),
                "width of each room's two doorways onto the corridor (the route drives through them)")
           .Add("height_m", &O::height_m, 2.8, "m", R::Closed(2.5, 3.2), "the floor's ceiling height, every room's")
           .Add("north_depth_m", &O::north_depth_m, 5.6, "m", R::Closed(3.4, 8.0),
                "depth of the rooms north of the corridor: only families whose width range holds it are drawn there")
           .Add("south_depth_m", &O::south_depth_m, 5.0, "m", R::Closed(3.2, 8.0),
-               "depth of the rooms south of the corridor (meeting_row rooms are at most 5 m deep, open_office at least 5.6)")
+               "depth of the rooms south of the corridor (meeting_row rooms are at most 5 m deep, open_office at least "
+               "5.6)")
           .Add("room_length_max_m", &O::room_length_max_m, 9.0, "m", R::Closed(5.0, 15.0),
                "longest room along the corridor (each family's length range is cut to it)")
           .Add("turnover_probability", &O::turnover_probability, 0.3, "", R::Closed(0, 1),

@@ -65,7 +65,8 @@ Layout MeetingRow(const Frame& f, Rng* rng, Layout layout) {
   const int most = std::max(1, FitCount(f.length_m - 2 * f.inset_m() - 0.16, 2 * kTableHalfLengthM, kPitchM));
   const int fewest = (2 * most + 2) / 3;  // at least two thirds of the row that fits
   const int count = fewest + static_cast<int>(rng->UniformInt(static_cast<uint32_t>(most - fewest + 1)));
-  for (double x : Centred(count, kPitchM, 0.5 * f.length_m)) layout.pieces.push_back({"", {x, 0.5 * f.width_m}, 0, "both_sides", 0});
+  for (double x : Centred(count, kPitchM, 0.5 * f.length_m))
+    layout.pieces.push_back({"", {x, 0.5 * f.width_m}, 0, "both_sides", 0});
   layout.cup_fraction = 0.5;
   layout.laptop_fraction = 0.3;
   return layout;
@@ -95,7 +96,8 @@ Layout Classroom(const Frame& f, Rng* rng, Layout layout) {
 Layout Cafeteria(const Frame& f, Rng* rng, Layout layout) {
   const double space_x = f.length_m - 2 * f.inset_m(), space_y = f.width_m - 2 * f.inset_m();
   const double cell = std::min({rng->Uniform(2.2, 2.4), space_x, space_y});
-  const int nx = std::max(1, static_cast<int>(std::floor(space_x / cell))), ny = std::max(1, static_cast<int>(std::floor(space_y / cell)));
+  const int nx = std::max(1, static_cast<int>(std::floor(space_x / cell))),
+            ny = std::max(1, static_cast<int>(std::floor(space_y / cell)));
   const double group_reach = kRoundTableRadiusM + kChairReachM;
   const double jitter = std::max(0.0, 0.5 * cell - group_reach - 0.02);
   for (double cx : Centred(nx, cell, 0.5 * f.length_m)) {
@@ -136,8 +138,8 @@ Layout OpenOffice(const Frame& f, Rng* rng, Layout layout) {
   const double space_x = f.length_m - 2 * f.inset_m();
   const double wall_pitch = rng->Uniform(1.25, 1.5);
   for (double x : Centred(FitCount(space_x, 2 * kDeskHalfLengthM, wall_pitch), wall_pitch, 0.5 * f.length_m)) {
-    if (rng->Uniform() >= 0.15) add_desk(x, wall_desk_y, 180);             // south wall, facing it
-    if (rng->Uniform() >= 0.15) add_desk(x, f.width_m - wall_desk_y, 0);   // north wall
+    if (rng->Uniform() >= 0.15) add_desk(x, wall_desk_y, 180);            // south wall, facing it
+    if (rng->Uniform() >= 0.15) add_desk(x, f.width_m - wall_desk_y, 0);  // north wall
   }
   // Islands: two rows of desks 0.44 m apart, far edges to the partition.
   const double half_island = 0.22 + 2 * kDeskHalfDepthM + kChairReachM;
@@ -165,7 +167,8 @@ Layout SeminarU(const Frame& f, Rng* rng, Layout layout) {
   // The east column (tables turned 90°, chairs on +x), clear of the rows' table ends.
   const double column_from = y_south + kTableHalfDepthM + 0.02, column_to = y_north - kTableHalfDepthM - 0.02;
   const int column = FitCount(column_to - column_from - 0.16, 2 * kTableHalfLengthM, kPitchM);
-  for (double y : Centred(column, kPitchM, 0.5 * f.width_m)) layout.pieces.push_back({"table", {x_east, y}, 90, "one_side", 2});
+  for (double y : Centred(column, kPitchM, 0.5 * f.width_m))
+    layout.pieces.push_back({"table", {x_east, y}, 90, "one_side", 2});
   // The rows, from the column westwards, leaving an opening at the front.
   const double row_end = x_east - kTableHalfDepthM - 0.1;
   const int most = FitCount(row_end - (f.inset_m() + 0.8), 2 * kTableHalfLengthM, kPitchM);
@@ -224,7 +227,9 @@ Layout Lounge(const Frame& f, Rng* rng, Layout layout) {
       const double table_x = x + sofa_offset + kSofaBackM;
       layout.pieces.push_back({"low_table", {table_x, y}, 90, "none", 0});
       layout.pieces.push_back({"sofa", {table_x - sofa_offset, y}, 0, "sofa", g.people});
-      if (g.kind == 0) layout.pieces.push_back({"sofa", {table_x + sofa_offset, y}, 180, "sofa", 2 + static_cast<int>(rng->UniformInt(2))});
+      if (g.kind == 0)
+        layout.pieces.push_back(
+            {"sofa", {table_x + sofa_offset, y}, 180, "sofa", 2 + static_cast<int>(rng->UniformInt(2))});
     }
     x += g.extent_m + gap;
   }
@@ -238,10 +243,11 @@ Layout Lounge(const Frame& f, Rng* rng, Layout layout) {
 Layout DrawLayout(const std::string& family, const Eigen::Vector2d& size_m, const GeneratorOptions& options, Rng* rng) {
   static const std::map<std::string, std::function<Layout(const Frame&, Rng*, Layout)>> kRules = {
       {"meeting_row", MeetingRow}, {"classroom", Classroom}, {"cafeteria", Cafeteria},
-      {"open_office", OpenOffice}, {"seminar_u", SeminarU},   {"lounge", Lounge}};
+      {"open_office", OpenOffice}, {"seminar_u", SeminarU},  {"lounge", Lounge}};
   const Frame frame{size_m.x(), size_m.y(), options.route_wall_m, options.route_clearance_m};
   Layout layout;
-  layout.route_box_m = Eigen::Vector4d(frame.wall_m, frame.wall_m, size_m.x() - frame.wall_m, size_m.y() - frame.wall_m);
+  layout.route_box_m =
+      Eigen::Vector4d(frame.wall_m, frame.wall_m, size_m.x() - frame.wall_m, size_m.y() - frame.wall_m);
   const auto rule = kRules.find(family);
   HOILCD_CHECK_MSG(rule != kRules.end(), family);
   return rule->second(frame, rng, layout);

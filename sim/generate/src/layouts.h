@@ -2,9 +2,10 @@
 // each piece seats people, and the rectangle the robot's route runs round.
 #pragma once
 
-#include <Eigen/Core>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/generate/generator.h"

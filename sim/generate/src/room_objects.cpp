@@ -1,10 +1,11 @@
 #include "room_objects.h"
 
-#include "room_plan.h"
-
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "room_plan.h"
 
 namespace hoilcd {
 namespace {
@@ -41,9 +42,10 @@ std::vector<Eigen::Vector2d> RoomDoors(const Eigen::Vector2d& size_m, bool white
   return doors;
 }
 
-std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layout& layout, const nlohmann::ordered_json& windows,
-                                       const std::vector<Eigen::Vector2d>& doors, bool whiteboard, const World& world,
-                                       const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng) {
+std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layout& layout,
+                                       const nlohmann::ordered_json& windows, const std::vector<Eigen::Vector2d>& doors,
+                                       bool whiteboard, const World& world, const std::vector<Eigen::Vector2d>& route,
+                                       const GeneratorOptions& options, Rng* rng) {
   const RoomObjectOptions& o = options.objects;
   WallPlan plan(size_m);
   std::vector<PlacedObject> out;
@@ -53,7 +55,8 @@ std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layo
     const double center = w["center_m"], width = w["width_m"], bottom = w["bottom_m"], height = w["height_m"];
     plan.Take(at, center - 0.5 * width, center + 0.5 * width, bottom, bottom + height);
   }
-  if (whiteboard) Mount(&plan, &out, "whiteboard", kWest, 0.5 * size_m.y(), kWhiteboardHalfM, kWhiteboardBottomM, kWhiteboardHeightM);
+  if (whiteboard)
+    Mount(&plan, &out, "whiteboard", kWest, 0.5 * size_m.y(), kWhiteboardHalfM, kWhiteboardBottomM, kWhiteboardHeightM);
   // Each door in its frame, its switch on the handle's side (the frame's -y), else on the other.
   for (const Eigen::Vector2d& d : doors) {
     const Wall wall = d.x() < 0.5 * size_m.x() ? kWest : kEast;
@@ -61,8 +64,10 @@ std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layo
     out.push_back(plan.On("door_frame", wall, d.y(), 0));
     const double handle_side = wall == kWest ? -1 : 1;  // the frame's -y along the wall
     const double offset = kDoorFrameHalfM + kGapM + kPlateHalfM + 0.001;
-    if (!Mount(&plan, &out, "light_switch", wall, d.y() + handle_side * offset, kPlateHalfM, kSwitchBottomM, kPlateHeightM)) {
-      Mount(&plan, &out, "light_switch", wall, d.y() - handle_side * offset, kPlateHalfM, kSwitchBottomM, kPlateHeightM);
+    if (!Mount(&plan, &out, "light_switch", wall, d.y() + handle_side * offset, kPlateHalfM, kSwitchBottomM,
+               kPlateHeightM)) {
+      Mount(&plan, &out, "light_switch", wall, d.y() - handle_side * offset, kPlateHalfM, kSwitchBottomM,
+            kPlateHeightM);
     }
   }
   // The air conditioner high on the south or the east wall, its top kAcBelowCeilingM down.
@@ -113,20 +118,25 @@ std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layo
   const int ny = std::max(1, static_cast<int>(std::lround(size_m.y() / o.ceiling_light_spacing_m)));
   for (int i = 0; i < nx; ++i)
     for (int j = 0; j < ny; ++j)
-      out.push_back({"ceiling_light", Eigen::Vector3d((i + 0.5) * size_m.x() / nx, (j + 0.5) * size_m.y() / ny, size_m.z()), 0});
+      out.push_back(
+          {"ceiling_light", Eigen::Vector3d((i + 0.5) * size_m.x() / nx, (j + 0.5) * size_m.y() / ny, size_m.z()), 0});
   return out;
 }
 
 std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& occupied, const Eigen::Vector2d& size_m,
-                                        const Layout& layout, const std::vector<Eigen::Vector2d>& doors, const World& world,
-                                        const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng) {
+                                        const Layout& layout, const std::vector<Eigen::Vector2d>& doors,
+                                        const World& world, const std::vector<Eigen::Vector2d>& route,
+                                        const GeneratorOptions& options, Rng* rng) {
   const RoomObjectOptions& o = options.objects;
   FloorCheck floor = MakeFloorCheck(size_m, world, doors, route, options.route_clearance_m);
   std::vector<PlacedObject> out;
   const std::vector<Crowd::SeatPlace> seats = world.seat_places();
   for (const auto& [table, seat] : occupied) {
-    const auto place = std::find_if(seats.begin(), seats.end(), [&, t = table, k = seat](const Crowd::SeatPlace& s) { return s.table == t && s.seat == k; });
-    const double bag = rng->Uniform(), coat = rng->Uniform(), charger = rng->Uniform(), side = rng->Uniform() < 0.5 ? 1.0 : -1.0;
+    const auto place = std::find_if(seats.begin(), seats.end(), [&, t = table, k = seat](const Crowd::SeatPlace& s) {
+      return s.table == t && s.seat == k;
+    });
+    const double bag = rng->Uniform(), coat = rng->Uniform(), charger = rng->Uniform(),
+                 side = rng->Uniform() < 0.5 ? 1.0 : -1.0;
     if (place == seats.end() || !place->chair) continue;  // a sofa's places hold nothing of this
     const Eigen::Vector2d at = place->world_from_seat.topRightCorner<2, 1>().cast<double>();
     const Eigen::Vector2d facing = place->world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
@@ -136,8 +146,10 @@ std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& 
       // On the floor beside the chair, its long side along the seat's facing; the other side if
       // this one is taken.
       for (double s : {side, -side}) {
-        const Eigen::Vector2d center = at + Rotate(yaw, Eigen::Vector2d(-0.03, s * (kChairHalfWidthM + 0.02 + 0.5 * kBagWidthM)));
-        const Obstacle2D footprint = Obstacle2D::Rectangle("bag", center, Eigen::Vector2d(kBagLengthM, kBagWidthM), yaw);
+        const Eigen::Vector2d center =
+            at + Rotate(yaw, Eigen::Vector2d(-0.03, s * (kChairHalfWidthM + 0.02 + 0.5 * kBagWidthM)));
+        const Obstacle2D footprint =
+            Obstacle2D::Rectangle("bag", center, Eigen::Vector2d(kBagLengthM, kBagWidthM), yaw);
         if (!floor.Clear(footprint)) continue;
         floor.footprints.push_back(footprint);
         out.push_back({"bag", Eigen::Vector3d(center.x(), center.y(), 0), yaw_deg});
@@ -154,14 +166,16 @@ std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& 
       const Piece& piece = layout.pieces[static_cast<size_t>(table)];
       if (piece.asset == "low_table" || piece.asset == "sofa" || piece.asset == "lectern") continue;
       const std::string name = "table " + std::to_string(table);
-      const auto top = std::find_if(world.obstacles().begin(), world.obstacles().end(), [&](const Obstacle2D& f) { return f.name == name; });
+      const auto top = std::find_if(world.obstacles().begin(), world.obstacles().end(),
+                                    [&](const Obstacle2D& f) { return f.name == name; });
       if (top == world.obstacles().end()) continue;
       double edge = 0;
       while (edge < 1.0 && DistanceToObstacle(at + edge * facing, *top) > 0) edge += 0.005;
       const Eigen::Vector2d center = at + Rotate(yaw, Eigen::Vector2d(edge + 0.055, 0.30));
       bool on_top = edge < 1.0;
       for (int corner = 0; corner < 4 && on_top; ++corner) {
-        const Eigen::Vector2d p = center + Rotate(yaw, Eigen::Vector2d((corner & 1 ? 1 : -1) * kChargerHalfWidthM, (corner & 2 ? 1 : -1) * kChargerHalfM));
+        const Eigen::Vector2d p = center + Rotate(yaw, Eigen::Vector2d((corner & 1 ? 1 : -1) * kChargerHalfWidthM,
+                                                                       (corner & 2 ? 1 : -1) * kChargerHalfM));
         on_top = piece.asset == "round_table" ? (p - piece.center_m).norm() < 0.44 : DistanceToObstacle(p, *top) == 0;
       }
       if (on_top) out.push_back({"charger", Eigen::Vector3d(center.x(), center.y(), kTableTopM), yaw_deg + 90});

@@ -4,13 +4,14 @@
 // people leave by their seats (bags, coats over chair backs, chargers on the table).
 #pragma once
 
-#include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "floor_plan.h"
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/world/world.h"
-#include "floor_plan.h"
 #include "layouts.h"
 
 namespace hoilcd {
@@ -28,16 +29,18 @@ bool HasFrontWall(const std::string& family);
 // with `windows` (scene /room/windows) and `doors`, whose furniture stands in `world` and whose
 // robot drives `route`; floor-standing cabinets keep route_clearance_m from the route and stay
 // clear of every footprint and doorway.
-std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layout& layout, const nlohmann::ordered_json& windows,
-                                       const std::vector<Eigen::Vector2d>& doors, bool whiteboard, const World& world,
-                                       const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng);
+std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layout& layout,
+                                       const nlohmann::ordered_json& windows, const std::vector<Eigen::Vector2d>& doors,
+                                       bool whiteboard, const World& world, const std::vector<Eigen::Vector2d>& route,
+                                       const GeneratorOptions& options, Rng* rng);
 
 // Bags beside, coats over and chargers in front of the seats `occupied` (scene /crowd/seating:
-// table, seat) of `world` in a room of size_m (x, y) with `doors`, each with its option's probability; bags keep clear of every footprint
-// in `world` and in `placed` (floor objects already placed), of every seat's access and of the
-// route by route_clearance_m; chargers lie on table tops.
+// table, seat) of `world` in a room of size_m (x, y) with `doors`, each with its option's probability; bags keep clear
+// of every footprint in `world` and in `placed` (floor objects already placed), of every seat's access and of the route
+// by route_clearance_m; chargers lie on table tops.
 std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& occupied, const Eigen::Vector2d& size_m,
-                                        const Layout& layout, const std::vector<Eigen::Vector2d>& doors, const World& world,
-                                        const std::vector<Eigen::Vector2d>& route, const GeneratorOptions& options, Rng* rng);
+                                        const Layout& layout, const std::vector<Eigen::Vector2d>& doors,
+                                        const World& world, const std::vector<Eigen::Vector2d>& route,
+                                        const GeneratorOptions& options, Rng* rng);
 
 }  // namespace hoilcd

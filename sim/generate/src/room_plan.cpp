@@ -1,8 +1,9 @@
 #include "room_plan.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 namespace hoilcd {
 namespace {
@@ -28,7 +29,8 @@ bool WallPlan::Free(Wall wall, double a, double b, double z0, double z1, double 
   return true;
 }
 
-std::vector<std::pair<double, double>> WallPlan::FreeStretches(Wall wall, double z0, double z1, double gap_m, double corner_m) const {
+std::vector<std::pair<double, double>> WallPlan::FreeStretches(Wall wall, double z0, double z1, double gap_m,
+                                                               double corner_m) const {
   std::vector<std::pair<double, double>> taken;
   for (const Span& s : spans_)
     if (s.wall == wall && z0 < s.z1 && s.z0 < z1) taken.emplace_back(s.a - gap_m, s.b + gap_m);
@@ -47,16 +49,20 @@ std::vector<std::pair<double, double>> WallPlan::FreeStretches(Wall wall, double
 
 PlacedObject WallPlan::On(const std::string& asset, Wall wall, double along_m, double z_m) const {
   switch (wall) {
-    case kSouth: return {asset, Eigen::Vector3d(along_m, 0, z_m), 90};
-    case kNorth: return {asset, Eigen::Vector3d(along_m, size_m_.y(), z_m), -90};
-    case kWest: return {asset, Eigen::Vector3d(0, along_m, z_m), 0};
-    case kEast: break;
+    case kSouth:
+      return {asset, Eigen::Vector3d(along_m, 0, z_m), 90};
+    case kNorth:
+      return {asset, Eigen::Vector3d(along_m, size_m_.y(), z_m), -90};
+    case kWest:
+      return {asset, Eigen::Vector3d(0, along_m, z_m), 0};
+    case kEast:
+      break;
   }
   return {asset, Eigen::Vector3d(size_m_.x(), along_m, z_m), 180};
 }
 
-bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& asset, Wall wall, double along_m, double half_m,
-           double bottom_m, double height_m) {
+bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& asset, Wall wall, double along_m,
+           double half_m, double bottom_m, double height_m) {
   if (!plan->Free(wall, along_m - half_m, along_m + half_m, bottom_m, bottom_m + height_m)) return false;
   plan->Take(wall, along_m - half_m, along_m + half_m, bottom_m, bottom_m + height_m);
   out->push_back(plan->On(asset, wall, along_m, bottom_m));

@@ -3,10 +3,11 @@
 // fittings and people's things (room_objects.cpp) and the clutter (clutter.cpp).
 #pragma once
 
-#include <Eigen/Core>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "floor_plan.h"
 #include "layouts.h"
@@ -34,10 +35,12 @@ class WallPlan {
 
   // Whether [a, b] × [z0, z1] on `wall` is under the ceiling, corner_m from the corners and gap_m
   // along the wall from every stretch taken that it shares heights with.
-  bool Free(Wall wall, double a, double b, double z0, double z1, double gap_m = kGapM, double corner_m = kCornerM) const;
+  bool Free(Wall wall, double a, double b, double z0, double z1, double gap_m = kGapM,
+            double corner_m = kCornerM) const;
 
   // The free stretches of `wall` over heights [z0, z1], in order along it (same rules as Free).
-  std::vector<std::pair<double, double>> FreeStretches(Wall wall, double z0, double z1, double gap_m, double corner_m) const;
+  std::vector<std::pair<double, double>> FreeStretches(Wall wall, double z0, double z1, double gap_m,
+                                                       double corner_m) const;
 
   void Take(Wall wall, double a, double b, double z0, double z1) { spans_.push_back({wall, a, b, z0, z1}); }
 
@@ -50,8 +53,8 @@ class WallPlan {
 };
 
 // Takes the stretch and places the object when the stretch is free.
-bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& asset, Wall wall, double along_m, double half_m,
-           double bottom_m, double height_m);
+bool Mount(WallPlan* plan, std::vector<PlacedObject>* out, const std::string& asset, Wall wall, double along_m,
+           double half_m, double bottom_m, double height_m);
 
 // A floor object's footprint clear of the walls, every other footprint, the doorways, the seats'
 // access and the route.

@@ -11,8 +11,10 @@ int FramesForLaps(const Scene& scene, const World& world, const std::vector<Eige
   options.waypoints_m = route;
   double length_m = 0;
   for (size_t i = 0; i < route.size(); ++i) length_m += (route[(i + 1) % route.size()] - route[i]).norm();
-  options.frames = static_cast<int>(std::ceil(1.5 * laps * length_m / options.cruise_speed_m_s * scene.frame_rate_hz)) + 50;
-  const RobotRun run = SimulateRobot(scene.robot, options, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
+  options.frames =
+      static_cast<int>(std::ceil(1.5 * laps * length_m / options.cruise_speed_m_s * scene.frame_rate_hz)) + 50;
+  const RobotRun run =
+      SimulateRobot(scene.robot, options, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
   for (const RobotSample& s : run.samples)
     if (s.lap >= laps) return s.frame + 1;
   throw InputError("route", "the robot to complete " + std::to_string(laps) + " laps");

@@ -2,8 +2,9 @@
 // room generator and the building floor's).
 #pragma once
 
-#include <Eigen/Core>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/sim/world/world.h"

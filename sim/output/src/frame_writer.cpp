@@ -115,7 +115,7 @@ void FrameWriter::RetireInOrder() {
 void FrameWriter::Checkpoint() {
   if (checkpoint_.valid()) {
     if (checkpoint_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;  // still syncing
-    checkpoint_.get();  // rethrows its failure
+    checkpoint_.get();                                                                       // rethrows its failure
   }
   std::vector<std::string> to_sync;
   DatasetManifest snapshot;
@@ -126,11 +126,11 @@ void FrameWriter::Checkpoint() {
     snapshot = *manifest_;  // lists only files already in place
   }
   const std::string manifest_path = options_.dir + "/manifest.json";
-  checkpoint_ = std::async(std::launch::async, [to_sync = std::move(to_sync), snapshot = std::move(snapshot),
-                                                manifest_path] {
-    SyncFiles(to_sync);  // durable before a manifest lists them
-    WriteFileAtomic(manifest_path, snapshot.ToJson());
-  });
+  checkpoint_ =
+      std::async(std::launch::async, [to_sync = std::move(to_sync), snapshot = std::move(snapshot), manifest_path] {
+        SyncFiles(to_sync);  // durable before a manifest lists them
+        WriteFileAtomic(manifest_path, snapshot.ToJson());
+      });
 }
 
 void FrameWriter::Finish() {

@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 
 // The whole sequence's side files: the same in every shard, copied from the first; runs.json only
 // in a sequence of several recording runs.
-const char* const kSideFiles[] = {"poses.csv", "poses_tum.txt", "events.json", "footprints.json", "scene.json", "runs.json"};
+const char* const kSideFiles[] = {"poses.csv",       "poses_tum.txt", "events.json",
+                                  "footprints.json", "scene.json",    "runs.json"};
 bool Optional(const std::string& side_file) { return side_file == "runs.json"; }
 
 struct ShardFolder {
@@ -41,13 +42,15 @@ std::string FramesText(int begin, int end) {
 ShardFolder ReadShard(const std::string& dir) {
   const std::string path = dir + "/manifest.json";
   if (!fs::is_regular_file(path)) {
-    throw InputError(dir, "no manifest.json: not a shard folder (write one with hoilcd render SCENE -o DIR --shard I/N)");
+    throw InputError(dir,
+                     "no manifest.json: not a shard folder (write one with hoilcd render SCENE -o DIR --shard I/N)");
   }
   ShardFolder shard{dir, DatasetManifest::FromJson(ReadFileBytes(path), path)};
   const DatasetManifest& m = shard.manifest;
   if (!m.shard) {
-    throw InputError(dir, "is a whole dataset (rendered without --shard), not a shard; hoilcd merge joins the "
-                          "folders of hoilcd render --shard I/N");
+    throw InputError(dir,
+                     "is a whole dataset (rendered without --shard), not a shard; hoilcd merge joins the "
+                     "folders of hoilcd render --shard I/N");
   }
   if (m.hoilcd_version != SimulatorVersion()) {
     throw InputError(dir, "is a shard rendered by hoilcd " + m.hoilcd_version + " (this is " + SimulatorVersion() +
@@ -60,8 +63,9 @@ ShardFolder ReadShard(const std::string& dir) {
                               FramesText(expected.begin, expected.end));
   }
   if (!m.complete) {
-    throw InputError(dir, "shard " + m.shard->shard.Name() + " is incomplete (" + FramesText(expected.begin, expected.end) +
-                              ", " + std::to_string(m.FramesWritten()) + " written); re-run its hoilcd render command "
+    throw InputError(dir, "shard " + m.shard->shard.Name() + " is incomplete (" +
+                              FramesText(expected.begin, expected.end) + ", " + std::to_string(m.FramesWritten()) +
+                              " written); re-run its hoilcd render command "
                               "to finish it");
   }
   return shard;
@@ -92,7 +96,8 @@ std::vector<ShardFolder> ReadShards(const std::vector<std::string>& dirs) {
               std::to_string(a.shard->shard.count) + " shards");
     }
     const auto [at, inserted] = by_index.emplace(b.shard->shard.index, shard.dir);
-    if (!inserted) throw InputError(shard.dir, "repeats shard " + b.shard->shard.Name() + ", which " + at->second + " holds");
+    if (!inserted)
+      throw InputError(shard.dir, "repeats shard " + b.shard->shard.Name() + ", which " + at->second + " holds");
     for (const char* name : kSideFiles) {
       if (Optional(name) && a.files.count(name) == 0 && b.files.count(name) == 0) continue;
       if (a.files.count(name) == 0 || b.files.count(name) == 0 || b.files.at(name) != a.files.at(name)) {
@@ -105,7 +110,8 @@ std::vector<ShardFolder> ReadShards(const std::vector<std::string>& dirs) {
   for (int index = 0; index < count; ++index) {
     if (by_index.count(index) == 0) {
       const IndexRange range = ContiguousPart(Shard{index, count}, a.frame_count);
-      throw InputError("hoilcd merge", "shard " + Shard{index, count}.Name() + " (" + FramesText(range.begin, range.end) +
+      throw InputError("hoilcd merge", "shard " + Shard{index, count}.Name() + " (" +
+                                           FramesText(range.begin, range.end) +
                                            ") is missing: none of the folders given holds it");
     }
   }
@@ -125,19 +131,21 @@ void CheckOutputFolder(const std::string& dir, const DatasetManifest& merged) {
       throw InputError(dir, "holds shard " + old.shard->shard.Name() + ", not a dataset; choose another output folder");
     }
     if (old.frame_count != merged.frame_count) {
-      throw InputError(dir, "holds a dataset of " + std::to_string(old.frame_count) + " frames, but the shards are of " +
-                                std::to_string(merged.frame_count) + "; choose another output folder or delete this one");
+      throw InputError(dir, "holds a dataset of " + std::to_string(old.frame_count) +
+                                " frames, but the shards are of " + std::to_string(merged.frame_count) +
+                                "; choose another output folder or delete this one");
     }
-    if (old.hoilcd_version != merged.hoilcd_version || old.scene_hash != merged.scene_hash ||
-        old.seed != merged.seed || old.outputs != merged.outputs) {
+    if (old.hoilcd_version != merged.hoilcd_version || old.scene_hash != merged.scene_hash || old.seed != merged.seed ||
+        old.outputs != merged.outputs) {
       throw InputError(dir, "holds a dataset of another scene, seed, simulator version or --outputs (scene hash " +
                                 old.scene_hash + ", seed " + std::to_string(old.seed) + ", hoilcd " +
                                 old.hoilcd_version + ", --outputs " + old.outputs.ToText() +
                                 "); choose another output folder or delete this one");
     }
   } else if (const std::vector<std::string> files = NonTempFiles(dir); !files.empty()) {
-    throw InputError(dir, "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(files) +
-                              " and no manifest.json); refusing to overwrite files in it: choose a new or empty folder");
+    throw InputError(dir,
+                     "exists, is not empty and is not a hoilcd dataset (it holds " + JoinFileList(files) +
+                         " and no manifest.json); refusing to overwrite files in it: choose a new or empty folder");
   }
 }
 
@@ -149,7 +157,8 @@ std::string VerifiedBytes(const ShardFolder& shard, const std::string& relative)
     throw InputError(shard.dir, "lists no " + relative + " in its manifest.json; re-run its hoilcd render command");
   }
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path, "listed in manifest.json but missing; re-run its hoilcd render command");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(path, "listed in manifest.json but missing; re-run its hoilcd render command");
   std::string bytes = ReadFileBytes(path);
   if (ChecksumOf(bytes) != listed->second) {
     throw InputError(path, "does not match its checksum in manifest.json (damaged); re-run its hoilcd render command");
@@ -172,7 +181,8 @@ bool PlaceFile(const ShardFolder& shard, const std::string& relative, const std:
     throw InputError(source, "listed in manifest.json but missing; re-run its hoilcd render command");
   }
   if (ChecksumOfFile(source) != listed->second) {
-    throw InputError(source, "does not match its checksum in manifest.json (damaged); re-run its hoilcd render command");
+    throw InputError(source,
+                     "does not match its checksum in manifest.json (damaged); re-run its hoilcd render command");
   }
   // Placed already (a merge re-run into its own output, or one killed after this file): rename(2)
   // of two names of one file does nothing, so a link made now would be left behind as a temp file.
@@ -207,8 +217,7 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   const FolderLock lock(output_dir, FolderLock::IfBusy::kRefuse);
   CheckOutputFolder(output_dir, merged);
   const std::string scene_path = shards.front().dir + "/scene.json";
-  const Scene scene =
-      SceneFromJson(nlohmann::json::parse(VerifiedBytes(shards.front(), "scene.json")), scene_path);
+  const Scene scene = SceneFromJson(nlohmann::json::parse(VerifiedBytes(shards.front(), "scene.json")), scene_path);
   const VideoOptions video = scene.camera.video;
   const bool encode_video = merged.outputs.video || (video.enabled && merged.outputs.thermal);
 
@@ -257,7 +266,8 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
         in_order = part[k].frame == shard.part().first_frame + static_cast<int>(k);
       }
       if (!in_order) {
-        throw InputError(path, "expected the persons of " + FramesText(shard.part().first_frame, shard.part().end_frame) +
+        throw InputError(path, "expected the persons of " +
+                                   FramesText(shard.part().first_frame, shard.part().end_frame) +
                                    ", one entry a frame in order");
       }
       persons.insert(persons.end(), part.begin(), part.end());

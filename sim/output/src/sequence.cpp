@@ -67,7 +67,8 @@ const OptionTable<SequenceOptions>& SequenceOptions::Table() {
           .Rule("output_dir", [](const O& o) { return o.output_dir.empty() ? "an output folder is required" : ""; })
           .Add("frames", &O::frames, 0, "frames", OptionRange::Closed(0, kMaxFrames),
                "render only the first N frames (0: the scene's count)")
-          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0), "worker threads (0: the CPUs this process may use)")
+          .Add("threads", &O::threads, 0, "", OptionRange().AtLeast(0),
+               "worker threads (0: the CPUs this process may use)")
           .Add("checkpoint_every_frames", &O::checkpoint_every_frames, 25, "frames", OptionRange().AtLeast(1),
                "the manifest is rewritten this often (resume granularity)")
           .Add("outputs", &O::outputs, "thermal,radiometric,exr,video,persons", {},
@@ -110,15 +111,15 @@ FrameSetUp SetUpFrames(const Scene& scene, World* world, const RobotRun& run, in
 // One recording run of the sequence (the whole sequence when the scene has no runs): its scene,
 // world, robot run and camera, and where its frames lie in the sequence.
 struct RunRender {
-  Scene scene;                              // SceneOfRun
+  Scene scene;  // SceneOfRun
   std::unique_ptr<World> world;
   RobotRun run;
   std::unique_ptr<FrameRenderer> renderer;
-  std::unique_ptr<SensorModel> sensor;      // switched on at the run's first frame
-  int sensor_frame = -1;                    // the run's last frame the sensor has seen
-  int first_frame = 0;                      // in the sequence
-  int frames = 0;                           // its frames in the sequence (--frames may cut the last)
-  int person_id_offset = 0;                 // its people's ids in the dataset are their own plus this
+  std::unique_ptr<SensorModel> sensor;  // switched on at the run's first frame
+  int sensor_frame = -1;                // the run's last frame the sensor has seen
+  int first_frame = 0;                  // in the sequence
+  int frames = 0;                       // its frames in the sequence (--frames may cut the last)
+  int person_id_offset = 0;             // its people's ids in the dataset are their own plus this
 };
 
 int RunCount(const Scene& scene) { return scene.runs.empty() ? 1 : static_cast<int>(scene.runs.size()); }
@@ -202,8 +203,8 @@ class SequenceRender {
     // written when every frame is rendered by this call, else at the end from the EXRs on disk.
     // Both feed the encoder the same frames, so a resumed render gives the same file.
     if (encode_video_ && !any_done_) {
-      streaming_video_ = std::make_unique<VideoEncoder>(video_options_, intrinsics_.width, intrinsics_.height,
-                                                        scene_.frame_rate_hz);
+      streaming_video_ =
+          std::make_unique<VideoEncoder>(video_options_, intrinsics_.width, intrinsics_.height, scene_.frame_rate_hz);
     }
     FrameWriterOptions writer_options;
     writer_options.dir = dir_;
@@ -274,7 +275,8 @@ class SequenceRender {
   std::string RunPrefix(size_t k) const { return hoilcd::RunPrefix(k, runs_.size()); }
 
   // The people of run r that frame f sees, with their ids in the dataset.
-  FramePersons PersonsOf(const RunRender& r, int f, const CameraPose& camera, const cv::Mat& ids, const cv::Mat& depth) const {
+  FramePersons PersonsOf(const RunRender& r, int f, const CameraPose& camera, const cv::Mat& ids,
+                         const cv::Mat& depth) const {
     FramePersons persons{f, VisiblePersons(*r.world, intrinsics_, camera, ids, depth, options_.threads)};
     for (PersonRecord& p : persons.persons) p.id += r.person_id_offset;
     return persons;
@@ -296,9 +298,8 @@ class SequenceRender {
                                    "output folder");
       }
       if (old.scene_hash != scene_.hash || old.seed != scene_.seed) {
-        throw InputError(dir_, "holds a dataset of another scene or seed (scene hash " + old.scene_hash +
-                                   ", seed " + std::to_string(old.seed) +
-                                   "); choose another output folder or delete this one");
+        throw InputError(dir_, "holds a dataset of another scene or seed (scene hash " + old.scene_hash + ", seed " +
+                                   std::to_string(old.seed) + "); choose another output folder or delete this one");
       }
       if (old.frame_count != frames_) {
         throw InputError(dir_, "holds a dataset of " + std::to_string(old.frame_count) +
@@ -308,12 +309,14 @@ class SequenceRender {
       }
       if (ShardText(old.shard) != ShardText(manifest_shard_)) {
         throw InputError(dir_, "holds " + ShardText(old.shard) + " (this render asks for " +
-                                   ShardText(manifest_shard_) + "); use the same --shard, another "
+                                   ShardText(manifest_shard_) +
+                                   "); use the same --shard, another "
                                    "output folder, or delete this one");
       }
       if (old.outputs != outputs_) {
         throw InputError(dir_, "holds a dataset with --outputs " + old.outputs.ToText() + " (this render asks for " +
-                                   outputs_.ToText() + "); use the same --outputs, another output folder, or "
+                                   outputs_.ToText() +
+                                   "); use the same --outputs, another output folder, or "
                                    "delete this one");
       }
       manifest_ = old;
@@ -370,7 +373,8 @@ class SequenceRender {
     const CameraPose& camera = r.run.samples[f - r.first_frame].camera;
     cv::Mat ids, depth;
     if (outputs_.exr) {
-      for (const auto& [name, channel] : ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height})) {
+      for (const auto& [name, channel] :
+           ReadExr(dir_ + "/" + FramePath("exr", f, "exr"), {intrinsics_.width, intrinsics_.height})) {
         if (name == "id") channel.convertTo(ids, CV_32S);
         if (name == "Z") channel.convertTo(depth, CV_32F);
       }
@@ -455,7 +459,8 @@ class SequenceRender {
     std::vector<RunRecord> records;
     for (size_t k = 0; k < runs_.size(); ++k) {
       const RunSpec& spec = scene_.runs[k];
-      records.push_back({runs_[k].first_frame, runs_[k].frames, spec.time_of_day_h, spec.day, spec.start_time_s, spec.seed});
+      records.push_back(
+          {runs_[k].first_frame, runs_[k].frames, spec.time_of_day_h, spec.day, spec.start_time_s, spec.seed});
     }
     return records;
   }
@@ -529,8 +534,8 @@ class SequenceRender {
   const SequenceOptions& options_;
   const std::string dir_;
   const std::string manifest_path_;
-  const int frames_;          // of the sequence
-  const IndexRange range_;    // the frames this render writes: all, or its shard's
+  const int frames_;                                  // of the sequence
+  const IndexRange range_;                            // the frames this render writes: all, or its shard's
   const std::optional<DatasetShard> manifest_shard_;  // what the manifest says of the shard (none: whole)
   const DatasetOutputs outputs_;
   const BandRadianceTable table_;

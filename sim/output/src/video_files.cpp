@@ -28,8 +28,8 @@ std::string EncodeVideo(const VideoOptions& video, const DatasetManifest& manife
   return encoder.Finish();
 }
 
-void WriteVideoFiles(const std::string& dir, const std::string& mp4, const VideoOptions& video, int frames,
-                     int threads, DatasetManifest* manifest) {
+void WriteVideoFiles(const std::string& dir, const std::string& mp4, const VideoOptions& video, int frames, int threads,
+                     DatasetManifest* manifest) {
   if (manifest->outputs.video) WriteDatasetFile(dir, "thermal.mp4", mp4, manifest);
   if (!video.enabled || !manifest->outputs.thermal) return;
   const DecodedVideo decoded = DecodeVideo(mp4, dir + "/thermal.mp4", ResolveThreadCount(threads));

@@ -53,9 +53,9 @@ double FaceOffset(const Eigen::Vector3f& p) {
 
 BodyZone BodyZoneOfPart(const std::string& part_name) {
   static const std::pair<const char*, BodyZone> kZones[] = {
-      {"pelvis", BodyZone::kPelvis},        {"torso", BodyZone::kTorso},  {"neck", BodyZone::kNeck},
-      {"head", BodyZone::kHead},            {"upper_arm", BodyZone::kUpperArm}, {"lower_arm", BodyZone::kLowerArm},
-      {"hand", BodyZone::kHand},            {"thigh", BodyZone::kThigh},  {"shin", BodyZone::kShin},
+      {"pelvis", BodyZone::kPelvis}, {"torso", BodyZone::kTorso},        {"neck", BodyZone::kNeck},
+      {"head", BodyZone::kHead},     {"upper_arm", BodyZone::kUpperArm}, {"lower_arm", BodyZone::kLowerArm},
+      {"hand", BodyZone::kHand},     {"thigh", BodyZone::kThigh},        {"shin", BodyZone::kShin},
       {"foot", BodyZone::kFoot}};
   for (const auto& [prefix, zone] : kZones)
     if (part_name.rfind(prefix, 0) == 0) return zone;
@@ -65,8 +65,13 @@ BodyZone BodyZoneOfPart(const std::string& part_name) {
 
 GarmentField::GarmentField(uint64_t key, BodyZone zone, const Ensemble& ensemble, bool seated,
                            const GarmentOptions& options)
-    : key_(key), zone_(zone), seated_(seated), short_sleeves_(ensemble.short_sleeves), skirt_(ensemble.skirt),
-      fit_(ensemble.fit), options_(options) {}
+    : key_(key),
+      zone_(zone),
+      seated_(seated),
+      short_sleeves_(ensemble.short_sleeves),
+      skirt_(ensemble.skirt),
+      fit_(ensemble.fit),
+      options_(options) {}
 
 float GarmentField::OffsetK(const Eigen::Vector3f& object_point, const Eigen::Vector3f&) const {
   return static_cast<float>(OffsetAt(object_point));
@@ -82,30 +87,30 @@ double GarmentField::OffsetAt(const Eigen::Vector3f& p) const {
   const double z = p.z(), x = p.x();
   switch (zone_) {
     case BodyZone::kTorso:
-      contact = std::max(Ramp(z, 1.31, 1.39),                                   // shoulders carry the garment
-                         0.6 * Ramp(-x, 0.04, 0.08) * Ramp(z, 1.10, 1.20));      // upper back
-      hanging = Ramp(z, kTorsoHemZ + 0.07, kTorsoHemZ);                           // the hem hangs loose
+      contact = std::max(Ramp(z, 1.31, 1.39),                                // shoulders carry the garment
+                         0.6 * Ramp(-x, 0.04, 0.08) * Ramp(z, 1.10, 1.20));  // upper back
+      hanging = Ramp(z, kTorsoHemZ + 0.07, kTorsoHemZ);                      // the hem hangs loose
       break;
     case BodyZone::kUpperArm:
       contact = Ramp(z, kShoulderZ - 0.07, kShoulderZ - 0.02);
-      if (short_sleeves_) hanging = Ramp(z, kElbowZ + 0.09, kElbowZ + 0.02);      // the sleeve's opening
+      if (short_sleeves_) hanging = Ramp(z, kElbowZ + 0.09, kElbowZ + 0.02);  // the sleeve's opening
       break;
     case BodyZone::kLowerArm:
-      hanging = 0.3 + 0.7 * Ramp(z, kWristZ + 0.08, kWristZ + 0.01);             // loose sleeve, cuff
+      hanging = 0.3 + 0.7 * Ramp(z, kWristZ + 0.08, kWristZ + 0.01);  // loose sleeve, cuff
       break;
     case BodyZone::kPelvis:
       contact = seated_ ? 0.5 : 0.3;  // the waistband and, seated, the seat of the trousers
       break;
     case BodyZone::kThigh:
       if (skirt_) {
-        hanging = 0.5 + 0.5 * Ramp(z, kKneeZ + 0.15, kKneeZ + 0.05);               // a skirt hangs free
+        hanging = 0.5 + 0.5 * Ramp(z, kKneeZ + 0.15, kKneeZ + 0.05);  // a skirt hangs free
       } else {
-        contact = (seated_ ? 1.0 : 0.3) * Ramp(x, 0.0, 0.05);                     // pulled taut over the thigh
+        contact = (seated_ ? 1.0 : 0.3) * Ramp(x, 0.0, 0.05);  // pulled taut over the thigh
       }
       break;
     case BodyZone::kShin:
-      hanging = skirt_ ? 0.0 : 0.3 + 0.7 * Ramp(z, 0.22, 0.12);                    // trouser legs, their hem
-      if (seated_ && !skirt_) contact = Ramp(z, kKneeZ - 0.06, kKneeZ);            // the bent knee
+      hanging = skirt_ ? 0.0 : 0.3 + 0.7 * Ramp(z, 0.22, 0.12);          // trouser legs, their hem
+      if (seated_ && !skirt_) contact = Ramp(z, kKneeZ - 0.06, kKneeZ);  // the bent knee
       break;
     default:
       break;

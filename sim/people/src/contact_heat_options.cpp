@@ -13,9 +13,12 @@ const OptionTable<ContactHeatOptions>& ContactHeatOptions::Table() {
                "warm prints where people touch chairs, tables, laptops and cup handles; cups cool, laptops warm up "
                "(false: they keep their assets' temperatures)")
           .Add("seat_warm_time_constant_s", &O::seat_warm_time_constant_s, 120.0, "s", R::Closed(1, 36000),
-               "a seat's and backrest's print warms toward its steady excess (furniture.seat_warmth_c) with this time constant")
-          .Add("back_excess_k", &O::back_excess_k, 1.5, "K", R::Closed(0, 20), "steady excess of a backrest's print where a back leans on it")
-          .Add("table_excess_k", &O::table_excess_k, 3.0, "K", R::Closed(0, 20), "steady excess of a table top under a resting forearm and hand")
+               "a seat's and backrest's print warms toward its steady excess (furniture.seat_warmth_c) with this time "
+               "constant")
+          .Add("back_excess_k", &O::back_excess_k, 1.5, "K", R::Closed(0, 20),
+               "steady excess of a backrest's print where a back leans on it")
+          .Add("table_excess_k", &O::table_excess_k, 3.0, "K", R::Closed(0, 20),
+               "steady excess of a table top under a resting forearm and hand")
           .Add("table_warm_time_constant_s", &O::table_warm_time_constant_s, 30.0, "s", R::Closed(1, 36000),
                "a table print warms with this time constant")
           .Add("table_cool_time_constant_s", &O::table_cool_time_constant_s, 45.0, "s", R::Closed(1, 36000),
@@ -32,9 +35,11 @@ const OptionTable<ContactHeatOptions>& ContactHeatOptions::Table() {
                "a handle print forms with this time constant")
           .Add("handle_cool_time_constant_s", &O::handle_cool_time_constant_s, 20.0, "s", R::Closed(1, 36000),
                "a handle print fades with this time constant once the cup is put down")
-          .Add("cup_fill_c", &O::cup_fill_c, 75.0, "°C", R::Closed(30, 100), "a drink's temperature when poured (a newcomer's cup is fresh)")
+          .Add("cup_fill_c", &O::cup_fill_c, 75.0, "°C", R::Closed(30, 100),
+               "a drink's temperature when poured (a newcomer's cup is fresh)")
           .Add("cup_refill_c", &O::cup_refill_c, 40.0, "°C", R::Closed(0, 100),
-               "a drink cooled to this is refilled to cup_fill_c (cups at the start are at a random point of that cycle)")
+               "a drink cooled to this is refilled to cup_fill_c (cups at the start are at a random point of that "
+               "cycle)")
           .Add("cup_time_constant_s", &O::cup_time_constant_s, 1700.0, "s", R::Closed(1, 36000),
                "Newton's-law time constant of a filled ceramic mug cooling toward the room")
           .Add("laptop_warm_time_constant_s", &O::laptop_warm_time_constant_s, 600.0, "s", R::Closed(1, 36000),

@@ -1,8 +1,9 @@
 #include "hoilcd/sim/people/crowd_motion.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/core/util/random.h"
 
@@ -28,16 +29,18 @@ const OptionTable<ActivityOptions>& ActivityOptions::Table() {
   using Activities = std::map<std::string, ActivitySpec>;
   static const OptionTable<O> table = [] {
     // One entry per activity, each with its own defaults (crowd.activities.<name>).
-    const std::array<ActivitySpec, kActivityNames.size()> defaults = {{{2.0, 6.0}, {1.5, 2.5}, {1.5, 8.0}, {0.6, 5.0}, {3.0, 20.0}}};
+    const std::array<ActivitySpec, kActivityNames.size()> defaults = {
+        {{2.0, 6.0}, {1.5, 2.5}, {1.5, 8.0}, {0.6, 5.0}, {3.0, 20.0}}};
     OptionTable<Activities> activities;
     for (size_t i = 0; i < kActivityNames.size(); ++i) {
       const std::string name = kActivityNames[i];
-      activities.Nest<ActivitySpec>(kActivityNames[i], [name](Activities* a) { return &(*a)[name]; },
-                                    OptionTable<ActivitySpec>()
-                                        .Add("weight", &ActivitySpec::weight, defaults[i].weight, "", R::Closed(0, 1000),
-                                             "relative frequency when a new activity is chosen")
-                                        .Add("dwell_s", &ActivitySpec::dwell_s, defaults[i].dwell_s, "s",
-                                             R::Closed(kMinDwellS, 600), "mean duration (exponential)"));
+      activities.Nest<ActivitySpec>(
+          kActivityNames[i], [name](Activities* a) { return &(*a)[name]; },
+          OptionTable<ActivitySpec>()
+              .Add("weight", &ActivitySpec::weight, defaults[i].weight, "", R::Closed(0, 1000),
+                   "relative frequency when a new activity is chosen")
+              .Add("dwell_s", &ActivitySpec::dwell_s, defaults[i].dwell_s, "s", R::Closed(kMinDwellS, 600),
+                   "mean duration (exponential)"));
     }
     return OptionTable<O>()
         .Nest("activities", &O::activities, activities)
@@ -51,7 +54,8 @@ const OptionTable<ActivityOptions>& ActivityOptions::Table() {
                 return "";
               })
         .Add("activity_blend_s", &O::blend_s, 0.8, "s", R().Above(0).AtMost(5), "ramp into and out of an activity")
-        .Add("posture_blend_s", &O::posture_blend_s, 1.5, "s", R().Above(0).AtMost(10), "a posture change takes this long")
+        .Add("posture_blend_s", &O::posture_blend_s, 1.5, "s", R().Above(0).AtMost(10),
+             "a posture change takes this long")
         .Add("cup_fraction", &O::cup_fraction, 0.5, "", R::Closed(0, 1), "seated people with a cup in front of them")
         .Add("laptop_fraction", &O::laptop_fraction, 0.25, "", R::Closed(0, 1),
              "seated people with a laptop in front of them");
@@ -61,8 +65,8 @@ const OptionTable<ActivityOptions>& ActivityOptions::Table() {
 
 std::string ActivityOptions::Check() const { return Table().FirstProblem(*this); }
 
-std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id,
-                                            double from_s, double to_s, bool has_cup, bool has_laptop) {
+std::vector<ActivityEpisode> PlanActivities(const ActivityOptions& options, uint64_t seed, int person_id, double from_s,
+                                            double to_s, bool has_cup, bool has_laptop) {
   Rng rng = KeyedRng(seed, "crowd.activity", static_cast<uint64_t>(person_id), static_cast<uint64_t>(from_s * 1000));
   std::vector<ActivityEpisode> out;
   std::string previous;
@@ -108,13 +112,13 @@ void GazeAt(const std::vector<double>& neighbour_yaw_rad, ActivityEpisode* episo
     return;
   }
   const auto n = neighbour_yaw_rad.size();
-  episode->gaze_yaw_rad = neighbour_yaw_rad[std::min(n - 1, static_cast<size_t>(episode->neighbour_pick * static_cast<double>(n)))];
+  episode->gaze_yaw_rad =
+      neighbour_yaw_rad[std::min(n - 1, static_cast<size_t>(episode->neighbour_pick * static_cast<double>(n)))];
 }
 
 // 81 lines: one block per activity (head turn, talking, typing, drinking) over a shared envelope.
-BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const ActivityEpisode& episode,
-                       double time_s, double blend_s, const Props& props, double robot_yaw_rad,
-                       Eigen::Matrix4d* seat_from_cup) {
+BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const ActivityEpisode& episode, double time_s,
+                       double blend_s, const Props& props, double robot_yaw_rad, Eigen::Matrix4d* seat_from_cup) {
   Eigen::Matrix4d cup = Eigen::Matrix4d::Identity();
   cup.topRightCorner<3, 1>() = props.cup_at_m;
   *seat_from_cup = cup;
@@ -126,9 +130,8 @@ BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const Act
   const double t = time_s;
   const double phase = episode.phase_rad;
   if (episode.name == "head_turn" || episode.name == "talking") {
-    const double yaw = std::remainder(episode.toward_robot && episode.name == "head_turn" ? robot_yaw_rad
-                                                                                          : episode.gaze_yaw_rad,
-                                      2 * M_PI);
+    const double yaw = std::remainder(
+        episode.toward_robot && episode.name == "head_turn" ? robot_yaw_rad : episode.gaze_yaw_rad, 2 * M_PI);
     const double reach = std::clamp(yaw, -100 * kDeg, 100 * kDeg);  // beyond: look over the shoulder
     p.dof[kNeckTwist] += envelope * 0.85 * reach;
     p.dof[kLumbarTwist] += envelope * 0.12 * reach;
@@ -153,8 +156,8 @@ BodyPose ApplyActivity(const Skeleton& skeleton, const BodyPose& base, const Act
     g.dof[kLumbarFlex] = std::max(g.dof[kLumbarFlex], 6 * kDeg);
     for (int s = 0; s < 2; ++s) {
       const double sign = s == 0 ? 1 : -1;
-      const double tap = 0.004 * std::sin(2 * M_PI * 3.1 * t + phase + s * 1.9) +
-                         0.003 * std::sin(2 * M_PI * 4.7 * t + 2 * phase);
+      const double tap =
+          0.004 * std::sin(2 * M_PI * 3.1 * t + phase + s * 1.9) + 0.003 * std::sin(2 * M_PI * 4.7 * t + 2 * phase);
       g.arm[s] = {props.laptop_at_m + Vec3(-0.13, sign * 0.09, 0.045 + tap), Vec3(0, sign, -0.5),
                   Vec3(1, -sign * 0.25, -0.08), Vec3(0, 0, 1)};
     }

@@ -66,7 +66,8 @@ const OptionTable<GarmentOptions>& GarmentOptions::Table() {
                "clothing temperatures from each person's garments (ISO 7730 heat balance) with folds, contact zones "
                "and hems; false: one temperature per clothing region (clothing_temperature_c)")
           .Add("skin_pattern", &O::skin_pattern, true,
-               "face, neck, hands and bare forearms at their published temperatures, hair by its thickness; false: one skin and one hair temperature")
+               "face, neck, hands and bare forearms at their published temperatures, hair by its thickness; false: one "
+               "skin and one hair temperature")
           .Add("air_speed_m_s", &O::air_speed_m_s, 0.1, "m/s", R::Closed(0, 1),
                "air speed relative to the body in the heat balance (ISO 7730 h_c)")
           .Add("time_constant_s", &O::time_constant_s, 300.0, "s", R::Closed(1, 3600),
@@ -96,8 +97,8 @@ Ensemble DrawEnsemble(uint64_t seed, int person_id) {
   for (int attempt = 0;; ++attempt) {
     e = Ensemble();
     const bool skirt = rng.Uniform() < 0.2;
-    const Garment& lower = skirt ? (rng.Uniform() < 0.5 ? kLightSkirt : kHeavySkirt)
-                                 : (rng.Uniform() < 0.7 ? kTrousers : kLightTrousers);
+    const Garment& lower =
+        skirt ? (rng.Uniform() < 0.5 ? kLightSkirt : kHeavySkirt) : (rng.Uniform() < 0.7 ? kTrousers : kLightTrousers);
     const Garment& top = *kTops[PickIndex(kTopWeights, &rng)];
     const Garment* layer = kLayers[PickIndex(kLayerWeights, &rng)];
     std::vector<const Garment*> worn = {&top, &lower, &kPanties, &kSocks, &kShoes};
@@ -148,9 +149,9 @@ ClothingBalance SolveClothingSurface(double clo, double met, const ThermalEnviro
 }
 
 double MetabolicRateMet(const std::string& activity) {
-  if (activity == "idle" || activity == "head_turn") return 1.0;  // seated, relaxed
+  if (activity == "idle" || activity == "head_turn") return 1.0;                            // seated, relaxed
   if (activity == "talking" || activity == "drinking" || activity == "typing") return 1.2;  // sedentary activity
-  if (activity == "standing") return 1.2;  // standing, relaxed
+  if (activity == "standing") return 1.2;                                                   // standing, relaxed
   HOILCD_CHECK_MSG(activity == "walking", activity);
   return 1.9;  // walking on the level at 2 km/h
 }

@@ -1,10 +1,11 @@
 #include "hoilcd/sim/people/walker_planner.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/sim/assets/skeleton.h"
 
@@ -119,7 +120,7 @@ bool ClearOfRobotAndWalkers(const WalkerSegment& segment, const WalkerPlan& plan
 
 // A route-following walker's floor position at time t (heading_rad: the route's there).
 Vec2 OnRoute(const WalkerSegment& s, const FreeSpace* space, const RobotTrack& robot, double time_s, double lateral_m,
-            double* heading_rad) {
+             double* heading_rad) {
   const double u = std::clamp(s.u_start + s.rate * (time_s - s.start_s), robot.start_s(), robot.end_s());
   double heading = 0;
   const Vec2 on_route = robot.At(u, &heading);
@@ -198,7 +199,6 @@ std::optional<WalkerSegment> PlanOvertake(const FreeSpace& space, const RobotTra
   return std::nullopt;
 }
 
-
 // A route-following bout from time t with the robot `lead` seconds of route behind: its rate and
 // length drawn for the behaviour; never past the robot's last place on the route (the walker
 // would wait there for the robot to drive into it). nullopt when too little of the run is left.
@@ -214,13 +214,13 @@ std::optional<WalkerSegment> PlanRouteBout(const std::string& behaviour, const R
     length = rng->Uniform(4, 10);
     if (seg.rate < 1) length = std::min(length, (lead - kMinWalkerLeadS) / (1 - seg.rate));
   } else if (behaviour == "away") {
-    seg.rate = rng->Uniform(2.2, 2.8);       // ~1.1 m/s against the robot's ~0.45 m/s
-    length = (20 - lead) / (seg.rate - 1);   // until 20 s of route ahead: out of sight
+    seg.rate = rng->Uniform(2.2, 2.8);      // ~1.1 m/s against the robot's ~0.45 m/s
+    length = (20 - lead) / (seg.rate - 1);  // until 20 s of route ahead: out of sight
   } else if (behaviour == "approach") {
-    seg.rate = -rng->Uniform(1.2, 1.6);      // towards the robot at ~0.6 m/s
+    seg.rate = -rng->Uniform(1.2, 1.6);  // towards the robot at ~0.6 m/s
     length = (lead - kMinWalkerLeadS - 0.5) / (1 - seg.rate);
   } else {
-    seg.rate = 0;                            // standing, chatting with someone at a table
+    seg.rate = 0;  // standing, chatting with someone at a table
     length = std::min(rng->Uniform(4, 9), lead - kMinWalkerLeadS - 0.5);
   }
   length = std::max(length, 0.5);
@@ -232,7 +232,9 @@ std::optional<WalkerSegment> PlanRouteBout(const std::string& behaviour, const R
 }
 
 // Where a walker stands outside a door: its whole body behind the wall.
-Vec2 BehindDoor(const Doorway& door, double radius_m) { return door.center_m - (radius_m + kBehindWallM) * door.inward; }
+Vec2 BehindDoor(const Doorway& door, double radius_m) {
+  return door.center_m - (radius_m + kBehindWallM) * door.inward;
+}
 
 // A walk through a door at speed_m_s between behind it and `inside` (in: arriving at `inside` at
 // time_s, starting no earlier than earliest_s; out: leaving `inside` at time_s), through the door
@@ -288,7 +290,8 @@ size_t DrawBehaviour(const std::array<double, kWalkerBehaviourCount>& w, Rng* rn
 
 }  // namespace
 
-const std::array<const char*, kWalkerBehaviourCount> kWalkerBehaviours = {"ahead", "away", "approach", "stop_to_chat", "cross", "overtake"};
+const std::array<const char*, kWalkerBehaviourCount> kWalkerBehaviours = {"ahead",        "away",  "approach",
+                                                                          "stop_to_chat", "cross", "overtake"};
 
 RobotTrack::RobotTrack(const std::vector<RobotSample>& samples) {
   double distance_m = 0;
@@ -341,7 +344,8 @@ FreeSpace::FreeSpace(std::vector<Obstacle2D> obstacles, double radius_m)
   for (const Obstacle2D& o : obstacles_) {
     if (o.shape == Obstacle2D::Shape::kCircle) {
       const double r = (o.radius_m + grow) / std::cos(M_PI / 8);
-      for (int k = 0; k < 8; ++k) nodes_.push_back(o.center_m + r * Vec2(std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)));
+      for (int k = 0; k < 8; ++k)
+        nodes_.push_back(o.center_m + r * Vec2(std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)));
       continue;
     }
     const Eigen::Rotation2Dd rot(o.yaw_rad);
@@ -462,8 +466,7 @@ Eigen::Vector2d DoorThreshold(const Doorway& door, double radius_m) {
 namespace {
 
 // Where segment s puts the walker at time t, facing the way that segment goes.
-WalkerPlacement PlaceOnSegment(const WalkerPlan& plan, const WalkerSegment& s, const RobotTrack& robot,
-                               double time_s) {
+WalkerPlacement PlaceOnSegment(const WalkerPlan& plan, const WalkerSegment& s, const RobotTrack& robot, double time_s) {
   const double lateral_m = plan.lateral_m;
   WalkerPlacement out;
   if (robot.empty() || s.behaviour == "gone") return out;
@@ -528,8 +531,8 @@ namespace {
 class WalkerPlanner {
  public:
   WalkerPlanner(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
-                std::shared_ptr<const FreeSpace> space, const RobotTrack& robot,
-                const std::vector<WalkerPlan>& others, const std::vector<Doorway>& doors, double lateral_m)
+                std::shared_ptr<const FreeSpace> space, const RobotTrack& robot, const std::vector<WalkerPlan>& others,
+                const std::vector<Doorway>& doors, double lateral_m)
       : weights_(weights),
         duration_s_(duration_s),
         space_(*space),
@@ -561,7 +564,8 @@ class WalkerPlanner {
   std::vector<double> DoorPasses() const {
     auto nearest_door_m = [&](double u) {
       double best = 1e9;
-      for (const Doorway& door : doors_) best = std::min(best, (robot_.At(u) - DoorThreshold(door, plan_.radius_m)).norm());
+      for (const Doorway& door : doors_)
+        best = std::min(best, (robot_.At(u) - DoorThreshold(door, plan_.radius_m)).norm());
       return best;
     };
     std::vector<double> passes;
@@ -621,7 +625,8 @@ class WalkerPlanner {
     for (double walk_s = 1; walk_s <= 30; walk_s += 1) {
       on.end_s = on.start_s + walk_s;
       if (on.end_s >= duration_s_) return std::vector<WalkerSegment>{on};
-      if (on.u_start + on.rate * walk_s > robot_.end_s() - 0.1 || !ClearOfRobotAndWalkers(on, plan_, robot_, others_, false))
+      if (on.u_start + on.rate * walk_s > robot_.end_s() - 0.1 ||
+          !ClearOfRobotAndWalkers(on, plan_, robot_, others_, false))
         break;
       if (auto out = PlanDoorWalk(false, EndOf(on, plan_, robot_), on.end_s, on.end_s, door_speed_m_s_, doors_, plan_,
                                   robot_, others_))

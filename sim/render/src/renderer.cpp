@@ -9,8 +9,7 @@
 
 namespace hoilcd {
 
-FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrinsics,
-                             RenderOptions options)
+FrameRenderer::FrameRenderer(const World& world, const CameraIntrinsics& intrinsics, RenderOptions options)
     : world_(world), intrinsics_(intrinsics), options_(options) {
   const std::string problem = options_.Check();
   HOILCD_CHECK_MSG(problem.empty(), problem);
@@ -32,18 +31,19 @@ Eigen::Vector3f FrameRenderer::CameraRay(double u, double v) const {
 }
 
 FrameRenderer::SurfaceRadiance FrameRenderer::SurfaceAt(const InstanceInfo& info, const InstanceMaterial& m,
-                                                        const Eigen::Vector3f& point, float h, float environment) const {
+                                                        const Eigen::Vector3f& point, float h,
+                                                        float environment) const {
   const float surroundings = m.environment_radiance >= 0 ? m.environment_radiance : environment;
   if (m.field == nullptr) return {m.blackbody_bottom + h * (m.blackbody_top - m.blackbody_bottom), surroundings};
-  const Eigen::Vector3f object_point = info.object_from_world.topLeftCorner<3, 3>() * point +
-                                       info.object_from_world.topRightCorner<3, 1>();
+  const Eigen::Vector3f object_point =
+      info.object_from_world.topLeftCorner<3, 3>() * point + info.object_from_world.topRightCorner<3, 1>();
   const FieldSample field = m.field->Sample(object_point, point);
   const float t = m.temperature_c + h * (m.temperature_top_c - m.temperature_c) + field.offset_k;
   return {world_.radiance_table().RadianceFromCelsius(t), surroundings + field.incident_offset};
 }
 
-float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
-                           const Eigen::Vector3f& direction, bool allow_reflection) const {
+float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                           bool allow_reflection) const {
   const float environment = world_.environment_radiance();
   if (!hit.hit()) return environment;
   const InstanceInfo& info = world_.instance(hit.instance);
@@ -62,16 +62,15 @@ float FrameRenderer::Shade(const RayHit& hit, const Eigen::Vector3f& origin,
   return m.emissivity * blackbody + (1.0f - m.emissivity) * reflected;
 }
 
-float FrameRenderer::Radiance(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
-                              RayHit* hit) const {
+float FrameRenderer::Radiance(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, RayHit* hit) const {
   *hit = world_.caster().Intersect(origin, direction);
   return Shade(*hit, origin, direction, options_.specular_reflections);
 }
 
-void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
-                                int count, const RayHitPacket& hits, float* out, const int* slots,
-                                std::vector<PendingReflection>* pending, int* labels,
-                                int* class_ids, int* materials) const {
+void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
+                                const RayHitPacket& hits, float* out, const int* slots,
+                                std::vector<PendingReflection>* pending, int* labels, int* class_ids,
+                                int* materials) const {
   // As Shade, lane by lane; the same float operations in the same order.
   const float environment = world_.environment_radiance();
   const float room_height_m = static_cast<float>(world_.room_height_m());
@@ -101,8 +100,7 @@ void FrameRenderer::ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vect
     if (pending != nullptr && m.specular && m.emissivity < 1.0f) {
       const Eigen::Vector3f n = world_.caster().Hit(hits, i, direction).normal_world;
       pending->push_back({&radiance, m.emissivity, MirrorShare(m.roughness_um, std::abs(direction.dot(n))), blackbody,
-                          surroundings, point + 1e-3f * n,
-                          direction - 2.0f * direction.dot(n) * n});
+                          surroundings, point + 1e-3f * n, direction - 2.0f * direction.dot(n) * n});
       continue;
     }
     radiance = m.emissivity * blackbody + (1.0f - m.emissivity) * surroundings;
@@ -152,8 +150,8 @@ void Reuse(int rows, int cols, int type, cv::Mat* image) {
 }  // namespace
 
 namespace {
-constexpr int kBlock = 4;                // pixels per side of a ray packet's block
-constexpr int64_t kRowsPerChunk = 8;     // rows per parallel chunk
+constexpr int kBlock = 4;             // pixels per side of a ray packet's block
+constexpr int64_t kRowsPerChunk = 8;  // rows per parallel chunk
 static_assert(kBlock * kBlock == kRayPacketSize, "one packet per pixel block");
 }  // namespace
 
@@ -176,9 +174,8 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
   material_.create(H, W, CV_32S);  // instance * 4096 + material, to find edges
 
   // Pass 1: one ray through each pixel centre; each chunk's reflection rays after its last packet.
-  ParallelForChunks(H, kRowsPerChunk, options_.threads, [&](int64_t y0, int64_t y1, int worker) {
-    CastPixelRows(frame, y0, y1, worker, out);
-  });
+  ParallelForChunks(H, kRowsPerChunk, options_.threads,
+                    [&](int64_t y0, int64_t y1, int worker) { CastPixelRows(frame, y0, y1, worker, out); });
   if (!options_.edge_supersampling || options_.edge_samples_per_axis <= 1) return;
 
   // Pass 2: pixels whose 4-neighbours see another surface (instance or material) get n×n
@@ -191,8 +188,7 @@ void FrameRenderer::Render(const CameraPose& pose, FrameBuffers* out) const {
   out->edge_pixels = edge_count;
 }
 
-void FrameRenderer::CastPixelRows(const RayFrame& frame, int64_t y0, int64_t y1, int worker,
-                                  FrameBuffers* out) const {
+void FrameRenderer::CastPixelRows(const RayFrame& frame, int64_t y0, int64_t y1, int worker, FrameBuffers* out) const {
   const int W = intrinsics_.width;
   float* radiance_px = out->radiance.ptr<float>();
   float* depth_px = out->depth_m.ptr<float>();
@@ -245,8 +241,10 @@ void FrameRenderer::FindEdgePixels(int64_t y0, int64_t y1, Scratch* scratch) con
       for (int y = by; y < std::min<int64_t>(by + kBlock, y1); ++y) {
         const uint8_t* flag = flags.data() + (y - y0) * W;
         uint32_t any = 0;  // most blocks have no edge: one 4-byte test for a block's row
-        if (bx + kBlock <= W) std::memcpy(&any, flag + bx, sizeof any);
-        else any = 1;
+        if (bx + kBlock <= W)
+          std::memcpy(&any, flag + bx, sizeof any);
+        else
+          any = 1;
         if (any == 0) continue;
         for (int x = bx; x < std::min(bx + kBlock, W); ++x) {
           if (flag[x]) edge_pixels.push_back(y * W + x);

@@ -14,8 +14,8 @@ namespace {
 
 // A frame as the camera saw it: the rendered buffers and the camera's place in the world.
 struct FrameView {
-  FrameView(const World& world, const CameraIntrinsics& intrinsics, const CameraPose& pose,
-            const cv::Mat& instance_ids, const cv::Mat& depth_m)
+  FrameView(const World& world, const CameraIntrinsics& intrinsics, const CameraPose& pose, const cv::Mat& instance_ids,
+            const cv::Mat& depth_m)
       : world(world),
         intrinsics(intrinsics),
         instance_ids(instance_ids),
@@ -93,8 +93,9 @@ std::vector<PartWindow> PartWindows(const FrameView& view, const Person& person,
     }
     *in_front |= part_in_front;
     if (!part_in_front) continue;
-    PartWindow w{part, std::max(0, static_cast<int>(std::floor(u_min))), std::min(W - 1, static_cast<int>(std::ceil(u_max))),
-                 std::max(0, static_cast<int>(std::floor(v_min))), std::min(H - 1, static_cast<int>(std::ceil(v_max)))};
+    PartWindow w{part, std::max(0, static_cast<int>(std::floor(u_min))),
+                 std::min(W - 1, static_cast<int>(std::ceil(u_max))), std::max(0, static_cast<int>(std::floor(v_min))),
+                 std::min(H - 1, static_cast<int>(std::ceil(v_max)))};
     if (w.ua > w.ub || w.va > w.vb) continue;
     windows.push_back(w);
   }
@@ -169,8 +170,8 @@ std::vector<ContactRecord> ProjectedContacts(const FrameView& view, const Person
         const Eigen::Vector3f to = w.cast<float>() - view.origin;
         const RayHit hit = view.world.caster().Intersect(view.origin, to.normalized());
         const float gap = to.norm() - hit.distance_m;
-        c.visible = hit.hit() && (gap <= 0.05f || (view.world.instance(hit.instance).label == person.instance &&
-                                                   gap <= 0.15f));
+        c.visible =
+            hit.hit() && (gap <= 0.05f || (view.world.instance(hit.instance).label == person.instance && gap <= 0.15f));
       }
     } else {
       c.u_px = c.v_px = -1;
@@ -288,17 +289,15 @@ std::optional<PersonRecord> PersonInView(const FrameView& view, const Person& pe
 
 }  // namespace
 
-std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
-                                         const CameraPose& pose, const cv::Mat& instance_ids,
-                                         const cv::Mat& depth_m, int threads) {
+std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics, const CameraPose& pose,
+                                         const cv::Mat& instance_ids, const cv::Mat& depth_m, int threads) {
   const FrameView view(world, intrinsics, pose, instance_ids, depth_m);
   const std::vector<PixelBox> seen = SeenPixels(view);
   // Each person on their own (in parallel): only their record changes.
   const std::vector<Person>& people = world.people();
   std::vector<std::optional<PersonRecord>> records(people.size());
-  ParallelFor(static_cast<int64_t>(people.size()), threads, [&](int64_t i) {
-    records[i] = PersonInView(view, people[i], seen);
-  });
+  ParallelFor(static_cast<int64_t>(people.size()), threads,
+              [&](int64_t i) { records[i] = PersonInView(view, people[i], seen); });
   std::vector<PersonRecord> out;
   for (std::optional<PersonRecord>& record : records) {
     if (record) out.push_back(std::move(*record));

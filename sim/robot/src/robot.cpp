@@ -31,9 +31,7 @@ double WrapAngle(double a) {
   return a <= -M_PI ? a + 2.0 * M_PI : a;
 }
 
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 std::string FormatNumber(double value) {
   std::ostringstream out;
@@ -102,9 +100,8 @@ class RoutePath {
     for (int i = 0; i < n; ++i) {
       const double needed = tangent[i] + tangent[(i + 1) % n];
       if (needed > seg_len[i] + 1e-12) {
-        throw InputError("route", "corner_radius_m " + FormatNumber(corner_radius_m) +
-                                      " does not fit segment " + std::to_string(i) + " (" +
-                                      FormatNumber(seg_len[i]) + " m long)");
+        throw InputError("route", "corner_radius_m " + FormatNumber(corner_radius_m) + " does not fit segment " +
+                                      std::to_string(i) + " (" + FormatNumber(seg_len[i]) + " m long)");
       }
     }
     double s = 0;
@@ -151,9 +148,7 @@ class RoutePath {
     return piece->Point(u);
   }
   // Signed curvature of the loop at loop coordinate sigma in [0, loop_m).
-  double LoopCurvature(double sigma) const {
-    return Locate(sigma + lead_.length_m).first->Curvature();
-  }
+  double LoopCurvature(double sigma) const { return Locate(sigma + lead_.length_m).first->Curvature(); }
 
   // Arc length in [lo, hi] (lo >= 0) of the route point closest to p; its distance in *distance.
   double Project(const Eigen::Vector2d& p, double lo, double hi, double* distance) const {
@@ -182,8 +177,8 @@ class RoutePath {
  private:
   std::pair<const Piece*, double> Locate(double s) const {
     const double sigma = std::fmod(s - lead_.length_m, loop_m_);
-    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), sigma,
-                                     [](double v, const Piece& p) { return v < p.s0_m; });
+    const auto it =
+        std::upper_bound(pieces_.begin(), pieces_.end(), sigma, [](double v, const Piece& p) { return v < p.s0_m; });
     const Piece* piece = it == pieces_.begin() ? &pieces_.front() : &*(it - 1);
     return {piece, std::clamp(sigma - piece->s0_m, 0.0, piece->length_m)};
   }
@@ -198,16 +193,14 @@ class RoutePath {
 // by braking ahead of them (a backward pass, run twice around the closed loop).
 class SpeedProfile {
  public:
-  SpeedProfile(const RoutePath& path, double cruise_m_s, double max_lateral_accel_m_s2,
-               double brake_m_s2)
+  SpeedProfile(const RoutePath& path, double cruise_m_s, double max_lateral_accel_m_s2, double brake_m_s2)
       : path_(path) {
     const int n = std::max(1, static_cast<int>(std::ceil(path.loop_m() / kProfileStepM)));
     step_m_ = path.loop_m() / n;
     limit_.resize(n);
     for (int i = 0; i < n; ++i) {
-      const double k =
-          std::max(std::abs(path.LoopCurvature(i * step_m_)),
-                   std::abs(path.LoopCurvature(std::min((i + 1) * step_m_, path.loop_m() - 1e-9))));
+      const double k = std::max(std::abs(path.LoopCurvature(i * step_m_)),
+                                std::abs(path.LoopCurvature(std::min((i + 1) * step_m_, path.loop_m() - 1e-9))));
       limit_[i] = k > 0 ? std::min(cruise_m_s, std::sqrt(max_lateral_accel_m_s2 / k)) : cruise_m_s;
     }
     for (int pass = 0; pass < 2; ++pass) {
@@ -262,8 +255,7 @@ struct MountAxis {
   double x = 0, v = 0;
   void Step(double target, double sd, double noise, double omega, double zeta, double dt) {
     const double gain = sd * std::sqrt(4.0 * zeta / omega);
-    v += dt * (omega * omega * (target - x) - 2.0 * zeta * omega * v) +
-         omega * omega * gain * noise * std::sqrt(dt);
+    v += dt * (omega * omega * (target - x) - 2.0 * zeta * omega * v) + omega * omega * gain * noise * std::sqrt(dt);
     x += dt * v;
   }
 };
@@ -304,11 +296,9 @@ struct Box {
 
 Box FootprintBox(const Pose2& pose, const TricycleOptions& o) {
   Box box;
-  box.axes << std::cos(pose.theta_rad), -std::sin(pose.theta_rad), std::sin(pose.theta_rad),
-      std::cos(pose.theta_rad);
+  box.axes << std::cos(pose.theta_rad), -std::sin(pose.theta_rad), std::sin(pose.theta_rad), std::cos(pose.theta_rad);
   box.half = Eigen::Vector2d(0.5 * o.length_m, 0.5 * o.width_m);
-  box.center =
-      Eigen::Vector2d(pose.x_m, pose.y_m) + box.axes.col(0) * (0.5 * o.length_m - o.base_to_rear_m);
+  box.center = Eigen::Vector2d(pose.x_m, pose.y_m) + box.axes.col(0) * (0.5 * o.length_m - o.base_to_rear_m);
   return box;
 }
 
@@ -316,8 +306,7 @@ Box ObstacleBox(const Obstacle2D& ob) {
   Box box;
   box.center = ob.center_m;
   box.half = ob.half_size_m;
-  box.axes << std::cos(ob.yaw_rad), -std::sin(ob.yaw_rad), std::sin(ob.yaw_rad),
-      std::cos(ob.yaw_rad);
+  box.axes << std::cos(ob.yaw_rad), -std::sin(ob.yaw_rad), std::sin(ob.yaw_rad), std::cos(ob.yaw_rad);
   return box;
 }
 
@@ -334,10 +323,8 @@ bool BoxesOverlap(const Box& a, const Box& b) {
   for (const Box* box : {&a, &b}) {
     for (int k = 0; k < 2; ++k) {
       const Eigen::Vector2d axis = box->axes.col(k);
-      const double ra = a.half.x() * std::abs(axis.dot(a.axes.col(0))) +
-                        a.half.y() * std::abs(axis.dot(a.axes.col(1)));
-      const double rb = b.half.x() * std::abs(axis.dot(b.axes.col(0))) +
-                        b.half.y() * std::abs(axis.dot(b.axes.col(1)));
+      const double ra = a.half.x() * std::abs(axis.dot(a.axes.col(0))) + a.half.y() * std::abs(axis.dot(a.axes.col(1)));
+      const double rb = b.half.x() * std::abs(axis.dot(b.axes.col(0))) + b.half.y() * std::abs(axis.dot(b.axes.col(1)));
       if (std::abs(d.dot(axis)) >= ra + rb) return false;
     }
   }
@@ -359,8 +346,7 @@ std::string CheckObstacles(const std::vector<Obstacle2D>& obstacles) {
     if (ob.shape == Obstacle2D::Shape::kCircle && !(ob.radius_m > 0)) {
       return label + ": radius_m must be positive";
     }
-    if (ob.shape == Obstacle2D::Shape::kRectangle &&
-        !(ob.half_size_m.x() > 0 && ob.half_size_m.y() > 0)) {
+    if (ob.shape == Obstacle2D::Shape::kRectangle && !(ob.half_size_m.x() > 0 && ob.half_size_m.y() > 0)) {
       return label + ": half_size_m must be positive";
     }
   }
@@ -373,9 +359,7 @@ void ThrowIfBad(const char* where, const std::string& message) {
 
 }  // namespace
 
-double TricycleOptions::MinTurnRadiusM() const {
-  return wheelbase_m / std::tan(max_steer_deg * kDegToRad);
-}
+double TricycleOptions::MinTurnRadiusM() const { return wheelbase_m / std::tan(max_steer_deg * kDegToRad); }
 
 VibrationOptions::VibrationOptions() { Table().FillDefaults(this); }
 
@@ -387,10 +371,14 @@ const OptionTable<VibrationOptions>& VibrationOptions::Table() {
           .Add("enabled", &O::enabled, true, "false: the camera is rigidly mounted")
           .Add("natural_frequency_hz", &O::natural_frequency_hz, 4.0, "Hz", R().Above(0).AtMost(1000), "mast resonance")
           .Add("damping_ratio", &O::damping_ratio, 0.3, "", R().Above(0).AtMost(10), "damping ratio of the mount")
-          .Add("roll_sd_deg", &O::roll_sd_deg, 0.3, "deg", R::Closed(0, 10), "roughness-driven roll sd at the reference speed")
-          .Add("pitch_sd_deg", &O::pitch_sd_deg, 0.4, "deg", R::Closed(0, 10), "roughness-driven pitch sd at the reference speed")
-          .Add("height_sd_m", &O::height_sd_m, 0.002, "m", R::Closed(0, 0.1), "roughness-driven height sd at the reference speed")
-          .Add("reference_speed_m_s", &O::reference_speed_m_s, 0.43, "m/s", R().Above(0), "speed at which the sds above hold")
+          .Add("roll_sd_deg", &O::roll_sd_deg, 0.3, "deg", R::Closed(0, 10),
+               "roughness-driven roll sd at the reference speed")
+          .Add("pitch_sd_deg", &O::pitch_sd_deg, 0.4, "deg", R::Closed(0, 10),
+               "roughness-driven pitch sd at the reference speed")
+          .Add("height_sd_m", &O::height_sd_m, 0.002, "m", R::Closed(0, 0.1),
+               "roughness-driven height sd at the reference speed")
+          .Add("reference_speed_m_s", &O::reference_speed_m_s, 0.43, "m/s", R().Above(0),
+               "speed at which the sds above hold")
           .Add("pitch_per_accel_deg_s2_m", &O::pitch_per_accel_deg_s2_m, 1.0, "deg per m/s^2", R::Closed(-20, 20),
                "nose-up pitch per unit of acceleration")
           .Add("roll_per_lat_accel_deg_s2_m", &O::roll_per_lat_accel_deg_s2_m, 1.0, "deg per m/s^2", R::Closed(-20, 20),
@@ -408,7 +396,8 @@ const OptionTable<LocalizationOptions>& LocalizationOptions::Table() {
   static const OptionTable<O> table =
       OptionTable<O>()
           .Add("interval_s", &O::interval_s, 0.5, "s", R().Above(0).AtMost(3600), "time between localisation fixes")
-          .Add("position_sd_m", &O::position_sd_m, 0.035, "m", R::Closed(0, 1), "sd of a fix's error along x and along y")
+          .Add("position_sd_m", &O::position_sd_m, 0.035, "m", R::Closed(0, 1),
+               "sd of a fix's error along x and along y")
           .Add("heading_sd_deg", &O::heading_sd_deg, 1.0, "deg", R::Closed(0, 30), "sd of a fix's heading error")
           .Add("correlation_s", &O::correlation_s, 5.0, "s", R::Closed(0, 3600),
                "correlation time of the fix error (0: independent fixes)");
@@ -434,8 +423,10 @@ const OptionTable<TricycleOptions>& TricycleOptions::Table() {
                "internal control and integration rate")
           .Add("length_m", &O::length_m, 0.42, "m", R().Above(0), "footprint length along the body x axis")
           .Add("width_m", &O::width_m, 0.34, "m", R().Above(0), "footprint width")
-          .Add("base_to_rear_m", &O::base_to_rear_m, 0.08, "m", R().AtLeast(0), "footprint rear edge behind the base origin")
-          .Rule("base_to_rear_m", [](const O& o) { return o.base_to_rear_m < o.length_m ? "" : "must be below length_m"; })
+          .Add("base_to_rear_m", &O::base_to_rear_m, 0.08, "m", R().AtLeast(0),
+               "footprint rear edge behind the base origin")
+          .Rule("base_to_rear_m",
+                [](const O& o) { return o.base_to_rear_m < o.length_m ? "" : "must be below length_m"; })
           .Add("camera_forward_m", &O::camera_forward_m, 0.20, "m", R::Any(), "camera ahead of the base origin")
           .Add("camera_lateral_m", &O::camera_lateral_m, 0.0, "m", R::Any(), "camera to the left of the base origin")
           .Add("camera_height_m", &O::camera_height_m, 0.95, "m", R().Above(0), "camera above the floor")
@@ -443,7 +434,8 @@ const OptionTable<TricycleOptions>& TricycleOptions::Table() {
                "camera pitch; positive looks down (REP 103)")
           .Add("camera_yaw_deg", &O::camera_yaw_deg, 0.0, "deg", R::Closed(-180, 180),
                "camera yaw relative to the body, counter-clockwise")
-          .Add("camera_roll_deg", &O::camera_roll_deg, 0.0, "deg", R::Closed(-180, 180), "camera roll about its optical axis")
+          .Add("camera_roll_deg", &O::camera_roll_deg, 0.0, "deg", R::Closed(-180, 180),
+               "camera roll about its optical axis")
           .AddEnum("navigation", &O::navigation, Navigation::kLocalized,
                    {{"localized", Navigation::kLocalized},
                     {"odometry", Navigation::kOdometry},
@@ -456,9 +448,7 @@ const OptionTable<TricycleOptions>& TricycleOptions::Table() {
 
 std::string TricycleOptions::Check() const { return Table().FirstProblem(*this); }
 
-std::vector<Eigen::Vector2d> PaperRoomWaypoints() {
-  return {{0.38, 0.38}, {0.38, 2.62}, {6.62, 2.62}, {6.62, 0.38}};
-}
+std::vector<Eigen::Vector2d> PaperRoomWaypoints() { return {{0.38, 0.38}, {0.38, 2.62}, {6.62, 2.62}, {6.62, 0.38}}; }
 
 RouteOptions::RouteOptions() : waypoints_m(PaperRoomWaypoints()) { Table().FillDefaults(this); }
 
@@ -483,9 +473,11 @@ const OptionTable<RouteOptions>& RouteOptions::Table() {
                 })
           .Add("laps", &O::laps, 2.0, "", R().Above(0).AtMost(1000), "laps to drive when frames is 0")
           .CodeOnly()
-          .Add("frames", &O::frames, 0, "", R::Closed(0, kMaxFrames), "frames to simulate; > 0 overrides laps (the scene's frames)")
+          .Add("frames", &O::frames, 0, "", R::Closed(0, kMaxFrames),
+               "frames to simulate; > 0 overrides laps (the scene's frames)")
           .CodeOnly()
-          .Add("cruise_speed_m_s", &O::cruise_speed_m_s, 0.43, "m/s", R().Above(0), "speed of the base on straight stretches")
+          .Add("cruise_speed_m_s", &O::cruise_speed_m_s, 0.43, "m/s", R().Above(0),
+               "speed of the base on straight stretches")
           .Add("lookahead_m", &O::lookahead_m, 0.20, "m", R().Above(0), "pure-pursuit lookahead along the path")
           .Add("max_lateral_accel_m_s2", &O::max_lateral_accel_m_s2, 0.35, "m/s^2", R().Above(0),
                "bounds the speed in turns: v^2 * curvature")
@@ -526,8 +518,8 @@ const OptionTable<OdometryErrorOptions>& OdometryErrorOptions::Table() {
 
 std::string OdometryErrorOptions::Check() const { return Table().FirstProblem(*this); }
 
-Obstacle2D Obstacle2D::Rectangle(std::string name, const Eigen::Vector2d& center_m,
-                                 const Eigen::Vector2d& size_m, double yaw_rad) {
+Obstacle2D Obstacle2D::Rectangle(std::string name, const Eigen::Vector2d& center_m, const Eigen::Vector2d& size_m,
+                                 double yaw_rad) {
   Obstacle2D ob;
   ob.name = std::move(name);
   ob.shape = Shape::kRectangle;
@@ -574,7 +566,8 @@ double DistanceToObstacle(const Eigen::Vector2d& point_m, const Obstacle2D& obst
 
 bool FootprintsOverlap(const Obstacle2D& a, const Obstacle2D& b) {
   using Shape = Obstacle2D::Shape;
-  if (a.shape == Shape::kCircle && b.shape == Shape::kCircle) return (a.center_m - b.center_m).norm() <= a.radius_m + b.radius_m;
+  if (a.shape == Shape::kCircle && b.shape == Shape::kCircle)
+    return (a.center_m - b.center_m).norm() <= a.radius_m + b.radius_m;
   if (a.shape == Shape::kCircle) return DistanceToObstacle(a.center_m, b) <= a.radius_m;
   if (b.shape == Shape::kCircle) return DistanceToObstacle(b.center_m, a) <= b.radius_m;
   // Two rectangles: the separating-axis test.
@@ -602,7 +595,8 @@ std::vector<std::pair<size_t, size_t>> OverlappingFootprints(const std::vector<O
   std::vector<size_t> order(footprints.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   const auto left = [&](size_t i) { return footprints[i].center_m.x() - reach(footprints[i]); };
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return left(a) < left(b) || (left(a) == left(b) && a < b); });
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return left(a) < left(b) || (left(a) == left(b) && a < b); });
   std::vector<std::pair<size_t, size_t>> pairs;
   for (size_t k = 0; k < order.size(); ++k) {
     const Obstacle2D& a = footprints[order[k]];
@@ -632,22 +626,25 @@ CameraPose CameraPoseFromBase(const Pose2& base, const TricycleOptions& o) {
 namespace {
 
 // What SimulateRobot needs beyond each options struct's own checks: options that must agree.
-void CheckRobotInputs(const TricycleOptions& robot, const RouteOptions& route,
-                      const OdometryErrorOptions& odometry, const std::vector<Obstacle2D>& obstacles,
-                      double frame_rate_hz) {
+void CheckRobotInputs(const TricycleOptions& robot, const RouteOptions& route, const OdometryErrorOptions& odometry,
+                      const std::vector<Obstacle2D>& obstacles, double frame_rate_hz) {
   ThrowIfBad("robot", robot.Check());
   ThrowIfBad("route", route.Check());
   ThrowIfBad("odometry", odometry.Check());
   ThrowIfBad("obstacles", CheckObstacles(obstacles));
   if (std::abs(odometry.steer_offset_deg * odometry.error_scale) >= robot.max_steer_deg) {
-    throw InputError("odometry", "steer_offset_deg (times error_scale) must stay below the robot's "
-                                 "max_steer_deg " + FormatNumber(robot.max_steer_deg));
+    throw InputError("odometry",
+                     "steer_offset_deg (times error_scale) must stay below the robot's "
+                     "max_steer_deg " +
+                         FormatNumber(robot.max_steer_deg));
   }
   if (!(frame_rate_hz > 0 && frame_rate_hz <= robot.integration_rate_hz)) {
-    throw InputError("frame_rate_hz", "must be positive and at most /robot/integration_rate_hz, the rate the robot's "
-                                      "motion is integrated at (" + FormatNumber(robot.integration_rate_hz) +
-                                      " Hz here, 200 by default): lower the frame rate or raise "
-                                      "robot.integration_rate_hz");
+    throw InputError("frame_rate_hz",
+                     "must be positive and at most /robot/integration_rate_hz, the rate the robot's "
+                     "motion is integrated at (" +
+                         FormatNumber(robot.integration_rate_hz) +
+                         " Hz here, 200 by default): lower the frame rate or raise "
+                         "robot.integration_rate_hz");
   }
   if (route.corner_radius_m < robot.MinTurnRadiusM()) {
     throw InputError("route", "corner_radius_m " + FormatNumber(route.corner_radius_m) +
@@ -663,9 +660,8 @@ void CheckRobotInputs(const TricycleOptions& robot, const RouteOptions& route,
 // step at a time (navigate, move the wheels, shake the mount, sample frames, advance).
 class RobotSimulator {
  public:
-  RobotSimulator(const TricycleOptions& robot, const RouteOptions& route,
-                 const OdometryErrorOptions& odometry, const std::vector<Obstacle2D>& obstacles,
-                 double frame_rate_hz, uint64_t seed)
+  RobotSimulator(const TricycleOptions& robot, const RouteOptions& route, const OdometryErrorOptions& odometry,
+                 const std::vector<Obstacle2D>& obstacles, double frame_rate_hz, uint64_t seed)
       : robot_(robot),
         route_(route),
         odometry_(odometry),
@@ -673,8 +669,7 @@ class RobotSimulator {
         frame_rate_hz_(frame_rate_hz),
         seed_(seed),
         path_(route.waypoints_m, route.corner_radius_m),
-        profile_(path_, route.cruise_speed_m_s, route.max_lateral_accel_m_s2,
-                 kBrakeFraction * robot.max_accel_m_s2),
+        profile_(path_, route.cruise_speed_m_s, route.max_lateral_accel_m_s2, kBrakeFraction * robot.max_accel_m_s2),
         dt_(1.0 / robot.integration_rate_hz),
         max_steer_(robot.max_steer_deg * kDegToRad),
         max_steer_step_(robot.max_steer_rate_deg_s * kDegToRad * dt_),
@@ -694,8 +689,7 @@ class RobotSimulator {
         vib_omega_(2.0 * M_PI * robot.vibration.natural_frequency_hz) {
     // Generous bound on the simulated time, so a route the robot cannot follow fails loudly.
     const double planned_m = route.frames > 0 ? 0.0 : route.laps * path_.loop_m() + path_.lead_m();
-    max_time_s_ = route.frames > 0 ? route.frames / frame_rate_hz
-                                   : 60.0 + 20.0 * planned_m / route.cruise_speed_m_s;
+    max_time_s_ = route.frames > 0 ? route.frames / frame_rate_hz : 60.0 + 20.0 * planned_m / route.cruise_speed_m_s;
     run_.min_obstacle_distance_m = std::numeric_limits<double>::infinity();
     run_.obstacle_distance_m.assign(obstacles.size(), std::numeric_limits<double>::infinity());
     const Eigen::Vector2d start = route.waypoints_m[0];
@@ -711,8 +705,7 @@ class RobotSimulator {
     for (long step = 0;; ++step) {
       const double t = step * dt_;
       if (t > max_time_s_ + dt_) {
-        throw InputError("route",
-                         "robot did not finish the route within " + FormatNumber(max_time_s_) + " s");
+        throw InputError("route", "robot did not finish the route within " + FormatNumber(max_time_s_) + " s");
       }
       Localise(t);
       const double accel = Navigate();
@@ -750,27 +743,27 @@ class RobotSimulator {
   double Navigate() {
     const Pose2& nav = steer_on_truth_ ? truth_ : localized_ ? belief_ : odo_;
     double tracking_error = 0;
-    s_ = path_.Project({nav.x_m, nav.y_m}, std::max(0.0, s_ - kSearchBackM),
-                       s_ + kSearchAheadM + route_.lookahead_m, &tracking_error);
+    s_ = path_.Project({nav.x_m, nav.y_m}, std::max(0.0, s_ - kSearchBackM), s_ + kSearchAheadM + route_.lookahead_m,
+                       &tracking_error);
     run_.max_tracking_error_m = std::max(run_.max_tracking_error_m, tracking_error);
     s_true_ = path_.Project({truth_.x_m, truth_.y_m}, std::max(0.0, s_true_ - kSearchBackM),
-                           s_true_ + kSearchAheadM + route_.lookahead_m, &route_deviation_m_);
+                            s_true_ + kSearchAheadM + route_.lookahead_m, &route_deviation_m_);
     run_.max_route_deviation_m = std::max(run_.max_route_deviation_m, route_deviation_m_);
     const Eigen::Vector2d target = path_.Point(s_ + route_.lookahead_m);
     const double c = std::cos(nav.theta_rad), sn = std::sin(nav.theta_rad);
     const Eigen::Vector2d rel = target - Eigen::Vector2d(nav.x_m, nav.y_m);
     const double lateral = -sn * rel.x() + c * rel.y();
-    const double curvature = std::clamp(2.0 * lateral / std::max(rel.squaredNorm(), 1e-12),
-                                        -max_curvature_, max_curvature_);
+    const double curvature =
+        std::clamp(2.0 * lateral / std::max(rel.squaredNorm(), 1e-12), -max_curvature_, max_curvature_);
     run_.max_curvature_per_m = std::max(run_.max_curvature_per_m, std::abs(curvature));
     const double steer_cmd = std::atan(curvature * robot_.wheelbase_m);
-    steer_ = std::clamp(steer_ + std::clamp(steer_cmd - steer_, -max_steer_step_, max_steer_step_),
-                        -max_steer_, max_steer_);
+    steer_ =
+        std::clamp(steer_ + std::clamp(steer_cmd - steer_, -max_steer_step_, max_steer_step_), -max_steer_, max_steer_);
     const double base_limit = std::min(profile_.At(s_), profile_.At(s_ + route_.lookahead_m));
     const double speed_cmd = std::min(robot_.max_speed_m_s, base_limit / std::cos(steer_));
     const double previous_speed = speed_;
-    speed_ = std::clamp(speed_ + std::clamp(speed_cmd - speed_, -max_speed_step_, max_speed_step_),
-                        0.0, robot_.max_speed_m_s);
+    speed_ = std::clamp(speed_ + std::clamp(speed_cmd - speed_, -max_speed_step_, max_speed_step_), 0.0,
+                        robot_.max_speed_m_s);
     return (speed_ - previous_speed) / dt_;
   }
 
@@ -792,8 +785,7 @@ class RobotSimulator {
     const double true_steer = steer_ + steer_offset_;
     out.truth = TricycleMotion(true_wheel_m, true_steer, true_wheelbase_);
     out.base_speed_m_s = speed_ * std::cos(true_steer);
-    out.lateral_accel_m_s2 =
-        out.base_speed_m_s * out.base_speed_m_s * std::tan(true_steer) / true_wheelbase_;
+    out.lateral_accel_m_s2 = out.base_speed_m_s * out.base_speed_m_s * std::tan(true_steer) / true_wheelbase_;
     out.truth.dtheta_rad *= 1.0 - std::min(1.0, turn_slip_per_lat_accel_ * std::abs(out.lateral_accel_m_s2) *
                                                     (1.0 + o.slip_noise_frac * n2));
     out.truth.dtheta_rad += heading_noise_ * std::sqrt(std::abs(out.truth.forward_m)) * n3;
@@ -810,8 +802,8 @@ class RobotSimulator {
     const double z = vib.damping_ratio;
     roll_.Step(vib.roll_per_lat_accel_deg_s2_m * kDegToRad * steps.lateral_accel_m_s2,
                level * vib.roll_sd_deg * kDegToRad, vrng.Normal(), vib_omega_, z, dt_);
-    pitch_.Step(-vib.pitch_per_accel_deg_s2_m * kDegToRad * accel,
-                level * vib.pitch_sd_deg * kDegToRad, vrng.Normal(), vib_omega_, z, dt_);
+    pitch_.Step(-vib.pitch_per_accel_deg_s2_m * kDegToRad * accel, level * vib.pitch_sd_deg * kDegToRad, vrng.Normal(),
+                vib_omega_, z, dt_);
     height_.Step(0.0, level * vib.height_sd_m, vrng.Normal(), vib_omega_, z, dt_);
   }
 
@@ -835,9 +827,8 @@ class RobotSimulator {
       Advance(belief_now, part * odo_step.forward_m, part * odo_step.dtheta_rad);
       const Pose2& nav_now = steer_on_truth_ ? base : localized_ ? belief_now : odo_now;
       double ignored = 0;
-      const double s_frame = path_.Project({nav_now.x_m, nav_now.y_m},
-                                           std::max(0.0, s_ - kSearchBackM), s_ + kSearchAheadM,
-                                           &ignored);
+      const double s_frame =
+          path_.Project({nav_now.x_m, nav_now.y_m}, std::max(0.0, s_ - kSearchBackM), s_ + kSearchAheadM, &ignored);
       // Laps completed never run backwards (a localisation fix may move the belief back a little).
       sample.lap = std::max(s_frame / path_.loop_m(), run_.samples.empty() ? 0.0 : run_.samples.back().lap);
       sample.camera = CameraPoseFromBase(base, robot_);
@@ -881,12 +872,11 @@ class RobotSimulator {
     std::snprintf(when, sizeof(when),
                   "at frame %d (t = %.2f s), its true path %.2f m from the route and %.2f m from "
                   "its odometry",
-                  static_cast<int>(std::floor(time_s * frame_rate_hz_ + 1e-9)), time_s,
-                  route_deviation_m_, std::hypot(odo_.x_m - pose.x_m, odo_.y_m - pose.y_m));
-    const std::string lower =
-        localized_ ? "lower the localisation error (robot.localization.position_sd_m, "
-                     "robot.localization.heading_sd_deg)"
-                   : "lower the odometry error (odometry.error_scale)";
+                  static_cast<int>(std::floor(time_s * frame_rate_hz_ + 1e-9)), time_s, route_deviation_m_,
+                  std::hypot(odo_.x_m - pose.x_m, odo_.y_m - pose.y_m));
+    const std::string lower = localized_ ? "lower the localisation error (robot.localization.position_sd_m, "
+                                           "robot.localization.heading_sd_deg)"
+                                         : "lower the odometry error (odometry.error_scale)";
     throw InputError("route", "robot collides with '" + obstacle.name + "' " + when + "; " + lower +
                                   " or widen the route (route.waypoints_m further from the furniture)" +
                                   (robot_.navigation == TricycleOptions::Navigation::kOdometry
@@ -904,8 +894,8 @@ class RobotSimulator {
   const SpeedProfile profile_;  // refers to path_
   const double dt_, max_steer_, max_steer_step_, max_speed_step_, max_curvature_;
   // The odometry error model, scaled by error_scale (OdometryErrorOptions).
-  const double k_, true_radius_scale_, steer_offset_, true_wheelbase_, slip_per_accel_,
-      turn_slip_per_lat_accel_, heading_noise_, metres_per_count_;
+  const double k_, true_radius_scale_, steer_offset_, true_wheelbase_, slip_per_accel_, turn_slip_per_lat_accel_,
+      heading_noise_, metres_per_count_;
   const bool steer_on_truth_, localized_;
   FixError fix_error_;
   const double vib_omega_;
@@ -925,10 +915,8 @@ class RobotSimulator {
 
 }  // namespace
 
-RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route,
-                       const OdometryErrorOptions& odometry,
-                       const std::vector<Obstacle2D>& obstacles, double frame_rate_hz,
-                       uint64_t seed) {
+RobotRun SimulateRobot(const TricycleOptions& robot, const RouteOptions& route, const OdometryErrorOptions& odometry,
+                       const std::vector<Obstacle2D>& obstacles, double frame_rate_hz, uint64_t seed) {
   CheckRobotInputs(robot, route, odometry, obstacles, frame_rate_hz);
   return RobotSimulator(robot, route, odometry, obstacles, frame_rate_hz, seed).Run();
 }
@@ -939,9 +927,9 @@ std::vector<PoseRecord> PoseRecordsOf(const RobotRun& run, int frames) {
   poses.reserve(n);
   for (size_t f = 0; f < n; ++f) {
     const RobotSample& s = run.samples[f];
-    poses.push_back({s.frame, s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, s.camera.x_m,
-                     s.camera.y_m, s.camera.z_m, s.camera.yaw_rad, s.camera.pitch_rad,
-                     s.camera.roll_rad, s.odometry.x_m, s.odometry.y_m, s.odometry.theta_rad});
+    poses.push_back({s.frame, s.time_s, s.base.x_m, s.base.y_m, s.base.theta_rad, s.camera.x_m, s.camera.y_m,
+                     s.camera.z_m, s.camera.yaw_rad, s.camera.pitch_rad, s.camera.roll_rad, s.odometry.x_m,
+                     s.odometry.y_m, s.odometry.theta_rad});
   }
   return poses;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/text.h"
@@ -19,7 +20,9 @@ Eigen::Vector2d Vec2(const json& j) { return {j.at(0).get<double>(), j.at(1).get
 std::string Point(const Eigen::Vector2d& p) { return "(" + ShortestDouble(p.x()) + ", " + ShortestDouble(p.y()) + ")"; }
 
 // The axis a wall runs along (0: x, 1: y).
-int AxisOf(const InteriorWall& w) { return std::abs(w.to_m.y() - w.from_m.y()) <= std::abs(w.to_m.x() - w.from_m.x()) ? 0 : 1; }
+int AxisOf(const InteriorWall& w) {
+  return std::abs(w.to_m.y() - w.from_m.y()) <= std::abs(w.to_m.x() - w.from_m.x()) ? 0 : 1;
+}
 
 // Where a doorway's opening starts and ends along the wall's axis (world coordinate, lo < hi).
 std::pair<double, double> DoorSpan(const InteriorWall& w, const FloorDoor& d) {
@@ -69,7 +72,8 @@ std::vector<WallPart> WallParts(const FloorPlan& floor, double height_m) {
     for (const FloorDoor& d : w.doors) {
       const auto [d0, d1] = DoorSpan(w, d);
       openings.emplace_back(std::max(d0, lo), std::min(d1, hi));
-      if (d.height_m < height_m) parts.push_back({static_cast<int>(i), true, box(std::max(d0, lo), std::min(d1, hi), d.height_m, height_m)});
+      if (d.height_m < height_m)
+        parts.push_back({static_cast<int>(i), true, box(std::max(d0, lo), std::min(d1, hi), d.height_m, height_m)});
     }
     std::sort(openings.begin(), openings.end());
     double start = lo;
@@ -139,7 +143,8 @@ std::vector<std::vector<int>> RoomGraph(const FloorPlan& floor, double height_m)
       const Eigen::AlignedBox2d &a = floor.rooms[i].box_m, &b = floor.rooms[j].box_m;
       for (int axis = 0; axis < 2; ++axis) {
         const int other = 1 - axis;
-        const bool touch = std::abs(a.max()[axis] - b.min()[axis]) < kToleranceM || std::abs(b.max()[axis] - a.min()[axis]) < kToleranceM;
+        const bool touch = std::abs(a.max()[axis] - b.min()[axis]) < kToleranceM ||
+                           std::abs(b.max()[axis] - a.min()[axis]) < kToleranceM;
         const double lo = std::max(a.min()[other], b.min()[other]), hi = std::min(a.max()[other], b.max()[other]);
         if (!touch || hi - lo < 0.3) continue;
         Eigen::Vector2d mid;
@@ -155,7 +160,8 @@ std::vector<std::vector<int>> RoomGraph(const FloorPlan& floor, double height_m)
   return graph;
 }
 
-int WallCrossedBy(const FloorPlan& floor, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m, double height_m) {
+int WallCrossedBy(const FloorPlan& floor, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m,
+                  double height_m) {
   for (const WallPart& p : WallParts(floor, height_m)) {
     if (p.lintel) continue;
     Eigen::AlignedBox2d box(p.box_m.min().head<2>(), p.box_m.max().head<2>());
@@ -170,25 +176,31 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
                     const std::string& file, ProblemCollector* problems) {
   if (floor.empty()) return;
   const Eigen::AlignedBox2d outer(Eigen::Vector2d(-kToleranceM, -kToleranceM), size_m.head<2>().array() + kToleranceM);
-  const std::string box_text = "x in [0, " + ShortestDouble(size_m.x()) + "], y in [0, " + ShortestDouble(size_m.y()) + "]";
+  const std::string box_text =
+      "x in [0, " + ShortestDouble(size_m.x()) + "], y in [0, " + ShortestDouble(size_m.y()) + "]";
   bool rooms_ok = true;
   for (size_t i = 0; i < floor.rooms.size(); ++i) {
     const FloorRoom& r = floor.rooms[i];
     const std::string at = file + ": /floor/rooms/" + std::to_string(i);
     if ((r.box_m.max() - r.box_m.min()).minCoeff() <= 0.5) {
-      problems->Add(at + "/max_m", "a corner at least 0.5 m beyond min_m in x and in y; got min " + Point(r.box_m.min()) + ", max " + Point(r.box_m.max()));
+      problems->Add(at + "/max_m", "a corner at least 0.5 m beyond min_m in x and in y; got min " +
+                                       Point(r.box_m.min()) + ", max " + Point(r.box_m.max()));
       rooms_ok = false;
       continue;
     }
     if (!outer.contains(r.box_m)) {
-      problems->Add(at, "a room inside the room box (" + box_text + "); '" + r.name + "' spans " + Point(r.box_m.min()) + " to " + Point(r.box_m.max()));
+      problems->Add(at, "a room inside the room box (" + box_text + "); '" + r.name + "' spans " +
+                            Point(r.box_m.min()) + " to " + Point(r.box_m.max()));
     }
     for (size_t j = 0; j < i; ++j) {
-      if (floor.rooms[j].name == r.name) problems->Add(at + "/name", "a name no other room has; room " + std::to_string(j) + " is also '" + r.name + "'");
+      if (floor.rooms[j].name == r.name)
+        problems->Add(at + "/name",
+                      "a name no other room has; room " + std::to_string(j) + " is also '" + r.name + "'");
       const Eigen::AlignedBox2d overlap = r.box_m.intersection(floor.rooms[j].box_m);
       if (!overlap.isEmpty() && (overlap.max() - overlap.min()).minCoeff() > kToleranceM) {
-        problems->Add(at, "a room apart from the others; '" + r.name + "' overlaps room " + std::to_string(j) + " '" + floor.rooms[j].name + "' by " +
-                              ShortestDouble(overlap.sizes().x()) + " x " + ShortestDouble(overlap.sizes().y()) + " m");
+        problems->Add(at, "a room apart from the others; '" + r.name + "' overlaps room " + std::to_string(j) + " '" +
+                              floor.rooms[j].name + "' by " + ShortestDouble(overlap.sizes().x()) + " x " +
+                              ShortestDouble(overlap.sizes().y()) + " m");
         rooms_ok = false;
       }
     }
@@ -199,26 +211,31 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
     const std::string at = file + ": /floor/walls/" + std::to_string(i);
     const Eigen::Vector2d d = w.to_m - w.from_m;
     if (std::min(std::abs(d.x()), std::abs(d.y())) > 1e-6 || d.norm() < 0.01) {
-      problems->Add(at + "/to_m", "a point at least 1 cm from from_m " + Point(w.from_m) + " with the same x or the same y (walls run along x or y); got " + Point(w.to_m));
+      problems->Add(at + "/to_m", "a point at least 1 cm from from_m " + Point(w.from_m) +
+                                      " with the same x or the same y (walls run along x or y); got " + Point(w.to_m));
       walls_ok = false;
       continue;
     }
-    if (!outer.contains(w.from_m) || !outer.contains(w.to_m)) problems->Add(at, "a wall inside the room box (" + box_text + ")");
+    if (!outer.contains(w.from_m) || !outer.contains(w.to_m))
+      problems->Add(at, "a wall inside the room box (" + box_text + ")");
     std::vector<std::pair<double, double>> spans;
     for (size_t k = 0; k < w.doors.size(); ++k) {
       const FloorDoor& door = w.doors[k];
       const std::string door_at = at + "/doors/" + std::to_string(k);
       if (door.center_m - 0.5 * door.width_m < 0 || door.center_m + 0.5 * door.width_m > w.LengthM() + 1e-9) {
-        problems->Add(door_at + "/center_m", "a doorway within its wall: the wall is " + ShortestDouble(w.LengthM()) + " m long, the doorway " +
-                                                 ShortestDouble(door.width_m) + " m wide centred " + ShortestDouble(door.center_m) + " m along it");
+        problems->Add(door_at + "/center_m", "a doorway within its wall: the wall is " + ShortestDouble(w.LengthM()) +
+                                                 " m long, the doorway " + ShortestDouble(door.width_m) +
+                                                 " m wide centred " + ShortestDouble(door.center_m) + " m along it");
         walls_ok = false;
       }
-      if (door.height_m > size_m.z()) problems->Add(door_at + "/height_m", "a doorway below the ceiling (" + ShortestDouble(size_m.z()) + " m)");
+      if (door.height_m > size_m.z())
+        problems->Add(door_at + "/height_m", "a doorway below the ceiling (" + ShortestDouble(size_m.z()) + " m)");
       spans.push_back(DoorSpan(w, door));
     }
     std::sort(spans.begin(), spans.end());
     for (size_t k = 1; k < spans.size(); ++k) {
-      if (spans[k].first < spans[k - 1].second) problems->Add(at + "/doors", "doorways apart from each other along the wall");
+      if (spans[k].first < spans[k - 1].second)
+        problems->Add(at + "/doors", "doorways apart from each other along the wall");
     }
   }
   if (rooms_ok && walls_ok) {
@@ -234,7 +251,8 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
     }
     for (size_t i = 0; i < floor.rooms.size(); ++i) {
       if (!reached[i]) {
-        problems->Add(file + ": /floor/rooms/" + std::to_string(i), "a room reachable from room 0 '" + floor.rooms[0].name + "' through doorways; '" +
+        problems->Add(file + ": /floor/rooms/" + std::to_string(i), "a room reachable from room 0 '" +
+                                                                        floor.rooms[0].name + "' through doorways; '" +
                                                                         floor.rooms[i].name + "' is not");
       }
     }
@@ -246,8 +264,9 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
     const int wall = WallCrossedBy(floor, a, b, 0.0, size_m.z());
     if (wall >= 0) {
       problems->Add(file + ": /route/waypoints_m/" + std::to_string(i),
-                    "a leg clear of the interior walls; the leg " + Point(a) + " to " + Point(b) + " (to waypoint " + std::to_string((i + 1) % route.size()) +
-                        ") passes through /floor/walls/" + std::to_string(wall) + " outside its doorways");
+                    "a leg clear of the interior walls; the leg " + Point(a) + " to " + Point(b) + " (to waypoint " +
+                        std::to_string((i + 1) % route.size()) + ") passes through /floor/walls/" +
+                        std::to_string(wall) + " outside its doorways");
     }
   }
 }

@@ -27,10 +27,15 @@ CameraProfile Profile(const char* name, const char* camera, const char* document
 }  // namespace
 
 const std::vector<std::string>& CameraProfileFields() {
-  static const std::vector<std::string> fields = {
-      "/camera/width_px",      "/camera/height_px",      "/camera/hfov_deg",
-      "/frame_rate_hz",        "/camera/netd_k",         "/camera/ffc_interval_s",
-      "/camera/ffc_temperature_delta_k", "/camera/ffc_freeze_s", "/camera/quantisation_step_k"};
+  static const std::vector<std::string> fields = {"/camera/width_px",
+                                                  "/camera/height_px",
+                                                  "/camera/hfov_deg",
+                                                  "/frame_rate_hz",
+                                                  "/camera/netd_k",
+                                                  "/camera/ffc_interval_s",
+                                                  "/camera/ffc_temperature_delta_k",
+                                                  "/camera/ffc_freeze_s",
+                                                  "/camera/quantisation_step_k"};
   return fields;
 }
 
@@ -46,12 +51,14 @@ const std::vector<CameraProfile>& CameraProfiles() {
                {50.0, "field of view 50° × 37.2° (Pocket2 specification)"},
                {25.0, "frame rate 25 Hz (Pocket2 specification); the paper's sequences"},
                {0.040, "NETD < 40 mK (Pocket2 specification); the bound taken as the 1σ noise"},
-               {60.0, "silent: the specification gives no shutter interval; 60 s, the model's default, so the "
-                      "profile reproduces today's renders"},
+               {60.0,
+                "silent: the specification gives no shutter interval; 60 s, the model's default, so the "
+                "profile reproduces today's renders"},
                {0.0, "silent: no temperature trigger is published; off, as today"},
                {0.5, "silent: 0.5 s, the model's default (the frozen part of a handheld camera's shutter event)"},
-               {0.01, "silent on the radiometric step; 0.01 K, the model's default and the step of the dataset's "
-                      "16-bit centikelvin PNG"}}),
+               {0.01,
+                "silent on the radiometric step; 0.01 K, the model's default and the step of the dataset's "
+                "16-bit centikelvin PNG"}}),
       Profile("infiray_p2_pro", "InfiRay P2 Pro (USB-C module for phones)",
               "InfiRay P2 Pro specification sheet (its document number is not recorded here; its figures are "
               "quoted from the published sheet as remembered, not re-checked against it when this profile was "
@@ -62,55 +69,70 @@ const std::vector<CameraProfile>& CameraProfiles() {
                {56.0, "field of view 56° × 42.2° (P2 Pro specification)"},
                {25.0, "frame rate 25 Hz (P2 Pro specification)"},
                {0.040, "NETD < 40 mK (P2 Pro specification); the bound taken as the 1σ noise"},
-               {60.0, "silent: the module closes its shutter on its own but publishes no interval; 60 s, the "
-                      "model's default"},
+               {60.0,
+                "silent: the module closes its shutter on its own but publishes no interval; 60 s, the "
+                "model's default"},
                {0.0, "silent: no temperature trigger is published; off"},
                {0.5, "silent: 0.5 s, the model's default"},
-               {0.015625, "not in a datasheet: each USB frame carries a 16-bit temperature image in units of 1/64 K "
-                          "(kelvin × 64) as the open-source readers of this InfiRay module family decode it, so "
-                          "the step is 1/64 K"}}),
+               {0.015625,
+                "not in a datasheet: each USB frame carries a 16-bit temperature image in units of 1/64 K "
+                "(kelvin × 64) as the open-source readers of this InfiRay module family decode it, so "
+                "the step is 1/64 K"}}),
       Profile("flir_lepton_3_5", "FLIR Lepton 3.5 (radiometric micro camera core, 57° lens)",
               "FLIR Lepton Engineering Datasheet, document 500-0659-00-09 Rev 203; FLIR Lepton Product Datasheet, "
               "document 500-0771-01-09 Rev 400; FLIR Lepton 3 Datasheet, document 500-0726-01 (for the 56° it "
               "gives the non-radiometric Lepton 3).",
               {{160, "160 × 120 active pixels (500-0659-00-09; 500-0771-01-09)"},
                {120, "as width_px"},
-               {57.0, "57° HFOV, the 160 × 120 Lepton 3.5's lens ('configurations with 25°, 50° and 57° HFOV', "
-                      "500-0659-00-09; 500-0771-01-09 lists 57° too). The Lepton 3 datasheet (500-0726-01) gives "
-                      "56° HFOV, 71° diagonal for the Lepton 3; we follow the Lepton 3.5 documents"},
-               {8.7, "8.7 Hz, the 160 × 120 Lepton's effective export-compliant frame rate ('export compliant frame "
-                     "rate (< 9 Hz)', 500-0659-00-09; its 80 × 60 table gives 8.6 Hz)"},
-               {0.050, "thermal sensitivity < 50 mK (500-0659-00-09; 500-0771-01-09); the bound taken as the 1σ "
-                       "noise"},
-               {180.0, "automatic FFC 'after a specified period of time (default of 3 minutes) has elapsed since "
-                       "the last FFC' (500-0659-00-09, FFC states)"},
-               {1.5, "'or if the camera temperature has changed by more than a specified value (default of 1.5 "
-                     "Celsius degrees) since the last FFC' (500-0659-00-09, FFC states); modelled with the housing "
-                     "warming (housing_warming_k_per_min): at its default 0.5 K/min both triggers fall at 180 s"},
-               {0.9, "'the default FFC duration is nominally 23 frames at 26Hz' (500-0659-00-09, FFC states): "
-                     "0.88 s, rounded to 0.9 s; 8 frames at 8.7 Hz"},
-               {0.01, "radiometric TLinear output in kelvin × 100 at its default resolution ('T-Linear resolution "
-                      "(0 = 0.1, 1 = 0.01)', telemetry row C, 500-0659-00-09): 0.01 K"}}),
+               {57.0,
+                "57° HFOV, the 160 × 120 Lepton 3.5's lens ('configurations with 25°, 50° and 57° HFOV', "
+                "500-0659-00-09; 500-0771-01-09 lists 57° too). The Lepton 3 datasheet (500-0726-01) gives "
+                "56° HFOV, 71° diagonal for the Lepton 3; we follow the Lepton 3.5 documents"},
+               {8.7,
+                "8.7 Hz, the 160 × 120 Lepton's effective export-compliant frame rate ('export compliant frame "
+                "rate (< 9 Hz)', 500-0659-00-09; its 80 × 60 table gives 8.6 Hz)"},
+               {0.050,
+                "thermal sensitivity < 50 mK (500-0659-00-09; 500-0771-01-09); the bound taken as the 1σ "
+                "noise"},
+               {180.0,
+                "automatic FFC 'after a specified period of time (default of 3 minutes) has elapsed since "
+                "the last FFC' (500-0659-00-09, FFC states)"},
+               {1.5,
+                "'or if the camera temperature has changed by more than a specified value (default of 1.5 "
+                "Celsius degrees) since the last FFC' (500-0659-00-09, FFC states); modelled with the housing "
+                "warming (housing_warming_k_per_min): at its default 0.5 K/min both triggers fall at 180 s"},
+               {0.9,
+                "'the default FFC duration is nominally 23 frames at 26Hz' (500-0659-00-09, FFC states): "
+                "0.88 s, rounded to 0.9 s; 8 frames at 8.7 Hz"},
+               {0.01,
+                "radiometric TLinear output in kelvin × 100 at its default resolution ('T-Linear resolution "
+                "(0 = 0.1, 1 = 0.01)', telemetry row C, 500-0659-00-09): 0.01 K"}}),
       Profile("flir_boson_640", "FLIR Boson 640 (thermal camera core, 640 × 512, 8.7 mm lens, 50° HFOV)",
               "FLIR Boson Thermal Imaging Core datasheet, document 102-2013-40 Release 340 (March 2021); FLIR "
               "Boson Software Interface Description Document, document 102-2013-42 (FFC settings).",
               {{640, "VGA array 640 × 512, 12 µm pixels (102-2013-40)"},
                {512, "as width_px"},
-               {50.0, "the 8.7 mm lens, 50° HFOV, one of the datasheet's eight VGA fields of view (102-2013-40); "
-                      "chosen because it is the paper camera's 50°, so comparing the two changes the resolution "
-                      "and not the view"},
-               {60.0, "'maximum effective frame rate: fast configuration 60 Hz' (102-2013-40); 30 Hz is a setting "
-                      "of the same core (frame_rate_hz=30)"},
-               {0.050, "'thermal sensitivity varies by configuration, as low as < 40 mK' (102-2013-40): < 50 mK for "
-                       "the professional grade used here, < 40 mK for the industrial grade (netd_k=0.04)"},
-               {180.0, "the datasheet names an automatic FFC but gives no default period (the software IDD, "
-                       "102-2013-42, makes it a setting); we assume FLIR's documented Lepton default, 3 min"},
-               {1.5, "as the period: the Boson's temperature trigger is a setting (102-2013-42); we assume FLIR's "
-                     "documented Lepton default, 1.5 K"},
+               {50.0,
+                "the 8.7 mm lens, 50° HFOV, one of the datasheet's eight VGA fields of view (102-2013-40); "
+                "chosen because it is the paper camera's 50°, so comparing the two changes the resolution "
+                "and not the view"},
+               {60.0,
+                "'maximum effective frame rate: fast configuration 60 Hz' (102-2013-40); 30 Hz is a setting "
+                "of the same core (frame_rate_hz=30)"},
+               {0.050,
+                "'thermal sensitivity varies by configuration, as low as < 40 mK' (102-2013-40): < 50 mK for "
+                "the professional grade used here, < 40 mK for the industrial grade (netd_k=0.04)"},
+               {180.0,
+                "the datasheet names an automatic FFC but gives no default period (the software IDD, "
+                "102-2013-42, makes it a setting); we assume FLIR's documented Lepton default, 3 min"},
+               {1.5,
+                "as the period: the Boson's temperature trigger is a setting (102-2013-42); we assume FLIR's "
+                "documented Lepton default, 1.5 K"},
                {0.5, "silent on the FFC's length; 0.5 s, the model's default"},
-               {0.01, "the Boson 640 is not radiometric: it outputs 14-bit counts (or 8-bit AGC video) and the "
-                      "datasheet gives no kelvin per count; 0.01 K, the step of the dataset's 16-bit centikelvin "
-                      "PNG, so the model adds no step beyond the file's own"}}),
+               {0.01,
+                "the Boson 640 is not radiometric: it outputs 14-bit counts (or 8-bit AGC video) and the "
+                "datasheet gives no kelvin per count; 0.01 K, the step of the dataset's 16-bit centikelvin "
+                "PNG, so the model adds no step beyond the file's own"}}),
   };
   return profiles;
 }
@@ -188,7 +210,8 @@ std::string CameraProfilesMarkdown() {
     out << "\n";
   }
   for (const CameraProfile& p : CameraProfiles()) {
-    out << "\n## `" << p.name << "`\n\n" << p.camera << ". Sources: " << p.documents << "\n\n"
+    out << "\n## `" << p.name << "`\n\n"
+        << p.camera << ". Sources: " << p.documents << "\n\n"
         << "| field | value | source |\n|---|---|---|\n";
     for (const CameraProfileValue& v : p.values) {
       out << "| `" << v.pointer.substr(1) << "` | " << v.value.dump() << " | " << v.source << " |\n";

@@ -5,15 +5,15 @@ namespace hoilcd {
 OptionTable<SurfaceSpec> SurfaceSpec::TableWith(double temperature_c, double emissivity, bool specular) {
   using O = SurfaceSpec;
   return OptionTable<O>()
-      .Add("temperature_c", &O::temperature_c, temperature_c, "C", OptionRange::Closed(-50, 200),
-           "surface temperature")
+      .Add("temperature_c", &O::temperature_c, temperature_c, "C", OptionRange::Closed(-50, 200), "surface temperature")
       .Add("emissivity", &O::emissivity, emissivity, "", OptionRange().Above(0).AtMost(1), "emissivity (8-14 um)")
       .Add("specular", &O::specular, specular,
            "mirror-like in LWIR: one traced reflection ray instead of ambient reflection")
-      .Add("roughness_um", &O::roughness_um, 0.0, "um", OptionRange::Closed(0, 100),
-           "with specular: rms surface roughness; the mirror-like share of the reflection is exp(-(4π·roughness·cos θ / "
-           "10 µm)²) (Davies 1954), the rest diffuse: 0 for glass, ~0.5 for vinyl, ~1 for polished concrete "
-           "(docs/models/sensor_and_thermal.md)");
+      .Add(
+          "roughness_um", &O::roughness_um, 0.0, "um", OptionRange::Closed(0, 100),
+          "with specular: rms surface roughness; the mirror-like share of the reflection is exp(-(4π·roughness·cos θ / "
+          "10 µm)²) (Davies 1954), the rest diffuse: 0 for glass, ~0.5 for vinyl, ~1 for polished concrete "
+          "(docs/models/sensor_and_thermal.md)");
 }
 
 WallOptions::WallOptions() { Table().FillDefaults(this); }
@@ -132,8 +132,10 @@ const OptionTable<ThermalSolutionOptions>& ThermalSolutionOptions::Table() {
           .Add("enabled", &O::enabled, true,
                "solve every static surface's energy balance (convection, radiation exchange by view factors, "
                "conduction outdoors, heat capacity) instead of the per-surface estimates")
-          .Add("patch_size_m", &O::patch_size_m, 0.25, "m", R::Closed(0.05, 2), "side of a wall, floor or ceiling patch")
-          .Add("rays_per_node", &O::rays_per_node, 256, "", R::Closed(16, 65536), "view-factor rays cast from each node")
+          .Add("patch_size_m", &O::patch_size_m, 0.25, "m", R::Closed(0.05, 2),
+               "side of a wall, floor or ceiling patch")
+          .Add("rays_per_node", &O::rays_per_node, 256, "", R::Closed(16, 65536),
+               "view-factor rays cast from each node")
           .Add("step_s", &O::step_s, 60.0, "s", R::Closed(1, 3600), "time step of the solution (frames interpolate)")
           .Add("spin_up_s", &O::spin_up_s, 21600.0, "s", R::Closed(0, 604800),
                "history solved before the sequence starts, from a steady state")

@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 #include <sstream>
+
 #include <valijson/adapters/nlohmann_json_adapter.hpp>
 #include <valijson/schema.hpp>
 #include <valijson/schema_parser.hpp>
@@ -74,8 +75,7 @@ std::string Describe(const std::string& pointer, const std::string& description)
   const std::string marker = "constraints: '";
   const size_t at = description.find(marker);
   if (at != std::string::npos) {
-    const std::string key = description.substr(at + marker.size(),
-                                               description.size() - at - marker.size() - 2);
+    const std::string key = description.substr(at + marker.size(), description.size() - at - marker.size() - 2);
     std::string expected;
     if (const json* node = SchemaAt(pointer); node && node->contains("properties")) {
       for (const auto& [name, _] : (*node)["properties"].items()) {
@@ -92,9 +92,9 @@ std::string Describe(const std::string& pointer, const std::string& description)
     out = "expected one of: " + names;
   }
   if (description.find("'type' constraint") != std::string::npos && node && node->contains("type")) {
-    static const std::map<std::string, std::string> kExpected = {
-        {"number", "a number"}, {"integer", "a whole number"}, {"string", "a string"},
-        {"boolean", "true or false"}, {"array", "an array"}, {"object", "an object"}};
+    static const std::map<std::string, std::string> kExpected = {{"number", "a number"}, {"integer", "a whole number"},
+                                                                 {"string", "a string"}, {"boolean", "true or false"},
+                                                                 {"array", "an array"},  {"object", "an object"}};
     const std::string type = (*node)["type"].is_string() ? (*node)["type"].get<std::string>() : "";
     if (kExpected.count(type)) out = "expected " + kExpected.at(type);
   }
@@ -119,8 +119,8 @@ void NormaliseNumbers(json* doc, const json& schema) {
 
 // The schema's "required" properties, checked on the document as written: FillDefaults would
 // otherwise supply them (a table without center_m would silently stand at the default).
-void CheckRequired(const json& doc, const json& schema, const std::string& pointer,
-                   const std::string& file, ProblemCollector* problems) {
+void CheckRequired(const json& doc, const json& schema, const std::string& pointer, const std::string& file,
+                   ProblemCollector* problems) {
   if (doc.is_object()) {
     if (schema.contains("required")) {
       for (const json& key : schema["required"]) {
@@ -148,9 +148,9 @@ void CheckListLengths(const json& doc, const json& schema, const std::string& po
                       ProblemCollector* problems) {
   const char* bound = doc.is_array() ? "maxItems" : doc.is_object() ? "maxProperties" : nullptr;
   if (bound != nullptr && schema.contains(bound) && doc.size() > schema[bound].get<size_t>()) {
-    problems->Add(file + ": " + (pointer.empty() ? "/" : pointer),
-                  "holds " + std::to_string(doc.size()) + (doc.is_array() ? " items" : " keys") + "; expected at most " +
-                      schema[bound].dump());
+    problems->Add(file + ": " + (pointer.empty() ? "/" : pointer), "holds " + std::to_string(doc.size()) +
+                                                                       (doc.is_array() ? " items" : " keys") +
+                                                                       "; expected at most " + schema[bound].dump());
     return;
   }
   if (doc.is_object() && schema.contains("properties")) {
@@ -171,7 +171,8 @@ void CheckIntegerBounds(const json& doc, const json& schema, const std::string& 
   if (doc.is_number_integer() && schema.value("type", "") == "integer") {
     // A long double holds every 64-bit integer exactly.
     const auto exact = [](const json& v) {
-      return v.is_number_unsigned() ? static_cast<long double>(v.get<uint64_t>()) : static_cast<long double>(v.get<int64_t>());
+      return v.is_number_unsigned() ? static_cast<long double>(v.get<uint64_t>())
+                                    : static_cast<long double>(v.get<int64_t>());
     };
     const auto beyond = [&](const json& bound, bool above) {
       if (!bound.is_number_integer()) return false;
@@ -215,9 +216,7 @@ std::string ResolveAssetRef(const std::string& ref, const fs::path& scene_dir) {
 }
 
 Eigen::Vector2d Vec2(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
-Eigen::Vector3d Vec3(const json& j) {
-  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
-}
+Eigen::Vector3d Vec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
 // Tables inside the room; seating names existing tables and seats they have.
 void CheckTables(const Scene& scene, ProblemCollector* problems) {
@@ -226,8 +225,8 @@ void CheckTables(const Scene& scene, ProblemCollector* problems) {
     const Eigen::Vector2d& c = scene.tables[i].center_m;
     if (c.x() < 0 || c.y() < 0 || c.x() > scene.room.size_m.x() || c.y() > scene.room.size_m.y()) {
       problems->Add(f + ": /tables/" + std::to_string(i) + "/center_m",
-                    "a position inside the room (x in [0, " + std::to_string(scene.room.size_m.x()) +
-                        "], y in [0, " + std::to_string(scene.room.size_m.y()) + "])");
+                    "a position inside the room (x in [0, " + std::to_string(scene.room.size_m.x()) + "], y in [0, " +
+                        std::to_string(scene.room.size_m.y()) + "])");
     }
   }
   for (size_t i = 0; i < scene.crowd.seating.size(); ++i) {
@@ -252,12 +251,11 @@ void CheckOpenings(const Scene& scene, ProblemCollector* problems) {
   const std::string& f = scene.file;
   for (size_t i = 0; i < scene.room.windows.size(); ++i) {
     const WindowSpec& w = scene.room.windows[i];
-    const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room.size_m.x()
-                                                                         : scene.room.size_m.y();
+    const double wall_length = (w.wall == "north" || w.wall == "south") ? scene.room.size_m.x() : scene.room.size_m.y();
     const std::string at = f + ": /room/windows/" + std::to_string(i);
     if (w.center_m - 0.5 * w.width_m < 0 || w.center_m + 0.5 * w.width_m > wall_length) {
-      problems->Add(at + "/center_m", "the window to fit along its wall (length " +
-                                          std::to_string(wall_length) + " m)");
+      problems->Add(at + "/center_m",
+                    "the window to fit along its wall (length " + std::to_string(wall_length) + " m)");
     }
     if (w.bottom_m + w.height_m > scene.room.size_m.z()) {
       problems->Add(at + "/height_m", "the window top below the ceiling");
@@ -280,9 +278,9 @@ void CheckOpenings(const Scene& scene, ProblemCollector* problems) {
     }
     const double along = on_x_wall ? y : x, length = on_x_wall ? size_y : size_x;
     if (along - 0.5 * d.width_m < 0 || along + 0.5 * d.width_m > length) {
-      problems->Add(at + "/width_m", "the doorway (" + ShortestDouble(d.width_m) + " m wide, centred " + ShortestDouble(along) +
-                                         " m along its wall) to fit along its wall (length " + ShortestDouble(length) +
-                                         " m) without reaching a corner");
+      problems->Add(at + "/width_m", "the doorway (" + ShortestDouble(d.width_m) + " m wide, centred " +
+                                         ShortestDouble(along) + " m along its wall) to fit along its wall (length " +
+                                         ShortestDouble(length) + " m) without reaching a corner");
     }
   }
 }
@@ -291,8 +289,8 @@ void CheckOpenings(const Scene& scene, ProblemCollector* problems) {
 void CheckPlacements(const Scene& scene, ProblemCollector* problems) {
   const std::string& f = scene.file;
   auto inside_room = [&](const Eigen::Vector3d& p) {
-    return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room.size_m.x() &&
-           p.y() <= scene.room.size_m.y() && p.z() <= scene.room.size_m.z();
+    return p.x() >= 0 && p.y() >= 0 && p.z() >= 0 && p.x() <= scene.room.size_m.x() && p.y() <= scene.room.size_m.y() &&
+           p.z() <= scene.room.size_m.z();
   };
   const std::string room_box = "x in [0, " + std::to_string(scene.room.size_m.x()) + "], y in [0, " +
                                std::to_string(scene.room.size_m.y()) + "], z in [0, " +
@@ -307,16 +305,16 @@ void CheckPlacements(const Scene& scene, ProblemCollector* problems) {
     const std::string path = assets.Resolve(objects[i].at("asset").get<std::string>());
     std::error_code ec;
     if (objects[i].at("enabled").get<bool>() && !fs::is_regular_file(path, ec)) {
-      problems->Add(at + "/asset", "an asset name in " + scene.assets_dir + " or a .gltf/.glb file; " + path +
-                                       " does not exist");
+      problems->Add(at + "/asset",
+                    "an asset name in " + scene.assets_dir + " or a .gltf/.glb file; " + path + " does not exist");
     }
   }
   for (const char* key : {"table_asset", "chair_asset"}) {
     const std::string path = assets.Resolve(scene.resolved.at("furniture").at(key).get<std::string>());
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
-      problems->Add(f + ": /furniture/" + key, "an asset name in " + scene.assets_dir +
-                                                   " or a .gltf/.glb file; " + path + " does not exist");
+      problems->Add(f + ": /furniture/" + key,
+                    "an asset name in " + scene.assets_dir + " or a .gltf/.glb file; " + path + " does not exist");
     }
   }
   for (size_t i = 0; i < scene.tables.size(); ++i) {
@@ -324,8 +322,8 @@ void CheckPlacements(const Scene& scene, ProblemCollector* problems) {
     const std::string path = assets.Resolve(scene.tables[i].asset);
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
-      problems->Add(f + ": /tables/" + std::to_string(i) + "/asset", "an asset name in " + scene.assets_dir +
-                                                                     " or a .gltf/.glb file; " + path + " does not exist");
+      problems->Add(f + ": /tables/" + std::to_string(i) + "/asset",
+                    "an asset name in " + scene.assets_dir + " or a .gltf/.glb file; " + path + " does not exist");
     }
   }
   const std::vector<StandingSpec>& standing = scene.crowd.standing;
@@ -458,13 +456,11 @@ std::vector<Problem> ValidateScene(const json& doc, const std::string& file) {
   for (const Problem& p : integers.problems()) {
     if (pointers.count(p.where.substr(file.size() + 2)) == 0) problems.push_back(p);
   }
-  std::sort(problems.begin(), problems.end(),
-            [](const Problem& a, const Problem& b) { return a.where < b.where; });
-  problems.erase(std::unique(problems.begin(), problems.end(),
-                             [](const Problem& a, const Problem& b) {
-                               return a.where == b.where && a.message == b.message;
-                             }),
-                 problems.end());
+  std::sort(problems.begin(), problems.end(), [](const Problem& a, const Problem& b) { return a.where < b.where; });
+  problems.erase(
+      std::unique(problems.begin(), problems.end(),
+                  [](const Problem& a, const Problem& b) { return a.where == b.where && a.message == b.message; }),
+      problems.end());
   return problems;
 }
 
@@ -477,8 +473,10 @@ void FillSceneDefaults(json* doc) {
 // into the resolved scene (the schema gives them no default, so older scenes resolve as before).
 TableSpec ReadTable(const json& t) {
   static const std::map<std::string, std::pair<SeatArrangement, int>> kArrangements = {
-      {"both_sides", {SeatArrangement::kBothSides, 0}}, {"one_side", {SeatArrangement::kOneSide, 2}},
-      {"around", {SeatArrangement::kAround, 4}},        {"sofa", {SeatArrangement::kSofa, 3}},
+      {"both_sides", {SeatArrangement::kBothSides, 0}},
+      {"one_side", {SeatArrangement::kOneSide, 2}},
+      {"around", {SeatArrangement::kAround, 4}},
+      {"sofa", {SeatArrangement::kSofa, 3}},
       {"none", {SeatArrangement::kNone, 0}}};
   TableSpec spec;
   spec.center_m = Vec2(t["center_m"]);
@@ -524,7 +522,8 @@ void ReadRoomAndFurniture(const std::string& file, json* doc_in, Scene* s_out, P
   s.room.windows.clear();
   for (size_t i = 0; i < doc["room"]["windows"].size(); ++i) {
     WindowSpec w;
-    WindowSpec::Table().Read(doc["room"]["windows"][i], file + ": /room/windows/" + std::to_string(i), &w, &consistency);
+    WindowSpec::Table().Read(doc["room"]["windows"][i], file + ": /room/windows/" + std::to_string(i), &w,
+                             &consistency);
     s.room.windows.push_back(w);
   }
   // No doors given: a 0.9 m door in the middle of each end wall (west and east, as a seminar
@@ -535,20 +534,22 @@ void ReadRoomAndFurniture(const std::string& file, json* doc_in, Scene* s_out, P
     doc["room"]["doors"] = json::array({{{"position_m", {0.0, mid_y}}, {"width_m", 0.9}},
                                         {{"position_m", {s.room.size_m.x(), mid_y}}, {"width_m", 0.9}}});
   }
-  for (const json& d : doc["room"]["doors"]) s.room.doors.push_back({Vec2(d["position_m"]), d["width_m"].get<double>()});
+  for (const json& d : doc["room"]["doors"])
+    s.room.doors.push_back({Vec2(d["position_m"]), d["width_m"].get<double>()});
   s.floor = ReadFloorPlan(doc.contains("floor") ? doc["floor"] : json());
   for (const json& t : doc["tables"]) s.tables.push_back(ReadTable(t));
   FurnitureOptions::Table().Read(doc["furniture"], file + ": /furniture", &s.furniture, &consistency);
 
   for (const json& o : doc["objects"]) {
-    ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]), o["yaw_deg"].get<double>(),
-                    o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
+    ObjectSpec spec{ResolveAssetRef(o["asset"].get<std::string>(), scene_dir), Vec3(o["position_m"]),
+                    o["yaw_deg"].get<double>(), o["temperature_offset_c"].get<double>(), o["enabled"].get<bool>()};
     if (spec.enabled && DistractorEnabled(doc["distractors"], spec.asset)) s.objects.push_back(spec);
   }
 }
 
 // The camera, robot, route, odometry and crowd, each read by its option table.
-void ReadCameraRobotAndCrowd(const std::string& file, const json& doc, Scene* s_out, ProblemCollector* consistency_out) {
+void ReadCameraRobotAndCrowd(const std::string& file, const json& doc, Scene* s_out,
+                             ProblemCollector* consistency_out) {
   Scene& s = *s_out;
   ProblemCollector& consistency = *consistency_out;
   CameraOptions::Table().Read(doc["camera"], file + ": /camera", &s.camera, &consistency);
@@ -563,7 +564,8 @@ void ReadCameraRobotAndCrowd(const std::string& file, const json& doc, Scene* s_
   for (const json& p : doc["crowd"]["seating"]) {
     s.crowd.seating.push_back({p["table"].get<int>(), p["seat"].get<int>(), p["posture"].get<std::string>()});
   }
-  for (const json& p : doc["crowd"]["standing"]) s.crowd.standing.push_back({Vec2(p["position_m"]), p["yaw_deg"].get<double>()});
+  for (const json& p : doc["crowd"]["standing"])
+    s.crowd.standing.push_back({Vec2(p["position_m"]), p["yaw_deg"].get<double>()});
 }
 
 // Every module's values checked by its option table, each problem at its pointer.

@@ -66,8 +66,8 @@ OdometryErrorOptions OdometryOptionsFromScene(const Scene& scene) {
 
 RobotRun SimulateSceneRobot(const Scene& scene, const std::vector<Obstacle2D>& obstacles) {
   try {
-    return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                         OdometryOptionsFromScene(scene), obstacles, scene.frame_rate_hz, scene.run_seed);
+    return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene), OdometryOptionsFromScene(scene),
+                         obstacles, scene.frame_rate_hz, scene.run_seed);
   } catch (const InputError& e) {
     throw LocatedInScene(scene, e);
   }

@@ -1,9 +1,10 @@
 #include "hoilcd/sim/scene/scene_reference.h"
 
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/people/crowd_options.h"
@@ -65,38 +66,52 @@ std::string SceneReferenceMarkdown() {
   out << "## Top level\n\n";
   out << SchemaTable(top, /*skip_objects=*/true) << "\n";
   const std::vector<std::pair<std::string, std::vector<OptionInfo>>> tables = {
-      {"room", RoomOptions::Table().List()},     {"furniture", FurnitureOptions::Table().List()},
-      {"crowd", CrowdOptions::Table().List()},   {"camera", CameraOptions::Table().List()},
-      {"robot", TricycleOptions::Table().List()}, {"route", RouteOptions::Table().List()},
+      {"room", RoomOptions::Table().List()},
+      {"furniture", FurnitureOptions::Table().List()},
+      {"crowd", CrowdOptions::Table().List()},
+      {"camera", CameraOptions::Table().List()},
+      {"robot", TricycleOptions::Table().List()},
+      {"route", RouteOptions::Table().List()},
       {"odometry", OdometryErrorOptions::Table().List()}};
   for (const auto& [name, options] : tables) {
-    out << "## " << name << "\n\n" << top[name].value("description", "") << ".\n\n"
+    out << "## " << name << "\n\n"
+        << top[name].value("description", "") << ".\n\n"
         << FormatOptionTableMarkdown(options) << "\n";
     if (name == "room") {
       out << "### room.windows[]\n\nOne window of `room.windows`.\n\n"
           << FormatOptionTableMarkdown(WindowSpec::Table().List()) << "\n";
     }
   }
-  out << "## generator\n\n" << top["generator"].value("description", "") << ". Its `options` are listed by "
+  out << "## generator\n\n"
+      << top["generator"].value("description", "") << ". Its `options` are listed by "
       << "`hoilcd reference generate` ([generate.md](generate.md)).\n\n"
       << SchemaTable(top["generator"]["properties"], /*skip_objects=*/true) << "\n";
   const json& floor = top["floor"];
-  out << "## floor\n\n" << floor.value("description", "") << ".\n\n"
-      << "### floor.rooms[]\n\n" << floor["properties"]["rooms"].value("description", "") << "; each element:\n\n"
+  out << "## floor\n\n"
+      << floor.value("description", "") << ".\n\n"
+      << "### floor.rooms[]\n\n"
+      << floor["properties"]["rooms"].value("description", "") << "; each element:\n\n"
       << SchemaTable(floor["properties"]["rooms"]["items"]["properties"]) << "\n"
-      << "### floor.walls[]\n\n" << floor["properties"]["walls"].value("description", "") << "; each element:\n\n"
+      << "### floor.walls[]\n\n"
+      << floor["properties"]["walls"].value("description", "") << "; each element:\n\n"
       << SchemaTable(floor["properties"]["walls"]["items"]["properties"]) << "\n"
-      << "### floor.walls[].doors[]\n\n" << floor["properties"]["walls"]["items"]["properties"]["doors"].value("description", "")
-      << "; each element:\n\n" << SchemaTable(floor["properties"]["walls"]["items"]["properties"]["doors"]["items"]["properties"]) << "\n";
-  out << "## distractors\n\n" << top["distractors"].value("description", "") << ".\n\n"
+      << "### floor.walls[].doors[]\n\n"
+      << floor["properties"]["walls"]["items"]["properties"]["doors"].value("description", "") << "; each element:\n\n"
+      << SchemaTable(floor["properties"]["walls"]["items"]["properties"]["doors"]["items"]["properties"]) << "\n";
+  out << "## distractors\n\n"
+      << top["distractors"].value("description", "") << ".\n\n"
       << SchemaTable(top["distractors"]["properties"]) << "\n";
   for (const char* array : {"tables", "objects", "runs"}) {
-    out << "## " << array << "[]\n\n" << top[array].value("description", "") << "; each element:\n\n"
+    out << "## " << array << "[]\n\n"
+        << top[array].value("description", "") << "; each element:\n\n"
         << SchemaTable(top[array]["items"]["properties"]) << "\n";
   }
-  out << "The shipped assets, their sizes, origins and mounts are listed in [assets/README.md](../../assets/README.md); "
-      << "the temperatures and emissivities of the room objects (whiteboard, door frame, AC unit, switch, socket, shelf, "
-      << "cabinet, ceiling light, bag, coat, charger), each with its source, in [room_objects.md](../models/room_objects.md).\n\n";
+  out << "The shipped assets, their sizes, origins and mounts are listed in "
+         "[assets/README.md](../../assets/README.md); "
+      << "the temperatures and emissivities of the room objects (whiteboard, door frame, AC unit, switch, socket, "
+         "shelf, "
+      << "cabinet, ceiling light, bag, coat, charger), each with its source, in "
+         "[room_objects.md](../models/room_objects.md).\n\n";
   std::string text = out.str();
   text.pop_back();  // one newline at the end
   return text;

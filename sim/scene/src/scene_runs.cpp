@@ -18,9 +18,9 @@ using nlohmann::json;
 // What one run cannot change: what the dataset states once (camera, frame rate, name), what makes
 // the runs one sequence (seed, frames, runs) and the place itself (floor, room size); the time of
 // day is the run's own key.
-constexpr const char* kSharedByRuns[] = {"/name",   "/description", "/generator",     "/seed",
+constexpr const char* kSharedByRuns[] = {"/name",   "/description",   "/generator",   "/seed",
                                          "/frames", "/frame_rate_hz", "/assets_dir",  "/runs",
-                                         "/camera", "/floor",       "/room/size_m", "/room/sun/time_of_day_h"};
+                                         "/camera", "/floor",         "/room/size_m", "/room/sun/time_of_day_h"};
 
 bool StartsWithPointer(const std::string& pointer, const std::string& prefix) {
   return pointer == prefix || (pointer.size() > prefix.size() && pointer.compare(0, prefix.size(), prefix) == 0 &&
@@ -76,12 +76,14 @@ void ReadRuns(json* doc, const json& written, const std::vector<std::string>& ov
   const json::json_pointer sun_time("/room/sun/time_of_day_h");
   bool sun_time_given = written.contains(sun_time);
   for (const std::string& o : overrides) {
-    sun_time_given = sun_time_given || StartsWithPointer(OverridePointer(o.substr(0, o.find('='))), sun_time.to_string());
+    sun_time_given =
+        sun_time_given || StartsWithPointer(OverridePointer(o.substr(0, o.find('='))), sun_time.to_string());
   }
   if (sun_time_given && (*doc)[sun_time].get<double>() != first_time_h) {
-    problems->Add(file + ": /room/sun/time_of_day_h",
-                  "is " + Fixed((*doc)[sun_time].get<double>(), 2) + ", but a scene with runs takes each run's time of day "
-                  "from /runs/N/time_of_day_h (the first run's is " + Fixed(first_time_h, 2) + "); remove it");
+    problems->Add(file + ": /room/sun/time_of_day_h", "is " + Fixed((*doc)[sun_time].get<double>(), 2) +
+                                                          ", but a scene with runs takes each run's time of day "
+                                                          "from /runs/N/time_of_day_h (the first run's is " +
+                                                          Fixed(first_time_h, 2) + "); remove it");
   }
   (*doc)[sun_time] = first_time_h;
   s->room.sun.time_of_day_h = first_time_h;
@@ -99,15 +101,17 @@ void ReadRuns(json* doc, const json& written, const std::vector<std::string>& ov
                : k == 0           ? s->seed
                                   : HashCombine(s->seed, HashString("scene.run"), k) & kJsonSafeInteger;
     run.start_time_s = (run.day * 24.0 + run.time_of_day_h - first_time_h) * 3600.0;
-    if (k == 0 && run.day != 0) problems->Add(at + "/day", "the first run's day is day 0 (days count from it); expected 0");
+    if (k == 0 && run.day != 0)
+      problems->Add(at + "/day", "the first run's day is day 0 (days count from it); expected 0");
     if (k > 0) {
       const RunSpec& previous = s->runs.back();
       const double previous_end_s = previous.start_time_s + previous.frames / s->frame_rate_hz;
       if (run.start_time_s < previous_end_s) {
-        const auto [start, end] = TwoClockTexts(run.start_time_s + first_time_h * 3600, previous_end_s + first_time_h * 3600);
-        problems->Add(at + "/time_of_day_h", "run " + std::to_string(k) + " starts at " + start + ", before run " +
-                                                 std::to_string(k - 1) + " ends at " + end +
-                                                 "; expected a later time or day (/runs/" + std::to_string(k) + "/day)");
+        const auto [start, end] =
+            TwoClockTexts(run.start_time_s + first_time_h * 3600, previous_end_s + first_time_h * 3600);
+        problems->Add(at + "/time_of_day_h",
+                      "run " + std::to_string(k) + " starts at " + start + ", before run " + std::to_string(k - 1) +
+                          " ends at " + end + "; expected a later time or day (/runs/" + std::to_string(k) + "/day)");
       }
     }
     if (r.contains("set")) {
@@ -124,8 +128,9 @@ void ReadRuns(json* doc, const json& written, const std::vector<std::string>& ov
           if (StartsWithPointer(pointer, p) || StartsWithPointer(p, pointer)) shared = p;
         }
         if (!shared.empty()) {
-          problems->Add(at + "/set/" + key, "sets " + shared + ", which is one for all runs" +
-                                                (shared == "/room/sun/time_of_day_h" ? " (use /runs/N/time_of_day_h)" : ""));
+          problems->Add(at + "/set/" + key,
+                        "sets " + shared + ", which is one for all runs" +
+                            (shared == "/room/sun/time_of_day_h" ? " (use /runs/N/time_of_day_h)" : ""));
           continue;
         }
         run.overrides.push_back(key + "=" + value.dump());
@@ -135,8 +140,8 @@ void ReadRuns(json* doc, const json& written, const std::vector<std::string>& ov
     s->runs.push_back(std::move(run));
   }
   if (total_frames > kMaxFrames) {
-    problems->Add(file + ": /runs", "the runs hold " + std::to_string(total_frames) + " frames in all; expected at most " +
-                                        std::to_string(kMaxFrames));
+    problems->Add(file + ": /runs", "the runs hold " + std::to_string(total_frames) +
+                                        " frames in all; expected at most " + std::to_string(kMaxFrames));
   }
   s->frames = static_cast<int>(std::min<int64_t>(total_frames, kMaxFrames));
 }

@@ -2,9 +2,10 @@
 // scene_runs.cpp).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -19,8 +20,8 @@ std::string OverridePointer(const std::string& key);
 // an override of what is one for all runs, another time of day in /room/sun) go to `problems` at
 // their pointers. `written` is the scene as written, and
 // `overrides` the command line's, to tell an explicit room.sun.time_of_day_h from its default.
-void ReadRuns(nlohmann::json* doc, const nlohmann::json& written, const std::vector<std::string>& overrides,
-              Scene* s, ProblemCollector* problems);
+void ReadRuns(nlohmann::json* doc, const nlohmann::json& written, const std::vector<std::string>& overrides, Scene* s,
+              ProblemCollector* problems);
 
 // Builds every run's scene once (SceneOfRun), so that a run whose overrides make a bad scene is
 // reported when the scene loads, each problem under /runs/N.

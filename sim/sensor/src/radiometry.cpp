@@ -21,8 +21,7 @@ constexpr int kInverseBinsPerSegment = 4;
 // Spectral radiance B_λ(T) in W·m⁻²·sr⁻¹·m⁻¹.
 double PlanckSpectral(double lambda_m, double temperature_k) {
   const double x = kPlanckJs * kLightSpeedMps / (lambda_m * kBoltzmannJpK * temperature_k);
-  return 2.0 * kPlanckJs * kLightSpeedMps * kLightSpeedMps / std::pow(lambda_m, 5) /
-         std::expm1(x);
+  return 2.0 * kPlanckJs * kLightSpeedMps * kLightSpeedMps / std::pow(lambda_m, 5) / std::expm1(x);
 }
 
 // ∫_x^∞ t³/(eᵗ−1) dt by its series; converges geometrically for the x ≥ 1 of LWIR bands.
@@ -30,9 +29,8 @@ double PlanckTailIntegral(double x) {
   double sum = 0.0;
   for (int n = 1; n < 10000; ++n) {
     const double nd = n;
-    const double term = std::exp(-nd * x) *
-                        (x * x * x / nd + 3.0 * x * x / (nd * nd) + 6.0 * x / (nd * nd * nd) +
-                         6.0 / (nd * nd * nd * nd));
+    const double term = std::exp(-nd * x) * (x * x * x / nd + 3.0 * x * x / (nd * nd) + 6.0 * x / (nd * nd * nd) +
+                                             6.0 / (nd * nd * nd * nd));
     sum += term;
     if (term < 1e-18 * sum) break;
   }
@@ -47,8 +45,7 @@ void CheckBand(double temperature_k, double lambda_min_um, double lambda_max_um)
 
 }  // namespace
 
-double IntegratePlanckBand(double temperature_k, double lambda_min_um, double lambda_max_um,
-                           int steps) {
+double IntegratePlanckBand(double temperature_k, double lambda_min_um, double lambda_max_um, int steps) {
   CheckBand(temperature_k, lambda_min_um, lambda_max_um);
   HOILCD_CHECK(steps >= 2);
   const int n = steps + (steps % 2);
@@ -68,17 +65,12 @@ double PlanckBandSeries(double temperature_k, double lambda_min_um, double lambd
   const double x_long = hc_over_kt / (lambda_max_um * 1e-6);
   const double x_short = hc_over_kt / (lambda_min_um * 1e-6);
   // B_λ dλ = 2k⁴T⁴/(h³c²) · x³/(eˣ−1) dx with x = hc/(λkT).
-  const double scale =
-      2.0 * std::pow(kt, 4) / (std::pow(kPlanckJs, 3) * kLightSpeedMps * kLightSpeedMps);
+  const double scale = 2.0 * std::pow(kt, 4) / (std::pow(kPlanckJs, 3) * kLightSpeedMps * kLightSpeedMps);
   return scale * (PlanckTailIntegral(x_long) - PlanckTailIntegral(x_short));
 }
 
-BandRadianceTable::BandRadianceTable(double lambda_min_um, double lambda_max_um, double t_min_k,
-                                     double t_max_k)
-    : lambda_min_um_(lambda_min_um),
-      lambda_max_um_(lambda_max_um),
-      t_min_k_(t_min_k),
-      t_max_k_(t_max_k) {
+BandRadianceTable::BandRadianceTable(double lambda_min_um, double lambda_max_um, double t_min_k, double t_max_k)
+    : lambda_min_um_(lambda_min_um), lambda_max_um_(lambda_max_um), t_min_k_(t_min_k), t_max_k_(t_max_k) {
   CheckBand(t_min_k, lambda_min_um, lambda_max_um);
   HOILCD_CHECK_MSG(t_max_k > t_min_k, "table range [" << t_min_k << ", " << t_max_k << "] K");
   const int segments = std::max(1, static_cast<int>(std::lround((t_max_k - t_min_k) / kTableStepK)));
@@ -110,8 +102,8 @@ namespace {
 
 // The inversion of KelvinFromRadiance, inlined into both of its forms.
 [[gnu::always_inline]] inline double InvertTable(double radiance, const double* table, int segments,
-                                                 const int* first_segment, int bins, double inverse_bin,
-                                                 double t_min_k, double step_k) {
+                                                 const int* first_segment, int bins, double inverse_bin, double t_min_k,
+                                                 double step_k) {
   const double l = std::clamp(radiance, table[0], table[segments]);
   const int bin = std::min(static_cast<int>((l - table[0]) / inverse_bin), bins - 1);
   int i = first_segment[bin];
@@ -123,9 +115,8 @@ namespace {
 }  // namespace
 
 double BandRadianceTable::KelvinFromRadiance(double radiance) const {
-  return InvertTable(radiance, radiance_.data(), static_cast<int>(radiance_.size()) - 1,
-                     first_segment_.data(), static_cast<int>(first_segment_.size()), inverse_bin_,
-                     t_min_k_, step_k_);
+  return InvertTable(radiance, radiance_.data(), static_cast<int>(radiance_.size()) - 1, first_segment_.data(),
+                     static_cast<int>(first_segment_.size()), inverse_bin_, t_min_k_, step_k_);
 }
 
 namespace {
@@ -137,10 +128,12 @@ namespace {
 // clone, so both give the same doubles.
 constexpr int kLaneSteps = 2;
 
-__attribute__((target_clones("avx2", "default"))) void InvertTableLanes(
-    const double* __restrict radiance, int count, const double* __restrict table, int segments,
-    const int* __restrict first_segment, int bins, double inverse_bin, double t_min_k,
-    double step_k, double* __restrict kelvin, unsigned char* __restrict unfinished) {
+__attribute__((target_clones("avx2", "default"))) void InvertTableLanes(const double* __restrict radiance, int count,
+                                                                        const double* __restrict table, int segments,
+                                                                        const int* __restrict first_segment, int bins,
+                                                                        double inverse_bin, double t_min_k,
+                                                                        double step_k, double* __restrict kelvin,
+                                                                        unsigned char* __restrict unfinished) {
   for (int k = 0; k < count; ++k) {
     const double l = std::clamp(radiance[k], table[0], table[segments]);
     const int bin = std::min(static_cast<int>((l - table[0]) / inverse_bin), bins - 1);
@@ -163,12 +156,12 @@ void BandRadianceTable::KelvinFromRadiance(const double* radiance, int count, do
   for (int begin = 0; begin < count; begin += kBatch) {
     const int n = std::min(kBatch, count - begin);
     std::copy(radiance + begin, radiance + begin + n, in);  // kelvin may be radiance
-    InvertTableLanes(in, n, radiance_.data(), segments, first_segment_.data(), bins, inverse_bin_,
-                     t_min_k_, step_k_, kelvin + begin, unfinished);
+    InvertTableLanes(in, n, radiance_.data(), segments, first_segment_.data(), bins, inverse_bin_, t_min_k_, step_k_,
+                     kelvin + begin, unfinished);
     for (int k = 0; k < n; ++k) {
       if (unfinished[k]) {
-        kelvin[begin + k] = InvertTable(in[k], radiance_.data(), segments, first_segment_.data(),
-                                        bins, inverse_bin_, t_min_k_, step_k_);
+        kelvin[begin + k] = InvertTable(in[k], radiance_.data(), segments, first_segment_.data(), bins, inverse_bin_,
+                                        t_min_k_, step_k_);
       }
     }
   }

@@ -67,8 +67,8 @@ __attribute__((target_clones("avx2", "default"))) void SignalRow(
 }
 
 // Step 8: kelvin to °C, rounded to the quantisation step when `step_k` > 0.
-__attribute__((target_clones("avx2", "default"))) void CelsiusRow(
-    int width, const double* __restrict kelvin, double step_k, float* __restrict out) {
+__attribute__((target_clones("avx2", "default"))) void CelsiusRow(int width, const double* __restrict kelvin,
+                                                                  double step_k, float* __restrict out) {
   for (int x = 0; x < width; ++x) {
     float t_c = static_cast<float>(kelvin[x] - kZeroCelsiusK);
     if (step_k > 0) t_c = static_cast<float>(RoundHalfAway(t_c / step_k) * step_k);
@@ -92,7 +92,8 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
           .Add("netd_k", &O::netd_k, 0.040, "K", R::Closed(0, 1), "noise-equivalent temperature difference (1-sigma)")
           .Add("fixed_pattern", &O::fixed_pattern, true, "residual non-uniformity after factory calibration")
           .Add("fpn_offset_k", &O::fpn_offset_k, 0.05, "K", R::Closed(0, 2), "per-pixel offset (1-sigma)")
-          .Add("fpn_gain_sigma", &O::fpn_gain_sigma, 0.002, "", R::Closed(0, 0.2), "per-pixel relative gain error (1-sigma)")
+          .Add("fpn_gain_sigma", &O::fpn_gain_sigma, 0.002, "", R::Closed(0, 0.2),
+               "per-pixel relative gain error (1-sigma)")
           .Add("column_stripe_k", &O::column_stripe_k, 0.03, "K", R::Closed(0, 2), "per-column offset (1-sigma)")
           .Add("shutter_temperature_c", &O::shutter_temperature_c, 25.0, "°C", R::Closed(-50, 150),
                "FFC shutter temperature: gain errors vanish there")
@@ -103,7 +104,9 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
           .Add("ffc_interval_s", &O::ffc_interval_s, 60.0, "s", R::Closed(0, 86400),
                "time between flat-field corrections (0: never, unless ffc_temperature_delta_k triggers them)")
           .Rule("ffc_interval_s",
-                [](const O& o) { return o.ffc_interval_s == 0 || o.ffc_interval_s >= 1 ? "" : "must be 0 (never) or at least 1 s"; })
+                [](const O& o) {
+                  return o.ffc_interval_s == 0 || o.ffc_interval_s >= 1 ? "" : "must be 0 (never) or at least 1 s";
+                })
           .Add("ffc_temperature_delta_k", &O::ffc_temperature_delta_k, 0.0, "K", R::Closed(0, 20),
                "an FFC also once the housing has warmed this much since the last one (0: off)")
           .Optional()
@@ -130,7 +133,8 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
           .Add("time_constant_s", &O::time_constant_s, 0.010, "s", R().Above(0).AtMost(1),
                "bolometer thermal time constant")
           .Add("quantisation", &O::quantisation, true, "output rounded to a temperature step")
-          .Add("quantisation_step_k", &O::quantisation_step_k, 0.01, "K", R().Above(0).AtMost(1), "output temperature step")
+          .Add("quantisation_step_k", &O::quantisation_step_k, 0.01, "K", R().Above(0).AtMost(1),
+               "output temperature step")
           .Add("reference_temperature_c", &O::reference_temperature_c, 26.85, "°C", R::Closed(-50, 150),
                "scene temperature at which the K figures hold (NETD convention, 300 K)")
           .CodeOnly()
@@ -141,8 +145,9 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
           .CodeOnly()
           .Add("display_min_c", &O::display_min_c, 20.0, "°C", R::Closed(-50, 200), "8-bit display window: maps to 0")
           .Add("display_max_c", &O::display_max_c, 30.0, "°C", R::Closed(-50, 200), "8-bit display window: maps to 255")
-          .Rule("display_max_c",
-                [](const O& o) { return o.display_max_c > o.display_min_c ? "" : "must be greater than display_min_c"; });
+          .Rule("display_max_c", [](const O& o) {
+            return o.display_max_c > o.display_min_c ? "" : "must be greater than display_min_c";
+          });
   return table;
 }
 
@@ -157,9 +162,8 @@ double FfcPeriodS(const SensorOptions& options) {
   return period_s;
 }
 
-SensorModel::SensorModel(SensorOptions options, int width, int height, double frame_rate_hz,
-                         uint64_t seed, const BandRadianceTable* table, int num_threads,
-                         std::optional<uint64_t> session_seed)
+SensorModel::SensorModel(SensorOptions options, int width, int height, double frame_rate_hz, uint64_t seed,
+                         const BandRadianceTable* table, int num_threads, std::optional<uint64_t> session_seed)
     : options_(std::move(options)),
       width_(width),
       height_(height),
@@ -179,10 +183,8 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
   HOILCD_CHECK_MSG(ffc_period_s_ == 0.0 || ffc_period_s_ * frame_rate_hz >= 1.0, "FFC period shorter than a frame");
   responsivity_ = table_->SlopeFromKelvin(options_.reference_temperature_c + kZeroCelsiusK);
   shutter_radiance_ = table_->RadianceFromKelvin(options_.shutter_temperature_c + kZeroCelsiusK);
-  reflected_radiance_ =
-      table_->RadianceFromKelvin(options_.reflected_temperature_c + kZeroCelsiusK);
-  blend_ = static_cast<float>(
-      -std::expm1(-1.0 / (frame_rate_hz_ * options_.time_constant_s)));
+  reflected_radiance_ = table_->RadianceFromKelvin(options_.reflected_temperature_c + kZeroCelsiusK);
+  blend_ = static_cast<float>(-std::expm1(-1.0 / (frame_rate_hz_ * options_.time_constant_s)));
 
   // Fixed pattern: keyed by pixel (or column) only, so it is the same in every frame.
   gain_ = cv::Mat::zeros(height_, width_, CV_32F);
@@ -196,10 +198,8 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
     float* offset = offset_signal_.ptr<float>(y);
     for (int x = 0; x < width_; ++x) {
       const int64_t pixel = static_cast<int64_t>(y) * width_ + x;
-      gain[x] = static_cast<float>(options_.fpn_gain_sigma *
-                                   KeyedRng(seed_, "sensor.fpn_gain", pixel).Normal());
-      const double offset_k =
-          options_.fpn_offset_k * KeyedRng(seed_, "sensor.fpn_offset", pixel).Normal();
+      gain[x] = static_cast<float>(options_.fpn_gain_sigma * KeyedRng(seed_, "sensor.fpn_gain", pixel).Normal());
+      const double offset_k = options_.fpn_offset_k * KeyedRng(seed_, "sensor.fpn_offset", pixel).Normal();
       offset[x] = static_cast<float>(responsivity_ * (offset_k + column_k[x]));
     }
   }
@@ -214,10 +214,9 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
     for (int x = 0; x < width_; ++x) {
       const double rho_sq = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) / half_diagonal_sq;
       const double spot =
-          (std::exp(-0.5 * rho_sq / (options_.narcissus_sigma * options_.narcissus_sigma)) -
-           spot_edge) / (1.0 - spot_edge);
-      shape[x] = static_cast<float>(options_.vignetting_k_per_k * rho_sq -
-                                    options_.narcissus_k_per_k * spot);
+          (std::exp(-0.5 * rho_sq / (options_.narcissus_sigma * options_.narcissus_sigma)) - spot_edge) /
+          (1.0 - spot_edge);
+      shape[x] = static_cast<float>(options_.vignetting_k_per_k * rho_sq - options_.narcissus_k_per_k * spot);
     }
   }
 }
@@ -298,8 +297,7 @@ double SensorModel::TemporalNoiseK(double temperature_c) const {
 }
 
 cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
-  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ &&
-                       radiance.rows == height_,
+  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ && radiance.rows == height_,
                    "radiance must be CV_32F " << width_ << "x" << height_);
   HOILCD_CHECK_MSG(frame >= 0, "frame " << frame);
   HOILCD_CHECK_MSG(last_frame_ < 0 || frame == last_frame_ + 1,
@@ -308,8 +306,8 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   // it becomes previous_ at the end and the old previous_ the next spare.
   cv::Mat& blurred = spare_;
   if (options_.optics_blur) {
-    cv::GaussianBlur(radiance, blurred, cv::Size(0, 0), options_.psf_sigma_px,
-                     options_.psf_sigma_px, cv::BORDER_REFLECT);
+    cv::GaussianBlur(radiance, blurred, cv::Size(0, 0), options_.psf_sigma_px, options_.psf_sigma_px,
+                     cv::BORDER_REFLECT);
   } else {
     radiance.copyTo(blurred);
   }
@@ -330,8 +328,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   effects.noise_signal = options_.temporal_noise ? responsivity_ * options_.netd_k : 0.0;
   effects.correct = CorrectionOf(options_, reflected_radiance_);
   const double step_k = options_.quantisation ? options_.quantisation_step_k : 0.0;
-  const uint64_t noise_key =
-      HashCombine(session_seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
+  const uint64_t noise_key = HashCombine(session_seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
 
   cv::Mat temperature(height_, width_, CV_32F);
   ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int worker) {
@@ -354,8 +351,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
 }
 
 cv::Mat SensorModel::IdealTemperature(const cv::Mat& radiance) const {
-  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ &&
-                       radiance.rows == height_,
+  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ && radiance.rows == height_,
                    "radiance must be CV_32F " << width_ << "x" << height_);
   cv::Mat temperature(height_, width_, CV_32F);
   // The emissivity correction and the table inversion, a row at a time.

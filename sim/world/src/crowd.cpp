@@ -1,8 +1,9 @@
 #include "hoilcd/sim/world/crowd.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 namespace hoilcd {
 namespace {
@@ -70,8 +71,10 @@ Crowd::Crowd(const Scene& scene, AssetLibrary* assets, CrowdStage* stage)
   // lies on one).
   const Eigen::Vector2d size = scene.room.size_m.head<2>();
   for (const DoorSpec& d : scene.room.doors) {
-    const std::array<double, 4> gap = {d.position_m.x(), size.x() - d.position_m.x(), d.position_m.y(), size.y() - d.position_m.y()};
-    const std::array<Eigen::Vector2d, 4> inward = {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)};
+    const std::array<double, 4> gap = {d.position_m.x(), size.x() - d.position_m.x(), d.position_m.y(),
+                                       size.y() - d.position_m.y()};
+    const std::array<Eigen::Vector2d, 4> inward = {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1),
+                                                   Eigen::Vector2d(0, -1)};
     const auto wall = std::min_element(gap.begin(), gap.end()) - gap.begin();
     doors_.push_back({d.position_m, inward[static_cast<size_t>(wall)], d.width_m});
   }
@@ -132,8 +135,7 @@ std::vector<Obstacle2D> Crowd::AddStandingPeople(const Scene& scene) {
   return obstacles;
 }
 
-void Crowd::SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c,
-                                  double hair_c) {
+void Crowd::SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c, double hair_c) {
   InstanceInfo& info = stage_.MutableInstance(instance);
   // Region temperatures follow the person; the asset's own values set the offsets between
   // regions (lower clothing is a little cooler than upper, shoes cooler still).
@@ -152,10 +154,10 @@ void Crowd::SetPersonTemperatures(int instance, const Asset& body, double skin_c
   }
 }
 
-size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s,
-                              double leave_s, int person_id) {
-  const auto seat_it = std::find_if(seats_.begin(), seats_.end(),
-                                    [&](const Seat& s) { return s.table == table && s.seat == seat; });
+size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, double arrive_s, double leave_s,
+                              int person_id) {
+  const auto seat_it =
+      std::find_if(seats_.begin(), seats_.end(), [&](const Seat& s) { return s.table == table && s.seat == seat; });
   HOILCD_CHECK(seat_it != seats_.end());
   const int id = person_id >= 0 ? person_id : NextPersonId();
   Person person;
@@ -185,7 +187,8 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
       t += -options_.posture_change_interval_s * std::log(1.0 - changes.Uniform());
       if (t >= std::min(leave_s, duration_s_)) break;
       std::string next = current;
-      for (int attempt = 0; attempt < 8 && next == current; ++attempt) next = ChoosePosture(weights, hands_off_table, &changes);
+      for (int attempt = 0; attempt < 8 && next == current; ++attempt)
+        next = ChoosePosture(weights, hands_off_table, &changes);
       if (next == current) continue;
       person.postures.emplace_back(t, next);
       current = next;
@@ -207,8 +210,8 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
     }
   }
   // Whom they look at is settled by AimGazes, once every seat and sitter is known.
-  person.activities = PlanActivities(options_.activity, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0),
-                                     has_cup, has_laptop);
+  person.activities =
+      PlanActivities(options_.activity, seed_, id, arrive_s, std::min(leave_s, duration_s_ + 1.0), has_cup, has_laptop);
   person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng.Normal(), kMinSeatedBodyScale, 1.2);
   DrawIdleMotion(options_, &rng, &person);
   // Per-person variation, limited to ±2σ so nobody is implausibly cold or hot.
@@ -217,8 +220,7 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
   const double clothing_c = varied(options_.clothing_temperature_c, options_.clothing_temperature_sd_c);
   // Skin exposure varies: some people have little hair, and their scalp reads as skin.
   const bool bald = rng.Uniform() < options_.bald_fraction;
-  const double hair_c = bald ? skin_c - 1.0
-                             : options_.hair_temperature_c + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
+  const double hair_c = bald ? skin_c - 1.0 : options_.hair_temperature_c + 0.5 * std::clamp(rng.Normal(), -2.0, 2.0);
   person.parts = AddBody(id, "person " + std::to_string(id), skin_c, clothing_c, hair_c);
   person.instance = person.parts[0];
   // Props: a cup to the right of the hands, a laptop (its user side towards the person) in the
@@ -238,7 +240,7 @@ size_t Crowd::AddSeatedPerson(int table, int seat, const std::string& posture, d
 }
 
 std::array<int, Skeleton::kPartCount> Crowd::AddBody(int person_id, const std::string& name, double skin_c,
-                                                      double clothing_c, double hair_c) {
+                                                     double clothing_c, double hair_c) {
   std::array<int, Skeleton::kPartCount> parts{};
   for (int i = 0; i < Skeleton::kPartCount; ++i) {
     const Asset& part = skeleton_->part(i);
@@ -268,7 +270,8 @@ void Crowd::PlanTurnover(const std::vector<RobotSample>& samples) {
   const double p = options_.turnover_probability;
   auto seat_name = [](int table, int seat) { return std::to_string(table) + "." + std::to_string(seat); };
   for (int lap = 1; p > 0 && !samples.empty() && lap <= static_cast<int>(samples.back().lap); ++lap) {
-    const auto crossing = std::find_if(samples.begin(), samples.end(), [&](const RobotSample& s) { return s.lap >= lap; });
+    const auto crossing =
+        std::find_if(samples.begin(), samples.end(), [&](const RobotSample& s) { return s.lap >= lap; });
     const double t = crossing->time_s;
     const int frame = crossing->frame;
     std::vector<size_t> sitting;
@@ -331,7 +334,8 @@ void Crowd::FitSeatedBodies() {
   double largest_scale = 1e30;
   for (size_t a = 0; a < seats_.size(); ++a) {
     for (size_t b = a + 1; b < seats_.size(); ++b) {
-      const Eigen::Matrix4d sa = seats_[a].world_from_seat.cast<double>(), sb = seats_[b].world_from_seat.cast<double>();
+      const Eigen::Matrix4d sa = seats_[a].world_from_seat.cast<double>(),
+                            sb = seats_[b].world_from_seat.cast<double>();
       const Eigen::Vector3d at = Apply(sa.inverse(), sb.topRightCorner<3, 1>());
       if (std::abs(at.x()) >= 0.35 || std::abs(at.y()) < 1e-6) continue;  // not beside each other
       const Eigen::Vector2d u = (sb.topRightCorner<2, 1>() - sa.topRightCorner<2, 1>()).normalized();
@@ -399,21 +403,26 @@ std::shared_ptr<const FreeSpace> Crowd::WalkerSpace(const std::vector<RobotSampl
     std::string nearest;
     const double clearance = space->Clearance(DoorThreshold(doors_[d], space->radius_m()), &nearest);
     if (clearance >= 0) continue;
-    throw InputError(scene_file_, "/room/doors/" + std::to_string(d) + ": walkers (crowd.walkers) enter and leave the room here, but " +
-                                      nearest + " stands in the doorway; a walker's body needs " +
-                                      std::to_string(space->radius_m()).substr(0, 5) +
-                                      " m free around it just inside: move the door or " + nearest + ", or set crowd.walkers to 0");
+    throw InputError(
+        scene_file_,
+        "/room/doors/" + std::to_string(d) + ": walkers (crowd.walkers) enter and leave the room here, but " + nearest +
+            " stands in the doorway; a walker's body needs " + std::to_string(space->radius_m()).substr(0, 5) +
+            " m free around it just inside: move the door or " + nearest + ", or set crowd.walkers to 0");
   }
   for (const RobotSample& s : samples) {
     const Eigen::Vector2d at(s.base.x_m, s.base.y_m);
-    if (space->FreeAlong(at, Eigen::Vector2d(-std::sin(s.base.theta_rad), std::cos(s.base.theta_rad)), kWalkerMaxSidestepM)) continue;
+    if (space->FreeAlong(at, Eigen::Vector2d(-std::sin(s.base.theta_rad), std::cos(s.base.theta_rad)),
+                         kWalkerMaxSidestepM))
+      continue;
     std::string nearest;
     const double clearance = space->Clearance(at, &nearest);
-    throw InputError(scene_file_, "/route/waypoints_m: walkers (crowd.walkers) follow the robot's route, which passes " +
-                                      std::to_string(clearance + space->radius_m()).substr(0, 5) + " m from " + nearest +
-                                      " at t = " + std::to_string(s.time_s).substr(0, 6) + " s with no room to step aside; a walker's body needs " +
-                                      std::to_string(space->radius_m()).substr(0, 5) +
-                                      " m: move the route away from it or set crowd.walkers to 0");
+    throw InputError(scene_file_,
+                     "/route/waypoints_m: walkers (crowd.walkers) follow the robot's route, which passes " +
+                         std::to_string(clearance + space->radius_m()).substr(0, 5) + " m from " + nearest +
+                         " at t = " + std::to_string(s.time_s).substr(0, 6) +
+                         " s with no room to step aside; a walker's body needs " +
+                         std::to_string(space->radius_m()).substr(0, 5) +
+                         " m: move the route away from it or set crowd.walkers to 0");
   }
   return space;
 }
@@ -437,8 +446,8 @@ void Crowd::WarnIdleWalkers() {
     warnings_.push_back(scene_file_ + ": crowd.walkers is " + std::to_string(walkers) + ", but walker" +
                         (idle.size() > 1 ? "s " : " ") + which + (idle.size() > 1 ? " are" : " is") +
                         " in the room for less than 5 % of the run: the aisles leave no clear time beside the robot "
-                        "and the walkers planned before " + (idle.size() > 1 ? "them" : "it") +
-                        ", so more walkers add little occlusion here");
+                        "and the walkers planned before " +
+                        (idle.size() > 1 ? "them" : "it") + ", so more walkers add little occlusion here");
   }
 }
 
@@ -455,10 +464,9 @@ Person& Crowd::AddStandingPerson(const std::string& kind, Rng* rng) {
   person.seated = false;
   person.postures.emplace_back(0.0, "standing");
   person.height_scale = std::clamp(1.0 + options_.height_scale_sd * rng->Normal(), 0.85, 1.15);
-  person.parts = AddBody(id, kind + " " + std::to_string(id),
-                         options_.skin_temperature_c + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
-                         options_.clothing_temperature_c + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
-                         options_.hair_temperature_c);
+  person.parts = AddBody(
+      id, kind + " " + std::to_string(id), options_.skin_temperature_c + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0),
+      options_.clothing_temperature_c + 0.5 * std::clamp(rng->Normal(), -2.0, 2.0), options_.hair_temperature_c);
   person.instance = person.parts[0];
   people_.push_back(person);
   return people_.back();
@@ -466,7 +474,8 @@ Person& Crowd::AddStandingPerson(const std::string& kind, Rng* rng) {
 
 BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_from_person) const {
   const double sway = sway_amplitude_rad_ * std::sin(2 * M_PI * time_s / p.sway_period_s + p.sway_phase_rad);
-  const double breath = options_.breathing_amplitude_m * std::sin(2 * M_PI * time_s / options_.breathing_period_s + p.breathing_phase_rad);
+  const double breath = options_.breathing_amplitude_m *
+                        std::sin(2 * M_PI * time_s / options_.breathing_period_s + p.breathing_phase_rad);
   if (p.seated || p.lead_s < 0) {  // seated, or standing still
     // Seated bodies scale within the pose (hips stay on the seat, feet on the floor, hands
     // reach the same table); standing bodies scale about the floor.
@@ -499,7 +508,8 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
   const WalkerPlan& plan = walker_plans_.at(p.walker);
   const WalkerPlacement place = PlaceWalker(plan, robot_, time_s);
   *world_from_person =
-      PlacementTransform(Eigen::Vector3d(place.at_m.x(), place.at_m.y(), 0.0), place.heading_rad, p.height_scale).cast<double>();
+      PlacementTransform(Eigen::Vector3d(place.at_m.x(), place.at_m.y(), 0.0), place.heading_rad, p.height_scale)
+          .cast<double>();
   if (place.speed_m_s < 0.03) return PresetPose("standing");
   const double stride_m = Skeleton::StrideAt(place.speed_m_s) * p.height_scale;
   const double phase = 2 * M_PI * plan.Walked(time_s) * robot_.cruise_speed_m_s() / stride_m + p.lead_phase_rad;
@@ -513,7 +523,8 @@ BodyPose Crowd::PoseOf(const Person& p, double time_s, Eigen::Matrix4d* world_fr
     const Eigen::Vector2d ahead(std::cos(place.heading_rad), std::sin(place.heading_rad)), left(-ahead.y(), ahead.x());
     const auto hands_clear = [&](double stride) {
       for (const double side : {-1.0, 1.0}) {
-        const Eigen::Vector2d hand = place.at_m + kReachPerStride * stride * ahead + side * kHandSideM * p.height_scale * left;
+        const Eigen::Vector2d hand =
+            place.at_m + kReachPerStride * stride * ahead + side * kHandSideM * p.height_scale * left;
         if (plan.space->Clearance(hand) + plan.space->radius_m() < kHandClearanceM) return false;
       }
       return true;
@@ -575,8 +586,8 @@ void Crowd::KeepClearOfTable(const Person& p, BodyPose* pose) const {
   // The table top slab in the table frame, grown by a few millimetres of clearance.
   constexpr double kClearanceM = 0.004;
   const Eigen::Vector3f lo = table_bounds_m_.at(p.table).min(), hi = table_bounds_m_.at(p.table).max();
-  const TableSlab slab{lo.x() - kClearanceM, hi.x() + kClearanceM, lo.y() - kClearanceM, hi.y() + kClearanceM,
-                       hi.z() - 0.03 - kClearanceM, hi.z() + kClearanceM};
+  const TableSlab slab{lo.x() - kClearanceM, hi.x() + kClearanceM,        lo.y() - kClearanceM,
+                       hi.y() + kClearanceM, hi.z() - 0.03 - kClearanceM, hi.z() + kClearanceM};
   // How deep the part's mesh reaches into the slab from above (0 if it does not).
   auto depth = [&](const Eigen::Matrix4d& seat_from_part, int part) {
     return DepthIntoSlab(skeleton_->part(part), p.table_from_seat * seat_from_part, slab);
@@ -613,9 +624,8 @@ BodyPose Crowd::PoseAt(const Person& p, double time_s, Eigen::Matrix4d* world_fr
   BodyPose pose = PoseOf(p, time_s, world_from_person);
   Eigen::Matrix4d seat_from_cup = Eigen::Matrix4d::Identity();
   seat_from_cup.topRightCorner<3, 1>() = p.cup_at_m;
-  const auto episode = std::find_if(p.activities.begin(), p.activities.end(), [&](const ActivityEpisode& e) {
-    return e.start_s <= time_s && time_s < e.end_s;
-  });
+  const auto episode = std::find_if(p.activities.begin(), p.activities.end(),
+                                    [&](const ActivityEpisode& e) { return e.start_s <= time_s && time_s < e.end_s; });
   if (episode != p.activities.end()) {
     *activity = episode->name;
     const Eigen::Vector2d robot = robot_.At(time_s);
@@ -624,8 +634,8 @@ BodyPose Crowd::PoseAt(const Person& p, double time_s, Eigen::Matrix4d* world_fr
     // Talking: the gesturing hand on the side with more room.
     ActivityEpisode e = *episode;
     if (e.name == "talking" && p.side_room_m[e.side] < p.side_room_m[1 - e.side]) e.side = 1 - e.side;
-    pose = ApplyActivity(*skeleton_, pose, e, time_s, options_.activity.blend_s,
-                         {p.cup_at_m, p.laptop_at_m}, std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
+    pose = ApplyActivity(*skeleton_, pose, e, time_s, options_.activity.blend_s, {p.cup_at_m, p.laptop_at_m},
+                         std::atan2(robot_in_seat.y(), robot_in_seat.x()), &seat_from_cup);
   }
   if (p.seated) {
     KeepOwnElbowRoom(p, &pose);
@@ -663,12 +673,15 @@ void Crowd::SetTime(double time_s) {
     for (int k = 0; k < kCocoKeypointCount; ++k) p.keypoints_m[k] = Apply(world_from_person, keypoints[k]);
     // Contacts with the chair, the table and the floor follow the moving parts.
     if (p.seated) {
-      p.contacts_m.emplace_back("seat", Apply(world_from_person, Eigen::Vector3d(pose.pelvis_m.x() + 0.02, pose.pelvis_m.y(), 0.45)));
+      p.contacts_m.emplace_back(
+          "seat", Apply(world_from_person, Eigen::Vector3d(pose.pelvis_m.x() + 0.02, pose.pelvis_m.y(), 0.45)));
       for (int s = 0; s < 2 && p.at_table_top; ++s) {
         const Eigen::Vector3d elbow = keypoints[7 + s], wrist = keypoints[9 + s];
         if (!ForearmOnTable(p, wrist)) continue;
         const Eigen::Vector3d mid = 0.5 * (elbow + wrist);
-        p.contacts_m.emplace_back("table", Apply(world_from_person, Eigen::Vector3d(std::max(p.table_edge_m + 0.03, mid.x()), mid.y(), 0.74)));
+        p.contacts_m.emplace_back(
+            "table",
+            Apply(world_from_person, Eigen::Vector3d(std::max(p.table_edge_m + 0.03, mid.x()), mid.y(), 0.74)));
       }
     }
     for (const auto& [name, at] : skeleton_->FootContacts(parts)) {

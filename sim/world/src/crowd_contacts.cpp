@@ -32,7 +32,8 @@ PrintShape Ellipse(const Eigen::Vector3d& center_m, const Eigen::Vector3d& along
 }
 
 // `contacts` with the times in `gaps` taken out (both sorted; contacts not overlapping).
-std::vector<ContactInterval> Without(const std::vector<ContactInterval>& contacts, const std::vector<ContactInterval>& gaps) {
+std::vector<ContactInterval> Without(const std::vector<ContactInterval>& contacts,
+                                     const std::vector<ContactInterval>& gaps) {
   std::vector<ContactInterval> out;
   for (ContactInterval c : contacts) {
     for (const ContactInterval& g : gaps) {
@@ -53,8 +54,12 @@ Eigen::AlignedBox3f VerticesIn(const Asset& asset, const Eigen::AlignedBox3f& bo
   return found;
 }
 
-bool LeansOnBackrest(const std::string& posture) { return posture == "seated_upright" || posture == "seated_leaning_back"; }
-bool ArmsOnTable(const std::string& posture) { return posture == "seated_leaning" || posture == "seated_arms_on_table"; }
+bool LeansOnBackrest(const std::string& posture) {
+  return posture == "seated_upright" || posture == "seated_leaning_back";
+}
+bool ArmsOnTable(const std::string& posture) {
+  return posture == "seated_leaning" || posture == "seated_arms_on_table";
+}
 
 // A drink's temperature at t, poured at poured_s at cup_fill_c and refilled whenever it has
 // cooled to cup_refill_c (Newton's law toward the room in between).
@@ -81,9 +86,11 @@ void Crowd::PlanContactHeat() {
   };
   const double blend_s = options_.activity.blend_s, posture_blend_s = options_.activity.posture_blend_s;
   const ContactResponse seat_response{seat_warmth_c_, o.seat_warm_time_constant_s, options_.heat_print_time_constant_s};
-  const ContactResponse back_response{o.back_excess_k, o.seat_warm_time_constant_s, options_.heat_print_time_constant_s};
+  const ContactResponse back_response{o.back_excess_k, o.seat_warm_time_constant_s,
+                                      options_.heat_print_time_constant_s};
   const ContactResponse table_response{o.table_excess_k, o.table_warm_time_constant_s, o.table_cool_time_constant_s};
-  const ContactResponse keyboard_response{o.keyboard_excess_k, o.keyboard_warm_time_constant_s, o.keyboard_cool_time_constant_s};
+  const ContactResponse keyboard_response{o.keyboard_excess_k, o.keyboard_warm_time_constant_s,
+                                          o.keyboard_cool_time_constant_s};
   for (const Person& p : people_) {
     if (!p.seated) continue;
     const double from_s = ContactStart(p.arrive_s), to_s = ContactEnd(p.leave_s);
@@ -107,19 +114,23 @@ void Crowd::PlanContactHeat() {
     // Seat and backrest: thighs and buttocks on the seat while seated; the back on the
     // backrest in the postures that lean on it. A chair's frame is the seat's; a sofa (the
     // seat's "table") holds its places side by side in its own frame.
-    const auto seat = std::find_if(seats_.begin(), seats_.end(), [&](const Seat& s) { return s.table == p.table && s.seat == p.seat; });
+    const auto seat = std::find_if(seats_.begin(), seats_.end(),
+                                   [&](const Seat& s) { return s.table == p.table && s.seat == p.seat; });
     if (seat != seats_.end() && !postures.empty()) {
       const bool chair = seat->chair_instance >= 0;
       const int touched = chair ? seat->chair_instance : table_instance_.at(p.table);
       const Eigen::Matrix4d object_from_seat = chair ? Eigen::Matrix4d::Identity() : p.table_from_seat;
       const Eigen::Matrix3d turn = object_from_seat.topLeftCorner<3, 3>();
-      auto at = [&](const Eigen::Vector3d& in_seat) -> Eigen::Vector3d { return turn * in_seat + object_from_seat.topRightCorner<3, 1>(); };
+      auto at = [&](const Eigen::Vector3d& in_seat) -> Eigen::Vector3d {
+        return turn * in_seat + object_from_seat.topRightCorner<3, 1>();
+      };
       const Asset& asset = *stage_.MutableInstance(touched).asset;
       const BodyPose pose = rest_pose(postures.front().first);
       const double s = p.height_scale, seat_top_m = 0.45;
-      field(touched).Add({Ellipse(at({pose.pelvis_m.x() + 0.05, pose.pelvis_m.y(), seat_top_m}), turn * Eigen::Vector3d::UnitX(),
-                                  Eigen::Vector3d::UnitZ(), 0.17 * s, 0.15 * s, 0.02),
-                          seat_response, {{from_s, to_s}}});
+      field(touched).Add({Ellipse(at({pose.pelvis_m.x() + 0.05, pose.pelvis_m.y(), seat_top_m}),
+                                  turn * Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 0.17 * s, 0.15 * s, 0.02),
+                          seat_response,
+                          {{from_s, to_s}}});
       // The backrest's front face: the foremost vertices behind the place, at back height (the
       // meshes are boxes: their vertices are corners, so the search spans the piece's width).
       const float place_x = static_cast<float>(at(Eigen::Vector3d::Zero()).x());
@@ -132,7 +143,8 @@ void Crowd::PlanContactHeat() {
         // Chairs and sofas face their frame's +x: the face is at the box's largest x.
         Eigen::Vector3d centre = at({0, pose.pelvis_m.y(), 0.66});
         centre.x() = backrest.max().x();
-        field(touched).Add({Ellipse(centre, turn * Eigen::Vector3d::UnitY(), turn * Eigen::Vector3d::UnitX(), 0.15 * s, 0.12 * s, 0.05),
+        field(touched).Add({Ellipse(centre, turn * Eigen::Vector3d::UnitY(), turn * Eigen::Vector3d::UnitX(), 0.15 * s,
+                                    0.12 * s, 0.05),
                             back_response, leaning});
       }
     }
@@ -152,12 +164,15 @@ void Crowd::PlanContactHeat() {
             if (e.name == "talking" && p.side_room_m[e.side] < p.side_room_m[1 - e.side]) moved = 1 - e.side;
             if ((e.name == "drinking" || e.name == "talking") && moved == side) away.push_back({e.start_s, e.end_s});
           }
-          Eigen::Vector3d a = p.table_from_seat.topLeftCorner<3, 3>() * elbow + p.table_from_seat.topRightCorner<3, 1>();
-          Eigen::Vector3d b = p.table_from_seat.topLeftCorner<3, 3>() * wrist + p.table_from_seat.topRightCorner<3, 1>();
+          Eigen::Vector3d a =
+              p.table_from_seat.topLeftCorner<3, 3>() * elbow + p.table_from_seat.topRightCorner<3, 1>();
+          Eigen::Vector3d b =
+              p.table_from_seat.topLeftCorner<3, 3>() * wrist + p.table_from_seat.topRightCorner<3, 1>();
           a.z() = b.z() = top_m;
           const Eigen::Vector3d along = (b - a).normalized(), hand_end = b + 0.08 * along;
           field(table_instance_.at(p.table))
-              .Add({Ellipse(0.5 * (a + hand_end), along, Eigen::Vector3d::UnitZ(), 0.5 * (hand_end - a).norm() + 0.02, 0.045, 0.02),
+              .Add({Ellipse(0.5 * (a + hand_end), along, Eigen::Vector3d::UnitZ(), 0.5 * (hand_end - a).norm() + 0.02,
+                            0.045, 0.02),
                     table_response, Without({c}, away)});
         }
       }
@@ -167,11 +182,13 @@ void Crowd::PlanContactHeat() {
     if (p.laptop >= 0) {
       std::vector<ContactInterval> typing;
       for (const ActivityEpisode& e : p.activities)
-        if (e.name == "typing" && e.end_s - e.start_s > blend_s) typing.push_back({e.start_s + 0.5 * blend_s, e.end_s - 0.5 * blend_s});
+        if (e.name == "typing" && e.end_s - e.start_s > blend_s)
+          typing.push_back({e.start_s + 0.5 * blend_s, e.end_s - 0.5 * blend_s});
       for (const double y : {-0.09, 0.09}) {
         if (!typing.empty())
-          field(p.laptop).Add({Ellipse({0.06, y, 0.018}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 0.06, 0.04, 0.012),
-                               keyboard_response, typing});
+          field(p.laptop).Add(
+              {Ellipse({0.06, y, 0.018}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 0.06, 0.04, 0.012),
+               keyboard_response, typing});
       }
     }
   }
@@ -185,7 +202,8 @@ void Crowd::PlanContactHeat() {
       last_s = std::max(last_s, ContactEnd(q.leave_s));
     }
     Rng rng = KeyedRng(seed_, "contact_heat.props", p.person_id);
-    const double drink_age_s = rng.Uniform(0, o.cup_time_constant_s * std::log((o.cup_fill_c - room_c_) / std::max(0.1, o.cup_refill_c - room_c_)));
+    const double drink_age_s = rng.Uniform(
+        0, o.cup_time_constant_s * std::log((o.cup_fill_c - room_c_) / std::max(0.1, o.cup_refill_c - room_c_)));
     const double laptop_age_s = rng.Uniform(0, o.laptop_on_before_max_s);
     if (p.cup >= 0) {
       PropHeat cup{p.cup, true, first_s <= 0 ? -drink_age_s : first_s, kInf, stage_.MutableInstance(p.cup).materials};
@@ -193,7 +211,8 @@ void Crowd::PlanContactHeat() {
       // The hand on the handle while drinking (held from 10 % to 92 % of the episode).
       const Asset& asset = *stage_.MutableInstance(p.cup).asset;
       const float body_radius = asset.bounds_m.max().y();
-      const Eigen::AlignedBox3f handle = VerticesIn(asset, Eigen::AlignedBox3f(Eigen::Vector3f(-1, -1, -1), Eigen::Vector3f(1, -body_radius - 0.002f, 1)));
+      const Eigen::AlignedBox3f handle = VerticesIn(
+          asset, Eigen::AlignedBox3f(Eigen::Vector3f(-1, -1, -1), Eigen::Vector3f(1, -body_radius - 0.002f, 1)));
       float hottest_c = -1e9f;
       for (const InstanceMaterial& m : cup.steady) hottest_c = std::max(hottest_c, m.temperature_c);
       for (const ActivityEpisode& e : p.activities) {
@@ -201,9 +220,10 @@ void Crowd::PlanContactHeat() {
         const double d = e.end_s - e.start_s;
         // The handle's surface, as the cup's ceramic at that time, is drawn toward the skin.
         const double drink_c = DrinkC(o, room_c_, cup.from_s, e.start_s);
-        const double ceramic_c = room_c_ + (drink_c - room_c_) * (cup.steady.front().temperature_c - room_c_) / (hottest_c - room_c_);
-        const ContactResponse response{o.handle_contact_fraction * (options_.skin_temperature_c - ceramic_c), o.handle_warm_time_constant_s,
-                                       o.handle_cool_time_constant_s};
+        const double ceramic_c =
+            room_c_ + (drink_c - room_c_) * (cup.steady.front().temperature_c - room_c_) / (hottest_c - room_c_);
+        const ContactResponse response{o.handle_contact_fraction * (options_.skin_temperature_c - ceramic_c),
+                                       o.handle_warm_time_constant_s, o.handle_cool_time_constant_s};
         PrintShape shape;
         shape.center_m = handle.center();
         shape.half_m = 0.5f * handle.sizes() + Eigen::Vector3f::Constant(0.006f);
@@ -211,7 +231,8 @@ void Crowd::PlanContactHeat() {
       }
     }
     if (p.laptop >= 0) {
-      prop_heat_.push_back({p.laptop, false, first_s <= 0 ? -laptop_age_s : first_s, last_s, stage_.MutableInstance(p.laptop).materials});
+      prop_heat_.push_back({p.laptop, false, first_s <= 0 ? -laptop_age_s : first_s, last_s,
+                            stage_.MutableInstance(p.laptop).materials});
     }
   }
   // The prints show on the touched instances' non-metal materials.
@@ -233,7 +254,8 @@ void Crowd::UpdateContactHeat(double time_s) {
       for (const InstanceMaterial& m : prop.steady) hottest_c = std::max(hottest_c, m.temperature_c);
       fraction = (DrinkC(o, room_c_, prop.from_s, time_s) - room_c_) / (hottest_c - room_c_);
     } else {
-      fraction = ContactExcessK({{prop.from_s, prop.to_s}}, {1.0, o.laptop_warm_time_constant_s, o.laptop_cool_time_constant_s}, time_s);
+      fraction = ContactExcessK({{prop.from_s, prop.to_s}},
+                                {1.0, o.laptop_warm_time_constant_s, o.laptop_cool_time_constant_s}, time_s);
     }
     std::vector<InstanceMaterial>& materials = stage_.MutableInstance(prop.instance).materials;
     for (size_t m = 0; m < materials.size(); ++m) {

@@ -1,13 +1,13 @@
 #include "hoilcd/sim/world/ray_caster.h"
 
-#include <embree3/rtcore.h>
-
-#include <Eigen/Dense>
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+
+#include <Eigen/Dense>
+#include <embree3/rtcore.h>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
@@ -21,8 +21,7 @@ namespace {
 void EmbreeError(void* user, RTCError code, const char* message) {
   auto* last_error = static_cast<std::string*>(user);
   if (last_error->empty()) {
-    *last_error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
-                  (message ? message : "");
+    *last_error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
   }
 }
 
@@ -78,9 +77,8 @@ using EmbreePacket = std::conditional_t<K == 8, RTCRayHit8, RTCRayHit16>;
 
 // origins: one per ray, or (origin_stride 0) one for all.
 template <int K>
-void CastPacketK(RTCScene scene, RTCIntersectContext* context, const Eigen::Vector3f* origins,
-                 int origin_stride, const Eigen::Vector3f* directions, int count,
-                 EmbreePacket<K>* packet) {
+void CastPacketK(RTCScene scene, RTCIntersectContext* context, const Eigen::Vector3f* origins, int origin_stride,
+                 const Eigen::Vector3f* directions, int count, EmbreePacket<K>* packet) {
   alignas(64) int valid[K];
   EmbreePacket<K>& rh = *packet;
   // Field by field, so that the constant fields fill in vector stores; lanes past `count` are
@@ -158,8 +156,7 @@ struct RayCaster::Impl {
     hit.distance_m = rh.ray.tfar;
     hit.instance = forced_instance >= 0 ? forced_instance : static_cast<int>(rh.hit.instID[0]);
     hit.triangle = static_cast<int>(rh.hit.primID);
-    Eigen::Vector3f n = instance_normal_matrix[hit.instance] *
-                        Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    Eigen::Vector3f n = instance_normal_matrix[hit.instance] * Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     n.normalize();
     if (n.dot(direction) > 0) n = -n;
     hit.normal_world = n;
@@ -172,8 +169,7 @@ RayCaster::RayCaster() : impl_(std::make_unique<Impl>()) {
   rtcSetDeviceErrorFunction(impl_->device.device, EmbreeError, &impl_->last_error);
   if (rtcGetDeviceProperty(impl_->device.device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) {
     impl_->packet_width = 16;
-  } else if (rtcGetDeviceProperty(impl_->device.device,
-                                  RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) {
+  } else if (rtcGetDeviceProperty(impl_->device.device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) {
     impl_->packet_width = 8;
   }
   impl_->top = std::make_unique<SceneHandle>(impl_->device.device);
@@ -190,16 +186,14 @@ int RayCaster::AddPrototype(const TriangleMesh& mesh) {
   rtcSetSceneBuildQuality(scene->scene, RTC_BUILD_QUALITY_HIGH);
   GeometryHandle geometry(rtcNewGeometry(impl_->device.device, RTC_GEOMETRY_TYPE_TRIANGLE));
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      mesh.positions_m.size()));
+      geometry.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions_m.size()));
   for (size_t i = 0; i < mesh.positions_m.size(); ++i) {
     vertices[3 * i + 0] = mesh.positions_m[i].x();
     vertices[3 * i + 1] = mesh.positions_m[i].y();
     vertices[3 * i + 2] = mesh.positions_m[i].z();
   }
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-      mesh.indices.size() / 3));
+      geometry.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.indices.size() / 3));
   for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
   rtcCommitGeometry(geometry.geometry);
   rtcAttachGeometry(scene->scene, geometry.geometry);
@@ -211,8 +205,7 @@ int RayCaster::AddPrototype(const TriangleMesh& mesh) {
 
 int RayCaster::AddInstance(int prototype, const Eigen::Matrix4f& world_from_object) {
   HOILCD_CHECK(prototype >= 0 && prototype < static_cast<int>(impl_->prototypes.size()));
-  auto geometry = std::make_unique<GeometryHandle>(
-      rtcNewGeometry(impl_->device.device, RTC_GEOMETRY_TYPE_INSTANCE));
+  auto geometry = std::make_unique<GeometryHandle>(rtcNewGeometry(impl_->device.device, RTC_GEOMETRY_TYPE_INSTANCE));
   rtcSetGeometryInstancedScene(geometry->geometry, impl_->prototypes[prototype]->scene);
   const unsigned id = rtcAttachGeometry(impl_->top->scene, geometry->geometry);
   HOILCD_CHECK(id == impl_->instances.size());
@@ -231,8 +224,7 @@ void RayCaster::SetInstanceTransform(int instance, const Eigen::Matrix4f& world_
   rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, world_from_object.data());
   rtcCommitGeometry(g);
   impl_->instance_transform[instance] = world_from_object;
-  impl_->instance_normal_matrix[instance] =
-      world_from_object.topLeftCorner<3, 3>().inverse().transpose();
+  impl_->instance_normal_matrix[instance] = world_from_object.topLeftCorner<3, 3>().inverse().transpose();
   impl_->instance_inverse[instance] = world_from_object.inverse();
 }
 
@@ -245,14 +237,12 @@ void RayCaster::Commit() {
 
 int RayCaster::num_instances() const { return static_cast<int>(impl_->instances.size()); }
 int RayCaster::prototype_of(int instance) const { return impl_->instance_prototype.at(instance); }
-const Eigen::Matrix4f& RayCaster::transform_of(int instance) const {
-  return impl_->instance_transform.at(instance);
-}
+const Eigen::Matrix4f& RayCaster::transform_of(int instance) const { return impl_->instance_transform.at(instance); }
 
 RTCSceneTy* RayCaster::embree_scene() const { return impl_->top->scene; }
 
-RayHit RayCaster::Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
-                            float t_min, float t_max) const {
+RayHit RayCaster::Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float t_min,
+                            float t_max) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh = MakeRay(origin, direction, t_min, t_max);
@@ -260,8 +250,8 @@ RayHit RayCaster::Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f
   return impl_->Finish(rh, direction, -1);
 }
 
-void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
-                                int count, RayHit* hits) const {
+void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
+                                RayHit* hits) const {
   HOILCD_CHECK(count >= 1 && count <= kPacketSize);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -271,8 +261,8 @@ void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vect
     CastPacket<16>(impl_->top->scene, &context, origin, directions, count, single);
   } else if (impl_->packet_width == 8) {
     for (int begin = 0; begin < count; begin += 8) {
-      CastPacket<8>(impl_->top->scene, &context, origin, directions + begin,
-                    std::min(8, count - begin), single + begin);
+      CastPacket<8>(impl_->top->scene, &context, origin, directions + begin, std::min(8, count - begin),
+                    single + begin);
     }
   } else {
     for (int i = 0; i < count; ++i) {
@@ -283,26 +273,24 @@ void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vect
   for (int i = 0; i < count; ++i) hits[i] = impl_->Finish(single[i], directions[i], -1);
 }
 
-void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
-                                int count, RayHitPacket* hits) const {
+void RayCaster::IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
+                                RayHitPacket* hits) const {
   CastSoa(impl_->top->scene, &origin, 0, directions, count, /*coherent=*/true, hits);
 }
 
-void RayCaster::IntersectPacket(const Eigen::Vector3f* origins, const Eigen::Vector3f* directions,
-                                int count, RayHitPacket* hits) const {
+void RayCaster::IntersectPacket(const Eigen::Vector3f* origins, const Eigen::Vector3f* directions, int count,
+                                RayHitPacket* hits) const {
   CastSoa(impl_->top->scene, origins, 1, directions, count, /*coherent=*/false, hits);
 }
 
 void RayCaster::CastSoa(RTCScene scene, const Eigen::Vector3f* origins, int origin_stride,
-                        const Eigen::Vector3f* directions, int count, bool coherent,
-                        RayHitPacket* hits) const {
+                        const Eigen::Vector3f* directions, int count, bool coherent, RayHitPacket* hits) const {
   HOILCD_CHECK(count >= 1 && count <= kPacketSize);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   // Embree's hits straight into the packet's arrays, misses marked as Finish marks them.
-  auto take = [hits](int i, float tfar, unsigned geom, unsigned prim, unsigned inst, float nx,
-                      float ny, float nz) {
+  auto take = [hits](int i, float tfar, unsigned geom, unsigned prim, unsigned inst, float nx, float ny, float nz) {
     const bool hit = geom != RTC_INVALID_GEOMETRY_ID;
     hits->distance_m[i] = hit ? tfar : std::numeric_limits<float>::infinity();
     hits->instance[i] = hit ? static_cast<int>(inst) : -1;
@@ -315,27 +303,24 @@ void RayCaster::CastSoa(RTCScene scene, const Eigen::Vector3f* origins, int orig
     alignas(64) RTCRayHit16 rh;
     CastPacketK<16>(scene, &context, origins, origin_stride, directions, count, &rh);
     for (int i = 0; i < count; ++i) {
-      take(i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i],
-           rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+      take(i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i], rh.hit.Ng_x[i], rh.hit.Ng_y[i],
+           rh.hit.Ng_z[i]);
     }
   } else if (impl_->packet_width == 8) {
     for (int begin = 0; begin < count; begin += 8) {
       alignas(64) RTCRayHit8 rh;
       const int n = std::min(8, count - begin);
-      CastPacketK<8>(scene, &context, origins + begin * origin_stride, origin_stride,
-                     directions + begin, n, &rh);
+      CastPacketK<8>(scene, &context, origins + begin * origin_stride, origin_stride, directions + begin, n, &rh);
       for (int i = 0; i < n; ++i) {
-        take(begin + i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i],
-             rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+        take(begin + i, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i], rh.hit.Ng_x[i],
+             rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
       }
     }
   } else {
     for (int i = 0; i < count; ++i) {
-      RTCRayHit rh = MakeRay(origins[i * origin_stride], directions[i], 0.0f,
-                             std::numeric_limits<float>::infinity());
+      RTCRayHit rh = MakeRay(origins[i * origin_stride], directions[i], 0.0f, std::numeric_limits<float>::infinity());
       rtcIntersect1(scene, &context, &rh);
-      take(i, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.Ng_x,
-           rh.hit.Ng_y, rh.hit.Ng_z);
+      take(i, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     }
   }
 }
@@ -365,9 +350,8 @@ RayHit RayCaster::IntersectInstance(int instance, const Eigen::Vector3f& origin,
   return impl_->Finish(rh, direction, instance);
 }
 
-void RayCaster::IntersectInstancePacket(int instance, const Eigen::Vector3f& origin,
-                                        const Eigen::Vector3f* directions, int count,
-                                        RayHitPacket* hits) const {
+void RayCaster::IntersectInstancePacket(int instance, const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
+                                        int count, RayHitPacket* hits) const {
   HOILCD_CHECK(count >= 1 && count <= kPacketSize);
   // In the prototype's frame, as IntersectInstance (t stays the world distance along the ray).
   const Eigen::Matrix4f& inv = impl_->instance_inverse.at(instance);

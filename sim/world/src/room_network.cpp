@@ -41,7 +41,8 @@ struct QuadThermals {
 };
 
 QuadThermals ThermalsOfQuad(const RoomQuad& quad, const RoomOptions& room, const ThermalSolutionOptions& options,
-                            const std::vector<InstanceMaterial>& room_materials, const std::array<bool, 4>& exterior_walls) {
+                            const std::vector<InstanceMaterial>& room_materials,
+                            const std::array<bool, 4>& exterior_walls) {
   const bool floor = quad.material == 0, ceiling = quad.material == 1;
   const bool window = quad.material >= 3 && quad.material < 3 + static_cast<int>(room.windows.size());
   const int wall = WallOfNormal(quad.normal);
@@ -53,16 +54,19 @@ QuadThermals ThermalsOfQuad(const RoomQuad& quad, const RoomOptions& room, const
   } else if (quad.material == 2 && wall >= 0 && exterior_walls[static_cast<size_t>(wall)]) {
     q.u_value_w_m2k = room.surfaces.wall_u_value_w_m2k;
   }
-  q.convection_w_m2k = floor ? options.convection_floor_w_m2k
-                             : ceiling ? options.convection_ceiling_w_m2k : options.convection_wall_w_m2k;
-  q.capacity_j_m2k = floor ? options.capacity_floor_j_m2k
-                           : ceiling ? options.capacity_ceiling_j_m2k
-                                     : window ? options.capacity_glass_j_m2k : options.capacity_wall_j_m2k;
+  q.convection_w_m2k = floor     ? options.convection_floor_w_m2k
+                       : ceiling ? options.convection_ceiling_w_m2k
+                                 : options.convection_wall_w_m2k;
+  q.capacity_j_m2k = floor     ? options.capacity_floor_j_m2k
+                     : ceiling ? options.capacity_ceiling_j_m2k
+                     : window  ? options.capacity_glass_j_m2k
+                               : options.capacity_wall_j_m2k;
   return q;
 }
 
 // The node of the patch spanned by du and dv from corner a.
-ThermalNode PatchNode(const QuadThermals& q, const Eigen::Vector3f& a, const Eigen::Vector3f& du, const Eigen::Vector3f& dv) {
+ThermalNode PatchNode(const QuadThermals& q, const Eigen::Vector3f& a, const Eigen::Vector3f& du,
+                      const Eigen::Vector3f& dv) {
   ThermalNode node;
   node.area_m2 = du.cross(dv).norm();
   node.emissivity = q.emissivity;
@@ -70,7 +74,8 @@ ThermalNode PatchNode(const QuadThermals& q, const Eigen::Vector3f& a, const Eig
   node.heat_capacity_j_k = q.capacity_j_m2k * node.area_m2;
   node.height_m = (a + 0.5f * du + 0.5f * dv).z();
   // From the inner surface to outdoor air the conductance is 1 / (1/U − R_si) per m².
-  if (q.u_value_w_m2k > 0) node.outdoor_conductance_w_k = node.area_m2 / (1.0 / q.u_value_w_m2k - kInsideSurfaceResistance);
+  if (q.u_value_w_m2k > 0)
+    node.outdoor_conductance_w_k = node.area_m2 / (1.0 / q.u_value_w_m2k - kInsideSurfaceResistance);
   return node;
 }
 
@@ -96,7 +101,9 @@ std::vector<std::vector<ThermalTriangle>> WorldTrianglesByMaterial(const Instanc
   const TriangleMesh& mesh = *info.mesh;
   for (size_t t = 0; t < mesh.TriangleCount(); ++t) {
     std::array<Eigen::Vector3f, 3> c;
-    for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = rotation * mesh.positions_m[mesh.indices[3 * t + static_cast<size_t>(k)]] + translation;
+    for (int k = 0; k < 3; ++k)
+      c[static_cast<size_t>(k)] =
+          rotation * mesh.positions_m[mesh.indices[3 * t + static_cast<size_t>(k)]] + translation;
     const Eigen::Vector3f n = (c[1] - c[0]).cross(c[2] - c[0]);
     if (n.squaredNorm() <= 0) continue;
     by_material[mesh.triangle_material[t]].push_back(ThermalTriangle{c, n.normalized()});
@@ -149,7 +156,11 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
                          const RoomClimate& climate, const std::vector<RoomQuad>& quads,
                          const std::vector<InstanceInfo>& instances, int room_instance,
                          const std::array<bool, 4>& exterior_walls, const BandRadianceTable& table, int threads)
-    : table_(table), room_height_m_(room.size_m.z()), quads_(quads), options_(options), seed_(seed),
+    : table_(table),
+      room_height_m_(room.size_m.z()),
+      quads_(quads),
+      options_(options),
+      seed_(seed),
       room_instance_(room_instance) {
   std::vector<ThermalNode> nodes;
   std::vector<std::vector<ThermalTriangle>> triangles;
@@ -172,10 +183,12 @@ RoomNetwork::RoomNetwork(const RoomOptions& room, const ThermalSolutionOptions& 
     const Eigen::Vector3f du = p.u_axis / static_cast<float>(p.nu), dv = p.v_axis / static_cast<float>(p.nv);
     for (int iv = 0; iv < p.nv; ++iv) {
       for (int iu = 0; iu < p.nu; ++iu) {
-        const Eigen::Vector3f a = p.origin + (static_cast<float>(iu) / p.nu) * p.u_axis + (static_cast<float>(iv) / p.nv) * p.v_axis;
+        const Eigen::Vector3f a =
+            p.origin + (static_cast<float>(iu) / p.nu) * p.u_axis + (static_cast<float>(iv) / p.nv) * p.v_axis;
         nodes.push_back(PatchNode(thermals, a, du, dv));
         solar_absorptance_.push_back(static_cast<float>(quad.material == 0 ? options.solar_absorptance_floor
-                                                        : window ? 0.0 : options.solar_absorptance_walls));
+                                                        : window           ? 0.0
+                                                                           : options.solar_absorptance_walls));
         triangles.push_back({ThermalTriangle{{a, a + du, a + du + dv}, quad.normal},
                              ThermalTriangle{{a, a + du + dv, a + dv}, quad.normal}});
       }
@@ -255,8 +268,8 @@ int RoomNetwork::NodeOfHit(const RayHit& hit, const Eigen::Vector3f& point) cons
 void RoomNetwork::SetPeople(const std::vector<PersonSource>& people) {
   people_ = people;
   person_coupling_.assign(people_.size(), {});
-  constexpr int kSamples = 16;       // points per node at which a person's view factor is taken
-  constexpr float kReachM = 2.5f;    // beyond, a person's view factor is under 2 % of a node's view
+  constexpr int kSamples = 16;     // points per node at which a person's view factor is taken
+  constexpr float kReachM = 2.5f;  // beyond, a person's view factor is under 2 % of a node's view
   for (size_t p = 0; p < people_.size(); ++p) {
     const PersonSource& person = people_[p];
     const auto radius = static_cast<float>(person.radius_m);

@@ -157,7 +157,11 @@ class RoomSurfaces::Field : public SurfaceField {
 
 RoomSurfaces::RoomSurfaces(const RoomOptions& room, uint64_t seed, const std::vector<Eigen::AlignedBox3f>& radiators,
                            const std::vector<Eigen::AlignedBox2f>& interior_walls, double clock_offset_s)
-    : room_(room), seed_(seed), climate_(room, seed, clock_offset_s), size_m_(room.size_m.cast<float>()), interior_walls_(interior_walls) {
+    : room_(room),
+      seed_(seed),
+      climate_(room, seed, clock_offset_s),
+      size_m_(room.size_m.cast<float>()),
+      interior_walls_(interior_walls) {
   const RoomSurfaceOptions& s = room_.surfaces;
   for (const WindowSpec& w : room_.windows) {
     if (s.exterior_walls == "windowed") exterior_[WallIndex(w.wall)] = true;
@@ -238,8 +242,8 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
   }
   for (size_t i = 0; i < room_.windows.size(); ++i) {
     const WindowSpec& w = room_.windows[i];
-    const double glass_c =
-        s.glass_from_u_value ? InsideSurfaceTemperatureC(w.u_value_w_m2k, inside_c, outside_c) : w.surface.temperature_c;
+    const double glass_c = s.glass_from_u_value ? InsideSurfaceTemperatureC(w.u_value_w_m2k, inside_c, outside_c)
+                                                : w.surface.temperature_c;
     if (network_ == nullptr) set(3 + static_cast<int>(i), glass_c, glass_c);
     frame_minus_glass_k_[i] = static_cast<float>(frame_c - glass_c);
   }
@@ -252,8 +256,8 @@ void RoomSurfaces::SetTime(double time_s, std::vector<InstanceMaterial>* materia
 
 FieldSample RoomSurfaces::Sample(int material, const Eigen::Vector3f& p) const {
   if (FieldOf(material) == nullptr) return {};
-  float solved = 0;    // the solution's patches about the material's mean (set as its base)
-  float incident = 0;  // what they receive about the material's mean
+  float solved = 0;     // the solution's patches about the material's mean (set as its base)
+  float incident = 0;   // what they receive about the material's mean
   float sun_share = 0;  // the patches' sunlit share (the sun in their balance)
   RoomNetwork::PatchState patch;
   if (network_ != nullptr && network_->RoomSurfaceAt(material, p, &patch)) {
@@ -266,7 +270,8 @@ FieldSample RoomSurfaces::Sample(int material, const Eigen::Vector3f& p) const {
   // With the sun in the patches' balance, the closed form adds only the sunlit shape within them,
   // about their lit share, so that their heat is not counted twice.
   float sun = SunK(material, p);
-  if (sun_share > 0) sun -= static_cast<float>(room_.sun.warming_k_per_kw_m2) * sun_irradiance_wm2_ * sun_share / 1000.0f;
+  if (sun_share > 0)
+    sun -= static_cast<float>(room_.sun.warming_k_per_kw_m2) * sun_irradiance_wm2_ * sun_share / 1000.0f;
   float offset = solved + BridgeK(material, p) + sun + TextureK(material, p);
   if (material == 2) offset += PlumeK(p);
   return {offset, incident};
@@ -291,8 +296,8 @@ float RoomSurfaces::BridgeK(int material, const Eigen::Vector3f& p) const {
     for (int w = 0; w < 4; ++w) edge(exterior_[w], to_wall[w]);
   } else {
     const int w = WallAt(p);
-    edge(exterior_[w], p.z());                   // wall–floor
-    edge(exterior_[w], size_m_.z() - p.z());     // wall–ceiling
+    edge(exterior_[w], p.z());                                 // wall–floor
+    edge(exterior_[w], size_m_.z() - p.z());                   // wall–ceiling
     const int side_a = w < 2 ? 2 : 0, side_b = w < 2 ? 3 : 1;  // the walls it meets
     edge(exterior_[w] || exterior_[side_a], to_wall[side_a]);
     edge(exterior_[w] || exterior_[side_b], to_wall[side_b]);
@@ -321,8 +326,9 @@ float RoomSurfaces::SunK(int material, const Eigen::Vector3f& p) const {
   if (sun_irradiance_wm2_ <= 0) return 0;
   static const std::array<Eigen::Vector3f, 4> kWallNormal = {Eigen::Vector3f::UnitY(), -Eigen::Vector3f::UnitY(),
                                                              Eigen::Vector3f::UnitX(), -Eigen::Vector3f::UnitX()};
-  const Eigen::Vector3f normal =
-      material == 0 ? Eigen::Vector3f::UnitZ() : material == 1 ? Eigen::Vector3f(-Eigen::Vector3f::UnitZ()) : kWallNormal[WallAt(p)];
+  const Eigen::Vector3f normal = material == 0   ? Eigen::Vector3f::UnitZ()
+                                 : material == 1 ? Eigen::Vector3f(-Eigen::Vector3f::UnitZ())
+                                                 : kWallNormal[WallAt(p)];
   const float cos_incidence = normal.dot(sun_direction_);
   if (cos_incidence <= 0) return 0;
   // Where the ray towards the sun leaves the (convex) room: sunlit if that is through a window.
@@ -360,7 +366,8 @@ float RoomSurfaces::FrameK(int window, const Eigen::Vector3f& p) const {
   const WindowSpec& w = room_.windows[static_cast<size_t>(window)];
   const int wall = WallIndex(w.wall);
   const float inside = InsideWindowM(w, AlongWall(wall, p), p.z(), 0.0f);
-  return inside < static_cast<float>(room_.surfaces.frame_width_m) ? frame_minus_glass_k_[static_cast<size_t>(window)] : 0.0f;
+  return inside < static_cast<float>(room_.surfaces.frame_width_m) ? frame_minus_glass_k_[static_cast<size_t>(window)]
+                                                                   : 0.0f;
 }
 
 float RoomSurfaces::TextureK(int material, const Eigen::Vector3f& p) const {

@@ -1,8 +1,9 @@
 #include "hoilcd/sim/world/thermal_network.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
@@ -99,7 +100,8 @@ ViewFactors CastViewFactors(const RayCaster& caster, const std::vector<std::vect
       }
       auto& row = hits[static_cast<size_t>(i)];
       for (int j = 0; j < n; ++j) {
-        if (counts[static_cast<size_t>(j)] > 0) row.emplace_back(j, static_cast<float>(counts[static_cast<size_t>(j)]) / rays_per_node);
+        if (counts[static_cast<size_t>(j)] > 0)
+          row.emplace_back(j, static_cast<float>(counts[static_cast<size_t>(j)]) / rays_per_node);
       }
       open[static_cast<size_t>(i)] = static_cast<float>(missed) / rays_per_node;
     }
@@ -117,7 +119,8 @@ ViewFactors CastViewFactors(const RayCaster& caster, const std::vector<std::vect
       entries.push_back({j, i, g});
     }
   }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
   ViewFactors result;
   result.rows.resize(static_cast<size_t>(n));
   result.open_share = open;
@@ -161,8 +164,9 @@ double ThermalNetwork::Gather(size_t i, const std::vector<double>& value, double
   return sum;
 }
 
-void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double step_s, const std::vector<double>& prev_c,
-                          std::vector<double>* next_c, std::vector<double>* irradiance) const {
+void ThermalNetwork::Step(const ThermalDrivers& drivers, double time_s, double step_s,
+                          const std::vector<double>& prev_c, std::vector<double>* next_c,
+                          std::vector<double>* irradiance) const {
   const size_t n = nodes_.size();
   std::vector<double> absorbed(n, 0.0);
   if (drivers.absorbed) drivers.absorbed(time_s, &absorbed);
@@ -280,8 +284,8 @@ void ThermalNetwork::TemperaturesAt(double time_s, std::vector<double>* temperat
   for (size_t i = 0; i < nodes_.size(); ++i) (*temperatures_c)[i] = (1 - w) * grid_c_[k][i] + w * grid_c_[k1][i];
 }
 
-std::vector<float> ThermalNetwork::IncidentRadiance(const std::vector<float>& emitted, const std::vector<float>& reflectivity,
-                                                    float open) const {
+std::vector<float> ThermalNetwork::IncidentRadiance(const std::vector<float>& emitted,
+                                                    const std::vector<float>& reflectivity, float open) const {
   const size_t n = nodes_.size();
   std::vector<float> incident(n, 0.0f), next(n);
   const int workers = ResolveThreadCount(threads_);

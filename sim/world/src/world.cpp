@@ -1,9 +1,10 @@
 #include "hoilcd/sim/world/world.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/core/util/text.h"
@@ -14,8 +15,8 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 constexpr float kDriveOverM = 0.02f;  // m: a floor object no higher than this (a rug) is driven over
 
-void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
-             const Eigen::Vector3f& c, const Eigen::Vector3f& d, uint32_t material) {
+void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
+             const Eigen::Vector3f& d, uint32_t material) {
   const auto base = static_cast<uint32_t>(mesh->positions_m.size());
   for (const Eigen::Vector3f* p : {&a, &b, &c, &d}) mesh->positions_m.push_back(*p);
   for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh->indices.push_back(base + i);
@@ -23,8 +24,8 @@ void AddQuad(TriangleMesh* mesh, const Eigen::Vector3f& a, const Eigen::Vector3f
   mesh->triangle_material.push_back(material);
 }
 
-Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen::Vector3d& position,
-                       double yaw_rad, double margin_m = 0.0) {
+Obstacle2D FootprintOf(const std::string& name, const Asset& asset, const Eigen::Vector3d& position, double yaw_rad,
+                       double margin_m = 0.0) {
   const Eigen::Vector3f lo = asset.bounds_m.min(), hi = asset.bounds_m.max();
   const Eigen::Vector2d center_local(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()));
   const Eigen::Rotation2Dd rot(yaw_rad);
@@ -56,7 +57,11 @@ class ChairLayout {
   // Chairs of every table in order (table, then side, then place along the side), jittered.
   ChairLayout(const Scene& scene, const std::vector<const Asset*>& table_assets, const Asset& chair_asset, int per_side,
               double spacing_m)
-      : scene_(scene), table_assets_(table_assets), chair_asset_(chair_asset), per_side_(per_side), spacing_m_(spacing_m) {
+      : scene_(scene),
+        table_assets_(table_assets),
+        chair_asset_(chair_asset),
+        per_side_(per_side),
+        spacing_m_(spacing_m) {
     // Half the chair's larger horizontal extent: a bound on how far a turn moves its corners.
     const Eigen::Vector3f chair_size = chair_asset.bounds_m.sizes();
     chair_half_width_m_ = 0.5 * std::max(chair_size.x(), chair_size.y());
@@ -146,7 +151,8 @@ class ChairLayout {
       for (const auto& [i, j] : close_seats) {
         if (chairs_[i].scale == 0 && chairs_[j].scale == 0) continue;
         const double straight_m = (SeatAt(chairs_[i], 0) - SeatAt(chairs_[j], 0)).norm();
-        if (straight_m < kCloseSeatsM && (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
+        if (straight_m < kCloseSeatsM &&
+            (SeatAt(chairs_[i], 1) - SeatAt(chairs_[j], 1)).norm() < straight_m - kSqueezeM) {
           squeezed[i] = squeezed[j] = any = true;
         }
       }
@@ -179,7 +185,8 @@ void CheckTablesApart(const Scene& scene, const std::vector<const Asset*>& table
   for (size_t t = 0; t < scene.tables.size(); ++t) {
     const TableSpec& spec = scene.tables[t];
     const Eigen::Vector3d center(spec.center_m.x(), spec.center_m.y(), 0.0);
-    footprints.push_back(FootprintOf("table " + std::to_string(t), *table_assets[t], center, spec.yaw_deg * kDegToRad, -kTouchM));
+    footprints.push_back(
+        FootprintOf("table " + std::to_string(t), *table_assets[t], center, spec.yaw_deg * kDegToRad, -kTouchM));
   }
   ProblemCollector problems;
   for (const auto& [i, j] : OverlappingFootprints(footprints)) {
@@ -203,12 +210,14 @@ Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw
 }
 
 World::World(const Scene& scene, const BandRadianceTable& table, int threads)
-    : table_(table), assets_(scene.assets_dir), caster_(std::make_unique<RayCaster>()),
+    : table_(table),
+      assets_(scene.assets_dir),
+      caster_(std::make_unique<RayCaster>()),
       room_size_m_(scene.room.size_m) {
   crowd_ = std::make_unique<Crowd>(scene, &assets_, static_cast<CrowdStage*>(this));
   environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(scene.room.environment_temperature_c));
-  for (const char* name : {"none", "floor", "ceiling", "wall", "window", "table", "chair", "person",
-                           "cup", "laptop", "monitor", "radiator"}) {
+  for (const char* name : {"none", "floor", "ceiling", "wall", "window", "table", "chair", "person", "cup", "laptop",
+                           "monitor", "radiator"}) {
     ClassId(name);
   }
   BuildRoom(scene);
@@ -222,18 +231,18 @@ World::World(const Scene& scene, const BandRadianceTable& table, int threads)
     instances_[static_cast<size_t>(id)].fixture = true;
     // A floor object the robot drives over (a rug, at most kDriveOverM high) is no obstacle.
     if (asset.mount == "floor" && o.position_m.z() < 0.2 && asset.bounds_m.max().z() > kDriveOverM) {
-      obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset,
-                                       o.position_m, yaw));
+      obstacles_.push_back(FootprintOf(asset.class_name + " " + std::to_string(i), asset, o.position_m, yaw));
     }
   }
   // People standing still (chatting by a wall): present all the time, obstacles for the robot.
   for (Obstacle2D& o : crowd_->AddStandingPeople(scene)) obstacles_.push_back(std::move(o));
   std::vector<Eigen::AlignedBox2f> interior_walls;
   for (const WallPart& part : WallParts(scene.floor, room_size_m_.z())) {
-    if (!part.lintel) interior_walls.emplace_back(part.box_m.min().head<2>().cast<float>(), part.box_m.max().head<2>().cast<float>());
+    if (!part.lintel)
+      interior_walls.emplace_back(part.box_m.min().head<2>().cast<float>(), part.box_m.max().head<2>().cast<float>());
   }
-  room_surfaces_ = std::make_unique<RoomSurfaces>(scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")), interior_walls,
-                                                  scene.clock_offset_s);
+  room_surfaces_ = std::make_unique<RoomSurfaces>(
+      scene.room, scene.seed, RadiatorBoxes(instances_, ClassId("radiator")), interior_walls, scene.clock_offset_s);
   if (scene.room.thermal.enabled) {
     room_network_ = std::make_unique<RoomNetwork>(scene.room, scene.room.thermal, scene.seed, room_surfaces_->climate(),
                                                   RoomQuads(scene), instances_, room_instance_,
@@ -262,7 +271,8 @@ void World::PlanCrowd(const std::vector<RobotSample>& samples) {
     const double chest_m = person.seated ? kSeatedChestM : kStandingChestM;
     const double area_m2 = kBodyAreaM2 * (person.seated ? kSeatedAreaFactor : kStandingAreaFactor);
     PersonSource source;
-    const Eigen::Vector4f chest = person.world_from_seat * Eigen::Vector4f(0, 0, static_cast<float>(chest_m * person.height_scale), 1);
+    const Eigen::Vector4f chest =
+        person.world_from_seat * Eigen::Vector4f(0, 0, static_cast<float>(chest_m * person.height_scale), 1);
     source.centre_m = chest.head<3>();
     source.radius_m = std::sqrt(area_m2 / (4 * M_PI)) * person.height_scale;
     source.arrive_s = person.arrive_s;
@@ -282,7 +292,9 @@ std::vector<RoomQuad> SplitAroundWindows(const std::vector<RoomQuad>& quads, siz
   std::vector<RoomQuad> out;
   for (const RoomQuad& quad : quads) {
     const Eigen::Vector3f origin = quad.corners[0], u = quad.corners[1] - origin, v = quad.corners[3] - origin;
-    auto uv = [&](const Eigen::Vector3f& p) { return Eigen::Vector2f((p - origin).dot(u) / u.squaredNorm(), (p - origin).dot(v) / v.squaredNorm()); };
+    auto uv = [&](const Eigen::Vector3f& p) {
+      return Eigen::Vector2f((p - origin).dot(u) / u.squaredNorm(), (p - origin).dot(v) / v.squaredNorm());
+    };
     std::vector<Eigen::AlignedBox2f> holes;  // windows in front of this quad, in its (u, v)
     for (const RoomQuad& other : quads) {
       const bool window = other.material >= 3 && other.material < 3 + static_cast<int>(windows);
@@ -309,7 +321,8 @@ std::vector<RoomQuad> SplitAroundWindows(const std::vector<RoomQuad>& quads, siz
     for (size_t j = 0; j + 1 < vs.size(); ++j) {
       for (size_t i = 0; i + 1 < us.size(); ++i) {
         const Eigen::Vector2f mid(0.5f * (us[i] + us[i + 1]), 0.5f * (vs[j] + vs[j + 1]));
-        if (std::any_of(holes.begin(), holes.end(), [&](const Eigen::AlignedBox2f& h) { return h.contains(mid); })) continue;
+        if (std::any_of(holes.begin(), holes.end(), [&](const Eigen::AlignedBox2f& h) { return h.contains(mid); }))
+          continue;
         RoomQuad cell = quad;
         cell.corners = {origin + us[i] * u + vs[j] * v, origin + us[i + 1] * u + vs[j] * v,
                         origin + us[i + 1] * u + vs[j + 1] * v, origin + us[i] * u + vs[j + 1] * v};
@@ -376,7 +389,8 @@ void World::MoveTo(double time_s, bool solve) {
   std::vector<InstanceMaterial>& room = instances_[static_cast<size_t>(room_instance_)].materials;
   room_surfaces_->SetTime(time_s, &room);
   for (InstanceMaterial& m : room) Finish(&m);
-  environment_radiance_ = table_.RadianceFromCelsius(static_cast<float>(room_surfaces_->EnvironmentTemperatureC(time_s)));
+  environment_radiance_ =
+      table_.RadianceFromCelsius(static_cast<float>(room_surfaces_->EnvironmentTemperatureC(time_s)));
   if (solve) ApplyRoomNetwork();
   caster_->Commit();
 }
@@ -399,8 +413,8 @@ void World::Finish(InstanceMaterial* m) const {
   m->blackbody_top = table_.RadianceFromCelsius(m->temperature_top_c);
 }
 
-int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role,
-                 std::string name, double temperature_offset_c) {
+int World::Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role, std::string name,
+                 double temperature_offset_c) {
   auto [it, inserted] = prototype_of_asset_.emplace(&asset, -1);
   if (inserted) it->second = caster_->AddPrototype(asset.mesh);
   const int id = caster_->AddInstance(it->second, world_from_object);
@@ -436,28 +450,40 @@ void World::BuildRoom(const Scene& scene) {
   AddQuad(&room_mesh_, V(0, Y, 0), V(X, Y, 0), V(X, Y, Z), V(0, Y, Z), 2);  // north
   AddQuad(&room_mesh_, V(0, 0, 0), V(0, Y, 0), V(0, Y, Z), V(0, 0, Z), 2);  // west
   AddQuad(&room_mesh_, V(X, 0, 0), V(X, 0, Z), V(X, Y, Z), V(X, Y, 0), 2);  // east
-  const float inset = 0.002f;  // windows sit just inside the wall plane
+  const float inset = 0.002f;                                               // windows sit just inside the wall plane
   for (size_t i = 0; i < scene.room.windows.size(); ++i) {
     const WindowSpec& w = scene.room.windows[i];
     const auto a = static_cast<float>(w.center_m - 0.5 * w.width_m);
     const auto b = static_cast<float>(w.center_m + 0.5 * w.width_m);
     const auto z0 = static_cast<float>(w.bottom_m), z1 = static_cast<float>(w.bottom_m + w.height_m);
     const auto material = static_cast<uint32_t>(3 + i);
-    if (w.wall == "south") AddQuad(&room_mesh_, V(a, inset, z0), V(a, inset, z1), V(b, inset, z1), V(b, inset, z0), material);
-    if (w.wall == "north") AddQuad(&room_mesh_, V(a, Y - inset, z0), V(b, Y - inset, z0), V(b, Y - inset, z1), V(a, Y - inset, z1), material);
-    if (w.wall == "west") AddQuad(&room_mesh_, V(inset, a, z0), V(inset, b, z0), V(inset, b, z1), V(inset, a, z1), material);
-    if (w.wall == "east") AddQuad(&room_mesh_, V(X - inset, a, z0), V(X - inset, a, z1), V(X - inset, b, z1), V(X - inset, b, z0), material);
+    if (w.wall == "south")
+      AddQuad(&room_mesh_, V(a, inset, z0), V(a, inset, z1), V(b, inset, z1), V(b, inset, z0), material);
+    if (w.wall == "north")
+      AddQuad(&room_mesh_, V(a, Y - inset, z0), V(b, Y - inset, z0), V(b, Y - inset, z1), V(a, Y - inset, z1),
+              material);
+    if (w.wall == "west")
+      AddQuad(&room_mesh_, V(inset, a, z0), V(inset, b, z0), V(inset, b, z1), V(inset, a, z1), material);
+    if (w.wall == "east")
+      AddQuad(&room_mesh_, V(X - inset, a, z0), V(X - inset, a, z1), V(X - inset, b, z1), V(X - inset, b, z0),
+              material);
   }
   // Interior walls (a building floor): boxes in the walls' material, after the windows'.
   const std::vector<WallPart> wall_parts = WallParts(scene.floor, room_size_m_.z());
   const auto interior_material = static_cast<uint32_t>(3 + scene.room.windows.size());
   for (const WallPart& part : wall_parts) {
     const Eigen::Vector3f lo = part.box_m.min().cast<float>(), hi = part.box_m.max().cast<float>();
-    AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(lo.x(), lo.y(), hi.z()), V(hi.x(), lo.y(), hi.z()), V(hi.x(), lo.y(), lo.z()), interior_material);  // -y
-    AddQuad(&room_mesh_, V(lo.x(), hi.y(), lo.z()), V(hi.x(), hi.y(), lo.z()), V(hi.x(), hi.y(), hi.z()), V(lo.x(), hi.y(), hi.z()), interior_material);  // +y
-    AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(lo.x(), hi.y(), lo.z()), V(lo.x(), hi.y(), hi.z()), V(lo.x(), lo.y(), hi.z()), interior_material);  // -x
-    AddQuad(&room_mesh_, V(hi.x(), lo.y(), lo.z()), V(hi.x(), lo.y(), hi.z()), V(hi.x(), hi.y(), hi.z()), V(hi.x(), hi.y(), lo.z()), interior_material);  // +x
-    if (part.lintel) AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(hi.x(), lo.y(), lo.z()), V(hi.x(), hi.y(), lo.z()), V(lo.x(), hi.y(), lo.z()), interior_material);  // soffit
+    AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(lo.x(), lo.y(), hi.z()), V(hi.x(), lo.y(), hi.z()),
+            V(hi.x(), lo.y(), lo.z()), interior_material);  // -y
+    AddQuad(&room_mesh_, V(lo.x(), hi.y(), lo.z()), V(hi.x(), hi.y(), lo.z()), V(hi.x(), hi.y(), hi.z()),
+            V(lo.x(), hi.y(), hi.z()), interior_material);  // +y
+    AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(lo.x(), hi.y(), lo.z()), V(lo.x(), hi.y(), hi.z()),
+            V(lo.x(), lo.y(), hi.z()), interior_material);  // -x
+    AddQuad(&room_mesh_, V(hi.x(), lo.y(), lo.z()), V(hi.x(), lo.y(), hi.z()), V(hi.x(), hi.y(), hi.z()),
+            V(hi.x(), hi.y(), lo.z()), interior_material);  // +x
+    if (part.lintel)
+      AddQuad(&room_mesh_, V(lo.x(), lo.y(), lo.z()), V(hi.x(), lo.y(), lo.z()), V(hi.x(), hi.y(), lo.z()),
+              V(lo.x(), hi.y(), lo.z()), interior_material);  // soffit
   }
   const int prototype = caster_->AddPrototype(room_mesh_);
   caster_->AddInstance(prototype, Eigen::Matrix4f::Identity());
@@ -489,7 +515,8 @@ void World::BuildRoom(const Scene& scene) {
       surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
   for (const WindowSpec& w : scene.room.windows) info.materials.push_back(plain(w.surface, "window"));
   if (!wall_parts.empty()) {
-    info.materials.push_back(surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
+    info.materials.push_back(
+        surface(walls.temperature_bottom_c, walls.temperature_top_c, walls.emissivity, walls.specular, "wall"));
   }
   room_instance_ = static_cast<int>(instances_.size());
   instances_.push_back(std::move(info));
@@ -510,8 +537,8 @@ void World::BuildRoom(const Scene& scene) {
     const WallPart& part = wall_parts[i];
     if (part.lintel) continue;
     const Eigen::Vector2d lo = part.box_m.min().head<2>(), hi = part.box_m.max().head<2>();
-    wall("interior wall " + std::to_string(part.wall) + "." + std::to_string(i), 0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()),
-         0.5 * (hi.x() - lo.x()), 0.5 * (hi.y() - lo.y()));
+    wall("interior wall " + std::to_string(part.wall) + "." + std::to_string(i), 0.5 * (lo.x() + hi.x()),
+         0.5 * (lo.y() + hi.y()), 0.5 * (hi.x() - lo.x()), 0.5 * (hi.y() - lo.y()));
   }
 }
 
@@ -530,11 +557,12 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
   const double spacing = three_per_side ? scene.furniture.seat_spacing_6_m : scene.furniture.seat_spacing_4_m;
   // Seated bodies are capped in size to fit between neighbours (Crowd::Plan), down to the
   // smallest body drawn; closer seats leave no room for anyone (1 cm more for chair jitter).
-  const double narrowest_m = 2 * kMinSeatedBodyScale * crowd_->skeleton().UpperBodyHalfExtentM().y() + kSeatedShoulderGapM + 0.01;
+  const double narrowest_m =
+      2 * kMinSeatedBodyScale * crowd_->skeleton().UpperBodyHalfExtentM().y() + kSeatedShoulderGapM + 0.01;
   if (per_side > 1 && spacing < narrowest_m) {
     std::ostringstream message;
-    message << (three_per_side ? "/furniture/seat_spacing_6_m" : "/furniture/seat_spacing_4_m") << ": seats "
-            << spacing << " m apart leave no room for a seated person (the narrowest body is "
+    message << (three_per_side ? "/furniture/seat_spacing_6_m" : "/furniture/seat_spacing_4_m") << ": seats " << spacing
+            << " m apart leave no room for a seated person (the narrowest body is "
             << Fixed(narrowest_m - 0.01 - kSeatedShoulderGapM, 3) << " m across the shoulders); expected at least "
             << Fixed(narrowest_m, 3) << " m";
     throw InputError(scene.file, message.str());
@@ -559,7 +587,8 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
       int chair = -1;
       if (spec.seats == SeatArrangement::kSofa) {
         // People sit on the piece itself: seat_count places spread over its inner 5/6, facing +x.
-        const double along = (seat - 0.5 * (spec.seat_count - 1)) * (table_asset.bounds_m.sizes().y() * 5.0 / 6.0) / spec.seat_count;
+        const double along =
+            (seat - 0.5 * (spec.seat_count - 1)) * (table_asset.bounds_m.sizes().y() * 5.0 / 6.0) / spec.seat_count;
         const Eigen::Vector2d p = spec.center_m + Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(0.0, along);
         seat_pos = Eigen::Vector3d(p.x(), p.y(), 0.0);
         seat_yaw = yaw;
@@ -572,9 +601,8 @@ void World::BuildFurnitureAndPeople(const Scene& scene) {
         obstacles_.push_back(FootprintOf(chair_name, chair_asset, seat_pos, seat_yaw));
       }
       crowd_->AddSeat(t, seat, chair, PlacementTransform(seat_pos, seat_yaw));
-      const auto who = std::find_if(seating.begin(), seating.end(), [&](const SeatingSpec& s) {
-        return s.table == t && s.seat == seat;
-      });
+      const auto who = std::find_if(seating.begin(), seating.end(),
+                                    [&](const SeatingSpec& s) { return s.table == t && s.seat == seat; });
       if (who != seating.end()) crowd_->AddSeatedPerson(t, seat, who->posture, 0.0, 1e30);
     }
   }

@@ -1,8 +1,8 @@
 #include "hoilcd/bench/evaluation/bootstrap.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 
@@ -77,8 +77,10 @@ TEST(Bootstrap, EveryHeadlineMetricGetsAnIntervalAroundItsValueTheSameAtAnyThrea
   const HeadlineIntervals two = BootstrapHeadline(records, plan, 3, 2);
   EXPECT_EQ(one.ToJson().dump(), two.ToJson().dump());
   EXPECT_NE(BootstrapHeadline(records, plan, 4, 1).ToJson().dump(), one.ToJson().dump());  // seeded
-  const std::pair<Interval, double> figures[] = {{one.mrr, m.mrr},       {one.recall_at_1, m.recall_at_1},
-                                                 {one.recall_at_5, m.recall_at_5}, {one.pr_auc, m.pr_auc},
+  const std::pair<Interval, double> figures[] = {{one.mrr, m.mrr},
+                                                 {one.recall_at_1, m.recall_at_1},
+                                                 {one.recall_at_5, m.recall_at_5},
+                                                 {one.pr_auc, m.pr_auc},
                                                  {one.recall_at_100p, m.recall_at_100p}};
   for (const auto& [interval, value] : figures) {
     EXPECT_LE(interval.low, value);
@@ -115,7 +117,7 @@ TEST(Bootstrap, OnePlanServesEveryMethodWithTheLongestBlockInQueriesAndSeconds) 
   EXPECT_EQ(both.block_queries, static_cast<int>(std::ceil(OptimalBlockLength(ReciprocalRanks(alike)))));
   EXPECT_LT(one.block_queries, both.block_queries);
   EXPECT_NEAR(both.block_s, both.block_queries / 10.0, 1e-9);  // a query per frame at 10 Hz
-  for (QueryRecord& r : alike) r.frame *= 2;  // a query every other frame: twice the time
+  for (QueryRecord& r : alike) r.frame *= 2;                   // a query every other frame: twice the time
   EXPECT_NEAR(PlanBootstrap({&alike}, 10, options).block_s, both.block_queries / 5.0, 0.3);
   EXPECT_EQ(both.resamples, options.resamples);
   BootstrapOptions bad;

@@ -1,8 +1,8 @@
 #include "hoilcd/bench/evaluation/evaluate.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/runner/runner.h"
@@ -23,7 +23,8 @@ TEST(Evaluate, EveryMethodsScoresThroughACsvFileReproduceItsMetricsExactly) {
   options.methods = DefaultMethods();
   const BenchResult result = RunBench(dataset, options);
   for (const MethodRun& run : result.runs) {
-    const ScoreMatrix m = ScoresFromCsv(ScoresToCsv(result.queries, run.scores), run.name + ".csv", dataset.num_frames());
+    const ScoreMatrix m =
+        ScoresFromCsv(ScoresToCsv(result.queries, run.scores), run.name + ".csv", dataset.num_frames());
     const MethodReport r = Evaluate(dataset, m, run.name, options.protocol);
     EXPECT_EQ(r.metrics.mrr, run.metrics.mrr) << run.name;
     EXPECT_EQ(r.metrics.recall_at_1, run.metrics.recall_at_1) << run.name;
@@ -61,7 +62,8 @@ TEST(Evaluate, AMatrixOfTheWrongSizeIsAnErrorNamingBothSizes) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("a 3 x 3 matrix: expected " + std::to_string(dataset.num_frames())),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -96,8 +98,7 @@ TEST(Evaluate, ScoresOfNoPairTheProtocolRanksAreAnErrorNotARandomOrdersMetrics) 
   m.source = "scores.npy";
   const std::string error = test::InputErrorOf([&] { Evaluate(dataset, m, "x", ProtocolOptions{}); });
   EXPECT_NE(error.find("scores.npy: scores none of the "), std::string::npos) << error;
-  EXPECT_NE(error.find(" queries with a true match: expected scores of those pairs"), std::string::npos)
-      << error;
+  EXPECT_NE(error.find(" queries with a true match: expected scores of those pairs"), std::string::npos) << error;
   m.At(0, 1) = 5;  // a pair no query ranks: frame 0 is in the first lap, never a query
   EXPECT_NE(test::InputErrorOf([&] { Evaluate(dataset, m, "x", ProtocolOptions{}); }).find("scores none of the "),
             std::string::npos);
@@ -122,7 +123,8 @@ TEST(Evaluate, QueriesWithNoScoredPairAreCountedInAWarning) {
   const MethodReport r = Evaluate(dataset, m, "half", protocol);
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_EQ(r.warnings[0], "half.csv: " + std::to_string(worth_scoring - scored) + " of the " +
-                               std::to_string(worth_scoring) + " queries with a true match have no scored pair in "
+                               std::to_string(worth_scoring) +
+                               " queries with a true match have no scored pair in "
                                "their database; each ranks it all tied (the expected rank of a random order)");
   for (const Query& q : labelling.queries) {
     for (int r : q.database) m.At(q.frame, r) = 1;
@@ -139,8 +141,8 @@ TEST(Evaluate, AnInfiniteScoreIsAnErrorNamingTheScoresSource) {
   const Query& q = labelling.queries.back();
   m.At(q.frame, q.database[0]) = INFINITY;
   EXPECT_NE(test::InputErrorOf([&] { Evaluate(dataset, m, "x", ProtocolOptions{}); })
-                .find("inf.npy: pair query " + std::to_string(q.frame) + ", reference " + std::to_string(q.database[0]) +
-                      " is infinite"),
+                .find("inf.npy: pair query " + std::to_string(q.frame) + ", reference " +
+                      std::to_string(q.database[0]) + " is infinite"),
             std::string::npos);
 }
 
@@ -152,8 +154,8 @@ TEST(Evaluate, AScoreBeyond1e300IsAnErrorNotAnInternalOne) {
   ScoreMatrix m = ScoreMatrix::Unscored(dataset.num_frames());
   const Query& q = labelling.queries.back();
   for (int r : q.database) m.At(q.frame, r) = 1;
-  m.At(q.frame, q.database[0]) = NAN;      // unscored: ranked below the lowest score...
-  m.At(q.frame, q.database[1]) = -1e308;   // ...which leaves no finite value below it
+  m.At(q.frame, q.database[0]) = NAN;     // unscored: ranked below the lowest score...
+  m.At(q.frame, q.database[1]) = -1e308;  // ...which leaves no finite value below it
   EXPECT_NE(test::InputErrorOf([&] { Evaluate(dataset, m, "x", ProtocolOptions{}); })
                 .find("scores: pair query " + std::to_string(q.frame) + ", reference " + std::to_string(q.database[1]) +
                       " is -1e+308: expected a score of magnitude at most 1e300, or NaN for unscored"),

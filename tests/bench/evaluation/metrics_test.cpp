@@ -1,9 +1,9 @@
 #include "hoilcd/bench/evaluation/metrics.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <numeric>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 
@@ -31,8 +31,8 @@ Query MakeQuery(int frame, std::vector<int> database, std::vector<uint8_t> is_tr
 }
 
 // Brute force: every order of the tied items (ties broken by a permutation, all equally likely).
-void BruteForce(const std::vector<double>& scores, const std::vector<uint8_t>& is_true,
-                double* expected_rr, std::vector<double>* recall_at) {
+void BruteForce(const std::vector<double>& scores, const std::vector<uint8_t>& is_true, double* expected_rr,
+                std::vector<double>* recall_at) {
   std::vector<int> order(scores.size());
   std::iota(order.begin(), order.end(), 0);
   double sum_rr = 0;
@@ -42,9 +42,8 @@ void BruteForce(const std::vector<double>& scores, const std::vector<uint8_t>& i
     // Rank = 1 + items before the first true match: higher score first, ties by `order`.
     std::vector<int> ranking(scores.size());
     std::iota(ranking.begin(), ranking.end(), 0);
-    std::sort(ranking.begin(), ranking.end(), [&](int a, int b) {
-      return scores[a] != scores[b] ? scores[a] > scores[b] : order[a] < order[b];
-    });
+    std::sort(ranking.begin(), ranking.end(),
+              [&](int a, int b) { return scores[a] != scores[b] ? scores[a] > scores[b] : order[a] < order[b]; });
     int rank = 0;
     while (!is_true[ranking[rank]]) ++rank;
     sum_rr += 1.0 / (rank + 1);
@@ -108,8 +107,7 @@ TEST(ComputeMetrics, AllZeroScoresGiveTheRandomOrderExpectation) {
   std::iota(database.begin(), database.end(), 0);
   std::vector<uint8_t> is_true(10, 0);
   is_true[7] = 1;
-  const MethodMetrics m =
-      ComputeMetrics({MakeQuery(15, database, is_true)}, {std::vector<double>(10, 0.0)}, poses);
+  const MethodMetrics m = ComputeMetrics({MakeQuery(15, database, is_true)}, {std::vector<double>(10, 0.0)}, poses);
   double harmonic = 0;
   for (int k = 1; k <= 10; ++k) harmonic += 1.0 / k;
   EXPECT_NEAR(m.mrr, harmonic / 10, 1e-15);
@@ -162,8 +160,7 @@ TEST(ComputeMetrics, PrCurveAucAndRecallAtFullPrecisionAreHandComputed) {
 
 TEST(ComputeMetrics, TiedTopOneCountsItsExpectedCorrectnessInPrecision) {
   // Top-1 tied between a true and a false match: the claim is half correct.
-  const MethodMetrics m =
-      ComputeMetrics({MakeQuery(5, {0, 1}, {0, 1})}, {{3.0, 3.0}}, LinePoses(6));
+  const MethodMetrics m = ComputeMetrics({MakeQuery(5, {0, 1}, {0, 1})}, {{3.0, 3.0}}, LinePoses(6));
   ASSERT_EQ(m.pr_curve.size(), 1u);
   EXPECT_NEAR(m.pr_curve[0].precision, 0.5, 1e-15);
   EXPECT_NEAR(m.pr_curve[0].recall, 0.5, 1e-15);
@@ -172,10 +169,8 @@ TEST(ComputeMetrics, TiedTopOneCountsItsExpectedCorrectnessInPrecision) {
 }
 
 TEST(ComputeMetrics, QueriesWithoutTrueMatchAreSkippedAndCounted) {
-  const std::vector<Query> queries = {MakeQuery(10, {0, 1}, {1, 0}, 1),
-                                      MakeQuery(11, {0, 1}, {0, 0}, 1),
-                                      MakeQuery(12, {}, {}, 2),
-                                      MakeQuery(13, {0, 1}, {0, 1}, 2)};
+  const std::vector<Query> queries = {MakeQuery(10, {0, 1}, {1, 0}, 1), MakeQuery(11, {0, 1}, {0, 0}, 1),
+                                      MakeQuery(12, {}, {}, 2), MakeQuery(13, {0, 1}, {0, 1}, 2)};
   const MethodMetrics m = ComputeMetrics(queries, {{2, 1}, {5, 1}, {}, {2, 1}}, LinePoses(20));
   EXPECT_EQ(m.queries_total, 4);
   EXPECT_EQ(m.queries_scored, 2);
@@ -208,9 +203,8 @@ TEST(MethodMetrics, JsonHoldsTheReportKeysAndTiming) {
   EXPECT_EQ(m.ms_per_query_median, 3.0);
   EXPECT_EQ(m.extract_ms_median, 2.5);
   const nlohmann::json j = m.ToJson();
-  for (const char* key : {"mrr", "recall_at_1", "recall_at_5", "recall_at_10", "pr_auc",
-                          "recall_at_100p", "ms_per_query", "queries_scored", "queries_skipped",
-                          "pr_curve", "per_lap"}) {
+  for (const char* key : {"mrr", "recall_at_1", "recall_at_5", "recall_at_10", "pr_auc", "recall_at_100p",
+                          "ms_per_query", "queries_scored", "queries_skipped", "pr_curve", "per_lap"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["mrr"], 1.0);

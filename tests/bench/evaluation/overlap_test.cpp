@@ -1,8 +1,8 @@
 #include "hoilcd/bench/evaluation/overlap.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "../../common/input_error_of.h"
 #include "../../common/test_dir.h"
@@ -49,8 +49,7 @@ TEST(Overlap, ASidewaysShiftSharesTheColumnsStillInViewAsComputedByHand) {
 // Within the paper's 0.2 m, but facing the other way: a wall the reference never saw.
 TEST(Overlap, AReferenceAtTheSameSpotFacingAwaySharesNothing) {
   const OverlapView query = MakeOverlapView(Depth(2), Classes(kWall), kPerson, Camera(), CameraAt(1, 1), 1);
-  const OverlapView behind =
-      MakeOverlapView(Depth(2), Classes(kWall), kPerson, Camera(), CameraAt(1.1, 1, M_PI), 1);
+  const OverlapView behind = MakeOverlapView(Depth(2), Classes(kWall), kPerson, Camera(), CameraAt(1.1, 1, M_PI), 1);
   EXPECT_DOUBLE_EQ(OverlapFraction(query, behind, Camera(), 0.05), 0.0);
   // Turned by 90 degrees the wall is off to the side, out of the 50-degree field of view.
   const OverlapView side = MakeOverlapView(Depth(2), Classes(kWall), kPerson, Camera(), CameraAt(1, 1, M_PI / 2), 1);

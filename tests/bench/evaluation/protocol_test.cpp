@@ -1,10 +1,10 @@
 #include "hoilcd/bench/evaluation/protocol.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+
+#include <gtest/gtest.h>
 
 #include "option_properties.h"
 
@@ -167,8 +167,7 @@ TEST(BuildQueries, ExclusionWindowRemovesFramesNearInTime) {
   EXPECT_EQ(TrueFrames(q), (std::vector<int>{0, 1, 2, 3}));
   ProtocolOptions no_window;
   no_window.exclusion_window_s = 0;
-  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), no_window)[0]),
-            (std::vector<int>{0, 1, 2, 3, 97, 98, 99}));
+  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), no_window)[0]), (std::vector<int>{0, 1, 2, 3, 97, 98, 99}));
 }
 
 TEST(BuildQueries, RadiusAndHeadingToleranceDecideTrueMatches) {
@@ -179,8 +178,7 @@ TEST(BuildQueries, RadiusAndHeadingToleranceDecideTrueMatches) {
   options.heading_tolerance_deg = 11;  // 3 steps turn 10.8°
   EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), options)[50]).size(), 7u);
   options.heading_tolerance_deg = 4;  // 1 step turns 3.6°
-  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), options)[50]),
-            (std::vector<int>{49, 50, 51}));
+  EXPECT_EQ(TrueFrames(BuildQueries(CirclePoses(2), options)[50]), (std::vector<int>{49, 50, 51}));
 }
 
 TEST(IsTrueMatch, SamePlaceFacingTheOtherWayFailsOnlyWithAHeadingTolerance) {

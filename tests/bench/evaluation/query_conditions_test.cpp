@@ -1,10 +1,10 @@
 #include "hoilcd/bench/evaluation/query_conditions.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/evaluation/evaluate.h"
 #include "recording_runs.h"
@@ -137,8 +137,8 @@ TEST(QueryConditions, TheTurnRateOfARunsFirstFrameIsMeasuredWithinItsRun) {
   ASSERT_EQ(labelling.queries.front().frame, 60);
   const QueryConditions c = ComputeQueryConditions(dataset, {labelling.queries.front()}).front();
   const PoseRecord &first = dataset.poses()[60], &next = dataset.poses()[61];
-  const double expected_deg_s = std::abs(std::remainder(next.theta_rad - first.theta_rad, 2 * M_PI)) * 180 / M_PI /
-                                (next.time_s - first.time_s);
+  const double expected_deg_s =
+      std::abs(std::remainder(next.theta_rad - first.theta_rad, 2 * M_PI)) * 180 / M_PI / (next.time_s - first.time_s);
   EXPECT_GT(expected_deg_s, 0);
   EXPECT_DOUBLE_EQ(c.turn_rate_deg_s, expected_deg_s);
 }

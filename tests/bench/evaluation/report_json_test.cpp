@@ -1,10 +1,10 @@
 #include "hoilcd/bench/evaluation/report_json.h"
 
+#include <string>
+
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-#include <string>
 
 #include "hoilcd/core/util/file_io.h"
 #include "input_error_of.h"
@@ -30,8 +30,9 @@ TEST(ReportJson, ABaselineThatIsNotAReportNamesTheFileThePointerAndWhatWasExpect
                                     "column 3: "),
             std::string::npos);
   EXPECT_NE(TextError("[]").find("b.json: /methods: expected an object of methods"), std::string::npos);
-  EXPECT_NE(TextError(R"({"methods": {"a/b~c": 3}})").find("b.json: /methods/a~1b~0c: expected an object of the "
-                                                            "method's metrics"),
+  EXPECT_NE(TextError(R"({"methods": {"a/b~c": 3}})")
+                .find("b.json: /methods/a~1b~0c: expected an object of the "
+                      "method's metrics"),
             std::string::npos);
   EXPECT_NE(TextError(R"({"methods": {"slcd": {"mrr": "high", "recall_at_1": 1}}})")
                 .find("b.json: /methods/slcd/mrr: expected a number or null (a fraction, in [0, 1])"),
@@ -40,7 +41,8 @@ TEST(ReportJson, ABaselineThatIsNotAReportNamesTheFileThePointerAndWhatWasExpect
             std::string::npos);
   EXPECT_NE(TextError(R"({"methods": {"slcd": {"mrr": 1.5, "recall_at_1": 0}}})").find("/methods/slcd/mrr: expected"),
             std::string::npos);
-  EXPECT_NE(TextError(R"({"methods": {"slcd": {"mrr": 1e400, "recall_at_1": 0}}})").find("b.json: is not JSON: expected a hoilcd report.json ("),
+  EXPECT_NE(TextError(R"({"methods": {"slcd": {"mrr": 1e400, "recall_at_1": 0}}})")
+                .find("b.json: is not JSON: expected a hoilcd report.json ("),
             std::string::npos);
 }
 
@@ -64,8 +66,9 @@ TEST(ReportJson, NestingDeeperThanAnyReportIsRefusedBeforeItIsBuilt) {
 TEST(ReportJson, RefusesAFifoWithoutBlocking) {
   const test::TestDir dir;
   ASSERT_EQ(::mkfifo((dir / "baseline.json").c_str(), 0600), 0);
-  EXPECT_NE(InputErrorOf([&] { ReadReportJson(dir / "baseline.json"); })
-                .find(dir / "baseline.json" + ": is a FIFO: expected a regular file"),
+  EXPECT_NE(InputErrorOf([&] {
+              ReadReportJson(dir / "baseline.json");
+            }).find(dir / "baseline.json" + ": is a FIFO: expected a regular file"),
             std::string::npos);
 }
 
@@ -74,8 +77,9 @@ TEST(ReportJson, AHugeSparseBaselineIsRefusedByItsSizeBeforeItIsRead) {
   const std::string path = dir / "baseline.json";
   WriteFileAtomic(path, "{");
   ASSERT_EQ(::truncate(path.c_str(), off_t{1} << 33), 0);
-  EXPECT_NE(InputErrorOf([&] { ReadReportJson(path); })
-                .find(path + ": is 8589934592 bytes: expected a hoilcd report.json, at most 64 MiB"),
+  EXPECT_NE(InputErrorOf([&] {
+              ReadReportJson(path);
+            }).find(path + ": is 8589934592 bytes: expected a hoilcd report.json, at most 64 MiB"),
             std::string::npos);
 }
 

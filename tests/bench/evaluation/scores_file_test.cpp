@@ -1,16 +1,15 @@
-#include "cpu_seconds.h"
 #include "hoilcd/bench/evaluation/scores_file.h"
-
-#include <gtest/gtest.h>
-
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cpu_seconds.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
 #include "input_error_of.h"
@@ -103,8 +102,9 @@ TEST(ScoresFile, CsvErrorsNameTheFileTheLineAndWhatWasExpected) {
   EXPECT_NE(CsvError("q,r,s\n0,1,2\n").find("s.csv:1: expected the header 'query,reference,score', got 'q,r,s'"),
             std::string::npos);
   EXPECT_NE(CsvError("").find("s.csv:1: expected the header"), std::string::npos);
-  EXPECT_NE(CsvError("query,reference,score\n0,1,2\n0,4,1\n").find("s.csv:3: reference '4': expected a frame index in 0..3"),
-            std::string::npos);
+  EXPECT_NE(
+      CsvError("query,reference,score\n0,1,2\n0,4,1\n").find("s.csv:3: reference '4': expected a frame index in 0..3"),
+      std::string::npos);
   EXPECT_NE(CsvError("query,reference,score\n-1,1,2\n").find("s.csv:2: query '-1': expected a frame index in 0..3"),
             std::string::npos);
   EXPECT_NE(CsvError("query,reference,score\n0,1,nan\n").find("s.csv:2: score is NaN: leave the pair out"),
@@ -113,8 +113,9 @@ TEST(ScoresFile, CsvErrorsNameTheFileTheLineAndWhatWasExpected) {
             std::string::npos);
   EXPECT_NE(CsvError("query,reference,score\n0,1,x\n").find("s.csv:2: score 'x': expected a number"),
             std::string::npos);
-  EXPECT_NE(CsvError("query,reference,score\n0,1,2\n1,1,1\n0,1,3\n").find("s.csv:4: duplicate pair query 0, reference 1"),
-            std::string::npos);
+  EXPECT_NE(
+      CsvError("query,reference,score\n0,1,2\n1,1,1\n0,1,3\n").find("s.csv:4: duplicate pair query 0, reference 1"),
+      std::string::npos);
   EXPECT_NE(CsvError("query,reference,score\n0,1\n").find("s.csv:2: expected 3 fields (query,reference,score), got 2"),
             std::string::npos);
   EXPECT_NE(CsvError("query,reference,score\n0,1,2,3\n").find("got 4"), std::string::npos);
@@ -177,7 +178,8 @@ TEST(ScoresFile, FilesReadThroughReadScoresFileGiveWhatTheirBytesGive) {
   // A CSV longer than one read block, read line by line.
   std::string csv = "query,reference,score\n";
   for (int q = 0; q < 300; ++q) {
-    for (int r = 0; r < 300; ++r) csv += std::to_string(q) + "," + std::to_string(r) + "," + std::to_string(q - r) + "\r\n";
+    for (int r = 0; r < 300; ++r)
+      csv += std::to_string(q) + "," + std::to_string(r) + "," + std::to_string(q - r) + "\r\n";
   }
   csv.pop_back();  // a last line without its '\n'
   WriteFileAtomic(dir / "s.csv", csv);
@@ -216,7 +218,7 @@ TEST(ScoresFile, AHugeSparseNpyIsRefusedByItsSizeAgainstItsHeaderBeforeItsBodyIs
   const std::string path = dir / "huge.npy";
   WriteFileAtomic(path, Npy({1, 2, 3, 4}, "(2, 2)"));
   ASSERT_EQ(::truncate(path.c_str(), off_t{1} << 36), 0);  // 64 GiB of holes
-  const double start = test::ProcessCpuSeconds();  // CPU time: a loaded machine stretches wall time
+  const double start = test::ProcessCpuSeconds();          // CPU time: a loaded machine stretches wall time
   const std::string error = InputErrorOf([&] { ReadScoresFile(path, 2); });
   EXPECT_NE(error.find(path + ": holds 68719476608 data bytes: expected 32 for a (2, 2) matrix of 64-bit floats"),
             std::string::npos)
@@ -244,8 +246,9 @@ TEST(ScoresFile, AnNpyHeaderLongerThanNumpyWritesIsRefusedBeforeItIsRead) {
 }
 
 TEST(ScoresFile, AHeaderOnlyCsvIsRefusedAsHoldingNoScore) {
-  EXPECT_NE(CsvError("query,reference,score\n").find("s.csv: holds the header and no pair: expected at least one "
-                                                       "line query,reference,score"),
+  EXPECT_NE(CsvError("query,reference,score\n")
+                .find("s.csv: holds the header and no pair: expected at least one "
+                      "line query,reference,score"),
             std::string::npos);
   EXPECT_NE(CsvError("query,reference,score\r\n\n\n").find("holds the header and no pair"), std::string::npos);
 }
@@ -253,8 +256,9 @@ TEST(ScoresFile, AHeaderOnlyCsvIsRefusedAsHoldingNoScore) {
 TEST(ScoresFile, AnAllNanNpyIsRefusedAsHoldingNoScore) {
   const double nan = std::nan("");
   for (const char* descr : {"<f8", "<f4"}) {
-    EXPECT_NE(NpyError(Npy({nan, nan, nan, nan}, "(2, 2)", descr)).find("s.npy: every element is NaN (unscored): "
-                                                                       "expected at least one score"),
+    EXPECT_NE(NpyError(Npy({nan, nan, nan, nan}, "(2, 2)", descr))
+                  .find("s.npy: every element is NaN (unscored): "
+                        "expected at least one score"),
               std::string::npos);
   }
 }
@@ -297,8 +301,9 @@ TEST(ScoresFile, NpyHeadersOtherThanNumpysDictAreRefusedNamingWhatIsWrong) {
   EXPECT_EQ(error("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2)}"), "");
   EXPECT_EQ(error("{\"shape\": (2, 2), \"descr\": \"<f8\", \"fortran_order\": False, }"), "");
   EXPECT_NE(error("{'descr': '<f8', 'fortran_order': False}").find(".npy header has no 'shape'"), std::string::npos);
-  EXPECT_NE(error("{'descr': '<f8', 'descr': '<f8', 'fortran_order': False, 'shape': (2, 2)}").find("'descr' is given twice"),
-            std::string::npos);
+  EXPECT_NE(
+      error("{'descr': '<f8', 'descr': '<f8', 'fortran_order': False, 'shape': (2, 2)}").find("'descr' is given twice"),
+      std::string::npos);
   EXPECT_NE(error("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), 'extra': 1}")
                 .find("key 'extra': expected only 'descr', 'fortran_order' and 'shape'"),
             std::string::npos);
@@ -317,8 +322,9 @@ TEST(ScoresFile, ANulByteInACsvIsShownEscapedAndDoesNotCutTheMessageShort) {
   EXPECT_EQ(error.find('\0'), std::string::npos) << "a NUL would end the message where it is printed";
   EXPECT_NE(error.find("s.csv:2: query '0\\x00': expected a frame index in 0..3"), std::string::npos) << error;
   EXPECT_NE(error.find("s.csv:3: score '\\xe9': expected a number"), std::string::npos) << error;
-  EXPECT_NE(CsvError("\0query,reference,score\n"s).find("expected the header 'query,reference,score', got "
-                                                         "'\\x00query,reference,score'"),
+  EXPECT_NE(CsvError("\0query,reference,score\n"s)
+                .find("expected the header 'query,reference,score', got "
+                      "'\\x00query,reference,score'"),
             std::string::npos);
 }
 

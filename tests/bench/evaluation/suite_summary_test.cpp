@@ -2,9 +2,9 @@
 // an interval that covers the mean and is the same bytes on a rerun, failed runs listed apart.
 #include "hoilcd/bench/evaluation/suite_summary.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {
@@ -14,8 +14,11 @@ SuiteRunResult Run(const std::string& name, double a, double b, double c) {
 }
 
 std::vector<SuiteRunResult> Runs() {
-  return {Run("r1", 0.9, 0.5, 0.5), Run("r2", 0.6, 0.7, 0.1), Run("r3", 0.3, 0.3, 0.3),
-          Run("r4", 0.8, 0.2, 0.4), {"r5", "scene missing", {}, {}, ""}};
+  return {Run("r1", 0.9, 0.5, 0.5),
+          Run("r2", 0.6, 0.7, 0.1),
+          Run("r3", 0.3, 0.3, 0.3),
+          Run("r4", 0.8, 0.2, 0.4),
+          {"r5", "scene missing", {}, {}, ""}};
 }
 
 TEST(SuiteSummary, RanksGiveTiedValuesTheirMeanRankAndNanTheLast) {
@@ -67,8 +70,10 @@ TEST(SuiteSummary, SeedsOfOneSequenceAreAveragedBeforeTheSequencesAreComparedAnd
     return SuiteRunResult{name, "", {{"a", a}, {"b", b}}, {{"a", a}, {"b", b}}, sequence};
   };
   const SuiteSummary s = SummariseSuite("t", "", {"a", "b"},
-                                        {run("A-seed1", "A", 0.9, 0.5), run("A-seed2", "A", 0.7, 0.5),
-                                         run("B-seed1", "B", 0.2, 0.6), {"B-seed2", "render failed", {}, {}, "B"}});
+                                        {run("A-seed1", "A", 0.9, 0.5),
+                                         run("A-seed2", "A", 0.7, 0.5),
+                                         run("B-seed1", "B", 0.2, 0.6),
+                                         {"B-seed2", "render failed", {}, {}, "B"}});
   EXPECT_EQ(s.runs, (std::vector<std::string>{"A-seed1", "A-seed2", "B-seed1"}));
   EXPECT_EQ(s.sequences, (std::vector<std::string>{"A", "B"}));
   EXPECT_NEAR(s.methods[0].sequence_mrr[0], 0.8, 1e-12);

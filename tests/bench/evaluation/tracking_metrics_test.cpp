@@ -71,10 +71,8 @@ TEST(TrackingMetrics, OneTrackReplacedByANewIdGivesOneSwitch) {
 TEST(TrackingMetrics, MissesFalseAlarmsAndIgnoredPersonsAreCounted) {
   // Frame 0: person 1 tracked, person 2 missed, a false box far away. Frame 1: person 3 is barely
   // visible and ignored, so the track on it is neither a hit nor a false positive.
-  std::vector<FramePersons> truth = {{0, {Person(1), Person(2)}},
-                                     {1, {Person(1), Person(3, 0.05)}}};
-  std::vector<FrameTracks> tracks = {{0, {Track(10, 1), Track(99, 5)}},
-                                     {1, {Track(10, 1), Track(33, 3)}}};
+  std::vector<FramePersons> truth = {{0, {Person(1), Person(2)}}, {1, {Person(1), Person(3, 0.05)}}};
+  std::vector<FrameTracks> tracks = {{0, {Track(10, 1), Track(99, 5)}}, {1, {Track(10, 1), Track(33, 3)}}};
   TrackingMetricsOptions options;
   options.min_visible_fraction = 0.1;
   const TrackingMetrics m = ComputeTrackingMetrics(truth, tracks, options);
@@ -118,8 +116,7 @@ TEST(TrackingMetrics, HoiErrorIsTheDistanceToTheNearestPointOfTheMatchedTrack) {
   p.contacts = {{"seat", 45, 38, true}, {"hand", 50, 20, true}, {"foot", 0, 0, false}};
   TrackedBox t = Track(10, 1);
   t.hoi_points_px = {{46, 38}, {54, 20}, {200, 200}};  // errors 1 and 4; hidden contact skipped
-  const TrackingMetrics m =
-      ComputeTrackingMetrics({{0, {p}}, {1, {p}}}, {{0, {t}}, {1, {Track(10, 1)}}});
+  const TrackingMetrics m = ComputeTrackingMetrics({{0, {p}}, {1, {p}}}, {{0, {t}}, {1, {Track(10, 1)}}});
   EXPECT_EQ(m.hoi_contacts, 4);
   EXPECT_EQ(m.hoi_contacts_without_points, 2);  // frame 1: the track has no HOI points
   EXPECT_DOUBLE_EQ(m.hoi_median_error_px, 2.5);

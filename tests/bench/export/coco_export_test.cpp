@@ -1,8 +1,8 @@
 #include "hoilcd/bench/export/coco_export.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
@@ -20,7 +20,8 @@ TEST(CocoExport, EveryListedPersonBecomesAnAnnotationWithSeventeenFlaggedKeypoin
   SequenceOptions options;
   options.output_dir = dir + "/dataset";
   options.frames = 3;
-  RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", {"crowd.walkers=1"}), options);
+  RenderSequence(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", {"crowd.walkers=1"}),
+                 options);
   const std::string path = ExportCoco(dir + "/dataset", dir + "/coco");
   const nlohmann::json coco = nlohmann::json::parse(ReadFileBytes(path));
   const Dataset dataset = Dataset::Open(dir + "/dataset");

@@ -1,10 +1,10 @@
 #include "hoilcd/bench/export/mcap_export.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
 #include <map>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/file_io.h"
@@ -18,9 +18,7 @@ namespace {
 
 constexpr int kFrames = 8;
 
-std::map<std::string, uint64_t> Counts(const McapExportResult& r) {
-  return {r.topics.begin(), r.topics.end()};
-}
+std::map<std::string, uint64_t> Counts(const McapExportResult& r) { return {r.topics.begin(), r.topics.end()}; }
 
 TEST(McapExport, EveryTopicHasAMessagePerFrameAndTfStaticOne) {
   const test::TestDir temp;
@@ -28,9 +26,9 @@ TEST(McapExport, EveryTopicHasAMessagePerFrameAndTfStaticOne) {
   const McapExportResult r = ExportMcap(dataset, temp / "bag.mcap");
   const std::map<std::string, uint64_t> counts = Counts(r);
   EXPECT_EQ(counts.at("/tf_static"), 1u);
-  for (const char* topic : {"/thermal/camera_info", "/thermal/image_raw", "/thermal/image_mono8", "/thermal/depth",
-                            "/thermal/instance", "/odom", "/tf", "/ground_truth/pose", "/ground_truth/camera_pose",
-                            "/persons"}) {
+  for (const char* topic :
+       {"/thermal/camera_info", "/thermal/image_raw", "/thermal/image_mono8", "/thermal/depth", "/thermal/instance",
+        "/odom", "/tf", "/ground_truth/pose", "/ground_truth/camera_pose", "/persons"}) {
     EXPECT_EQ(counts.at(topic), static_cast<uint64_t>(kFrames)) << topic;
   }
   EXPECT_EQ(r.messages, 1u + 10u * kFrames);

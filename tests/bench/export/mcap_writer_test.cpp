@@ -1,8 +1,8 @@
 #include "hoilcd/bench/export/mcap_writer.h"
 
-#include <gtest/gtest.h>
-
 #include <cstring>
+
+#include <gtest/gtest.h>
 #include <libdeflate.h>
 
 #include "hoilcd/bench/export/cdr_writer.h"
@@ -124,7 +124,7 @@ TEST(CdrWriter, AlignsEachPrimitiveToItsSizeAfterTheEncapsulationHeader) {
   ASSERT_EQ(b.size(), 4u + 8 + 8 + 4 + 3 + 1 + 4);
   EXPECT_EQ(b.substr(0, 4), std::string("\x00\x01\x00\x00", 4));
   EXPECT_EQ(b[4], 7);
-  EXPECT_EQ(At<double>(b, 4 + 8), 1.5);  // padded to offset 8 from the header's end
+  EXPECT_EQ(At<double>(b, 4 + 8), 1.5);    // padded to offset 8 from the header's end
   EXPECT_EQ(At<uint32_t>(b, 4 + 16), 3u);  // length with the NUL
   EXPECT_EQ(b.substr(4 + 20, 3), std::string("ab\0", 3));
   EXPECT_EQ(b[4 + 23], 1);
@@ -156,7 +156,7 @@ TEST(Ros2Messages, AnImageIsItsHeaderFieldsThenTheRowsAsAByteSequence) {
   EXPECT_EQ(At<uint32_t>(m, 20), 1u);  // height
   EXPECT_EQ(At<uint32_t>(m, 24), 2u);  // width
   EXPECT_EQ(m.substr(32, 7), std::string("mono16\0", 7));
-  EXPECT_EQ(m[39], 0);  // is_bigendian
+  EXPECT_EQ(m[39], 0);                 // is_bigendian
   EXPECT_EQ(At<uint32_t>(m, 40), 4u);  // step
   EXPECT_EQ(At<uint32_t>(m, 44), 4u);  // data length
   EXPECT_EQ(At<uint16_t>(m, 48), 0x0102);

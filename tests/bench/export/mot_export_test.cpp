@@ -1,9 +1,9 @@
 #include "hoilcd/bench/export/mot_export.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <sstream>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/output/sequence.h"
 #include "test_dir.h"

@@ -1,8 +1,8 @@
 #include "hoilcd/bench/methods/front_end_input.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/sim/output/sequence.h"

@@ -1,9 +1,9 @@
 #include "hoilcd/bench/methods/loop_closure_method.h"
 
-#include <gtest/gtest.h>
-
 #include <optional>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/methods/method_params.h"
 #include "hoilcd/bench/methods/methods.h"
@@ -46,9 +46,9 @@ class NegatedSlcd : public LoopClosureMethod {
 };
 
 TEST(LoopClosureMethod, TheBuiltInsAreRegisteredInReportOrderWithThePapersThreeMarked) {
-  EXPECT_EQ(DefaultMethods(), (std::vector<std::string>{"slcd", "dlcd", "fusion", "slcd-lo", "dlcd-lo", "dlcd-track",
-                                                         "fusion-tc", "thumb", "thumb-seq", "dlcd-oracle",
-                                                         "slcd-ideal"}));
+  EXPECT_EQ(DefaultMethods(),
+            (std::vector<std::string>{"slcd", "dlcd", "fusion", "slcd-lo", "dlcd-lo", "dlcd-track", "fusion-tc",
+                                      "thumb", "thumb-seq", "dlcd-oracle", "slcd-ideal"}));
   for (const auto& m : RegisteredMethods()) {
     EXPECT_FALSE(m->Description().empty()) << m->Name();
     EXPECT_EQ(CreateMethod(m->Name())->Name(), m->Name());
@@ -77,8 +77,8 @@ TEST(LoopClosureMethod, EveryMethodThatShowsFeaturesGivesAPairsMatchesThroughMat
   for (const HoiFeature& h : query_hoi) query_points.push_back(h.point);
   for (const HoiFeature& h : reference_hoi) reference_points.push_back(h.point);
   const std::vector<HoiFeature> no_hoi;
-  const std::set<std::string> showing = {"slcd",        "dlcd",       "slcd-lo",    "dlcd-lo",
-                                         "dlcd-track",  "dlcd-oracle", "slcd-ideal"};
+  const std::set<std::string> showing = {"slcd",       "dlcd",        "slcd-lo",   "dlcd-lo",
+                                         "dlcd-track", "dlcd-oracle", "slcd-ideal"};
   for (const auto& method : RegisteredMethods()) {
     const std::string& name = method->Name();
     EXPECT_EQ(method->Features() != ShownFeatures::kNone, showing.count(name) > 0) << name;
@@ -114,8 +114,8 @@ TEST(LoopClosureMethod, ARegisteredMethodIsScoredByTheBenchLikeABuiltInAndCompos
   ASSERT_EQ(result.runs.size(), 2u);  // slcd was scored as an input, not reported
   EXPECT_EQ(result.runs[0].metrics.mrr, 1.0);
   EXPECT_EQ(result.runs[1].name, "test-negated-slcd");
-  EXPECT_GT(result.mean_keypoints_per_frame, 0.0);   // slcd's front end ran for its reader
-  EXPECT_FALSE(result.tracking_evaluated);           // nobody needed the person front end
+  EXPECT_GT(result.mean_keypoints_per_frame, 0.0);  // slcd's front end ran for its reader
+  EXPECT_FALSE(result.tracking_evaluated);          // nobody needed the person front end
   options.methods = {"slcd"};
   const BenchResult slcd = RunBench(dataset, options);
   for (size_t i = 0; i < slcd.queries.size(); ++i) {
@@ -130,7 +130,8 @@ TEST(LoopClosureMethod, ARegisteredMethodIsScoredByTheBenchLikeABuiltInAndCompos
 std::vector<std::vector<std::string>> pass_calls;
 class Passing : public LoopClosureMethod {
  public:
-  Passing(std::string name, std::string key, double value) : name_(std::move(name)), key_(std::move(key)), value_(value) {}
+  Passing(std::string name, std::string key, double value)
+      : name_(std::move(name)), key_(std::move(key)), value_(value) {}
   std::string Name() const override { return name_; }
   std::string Description() const override { return "shares a pass"; }
   MethodScores Score(const MethodContext& c) const override {
@@ -215,7 +216,8 @@ TEST(LoopClosureMethod, PointSetMethodsOnOneIndexWithOneMatchingShareAPassAndSco
     }
   }
   for (const std::vector<std::string>& params :
-       {std::vector<std::string>{}, std::vector<std::string>{"slcd-lo.vertical_tolerance=0.2", "dlcd.ransac_trials=30"}}) {
+       {std::vector<std::string>{},
+        std::vector<std::string>{"slcd-lo.vertical_tolerance=0.2", "dlcd.ransac_trials=30"}}) {
     BenchOptions options;
     options.params = params;
     options.methods = point_sets;

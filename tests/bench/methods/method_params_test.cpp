@@ -1,14 +1,14 @@
 #include "hoilcd/bench/methods/method_params.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/methods/methods.h"
+#include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/core/matching/track_aware_matching.h"
 #include "hoilcd/core/place_recognition/temporal_consistency.h"
-#include "hoilcd/bench/runner/runner.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "option_properties.h"
 #include "test_dir.h"
@@ -34,13 +34,16 @@ TEST(MethodParams, EveryBadParamIsAnErrorNamingItAndWhatWasExpected) {
   EXPECT_NE(ParamError("ransac_trials=50").find("--param: 'ransac_trials=50': expected NAME=VALUE with NAME = <method"),
             std::string::npos);
   EXPECT_NE(ParamError("slcd.ransac_trials").find("'slcd.ransac_trials': expected NAME=VALUE"), std::string::npos);
-  EXPECT_NE(ParamError("superglue.k=1").find("'superglue.k=1': expected NAME=VALUE with NAME = <method or front end>"
-                                             ".<field>, the method or front end one of: slcd, dlcd"),
+  EXPECT_NE(ParamError("superglue.k=1")
+                .find("'superglue.k=1': expected NAME=VALUE with NAME = <method or front end>"
+                      ".<field>, the method or front end one of: slcd, dlcd"),
             std::string::npos);
   EXPECT_NE(ParamError("slcd.trials=5").find("'slcd.trials=5': expected an option name (one of: ransac_trials"),
-            std::string::npos) << ParamError("slcd.trials=5");
+            std::string::npos)
+      << ParamError("slcd.trials=5");
   EXPECT_NE(ParamError("slcd.ransac_trials=many").find("'slcd.ransac_trials=many': expected a whole number"),
-            std::string::npos) << ParamError("slcd.ransac_trials=many");
+            std::string::npos)
+      << ParamError("slcd.ransac_trials=many");
   EXPECT_NE(ParamError("slcd.ransac_trials=0").find("'slcd.ransac_trials=0': ransac_trials"), std::string::npos)
       << ParamError("slcd.ransac_trials=0");
   EXPECT_NE(ParamError("thumb.x=1").find("method thumb has no parameters"), std::string::npos);
@@ -101,7 +104,8 @@ TEST(MethodParams, EveryMethodsOptionsAreSetCheckedAndReadBackThroughItsParams) 
       const double value = field.kind == OptionInfo::Kind::kInteger ? base + 1 : (base == 0 ? 0.5 : base / 2);
       const std::string param =
           m->Name() + "." + field.name + "=" +
-          (field.kind == OptionInfo::Kind::kInteger ? std::to_string(static_cast<long long>(value)) : std::to_string(value));
+          (field.kind == OptionInfo::Kind::kInteger ? std::to_string(static_cast<long long>(value))
+                                                    : std::to_string(value));
       if (!field.range.Contains(value)) continue;
       EXPECT_EQ(ParamError(param, {m->Name()}), "") << param;
       const auto set = OptionsWithParams(*m, {param, "other.x=1"});

@@ -1,9 +1,9 @@
 // The oracle front ends and methods (dlcd-oracle, slcd-ideal): what they read of the ground truth,
 // that they equal their models where the ground truth is what the camera saw, and what happens on
 // a dataset without the ground truth they need.
-#include <gtest/gtest.h>
-
 #include <algorithm>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/methods/front_end_input.h"
 #include "hoilcd/bench/methods/front_ends.h"
@@ -22,10 +22,10 @@ namespace hoilcd {
 namespace {
 
 // Every effect of the camera's own switched off: what it outputs is the true temperature.
-const std::vector<std::string> kIdealSensor = {
-    "camera.optics_blur=false", "camera.temporal_noise=false", "camera.fixed_pattern=false",
-    "camera.drift=false",       "camera.lens_shading=false",   "camera.ffc_freeze=false",
-    "camera.time_constant=false", "camera.quantisation=false"};
+const std::vector<std::string> kIdealSensor = {"camera.optics_blur=false",   "camera.temporal_noise=false",
+                                               "camera.fixed_pattern=false", "camera.drift=false",
+                                               "camera.lens_shading=false",  "camera.ffc_freeze=false",
+                                               "camera.time_constant=false", "camera.quantisation=false"};
 
 // The person pixels of frame f, from the EXR's class channel, computed here without the bench.
 cv::Mat PersonMaskOf(const Dataset& dataset, int f) {
@@ -62,7 +62,7 @@ TEST(Oracles, TruePersonHoiPointsAreTheHoiExtractionOfTheGroundTruthPeople) {
     }
     points += static_cast<int>(expected.size());
   }
-  EXPECT_GT(points, 100);  // the table's people are in view: the comparison is not of empty sets
+  EXPECT_GT(points, 100);        // the table's people are in view: the comparison is not of empty sets
   EXPECT_TRUE(out.hoi.empty());  // no detector, no tracker
 }
 

@@ -1,19 +1,17 @@
 #include "hoilcd/bench/pipeline/run.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
 #include <map>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/output/sequence.h"
-#include "option_properties.h"
 #include "input_error_of.h"
+#include "option_properties.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -109,7 +107,6 @@ TEST(RunScene, StaleCacheWithAnUnreadableManifestKeepsAndNamesTheUsersFiles) {
   fs::remove(first.dataset_dir + "/notes.txt");
   EXPECT_FALSE(RunScene(scene, bench, options).timing.render_cached);
 }
-
 
 // Each method's loop threshold as the SLAM section used it (NaN when none), by method.
 std::map<std::string, double> ThresholdsOf(const RunOutcome& outcome) {

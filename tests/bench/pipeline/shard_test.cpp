@@ -2,9 +2,9 @@
 // exactly once for any number of shards (the syntax: tests/core/util/shard_test.cpp).
 #include "hoilcd/bench/pipeline/shard.h"
 
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

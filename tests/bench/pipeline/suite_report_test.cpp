@@ -4,13 +4,13 @@
 // nor failed, naming the folder; a shard stopped early is run again alone and then merges.
 #include "hoilcd/bench/pipeline/suite_report.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/pipeline/suite.h"
 #include "hoilcd/core/util/file_io.h"
@@ -33,8 +33,10 @@ class SuiteShards : public ::testing::Test {
       "name": "shards",
       "description": "a tiny room on four seeds, and a missing scene",
       "sequences": [
-        {"name": "tiny", "scene": ")" + tiny + R"(", "seeds": [1, 2, 3], )" + small + R"(], "split": "dev"},
-        {"name": "pairs", "scene": ")" + tiny + R"(", "seeds": [4], )" + small + R"(, "crowd.people_per_table=2"],
+        {"name": "tiny", "scene": ")" + tiny +
+                                           R"(", "seeds": [1, 2, 3], )" + small + R"(], "split": "dev"},
+        {"name": "pairs", "scene": ")" + tiny +
+                                           R"(", "seeds": [4], )" + small + R"(, "crowd.people_per_table=2"],
          "split": "test"},
         {"name": "missing", "scene": "does_not_exist.json", "seeds": [1], "split": "test"}
       ]
@@ -115,7 +117,9 @@ TEST_F(SuiteShards, TheWholeReportScoresEveryFinishedRunAndListsTheFailedOne) {
   for (const nlohmann::json& m : report["methods"]) EXPECT_TRUE(m["mrr"]["mean"].is_number()) << m.dump();
 }
 
-TEST_F(SuiteShards, TwoShardsMergedWriteTheUnshardedReportByteForByte) { ExpectTheWholeSuitesReport(Shards(2), "merged2"); }
+TEST_F(SuiteShards, TwoShardsMergedWriteTheUnshardedReportByteForByte) {
+  ExpectTheWholeSuitesReport(Shards(2), "merged2");
+}
 
 TEST_F(SuiteShards, ThreeShardsMergedInAnyOrderWriteTheUnshardedReportByteForByte) {
   const std::vector<std::string> dirs = Shards(3);
@@ -157,8 +161,11 @@ TEST_F(SuiteShards, AMergeNamesAMissingShardAndItsRuns) {
 }
 
 TEST_F(SuiteShards, AMergeNamesARepeatedShardAndShardsOfAnotherSplitting) {
-  const std::string twice = InputErrorOf([&] { MergeSuite({Dir(ShardDir(0, 2)), Dir(ShardDir(1, 2)), Dir(ShardDir(0, 2))}); });
-  EXPECT_NE(twice.find(Dir(ShardDir(0, 2)) + ": is shard 0/2, as " + Dir(ShardDir(0, 2)) + " is"), std::string::npos) << twice;
+  const std::string twice = InputErrorOf([&] {
+    MergeSuite({Dir(ShardDir(0, 2)), Dir(ShardDir(1, 2)), Dir(ShardDir(0, 2))});
+  });
+  EXPECT_NE(twice.find(Dir(ShardDir(0, 2)) + ": is shard 0/2, as " + Dir(ShardDir(0, 2)) + " is"), std::string::npos)
+      << twice;
   const std::string mixed = InputErrorOf([&] { MergeSuite({Dir(ShardDir(0, 2)), Dir(ShardDir(1, 3))}); });
   EXPECT_NE(mixed.find(Dir(ShardDir(1, 3)) + ": is shard 1/3 but"), std::string::npos) << mixed;
 }
@@ -196,7 +203,8 @@ TEST_F(SuiteShards, AMergeNamesEveryWayAShardFolderCanBeDamaged) {
   };
   const std::vector<Damage> damages = {
       {[](nlohmann::json* m, const std::string&) { m->erase("identity"); }, "suite.json: has no \"identity\""},
-      {[](nlohmann::json* m, const std::string&) { (*m)["identity"] = 3; }, "suite.json: /identity: expected an object"},
+      {[](nlohmann::json* m, const std::string&) { (*m)["identity"] = 3; },
+       "suite.json: /identity: expected an object"},
       {[](nlohmann::json* m, const std::string&) { (*m)["shard"]["index"] = 2; },
        "suite.json: /shard: the shard index must be in 0..1"},
       {[](nlohmann::json* m, const std::string&) { (*m)["shard"]["index"] = "x"; }, "suite.json: malformed suite.json"},
@@ -207,7 +215,8 @@ TEST_F(SuiteShards, AMergeNamesEveryWayAShardFolderCanBeDamaged) {
          r["seed"] = 7;
          WriteFileAtomic(dir + "/suite_run.json", r.dump());
        },
-       ": shard 1/2 has no finished run tiny-seed2 (" + Dir("damaged") + "/runs/tiny-seed2/suite_run.json records another run)"},
+       ": shard 1/2 has no finished run tiny-seed2 (" + Dir("damaged") +
+           "/runs/tiny-seed2/suite_run.json records another run)"},
       {[&](nlohmann::json*, const std::string& dir) {
          nlohmann::json r = record(dir);
          r["bench"]["methods"] = {"slcd"};
@@ -217,7 +226,8 @@ TEST_F(SuiteShards, AMergeNamesEveryWayAShardFolderCanBeDamaged) {
       {[](nlohmann::json*, const std::string& dir) { WriteFileAtomic(dir + "/suite_run.json", "{"); },
        "(no readable suite_run.json beside " + Dir("damaged") + "/runs/tiny-seed2/report.json)"},
       {[](nlohmann::json*, const std::string& dir) { fs::remove(dir + "/report.json"); },
-       "(no report.json in " + Dir("damaged") + "/runs/tiny-seed2); its suite.json says it finished: run the shard again"},
+       "(no report.json in " + Dir("damaged") +
+           "/runs/tiny-seed2); its suite.json says it finished: run the shard again"},
   };
   for (const Damage& damage : damages) {
     const std::string copy = Dir("damaged");
@@ -228,7 +238,8 @@ TEST_F(SuiteShards, AMergeNamesEveryWayAShardFolderCanBeDamaged) {
     WriteFileAtomic(copy + "/suite.json", marker.dump(2));
     const std::string message = InputErrorOf([&] { MergeSuite({Dir(ShardDir(0, 2)), copy}); });
     EXPECT_NE(message.find(copy), std::string::npos) << message;
-    EXPECT_NE(message.find(damage.expected), std::string::npos) << "expected '" << damage.expected << "' in:\n" << message;
+    EXPECT_NE(message.find(damage.expected), std::string::npos) << "expected '" << damage.expected << "' in:\n"
+                                                                << message;
   }
 }
 

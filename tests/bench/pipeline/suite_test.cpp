@@ -1,16 +1,16 @@
 // Suite files: a valid file read with paths resolved against its folder, runs sorted by name and
 // chosen by split and shard, the identity a merge compares, and every problem a user can write
 // reported with the file and JSON pointer.
-#include "cpu_seconds.h"
 #include "hoilcd/bench/pipeline/suite.h"
-
-#include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
 #include <set>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "cpu_seconds.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/sizes.h"
 #include "hoilcd/sim/generate/generator.h"
@@ -58,59 +58,90 @@ class SuiteErrors : public testing::TestWithParam<BadSuite> {};
 TEST_P(SuiteErrors, NameTheFilePointerAndWhatWasExpected) {
   const std::string message = test::InputErrorOf([&] { ParseSuite(GetParam().text, "my_suite.json"); });
   EXPECT_NE(message.find("my_suite.json"), std::string::npos) << message;
-  EXPECT_NE(message.find(GetParam().expected), std::string::npos) << "expected '" << GetParam().expected << "' in:\n" << message;
+  EXPECT_NE(message.find(GetParam().expected), std::string::npos) << "expected '" << GetParam().expected << "' in:\n"
+                                                                  << message;
 }
 
-std::string One(const std::string& sequence) {
-  return R"({"name": "s", "sequences": [)" + sequence + "]}";
-}
+std::string One(const std::string& sequence) { return R"({"name": "s", "sequences": [)" + sequence + "]}"; }
 
 INSTANTIATE_TEST_SUITE_P(
     Suite, SuiteErrors,
     testing::Values(
-        BadSuite{"{", "invalid JSON"},
-        BadSuite{"[]", "/: expected an object"},
-        BadSuite{R"({"sequences": []})", "/name: missing"},
-        BadSuite{R"({"name": "s"})", "/sequences: missing"},
+        BadSuite{"{", "invalid JSON"}, BadSuite{"[]", "/: expected an object"},
+        BadSuite{R"({"sequences": []})", "/name: missing"}, BadSuite{R"({"name": "s"})", "/sequences: missing"},
         BadSuite{R"({"name": "s", "sequences": []})", "/sequences: expected at least one sequence"},
         BadSuite{R"({"name": "s", "sequences": {}})", "/sequences: expected an array"},
         BadSuite{R"({"name": "s", "sequences": [{}], "typo": 1})", "/typo: unknown key"},
         BadSuite{One("3"), "/sequences/0: expected an object"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "split": "dev", "seed": 2})"), "/sequences/0/seed: unknown key"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "split": "dev", "seed": 2})"),
+                 "/sequences/0/seed: unknown key"},
         BadSuite{One(R"({"scene": "x.json", "seeds": [1], "split": "dev"})"), "/sequences/0/name: missing"},
-        BadSuite{One(R"({"name": "a b", "scene": "x.json", "seeds": [1], "split": "dev"})"), "/sequences/0/name: expected 1-100 letters"},
-        BadSuite{One(R"({"name": "a", "seeds": [1], "split": "dev"})"), "/sequences/0: expected exactly one of \"scene\""},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "generate": {}, "seeds": [1], "split": "dev"})"), "expected exactly one of"},
-        BadSuite{One(R"({"name": "a", "scene": 3, "seeds": [1], "split": "dev"})"), "/sequences/0/scene: expected a string"},
-        BadSuite{One(R"({"name": "a", "scene": "", "seeds": [1], "split": "dev"})"), "/sequences/0/scene: expected a scene file path"},
-        BadSuite{One(R"({"name": "a", "generate": [], "seeds": [1], "split": "dev"})"), "/sequences/0/generate: expected an object"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": 0, "count": 2}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/count: unknown key"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "castle", "seed": 1, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/layout: expected a layout family"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: missing"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": -1, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: expected a non-negative integer"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": -2}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/index: expected a scene index in [0, 10000], got -2"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": 10001}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/index: expected a scene index in [0, 10000], got 10001"},
-        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 9007199254740993, "index": 0}, "seeds": [1], "split": "dev"})"), "/sequences/0/generate/seed: expected a seed in [0, 9007199254740992], got 9007199254740993"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "seeds": [2], "split": "dev"})"), "/sequences/0/seeds: the key \"seeds\" is repeated in one object"},
-        BadSuite{R"({"name": "s", "name": "t", "sequences": []})", "my_suite.json: /name: the key \"name\" is repeated"},
+        BadSuite{One(R"({"name": "a b", "scene": "x.json", "seeds": [1], "split": "dev"})"),
+                 "/sequences/0/name: expected 1-100 letters"},
+        BadSuite{One(R"({"name": "a", "seeds": [1], "split": "dev"})"),
+                 "/sequences/0: expected exactly one of \"scene\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "generate": {}, "seeds": [1], "split": "dev"})"),
+                 "expected exactly one of"},
+        BadSuite{One(R"({"name": "a", "scene": 3, "seeds": [1], "split": "dev"})"),
+                 "/sequences/0/scene: expected a string"},
+        BadSuite{One(R"({"name": "a", "scene": "", "seeds": [1], "split": "dev"})"),
+                 "/sequences/0/scene: expected a scene file path"},
+        BadSuite{One(R"({"name": "a", "generate": [], "seeds": [1], "split": "dev"})"),
+                 "/sequences/0/generate: expected an object"},
+        BadSuite{
+            One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": 0, "count": 2}, "seeds": [1], "split": "dev"})"),
+            "/sequences/0/generate/count: unknown key"},
+        BadSuite{
+            One(R"({"name": "a", "generate": {"layout": "castle", "seed": 1, "index": 0}, "seeds": [1], "split": "dev"})"),
+            "/sequences/0/generate/layout: expected a layout family"},
+        BadSuite{One(R"({"name": "a", "generate": {"layout": "lounge", "index": 0}, "seeds": [1], "split": "dev"})"),
+                 "/sequences/0/generate/seed: missing"},
+        BadSuite{
+            One(R"({"name": "a", "generate": {"layout": "lounge", "seed": -1, "index": 0}, "seeds": [1], "split": "dev"})"),
+            "/sequences/0/generate/seed: expected a non-negative integer"},
+        BadSuite{
+            One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": -2}, "seeds": [1], "split": "dev"})"),
+            "/sequences/0/generate/index: expected a scene index in [0, 10000], got -2"},
+        BadSuite{
+            One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 1, "index": 10001}, "seeds": [1], "split": "dev"})"),
+            "/sequences/0/generate/index: expected a scene index in [0, 10000], got 10001"},
+        BadSuite{
+            One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 9007199254740993, "index": 0}, "seeds": [1], "split": "dev"})"),
+            "/sequences/0/generate/seed: expected a seed in [0, 9007199254740992], got 9007199254740993"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "seeds": [2], "split": "dev"})"),
+                 "/sequences/0/seeds: the key \"seeds\" is repeated in one object"},
+        BadSuite{R"({"name": "s", "name": "t", "sequences": []})",
+                 "my_suite.json: /name: the key \"name\" is repeated"},
         BadSuite{One(R"({"name": "a", "scene": "x.json", "split": "dev"})"), "/sequences/0/seeds: missing"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": 1, "split": "dev"})"), "/sequences/0/seeds: expected an array"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [], "split": "dev"})"), "/sequences/0/seeds: expected at least one seed"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1.5], "split": "dev"})"), "/sequences/0/seeds/0: expected a 32-bit integer"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [-1], "split": "dev"})"), "/sequences/0/seeds/0: expected a non-negative seed"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1, 1], "split": "dev"})"), "/sequences/0/seeds/1: seed 1 is listed twice"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": "frames=3", "split": "dev"})"), "/sequences/0/set: expected an array"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": [3], "split": "dev"})"), "/sequences/0/set/0: expected a string"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": ["frames"], "split": "dev"})"), "/sequences/0/set/0: expected \"key=value\""},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": ["seed=4"], "split": "dev"})"), "/sequences/0/set/0: the seed is given by \"seeds\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": 1, "split": "dev"})"),
+                 "/sequences/0/seeds: expected an array"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [], "split": "dev"})"),
+                 "/sequences/0/seeds: expected at least one seed"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1.5], "split": "dev"})"),
+                 "/sequences/0/seeds/0: expected a 32-bit integer"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [-1], "split": "dev"})"),
+                 "/sequences/0/seeds/0: expected a non-negative seed"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1, 1], "split": "dev"})"),
+                 "/sequences/0/seeds/1: seed 1 is listed twice"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": "frames=3", "split": "dev"})"),
+                 "/sequences/0/set: expected an array"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": [3], "split": "dev"})"),
+                 "/sequences/0/set/0: expected a string"},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": ["frames"], "split": "dev"})"),
+                 "/sequences/0/set/0: expected \"key=value\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": ["seed=4"], "split": "dev"})"),
+                 "/sequences/0/set/0: the seed is given by \"seeds\""},
         BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1]})"), "/sequences/0/split: missing"},
-        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "split": "train"})"), "/sequences/0/split: expected \"dev\" or \"test\""},
+        BadSuite{One(R"({"name": "a", "scene": "x.json", "seeds": [1], "split": "train"})"),
+                 "/sequences/0/split: expected \"dev\" or \"test\""},
         BadSuite{R"({"name": "s", "sequences": [{"name": "a", "scene": "x.json", "seeds": [1], "split": "dev"},
                                                   {"name": "a", "scene": "y.json", "seeds": [1], "split": "dev"}]})",
                  "/sequences/1/name: sequence name \"a\" is used twice"}));
 
 TEST(Suite, AGeneratedSceneIndexAndSeedAtTheirBoundsAreRead) {
-  const Suite suite = ParseSuite(One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 9007199254740992, "index": 10000}, "seeds": [1], "split": "dev"})"), "s.json");
+  const Suite suite = ParseSuite(
+      One(R"({"name": "a", "generate": {"layout": "lounge", "seed": 9007199254740992, "index": 10000}, "seeds": [1], "split": "dev"})"),
+      "s.json");
   EXPECT_EQ(suite.sequences[0].generator_seed, kMaxSeed);
   EXPECT_EQ(suite.sequences[0].generator_index, kMaxGeneratedSceneIndex);
 }
@@ -126,14 +157,19 @@ TEST(Suite, NestingAHundredThousandDeepOrAHundredThousandItemsIsRefusedWithinTwo
   for (int i = 0; i < 100000; ++i) {
     many_seeds += (i ? "," : "") + std::to_string(i);
     many_sets += std::string(i ? "," : "") + "\"crowd.walkers=" + std::to_string(i) + "\"";
-    many_sequences += std::string(i ? "," : "") + R"({"name": "a)" + std::to_string(i) + R"(", "scene": "x.json", "seeds": [1], "split": "dev"})";
+    many_sequences += std::string(i ? "," : "") + R"({"name": "a)" + std::to_string(i) +
+                      R"(", "scene": "x.json", "seeds": [1], "split": "dev"})";
   }
   const std::pair<std::string, std::string> cases[] = {
       {R"({"name": "s", "description": )" + deep + "}", "my_suite.json: /description/0/0/"},
-      {One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": )" + deep + R"(, "split": "dev"})"), "my_suite.json: /sequences/0/set/0/"},
-      {One(R"({"name": "a", "scene": "x.json", "seeds": [)" + many_seeds + R"(], "split": "dev"})"), "my_suite.json: /sequences/0/seeds: holds 100000 items; expected at most 10000"},
-      {One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": [)" + many_sets + R"(], "split": "dev"})"), "my_suite.json: /sequences/0/set: holds 100000 items; expected at most 256"},
-      {R"({"name": "s", "sequences": [)" + many_sequences + "]}", "my_suite.json: /sequences: holds 100000 items; expected at most 10000"}};
+      {One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": )" + deep + R"(, "split": "dev"})"),
+       "my_suite.json: /sequences/0/set/0/"},
+      {One(R"({"name": "a", "scene": "x.json", "seeds": [)" + many_seeds + R"(], "split": "dev"})"),
+       "my_suite.json: /sequences/0/seeds: holds 100000 items; expected at most 10000"},
+      {One(R"({"name": "a", "scene": "x.json", "seeds": [1], "set": [)" + many_sets + R"(], "split": "dev"})"),
+       "my_suite.json: /sequences/0/set: holds 100000 items; expected at most 256"},
+      {R"({"name": "s", "sequences": [)" + many_sequences + "]}",
+       "my_suite.json: /sequences: holds 100000 items; expected at most 10000"}};
   for (const auto& [text, expected] : cases) {
     const auto [seconds, error] = seconds_and_error(text);
     EXPECT_LT(seconds, 2.0) << expected;
@@ -201,7 +237,8 @@ TEST(Suite, IdentityKnowsASceneByItsBytesNotItsPathAndHoldsOnlyTheSplitsSequence
   WriteFileAtomic(there / "elsewhere/room.json", scene);
   const auto suite_text = [](const std::string& scene_path) {
     return R"({"name": "s", "sequences": [
-      {"name": "room", "scene": ")" + scene_path + R"(", "seeds": [1, 2], "split": "dev"},
+      {"name": "room", "scene": ")" +
+           scene_path + R"(", "seeds": [1, 2], "split": "dev"},
       {"name": "gen", "generate": {"layout": "lounge", "seed": 3, "index": 0}, "seeds": [5], "set": ["frames=9"], "split": "test"}]})";
   };
   const nlohmann::json bench = {{"methods", {"slcd"}}};
@@ -212,8 +249,9 @@ TEST(Suite, IdentityKnowsASceneByItsBytesNotItsPathAndHoldsOnlyTheSplitsSequence
   const nlohmann::json identity = SuiteIdentity(a, "all", bench);
   EXPECT_EQ(identity["sequences"][0]["scene_checksum"], ChecksumOf(scene));
   // A generated sequence by its spec and the generator's version (another version, another scene).
-  EXPECT_EQ(identity["sequences"][1]["generate"],
-            (nlohmann::json{{"layout", "lounge"}, {"seed", 3}, {"index", 0}, {"generator_version", kGeneratorVersion}}));
+  EXPECT_EQ(
+      identity["sequences"][1]["generate"],
+      (nlohmann::json{{"layout", "lounge"}, {"seed", 3}, {"index", 0}, {"generator_version", kGeneratorVersion}}));
   EXPECT_EQ(identity["runs"], (nlohmann::json{"gen-seed5", "room-seed1", "room-seed2"}));
   EXPECT_EQ(identity["bench"], bench);
   const nlohmann::json dev = SuiteIdentity(a, "dev", bench);
@@ -222,7 +260,8 @@ TEST(Suite, IdentityKnowsASceneByItsBytesNotItsPathAndHoldsOnlyTheSplitsSequence
   EXPECT_EQ(dev["runs"], (nlohmann::json{"room-seed1", "room-seed2"}));
 
   WriteFileAtomic(there / "elsewhere/room.json", R"({"name": "room", "frames": 11})");
-  EXPECT_NE(SuiteIdentity(b, "all", bench)["sequences"][0]["scene_checksum"], identity["sequences"][0]["scene_checksum"]);
+  EXPECT_NE(SuiteIdentity(b, "all", bench)["sequences"][0]["scene_checksum"],
+            identity["sequences"][0]["scene_checksum"]);
   std::filesystem::remove(there / "elsewhere/room.json");
   EXPECT_TRUE(SuiteIdentity(b, "all", bench)["sequences"][0]["scene_checksum"].is_null());
 }

@@ -1,16 +1,15 @@
 #include "hoilcd/bench/pipeline/sweep.h"
 
-#include "hoilcd/bench/pipeline/sweep_summary.h"
-
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "hoilcd/bench/pipeline/sweep_summary.h"
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
 #include "input_error_of.h"
@@ -39,9 +38,9 @@ TEST(SweepValues, AxisValuesAreCanonicalJsonSoSpacingDoesNotNameANewRun) {
 }
 
 TEST(SweepValues, BadSetSyntaxIsAnErrorNamingTheFlag) {
-  for (const std::string bad : {"crowd.people_per_table", "=1,2", "crowd.people_per_table=1,,2",
-                                "crowd.people_per_table=1,", "k=[1,2", "k=1]", "k=\"open", "seed=1,2",
-                                "crowd.people_per_table=1,1"}) {
+  for (const std::string bad :
+       {"crowd.people_per_table", "=1,2", "crowd.people_per_table=1,,2", "crowd.people_per_table=1,", "k=[1,2", "k=1]",
+        "k=\"open", "seed=1,2", "crowd.people_per_table=1,1"}) {
     const std::string message = InputErrorOf([&] { ParseSweepAxis(bad); });
     EXPECT_NE(message.find("--set"), std::string::npos) << bad << " gave: " << message;
   }
@@ -66,9 +65,10 @@ TEST(SweepOptions, HoldTheirTablesDefaultsAndNameAMissingFolderABadShardAndABadR
 // file system takes as a folder name, so the folder keeps a prefix and a hash of the whole name.
 TEST(SweepRunSpec, ALongRunNameGetsAShortDistinctFolderAndAShortOneKeepsItsName) {
   SweepRunSpec a, b, short_run;
-  for (const char* key : {"crowd.garments.enabled", "crowd.garments.skin_pattern", "crowd.contact_heat.enabled",
-                          "room.surfaces.thermal_bridges", "room.surfaces.radiator_plume", "room.surfaces.glass_from_u_value",
-                          "room.surfaces.window_frames", "room.surfaces.texture", "room.hvac.enabled", "room.sun.enabled"}) {
+  for (const char* key :
+       {"crowd.garments.enabled", "crowd.garments.skin_pattern", "crowd.contact_heat.enabled",
+        "room.surfaces.thermal_bridges", "room.surfaces.radiator_plume", "room.surfaces.glass_from_u_value",
+        "room.surfaces.window_frames", "room.surfaces.texture", "room.hvac.enabled", "room.sun.enabled"}) {
     a.settings.emplace_back(key, "false");
     b.settings.emplace_back(key, "false");
   }
@@ -324,9 +324,9 @@ TEST(SweepPlanMaking, AValueTheSceneRejectsFailsBeforeRendering) {
   EXPECT_NE(message.find("--set"), std::string::npos) << message;
   EXPECT_NE(message.find("crowd.people_per_table=9"), std::string::npos) << message;
   EXPECT_NE(InputErrorOf([&] { MakeSweepPlan(scene, {}, 0, BenchOptions{}); }).find("--seeds"), std::string::npos);
-  EXPECT_NE(InputErrorOf([&] { MakeSweepPlan(scene, {"crowd.people_per_table=1", "crowd.people_per_table=2"}, 1,
-                                             BenchOptions{}); })
-                .find("--set"),
+  EXPECT_NE(InputErrorOf([&] {
+              MakeSweepPlan(scene, {"crowd.people_per_table=1", "crowd.people_per_table=2"}, 1, BenchOptions{});
+            }).find("--set"),
             std::string::npos);
 }
 
@@ -338,9 +338,10 @@ TEST(SweepPlanMaking, ACrossProductBeyondAHundredThousandRunsIsRefusedByNameBefo
   const std::string message = InputErrorOf([&] {
     MakeSweepPlan(scene, {"crowd.walkers=" + values, "frames=" + values}, 10000, BenchOptions{});
   });
-  EXPECT_NE(message.find("--set: 1000 values of crowd.walkers x 1000 values of frames x 10000 seeds is 10000000000 runs; "
-                         "at most 100000"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find("--set: 1000 values of crowd.walkers x 1000 values of frames x 10000 seeds is 10000000000 runs; "
+                   "at most 100000"),
+      std::string::npos)
       << message;
 }
 

@@ -1,7 +1,5 @@
 #include "hoilcd/bench/realism/flir_jpeg.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "hoilcd/bench/realism/real_frames.h"
@@ -41,7 +40,8 @@ uint16_t RawOf(const FlirCalibration& c, double temperature_k) {
   const auto black_body = [&](double t_k) {
     return c.planck_r1 / (c.planck_r2 * (std::exp(c.planck_b / t_k) - c.planck_f)) - c.planck_o;
   };
-  const double raw = c.emissivity * black_body(temperature_k) + (1 - c.emissivity) * black_body(c.reflected_temperature_k);
+  const double raw =
+      c.emissivity * black_body(temperature_k) + (1 - c.emissivity) * black_body(c.reflected_temperature_k);
   return static_cast<uint16_t>(std::lround(raw));
 }
 
@@ -197,7 +197,8 @@ TEST(FlirJpeg, AnObjectAtTheReflectedTemperatureReadsItWhateverItsEmissivity) {
   for (const double emissivity : {0.1, 0.5, 0.96, 1.0}) {
     FlirCalibration c = LinearLoadCalibration();
     c.emissivity = emissivity;
-    const double raw = c.planck_r1 / (c.planck_r2 * (std::exp(c.planck_b / c.reflected_temperature_k) - c.planck_f)) - c.planck_o;
+    const double raw =
+        c.planck_r1 / (c.planck_r2 * (std::exp(c.planck_b / c.reflected_temperature_k) - c.planck_f)) - c.planck_o;
     EXPECT_NEAR(c.TemperatureC(raw), c.reflected_temperature_k - 273.15, 1e-9) << emissivity;
   }
 }
@@ -239,7 +240,8 @@ template <typename Fn>
 void ExpectError(Fn fn, const std::vector<std::string>& parts) {
   const std::string message = InputErrorOf(fn);
   ASSERT_FALSE(message.empty()) << "no InputError; expected " << parts.front();
-  for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message << "\nlacks: " << part;
+  for (const std::string& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << message << "\nlacks: " << part;
 }
 
 TEST(FlirJpeg, MalformedFilesAreInputErrorsNamingTheFileAndWhatWasExpected) {
@@ -279,7 +281,8 @@ TEST(FlirJpeg, MalformedFilesAreInputErrorsNamingTheFileAndWhatWasExpected) {
          {"FLIR APP1 segment at byte 2 holds 6 bytes: expected at least 8 (its chunk header)"});
   expect("two_lasts.jpg", Jpeg(App1(Chunk(0, 1, good)) + App1(Chunk(1, 2, ""))),
          {"FLIR APP1 chunks give 1 and 2 as the last chunk's index"});
-  expect("beyond_last.jpg", Jpeg(App1(Chunk(2, 1, good))), {"FLIR APP1 chunk 2 of 0..1: expected an index up to the last"});
+  expect("beyond_last.jpg", Jpeg(App1(Chunk(2, 1, good))),
+         {"FLIR APP1 chunk 2 of 0..1: expected an index up to the last"});
   expect("twice.jpg", Jpeg(App1(Chunk(0, 0, good)) + App1(Chunk(0, 0, good))), {"FLIR APP1 chunk 0 appears twice"});
   expect("no_raw.jpg", FlirJpeg(Fff({{0x20, camera_info}})), {"no FLIR record 0x1 (raw thermal image)"});
   expect("no_camera_info.jpg", FlirJpeg(Fff({{0x01, raw_record}})), {"no FLIR record 0x20 (camera info)"});

@@ -1,11 +1,10 @@
 #include "hoilcd/bench/realism/frame_statistics.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <random>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 namespace hoilcd {

@@ -1,11 +1,10 @@
 #include "hoilcd/bench/realism/real_frames.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstring>
 #include <fstream>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "input_error_of.h"
@@ -21,7 +20,8 @@ using test::TestDir;
 cv::Mat Temperatures() {
   cv::Mat t(48, 64, CV_32F);
   for (int y = 0; y < t.rows; ++y)
-    for (int x = 0; x < t.cols; ++x) t.at<float>(y, x) = static_cast<float>(std::round(2000 + 1000.0 * (y * 64 + x) / (48 * 64)) / 100);
+    for (int x = 0; x < t.cols; ++x)
+      t.at<float>(y, x) = static_cast<float>(std::round(2000 + 1000.0 * (y * 64 + x) / (48 * 64)) / 100);
   return t;
 }
 
@@ -32,7 +32,8 @@ cv::Mat Centikelvin(const cv::Mat& t) {
 }
 
 // A .npy file of `values` with dtype `descr` and numpy's header, padded to 64 bytes.
-void WriteNpy(const std::string& path, const std::string& descr, const std::string& shape, const void* data, size_t bytes) {
+void WriteNpy(const std::string& path, const std::string& descr, const std::string& shape, const void* data,
+              size_t bytes) {
   std::string header = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': " + shape + ", }";
   while ((10 + header.size() + 1) % 64 != 0) header += ' ';
   header += '\n';
@@ -89,7 +90,9 @@ TEST(RealFrames, FloatTiffAndNpyRoundTripInCelsiusAndKelvin) {
   EXPECT_LT(MaxDifference(ReadRealFrame(dir / "k.npy", celsius).image, kelvin_f32), 1e-4);  // as told
   RealFrameOptions in_kelvin;
   in_kelvin.float_unit = "k";
-  EXPECT_NE(InputErrorOf([&] { ReadRealFrame(dir / "c.npy", in_kelvin); }).find("°C (read as kelvin): expected -100 to 1000 °C"),
+  EXPECT_NE(InputErrorOf([&] {
+              ReadRealFrame(dir / "c.npy", in_kelvin);
+            }).find("°C (read as kelvin): expected -100 to 1000 °C"),
             std::string::npos);
   const cv::Mat ck = Centikelvin(t);
   WriteNpy(dir / "counts.npy", "<u2", "(48, 64)", ck.data, ck.total() * 2);
@@ -122,7 +125,8 @@ template <typename Fn>
 void ExpectError(Fn fn, const std::vector<std::string>& parts) {
   const std::string message = InputErrorOf(fn);
   ASSERT_FALSE(message.empty()) << "no InputError; expected " << parts.front();
-  for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message << "\nlacks: " << part;
+  for (const std::string& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << message << "\nlacks: " << part;
 }
 
 TEST(RealFrames, ErrorsNameTheFileAndWhatWasExpected) {
@@ -130,22 +134,28 @@ TEST(RealFrames, ErrorsNameTheFileAndWhatWasExpected) {
   const cv::Mat t = Temperatures();
   const std::string counts = dir / "counts.png";
   ASSERT_TRUE(cv::imwrite(counts, Centikelvin(t)));
-  ExpectError([&] { ReadRealFrame(counts, {}); }, {counts, "16-bit frame holds counts", "--scale 0.01 --offset -273.15"});
+  ExpectError([&] { ReadRealFrame(counts, {}); },
+              {counts, "16-bit frame holds counts", "--scale 0.01 --offset -273.15"});
   RealFrameOptions raw;
   raw.scale = 1;
   raw.offset_c = 0;
-  ExpectError([&] { ReadRealFrame(counts, raw); }, {counts, "temperatures 29315", "scale 1, offset 0", "is the scale, offset or unit right?"});
+  ExpectError([&] { ReadRealFrame(counts, raw); },
+              {counts, "temperatures 29315", "scale 1, offset 0", "is the scale, offset or unit right?"});
   ExpectError([&] { ReadRealFrame(dir / "missing.png", {}); }, {dir / "missing.png"});
   std::ofstream(dir / "broken.png") << "not a png";
-  ExpectError([&] { ReadRealFrame(dir / "broken.png", {}); }, {dir / "broken.png", "cannot decode: expected a PNG, TIFF or JPEG"});
+  ExpectError([&] { ReadRealFrame(dir / "broken.png", {}); },
+              {dir / "broken.png", "cannot decode: expected a PNG, TIFF or JPEG"});
   const float values[4] = {20, 21, 22, 23};
   WriteNpy(dir / "complex.npy", "<c8", "(2, 1)", values, 16);
-  ExpectError([&] { ReadRealFrame(dir / "complex.npy", {}); }, {dir / "complex.npy", "dtype '<c8'", "expected float32 or float64"});
+  ExpectError([&] { ReadRealFrame(dir / "complex.npy", {}); },
+              {dir / "complex.npy", "dtype '<c8'", "expected float32 or float64"});
   cv::Mat big(48, 64, CV_32FC3, cv::Scalar(22, 22, 22));
   WriteNpy(dir / "rgb.npy", "<f4", "(48, 64, 3)", big.data, big.total() * 12);
-  ExpectError([&] { ReadRealFrame(dir / "rgb.npy", {}); }, {dir / "rgb.npy", "shape (48, 64, 3)", "expected (height, width)"});
+  ExpectError([&] { ReadRealFrame(dir / "rgb.npy", {}); },
+              {dir / "rgb.npy", "shape (48, 64, 3)", "expected (height, width)"});
   WriteNpy(dir / "short.npy", "<f4", "(48, 64)", t.data, 100);
-  ExpectError([&] { ReadRealFrame(dir / "short.npy", {}); }, {dir / "short.npy", "holds 100 data bytes: expected 12288"});
+  ExpectError([&] { ReadRealFrame(dir / "short.npy", {}); },
+              {dir / "short.npy", "holds 100 data bytes: expected 12288"});
   cv::Mat with_nan = t.clone();
   with_nan.at<float>(3, 4) = NAN;
   WriteNpy(dir / "nan.npy", "<f4", "(48, 64)", with_nan.data, with_nan.total() * 4);
@@ -159,7 +169,8 @@ TEST(RealFrames, ErrorsNameTheFileAndWhatWasExpected) {
     std::ofstream(dir / name).flush();
     ExpectError([&] { ReadRealFrame(dir / name, {}); }, {dir / name});
   }
-  ExpectError([&] { ReadRealFrame(dir / "empty.jpg", {}); }, {dir / "empty.jpg", "is empty: expected a PNG, TIFF or JPEG image"});
+  ExpectError([&] { ReadRealFrame(dir / "empty.jpg", {}); },
+              {dir / "empty.jpg", "is empty: expected a PNG, TIFF or JPEG image"});
 }
 
 TEST(RealFrames, NonsenseScaleOffsetOrUnitIsRefusedNamingTheFlag) {

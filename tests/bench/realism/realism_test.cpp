@@ -1,10 +1,9 @@
 #include "hoilcd/bench/realism/realism.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <random>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "test_dir.h"
@@ -14,10 +13,10 @@ namespace {
 
 TEST(Realism, WassersteinOfKnownDistributions) {
   EXPECT_DOUBLE_EQ(Wasserstein1({1, 2, 3}, {1, 2, 3}), 0.0);
-  EXPECT_DOUBLE_EQ(Wasserstein1({0, 1}, {0.5, 1.5}), 0.5);         // a shift moves every unit of mass by it
-  EXPECT_DOUBLE_EQ(Wasserstein1({0}, {0, 1}), 0.5);                // half the mass moves by 1
+  EXPECT_DOUBLE_EQ(Wasserstein1({0, 1}, {0.5, 1.5}), 0.5);  // a shift moves every unit of mass by it
+  EXPECT_DOUBLE_EQ(Wasserstein1({0}, {0, 1}), 0.5);         // half the mass moves by 1
   EXPECT_DOUBLE_EQ(Wasserstein1({0, 0, 0, 4}, {1, 1, 1, 1}), 3.0 / 4 * 1 + 1.0 / 4 * 3);
-  EXPECT_DOUBLE_EQ(Wasserstein1({3, 1, 2}, {2, 3, 1}), 0.0);       // order does not matter
+  EXPECT_DOUBLE_EQ(Wasserstein1({3, 1, 2}, {2, 3, 1}), 0.0);  // order does not matter
   EXPECT_TRUE(std::isnan(Wasserstein1({}, {1})));
   // Two normal samples a distance d apart: W1 -> d.
   std::mt19937 rng(1);
@@ -77,20 +76,21 @@ TEST(Realism, ComparisonGivesMediansRatiosAndNotBlankViewsApart) {
   EXPECT_EQ(j["statistics"][0]["views_not_blank"]["synthetic"]["median"], 110);
   const std::string md = c.ToMarkdown();
   EXPECT_NE(md.find("## Views that are not blank"), std::string::npos);
-  EXPECT_NE(md.find("| Shi-Tomasi corners | 240 (220–320, n 3) | 110 (105–115, n 2) | 0.46 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Shi-Tomasi corners | 240 (220–320, n 3) | 110 (105–115, n 2) | 0.46 |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("1 8-bit: no temperature statistics for those"), std::string::npos);
 }
 
 TEST(Realism, StaticPairsAreFramesWhoseCameraBarelyMoved) {
   std::vector<PoseRecord> poses(4);
-  poses[1].cam_x_m = 0.001;                       // 1 mm: static
+  poses[1].cam_x_m = 0.001;  // 1 mm: static
   poses[2].cam_x_m = 0.001;
-  poses[2].cam_yaw_rad = 0.001;                   // 0.057 deg: moving
+  poses[2].cam_yaw_rad = 0.001;  // 0.057 deg: moving
   poses[3] = poses[2];
   EXPECT_TRUE(IsStaticPair(poses, 0));
   EXPECT_FALSE(IsStaticPair(poses, 1));
   EXPECT_TRUE(IsStaticPair(poses, 2));
-  EXPECT_FALSE(IsStaticPair(poses, 3));           // no next frame
+  EXPECT_FALSE(IsStaticPair(poses, 3));  // no next frame
   EXPECT_EQ(StridedFrames(7, 3), (std::vector<int>{0, 3, 6}));
 }
 

@@ -1,8 +1,8 @@
 #include "hoilcd/bench/report/camera_output.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene_options.h"
@@ -33,8 +33,7 @@ TEST(CameraOutput, OptionsHoldTheirTablesDefaultsAndEveryBoundIsChecked) {
 TEST(CameraOutput, VideoModeOffMeasuresThePreviewAndFreezesAndShading) {
   // FFC every second (frame 25), 0.12 s freeze (frames 25–27); strong shading.
   const std::vector<std::string> overrides = {"camera.ffc_interval_s=1", "camera.ffc_freeze_s=0.12",
-                                              "camera.housing_warming_k_per_min=10",
-                                              "camera.vignetting_k_per_k=1"};
+                                              "camera.housing_warming_k_per_min=10", "camera.vignetting_k_per_k=1"};
   const test::TestDir temp;
   const std::string dir = RenderInto(temp, overrides, 30);
   const Dataset dataset = Dataset::Open(dir);
@@ -52,9 +51,9 @@ TEST(CameraOutput, VideoModeOffMeasuresThePreviewAndFreezesAndShading) {
   EXPECT_EQ(s.frozen_frames, 3);
   // Configured: the housing warms 1/6 K/s after each FFC, times (1 + 0.2) K/K corner to centre.
   const BandRadianceTable table;
-  const SensorModel model(SensorOptionsFromScene(LoadScene(
-                              std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides)),
-                          256, 192, 25.0, 1, &table);
+  const SensorModel model(
+      SensorOptionsFromScene(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides)),
+      256, 192, 25.0, 1, &table);
   double configured = 0.0;  // frozen frames are left out of the measurement
   for (int f = 0; f < 30; ++f) {
     if (model.ShownFrame(f) == f) configured += model.ShadingCornerToCentreK(f);

@@ -1,11 +1,10 @@
 #include "hoilcd/bench/report/chart.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "option_properties.h"
@@ -24,7 +23,6 @@ Series MakeSeries(std::string label, std::vector<double> x, std::vector<double> 
   return s;
 }
 
-
 // Pixels of exactly `colour` inside / outside `area`.
 std::pair<int, int> CountColour(const cv::Mat& image, const cv::Scalar& colour, cv::Rect area) {
   cv::Mat mask;
@@ -42,8 +40,7 @@ void ExpectNiceTicks(double lo, double hi, int max_count) {
   }
   const double step = ticks[1] - ticks[0];
   const double mantissa = step / std::pow(10.0, std::floor(std::log10(step) + 1e-9));
-  EXPECT_TRUE(std::abs(mantissa - 1) < 1e-6 || std::abs(mantissa - 2) < 1e-6 ||
-              std::abs(mantissa - 5) < 1e-6)
+  EXPECT_TRUE(std::abs(mantissa - 1) < 1e-6 || std::abs(mantissa - 2) < 1e-6 || std::abs(mantissa - 5) < 1e-6)
       << "step " << step;
   for (std::size_t i = 0; i < ticks.size(); ++i) {
     EXPECT_GE(ticks[i], lo - 1e-9 * step);
@@ -75,7 +72,7 @@ TEST(NiceTicks, ZeroToOneGivesFifths) {
   ASSERT_EQ(ticks.size(), expected.size());
   for (std::size_t i = 0; i < ticks.size(); ++i) EXPECT_NEAR(ticks[i], expected[i], 1e-12);
   EXPECT_EQ(NiceTicks(0.0, 1.0, 11).size(), 11u);  // tenths
-  EXPECT_EQ(NiceTicks(0.13, 0.87, 3).size(), 4u);   // 0.5 alone would be one tick: 0.2 apart
+  EXPECT_EQ(NiceTicks(0.13, 0.87, 3).size(), 4u);  // 0.5 alone would be one tick: 0.2 apart
 }
 
 TEST(NiceTicks, AwkwardRangesGetOneTwoFiveStepsInsideTheRange) {

@@ -45,9 +45,9 @@ TEST(Diagnosis, SplitsEachMethodsMrrByWhetherTheQueryHasHoiPoints) {
   EXPECT_EQ(d.queries_with_hoi, 2);
   EXPECT_EQ(d.queries_without_hoi, 2);
   ASSERT_EQ(d.methods.size(), 3u);
-  EXPECT_DOUBLE_EQ(d.methods[0].mrr_with_hoi, 0.75);     // slcd: (1 + 0.5) / 2
+  EXPECT_DOUBLE_EQ(d.methods[0].mrr_with_hoi, 0.75);  // slcd: (1 + 0.5) / 2
   EXPECT_DOUBLE_EQ(d.methods[0].mrr_without_hoi, 1.0);
-  EXPECT_DOUBLE_EQ(d.methods[1].mrr_with_hoi, 0.75);     // dlcd: (0.5 + 1) / 2
+  EXPECT_DOUBLE_EQ(d.methods[1].mrr_with_hoi, 0.75);  // dlcd: (0.5 + 1) / 2
   EXPECT_DOUBLE_EQ(d.methods[1].mrr_without_hoi, 0.25);
 }
 

@@ -1,14 +1,12 @@
 #include "hoilcd/bench/report/figures.h"
 
-#include "hoilcd/bench/report/chart.h"
-
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <stdexcept>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "hoilcd/bench/report/chart.h"
 #include "option_properties.h"
 
 namespace hoilcd {
@@ -143,7 +141,7 @@ TEST(MatchMosaic, ACaptionWiderThanItsTileIsDrawnSmallerToFit) {
   const cv::Mat mosaic = MatchMosaic({{MakeTile(black, caption), MakeTile(black, "")}}, o);
   cv::Mat lit;
   cv::inRange(mosaic, cv::Scalar::all(1), cv::Scalar::all(255), lit);
-  EXPECT_GT(cv::countNonZero(lit(cv::Rect(0, 0, 256, 192))), 100);   // the caption is drawn
+  EXPECT_GT(cv::countNonZero(lit(cv::Rect(0, 0, 256, 192))), 100);          // the caption is drawn
   EXPECT_EQ(cv::countNonZero(lit(cv::Rect(256 - 4, 0, 4 + 256, 192))), 0);  // inside its 5 px margin
 }
 

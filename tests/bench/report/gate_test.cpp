@@ -1,12 +1,12 @@
 #include "hoilcd/bench/report/gate.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 
-#include "hoilcd/core/util/safe_text.h"
+#include <gtest/gtest.h>
+
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/safe_text.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -31,7 +31,8 @@ TEST(Gate, OnlyDropsLargerThanTheAllowedOneAreRegressionsAndEachNamesMethodMetri
   ASSERT_EQ(regressions.size(), 1u);
   EXPECT_EQ(regressions[0].method, "slcd");
   EXPECT_EQ(regressions[0].metric, "mrr");
-  EXPECT_EQ(regressions[0].ToString(0.02), "regression: method slcd, mrr old 0.5000 new 0.4500 (dropped by more than 0.0200)");
+  EXPECT_EQ(regressions[0].ToString(0.02),
+            "regression: method slcd, mrr old 0.5000 new 0.4500 (dropped by more than 0.0200)");
   EXPECT_EQ(CompareToBaseline(baseline, current, 0.1).size(), 0u);
   EXPECT_EQ(CompareToBaseline(baseline, current, 0.0).size(), 2u);  // R@1 0.40 -> 0.39 too
 }
@@ -62,8 +63,9 @@ TEST(Gate, WithTheIntervalADropIsARegressionOnlyWhenTheBaselineLiesAboveTheNewIn
   current["methods"]["slcd"]["intervals"]["mrr"] = {0.41, 0.49};
   const auto regressions = CompareToBaseline(baseline, current, ci);
   ASSERT_EQ(regressions.size(), 1u);
-  EXPECT_EQ(regressions[0].ToString(ci),
-            "regression: method slcd, mrr old 0.5000 new 0.4500 (old above the new run's 95 % interval [0.4100, 0.4900])");
+  EXPECT_EQ(
+      regressions[0].ToString(ci),
+      "regression: method slcd, mrr old 0.5000 new 0.4500 (old above the new run's 95 % interval [0.4100, 0.4900])");
   // Without an interval the allowance is zero; a missing new value is always a regression.
   current["methods"]["dlcd"].erase("intervals");
   current["methods"]["dlcd"]["mrr"] = 0.19;
@@ -90,8 +92,10 @@ TEST(Gate, JUnitHasOneTestCasePerMethodAndAFailureForEachRegressedOne) {
   const nlohmann::json current = Report(0.3, 0.4, 0.2);
   const std::string xml = JUnitXml(current, CompareToBaseline(Report(0.5, 0.4, 0.2), current, 0.0), 0.0);
   EXPECT_NE(xml.find("<testsuite name=\"hoilcd\" tests=\"2\" failures=\"1\""), std::string::npos) << xml;
-  EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"slcd\">\n    <failure"), std::string::npos) << xml;
-  EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"dlcd\">\n    <system-out>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"slcd\">\n    <failure"), std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"hoilcd.loop_closure\" name=\"dlcd\">\n    <system-out>"), std::string::npos)
+      << xml;
 }
 
 TEST(Gate, JUnitOfAMethodNamedWithControlAndLatin1BytesIsWellFormedXml10) {

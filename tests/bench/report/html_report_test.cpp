@@ -1,11 +1,11 @@
 #include "hoilcd/bench/report/html_report.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/methods/methods.h"
 #include "hoilcd/bench/report/gallery_sample.h"
@@ -25,8 +25,12 @@ TEST(EscapeHtml, EscapesTheFiveMarkupCharactersAndMakesBytesSafe) {
 }
 
 TEST(Base64, MatchesTheRfc4648TestVectors) {
-  const std::map<std::string, std::string> vectors = {{"", ""},           {"f", "Zg=="},         {"fo", "Zm8="},
-                                                      {"foo", "Zm9v"},    {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
+  const std::map<std::string, std::string> vectors = {{"", ""},
+                                                      {"f", "Zg=="},
+                                                      {"fo", "Zm8="},
+                                                      {"foo", "Zm9v"},
+                                                      {"foob", "Zm9vYg=="},
+                                                      {"fooba", "Zm9vYmE="},
                                                       {"foobar", "Zm9vYmFy"}};
   for (const auto& [in, out] : vectors) EXPECT_EQ(Base64(in), out) << in;
   EXPECT_EQ(Base64(std::string("\xff\x00\xfe", 3)), "/wD+");
@@ -34,7 +38,8 @@ TEST(Base64, MatchesTheRfc4648TestVectors) {
 }
 
 TEST(SortableTable, EveryNumberCellCarriesItsSortKeyAndTextSortsByItself) {
-  const std::string html = SortableTable({"a<b", "n"}, {{TextCell("x&y"), NumberCell(0.25)}, {TextCell("z"), NumberCell(NAN)}});
+  const std::string html =
+      SortableTable({"a<b", "n"}, {{TextCell("x&y"), NumberCell(0.25)}, {TextCell("z"), NumberCell(NAN)}});
   EXPECT_NE(html.find("<th>a&lt;b</th>"), std::string::npos);
   EXPECT_NE(html.find("<td>x&amp;y</td><td data-sort=\"0.25\">0.250</td>"), std::string::npos);
   EXPECT_NE(html.find("<td>-</td>"), std::string::npos);  // NaN: no key, sorted after the numbers
@@ -158,11 +163,14 @@ TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEveryPointMethodsInli
   options.methods = ParseMethodList("all", &options.optional_methods);
   const BenchResult result = RunBench(dataset, options);
   const HtmlReportInput input{temp.str(), {}, GallerySampling()};
-  const HtmlReport a = BenchReportHtml(result, dataset, options, input), b = BenchReportHtml(result, dataset, options, input);
+  const HtmlReport a = BenchReportHtml(result, dataset, options, input),
+                   b = BenchReportHtml(result, dataset, options, input);
   EXPECT_EQ(a.html, b.html);
   ASSERT_FALSE(a.gallery.empty());
   size_t entries = 0;
-  for (size_t at = a.html.find("<div class=\"entry\""); at != std::string::npos; at = a.html.find("<div class=\"entry\"", at + 1)) ++entries;
+  for (size_t at = a.html.find("<div class=\"entry\""); at != std::string::npos;
+       at = a.html.find("<div class=\"entry\"", at + 1))
+    ++entries;
   EXPECT_EQ(entries, a.gallery.size());
   EXPECT_EQ(a.html.find("http://"), std::string::npos);  // nothing from the network
   EXPECT_EQ(a.html.find("https://"), std::string::npos);
@@ -206,15 +214,17 @@ TEST(BenchReportHtml, IsTheSameBytesTwiceAndItsGalleryDrawsEveryPointMethodsInli
     EXPECT_GT(drawn[name], 0) << name;
     EXPECT_GT(matched[name], 0) << name << " matched no points in any sampled pair";
   }
-  EXPECT_NE(a.html.find("The tiles of fusion, fusion-tc, thumb, thumb-seq show the two frames alone"), std::string::npos);
+  EXPECT_NE(a.html.find("The tiles of fusion, fusion-tc, thumb, thumb-seq show the two frames alone"),
+            std::string::npos);
 }
 
 TEST(SuiteReportHtml, HoldsOneRowPerRunLinkingToItsReport) {
-  const SuiteSummary summary = SummariseSuite(
-      "rooms<1>", "two rooms", {"slcd"},
-      {{"a-seed1", "", {{"slcd", 0.5}}, {{"slcd", 0.4}}, "a"}, {"b-seed1", "", {{"slcd", 0.25}}, {{"slcd", 0.2}}, "b"},
-       {"c-seed1", "no frames", {}, {}, "c"}});
-  const std::string html = SuiteReportHtml(summary, {{"a-seed1", "runs/a-seed1"}, {"b-seed1", "../shard/runs/b-seed1"}});
+  const SuiteSummary summary = SummariseSuite("rooms<1>", "two rooms", {"slcd"},
+                                              {{"a-seed1", "", {{"slcd", 0.5}}, {{"slcd", 0.4}}, "a"},
+                                               {"b-seed1", "", {{"slcd", 0.25}}, {{"slcd", 0.2}}, "b"},
+                                               {"c-seed1", "no frames", {}, {}, "c"}});
+  const std::string html =
+      SuiteReportHtml(summary, {{"a-seed1", "runs/a-seed1"}, {"b-seed1", "../shard/runs/b-seed1"}});
   EXPECT_NE(html.find("<a href=\"runs/a-seed1/report.html\">"), std::string::npos);
   EXPECT_NE(html.find("<a href=\"../shard/runs/b-seed1/report.html\">"), std::string::npos);
   EXPECT_NE(html.find("rooms&lt;1&gt;"), std::string::npos);

@@ -1,9 +1,9 @@
 // The heat-trace measure of `hoilcd inspect`: the exponential fit and the section's figures.
-#include <gtest/gtest.h>
+#include "hoilcd/bench/report/inspect_heat_traces.h"
 
 #include <cmath>
 
-#include "hoilcd/bench/report/inspect_heat_traces.h"
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

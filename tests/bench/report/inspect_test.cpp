@@ -1,17 +1,16 @@
 #include "hoilcd/bench/report/inspect.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 
-#include "test_dir.h"
-#include "tiny_room.h"
+#include <gtest/gtest.h>
 
 #include "hoilcd/bench/evaluation/query_conditions.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/radiometry.h"
 #include "hoilcd/sim/world/world.h"
+#include "test_dir.h"
+#include "tiny_room.h"
 
 namespace hoilcd {
 namespace {
@@ -130,8 +129,8 @@ TEST(Inspect, EachRecordingRunGetsItsLapsPathPeopleAndDriftAtItsEnd) {
   const TwoRuns two;
   const std::vector<InspectRun> runs = InspectRuns(two.runs, two.poses, &two.persons);
   ASSERT_EQ(runs.size(), 2u);
-  EXPECT_EQ(runs[0].laps, 2);  // a lap and a quarter
-  EXPECT_EQ(runs[1].laps, 2);  // a lap and a half, counted from the dock again
+  EXPECT_EQ(runs[0].laps, 2);                                // a lap and a quarter
+  EXPECT_EQ(runs[1].laps, 2);                                // a lap and a half, counted from the dock again
   const double step_m = 2 * std::sin(M_PI / kFramesPerLap);  // a chord of the circle
   EXPECT_NEAR(runs[0].path_length_m, 249 * step_m, 1e-9);
   EXPECT_NEAR(runs[1].path_length_m, 299 * step_m, 1e-9);
@@ -158,8 +157,9 @@ TEST(Inspect, EachRecordingRunGetsItsLapsPathPeopleAndDriftAtItsEnd) {
   EXPECT_EQ(j["runs"][1]["start_time_s"], 7200);
   EXPECT_EQ(j["runs"][1]["laps"], 2);
   EXPECT_EQ(j["runs"][1]["people_per_frame_mean"], 3);
-  EXPECT_NE(r.ToText().find("Recording runs\n  run 0: recorded day 0, 09:00, frames 0-249, starts after 0.00 h, laps 2"),
-            std::string::npos)
+  EXPECT_NE(
+      r.ToText().find("Recording runs\n  run 0: recorded day 0, 09:00, frames 0-249, starts after 0.00 h, laps 2"),
+      std::string::npos)
       << r.ToText();
   EXPECT_NE(r.ToMarkdown().find("### Recording runs"), std::string::npos);
   EXPECT_NE(r.ToMarkdown().find("| 1 | day 0, 15:30 | 250-549 | 2.00 h | 2 | 9.4 m | 3.00 | 0.075 m (0.80 %) |"),
@@ -225,7 +225,7 @@ TEST(Inspect, ViewsCountTheBlankFramesOfTheEvenlySampledExrs) {
   EXPECT_EQ(views.Find("frames_sampled")->value, sampled);
   EXPECT_DOUBLE_EQ(views.Find("blank_percent")->value, 100.0 * blank / sampled);
   EXPECT_DOUBLE_EQ(views.Find("bare_percent")->value, 100.0 * bare / sampled);
-  EXPECT_GE(bare, blank);  // a blank view is a bare one with little spread
+  EXPECT_GE(bare, blank);                                  // a blank view is a bare one with little spread
   EXPECT_GT(views.Find("with_people_percent")->value, 0);  // the tiny room's camera faces its table
   EXPECT_GT(views.Find("spread_median_k")->value, kBlankSpreadK);
   // The same at one thread, and in the dataset's inspect report.
@@ -244,8 +244,9 @@ TEST(Inspect, ReflectionSectionSeesPeopleMirroredInWhiteboards) {
   const test::TestDir temp;
   double spread_max[2];
   for (int people = 0; people < 2; ++people) {
-    const Dataset dataset = test::TinyRoomDataset(temp / ("dataset" + std::to_string(people)),
-                                                  {boards, "frames=220", people ? "crowd.people_per_table=4" : "crowd.people_per_table=0"});
+    const Dataset dataset =
+        test::TinyRoomDataset(temp / ("dataset" + std::to_string(people)),
+                              {boards, "frames=220", people ? "crowd.people_per_table=4" : "crowd.people_per_table=0"});
     const InspectSection thermal = ReflectionSection(dataset, 2);
     ASSERT_NE(thermal.Find("whiteboard_views"), nullptr);
     EXPECT_GT(thermal.Find("whiteboard_views")->value, 20);
@@ -257,7 +258,8 @@ TEST(Inspect, ReflectionSectionSeesPeopleMirroredInWhiteboards) {
   }
   // A board mirroring only the room spreads by 12 % of the walls' 2.5 K stratification and the table.
   EXPECT_LT(spread_max[0], 0.5) << "a board mirroring only the room is nearly uniform";
-  EXPECT_GT(spread_max[1], spread_max[0] + 0.5) << "a board behind seated people mirrors them: " << spread_max[1] << " K";
+  EXPECT_GT(spread_max[1], spread_max[0] + 0.5)
+      << "a board behind seated people mirrors them: " << spread_max[1] << " K";
 }
 
 // The tiny room's people wear garments (scene defaults): their clothing varies within itself.

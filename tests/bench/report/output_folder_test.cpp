@@ -1,9 +1,9 @@
 #include "hoilcd/bench/report/output_folder.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/file_io.h"
@@ -55,8 +55,9 @@ TEST(OutputFolder, AMarkerThatIsNotJsonOrLacksAKeyIsNotAnEarlierOutput) {
 TEST(OutputFolder, AFileIsRefusedAndAFolderThatCannotBeMadeNamesItself) {
   const test::TestDir temp;
   WriteFileAtomic(temp / "file", "x");
-  EXPECT_EQ(Refusal(temp / "file"), temp / "file" + ": is a file: expected a folder (new, empty, or holding an "
-                                                    "earlier hoilcd thing)");
+  EXPECT_EQ(Refusal(temp / "file"), temp / "file" +
+                                        ": is a file: expected a folder (new, empty, or holding an "
+                                        "earlier hoilcd thing)");
   try {
     CreateOutputFolder(temp / "file/sub");
     FAIL() << "expected an InputError";

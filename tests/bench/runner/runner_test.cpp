@@ -1,29 +1,28 @@
 #include "hoilcd/bench/runner/runner.h"
 
-#include <gtest/gtest.h>
-
-#include <unistd.h>
-
 #include <filesystem>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <unistd.h>
 
+#include "hoilcd/bench/methods/front_ends.h"
 #include "hoilcd/bench/methods/methods.h"
-#include "hoilcd/core/matching/matching.h"
 #include "hoilcd/bench/report/diagnosis.h"
 #include "hoilcd/bench/report/inspect.h"
 #include "hoilcd/bench/report/report.h"
+#include "hoilcd/bench/runner/online.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
+#include "hoilcd/core/matching/matching.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/robot/robot.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
 #include "hoilcd/sim/world/world.h"
-#include "hoilcd/bench/methods/front_ends.h"
-#include "hoilcd/bench/runner/online.h"
 #include "input_error_of.h"
 #include "recording_runs.h"
 #include "test_dir.h"
@@ -137,16 +136,15 @@ TEST(Runner, EmptyRoomGivesDlcdNothingAndTheReportSaysSo) {
   EXPECT_NE(PaperFindingSummary(result).find("no HOI points"), std::string::npos);
   const std::string report = temp / "report";
   WriteReport(result, dataset, options, ReportTiming{}, report);
-  for (const char* file : {"report.json", "queries.csv", "report.md", "pr_curves.png", "mrr_per_lap.png",
-                           "trajectory_fusion.png"}) {
+  for (const char* file :
+       {"report.json", "queries.csv", "report.md", "pr_curves.png", "mrr_per_lap.png", "trajectory_fusion.png"}) {
     EXPECT_TRUE(fs::exists(report + "/" + file)) << file;
   }
   const std::string markdown = ReadFileBytes(report + "/report.md");
   EXPECT_NE(markdown.find("no HOI points"), std::string::npos);
   EXPECT_NE(markdown.find("No person detected in any frame"), std::string::npos);
   EXPECT_NE(markdown.find("the ground truth has no people either"), std::string::npos);
-  EXPECT_NE(markdown.find("The ground truth has no people to track; the front end reported 0"),
-            std::string::npos);
+  EXPECT_NE(markdown.find("The ground truth has no people to track; the front end reported 0"), std::string::npos);
   EXPECT_EQ(markdown.find("show none (walls in the turns"), std::string::npos);
   const nlohmann::json json = nlohmann::json::parse(ReadFileBytes(report + "/report.json"));
   for (const char* key : {"mrr", "recall_at_1", "recall_at_5", "recall_at_10", "pr_auc", "recall_at_100p",
@@ -169,8 +167,8 @@ std::vector<cv::Mat> RenderRadiometricFrames(const Scene& scene, const std::vect
   FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 0));
   std::vector<cv::Mat> out;
   for (int f : frames) {
-    SensorModel sensor(SensorOptionsFromScene(scene), intrinsics.width, intrinsics.height,
-                       scene.frame_rate_hz, scene.seed, &table);
+    SensorModel sensor(SensorOptionsFromScene(scene), intrinsics.width, intrinsics.height, scene.frame_rate_hz,
+                       scene.seed, &table);
     cv::Mat temperature_c;
     for (int k : {f - 1, f}) {
       world.SetTime(run.samples[k].time_s);
@@ -194,10 +192,8 @@ TEST(Runner, EmptyPaperRoomFramesWithWarmLaptopsAndAMonitorHaveNoPersonDetection
   without_skin_rule.min_top_skin_px = 0;
   int frames_fooling_the_shape_rules = 0;
   for (size_t k = 0; k < frames.size(); ++k) {
-    EXPECT_TRUE(DetectPersons(cv::Mat(), frames_c[k], detector).detections.empty())
-        << "frame " << frames[k];
-    frames_fooling_the_shape_rules +=
-        !DetectPersons(cv::Mat(), frames_c[k], without_skin_rule).detections.empty();
+    EXPECT_TRUE(DetectPersons(cv::Mat(), frames_c[k], detector).detections.empty()) << "frame " << frames[k];
+    frames_fooling_the_shape_rules += !DetectPersons(cv::Mat(), frames_c[k], without_skin_rule).detections.empty();
   }
   // The frames still show what they were picked for (else pick new ones with hoilcd render).
   EXPECT_GE(frames_fooling_the_shape_rules, 5);
@@ -341,7 +337,9 @@ TEST(Report, ADatasetOfTwoRecordingRunsIsScoredPerRunUnderEveryProtocol) {
   const std::string html = ReadFileBytes(temp / "evaluate/report.html");
   EXPECT_NE(html.find("hoilcd evaluate: thumb"), std::string::npos);
   size_t entries = 0;
-  for (size_t at = html.find("<div class=\"entry\""); at != std::string::npos; at = html.find("<div class=\"entry\"", at + 1)) ++entries;
+  for (size_t at = html.find("<div class=\"entry\""); at != std::string::npos;
+       at = html.find("<div class=\"entry\"", at + 1))
+    ++entries;
   EXPECT_EQ(entries, evaluated["gallery"]["query_frames"].size());
   EXPECT_GT(entries, 0u);
 }

@@ -1,9 +1,9 @@
 #include "hoilcd/bench/slam/pose_graph.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <map>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/error.h"
 #include "option_properties.h"
@@ -46,7 +46,8 @@ TEST(PoseGraphTest, RecoversKnownTrajectoryFromExactOdometryAndLoopsToOneMillime
   const PoseGraph graph = ExactGraph(truth, per_lap);
   double initial_error = 0;
   for (size_t i = 0; i < truth.size(); ++i)
-    initial_error = std::max(initial_error, std::hypot(graph.nodes[i].x_m - truth[i].x_m, graph.nodes[i].y_m - truth[i].y_m));
+    initial_error =
+        std::max(initial_error, std::hypot(graph.nodes[i].x_m - truth[i].x_m, graph.nodes[i].y_m - truth[i].y_m));
   ASSERT_GT(initial_error, 0.5);  // the start really is far off
   for (const std::string& backend : PoseGraphBackends()) {
     PoseGraphOptions options;

@@ -1,9 +1,9 @@
 #include "hoilcd/bench/slam/slam_run.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/report/report.h"
@@ -114,12 +114,12 @@ TEST(SlamRun, TheSlamStepAddedAfterScoringEqualsTheBenchsOwnAndUsesThresholdsGiv
   const BenchResult whole = RunBench(dataset, options);
   int hook_calls = 0;
   ReportTiming timing;
-  const BenchResult added = BenchAndWriteReport(dataset, options, &timing, (temp.path() / "report").string(),
-                                                [&](SlamRunOptions* slam) {
-                                                  ++hook_calls;
-                                                  slam->calibrated_threshold = {{"slcd", 0.5}};
-                                                  timing.calibration_s = 7;
-                                                });
+  const BenchResult added =
+      BenchAndWriteReport(dataset, options, &timing, (temp.path() / "report").string(), [&](SlamRunOptions* slam) {
+        ++hook_calls;
+        slam->calibrated_threshold = {{"slcd", 0.5}};
+        timing.calibration_s = 7;
+      });
   EXPECT_EQ(hook_calls, 1);
   ASSERT_TRUE(added.slam_evaluated);
   ASSERT_EQ(added.slam.methods.size(), whole.slam.methods.size());

@@ -1,11 +1,11 @@
 #include "hoilcd/bench/slam/slam.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/error.h"
 #include "option_properties.h"
@@ -81,14 +81,14 @@ TEST(SlamTest, OracleLoopsHalveTheOdometryAteOnADriftingSequenceWithAndWithoutKe
   const SlamScore odometry = ScoreOdometry(poses, options);
   ASSERT_GT(odometry.ate_rmse_m, 0.1);  // it really drifts
   for (const int every : {1, 5})
-  for (const std::string& backend : PoseGraphBackends()) {
-    options.keyframe_every = every;
-    const SlamScore s = SolveSlam(poses, oracle, DriftNoise(), options, backend);
-    EXPECT_LE(s.ate_rmse_m, 0.5 * odometry.ate_rmse_m) << backend;
-    EXPECT_LT(s.rpe_rmse_m, odometry.rpe_rmse_m) << backend;
-    EXPECT_EQ(s.false_loops, 0);
-    EXPECT_EQ(s.loops_accepted, static_cast<int>(oracle.size()));
-  }
+    for (const std::string& backend : PoseGraphBackends()) {
+      options.keyframe_every = every;
+      const SlamScore s = SolveSlam(poses, oracle, DriftNoise(), options, backend);
+      EXPECT_LE(s.ate_rmse_m, 0.5 * odometry.ate_rmse_m) << backend;
+      EXPECT_LT(s.rpe_rmse_m, odometry.rpe_rmse_m) << backend;
+      EXPECT_EQ(s.false_loops, 0);
+      EXPECT_EQ(s.loops_accepted, static_cast<int>(oracle.size()));
+    }
 }
 
 TEST(SlamTest, OneFalseLoopWrecksPlainLeastSquaresButNotTheRobustBackEnd) {
@@ -194,7 +194,7 @@ TEST(SlamTest, EachRunsFirstAndLastFramesAreKeyframesAndNoOdometryEdgeJoinsTwoRu
   const std::vector<int> keyframes = Keyframes(poses, options.keyframe_every);
   const int second_node = static_cast<int>(std::find(keyframes.begin(), keyframes.end(), second) - keyframes.begin());
   ASSERT_LT(second_node, static_cast<int>(keyframes.size()));
-  EXPECT_EQ(keyframes[second_node - 1], second - 1);  // run 0's last frame
+  EXPECT_EQ(keyframes[second_node - 1], second - 1);           // run 0's last frame
   EXPECT_EQ(graph.fixed, (std::vector<int>{0, second_node}));  // each run starts at the known dock
   EXPECT_EQ(graph.odometry.size(), graph.nodes.size() - 2);
   for (const PoseEdge& e : graph.odometry) EXPECT_NE(e.to, second_node);

@@ -1,8 +1,8 @@
 #include "hoilcd/bench/slam/trajectory_metrics.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

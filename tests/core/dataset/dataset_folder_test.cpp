@@ -1,10 +1,10 @@
 #include "hoilcd/core/dataset/dataset_folder.h"
 
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "processes.h"
 #include "test_dir.h"
@@ -21,9 +21,8 @@ void Touch(const test::TestDir& dir, const std::string& relative) {
 }
 
 TEST(DatasetFolder, OwnNamesAreExactlyTheFilesHoilcdWrites) {
-  for (const char* own : {"manifest.json", "scene.json", "poses.csv", "poses_tum.txt", "persons.json",
-                          "events.json", "footprints.json", "thermal/000000.png", "radiometric/001995.png",
-                          "exr/1234567.exr"}) {
+  for (const char* own : {"manifest.json", "scene.json", "poses.csv", "poses_tum.txt", "persons.json", "events.json",
+                          "footprints.json", "thermal/000000.png", "radiometric/001995.png", "exr/1234567.exr"}) {
     EXPECT_TRUE(IsDatasetFileName(own)) << own;
   }
   for (const char* other : {"notes.txt", "thermal/00001.png", "thermal/000001.exr", "exr/000001.png",
@@ -41,8 +40,9 @@ TEST(DatasetFolder, OwnNamesAreExactlyTheFilesHoilcdWrites) {
 TEST(DatasetFolder, RemovingTempFilesKeepsUserFilesWithTmpInTheirName) {
   test::TestDir dir;
   const std::string dead = std::to_string(test::DeadPid());
-  for (const std::string& f : {"manifest.json.tmp." + dead, "thermal/000001.png.tmp." + dead,
-                               std::string("notes.tmp.txt"), std::string("data/x.tmp.5"), std::string("thermal/000001.png")}) {
+  for (const std::string& f :
+       {"manifest.json.tmp." + dead, "thermal/000001.png.tmp." + dead, std::string("notes.tmp.txt"),
+        std::string("data/x.tmp.5"), std::string("thermal/000001.png")}) {
     Touch(dir, f);
   }
   RemoveDatasetTempFiles(dir.str());
@@ -81,8 +81,8 @@ TEST(DatasetFolder, TheFolderLockFileIsNeitherTheUsersNorCleanedUp) {
 
 TEST(DatasetFolder, RemovingADatasetLeavesAndNamesWhatTheUserPutBesideIt) {
   test::TestDir dir;
-  for (const char* f : {"manifest.json", "scene.json", "thermal/000000.png", "exr/000000.exr",
-                        "poses.csv.tmp.9", "README.txt", "thermal/my_note.txt"}) {
+  for (const char* f : {"manifest.json", "scene.json", "thermal/000000.png", "exr/000000.exr", "poses.csv.tmp.9",
+                        "README.txt", "thermal/my_note.txt"}) {
     Touch(dir, f);
   }
   const std::vector<std::string> left = RemoveDatasetFiles(dir.str());

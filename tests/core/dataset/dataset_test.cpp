@@ -1,16 +1,16 @@
-#include "cpu_seconds.h"
 #include "hoilcd/core/dataset/dataset.h"
-
-#include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
-#include <functional>
-#include <nlohmann/json.hpp>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
+#include <functional>
 #include <sstream>
 
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "cpu_seconds.h"
 #include "hoilcd/core/dataset/runs.h"
 #include "hoilcd/core/util/error.h"
 #include "input_error_of.h"
@@ -47,7 +47,12 @@ std::vector<PoseRecord> SamplePoses(int count) {
 }
 
 std::vector<FramePersons> SamplePersons() {
-  PersonRecord a{7, cv::Rect2f(1.5f, 2.f, 3.25f, 4.f), 0.8, 0.2, true, "seated",
+  PersonRecord a{7,
+                 cv::Rect2f(1.5f, 2.f, 3.25f, 4.f),
+                 0.8,
+                 0.2,
+                 true,
+                 "seated",
                  {{"seat", 2.5, 5.75, true}, {"left_hand", 1.0, 3.0, false}},
                  {}};
   PersonRecord b{9, cv::Rect2f(0.f, 0.f, 2.f, 2.f), 0.1, 0.9, false, "standing", {}, {}};
@@ -55,8 +60,8 @@ std::vector<FramePersons> SamplePersons() {
 }
 
 std::vector<DatasetEvent> SampleEvents() {
-  return {{0, "ffc", -1, "", "shutter"}, {1, "arrive", 9, "table2_seat1", ""},
-          {2, "swap", 7, "table1_seat0", "with 9"}};
+  return {
+      {0, "ffc", -1, "", "shutter"}, {1, "arrive", 9, "table2_seat1", ""}, {2, "swap", 7, "table1_seat0", "with 9"}};
 }
 
 // Writes a complete tiny dataset (8 x 6 px frames) with the library's own writer functions.
@@ -132,7 +137,9 @@ TEST(DatasetManifest, OutputsRoundTripAreAllWhenAbsentAndBadOnesAreReportedAtThe
   j.erase("outputs");
   EXPECT_EQ(DatasetManifest::FromJson(text(), "m.json").outputs.ToText(), "thermal,radiometric,exr,video,persons");
   j["outputs"] = {"thermal", "depth"};
-  EXPECT_NE(InputErrorOf([&] { DatasetManifest::FromJson(text(), "m.json"); }).find("m.json: /outputs: unknown output 'depth'"),
+  EXPECT_NE(InputErrorOf([&] {
+              DatasetManifest::FromJson(text(), "m.json");
+            }).find("m.json: /outputs: unknown output 'depth'"),
             std::string::npos);
   j["outputs"] = "thermal";
   EXPECT_NE(InputErrorOf([&] { DatasetManifest::FromJson(text(), "m.json"); }).find("/outputs: expected an array"),
@@ -147,15 +154,11 @@ TEST(DatasetManifest, UnknownKeyWrongTypeAndEscapingPathAreReportedWithPointers)
   m.files = {{"../outside.png", ChecksumOf("x")}};
   std::string text = m.ToJson();
   text.replace(text.find("\"seed\": 0"), 9, "\"seed\": \"zero\", \"sead\": 1");
-  const std::string message =
-      InputErrorOf([&] { DatasetManifest::FromJson(text, "DIR/manifest.json"); });
-  EXPECT_NE(message.find("DIR/manifest.json: /seed: expected a non-negative integer"),
-            std::string::npos) << message;
+  const std::string message = InputErrorOf([&] { DatasetManifest::FromJson(text, "DIR/manifest.json"); });
+  EXPECT_NE(message.find("DIR/manifest.json: /seed: expected a non-negative integer"), std::string::npos) << message;
   EXPECT_NE(message.find("DIR/manifest.json: /sead: unknown key"), std::string::npos) << message;
-  EXPECT_NE(message.find("/files/../outside.png: expected a relative path"), std::string::npos)
-      << message;
-  EXPECT_NE(InputErrorOf([] { DatasetManifest::FromJson("{", "m.json"); }).find("invalid JSON"),
-            std::string::npos);
+  EXPECT_NE(message.find("/files/../outside.png: expected a relative path"), std::string::npos) << message;
+  EXPECT_NE(InputErrorOf([] { DatasetManifest::FromJson("{", "m.json"); }).find("invalid JSON"), std::string::npos);
 }
 
 TEST(Dataset, OpensATinyCompleteFolderAndReadsEverything) {
@@ -244,23 +247,21 @@ TEST(Dataset, MissingListedFileIsAnErrorNamingThatFile) {
   WriteTinyDataset(dir.str(), 3, true);
   fs::remove(dir / "radiometric/000002.png");
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
-  EXPECT_NE(message.find(dir / "radiometric/000002.png" + ": listed in manifest.json but missing"),
-            std::string::npos) << message;
+  EXPECT_NE(message.find(dir / "radiometric/000002.png" + ": listed in manifest.json but missing"), std::string::npos)
+      << message;
 }
 
 TEST(Dataset, MissingManifestSaysItIsNotADatasetFolder) {
   test::TestDir dir;
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
-  EXPECT_NE(message.find("manifest.json: no manifest.json: not a hoilcd dataset folder"),
-            std::string::npos) << message;
+  EXPECT_NE(message.find("manifest.json: no manifest.json: not a hoilcd dataset folder"), std::string::npos) << message;
 }
 
 TEST(Dataset, PartialDatasetSaysHowManyFramesAndToRerunRender) {
   test::TestDir dir;
   WriteTinyDataset(dir.str(), 3, false);
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
-  EXPECT_EQ(message,
-            dir.str() + ": dataset is partial: 2 of 3 frames; re-run hoilcd render to finish it");
+  EXPECT_EQ(message, dir.str() + ": dataset is partial: 2 of 3 frames; re-run hoilcd render to finish it");
 }
 
 TEST(PosesCsv, RoundTripIsExact) {
@@ -292,10 +293,9 @@ TEST(PosesCsv, MalformedLinesNameFileLineAndColumn) {
   std::string broken;
   for (const std::string& line : lines) broken += line + "\n";
   const std::string message = InputErrorOf([&] { PosesFromCsv(broken, "D/poses.csv"); });
-  EXPECT_NE(message.find("D/poses.csv:3: column 3 'x': expected a finite number, got 'x"),
-            std::string::npos) << message;
-  EXPECT_NE(message.find("D/poses.csv:4: expected 14 columns, got 15"), std::string::npos)
+  EXPECT_NE(message.find("D/poses.csv:3: column 3 'x': expected a finite number, got 'x"), std::string::npos)
       << message;
+  EXPECT_NE(message.find("D/poses.csv:4: expected 14 columns, got 15"), std::string::npos) << message;
   const std::string header_message = InputErrorOf([] { PosesFromCsv("frame,t\n", "p.csv"); });
   EXPECT_NE(header_message.find("p.csv:1: expected header"), std::string::npos);
 }
@@ -404,9 +404,8 @@ TEST(PersonsJson, FramesReadInParallelGiveTheWholeDocumentsResultAndItsErrors) {
   bad["version"] = 2;
   message = InputErrorOf([&] { PersonsFromJson(bad.dump(), "p.json"); });
   EXPECT_NE(message.find("p.json: /version: unknown key"), std::string::npos) << message;
-  const std::vector<std::string> broken_texts = {text + "]", text.substr(0, text.size() / 2),
-                                                 "{\"frames\": [1e400]}", "{\"frames\": [{}, ]}",
-                                                 "{\"frames\": [\"]\"]}"};
+  const std::vector<std::string> broken_texts = {text + "]", text.substr(0, text.size() / 2), "{\"frames\": [1e400]}",
+                                                 "{\"frames\": [{}, ]}", "{\"frames\": [\"]\"]}"};
   for (const std::string& broken : broken_texts) {
     message = InputErrorOf([&] { PersonsFromJson(broken, "p.json"); });
     EXPECT_NE(message.find("p.json"), std::string::npos) << message;
@@ -420,9 +419,8 @@ TEST(PersonsJson, BadBoxIsReportedWithItsPointer) {
                     R"("posture":"seated","contacts":[]}]}]})",
                     "persons.json");
   });
-  EXPECT_NE(
-      message.find("persons.json: /frames/0/persons/0/box_px: expected [x, y, width, height]"),
-      std::string::npos) << message;
+  EXPECT_NE(message.find("persons.json: /frames/0/persons/0/box_px: expected [x, y, width, height]"), std::string::npos)
+      << message;
 }
 
 TEST(EventsJson, RoundTripKeepsEveryFieldAndUnknownTypeIsAnError) {
@@ -436,11 +434,10 @@ TEST(EventsJson, RoundTripKeepsEveryFieldAndUnknownTypeIsAnError) {
   EXPECT_EQ(back[2].detail, "with 9");
   EXPECT_EQ(EventsToJson(back), text);
   const std::string message = InputErrorOf([] {
-    EventsFromJson(R"({"events":[{"frame":0,"type":"jump","person":1,"seat":"","detail":""}]})",
-                   "events.json");
+    EventsFromJson(R"({"events":[{"frame":0,"type":"jump","person":1,"seat":"","detail":""}]})", "events.json");
   });
-  EXPECT_NE(message.find("events.json: /events/0/type: expected one of arrive, leave, swap, ffc"),
-            std::string::npos) << message;
+  EXPECT_NE(message.find("events.json: /events/0/type: expected one of arrive, leave, swap, ffc"), std::string::npos)
+      << message;
 }
 
 std::vector<FootprintRecord> SampleFootprints() {
@@ -479,14 +476,13 @@ TEST(FootprintsJson, MalformedEntriesAreReportedWithFileAndPointer) {
       {"name":"c","kind":"rectangle","half_size_m":[0,-2],"yaw_deg":"0","radius_m":0,"colour":1}]})",
                        "DIR/footprints.json");
   });
-  for (const char* expected :
-       {"DIR/footprints.json: /footprints/0/kind: expected rectangle or circle; got 'triangle'",
-        "DIR/footprints.json: /footprints/1/centre_m: expected an array of 2 numbers",
-        "DIR/footprints.json: /footprints/1/radius_m: expected a radius >= 0 m",
-        "DIR/footprints.json: /footprints/2/centre_m: missing",
-        "DIR/footprints.json: /footprints/2/half_size_m: expected sizes >= 0 m",
-        "DIR/footprints.json: /footprints/2/yaw_deg: expected a number",
-        "DIR/footprints.json: /footprints/2/colour: unknown key"}) {
+  for (const char* expected : {"DIR/footprints.json: /footprints/0/kind: expected rectangle or circle; got 'triangle'",
+                               "DIR/footprints.json: /footprints/1/centre_m: expected an array of 2 numbers",
+                               "DIR/footprints.json: /footprints/1/radius_m: expected a radius >= 0 m",
+                               "DIR/footprints.json: /footprints/2/centre_m: missing",
+                               "DIR/footprints.json: /footprints/2/half_size_m: expected sizes >= 0 m",
+                               "DIR/footprints.json: /footprints/2/yaw_deg: expected a number",
+                               "DIR/footprints.json: /footprints/2/colour: unknown key"}) {
     EXPECT_NE(message.find(expected), std::string::npos) << expected << "\n" << message;
   }
   const std::string missing = InputErrorOf([] { FootprintsFromJson("{}", "DIR/footprints.json"); });
@@ -511,8 +507,7 @@ TEST(Dataset, ListedFootprintsJsonIsReadAndAMalformedOneIsAnErrorNamingIt) {
   WriteDatasetFile(dir.str(), "footprints.json", R"({"footprints":[{"name":"x"}]})", &m);
   WriteFileAtomic(dir / "manifest.json", m.ToJson());
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
-  EXPECT_NE(message.find(dir / "footprints.json" + ": /footprints/0/kind: missing"),
-            std::string::npos) << message;
+  EXPECT_NE(message.find(dir / "footprints.json" + ": /footprints/0/kind: missing"), std::string::npos) << message;
 }
 
 // Rewrites manifest.json through `edit`, then signs it again as hoilcd would (so that only the
@@ -530,8 +525,8 @@ TEST(Dataset, HugeFrameCountInTheManifestIsOneErrorNotAHang) {
   WriteTinyDataset(dir.str(), 3, true);
   EditManifest(dir.str(), [](nlohmann::json& j) { j["frame_count"] = 2147483647; });
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
-  EXPECT_NE(message.find("manifest.json: /frame_count: is 2147483647 but /files lists 3 thermal"),
-            std::string::npos) << message.substr(0, 500);
+  EXPECT_NE(message.find("manifest.json: /frame_count: is 2147483647 but /files lists 3 thermal"), std::string::npos)
+      << message.substr(0, 500);
 }
 
 TEST(Dataset, HandEditedManifestFailsItsChecksum) {
@@ -541,12 +536,12 @@ TEST(Dataset, HandEditedManifestFailsItsChecksum) {
   text.replace(text.find("\"frame_count\": 3"), 16, "\"frame_count\": 2");
   WriteFileAtomic(dir / "manifest.json", text);
   const std::string message = InputErrorOf([&] { Dataset::Open(dir.str()); });
-  EXPECT_NE(message.find("/manifest_checksum: does not match the manifest's content"),
-            std::string::npos) << message;
+  EXPECT_NE(message.find("/manifest_checksum: does not match the manifest's content"), std::string::npos) << message;
 }
 
 TEST(Dataset, NumberTooLargeForADoubleIsAnInputErrorNamingTheFile) {
-  const std::string manifest = InputErrorOf([] { DatasetManifest::FromJson("{\"seed\": 1e400}", "DIR/manifest.json"); });
+  const std::string manifest =
+      InputErrorOf([] { DatasetManifest::FromJson("{\"seed\": 1e400}", "DIR/manifest.json"); });
   EXPECT_NE(manifest.find("DIR/manifest.json: invalid JSON"), std::string::npos) << manifest;
   const std::string persons = InputErrorOf([] { PersonsFromJson("{\"frames\": [1e400]}", "DIR/persons.json"); });
   EXPECT_NE(persons.find("DIR/persons.json: invalid JSON"), std::string::npos) << persons;
@@ -565,8 +560,7 @@ TEST(Dataset, PngDeclaringAHugeImageIsRefusedBeforeDecoding) {
   WriteFileAtomic(dir / "thermal/000001.png", bytes);
   const Dataset ds = Dataset::Open(dir.str(), Verify::kNothing);
   const std::string message = InputErrorOf([&] { ds.Thermal(1); });
-  EXPECT_NE(message.find("expected 8x6 px as in manifest.json, the PNG is 30000x30000"),
-            std::string::npos) << message;
+  EXPECT_NE(message.find("expected 8x6 px as in manifest.json, the PNG is 30000x30000"), std::string::npos) << message;
 }
 
 }  // namespace
@@ -607,7 +601,8 @@ TEST(Dataset, EverySideFileRefusesDeepNestingAndRepeatedKeysAndReadsLongListsQui
     error = error_within_two_seconds(R"({"frames": [], "frames": []})");
     EXPECT_NE(error.find("DIR/" + file + ": /frames: the key \"frames\" is repeated"), std::string::npos) << error;
     error_within_two_seconds(long_list);
-    error_within_two_seconds(R"({"frames": )" + long_list + ", \"runs\": " + long_list + ", \"events\": " + long_list + "}");
+    error_within_two_seconds(R"({"frames": )" + long_list + ", \"runs\": " + long_list + ", \"events\": " + long_list +
+                             "}");
   }
 }
 

@@ -1,10 +1,10 @@
 #include "hoilcd/core/dataset/exr_io.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <random>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/error.h"
@@ -114,10 +114,13 @@ TEST(Exr, DatasetFramePassesOpenExrsOwnTools) {
   cv::randu(t, 18.0f, 36.0f);
   WriteFileAtomic(temp / "f.exr", EncodeExr(FrameExrChannels(t, t, t, ids, ids)));
   EXPECT_EQ(std::system(("exrinfo -v '" + (temp / "f.exr") + "' > /dev/null").c_str()), 0);
-  EXPECT_EQ(std::system(("exrmaketiled '" + (temp / "f.exr") + "' '" + (temp / "tiled.exr") + "' > /dev/null").c_str()), 0);
+  EXPECT_EQ(std::system(("exrmaketiled '" + (temp / "f.exr") + "' '" + (temp / "tiled.exr") + "' > /dev/null").c_str()),
+            0);
   // The check can fail: a truncated frame does not pass.
   WriteFileAtomic(temp / "cut.exr", ReadFileBytes(temp / "f.exr").substr(0, 3000));
-  EXPECT_NE(std::system(("exrmaketiled '" + (temp / "cut.exr") + "' '" + (temp / "tiled2.exr") + "' 2> /dev/null").c_str()), 0);
+  EXPECT_NE(
+      std::system(("exrmaketiled '" + (temp / "cut.exr") + "' '" + (temp / "tiled2.exr") + "' 2> /dev/null").c_str()),
+      0);
 }
 
 TEST(Exr, AttributeDeclaredLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
@@ -283,7 +286,9 @@ TEST(Exr, ReadingOnlySomeChannelsGivesThemInTheOrderAskedWithTheFullReadsValues)
     for (const auto& [name, image] : two) {
       EXPECT_EQ(cv::norm(image, ExrChannel(all, name, "f.exr"), cv::NORM_INF), 0.0) << name;
     }
-    EXPECT_NE(test::InputErrorOf([&] { DecodeExr(bytes, "f.exr", t.size(), {"depth"}); }).find("f.exr: has no channel 'depth'"),
+    EXPECT_NE(test::InputErrorOf([&] {
+                DecodeExr(bytes, "f.exr", t.size(), {"depth"});
+              }).find("f.exr: has no channel 'depth'"),
               std::string::npos);
   }
 }

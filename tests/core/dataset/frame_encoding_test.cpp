@@ -19,8 +19,7 @@ TEST(ToDisplay8Bit, MapsWindowLinearlyAndClamps) {
 }
 
 TEST(ToCentikelvin16, EncodesKelvinTimes100RoundedAndClamped) {
-  const cv::Mat temperature =
-      (cv::Mat_<float>(1, 5) << 25.0f, 0.0f, -300.0f, 400.0f, 25.004f);
+  const cv::Mat temperature = (cv::Mat_<float>(1, 5) << 25.0f, 0.0f, -300.0f, 400.0f, 25.004f);
   const cv::Mat centikelvin = ToCentikelvin16(temperature);
   ASSERT_EQ(centikelvin.type(), CV_16U);
   EXPECT_EQ(centikelvin.at<uint16_t>(0, 0), 29815);

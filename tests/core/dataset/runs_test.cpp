@@ -13,9 +13,8 @@ namespace {
 using test::InputErrorOf;
 
 std::vector<RunRecord> ThreeRuns() {
-  return {{0, 4, 9.0, 0, 0.0, 1},
-          {4, 3, 13.5, 0, 16200.0, 9007199254740991ull},
-          {7, 2, 8.25, 1, 84600.0 + 1.0 / 3.0, 7}};
+  return {
+      {0, 4, 9.0, 0, 0.0, 1}, {4, 3, 13.5, 0, 16200.0, 9007199254740991ull}, {7, 2, 8.25, 1, 84600.0 + 1.0 / 3.0, 7}};
 }
 
 TEST(RunsJson, RoundTripKeepsEveryFieldExactly) {
@@ -35,18 +34,21 @@ TEST(RunsJson, RunsThatDoNotTileTheFramesInTimeOrderAreReportedAtTheirPointers) 
   const std::string message = InputErrorOf([&] { RunsFromJson(RunsToJson(runs), "DIR/runs.json", 9); });
   EXPECT_NE(message.find("DIR/runs.json: /runs/1/first_frame: expected 4"), std::string::npos) << message;
   EXPECT_NE(message.find("DIR/runs.json: /runs/2/start_time_s: expected a start after the previous run's"),
-            std::string::npos) << message;
+            std::string::npos)
+      << message;
   EXPECT_NE(message.find("DIR/runs.json: /runs/2/first_frame: expected 8"), std::string::npos) << message;
 
   const std::string short_runs = InputErrorOf([&] { RunsFromJson(RunsToJson(ThreeRuns()), "DIR/runs.json", 10); });
   EXPECT_NE(short_runs.find("DIR/runs.json: /runs: the runs end at frame 9, expected 10"), std::string::npos)
       << short_runs;
   const std::string bad = InputErrorOf([&] {
-    RunsFromJson(R"({"runs":[{"first_frame":0,"frames":0,"time_of_day_h":24,"day":-1,"start_time_s":0,"seed":1,"x":1}]})",
-                 "DIR/runs.json", 0);
+    RunsFromJson(
+        R"({"runs":[{"first_frame":0,"frames":0,"time_of_day_h":24,"day":-1,"start_time_s":0,"seed":1,"x":1}]})",
+        "DIR/runs.json", 0);
   });
-  for (const char* expected : {"/runs/0/x: unknown key", "/runs/0/frames: expected at least 1 frame",
-                               "/runs/0/time_of_day_h: expected an hour in [0, 24)", "/runs/0/day: expected a day >= 0"}) {
+  for (const char* expected :
+       {"/runs/0/x: unknown key", "/runs/0/frames: expected at least 1 frame",
+        "/runs/0/time_of_day_h: expected an hour in [0, 24)", "/runs/0/day: expected a day >= 0"}) {
     EXPECT_NE(bad.find(expected), std::string::npos) << bad;
   }
   EXPECT_NE(InputErrorOf([&] { RunsFromJson(R"({"runs":[]})", "DIR/runs.json", 0); }).find("expected at least one run"),

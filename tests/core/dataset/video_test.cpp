@@ -1,12 +1,12 @@
 #include "hoilcd/core/dataset/video.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/error.h"
 
@@ -18,8 +18,8 @@ cv::Mat SyntheticFrame(int frame) {
   cv::Mat image(192, 256, CV_8UC1);
   for (int y = 0; y < image.rows; ++y) {
     for (int x = 0; x < image.cols; ++x) {
-      const double blob = 120.0 * std::exp(-((x - 60 - 3 * frame) * (x - 60 - 3 * frame) +
-                                              (y - 90) * (y - 90)) / 400.0);
+      const double blob =
+          120.0 * std::exp(-((x - 60 - 3 * frame) * (x - 60 - 3 * frame) + (y - 90) * (y - 90)) / 400.0);
       const double texture = 6.0 * std::sin(0.7 * x) * std::cos(0.5 * y);
       image.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(40 + 0.3 * y + blob + texture);
     }
@@ -41,7 +41,6 @@ std::string ErrorOf(const std::function<void()>& f) {
   }
   return "";
 }
-
 
 TEST(Video, DecodesOneFrameOfTheGivenSizeAndRatePerEncodedFrame) {
   const std::string mp4 = Encode(VideoOptions(), 30);

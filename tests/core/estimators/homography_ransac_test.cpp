@@ -1,13 +1,12 @@
 #include "hoilcd/core/estimators/homography_ransac.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 
 #include "hoilcd/core/util/random.h"
@@ -36,10 +35,8 @@ TEST(EstimateHomographyRansac, KeepsAtLeast95PercentOfTrueInliersWithHalfOutlier
     const HomographyProblem p = MakeHomographyProblem(rng, n, n / 2, 1.0);
     const HomographyResult result = EstimateHomographyRansac(p.query, p.reference, p.matches, {}, t);
     ASSERT_EQ(static_cast<int>(result.inlier_mask.size()), n);
-    EXPECT_EQ(std::accumulate(result.inlier_mask.begin(), result.inlier_mask.end(), 0),
-              result.inliers);
-    const int true_found = std::accumulate(result.inlier_mask.begin(),
-                                           result.inlier_mask.begin() + p.num_inliers, 0);
+    EXPECT_EQ(std::accumulate(result.inlier_mask.begin(), result.inlier_mask.end(), 0), result.inliers);
+    const int true_found = std::accumulate(result.inlier_mask.begin(), result.inlier_mask.begin() + p.num_inliers, 0);
     found_fraction_sum += static_cast<double>(true_found) / p.num_inliers;
     ++problems;
   }
@@ -147,10 +144,10 @@ TEST(RansacCounter, EachVariantCountsWhatItsOwnRansacCountsAndIsChargedItsDrawin
       std::vector<int> inliers(count, -1), untimed(count, -1);
       std::vector<int64_t> alone_ns(count, -1);
       int64_t total_ns = -1;
-      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), set->data(),
-                    count, 1000 + t, inliers.data(), alone_ns.data(), &total_ns);
-      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), set->data(),
-                    count, 1000 + t, untimed.data(), nullptr, nullptr);
+      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), set->data(), count,
+                    1000 + t, inliers.data(), alone_ns.data(), &total_ns);
+      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), set->data(), count,
+                    1000 + t, untimed.data(), nullptr, nullptr);
       int64_t sum_ns = 0;
       for (int v = 0; v < count; ++v) {
         const int alone = RansacHomographySoa(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(),
@@ -187,15 +184,16 @@ TEST(RansacCounter, StopsDrawingOnceEveryMatchIsAnInlierAndNotBefore) {
       if (outlier) p.query.back().x += 40;  // one match far off: n - 1 inliers at best
       const SoaMatches m(p);
       int inliers[2] = {-1, -1};
-      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), variants.data(),
-                    2, 500 + t, inliers, nullptr, nullptr);
+      counter.Count(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(), m.size(), variants.data(), 2,
+                    500 + t, inliers, nullptr, nullptr);
       for (int v = 0; v < 2; ++v) {
         EXPECT_EQ(inliers[v], outlier ? n - 1 : n) << "problem " << t << ", variant " << v;
         EXPECT_EQ(inliers[v], RansacHomographySoa(m.ref_x.data(), m.ref_y.data(), m.query_x.data(), m.query_y.data(),
                                                   m.size(), variants[v], 500 + t, nullptr, nullptr));
       }
       if (outlier) {
-        EXPECT_EQ(counter.hypotheses_scored(), variants[0].trials) << "a search that cannot complete scores every trial";
+        EXPECT_EQ(counter.hypotheses_scored(), variants[0].trials)
+            << "a search that cannot complete scores every trial";
       } else {
         EXPECT_LT(counter.hypotheses_scored(), variants[0].trials) << "problem " << t;
       }

@@ -1,11 +1,10 @@
 #include "hoilcd/core/estimators/homography.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"

@@ -1,10 +1,9 @@
 #include "hoilcd/core/features/hoi_features.h"
 
-#include <gtest/gtest.h>
-
 #include <map>
 #include <set>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "option_properties.h"
@@ -25,9 +24,9 @@ cv::Mat HandMask() {
   return MaskFrom({
       {2, {1, 2, 3, 4, 5}},
       {3, {1, 2, 3, 4, 5, 6}},
-      {4, {2, 3, 4, 5, 6, 7, 8, 10}},  // row 10 is below the box: ignored
-      {5, {2, 3, 4, 7}},               // a gap: the lowest pixel counts
-      {7, {3, 4}},                     // column 6 is empty: no point
+      {4, {2, 3, 4, 5, 6, 7, 8, 10}},    // row 10 is below the box: ignored
+      {5, {2, 3, 4, 7}},                 // a gap: the lowest pixel counts
+      {7, {3, 4}},                       // column 6 is empty: no point
       {8, {1, 2, 3, 4, 5, 6, 7, 8, 9}},  // right of the box: ignored
   });
 }
@@ -73,8 +72,7 @@ TEST(ExtractHoiFeatures, BoxesAreClippedToTheImageAndColumnsCanBeSubsampled) {
   HoiOptions options;
   options.min_points_per_person = 1;
   const std::vector<Track> outside = {{3, cv::Rect2f(-5, -5, 8, 8), 0.9f}};  // cols 0-2, rows 0-2
-  EXPECT_EQ(Points(ExtractHoiFeatures(HandMask(), outside, options)),
-            (std::vector<std::pair<int, int>>{{2, 2}}));
+  EXPECT_EQ(Points(ExtractHoiFeatures(HandMask(), outside, options)), (std::vector<std::pair<int, int>>{{2, 2}}));
   options.column_step_px = 2;
   const std::vector<Track> tracks = {{1, cv::Rect2f(2, 1, 6, 8), 0.9f}};
   EXPECT_EQ(Points(ExtractHoiFeatures(HandMask(), tracks, options)),
@@ -104,8 +102,7 @@ TEST(DlcdFrontEnd, TwoSeatedPeopleGiveTwoIdsWithPointsOnTheirBottomEdges) {
     cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(22));
     for (int torso_x : {80 + frame, 110 + frame}) {
       cv::rectangle(frame_c, cv::Rect(torso_x, 55, 30, 50), cv::Scalar(28.5), cv::FILLED);
-      cv::ellipse(frame_c, cv::Point(torso_x + 15, 48), cv::Size(7, 9), 0, 0, 360,
-                  cv::Scalar(34), cv::FILLED);
+      cv::ellipse(frame_c, cv::Point(torso_x + 15, 48), cv::Size(7, 9), 0, 0, 360, cv::Scalar(34), cv::FILLED);
     }
     const std::vector<HoiFeature> features = front_end.Process(cv::Mat(), frame_c);
     ASSERT_EQ(front_end.last_detections().detections.size(), 2u) << "frame " << frame;

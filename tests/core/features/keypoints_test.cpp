@@ -1,7 +1,6 @@
 #include "hoilcd/core/features/keypoints.h"
 
 #include <gtest/gtest.h>
-
 #include <opencv2/imgproc.hpp>
 
 #include "option_properties.h"
@@ -39,8 +38,8 @@ TEST(Keypoints, EveryDetectorFindsTheRectangleCornersAndRespectsBorderAndRadius)
       }
     }
     // Corner detectors fire at the corners; blob detectors (SIFT, AKAZE) at least on the shapes.
-    const bool corner_detector = std::string(detector) == "gftt" || std::string(detector) == "fast" ||
-                                 std::string(detector) == "orb";
+    const bool corner_detector =
+        std::string(detector) == "gftt" || std::string(detector) == "fast" || std::string(detector) == "orb";
     if (corner_detector) {
       EXPECT_GE(near_corner, 2) << detector;
     }

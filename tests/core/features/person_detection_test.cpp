@@ -1,7 +1,6 @@
 #include "hoilcd/core/features/person_detection.h"
 
 #include <gtest/gtest.h>
-
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"
@@ -14,10 +13,9 @@ constexpr float kRoomC = 22.0f, kSkinC = 34.0f, kClothingC = 28.5f;
 
 // A seated person seen from the front: a head on a torso.
 void DrawPerson(cv::Mat& frame_c, int torso_x, int torso_top, int torso_width, int torso_height) {
-  cv::rectangle(frame_c, cv::Rect(torso_x, torso_top, torso_width, torso_height),
-                cv::Scalar(kClothingC), cv::FILLED);
-  cv::ellipse(frame_c, cv::Point(torso_x + torso_width / 2, torso_top - 7), cv::Size(7, 9), 0, 0,
-              360, cv::Scalar(kSkinC), cv::FILLED);
+  cv::rectangle(frame_c, cv::Rect(torso_x, torso_top, torso_width, torso_height), cv::Scalar(kClothingC), cv::FILLED);
+  cv::ellipse(frame_c, cv::Point(torso_x + torso_width / 2, torso_top - 7), cv::Size(7, 9), 0, 0, 360,
+              cv::Scalar(kSkinC), cv::FILLED);
 }
 
 void AddNoise(cv::Mat& frame_c, int frame) {
@@ -57,7 +55,7 @@ void ExpectTheTwoTouchingPeople(const PersonDetections& result) {
   EXPECT_NEAR(left.x + left.width, 110, 2);
   EXPECT_NEAR(right.x, 110, 2);
   EXPECT_NEAR(right.x + right.width, 140, 1);
-  EXPECT_NEAR(left.y, 55 - 16, 2);   // top of the head
+  EXPECT_NEAR(left.y, 55 - 16, 2);  // top of the head
   EXPECT_NEAR(left.y + left.height, 105, 1);
   for (const Detection& d : result.detections) {
     EXPECT_GE(d.score, 0.6f) << "a clear person must be able to start a track";
@@ -173,8 +171,7 @@ TEST(DetectPersons, LegsBelowATableJoinThePersonAbove) {
   cv::Mat frame_c(192, 256, CV_32F, cv::Scalar(kRoomC));
   DrawPerson(frame_c, 100, 60, 34, 40);  // down to the table edge at row 100
   // Legs below the table; not a rectangle, which would be rejected as an object on its own.
-  cv::ellipse(frame_c, cv::Point(117, 145), cv::Size(9, 15), 0, 0, 360, cv::Scalar(kClothingC),
-              cv::FILLED);
+  cv::ellipse(frame_c, cv::Point(117, 145), cv::Size(9, 15), 0, 0, 360, cv::Scalar(kClothingC), cv::FILLED);
   AddNoise(frame_c, 5);
   const PersonDetections result = DetectPersons(cv::Mat(), frame_c, {});
   ASSERT_EQ(result.detections.size(), 1u);
@@ -197,8 +194,7 @@ TEST(DetectPersons, APersonWithOneHeadIsNotSplitAtAGapBesideTheArm) {
 TEST(DetectPersons, RejectsMismatchedInputs) {
   EXPECT_THROW(DetectPersons(cv::Mat(), cv::Mat(), {}), std::logic_error);
   EXPECT_THROW(DetectPersons(cv::Mat(10, 10, CV_32F), cv::Mat(), {}), std::logic_error);
-  EXPECT_THROW(DetectPersons(cv::Mat(10, 10, CV_8U), cv::Mat(12, 10, CV_32F), {}),
-               std::logic_error);
+  EXPECT_THROW(DetectPersons(cv::Mat(10, 10, CV_8U), cv::Mat(12, 10, CV_32F), {}), std::logic_error);
 }
 
 TEST(FindSplitColumns, SplitsInTheMiddleOfTheValleyBetweenTwoHeads) {
@@ -320,8 +316,7 @@ TEST(PersonDetection, WithoutVisibleSkinAPersonIsMostlyClothing) {
   // Seen from behind and close, the shoulders hide the head: a rounded torso, clothing only.
   const auto torso = [](float temperature_c, int top) {
     cv::Mat t(192, 256, CV_32F, cv::Scalar(kRoomC));
-    cv::ellipse(t, cv::Point(120, top + 60), cv::Size(30, 60), 0, 0, 360,
-                cv::Scalar(temperature_c), cv::FILLED);
+    cv::ellipse(t, cv::Point(120, top + 60), cv::Size(30, 60), 0, 0, 360, cv::Scalar(temperature_c), cv::FILLED);
     AddNoise(t, 8);
     return t;
   };

@@ -3,9 +3,9 @@
 // with CameraPose::WorldFromCam, whose rotation is proper and orthonormal.
 #include "hoilcd/core/geometry/camera.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 
@@ -29,9 +29,9 @@ Rigid3 RandomRigid(Rng& rng) {
 }
 
 CameraIntrinsics RandomIntrinsics(Rng& rng) {
-  CameraIntrinsics k = CameraIntrinsics::FromHorizontalFov(static_cast<int>(32 + rng.UniformInt(1000)),
-                                                           static_cast<int>(24 + rng.UniformInt(800)),
-                                                           rng.Uniform(10.0, 150.0));
+  CameraIntrinsics k =
+      CameraIntrinsics::FromHorizontalFov(static_cast<int>(32 + rng.UniformInt(1000)),
+                                          static_cast<int>(24 + rng.UniformInt(800)), rng.Uniform(10.0, 150.0));
   k.fy = k.fx * rng.Uniform(0.8, 1.25);  // non-square pixels and an off-centre principal point too
   k.cx += rng.Uniform(-5.0, 5.0);
   k.cy += rng.Uniform(-5.0, 5.0);
@@ -103,7 +103,8 @@ TEST(Geometry, CompositionIsAssociativeActsAsSuccessiveTransformsAndInvertsInRev
     const Rigid3 inverse = (c_from_b * b_from_a).Inverse(), reversed = b_from_a.Inverse() * c_from_b.Inverse();
     ExpectNear(inverse * p, reversed * p, tolerance);
     // The 4 x 4 matrices compose and invert as the transforms do.
-    EXPECT_LT(((c_from_b * b_from_a).Matrix() - c_from_b.Matrix() * b_from_a.Matrix()).cwiseAbs().maxCoeff(), tolerance);
+    EXPECT_LT(((c_from_b * b_from_a).Matrix() - c_from_b.Matrix() * b_from_a.Matrix()).cwiseAbs().maxCoeff(),
+              tolerance);
     EXPECT_LT((b_from_a.Inverse().Matrix() - b_from_a.Matrix().inverse()).cwiseAbs().maxCoeff(), tolerance);
     const Eigen::Vector4d h = b_from_a.Matrix() * p.homogeneous();
     ExpectNear(h.head<3>(), b_from_a * p, tolerance);
@@ -116,7 +117,8 @@ TEST(Geometry, WorldFromCamIsAProperRotationAndItsInverseTakesTheCameraCentreToT
     Rng rng = KeyedRng(kSeed, "test.world_from_cam", i);
     CameraPose pose;
     pose.x_m = rng.Uniform(-10.0, 10.0), pose.y_m = rng.Uniform(-10.0, 10.0), pose.z_m = rng.Uniform(0.0, 3.0);
-    pose.yaw_rad = rng.Uniform(-M_PI, M_PI), pose.pitch_rad = rng.Uniform(-1.5, 1.5), pose.roll_rad = rng.Uniform(-1.0, 1.0);
+    pose.yaw_rad = rng.Uniform(-M_PI, M_PI), pose.pitch_rad = rng.Uniform(-1.5, 1.5),
+    pose.roll_rad = rng.Uniform(-1.0, 1.0);
     const Rigid3 world_from_cam = pose.WorldFromCam();
     const Eigen::Matrix3d r = world_from_cam.rotation.toRotationMatrix();
     EXPECT_LT((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12) << i;

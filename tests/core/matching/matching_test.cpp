@@ -1,10 +1,10 @@
 #include "hoilcd/core/matching/matching.h"
 
-#include <gtest/gtest.h>
-
 #include <limits>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 #include "option_properties.h"
@@ -27,8 +27,7 @@ int BruteNearest(const std::vector<Point2>& set, Point2 p) {
   return best;
 }
 
-std::vector<Correspondence> BruteMutual(const std::vector<Point2>& query,
-                                        const std::vector<Point2>& reference) {
+std::vector<Correspondence> BruteMutual(const std::vector<Point2>& query, const std::vector<Point2>& reference) {
   std::vector<Correspondence> matches;
   for (int i = 0; i < static_cast<int>(query.size()); ++i) {
     const int j = BruteNearest(reference, query[i]);
@@ -54,8 +53,7 @@ std::vector<Point2> MakePoints(Rng& rng, int n, Layout layout) {
         points.emplace_back(rng.Uniform(0, 256), 150.0f + static_cast<float>(rng.UniformInt(3)));
         break;
       case Layout::kIntegerLattice:  // many exact distance ties
-        points.emplace_back(static_cast<float>(rng.UniformInt(12)),
-                            static_cast<float>(rng.UniformInt(9)));
+        points.emplace_back(static_cast<float>(rng.UniformInt(12)), static_cast<float>(rng.UniformInt(9)));
         break;
       case Layout::kFarApart:  // most points far outside the other set's bounding box
         points.emplace_back(rng.Uniform(-2000, 2000), rng.Uniform(-5, 5));
@@ -67,8 +65,8 @@ std::vector<Point2> MakePoints(Rng& rng, int n, Layout layout) {
 
 TEST(PointGrid, NearestEqualsBruteForceInsideAndOutsideTheCandidateLattice) {
   Rng rng = KeyedRng(2, "test.grid.nearest");
-  const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow,
-                            Layout::kIntegerLattice, Layout::kFarApart};
+  const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow, Layout::kIntegerLattice,
+                            Layout::kFarApart};
   int queries = 0;
   for (int t = 0; t < 200; ++t) {
     const int n = 1 + static_cast<int>(rng.UniformInt(400));
@@ -85,8 +83,7 @@ TEST(PointGrid, NearestEqualsBruteForceInsideAndOutsideTheCandidateLattice) {
     for (const Point2& p : set) probes.push_back(p);
     probes.emplace_back(1e4f, -1e4f);
     for (const Point2& p : probes) {
-      ASSERT_EQ(grid.Nearest(p), BruteNearest(set, p))
-          << "problem " << t << " at (" << p.x << ", " << p.y << ")";
+      ASSERT_EQ(grid.Nearest(p), BruteNearest(set, p)) << "problem " << t << " at (" << p.x << ", " << p.y << ")";
       ++queries;
     }
   }
@@ -117,8 +114,8 @@ TEST(PointGrid, ClusterWithAFarOutlierAndHugeCoordinatesStayExact) {
 
 TEST(MutualNearestNeighbours, EqualsBruteForceAndEveryKeptPairIsMutual) {
   Rng rng = KeyedRng(1, "test.mnn");
-  const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow,
-                            Layout::kIntegerLattice, Layout::kFarApart};
+  const Layout layouts[] = {Layout::kUniform, Layout::kClustered, Layout::kRow, Layout::kIntegerLattice,
+                            Layout::kFarApart};
   int total_matches = 0;
   for (int t = 0; t < 400; ++t) {
     const int nq = static_cast<int>(rng.UniformInt(300)), nr = static_cast<int>(rng.UniformInt(300));
@@ -162,8 +159,7 @@ TEST(FilterVertical, DropsExactlyThePairsBeyondTheBound) {
   options.vertical_tolerance = 0.125;  // 0.125 * 96 = 12 px, exact in binary
   options.image_height_px = 96;
   const std::vector<Point2> query = {{0, 50}, {0, 50}, {0, 50}, {0, 50}, {0, 50}, {0, 50}};
-  const std::vector<Point2> reference = {{9, 50}, {0, 62}, {0, 38}, {0, 62.01f}, {0, 37.99f},
-                                         {0, 61.99f}};
+  const std::vector<Point2> reference = {{9, 50}, {0, 62}, {0, 38}, {0, 62.01f}, {0, 37.99f}, {0, 61.99f}};
   const std::vector<Correspondence> matches = {{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}, {5, 5}};
   const std::vector<Correspondence> expected = {{0, 0}, {1, 1}, {2, 2}, {5, 5}};
   EXPECT_EQ(FilterVertical(query, reference, matches, options), expected);
@@ -223,11 +219,10 @@ TEST(ScorePair, EqualsTheComposedPipelineWithThePairKeyedStream) {
       p.y += static_cast<float>(-2 + rng.Normal(0, 0.7));
     }
     reference.resize(100 + rng.UniformInt(50));
-    const std::vector<Correspondence> matches = FilterVertical(
-        query, reference, MutualNearestNeighbours(query, reference), match_options);
-    const int expected = EstimateHomographyRansac(query, reference, matches, ransac_options,
-                                                  PairSeed(99, t, t + 1))
-                             .inliers;
+    const std::vector<Correspondence> matches =
+        FilterVertical(query, reference, MutualNearestNeighbours(query, reference), match_options);
+    const int expected =
+        EstimateHomographyRansac(query, reference, matches, ransac_options, PairSeed(99, t, t + 1)).inliers;
     EXPECT_EQ(ScorePair(query, reference, match_options, ransac_options, 99, t, t + 1), expected);
   }
 }
@@ -241,10 +236,12 @@ TEST(MatchPair, ItsInliersAreThePairsScoreAndItsMatchesTheFilteredMutualPairs) {
     for (int t = 0; t < 30; ++t) {
       const std::vector<Point2> query = MakePoints(rng, 20 + t * 4, Layout::kUniform);
       std::vector<Point2> reference = query;
-      for (Point2& p : reference) p += Point2(static_cast<float>(rng.Normal(2, 1)), static_cast<float>(rng.Normal(0, 1)));
+      for (Point2& p : reference)
+        p += Point2(static_cast<float>(rng.Normal(2, 1)), static_cast<float>(rng.Normal(0, 1)));
       reference.resize(reference.size() - rng.UniformInt(10));
       const PairMatches pair = MatchPair(query, reference, match_options, ransac_options, 7, t, 2 * t);
-      EXPECT_EQ(pair.matches, FilterVertical(query, reference, MutualNearestNeighbours(query, reference), match_options));
+      EXPECT_EQ(pair.matches,
+                FilterVertical(query, reference, MutualNearestNeighbours(query, reference), match_options));
       ASSERT_EQ(pair.inlier.size(), pair.matches.size());
       int counted = 0;
       for (uint8_t in : pair.inlier) counted += in;

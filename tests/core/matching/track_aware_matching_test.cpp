@@ -1,9 +1,9 @@
 #include "hoilcd/core/matching/track_aware_matching.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <map>
+
+#include <gtest/gtest.h>
 
 #include "option_properties.h"
 
@@ -11,13 +11,11 @@ namespace hoilcd {
 namespace {
 
 // One person's bottom contour: a point per column in [x0, x1], y = base + shape(column).
-void AddPerson(std::vector<HoiFeature>* features, int track_id, int x0, int x1, double base_y,
-               double (*shape)(int), Point2 offset) {
+void AddPerson(std::vector<HoiFeature>* features, int track_id, int x0, int x1, double base_y, double (*shape)(int),
+               Point2 offset) {
   for (int x = x0; x <= x1; ++x) {
     const double y = std::round(base_y + shape(x - x0));
-    features->push_back({Point2(static_cast<float>(x) + offset.x,
-                                static_cast<float>(y) + offset.y),
-                         track_id});
+    features->push_back({Point2(static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y), track_id});
   }
 }
 
@@ -39,8 +37,7 @@ TEST(TrackAwareMatching, ShiftedPersonsGiveOnlyCorrectCorrespondencesAndAllRansa
   const Point2 offset(12.0f, 3.0f);
   const std::vector<HoiFeature> query = ThreePersons(1, Point2(0, 0));
   const std::vector<HoiFeature> reference = ThreePersons(7, offset);
-  const std::vector<Correspondence> matches =
-      TrackAwareCorrespondences(query, reference, TrackAwareOptions());
+  const std::vector<Correspondence> matches = TrackAwareCorrespondences(query, reference, TrackAwareOptions());
   // Arc-length sampling skips a few points next to steep steps of a contour.
   ASSERT_GE(matches.size(), query.size() * 9 / 10);
   for (const Correspondence& m : matches) {
@@ -59,14 +56,11 @@ TEST(TrackAwareMatching, ExtraPersonDoesNotDisturbTheCommonPairs) {
   std::vector<HoiFeature> reference = ThreePersons(20, offset);
   AddPerson(&reference, 40, 232, 252, 100.0, Vee, Point2(0, 0));
   const auto persons = PairPersons(GroupPersonContours(query, TrackAwareOptions()),
-                                   GroupPersonContours(reference, TrackAwareOptions()),
-                                   TrackAwareOptions());
+                                   GroupPersonContours(reference, TrackAwareOptions()), TrackAwareOptions());
   ASSERT_EQ(persons.matches.size(), 3u);
   EXPECT_EQ(persons.unmatched_cols, std::vector<int>{3});
-  const std::vector<Correspondence> matches =
-      TrackAwareCorrespondences(query, reference, TrackAwareOptions());
-  ASSERT_EQ(matches.size(),
-            TrackAwareCorrespondences(query, ThreePersons(20, offset), TrackAwareOptions()).size());
+  const std::vector<Correspondence> matches = TrackAwareCorrespondences(query, reference, TrackAwareOptions());
+  ASSERT_EQ(matches.size(), TrackAwareCorrespondences(query, ThreePersons(20, offset), TrackAwareOptions()).size());
   for (const Correspondence& m : matches) {
     const HoiFeature& q = query[static_cast<size_t>(m.query)];
     const HoiFeature& r = reference[static_cast<size_t>(m.reference)];
@@ -107,8 +101,7 @@ TEST(TrackAwareMatching, PersonsTooFarApartStayUnpaired) {
   const std::vector<HoiFeature> reference = ThreePersons(7, Point2(0, 0));
   TrackAwareOptions options;
   // Moved 100 px down: every pair costs more than max_pair_cost (80).
-  EXPECT_EQ(TrackAwareCorrespondences(query, ThreePersons(7, Point2(0, 100)), options).size(),
-            0u);
+  EXPECT_EQ(TrackAwareCorrespondences(query, ThreePersons(7, Point2(0, 100)), options).size(), 0u);
   EXPECT_GT(TrackAwareCorrespondences(query, reference, options).size(), 0u);
 }
 

@@ -4,11 +4,11 @@
 
 #include "hoilcd/core/optim/ransac_sampler.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

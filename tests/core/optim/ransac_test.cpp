@@ -4,11 +4,11 @@
 
 #include "hoilcd/core/optim/ransac.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 #include "option_properties.h"
@@ -127,8 +127,9 @@ TEST(RansacVariants, EachVariantOfASecondModelCountsWhatItsOwnRunCounts) {
   for (const uint64_t seed : {1u, 2u, 3u}) {
     const TranslationProblem problem = MakeTranslationProblem(60, 15, seed);
     std::vector<int> inliers(variants.size(), -1);
-    counter.Count(60, [&] { return problem.data(); }, variants.data(), static_cast<int>(variants.size()), seed,
-                  inliers.data(), nullptr, nullptr);
+    counter.Count(
+        60, [&] { return problem.data(); }, variants.data(), static_cast<int>(variants.size()), seed, inliers.data(),
+        nullptr, nullptr);
     for (size_t v = 0; v < variants.size(); ++v) {
       float t[2];
       EXPECT_EQ(inliers[v], RunRansac<TranslationEstimator>(problem.data(), variants[v], seed, t)) << v;

@@ -1,10 +1,10 @@
 #include "hoilcd/core/place_recognition/rank_fusion.h"
 
-#include <gtest/gtest.h>
-
 #include <limits>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {
@@ -31,11 +31,11 @@ TEST(ReciprocalRankFusion, KShiftsEveryRankAndAbsentItemsContributeNothing) {
 }
 
 TEST(ReciprocalRankFusion, InvalidRankingsAreRejected) {
-  EXPECT_THROW(ReciprocalRankFusion({{0, 3}}, 3), std::logic_error);   // index out of range
-  EXPECT_THROW(ReciprocalRankFusion({{0, -1}}, 3), std::logic_error);  // negative index
-  EXPECT_THROW(ReciprocalRankFusion({{1, 1}}, 3), std::logic_error);   // listed twice
+  EXPECT_THROW(ReciprocalRankFusion({{0, 3}}, 3), std::logic_error);     // index out of range
+  EXPECT_THROW(ReciprocalRankFusion({{0, -1}}, 3), std::logic_error);    // negative index
+  EXPECT_THROW(ReciprocalRankFusion({{1, 1}}, 3), std::logic_error);     // listed twice
   EXPECT_THROW(ReciprocalRankFusion({{0}}, 3, -1.0), std::logic_error);  // 1/(k + 1) infinite
-  EXPECT_NO_THROW(ReciprocalRankFusion({{1}, {1}}, 3));  // once per ranking is fine
+  EXPECT_NO_THROW(ReciprocalRankFusion({{1}, {1}}, 3));                  // once per ranking is fine
 }
 
 TEST(RankByScore, SortsDescendingAndKeepsTiesInIndexOrder) {
@@ -59,8 +59,7 @@ TEST(FractionalRanks, TiedItemsShareTheMeanOfTheirPositions) {
 TEST(ReciprocalRankFusionOfScores, EqualsRankFusionWithoutTiesAndIgnoresDatabaseOrderWithTies) {
   const std::vector<double> a = {3, 1, 2}, b = {1, 3, 2};
   const std::vector<double> fused = ReciprocalRankFusionOfScores({a, b}, 0.0);
-  const std::vector<double> reference =
-      ReciprocalRankFusion({RankByScore(a), RankByScore(b)}, 3, 0.0);
+  const std::vector<double> reference = ReciprocalRankFusion({RankByScore(a), RankByScore(b)}, 3, 0.0);
   for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(fused[i], reference[i]);
   // All-tied lists give every item the same fused score, whatever the order.
   const std::vector<double> tied = ReciprocalRankFusionOfScores({{0, 0, 0}, {0, 0, 0}}, 0.0);

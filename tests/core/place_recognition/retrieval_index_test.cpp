@@ -1,10 +1,10 @@
 #include "hoilcd/core/place_recognition/retrieval_index.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 
@@ -96,8 +96,8 @@ TEST(RetrievalIndex, ScoreAllEqualsScorePairPerPairAndIsIdenticalAtOneAndTwoThre
   for (size_t i = 0; i < queries.size(); ++i) {
     ASSERT_EQ(one[i].size(), database.size());
     for (size_t j = 0; j < database.size(); ++j) {
-      const int expected = ScorePair(frames[queries[i]], frames[database[j]], match_options,
-                                     ransac_options, 77, queries[i], database[j]);
+      const int expected = ScorePair(frames[queries[i]], frames[database[j]], match_options, ransac_options, 77,
+                                     queries[i], database[j]);
       EXPECT_EQ(one[i][j], static_cast<float>(expected)) << queries[i] << " vs " << database[j];
       best = std::max(best, one[i][j]);
     }
@@ -138,9 +138,8 @@ TEST(RetrievalIndex, ScoreDatabasesEqualsScoreAllPerQueryAtAnyThreadCount) {
   ASSERT_EQ(time_ns.size(), queries.size());
   bool some_score = false;
   for (size_t i = 0; i < queries.size(); ++i) {
-    const auto expected = databases[i].empty()
-                              ? std::vector<std::vector<float>>{{}}
-                              : index.ScoreAll({queries[i]}, databases[i], match, ransac, 9, 1);
+    const auto expected = databases[i].empty() ? std::vector<std::vector<float>>{{}}
+                                               : index.ScoreAll({queries[i]}, databases[i], match, ransac, 9, 1);
     EXPECT_EQ(one[i], expected[0]) << "query " << queries[i];
     EXPECT_GE(time_ns[i], 0);
     for (float v : one[i]) some_score |= v > 0;

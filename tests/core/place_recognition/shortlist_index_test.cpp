@@ -1,11 +1,11 @@
 #include "hoilcd/core/place_recognition/shortlist_index.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 

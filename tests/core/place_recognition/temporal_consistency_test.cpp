@@ -1,8 +1,8 @@
 #include "hoilcd/core/place_recognition/temporal_consistency.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
+
+#include <gtest/gtest.h>
 
 #include "option_properties.h"
 
@@ -131,8 +131,7 @@ TEST(TemporalConsistency, UnsortedFramesAreRejected) {
   const Table t;
   std::vector<int> unsorted = t.queries;
   std::swap(unsorted[0], unsorted[1]);
-  EXPECT_THROW(TemporalConsistencyScores(unsorted, t.database, t.scores, Strict()),
-               std::logic_error);
+  EXPECT_THROW(TemporalConsistencyScores(unsorted, t.database, t.scores, Strict()), std::logic_error);
 }
 
 }  // namespace

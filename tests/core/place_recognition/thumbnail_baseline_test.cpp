@@ -1,7 +1,6 @@
 #include "hoilcd/core/place_recognition/thumbnail_baseline.h"
 
 #include <gtest/gtest.h>
-
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/util/random.h"
@@ -57,8 +56,7 @@ TEST(ThumbnailBaseline, PatchNormalisationRemovesAPerPatchOffsetThatGlobalNccWou
   cv::Mat ramped = scene.clone();
   for (int y = 0; y < ramped.rows; ++y)
     for (int x = 0; x < ramped.cols; ++x)
-      ramped.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(scene.at<uint8_t>(y, x) * 0.2 +
-                                                            (x / 64) * 50);
+      ramped.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(scene.at<uint8_t>(y, x) * 0.2 + (x / 64) * 50);
   ThumbnailOptions per_patch;  // 8x8 thumbnail px = 64x64 image px: the ramp's step width
   ThumbnailOptions whole_image;
   whole_image.patch_px = 32;
@@ -152,8 +150,7 @@ TEST(ThumbnailBaseline, SequenceOfLengthOneIsTheSingleFrameMatrix) {
 TEST(ThumbnailBaseline, SequenceIsShortenedAtTheFirstRowsAndCountsStepsPastTheColumnsAsZero) {
   // 3x3 matrix, length 3, velocity 1: (2,2) averages the diagonal, (1,1) its two rows, (2,1)
   // has one step past column 0 counted as 0.
-  const std::vector<std::vector<float>> similarity = {
-      {1.0f, 0.0f, 0.0f}, {0.6f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+  const std::vector<std::vector<float>> similarity = {{1.0f, 0.0f, 0.0f}, {0.6f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}};
   SeqSlamOptions options;
   options.sequence_length = 3;
   options.min_velocity = options.max_velocity = 1.0;
@@ -214,8 +211,7 @@ TEST(ThumbnailBaseline, SequenceLengthBeyondAnySequenceIsRefusedByName) {
 }
 
 TEST(ThumbnailBaseline, SequenceLongerThanTheMatrixCountsAsAllOfItsRows) {
-  const std::vector<std::vector<float>> similarity = {
-      {1.0f, 0.0f, 0.0f}, {0.6f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+  const std::vector<std::vector<float>> similarity = {{1.0f, 0.0f, 0.0f}, {0.6f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}};
   SeqSlamOptions three, all;
   three.sequence_length = 3;
   all.sequence_length = 1000000;

@@ -1,13 +1,13 @@
 // hoilcd's ByteTracker against the Python reference (ifzhang/ByteTrack) on recorded person
 // detections of 400 rendered paper-room frames: tests/data/bytetrack_reference.txt, whose header
 // says how the detections and the reference's tracks were recorded.
-#include <gtest/gtest.h>
-
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/tracking/byte_tracker.h"
 
@@ -24,8 +24,7 @@ struct ReferenceFrame {
 };
 
 std::vector<ReferenceFrame> LoadFixture() {
-  const std::string path =
-      std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/bytetrack_reference.txt";
+  const std::string path = std::string(HOILCD_TEST_SOURCE_DIR) + "/tests/data/bytetrack_reference.txt";
   std::ifstream in(path);
   EXPECT_TRUE(in) << "cannot read " << path;
   std::vector<ReferenceFrame> frames;
@@ -58,8 +57,7 @@ std::vector<ReferenceFrame> LoadFixture() {
 
 bool SameBox(const cv::Rect2f& a, const cv::Rect2f& b) {
   return std::abs(a.x - b.x) <= kBoxTolerancePx && std::abs(a.y - b.y) <= kBoxTolerancePx &&
-         std::abs(a.width - b.width) <= kBoxTolerancePx &&
-         std::abs(a.height - b.height) <= kBoxTolerancePx;
+         std::abs(a.width - b.width) <= kBoxTolerancePx && std::abs(a.height - b.height) <= kBoxTolerancePx;
 }
 
 // Frames on which hoilcd's output (ids, order and boxes) differs from the reference's `kind`.

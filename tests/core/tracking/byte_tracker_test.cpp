@@ -1,10 +1,10 @@
 #include "hoilcd/core/tracking/byte_tracker.h"
 
-#include <gtest/gtest.h>
-
 #include <map>
 #include <optional>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 #include "option_properties.h"
@@ -189,8 +189,8 @@ TEST(IouDistance, IsOneMinusIntersectionOverUnion) {
 
 TEST(IouDistance, PlusOnePixelCountsInclusivePixelCornersAsCythonBbox) {
   // (x1, y1, x2, y2) = (0, 0, 10, 10) and (5, 0, 15, 10): 6 x 11 shared of 11 x 11 each.
-  const auto d = IouDistance({{0, 0, 10, 10}}, {{5, 0, 10, 10}, {10, 0, 5, 5}, {11, 0, 5, 5}},
-                             IouConvention::kPlusOnePixel);
+  const auto d =
+      IouDistance({{0, 0, 10, 10}}, {{5, 0, 10, 10}, {10, 0, 5, 5}, {11, 0, 5, 5}}, IouConvention::kPlusOnePixel);
   EXPECT_NEAR(d[0][0], 1.0 - 66.0 / (121.0 + 121.0 - 66.0), 1e-12);
   EXPECT_NEAR(d[0][1], 1.0 - 6.0 / (121.0 + 36.0 - 6.0), 1e-12);  // touching boxes share 1 px
   EXPECT_DOUBLE_EQ(d[0][2], 1.0);

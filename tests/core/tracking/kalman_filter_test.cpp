@@ -1,9 +1,9 @@
 #include "hoilcd/core/tracking/kalman_filter.h"
 
-#include <gtest/gtest.h>
+#include <cmath>
 
 #include <Eigen/Cholesky>
-#include <cmath>
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

@@ -1,12 +1,12 @@
 #include "hoilcd/core/tracking/lapjv.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <numeric>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/random.h"
 

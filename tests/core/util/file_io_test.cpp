@@ -1,13 +1,13 @@
 #include "hoilcd/core/util/file_io.h"
 
-#include <gtest/gtest.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <filesystem>
 #include <iterator>
-#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "hoilcd/core/util/error.h"
 #include "input_error_of.h"
@@ -34,8 +34,7 @@ TEST(EncodePng, IsDeterministicAndDecodesToTheSamePixels) {
   for (int i = 0; i < 48; ++i) image16.at<uint16_t>(i / 8, i % 8) = 29000 + 37 * i;
   const std::string bytes = EncodePng(image16);
   EXPECT_EQ(bytes, EncodePng(image16.clone()));
-  const cv::Mat decoded =
-      cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
+  const cv::Mat decoded = cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(decoded.type(), CV_16UC1);
   EXPECT_EQ(cv::countNonZero(decoded != image16), 0);
   EXPECT_THROW(EncodePng(cv::Mat(2, 2, CV_8UC4)), std::logic_error);

@@ -5,14 +5,14 @@
 // a folder it cannot list instead of taking it as empty.
 #include "hoilcd/core/util/folder_lock.h"
 
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <optional>
 #include <thread>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "hoilcd/core/util/file_io.h"
 #include "input_error_of.h"

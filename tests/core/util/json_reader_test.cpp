@@ -1,12 +1,12 @@
-#include "cpu_seconds.h"
 #include "hoilcd/core/util/json_reader.h"
-
-#include <gtest/gtest.h>
 
 #include <chrono>
 #include <functional>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "cpu_seconds.h"
 #include "hoilcd/core/util/sizes.h"
 #include "input_error_of.h"
 
@@ -23,8 +23,7 @@ std::string Parsing(const std::string& text) {
 }
 
 TEST(ParseJson, NestingOfAHundredThousandLevelsIsRefusedAtItsPointerWithinTwoSeconds) {
-  for (const std::string& deep : {std::string(100000, '[') + std::string(100000, ']'),
-                                  [] {
+  for (const std::string& deep : {std::string(100000, '[') + std::string(100000, ']'), [] {
                                     std::string text;
                                     for (int i = 0; i < 100000; ++i) text += "{\"a\":";
                                     return text + "1" + std::string(100000, '}');
@@ -32,10 +31,12 @@ TEST(ParseJson, NestingOfAHundredThousandLevelsIsRefusedAtItsPointerWithinTwoSec
     std::string error;
     EXPECT_LT(SecondsOf([&] { error = Parsing(deep); }), 2.0);
     EXPECT_NE(error.find("f.json: /"), std::string::npos) << error.substr(0, 200);
-    EXPECT_NE(error.find(": nests deeper than 64 levels of objects and arrays"), std::string::npos) << error.substr(0, 200);
+    EXPECT_NE(error.find(": nests deeper than 64 levels of objects and arrays"), std::string::npos)
+        << error.substr(0, 200);
   }
-  EXPECT_NE(Parsing(R"({"a": [[{"b": )" + std::string(62, '[') + std::string(62, ']') + "}]]}").find("f.json: /a/0/0/b/0/0/"),
-            std::string::npos);
+  EXPECT_NE(
+      Parsing(R"({"a": [[{"b": )" + std::string(62, '[') + std::string(62, ']') + "}]]}").find("f.json: /a/0/0/b/0/0/"),
+      std::string::npos);
 }
 
 TEST(ParseJson, NestingUpToTheBoundIsRead) {
@@ -45,8 +46,9 @@ TEST(ParseJson, NestingUpToTheBoundIsRead) {
 }
 
 TEST(ParseJson, ARepeatedKeyIsRefusedAtItsPointer) {
-  EXPECT_NE(Parsing(R"({"frames": 40, "frames": 30})").find(R"(f.json: /frames: the key "frames" is repeated in one object)"),
-            std::string::npos);
+  EXPECT_NE(
+      Parsing(R"({"frames": 40, "frames": 30})").find(R"(f.json: /frames: the key "frames" is repeated in one object)"),
+      std::string::npos);
   EXPECT_NE(Parsing(R"({"runs": [{"a": 1}, {"set": {"x": 1, "y": [1, 2], "x": 2}}]})").find("f.json: /runs/1/set/x: "),
             std::string::npos);
   EXPECT_NE(Parsing(R"({"a~b/c": {}, "a~b/c": 1})").find("f.json: /a~0b~1c: "), std::string::npos);

@@ -1,9 +1,9 @@
 #include "hoilcd/core/util/memory.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
+
+#include <gtest/gtest.h>
 
 #include "input_error_of.h"
 #include "test_dir.h"
@@ -85,8 +85,9 @@ TEST(CheckAllocation, RefusesARequestBeyondTheAvailableMemoryNamingItAndTheSizes
 }
 
 TEST(CheckAllocation, RefusesAnExabyteOnThisMachine) {
-  EXPECT_NE(test::InputErrorOf([] { CheckAllocation(1e18, "--frames", "the frames"); }).find("--frames: the frames needs"),
-            std::string::npos);
+  EXPECT_NE(
+      test::InputErrorOf([] { CheckAllocation(1e18, "--frames", "the frames"); }).find("--frames: the frames needs"),
+      std::string::npos);
 }
 
 TEST(FormatBytes, UsesDecimalUnitsWithOneDecimalBelowAHundred) {

@@ -1,10 +1,10 @@
 #include "hoilcd/core/util/option_table.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 namespace hoilcd {
@@ -35,15 +35,16 @@ struct Example {
 };
 
 const OptionTable<Inner>& InnerTable() {
-  static const OptionTable<Inner> table = OptionTable<Inner>()
-      .Add("sd_m", &Inner::sd_m, 0.1, "m", OptionRange::Closed(0, 1), "standard deviation")
-      .Add("enabled", &Inner::enabled, true, "switch");
+  static const OptionTable<Inner> table =
+      OptionTable<Inner>()
+          .Add("sd_m", &Inner::sd_m, 0.1, "m", OptionRange::Closed(0, 1), "standard deviation")
+          .Add("enabled", &Inner::enabled, true, "switch");
   return table;
 }
 
 const OptionTable<Flat>& FlatTable() {
-  static const OptionTable<Flat> table = OptionTable<Flat>().Add(
-      "samples", &Flat::samples, 2, "", OptionRange::Closed(1, 8), "samples per axis");
+  static const OptionTable<Flat> table =
+      OptionTable<Flat>().Add("samples", &Flat::samples, 2, "", OptionRange::Closed(1, 8), "samples per axis");
   return table;
 }
 
@@ -114,7 +115,7 @@ TEST(OptionTable, ReadReportsUnknownKeysAndWrongTypesAtTheirJsonPointer) {
                                       "inner": {"sd": 1, "enabled": "yes"}, "gain": "x"})"),
                       "f.json: /x", &e, &problems);
   const std::vector<std::string> wheres = Wheres(problems);
-  const std::vector<std::string> expected = {"f.json: /x/count", "f.json: /x/gain", "f.json: /x/gian",
+  const std::vector<std::string> expected = {"f.json: /x/count",         "f.json: /x/gain",     "f.json: /x/gian",
                                              "f.json: /x/inner/enabled", "f.json: /x/inner/sd", "f.json: /x/on",
                                              "f.json: /x/preset"};
   std::vector<std::string> sorted = wheres;
@@ -134,10 +135,10 @@ TEST(OptionTable, ReadReportsUnknownKeysAndWrongTypesAtTheirJsonPointer) {
 
 TEST(OptionTable, CheckReportsEveryValueOutsideItsRangeAtItsPointerWithRangeAndUnit) {
   Example e = Defaults();
-  e.gain = 0;             // exclusive minimum
-  e.count = 100;          // exclusive maximum
-  e.inner.sd_m = 1.5;     // nested
-  e.flat.samples = 0;     // flattened
+  e.gain = 0;          // exclusive minimum
+  e.count = 100;       // exclusive maximum
+  e.inner.sd_m = 1.5;  // nested
+  e.flat.samples = 0;  // flattened
   ProblemCollector problems;
   ExampleTable().Check(e, "f.json: /x", &problems);
   ASSERT_EQ(problems.problems().size(), 4u);
@@ -149,8 +150,8 @@ TEST(OptionTable, CheckReportsEveryValueOutsideItsRangeAtItsPointerWithRangeAndU
 
 TEST(OptionTable, BoundsAreInclusiveOrExclusiveAsRegistered) {
   Example e = Defaults();
-  e.gain = 10;   // inclusive maximum
-  e.count = 1;   // inclusive minimum
+  e.gain = 10;  // inclusive maximum
+  e.count = 1;  // inclusive minimum
   EXPECT_EQ(ExampleTable().FirstProblem(e), "");
   e.gain = 1e-12;
   EXPECT_EQ(ExampleTable().FirstProblem(e), "");
@@ -180,9 +181,10 @@ TEST(OptionTable, OptionalFieldsAreListedAsSuchAndReadLikeAnyOther) {
   struct Trigger {
     double delta_k;
   };
-  const OptionTable<Trigger> table = OptionTable<Trigger>()
-                                         .Add("delta_k", &Trigger::delta_k, 0.0, "K", OptionRange::Closed(0, 20), "trigger")
-                                         .Optional();
+  const OptionTable<Trigger> table =
+      OptionTable<Trigger>()
+          .Add("delta_k", &Trigger::delta_k, 0.0, "K", OptionRange::Closed(0, 20), "trigger")
+          .Optional();
   ASSERT_EQ(table.List().size(), 1u);
   EXPECT_TRUE(table.List()[0].optional);
   EXPECT_FALSE(ExampleTable().List()[0].optional);

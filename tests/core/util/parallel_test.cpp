@@ -1,7 +1,5 @@
 #include "hoilcd/core/util/parallel.h"
 
-#include <gtest/gtest.h>
-
 #include <atomic>
 #include <chrono>
 #include <climits>
@@ -12,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
 #include "hoilcd/core/util/random.h"
@@ -43,8 +42,7 @@ TEST(ParallelForChunks, CoversEveryIndexOnceWithWorkerIdsInRange) {
 TEST(ParallelForChunks, ChunksDependOnlyOnCountAndChunkSize) {
   for (int threads : {1, 3}) {
     std::vector<int64_t> chunk_end(100, -1);
-    ParallelForChunks(100, 30, threads,
-                      [&](int64_t begin, int64_t end, int) { chunk_end[begin] = end; });
+    ParallelForChunks(100, 30, threads, [&](int64_t begin, int64_t end, int) { chunk_end[begin] = end; });
     EXPECT_EQ(chunk_end[0], 30);
     EXPECT_EQ(chunk_end[30], 60);
     EXPECT_EQ(chunk_end[60], 90);
@@ -54,8 +52,7 @@ TEST(ParallelForChunks, ChunksDependOnlyOnCountAndChunkSize) {
 
 TEST(ParallelForChunks, HugeThreadCountsAndHugeChunksDoNotOverflow) {
   std::atomic<int64_t> sum{0};
-  ParallelForChunks(1000, INT64_MAX, INT_MAX,
-                    [&](int64_t begin, int64_t end, int) { sum += end - begin; });
+  ParallelForChunks(1000, INT64_MAX, INT_MAX, [&](int64_t begin, int64_t end, int) { sum += end - begin; });
   EXPECT_EQ(sum.load(), 1000);
   sum = 0;
   ParallelFor(1000, INT_MAX, [&](int64_t i) { sum += i; });

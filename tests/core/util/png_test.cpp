@@ -1,14 +1,13 @@
 #include "hoilcd/core/util/png.h"
 
-#include <gtest/gtest.h>
-
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/geometry/camera.h"
@@ -34,8 +33,10 @@ cv::Mat TestImage(int rows, int cols, int type, bool smooth, uint64_t seed) {
   for (int y = 0; y < rows; ++y) {
     for (int x = 0; x < cols; ++x) {
       const double v = smooth ? top * 0.3 + 40 * x + 25 * y + rng.uniform(-3, 4) : rng.uniform(0.0, top + 1);
-      if (type == CV_16UC1) image.at<uint16_t>(y, x) = cv::saturate_cast<uint16_t>(v);
-      else image.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(v);
+      if (type == CV_16UC1)
+        image.at<uint16_t>(y, x) = cv::saturate_cast<uint16_t>(v);
+      else
+        image.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(v);
     }
   }
   return image;

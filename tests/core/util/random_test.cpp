@@ -3,12 +3,12 @@
 
 #include "hoilcd/core/util/random.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

@@ -1,9 +1,9 @@
 #include "hoilcd/core/util/safe_text.h"
 
-#include <gtest/gtest.h>
-
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 namespace hoilcd {
 namespace {
@@ -11,17 +11,17 @@ namespace {
 using namespace std::string_literals;
 
 TEST(SafeText, PrintableUtf8ComesOutUnchanged) {
-  for (const std::string& text : {"slcd"s, "caf\xc3\xa9 / \xe6\x97\xa5\xe6\x9c\xac \xf0\x9f\x94\xa5"s, ""s,
-                                 "back\\slash and \"quotes\""s}) {
+  for (const std::string& text :
+       {"slcd"s, "caf\xc3\xa9 / \xe6\x97\xa5\xe6\x9c\xac \xf0\x9f\x94\xa5"s, ""s, "back\\slash and \"quotes\""s}) {
     EXPECT_EQ(SafeText(text), text);
   }
 }
 
 TEST(SafeText, BytesThatAreNotUtf8AreWrittenAsHexEscapes) {
-  EXPECT_EQ(SafeText("caf\xe9.npy"), "caf\\xe9.npy");  // Latin-1
-  EXPECT_EQ(SafeText("\xc3"), "\\xc3");                 // a character cut short
-  EXPECT_EQ(SafeText("\xc0\xaf"), "\\xc0\\xaf");        // an overlong '/'
-  EXPECT_EQ(SafeText("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a UTF-16 surrogate
+  EXPECT_EQ(SafeText("caf\xe9.npy"), "caf\\xe9.npy");               // Latin-1
+  EXPECT_EQ(SafeText("\xc3"), "\\xc3");                             // a character cut short
+  EXPECT_EQ(SafeText("\xc0\xaf"), "\\xc0\\xaf");                    // an overlong '/'
+  EXPECT_EQ(SafeText("\xed\xa0\x80"), "\\xed\\xa0\\x80");           // a UTF-16 surrogate
   EXPECT_EQ(SafeText("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80");  // above U+10FFFF
 }
 

@@ -2,9 +2,9 @@
 // and the contiguous parts a render splits its frames into, which tile the frames in order.
 #include "hoilcd/core/util/shard.h"
 
-#include <gtest/gtest.h>
-
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "input_error_of.h"
 

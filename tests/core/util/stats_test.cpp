@@ -1,9 +1,9 @@
 #include "hoilcd/core/util/stats.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <stdexcept>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

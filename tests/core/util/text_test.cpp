@@ -1,10 +1,10 @@
 #include "hoilcd/core/util/text.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
 #include <string>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

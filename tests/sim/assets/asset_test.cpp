@@ -1,16 +1,16 @@
 #include "hoilcd/sim/assets/asset.h"
 
-#include <gtest/gtest.h>
-#include <sys/stat.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
 #include "hoilcd/core/util/error.h"
 #include "test_dir.h"
@@ -55,8 +55,7 @@ float RegionTop(const Asset& asset, const std::string& region) {
   float top = -1e9f;
   for (size_t t = 0; t < asset.mesh.TriangleCount(); ++t) {
     if (static_cast<int>(asset.mesh.triangle_material[t]) != material) continue;
-    for (int k = 0; k < 3; ++k)
-      top = std::max(top, asset.mesh.positions_m[asset.mesh.indices[3 * t + k]].z());
+    for (int k = 0; k < 3; ++k) top = std::max(top, asset.mesh.positions_m[asset.mesh.indices[3 * t + k]].z());
   }
   return top;
 }
@@ -70,27 +69,26 @@ std::vector<ContactPoint> Contacts(const Asset& asset, const std::string& name) 
 }
 
 TEST(ShippedAssets, EveryAssetLoadsWithItsDocumentedClassAndAConsistentMesh) {
-  const std::vector<std::pair<std::string, std::string>> expected = {
-      {"person_seated_upright", "person"},
-      {"person_seated_leaning", "person"},
-      {"person_seated_arms_on_table", "person"},
-      {"person_standing", "person"},
-      {"table", "table"},
-      {"chair", "chair"},
-      {"cup", "cup"},
-      {"laptop", "laptop"},
-      {"monitor", "monitor"},
-      {"radiator", "radiator"},
-      {"round_table", "table"},
-      {"square_table", "table"},
-      {"desk", "table"},
-      {"sofa", "sofa"},
-      {"low_table", "table"},
-      {"partition", "partition"},
-      {"lectern", "lectern"},
-      {"cabinet", "cabinet"},
-      {"bag", "bag"},
-      {"charger", "charger"}};
+  const std::vector<std::pair<std::string, std::string>> expected = {{"person_seated_upright", "person"},
+                                                                     {"person_seated_leaning", "person"},
+                                                                     {"person_seated_arms_on_table", "person"},
+                                                                     {"person_standing", "person"},
+                                                                     {"table", "table"},
+                                                                     {"chair", "chair"},
+                                                                     {"cup", "cup"},
+                                                                     {"laptop", "laptop"},
+                                                                     {"monitor", "monitor"},
+                                                                     {"radiator", "radiator"},
+                                                                     {"round_table", "table"},
+                                                                     {"square_table", "table"},
+                                                                     {"desk", "table"},
+                                                                     {"sofa", "sofa"},
+                                                                     {"low_table", "table"},
+                                                                     {"partition", "partition"},
+                                                                     {"lectern", "lectern"},
+                                                                     {"cabinet", "cabinet"},
+                                                                     {"bag", "bag"},
+                                                                     {"charger", "charger"}};
   for (const auto& [name, class_name] : expected) {
     SCOPED_TRACE(name);
     const Asset& asset = Shipped(name);
@@ -216,12 +214,11 @@ TEST(ShippedAssets, PeopleFacePlusXWithHairBehindTheFaceAndSymmetricInY) {
 }
 
 TEST(ShippedAssets, PeopleHaveSkinHairAndClothingAtDocumentedTemperatures) {
-  const std::vector<std::tuple<std::string, double, double>> regions = {
-      {"skin", 34.0, 0.98},
-      {"hair", 30.0, 0.95},
-      {"clothing_upper", 28.5, 0.90},
-      {"clothing_lower", 27.5, 0.90},
-      {"shoes", 25.0, 0.90}};
+  const std::vector<std::tuple<std::string, double, double>> regions = {{"skin", 34.0, 0.98},
+                                                                        {"hair", 30.0, 0.95},
+                                                                        {"clothing_upper", 28.5, 0.90},
+                                                                        {"clothing_lower", 27.5, 0.90},
+                                                                        {"shoes", 25.0, 0.90}};
   for (const std::string& name : kPeople) {
     SCOPED_TRACE(name);
     const Asset& person = Shipped(name);
@@ -270,15 +267,11 @@ TEST(ShippedAssets, ForearmsOnTheTableTouchItsTopBeyondTheNearEdge) {
 TEST(ShippedAssets, HotObjectsCarryTheirThermalProperties) {
   const Asset& cup = Shipped("cup");
   ASSERT_GE(cup.MaterialIndex("coffee"), 0);
-  EXPECT_DOUBLE_EQ(cup.materials[static_cast<size_t>(cup.MaterialIndex("coffee"))].temperature_c,
-                   55);
-  EXPECT_DOUBLE_EQ(cup.materials[static_cast<size_t>(cup.MaterialIndex("ceramic"))].temperature_c,
-                   45);
+  EXPECT_DOUBLE_EQ(cup.materials[static_cast<size_t>(cup.MaterialIndex("coffee"))].temperature_c, 55);
+  EXPECT_DOUBLE_EQ(cup.materials[static_cast<size_t>(cup.MaterialIndex("ceramic"))].temperature_c, 45);
   EXPECT_NEAR(cup.bounds_m.max().z(), 0.085f, 5e-3f);
   const Asset& radiator = Shipped("radiator");
-  EXPECT_DOUBLE_EQ(
-      radiator.materials[static_cast<size_t>(radiator.MaterialIndex("radiator"))].temperature_c,
-      42);
+  EXPECT_DOUBLE_EQ(radiator.materials[static_cast<size_t>(radiator.MaterialIndex("radiator"))].temperature_c, 42);
   EXPECT_NEAR(radiator.bounds_m.sizes().y(), 1.0f, 0.01f);
   EXPECT_NEAR(radiator.bounds_m.sizes().x(), 0.1f, 0.01f);
   EXPECT_GE(Shipped("laptop").MaterialIndex("laptop_screen"), 0);
@@ -299,19 +292,47 @@ TEST(ShippedAssets, RoomObjectsHaveTheirDocumentedClassMountSizeAndThermalRegion
     std::vector<Region> regions;
   };
   const std::vector<Expected> expected = {
-      {"whiteboard", "whiteboard", "wall", {0.08f, 1.80f, 1.20f}, {{"whiteboard", 22, 0.88, true}, {"anodized_aluminium", 22, 0.55, true}}},
-      {"door_frame", "door", "wall", {0.063f, 1.04f, 2.12f}, {{"painted_wood", 22, 0.93, false}, {"door_leaf", 22, 0.90, false}, {"metal", 22, 0.10, true}}},
-      {"ac_unit", "ac_unit", "wall", {0.20f, 0.80f, 0.28f}, {{"plastic", 22, 0.94, false}, {"ac_louvre", 15, 0.94, false}}},
+      {"whiteboard",
+       "whiteboard",
+       "wall",
+       {0.08f, 1.80f, 1.20f},
+       {{"whiteboard", 22, 0.88, true}, {"anodized_aluminium", 22, 0.55, true}}},
+      {"door_frame",
+       "door",
+       "wall",
+       {0.063f, 1.04f, 2.12f},
+       {{"painted_wood", 22, 0.93, false}, {"door_leaf", 22, 0.90, false}, {"metal", 22, 0.10, true}}},
+      {"ac_unit",
+       "ac_unit",
+       "wall",
+       {0.20f, 0.80f, 0.28f},
+       {{"plastic", 22, 0.94, false}, {"ac_louvre", 15, 0.94, false}}},
       {"light_switch", "switch", "wall", {0.016f, 0.086f, 0.086f}, {{"plastic", 22, 0.94, false}}},
       {"wall_socket", "socket", "wall", {0.014f, 0.172f, 0.086f}, {{"plastic", 22, 0.94, false}}},
-      {"shelf", "shelf", "wall", {0.25f, 0.90f, 0.50f}, {{"wood", 22, 0.90, false}, {"books", 22, 0.93, false}, {"metal", 22, 0.10, true}}},
-      {"cabinet", "cabinet", "floor", {0.443f, 0.80f, 1.34f}, {{"painted_steel", 22, 0.93, false}, {"metal", 22, 0.10, true}, {"books", 22, 0.93, false}}},
-      {"ceiling_light", "ceiling_light", "hanging", {0.60f, 0.60f, 0.041f}, {{"light_frame", 30, 0.93, false}, {"light_diffuser", 26, 0.94, false}}},
+      {"shelf",
+       "shelf",
+       "wall",
+       {0.25f, 0.90f, 0.50f},
+       {{"wood", 22, 0.90, false}, {"books", 22, 0.93, false}, {"metal", 22, 0.10, true}}},
+      {"cabinet",
+       "cabinet",
+       "floor",
+       {0.443f, 0.80f, 1.34f},
+       {{"painted_steel", 22, 0.93, false}, {"metal", 22, 0.10, true}, {"books", 22, 0.93, false}}},
+      {"ceiling_light",
+       "ceiling_light",
+       "hanging",
+       {0.60f, 0.60f, 0.041f},
+       {{"light_frame", 30, 0.93, false}, {"light_diffuser", 26, 0.94, false}}},
       {"bag", "bag", "floor", {0.32f, 0.14f, 0.488f}, {{"bag_fabric", 22, 0.90, false}}},
       {"coat", "coat", "hanging", {0.102f, 0.44f, 0.492f}, {{"coat", 25, 0.90, false}}},
       {"charger", "charger", "floor", {0.11f, 0.05f, 0.03f}, {{"charger", 40, 0.94, false}}},
       // The clutter of lived-in rooms.
-      {"pc_tower", "pc", "floor", {0.457f, 0.20f, 0.45f}, {{"pc_case", 24, 0.93, false}, {"pc_exhaust", 34, 0.93, false}}},
+      {"pc_tower",
+       "pc",
+       "floor",
+       {0.457f, 0.20f, 0.45f},
+       {{"pc_case", 24, 0.93, false}, {"pc_exhaust", 34, 0.93, false}}},
       {"desk_phone", "phone", "floor", {0.20f, 0.22f, 0.084f}, {{"phone", 26, 0.94, false}}},
       {"router", "router", "floor", {0.14f, 0.20f, 0.18f}, {{"router", 33, 0.94, false}}},
       {"power_strip", "power_strip", "floor", {0.056f, 0.30f, 0.048f}, {{"plastic", 22, 0.94, false}}},
@@ -322,22 +343,46 @@ TEST(ShippedAssets, RoomObjectsHaveTheirDocumentedClassMountSizeAndThermalRegion
       {"book_row", "books", "floor", {0.20f, 0.338f, 0.28f}, {{"books", 22, 0.93, false}}},
       {"bookcase", "bookcase", "floor", {0.32f, 0.80f, 1.80f}, {{"wood", 22, 0.90, false}}},
       {"poster", "poster", "wall", {0.002f, 0.594f, 0.841f}, {{"poster", 22, 0.89, false}}},
-      {"framed_picture", "picture", "wall", {0.027f, 0.50f, 0.40f}, {{"painted_wood", 22, 0.93, false}, {"glass", 22, 0.94, true}}},
+      {"framed_picture",
+       "picture",
+       "wall",
+       {0.027f, 0.50f, 0.40f},
+       {{"painted_wood", 22, 0.93, false}, {"glass", 22, 0.94, true}}},
       {"wall_clock", "clock", "wall", {0.04f, 0.30f, 0.30f}, {{"plastic", 22, 0.94, false}, {"glass", 22, 0.94, true}}},
-      {"notice_board", "notice_board", "wall", {0.0235f, 0.90f, 0.60f}, {{"wood", 22, 0.90, false}, {"pinboard", 22, 0.90, false}, {"paper", 22, 0.93, false}}},
+      {"notice_board",
+       "notice_board",
+       "wall",
+       {0.0235f, 0.90f, 0.60f},
+       {{"wood", 22, 0.90, false}, {"pinboard", 22, 0.90, false}, {"paper", 22, 0.93, false}}},
       {"thermostat", "thermostat", "wall", {0.025f, 0.08f, 0.08f}, {{"plastic", 22, 0.94, false}}},
-      {"supply_grille", "grille", "wall", {0.025f, 0.40f, 0.15f}, {{"painted_steel", 22, 0.93, false}, {"supply_air", 30, 0.93, false}}},
+      {"supply_grille",
+       "grille",
+       "wall",
+       {0.025f, 0.40f, 0.15f},
+       {{"painted_steel", 22, 0.93, false}, {"supply_air", 30, 0.93, false}}},
       {"return_grille", "grille", "wall", {0.03f, 0.40f, 0.30f}, {{"painted_steel", 22, 0.93, false}}},
-      {"heating_pipe", "pipe", "wall", {0.056f, 1.0f, 0.13f}, {{"heating_flow", 45, 0.93, false}, {"heating_return", 37, 0.93, false}, {"plastic", 22, 0.94, false}}},
+      {"heating_pipe",
+       "pipe",
+       "wall",
+       {0.056f, 1.0f, 0.13f},
+       {{"heating_flow", 45, 0.93, false}, {"heating_return", 37, 0.93, false}, {"plastic", 22, 0.94, false}}},
       {"cable_trunking", "trunking", "wall", {0.04f, 1.0f, 0.06f}, {{"plastic", 22, 0.94, false}}},
       {"skirting_board", "skirting", "wall", {0.015f, 1.0f, 0.08f}, {{"painted_wood", 22, 0.93, false}}},
       {"skirting_board_short", "skirting", "wall", {0.015f, 0.20f, 0.08f}, {{"painted_wood", 22, 0.93, false}}},
       {"window_sill", "sill", "wall", {0.16f, 0.20f, 0.03f}, {{"painted_wood", 22, 0.93, false}}},
-      {"blind", "blind", "wall", {0.07f, 0.20f, 0.67f}, {{"painted_steel", 22, 0.93, false}, {"blind_fabric", 22, 0.90, false}}},
+      {"blind",
+       "blind",
+       "wall",
+       {0.07f, 0.20f, 0.67f},
+       {{"painted_steel", 22, 0.93, false}, {"blind_fabric", 22, 0.90, false}}},
       {"bin", "bin", "floor", {0.30f, 0.30f, 0.35f}, {{"plastic", 22, 0.94, false}}},
       {"cardboard_box", "box", "floor", {0.40f, 0.30f, 0.301f}, {{"cardboard", 22, 0.93, false}}},
       {"rug", "rug", "floor", {1.60f, 1.20f, 0.01f}, {{"rug", 22, 0.90, false}}},
-      {"ceiling_diffuser", "diffuser", "hanging", {0.60f, 0.60f, 0.06f}, {{"painted_steel", 22, 0.93, false}, {"supply_air", 30, 0.93, false}}},
+      {"ceiling_diffuser",
+       "diffuser",
+       "hanging",
+       {0.60f, 0.60f, 0.06f},
+       {{"painted_steel", 22, 0.93, false}, {"supply_air", 30, 0.93, false}}},
       {"smoke_detector", "detector", "hanging", {0.11f, 0.11f, 0.05f}, {{"plastic", 22, 0.94, false}}},
       {"sprinkler", "sprinkler", "hanging", {0.07f, 0.07f, 0.06f}, {{"metal", 22, 0.10, true}}},
       {"bulkhead", "bulkhead", "hanging", {0.40f, 1.0f, 0.25f}, {{"painted_plaster", 22, 0.93, false}}}};
@@ -381,9 +426,11 @@ TEST(ShippedAssets, RoomObjectsHaveTheirDocumentedClassMountSizeAndThermalRegion
 // The powered parts' heat (docs/models/room_objects.md): with the room's thermal solution their
 // temperature comes from it; every other part of the shipped assets states none.
 TEST(ShippedAssets, PoweredPartsStateTheirDocumentedPowerAndNoOtherPartStatesOne) {
-  const std::map<std::pair<std::string, std::string>, double> powered = {
-      {{"monitor", "monitor_back"}, 13.0}, {{"monitor", "monitor_screen"}, 4.0}, {{"pc_tower", "pc_case"}, 10.0},
-      {{"desk_phone", "phone"}, 6.0},      {{"router", "router"}, 8.0}};
+  const std::map<std::pair<std::string, std::string>, double> powered = {{{"monitor", "monitor_back"}, 13.0},
+                                                                         {{"monitor", "monitor_screen"}, 4.0},
+                                                                         {{"pc_tower", "pc_case"}, 10.0},
+                                                                         {{"desk_phone", "phone"}, 6.0},
+                                                                         {{"router", "router"}, 8.0}};
   for (const fs::directory_entry& e : fs::directory_iterator(kAssetDir)) {
     if (e.path().extension() != ".gltf") continue;
     const std::string name = e.path().stem().string();
@@ -407,25 +454,23 @@ class GltfFileTest : public ::testing::Test {
     const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     std::ofstream(dir_ / "tri.bin", std::ios::binary)
         .write(reinterpret_cast<const char*>(positions), sizeof(positions));
-    gltf_ = {
-        {"asset", {{"version", "2.0"}}},
-        {"buffers", {{{"uri", "tri.bin"}, {"byteLength", 36}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
-        {"accessors",
-         {{{"bufferView", 0},
-           {"componentType", 5126},
-           {"count", 3},
-           {"type", "VEC3"},
-           {"min", {0, 0, 0}},
-           {"max", {1, 1, 0}}}}},
-        {"materials",
-         {{{"name", "warm"},
-           {"extras",
-            {{"temperature_c", 30}, {"emissivity", 0.5}, {"specular", true}, {"region", "r"}}}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", 0}}}}}}},
-        {"nodes", {{{"mesh", 0}}}},
-        {"scenes", {{{"nodes", {0}}, {"extras", {{"class", "thing"}}}}}},
-        {"scene", 0}};
+    gltf_ = {{"asset", {{"version", "2.0"}}},
+             {"buffers", {{{"uri", "tri.bin"}, {"byteLength", 36}}}},
+             {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
+             {"accessors",
+              {{{"bufferView", 0},
+                {"componentType", 5126},
+                {"count", 3},
+                {"type", "VEC3"},
+                {"min", {0, 0, 0}},
+                {"max", {1, 1, 0}}}}},
+             {"materials",
+              {{{"name", "warm"},
+                {"extras", {{"temperature_c", 30}, {"emissivity", 0.5}, {"specular", true}, {"region", "r"}}}}}},
+             {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", 0}}}}}}},
+             {"nodes", {{{"mesh", 0}}}},
+             {"scenes", {{{"nodes", {0}}, {"extras", {{"class", "thing"}}}}}},
+             {"scene", 0}};
   }
   void TearDown() override { temp_.reset(); }
 
@@ -531,13 +576,12 @@ TEST_F(GltfFileTest, EmissivityAboveOneIsAnInputErrorNamingFileAndJsonPath) {
 }
 
 TEST_F(GltfFileTest, BadExtrasValuesAreAllReportedWithTheirPaths) {
-  gltf_["materials"][0]["extras"] = {
-      {"temperature_c", 300}, {"emissivity", 0}, {"specular", "yes"}, {"colour", 1}};
+  gltf_["materials"][0]["extras"] = {{"temperature_c", 300}, {"emissivity", 0}, {"specular", "yes"}, {"colour", 1}};
   gltf_["scenes"][0]["extras"]["contacts"] = {{{"name", "seat"}, {"position", {1, 2}}}};
   const std::string message = LoadError(Write());
-  for (const char* pointer : {"/materials/0/extras/temperature_c", "/materials/0/extras/emissivity",
-                              "/materials/0/extras/specular", "/materials/0/extras/colour",
-                              "/scenes/0/extras/contacts/0/position"}) {
+  for (const char* pointer :
+       {"/materials/0/extras/temperature_c", "/materials/0/extras/emissivity", "/materials/0/extras/specular",
+        "/materials/0/extras/colour", "/scenes/0/extras/contacts/0/position"}) {
     EXPECT_NE(message.find(pointer), std::string::npos) << pointer << " in: " << message;
   }
 }
@@ -549,7 +593,8 @@ TEST_F(GltfFileTest, MountIsReadAndABadMountIsReportedWithItsPath) {
   gltf_["scenes"][0]["extras"]["mount"] = "ceiling";
   const std::string error = LoadError(Write());
   EXPECT_NE(error.find("test.gltf"), std::string::npos) << error;
-  EXPECT_NE(error.find("/scenes/0/extras/mount: must be \"floor\", \"wall\" or \"hanging\""), std::string::npos) << error;
+  EXPECT_NE(error.find("/scenes/0/extras/mount: must be \"floor\", \"wall\" or \"hanging\""), std::string::npos)
+      << error;
 }
 
 TEST_F(GltfFileTest, BadPartParentJointAndKeypointExtrasAreReportedWithTheirPaths) {
@@ -559,18 +604,20 @@ TEST_F(GltfFileTest, BadPartParentJointAndKeypointExtrasAreReportedWithTheirPath
   gltf_["scenes"][0]["extras"]["keypoints"] = {{{"name", "nose"}}, {{"name", ""}, {"position", {0, 0, 0}}}, 7};
   gltf_["scenes"][0]["extras"]["bone"] = "x";
   const std::string message = LoadError(Write());
-  for (const char* expected : {"/scenes/0/extras/part: must be a non-empty string",
-                               "/scenes/0/extras/parent: must be a non-empty string",
-                               "/scenes/0/extras/joint: must be an array of 3 numbers",
-                               "/scenes/0/extras/keypoints/0: needs both name and position",
-                               "/scenes/0/extras/keypoints/1/name: must be a non-empty string",
-                               "/scenes/0/extras/keypoints/2: must be an object",
-                               "/scenes/0/extras/bone: unknown key (expected class, posture, mount, contacts, part, parent, joint, keypoints)"}) {
+  for (const char* expected :
+       {"/scenes/0/extras/part: must be a non-empty string", "/scenes/0/extras/parent: must be a non-empty string",
+        "/scenes/0/extras/joint: must be an array of 3 numbers",
+        "/scenes/0/extras/keypoints/0: needs both name and position",
+        "/scenes/0/extras/keypoints/1/name: must be a non-empty string",
+        "/scenes/0/extras/keypoints/2: must be an object",
+        "/scenes/0/extras/bone: unknown key (expected class, posture, mount, contacts, part, parent, joint, "
+        "keypoints)"}) {
     EXPECT_NE(message.find(expected), std::string::npos) << expected << " in: " << message;
   }
   gltf_["scenes"][0]["extras"] = {{"class", "person"}, {"keypoints", "nose"}};
   const std::string not_array = LoadError(Write());
-  EXPECT_NE(not_array.find("/scenes/0/extras/keypoints: must be an array of {name, position}"), std::string::npos) << not_array;
+  EXPECT_NE(not_array.find("/scenes/0/extras/keypoints: must be an array of {name, position}"), std::string::npos)
+      << not_array;
 }
 
 TEST_F(GltfFileTest, PartParentJointAndKeypointsAreReadInTheAssetFrame) {

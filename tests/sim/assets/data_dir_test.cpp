@@ -1,10 +1,10 @@
 #include "hoilcd/sim/assets/data_dir.h"
 
-#include <gtest/gtest.h>
-#include <stdlib.h>
-
 #include <filesystem>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/assets/asset.h"
@@ -25,9 +25,7 @@ TEST(DataDir, WithoutTheVariableTheBuildTreesShareFolderHoldsTheScenesAndAssets)
   EXPECT_EQ(ShippedAssetDir(), (dir / "assets").string());
 }
 
-TEST(DataDir, BinaryPathIsThisTestProgram) {
-  EXPECT_EQ(fs::path(BinaryPath()), fs::canonical("/proc/self/exe"));
-}
+TEST(DataDir, BinaryPathIsThisTestProgram) { EXPECT_EQ(fs::path(BinaryPath()), fs::canonical("/proc/self/exe")); }
 
 TEST(DataDir, AProgramWhoseFileWasReplacedWhileItRunsIsStillFoundWhereItWas) {
   // A rebuild during a long suite replaced the binary: every later run failed to find share/hoilcd.

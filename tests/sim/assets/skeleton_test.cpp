@@ -1,11 +1,11 @@
 #include "hoilcd/sim/assets/skeleton.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/error.h"
@@ -26,13 +26,15 @@ void ExpectRigid(const std::array<Eigen::Matrix4d, Skeleton::kPartCount>& parts,
   for (int i = 0; i < Skeleton::kPartCount; ++i) {
     ASSERT_TRUE(parts[i].allFinite()) << what << ": " << Skeleton::PartNames()[i];
     const Eigen::Matrix3d r = parts[i].topLeftCorner<3, 3>();
-    EXPECT_LT((r.transpose() * r - Eigen::Matrix3d::Identity()).norm(), 1e-9) << what << ": " << Skeleton::PartNames()[i];
+    EXPECT_LT((r.transpose() * r - Eigen::Matrix3d::Identity()).norm(), 1e-9)
+        << what << ": " << Skeleton::PartNames()[i];
     EXPECT_NEAR(r.determinant(), 1.0, 1e-9) << what;
   }
 }
 
 TEST(Skeleton, EveryPresetGivesRigidPartTransformsAndKeypointsOnTheBody) {
-  for (const char* name : {"seated_upright", "seated_leaning", "seated_arms_on_table", "seated_leaning_back", "standing"}) {
+  for (const char* name :
+       {"seated_upright", "seated_leaning", "seated_arms_on_table", "seated_leaning_back", "standing"}) {
     const auto parts = Shipped().PartTransforms(PresetPose(name));
     ExpectRigid(parts, name);
     const auto keypoints = Shipped().Keypoints(parts);

@@ -1,8 +1,8 @@
 #include "hoilcd/sim/assets/surface_field.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

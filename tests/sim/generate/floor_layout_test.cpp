@@ -28,7 +28,9 @@ TEST(FloorLayout, ShippedRouteIsAClockwiseLoopThroughDoorwaysIntoEveryRoom) {
   for (const FloorRoom& room : scene.floor.rooms) {
     if (room.corridor) continue;
     ++rooms;
-    EXPECT_TRUE(std::any_of(route.begin(), route.end(), [&](const Eigen::Vector2d& p) { return room.box_m.contains(p); })) << room.name;
+    EXPECT_TRUE(std::any_of(route.begin(), route.end(), [&](const Eigen::Vector2d& p) {
+      return room.box_m.contains(p);
+    })) << room.name;
   }
   // Every leg keeps 0.4 m from the interior walls, so where it crosses a wall's line it is in a doorway:
   // each room is entered and left through its two doorways on the corridor's walls.
@@ -50,12 +52,13 @@ TEST(FloorLayout, ShippedFloorPassesTheGeneratorsChecksAndItsRobotDrivesALapClea
   const BandRadianceTable table;
   const World world(scene, table);
   const GeneratorOptions options;
-  const std::vector<std::string> problems =
-      GeneratedSceneProblems(scene, world, options.route_wall_m, options.route_clearance_m - scene.furniture.chair_jitter_m);
+  const std::vector<std::string> problems = GeneratedSceneProblems(
+      scene, world, options.route_wall_m, options.route_clearance_m - scene.furniture.chair_jitter_m);
   EXPECT_TRUE(problems.empty()) << problems.front();
   RouteOptions route = scene.route;
   route.frames = scene.frames / 2;
-  const RobotRun run = SimulateRobot(scene.robot, route, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
+  const RobotRun run =
+      SimulateRobot(scene.robot, route, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
   EXPECT_GT(run.min_obstacle_distance_m, 0.1) << run.closest_obstacle;
   EXPECT_GT(run.laps, 0.9);
 }

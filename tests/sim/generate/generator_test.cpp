@@ -2,18 +2,19 @@
 // (footprints inside the room and apart, seats reachable, the route a closed loop keeping its
 // clearance, the robot's run clear of every footprint), the same bytes on every run, and what
 // `mixed` draws is what the family alone gives.
-#include <gtest/gtest.h>
+#include "hoilcd/sim/generate/generator.h"
 
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
 #include "hoilcd/core/util/file_io.h"
 #include "hoilcd/core/util/parallel.h"
-#include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "processes.h"
@@ -26,14 +27,17 @@ namespace fs = std::filesystem;
 
 constexpr int kSeeds = 50;
 
-Scene Load(const nlohmann::ordered_json& doc) { return SceneFromJson(nlohmann::json::parse(doc.dump()), "generated.json"); }
+Scene Load(const nlohmann::ordered_json& doc) {
+  return SceneFromJson(nlohmann::json::parse(doc.dump()), "generated.json");
+}
 
 // The clutter's assets by where they go (docs/guide/generate.md); "" for every other asset.
 std::string ClutterCategory(const std::string& asset) {
   for (const char* a : {"papers", "mug", "bottle", "desk_phone", "power_strip"})
     if (asset == a) return "table top";
-  for (const char* a : {"skirting_board", "skirting_board_short", "window_sill", "blind", "heating_pipe", "cable_trunking", "thermostat",
-                        "return_grille", "supply_grille", "poster", "framed_picture", "notice_board", "wall_clock"})
+  for (const char* a :
+       {"skirting_board", "skirting_board_short", "window_sill", "blind", "heating_pipe", "cable_trunking",
+        "thermostat", "return_grille", "supply_grille", "poster", "framed_picture", "notice_board", "wall_clock"})
     if (asset == a) return "wall";
   for (const char* a : {"bookcase", "pc_tower", "bin", "cardboard_box", "rug", "router"})
     if (asset == a) return "floor";
@@ -57,7 +61,8 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
       const BandRadianceTable table;
       const World world(scene, table);
       std::string problems;
-      for (const std::string& p : GeneratedSceneProblems(scene, world, options.route_wall_m, options.route_clearance_m)) problems += p + "; ";
+      for (const std::string& p : GeneratedSceneProblems(scene, world, options.route_wall_m, options.route_clearance_m))
+        problems += p + "; ";
       const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
       if (run.laps < options.laps - 0.01) problems += "the robot drove only " + std::to_string(run.laps) + " laps; ";
       if (scene.tables.empty() && scene.crowd.standing.empty()) problems += "an empty room; ";
@@ -78,7 +83,8 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
   for (const std::string& f : failures) EXPECT_EQ(f, "");
   // A whiteboard on the front wall of most classroom, seminar_u and meeting_row rooms (never
   // elsewhere); bags, coats or chargers in most rooms with chairs.
-  const int with_whiteboard = static_cast<int>(std::count_if(whiteboards.begin(), whiteboards.end(), [](int n) { return n > 0; }));
+  const int with_whiteboard =
+      static_cast<int>(std::count_if(whiteboards.begin(), whiteboards.end(), [](int n) { return n > 0; }));
   const bool front_wall = GetParam() == "classroom" || GetParam() == "seminar_u" || GetParam() == "meeting_row";
   if (front_wall) {
     EXPECT_GE(with_whiteboard, kSeeds * 7 / 10);
@@ -88,14 +94,18 @@ TEST_P(EveryLayout, GivesValidCollisionFreeScenesWithReachableSeatsAndAClearClos
   // The clutter (density 1, the default): walls, floors and ceilings in most rooms, bookcases'
   // shelves in some; table tops in some, but for meeting rows, whose tables are seated all round
   // (every seat's place is kept for its person's props and forearms).
-  const std::map<std::string, int> least = {
-      {"wall", kSeeds * 9 / 10}, {"floor", kSeeds * 7 / 10}, {"ceiling", kSeeds * 9 / 10}, {"shelf", kSeeds / 10},
-      {"table top", GetParam() == "meeting_row" ? 0 : kSeeds / 5}};
+  const std::map<std::string, int> least = {{"wall", kSeeds * 9 / 10},
+                                            {"floor", kSeeds * 7 / 10},
+                                            {"ceiling", kSeeds * 9 / 10},
+                                            {"shelf", kSeeds / 10},
+                                            {"table top", GetParam() == "meeting_row" ? 0 : kSeeds / 5}};
   for (const auto& [category, rooms_least] : least) {
-    const int rooms = static_cast<int>(std::count_if(clutter.begin(), clutter.end(), [&](auto& c) { return c[category] > 0; }));
+    const int rooms =
+        static_cast<int>(std::count_if(clutter.begin(), clutter.end(), [&](auto& c) { return c[category] > 0; }));
     EXPECT_GE(rooms, rooms_least) << category;
   }
-  const int with_things = static_cast<int>(std::count_if(people_things.begin(), people_things.end(), [](int n) { return n > 0; }));
+  const int with_things =
+      static_cast<int>(std::count_if(people_things.begin(), people_things.end(), [](int n) { return n > 0; }));
   if (GetParam() != "lounge") {
     EXPECT_GE(with_things, kSeeds / 2);
   }
@@ -114,7 +124,8 @@ TEST(Generator, TheSameArgumentsGiveTheSameBytesAndMixedDrawsWhatTheFamilyGives)
     EXPECT_EQ(text.back(), '\n');
     EXPECT_EQ(text.rfind("{\n  \"name\": ", 0), 0u) << "keys in the generator's order, indented";
   }
-  EXPECT_NE(SceneFileText(GenerateScene("classroom", 11, 0, options)), SceneFileText(GenerateScene("classroom", 12, 0, options)));
+  EXPECT_NE(SceneFileText(GenerateScene("classroom", 11, 0, options)),
+            SceneFileText(GenerateScene("classroom", 12, 0, options)));
 }
 
 // At density 0 a room holds none of the clutter, and the rest of it is what density 1 gives (the
@@ -125,7 +136,8 @@ TEST(Generator, AtClutterDensity0ARoomHoldsNoClutterAndTheRestIsUnchanged) {
   const GeneratorOptions typical;
   int same = 0;
   for (int index = 0; index < 6; ++index) {
-    const nlohmann::ordered_json bare = GenerateScene("mixed", 5, index, none), full = GenerateScene("mixed", 5, index, typical);
+    const nlohmann::ordered_json bare = GenerateScene("mixed", 5, index, none),
+                                 full = GenerateScene("mixed", 5, index, typical);
     nlohmann::ordered_json kept = nlohmann::ordered_json::array();
     for (const auto& o : bare["objects"]) EXPECT_EQ(ClutterCategory(o["asset"]), "") << o["asset"];
     for (const auto& o : full["objects"])
@@ -194,8 +206,8 @@ TEST(Generator, AFolderItCannotListIsRefusedNotTakenAsEmpty) {
   fs::create_directories(dir);
   WriteFileAtomic(dir + "/scene_0000_lounge.json", "{\"the user's\": 1}");
   fs::permissions(temp.path(), fs::perms::all);  // nobody reaches the folder, and cannot list it
-  fs::permissions(dir, fs::perms::owner_write | fs::perms::owner_exec | fs::perms::group_write |
-                           fs::perms::group_exec | fs::perms::others_write | fs::perms::others_exec);
+  fs::permissions(dir, fs::perms::owner_write | fs::perms::owner_exec | fs::perms::group_write | fs::perms::group_exec |
+                           fs::perms::others_write | fs::perms::others_exec);
   const test::Unprivileged outcome = test::RunUnprivileged([&] {
     CheckGenerateFolder(dir);
     return std::string("accepted");
@@ -224,13 +236,16 @@ TEST(Generator, ObjectsOffTheirWallOrCeilingOrOutsideTheRoomAreProblems) {
   const double height = doc["room"]["size_m"][2];
   const double width = doc["room"]["size_m"][1];
   EXPECT_EQ(problems_with({{"asset", "shelf"}, {"position_m", {0.0, 1.0, 1.4}}, {"yaw_deg", 0}}), "");
-  EXPECT_NE(problems_with({{"asset", "shelf"}, {"position_m", {0.1, 1.0, 1.4}}, {"yaw_deg", 0}}).find("(shelf) is wall-mounted but its back is not on a wall"),
+  EXPECT_NE(problems_with({{"asset", "shelf"}, {"position_m", {0.1, 1.0, 1.4}}, {"yaw_deg", 0}})
+                .find("(shelf) is wall-mounted but its back is not on a wall"),
             std::string::npos);
-  EXPECT_NE(problems_with({{"asset", "shelf"}, {"position_m", {0.0, 1.0, 1.4}}, {"yaw_deg", 180}}).find("reaches outside the room"),
+  EXPECT_NE(problems_with({{"asset", "shelf"}, {"position_m", {0.0, 1.0, 1.4}}, {"yaw_deg", 180}})
+                .find("reaches outside the room"),
             std::string::npos);
   EXPECT_EQ(problems_with({{"asset", "shelf"}, {"position_m", {1.0, width, 1.4}}, {"yaw_deg", -90}}), "");
   EXPECT_EQ(problems_with({{"asset", "ceiling_light"}, {"position_m", {2.0, 2.0, height}}}), "");
-  EXPECT_NE(problems_with({{"asset", "ceiling_light"}, {"position_m", {2.0, 2.0, height - 0.2}}}).find("(ceiling_light) does not touch the ceiling"),
+  EXPECT_NE(problems_with({{"asset", "ceiling_light"}, {"position_m", {2.0, 2.0, height - 0.2}}})
+                .find("(ceiling_light) does not touch the ceiling"),
             std::string::npos);
 }
 
@@ -282,7 +297,8 @@ std::vector<float> TrueTemperaturesOf(const nlohmann::ordered_json& doc, const s
   std::vector<float> out;
   for (int y = 0; y < cls.rows; ++y)
     for (int x = 0; x < cls.cols; ++x)
-      if (static_cast<int>(cls.at<float>(y, x)) == dataset.manifest().ClassId(class_name)) out.push_back(t_true.at<float>(y, x));
+      if (static_cast<int>(cls.at<float>(y, x)) == dataset.manifest().ClassId(class_name))
+        out.push_back(t_true.at<float>(y, x));
   return out;
 }
 
@@ -298,7 +314,8 @@ TEST(Generator, AGeneratedRoomsWhiteboardAndCeilingLightsRenderAtTheirDocumented
   ASSERT_GT(light.size(), 100u) << "a ceiling light is in view";
   const BandRadianceTable band;
   auto apparent = [&](float t_c, float emissivity) {
-    return band.CelsiusFromRadiance(emissivity * band.RadianceFromCelsius(t_c) + (1 - emissivity) * band.RadianceFromCelsius(22));
+    return band.CelsiusFromRadiance(emissivity * band.RadianceFromCelsius(t_c) +
+                                    (1 - emissivity) * band.RadianceFromCelsius(22));
   };
   const float diffuser = apparent(26, 0.94f), frame = apparent(30, 0.93f);
   int diffuser_pixels = 0, frame_pixels = 0;

@@ -1,10 +1,10 @@
 #include "hoilcd/sim/output/frame_writer.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <map>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/video.h"
 #include "hoilcd/core/util/error.h"

@@ -4,12 +4,12 @@
 // to the same bytes; every refusal of the merge names the folder and writes nothing.
 #include "hoilcd/sim/output/merge.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -214,7 +214,8 @@ TEST_F(MergeRefusal, ShardsOfAnotherSeedOutputsFrameCountOrShardCount) {
   EXPECT_SAYS(Refusal({shards_[0], Dir("frames38_shard_1"), shards_[2]}),
               Dir("frames38_shard_1") + ": is a shard of a sequence of 38 frames, but " + shards_[0] +
                   " of a sequence of 39 frames");
-  EXPECT_SAYS(Refusal({shards_[0], Dir("of2_shard_1")}), Dir("of2_shard_1") + ": is a shard of a render split into 2 shards");
+  EXPECT_SAYS(Refusal({shards_[0], Dir("of2_shard_1")}),
+              Dir("of2_shard_1") + ": is a shard of a render split into 2 shards");
 }
 
 TEST_F(MergeRefusal, ARepeatedOrMissingShard) {

@@ -1,9 +1,9 @@
 // A sequence of several recording runs (/runs): one dataset, each run starting at the dock with its
 // own people, time of day, robot and camera noise; the first run is the scene rendered without runs.
-#include <gtest/gtest.h>
-
 #include <functional>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/sim/output/sequence.h"
@@ -85,9 +85,9 @@ TEST(RunsRender, TheFirstRunIsTheSceneRenderedWithoutRunsByteForByte) {
 
 TEST(RunsRender, ARunGivenTheFirstRunsSeedDrivesItsPathAndSeesItsPeople) {
   const test::TestDir root;
-  const Dataset d = Render(
-      PaperRoom({R"(runs=[{"time_of_day_h": 9, "frames": 5}, {"time_of_day_h": 15, "frames": 5, "seed": 1}])"}), root / "d",
-      2);
+  const Dataset d =
+      Render(PaperRoom({R"(runs=[{"time_of_day_h": 9, "frames": 5}, {"time_of_day_h": 15, "frames": 5, "seed": 1}])"}),
+             root / "d", 2);
   const int offset = *PersonIds(d, 5, 10).begin() - *PersonIds(d, 0, 5).begin();
   EXPECT_GT(offset, 0);
   for (int f = 0; f < 5; ++f) {
@@ -119,8 +119,8 @@ TEST(RunsRender, ARunWhoseRouteCannotBeDrivenIsNamedByCheckAndRender) {
   const test::TestDir root;
   SequenceOptions options;
   options.output_dir = root / "d";
-  for (const std::function<void()>& check : std::vector<std::function<void()>>{
-           [&] { CheckSceneRenders(scene); }, [&] { RenderSequence(scene, options); }}) {
+  for (const std::function<void()>& check :
+       std::vector<std::function<void()>>{[&] { CheckSceneRenders(scene); }, [&] { RenderSequence(scene, options); }}) {
     try {
       check();
       ADD_FAILURE() << "expected an InputError";

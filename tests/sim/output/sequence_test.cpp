@@ -1,21 +1,20 @@
 #include "hoilcd/sim/output/sequence.h"
 
-#include <gtest/gtest.h>
-
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <utility>
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
-#include "processes.h"
-#include "test_dir.h"
 #include "hoilcd/core/dataset/frame_encoding.h"
 #include "hoilcd/core/dataset/video.h"
 #include "hoilcd/sim/sensor/sensor.h"
+#include "processes.h"
+#include "test_dir.h"
 
 namespace hoilcd {
 namespace {
@@ -142,7 +141,8 @@ TEST_F(Sequence, ResumingAnInterruptedRenderGivesTheSameBytesAsOneRun) {
 std::string Ffprobe(const std::string& path) {
   const std::string command =
       "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-      "stream=codec_name,width,height,r_frame_rate,nb_read_frames -of csv=p=0 '" + path + "' 2>&1";
+      "stream=codec_name,width,height,r_frame_rate,nb_read_frames -of csv=p=0 '" +
+      path + "' 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return "";
   std::string out;
@@ -161,7 +161,8 @@ TEST_F(Sequence, FfprobeReadsThermalMp4AsH264256x192At25FpsWithOneFramePerFrame)
 
 // The frame PNGs (libdeflate, core/util/png.h) pass pngcheck, a checker independent of libpng.
 TEST_F(Sequence, FramePngsPassPngcheck) {
-  if (std::system("command -v pngcheck > /dev/null 2>&1") != 0) GTEST_SKIP() << "pngcheck (Debian pngcheck) not installed";
+  if (std::system("command -v pngcheck > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "pngcheck (Debian pngcheck) not installed";
   const std::string dir = TempDir("pngcheck");
   Render(PaperRoom(), dir, 2, 0);
   for (const char* folder : {"thermal", "radiometric"}) {
@@ -415,9 +416,9 @@ TEST_F(Sequence, OutputsLeaveOutWhatWasNotAskedForAndTheManifestAndReadersSaySo)
   EXPECT_FALSE(fs::exists(dir + "/persons.json"));
   EXPECT_EQ(d.Thermal(2).cols, 256);
   for (const auto& [what, read] : std::vector<std::pair<std::string, std::function<void()>>>{
-           {"radiometric", [&] { d.RadiometricC(0); }},
-           {"persons", [&] { d.persons(); }},
-           {"exr", [&] { ReadDatasetExr(d, 0); }}}) {
+           {"radiometric", [&] { d.RadiometricC(0); }}, {"persons", [&] { d.persons(); }}, {"exr", [&] {
+                                                                                              ReadDatasetExr(d, 0);
+                                                                                            }}}) {
     try {
       read();
       ADD_FAILURE() << what << ": expected an InputError";
@@ -432,7 +433,8 @@ TEST_F(Sequence, OutputsLeaveOutWhatWasNotAskedForAndTheManifestAndReadersSaySo)
     RenderSequence(PaperRoom(), options);
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("holds a dataset with --outputs thermal,video"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("holds a dataset with --outputs thermal,video"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -1,9 +1,9 @@
 #include "hoilcd/sim/people/garments.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/people/body_fields.h"
 
@@ -34,8 +34,7 @@ TEST(Garments, ClothingSurfaceTemperatureReproducesIso7730TableD1) {
   const Row rows[] = {{22, 22, 0.1, 60, 1.2, 0.5, -0.75}, {27, 27, 0.1, 60, 1.2, 0.5, 0.77},
                       {27, 27, 0.3, 60, 1.2, 0.5, 0.44},  {23.5, 25.5, 0.1, 60, 1.2, 0.5, -0.01},
                       {19, 19, 0.1, 40, 1.2, 1.0, -0.60}, {23, 21, 0.1, 40, 1.2, 1.0, 0.05},
-                      {23, 21, 0.3, 40, 1.2, 1.0, -0.16},
-                      {22, 22, 0.1, 60, 1.6, 0.5, 0.05}};
+                      {23, 21, 0.3, 40, 1.2, 1.0, -0.16}, {22, 22, 0.1, 60, 1.6, 0.5, 0.05}};
   for (const Row& r : rows) {
     EXPECT_NEAR(Pmv(r.ta, r.tr, r.v, r.rh, r.met, r.clo), r.pmv, 0.015) << r.ta << " " << r.met << " " << r.clo;
   }
@@ -130,7 +129,8 @@ TEST(Garments, FieldsDifferBetweenPeopleAndStayWithinTheirAmplitudes) {
   EXPECT_LT(face.OffsetAt(c + Eigen::Vector3f(0.118f, 0, -0.015f)), forehead - 1.0);
   EXPECT_LT(face.OffsetAt(c + Eigen::Vector3f(-0.005f, 0.09f, -0.005f)), forehead - 1.0);
   const SkinField hand(5, BodyZone::kHand);
-  EXPECT_LT(hand.OffsetAt(Eigen::Vector3f(0.18f, 0.18f, 0.68f)), hand.OffsetAt(Eigen::Vector3f(0.18f, 0.18f, 0.81f)) - 1.0)
+  EXPECT_LT(hand.OffsetAt(Eigen::Vector3f(0.18f, 0.18f, 0.68f)),
+            hand.OffsetAt(Eigen::Vector3f(0.18f, 0.18f, 0.81f)) - 1.0)
       << "fingers cooler than the back of the hand";
 }
 

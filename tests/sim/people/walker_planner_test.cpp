@@ -2,10 +2,10 @@
 // robot's path and overtake it without ever overlapping furniture, each other or the robot.
 #include "hoilcd/sim/people/walker_planner.h"
 
-#include <gtest/gtest.h>
-
 #include <map>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/generate/generator.h"
 #include "hoilcd/sim/scene/scene_options.h"
@@ -42,9 +42,10 @@ TEST(FreeSpace, ShortestPathGoesRoundAGrownBoxAndKeepsItsRadius) {
 
 TEST(FreeSpace, NoPathIntoAWalledCorner) {
   // A 0.4 m gap between two boxes does not let a 0.25 m radius through.
-  const FreeSpace space({Obstacle2D::Rectangle("left", {0, 0}, {1, 4}), Obstacle2D::Rectangle("right", {1.4, 0}, {1, 4}),
-                         Obstacle2D::Rectangle("back", {0.7, 2.3}, {3, 0.6})},
-                        0.25);
+  const FreeSpace space(
+      {Obstacle2D::Rectangle("left", {0, 0}, {1, 4}), Obstacle2D::Rectangle("right", {1.4, 0}, {1, 4}),
+       Obstacle2D::Rectangle("back", {0.7, 2.3}, {3, 0.6})},
+      0.25);
   EXPECT_TRUE(space.ShortestPath({0.7, -3}, {0.7, 1.5}).empty());
   EXPECT_FALSE(space.ShortestPath({0.7, -3}, {3, -3}).empty());
 }
@@ -86,14 +87,14 @@ TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureE
       const double radius = kWalkerRadiusM * p.height_scale;
       for (const Obstacle2D& o : world.obstacles()) {
         if (o.name.rfind("chair", 0) != 0 && o.name.rfind("table", 0) != 0) continue;
-        ASSERT_GE(DistanceToObstacle(at, o), radius - 0.01) << "frame " << f << ": walker " << p.person_id << " ("
-                                                              << p.posture << ") in " << o.name;
+        ASSERT_GE(DistanceToObstacle(at, o), radius - 0.01)
+            << "frame " << f << ": walker " << p.person_id << " (" << p.posture << ") in " << o.name;
       }
       for (const auto& [other, other_radius] : walkers) {
         ASSERT_GE((at - other).norm(), radius + other_radius - 0.01) << "frame " << f << ": walker " << p.person_id;
       }
-      ASSERT_GE((at - robot).norm(), kWalkerRobotClearanceM - 0.01) << "frame " << f << ": walker " << p.person_id << " ("
-                                                                    << p.posture << ") and the robot";
+      ASSERT_GE((at - robot).norm(), kWalkerRobotClearanceM - 0.01)
+          << "frame " << f << ": walker " << p.person_id << " (" << p.posture << ") and the robot";
       walkers.emplace_back(at, radius);
       if (last[p.person_id] != p.posture) bouts[p.person_id][p.posture].emplace_back();
       last[p.person_id] = p.posture;
@@ -111,7 +112,8 @@ TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureE
           // The walker's track crosses the robot's path where the robot comes later (at least 2 s).
           bool crossed = false;
           for (size_t i = 1; i < track.at.size() && !crossed; ++i) {
-            for (size_t g = track.frames[i] + 50; g + 1 < run.samples.size() && g < track.frames[i] + 750 && !crossed; ++g) {
+            for (size_t g = track.frames[i] + 50; g + 1 < run.samples.size() && g < track.frames[i] + 750 && !crossed;
+                 ++g) {
               crossed = Cross(track.at[i - 1], track.at[i], {run.samples[g].base.x_m, run.samples[g].base.y_m},
                               {run.samples[g + 1].base.x_m, run.samples[g + 1].base.y_m});
             }
@@ -122,7 +124,8 @@ TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureE
           // Behind the robot (against its heading) at the start, ahead of it at the end.
           auto ahead = [&](size_t k) {
             const RobotSample& r = run.samples[track.frames[k]];
-            return (track.at[k] - Eigen::Vector2d(r.base.x_m, r.base.y_m)).dot(Eigen::Vector2d(std::cos(r.base.theta_rad), std::sin(r.base.theta_rad)));
+            return (track.at[k] - Eigen::Vector2d(r.base.x_m, r.base.y_m))
+                .dot(Eigen::Vector2d(std::cos(r.base.theta_rad), std::sin(r.base.theta_rad)));
           };
           overtakings += ahead(0) < -0.5 && ahead(track.at.size() - 1) > 0.5;
         }
@@ -138,7 +141,8 @@ TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureE
 int DoorOf(const Scene& scene, const Eigen::Vector2d& p, double radius_m) {
   for (size_t d = 0; d < scene.room.doors.size(); ++d) {
     const DoorSpec& door = scene.room.doors[d];
-    const bool x_wall = std::abs(door.position_m.x()) < 1e-9 || std::abs(door.position_m.x() - scene.room.size_m.x()) < 1e-9;
+    const bool x_wall =
+        std::abs(door.position_m.x()) < 1e-9 || std::abs(door.position_m.x() - scene.room.size_m.x()) < 1e-9;
     const double along = x_wall ? p.y() - door.position_m.y() : p.x() - door.position_m.x();
     const double across = x_wall ? std::abs(p.x() - door.position_m.x()) : std::abs(p.y() - door.position_m.y());
     if (std::abs(along) <= 0.5 * door.width_m && across <= radius_m + 0.25) return static_cast<int>(d);
@@ -166,7 +170,8 @@ TEST(Walkers, AppearAndVanishOnlyInADoorwayAndLeaveTheRoomOnlyThroughOne) {
         if (p.present) {
           postures.insert(p.posture);
           // Anywhere outside the room's walls only in a doorway.
-          const bool in_room = at.x() >= 0 && at.y() >= 0 && at.x() <= scene.room.size_m.x() && at.y() <= scene.room.size_m.y();
+          const bool in_room =
+              at.x() >= 0 && at.y() >= 0 && at.x() <= scene.room.size_m.x() && at.y() <= scene.room.size_m.y();
           ASSERT_TRUE(in_room || DoorOf(scene, at, radius) >= 0)
               << room << " frame " << f << ": walker " << p.person_id << " (" << p.posture << ") outside the room at "
               << at.transpose() << " away from every door";
@@ -174,10 +179,12 @@ TEST(Walkers, AppearAndVanishOnlyInADoorwayAndLeaveTheRoomOnlyThroughOne) {
         if (f > 0 && p.present != was_present[p.person_id]) {
           const Eigen::Vector2d where = p.present ? at : last_at[p.person_id];
           const int door = DoorOf(scene, where, radius);
-          ASSERT_GE(door, 0) << room << " frame " << f << ": walker " << p.person_id << (p.present ? " appeared" : " vanished")
-                             << " at " << where.transpose() << ", not in a doorway";
+          ASSERT_GE(door, 0) << room << " frame " << f << ": walker " << p.person_id
+                             << (p.present ? " appeared" : " vanished") << " at " << where.transpose()
+                             << ", not in a doorway";
           // Behind the wall: the wall hides the body.
-          EXPECT_TRUE(where.x() < 0 || where.y() < 0 || where.x() > scene.room.size_m.x() || where.y() > scene.room.size_m.y())
+          EXPECT_TRUE(where.x() < 0 || where.y() < 0 || where.x() > scene.room.size_m.x() ||
+                      where.y() > scene.room.size_m.y())
               << room << " frame " << f << ": walker " << p.person_id << " at " << where.transpose();
           doors_used.insert(door);
           (p.present ? appearances : disappearances) += 1;
@@ -230,16 +237,19 @@ TEST(Walkers, TurnSmoothlyWhereADoorWalkJoinsTheRouteOrTheyTurnBack) {
 TEST(Walkers, FurnitureInADoorwayIsAnErrorNamingTheDoor) {
   // Someone standing in the paper room's east door (x = 7, y = 1.5); the last table removed and
   // the route moved west so that the robot passes them.
-  const Scene scene = LoadShipped("paper_room", {"crowd.walkers=1", R"(crowd.standing=[{"position_m": [6.98, 1.5]}])",
-                                                 R"(tables=[{"center_m": [1.2, 1.5]}, {"center_m": [2.12, 1.5]}, {"center_m": [3.04, 1.5]},
+  const Scene scene = LoadShipped(
+      "paper_room", {"crowd.walkers=1", R"(crowd.standing=[{"position_m": [6.98, 1.5]}])",
+                     R"(tables=[{"center_m": [1.2, 1.5]}, {"center_m": [2.12, 1.5]}, {"center_m": [3.04, 1.5]},
                                                             {"center_m": [3.96, 1.5]}, {"center_m": [4.88, 1.5]}])",
-                                                 "route.waypoints_m=[[0.38,0.38],[0.38,2.62],[6.3,2.62],[6.3,0.38]]"});
+                     "route.waypoints_m=[[0.38,0.38],[0.38,2.62],[6.3,2.62],[6.3,0.38]]"});
   const BandRadianceTable table;
   World world(scene, table);
   const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
   const std::string message = test::InputErrorOf([&] { world.PlanCrowd(run.samples); });
-  EXPECT_NE(message.find("paper_room.json: /room/doors/1: walkers (crowd.walkers) enter and leave the room here, but standing person"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find(
+          "paper_room.json: /room/doors/1: walkers (crowd.walkers) enter and leave the room here, but standing person"),
+      std::string::npos)
       << message;
   EXPECT_NE(message.find("stands in the doorway"), std::string::npos) << message;
 }
@@ -266,8 +276,10 @@ TEST(Walkers, PlansAreTheSameForTheSameSeed) {
 TEST(Walkers, ARouteAWalkersBodyCannotFollowIsAnErrorNamingTheRoute) {
   // Chairs pushed out to 0.495 m from the wall: the robot (0.34 m wide) drives 0.3 m from the
   // wall (on its true path), but a walker needs 0.25 m on either side of its centre.
-  const Scene scene = LoadShipped("paper_room", {"crowd.walkers=1", "furniture.seat_setback_m=0.38", "furniture.chair_jitter_m=0",
-                                                 "route.waypoints_m=[[0.3,0.3],[0.3,2.7],[6.7,2.7],[6.7,0.3]]", "robot.navigation=ground_truth", "crowd.height_scale_sd=0"});
+  const Scene scene =
+      LoadShipped("paper_room", {"crowd.walkers=1", "furniture.seat_setback_m=0.38", "furniture.chair_jitter_m=0",
+                                 "route.waypoints_m=[[0.3,0.3],[0.3,2.7],[6.7,2.7],[6.7,0.3]]",
+                                 "robot.navigation=ground_truth", "crowd.height_scale_sd=0"});
   const BandRadianceTable table;
   World world(scene, table);
   const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
@@ -292,8 +304,10 @@ TEST(Walkers, NobodyStrollsJustInFrontOfTheCameraForLong) {
   const GeneratorOptions options;
   const std::vector<std::pair<std::string, Scene>> rooms = {
       {"paper_room, 4 walkers", LoadShipped("paper_room", {"crowd.walkers=4"})},
-      {"open_office 2026/11", SceneFromJson(nlohmann::json::parse(GenerateScene("mixed", 2026, 11, options).dump()), "g.json")},
-      {"open_office 2026/4", SceneFromJson(nlohmann::json::parse(GenerateScene("mixed", 2026, 4, options).dump()), "g.json")}};
+      {"open_office 2026/11",
+       SceneFromJson(nlohmann::json::parse(GenerateScene("mixed", 2026, 11, options).dump()), "g.json")},
+      {"open_office 2026/4",
+       SceneFromJson(nlohmann::json::parse(GenerateScene("mixed", 2026, 4, options).dump()), "g.json")}};
   for (const auto& [room, scene] : rooms) {
     ASSERT_GT(scene.crowd.walkers, 0) << room;
     test::PlannedWorld planned(scene);
@@ -306,7 +320,8 @@ TEST(Walkers, NobodyStrollsJustInFrontOfTheCameraForLong) {
       bool close = false;
       for (const Person& p : planned.world.people()) {
         if (p.walker < 0 || !p.present) continue;
-        const Eigen::Vector2d d = ((p.keypoints_m[11] + p.keypoints_m[12]) / 2).head<2>() - Eigen::Vector2d(camera.x_m, camera.y_m);
+        const Eigen::Vector2d d =
+            ((p.keypoints_m[11] + p.keypoints_m[12]) / 2).head<2>() - Eigen::Vector2d(camera.x_m, camera.y_m);
         const double ahead = d.dot(forward), across = std::abs(forward.x() * d.y() - forward.y() * d.x());
         close = close || (ahead > 0 && ahead < 2.0 && across < ahead * std::tan(25 * M_PI / 180) + 0.25);
       }

@@ -1,10 +1,10 @@
 // Clothing as the camera sees it: rendered frames of the paper room with the material region of
 // every pixel known (cast again through the World), so clothing and skin are told apart exactly.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <map>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/stats.h"
 #include "hoilcd/sim/render/renderer.h"
@@ -16,8 +16,8 @@ namespace hoilcd {
 namespace {
 
 struct ClothingPixels {
-  int pairs = 0, equal_pairs = 0;                    // neighbouring garment pixels of one person
-  std::map<int, std::vector<double>> by_person_c;    // garment pixel temperatures per person
+  int pairs = 0, equal_pairs = 0;                  // neighbouring garment pixels of one person
+  std::map<int, std::vector<double>> by_person_c;  // garment pixel temperatures per person
   double EqualShare() const { return pairs ? static_cast<double>(equal_pairs) / pairs : 1.0; }
 };
 

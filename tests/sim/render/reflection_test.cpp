@@ -1,8 +1,8 @@
 // Warm bodies mirrored in glossy surfaces: what a whiteboard (or a glossy floor) shows of a person
 // in front of it is its own emission plus (1 − ε) of the person's radiance, and a reader sees it.
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -74,7 +74,8 @@ TEST(Reflection, AWhiteboardMirrorsAPersonAsItsEmissionPlusOneMinusEpsilonOfTheP
       RayHit hit;
       const float seen = renderer.Radiance(camera, d, &hit);
       const InstanceInfo& info = world.instance(hit.instance);
-      if (static_cast<int>(info.mesh->triangle_material[hit.triangle]) != info.asset->MaterialIndex("whiteboard")) continue;
+      if (static_cast<int>(info.mesh->triangle_material[hit.triangle]) != info.asset->MaterialIndex("whiteboard"))
+        continue;
       if (m.person.instance < 0) {
         plain_c += table.CelsiusFromRadiance(seen);
         ++plain;

@@ -1,8 +1,8 @@
 #include "hoilcd/sim/render/renderer.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
+
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
@@ -27,11 +27,20 @@ TEST(Renderer, IsothermalEnclosureRendersItsTemperatureWhateverTheEmissivities) 
                 {"floor", {{"temperature_c", 25.0}, {"emissivity", 0.3}, {"specular", true}}},
                 {"ceiling", {{"temperature_c", 25.0}, {"emissivity", 0.95}}},
                 {"walls", {{"temperature_bottom_c", 25.0}, {"temperature_top_c", 25.0}, {"emissivity", 0.6}}},
-                {"windows", {{{"wall", "north"}, {"center_m", 2.0}, {"bottom_m", 0.5}, {"width_m", 1.0},
-                              {"height_m", 1.0}, {"temperature_c", 25.0}, {"emissivity", 0.5}}}},
+                {"windows",
+                 {{{"wall", "north"},
+                   {"center_m", 2.0},
+                   {"bottom_m", 0.5},
+                   {"width_m", 1.0},
+                   {"height_m", 1.0},
+                   {"temperature_c", 25.0},
+                   {"emissivity", 0.5}}}},
                 {"surfaces",
-                 {{"thermal_bridges", false}, {"radiator_plume", false}, {"glass_from_u_value", false},
-                  {"window_frames", false}, {"texture", false}}},
+                 {{"thermal_bridges", false},
+                  {"radiator_plume", false},
+                  {"glass_from_u_value", false},
+                  {"window_frames", false},
+                  {"texture", false}}},
                 {"sun", {{"enabled", false}}},
                 {"hvac", {{"enabled", false}}}}}};
   const Scene scene = SceneFromJson(doc, "iso.json");

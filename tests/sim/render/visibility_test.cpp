@@ -1,12 +1,12 @@
 #include "hoilcd/sim/render/visibility.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -18,8 +18,8 @@ namespace {
 
 // Pixels a person covers alone, by the definition: one single ray per pixel of the image
 // against each body part alone (IntersectInstance), no windows, no packets.
-int AlonePixelsBySingleRays(const World& world, const CameraIntrinsics& intrinsics,
-                            const CameraPose& pose, const Person& person) {
+int AlonePixelsBySingleRays(const World& world, const CameraIntrinsics& intrinsics, const CameraPose& pose,
+                            const Person& person) {
   const Rigid3 world_from_cam = pose.WorldFromCam();
   const Eigen::Matrix3f R = world_from_cam.rotation.toRotationMatrix().cast<float>();
   const Eigen::Vector3f origin = world_from_cam.translation.cast<float>();
@@ -90,7 +90,8 @@ TEST_F(VisiblePersonsTest, KeypointVisibilityIsThatOfSingleRaysAndTheRecordsDoNo
                                        [&](const Person& p) { return p.person_id == record.id; });
       ASSERT_NE(person, world.people().end());
       for (const KeypointRecord& kp : record.keypoints) {
-        if (kp.u_px < -0.5 || kp.v_px < -0.5 || kp.u_px >= intrinsics.width - 0.5 || kp.v_px >= intrinsics.height - 0.5) {
+        if (kp.u_px < -0.5 || kp.v_px < -0.5 || kp.u_px >= intrinsics.width - 0.5 ||
+            kp.v_px >= intrinsics.height - 0.5) {
           EXPECT_FALSE(kp.visible);
           continue;
         }
@@ -98,7 +99,8 @@ TEST_F(VisiblePersonsTest, KeypointVisibilityIsThatOfSingleRaysAndTheRecordsDoNo
         const int v = std::clamp(static_cast<int>(std::lround(kp.v_px)), 0, intrinsics.height - 1);
         const Eigen::Vector3f ray = intrinsics.Unproject(u, v).cast<float>().normalized();
         float own = std::numeric_limits<float>::infinity();
-        for (int part : person->parts) own = std::min(own, world.caster().IntersectInstance(part, origin, R * ray).distance_m);
+        for (int part : person->parts)
+          own = std::min(own, world.caster().IntersectInstance(part, origin, R * ray).distance_m);
         const bool expected = std::isfinite(own) && frame.depth_m.at<float>(v, u) >= own * ray.z() - 0.01f;
         EXPECT_EQ(kp.visible, expected) << "frame " << f << " person " << record.id << " " << kp.name;
         (expected ? visible : hidden)++;

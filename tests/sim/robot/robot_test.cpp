@@ -1,7 +1,5 @@
 #include "hoilcd/sim/robot/robot.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +7,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -29,13 +29,12 @@ std::vector<Obstacle2D> PaperRoomObstacles() {
   std::vector<Obstacle2D> obstacles;
   for (int i = 0; i < 6; ++i) {
     const double x = 1.20 + 0.92 * i;
-    obstacles.push_back(
-        Obstacle2D::Rectangle("table " + std::to_string(i), {x, 1.5}, {0.90, 0.75}));
+    obstacles.push_back(Obstacle2D::Rectangle("table " + std::to_string(i), {x, 1.5}, {0.90, 0.75}));
     for (const double side : {-1.0, 1.0}) {
       for (const double dx : {-0.225, 0.225}) {
-        obstacles.push_back(Obstacle2D::Rectangle(
-            "seat " + std::to_string(i) + (side < 0 ? "S" : "N") + (dx < 0 ? "W" : "E"),
-            {x + dx, 1.5 + side * (0.375 + 0.2)}, {0.45, 0.40}));
+        obstacles.push_back(
+            Obstacle2D::Rectangle("seat " + std::to_string(i) + (side < 0 ? "S" : "N") + (dx < 0 ? "W" : "E"),
+                                  {x + dx, 1.5 + side * (0.375 + 0.2)}, {0.45, 0.40}));
       }
     }
   }
@@ -55,8 +54,7 @@ RouteOptions PaperRoute() {
   return route;
 }
 
-RobotRun PaperRun(uint64_t seed = 7, const OdometryErrorOptions& noise = {},
-                  const TricycleOptions& robot = {}) {
+RobotRun PaperRun(uint64_t seed = 7, const OdometryErrorOptions& noise = {}, const TricycleOptions& robot = {}) {
   return SimulateRobot(robot, PaperRoute(), noise, PaperRoomObstacles(), kFrameRateHz, seed);
 }
 
@@ -158,8 +156,7 @@ TEST(PaperRoom, RouteKeeps30cmFromFurnitureAndTheDriftingRobotStaysInsideTheRoom
     }
     // The per-step minimum bounds what the frames show.
     for (int j = 0; j < kFurnitureCount; ++j) {
-      ASSERT_GE(DistanceToObstacle({s.base.x_m, s.base.y_m}, obstacles[j]),
-                run.obstacle_distance_m[j] - 1e-12);
+      ASSERT_GE(DistanceToObstacle({s.base.x_m, s.base.y_m}, obstacles[j]), run.obstacle_distance_m[j] - 1e-12);
     }
   }
 }
@@ -178,11 +175,9 @@ TEST(PaperRoom, RespectsCurvatureSteeringSpeedAndAccelerationLimits) {
     ASSERT_LE(s.speed_m_s, robot.max_speed_m_s + 1e-12);
     if (k == 0) continue;
     const RobotSample& p = run.samples[k - 1];
-    ASSERT_LE(std::abs(s.steer_rad - p.steer_rad),
-              robot.max_steer_rate_deg_s * M_PI / 180 * dt + 1e-9)
+    ASSERT_LE(std::abs(s.steer_rad - p.steer_rad), robot.max_steer_rate_deg_s * M_PI / 180 * dt + 1e-9)
         << "frame " << k;
-    ASSERT_LE(std::abs(s.speed_m_s - p.speed_m_s), robot.max_accel_m_s2 * dt + 1e-9)
-        << "frame " << k;
+    ASSERT_LE(std::abs(s.speed_m_s - p.speed_m_s), robot.max_accel_m_s2 * dt + 1e-9) << "frame " << k;
   }
   // The steered-on pose stays near the route; a localisation fix may move it by its bounded error.
   EXPECT_LT(run.max_tracking_error_m, 0.05 + 2.0 * std::sqrt(2.0) * robot.localization.position_sd_m);
@@ -195,8 +190,7 @@ TEST(PaperRoom, WithoutVibrationTheCameraIsRigidlyMountedAheadOfTheBase) {
     const CameraPose expected = CameraPoseFromBase(s.base, robot);
     ASSERT_DOUBLE_EQ(s.camera.x_m, expected.x_m);
     ASSERT_DOUBLE_EQ(s.camera.yaw_rad, expected.yaw_rad);
-    ASSERT_NEAR(std::hypot(s.camera.x_m - s.base.x_m, s.camera.y_m - s.base.y_m),
-                robot.camera_forward_m, 1e-12);
+    ASSERT_NEAR(std::hypot(s.camera.x_m - s.base.x_m, s.camera.y_m - s.base.y_m), robot.camera_forward_m, 1e-12);
     ASSERT_DOUBLE_EQ(s.camera.z_m, robot.camera_height_m);
     ASSERT_NEAR(s.camera.pitch_rad, robot.camera_pitch_deg * M_PI / 180, 1e-15);
   }
@@ -246,13 +240,12 @@ TEST(Navigation, LocalizedKeepsTheTruePathNearTheRouteWhileRecordedOdometryDrift
   const double duration_s = run.samples.back().time_s;
   EXPECT_NEAR(run.localization_fixes, std::floor(duration_s / robot.localization.interval_s), 1.0);
   EXPECT_LT(run.max_route_deviation_m, 2.0 * robot.localization.position_sd_m * std::sqrt(2.0) + 0.05);
-  EXPECT_GT(run.max_route_deviation_m, 0.02);  // it does wander
+  EXPECT_GT(run.max_route_deviation_m, 0.02);          // it does wander
   EXPECT_GT(PositionError(run.samples.back()), 0.10);  // raw odometry drifts 10 cm or more
   TricycleOptions dead_reckoning;
   dead_reckoning.navigation = TricycleOptions::Navigation::kOdometry;
   const RobotRun odo = PaperRun(7, {}, dead_reckoning);
-  const size_t before_first_fix =
-      static_cast<size_t>(robot.localization.interval_s * kFrameRateHz);
+  const size_t before_first_fix = static_cast<size_t>(robot.localization.interval_s * kFrameRateHz);
   for (size_t k = 0; k < before_first_fix; ++k) {
     ASSERT_DOUBLE_EQ(run.samples[k].odometry.x_m, odo.samples[k].odometry.x_m) << k;
     ASSERT_DOUBLE_EQ(run.samples[k].base.y_m, odo.samples[k].base.y_m) << k;
@@ -313,8 +306,10 @@ TEST(Odometry, WheelbaseErrorAloneScalesTheTrueTurn) {
 
 // Turning slip grows with lateral acceleration: none on a straight, some in the turns.
 TEST(Odometry, TurnSlipAloneShortensOnlyTheTurns) {
-  const OdometryErrorOptions noise =
-      OnlyError([](OdometryErrorOptions& o) { o.turn_slip_per_lat_accel_s2_m = 0.01; o.slip_noise_frac = 0; });
+  const OdometryErrorOptions noise = OnlyError([](OdometryErrorOptions& o) {
+    o.turn_slip_per_lat_accel_s2_m = 0.01;
+    o.slip_noise_frac = 0;
+  });
   const RobotRun run = PaperRun(7, noise, RigidMount());
   const double heading_error = HeadingError(run.samples.back());
   // Clockwise turns that fall short leave the true heading counter-clockwise of the odometry's.
@@ -473,8 +468,7 @@ TEST(Collision, TableOnTheRouteIsNamed) {
         try {
           SimulateRobot({}, PaperRoute(), {}, obstacles, kFrameRateHz, 1);
         } catch (const InputError& e) {
-          EXPECT_NE(std::string(e.what()).find("robot collides with 'table 3' at frame "),
-                    std::string::npos)
+          EXPECT_NE(std::string(e.what()).find("robot collides with 'table 3' at frame "), std::string::npos)
               << e.what();
           throw;
         }
@@ -504,9 +498,8 @@ struct DefaultScene {
       : scene(LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", overrides)),
         world(std::make_unique<World>(scene, table)) {}
   RobotRun Run(uint64_t seed) const {
-    return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene),
-                         OdometryOptionsFromScene(scene), world->obstacles(), scene.frame_rate_hz,
-                         seed);
+    return SimulateRobot(TricycleOptionsFromScene(scene), RouteOptionsFromScene(scene), OdometryOptionsFromScene(scene),
+                         world->obstacles(), scene.frame_rate_hz, seed);
   }
 };
 
@@ -558,8 +551,8 @@ TEST(DefaultScene, PaperRoomCompletesWithClearanceOnSeeds1To50) {
   const double median_m = lap_difference_m[lap_difference_m.size() / 2];
   EXPECT_GE(median_m, 0.03);
   EXPECT_LE(median_m, 0.30);
-  std::printf("seeds 1-50: smallest base clearance %.3f m, lap difference median of medians %.3f m\n",
-              worst_m, median_m);
+  std::printf("seeds 1-50: smallest base clearance %.3f m, lap difference median of medians %.3f m\n", worst_m,
+              median_m);
 }
 
 TEST(DefaultScene, PaperRoomAtTwiceTheDefaultErrorCompletes) {
@@ -585,8 +578,7 @@ TEST(DefaultScene, PureOdometryNavigationStillStopsWithTheNamedCollision) {
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("robot collides with 'south wall'"), std::string::npos) << what;
-    EXPECT_NE(what.find("lower the odometry error (odometry.error_scale) or widen the route"),
-              std::string::npos)
+    EXPECT_NE(what.find("lower the odometry error (odometry.error_scale) or widen the route"), std::string::npos)
         << what;
     EXPECT_NE(what.find("let the robot localise (robot.navigation \"localized\")"), std::string::npos) << what;
   }
@@ -605,34 +597,25 @@ TEST(Options, CheckNamesWhatIsWrong) {
   const RobotCase robot_cases[] = {
       {[](TricycleOptions& o) { o.wheelbase_m = -0.3; }, "wheelbase_m: must be"},
       {[](TricycleOptions& o) { o.max_steer_deg = 90; }, "max_steer_deg: must be"},
-      {[](TricycleOptions& o) { o.max_steer_rate_deg_s = 0; },
-       "max_steer_rate_deg_s: must be"},
+      {[](TricycleOptions& o) { o.max_steer_rate_deg_s = 0; }, "max_steer_rate_deg_s: must be"},
       {[](TricycleOptions& o) { o.max_speed_m_s = 0; }, "max_speed_m_s: must be"},
       {[](TricycleOptions& o) { o.max_accel_m_s2 = -1; }, "max_accel_m_s2: must be"},
       {[](TricycleOptions& o) { o.integration_rate_hz = 0.5; }, "integration_rate_hz: must be"},
       {[](TricycleOptions& o) { o.width_m = 0; }, "width_m: must be above 0 m (got 0)"},
       {[](TricycleOptions& o) { o.base_to_rear_m = 1; }, "base_to_rear_m: must be below length_m"},
-      {[](TricycleOptions& o) { o.localization.interval_s = 0; },
-       "localization/interval_s: must be"},
-      {[](TricycleOptions& o) { o.localization.position_sd_m = -0.01; },
-       "localization/position_sd_m: must be"},
-      {[](TricycleOptions& o) { o.localization.heading_sd_deg = 45; },
-       "localization/heading_sd_deg: must be"},
-      {[](TricycleOptions& o) { o.localization.correlation_s = -1; },
-       "localization/correlation_s: must be"},
+      {[](TricycleOptions& o) { o.localization.interval_s = 0; }, "localization/interval_s: must be"},
+      {[](TricycleOptions& o) { o.localization.position_sd_m = -0.01; }, "localization/position_sd_m: must be"},
+      {[](TricycleOptions& o) { o.localization.heading_sd_deg = 45; }, "localization/heading_sd_deg: must be"},
+      {[](TricycleOptions& o) { o.localization.correlation_s = -1; }, "localization/correlation_s: must be"},
       {[](TricycleOptions& o) { o.camera_height_m = NAN; }, "camera_height_m: must be above 0 m (got nan)"},
-      {[](TricycleOptions& o) { o.camera_pitch_deg = 95; },
-       "camera_pitch_deg: must be in [-89, 89] deg"},
-      {[](TricycleOptions& o) { o.camera_roll_deg = INFINITY; },
-       "camera_roll_deg: must be"},
-      {[](TricycleOptions& o) { o.vibration.natural_frequency_hz = 0; },
-       "vibration/natural_frequency_hz: must be"},
+      {[](TricycleOptions& o) { o.camera_pitch_deg = 95; }, "camera_pitch_deg: must be in [-89, 89] deg"},
+      {[](TricycleOptions& o) { o.camera_roll_deg = INFINITY; }, "camera_roll_deg: must be"},
+      {[](TricycleOptions& o) { o.vibration.natural_frequency_hz = 0; }, "vibration/natural_frequency_hz: must be"},
       {[](TricycleOptions& o) { o.vibration.damping_ratio = -1; }, "vibration/damping_ratio: must be"},
       {[](TricycleOptions& o) { o.vibration.roll_sd_deg = -0.1; }, "vibration/roll_sd_deg: must be"},
       {[](TricycleOptions& o) { o.vibration.pitch_sd_deg = 11; }, "vibration/pitch_sd_deg: must be"},
       {[](TricycleOptions& o) { o.vibration.height_sd_m = 1; }, "vibration/height_sd_m: must be"},
-      {[](TricycleOptions& o) { o.vibration.reference_speed_m_s = 0; },
-       "vibration/reference_speed_m_s: must be"},
+      {[](TricycleOptions& o) { o.vibration.reference_speed_m_s = 0; }, "vibration/reference_speed_m_s: must be"},
       {[](TricycleOptions& o) { o.vibration.pitch_per_accel_deg_s2_m = 30; },
        "vibration/pitch_per_accel_deg_s2_m: must be"},
       {[](TricycleOptions& o) { o.vibration.roll_per_lat_accel_deg_s2_m = NAN; },
@@ -650,20 +633,17 @@ TEST(Options, CheckNamesWhatIsWrong) {
     const char* message;
   };
   const RouteCase route_cases[] = {
-      {[](RouteOptions& o) { o.waypoints_m.clear(); },
-       "waypoints_m: needs at least 3 points, has 0"},
+      {[](RouteOptions& o) { o.waypoints_m.clear(); }, "waypoints_m: needs at least 3 points, has 0"},
       {[](RouteOptions& o) {
          o.waypoints_m[1] = {NAN, 0};
        },
        "waypoints_m: waypoint 1 is not finite"},
-      {[](RouteOptions& o) { o.waypoints_m[2] = o.waypoints_m[1]; },
-       "waypoints_m: waypoint 1 repeats the next one"},
+      {[](RouteOptions& o) { o.waypoints_m[2] = o.waypoints_m[1]; }, "waypoints_m: waypoint 1 repeats the next one"},
       {[](RouteOptions& o) { o.frames = -1; }, "frames: must be in [0, 1000000]"},
       {[](RouteOptions& o) { o.laps = 0; }, "laps: must be"},
       {[](RouteOptions& o) { o.cruise_speed_m_s = 0; }, "cruise_speed_m_s: must be"},
       {[](RouteOptions& o) { o.lookahead_m = -1; }, "lookahead_m: must be"},
-      {[](RouteOptions& o) { o.max_lateral_accel_m_s2 = 0; },
-       "max_lateral_accel_m_s2: must be"},
+      {[](RouteOptions& o) { o.max_lateral_accel_m_s2 = 0; }, "max_lateral_accel_m_s2: must be"},
       {[](RouteOptions& o) { o.corner_radius_m = 0; }, "corner_radius_m: must be"},
   };
   for (const RouteCase& c : route_cases) {
@@ -685,11 +665,9 @@ TEST(Options, CheckNamesWhatIsWrong) {
       {[](OdometryErrorOptions& o) { o.encoder_counts_per_rev = 0; }, "encoder_counts_per_rev: must be"},
       {[](OdometryErrorOptions& o) { o.wheel_radius_m = 0; }, "wheel_radius_m: must be"},
       {[](OdometryErrorOptions& o) { o.slip_per_accel_s2_m = -0.1; }, "slip_per_accel_s2_m: must be"},
-      {[](OdometryErrorOptions& o) { o.turn_slip_per_lat_accel_s2_m = 2; },
-       "turn_slip_per_lat_accel_s2_m: must be"},
+      {[](OdometryErrorOptions& o) { o.turn_slip_per_lat_accel_s2_m = 2; }, "turn_slip_per_lat_accel_s2_m: must be"},
       {[](OdometryErrorOptions& o) { o.slip_noise_frac = -1; }, "slip_noise_frac: must be"},
-      {[](OdometryErrorOptions& o) { o.heading_noise_deg_sqrt_m = -0.01; },
-       "heading_noise_deg_sqrt_m: must be"},
+      {[](OdometryErrorOptions& o) { o.heading_noise_deg_sqrt_m = -0.01; }, "heading_noise_deg_sqrt_m: must be"},
   };
   for (const OdometryCase& c : odometry_cases) {
     OdometryErrorOptions o;
@@ -732,20 +710,16 @@ TEST(Options, InfeasibleCombinationsAreRefused) {
             std::string::npos);
   RouteOptions wide;
   wide.corner_radius_m = 1.5;
-  EXPECT_NE(SimulationError({}, wide, {}, kFrameRateHz).find("does not fit segment 0"),
-            std::string::npos);
+  EXPECT_NE(SimulationError({}, wide, {}, kFrameRateHz).find("does not fit segment 0"), std::string::npos);
   RouteOptions fast;
   fast.cruise_speed_m_s = 1.0;
-  EXPECT_NE(SimulationError({}, fast, {}, kFrameRateHz)
-                .find("cruise_speed_m_s exceeds the robot's max_speed_m_s"),
+  EXPECT_NE(SimulationError({}, fast, {}, kFrameRateHz).find("cruise_speed_m_s exceeds the robot's max_speed_m_s"),
             std::string::npos);
   RouteOptions back;
   back.waypoints_m = {{0, 0}, {1, 0}, {0.5, 0}};
-  EXPECT_NE(SimulationError({}, back, {}, kFrameRateHz).find("turns back on itself"),
+  EXPECT_NE(SimulationError({}, back, {}, kFrameRateHz).find("turns back on itself"), std::string::npos);
+  EXPECT_NE(SimulationError({}, {}, {}, 0.0).find("must be positive and at most /robot/integration_rate_hz"),
             std::string::npos);
-  EXPECT_NE(
-      SimulationError({}, {}, {}, 0.0).find("must be positive and at most /robot/integration_rate_hz"),
-      std::string::npos);
   EXPECT_NE(SimulationError({}, {}, {Obstacle2D::Circle("stool", {9, 9}, 0)}, kFrameRateHz)
                 .find("obstacle 0 ('stool'): radius_m must be positive"),
             std::string::npos);
@@ -760,8 +734,7 @@ TEST(Options, InfeasibleCombinationsAreRefused) {
 TEST(Options, RouteTheRobotCannotFinishFailsLoudly) {
   RouteOptions crawl;
   crawl.max_lateral_accel_m_s2 = 1e-9;  // corners at 20 micrometres per second
-  EXPECT_NE(SimulationError({}, crawl, {}, kFrameRateHz).find("did not finish the route within"),
-            std::string::npos);
+  EXPECT_NE(SimulationError({}, crawl, {}, kFrameRateHz).find("did not finish the route within"), std::string::npos);
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #include "hoilcd/sim/scene/building_floor.h"
 
-#include <gtest/gtest.h>
-
 #include <deque>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/scene/scene.h"
 #include "input_error_of.h"
@@ -42,7 +42,8 @@ TEST(BuildingFloor, ShippedFloorLoadsWithAtLeastEightRoomsApartAndAllReachable) 
   for (size_t i = 0; i < scene.floor.rooms.size(); ++i) {
     for (size_t j = i + 1; j < scene.floor.rooms.size(); ++j) {
       const Eigen::AlignedBox2d overlap = scene.floor.rooms[i].box_m.intersection(scene.floor.rooms[j].box_m);
-      EXPECT_TRUE(overlap.isEmpty() || overlap.sizes().minCoeff() < 1e-3) << scene.floor.rooms[i].name << " / " << scene.floor.rooms[j].name;
+      EXPECT_TRUE(overlap.isEmpty() || overlap.sizes().minCoeff() < 1e-3)
+          << scene.floor.rooms[i].name << " / " << scene.floor.rooms[j].name;
     }
   }
   EXPECT_EQ(Reached(scene.floor, scene.room.size_m.z()), static_cast<int>(scene.floor.rooms.size()));
@@ -75,21 +76,26 @@ TEST(BuildingFloor, OverlappingRoomsNameTheRoom) {
   json doc = TwoRoomFloor();
   doc["floor"]["rooms"][1]["min_m"] = {3.5, 0.0};
   const std::string error = InputErrorOf([&] { SceneFromJson(doc, "floor.json"); });
-  EXPECT_NE(error.find("floor.json: /floor/rooms/1: a room apart from the others; 'east' overlaps room 0 'west'"), std::string::npos) << error;
+  EXPECT_NE(error.find("floor.json: /floor/rooms/1: a room apart from the others; 'east' overlaps room 0 'west'"),
+            std::string::npos)
+      << error;
 }
 
 TEST(BuildingFloor, DoorwayBeyondItsWallNamesTheDoor) {
   json doc = TwoRoomFloor();
   doc["floor"]["walls"][0]["doors"][1]["center_m"] = 5.8;
   const std::string error = InputErrorOf([&] { SceneFromJson(doc, "floor.json"); });
-  EXPECT_NE(error.find("floor.json: /floor/walls/0/doors/1/center_m: a doorway within its wall: the wall is 5 m long"), std::string::npos) << error;
+  EXPECT_NE(error.find("floor.json: /floor/walls/0/doors/1/center_m: a doorway within its wall: the wall is 5 m long"),
+            std::string::npos)
+      << error;
 }
 
 TEST(BuildingFloor, RouteThroughAWallNamesTheLeg) {
   json doc = TwoRoomFloor();
   doc["route"]["waypoints_m"] = {{1.0, 1.5}, {1.0, 2.5}, {7.1, 2.5}, {7.1, 1.5}};
   const std::string error = InputErrorOf([&] { SceneFromJson(doc, "floor.json"); });
-  EXPECT_NE(error.find("floor.json: /route/waypoints_m/1: a leg clear of the interior walls"), std::string::npos) << error;
+  EXPECT_NE(error.find("floor.json: /route/waypoints_m/1: a leg clear of the interior walls"), std::string::npos)
+      << error;
   EXPECT_NE(error.find("passes through /floor/walls/0 outside its doorways"), std::string::npos) << error;
 }
 
@@ -97,7 +103,8 @@ TEST(BuildingFloor, SlantedWallNamesItsEnd) {
   json doc = TwoRoomFloor();
   doc["floor"]["walls"][0]["to_m"] = {4.5, 5.0};
   const std::string error = InputErrorOf([&] { SceneFromJson(doc, "floor.json"); });
-  EXPECT_NE(error.find("floor.json: /floor/walls/0/to_m: a point at least 1 cm from from_m"), std::string::npos) << error;
+  EXPECT_NE(error.find("floor.json: /floor/walls/0/to_m: a point at least 1 cm from from_m"), std::string::npos)
+      << error;
 }
 
 TEST(BuildingFloor, RoomWithoutADoorwayIsUnreachable) {
@@ -105,7 +112,10 @@ TEST(BuildingFloor, RoomWithoutADoorwayIsUnreachable) {
   doc["floor"]["walls"][0]["doors"] = json::array();
   doc["route"]["waypoints_m"] = {{1.0, 1.0}, {1.0, 3.5}, {3.0, 3.5}, {3.0, 1.0}};
   const std::string error = InputErrorOf([&] { SceneFromJson(doc, "floor.json"); });
-  EXPECT_NE(error.find("floor.json: /floor/rooms/1: a room reachable from room 0 'west' through doorways; 'east' is not"), std::string::npos) << error;
+  EXPECT_NE(
+      error.find("floor.json: /floor/rooms/1: a room reachable from room 0 'west' through doorways; 'east' is not"),
+      std::string::npos)
+      << error;
 }
 
 TEST(BuildingFloor, RoomOutsideTheBoxAndUnknownKeysAreRefused) {

@@ -1,8 +1,8 @@
 #include "hoilcd/sim/scene/camera_profiles.h"
 
-#include <gtest/gtest.h>
-
 #include <sstream>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/scene/scene.h"
 
@@ -115,11 +115,13 @@ TEST(CameraProfiles, AValueTheSceneOrAnOverrideGivesWinsOverTheProfile) {
   EXPECT_EQ(lepton.camera.width_px, 256);
   EXPECT_EQ(lepton.frame_rate_hz, 8.7);
   ASSERT_EQ(lepton.warnings.size(), 1u);
-  EXPECT_EQ(lepton.warnings[0], "test.json: /camera/width_px is 256, not the flir_lepton_3_5 profile's 160: the scene "
-                                "file's value wins over the profile --set names");
+  EXPECT_EQ(lepton.warnings[0],
+            "test.json: /camera/width_px is 256, not the flir_lepton_3_5 profile's 160: the scene "
+            "file's value wins over the profile --set names");
   EXPECT_TRUE(SceneFromJson(paper, "test.json").warnings.empty());
   // An override of the whole camera object keeps the profile's values for what it leaves out.
-  const Scene whole = SceneFromJson(json::object(), "test.json", {R"(camera={"profile": "flir_lepton_3_5", "netd_k": 0.03})"});
+  const Scene whole =
+      SceneFromJson(json::object(), "test.json", {R"(camera={"profile": "flir_lepton_3_5", "netd_k": 0.03})"});
   EXPECT_EQ(whole.camera.width_px, 160);
   EXPECT_EQ(whole.camera.sensor.netd_k, 0.03);
 }
@@ -131,7 +133,8 @@ TEST(CameraProfiles, AnUnknownProfileIsAnErrorAtItsPathListingTheProfiles) {
   } catch (const InputError& e) {
     ASSERT_EQ(e.problems().size(), 1u) << e.what();
     EXPECT_EQ(e.problems()[0].where, "test.json: /camera/profile");
-    EXPECT_EQ(e.problems()[0].message.rfind("expected one of: hikmicro_pocket2, infiray_p2_pro, flir_lepton_3_5, flir_boson_640", 0),
+    EXPECT_EQ(e.problems()[0].message.rfind(
+                  "expected one of: hikmicro_pocket2, infiray_p2_pro, flir_lepton_3_5, flir_boson_640", 0),
               0u)
         << e.problems()[0].message;
   }

@@ -1,10 +1,10 @@
 // The scene schema and the C++ option tables describe the same options: same names, types,
 // defaults, minimum/maximum (and whether each is exclusive), string choices. Any drift fails here.
-#include <gtest/gtest.h>
-
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/generate/generator.h"
@@ -88,9 +88,9 @@ std::vector<std::string> Disagreements(const json& schema, const std::string& po
       out.push_back(where + ": type " + kType.at(o.kind) + " in C++, " + node->value("type", "?") + " in the schema");
     }
     const json cpp_default = json::parse(o.default_json);
-    const bool required = object->contains("required") && (*object)["required"].is_array() &&
-                          std::find((*object)["required"].begin(), (*object)["required"].end(), o.name) !=
-                              (*object)["required"].end();
+    const bool required =
+        object->contains("required") && (*object)["required"].is_array() &&
+        std::find((*object)["required"].begin(), (*object)["required"].end(), o.name) != (*object)["required"].end();
     if (required) {
       // A required key has no schema default; the table's only fills a struct made in code.
     } else if (o.optional) {
@@ -134,14 +134,10 @@ std::string Lines(const std::vector<std::string>& lines) {
 
 TEST(OptionSchema, EverySimOptionTableAgreesWithTheSceneSchema) {
   const std::vector<std::pair<std::string, std::vector<OptionInfo>>> tables = {
-      {"/camera", CameraOptions::Table().List()},
-      {"/robot", TricycleOptions::Table().List()},
-      {"/route", RouteOptions::Table().List()},
-      {"/odometry", OdometryErrorOptions::Table().List()},
-      {"/crowd", CrowdOptions::Table().List()},
-      {"/room", RoomOptions::Table().List()},
-      {"/furniture", FurnitureOptions::Table().List()},
-      {"/generator/options", GeneratorOptions::Table().List()},
+      {"/camera", CameraOptions::Table().List()},       {"/robot", TricycleOptions::Table().List()},
+      {"/route", RouteOptions::Table().List()},         {"/odometry", OdometryErrorOptions::Table().List()},
+      {"/crowd", CrowdOptions::Table().List()},         {"/room", RoomOptions::Table().List()},
+      {"/furniture", FurnitureOptions::Table().List()}, {"/generator/options", GeneratorOptions::Table().List()},
   };
   for (const auto& [pointer, options] : tables) {
     const std::vector<std::string> problems = Disagreements(SceneSchema(), pointer, options);
@@ -195,8 +191,9 @@ TEST(OptionSchema, ADriftedDefaultRangeOrFieldIsReported) {
     return Lines(Disagreements(schema, "/robot", robot));
   };
   EXPECT_EQ(drifted([](json*) {}), "");
-  EXPECT_NE(drifted([](json* s) { (*s)["properties"]["robot"]["properties"]["camera_height_m"]["default"] = 0.55; })
-                .find("/robot/camera_height_m: default 0.95 in C++, 0.55 in the schema"),
+  EXPECT_NE(drifted([](json* s) {
+              (*s)["properties"]["robot"]["properties"]["camera_height_m"]["default"] = 0.55;
+            }).find("/robot/camera_height_m: default 0.95 in C++, 0.55 in the schema"),
             std::string::npos);
   EXPECT_NE(drifted([](json* s) {
               json& node = (*s)["properties"]["robot"]["properties"]["max_steer_deg"];
@@ -210,11 +207,13 @@ TEST(OptionSchema, ADriftedDefaultRangeOrFieldIsReported) {
               node["minimum"] = 0;
             }).find("/robot/wheelbase_m: minimum (0.0 exclusive) in C++, 0.0 in the schema"),
             std::string::npos);
-  EXPECT_NE(drifted([](json* s) { (*s)["properties"]["robot"]["properties"]["width_m"]["maximum"] = 2; })
-                .find("/robot/width_m: maximum none in C++, 2.0 in the schema"),
+  EXPECT_NE(drifted([](json* s) {
+              (*s)["properties"]["robot"]["properties"]["width_m"]["maximum"] = 2;
+            }).find("/robot/width_m: maximum none in C++, 2.0 in the schema"),
             std::string::npos);
-  EXPECT_NE(drifted([](json* s) { (*s)["properties"]["robot"]["properties"]["vibration"]["properties"].erase("damping_ratio"); })
-                .find("/robot/vibration/damping_ratio: in the C++ table, missing in the schema"),
+  EXPECT_NE(drifted([](json* s) {
+              (*s)["properties"]["robot"]["properties"]["vibration"]["properties"].erase("damping_ratio");
+            }).find("/robot/vibration/damping_ratio: in the C++ table, missing in the schema"),
             std::string::npos);
   EXPECT_NE(drifted([](json* s) {
               (*s)["properties"]["robot"]["properties"]["tilt_deg"] = {{"type", "number"}, {"default", 0}};
@@ -223,11 +222,13 @@ TEST(OptionSchema, ADriftedDefaultRangeOrFieldIsReported) {
   const std::vector<OptionInfo> camera = CameraOptions::Table().List();
   json with_default = SceneSchema();
   with_default["properties"]["camera"]["properties"]["ffc_temperature_delta_k"]["default"] = 0.0;
-  EXPECT_NE(Lines(Disagreements(with_default, "/camera", camera))
-                .find("/camera/ffc_temperature_delta_k: optional in C++ (left out means 0.0) but the schema gives a default"),
-            std::string::npos);
-  EXPECT_NE(drifted([](json* s) { (*s)["properties"]["robot"]["properties"]["navigation"]["enum"].erase(2); })
-                .find("/robot/navigation: string choices differ"),
+  EXPECT_NE(
+      Lines(Disagreements(with_default, "/camera", camera))
+          .find("/camera/ffc_temperature_delta_k: optional in C++ (left out means 0.0) but the schema gives a default"),
+      std::string::npos);
+  EXPECT_NE(drifted([](json* s) {
+              (*s)["properties"]["robot"]["properties"]["navigation"]["enum"].erase(2);
+            }).find("/robot/navigation: string choices differ"),
             std::string::npos);
 }
 

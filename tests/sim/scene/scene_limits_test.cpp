@@ -1,12 +1,12 @@
 // What a scene file may not do however it is written (issue 45): nest without bound, repeat a
 // key, list without bound, give a frame rate that makes a run endless, hide a '=' in a run's
 // override key, or give an integer that a double would round into its range.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <functional>
+
+#include <gtest/gtest.h>
 
 #include "cpu_seconds.h"
 #include "hoilcd/core/util/json_reader.h"
@@ -100,10 +100,12 @@ TEST(SceneLimits, ARunsOverrideKeyHoldingAnEqualsSignIsRefused) {
 
 TEST(SceneLimits, ASeedAboveTwoToThe53IsRefusedThoughADoubleWouldRoundItIntoRange) {
   const std::string above = "9007199254740993";  // 2^53 + 1: as a double, 2^53
-  EXPECT_NE(ErrorOf(json::parse(R"({"seed": )" + above + "}")).find("test.json: /seed: expected at most 9007199254740992"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorOf(json::parse(R"({"seed": )" + above + "}")).find("test.json: /seed: expected at most 9007199254740992"),
+      std::string::npos);
   EXPECT_NE(ErrorOf(json::object(), {"seed=" + above}).find("test.json: /seed: expected at most"), std::string::npos);
-  const json runs = json::parse(R"({"frames": 10, "runs": [{"time_of_day_h": 9}, {"time_of_day_h": 12, "seed": )" + above + "}]}");
+  const json runs =
+      json::parse(R"({"frames": 10, "runs": [{"time_of_day_h": 9}, {"time_of_day_h": 12, "seed": )" + above + "}]}");
   EXPECT_NE(ErrorOf(runs).find("test.json: /runs/1/seed: expected at most 9007199254740992"), std::string::npos)
       << ErrorOf(runs);
   EXPECT_EQ(SceneFromJson(json{{"seed", kMaxSeed}}, "test.json").seed, kMaxSeed);
@@ -113,7 +115,8 @@ TEST(SceneLimits, ASeedAboveTwoToThe53IsRefusedThoughADoubleWouldRoundItIntoRang
 // that check, one beyond is refused at its pointer, however large the bound.
 void ForEachBoundedInteger(const json& schema, const std::string& path,
                            const std::function<void(const std::string&, const json&)>& fn) {
-  if (schema.value("type", "") == "integer" && (schema.contains("maximum") || schema.contains("minimum"))) fn(path, schema);
+  if (schema.value("type", "") == "integer" && (schema.contains("maximum") || schema.contains("minimum")))
+    fn(path, schema);
   if (schema.contains("properties")) {
     for (const auto& [key, sub] : schema["properties"].items()) {
       ForEachBoundedInteger(sub, path.empty() ? key : path + "." + key, fn);
@@ -131,9 +134,9 @@ TEST(SceneLimits, EveryBoundedIntegerIsComparedAsAnIntegerAtBothEdges) {
       const bool max = std::string(edge) == "maximum";
       const json bound = schema[edge];
       // One beyond the bound, as text: 2^53 + 1 is exactly what a double cannot hold.
-      const std::string beyond =
-          bound.is_number_unsigned() && max ? std::to_string(bound.get<uint64_t>() + 1)
-                                            : std::to_string(bound.get<int64_t>() + (max ? 1 : -1));
+      const std::string beyond = bound.is_number_unsigned() && max
+                                     ? std::to_string(bound.get<uint64_t>() + 1)
+                                     : std::to_string(bound.get<int64_t>() + (max ? 1 : -1));
       const std::string error = ErrorOf(json::object(), {key + "=" + beyond});
       EXPECT_NE(error.find("test.json: " + pointer + ": "), std::string::npos) << key << "=" << beyond << ": " << error;
       const std::string at_bound = ErrorOf(json::object(), {key + "=" + bound.dump()});
@@ -146,7 +149,8 @@ TEST(SceneLimits, EveryBoundedIntegerIsComparedAsAnIntegerAtBothEdges) {
 
 // Every list in the schema has a longest length, and every object with keys of the user's choice a
 // largest count of them: no count of items goes unbounded.
-void ForEachList(const json& schema, const std::string& pointer, const std::function<void(const std::string&, const json&)>& fn) {
+void ForEachList(const json& schema, const std::string& pointer,
+                 const std::function<void(const std::string&, const json&)>& fn) {
   if (schema.value("type", "") == "array") fn(pointer, schema);
   if (schema.value("type", "") == "object" && !schema.contains("properties")) fn(pointer, schema);
   if (schema.contains("properties")) {
@@ -174,8 +178,8 @@ TEST(SceneLimits, AHundredThousandItemsInAnyListAreRefusedWithinTwoSeconds) {
                           json{{"position_m", {0.0, 1.5}}, {"width_m", 0.9}},
                           json{1.0, 1.0},
                           json{{"time_of_day_h", 9}}};
-  const char* const lists[] = {"/tables", "/objects", "/crowd/seating", "/crowd/standing", "/room/windows",
-                               "/room/doors", "/route/waypoints_m", "/runs"};
+  const char* const lists[] = {"/tables",       "/objects",    "/crowd/seating",     "/crowd/standing",
+                               "/room/windows", "/room/doors", "/route/waypoints_m", "/runs"};
   for (size_t k = 0; k < std::size(lists); ++k) {
     json doc = json::object();
     doc[json::json_pointer(lists[k])] = json::array();
@@ -183,28 +187,31 @@ TEST(SceneLimits, AHundredThousandItemsInAnyListAreRefusedWithinTwoSeconds) {
     for (int i = 0; i < 100000; ++i) list.push_back(item_of[k]);
     std::string error;
     EXPECT_LT(SecondsOf([&] { error = ErrorOf(doc); }), 2.0) << lists[k];
-    EXPECT_NE(error.find(std::string("test.json: ") + lists[k] + ": "), std::string::npos) << lists[k] << ": " << error.substr(0, 300);
+    EXPECT_NE(error.find(std::string("test.json: ") + lists[k] + ": "), std::string::npos)
+        << lists[k] << ": " << error.substr(0, 300);
   }
   json sets = json::object();
   for (int i = 0; i < 100000; ++i) sets["description" + std::to_string(i)] = 1;
-  const json doc = {{"frames", 10}, {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 12}, {"set", sets}}})}};
+  const json doc = {{"frames", 10},
+                    {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 12}, {"set", sets}}})}};
   std::string error;
   EXPECT_LT(SecondsOf([&] { error = ErrorOf(doc); }), 2.0);
   EXPECT_NE(error.find("test.json: /runs/1/set: "), std::string::npos) << error.substr(0, 300);
 }
 
 TEST(SceneLimits, RunsThatOverlapWithinAMinuteAreReportedToTheSecond) {
-  const json doc = {{"frames", 10}, {"frame_rate_hz", 10},
-                    {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.0}}})}};
+  const json doc = {
+      {"frames", 10}, {"frame_rate_hz", 10}, {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.0}}})}};
   const std::string error = ErrorOf(doc);
   EXPECT_NE(error.find("run 1 starts at day 0 09:00:00, before run 0 ends at day 0 09:00:01"), std::string::npos)
       << error;
-  const json half_second = {{"frames", 5}, {"frame_rate_hz", 10},
-                            {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.0}}})}};
+  const json half_second = {
+      {"frames", 5}, {"frame_rate_hz", 10}, {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.0}}})}};
   EXPECT_NE(ErrorOf(half_second).find("run 1 starts at day 0 09:00:00.000, before run 0 ends at day 0 09:00:00.500"),
             std::string::npos)
       << ErrorOf(half_second);
-  const json apart = {{"frames", 10000}, {"frame_rate_hz", 10},
+  const json apart = {{"frames", 10000},
+                      {"frame_rate_hz", 10},
                       {"runs", json::array({{{"time_of_day_h", 9}}, {{"time_of_day_h", 9.25}}})}};
   EXPECT_NE(ErrorOf(apart).find("run 1 starts at day 0 09:15, before run 0 ends at day 0 09:16"), std::string::npos)
       << ErrorOf(apart);

@@ -1,11 +1,11 @@
 // The scene's camera.video object becomes VideoOptions; errors name the JSON path.
 #include "hoilcd/sim/scene/scene_options.h"
 
-#include <gtest/gtest.h>
-
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {

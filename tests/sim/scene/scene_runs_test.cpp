@@ -10,8 +10,10 @@ namespace {
 using nlohmann::json;
 
 json TwoRuns() {
-  return json{{"frames", 100},
-              {"runs", json::array({{{"time_of_day_h", 9.0}}, {{"time_of_day_h", 14.5}, {"frames", 50}, {"set", {{"crowd.people_per_table", 2}}}}})}};
+  return json{
+      {"frames", 100},
+      {"runs", json::array({{{"time_of_day_h", 9.0}},
+                            {{"time_of_day_h", 14.5}, {"frames", 50}, {"set", {{"crowd.people_per_table", 2}}}}})}};
 }
 
 // Every problem the scene has, one a line ("" when it loads).
@@ -74,9 +76,10 @@ TEST(SceneRuns, ARunBeforeThePreviousEndedIsAnErrorAtItsTime) {
   doc["frames"] = 25 * 3600;  // the first run lasts an hour: 09:00 to 10:00
   doc["runs"][1]["time_of_day_h"] = 9.5;
   const std::string text = ErrorOf(doc);
-  EXPECT_NE(text.find("test.json: /runs/1/time_of_day_h: run 1 starts at day 0 09:30, before run 0 ends at day 0 10:00; "
-                      "expected a later time or day (/runs/1/day)"),
-            std::string::npos)
+  EXPECT_NE(
+      text.find("test.json: /runs/1/time_of_day_h: run 1 starts at day 0 09:30, before run 0 ends at day 0 10:00; "
+                "expected a later time or day (/runs/1/day)"),
+      std::string::npos)
       << text;
   doc["runs"][0]["day"] = 1;
   EXPECT_NE(ErrorOf(doc).find("test.json: /runs/0/day: the first run's day is day 0"), std::string::npos);
@@ -84,8 +87,8 @@ TEST(SceneRuns, ARunBeforeThePreviousEndedIsAnErrorAtItsTime) {
 
 TEST(SceneRuns, OverridesOfWhatAllRunsShareAreRefusedAndABadOneIsReportedUnderItsRun) {
   json doc = TwoRuns();
-  doc["runs"][1]["set"] = {{"camera.width_px", 320}, {"/room/size_m", {8, 3, 2.6}}, {"room", json::object()},
-                           {"room.sun.time_of_day_h", 3}};
+  doc["runs"][1]["set"] = {
+      {"camera.width_px", 320}, {"/room/size_m", {8, 3, 2.6}}, {"room", json::object()}, {"room.sun.time_of_day_h", 3}};
   std::string text = ErrorOf(doc);
   for (const char* expected :
        {"test.json: /runs/1/set/camera.width_px: sets /camera, which is one for all runs",
@@ -97,8 +100,10 @@ TEST(SceneRuns, OverridesOfWhatAllRunsShareAreRefusedAndABadOneIsReportedUnderIt
   }
   doc["runs"][1]["set"] = {{"crowd.people_per_table", 99}};
   text = ErrorOf(doc);
-  EXPECT_NE(text.find("test.json: /runs/1: its scene (the scene with /runs/1/set applied): test.json: /crowd/people_per_table"),
-            std::string::npos)
+  EXPECT_NE(
+      text.find(
+          "test.json: /runs/1: its scene (the scene with /runs/1/set applied): test.json: /crowd/people_per_table"),
+      std::string::npos)
       << text;
 }
 
@@ -111,8 +116,9 @@ TEST(SceneRuns, TheSunsTimeIsTheFirstRunsAndAnotherIsRefused) {
 
   json doc = TwoRuns();
   doc["room"]["sun"]["time_of_day_h"] = 12;
-  const std::string where = "test.json: /room/sun/time_of_day_h: is 12.00, but a scene with runs takes each run's time "
-                            "of day from /runs/N/time_of_day_h (the first run's is 9.00); remove it";
+  const std::string where =
+      "test.json: /room/sun/time_of_day_h: is 12.00, but a scene with runs takes each run's time "
+      "of day from /runs/N/time_of_day_h (the first run's is 9.00); remove it";
   EXPECT_NE(ErrorOf(doc).find(where), std::string::npos) << ErrorOf(doc);
   EXPECT_NE(ErrorOf(TwoRuns(), {"room.sun.time_of_day_h=12"}).find(where), std::string::npos);
   EXPECT_TRUE(ErrorOf(TwoRuns(), {"runs.1.time_of_day_h=20"}).empty());

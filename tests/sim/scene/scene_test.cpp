@@ -1,12 +1,11 @@
 #include "hoilcd/sim/scene/scene.h"
 
-#include "hoilcd/sim/scene/scene_options.h"
-
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
 
+#include <gtest/gtest.h>
+
+#include "hoilcd/sim/scene/scene_options.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -14,9 +13,7 @@ namespace {
 
 using nlohmann::json;
 
-std::string ScenePath(const std::string& name) {
-  return std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + name;
-}
+std::string ScenePath(const std::string& name) { return std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/" + name; }
 
 std::vector<Problem> ProblemsOf(const json& doc, const std::vector<std::string>& overrides = {}) {
   try {
@@ -27,8 +24,7 @@ std::vector<Problem> ProblemsOf(const json& doc, const std::vector<std::string>&
   return {};
 }
 
-bool HasProblem(const std::vector<Problem>& problems, const std::string& where,
-                const std::string& fragment) {
+bool HasProblem(const std::vector<Problem>& problems, const std::string& where, const std::string& fragment) {
   for (const Problem& p : problems) {
     if (p.where == where && p.message.find(fragment) != std::string::npos) return true;
   }
@@ -78,7 +74,7 @@ TEST(Scene, UnknownKeyIsAnErrorNamingTheKeyAndItsPath) {
 TEST(Scene, WrongTypeAndOutOfRangeValuesAreReportedTogether) {
   const auto problems =
       ProblemsOf(json{{"frames", "many"}, {"crowd", {{"people_per_table", 9}}}, {"camera", {{"netd_k", -1}}}});
-  EXPECT_TRUE(HasProblem(problems, "test.json: /frames", "")) ;
+  EXPECT_TRUE(HasProblem(problems, "test.json: /frames", ""));
   EXPECT_TRUE(HasProblem(problems, "test.json: /crowd/people_per_table", ""));
   EXPECT_TRUE(HasProblem(problems, "test.json: /camera/netd_k", ""));
   EXPECT_EQ(problems.size(), 3u);
@@ -87,8 +83,8 @@ TEST(Scene, WrongTypeAndOutOfRangeValuesAreReportedTogether) {
 TEST(Scene, CrossFieldProblemsNameTheirPaths) {
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"camera", {{"display_min_c", 30}, {"display_max_c", 20}}}}),
                          "test.json: /camera/display_max_c", "greater"));
-  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"tables", {{{"center_m", {9.0, 1.0}}}}}}),
-                         "test.json: /tables/0/center_m", "inside the room"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"tables", {{{"center_m", {9.0, 1.0}}}}}}), "test.json: /tables/0/center_m",
+                         "inside the room"));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"crowd", {{"seating", {{{"table", 7}, {"seat", 0}}}}}}}),
                          "test.json: /crowd/seating/0/table", "below 6"));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"route", {{"waypoints_m", {{0.5, 0.5}, {8.0, 0.5}}}}}}),
@@ -103,8 +99,8 @@ TEST(Scene, RobotErrorModelAndVibrationProblemsNameTheirPaths) {
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"navigation", "gps"}}}}), "test.json: /robot/navigation", ""));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"vibration", {{"damping_ratio", 0}}}}}}),
                          "test.json: /robot/vibration/damping_ratio", ""));
-  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"vibration", {{"shake", 1}}}}}}),
-                         "test.json: /robot/vibration", "unknown key 'shake'"));
+  EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"vibration", {{"shake", 1}}}}}}), "test.json: /robot/vibration",
+                         "unknown key 'shake'"));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"interval_s", 0}}}}}}),
                          "test.json: /robot/localization/interval_s", ""));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"robot", {{"localization", {{"position_sd_m", -0.01}}}}}}),
@@ -121,9 +117,11 @@ TEST(Scene, RobotErrorModelAndVibrationProblemsNameTheirPaths) {
 TEST(SceneOptions, NavigationNamesMapToTheirModesAndLocalizedIsTheDefault) {
   EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json::object(), "test.json")).navigation,
             TricycleOptions::Navigation::kLocalized);
-  EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json{{"robot", {{"navigation", "odometry"}}}}, "test.json")).navigation,
-            TricycleOptions::Navigation::kOdometry);
-  EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json{{"robot", {{"navigation", "ground_truth"}}}}, "test.json")).navigation,
+  EXPECT_EQ(
+      TricycleOptionsFromScene(SceneFromJson(json{{"robot", {{"navigation", "odometry"}}}}, "test.json")).navigation,
+      TricycleOptions::Navigation::kOdometry);
+  EXPECT_EQ(TricycleOptionsFromScene(SceneFromJson(json{{"robot", {{"navigation", "ground_truth"}}}}, "test.json"))
+                .navigation,
             TricycleOptions::Navigation::kGroundTruth);
   const TricycleOptions robot = TricycleOptionsFromScene(
       SceneFromJson(json{{"robot", {{"localization", {{"interval_s", 2}, {"heading_sd_deg", 0.5}}}}}}, "test.json"));
@@ -135,9 +133,9 @@ TEST(SceneOptions, NavigationNamesMapToTheirModesAndLocalizedIsTheDefault) {
 
 // A steering offset beyond the steering limit passes the schema's own ranges but not the robot.
 TEST(SceneOptions, SteeringOffsetBeyondTheSteeringLimitNamesItsPointer) {
-  const Scene scene = SceneFromJson(json{{"robot", {{"max_steer_deg", 8}}},
-                                         {"odometry", {{"steer_offset_deg", 5}, {"error_scale", 2}}}},
-                                    "test.json");
+  const Scene scene = SceneFromJson(
+      json{{"robot", {{"max_steer_deg", 8}}}, {"odometry", {{"steer_offset_deg", 5}, {"error_scale", 2}}}},
+      "test.json");
   try {
     OdometryOptionsFromScene(scene);
     FAIL() << "expected an error";
@@ -168,8 +166,8 @@ TEST(Scene, OverridesSetValuesByDottedPathOrPointer) {
   const Scene b = SceneFromJson(json::object(), "x.json", {"/camera/netd_k=0.05", "name=other"});
   EXPECT_DOUBLE_EQ(b.camera.sensor.netd_k, 0.05);
   EXPECT_EQ(b.name, "other");
-  const Scene c = SceneFromJson(LoadScene(ScenePath("paper_room.json")).resolved, "x.json",
-                                {"tables.0.center_m=[1.5, 1.4]"});
+  const Scene c =
+      SceneFromJson(LoadScene(ScenePath("paper_room.json")).resolved, "x.json", {"tables.0.center_m=[1.5, 1.4]"});
   EXPECT_DOUBLE_EQ(c.tables[0].center_m.x(), 1.5);
   EXPECT_NE(a.hash, b.hash);
 }
@@ -183,9 +181,9 @@ TEST(Scene, BadOverridesAreErrorsNamingTheOverride) {
     EXPECT_NE(e.problems().at(0).message.find("KEY=VALUE"), std::string::npos);
   }
   // A value of the wrong type is caught by validation at the overridden path.
-  EXPECT_TRUE(HasProblem(ProblemsOf(json::object(), {"crowd.people_per_table=lots"}),
-                         "x.json: /crowd/people_per_table", "") ||
-              !ProblemsOf(json::object(), {"crowd.people_per_table=lots"}).empty());
+  EXPECT_TRUE(
+      HasProblem(ProblemsOf(json::object(), {"crowd.people_per_table=lots"}), "x.json: /crowd/people_per_table", "") ||
+      !ProblemsOf(json::object(), {"crowd.people_per_table=lots"}).empty());
   try {
     SceneFromJson(LoadScene(ScenePath("paper_room.json")).resolved, "x.json", {"tables.9.yaw_deg=1"});
     FAIL();
@@ -242,11 +240,10 @@ TEST(Scene, AnAbsurdArrayIndexInAnOverrideIsAnInputError) {
 }
 
 TEST(Scene, RequiredPropertiesAreEnforcedBeforeDefaultsFillThemIn) {
-  const auto problems = ProblemsOf(json{
-      {"tables", {{{"yaw_deg", 0}}}},
-      {"objects", {{{"asset", "cup"}}}},
-      {"room", {{"windows", {{{"wall", "north"}}}}}},
-      {"crowd", {{"seating", {{{"table", 0}}}}, {"standing", {json::object()}}}}});
+  const auto problems = ProblemsOf(json{{"tables", {{{"yaw_deg", 0}}}},
+                                        {"objects", {{{"asset", "cup"}}}},
+                                        {"room", {{"windows", {{{"wall", "north"}}}}}},
+                                        {"crowd", {{"seating", {{{"table", 0}}}}, {"standing", {json::object()}}}}});
   EXPECT_TRUE(HasProblem(problems, "test.json: /tables/0", "missing required property 'center_m'"));
   EXPECT_TRUE(HasProblem(problems, "test.json: /objects/0", "missing required property 'position_m'"));
   EXPECT_TRUE(HasProblem(problems, "test.json: /room/windows/0", "missing required property 'center_m'"));
@@ -255,8 +252,8 @@ TEST(Scene, RequiredPropertiesAreEnforcedBeforeDefaultsFillThemIn) {
 }
 
 TEST(Scene, ValuesThatWouldHangTheSimulatorAreRejected) {
-  EXPECT_TRUE(HasProblem(ProblemsOf(json::object(), {"camera.ffc_interval_s=1e308"}),
-                         "test.json: /camera/ffc_interval_s", ""));
+  EXPECT_TRUE(
+      HasProblem(ProblemsOf(json::object(), {"camera.ffc_interval_s=1e308"}), "test.json: /camera/ffc_interval_s", ""));
   EXPECT_TRUE(HasProblem(ProblemsOf(json::object(), {"crowd.posture_change_interval_s=1e-9"}),
                          "test.json: /crowd/posture_change_interval_s", "at least 1 s"));
   EXPECT_TRUE(HasProblem(ProblemsOf(json{{"objects", {{{"asset", "cup"}, {"position_m", {1e308, 1, 0.7}}}}}}),
@@ -307,9 +304,12 @@ TEST(Scene, DoorsOffTheWallsOrTooWideOrNarrowAreErrorsNamingTheDoor) {
                          "test.json: /room/doors/1/position_m", "a point on one of the room's walls"));
   EXPECT_TRUE(HasProblem(doors({{{"position_m", {7.0, 0.3}}, {"width_m", 0.9}}}), "test.json: /room/doors/0/width_m",
                          "to fit along its wall (length 3 m) without reaching a corner"));
-  EXPECT_TRUE(HasProblem(doors({{{"position_m", {3.5, 0.0}}, {"width_m", 0.5}}}), "test.json: /room/doors/0/width_m", ""));
-  EXPECT_TRUE(HasProblem(doors({{{"position_m", {3.5, 0.0}}, {"width_m", 3.5}}}), "test.json: /room/doors/0/width_m", ""));
-  EXPECT_TRUE(HasProblem(doors({{{"width_m", 0.9}}}), "test.json: /room/doors/0", "missing required property 'position_m'"));
+  EXPECT_TRUE(
+      HasProblem(doors({{{"position_m", {3.5, 0.0}}, {"width_m", 0.5}}}), "test.json: /room/doors/0/width_m", ""));
+  EXPECT_TRUE(
+      HasProblem(doors({{{"position_m", {3.5, 0.0}}, {"width_m", 3.5}}}), "test.json: /room/doors/0/width_m", ""));
+  EXPECT_TRUE(
+      HasProblem(doors({{{"width_m", 0.9}}}), "test.json: /room/doors/0", "missing required property 'position_m'"));
   EXPECT_TRUE(doors({{{"position_m", {0.0, 1.5}}}, {{"position_m", {3.5, 3.0}}, {"width_m", 1.6}}}).empty());
 }
 

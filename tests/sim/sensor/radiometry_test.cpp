@@ -1,11 +1,11 @@
 #include "hoilcd/sim/sensor/radiometry.h"
 
-#include <gtest/gtest.h>
-
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace hoilcd {
 namespace {
@@ -30,8 +30,7 @@ TEST(PlanckBandSeries, AgreesWithNumericalIntegrationTo1e9) {
     const double reference = IntegratePlanckBand(t_k);
     EXPECT_NEAR(PlanckBandSeries(t_k) / reference, 1.0, 1e-9) << t_k;
   }
-  EXPECT_NEAR(PlanckBandSeries(300.0, 3.0, 5.0) / IntegratePlanckBand(300.0, 3.0, 5.0), 1.0,
-              1e-9);
+  EXPECT_NEAR(PlanckBandSeries(300.0, 3.0, 5.0) / IntegratePlanckBand(300.0, 3.0, 5.0), 1.0, 1e-9);
 }
 
 TEST(BandRadianceTable, WithinOneMillionthOfDirectIntegrationFrom250To350K) {
@@ -97,8 +96,7 @@ TEST(BandRadianceTable, ClampsOutsideItsRange) {
 
 TEST(BandRadianceTable, SlopeMatchesFiniteDifferenceOfIntegration) {
   const BandRadianceTable table;
-  const double numeric =
-      (IntegratePlanckBand(300.5, 8.0, 14.0, 2000) - IntegratePlanckBand(299.5, 8.0, 14.0, 2000));
+  const double numeric = (IntegratePlanckBand(300.5, 8.0, 14.0, 2000) - IntegratePlanckBand(299.5, 8.0, 14.0, 2000));
   EXPECT_NEAR(table.SlopeFromKelvin(300.0), numeric, 1e-4);
   EXPECT_NEAR(table.SlopeFromKelvin(300.0), 0.838, 0.001);
 }
@@ -114,8 +112,7 @@ TEST(SurfaceRadiance, IsothermalEnclosureReadsItsTemperatureWhateverTheEmissivit
 TEST(SurfaceRadiance, TableMirroringAPersonReadsAbout23_3C) {
   // SPEC.md: a 22 °C table (ε 0.90) mirroring a 34 °C person reads ~23.3 °C.
   const BandRadianceTable table;
-  const float radiance = SurfaceRadiance(0.90f, table.RadianceFromCelsius(22.0f),
-                                         table.RadianceFromCelsius(34.0f));
+  const float radiance = SurfaceRadiance(0.90f, table.RadianceFromCelsius(22.0f), table.RadianceFromCelsius(34.0f));
   EXPECT_NEAR(table.CelsiusFromRadiance(radiance), 23.26f, 0.02f);
 }
 

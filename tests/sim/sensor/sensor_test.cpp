@@ -1,7 +1,5 @@
 #include "hoilcd/sim/sensor/sensor.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/frame_encoding.h"
 
@@ -204,9 +204,9 @@ TEST(SensorModel, TimeConstantBlendsOneFrameOfAStep) {
   SensorModel model(options, kWidth, kHeight, kFrameRateHz, 1, &table);
   model.Apply(0, Uniform(table, 22.0f));
   const double a = 1.0 - std::exp(-0.040 / options.time_constant_s);
-  const double expected_c = table.KelvinFromRadiance(a * table.RadianceFromKelvin(305.15) +
-                                                     (1.0 - a) * table.RadianceFromKelvin(295.15)) -
-                            kZeroCelsiusK;
+  const double expected_c =
+      table.KelvinFromRadiance(a * table.RadianceFromKelvin(305.15) + (1.0 - a) * table.RadianceFromKelvin(295.15)) -
+      kZeroCelsiusK;
   EXPECT_NEAR(model.Apply(1, Uniform(table, 32.0f)).at<float>(10, 10), expected_c, 1e-4);
   EXPECT_LT(expected_c, 31.9);
   EXPECT_NEAR(model.Apply(2, Uniform(table, 32.0f)).at<float>(10, 10), 32.0, 1e-4);
@@ -239,8 +239,7 @@ TEST(SensorModel, DriftRampsBetweenFlatFieldCorrectionsAndResetsAtEach) {
     }
     if (frame == 49) {
       EXPECT_NEAR(temperature.at<float>(0, 0) - ideal.at<float>(0, 0),
-                  model.DriftK(49) * table.SlopeFromKelvin(300.0) / table.SlopeFromKelvin(295.15),
-                  1e-4);
+                  model.DriftK(49) * table.SlopeFromKelvin(300.0) / table.SlopeFromKelvin(295.15), 1e-4);
     }
   }
 }
@@ -319,8 +318,7 @@ TEST(SensorModel, EmissivitySettingRecoversTheTrueTemperatureOfAGreySurface) {
   options.emissivity_setting = 0.9;
   options.reflected_temperature_c = 22.0;
   SensorModel model(options, kWidth, kHeight, kFrameRateHz, 1, &table);
-  const float radiance = SurfaceRadiance(0.9f, table.RadianceFromCelsius(30.0f),
-                                         table.RadianceFromCelsius(22.0f));
+  const float radiance = SurfaceRadiance(0.9f, table.RadianceFromCelsius(30.0f), table.RadianceFromCelsius(22.0f));
   const cv::Mat scene(kHeight, kWidth, CV_32F, cv::Scalar(radiance));
   EXPECT_NEAR(model.IdealTemperature(scene).at<float>(0, 0), 30.0f, 1e-3f);
   EXPECT_NEAR(model.Apply(0, scene).at<float>(5, 5), 30.0f, 1e-3f);
@@ -348,8 +346,9 @@ double PatchMean(const cv::Mat& image, int x, int y, int size) {
 
 double CornerMinusCentre(const cv::Mat& image, int size) {
   const int w = image.cols - 1, h = image.rows - 1;
-  const double corners = (PatchMean(image, 0, 0, size) + PatchMean(image, w, 0, size) +
-                          PatchMean(image, 0, h, size) + PatchMean(image, w, h, size)) / 4.0;
+  const double corners = (PatchMean(image, 0, 0, size) + PatchMean(image, w, 0, size) + PatchMean(image, 0, h, size) +
+                          PatchMean(image, w, h, size)) /
+                         4.0;
   return corners - PatchMean(image, w / 2, h / 2, size);
 }
 
@@ -400,8 +399,8 @@ TEST(SensorModel, ShadingIsRadialWithWarmCornersAndADarkCentre) {
   const int frame = 1000;
   const double corner = model.ShadingK(frame, 0, 0);
   EXPECT_NEAR(corner, model.ShadingK(frame, kWidth - 1, kHeight - 1), 1e-6);
-  EXPECT_NEAR(corner - model.ShadingK(frame, kWidth / 2, kHeight / 2),
-              model.ShadingCornerToCentreK(frame), 0.02 * model.ShadingCornerToCentreK(frame));
+  EXPECT_NEAR(corner - model.ShadingK(frame, kWidth / 2, kHeight / 2), model.ShadingCornerToCentreK(frame),
+              0.02 * model.ShadingCornerToCentreK(frame));
   EXPECT_GT(model.ShadingK(frame, 40, kHeight / 2), model.ShadingK(frame, kWidth / 2, kHeight / 2));
 }
 
@@ -463,8 +462,7 @@ TEST(SensorModel, ResumingAfterPrimingWithThePreviousFrameReproducesTheRun) {
     SensorModel resumed(options, kWidth, kHeight, kFrameRateHz, 9, &table);
     resumed.Apply(19, MovingScene(table, 19));
     for (int frame = 20; frame < 30; ++frame) {
-      EXPECT_TRUE(SameBytes(resumed.Apply(frame, MovingScene(table, frame)), outputs[frame]))
-          << frame;
+      EXPECT_TRUE(SameBytes(resumed.Apply(frame, MovingScene(table, frame)), outputs[frame])) << frame;
     }
     // Without priming the time constant starts from a steady scene: the moving edge differs.
     SensorModel unprimed(options, kWidth, kHeight, kFrameRateHz, 9, &table);
@@ -478,8 +476,7 @@ TEST(SensorModel, RejectsFramesOutOfOrderAndWrongImages) {
   model.Apply(3, Uniform(table, 22.0f));
   EXPECT_THROW(model.Apply(5, Uniform(table, 22.0f)), std::logic_error);
   EXPECT_THROW(model.Apply(4, cv::Mat(10, 10, CV_32F, cv::Scalar(50.0f))), std::logic_error);
-  EXPECT_THROW(model.Apply(4, cv::Mat(kHeight, kWidth, CV_64F, cv::Scalar(50.0))),
-               std::logic_error);
+  EXPECT_THROW(model.Apply(4, cv::Mat(kHeight, kWidth, CV_64F, cv::Scalar(50.0))), std::logic_error);
   SensorOptions bad;
   bad.netd_k = -1.0;
   EXPECT_THROW(SensorModel(bad, kWidth, kHeight, kFrameRateHz, 1, &table), std::logic_error);

@@ -1,16 +1,17 @@
 // Contact heat (docs/models/contact_heat.md): the closed-form response, prints only where and
 // after people touch, seat and posture dependence, cups and laptops, resume and thread
 // independence, and the must-show: a left seat's print fitted from rendered T_true frames.
-#include <gtest/gtest.h>
+#include "hoilcd/sim/world/contact_heat.h"
 
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/scene/scene_options.h"
 #include "hoilcd/sim/sensor/sensor.h"
-#include "hoilcd/sim/world/contact_heat.h"
 #include "hoilcd/sim/world/world.h"
 
 namespace hoilcd {
@@ -82,20 +83,21 @@ TEST(ContactHeat, PrintIsAnEllipseOnTheTouchedSurfaceOnly) {
   const Eigen::Vector3f w = Eigen::Vector3f::Zero();
   const float centre = field.OffsetK({0, 0, 0.45f}, w);
   EXPECT_NEAR(centre, 2.0 * std::exp(-1.5), 0.15 * 2.0 * std::exp(-1.5) + 1e-6);
-  EXPECT_EQ(field.OffsetK({0.18f, 0, 0.45f}, w), 0.0f);   // beyond the ellipse
-  EXPECT_EQ(field.OffsetK({0, 0, 0.42f}, w), 0.0f);       // the seat's underside band
+  EXPECT_EQ(field.OffsetK({0.18f, 0, 0.45f}, w), 0.0f);  // beyond the ellipse
+  EXPECT_EQ(field.OffsetK({0, 0, 0.42f}, w), 0.0f);      // the seat's underside band
   EXPECT_GT(field.OffsetK({0.1f, 0, 0.45f}, w), 0.0f);
   EXPECT_LT(field.OffsetK({0.15f, 0, 0.45f}, w), centre);  // a soft rim
   field.SetTime(-1);
-  EXPECT_EQ(field.OffsetK({0, 0, 0.45f}, w), 0.0f);       // not before the contact
+  EXPECT_EQ(field.OffsetK({0, 0, 0.45f}, w), 0.0f);  // not before the contact
 }
 
 TEST(ContactHeat, PrintsFollowTheSeatAndThePosture) {
   // Seat 0 upright (back on the backrest, hands off the table), seat 1 with forearms on the table.
   const Scene scene = LoadTestScene(
-      "paper_room.json", {R"(crowd.seating=[{"table": 0, "seat": 0, "posture": "seated_upright"}, {"table": 0, "seat": 1, "posture": "seated_arms_on_table"}])",
-                          "crowd.posture_change_interval_s=0", "crowd.activities.drinking.weight=0",
-                          "crowd.activities.talking.weight=0", "crowd.activity_blend_s=0.5"});
+      "paper_room.json",
+      {R"(crowd.seating=[{"table": 0, "seat": 0, "posture": "seated_upright"}, {"table": 0, "seat": 1, "posture": "seated_arms_on_table"}])",
+       "crowd.posture_change_interval_s=0", "crowd.activities.drinking.weight=0", "crowd.activities.talking.weight=0",
+       "crowd.activity_blend_s=0.5"});
   const BandRadianceTable table;
   World world(scene, table);
   world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
@@ -134,13 +136,15 @@ TEST(ContactHeat, PrintsFollowTheSeatAndThePosture) {
 }
 
 TEST(ContactHeat, ASofaShowsThePrintOfThePlaceSatOnOnly) {
-  nlohmann::json doc = {{"name", "sofa"},
-                        {"frames", 50},
-                        {"room", {{"size_m", {9.0, 6.0, 2.6}}}},
-                        {"objects", nlohmann::json::array()},
-                        {"tables", {{{"center_m", {7.0, 2.0}}, {"asset", "sofa"}, {"seats", "sofa"}, {"yaw_deg", 90}}}},
-                        {"crowd", {{"seating", {{{"table", 0}, {"seat", 2}, {"posture", "seated_upright"}}}}, {"posture_change_interval_s", 0}}},
-                        {"route", {{"waypoints_m", {{0.4, 0.4}, {0.4, 5.6}, {8.6, 5.6}, {8.6, 0.4}}}}}};
+  nlohmann::json doc = {
+      {"name", "sofa"},
+      {"frames", 50},
+      {"room", {{"size_m", {9.0, 6.0, 2.6}}}},
+      {"objects", nlohmann::json::array()},
+      {"tables", {{{"center_m", {7.0, 2.0}}, {"asset", "sofa"}, {"seats", "sofa"}, {"yaw_deg", 90}}}},
+      {"crowd",
+       {{"seating", {{{"table", 0}, {"seat", 2}, {"posture", "seated_upright"}}}}, {"posture_change_interval_s", 0}}},
+      {"route", {{"waypoints_m", {{0.4, 0.4}, {0.4, 5.6}, {8.6, 5.6}, {8.6, 0.4}}}}}};
   const Scene scene = SceneFromJson(doc, "sofa.json");
   const BandRadianceTable table;
   World world(scene, table);
@@ -171,7 +175,8 @@ TEST(ContactHeat, NewcomersPrintsCupsAndLaptopsStartAtTheirArrival) {
     const Eigen::Vector3f seat = SeatPoint(world, newcomer->table, newcomer->seat, {0.03f, 0, 0.45f});
     // Was the seat free since the start? Then nothing is warm before the arrival.
     bool sat_before = false;
-    for (const Person& p : world.people()) sat_before |= p.person_id != e.person && p.table == newcomer->table && p.seat == newcomer->seat;
+    for (const Person& p : world.people())
+      sat_before |= p.person_id != e.person && p.table == newcomer->table && p.seat == newcomer->seat;
     world.SetTime(t - 0.2);
     if (!sat_before) {
       EXPECT_FLOAT_EQ(SurfaceC(world, chair, seat), 22.0f) << e.seat;
@@ -190,8 +195,10 @@ TEST(ContactHeat, NewcomersPrintsCupsAndLaptopsStartAtTheirArrival) {
       for (const double dt : {0.0, 100.0, 400.0}) {
         world.SetTime(t + dt);
         // A fresh cup cools by Newton's law from cup_fill_c; the laptop warms from the room.
-        EXPECT_NEAR(material_c(newcomer->cup, "coffee"), 22.0 + (o.cup_fill_c - 22.0) * std::exp(-dt / o.cup_time_constant_s), 1e-3);
-        EXPECT_NEAR(material_c(newcomer->laptop, "laptop_base"), 22.0 + 10.0 * (1 - std::exp(-dt / o.laptop_warm_time_constant_s)), 1e-3);
+        EXPECT_NEAR(material_c(newcomer->cup, "coffee"),
+                    22.0 + (o.cup_fill_c - 22.0) * std::exp(-dt / o.cup_time_constant_s), 1e-3);
+        EXPECT_NEAR(material_c(newcomer->laptop, "laptop_base"),
+                    22.0 + 10.0 * (1 - std::exp(-dt / o.laptop_warm_time_constant_s)), 1e-3);
       }
       ++checked;
     }
@@ -209,7 +216,8 @@ std::vector<float> ThermalState(const World& world) {
       if (m.field == nullptr) continue;
       for (float x = -0.4f; x <= 0.4f; x += 0.05f)
         for (float y = -0.4f; y <= 0.4f; y += 0.05f)
-          for (const float z : {0.018f, 0.045f, 0.45f, 0.66f, 0.74f}) state.push_back(m.field->OffsetK({x, y, z}, {0, 0, 0}));
+          for (const float z : {0.018f, 0.045f, 0.45f, 0.66f, 0.74f})
+            state.push_back(m.field->OffsetK({x, y, z}, {0, 0, 0}));
     }
   }
   return state;
@@ -230,8 +238,10 @@ TEST(ContactHeat, StateAtATimeIsTheSameWhateverCameBeforeAndAtAnyThreadCount) {
   // Rendered at one and two threads: the same radiance.
   CameraPose pose;
   pose.x_m = 0.4, pose.y_m = 1.5, pose.z_m = 1.4, pose.pitch_rad = 25.0 * M_PI / 180.0;
-  const cv::Mat one = FrameRenderer(walked, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 1)).Render(pose).radiance;
-  const cv::Mat two = FrameRenderer(jumped, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 2)).Render(pose).radiance;
+  const cv::Mat one =
+      FrameRenderer(walked, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 1)).Render(pose).radiance;
+  const cv::Mat two =
+      FrameRenderer(jumped, IntrinsicsFromScene(scene), RenderOptionsFromScene(scene, 2)).Render(pose).radiance;
   EXPECT_EQ(cv::norm(one, two, cv::NORM_INF), 0.0);
 }
 
@@ -248,7 +258,8 @@ TEST(ContactHeat, ALeftSeatsPrintDecaysWithTheDocumentedTimeConstantInTrueTemper
   for (const DatasetEvent& e : world.events()) {
     if (e.type != "leave") continue;
     bool retaken = false;
-    for (const DatasetEvent& later : world.events()) retaken |= (later.type == "arrive" || later.type == "swap") && later.seat == e.seat;
+    for (const DatasetEvent& later : world.events())
+      retaken |= (later.type == "arrive" || later.type == "swap") && later.seat == e.seat;
     if (!retaken) left = &e;
     if (left) break;
   }
@@ -267,7 +278,8 @@ TEST(ContactHeat, ALeftSeatsPrintDecaysWithTheDocumentedTimeConstantInTrueTemper
   pose.pitch_rad = std::atan2(1.05, 0.12);
   const CameraIntrinsics intrinsics = IntrinsicsFromScene(scene);
   const FrameRenderer renderer(world, intrinsics, RenderOptionsFromScene(scene, 2));
-  SensorModel sensor(SensorOptionsFromScene(scene), intrinsics.width, intrinsics.height, scene.frame_rate_hz, scene.seed, &table, 2);
+  SensorModel sensor(SensorOptionsFromScene(scene), intrinsics.width, intrinsics.height, scene.frame_rate_hz,
+                     scene.seed, &table, 2);
   const int chair_class = world.classes().at("chair");
   // The median T_true of the chair pixels in the central 9×9 pixels at time t.
   auto seat_c = [&](double t) {
@@ -278,8 +290,9 @@ TEST(ContactHeat, ALeftSeatsPrintDecaysWithTheDocumentedTimeConstantInTrueTemper
     for (int v = intrinsics.height / 2 - 4; v <= intrinsics.height / 2 + 4; ++v)
       for (int u = intrinsics.width / 2 - 4; u <= intrinsics.width / 2 + 4; ++u)
         if (frame.class_id.at<int>(v, u) == chair_class) values.push_back(t_true.at<float>(v, u));
-    EXPECT_GE(values.size(), 60u) << "the seat is not in view: class " << frame.class_id.at<int>(intrinsics.height / 2, intrinsics.width / 2)
-                                   << " at depth " << frame.depth_m.at<float>(intrinsics.height / 2, intrinsics.width / 2);
+    EXPECT_GE(values.size(), 60u) << "the seat is not in view: class "
+                                  << frame.class_id.at<int>(intrinsics.height / 2, intrinsics.width / 2) << " at depth "
+                                  << frame.depth_m.at<float>(intrinsics.height / 2, intrinsics.width / 2);
     if (values.empty()) return std::nan("");
     std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
     return static_cast<double>(values[values.size() / 2]);

@@ -1,9 +1,11 @@
-#include <gtest/gtest.h>
+#include "hoilcd/sim/world/crowd.h"
 
-#include <filesystem>
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/util/random.h"
@@ -12,7 +14,6 @@
 #include "hoilcd/sim/render/renderer.h"
 #include "hoilcd/sim/render/visibility.h"
 #include "hoilcd/sim/scene/scene_options.h"
-#include "hoilcd/sim/world/crowd.h"
 #include "hoilcd/sim/world/world.h"
 
 namespace hoilcd {
@@ -44,9 +45,10 @@ float SeatTemperature(const World& world, int chair) {
 TEST(Crowd, TalkersTurnToTheirNeighbourWhoeverSatDownFirst) {
   // Two people side by side at one table; the one on seat 0 is seated before seat 1's chair
   // exists. Talking (the only gaze at a neighbour, never at the robot) turns both heads to the other.
-  const Scene scene = PaperRoom({R"(crowd.seating=[{"table": 0, "seat": 0, "posture": "seated_upright"}, {"table": 0, "seat": 1, "posture": "seated_upright"}])",
-                                 "crowd.activities.talking.weight=1000", "crowd.activities.head_turn.weight=0",
-                                 "crowd.posture_change_interval_s=0"});
+  const Scene scene = PaperRoom(
+      {R"(crowd.seating=[{"table": 0, "seat": 0, "posture": "seated_upright"}, {"table": 0, "seat": 1, "posture": "seated_upright"}])",
+       "crowd.activities.talking.weight=1000", "crowd.activities.head_turn.weight=0",
+       "crowd.posture_change_interval_s=0"});
   const BandRadianceTable table;
   World world(scene, table);
   world.PlanCrowd(SimulateSceneRobot(scene, world.obstacles()).samples);
@@ -66,7 +68,9 @@ TEST(Crowd, TalkersTurnToTheirNeighbourWhoeverSatDownFirst) {
       // Fully turned: past the ramp in, before the ramp out.
       if (episode->name != "talking" || t < episode->start_s + 1.0 || t > episode->end_s - 1.0) continue;
       const Eigen::Matrix4d seat_from_world = me.world_from_seat.cast<double>().inverse();
-      auto in_seat = [&](const Eigen::Vector3d& w) { return (seat_from_world.topLeftCorner<3, 3>() * w + seat_from_world.topRightCorner<3, 1>()).eval(); };
+      auto in_seat = [&](const Eigen::Vector3d& w) {
+        return (seat_from_world.topLeftCorner<3, 3>() * w + seat_from_world.topRightCorner<3, 1>()).eval();
+      };
       const Eigen::Vector3d nose = in_seat(me.keypoints_m[0]);
       const Eigen::Vector3d neck = in_seat(0.5 * (me.keypoints_m[5] + me.keypoints_m[6]));
       const Eigen::Vector3d them = in_seat(other.world_from_seat.cast<double>().topRightCorner<3, 1>());
@@ -104,7 +108,8 @@ TEST(Crowd, TurnoverAtLapBoundariesLeavesCoolingHeatPrints) {
     const double t = run.samples[e.frame].time_s;
     const int table_index = std::stoi(e.seat), seat = std::stoi(e.seat.substr(e.seat.find('.') + 1));
     bool retaken = false;
-    for (const Person& p : world.people()) retaken |= p.seated && p.table == table_index && p.seat == seat && p.arrive_s >= t;
+    for (const Person& p : world.people())
+      retaken |= p.seated && p.table == table_index && p.seat == seat && p.arrive_s >= t;
     if (retaken) continue;
     const int chair = ChairInstance(world, table_index, seat);
     world.SetTime(t - 0.1);
@@ -230,7 +235,8 @@ std::map<std::pair<size_t, int>, double> SeatedOcclusion(const std::vector<std::
   for (size_t f = 0; f < run.samples.size(); f += 4) {
     world.SetTime(run.samples[f].time_s);
     const FrameBuffers frame = renderer.Render(run.samples[f].camera);
-    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance, frame.depth_m)) {
+    for (const PersonRecord& p :
+         VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance, frame.depth_m)) {
       if (p.seated) occlusion[{f, p.id}] = p.occlusion_fraction;
     }
   }
@@ -331,7 +337,8 @@ TEST(Crowd, StandingPeopleAreSeenAndTheRobotMustNotRunIntoThem) {
   for (size_t f = 0; f < run.samples.size(); f += 20) {  // the whole run: walkers come and go
     world.SetTime(run.samples[f].time_s);
     const FrameBuffers frame = renderer.Render(run.samples[f].camera);
-    for (const PersonRecord& p : VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance, frame.depth_m)) {
+    for (const PersonRecord& p :
+         VisiblePersons(world, intrinsics, run.samples[f].camera, frame.instance, frame.depth_m)) {
       if (!p.seated && p.visible_fraction > 0.5) {
         EXPECT_EQ(p.posture, "standing");
         standing_seen.insert(p.id);
@@ -398,8 +405,8 @@ TEST(Crowd, DepthIntoSlabEqualsTheDeepestVertexAndSkipsOnlyPartsClearOfTheSlab) 
     for (const Eigen::Vector3f& v : part.mesh.positions_m) {
       const Eigen::Vector3d q = m.topLeftCorner<3, 3>() * v.cast<double>() + m.topRightCorner<3, 1>();
       moved.extend(q);
-      if (q.x() > slab.x_min && q.x() < slab.x_max && q.y() > slab.y_min && q.y() < slab.y_max &&
-          q.z() > slab.z_min && q.z() < slab.z_max) {
+      if (q.x() > slab.x_min && q.x() < slab.x_max && q.y() > slab.y_min && q.y() < slab.y_max && q.z() > slab.z_min &&
+          q.z() < slab.z_max) {
         deepest = std::max(deepest, slab.z_max - q.z());
       }
     }

@@ -1,10 +1,10 @@
 // A building floor's world: interior walls are solid to rays and to the robot, and a floor
 // renders the same bytes at one and two threads.
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include <gtest/gtest.h>
 
 #include "hoilcd/sim/output/sequence.h"
 #include "hoilcd/sim/world/world.h"
@@ -43,7 +43,8 @@ TEST(FloorWorld, InteriorWallsAreFootprintsTheRobotAvoids) {
   RouteOptions route = scene.route;
   route.frames = 0;  // a whole lap, through both doorways
   route.laps = 1;
-  const RobotRun run = SimulateRobot(scene.robot, route, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
+  const RobotRun run =
+      SimulateRobot(scene.robot, route, scene.odometry, world.obstacles(), scene.frame_rate_hz, scene.seed);
   EXPECT_GT(run.min_obstacle_distance_m, 0.2);
   EXPECT_GE(run.laps, 1.0);
 }

@@ -1,10 +1,10 @@
 // Furniture may touch but not stand in other furniture: tables stacked on one spot are refused
 // naming both JSON paths (issue 45), found by a sweep that is the all-pairs test's equal.
-#include <gtest/gtest.h>
-
 #include <chrono>
-#include <nlohmann/json.hpp>
 #include <random>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cpu_seconds.h"
 #include "hoilcd/sim/world/world.h"
@@ -34,7 +34,8 @@ std::string WorldError(const json& doc) {
 
 TEST(FurnitureOverlap, TablesStackedOnOneSpotAreRefusedNamingBoth) {
   const std::string error = WorldError(TwoTables({2.0, 1.5}));
-  EXPECT_NE(error.find("tables.json: /tables/1: stands in /tables/0 (centred at (2, 1.5))"), std::string::npos) << error;
+  EXPECT_NE(error.find("tables.json: /tables/1: stands in /tables/0 (centred at (2, 1.5))"), std::string::npos)
+      << error;
   EXPECT_NE(WorldError(TwoTables({2.3, 1.6})).find("/tables/1: stands in /tables/0"), std::string::npos);
 }
 

@@ -1,8 +1,5 @@
 // Articulated people in the world: keypoints in the frames, motion of seated people and walkers,
 // no body passing through furniture or another body, determinism.
-#include <gtest/gtest.h>
-
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +7,9 @@
 #include <map>
 #include <numeric>
 #include <set>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/dataset/exr_io.h"
@@ -74,7 +74,8 @@ std::vector<std::pair<Eigen::Vector3d, const char*>> BodyVertices(const World& w
   for (int part : p.parts) {
     const Eigen::Matrix4d m = world.caster().transform_of(part).cast<double>();
     for (const Eigen::Vector3f& v : world.instance(part).mesh->positions_m) {
-      out.emplace_back(m.topLeftCorner<3, 3>() * v.cast<double>() + m.topRightCorner<3, 1>(), world.instance(part).asset->part.c_str());
+      out.emplace_back(m.topLeftCorner<3, 3>() * v.cast<double>() + m.topRightCorner<3, 1>(),
+                       world.instance(part).asset->part.c_str());
     }
   }
   return out;
@@ -109,11 +110,12 @@ TEST(People, BodiesNeverPassThroughTableTopsChairBacksOrEachOther) {
       for (const auto& [person, vertices] : bodies) {
         for (const auto& [v, part] : vertices) {
           // The table top slab; the chair's backrest (people sit on the seat, so not the seat).
-          const bool inside = info.role == InstanceRole::kTable
-                                  ? InsideBox(m, {0, 0, 0.725}, Eigen::Matrix3d::Identity(), {0.45, 0.375, 0.015}, v, 0.003)
-                                  : InsideBox(m, {-0.235, 0, 0.72}, back_axes, {0.015, 0.20, 0.13}, v, 0.003);
-          ASSERT_FALSE(inside) << "frame " << f << ": the " << part << " of person " << person->person_id << " (" << person->posture
-                               << ", " << person->activity << ") in " << info.name;
+          const bool inside =
+              info.role == InstanceRole::kTable
+                  ? InsideBox(m, {0, 0, 0.725}, Eigen::Matrix3d::Identity(), {0.45, 0.375, 0.015}, v, 0.003)
+                  : InsideBox(m, {-0.235, 0, 0.72}, back_axes, {0.015, 0.20, 0.13}, v, 0.003);
+          ASSERT_FALSE(inside) << "frame " << f << ": the " << part << " of person " << person->person_id << " ("
+                               << person->posture << ", " << person->activity << ") in " << info.name;
         }
       }
     }
@@ -191,9 +193,9 @@ TEST(People, NeighboursArmsNeverMeetOnCrowdedTablesWhileTheyTalkAndDrink) {
             ASSERT_TRUE(std::min({upper, lower, cross}) > 0.07)
                 << "frame " << f << ": " << (sa ? "right" : "left") << " arm of person " << pa.person_id << " (seat "
                 << pa.table << "." << pa.seat << ", " << pa.posture << ", " << pa.activity << ") and "
-                << (sb ? "right" : "left") << " arm of person " << pb.person_id << " (seat " << pb.table << "." << pb.seat
-                << ", " << pb.posture << ", " << pb.activity << "): upper " << upper << ", lower " << lower << ", across "
-                << cross << " m";
+                << (sb ? "right" : "left") << " arm of person " << pb.person_id << " (seat " << pb.table << "."
+                << pb.seat << ", " << pb.posture << ", " << pb.activity << "): upper " << upper << ", lower " << lower
+                << ", across " << cross << " m";
           }
         }
       }
@@ -270,8 +272,7 @@ bool InsidePart(const World& world, int instance, const Eigen::Vector3d& w, Surf
 TEST(People, SeatedNeighboursNeverPassThroughEachOther) {
   const std::string scenes = std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/";
   int pairs = 0, near_vertices = 0;
-  for (const auto& [file, overrides] :
-       std::vector<std::pair<std::string, std::vector<std::string>>>{
+  for (const auto& [file, overrides] : std::vector<std::pair<std::string, std::vector<std::string>>>{
            {"paper_room.json", {"crowd.height_scale_sd=0.1", "crowd.posture_change_interval_s=8"}},
            {"crowded_room.json", {"crowd.activities.talking.weight=3", "crowd.activities.drinking.weight=2"}}}) {
     const Scene scene = LoadScene(scenes + file, overrides);
@@ -299,7 +300,8 @@ TEST(People, SeatedNeighboursNeverPassThroughEachOther) {
                   << file << " frame " << f << ": the " << name << " of person " << pa->person_id << " (seat "
                   << pa->table << "." << pa->seat << ", scale " << pa->height_scale << ", " << pa->activity
                   << ") is inside the " << world.instance(part).asset->part << " of person " << pb->person_id
-                  << " (seat " << pb->table << "." << pb->seat << ", scale " << pb->height_scale << ", " << pb->activity << ")";
+                  << " (seat " << pb->table << "." << pb->seat << ", scale " << pb->height_scale << ", " << pb->activity
+                  << ")";
             }
           }
         }
@@ -413,7 +415,8 @@ namespace {
 
 TEST(People, WalkersKeepPaceWalkAwayApproachAndStopWithoutMeetingTheRobotOrEachOther) {
   // Two walkers (approaching through a busier lane clashes with others: those bouts become "gone").
-  const Scene scene = PaperRoom({"crowd.walkers=2", "crowd.walker_behaviours.approach=3", "crowd.walker_behaviours.stop_to_chat=1"});
+  const Scene scene =
+      PaperRoom({"crowd.walkers=2", "crowd.walker_behaviours.approach=3", "crowd.walker_behaviours.stop_to_chat=1"});
   const BandRadianceTable table;
   World world(scene, table);
   const RobotRun run = SimulateSceneRobot(scene, world.obstacles());
@@ -438,7 +441,8 @@ TEST(People, WalkersKeepPaceWalkAwayApproachAndStopWithoutMeetingTheRobotOrEachO
       }
     }
   }
-  for (const char* behaviour : {"ahead", "away", "approach", "stop_to_chat"}) EXPECT_TRUE(seen.count(behaviour)) << behaviour;
+  for (const char* behaviour : {"ahead", "away", "approach", "stop_to_chat"})
+    EXPECT_TRUE(seen.count(behaviour)) << behaviour;
   EXPECT_TRUE(faced_robot);
 }
 

@@ -1,13 +1,14 @@
 // The thermal solution of a world's static surfaces (room_network.h): it does not depend on the
 // order in which times are asked, a closed room at one temperature stays at it, and an outside
 // wall and its cold window cool what they should; the renderer reflects what surfaces face.
-#include <gtest/gtest.h>
+#include "hoilcd/sim/world/room_network.h"
 
 #include <cmath>
 
+#include <gtest/gtest.h>
+
 #include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/sim/sensor/radiometry.h"
-#include "hoilcd/sim/world/room_network.h"
 #include "hoilcd/sim/world/room_thermal.h"
 #include "hoilcd/sim/world/world.h"
 #include "planned_world.h"
@@ -33,8 +34,8 @@ TEST(RoomNetwork, TheStateAtATimeDoesNotDependOnTheTimesAskedBefore) {
   for (double t : {0.0, 30.0, 61.0, 120.5, 150.0}) stepped.SetTime(t);
   const RoomNetwork& a = *direct.room_network();
   const RoomNetwork& b = *stepped.room_network();
-  for (const Eigen::Vector3f& p : {Eigen::Vector3f(3.5f, 0.0f, 1.2f), Eigen::Vector3f(1.0f, 3.0f, 0.3f),
-                                   Eigen::Vector3f(7.0f, 1.3f, 2.0f)}) {
+  for (const Eigen::Vector3f& p :
+       {Eigen::Vector3f(3.5f, 0.0f, 1.2f), Eigen::Vector3f(1.0f, 3.0f, 0.3f), Eigen::Vector3f(7.0f, 1.3f, 2.0f)}) {
     ASSERT_FALSE(std::isnan(a.RoomTemperatureC(2, p))) << "a point on a wall";
     EXPECT_EQ(a.RoomTemperatureC(2, p), b.RoomTemperatureC(2, p));
   }
@@ -52,8 +53,9 @@ TEST(RoomNetwork, TheStateAtATimeDoesNotDependOnTheTimesAskedBefore) {
 
 TEST(RoomNetwork, AClosedRoomWithNoOutsideWallAndStillAirStaysAtTheAirsTemperature) {
   // The scene's hot cups and radiator (held at their temperatures) are left out.
-  const Scene scene = PaperRoom({"objects=[]", "room.windows=[]", "room.surfaces.exterior_walls=none", "room.hvac.enabled=false",
-                                 "room.thermal.air_gradient_k_per_m=0", "room.environment_temperature_c=20.5"});
+  const Scene scene =
+      PaperRoom({"objects=[]", "room.windows=[]", "room.surfaces.exterior_walls=none", "room.hvac.enabled=false",
+                 "room.thermal.air_gradient_k_per_m=0", "room.environment_temperature_c=20.5"});
   World world(scene, Table());
   world.SetTime(40.0);
   const RoomNetwork& network = *world.room_network();
@@ -66,7 +68,9 @@ TEST(RoomNetwork, AClosedRoomWithNoOutsideWallAndStillAirStaysAtTheAirsTemperatu
 TEST(RoomNetwork, TheOutsideWallAndTheFloorUnderItsWindowAreColderThanTheirCounterparts) {
   // The envelope alone, with the radiator: paper_room's heating pipes run along the wall under the
   // window and (rightly) warm the floor there.
-  const Scene scene = PaperRoom({"room.hvac.enabled=false", R"(objects=[{"asset": "radiator", "position_m": [3.4, 2.93, 0.12], "yaw_deg": -90}])"});
+  const Scene scene =
+      PaperRoom({"room.hvac.enabled=false",
+                 R"(objects=[{"asset": "radiator", "position_m": [3.4, 2.93, 0.12], "yaw_deg": -90}])"});
   World world(scene, Table());
   world.SetTime(0.0);
   const RoomNetwork& network = *world.room_network();
@@ -95,13 +99,14 @@ TEST(RoomNetwork, NoWallPatchHidesBehindTheWindowAndTheWallBesideItIsTheWalls) {
   World world(scene, Table());
   world.SetTime(0.0);
   const RoomNetwork& network = *world.room_network();
-  EXPECT_TRUE(std::isnan(network.RoomTemperatureC(2, Eigen::Vector3f(1.8f, 3.0f, 1.5f)))) << "the wall behind the glass";
+  EXPECT_TRUE(std::isnan(network.RoomTemperatureC(2, Eigen::Vector3f(1.8f, 3.0f, 1.5f))))
+      << "the wall behind the glass";
   EXPECT_FALSE(std::isnan(network.RoomTemperatureC(3, Eigen::Vector3f(1.8f, 2.998f, 1.5f)))) << "the glass";
   // Just above and beside the glass the wall reads the wall's own patches, within a kelvin of the
   // wall away from the window, not a blend with patches that only see the back of the glass.
   const float away = network.RoomTemperatureC(2, Eigen::Vector3f(5.0f, 3.0f, 1.5f));
-  for (const Eigen::Vector3f& p : {Eigen::Vector3f(1.8f, 3.0f, 2.25f), Eigen::Vector3f(0.95f, 3.0f, 1.5f),
-                                   Eigen::Vector3f(2.65f, 3.0f, 1.5f)}) {
+  for (const Eigen::Vector3f& p :
+       {Eigen::Vector3f(1.8f, 3.0f, 2.25f), Eigen::Vector3f(0.95f, 3.0f, 1.5f), Eigen::Vector3f(2.65f, 3.0f, 1.5f)}) {
     const float beside = network.RoomTemperatureC(2, p);
     ASSERT_FALSE(std::isnan(beside)) << p.transpose();
     EXPECT_NEAR(beside, away, 1.0f) << p.transpose();
@@ -187,8 +192,8 @@ TEST(RoomNetwork, EachPatchReflectsWhatItFacesNotItsMaterialsMean) {
   EXPECT_LT(at_under.incident_offset, 0.0f);
   EXPECT_GT(world.room_surfaces().Sample(0, across).incident_offset, at_under.incident_offset);
   // Without the solution every point reflects the material's one environment.
-  const Scene closed_form = LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json",
-                                      {"room.thermal.enabled=false"});
+  const Scene closed_form =
+      LoadScene(std::string(HOILCD_TEST_SOURCE_DIR) + "/scenes/paper_room.json", {"room.thermal.enabled=false"});
   World plain(closed_form, Table());
   plain.SetTime(0.0);
   EXPECT_EQ(plain.room_surfaces().Sample(0, under).incident_offset, 0.0f);
@@ -198,7 +203,8 @@ TEST(RoomNetwork, APersonStandingByAWallWarmsThePatchTheyFaceAndAWalkerDoesNot) 
   // One person standing still 0.5 m from the west wall (chest to wall); no tables and no objects
   // (a picture on that wall would take the warmth), and the robot laps the east half.
   auto wall_by_them = [](const std::string& standing, const std::string& walkers) {
-    const Scene scene = PaperRoom({"room.hvac.enabled=false", "tables=[]", "objects=[]", "route.waypoints_m=[[3.5, 0.5], [3.5, 2.5], [6.5, 2.5], [6.5, 0.5]]",
+    const Scene scene = PaperRoom({"room.hvac.enabled=false", "tables=[]", "objects=[]",
+                                   "route.waypoints_m=[[3.5, 0.5], [3.5, 2.5], [6.5, 2.5], [6.5, 0.5]]",
                                    "crowd.standing=" + standing, "crowd.walkers=" + walkers});
     test::PlannedWorld planned(scene);
     planned.world.SetTime(0.0);
@@ -253,7 +259,8 @@ TEST(RoomNetwork, TheSunThroughTheWindowWarmsThePatchesItLightsAndEveryBeamLands
   // A patch the beam never reaches (the window's own wall) warms by far less: only through
   // what the lit patches send it.
   const Eigen::Vector3f beside_window(4.5f, 3.0f, 1.4f);
-  EXPECT_LT(network.RoomTemperatureC(2, beside_window) - dark.room_network()->RoomTemperatureC(2, beside_window), 0.5 * rise);
+  EXPECT_LT(network.RoomTemperatureC(2, beside_window) - dark.room_network()->RoomTemperatureC(2, beside_window),
+            0.5 * rise);
 }
 
 }  // namespace

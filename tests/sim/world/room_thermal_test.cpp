@@ -1,13 +1,14 @@
 // The room's surfaces (room_thermal.h) against the figures of docs/models/room_surfaces.md: cool
 // edges of outside walls, glass from its U-value, the plume above a radiator, sun patches, the
 // thermostat's cycle and the surfaces' lag; everything off gives the plain scene values.
-#include <gtest/gtest.h>
+#include "hoilcd/sim/world/room_thermal.h"
 
 #include <cmath>
 
+#include <gtest/gtest.h>
+
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/sim/output/sequence.h"
-#include "hoilcd/sim/world/room_thermal.h"
 #include "hoilcd/sim/world/world.h"
 #include "test_dir.h"
 
@@ -63,7 +64,8 @@ TEST(RoomThermal, AFrameSitsBetweenGlassAndWall) {
   EXPECT_NEAR(surfaces.OffsetK(3, Eigen::Vector3f(static_cast<float>(w.center_m), y, 1.5f)), 0.0f, 1e-6);
   EXPECT_NEAR(frame, 22 - 1.8 * 0.13 * 17, 1e-3);  // 18.0 °C: PVC frame, U 1.8
   EXPECT_GT(frame, glass);
-  EXPECT_LT(frame, room.walls.temperature_bottom_c + 0.5 * (room.walls.temperature_top_c - room.walls.temperature_bottom_c));
+  EXPECT_LT(frame,
+            room.walls.temperature_bottom_c + 0.5 * (room.walls.temperature_top_c - room.walls.temperature_bottom_c));
 }
 
 TEST(RoomThermal, ACornerOfAnOutsideWallIsCoolerThanMidWallByTheDocumentedAmount) {
@@ -204,7 +206,8 @@ TEST(RoomThermal, TheAirFollowsTheThermostatCycleAndSurfacesLagBehind) {
 
 TEST(RoomThermal, WithEveryEffectOffTheRoomKeepsItsSceneValuesAndHasNoFields) {
   const RoomOptions room = QuietRoom();
-  RoomSurfaces surfaces(room, 1, {Eigen::AlignedBox3f(Eigen::Vector3f(2.9f, 2.9f, 0.12f), Eigen::Vector3f(3.9f, 3.0f, 0.87f))});
+  RoomSurfaces surfaces(room, 1,
+                        {Eigen::AlignedBox3f(Eigen::Vector3f(2.9f, 2.9f, 0.12f), Eigen::Vector3f(3.9f, 3.0f, 0.87f))});
   std::vector<InstanceMaterial> m = Materials(room);
   surfaces.SetTime(12.3, &m);
   for (int k = 0; k < static_cast<int>(m.size()); ++k) EXPECT_EQ(m[static_cast<size_t>(k)].field, nullptr) << k;
@@ -224,8 +227,8 @@ TEST(RoomThermal, WithEveryEffectOffTheRoomKeepsItsSceneValuesAndHasNoFields) {
 
 TEST(RoomThermal, ASunlitRoomRendersTheSameBytesAtOneAndTwoThreads) {
   test::TestDir dir;
-  const Scene scene = PaperRoom({"room.windows.0.wall=south", "room.windows.0.center_m=3.5",
-                                 "room.sun.time_of_day_h=14"});
+  const Scene scene =
+      PaperRoom({"room.windows.0.wall=south", "room.windows.0.center_m=3.5", "room.sun.time_of_day_h=14"});
   auto render = [&](const std::string& name, int threads) {
     SequenceOptions options;
     options.output_dir = dir / name;

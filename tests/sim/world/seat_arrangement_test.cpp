@@ -1,9 +1,8 @@
 // Tables seat people as their `seats` says (both long sides, one side, around, on a sofa, none),
 // each with its own asset; a scene that names a seat its table lacks, or a missing asset, is
 // refused at the JSON pointer.
-#include <gtest/gtest.h>
-
 #include <Eigen/Geometry>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "hoilcd/sim/world/world.h"
@@ -15,20 +14,24 @@ namespace {
 using nlohmann::json;
 
 json Room() {
-  return {{"name", "seats"},
-          {"frames", 50},
-          {"room", {{"size_m", {9.0, 6.0, 2.6}}}},
-          {"objects", json::array()},
-          {"tables", {{{"center_m", {1.5, 3.0}}},
-                      {{"center_m", {3.2, 3.0}}, {"asset", "desk"}, {"seats", "one_side"}, {"yaw_deg", 90}},
-                      {{"center_m", {5.0, 3.0}}, {"asset", "round_table"}, {"seats", "around"}, {"seat_count", 6}},
-                      {{"center_m", {7.0, 2.0}}, {"asset", "sofa"}, {"seats", "sofa"}, {"yaw_deg", 90}},
-                      {{"center_m", {7.0, 3.0}}, {"asset", "low_table"}, {"seats", "none"}}}},
-          {"crowd", {{"seating", {{{"table", 0}, {"seat", 4}}, {{"table", 2}, {"seat", 5}}, {{"table", 3}, {"seat", 2}}}}}},
-          {"route", {{"waypoints_m", {{0.4, 0.4}, {0.4, 5.6}, {8.6, 5.6}, {8.6, 0.4}}}}}};
+  return {
+      {"name", "seats"},
+      {"frames", 50},
+      {"room", {{"size_m", {9.0, 6.0, 2.6}}}},
+      {"objects", json::array()},
+      {"tables",
+       {{{"center_m", {1.5, 3.0}}},
+        {{"center_m", {3.2, 3.0}}, {"asset", "desk"}, {"seats", "one_side"}, {"yaw_deg", 90}},
+        {{"center_m", {5.0, 3.0}}, {"asset", "round_table"}, {"seats", "around"}, {"seat_count", 6}},
+        {{"center_m", {7.0, 2.0}}, {"asset", "sofa"}, {"seats", "sofa"}, {"yaw_deg", 90}},
+        {{"center_m", {7.0, 3.0}}, {"asset", "low_table"}, {"seats", "none"}}}},
+      {"crowd", {{"seating", {{{"table", 0}, {"seat", 4}}, {{"table", 2}, {"seat", 5}}, {{"table", 3}, {"seat", 2}}}}}},
+      {"route", {{"waypoints_m", {{0.4, 0.4}, {0.4, 5.6}, {8.6, 5.6}, {8.6, 0.4}}}}}};
 }
 
-Eigen::Vector2d Facing(const Crowd::SeatPlace& s) { return s.world_from_seat.block<2, 1>(0, 0).cast<double>().normalized(); }
+Eigen::Vector2d Facing(const Crowd::SeatPlace& s) {
+  return s.world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
+}
 Eigen::Vector2d At(const Crowd::SeatPlace& s) { return s.world_from_seat.topRightCorner<2, 1>().cast<double>(); }
 
 TEST(SeatArrangement, EveryTableSeatsPeopleAsItsSeatsSays) {

@@ -1,12 +1,13 @@
 // The room's thermal network (thermal_network.h) against closed forms: view factors of a cube,
 // an isothermal enclosure, two parallel plates, a powered object's rise, the cooling a cold
 // window casts on a patch facing it, and an outside wall's inner surface temperature.
-#include <gtest/gtest.h>
+#include "hoilcd/sim/world/thermal_network.h"
 
 #include <cmath>
 
+#include <gtest/gtest.h>
+
 #include "hoilcd/sim/assets/asset.h"
-#include "hoilcd/sim/world/thermal_network.h"
 
 namespace hoilcd {
 namespace {
@@ -59,8 +60,9 @@ struct Cube {
     caster.Commit();
   }
   ViewFactors Cast(int rays, int threads) const {
-    return CastViewFactors(caster, faces, std::vector<double>(6, 1.0),
-                           [](const RayHit& hit, const Eigen::Vector3f&) { return hit.triangle / 2; }, rays, 7, threads);
+    return CastViewFactors(
+        caster, faces, std::vector<double>(6, 1.0),
+        [](const RayHit& hit, const Eigen::Vector3f&) { return hit.triangle / 2; }, rays, 7, threads);
   }
 };
 
@@ -185,9 +187,9 @@ TEST(ThermalNetwork, AColdWindowCoolsThePatchFacingItByTheComputedAmount) {
   const std::vector<std::vector<ThermalTriangle>> triangles = {
       Quad(V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0), V(0, 0, 1)),
       Quad(V(0, 0, 1), V(0, 1, 1), V(1, 1, 1), V(1, 0, 1), V(0, 0, -1))};
-  const ViewFactors f = CastViewFactors(caster, triangles, {1.0, 1.0},
-                                        [](const RayHit& hit, const Eigen::Vector3f&) { return hit.triangle / 2; },
-                                        40000, 3, 2);
+  const ViewFactors f = CastViewFactors(
+      caster, triangles, {1.0, 1.0}, [](const RayHit& hit, const Eigen::Vector3f&) { return hit.triangle / 2; }, 40000,
+      3, 2);
   // Coaxial parallel squares of side 1 at distance 1: F = 0.19982.
   const double x = 1.0;
   const double hottel = 2 / (M_PI * x * x) *

@@ -43,8 +43,8 @@ class Fusion : public LoopClosureMethod {
       out.scores[i] = ReciprocalRankFusionOfScores({s.scores[i], d.scores[i]}, c.Own<FusionOptions>().k);
       // Fusion costs both methods' extraction and matching plus the fusion itself.
       out.extract_ms[i] = s.extract_ms[i] + d.extract_ms[i];
-      out.match_ms[i] = s.match_ms[i] + d.match_ms[i] +
-                        std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+      out.match_ms[i] =
+          s.match_ms[i] + d.match_ms[i] + std::chrono::duration<double, std::milli>(Clock::now() - t).count();
     }
     return out;
   }

@@ -12,8 +12,8 @@ namespace {
 // Temporal consistency over per-query databases: scores go into the union of all databases
 // (frames absent from a query's own database score below everything), then back.
 std::vector<std::vector<double>> TemporalConsistencyOfQueries(const std::vector<Query>& queries,
-                                                             const std::vector<std::vector<double>>& scores,
-                                                             const TemporalConsistencyOptions& options) {
+                                                              const std::vector<std::vector<double>>& scores,
+                                                              const TemporalConsistencyOptions& options) {
   std::set<int> union_frames;
   double lowest = 0;
   for (size_t i = 0; i < queries.size(); ++i) {
@@ -24,7 +24,8 @@ std::vector<std::vector<double>> TemporalConsistencyOfQueries(const std::vector<
   std::vector<int> column(database.empty() ? 0 : database.back() + 1, -1);
   for (size_t j = 0; j < database.size(); ++j) column[database[j]] = static_cast<int>(j);
   std::vector<int> query_frames;
-  std::vector<std::vector<float>> table(queries.size(), std::vector<float>(database.size(), static_cast<float>(lowest - 1)));
+  std::vector<std::vector<float>> table(queries.size(),
+                                        std::vector<float>(database.size(), static_cast<float>(lowest - 1)));
   for (size_t i = 0; i < queries.size(); ++i) {
     query_frames.push_back(queries[i].frame);
     for (size_t j = 0; j < queries[i].database.size(); ++j) {

@@ -11,19 +11,27 @@ namespace {
 
 const RetrievalIndex& IndexOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
   switch (front_end) {
-    case FrontEnd::kKeypoints: return front_ends.keypoint_index;
-    case FrontEnd::kIdealKeypoints: return front_ends.ideal_keypoint_index;
-    case FrontEnd::kTruePersons: return front_ends.true_hoi_index;
-    default: return front_ends.hoi_index;
+    case FrontEnd::kKeypoints:
+      return front_ends.keypoint_index;
+    case FrontEnd::kIdealKeypoints:
+      return front_ends.ideal_keypoint_index;
+    case FrontEnd::kTruePersons:
+      return front_ends.true_hoi_index;
+    default:
+      return front_ends.hoi_index;
   }
 }
 
 const std::vector<double>& ExtractMsOf(const FrontEndOutput& front_ends, FrontEnd front_end) {
   switch (front_end) {
-    case FrontEnd::kKeypoints: return front_ends.keypoints_ms;
-    case FrontEnd::kIdealKeypoints: return front_ends.ideal_keypoints_ms;
-    case FrontEnd::kTruePersons: return front_ends.true_persons_ms;
-    default: return front_ends.persons_ms;
+    case FrontEnd::kKeypoints:
+      return front_ends.keypoints_ms;
+    case FrontEnd::kIdealKeypoints:
+      return front_ends.ideal_keypoints_ms;
+    case FrontEnd::kTruePersons:
+      return front_ends.true_persons_ms;
+    default:
+      return front_ends.persons_ms;
   }
 }
 
@@ -39,11 +47,16 @@ MatchOptions MatchOf(const MethodContext& context) {
 // The features of the front end the method's index holds (the bench keeps each one's per frame).
 ShownFeatures PointSetMethod::Features() const {
   switch (front_end_) {
-    case FrontEnd::kKeypoints: return ShownFeatures::kKeypoints;
-    case FrontEnd::kPersons: return ShownFeatures::kHoiPoints;
-    case FrontEnd::kIdealKeypoints: return ShownFeatures::kIdealKeypoints;
-    case FrontEnd::kTruePersons: return ShownFeatures::kTrueHoiPoints;
-    default: return ShownFeatures::kNone;
+    case FrontEnd::kKeypoints:
+      return ShownFeatures::kKeypoints;
+    case FrontEnd::kPersons:
+      return ShownFeatures::kHoiPoints;
+    case FrontEnd::kIdealKeypoints:
+      return ShownFeatures::kIdealKeypoints;
+    case FrontEnd::kTruePersons:
+      return ShownFeatures::kTrueHoiPoints;
+    default:
+      return ShownFeatures::kNone;
   }
 }
 
@@ -51,11 +64,11 @@ const OptionTable<PointSetOptions>& PointSetOptions::Table(bool lo) {
   using O = PointSetOptions;
   static const OptionTable<O> plain =
       OptionTable<O>().Flatten(&O::ransac, RansacParams()).Flatten(&O::match, MatchParams());
-  static const OptionTable<O> with_lo = OptionTable<O>(plain).Flatten(
-      &O::ransac, RansacOptions::Table()
-                      .Only({"local_optimisation_refits"})
-                      .Rename("local_optimisation_refits", "lo_refits")
-                      .WithDefault("lo_refits", 2));
+  static const OptionTable<O> with_lo =
+      OptionTable<O>(plain).Flatten(&O::ransac, RansacOptions::Table()
+                                                    .Only({"local_optimisation_refits"})
+                                                    .Rename("local_optimisation_refits", "lo_refits")
+                                                    .WithDefault("lo_refits", 2));
   return lo ? with_lo : plain;
 }
 
@@ -74,8 +87,8 @@ std::optional<PairMatches> PointSetMethod::MatchPair(const PairMatchInput& input
   const PointSetOptions& own = OptionsValue<PointSetOptions>(input.own);
   MatchOptions match = own.match;
   match.image_height_px = input.image_height_px;
-  return hoilcd::MatchPair(input.query_points, input.reference_points, match, own.ransac, input.seed,
-                           input.query_frame, input.reference_frame);
+  return hoilcd::MatchPair(input.query_points, input.reference_points, match, own.ransac, input.seed, input.query_frame,
+                           input.reference_frame);
 }
 
 // The index and the matching decide the MNN; the seed is the dataset's for every method.
@@ -99,8 +112,8 @@ std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const 
     const auto* method = dynamic_cast<const PointSetMethod*>(methods[m]);
     const MethodContext& c = contexts[m];
     HOILCD_CHECK_MSG(method != nullptr && method->front_end_ == front_end_ && MatchOf(c) == MatchOf(context) &&
-                         c.seed == context.seed && c.threads == context.threads &&
-                         &c.labelling == &context.labelling && &c.front_ends == &context.front_ends,
+                         c.seed == context.seed && c.threads == context.threads && &c.labelling == &context.labelling &&
+                         &c.front_ends == &context.front_ends,
                      methods[m]->Name() << " cannot share " << Name() << "'s scoring pass");
     variants.push_back(c.Own<PointSetOptions>().ransac);
     title += (m ? " + " : "") + methods[m]->Name();
@@ -121,8 +134,8 @@ std::vector<MethodScores> PointSetMethod::ScoreTogether(const std::vector<const 
   ProgressReporter progress(title, pairs, "pairs");
   std::vector<std::vector<int64_t>> time_ns;
   const auto tables = IndexOf(context.front_ends, front_end_)
-                          .ScoreDatabases(frames, databases, MatchOf(context), variants, context.seed,
-                                          context.threads, &time_ns, &progress);
+                          .ScoreDatabases(frames, databases, MatchOf(context), variants, context.seed, context.threads,
+                                          &time_ns, &progress);
   progress.Done();
   std::vector<MethodScores> out(methods.size());
   for (size_t m = 0; m < methods.size(); ++m) {

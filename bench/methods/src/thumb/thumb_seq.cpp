@@ -14,7 +14,8 @@ class ThumbSeq : public LoopClosureMethod {
   std::string Description() const override { return "thumbnail correlation with SeqSLAM sequence matching"; }
   std::vector<std::string> Inputs() const override { return {"thumb"}; }
   std::unique_ptr<MethodOptions> Options() const override {
-    static const OptionTable<SeqSlamOptions> table = SeqSlamOptions::Table().Only({"sequence_length", "velocity_steps"});
+    static const OptionTable<SeqSlamOptions> table =
+        SeqSlamOptions::Table().Only({"sequence_length", "velocity_steps"});
     return std::make_unique<OptionsOf<SeqSlamOptions>>(table);
   }
   MethodScores Score(const MethodContext& c) const override {
@@ -22,8 +23,8 @@ class ThumbSeq : public LoopClosureMethod {
     const MethodScores& thumb = c.Input("thumb");
     const auto t = Clock::now();
     const auto seq = SequenceScores(thumb.dense, c.Own<SeqSlamOptions>(), c.threads);
-    const double seq_ms = std::chrono::duration<double, std::milli>(Clock::now() - t).count() /
-                          std::max(1, c.dataset.num_frames());
+    const double seq_ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - t).count() / std::max(1, c.dataset.num_frames());
     MethodScores out;
     for (const Query& q : c.queries()) {
       out.scores.emplace_back();

@@ -10,9 +10,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/metrics.h"
 #include "hoilcd/core/util/option_table.h"
@@ -65,18 +66,18 @@ BootstrapPlan PlanBootstrap(const std::vector<const std::vector<QueryRecord>*>& 
 
 // The percentile intervals of a method's headline metrics (records: its MethodMetrics::queries).
 // Resamples without a scored query are left out of the interval. `threads`: 0 = every CPU.
-HeadlineIntervals BootstrapHeadline(const std::vector<QueryRecord>& records, const BootstrapPlan& plan,
-                                    uint64_t seed, int threads = 0);
+HeadlineIntervals BootstrapHeadline(const std::vector<QueryRecord>& records, const BootstrapPlan& plan, uint64_t seed,
+                                    int threads = 0);
 
 // A paired comparison on MRR: the mean difference of per-query reciprocal ranks over the queries
 // both methods scored, and its interval from the same resampled blocks for both.
 struct PairedComparison {
-  std::string a, b;     // written as "a > b" when delta >= 0 (a the better)
-  double delta = NAN;   // MRR(a) - MRR(b)
-  Interval interval;    // of delta
-  int queries = 0;      // scored by both
+  std::string a, b;    // written as "a > b" when delta >= 0 (a the better)
+  double delta = NAN;  // MRR(a) - MRR(b)
+  Interval interval;   // of delta
+  int queries = 0;     // scored by both
   bool Separated() const { return interval.low > 0 || interval.high < 0; }  // the interval excludes 0
-  std::string ToString() const;  // "slcd > dlcd: Δ 0.081 [0.050, 0.110]"
+  std::string ToString() const;                                             // "slcd > dlcd: Δ 0.081 [0.050, 0.110]"
   nlohmann::json ToJson() const;
 };
 

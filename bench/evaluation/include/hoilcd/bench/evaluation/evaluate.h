@@ -33,7 +33,7 @@ struct Labelling {
   std::vector<Query> other_queries;     // the same queries and databases, other labels
   std::vector<PoseRecord> label_poses;  // LabelPoses(poses, ground_truth)
   std::vector<PoseRecord> other_label_poses;
-  LabelDisagreement disagreement;       // queries vs other_queries
+  LabelDisagreement disagreement;  // queries vs other_queries
   // Every pair of the ground truths computed: true vs odometry, and with overlap labels (ground
   // truth overlap) overlap vs odometry and overlap vs true.
   std::vector<LabelAgreement> agreements;
@@ -52,11 +52,11 @@ std::string NoTrueMatchReason(const Labelling& labelling);
 
 // One method's figures under both labellings (timing left NaN: the caller sets it if known).
 struct MethodReport {
-  std::string name;             // as given, through SafeText (safe_text.h)
-  MethodMetrics metrics;        // under Labelling::ground_truth
-  MethodMetrics other_metrics;  // under Labelling::other_ground_truth
-  BootstrapPlan bootstrap;      // how the intervals resampled the queries (EvaluateLabelled)
-  HeadlineIntervals intervals;  // of metrics (EvaluateLabelled)
+  std::string name;                   // as given, through SafeText (safe_text.h)
+  MethodMetrics metrics;              // under Labelling::ground_truth
+  MethodMetrics other_metrics;        // under Labelling::other_ground_truth
+  BootstrapPlan bootstrap;            // how the intervals resampled the queries (EvaluateLabelled)
+  HeadlineIntervals intervals;        // of metrics (EvaluateLabelled)
   std::vector<std::string> warnings;  // about the scores: queries with none of their pairs scored
 };
 
@@ -70,8 +70,8 @@ MethodReport EvaluateQueryScores(const Labelling& labelling, const std::string& 
 // naming matrix.source when the matrix is not frames x frames of the labelled dataset, holds an
 // infinity, or scores none of the pairs of the queries with a true match (their metrics would be
 // those of a random order).
-std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const ScoreMatrix& matrix,
-                                             int dataset_frames, std::vector<std::string>* warnings = nullptr);
+std::vector<std::vector<double>> QueryScores(const Labelling& labelling, const ScoreMatrix& matrix, int dataset_frames,
+                                             std::vector<std::string>* warnings = nullptr);
 
 // NoTrueMatchReason (an InputError naming the dataset) + QueryScores + EvaluateQueryScores.
 MethodReport EvaluateLabelled(const Dataset& dataset, const Labelling& labelling, const ScoreMatrix& scores,
@@ -83,7 +83,7 @@ MethodReport Evaluate(const Dataset& dataset, const ScoreMatrix& scores, const s
 
 // A report.json of one evaluated method, shaped like the bench's (hoilcd_version, dataset,
 // protocol, methods.<name>, other_ground_truth.methods.<name>) so --baseline can read either.
-nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions& protocol,
-                                  const MethodReport& report, const std::string& description);
+nlohmann::json EvaluateReportJson(const Dataset& dataset, const ProtocolOptions& protocol, const MethodReport& report,
+                                  const std::string& description);
 
 }  // namespace hoilcd

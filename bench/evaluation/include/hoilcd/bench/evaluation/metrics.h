@@ -7,9 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -28,8 +29,7 @@ struct FirstTrueRank {
 };
 
 // HOILCD_CHECK: same sizes, finite scores, at least one true match.
-FirstTrueRank RankFirstTrueMatch(const std::vector<double>& scores,
-                                 const std::vector<uint8_t>& is_true_match);
+FirstTrueRank RankFirstTrueMatch(const std::vector<double>& scores, const std::vector<uint8_t>& is_true_match);
 
 // One row of queries.csv.
 struct QueryRecord {
@@ -37,13 +37,13 @@ struct QueryRecord {
   int lap = 0;
   int database_size = 0;
   int true_matches = 0;
-  bool scored = false;                 // false: no true match in the database (skipped)
-  double first_true_rank = NAN;        // expected rank of the first true match (scored only)
-  double reciprocal_rank = NAN;        // expected reciprocal rank (scored only)
-  double recall_at_1 = NAN;            // P(first true match in the top 1, 5, 10) (scored only)
+  bool scored = false;           // false: no true match in the database (skipped)
+  double first_true_rank = NAN;  // expected rank of the first true match (scored only)
+  double reciprocal_rank = NAN;  // expected reciprocal rank (scored only)
+  double recall_at_1 = NAN;      // P(first true match in the top 1, 5, 10) (scored only)
   double recall_at_5 = NAN;
   double recall_at_10 = NAN;
-  int top1_frame = -1;                 // first in database order among the top-scoring items
+  int top1_frame = -1;  // first in database order among the top-scoring items
   double top1_score = NAN;
   double top1_distance_m = NAN;        // base distance between query and top1_frame
   bool top1_is_true_match = false;     // of top1_frame
@@ -95,8 +95,7 @@ struct MethodMetrics {
 MethodMetrics SummariseQueries(std::vector<QueryRecord> records);
 
 // scores[i] is parallel to queries[i].database. poses are indexed by frame number.
-MethodMetrics ComputeMetrics(const std::vector<Query>& queries,
-                             const std::vector<std::vector<double>>& scores,
+MethodMetrics ComputeMetrics(const std::vector<Query>& queries, const std::vector<std::vector<double>>& scores,
                              const std::vector<PoseRecord>& poses);
 
 // The record of a query ranked over a shortlist of its database (the online bench, online.h):

@@ -46,12 +46,12 @@ std::string NpyUnquoted(const std::string& value);
 
 // The header of a whole .npy file held in memory: dtype, order and shape, and where the body starts.
 struct NpyHeader {
-  std::string descr;            // dtype without quotes, e.g. "<f4"; "" when it was no string
-  std::string descr_as_written; // for messages
-  std::string fortran_order;    // "True" or "False" as written
+  std::string descr;             // dtype without quotes, e.g. "<f4"; "" when it was no string
+  std::string descr_as_written;  // for messages
+  std::string fortran_order;     // "True" or "False" as written
   std::vector<int64_t> shape;
   std::string shape_as_written;
-  size_t data_start = 0;        // offset of the body in the file
+  size_t data_start = 0;  // offset of the body in the file
 };
 // InputError(source, ...) for a bad preamble or header, or a shape that is no tuple of integers.
 NpyHeader ParseNpyHeader(std::string_view bytes, const std::string& source);

@@ -5,8 +5,9 @@
 // shares nothing; one 2 m away looking at the same table shares most of it.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -35,8 +36,8 @@ OverlapView MakeOverlapView(const cv::Mat& depth_m, const cv::Mat& class_id, int
 // or an edge between two surfaces is not a mismatch), tolerance = depth_tolerance_m. A point
 // behind something the reference sees nearer (a person, a table) is not shared. 0 when the query
 // has no static pixel.
-double OverlapFraction(const OverlapView& query, const OverlapView& reference,
-                       const CameraIntrinsics& intrinsics, double depth_tolerance_m);
+double OverlapFraction(const OverlapView& query, const OverlapView& reference, const CameraIntrinsics& intrinsics,
+                       double depth_tolerance_m);
 
 // Every (query, database frame) pair of `queries` labelled by overlap: a true match when
 // OverlapFraction >= options.overlap_threshold. Reads the EXRs of the queries and their

@@ -48,18 +48,17 @@ void CheckProtocolFits(const Dataset& dataset, const ProtocolOptions& options);
 bool IsQueryFrame(const ProtocolOptions& options, int lap, int run);
 
 struct Query {
-  int frame = 0;                      // query frame
-  int lap = 0;                        // lap of the query frame, 0 = first (LapIndexFromPoses)
-  int run = 0;                        // recording run of the query frame (PoseRecord::run)
-  std::vector<int> database;          // frames to rank, ascending
-  std::vector<uint8_t> is_true_match; // parallel to database: 1 when a true loop closure
-  int NumTrueMatches() const;         // 0 => the query is skipped (not scored)
+  int frame = 0;                       // query frame
+  int lap = 0;                         // lap of the query frame, 0 = first (LapIndexFromPoses)
+  int run = 0;                         // recording run of the query frame (PoseRecord::run)
+  std::vector<int> database;           // frames to rank, ascending
+  std::vector<uint8_t> is_true_match;  // parallel to database: 1 when a true loop closure
+  int NumTrueMatches() const;          // 0 => the query is skipped (not scored)
 };
 
 // The poses whose x, y, theta are those `ground_truth` labels with: for "odometry" a copy with the
 // odometric pose in x_m, y_m, theta_rad; for "true" and "overlap" the poses as given.
-std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses,
-                                   const std::string& ground_truth);
+std::vector<PoseRecord> LabelPoses(const std::vector<PoseRecord>& poses, const std::string& ground_truth);
 
 // The ground truth the report compares with: "odometry" <-> "true"; "overlap" -> "odometry" (the
 // paper's).
@@ -77,34 +76,31 @@ double BaseDistanceM(const PoseRecord& a, const PoseRecord& b);
 
 // Whether `reference` is a true match of `query` (radius and heading tolerance only; the
 // exclusion window is a property of the database, not of the pair).
-bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference,
-                 const ProtocolOptions& options);
+bool IsTrueMatch(const PoseRecord& query, const PoseRecord& reference, const ProtocolOptions& options);
 
 // Queries in frame order; those without a true match are kept (NumTrueMatches() == 0) so they can
 // be counted as skipped. `poses` are the dataset's rows (frames 0..N-1 in time order); laps and
 // true matches come from options.ground_truth's positions (LabelPoses). Under "overlap" the
 // pairs are labelled by true position: OverlapLabels (overlap.h) relabels them from the images.
-std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses,
-                                const ProtocolOptions& options);
+std::vector<Query> BuildQueries(const std::vector<PoseRecord>& poses, const ProtocolOptions& options);
 
 // The same queries and databases, labelled with `ground_truth`'s positions instead (so one set of
 // scores can be measured under both labellings); "odometry" or "true".
-std::vector<Query> RelabelQueries(const std::vector<Query>& queries,
-                                  const std::vector<PoseRecord>& poses,
+std::vector<Query> RelabelQueries(const std::vector<Query>& queries, const std::vector<PoseRecord>& poses,
                                   const ProtocolOptions& options, const std::string& ground_truth);
 
 // How two labellings of the same queries differ.
 struct LabelDisagreement {
-  int queries = 0;                 // queries compared
-  int queries_differing = 0;       // queries whose set of true matches differs
-  int scored_only_in_a = 0;        // queries with a true match under a only
-  int scored_only_in_b = 0;        // queries with a true match under b only
-  int64_t pairs = 0;               // (query, database frame) pairs compared
-  int64_t pairs_differing = 0;     // pairs labelled differently
-  int64_t pairs_true_in_a = 0;     // true matches under a
-  int64_t pairs_true_in_b = 0;     // true matches under b
-  int64_t pairs_only_in_a = 0;     // true under a, not under b: the pairs a adds to b
-  int64_t pairs_only_in_b = 0;     // true under b, not under a: the pairs a removes from b
+  int queries = 0;              // queries compared
+  int queries_differing = 0;    // queries whose set of true matches differs
+  int scored_only_in_a = 0;     // queries with a true match under a only
+  int scored_only_in_b = 0;     // queries with a true match under b only
+  int64_t pairs = 0;            // (query, database frame) pairs compared
+  int64_t pairs_differing = 0;  // pairs labelled differently
+  int64_t pairs_true_in_a = 0;  // true matches under a
+  int64_t pairs_true_in_b = 0;  // true matches under b
+  int64_t pairs_only_in_a = 0;  // true under a, not under b: the pairs a adds to b
+  int64_t pairs_only_in_b = 0;  // true under b, not under a: the pairs a removes from b
 };
 LabelDisagreement CompareLabels(const std::vector<Query>& a, const std::vector<Query>& b);
 

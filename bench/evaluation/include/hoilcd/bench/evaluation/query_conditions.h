@@ -6,9 +6,10 @@
 #pragma once
 
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/metrics.h"
 #include "hoilcd/bench/evaluation/protocol.h"
@@ -30,16 +31,16 @@ struct QueryConditions {
   int walkers_in_view = 0;      // of them, not seated
   double mean_occlusion = NAN;  // mean occlusion fraction of the people in view (NaN: none)
   // From the EXR (NaN or -1 when the dataset has no EXRs):
-  int person_pixels = -1;           // pixels of class person
-  double temperature_spread_k = NAN;  // T_true, 98th minus 2nd percentile
-  bool structure_only_classes = false;  // nothing but wall, floor, ceiling (and no person)
-  int structure_contrast_pixels = -1;  // non-person pixels with a 4-neighbour kContrastK apart
+  int person_pixels = -1;                    // pixels of class person
+  double temperature_spread_k = NAN;         // T_true, 98th minus 2nd percentile
+  bool structure_only_classes = false;       // nothing but wall, floor, ceiling (and no person)
+  int structure_contrast_pixels = -1;        // non-person pixels with a 4-neighbour kContrastK apart
   double structure_contrast_fraction = NAN;  // of them, as a fraction of the frame's pixels
-  bool blank = false;                  // spread < kBlankSpreadK and structure_only_classes
-  bool ffc_or_frozen = false;          // an FFC at this frame, or a frame repeating an earlier one
-  double turn_rate_deg_s = NAN;        // |heading change| of the true base pose per second
-  double nearest_true_distance_m = NAN;    // to the nearest true match in its database (true poses)
-  double nearest_true_heading_deg = NAN;   // |heading difference| to that match
+  bool blank = false;                        // spread < kBlankSpreadK and structure_only_classes
+  bool ffc_or_frozen = false;                // an FFC at this frame, or a frame repeating an earlier one
+  double turn_rate_deg_s = NAN;              // |heading change| of the true base pose per second
+  double nearest_true_distance_m = NAN;      // to the nearest true match in its database (true poses)
+  double nearest_true_heading_deg = NAN;     // |heading difference| to that match
 };
 
 // The EXR-based fields of frame `frame` (person pixels, temperature spread, structure only,
@@ -65,8 +66,8 @@ std::string StratumOf(const std::string& stratification, const QueryConditions& 
 
 struct StratumRow {
   std::string stratification, stratum;
-  int queries = 0;             // scored queries in the stratum
-  double chance_mrr = NAN;     // the MRR of a uniformly random order of each database
+  int queries = 0;          // scored queries in the stratum
+  double chance_mrr = NAN;  // the MRR of a uniformly random order of each database
   std::vector<std::string> methods;
   std::vector<double> mrr, recall_at_1;  // per method, parallel to methods
 };
@@ -77,8 +78,7 @@ double ChanceReciprocalRank(int database_size, int true_matches);
 
 // Every stratum of each stratification, in a fixed order, for the methods' records (each a
 // MethodMetrics::queries, parallel to `conditions`).
-std::vector<StratumRow> Stratify(const std::vector<QueryConditions>& conditions,
-                                 const std::vector<std::string>& names,
+std::vector<StratumRow> Stratify(const std::vector<QueryConditions>& conditions, const std::vector<std::string>& names,
                                  const std::vector<const std::vector<QueryRecord>*>& records,
                                  const std::vector<std::string>& stratifications);
 

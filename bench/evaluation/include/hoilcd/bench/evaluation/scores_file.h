@@ -20,7 +20,7 @@ inline constexpr double kMaxAbsScore = 1e300;
 // Scores of (query frame, reference frame) pairs of one dataset; higher = more alike.
 struct ScoreMatrix {
   int frames = 0;
-  std::vector<double> values;  // row-major frames x frames: [query * frames + reference], NaN = unscored
+  std::vector<double> values;     // row-major frames x frames: [query * frames + reference], NaN = unscored
   std::string source = "scores";  // what errors about the scores name: their file
 
   static ScoreMatrix Unscored(int frames);  // every pair NaN

@@ -4,10 +4,11 @@
 #pragma once
 
 #include <cmath>
-#include <nlohmann/json.hpp>
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/tracking/box_iou.h"
@@ -49,17 +50,17 @@ struct TrackingMetrics {
   int true_positives = 0;   // CLEAR MOT matches
   int false_positives = 0;
   int false_negatives = 0;
-  int id_switches = 0;      // a person matched to a different track than its last match
-  double precision = NAN;   // TP / (TP + FP)
-  double recall = NAN;      // TP / (TP + FN)
-  double mota = NAN;        // 1 - (FN + FP + IDSW) / GT
+  int id_switches = 0;     // a person matched to a different track than its last match
+  double precision = NAN;  // TP / (TP + FP)
+  double recall = NAN;     // TP / (TP + FN)
+  double mota = NAN;       // 1 - (FN + FP + IDSW) / GT
   int idtp = 0, idfp = 0, idfn = 0;
-  double idf1 = NAN;        // 2 IDTP / (GT + predicted)
+  double idf1 = NAN;  // 2 IDTP / (GT + predicted)
   // HOI points: for each visible GT contact of a matched person, the distance to the nearest HOI
   // point of the matched track.
-  int hoi_contacts = 0;                 // visible contacts of matched persons
-  int hoi_contacts_without_points = 0;  // of those, whose track had no HOI point (count as misses)
-  double hoi_median_error_px = NAN;     // over contacts whose track had HOI points
+  int hoi_contacts = 0;                        // visible contacts of matched persons
+  int hoi_contacts_without_points = 0;         // of those, whose track had no HOI point (count as misses)
+  double hoi_median_error_px = NAN;            // over contacts whose track had HOI points
   double hoi_fraction_within_tolerance = NAN;  // over all hoi_contacts
 
   nlohmann::json ToJson() const;  // NaN becomes null

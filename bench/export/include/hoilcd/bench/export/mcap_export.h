@@ -21,13 +21,13 @@ struct McapExportOptions {
 };
 
 struct McapExportResult {
-  std::string path;                                    // the bag written
-  int frames = 0;                                      // dataset frames exported
+  std::string path;                                      // the bag written
+  int frames = 0;                                        // dataset frames exported
   std::vector<std::pair<std::string, uint64_t>> topics;  // each topic and its message count, in channel order
-  uint64_t messages = 0;                               // all topics
-  uint64_t bytes = 0;                                  // file size
-  uint64_t start_time_ns = 0, end_time_ns = 0;         // ns, first and last log time (the dataset's clock)
-  double seconds = 0;                                  // s, wall time of the export
+  uint64_t messages = 0;                                 // all topics
+  uint64_t bytes = 0;                                    // file size
+  uint64_t start_time_ns = 0, end_time_ns = 0;           // ns, first and last log time (the dataset's clock)
+  double seconds = 0;                                    // s, wall time of the export
 };
 
 // Exports dataset_dir (opened with Verify::kOnRead: each file read is checked against the

@@ -67,7 +67,7 @@ class McapWriter {
     uint64_t start_time, end_time;
     std::unique_ptr<char[]> compressed;  // set by WriteClosedChunks (zstd)
     size_t compressed_size = 0;
-    uint32_t crc = 0;        // of records
+    uint32_t crc = 0;  // of records
   };
   struct ChunkIndex {
     uint64_t start_time, end_time, offset, length, message_index_length, compressed_size, uncompressed_size;
@@ -75,8 +75,8 @@ class McapWriter {
   };
 
   void Emit(std::string_view bytes);  // to the sink, counted and (in the data section) CRC'd
-  void CloseChunk();          // the open chunk joins closed_, written once enough are there
-  void WriteClosedChunks();  // compresses closed_ in parallel, then writes each with its indexes
+  void CloseChunk();                  // the open chunk joins closed_, written once enough are there
+  void WriteClosedChunks();           // compresses closed_ in parallel, then writes each with its indexes
   std::string SummaryGroups(std::vector<std::pair<uint8_t, std::pair<uint64_t, uint64_t>>>* offsets) const;
 
   Sink sink_;

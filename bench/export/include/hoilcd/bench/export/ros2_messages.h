@@ -21,8 +21,8 @@ struct Ros2Header {
   std::string frame_id;
 };
 
-struct Ros2Pose {  // geometry_msgs/Pose
-  std::array<double, 3> position{};        // m
+struct Ros2Pose {                                 // geometry_msgs/Pose
+  std::array<double, 3> position{};               // m
   std::array<double, 4> orientation{0, 0, 0, 1};  // quaternion x, y, z, w
 };
 
@@ -39,9 +39,9 @@ std::string SerializeImage(const Ros2Header& header, uint32_t height, uint32_t w
 // sensor_msgs/CameraInfo of a pinhole camera: distortion model "plumb_bob" with the given d, K from
 // (fx, fy, cx, cy), R the identity, P = [K | 0], no binning, the full image as ROI.
 struct PinholeCamera {
-  uint32_t width = 0, height = 0;     // px
+  uint32_t width = 0, height = 0;         // px
   double fx = 0, fy = 0, cx = 0, cy = 0;  // px
-  std::array<double, 5> d{};          // plumb_bob k1, k2, t1, t2, k3
+  std::array<double, 5> d{};              // plumb_bob k1, k2, t1, t2, k3
 };
 std::string SerializeCameraInfo(const Ros2Header& header, const PinholeCamera& camera);
 

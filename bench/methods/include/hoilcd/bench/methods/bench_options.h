@@ -33,7 +33,7 @@ struct BenchOptions {
   // Stratifications of the report (query_conditions.h StratificationNames(); empty: the default).
   std::vector<std::string> strata;
   ProtocolOptions protocol;
-  BootstrapOptions bootstrap;        // the metrics' intervals (blocks span protocol.exclusion_window_s)
+  BootstrapOptions bootstrap;  // the metrics' intervals (blocks span protocol.exclusion_window_s)
   KeypointOptions keypoints;
   PersonDetectorOptions detector;
   ByteTrackOptions tracker;
@@ -43,8 +43,8 @@ struct BenchOptions {
   // least 16 px high are scored; others are neither missed nor false positives (a thermal detector
   // cannot see through a person or a chair back, nor find a sliver at the image edge).
   TrackingMetricsOptions tracking_metrics;
-  int threads;                       // 0 = every core
-  bool slam;                         // run the SLAM back end over every method's loops (slam_run.h)
+  int threads;  // 0 = every core
+  bool slam;    // run the SLAM back end over every method's loops (slam_run.h)
   SlamRunOptions slam_options;
 
   BenchOptions();  // the registered defaults

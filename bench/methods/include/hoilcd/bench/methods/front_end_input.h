@@ -8,8 +8,9 @@
 // the ground truth instead: the frame's EXR (true temperature, class channel) and persons.json.
 #pragma once
 
-#include <opencv2/core/mat.hpp>
 #include <vector>
+
+#include <opencv2/core/mat.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/tracking/byte_tracker.h"

@@ -56,13 +56,12 @@ struct FrontEndOutput {
   std::vector<std::vector<Point2>> ideal_keypoints;  // per frame (kIdealKeypoints)
   RetrievalIndex ideal_keypoint_index;
   std::vector<double> ideal_keypoints_ms;
-  std::vector<std::vector<HoiFeature>> true_hoi;      // per frame (kTruePersons), track_id = person id
+  std::vector<std::vector<HoiFeature>> true_hoi;  // per frame (kTruePersons), track_id = person id
   RetrievalIndex true_hoi_index;
   std::vector<double> true_persons_ms;
   bool Ran(FrontEnd f) const { return ran.count(f) > 0; }
 };
 
-FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& needed,
-                            const FrontEndOptions& options);
+FrontEndOutput RunFrontEnds(const Dataset& dataset, const std::set<FrontEnd>& needed, const FrontEndOptions& options);
 
 }  // namespace hoilcd

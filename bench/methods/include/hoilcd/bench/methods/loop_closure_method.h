@@ -35,16 +35,16 @@ struct MethodScores {
 // Everything a method may read while scoring.
 struct MethodContext {
   const Dataset& dataset;
-  const BenchOptions& options;       // the run's: protocol, front ends, threads
-  const MethodOptions* own;          // the method's own, with its --param values (null: none)
-  const Labelling& labelling;        // queries, their databases and which are worth scoring
-  const FrontEndOutput& front_ends;  // the front ends the run's methods asked for
+  const BenchOptions& options;                        // the run's: protocol, front ends, threads
+  const MethodOptions* own;                           // the method's own, with its --param values (null: none)
+  const Labelling& labelling;                         // queries, their databases and which are worth scoring
+  const FrontEndOutput& front_ends;                   // the front ends the run's methods asked for
   const std::map<std::string, MethodScores>& scored;  // methods scored so far (Inputs() included)
-  uint64_t seed;                     // the dataset's seed (keyed RNG of RANSAC)
-  int threads;                       // 0 = every core
+  uint64_t seed;                                      // the dataset's seed (keyed RNG of RANSAC)
+  int threads;                                        // 0 = every core
 
   const std::vector<Query>& queries() const { return labelling.queries; }
-  const MethodScores& Input(const std::string& name) const;  // HOILCD_CHECK when not scored
+  const MethodScores& Input(const std::string& name) const;                  // HOILCD_CHECK when not scored
   std::vector<double> PerQuery(const std::vector<double>& per_frame) const;  // picks each query's frame
   template <typename T>
   const T& Own() const {  // the method's own options struct (HOILCD_CHECK on another type)
@@ -68,23 +68,23 @@ inline bool IsHoi(ShownFeatures features) {
 
 // One (query, reference) pair as the report's gallery asks a method to match it again.
 struct PairMatchInput {
-  const MethodOptions* own;                  // the method's own options as it ran (null: none)
-  const std::vector<Point2>& query_points;   // the query frame's shown features (Features()), px
+  const MethodOptions* own;                     // the method's own options as it ran (null: none)
+  const std::vector<Point2>& query_points;      // the query frame's shown features (Features()), px
   const std::vector<Point2>& reference_points;  // the reference frame's, px
   // When Features() are HOI points, the same points with their persons' track ids, in the same
   // order; empty otherwise.
   const std::vector<HoiFeature>& query_hoi;
   const std::vector<HoiFeature>& reference_hoi;
-  int query_frame, reference_frame;          // frame indices (they key RANSAC's stream)
-  int image_height_px;                       // the dataset's
-  uint64_t seed;                             // the dataset's, as in MethodContext
+  int query_frame, reference_frame;  // frame indices (they key RANSAC's stream)
+  int image_height_px;               // the dataset's
+  uint64_t seed;                     // the dataset's, as in MethodContext
 };
 
 class LoopClosureMethod {
  public:
   virtual ~LoopClosureMethod() = default;
-  virtual std::string Name() const = 0;         // as given to --methods
-  virtual std::string Description() const = 0;  // one line for the report
+  virtual std::string Name() const = 0;             // as given to --methods
+  virtual std::string Description() const = 0;      // one line for the report
   virtual bool FromPaper() const { return false; }  // one of the paper's Table 1 methods
   virtual ShownFeatures Features() const { return ShownFeatures::kNone; }
   virtual std::set<FrontEnd> FrontEnds() const { return {}; }

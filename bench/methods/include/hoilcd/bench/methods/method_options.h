@@ -6,9 +6,10 @@
 #pragma once
 
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/option_table.h"
@@ -23,7 +24,7 @@ class MethodOptions {
   // wrong type (call FirstProblem afterwards for ranges).
   virtual void Set(const std::string& field_equals_value) = 0;
   virtual std::string FirstProblem() const = 0;  // "" when every field is in range
-  virtual nlohmann::json ToJson() const = 0;    // the resolved values, as the report prints them
+  virtual nlohmann::json ToJson() const = 0;     // the resolved values, as the report prints them
 };
 
 // The options struct T with the table (a view of T's fields) that --param reaches. The table must

@@ -17,7 +17,7 @@
 namespace hoilcd {
 
 std::string FrontEndName(FrontEnd front_end);  // "keypoints", "persons", "thumbnails", "ideal-keypoints", ...
-FrontEnd FrontEndOf(const std::string& name);   // HOILCD_CHECK on a name that is not a --param scope
+FrontEnd FrontEndOf(const std::string& name);  // HOILCD_CHECK on a name that is not a --param scope
 // The --param scope whose values a front end reads: the ideal keypoints take the keypoints' (the
 // same detector on another image); the true persons have none (returned as themselves).
 FrontEnd ParamScope(FrontEnd front_end);

@@ -3,14 +3,15 @@
 #pragma once
 
 #include <atomic>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "hoilcd/bench/report/report.h"
 #include "hoilcd/bench/runner/runner.h"
-#include "hoilcd/sim/scene/scene.h"
 #include "hoilcd/core/util/option_table.h"
+#include "hoilcd/sim/scene/scene.h"
 
 namespace hoilcd {
 
@@ -40,7 +41,7 @@ struct RunOutcome {
   BenchResult result;
   ReportTiming timing;
   std::vector<std::string> warnings;  // the render's and the dataset's, for the caller to print
-  std::string calibration_dir;  // dataset the loop thresholds came from (empty: none)
+  std::string calibration_dir;        // dataset the loop thresholds came from (empty: none)
 };
 
 // The folder a scene's dataset is cached in: CACHE/<name>-<first 12 hex of the hash>.

@@ -5,9 +5,10 @@
 #pragma once
 
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/suite_summary.h"
 #include "hoilcd/bench/pipeline/run.h"
@@ -34,8 +35,8 @@ struct SuiteOptions {
 // What makes two outputs runs of one suite, so a merge may combine them: the suite's name and
 // description, the split's sequences (a scene file by the checksum of its bytes, null when it
 // cannot be read, so the same suite checked out at another path is the same; a generated one by
-// its spec and the generator's version) with their seeds and overrides, the split, the bench settings (BenchSettingsJson) and
-// the split's run names in order.
+// its spec and the generator's version) with their seeds and overrides, the split, the bench settings
+// (BenchSettingsJson) and the split's run names in order.
 nlohmann::json SuiteIdentity(const Suite& suite, const std::string& split, const nlohmann::json& bench);
 
 // Runs the shard's runs of the split (every run when unsharded) through RunScene, each report in

@@ -12,15 +12,15 @@ namespace hoilcd {
 
 // One sequence of a suite file.
 struct SuiteSequence {
-  std::string name;                // unique in the suite; letters, digits, '.', '_', '-'
-  std::string scene_path;          // a scene file, resolved against the suite file's folder ("" when generated)
-  bool generated = false;          // true: the scene comes from the generator
-  std::string layout;              // generator layout family or "mixed"
-  uint64_t generator_seed = 0;     // generator seed
-  int generator_index = 0;         // generator scene index
-  std::vector<int> seeds;          // scene seeds to run, each once
-  std::vector<std::string> sets;   // "key=value" scene overrides, applied before the seed
-  std::string split;               // "dev" or "test"
+  std::string name;               // unique in the suite; letters, digits, '.', '_', '-'
+  std::string scene_path;         // a scene file, resolved against the suite file's folder ("" when generated)
+  bool generated = false;         // true: the scene comes from the generator
+  std::string layout;             // generator layout family or "mixed"
+  uint64_t generator_seed = 0;    // generator seed
+  int generator_index = 0;        // generator scene index
+  std::vector<int> seeds;         // scene seeds to run, each once
+  std::vector<std::string> sets;  // "key=value" scene overrides, applied before the seed
+  std::string split;              // "dev" or "test"
 };
 
 struct Suite {
@@ -38,7 +38,7 @@ Suite ParseSuite(const std::string& text, const std::string& path);  // the same
 struct SuiteRunSpec {
   size_t sequence = 0;  // index into Suite::sequences
   int seed = 1;
-  std::string name;     // "<sequence>-seed<S>": its folder under runs/ and its name in the report
+  std::string name;  // "<sequence>-seed<S>": its folder under runs/ and its name in the report
 };
 
 // A run's name, "<sequence>-seed<S>": its folder under runs/ and its name in the report.

@@ -4,9 +4,10 @@
 // shards merged give the same bytes.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/suite_summary.h"
 

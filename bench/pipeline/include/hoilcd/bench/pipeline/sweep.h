@@ -5,10 +5,11 @@
 
 #include <cmath>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/pipeline/run.h"
 #include "hoilcd/bench/pipeline/shard.h"
@@ -35,7 +36,7 @@ struct SweepRunSpec {
   std::vector<std::pair<std::string, std::string>> settings;  // (key, canonical value), axis order
   int seed = 1;                                               // scene seed override
 
-  std::string Name() const;        // "key=value,...,seed=S": the run's identity
+  std::string Name() const;  // "key=value,...,seed=S": the run's identity
   // Name() with characters unsafe in paths replaced by '_'; a name longer than kMaxFolderName
   // bytes (many --set keys) keeps its first bytes and ends in '~' and a hash of the whole name,
   // so that it fits a file system's 255-byte limit and stays distinct.

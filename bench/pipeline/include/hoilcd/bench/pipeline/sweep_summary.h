@@ -3,12 +3,12 @@
 // and plots of each metric against each swept value.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/pipeline/sweep.h"
 
@@ -32,22 +32,22 @@ const std::vector<SweepMetric>& SweepMetrics();  // MRR, R@1, R@5, PR-AUC, R@100
 struct SweepSummaryRow {
   std::vector<std::pair<std::string, std::string>> settings;  // axis order
   std::string method;
-  std::vector<int> seeds;          // seeds found, ascending
-  std::vector<SweepStats> stats;   // parallel to SweepMetrics()
+  std::vector<int> seeds;         // seeds found, ascending
+  std::vector<SweepStats> stats;  // parallel to SweepMetrics()
 };
 
 struct SweepSummary {
   SweepPlan plan;
-  std::vector<SweepSummaryRow> rows;  // combinations in Combinations() order, methods in plan order
+  std::vector<SweepSummaryRow> rows;              // combinations in Combinations() order, methods in plan order
   std::vector<std::string> runs_without_queries;  // runs (by name, sorted) whose report scored no query
 
   // "" when every run scored queries; else which runs scored none and what to do (the summary
   // shows it above the table; `hoilcd sweep` prints it on stderr).
   std::string Warning() const;
-  std::string ToCsv() const;       // one row per combination and method: mean, std, min, max
-  std::string ToMarkdown() const;  // the same as a table of "mean ± std [min, max]"
-  std::string FormatTable() const; // terminal: mean ± std per metric
-  nlohmann::json ToJson() const;   // the plan and every row's statistics (summary.json)
+  std::string ToCsv() const;        // one row per combination and method: mean, std, min, max
+  std::string ToMarkdown() const;   // the same as a table of "mean ± std [min, max]"
+  std::string FormatTable() const;  // terminal: mean ± std per metric
+  nlohmann::json ToJson() const;    // the plan and every row's statistics (summary.json)
 };
 
 // Reads the runs of sweep output folders (their sweep.json and each assigned run's report.json)

@@ -3,16 +3,17 @@
 // constants, emissivity, reflected temperature) give each pixel's apparent temperature.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+
+#include <opencv2/core.hpp>
 
 namespace hoilcd {
 
 // What the camera-info record says about turning raw values into temperatures. The atmosphere is
 // not modelled (transmission 1: handheld shots at a few metres).
 struct FlirCalibration {
-  double emissivity = 1;                // of the object, as set on the camera
+  double emissivity = 1;                    // of the object, as set on the camera
   double reflected_temperature_k = 293.15;  // reflected apparent temperature, K
   // FLIR's Planck constants: a black body at T [K] reads raw = R1 / (R2 (exp(B / T) - F)) - O.
   double planck_r1 = 0, planck_b = 0, planck_f = 1, planck_o = 0, planck_r2 = 1;

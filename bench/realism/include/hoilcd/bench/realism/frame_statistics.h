@@ -6,9 +6,10 @@
 #pragma once
 
 #include <cmath>
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 namespace hoilcd {
 
@@ -26,19 +27,20 @@ constexpr double kWallDominatedShare = 0.8;
 
 // One frame's statistics. Temperature figures are NaN for a frame without temperatures (8-bit).
 struct FrameStatistics {
-  double shi_tomasi_corners = NAN;    // goodFeaturesToTrack: 1000 max, quality 0.01, distance 4, block 3, 4-px border masked
-  double slcd_corners = NAN;          // the SLCD detector with its default KeypointOptions
-  double fast_corners = NAN;          // cv::FAST, threshold 10, non-maximum suppression
+  double shi_tomasi_corners =
+      NAN;                    // goodFeaturesToTrack: 1000 max, quality 0.01, distance 4, block 3, 4-px border masked
+  double slcd_corners = NAN;  // the SLCD detector with its default KeypointOptions
+  double fast_corners = NAN;  // cv::FAST, threshold 10, non-maximum suppression
   double strong_edge_fraction = NAN;  // share of pixels whose Sobel 3x3 magnitude / 8 exceeds 8 grey levels
   double entropy_bits = NAN;          // Shannon entropy of the 256-bin histogram
   double spectrum_slope = NAN;        // log power vs log frequency, 1/64 to 1/4 cycles/px
   bool radiometric = false;           // the frame held temperatures
   double p1_c = NAN, p5_c = NAN, p50_c = NAN, p95_c = NAN, p99_c = NAN;  // temperature percentiles, °C
-  double spread_k = NAN;              // p95 - p5
-  double wall_residual_k = NAN;       // std of T - median15(T) over pixels within kWallBandK of the median
-  double wall_share = NAN;            // share of pixels within kWallBandK of the median
-  bool wall_dominated = false;        // wall_share >= kWallDominatedShare
-  bool blank = false;                 // radiometric and spread_k < kBlankViewSpreadK
+  double spread_k = NAN;                                                 // p95 - p5
+  double wall_residual_k = NAN;  // std of T - median15(T) over pixels within kWallBandK of the median
+  double wall_share = NAN;       // share of pixels within kWallBandK of the median
+  bool wall_dominated = false;   // wall_share >= kWallDominatedShare
+  bool blank = false;            // radiometric and spread_k < kBlankViewSpreadK
 };
 
 // `frame` (one channel: CV_32F or CV_64F temperatures, or CV_8U/CV_16U grey levels) stretched from

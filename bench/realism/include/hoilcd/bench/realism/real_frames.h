@@ -4,9 +4,10 @@
 // (grey levels only: no temperature statistics for those).
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 namespace hoilcd {
 
@@ -35,7 +36,7 @@ constexpr uint64_t kMaxRealFrameBytes = uint64_t{1} << 28;
 struct RealFrame {
   std::string file;  // name within the folder
   bool radiometric = false;
-  cv::Mat image;     // CV_32F °C when radiometric, else CV_8U grey
+  cv::Mat image;  // CV_32F °C when radiometric, else CV_8U grey
 };
 
 // The frame in `path` by its extension (.png, .tif, .tiff, .npy, .jpg, .jpeg, any case); a JPEG

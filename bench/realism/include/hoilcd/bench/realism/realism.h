@@ -4,9 +4,10 @@
 #pragma once
 
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/realism/frame_statistics.h"
 #include "hoilcd/bench/realism/real_frames.h"
@@ -16,12 +17,12 @@ namespace hoilcd {
 
 // The frames of one side and their statistics.
 struct FrameSet {
-  std::string name;                        // "synthetic" or "real"
-  std::string source;                      // the dataset folder or the real frames' folder
-  std::vector<std::string> frames;         // a dataset's frame indices or the real files' names
-  std::vector<FrameStatistics> statistics; // parallel to frames
-  std::vector<double> temporal_noise_k;    // one per static pair of consecutive frames
-  std::vector<std::string> skipped;        // real folder: entries that are no frame file
+  std::string name;                         // "synthetic" or "real"
+  std::string source;                       // the dataset folder or the real frames' folder
+  std::vector<std::string> frames;          // a dataset's frame indices or the real files' names
+  std::vector<FrameStatistics> statistics;  // parallel to frames
+  std::vector<double> temporal_noise_k;     // one per static pair of consecutive frames
+  std::vector<std::string> skipped;         // real folder: entries that are no frame file
   int Radiometric() const;
   int Blank() const;
 };
@@ -61,7 +62,7 @@ struct StatisticComparison {
 };
 struct StatisticRow {
   std::string key, label, unit;
-  std::vector<double> synthetic, real;            // every frame's (or pair's) value, NaN left out
+  std::vector<double> synthetic, real;  // every frame's (or pair's) value, NaN left out
   std::vector<double> synthetic_not_blank, real_not_blank;
   StatisticComparison all, not_blank;
 };
@@ -76,6 +77,5 @@ struct RealismComparison {
 // Every statistic of both sides. `real` may be empty (inspect and the bench report give the
 // synthetic side alone): its summaries then count 0 and the distances are NaN.
 RealismComparison CompareFrameSets(FrameSet synthetic, FrameSet real);
-
 
 }  // namespace hoilcd

@@ -26,18 +26,18 @@ struct CameraOutputOptions {
 };
 
 struct CameraOutputStats {
-  bool video_mode = false;       // camera.video.enabled in the dataset's scene.json
-  std::string video_problem;     // "" when thermal.mp4 decoded to one frame per frame
-  int video_frames = 0;          // frames decoded from thermal.mp4
-  int frames_compared = 0;       // frames read (evenly spaced) for PSNR and shading
-  int frames_shading = 0;        // of which not frozen, used for shading
-  double psnr_mean_db = 0;       // decoded video vs uncompressed 8-bit frames, dB (100: identical)
-  double psnr_min_db = 0;        // worst compared frame, dB
-  bool thermal_is_video = false; // the thermal PNGs (what methods read) are the decoded frames
-  double shading_mean_k = 0;     // corner minus centre of T − T_true, mean over frames_shading, K
-  double shading_p90_k = 0;      // its 90th percentile over compared frames, K
-  int freeze_events = 0;         // frames listed as "freeze" in events.json
-  int frozen_frames = 0;         // frames whose radiometric PNG has the previous frame's checksum
+  bool video_mode = false;        // camera.video.enabled in the dataset's scene.json
+  std::string video_problem;      // "" when thermal.mp4 decoded to one frame per frame
+  int video_frames = 0;           // frames decoded from thermal.mp4
+  int frames_compared = 0;        // frames read (evenly spaced) for PSNR and shading
+  int frames_shading = 0;         // of which not frozen, used for shading
+  double psnr_mean_db = 0;        // decoded video vs uncompressed 8-bit frames, dB (100: identical)
+  double psnr_min_db = 0;         // worst compared frame, dB
+  bool thermal_is_video = false;  // the thermal PNGs (what methods read) are the decoded frames
+  double shading_mean_k = 0;      // corner minus centre of T − T_true, mean over frames_shading, K
+  double shading_p90_k = 0;       // its 90th percentile over compared frames, K
+  int freeze_events = 0;          // frames listed as "freeze" in events.json
+  int frozen_frames = 0;          // frames whose radiometric PNG has the previous frame's checksum
 };
 
 // Reads thermal.mp4, a subset of the EXRs and PNGs, scene.json and the manifest. A missing or

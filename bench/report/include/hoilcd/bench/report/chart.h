@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+
 #include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
@@ -51,9 +52,9 @@ struct PlotOptions {
   // (a table holds no pairs); its rules check them.
   std::optional<std::pair<double, double>> x_range;
   std::optional<std::pair<double, double>> y_range;
-  bool equal_aspect;    // one data unit is as long on both axes (ranges are widened to fit)
-  bool legend;          // draw a legend of labelled series, in the corner hiding least data
-  double font_scale;    // tick-label size (OpenCV Hershey scale); labels and title are larger
+  bool equal_aspect;  // one data unit is as long on both axes (ranges are widened to fit)
+  bool legend;        // draw a legend of labelled series, in the corner hiding least data
+  double font_scale;  // tick-label size (OpenCV Hershey scale); labels and title are larger
 
   PlotOptions();  // the registered defaults
   // Every field once: name, default, unit, range, description.
@@ -64,13 +65,12 @@ struct PlotOptions {
 
 // Series as lines and/or markers over numeric axes with 1-2-5 ticks, a light grid and a legend.
 // plot_area_px, when given, receives the axes box in image pixels (data is clipped to it).
-cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options,
-                 cv::Rect* plot_area_px = nullptr);
+cv::Mat LinePlot(const std::vector<Series>& series, const PlotOptions& options, cv::Rect* plot_area_px = nullptr);
 
 // Grouped bars: one group per name along x, one bar per series inside each group (series.y
 // holds one value per group, y_low/y_high optional error bars). The y axis always includes 0.
-cv::Mat BarPlot(const std::vector<std::string>& groups, const std::vector<Series>& series,
-                const PlotOptions& options, cv::Rect* plot_area_px = nullptr);
+cv::Mat BarPlot(const std::vector<std::string>& groups, const std::vector<Series>& series, const PlotOptions& options,
+                cv::Rect* plot_area_px = nullptr);
 
 namespace chart {
 
@@ -91,8 +91,8 @@ struct Range {
 
 // Axes: where the data intervals land in the image, and the ticks along them.
 struct Axes {
-  cv::Rect frame;  // axes box, image pixels
-  Range x, y;      // shown data intervals
+  cv::Rect frame;         // axes box, image pixels
+  Range x, y;             // shown data intervals
   double inset_px = 0.0;  // the intervals map to the frame shrunk by this on every side
   std::vector<double> x_ticks, y_ticks;
   std::vector<std::string> x_tick_labels, y_tick_labels;
@@ -102,24 +102,23 @@ struct Axes {
   cv::Point2d ToLocal(double xv, double yv) const {
     const double w = frame.width - 1 - 2 * inset_px;
     const double h = frame.height - 1 - 2 * inset_px;
-    return {inset_px + (xv - x.lo) / x.Span() * w,
-            frame.height - 1 - inset_px - (yv - y.lo) / y.Span() * h};
+    return {inset_px + (xv - x.lo) / x.Span() * w, frame.height - 1 - inset_px - (yv - y.lo) / y.Span() * h};
   }
 };
 
 struct AxesSpec {
-  Range x, y;                                    // drawable data intervals
-  std::vector<std::string> categories;          // if set: x ticks at 0..n-1 with these labels
-  double inset_px = 8.0;                         // see Axes::inset_px
+  Range x, y;                           // drawable data intervals
+  std::vector<std::string> categories;  // if set: x ticks at 0..n-1 with these labels
+  double inset_px = 8.0;                // see Axes::inset_px
   bool equal_aspect = false;
 };
 
 struct LegendItem {
   std::string label;
   cv::Scalar colour;
-  bool line = false;     // a short line sample
-  int marker = -1;       // marker shape, -1: none
-  bool swatch = false;   // a filled box (bars)
+  bool line = false;    // a short line sample
+  int marker = -1;      // marker shape, -1: none
+  bool swatch = false;  // a filled box (bars)
 };
 
 using DrawData = std::function<void(cv::Mat& frame_roi, const Axes& axes)>;
@@ -136,24 +135,22 @@ cv::Size TextSize(const std::string& text, double scale);
 
 // Text whose box (cap height, no descender) is placed so that the point at fractions
 // (h_align, v_align) of it lands on anchor: (0, 0) top-left, (0.5, 0.5) centre, (1, 1) bottom-right.
-void PutText(cv::Mat& image, const std::string& text, cv::Point2d anchor, double h_align,
-             double v_align, double scale, const cv::Scalar& colour);
+void PutText(cv::Mat& image, const std::string& text, cv::Point2d anchor, double h_align, double v_align, double scale,
+             const cv::Scalar& colour);
 
 cv::Point SubPixel(cv::Point2d p);  // fixed point with kShift fraction bits, far inside int range
 cv::Point Pixel(cv::Point2d p);     // nearest whole pixel, far inside int range
 bool Finite(cv::Point2d p);
 
 // Anti-aliased segment clipped to the image first, so points far outside the range draw right.
-void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour,
-             int thickness);
+void Segment(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour, int thickness);
 
 // Draws a chart: grid, `draw_data` inside the axes frame, the frame with ticks and labels, the
 // legend in the place hiding least data (when the legend would hide data, the y range is
 // automatic and the legend small, it draws again with room for the legend at the top).
 // plot_area_px, when given, receives the axes box in image pixels.
-cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid,
-               const std::vector<LegendItem>& legend, const DrawData& draw_data,
-               cv::Rect* plot_area_px);
+cv::Mat Render(const PlotOptions& o, AxesSpec spec, bool vertical_grid, const std::vector<LegendItem>& legend,
+               const DrawData& draw_data, cv::Rect* plot_area_px);
 
 }  // namespace chart
 

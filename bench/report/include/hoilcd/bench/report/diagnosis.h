@@ -6,10 +6,11 @@
 #pragma once
 
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/runner/runner.h"
 
@@ -26,18 +27,18 @@ struct MethodDiagnosis {
 
 // Fusion against the better of slcd and dlcd, query by query (scored queries).
 struct FusionDiagnosis {
-  std::string better;            // the one of slcd, dlcd with the higher MRR (slcd on a tie)
-  std::string weaker;            // the other one
-  int queries_ranked_lower = 0;  // fusion ranks the true match lower than `better` does
+  std::string better;                              // the one of slcd, dlcd with the higher MRR (slcd on a tie)
+  std::string weaker;                              // the other one
+  int queries_ranked_lower = 0;                    // fusion ranks the true match lower than `better` does
   int queries_ranked_lower_weaker_top1_false = 0;  // ... and `weaker`'s top-1 is a false match
-  int queries_ranked_higher = 0;  // fusion ranks the true match higher than `better` does
+  int queries_ranked_higher = 0;                   // fusion ranks the true match higher than `better` does
 };
 
 // An oracle against the method whose part it replaces with ground truth: dlcd-oracle (the true
 // people) against dlcd, slcd-ideal (the noise-free image) against slcd.
 struct OracleDiagnosis {
-  std::string oracle;      // "dlcd-oracle" | "slcd-ideal"
-  std::string method;      // "dlcd" | "slcd"
+  std::string oracle;  // "dlcd-oracle" | "slcd-ideal"
+  std::string method;  // "dlcd" | "slcd"
   double oracle_mrr = NAN;
   double method_mrr = NAN;  // NaN when the method did not run
   double delta = NAN;       // oracle_mrr - method_mrr
@@ -47,11 +48,11 @@ struct OracleDiagnosis {
 };
 
 struct Diagnosis {
-  bool evaluated = false;       // something to diagnose: dlcd ran, an oracle ran or was left out
-  bool hoi_split = false;       // dlcd ran: the HOI split below is filled
-  int queries_with_hoi = 0;     // scored queries whose frame has HOI points (people detected)
-  int queries_without_hoi = 0;  // scored queries whose frame has none
-  std::vector<MethodDiagnosis> methods;  // every method run, in run order
+  bool evaluated = false;                 // something to diagnose: dlcd ran, an oracle ran or was left out
+  bool hoi_split = false;                 // dlcd ran: the HOI split below is filled
+  int queries_with_hoi = 0;               // scored queries whose frame has HOI points (people detected)
+  int queries_without_hoi = 0;            // scored queries whose frame has none
+  std::vector<MethodDiagnosis> methods;   // every method run, in run order
   std::optional<FusionDiagnosis> fusion;  // set when slcd, dlcd and fusion ran
   std::vector<OracleDiagnosis> oracles;   // every oracle that ran, in run order
   std::vector<std::string> not_run;       // optional methods left out (BenchResult::skipped)

@@ -1,6 +1,7 @@
 // The CI gate: a run's report.json against a baseline report.json. Every method present in both
 // is compared on the headline metrics (MRR, R@1); a drop larger than the allowed one (a fixed
-// amount, or what the run's own 95 % interval leaves to chance) is a regression. Also JUnit XML of a report, one test case per method, for CI dashboards.
+// amount, or what the run's own 95 % interval leaves to chance) is a regression. Also JUnit XML of a report, one test
+// case per method, for CI dashboards.
 #pragma once
 
 #include <cmath>
@@ -30,8 +31,8 @@ struct Regression {
   std::string method;
   std::string metric;  // "mrr" or "recall_at_1"
   double old_value = 0;
-  double new_value = 0;  // NaN when the new run has no value (no query scored)
-  double new_low = NAN, new_high = NAN;  // the new run's interval (DropAllowance::interval)
+  double new_value = 0;                                      // NaN when the new run has no value (no query scored)
+  double new_low = NAN, new_high = NAN;                      // the new run's interval (DropAllowance::interval)
   std::string ToString(const DropAllowance& allowed) const;  // one line: method, metric, old, new
 };
 

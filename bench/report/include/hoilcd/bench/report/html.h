@@ -25,10 +25,10 @@ std::string DataUri(const std::string& mime, std::string_view bytes);
 // One cell of a sortable table: its HTML and the key a click sorts it by (NaN: sorted by its text,
 // after every number).
 struct HtmlCell {
-  std::string html;      // escaped already
+  std::string html;  // escaped already
   double sort_key = NAN;
 };
-HtmlCell TextCell(const std::string& text);  // escaped; sorted by its text
+HtmlCell TextCell(const std::string& text);         // escaped; sorted by its text
 HtmlCell NumberCell(double value, int digits = 3);  // Fixed(value, digits); sorted by value
 // "0.123 [0.100, 0.150]", sorted by the value.
 HtmlCell IntervalCell(double value, const Interval& interval);

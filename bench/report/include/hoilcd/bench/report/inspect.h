@@ -6,9 +6,10 @@
 #pragma once
 
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/core/dataset/dataset.h"
@@ -49,12 +50,12 @@ struct InspectRun {
 
 struct InspectReport {
   std::vector<InspectSection> sections;
-  std::vector<InspectRun> runs;      // a dataset of 2+ recording runs only
+  std::vector<InspectRun> runs;  // a dataset of 2+ recording runs only
   const InspectSection* Find(const std::string& key) const;
   // {section: {figure: value | {bin_edges, counts}}, "runs": [run, ...] (when there are runs)}
   nlohmann::json ToJson() const;
-  std::string ToText() const;        // for the terminal
-  std::string ToMarkdown() const;    // for report.md
+  std::string ToText() const;      // for the terminal
+  std::string ToMarkdown() const;  // for report.md
 };
 
 // Lap-to-lap true path difference: for every frame of a later lap (laps from the true heading),

@@ -23,7 +23,7 @@ struct HeatTraceSample {
 };
 
 struct HeatTrace {
-  std::string seat;          // "table.seat", as in events.json
+  std::string seat;  // "table.seat", as in events.json
   int leave_frame = 0;
   std::vector<HeatTraceSample> samples;  // frames that see at least kHeatTraceMinPixels of the chair
 };

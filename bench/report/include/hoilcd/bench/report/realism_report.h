@@ -4,8 +4,9 @@
 // `hoilcd inspect` and every bench report.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/bench/realism/realism.h"
 #include "hoilcd/bench/report/inspect.h"

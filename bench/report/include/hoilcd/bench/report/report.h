@@ -14,10 +14,10 @@
 namespace hoilcd {
 
 struct ReportTiming {
-  double render_s = 0;        // rendering time of this run (0 when the dataset was cached)
-  bool render_cached = false; // the dataset was reused
-  double bench_s = 0;         // RunBench wall time
-  double calibration_s = 0;   // render + bench of the SLAM calibration sequence (0: none)
+  double render_s = 0;                     // rendering time of this run (0 when the dataset was cached)
+  bool render_cached = false;              // the dataset was reused
+  double bench_s = 0;                      // RunBench wall time
+  double calibration_s = 0;                // render + bench of the SLAM calibration sequence (0: none)
   bool calibration_render_cached = false;  // its dataset was reused
   bool calibration_bench_cached = false;   // its thresholds were reused (calibration.json)
 };

@@ -3,9 +3,10 @@
 // graph in g2o text format and its optimised trajectory in TUM format (for g2o, GTSAM, evo).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/slam/slam_run.h"
 

@@ -10,9 +10,10 @@
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/metrics.h"
@@ -35,8 +36,8 @@ struct OnlineTimingRow {
 
 struct OnlineMethodRun {
   std::string name;
-  MethodMetrics metrics;        // records from ShortlistRecord; no timing (query_ms has it)
-  HeadlineIntervals intervals;  // OnlineResult::bootstrap says how
+  MethodMetrics metrics;         // records from ShortlistRecord; no timing (query_ms has it)
+  HeadlineIntervals intervals;   // OnlineResult::bootstrap says how
   std::vector<double> query_ms;  // per processed query: shortlist search + the method's scoring of it
   double p50_ms = 0, p99_ms = 0;
   std::vector<OnlineTimingRow> by_database_size;
@@ -45,23 +46,23 @@ struct OnlineMethodRun {
 
 struct OnlineResult {
   ShortlistOptions shortlist;
-  std::string protocol;            // which frames were queries
-  std::string ground_truth;        // odometry or true
+  std::string protocol;      // which frames were queries
+  std::string ground_truth;  // odometry or true
   int frames = 0;
-  int queries_processed = 0;       // queries with a non-empty database (each searched and scored)
-  int queries_scored = 0;          // of those, with a true match in the database
-  int shortlist_hits = 0;          // scored queries with a true match in their shortlist
-  double shortlist_recall = 0;     // shortlist_hits / queries_scored
-  std::vector<double> search_ms;   // per processed query: the shortlist search alone
+  int queries_processed = 0;      // queries with a non-empty database (each searched and scored)
+  int queries_scored = 0;         // of those, with a true match in the database
+  int shortlist_hits = 0;         // scored queries with a true match in their shortlist
+  double shortlist_recall = 0;    // shortlist_hits / queries_scored
+  std::vector<double> search_ms;  // per processed query: the shortlist search alone
   std::vector<OnlineTimingRow> search_by_database_size;
   double insert_p50_ms = 0, insert_p99_ms = 0;  // adding one frame to the shortlist index (NaN: none added)
-  double index_bytes = 0;          // the shortlist index at the end (ShortlistIndex::MemoryBytes)
-  double peak_rss_bytes = 0;       // this process's peak resident memory when done
-  std::vector<OnlineMethodRun> runs;  // in the order asked for
-  std::vector<std::string> skipped;   // optional methods left out, each "<method>: <why>"
+  double index_bytes = 0;                       // the shortlist index at the end (ShortlistIndex::MemoryBytes)
+  double peak_rss_bytes = 0;                    // this process's peak resident memory when done
+  std::vector<OnlineMethodRun> runs;            // in the order asked for
+  std::vector<std::string> skipped;             // optional methods left out, each "<method>: <why>"
   BootstrapPlan bootstrap;
   std::vector<RunMetrics> per_run;  // per recording run of the dataset (none for one run)
-  double seconds = 0;              // wall time, front ends included
+  double seconds = 0;               // wall time, front ends included
   const OnlineMethodRun* Find(const std::string& name) const;
 };
 

@@ -5,9 +5,10 @@
 #pragma once
 
 #include <map>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/bench/evaluation/bootstrap.h"
 #include "hoilcd/bench/evaluation/evaluate.h"
@@ -41,38 +42,38 @@ struct FrameFeatures {
 
 struct MethodRun {
   std::string name;
-  MethodMetrics metrics;        // under the chosen ground truth (protocol.ground_truth)
-  HeadlineIntervals intervals;  // of metrics (BenchResult::bootstrap says how)
-  MethodMetrics other_metrics;  // the same scores under the other ground truth
+  MethodMetrics metrics;                    // under the chosen ground truth (protocol.ground_truth)
+  HeadlineIntervals intervals;              // of metrics (BenchResult::bootstrap says how)
+  MethodMetrics other_metrics;              // the same scores under the other ground truth
   std::vector<std::vector<double>> scores;  // per query, parallel to Query::database
-  nlohmann::json options;       // the method's own options as it ran (method_options.h); null: none
+  nlohmann::json options;                   // the method's own options as it ran (method_options.h); null: none
 };
 
 struct BenchResult {
-  std::vector<Query> queries;              // labelled with protocol.ground_truth
-  std::string ground_truth;                // protocol.ground_truth: "odometry" or "true"
-  std::string other_ground_truth;          // the other one
-  std::vector<Query> other_queries;        // the same queries labelled with other_ground_truth
-  LabelDisagreement label_disagreement;    // queries vs other_queries
+  std::vector<Query> queries;                    // labelled with protocol.ground_truth
+  std::string ground_truth;                      // protocol.ground_truth: "odometry" or "true"
+  std::string other_ground_truth;                // the other one
+  std::vector<Query> other_queries;              // the same queries labelled with other_ground_truth
+  LabelDisagreement label_disagreement;          // queries vs other_queries
   std::vector<LabelAgreement> label_agreements;  // Labelling::agreements: how the ground truths differ
-  std::string no_true_match;  // NoTrueMatchReason: empty unless no query has a true match
-  std::vector<MethodRun> runs;             // in the order asked for
+  std::string no_true_match;                     // NoTrueMatchReason: empty unless no query has a true match
+  std::vector<MethodRun> runs;                   // in the order asked for
   // Optional methods left out, each "<method>: <why>" (the dataset lacks the ground truth it needs).
   std::vector<std::string> skipped;
-  BootstrapPlan bootstrap;                 // how the intervals resampled the queries
+  BootstrapPlan bootstrap;                    // how the intervals resampled the queries
   std::vector<PairedComparison> comparisons;  // MRR of every pair of runs, in run order
   std::vector<QueryConditions> conditions;    // per query, parallel to queries
   std::vector<StratumRow> strata;             // every run's MRR and R@1 per stratum (options.strata)
   std::vector<RunMetrics> per_run;            // per recording run of the dataset (none for one run)
-  std::vector<FrameFeatures> features;     // per frame
-  TrackingMetrics tracking;                // DLCD front end vs persons.json (when DLCD ran)
+  std::vector<FrameFeatures> features;        // per frame
+  TrackingMetrics tracking;                   // DLCD front end vs persons.json (when DLCD ran)
   bool tracking_evaluated = false;
   double mean_hoi_points_per_frame = 0;
   double mean_keypoints_per_frame = 0;
-  int64_t ground_truth_person_views = 0;   // person records in persons.json (all frames)
-  SlamResult slam;                         // when BenchOptions::slam
+  int64_t ground_truth_person_views = 0;  // person records in persons.json (all frames)
+  SlamResult slam;                        // when BenchOptions::slam
   bool slam_evaluated = false;
-  double seconds = 0;                      // wall time of RunBench
+  double seconds = 0;  // wall time of RunBench
   const MethodRun* Find(const std::string& name) const;
 };
 

@@ -5,10 +5,11 @@
 // min(1, 2Φ/(Φ+χ²))².
 #pragma once
 
-#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/core/util/option_table.h"
 
@@ -31,12 +32,12 @@ struct PoseEdge {
 };
 
 struct PoseGraph {
-  std::vector<Pose2d> nodes;        // initial estimates
+  std::vector<Pose2d> nodes;  // initial estimates
   // Nodes held at their initial estimate: node 0 fixes the gauge; with recording runs, each run's
   // first node too (the run starts at the known dock, where its odometry restarts).
   std::vector<int> fixed = {0};
-  std::vector<PoseEdge> odometry;   // sequential, always trusted (squared loss)
-  std::vector<PoseEdge> loops;      // weighted by the back end
+  std::vector<PoseEdge> odometry;  // sequential, always trusted (squared loss)
+  std::vector<PoseEdge> loops;     // weighted by the back end
   // Empty when usable, else what is wrong (no node, no fixed node or one that does not exist, an
   // edge naming a missing node or itself, a non-finite measurement, an information matrix that is
   // not symmetric positive definite, a node no edge connects to a fixed node). A graph is data,

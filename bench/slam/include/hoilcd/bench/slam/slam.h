@@ -22,12 +22,12 @@ namespace hoilcd {
 // σ_along = σ_lateral = distance_sd_frac·√(d·D), σ_θ² = heading_var_rad2_per_m·d + heading_sd_rad_per_m²·d·D,
 // each at least its floor (keeps the information finite when the odometry is exact).
 struct OdometryNoise {
-  double distance_sd_frac = 0.01;       // fraction of the distance travelled, 1σ (systematic + random)
-  double heading_sd_rad_per_m = 1e-3;   // rad per metre, systematic heading drift treated as 1σ
-  double heading_var_rad2_per_m = 1e-5; // rad²/m, heading random walk
-  double correlation_length_m = 5.0;    // m, distance over which systematic errors are matched
-  double floor_sd_m = 1e-4;             // m
-  double floor_sd_rad = 1e-4;           // rad
+  double distance_sd_frac = 0.01;        // fraction of the distance travelled, 1σ (systematic + random)
+  double heading_sd_rad_per_m = 1e-3;    // rad per metre, systematic heading drift treated as 1σ
+  double heading_var_rad2_per_m = 1e-5;  // rad²/m, heading random walk
+  double correlation_length_m = 5.0;     // m, distance over which systematic errors are matched
+  double floor_sd_m = 1e-4;              // m
+  double floor_sd_rad = 1e-4;            // rad
   Eigen::Matrix3d Information(const Pose2d& step) const;
   // From scene.json's "robot" and "odometry" sections (either odometry schema: the per-step
   // encoder/steering noise one, or the systematic + slip + heading random-walk one).
@@ -60,9 +60,8 @@ struct LoopClosure {
 
 // Each scored query's top-1 database frame (first in database order among equal scores) when its
 // score is ≥ threshold; is_true from the true base poses and radius_m.
-std::vector<LoopClosure> AcceptLoops(const std::vector<Query>& queries,
-                                     const std::vector<std::vector<double>>& scores, double threshold,
-                                     const std::vector<PoseRecord>& poses, double radius_m);
+std::vector<LoopClosure> AcceptLoops(const std::vector<Query>& queries, const std::vector<std::vector<double>>& scores,
+                                     double threshold, const std::vector<PoseRecord>& poses, double radius_m);
 
 // The oracle: one loop per query whose database holds a frame within radius_m in true position
 // (the same density as a method accepting every top-1), to the nearest such frame.
@@ -98,8 +97,8 @@ PoseGraph BuildPoseGraph(const std::vector<PoseRecord>& poses, const std::vector
 
 // Every frame's pose from optimised keyframe poses: the pose of the keyframe at or before it in its
 // own run · odometry since that keyframe.
-std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses, const std::vector<Pose2d>& keyframe_poses,
-                                            int keyframe_every);
+std::vector<Pose2d> FramePosesFromKeyframes(const std::vector<PoseRecord>& poses,
+                                            const std::vector<Pose2d>& keyframe_poses, int keyframe_every);
 
 struct SlamScore {
   std::string backend;

@@ -3,14 +3,15 @@
 // are CSV/JSON side files. Writes are atomic, so a reader never accepts a half-written file.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
-#include <opencv2/core.hpp>
-#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/core/dataset/runs.h"
 #include "hoilcd/core/geometry/camera.h"
@@ -22,8 +23,7 @@ namespace hoilcd {
 // A frame PNG's pixels (path names errors). The header must say k.width x k.height before
 // anything is decoded (a small file can inflate to gigabytes), and the decoded type must be
 // expected_type (CV_8UC1 thermal, CV_16UC1 radiometric); InputError otherwise.
-cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int expected_type,
-                       const CameraIntrinsics& k);
+cv::Mat DecodeFramePng(const std::string& bytes, const std::string& path, int expected_type, const CameraIntrinsics& k);
 
 // "000123.png" for (123, "png"); a leading dot in the extension is accepted too.
 std::string FrameFileName(int frame, const char* extension);
@@ -58,19 +58,19 @@ struct DatasetShard {
 };
 
 struct DatasetManifest {
-  std::string hoilcd_version;               // version of the hoilcd that wrote the dataset
-  std::string scene_hash;                   // ChecksumOf(resolved scene JSON)
-  uint64_t seed = 0;                        // render seed
-  CameraIntrinsics intrinsics;              // px
-  double frame_rate_hz = 25;                // Hz
-  int frame_count = 0;                      // planned frames
-  double window_min_c = 20;                 // °C, thermal PNG value 0
-  double window_max_c = 30;                 // °C, thermal PNG value 255
-  std::map<std::string, int> classes;       // class name -> id used in the EXR 'class' channel
-  std::map<std::string, std::string> files; // relative path -> checksum, every file written so far
-  DatasetOutputs outputs;                   // which outputs were written (absent in older manifests: all)
-  bool complete = false;                    // true once every frame and side file is written
-  std::optional<DatasetShard> shard;        // set in a shard's folder only: not a dataset until merged
+  std::string hoilcd_version;                // version of the hoilcd that wrote the dataset
+  std::string scene_hash;                    // ChecksumOf(resolved scene JSON)
+  uint64_t seed = 0;                         // render seed
+  CameraIntrinsics intrinsics;               // px
+  double frame_rate_hz = 25;                 // Hz
+  int frame_count = 0;                       // planned frames
+  double window_min_c = 20;                  // °C, thermal PNG value 0
+  double window_max_c = 30;                  // °C, thermal PNG value 255
+  std::map<std::string, int> classes;        // class name -> id used in the EXR 'class' channel
+  std::map<std::string, std::string> files;  // relative path -> checksum, every file written so far
+  DatasetOutputs outputs;                    // which outputs were written (absent in older manifests: all)
+  bool complete = false;                     // true once every frame and side file is written
+  std::optional<DatasetShard> shard;         // set in a shard's folder only: not a dataset until merged
 
   std::string ToJson() const;
   // Every problem found (type errors, unknown keys) is reported with its JSON pointer.
@@ -84,8 +84,8 @@ struct DatasetManifest {
 };
 
 // Writes DIR/relative_path atomically and records its checksum in manifest->files.
-void WriteDatasetFile(const std::string& dir, const std::string& relative_path,
-                      std::string_view bytes, DatasetManifest* manifest);
+void WriteDatasetFile(const std::string& dir, const std::string& relative_path, std::string_view bytes,
+                      DatasetManifest* manifest);
 
 struct ContactRecord {
   std::string name;      // e.g. "left_hand", "seat"
@@ -96,20 +96,20 @@ struct ContactRecord {
 
 // One of the 17 COCO keypoints of a person (COCO order and names).
 struct KeypointRecord {
-  std::string name;                  // "nose", "left_eye", ..., "right_ankle"
-  std::array<double, 3> world_m{};   // world frame, m
-  double u_px = -1;                  // image column (-1 when behind the camera)
-  double v_px = -1;                  // image row
-  bool visible = false;              // inside the image and not occluded (depth buffer)
+  std::string name;                 // "nose", "left_eye", ..., "right_ankle"
+  std::array<double, 3> world_m{};  // world frame, m
+  double u_px = -1;                 // image column (-1 when behind the camera)
+  double v_px = -1;                 // image row
+  bool visible = false;             // inside the image and not occluded (depth buffer)
 };
 
 struct PersonRecord {
-  int id = -1;                        // person (instance) id, stable over the sequence
-  cv::Rect2f box_px;                  // visible-pixel bounding box
-  double visible_fraction = 0;        // visible pixels / pixels the unoccluded person would cover
-  double occlusion_fraction = 0;      // pixels hidden by other objects / unoccluded pixels
+  int id = -1;                    // person (instance) id, stable over the sequence
+  cv::Rect2f box_px;              // visible-pixel bounding box
+  double visible_fraction = 0;    // visible pixels / pixels the unoccluded person would cover
+  double occlusion_fraction = 0;  // pixels hidden by other objects / unoccluded pixels
   bool seated = false;
-  std::string posture;                // "seated", "standing", ...
+  std::string posture;  // "seated", "standing", ...
   std::vector<ContactRecord> contacts;
   std::vector<KeypointRecord> keypoints;  // 17 COCO keypoints, or none (older datasets)
 };
@@ -137,12 +137,12 @@ std::vector<DatasetEvent> EventsFromJson(const std::string& text, const std::str
 // A 2-D obstacle footprint on the floor (the World's obstacles, for drawing them without the
 // scene): an oriented rectangle or a circle, world frame.
 struct FootprintRecord {
-  std::string name;                  // e.g. "table 0", "south wall", "standing person 3"
-  std::string kind = "rectangle";    // "rectangle" | "circle"
-  std::array<double, 2> centre_m{};  // m, world x, y of the centre
+  std::string name;                     // e.g. "table 0", "south wall", "standing person 3"
+  std::string kind = "rectangle";       // "rectangle" | "circle"
+  std::array<double, 2> centre_m{};     // m, world x, y of the centre
   std::array<double, 2> half_size_m{};  // m, rectangle half extents along its local x, y (0 for circles)
-  double yaw_deg = 0;                // deg, rectangle orientation (0 for circles)
-  double radius_m = 0;               // m, circle radius (0 for rectangles)
+  double yaw_deg = 0;                   // deg, rectangle orientation (0 for circles)
+  double radius_m = 0;                  // m, circle radius (0 for rectangles)
 };
 
 // footprints.json: {"footprints": [{"name", "kind", "centre_m", "half_size_m", "yaw_deg",
@@ -154,10 +154,10 @@ std::vector<FootprintRecord> FootprintsFromJson(const std::string& text, const s
 struct PoseRecord {
   int frame = 0;
   double time_s = 0;
-  double x_m = 0, y_m = 0, theta_rad = 0;            // robot base, ground truth
-  double cam_x_m = 0, cam_y_m = 0, cam_z_m = 0;      // camera, ground truth
-  double cam_yaw_rad = 0, cam_pitch_rad = 0;         // camera, ground truth (REP 103)
-  double cam_roll_rad = 0;                           // camera roll about its optical axis
+  double x_m = 0, y_m = 0, theta_rad = 0;              // robot base, ground truth
+  double cam_x_m = 0, cam_y_m = 0, cam_z_m = 0;        // camera, ground truth
+  double cam_yaw_rad = 0, cam_pitch_rad = 0;           // camera, ground truth (REP 103)
+  double cam_roll_rad = 0;                             // camera roll about its optical axis
   double odo_x_m = 0, odo_y_m = 0, odo_theta_rad = 0;  // noisy wheel odometry
   int run = 0;  // recording run (runs.h): not a poses.csv column, set from runs.json by Dataset::Open
 
@@ -207,13 +207,13 @@ class Dataset {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   // InputError naming the missing output when the dataset was rendered without it.
-  cv::Mat Thermal(int frame) const;       // CV_8U from thermal/NNNNNN.png
-  cv::Mat RadiometricC(int frame) const;  // CV_32F °C from radiometric/NNNNNN.png
+  cv::Mat Thermal(int frame) const;                 // CV_8U from thermal/NNNNNN.png
+  cv::Mat RadiometricC(int frame) const;            // CV_32F °C from radiometric/NNNNNN.png
   cv::Mat RadiometricCentikelvin(int frame) const;  // CV_16U as stored: K × 100
   // Throws InputError (the dataset folder: which output is missing and how to render it) unless
   // the dataset has `output` (a DatasetOutputs name); `needed_for` says what wanted it.
   void RequireOutput(const std::string& output, const std::string& needed_for) const;
-  std::string scene_json() const;         // contents of scene.json
+  std::string scene_json() const;  // contents of scene.json
   // The bytes of DIR/name (a path relative to the dataset folder, e.g. "exr/000012.exr"); with
   // Verify::kOnRead checked against its manifest.json checksum (a file it does not list is an
   // InputError too).

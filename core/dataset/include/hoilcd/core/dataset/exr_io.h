@@ -2,10 +2,11 @@
 // (for atomic writes and checksums) and read back as float images.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 

@@ -3,9 +3,9 @@
 // Output bytes depend only on the frames and the options (one encoder thread, bit-exact flags).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
-#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -17,11 +17,11 @@ namespace hoilcd {
 // Defaults resemble a handheld thermal camera's recording (HIKMICRO Pocket2 / FLIR-style MP4):
 // a real-time embedded encoder, keyframe every second, no B-frames, moderate quality.
 struct VideoOptions {
-  bool enabled;          // video mode: the thermal PNGs are the decoded video frames
-  int crf;               // x264 constant rate factor (used when bitrate_kbps is 0)
-  int bitrate_kbps;      // target average bitrate, kbit/s (0: constant quality, crf)
-  int gop_frames;        // frames between keyframes (25: 1 s at 25 Hz)
-  std::string preset;    // x264 speed/quality preset (ultrafast … veryslow)
+  bool enabled;        // video mode: the thermal PNGs are the decoded video frames
+  int crf;             // x264 constant rate factor (used when bitrate_kbps is 0)
+  int bitrate_kbps;    // target average bitrate, kbit/s (0: constant quality, crf)
+  int gop_frames;      // frames between keyframes (25: 1 s at 25 Hz)
+  std::string preset;  // x264 speed/quality preset (ultrafast … veryslow)
 
   VideoOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /camera/video), unit, default, range, description.
@@ -57,7 +57,7 @@ class VideoEncoder {
 };
 
 struct DecodedVideo {
-  std::string codec;        // e.g. "h264"
+  std::string codec;  // e.g. "h264"
   int width = 0, height = 0;
   double frame_rate_hz = 0;
   std::vector<cv::Mat> frames;  // CV_8UC1, in presentation order

@@ -21,9 +21,8 @@ bool HomographyFromFourPoints(const Point2 src[4], const Point2 dst[4], Eigen::M
 // Least-squares DLT on n >= 4 correspondences (Hartley normalisation, AᵀA from moment sums,
 // h(2,2) fixed to 1 in normalised coordinates, 8x8 LDLT), used by the LO-RANSAC refits; `use`
 // (may be null) selects the correspondences. Returns false when the fit is degenerate.
-bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float* query_x,
-                            const float* query_y, const uint8_t* use, int count,
-                            Eigen::Matrix3d* h);
+bool HomographyLeastSquares(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y,
+                            const uint8_t* use, int count, Eigen::Matrix3d* h);
 
 // The homography as a RANSAC estimator (ransac.h). A model is the 3x3 matrix, row-major, scaled so
 // its largest entry has magnitude 1; it is solved and scored in float. A sample is degenerate if
@@ -43,12 +42,12 @@ struct HomographyEstimator {
     int count;
   };
   // Data over the arrays (count entries each); *quads is scratch that holds the quadruples.
-  static Data Prepare(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y,
-                      int count, std::vector<float>* quads);
+  static Data Prepare(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+                      std::vector<float>* quads);
 
   // Screening is the orientation test: most random samples fail it, and it is cheap.
-  static void DrawAndScreen(const RansacSampler& sampler, uint32_t first_draw, const Data& data,
-                            SampleBatch* batch, int32_t keep[kRansacLanes]);
+  static void DrawAndScreen(const RansacSampler& sampler, uint32_t first_draw, const Data& data, SampleBatch* batch,
+                            int32_t keep[kRansacLanes]);
   static void Solve(const SampleBatch& batch, const Data& data, ModelBatch<kModelSize>* out);
   // Division-free: |(u, v) / w - q| < t  <=>  |(u, v) - q w|² < t² w²  (false when w = 0).
   static int CountInliers(const float* model, const Data& data, float threshold_sq, int bar);

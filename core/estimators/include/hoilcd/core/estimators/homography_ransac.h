@@ -26,19 +26,18 @@ inline bool operator==(const Correspondence& a, const Correspondence& b) {
 }
 
 struct HomographyResult {
-  int inliers = 0;                                                  // size of the best inlier set
+  int inliers = 0;                                                   // size of the best inlier set
   Eigen::Matrix3d reference_to_query = Eigen::Matrix3d::Identity();  // best model, H(2,2) = 1
-  std::vector<uint8_t> inlier_mask;                                 // one 0/1 entry per match
+  std::vector<uint8_t> inlier_mask;                                  // one 0/1 entry per match
 };
 
 // Homography maps reference points to query points; fewer than 4 matches => 0 inliers.
 // Deterministic given seed: sample d (d = 0, 1, ...) is RansacSample(seed, d, matches). A sample is
 // degenerate if three of its points are (nearly) collinear in either image or if it keeps the
 // orientation of some point triplets but not of others (as OpenCV's checkSubset).
-HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query,
-                                          const std::vector<Point2>& reference,
-                                          const std::vector<Correspondence>& matches,
-                                          const RansacOptions& options, uint64_t seed);
+HomographyResult EstimateHomographyRansac(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                                          const std::vector<Correspondence>& matches, const RansacOptions& options,
+                                          uint64_t seed);
 
 // EstimateHomographyRansac(...).inliers, without the model and the inlier mask (for scoring).
 int CountRansacInliers(const std::vector<Point2>& query, const std::vector<Point2>& reference,
@@ -46,9 +45,8 @@ int CountRansacInliers(const std::vector<Point2>& query, const std::vector<Point
 
 // The same loop on matched coordinates as structure of arrays (count entries each); returns the
 // inlier count. best_h and inlier_mask (count entries) may be null. Options are not re-checked.
-int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x,
-                        const float* query_y, int count, const RansacOptions& options,
-                        uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask);
+int RansacHomographySoa(const float* ref_x, const float* ref_y, const float* query_x, const float* query_y, int count,
+                        const RansacOptions& options, uint64_t seed, Eigen::Matrix3d* best_h, uint8_t* inlier_mask);
 
 // RansacHomographySoa's inlier counts under several variants of the options at once, reusing
 // scratch buffers between calls (one counter per thread): RansacVariants (ransac.h) with the

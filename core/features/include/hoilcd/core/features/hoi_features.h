@@ -36,15 +36,13 @@ struct HoiOptions {
 // `person_mask`: CV_8UC1, non-zero = person pixel. A column belongs to a box when its pixel
 // centre x + 0.5 lies in [box.x, box.x + box.width); rows likewise; boxes are clipped to the
 // image. Points come track by track (input order), columns left to right.
-std::vector<HoiFeature> ExtractHoiFeatures(const cv::Mat& person_mask,
-                                           const std::vector<Track>& tracks,
+std::vector<HoiFeature> ExtractHoiFeatures(const cv::Mat& person_mask, const std::vector<Track>& tracks,
                                            const HoiOptions& options);
 
 // The whole DLCD front end over a sequence; the tracker state is carried between frames.
 class DlcdFrontEnd {
  public:
-  DlcdFrontEnd(PersonDetectorOptions detector_options, ByteTrackOptions tracker_options,
-               HoiOptions hoi_options);
+  DlcdFrontEnd(PersonDetectorOptions detector_options, ByteTrackOptions tracker_options, HoiOptions hoi_options);
 
   // One frame in (see DetectPersons for the images), its HOI feature points out.
   std::vector<HoiFeature> Process(const cv::Mat& thermal_u8, const cv::Mat& radiometric_c);

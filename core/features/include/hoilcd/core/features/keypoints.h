@@ -3,9 +3,10 @@
 // Shi–Tomasi (GFTT) with SuperPoint-like settings; FAST, ORB, SIFT and AKAZE are selectable.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/core/geometry/point.h"
 #include "hoilcd/core/util/option_table.h"
@@ -14,11 +15,11 @@ namespace hoilcd {
 
 // Defaults and ranges: Table() in keypoints.cpp.
 struct KeypointOptions {
-  std::string detector;    // gftt | fast | orb | sift | akaze
-  int max_keypoints;       // keep at most this many, strongest first
-  double nms_radius_px;    // minimum distance between keypoints, px (SuperPoint NMS 4)
-  int border_px;           // ignore keypoints this close to the image border, px
-  double gftt_quality;     // GFTT quality level, fraction of the strongest corner (below ~0.005 it fires on sensor noise)
+  std::string detector;  // gftt | fast | orb | sift | akaze
+  int max_keypoints;     // keep at most this many, strongest first
+  double nms_radius_px;  // minimum distance between keypoints, px (SuperPoint NMS 4)
+  int border_px;         // ignore keypoints this close to the image border, px
+  double gftt_quality;   // GFTT quality level, fraction of the strongest corner (below ~0.005 it fires on sensor noise)
   int gftt_block_size_px;  // GFTT structure-tensor window, px
   // Absolute floor on the Shi–Tomasi score (min eigenvalue of the structure tensor of the 8-bit
   // image scaled to [0, 1], OpenCV's cornerMinEigenVal), like SuperPoint's detection threshold:
@@ -26,8 +27,8 @@ struct KeypointOptions {
   // pattern, which is the same in every frame and "matches" everywhere. Noise peaks at ~1.5e-4
   // on paper_room frames; real corners reach 1e-3 to 1e-1.
   double gftt_min_eigenvalue;
-  int fast_threshold;      // FAST intensity threshold, 8-bit levels
-  double blur_sigma_px;    // Gaussian pre-blur, px (0: none)
+  int fast_threshold;    // FAST intensity threshold, 8-bit levels
+  double blur_sigma_px;  // Gaussian pre-blur, px (0: none)
 
   KeypointOptions();  // the registered defaults
   // Every field once: name, default, unit, range, description.

@@ -2,9 +2,10 @@
 // Camera frame: x right, y down, z forward (OpenCV). Transforms are named target_from_source.
 #pragma once
 
+#include <string>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <string>
 
 namespace hoilcd {
 
@@ -39,12 +40,12 @@ struct CameraPose {
 Eigen::Matrix3d BodyFromCamRotation();
 
 struct CameraIntrinsics {
-  int width = 256;       // px
-  int height = 192;      // px
-  double fx = 274.5;     // px, focal length along x
-  double fy = 274.5;     // px
-  double cx = 127.5;     // px, principal point (pixel centres at integer + 0.5 convention: 0-based centre)
-  double cy = 95.5;      // px
+  int width = 256;    // px
+  int height = 192;   // px
+  double fx = 274.5;  // px, focal length along x
+  double fy = 274.5;  // px
+  double cx = 127.5;  // px, principal point (pixel centres at integer + 0.5 convention: 0-based centre)
+  double cy = 95.5;   // px
 
   // Square pixels, principal point at the image centre, horizontal field of view in degrees.
   static CameraIntrinsics FromHorizontalFov(int width, int height, double hfov_deg);

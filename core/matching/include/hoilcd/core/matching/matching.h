@@ -63,7 +63,8 @@ class PointGrid {
   // The candidates of lattice cell (x, y) whose box reaches `slack` px beyond its nominal one;
   // slot_of_id maps an original index to its slot; near is scratch.
   struct LatticeCell;
-  LatticeCell LatticeCellAt(int x, int y, float slack, const std::vector<int>& slot_of_id, std::vector<int>* near) const;
+  LatticeCell LatticeCellAt(int x, int y, float slack, const std::vector<int>& slot_of_id,
+                            std::vector<int>* near) const;
   // (squared distance bits, original index) of stored point k from p: the bits of a
   // non-negative float order like the float, so the least key is the nearest point with ties
   // going to the lower index.
@@ -78,11 +79,11 @@ class PointGrid {
   // a border of empty cells, so a 3x3 block never needs clipping.
   int Slot(int x, int y) const { return (y + 1) * stride_ + x + 1; }
 
-  int count_ = 0;                    // number of points
-  std::vector<float> xs_, ys_;       // point coordinates in cell order (padded), px
-  std::vector<int> ids_;             // original index of each stored point (padded)
-  std::vector<int> cell_start_;      // points of the cell at slot s are
-                                     // [cell_start_[s], cell_start_[s+1])
+  int count_ = 0;                      // number of points
+  std::vector<float> xs_, ys_;         // point coordinates in cell order (padded), px
+  std::vector<int> ids_;               // original index of each stored point (padded)
+  std::vector<int> cell_start_;        // points of the cell at slot s are
+                                       // [cell_start_[s], cell_start_[s+1])
   float origin_x_ = 0, origin_y_ = 0;  // lower corner of the grid, px
   float cell_px_ = 1, inv_cell_ = 1;   // cell side, px, and its inverse
   float slack_px_ = 0;                 // cell-assignment rounding can put a point this far
@@ -109,15 +110,12 @@ class PointGrid {
 std::vector<Correspondence> MutualNearestNeighbours(const std::vector<Point2>& query,
                                                     const std::vector<Point2>& reference);
 // The same on prebuilt grids; query_points/reference_points are the sets the grids were built on.
-void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid,
-                             const Point2* reference_points, const PointGrid& reference_grid,
-                             std::vector<Correspondence>* matches);
+void MutualNearestNeighbours(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+                             const PointGrid& reference_grid, std::vector<Correspondence>* matches);
 
 // Drops pairs with |y_q - y_r| > τ_y * H.
-std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query,
-                                           const std::vector<Point2>& reference,
-                                           const std::vector<Correspondence>& matches,
-                                           const MatchOptions& options);
+std::vector<Correspondence> FilterVertical(const std::vector<Point2>& query, const std::vector<Point2>& reference,
+                                           const std::vector<Correspondence>& matches, const MatchOptions& options);
 
 // The RANSAC stream of one (query, reference) pair: KeyedRng(seed, "ransac", query_id,
 // reference_id) is Rng(PairSeed(seed, query_id, reference_id)).
@@ -125,9 +123,8 @@ uint64_t PairSeed(uint64_t seed, int query_id, int reference_id);
 
 // Full score of a pair: MNN -> vertical filter -> RANSAC; returns the inlier count. The RANSAC
 // stream is keyed by (seed, "ransac", query_id, reference_id).
-int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference,
-              const MatchOptions& match_options, const RansacOptions& ransac_options,
-              uint64_t seed, int query_id, int reference_id);
+int ScorePair(const std::vector<Point2>& query, const std::vector<Point2>& reference, const MatchOptions& match_options,
+              const RansacOptions& ransac_options, uint64_t seed, int query_id, int reference_id);
 
 // The matches behind one pair's score, for pictures (the report's gallery): the matches RANSAC
 // ran on (indices into query and reference) and which of them it counts as inliers.
@@ -146,18 +143,16 @@ PairMatches MatchPair(const std::vector<Point2>& query, const std::vector<Point2
 // Score() equals ScorePair() on the same points; options are not re-checked here.
 class PairScorer {
  public:
-  int Score(const Point2* query_points, const PointGrid& query_grid,
-            const Point2* reference_points, const PointGrid& reference_grid,
-            const MatchOptions& match_options, const RansacOptions& ransac_options,
+  int Score(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+            const PointGrid& reference_grid, const MatchOptions& match_options, const RansacOptions& ransac_options,
             uint64_t pair_seed);
   // Score() under each of `count` RANSAC variants, the MNN and vertical filter done once for all
   // and the samples drawn once for variants that share them (RansacCounter): inliers[v] =
   // Score(..., variants[v], pair_seed). alone_ns and total_ns as in RansacCounter::Count (both null:
   // not timed; 0 when fewer than 4 matches are kept: no RANSAC runs).
-  void ScoreVariants(const Point2* query_points, const PointGrid& query_grid,
-                     const Point2* reference_points, const PointGrid& reference_grid,
-                     const MatchOptions& match_options, const RansacOptions* variants, int count,
-                     uint64_t pair_seed, int* inliers, int64_t* alone_ns, int64_t* total_ns);
+  void ScoreVariants(const Point2* query_points, const PointGrid& query_grid, const Point2* reference_points,
+                     const PointGrid& reference_grid, const MatchOptions& match_options, const RansacOptions* variants,
+                     int count, uint64_t pair_seed, int* inliers, int64_t* alone_ns, int64_t* total_ns);
 
  private:
   std::vector<Correspondence> matches_;

@@ -34,11 +34,11 @@ struct TrackAwareOptions {
 // One person's bottom contour in one frame.
 struct PersonContour {
   int track_id = 0;
-  std::vector<int> indices;            // into the frame's features, sorted by x (then y)
-  std::vector<double> arc_length_px;   // cumulative polyline length at each point, from 0, px
-  double x_min_px = 0, x_max_px = 0;   // x-extent, px
-  double mean_y_px = 0;                // mean row of the points, px
-  std::vector<double> profile_px;      // y - mean_y at profile_samples evenly spaced x, px
+  std::vector<int> indices;           // into the frame's features, sorted by x (then y)
+  std::vector<double> arc_length_px;  // cumulative polyline length at each point, from 0, px
+  double x_min_px = 0, x_max_px = 0;  // x-extent, px
+  double mean_y_px = 0;               // mean row of the points, px
+  std::vector<double> profile_px;     // y - mean_y at profile_samples evenly spaced x, px
 };
 
 // Groups a frame's HOI points by track id (ascending id), each group ordered along x.
@@ -47,13 +47,11 @@ std::vector<PersonContour> GroupPersonContours(const std::vector<HoiFeature>& fe
 
 // position_weight * (|centre x diff| + |mean y diff|) + width_weight * |width diff|
 // + shape_weight * mean |profile diff|.
-double PersonPairCost(const PersonContour& query, const PersonContour& reference,
-                      const TrackAwareOptions& options);
+double PersonPairCost(const PersonContour& query, const PersonContour& reference, const TrackAwareOptions& options);
 
 // Query persons (rows) paired with reference persons (columns) by LinearAssignment on
 // PersonPairCost with cost limit max_pair_cost.
-Assignment PairPersons(const std::vector<PersonContour>& query,
-                       const std::vector<PersonContour>& reference,
+Assignment PairPersons(const std::vector<PersonContour>& query, const std::vector<PersonContour>& reference,
                        const TrackAwareOptions& options);
 
 // For each person pair, min(n_q, n_r) correspondences: at fractions i / (n - 1) of each contour's
@@ -70,8 +68,8 @@ std::vector<Correspondence> TrackAwareCorrespondences(const std::vector<PersonCo
 // A frame made ready for scoring against many others: its points and its persons' contours,
 // grouped once instead of once per pair.
 struct TrackAwareFrame {
-  std::vector<Point2> points;           // the features' points, in feature order
-  std::vector<PersonContour> persons;   // GroupPersonContours(features)
+  std::vector<Point2> points;          // the features' points, in feature order
+  std::vector<PersonContour> persons;  // GroupPersonContours(features)
 };
 TrackAwareFrame PrepareTrackAwareFrame(const std::vector<HoiFeature>& features, const TrackAwareOptions& options);
 
@@ -81,20 +79,19 @@ uint64_t TrackAwarePairSeed(uint64_t seed, int query_id, int reference_id);
 
 // TrackAwareCorrespondences -> EstimateHomographyRansac(seed TrackAwarePairSeed(...)); returns
 // the inlier count (0 for fewer than 4 correspondences, e.g. empty frames).
-int ScoreTrackAwarePair(const std::vector<HoiFeature>& query,
-                        const std::vector<HoiFeature>& reference,
-                        const TrackAwareOptions& options, const RansacOptions& ransac_options,
-                        uint64_t seed, int query_id, int reference_id);
+int ScoreTrackAwarePair(const std::vector<HoiFeature>& query, const std::vector<HoiFeature>& reference,
+                        const TrackAwareOptions& options, const RansacOptions& ransac_options, uint64_t seed,
+                        int query_id, int reference_id);
 // The same score from prepared frames (PrepareTrackAwareFrame with the same options).
 int ScoreTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
-                        const TrackAwareOptions& options, const RansacOptions& ransac_options,
-                        uint64_t seed, int query_id, int reference_id);
+                        const TrackAwareOptions& options, const RansacOptions& ransac_options, uint64_t seed,
+                        int query_id, int reference_id);
 
 // The matches behind ScoreTrackAwarePair's score, for pictures (the report's gallery): the
 // contour correspondences (person pair by person pair) and which of them RANSAC counts as
 // inliers, from the same stream; inliers equals ScoreTrackAwarePair(...) with the same arguments.
 PairMatches MatchTrackAwarePair(const TrackAwareFrame& query, const TrackAwareFrame& reference,
-                                const TrackAwareOptions& options, const RansacOptions& ransac_options,
-                                uint64_t seed, int query_id, int reference_id);
+                                const TrackAwareOptions& options, const RansacOptions& ransac_options, uint64_t seed,
+                                int query_id, int reference_id);
 
 }  // namespace hoilcd

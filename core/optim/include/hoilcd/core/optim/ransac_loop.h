@@ -27,10 +27,9 @@ class HypothesisStream {
         sampler_(seed, static_cast<uint32_t>(data.count), E::kSampleSize),
         trials_(options.trials),
         // With exactly kSampleSize matches every sample is the same set: one draw decides.
-        budget_(data.count == E::kSampleSize
-                    ? 1
-                    : static_cast<int64_t>(options.trials) *
-                          (options.redraw_degenerate_samples ? kRansacMaxDrawsPerTrial : 1)) {}
+        budget_(data.count == E::kSampleSize ? 1
+                                             : static_cast<int64_t>(options.trials) *
+                                                   (options.redraw_degenerate_samples ? kRansacMaxDrawsPerTrial : 1)) {}
 
   // Writes the next hypotheses to out (kModelSize floats each), at most max >= kRansacLanes of
   // them, and returns how many.

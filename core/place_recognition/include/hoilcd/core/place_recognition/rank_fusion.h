@@ -9,8 +9,8 @@ namespace hoilcd {
 // rankings: lists of database indices best-first (rank 1 = first), each index at most once per
 // list; returns the fused score per database index (size num_database), score = Σ 1/(k + r);
 // items absent from a ranking contribute 0. k > -1 so every term is finite and positive.
-std::vector<double> ReciprocalRankFusion(const std::vector<std::vector<int>>& rankings,
-                                         int num_database, double k = 0.0);
+std::vector<double> ReciprocalRankFusion(const std::vector<std::vector<int>>& rankings, int num_database,
+                                         double k = 0.0);
 
 // Database indices sorted by descending score, ties kept in index order (stable). Tie-aware
 // metrics (expected rank over a tied group) are the bench's job, not this helper's.
@@ -23,7 +23,6 @@ std::vector<double> FractionalRanks(const std::vector<double>& scores);
 // Reciprocal rank fusion of score lists over the same database (each parallel to it): fused
 // score = Σ 1/(k + r) with r the fractional rank in each list. With no ties it equals
 // ReciprocalRankFusion of the RankByScore rankings.
-std::vector<double> ReciprocalRankFusionOfScores(const std::vector<std::vector<double>>& scores,
-                                                 double k = 0.0);
+std::vector<double> ReciprocalRankFusionOfScores(const std::vector<std::vector<double>>& scores, double k = 0.0);
 
 }  // namespace hoilcd

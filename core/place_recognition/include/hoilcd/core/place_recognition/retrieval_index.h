@@ -24,11 +24,9 @@ class RetrievalIndex {
 
   // scores[i][j] = ScorePair(frame queries[i], frame database[j], ..., seed, queries[i],
   // database[j]) for all pairs; parallel (threads 0 = all cores), identical at any thread count.
-  std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries,
-                                           const std::vector<int>& database,
-                                           const MatchOptions& match_options,
-                                           const RansacOptions& ransac_options, uint64_t seed,
-                                           int threads) const;
+  std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries, const std::vector<int>& database,
+                                           const MatchOptions& match_options, const RansacOptions& ransac_options,
+                                           uint64_t seed, int threads) const;
 
   // Each query against its own database: scores[i][j] = the ScoreAll score of frame queries[i]
   // and frame databases[i][j]. databases[i] must be ascending. All pairs of all queries are
@@ -38,9 +36,8 @@ class RetrievalIndex {
   // given, is advanced by every pair scored.
   std::vector<std::vector<float>> ScoreDatabases(const std::vector<int>& queries,
                                                  const std::vector<std::vector<int>>& databases,
-                                                 const MatchOptions& match_options,
-                                                 const RansacOptions& ransac_options, uint64_t seed,
-                                                 int threads, std::vector<int64_t>* time_ns = nullptr,
+                                                 const MatchOptions& match_options, const RansacOptions& ransac_options,
+                                                 uint64_t seed, int threads, std::vector<int64_t>* time_ns = nullptr,
                                                  ProgressReporter* progress = nullptr) const;
   // The same under each of several RANSAC variants in one pass, each pair's MNN and vertical
   // filter found once for all, and the RANSAC samples drawn once for the variants that share
@@ -53,9 +50,9 @@ class RetrievalIndex {
       std::vector<std::vector<int64_t>>* time_ns = nullptr, ProgressReporter* progress = nullptr) const;
 
  private:
-  std::vector<Point2> points_;    // every frame's points, frame after frame
+  std::vector<Point2> points_;          // every frame's points, frame after frame
   std::vector<int64_t> offsets_ = {0};  // frame f holds points_[offsets_[f], offsets_[f+1])
-  std::vector<PointGrid> grids_;  // nearest-neighbour grid per frame
+  std::vector<PointGrid> grids_;        // nearest-neighbour grid per frame
 };
 
 }  // namespace hoilcd

@@ -20,11 +20,11 @@ namespace hoilcd {
 
 // Defaults and ranges: Table() in shortlist_index.cpp.
 struct ShortlistOptions {
-  int k;                    // frames the shortlist keeps for RANSAC; 0 = every frame (no shortlist)
-  std::string index;        // "hnsw" (approximate, fast at 100,000 frames) or "flat" (exact)
-  int hnsw_neighbours;      // HNSW's M: links per node
-  int hnsw_build_depth;     // HNSW's efConstruction: candidates kept while a frame is linked in
-  int hnsw_search_depth;    // HNSW's efSearch: candidates kept while searching (at least k is used)
+  int k;                  // frames the shortlist keeps for RANSAC; 0 = every frame (no shortlist)
+  std::string index;      // "hnsw" (approximate, fast at 100,000 frames) or "flat" (exact)
+  int hnsw_neighbours;    // HNSW's M: links per node
+  int hnsw_build_depth;   // HNSW's efConstruction: candidates kept while a frame is linked in
+  int hnsw_search_depth;  // HNSW's efSearch: candidates kept while searching (at least k is used)
 
   ShortlistOptions();  // the registered defaults
   // Every field once: name, default, unit, range, description.

@@ -5,6 +5,7 @@
 
 #include <string>
 #include <vector>
+
 #include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
@@ -37,8 +38,9 @@ struct TemporalConsistencyOptions {
 // meaningful (a rejected true match still has a rank), while a threshold on the top-1 score for
 // precision-recall accepts unsupported loops only after every supported one, i.e. gates them
 // as DBoW2 does. k = 1 returns the scores unchanged.
-std::vector<std::vector<float>> TemporalConsistencyScores(
-    const std::vector<int>& query_frames, const std::vector<int>& database_frames,
-    const std::vector<std::vector<float>>& scores, const TemporalConsistencyOptions& options);
+std::vector<std::vector<float>> TemporalConsistencyScores(const std::vector<int>& query_frames,
+                                                          const std::vector<int>& database_frames,
+                                                          const std::vector<std::vector<float>>& scores,
+                                                          const TemporalConsistencyOptions& options);
 
 }  // namespace hoilcd

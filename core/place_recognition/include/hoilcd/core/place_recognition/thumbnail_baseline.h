@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
+
 #include "hoilcd/core/util/option_table.h"
 
 namespace hoilcd {
@@ -55,8 +56,8 @@ class ThumbnailIndex {
   // is more similar; parallel over query rows (threads 0 = all cores), identical at any thread
   // count. ScoreAll(all, all, threads) gives the dense frame-by-frame matrix SequenceScores takes.
   // Throws InputError when the matrix needs more memory than this process may allocate.
-  std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries,
-                                           const std::vector<int>& database, int threads) const;
+  std::vector<std::vector<float>> ScoreAll(const std::vector<int>& queries, const std::vector<int>& database,
+                                           int threads) const;
 
  private:
   ThumbnailOptions options_;

@@ -58,8 +58,7 @@ struct Track {
 };
 
 // 1 - IoU for every (a, b) pair: rows = a, cols = b.
-std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a,
-                                             const std::vector<cv::Rect2f>& b,
+std::vector<std::vector<double>> IouDistance(const std::vector<cv::Rect2f>& a, const std::vector<cv::Rect2f>& b,
                                              IouConvention convention = IouConvention::kContinuous);
 
 class ByteTracker {

@@ -11,7 +11,7 @@ namespace hoilcd {
 using XyahVector = Eigen::Vector4d;  // (cx px, cy px, aspect w/h, h px)
 
 struct KalmanState {
-  Eigen::Matrix<double, 8, 1> mean;        // (cx, cy, a, h, vcx, vcy, va, vh), velocities per frame
+  Eigen::Matrix<double, 8, 1> mean;  // (cx, cy, a, h, vcx, vcy, va, vh), velocities per frame
   Eigen::Matrix<double, 8, 8> covariance;
 };
 
@@ -28,8 +28,7 @@ cv::Rect2f XyahToBox(const XyahVector& xyah);
 class KalmanFilterXYAH {
  public:
   // Standard deviations per unit of box height: position 1/20, velocity 1/160 (ByteTrack).
-  explicit KalmanFilterXYAH(double std_weight_position = 1.0 / 20,
-                            double std_weight_velocity = 1.0 / 160);
+  explicit KalmanFilterXYAH(double std_weight_position = 1.0 / 20, double std_weight_velocity = 1.0 / 160);
 
   // A new track from one measurement: zero velocity, wide velocity uncertainty.
   KalmanState Initiate(const XyahVector& measurement) const;

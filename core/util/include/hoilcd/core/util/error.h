@@ -33,9 +33,7 @@ class InputError : public std::runtime_error {
 // Parsers report through a collector so tests can assert on every message.
 class ProblemCollector {
  public:
-  void Add(std::string where, std::string message) {
-    problems_.push_back({std::move(where), std::move(message)});
-  }
+  void Add(std::string where, std::string message) { problems_.push_back({std::move(where), std::move(message)}); }
   bool empty() const { return problems_.empty(); }
   const std::vector<Problem>& problems() const { return problems_; }
   // Throws InputError with everything collected, if anything was.
@@ -51,16 +49,16 @@ namespace internal {
 
 }  // namespace hoilcd
 
-#define HOILCD_CHECK(cond)                                                        \
-  do {                                                                            \
+#define HOILCD_CHECK(cond)                                                                   \
+  do {                                                                                       \
     if (!(cond)) ::hoilcd::internal::ThrowCheck(__FILE__, __LINE__, "Check failed: " #cond); \
   } while (0)
 
-#define HOILCD_CHECK_MSG(cond, msg)                                               \
-  do {                                                                            \
-    if (!(cond)) {                                                                \
-      std::ostringstream hoilcd_check_stream_;                                    \
-      hoilcd_check_stream_ << "Check failed: " #cond ": " << msg;                 \
+#define HOILCD_CHECK_MSG(cond, msg)                                                   \
+  do {                                                                                \
+    if (!(cond)) {                                                                    \
+      std::ostringstream hoilcd_check_stream_;                                        \
+      hoilcd_check_stream_ << "Check failed: " #cond ": " << msg;                     \
       ::hoilcd::internal::ThrowCheck(__FILE__, __LINE__, hoilcd_check_stream_.str()); \
-    }                                                                             \
+    }                                                                                 \
   } while (0)

@@ -5,10 +5,11 @@
 
 #include <cstdint>
 #include <limits>
-#include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 namespace hoilcd {
 

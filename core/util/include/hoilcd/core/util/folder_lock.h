@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+
 #include <sys/types.h>
 
 namespace hoilcd {
@@ -41,9 +42,9 @@ class FolderLock {
 
  private:
   std::string dir_;
-  int fd_ = -1;              // the lock file, flocked; -1 when this thread held the lock already
-  bool created_dir_ = false; // this lock made the folder
-  dev_t dev_ = 0;            // the folder's identity (st_dev, st_ino): the key of this thread's locks
+  int fd_ = -1;               // the lock file, flocked; -1 when this thread held the lock already
+  bool created_dir_ = false;  // this lock made the folder
+  dev_t dev_ = 0;             // the folder's identity (st_dev, st_ino): the key of this thread's locks
   ino_t ino_ = 0;
 };
 

@@ -5,10 +5,11 @@
 
 #include <cstdint>
 #include <initializer_list>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/error.h"
 
@@ -83,8 +84,7 @@ class JsonReader {
   }
 
   // Unknown keys are errors, so typos fail loudly.
-  void CheckKeys(const nlohmann::json& object, const std::string& pointer,
-                 std::initializer_list<const char*> allowed) {
+  void CheckKeys(const nlohmann::json& object, const std::string& pointer, std::initializer_list<const char*> allowed) {
     for (const auto& item : object.items()) {
       bool known = false;
       for (const char* key : allowed) known = known || item.key() == key;
@@ -104,32 +104,41 @@ class JsonReader {
   }
 
   void ReadValue(const nlohmann::json& value, const std::string& where, std::string* out) {
-    if (value.is_string()) *out = value.get<std::string>();
-    else Add(where, "expected a string");
+    if (value.is_string())
+      *out = value.get<std::string>();
+    else
+      Add(where, "expected a string");
   }
   void ReadValue(const nlohmann::json& value, const std::string& where, double* out) {
-    if (value.is_number()) *out = value.get<double>();
-    else Add(where, "expected a number");
+    if (value.is_number())
+      *out = value.get<double>();
+    else
+      Add(where, "expected a number");
   }
   void ReadValue(const nlohmann::json& value, const std::string& where, float* out) {
-    if (value.is_number()) *out = value.get<float>();
-    else Add(where, "expected a number");
+    if (value.is_number())
+      *out = value.get<float>();
+    else
+      Add(where, "expected a number");
   }
   void ReadValue(const nlohmann::json& value, const std::string& where, int* out) {
-    if (value.is_number_integer() && value.get<int64_t>() >= INT32_MIN &&
-        value.get<int64_t>() <= INT32_MAX) {
+    if (value.is_number_integer() && value.get<int64_t>() >= INT32_MIN && value.get<int64_t>() <= INT32_MAX) {
       *out = value.get<int>();
     } else {
       Add(where, "expected a 32-bit integer");
     }
   }
   void ReadValue(const nlohmann::json& value, const std::string& where, uint64_t* out) {
-    if (value.is_number_unsigned()) *out = value.get<uint64_t>();
-    else Add(where, "expected a non-negative integer");
+    if (value.is_number_unsigned())
+      *out = value.get<uint64_t>();
+    else
+      Add(where, "expected a non-negative integer");
   }
   void ReadValue(const nlohmann::json& value, const std::string& where, bool* out) {
-    if (value.is_boolean()) *out = value.get<bool>();
-    else Add(where, "expected true or false");
+    if (value.is_boolean())
+      *out = value.get<bool>();
+    else
+      Add(where, "expected true or false");
   }
 
  private:

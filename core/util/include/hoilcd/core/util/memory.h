@@ -10,7 +10,7 @@ namespace hoilcd {
 
 // Where the kernel's figures are read; tests point these at fixture folders.
 struct MemoryFiles {
-  std::string proc = "/proc";            // meminfo, self/cgroup
+  std::string proc = "/proc";             // meminfo, self/cgroup
   std::string cgroup = "/sys/fs/cgroup";  // the cgroup hierarchy (v2, or v1's memory/ below it)
 };
 
@@ -34,7 +34,6 @@ std::string FormatBytes(double bytes);
 // Throws InputError at `where` (the flag or parameter that sized the request) when `bytes` is
 // more than AllocatableBytes(files): "<what> needs 40.0 GB; this process may allocate 6.1 GB".
 // Does nothing when the available memory cannot be read.
-void CheckAllocation(double bytes, const std::string& where, const std::string& what,
-                     const MemoryFiles& files = {});
+void CheckAllocation(double bytes, const std::string& where, const std::string& what, const MemoryFiles& files = {});
 
 }  // namespace hoilcd

@@ -8,11 +8,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "hoilcd/core/util/error.h"
 
@@ -30,11 +31,11 @@ struct OptionRange {
 
   static OptionRange Any() { return {}; }
   static OptionRange Closed(double lo, double hi) { return Any().AtLeast(lo).AtMost(hi); }  // [lo, hi]
-  OptionRange AtLeast(double lo) const { return With(&OptionRange::min, {lo, false}); }   // >= lo
-  OptionRange Above(double lo) const { return With(&OptionRange::min, {lo, true}); }      // > lo
-  OptionRange AtMost(double hi) const { return With(&OptionRange::max, {hi, false}); }    // <= hi
-  OptionRange Below(double hi) const { return With(&OptionRange::max, {hi, true}); }      // < hi
-  OptionRange OrNaN() const {                                                              // or NaN (not set)
+  OptionRange AtLeast(double lo) const { return With(&OptionRange::min, {lo, false}); }     // >= lo
+  OptionRange Above(double lo) const { return With(&OptionRange::min, {lo, true}); }        // > lo
+  OptionRange AtMost(double hi) const { return With(&OptionRange::max, {hi, false}); }      // <= hi
+  OptionRange Below(double hi) const { return With(&OptionRange::max, {hi, true}); }        // < hi
+  OptionRange OrNaN() const {                                                               // or NaN (not set)
     OptionRange out = *this;
     out.nan_allowed = true;
     return out;
@@ -55,7 +56,7 @@ struct OptionRange {
 // One registered field, as listed (docs, --help) and compared with the scene schema.
 struct OptionInfo {
   enum class Kind { kNumber, kInteger, kBoolean, kString, kExternal };
-  std::string name;                  // JSON path below the table's object: "vibration/enabled"
+  std::string name;  // JSON path below the table's object: "vibration/enabled"
   Kind kind = Kind::kNumber;
   std::string default_json;          // the default as JSON text ("0.5", "true", "\"veryfast\"")
   std::string unit;                  // "" when none
@@ -81,12 +82,12 @@ class OptionTableBase {
  protected:
   using Locate = std::function<void*(void*)>;  // the struct -> one of its members
   void AddNumber(const char* name, Locate at, Storage storage, double default_value, const char* unit,
-                   OptionRange range, const char* description);
+                 OptionRange range, const char* description);
   void AddBool(const char* name, Locate at, bool default_value, const char* description);
   // String members; enums go through to_text / from_text (choices: the accepted texts).
   void AddString(const char* name, std::function<std::string(const void*)> get,
-                   std::function<void(void*, const std::string&)> set, std::string default_value,
-                   std::vector<std::string> choices, const char* description);
+                 std::function<void(void*, const std::string&)> set, std::string default_value,
+                 std::vector<std::string> choices, const char* description);
   void AddNested(const char* name, Locate at, const OptionTableBase& table);
   void AddFlattened(Locate at, const OptionTableBase& table);
   void AddExternal(const char* name, const char* description);
@@ -116,19 +117,19 @@ class OptionTableBase {
 template <typename T>
 class OptionTable : public OptionTableBase {
  public:
-  OptionTable& Add(const char* name, double T::*member, double default_value, const char* unit,
-                   OptionRange range, const char* description) {
+  OptionTable& Add(const char* name, double T::*member, double default_value, const char* unit, OptionRange range,
+                   const char* description) {
     AddNumber(name, At(member), Storage::kDouble, default_value, unit, range, description);
     return *this;
   }
-  OptionTable& Add(const char* name, int T::*member, int default_value, const char* unit,
-                   OptionRange range, const char* description) {
+  OptionTable& Add(const char* name, int T::*member, int default_value, const char* unit, OptionRange range,
+                   const char* description) {
     AddNumber(name, At(member), Storage::kInt, default_value, unit, range, description);
     return *this;
   }
   // An unsigned 64-bit whole number (a seed offset, say); values above 2^53 are not supported.
-  OptionTable& Add(const char* name, uint64_t T::*member, uint64_t default_value, const char* unit,
-                   OptionRange range, const char* description) {
+  OptionTable& Add(const char* name, uint64_t T::*member, uint64_t default_value, const char* unit, OptionRange range,
+                   const char* description) {
     AddNumber(name, At(member), Storage::kUint64, static_cast<double>(default_value), unit, range, description);
     return *this;
   }
@@ -141,14 +142,14 @@ class OptionTable : public OptionTableBase {
                    std::vector<std::string> choices, const char* description) {
     AddString(
         name, [member](const void* p) { return static_cast<const T*>(p)->*member; },
-        [member](void* p, const std::string& v) { static_cast<T*>(p)->*member = v; },
-        std::move(default_value), std::move(choices), description);
+        [member](void* p, const std::string& v) { static_cast<T*>(p)->*member = v; }, std::move(default_value),
+        std::move(choices), description);
     return *this;
   }
   // An enum member written as one of `choices`' texts.
   template <typename E>
-  OptionTable& AddEnum(const char* name, E T::*member, E default_value,
-                       std::vector<std::pair<std::string, E>> choices, const char* description) {
+  OptionTable& AddEnum(const char* name, E T::*member, E default_value, std::vector<std::pair<std::string, E>> choices,
+                       const char* description) {
     std::vector<std::string> texts;
     std::string default_text;
     for (const auto& [text, value] : choices) {
@@ -180,7 +181,8 @@ class OptionTable : public OptionTableBase {
   // The same for an S that `at` finds in T (an entry of a map member, say).
   template <typename S>
   OptionTable& Nest(const char* name, std::function<S*(T*)> at, const OptionTable<S>& table) {
-    AddNested(name, [at = std::move(at)](void* p) -> void* { return at(static_cast<T*>(p)); }, table);
+    AddNested(
+        name, [at = std::move(at)](void* p) -> void* { return at(static_cast<T*>(p)); }, table);
     return *this;
   }
   // A member struct S whose fields sit in this same JSON object.
@@ -253,8 +255,7 @@ class OptionTable : public OptionTableBase {
   }
   // Sets every field present in `object` (a JSON object); absent fields keep their value. Wrong
   // types, unknown keys and values outside a string's choices are problems at their pointer.
-  void Read(const nlohmann::json& object, const std::string& where, T* options,
-            ProblemCollector* problems) const {
+  void Read(const nlohmann::json& object, const std::string& where, T* options, ProblemCollector* problems) const {
     ReadInto(object, where, options, problems);
   }
   // Every value outside its range and every broken rule, each at its pointer.

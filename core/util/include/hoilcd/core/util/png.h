@@ -4,11 +4,11 @@
 // files with IHDR, IDAT and IEND chunks are handled; the caller sends anything else to OpenCV.
 #pragma once
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
 #include <string>
 #include <string_view>
+
+#include <opencv2/core/mat.hpp>
 
 namespace hoilcd {
 

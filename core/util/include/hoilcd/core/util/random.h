@@ -31,8 +31,7 @@ constexpr uint64_t HashString(std::string_view s) {
 constexpr uint64_t HashCombine(uint64_t h) { return MixBits(h); }
 template <typename... Rest>
 constexpr uint64_t HashCombine(uint64_t h, uint64_t next, Rest... rest) {
-  return HashCombine(MixBits(h ^ (next + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2))),
-                     static_cast<uint64_t>(rest)...);
+  return HashCombine(MixBits(h ^ (next + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2))), static_cast<uint64_t>(rest)...);
 }
 
 // Chris Wellons' lowbias32: a 32-bit bijection with low avalanche bias, written once for

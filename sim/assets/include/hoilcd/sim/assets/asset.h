@@ -3,8 +3,6 @@
 // materials' `extras` and the asset's class, posture and contact points from the scene `extras`.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -12,6 +10,9 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace hoilcd {
 
@@ -73,7 +74,8 @@ struct Asset {
 // Throws InputError naming the file (and the glTF JSON path, e.g. "/materials/2/extras/emissivity")
 // on a missing file, a parse error, a non-triangle primitive, missing positions, a bad accessor, or
 // a bad extras value (unknown key, wrong type, temperature outside [-50, 200] °C, emissivity
-// outside (0, 1], a mount other than floor, wall or hanging). Materials without extras get the ThermalMaterial defaults, silently.
+// outside (0, 1], a mount other than floor, wall or hanging). Materials without extras get the ThermalMaterial
+// defaults, silently.
 Asset LoadAsset(const std::string& path);
 
 // The assets shipped with hoilcd: DataDir()/assets (data_dir.h).

@@ -2,9 +2,10 @@
 // instance's role, name, class and per-material thermal state, and how an asset is placed.
 #pragma once
 
-#include <Eigen/Core>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/sim/assets/asset.h"
 #include "hoilcd/sim/assets/surface_field.h"
@@ -19,10 +20,10 @@ struct InstanceMaterial {
   float temperature_top_c = 22;
   float emissivity = 0.9f;
   bool specular = false;
-  float roughness_um = 0;      // specular: rms roughness, µm (MirrorShare; rest of the reflection: ambient)
-  int class_id = 0;            // class of pixels showing this material (the room has several)
-  float blackbody_bottom = 0;  // band radiance at z = 0, W·m⁻²·sr⁻¹
-  float blackbody_top = 0;     // band radiance at z = room height
+  float roughness_um = 0;               // specular: rms roughness, µm (MirrorShare; rest of the reflection: ambient)
+  int class_id = 0;                     // class of pixels showing this material (the room has several)
+  float blackbody_bottom = 0;           // band radiance at z = 0, W·m⁻²·sr⁻¹
+  float blackbody_top = 0;              // band radiance at z = room height
   const SurfaceField* field = nullptr;  // not owned; null: uniform (fast path)
   // Band radiance this material reflects diffusely, W·m⁻²·sr⁻¹ (what its surroundings send it,
   // from the room's thermal solution); negative: the world's uniform environment.
@@ -33,20 +34,19 @@ enum class InstanceRole { kRoom, kTable, kChair, kPerson, kObject };
 
 struct InstanceInfo {
   InstanceRole role = InstanceRole::kObject;
-  std::string name;                     // "table 3", "person 7", "cup 2"
-  int class_id = 0;                     // the instance's class (its materials may refine it)
-  int person_id = -1;                   // stable id for people, else -1
-  int label = -1;                       // id written to the frame's instance channel: the
-                                        // instance itself, or a person's pelvis for every body part
-  bool fixture = false;                 // stands still all run (table, chair, scene object)
-  const Asset* asset = nullptr;         // null for the room
+  std::string name;                         // "table 3", "person 7", "cup 2"
+  int class_id = 0;                         // the instance's class (its materials may refine it)
+  int person_id = -1;                       // stable id for people, else -1
+  int label = -1;                           // id written to the frame's instance channel: the
+                                            // instance itself, or a person's pelvis for every body part
+  bool fixture = false;                     // stands still all run (table, chair, scene object)
+  const Asset* asset = nullptr;             // null for the room
   std::vector<InstanceMaterial> materials;  // per prototype material
-  const TriangleMesh* mesh = nullptr;   // the prototype's mesh (triangle -> material index)
+  const TriangleMesh* mesh = nullptr;       // the prototype's mesh (triangle -> material index)
   Eigen::Matrix4f object_from_world = Eigen::Matrix4f::Identity();  // for fields, kept by the World
 };
 
 // World transform of an asset placed at position with a yaw about z (and uniform scale).
-Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad,
-                                   double scale = 1.0);
+Eigen::Matrix4f PlacementTransform(const Eigen::Vector3d& position_m, double yaw_rad, double scale = 1.0);
 
 }  // namespace hoilcd

@@ -4,10 +4,11 @@
 // the pose presets (the seated postures, standing, a walking cycle).
 #pragma once
 
-#include <Eigen/Core>
 #include <array>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/sim/assets/asset.h"
 
@@ -20,10 +21,21 @@ extern const std::array<const char*, kCocoKeypointCount> kCocoKeypointNames;
 // Angles of the joints with explicit degrees of freedom, radians. Positive: flexion (forward),
 // bend to the left, twist to the left (counter-clockwise seen from above), abduction outwards.
 enum Dof {
-  kLumbarFlex, kLumbarBend, kLumbarTwist,
-  kNeckFlex, kNeckBend, kNeckTwist, kHeadNod,
-  kHipFlexLeft, kHipFlexRight, kHipAbductLeft, kHipAbductRight,
-  kKneeFlexLeft, kKneeFlexRight, kAnkleFlexLeft, kAnkleFlexRight,
+  kLumbarFlex,
+  kLumbarBend,
+  kLumbarTwist,
+  kNeckFlex,
+  kNeckBend,
+  kNeckTwist,
+  kHeadNod,
+  kHipFlexLeft,
+  kHipFlexRight,
+  kHipAbductLeft,
+  kHipAbductRight,
+  kKneeFlexLeft,
+  kKneeFlexRight,
+  kAnkleFlexLeft,
+  kAnkleFlexRight,
   kDofCount
 };
 

@@ -5,8 +5,9 @@
 // differs from the material's mean surroundings (the patch by a cold window receives less).
 #pragma once
 
-#include <Eigen/Core>
 #include <cstdint>
+
+#include <Eigen/Core>
 
 namespace hoilcd {
 

@@ -4,9 +4,10 @@
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/scene/scene.h"
@@ -93,7 +94,8 @@ constexpr int kMaxGeneratedSceneIndex = 10000;
 // Scene `index` of the run (seed, layout): layout is a family or "mixed" (the family drawn per
 // index). A scene depends on (seed, index, family, options) only, so `--layout FAMILY` regenerates
 // what `mixed` drew. Throws InputError when no draw in options.attempts passes every check.
-nlohmann::ordered_json GenerateScene(const std::string& layout, uint64_t seed, int index, const GeneratorOptions& options);
+nlohmann::ordered_json GenerateScene(const std::string& layout, uint64_t seed, int index,
+                                     const GeneratorOptions& options);
 
 // Scene `index` of `--layout floor`: a building floor of 2 x options.floor.rooms_per_side generated
 // rooms joined by a corridor, with a closed route through every room (floor_layout.cpp).
@@ -108,7 +110,8 @@ std::string FamilyOf(const std::string& layout, uint64_t seed, int index);
 // reachable on foot from the route's start, the route a closed clockwise loop keeping wall_m
 // from the walls and clearance_m from every footprint, every object inside the room, wall-mounted
 // ones touching a wall with their backs and ceiling lights touching the ceiling.
-std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World& world, double wall_m, double clearance_m);
+std::vector<std::string> GeneratedSceneProblems(const Scene& scene, const World& world, double wall_m,
+                                                double clearance_m);
 
 // A scene file's name in the output folder: "scene_0007_classroom.json".
 std::string GeneratedSceneFileName(int index, const std::string& family);

@@ -34,14 +34,14 @@ struct FrameImages {
 };
 
 struct FrameWriterOptions {
-  std::string dir;             // dataset folder
-  double display_min_c = 20;   // °C, 8-bit value 0
-  double display_max_c = 30;   // °C, 8-bit value 255
-  int workers = 1;             // encoder threads, at least 1
-  int capacity = 0;            // frames in flight (queued or being written) at most; 0: 2 x workers
-  bool thermal = true;         // write thermal/NNNNNN.png
-  bool radiometric = true;     // write radiometric/NNNNNN.png
-  bool exr = true;             // write exr/NNNNNN.exr (FrameImages::exr)
+  std::string dir;            // dataset folder
+  double display_min_c = 20;  // °C, 8-bit value 0
+  double display_max_c = 30;  // °C, 8-bit value 255
+  int workers = 1;            // encoder threads, at least 1
+  int capacity = 0;           // frames in flight (queued or being written) at most; 0: 2 x workers
+  bool thermal = true;        // write thermal/NNNNNN.png
+  bool radiometric = true;    // write radiometric/NNNNNN.png
+  bool exr = true;            // write exr/NNNNNN.exr (FrameImages::exr)
 };
 
 class FrameWriter {
@@ -79,10 +79,10 @@ class FrameWriter {
 
   std::mutex mutex_;  // guards everything below and *manifest_
   std::condition_variable work_ready_, frame_retired_;
-  std::deque<FrameImages> queue_;           // submitted, not yet taken by a worker
-  std::deque<int> in_flight_;               // submitted and not retired, in submission order
-  std::map<int, cv::Mat> written_;          // written, not retired: its 8-bit image
-  std::vector<std::string> unsynced_;       // files written since the last checkpoint took them
+  std::deque<FrameImages> queue_;      // submitted, not yet taken by a worker
+  std::deque<int> in_flight_;          // submitted and not retired, in submission order
+  std::map<int, cv::Mat> written_;     // written, not retired: its 8-bit image
+  std::vector<std::string> unsynced_;  // files written since the last checkpoint took them
   std::exception_ptr error_;
   bool stop_ = false;
   std::future<void> checkpoint_;

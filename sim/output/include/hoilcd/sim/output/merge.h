@@ -12,10 +12,10 @@
 namespace hoilcd {
 
 struct MergeResult {
-  int frames = 0;             // frames in the merged dataset
-  int shards = 0;             // shard folders joined
-  double seconds = 0;         // wall time, s
-  double video_seconds = 0;   // encoding (and in video mode decoding) thermal.mp4, s
+  int frames = 0;            // frames in the merged dataset
+  int shards = 0;            // shard folders joined
+  double seconds = 0;        // wall time, s
+  double video_seconds = 0;  // encoding (and in video mode decoding) thermal.mp4, s
 };
 
 // Throws InputError, before writing to output_dir, naming the folder and what was expected when

@@ -26,7 +26,7 @@ std::string EncodeVideo(const VideoOptions& video, const DatasetManifest& manife
 // Writes `mp4` as DIR/thermal.mp4 when the manifest's outputs have video, and in video mode with
 // thermal PNGs replaces every DIR/thermal/NNNNNN.png by its decoded frame (written on `threads`
 // threads, synced as one batch); each file's checksum goes into the manifest.
-void WriteVideoFiles(const std::string& dir, const std::string& mp4, const VideoOptions& video, int frames,
-                     int threads, DatasetManifest* manifest);
+void WriteVideoFiles(const std::string& dir, const std::string& mp4, const VideoOptions& video, int frames, int threads,
+                     DatasetManifest* manifest);
 
 }  // namespace hoilcd

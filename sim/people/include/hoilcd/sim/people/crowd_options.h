@@ -3,10 +3,11 @@
 // and people standing still.
 #pragma once
 
-#include <Eigen/Core>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/core/util/option_table.h"
 #include "hoilcd/sim/people/crowd_motion.h"
@@ -42,39 +43,39 @@ struct WalkerWeights {
 // opened. Each contact warms its footprint toward a steady excess with one time constant and
 // cools after release with another.
 struct ContactHeatOptions {
-  bool enabled;                            // false: chairs, cups and laptops keep their assets' temperatures
-  double seat_warm_time_constant_s;        // seat and backrest prints under a sitter, s (excess: furniture.seat_warmth_c)
-  double back_excess_k;                    // backrest print's steady excess, K
-  double table_excess_k, table_warm_time_constant_s, table_cool_time_constant_s;        // forearms on a table top
-  double keyboard_excess_k, keyboard_warm_time_constant_s, keyboard_cool_time_constant_s;  // typing hands on a laptop
+  bool enabled;                      // false: chairs, cups and laptops keep their assets' temperatures
+  double seat_warm_time_constant_s;  // seat and backrest prints under a sitter, s (excess: furniture.seat_warmth_c)
+  double back_excess_k;              // backrest print's steady excess, K
+  double table_excess_k, table_warm_time_constant_s, table_cool_time_constant_s;             // forearms on a table top
+  double keyboard_excess_k, keyboard_warm_time_constant_s, keyboard_cool_time_constant_s;    // typing hands on a laptop
   double handle_contact_fraction, handle_warm_time_constant_s, handle_cool_time_constant_s;  // a held cup handle
-  double cup_fill_c, cup_refill_c, cup_time_constant_s;  // drink poured, refilled when cooled to, Newton τ
+  double cup_fill_c, cup_refill_c, cup_time_constant_s;             // drink poured, refilled when cooled to, Newton τ
   double laptop_warm_time_constant_s, laptop_cool_time_constant_s;  // after opening, after leaving
-  double laptop_on_before_max_s;           // laptops in use at the start were opened up to this long before, s
+  double laptop_on_before_max_s;  // laptops in use at the start were opened up to this long before, s
 
   static const OptionTable<ContactHeatOptions>& Table();
 };
 
 struct CrowdOptions {
-  int people_per_table;                 // people seated per table when seating is empty
-  std::vector<SeatingSpec> seating;     // explicit seats (read by the scene, not the table)
+  int people_per_table;              // people seated per table when seating is empty
+  std::vector<SeatingSpec> seating;  // explicit seats (read by the scene, not the table)
   PostureWeights posture_weights;
   double skin_temperature_c, skin_temperature_sd_c;          // °C, mean and sd between people
   double clothing_temperature_c, clothing_temperature_sd_c;  // °C
-  double hair_temperature_c;            // °C
-  double height_scale_sd;               // sd of body size between people, fraction
+  double hair_temperature_c;                                 // °C
+  double height_scale_sd;                                    // sd of body size between people, fraction
   double breathing_amplitude_m, breathing_period_s;
   double sway_amplitude_deg, sway_period_s;
-  double posture_change_interval_s;     // mean time between posture changes, s (0: never)
-  ActivityOptions activity;             // activities, their blends, cups and laptops
-  double turnover_probability;          // per person and lap boundary
-  double heat_print_time_constant_s;    // how fast a left seat cools, s
-  ContactHeatOptions contact_heat;      // prints, cups and laptops (docs/models/contact_heat.md)
-  int walkers;                          // people walking the robot's route
+  double posture_change_interval_s;   // mean time between posture changes, s (0: never)
+  ActivityOptions activity;           // activities, their blends, cups and laptops
+  double turnover_probability;        // per person and lap boundary
+  double heat_print_time_constant_s;  // how fast a left seat cools, s
+  ContactHeatOptions contact_heat;    // prints, cups and laptops (docs/models/contact_heat.md)
+  int walkers;                        // people walking the robot's route
   WalkerWeights walker_behaviours;
-  std::vector<StandingSpec> standing;   // people standing still (read by the scene)
-  double bald_fraction;                 // people whose scalp reads as skin
-  GarmentOptions garments;              // clothing and skin temperature patterns (garments.h)
+  std::vector<StandingSpec> standing;  // people standing still (read by the scene)
+  double bald_fraction;                // people whose scalp reads as skin
+  GarmentOptions garments;             // clothing and skin temperature patterns (garments.h)
 
   CrowdOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /crowd), unit, default, range, description.

@@ -15,14 +15,14 @@ namespace hoilcd {
 
 // The scene's /crowd/garments.
 struct GarmentOptions {
-  bool enabled;                // clothing from the ensemble's heat balance and within-garment fields
-  bool skin_pattern;           // face, neck, hands, bare forearms at published temperatures; hair texture
-  double air_speed_m_s;        // air speed relative to the body, m/s (ISO 7730 h_c)
-  double time_constant_s;      // how fast a garment's surface follows an activity change, s
-  double fold_amplitude_k;     // folds: banded pattern along a limb, peak K
-  double gap_amplitude_k;      // broad patches where the air gap under the fabric varies, peak K
-  double contact_warming_k;    // where fabric presses on skin (shoulders, seated thighs), K
-  double hem_cooling_k;        // hems, cuffs and loose hanging fabric, K
+  bool enabled;              // clothing from the ensemble's heat balance and within-garment fields
+  bool skin_pattern;         // face, neck, hands, bare forearms at published temperatures; hair texture
+  double air_speed_m_s;      // air speed relative to the body, m/s (ISO 7730 h_c)
+  double time_constant_s;    // how fast a garment's surface follows an activity change, s
+  double fold_amplitude_k;   // folds: banded pattern along a limb, peak K
+  double gap_amplitude_k;    // broad patches where the air gap under the fabric varies, peak K
+  double contact_warming_k;  // where fabric presses on skin (shoulders, seated thighs), K
+  double hem_cooling_k;      // hems, cuffs and loose hanging fabric, K
 
   GarmentOptions();  // the registered defaults
   static const OptionTable<GarmentOptions>& Table();
@@ -53,8 +53,8 @@ Ensemble DrawEnsemble(uint64_t seed, int person_id);
 
 // The room as the heat balance sees it.
 struct ThermalEnvironment {
-  double air_c = 22;          // t_a
-  double radiant_c = 22;      // mean radiant temperature t_r
+  double air_c = 22;      // t_a
+  double radiant_c = 22;  // mean radiant temperature t_r
   double air_speed_m_s = 0.1;
 };
 

@@ -5,13 +5,14 @@
 // (priority planning: no two footprints ever meet).
 #pragma once
 
-#include <Eigen/Core>
 #include <array>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/robot/robot.h"
@@ -81,7 +82,7 @@ class FreeSpace {
  private:
   std::vector<Obstacle2D> obstacles_;
   double radius_m_;
-  std::vector<Eigen::Vector2d> nodes_;                     // free corners of the grown footprints
+  std::vector<Eigen::Vector2d> nodes_;                      // free corners of the grown footprints
   std::vector<std::vector<std::pair<int, double>>> edges_;  // visible neighbours, length m
 };
 
@@ -95,14 +96,14 @@ struct Doorway {
 Eigen::Vector2d DoorThreshold(const Doorway& door, double radius_m);
 
 struct WalkerSegment {
-  std::string behaviour;           // one of kWalkerBehaviours, "enter", "leave" or "gone"
-  double start_s = 0, end_s = 0;   // time
-  double u_start = 0, rate = 1;    // on the route: route time u(t) = u_start + rate (t - start_s),
-                                   // the place the robot passes at time u
+  std::string behaviour;                // one of kWalkerBehaviours, "enter", "leave" or "gone"
+  double start_s = 0, end_s = 0;        // time
+  double u_start = 0, rate = 1;         // on the route: route time u(t) = u_start + rate (t - start_s),
+                                        // the place the robot passes at time u
   std::vector<Eigen::Vector2d> path_m;  // "cross", "enter", "leave": walked from start_s at speed_m_s
                                         // (not on the route; a door walk starts or ends outside)
   double speed_m_s = 0;
-  double pass_offset_m = 0;        // "overtake": to the left of the route (< 0: right) while passing
+  double pass_offset_m = 0;  // "overtake": to the left of the route (< 0: right) while passing
 };
 
 // A route-following walker steps up to this far aside where the robot's path passes closer to
@@ -110,10 +111,10 @@ struct WalkerSegment {
 constexpr double kWalkerMaxSidestepM = 0.15;
 
 struct WalkerPlan {
-  std::vector<WalkerSegment> segments;  // back to back from time 0
-  double radius_m = kWalkerRadiusM;     // footprint
+  std::vector<WalkerSegment> segments;     // back to back from time 0
+  double radius_m = kWalkerRadiusM;        // footprint
   std::shared_ptr<const FreeSpace> space;  // where its body fits (null: anywhere)
-  double lateral_m = 0;                 // on the route: this far to its left, m
+  double lateral_m = 0;                    // on the route: this far to its left, m
   // The segment at time t (the last one beyond the end).
   const WalkerSegment& At(double time_s) const;
   double RouteTime(double time_s) const;
@@ -137,7 +138,7 @@ WalkerPlacement PlaceWalker(const WalkerPlan& plan, const RobotTrack& robot, dou
 // A bout that the room leaves no space for here and now (no free way in or out, a clash) is drawn
 // again among the others.
 WalkerPlan PlanWalker(const std::map<std::string, double>& weights, uint64_t seed, int walker, double duration_s,
-                      std::shared_ptr<const FreeSpace> space, const RobotTrack& robot, const std::vector<WalkerPlan>& others,
-                      const std::vector<Doorway>& doors, double lateral_m);
+                      std::shared_ptr<const FreeSpace> space, const RobotTrack& robot,
+                      const std::vector<WalkerPlan>& others, const std::vector<Doorway>& doors, double lateral_m);
 
 }  // namespace hoilcd

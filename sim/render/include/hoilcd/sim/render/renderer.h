@@ -3,11 +3,12 @@
 // plus depth, instance id and class id. The sensor model turns radiance into temperatures.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/core/geometry/camera.h"
 #include "hoilcd/sim/scene/render_options.h"
@@ -16,10 +17,10 @@
 namespace hoilcd {
 
 struct FrameBuffers {
-  cv::Mat radiance;  // CV_32F, W·m⁻²·sr⁻¹ (8–14 µm band)
-  cv::Mat depth_m;   // CV_32F, distance along the camera's z axis, m
-  cv::Mat instance;  // CV_32S, World instance label (a person's parts: the person's instance; -1: nothing)
-  cv::Mat class_id;  // CV_32S, World class id
+  cv::Mat radiance;     // CV_32F, W·m⁻²·sr⁻¹ (8–14 µm band)
+  cv::Mat depth_m;      // CV_32F, distance along the camera's z axis, m
+  cv::Mat instance;     // CV_32S, World instance label (a person's parts: the person's instance; -1: nothing)
+  cv::Mat class_id;     // CV_32S, World class id
   int edge_pixels = 0;  // how many pixels were supersampled
 };
 
@@ -40,10 +41,10 @@ class FrameRenderer {
  private:
   // A specular hit whose radiance waits for its reflection ray.
   struct PendingReflection {
-    float* radiance;  // where the finished radiance goes
+    float* radiance;                      // where the finished radiance goes
     float emissivity, mirror, blackbody;  // mirror: MirrorShare of the hit
     float environment;                    // what the hit's material reflects diffusely
-    Eigen::Vector3f origin, direction;  // the reflection ray
+    Eigen::Vector3f origin, direction;    // the reflection ray
   };
   // At a hit `point` (world frame) at relative height h: the band radiance the material emits as a
   // blackbody (linear in height between its bottom and top values, or through its field), and the
@@ -56,9 +57,9 @@ class FrameRenderer {
                             float environment) const;
   // Per worker, kept between frames.
   struct Scratch {
-    std::vector<int> edge_pixels;        // a chunk's edge pixels, 4×4 block by block
-    std::vector<uint8_t> edge_flags;     // the chunk's pixels: 1 on an edge
-    std::vector<float> samples;          // their samples' radiance, n×n per pixel
+    std::vector<int> edge_pixels;     // a chunk's edge pixels, 4×4 block by block
+    std::vector<uint8_t> edge_flags;  // the chunk's pixels: 1 on an edge
+    std::vector<float> samples;       // their samples' radiance, n×n per pixel
     std::vector<PendingReflection> pending;
   };
   // Radiance of `count` rays from `origin` of one packet into out[slots[i]]: per ray what Shade
@@ -67,9 +68,8 @@ class FrameRenderer {
   // With `labels`, also the hit's instance label, class id and label·4096 + material (or -1,
   // 0, -1 on a miss) at labels[slots[i]], class_ids[...], materials[...].
   void ShadePacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
-                   const RayHitPacket& hits, float* out, const int* slots,
-                   std::vector<PendingReflection>* pending, int* labels = nullptr,
-                   int* class_ids = nullptr, int* materials = nullptr) const;
+                   const RayHitPacket& hits, float* out, const int* slots, std::vector<PendingReflection>* pending,
+                   int* labels = nullptr, int* class_ids = nullptr, int* materials = nullptr) const;
   void CastReflections(std::vector<PendingReflection>* pending) const;
   // The camera of one frame: world_from_cam's rotation and the rays' origin.
   struct RayFrame {

@@ -5,8 +5,9 @@
 // a table or chair in the image, the ground truth for DLCD's HOI points).
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "hoilcd/core/dataset/dataset.h"
 #include "hoilcd/core/geometry/camera.h"
@@ -20,8 +21,7 @@ namespace hoilcd {
 // something hides them completely, with visible fraction 0 and the box they would cover alone;
 // with their contacts and 17 COCO keypoints projected. People are looked at on `threads`
 // threads (0: every core); the result does not depend on it.
-std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics,
-                                         const CameraPose& pose, const cv::Mat& instance_ids,
-                                         const cv::Mat& depth_m, int threads = 1);
+std::vector<PersonRecord> VisiblePersons(const World& world, const CameraIntrinsics& intrinsics, const CameraPose& pose,
+                                         const cv::Mat& instance_ids, const cv::Mat& depth_m, int threads = 1);
 
 }  // namespace hoilcd

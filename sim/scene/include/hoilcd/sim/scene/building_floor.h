@@ -4,19 +4,20 @@
 // reachable through doorways, no route leg through a wall (docs/guide/floor.md).
 #pragma once
 
-#include <Eigen/Geometry>
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json_fwd.hpp>
 
 #include "hoilcd/core/util/error.h"
 
 namespace hoilcd {
 
 struct FloorDoor {
-  double center_m = 0;   // m, along the wall from its from_m end
-  double width_m = 1.2;  // m, clear width
-  double height_m = 2.1; // m, clear height (a lintel above)
+  double center_m = 0;    // m, along the wall from its from_m end
+  double width_m = 1.2;   // m, clear width
+  double height_m = 2.1;  // m, clear height (a lintel above)
 };
 
 // A floor-to-ceiling slab along x or y: its centre line from from_m to to_m.
@@ -65,7 +66,8 @@ std::vector<std::vector<int>> RoomGraph(const FloorPlan& floor, double height_m)
 bool SegmentMeetsBox(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::AlignedBox2d& box);
 
 // The wall whose full-height part the segment a-b comes within margin_m of (-1: none).
-int WallCrossedBy(const FloorPlan& floor, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m, double height_m);
+int WallCrossedBy(const FloorPlan& floor, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m,
+                  double height_m);
 
 // Every problem of the floor within a room box of size_m, each at its JSON pointer under `file`:
 // rooms inside the box and apart, walls along x or y inside the box, doorways within their walls

@@ -10,12 +10,12 @@
 namespace hoilcd {
 
 struct CameraOptions {
-  int width_px;           // image width, px
-  int height_px;          // image height, px
-  double hfov_deg;        // horizontal field of view, deg
-  SensorOptions sensor;   // its fields sit in /camera itself
-  RenderOptions render;   // its fields sit in /camera itself
-  VideoOptions video;     // /camera/video
+  int width_px;          // image width, px
+  int height_px;         // image height, px
+  double hfov_deg;       // horizontal field of view, deg
+  SensorOptions sensor;  // its fields sit in /camera itself
+  RenderOptions render;  // its fields sit in /camera itself
+  VideoOptions video;    // /camera/video
 
   CameraOptions();  // the registered defaults
   // Every field once (the sensor's and renderer's tables flattened in, the video's nested).

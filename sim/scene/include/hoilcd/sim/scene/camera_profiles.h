@@ -3,9 +3,10 @@
 // /camera/profile; every value it sets stays overridable by the scene or --set.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace hoilcd {
 
@@ -17,9 +18,9 @@ struct CameraProfileValue {
 };
 
 struct CameraProfile {
-  std::string name;       // the value of /camera/profile
-  std::string camera;     // maker and model
-  std::string documents;  // the documents the values come from
+  std::string name;                        // the value of /camera/profile
+  std::string camera;                      // maker and model
+  std::string documents;                   // the documents the values come from
   std::vector<CameraProfileValue> values;  // one per CameraProfileFields() entry, in that order
 };
 

@@ -3,10 +3,11 @@
 // schema, so the resolved scene is complete. The typed Scene is what the simulator reads.
 #pragma once
 
-#include <Eigen/Core>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/sim/people/crowd_options.h"
@@ -57,20 +58,20 @@ struct ObjectSpec {
 
 // One recording run of /runs, resolved (docs/guide/runs.md).
 struct RunSpec {
-  double time_of_day_h = 10;  // h, local solar time at the run's start
-  int day = 0;                // days after the first run's day
-  int frames = 0;             // frames of the run
-  uint64_t seed = 0;          // the run's seed (Scene::run_seed of its scene)
+  double time_of_day_h = 10;           // h, local solar time at the run's start
+  int day = 0;                         // days after the first run's day
+  int frames = 0;                      // frames of the run
+  uint64_t seed = 0;                   // the run's seed (Scene::run_seed of its scene)
   std::vector<std::string> overrides;  // /runs/N/set as "KEY=VALUE", applied to the run's scene only
-  double start_time_s = 0;    // s, its start after the first run's
+  double start_time_s = 0;             // s, its start after the first run's
 };
 
 // The typed, fully resolved scene. Field meanings and units: scenes/scene.schema.json.
 struct Scene {
-  std::string file;                 // where it was loaded from (for messages)
-  nlohmann::json resolved;          // the resolved document (dataset's scene.json)
-  std::string hash;                 // checksum of the resolved document
-  std::string assets_dir;           // absolute folder searched for asset names
+  std::string file;                   // where it was loaded from (for messages)
+  nlohmann::json resolved;            // the resolved document (dataset's scene.json)
+  std::string hash;                   // checksum of the resolved document
+  std::string assets_dir;             // absolute folder searched for asset names
   std::vector<std::string> warnings;  // what it may not mean: a --set camera profile's values the file sets
 
   std::string name;
@@ -78,12 +79,12 @@ struct Scene {
   int frames = 1996;
   double frame_rate_hz = 25;
 
-  RoomOptions room;                 // /room
-  FloorPlan floor;                  // /floor: rooms and interior walls (empty: one room)
+  RoomOptions room;  // /room
+  FloorPlan floor;   // /floor: rooms and interior walls (empty: one room)
   std::vector<TableSpec> tables;
-  FurnitureOptions furniture;       // /furniture (asset names resolved to paths)
+  FurnitureOptions furniture;  // /furniture (asset names resolved to paths)
 
-  CrowdOptions crowd;               // /crowd
+  CrowdOptions crowd;  // /crowd
 
   std::vector<ObjectSpec> objects;  // distractor switches already applied
   CameraOptions camera;             // /camera: image, sensor, renderer, video
@@ -93,7 +94,7 @@ struct Scene {
   // /runs: the recording runs, each rendered from SceneOfRun (empty: one run, this scene; then
   // frames is the sequence's, else the runs' total).
   std::vector<RunSpec> runs;
-  uint64_t run_seed = 1;      // what differs between runs (crowd, robot and camera noise) draws from it: seed, or the run's
+  uint64_t run_seed = 1;  // what differs between runs (crowd, robot and camera noise) draws from it: seed, or the run's
   double clock_offset_s = 0;  // s, this run's start after the first run's (the HVAC cycle runs on through it)
 };
 
@@ -113,7 +114,6 @@ Scene LoadScene(const std::string& path, const std::vector<std::string>& overrid
 InputError LocatedInScene(const Scene& scene, const InputError& error);
 
 // The same from an in-memory document (file names messages).
-Scene SceneFromJson(nlohmann::json doc, const std::string& file,
-                    const std::vector<std::string>& overrides = {});
+Scene SceneFromJson(nlohmann::json doc, const std::string& file, const std::vector<std::string>& overrides = {});
 
 }  // namespace hoilcd

@@ -12,14 +12,13 @@ namespace hoilcd {
 
 // Planck spectral radiance integrated over [lambda_min_um, lambda_max_um], by composite Simpson
 // integration with `steps` intervals (rounded up to even). The reference: accurate, slow.
-double IntegratePlanckBand(double temperature_k, double lambda_min_um = 8.0,
-                           double lambda_max_um = 14.0, int steps = 20000);
+double IntegratePlanckBand(double temperature_k, double lambda_min_um = 8.0, double lambda_max_um = 14.0,
+                           int steps = 20000);
 
 // The same band radiance from the closed-form series of the Planck integral
 // (∫ x³/(eˣ−1) dx = Σₙ e^{−nx}(x³/n + 3x²/n² + 6x/n³ + 6/n⁴)); exact to double precision
 // and ~1000× faster than IntegratePlanckBand. Used to fill BandRadianceTable.
-double PlanckBandSeries(double temperature_k, double lambda_min_um = 8.0,
-                        double lambda_max_um = 14.0);
+double PlanckBandSeries(double temperature_k, double lambda_min_um = 8.0, double lambda_max_um = 14.0);
 
 // Band radiance vs temperature on a 0.05 K grid with linear interpolation (relative error
 // below 1e-6 against direct integration at 250–350 K), and its exact inverse: the inverse
@@ -27,8 +26,8 @@ double PlanckBandSeries(double temperature_k, double lambda_min_um = 8.0,
 // up to float rounding. Temperatures outside [t_min_k, t_max_k] are clamped.
 class BandRadianceTable {
  public:
-  explicit BandRadianceTable(double lambda_min_um = 8.0, double lambda_max_um = 14.0,
-                             double t_min_k = 200.0, double t_max_k = 500.0);
+  explicit BandRadianceTable(double lambda_min_um = 8.0, double lambda_max_um = 14.0, double t_min_k = 200.0,
+                             double t_max_k = 500.0);
 
   float RadianceFromCelsius(float temperature_c) const;  // fast, per pixel
   float CelsiusFromRadiance(float radiance) const;       // fast inverse, per pixel
@@ -47,17 +46,16 @@ class BandRadianceTable {
 
  private:
   double lambda_min_um_, lambda_max_um_, t_min_k_, t_max_k_;
-  double step_k_;                       // temperature grid spacing
-  std::vector<double> radiance_;        // radiance_[i] = L(t_min_k_ + i·step_k_)
-  double inverse_bin_;                  // radiance width of one inverse bin
-  std::vector<int> first_segment_;      // per radiance bin: the segment holding its lower edge
+  double step_k_;                   // temperature grid spacing
+  std::vector<double> radiance_;    // radiance_[i] = L(t_min_k_ + i·step_k_)
+  double inverse_bin_;              // radiance width of one inverse bin
+  std::vector<int> first_segment_;  // per radiance bin: the segment holding its lower edge
 };
 
 // Radiance leaving a surface towards the camera: L = ε·B(T) + (1−ε)·L_env. L_env is the room's
 // ambient radiance for diffuse surfaces, or the radiance of one traced reflection ray for
 // specular ones; the renderer supplies it.
-inline float SurfaceRadiance(float emissivity, float blackbody_radiance,
-                             float environment_radiance) {
+inline float SurfaceRadiance(float emissivity, float blackbody_radiance, float environment_radiance) {
   return emissivity * blackbody_radiance + (1.0f - emissivity) * environment_radiance;
 }
 

@@ -16,40 +16,40 @@
 
 namespace hoilcd {
 
-// Every effect has a switch (defaults and ranges: Table() in sensor.cpp). Figures in kelvin are specified at reference_temperature_c (the
-// NETD convention, 300 K) and applied in the signal (radiance) domain through the camera's
+// Every effect has a switch (defaults and ranges: Table() in sensor.cpp). Figures in kelvin are specified at
+// reference_temperature_c (the NETD convention, 300 K) and applied in the signal (radiance) domain through the camera's
 // responsivity dL/dT there, as a real detector does: on colder surfaces the same signal noise
 // reads as slightly more temperature noise, on hotter ones as less.
 struct SensorOptions {
-  bool optics_blur;               // Gaussian point-spread function on the radiance
-  double psf_sigma_px;             // PSF standard deviation, px (FWHM 1.18 px)
-  bool temporal_noise;            // white noise, new every frame
-  double netd_k;                 // noise-equivalent temperature difference (1-σ), K
-  bool fixed_pattern;             // residual non-uniformity after factory calibration
-  double fpn_offset_k;            // per-pixel offset (1-σ), K
-  double fpn_gain_sigma;         // per-pixel relative gain error (1-σ), fraction
-  double column_stripe_k;         // per-column offset (1-σ), K
-  double shutter_temperature_c;   // FFC shutter temperature: gain errors vanish there, °C
-  bool drift;                     // global offset ramp between flat-field corrections
-  double drift_k_per_min;          // 1-σ of the ramp's random slope per FFC interval, K/min
-  double ffc_interval_s;          // time between flat-field corrections, s (0: none by time)
-  double ffc_temperature_delta_k;  // an FFC also once the housing warmed this much since the last, K (0: off)
-  bool lens_shading;              // radial shading that grows as the housing warms after an FFC
+  bool optics_blur;                  // Gaussian point-spread function on the radiance
+  double psf_sigma_px;               // PSF standard deviation, px (FWHM 1.18 px)
+  bool temporal_noise;               // white noise, new every frame
+  double netd_k;                     // noise-equivalent temperature difference (1-σ), K
+  bool fixed_pattern;                // residual non-uniformity after factory calibration
+  double fpn_offset_k;               // per-pixel offset (1-σ), K
+  double fpn_gain_sigma;             // per-pixel relative gain error (1-σ), fraction
+  double column_stripe_k;            // per-column offset (1-σ), K
+  double shutter_temperature_c;      // FFC shutter temperature: gain errors vanish there, °C
+  bool drift;                        // global offset ramp between flat-field corrections
+  double drift_k_per_min;            // 1-σ of the ramp's random slope per FFC interval, K/min
+  double ffc_interval_s;             // time between flat-field corrections, s (0: none by time)
+  double ffc_temperature_delta_k;    // an FFC also once the housing warmed this much since the last, K (0: off)
+  bool lens_shading;                 // radial shading that grows as the housing warms after an FFC
   double housing_warming_k_per_min;  // housing temperature rise after each FFC, K/min
-  double vignetting_k_per_k;       // corner minus centre per K of housing warming, K/K
-  double narcissus_k_per_k;        // depth of the centred dark spot per K of warming, K/K
-  double narcissus_sigma;         // spot radius (1-σ) as a fraction of the half-diagonal
-  bool ffc_freeze;                // output repeats the last frame while the shutter is shut
-  double ffc_freeze_s;             // freeze length at each FFC, s
-  bool time_constant;             // bolometer thermal lag (motion smear)
-  double time_constant_s;        // bolometer thermal time constant, s
-  bool quantisation;              // output rounded to a temperature step
-  double quantisation_step_k;     // output temperature step, K
-  double reference_temperature_c;  // scene temperature at which K figures hold, °C
-  double emissivity_setting;       // emissivity the camera assumes when converting, 0–1
-  double reflected_temperature_c;   // reflected temperature assumed when ε setting < 1, °C
-  double display_min_c;           // 8-bit display window: maps to 0, °C
-  double display_max_c;           // 8-bit display window: maps to 255, °C
+  double vignetting_k_per_k;         // corner minus centre per K of housing warming, K/K
+  double narcissus_k_per_k;          // depth of the centred dark spot per K of warming, K/K
+  double narcissus_sigma;            // spot radius (1-σ) as a fraction of the half-diagonal
+  bool ffc_freeze;                   // output repeats the last frame while the shutter is shut
+  double ffc_freeze_s;               // freeze length at each FFC, s
+  bool time_constant;                // bolometer thermal lag (motion smear)
+  double time_constant_s;            // bolometer thermal time constant, s
+  bool quantisation;                 // output rounded to a temperature step
+  double quantisation_step_k;        // output temperature step, K
+  double reference_temperature_c;    // scene temperature at which K figures hold, °C
+  double emissivity_setting;         // emissivity the camera assumes when converting, 0–1
+  double reflected_temperature_c;    // reflected temperature assumed when ε setting < 1, °C
+  double display_min_c;              // 8-bit display window: maps to 0, °C
+  double display_max_c;              // 8-bit display window: maps to 255, °C
 
   SensorOptions();  // the registered defaults
   // Every field once: JSON name (the scene's /camera), unit, default, range, description.
@@ -142,23 +142,23 @@ class SensorModel {
   SensorOptions options_;
   int width_, height_;
   double frame_rate_hz_;
-  double ffc_period_s_;        // FfcPeriodS(options_)
+  double ffc_period_s_;    // FfcPeriodS(options_)
   uint64_t seed_;          // fixed pattern
   uint64_t session_seed_;  // temporal noise, drift
   const BandRadianceTable* table_;
   int num_threads_;
-  double responsivity_;        // dL/dT at the reference temperature, W·m⁻²·sr⁻¹·K⁻¹
-  double shutter_radiance_;    // band radiance of the shutter
-  double reflected_radiance_;  // band radiance of the assumed reflected temperature
-  float blend_;                // a = 1 − exp(−Δt/τ)
-  cv::Mat gain_;               // CV_32F per-pixel relative gain error
-  cv::Mat offset_signal_;      // CV_32F per-pixel + column offset, radiance units
+  double responsivity_;                 // dL/dT at the reference temperature, W·m⁻²·sr⁻¹·K⁻¹
+  double shutter_radiance_;             // band radiance of the shutter
+  double reflected_radiance_;           // band radiance of the assumed reflected temperature
+  float blend_;                         // a = 1 − exp(−Δt/τ)
+  cv::Mat gain_;                        // CV_32F per-pixel relative gain error
+  cv::Mat offset_signal_;               // CV_32F per-pixel + column offset, radiance units
   std::vector<float> noise_scratch_;    // per worker: one row of temporal noise
   std::vector<double> signal_scratch_;  // per worker: one row of signal
-  cv::Mat previous_;           // blurred radiance of the last frame applied (empty: none yet)
-  cv::Mat spare_;              // the buffer the next frame's blurred radiance goes into
-  cv::Mat shown_;              // output of the last frame not frozen (empty: none yet)
-  cv::Mat shading_shape_;      // CV_32F per-pixel v·ρ² − n·spot(ρ), K per K of housing warming
+  cv::Mat previous_;                    // blurred radiance of the last frame applied (empty: none yet)
+  cv::Mat spare_;                       // the buffer the next frame's blurred radiance goes into
+  cv::Mat shown_;                       // output of the last frame not frozen (empty: none yet)
+  cv::Mat shading_shape_;               // CV_32F per-pixel v·ρ² − n·spot(ρ), K per K of housing warming
   int last_frame_ = -1;
 };
 

@@ -5,9 +5,10 @@
 // a frame's state never depends on the frames rendered before it.
 #pragma once
 
-#include <Eigen/Core>
 #include <limits>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/sim/assets/surface_field.h"
 

@@ -34,20 +34,20 @@ namespace hoilcd {
 struct Person {
   int person_id = 0;
   bool seated = true;
-  int table = -1, seat = -1;                 // seated people
-  double arrive_s = 0, leave_s = 1e30;       // present in [arrive_s, leave_s)
-  std::vector<std::pair<double, std::string>> postures;  // (from time s, posture), ascending
-  std::vector<ActivityEpisode> activities;   // seated: what the person does, in time order
-  std::array<int, Skeleton::kPartCount> parts{};  // instance of each body part
-  int instance = -1;                         // the pelvis part: the person's id in the frames
-  int cup = -1, laptop = -1;                 // instances of the person's cup and laptop, or -1
+  int table = -1, seat = -1;                              // seated people
+  double arrive_s = 0, leave_s = 1e30;                    // present in [arrive_s, leave_s)
+  std::vector<std::pair<double, std::string>> postures;   // (from time s, posture), ascending
+  std::vector<ActivityEpisode> activities;                // seated: what the person does, in time order
+  std::array<int, Skeleton::kPartCount> parts{};          // instance of each body part
+  int instance = -1;                                      // the pelvis part: the person's id in the frames
+  int cup = -1, laptop = -1;                              // instances of the person's cup and laptop, or -1
   Eigen::Vector3d cup_at_m = Eigen::Vector3d::Zero();     // cup's resting place, seat frame
   Eigen::Vector3d laptop_at_m = Eigen::Vector3d::Zero();  // laptop's place, seat frame
   Eigen::Matrix4f world_from_seat = Eigen::Matrix4f::Identity();
   Eigen::Matrix4d table_from_seat = Eigen::Matrix4d::Identity();  // seated: their table's frame
-  std::array<double, 2> side_room_m{1, 1};   // seated: the same on the left (+y) and on the right
-  double table_edge_m = 0.30;                // seated: seat centre to the table's near edge, m
-  bool at_table_top = true;                  // seated: their hands reach a table top (not on a sofa)
+  std::array<double, 2> side_room_m{1, 1};                        // seated: the same on the left (+y) and on the right
+  double table_edge_m = 0.30;                                     // seated: seat centre to the table's near edge, m
+  bool at_table_top = true;  // seated: their hands reach a table top (not on a sofa)
   double height_scale = 1;
   double sway_phase_rad = 0, sway_period_s = 7, breathing_phase_rad = 0;
   double lead_s = 5, lead_amplitude_s = 1.5, lead_period_s = 20, lead_phase_rad = 0;  // walkers (< 0: stands still)
@@ -57,8 +57,8 @@ struct Person {
   std::vector<ClothingStep> clothing_steps;  // their garments' targets as their activity changes
   // State at the current time.
   bool present = false;
-  std::string posture;                       // base posture ("seated_upright", "walking", ...)
-  std::string activity;                      // seated: current activity ("idle", "drinking", ...)
+  std::string posture;                                            // base posture ("seated_upright", "walking", ...)
+  std::string activity;                                           // seated: current activity ("idle", "drinking", ...)
   std::array<Eigen::Vector3d, kCocoKeypointCount> keypoints_m{};  // world frame
   std::vector<std::pair<std::string, Eigen::Vector3d>> contacts_m;  // world frame: seat, floor, table
 };
@@ -73,8 +73,8 @@ class CrowdStage {
  public:
   virtual ~CrowdStage() = default;
   // Adds an instance of `asset` and returns its id (ids are given in call order).
-  virtual int Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role,
-                    std::string name, double temperature_offset_c) = 0;
+  virtual int Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role, std::string name,
+                    double temperature_offset_c) = 0;
   virtual InstanceInfo& MutableInstance(int id) = 0;
   virtual void Move(int instance, const Eigen::Matrix4f& world_from_object) = 0;
   // Sets a material's band radiances from its temperatures.
@@ -138,7 +138,7 @@ class Crowd {
   Person& AddStandingPerson(const std::string& kind, Rng* rng);
   // Places the body parts of a person (hidden until SetTime) with their temperatures.
   std::array<int, Skeleton::kPartCount> AddBody(int person_id, const std::string& name, double skin_c,
-                                                 double clothing_c, double hair_c);
+                                                double clothing_c, double hair_c);
   void SetPersonTemperatures(int instance, const Asset& body, double skin_c, double clothing_c, double hair_c);
   // Keeps a seated person out of their table's top: arms are lifted onto it, the trunk leans
   // less where it would meet the edge (the chairs stand irregularly, so fixed poses cannot).
@@ -176,7 +176,8 @@ class Crowd {
     int instance = -1;
     bool cup = false;
     double from_s = 0, to_s = 0;  // cup: poured at from_s; laptop: open from from_s to to_s
-    std::vector<InstanceMaterial> steady;  // the asset's materials (a laptop in use, a cup as poured at the asset's drink temperature)
+    std::vector<InstanceMaterial>
+        steady;  // the asset's materials (a laptop in use, a cup as poured at the asset's drink temperature)
   };
   // crowd_clothing.cpp: draws a person's garments and gives their parts' materials the garment
   // and skin fields (crowd.garments); sets their garments' temperatures at a time.
@@ -186,26 +187,26 @@ class Crowd {
   AssetLibrary& assets_;
   CrowdStage& stage_;
   std::unique_ptr<Skeleton> skeleton_;
-  std::vector<Eigen::Matrix4d> world_from_table_;  // per table
+  std::vector<Eigen::Matrix4d> world_from_table_;    // per table
   std::vector<int> table_instance_;                  // per table: its instance
   std::vector<Eigen::AlignedBox3f> table_bounds_m_;  // per table: its asset's bounds (top at max z)
   std::vector<SeatArrangement> table_seats_;         // per table: how it seats people
   std::vector<Person> people_;
   std::vector<Seat> seats_;
-  RobotTrack robot_;                          // the robot's run (Plan)
+  RobotTrack robot_;  // the robot's run (Plan)
   std::vector<DatasetEvent> events_;
   std::vector<std::string> warnings_;
   std::vector<WalkerPlan> walker_plans_;
-  std::vector<Doorway> doors_;                // the room's doors (walkers come and go by them)
+  std::vector<Doorway> doors_;  // the room's doors (walkers come and go by them)
   uint64_t seed_ = 1;
   double frame_rate_hz_ = 25, duration_s_ = 80;
   CrowdOptions options_;
   double seat_warmth_c_ = 2;
-  double room_c_ = 22;                        // the room's air, °C: what cups and laptops cool toward
+  double room_c_ = 22;                                 // the room's air, °C: what cups and laptops cool toward
   std::map<int, std::unique_ptr<PrintField>> prints_;  // contact prints by instance
   std::vector<PropHeat> prop_heat_;
   double sway_amplitude_rad_ = 0;
-  std::string scene_file_;  // named in errors found by Plan
+  std::string scene_file_;                             // named in errors found by Plan
   ThermalEnvironment thermal_environment_;             // the room as the garments' heat balance sees it
   std::vector<std::unique_ptr<SurfaceField>> fields_;  // garment and skin fields the materials point to
 };

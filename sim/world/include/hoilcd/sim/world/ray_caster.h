@@ -3,10 +3,11 @@
 // every frame (people move by transform updates, never by rebuilding geometry).
 #pragma once
 
-#include <Eigen/Core>
 #include <limits>
 #include <memory>
 #include <vector>
+
+#include <Eigen/Core>
 
 struct RTCSceneTy;  // Embree's scene type (RTCScene is RTCSceneTy*)
 
@@ -15,9 +16,9 @@ namespace hoilcd {
 struct TriangleMesh;
 
 struct RayHit {
-  float distance_m = 0;     // along the (unit) ray direction; infinity on a miss
-  int instance = -1;        // instance id from AddInstance, -1 on a miss
-  int triangle = -1;        // triangle index within the prototype mesh
+  float distance_m = 0;                                    // along the (unit) ray direction; infinity on a miss
+  int instance = -1;                                       // instance id from AddInstance, -1 on a miss
+  int triangle = -1;                                       // triangle index within the prototype mesh
   Eigen::Vector3f normal_world = Eigen::Vector3f::Zero();  // unit geometric normal, facing the ray
   bool hit() const { return instance >= 0; }
 };
@@ -54,16 +55,15 @@ class RayCaster {
   const Eigen::Matrix4f& transform_of(int instance) const;
 
   // Closest hit along origin + t * direction, t in (t_min, t_max). Thread-safe after Commit().
-  RayHit Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
-                   float t_min = 0.0f, float t_max = std::numeric_limits<float>::infinity()) const;
+  RayHit Intersect(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float t_min = 0.0f,
+                   float t_max = std::numeric_limits<float>::infinity()) const;
   // Closest hits of `count` (1..kPacketSize) rays from one origin with Embree's packet
   // traversal (coherent; rtcIntersect16, or rtcIntersect8 / single rays where the CPU lacks
   // native 16- / 8-wide packets): much faster than single rays when the directions are close,
   // e.g. a 4×4 block of pixels. hits[i] is what Intersect(origin, directions[i]) returns (up to
   // the packet kernel's rounding). Thread-safe after Commit().
   static constexpr int kPacketSize = kRayPacketSize;
-  void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
-                       RayHit* hits) const;
+  void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count, RayHit* hits) const;
   // The same into a RayHitPacket (no per-hit normal).
   void IntersectPacket(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
                        RayHitPacket* hits) const;
@@ -73,21 +73,18 @@ class RayCaster {
   // Lane i of a packet as Intersect returns it, normal included.
   RayHit Hit(const RayHitPacket& hits, int i, const Eigen::Vector3f& direction) const;
   // Closest hit against one instance alone (ignoring everything else): for visibility ratios.
-  RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin,
-                           const Eigen::Vector3f& direction) const;
+  RayHit IntersectInstance(int instance, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) const;
   // The same for a packet of `count` (1..kPacketSize) rays from one origin (coherent).
-  void IntersectInstancePacket(int instance, const Eigen::Vector3f& origin,
-                               const Eigen::Vector3f* directions, int count,
-                               RayHitPacket* hits) const;
+  void IntersectInstancePacket(int instance, const Eigen::Vector3f& origin, const Eigen::Vector3f* directions,
+                               int count, RayHitPacket* hits) const;
 
   // The top-level Embree scene (valid after Commit()), for callers that cast rays with Embree
   // directly, e.g. the bare-Embree baseline of benchmarks/render_bench.cpp.
   RTCSceneTy* embree_scene() const;
 
  private:
-  void CastSoa(RTCSceneTy* scene, const Eigen::Vector3f* origins, int origin_stride,
-               const Eigen::Vector3f* directions, int count, bool coherent,
-               RayHitPacket* hits) const;
+  void CastSoa(RTCSceneTy* scene, const Eigen::Vector3f* origins, int origin_stride, const Eigen::Vector3f* directions,
+               int count, bool coherent, RayHitPacket* hits) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

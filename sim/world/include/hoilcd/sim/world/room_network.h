@@ -7,11 +7,12 @@
 // from its surroundings (what a diffuse surface reflects) and its sunlit share.
 #pragma once
 
-#include <Eigen/Core>
 #include <array>
 #include <map>
 #include <memory>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/sim/assets/instance.h"
 #include "hoilcd/sim/scene/room_options.h"
@@ -116,16 +117,16 @@ class RoomNetwork {
   const BandRadianceTable& table_;
   double room_height_m_;
   std::vector<RoomQuad> quads_;
-  std::vector<Patches> patches_;                      // per quad
-  std::vector<std::vector<int>> quads_of_material_;   // room material -> quads
-  std::vector<std::vector<int>> node_of_material_;    // instance -> material -> node (-1: none)
-  std::vector<const TriangleMesh*> mesh_of_;          // instance -> its mesh (fixtures only)
+  std::vector<Patches> patches_;                     // per quad
+  std::vector<std::vector<int>> quads_of_material_;  // room material -> quads
+  std::vector<std::vector<int>> node_of_material_;   // instance -> material -> node (-1: none)
+  std::vector<const TriangleMesh*> mesh_of_;         // instance -> its mesh (fixtures only)
   std::vector<float> node_area_;
   std::vector<ThermalNode> nodes_;
-  std::vector<int> world_instance_of_;                // caster instance -> world instance
+  std::vector<int> world_instance_of_;  // caster instance -> world instance
   int threads_ = 1;
-  std::unique_ptr<ThermalNetwork> network_;           // from CastViewFactorsOnce
-  std::unique_ptr<RayCaster> caster_;                 // the static geometry: room and fixtures
+  std::unique_ptr<ThermalNetwork> network_;              // from CastViewFactorsOnce
+  std::unique_ptr<RayCaster> caster_;                    // the static geometry: room and fixtures
   std::vector<std::vector<ThermalTriangle>> triangles_;  // per node
   // Per person, the nodes they warm: (node, A_i·F_i→person·ε_i·ε_person), m².
   std::vector<std::vector<std::pair<int, double>>> person_coupling_;
@@ -135,17 +136,17 @@ class RoomNetwork {
   bool started_ = false;
   ThermalDrivers drivers_;
   double solved_until_s_ = 0;
-  std::vector<double> temperature_c_;   // per node, at the last SetTime
-  std::vector<float> incident_;         // per node, at the last SetTime
+  std::vector<double> temperature_c_;                       // per node, at the last SetTime
+  std::vector<float> incident_;                             // per node, at the last SetTime
   std::map<size_t, std::vector<float>> incident_of_state_;  // per grid state, as asked
-  std::vector<float> room_mean_c_, room_incident_;  // per room material
+  std::vector<float> room_mean_c_, room_incident_;          // per room material
   SunOptions sun_;
-  bool sun_can_enter_ = false;        // the sun is on and the room has windows
-  double frame_width_m_ = 0;          // of each window's frame (0: none)
-  int window_count_ = 0;              // room materials 3 .. 3 + window_count_ − 1
-  std::vector<float> solar_absorptance_;             // per node
+  bool sun_can_enter_ = false;                               // the sun is on and the room has windows
+  double frame_width_m_ = 0;                                 // of each window's frame (0: none)
+  int window_count_ = 0;                                     // room materials 3 .. 3 + window_count_ − 1
+  std::vector<float> solar_absorptance_;                     // per node
   std::map<int64_t, std::vector<float>> sun_shares_of_key_;  // per sun grid time, as asked
-  std::vector<float> sun_share_;                     // per node, at the last SetTime
+  std::vector<float> sun_share_;                             // per node, at the last SetTime
   float mean_incident_ = 0;
   int room_instance_ = -1;
 };

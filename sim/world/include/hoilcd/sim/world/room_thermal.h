@@ -5,11 +5,12 @@
 // closed-form function of (scene, seed, time), so frames come out the same at any thread count.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "hoilcd/sim/assets/instance.h"
 #include "hoilcd/sim/scene/room_options.h"
@@ -65,8 +66,8 @@ class RoomClimate {
   double CycleTimeS(double time_s) const;  // time into the thermostat's cycle, [0, period_s)
   HvacOptions hvac_;
   double mean_c_;
-  double phase_s_;       // time into the cycle at t = 0
-  double lag_start_k_;   // SurfaceOffsetK at the start of a heating phase
+  double phase_s_;      // time into the cycle at t = 0
+  double lag_start_k_;  // SurfaceOffsetK at the start of a heating phase
 };
 
 // World-frame boxes of the instances of class `radiator_class` (the radiators a scene placed).
@@ -110,7 +111,7 @@ class RoomSurfaces {
  private:
   class Field;
   struct Radiator {
-    int wall;        // 0 south (y = 0), 1 north, 2 west (x = 0), 3 east
+    int wall;          // 0 south (y = 0), 1 north, 2 west (x = 0), 3 east
     float lo_m, hi_m;  // extent along the wall
     float top_m, bottom_m;
   };
@@ -129,13 +130,13 @@ class RoomSurfaces {
   std::array<bool, 4> exterior_{};  // south, north, west, east
   std::vector<Radiator> radiators_;
   std::vector<Eigen::AlignedBox2f> interior_walls_;
-  int interior_material_ = -1;  // -1: no interior walls
+  int interior_material_ = -1;                  // -1: no interior walls
   std::vector<std::unique_ptr<Field>> fields_;  // per material, null where none
   // State at the last SetTime.
-  float bridge_k_ = 0;                  // edge cooling at an edge, K
-  std::vector<float> frame_minus_glass_k_;  // per window
+  float bridge_k_ = 0;                                       // edge cooling at an edge, K
+  std::vector<float> frame_minus_glass_k_;                   // per window
   Eigen::Vector3f sun_direction_ = Eigen::Vector3f::Zero();  // towards the sun, room frame
-  float sun_irradiance_wm2_ = 0;       // transmitted direct normal irradiance, W/m²
+  float sun_irradiance_wm2_ = 0;                             // transmitted direct normal irradiance, W/m²
 };
 
 }  // namespace hoilcd

@@ -7,11 +7,12 @@
 // which frames are rendered, in which order or on how many threads.
 #pragma once
 
-#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hoilcd/core/util/random.h"
 #include "hoilcd/sim/world/ray_caster.h"
@@ -23,13 +24,13 @@ constexpr double kStefanBoltzmann = 5.670374419e-8;
 
 struct ThermalNode {
   double area_m2 = 0;
-  double emissivity = 0.9;               // total hemispherical, for the long-wave exchange
-  double convection_w_m2k = 2.5;         // h_c to the air at height_m
-  double heat_capacity_j_k = 0;          // C of the node (0: it follows its balance at once)
-  double height_m = 0;                   // where it meets the air (its centre)
-  double outdoor_conductance_w_k = 0;    // from its surface through the envelope to outdoor air
-  double power_w = 0;                    // heat released inside it
-  bool fixed = false;                    // held at fixed_temperature_c (a boundary: radiator water)
+  double emissivity = 0.9;             // total hemispherical, for the long-wave exchange
+  double convection_w_m2k = 2.5;       // h_c to the air at height_m
+  double heat_capacity_j_k = 0;        // C of the node (0: it follows its balance at once)
+  double height_m = 0;                 // where it meets the air (its centre)
+  double outdoor_conductance_w_k = 0;  // from its surface through the envelope to outdoor air
+  double power_w = 0;                  // heat released inside it
+  bool fixed = false;                  // held at fixed_temperature_c (a boundary: radiator water)
   double fixed_temperature_c = 22;
 };
 
@@ -136,7 +137,7 @@ class ThermalNetwork {
   ThermalDrivers drivers_;
   double t0_s_ = 0, step_s_ = 1;
   std::vector<std::vector<double>> grid_c_;  // per grid time, per node
-  std::vector<double> irradiance_;            // H of the last step, W/m²: where the next starts
+  std::vector<double> irradiance_;           // H of the last step, W/m²: where the next starts
 };
 
 }  // namespace hoilcd

@@ -68,8 +68,8 @@ class World : private CrowdStage {
  private:
   int ClassId(const std::string& name);
   // CrowdStage: the crowd's people and props are instances like any other.
-  int Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role,
-            std::string name, double temperature_offset_c) override;
+  int Place(const Asset& asset, const Eigen::Matrix4f& world_from_object, InstanceRole role, std::string name,
+            double temperature_offset_c) override;
   InstanceInfo& MutableInstance(int id) override { return instances_[id]; }
   void Move(int instance, const Eigen::Matrix4f& world_from_object) override;
   void Finish(InstanceMaterial* m) const override;
