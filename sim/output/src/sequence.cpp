@@ -87,7 +87,7 @@ std::string SequenceOptions::Check() const {
 }
 
 // Bump when a change alters rendered bytes; CHANGELOG.md lists what each revision changed.
-constexpr int kSimulatorRevision = 21;
+constexpr int kSimulatorRevision = 22;
 
 std::string SimulatorVersion() { return std::string(HOILCD_VERSION) + "+sim" + std::to_string(kSimulatorRevision); }
 

@@ -35,7 +35,9 @@ const std::vector<std::string>& CameraProfileFields() {
                                                   "/camera/ffc_interval_s",
                                                   "/camera/ffc_temperature_delta_k",
                                                   "/camera/ffc_freeze_s",
-                                                  "/camera/quantisation_step_k"};
+                                                  "/camera/quantisation_step_k",
+                                                  "/camera/f_number",
+                                                  "/camera/pixel_pitch_um"};
   return fields;
 }
 
@@ -58,7 +60,12 @@ const std::vector<CameraProfile>& CameraProfiles() {
                {0.5, "silent: 0.5 s, the model's default (the frozen part of a handheld camera's shutter event)"},
                {0.01,
                 "silent on the radiometric step; 0.01 K, the model's default and the step of the dataset's "
-                "16-bit centikelvin PNG"}}),
+                "16-bit centikelvin PNG"},
+               {1.1,
+                "silent: the specification gives the lens's field of view but no f-number; f/1.1, the "
+                "aperture the Lepton datasheet gives for the same 12 µm pixel class (short LWIR lenses for "
+                "12 µm cores are f/1.0-1.1)"},
+               {12.0, "pixel pitch 12 µm (Pocket2 specification)"}}),
       Profile("infiray_p2_pro", "InfiRay P2 Pro (USB-C module for phones)",
               "InfiRay P2 Pro specification sheet (its document number is not recorded here; its figures are "
               "quoted from the published sheet as remembered, not re-checked against it when this profile was "
@@ -77,7 +84,9 @@ const std::vector<CameraProfile>& CameraProfiles() {
                {0.015625,
                 "not in a datasheet: each USB frame carries a 16-bit temperature image in units of 1/64 K "
                 "(kelvin × 64) as the open-source readers of this InfiRay module family decode it, so "
-                "the step is 1/64 K"}}),
+                "the step is 1/64 K"},
+               {1.1, "silent on the f-number; f/1.1, as the Pocket2 profile (the same 12 µm pixel class)"},
+               {12.0, "12 µm pixels (P2 Pro specification)"}}),
       Profile("flir_lepton_3_5", "FLIR Lepton 3.5 (radiometric micro camera core, 57° lens)",
               "FLIR Lepton Engineering Datasheet, document 500-0659-00-09 Rev 203; FLIR Lepton Product Datasheet, "
               "document 500-0771-01-09 Rev 400; FLIR Lepton 3 Datasheet, document 500-0726-01 (for the 56° it "
@@ -106,7 +115,9 @@ const std::vector<CameraProfile>& CameraProfiles() {
                 "0.88 s, rounded to 0.9 s; 8 frames at 8.7 Hz"},
                {0.01,
                 "radiometric TLinear output in kelvin × 100 at its default resolution ('T-Linear resolution "
-                "(0 = 0.1, 1 = 0.01)', telemetry row C, 500-0659-00-09): 0.01 K"}}),
+                "(0 = 0.1, 1 = 0.01)', telemetry row C, 500-0659-00-09): 0.01 K"},
+               {1.1, "effective f-number 1.1 (500-0659-00-09, optical specifications)"},
+               {12.0, "pixel size 12 µm (500-0659-00-09; 500-0771-01-09)"}}),
       Profile("flir_boson_640", "FLIR Boson 640 (thermal camera core, 640 × 512, 8.7 mm lens, 50° HFOV)",
               "FLIR Boson Thermal Imaging Core datasheet, document 102-2013-40 Release 340 (March 2021); FLIR "
               "Boson Software Interface Description Document, document 102-2013-42 (FFC settings).",
@@ -132,7 +143,11 @@ const std::vector<CameraProfile>& CameraProfiles() {
                {0.01,
                 "the Boson 640 is not radiometric: it outputs 14-bit counts (or 8-bit AGC video) and the "
                 "datasheet gives no kelvin per count; 0.01 K, the step of the dataset's 16-bit centikelvin "
-                "PNG, so the model adds no step beyond the file's own"}}),
+                "PNG, so the model adds no step beyond the file's own"},
+               {1.0,
+                "f/1.0 for the 8.7 mm lens, as the datasheet's lens table is remembered (102-2013-40; not "
+                "re-checked against it)"},
+               {12.0, "12 µm pixels (102-2013-40)"}}),
   };
   return profiles;
 }

@@ -18,12 +18,6 @@ constexpr double kTableStepK = 0.05;
 // Inverse bins per table segment; keeps the segment walk in CelsiusFromRadiance short.
 constexpr int kInverseBinsPerSegment = 4;
 
-// Spectral radiance B_λ(T) in W·m⁻²·sr⁻¹·m⁻¹.
-double PlanckSpectral(double lambda_m, double temperature_k) {
-  const double x = kPlanckJs * kLightSpeedMps / (lambda_m * kBoltzmannJpK * temperature_k);
-  return 2.0 * kPlanckJs * kLightSpeedMps * kLightSpeedMps / std::pow(lambda_m, 5) / std::expm1(x);
-}
-
 // ∫_x^∞ t³/(eᵗ−1) dt by its series; converges geometrically for the x ≥ 1 of LWIR bands.
 double PlanckTailIntegral(double x) {
   double sum = 0.0;
@@ -44,6 +38,11 @@ void CheckBand(double temperature_k, double lambda_min_um, double lambda_max_um)
 }
 
 }  // namespace
+
+double PlanckSpectral(double lambda_m, double temperature_k) {
+  const double x = kPlanckJs * kLightSpeedMps / (lambda_m * kBoltzmannJpK * temperature_k);
+  return 2.0 * kPlanckJs * kLightSpeedMps * kLightSpeedMps / std::pow(lambda_m, 5) / std::expm1(x);
+}
 
 double IntegratePlanckBand(double temperature_k, double lambda_min_um, double lambda_max_um, int steps) {
   CheckBand(temperature_k, lambda_min_um, lambda_max_um);

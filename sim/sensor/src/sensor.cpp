@@ -78,6 +78,16 @@ __attribute__((target_clones("avx2", "default"))) void CelsiusRow(int width, con
 
 }  // namespace
 
+PixelResponse PixelResponseOf(const SensorOptions& options, const BandRadianceTable& table) {
+  return {options.f_number,
+          options.pixel_pitch_um,
+          options.pixel_fill_factor,
+          options.aberration_sigma_px,
+          table.lambda_min_um(),
+          table.lambda_max_um(),
+          options.reference_temperature_c + kZeroCelsiusK};
+}
+
 SensorOptions::SensorOptions() { Table().FillDefaults(this); }
 
 const OptionTable<SensorOptions>& SensorOptions::Table() {
@@ -85,9 +95,14 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
   using R = OptionRange;
   static const OptionTable<O> table =
       OptionTable<O>()
-          .Add("optics_blur", &O::optics_blur, true, "Gaussian point-spread function on the radiance")
-          .Add("psf_sigma_px", &O::psf_sigma_px, 0.5, "px", R().Above(0).AtMost(5),
-               "PSF standard deviation (0.5 px: FWHM 1.18 px)")
+          .Add("optics_blur", &O::optics_blur, true,
+               "the camera's pixel response on the radiance: lens diffraction × pixel area")
+          .Add("f_number", &O::f_number, 1.1, "", R::Closed(0.5, 8), "the lens's working f-number (diffraction)")
+          .Add("pixel_pitch_um", &O::pixel_pitch_um, 12.0, "µm", R::Closed(2, 50), "detector pixel pitch")
+          .Add("pixel_fill_factor", &O::pixel_fill_factor, 1.0, "", R().Above(0).AtMost(1),
+               "share of each pixel's area that absorbs (a centred square)")
+          .Add("aberration_sigma_px", &O::aberration_sigma_px, 0.0, "px", R::Closed(0, 5),
+               "Gaussian 1-sigma of lens aberrations and defocus on top of diffraction (0: diffraction-limited)")
           .Add("temporal_noise", &O::temporal_noise, true, "white noise, new every frame")
           .Add("netd_k", &O::netd_k, 0.040, "K", R::Closed(0, 1), "noise-equivalent temperature difference (1-sigma)")
           .Add("fixed_pattern", &O::fixed_pattern, true, "residual non-uniformity after factory calibration")
@@ -185,6 +200,7 @@ SensorModel::SensorModel(SensorOptions options, int width, int height, double fr
   shutter_radiance_ = table_->RadianceFromKelvin(options_.shutter_temperature_c + kZeroCelsiusK);
   reflected_radiance_ = table_->RadianceFromKelvin(options_.reflected_temperature_c + kZeroCelsiusK);
   blend_ = static_cast<float>(-std::expm1(-1.0 / (frame_rate_hz_ * options_.time_constant_s)));
+  if (options_.optics_blur) pixel_response_.emplace(PixelResponseOf(options_, *table_), width_, height_);
 
   // Fixed pattern: keyed by pixel (or column) only, so it is the same in every frame.
   gain_ = cv::Mat::zeros(height_, width_, CV_32F);
@@ -306,8 +322,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   // it becomes previous_ at the end and the old previous_ the next spare.
   cv::Mat& blurred = spare_;
   if (options_.optics_blur) {
-    cv::GaussianBlur(radiance, blurred, cv::Size(0, 0), options_.psf_sigma_px, options_.psf_sigma_px,
-                     cv::BORDER_REFLECT);
+    pixel_response_->Apply(radiance, &blurred);
   } else {
     radiance.copyTo(blurred);
   }

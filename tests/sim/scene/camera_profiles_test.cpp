@@ -29,15 +29,16 @@ json::json_pointer SchemaPointer(const std::string& pointer) {
 struct Expected {
   std::string name;
   int width_px, height_px;
-  double hfov_deg, frame_rate_hz, netd_k, ffc_interval_s, ffc_temperature_delta_k, ffc_freeze_s, quantisation_step_k;
+  double hfov_deg, frame_rate_hz, netd_k, ffc_interval_s, ffc_temperature_delta_k, ffc_freeze_s, quantisation_step_k,
+      f_number, pixel_pitch_um;
 };
 
 const std::vector<Expected>& Datasheets() {
   static const std::vector<Expected> expected = {
-      {"hikmicro_pocket2", 256, 192, 50, 25, 0.040, 60, 0, 0.5, 0.01},
-      {"infiray_p2_pro", 256, 192, 56, 25, 0.040, 60, 0, 0.5, 1.0 / 64},
-      {"flir_lepton_3_5", 160, 120, 57, 8.7, 0.050, 180, 1.5, 0.9, 0.01},
-      {"flir_boson_640", 640, 512, 50, 60, 0.050, 180, 1.5, 0.5, 0.01},
+      {"hikmicro_pocket2", 256, 192, 50, 25, 0.040, 60, 0, 0.5, 0.01, 1.1, 12},
+      {"infiray_p2_pro", 256, 192, 56, 25, 0.040, 60, 0, 0.5, 1.0 / 64, 1.1, 12},
+      {"flir_lepton_3_5", 160, 120, 57, 8.7, 0.050, 180, 1.5, 0.9, 0.01, 1.1, 12},
+      {"flir_boson_640", 640, 512, 50, 60, 0.050, 180, 1.5, 0.5, 0.01, 1.0, 12},
   };
   return expected;
 }
@@ -56,6 +57,8 @@ TEST(CameraProfiles, EveryProfileResolvesToItsDatasheetValues) {
     EXPECT_EQ(s.camera.sensor.ffc_temperature_delta_k, e.ffc_temperature_delta_k);
     EXPECT_EQ(s.camera.sensor.ffc_freeze_s, e.ffc_freeze_s);
     EXPECT_EQ(s.camera.sensor.quantisation_step_k, e.quantisation_step_k);
+    EXPECT_EQ(s.camera.sensor.f_number, e.f_number);
+    EXPECT_EQ(s.camera.sensor.pixel_pitch_um, e.pixel_pitch_um);
     // The resolved scene (the dataset's scene.json) names the profile and holds its values.
     EXPECT_EQ(s.resolved["camera"]["profile"], e.name);
     EXPECT_EQ(s.resolved["camera"]["width_px"], e.width_px);

@@ -10,6 +10,9 @@
 
 namespace hoilcd {
 
+// Spectral radiance B_λ(T) of a black body, W·m⁻²·sr⁻¹·m⁻¹ (λ in metres).
+double PlanckSpectral(double lambda_m, double temperature_k);
+
 // Planck spectral radiance integrated over [lambda_min_um, lambda_max_um], by composite Simpson
 // integration with `steps` intervals (rounded up to even). The reference: accurate, slow.
 double IntegratePlanckBand(double temperature_k, double lambda_min_um = 8.0, double lambda_max_um = 14.0,

@@ -1,5 +1,5 @@
 // Uncooled microbolometer camera model: turns the renderer's scene radiance into the apparent
-// temperature the camera reports (optics blur, bolometer time constant, fixed-pattern noise,
+// temperature the camera reports (lens and pixel response, bolometer time constant, fixed-pattern noise,
 // drift reset by flat-field correction, temporal noise, quantisation), plus the 8- and 16-bit
 // encodings of the dataset folder. Every random draw is keyed by (seed, effect, frame, pixel).
 #pragma once
@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "hoilcd/core/util/option_table.h"
+#include "hoilcd/sim/sensor/optics.h"
 #include "hoilcd/sim/sensor/radiometry.h"
 
 namespace hoilcd {
@@ -21,8 +22,11 @@ namespace hoilcd {
 // responsivity dL/dT there, as a real detector does: on colder surfaces the same signal noise
 // reads as slightly more temperature noise, on hotter ones as less.
 struct SensorOptions {
-  bool optics_blur;                  // Gaussian point-spread function on the radiance
-  double psf_sigma_px;               // PSF standard deviation, px (FWHM 1.18 px)
+  bool optics_blur;                  // the camera's pixel response on the radiance (optics.h)
+  double f_number;                   // the lens's working f-number
+  double pixel_pitch_um;             // detector pixel pitch, µm
+  double pixel_fill_factor;          // share of each pixel's area that absorbs, (0, 1]
+  double aberration_sigma_px;        // Gaussian 1-σ of aberrations and defocus, px (0: diffraction-limited)
   bool temporal_noise;               // white noise, new every frame
   double netd_k;                     // noise-equivalent temperature difference (1-σ), K
   bool fixed_pattern;                // residual non-uniformity after factory calibration
@@ -64,8 +68,13 @@ struct SensorOptions {
 // The housing warms at a constant rate, so the FFCs come at a constant period either way.
 double FfcPeriodS(const SensorOptions& options);
 
+// The pixel response the options describe: their lens and pixel, the table's band, the Planck
+// spectrum at the reference temperature.
+PixelResponse PixelResponseOf(const SensorOptions& options, const BandRadianceTable& table);
+
 // A stateful model for one sequence, applied to frames in order. Apply(k) does, per pixel:
-//   1. optics blur of the radiance (cv::GaussianBlur, reflected border);
+//   1. the pixel response: the radiance filtered by PixelResponseFilter (diffraction of the lens's
+//      aperture × the pixel's area × the aberration Gaussian; optics.h), mirrored at the border;
 //   2. time constant: y_k = a·x_k + (1−a)·x_{k−1}, a = 1 − exp(−Δt/τ), x the blurred radiance.
 //      This is the per-frame discretisation of a first-order low-pass: between frames the
 //      bolometer relaxes towards the new input by a; the remainder of older frames, (1−a)²
@@ -147,18 +156,19 @@ class SensorModel {
   uint64_t session_seed_;  // temporal noise, drift
   const BandRadianceTable* table_;
   int num_threads_;
-  double responsivity_;                 // dL/dT at the reference temperature, W·m⁻²·sr⁻¹·K⁻¹
-  double shutter_radiance_;             // band radiance of the shutter
-  double reflected_radiance_;           // band radiance of the assumed reflected temperature
-  float blend_;                         // a = 1 − exp(−Δt/τ)
-  cv::Mat gain_;                        // CV_32F per-pixel relative gain error
-  cv::Mat offset_signal_;               // CV_32F per-pixel + column offset, radiance units
-  std::vector<float> noise_scratch_;    // per worker: one row of temporal noise
-  std::vector<double> signal_scratch_;  // per worker: one row of signal
-  cv::Mat previous_;                    // blurred radiance of the last frame applied (empty: none yet)
-  cv::Mat spare_;                       // the buffer the next frame's blurred radiance goes into
-  cv::Mat shown_;                       // output of the last frame not frozen (empty: none yet)
-  cv::Mat shading_shape_;               // CV_32F per-pixel v·ρ² − n·spot(ρ), K per K of housing warming
+  double responsivity_;                                // dL/dT at the reference temperature, W·m⁻²·sr⁻¹·K⁻¹
+  double shutter_radiance_;                            // band radiance of the shutter
+  double reflected_radiance_;                          // band radiance of the assumed reflected temperature
+  float blend_;                                        // a = 1 − exp(−Δt/τ)
+  cv::Mat gain_;                                       // CV_32F per-pixel relative gain error
+  cv::Mat offset_signal_;                              // CV_32F per-pixel + column offset, radiance units
+  std::vector<float> noise_scratch_;                   // per worker: one row of temporal noise
+  std::vector<double> signal_scratch_;                 // per worker: one row of signal
+  cv::Mat previous_;                                   // blurred radiance of the last frame applied (empty: none yet)
+  cv::Mat spare_;                                      // the buffer the next frame's blurred radiance goes into
+  cv::Mat shown_;                                      // output of the last frame not frozen (empty: none yet)
+  std::optional<PixelResponseFilter> pixel_response_;  // step 1 (none when optics_blur is off)
+  cv::Mat shading_shape_;  // CV_32F per-pixel v·ρ² − n·spot(ρ), K per K of housing warming
   int last_frame_ = -1;
 };
 

@@ -1,0 +1,112 @@
+#include "hoilcd/sim/sensor/optics.h"
+
+#include <cmath>
+#include <vector>
+
+#include "hoilcd/core/util/error.h"
+#include "hoilcd/sim/sensor/radiometry.h"
+
+namespace hoilcd {
+namespace {
+
+// Wavelengths sampled across the band for the polychromatic MTF; the MTF changes smoothly with λ,
+// so 49 Simpson nodes leave it exact to about 1e-7.
+constexpr int kBandIntervals = 48;
+
+double Sinc(double x) {
+  if (x == 0.0) return 1.0;
+  const double a = M_PI * x;
+  return std::sin(a) / a;
+}
+
+// Simpson weights of the band's wavelengths, each by its Planck spectral radiance, summing to 1.
+struct BandSamples {
+  std::vector<double> lambda_um, weight;
+};
+
+BandSamples SampleBand(const PixelResponse& r) {
+  BandSamples band;
+  double total = 0.0;
+  for (int i = 0; i <= kBandIntervals; ++i) {
+    const double lambda_um = r.lambda_min_um + (r.lambda_max_um - r.lambda_min_um) * i / kBandIntervals;
+    const double simpson = (i == 0 || i == kBandIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    const double w = simpson * PlanckSpectral(lambda_um * 1e-6, r.band_temperature_k);
+    band.lambda_um.push_back(lambda_um);
+    band.weight.push_back(w);
+    total += w;
+  }
+  for (double& w : band.weight) w /= total;
+  return band;
+}
+
+double DiffractionMtf(const BandSamples& band, const PixelResponse& r, double f_cycles_per_px) {
+  double mtf = 0.0;
+  for (size_t i = 0; i < band.lambda_um.size(); ++i) {
+    mtf += band.weight[i] * CircularApertureMtf(f_cycles_per_px * band.lambda_um[i] * r.f_number / r.pixel_pitch_um);
+  }
+  return mtf;
+}
+
+double MtfAt(const BandSamples& band, const PixelResponse& r, double fx, double fy) {
+  const double absorber = std::sqrt(r.fill_factor);  // its side, in pixels
+  const double sigma = r.aberration_sigma_px;
+  return DiffractionMtf(band, r, std::hypot(fx, fy)) * Sinc(absorber * fx) * Sinc(absorber * fy) *
+         std::exp(-2.0 * M_PI * M_PI * sigma * sigma * (fx * fx + fy * fy));
+}
+
+void CheckResponse(const PixelResponse& r) {
+  HOILCD_CHECK_MSG(r.f_number > 0 && r.pixel_pitch_um > 0 && r.fill_factor > 0 && r.fill_factor <= 1 &&
+                       r.aberration_sigma_px >= 0 && r.lambda_min_um > 0 && r.lambda_max_um > r.lambda_min_um &&
+                       r.band_temperature_k > 0,
+                   "pixel response: f/" << r.f_number << ", pitch " << r.pixel_pitch_um << " µm, fill " << r.fill_factor
+                                        << ", aberration " << r.aberration_sigma_px << " px");
+}
+
+}  // namespace
+
+double CircularApertureMtf(double nu) {
+  nu = std::abs(nu);
+  if (nu >= 1.0) return 0.0;
+  return (2.0 / M_PI) * (std::acos(nu) - nu * std::sqrt(1.0 - nu * nu));
+}
+
+double PixelResponseMtf(const PixelResponse& response, double fx, double fy) {
+  CheckResponse(response);
+  return MtfAt(SampleBand(response), response, fx, fy);
+}
+
+PixelResponseFilter::PixelResponseFilter(const PixelResponse& response, int width, int height)
+    : width_(width), height_(height) {
+  CheckResponse(response);
+  HOILCD_CHECK_MSG(width > 0 && height > 0, width << "x" << height);
+  const BandSamples band = SampleBand(response);
+  const int even_w = width + width % 2, even_h = height + height % 2;
+  gain_.create(even_h, even_w, CV_32F);
+  for (int v = 0; v < even_h; ++v) {
+    for (int u = 0; u < even_w; ++u) {
+      gain_.at<float>(v, u) = static_cast<float>(MtfAt(band, response, u / (2.0 * even_w), v / (2.0 * even_h)));
+    }
+  }
+}
+
+void PixelResponseFilter::Apply(const cv::Mat& radiance, cv::Mat* out) const {
+  HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ && radiance.rows == height_,
+                   "radiance must be CV_32F " << width_ << "x" << height_);
+  HOILCD_CHECK(out != nullptr && out->data != radiance.data);
+  cv::Mat even = radiance;
+  if (gain_.size() != radiance.size()) {
+    cv::copyMakeBorder(radiance, even, 0, gain_.rows - height_, 0, gain_.cols - width_, cv::BORDER_REFLECT);
+  }
+  cv::Mat coefficients;
+  cv::dct(even, coefficients);
+  coefficients = coefficients.mul(gain_);
+  if (gain_.size() == radiance.size()) {
+    cv::idct(coefficients, *out);
+  } else {
+    cv::Mat filtered;
+    cv::idct(coefficients, filtered);
+    filtered(cv::Rect(0, 0, width_, height_)).copyTo(*out);
+  }
+}
+
+}  // namespace hoilcd
