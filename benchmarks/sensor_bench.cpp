@@ -33,11 +33,11 @@ void BM_PixelResponseFilter(benchmark::State& state) {
   const cv::Mat radiance = BenchRadiance(table);
   cv::Mat out;
   for (auto _ : state) {
-    filter.Apply(radiance, &out);
+    filter.Apply(radiance, &out, static_cast<int>(state.range(0)));
     benchmark::DoNotOptimize(out.data);
   }
 }
-BENCHMARK(BM_PixelResponseFilter)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PixelResponseFilter)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond);
 
 // The optics model of simulator revisions 1-21, for the ratio.
 void BM_GaussianBlurHalfPixel(benchmark::State& state) {

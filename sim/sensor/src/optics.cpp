@@ -1,9 +1,11 @@
 #include "hoilcd/sim/sensor/optics.h"
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "hoilcd/core/util/error.h"
+#include "hoilcd/core/util/parallel.h"
 #include "hoilcd/sim/sensor/radiometry.h"
 
 namespace hoilcd {
@@ -12,6 +14,8 @@ namespace {
 // Wavelengths sampled across the band for the polychromatic MTF; the MTF changes smoothly with λ,
 // so 49 Simpson nodes leave it exact to about 1e-7.
 constexpr int kBandIntervals = 48;
+// Rows per parallel chunk of the DCT.
+constexpr int64_t kRowsPerChunk = 32;
 
 double Sinc(double x) {
   if (x == 0.0) return 1.0;
@@ -62,6 +66,16 @@ void CheckResponse(const PixelResponse& r) {
                                         << ", aberration " << r.aberration_sigma_px << " px");
 }
 
+// The 1-D DCT (or its inverse) of each row of `in` into `out`, chunks of rows in parallel
+// (cv::DCT_ROWS transforms each row on its own, so the result does not depend on the chunks).
+void DctRows(const cv::Mat& in, cv::Mat* out, int flags, int num_threads) {
+  out->create(in.size(), CV_32F);
+  ParallelForChunks(in.rows, kRowsPerChunk, num_threads, [&](int64_t begin, int64_t end, int) {
+    cv::Mat rows = out->rowRange(static_cast<int>(begin), static_cast<int>(end));
+    cv::dct(in.rowRange(static_cast<int>(begin), static_cast<int>(end)), rows, flags | cv::DCT_ROWS);
+  });
+}
+
 }  // namespace
 
 double CircularApertureMtf(double nu) {
@@ -87,9 +101,10 @@ PixelResponseFilter::PixelResponseFilter(const PixelResponse& response, int widt
       gain_.at<float>(v, u) = static_cast<float>(MtfAt(band, response, u / (2.0 * even_w), v / (2.0 * even_h)));
     }
   }
+  gain_t_ = gain_.t();
 }
 
-void PixelResponseFilter::Apply(const cv::Mat& radiance, cv::Mat* out) const {
+void PixelResponseFilter::Apply(const cv::Mat& radiance, cv::Mat* out, int num_threads) const {
   HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ && radiance.rows == height_,
                    "radiance must be CV_32F " << width_ << "x" << height_);
   HOILCD_CHECK(out != nullptr && out->data != radiance.data);
@@ -97,14 +112,16 @@ void PixelResponseFilter::Apply(const cv::Mat& radiance, cv::Mat* out) const {
   if (gain_.size() != radiance.size()) {
     cv::copyMakeBorder(radiance, even, 0, gain_.rows - height_, 0, gain_.cols - width_, cv::BORDER_REFLECT);
   }
-  cv::Mat coefficients;
-  cv::dct(even, coefficients);
-  coefficients = coefficients.mul(gain_);
+  // The 2-D DCT separates: the rows, then the columns as the rows of the transpose.
+  cv::Mat rows, columns, filtered_columns;
+  DctRows(even, &rows, 0, num_threads);
+  DctRows(rows.t(), &columns, 0, num_threads);
+  DctRows(columns.mul(gain_t_), &filtered_columns, cv::DCT_INVERSE, num_threads);
   if (gain_.size() == radiance.size()) {
-    cv::idct(coefficients, *out);
+    DctRows(filtered_columns.t(), out, cv::DCT_INVERSE, num_threads);
   } else {
     cv::Mat filtered;
-    cv::idct(coefficients, filtered);
+    DctRows(filtered_columns.t(), &filtered, cv::DCT_INVERSE, num_threads);
     filtered(cv::Rect(0, 0, width_, height_)).copyTo(*out);
   }
 }

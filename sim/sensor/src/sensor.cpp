@@ -322,7 +322,7 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   // it becomes previous_ at the end and the old previous_ the next spare.
   cv::Mat& blurred = spare_;
   if (options_.optics_blur) {
-    pixel_response_->Apply(radiance, &blurred);
+    pixel_response_->Apply(radiance, &blurred, num_threads_);
   } else {
     radiance.copyTo(blurred);
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -142,6 +143,19 @@ TEST(PixelResponse, AnOddSizedFrameIsFilteredAsItsMirror) {
   // Round diffraction, square pixel: the axes alike (to the grids' sampling, 66 and 50 wide).
   EXPECT_NEAR(out.at<float>(23, 32), out.at<float>(24, 31), 1e-3);
   EXPECT_NEAR(cv::sum(out)[0], cv::sum(spot)[0], 1e-2);  // energy kept
+}
+
+TEST(PixelResponse, FilterGivesTheSameBytesAtAnyThreadCount) {
+  cv::Mat noise(192, 256, CV_32F);
+  cv::RNG rng(7);  // a fixed pattern for the input only
+  rng.fill(noise, cv::RNG::UNIFORM, 20.0f, 40.0f);
+  const PixelResponseFilter filter(Pocket2(), 256, 192);
+  cv::Mat one, two, five;
+  filter.Apply(noise, &one, 1);
+  filter.Apply(noise, &two, 2);
+  filter.Apply(noise, &five, 5);
+  EXPECT_EQ(std::memcmp(one.data, two.data, one.total() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(one.data, five.data, one.total() * sizeof(float)), 0);
 }
 
 TEST(PixelResponse, NonsenseParametersAreRefused) {

@@ -36,15 +36,17 @@ double PixelResponseMtf(const PixelResponse& response, double fx, double fy);
 class PixelResponseFilter {
  public:
   PixelResponseFilter(const PixelResponse& response, int width, int height);
-  // `radiance` CV_32F width x height into `out` (CV_32F, the same size; not `radiance` itself).
-  // Stateless: callable from several threads at once.
-  void Apply(const cv::Mat& radiance, cv::Mat* out) const;
+  // `radiance` CV_32F width x height into `out` (CV_32F, the same size; not `radiance` itself), on
+  // num_threads threads (0: every core); the same bytes at any count. Callable from several
+  // threads at once.
+  void Apply(const cv::Mat& radiance, cv::Mat* out, int num_threads = 1) const;
   // The MTF at DCT coefficient (u, v) of the (evened) image.
   double GainAt(int u, int v) const { return gain_.at<float>(v, u); }
 
  private:
   int width_, height_;
-  cv::Mat gain_;  // CV_32F, the evened size
+  cv::Mat gain_;    // CV_32F, the evened size
+  cv::Mat gain_t_;  // its transpose: the columns' pass works on the transposed image
 };
 
 }  // namespace hoilcd
