@@ -76,6 +76,13 @@ __attribute__((target_clones("avx2", "default"))) void CelsiusRow(int width, con
   }
 }
 
+// Step 8 after the in-camera filter: °C rounded to the quantisation step when `step_k` > 0.
+void QuantiseRow(int width, const float* in_c, double step_k, float* out_c) {
+  for (int x = 0; x < width; ++x) {
+    out_c[x] = step_k > 0 ? static_cast<float>(RoundHalfAway(in_c[x] / step_k) * step_k) : in_c[x];
+  }
+}
+
 }  // namespace
 
 PixelResponse PixelResponseOf(const SensorOptions& options, const BandRadianceTable& table) {
@@ -150,6 +157,10 @@ const OptionTable<SensorOptions>& SensorOptions::Table() {
           .Add("quantisation", &O::quantisation, true, "output rounded to a temperature step")
           .Add("quantisation_step_k", &O::quantisation_step_k, 0.01, "K", R().Above(0).AtMost(1),
                "output temperature step")
+          .Add("spatial_filter", &O::spatial_filter, false,
+               "in-camera spatial noise reduction: a Gaussian on the output before its quantisation")
+          .Add("spatial_filter_sigma_px", &O::spatial_filter_sigma_px, 0.9, "px", R().Above(0).AtMost(5),
+               "its 1-sigma (0.9: the FLIR E8xt's frames; the Pocket2's is not published)")
           .Add("reference_temperature_c", &O::reference_temperature_c, 26.85, "°C", R::Closed(-50, 150),
                "scene temperature at which the K figures hold (NETD convention, 300 K)")
           .CodeOnly()
@@ -345,6 +356,8 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
   const double step_k = options_.quantisation ? options_.quantisation_step_k : 0.0;
   const uint64_t noise_key = HashCombine(session_seed_, HashString("sensor.noise"), static_cast<uint64_t>(frame));
 
+  // With the in-camera filter, the rows leave unquantised; the filter and then the step follow.
+  const double row_step_k = options_.spatial_filter ? 0.0 : step_k;
   cv::Mat temperature(height_, width_, CV_32F);
   ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int worker) {
     float* noise = noise_scratch_.data() + static_cast<size_t>(worker) * width_;
@@ -356,13 +369,26 @@ cv::Mat SensorModel::Apply(int frame, const cv::Mat& radiance) {
                 offset_signal_.ptr<float>(row), shading_shape_.ptr<float>(row), noise, signal);
       // Step 7: the table inversion (a gather per pixel), then the quantisation.
       table_->KelvinFromRadiance(signal, width_, signal);
-      CelsiusRow(width_, signal, step_k, temperature.ptr<float>(row));
+      CelsiusRow(width_, signal, row_step_k, temperature.ptr<float>(row));
     }
   });
+  if (options_.spatial_filter) ApplySpatialFilter(step_k, &temperature);
   std::swap(previous_, spare_);
   last_frame_ = frame;
   temperature.copyTo(shown_);
   return temperature;
+}
+
+void SensorModel::ApplySpatialFilter(double step_k, cv::Mat* temperature) const {
+  cv::Mat filtered;
+  cv::GaussianBlur(*temperature, filtered, cv::Size(0, 0), options_.spatial_filter_sigma_px,
+                   options_.spatial_filter_sigma_px, cv::BORDER_REFLECT);
+  ParallelForChunks(height_, kRowsPerChunk, num_threads_, [&](int64_t begin, int64_t end, int) {
+    for (int64_t y = begin; y < end; ++y) {
+      QuantiseRow(width_, filtered.ptr<float>(static_cast<int>(y)), step_k,
+                  temperature->ptr<float>(static_cast<int>(y)));
+    }
+  });
 }
 
 cv::Mat SensorModel::IdealTemperature(const cv::Mat& radiance) const {

@@ -49,6 +49,8 @@ struct SensorOptions {
   double time_constant_s;            // bolometer thermal time constant, s
   bool quantisation;                 // output rounded to a temperature step
   double quantisation_step_k;        // output temperature step, K
+  bool spatial_filter;               // in-camera spatial noise reduction (off: the Pocket2's is not published)
+  double spatial_filter_sigma_px;    // its Gaussian 1-σ, px
   double reference_temperature_c;    // scene temperature at which K figures hold, °C
   double emissivity_setting;         // emissivity the camera assumes when converting, 0–1
   double reflected_temperature_c;    // reflected temperature assumed when ε setting < 1, °C
@@ -92,7 +94,9 @@ PixelResponse PixelResponseOf(const SensorOptions& options, const BandRadianceTa
 //      is ShadingCornerToCentreK(k) = ΔT_h·(v + n);
 //   6. temporal noise: + R·NETD·n(k, p), n standard normal: value p of KeyedNormals for the
 //      key HashCombine(session_seed, HashString("sensor.noise"), k) (random.h; p = y·width + x);
-//   7. conversion to apparent temperature with the emissivity setting, then quantisation;
+//   7. conversion to apparent temperature with the emissivity setting; with spatial_filter, the
+//      camera's own noise reduction (a Gaussian of spatial_filter_sigma_px, mirrored border) on
+//      that image; then quantisation;
 //   8. FFC freeze: for FreezeFrames() frames from each FFC frame on, the output is the output of
 //      the frame before the FFC (the bolometer state still follows the scene).
 // Resuming at frame k: on a new model, call Apply for every frame from ReplayFrom(k) to k−1 with
@@ -147,6 +151,8 @@ class SensorModel {
   int64_t FfcFrame(int64_t index) const;
   // Housing temperature rise since the last FFC, K (0 when lens shading is off).
   double HousingWarmingK(int frame) const;
+  // Step 7's in-camera filter on the unquantised temperature, then the quantisation to step_k.
+  void ApplySpatialFilter(double step_k, cv::Mat* temperature) const;
 
   SensorOptions options_;
   int width_, height_;
