@@ -57,9 +57,12 @@ std::string FindingExplanation(const BenchResult& result, const Diagnosis& diagn
   const MethodRun* f = result.Find("fusion");
   if (f && f->metrics.mrr < std::max(sm, dm) - 0.01) {
     const FusionDiagnosis& fd = *diagnosis.fusion;
-    md << "**Why fusion falls below " << fd.better << ".** Reciprocal rank fusion with k = "
-       << "0 averages the two rankings, and a first rank in either list (1/1) outweighs anything "
-          "else: fusion ranks the true match lower than "
+    // The k it ran with (its options), not the default: with k > 0 a first rank no longer dominates.
+    const double k = f->options.is_object() ? f->options.value("k", 0.0) : 0.0;
+    md << "**Why fusion falls below " << fd.better << ".** Reciprocal rank fusion with k = " << k
+       << " sums 1/(k + rank) over the two rankings"
+       << (k == 0 ? ", and a first rank in either list (1/1) outweighs anything else" : "")
+       << ": fusion ranks the true match lower than "
        << fd.better << " on " << fd.queries_ranked_lower << " queries (on " << fd.queries_ranked_lower_weaker_top1_false
        << " of them " << fd.weaker << " put a false match first) and higher on " << fd.queries_ranked_higher
        << ". With one method clearly "
