@@ -62,9 +62,9 @@ std::string FindingExplanation(const BenchResult& result, const Diagnosis& diagn
     md << "**Why fusion falls below " << fd.better << ".** Reciprocal rank fusion with k = " << k
        << " sums 1/(k + rank) over the two rankings"
        << (k == 0 ? ", and a first rank in either list (1/1) outweighs anything else" : "")
-       << ": fusion ranks the true match lower than "
-       << fd.better << " on " << fd.queries_ranked_lower << " queries (on " << fd.queries_ranked_lower_weaker_top1_false
-       << " of them " << fd.weaker << " put a false match first) and higher on " << fd.queries_ranked_higher
+       << ": fusion ranks the true match lower than " << fd.better << " on " << fd.queries_ranked_lower
+       << " queries (on " << fd.queries_ranked_lower_weaker_top1_false << " of them " << fd.weaker
+       << " put a false match first) and higher on " << fd.queries_ranked_higher
        << ". With one method clearly "
           "weaker, its confident mistakes cost more than its agreement adds.\n\n";
   }
