@@ -156,7 +156,7 @@ void Crowd::PlanContactHeat() {
         if (!ArmsOnTable(name)) continue;
         const auto keypoints = skeleton_->Keypoints(skeleton_->PartTransforms(rest_pose(c)));
         for (int side = 0; side < 2; ++side) {
-          const Eigen::Vector3d elbow = keypoints[7 + side], wrist = keypoints[9 + side];
+          const Eigen::Vector3d elbow = keypoints[kLeftElbow + side], wrist = keypoints[kLeftWrist + side];
           if (!ForearmOnTable(p, wrist)) continue;  // as SetTime's table contacts
           std::vector<ContactInterval> away;
           for (const ActivityEpisode& e : p.activities) {
