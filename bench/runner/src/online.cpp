@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
-#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/bench/evaluation/protocol.h"
 #include "hoilcd/bench/methods/manifest_options.h"
 #include "hoilcd/bench/methods/methods.h"
@@ -17,7 +14,6 @@
 #include "hoilcd/core/util/memory.h"
 #include "hoilcd/core/util/progress.h"
 #include "hoilcd/core/util/stats.h"
-#include "hoilcd/core/util/text.h"
 #include "steps.h"
 
 namespace hoilcd {
@@ -79,16 +75,181 @@ class PositionGrid {
   std::unordered_map<int64_t, std::vector<int>> cells_;
 };
 
-nlohmann::json TimingRowsJson(const std::vector<OnlineTimingRow>& rows) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const OnlineTimingRow& r : rows) {
-    out.push_back({{"database_from", r.database_from},
-                   {"database_to", r.database_to},
-                   {"queries", r.queries},
-                   {"p50_ms", JsonNumber(r.p50_ms)},
-                   {"p99_ms", JsonNumber(r.p99_ms)}});
+// The options an online bench runs with (the manifest's, checked) and the methods it keeps; the
+// optional methods left out are added to `skipped`.
+BenchOptions OnlineOptions(const Dataset& dataset, const BenchOptions& options_in, const ShortlistOptions& shortlist,
+                           std::vector<std::string>* skipped) {
+  if (const std::string problem = shortlist.Check(); !problem.empty()) throw InputError("--shortlist", problem);
+  BenchOptions options = WithManifest(options_in, dataset.manifest());
+  if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
+  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
+  CheckProtocolFits(dataset, options.protocol);
+  if (options.protocol.ground_truth == "overlap") {
+    throw InputError("--ground-truth",
+                     "online: overlap labels pairs from the EXR frames, which a robot does not "
+                     "have; use odometry (the paper's) or true");
   }
-  return out;
+  *skipped = KeepOnlineMethods(&options);
+  for (std::string& note : LeaveOutUnavailable(dataset, &options)) skipped->push_back(std::move(note));
+  return options;
+}
+
+// What the pass over the frames gathers: per method slot (options.methods' order) each query's
+// record and ms; per processed query the database's size; per inserted frame the ms it took.
+struct OnlineTally {
+  std::vector<std::vector<QueryRecord>> records;
+  std::vector<std::vector<double>> query_ms;
+  std::vector<int64_t> processed_sizes;
+  std::vector<double> insert_ms;
+};
+
+// One pass over the frames in time order: a frame joins the shortlist index once it is older than
+// the exclusion window, and each query takes its shortlist and is scored by every method on it.
+class OnlinePass {
+ public:
+  OnlinePass(const Dataset& dataset, const BenchOptions& options, const ResolvedMethods& methods,
+             const FrontEndOutput& front_ends, const ShortlistOptions& shortlist)
+      : dataset_(dataset),
+        options_(options),
+        protocol_(options.protocol),
+        methods_(methods),
+        front_ends_(front_ends),
+        shortlist_(shortlist),
+        poses_(LabelPoses(dataset.poses(), protocol_.ground_truth)),
+        laps_(LapIndexFromPoses(poses_)),
+        grid_(poses_, std::max(protocol_.radius_m, 1e-3)),
+        index_(static_cast<int>(front_ends.thumbnails.descriptor(0).size()), shortlist) {
+    tally_.records.resize(options.methods.size());
+    tally_.query_ms.resize(options.methods.size());
+  }
+
+  int frames() const { return static_cast<int>(poses_.size()); }
+  const ShortlistIndex& index() const { return index_; }
+  OnlineTally& tally() { return tally_; }
+
+  // Every frame, in order; counts the processed, scored and shortlist-hit queries into `result`.
+  void Run(OnlineResult* result) {
+    const int n = frames();
+    ProgressReporter progress("online " + std::to_string(shortlist_.k) + "-shortlist", n, "frames");
+    const ProgressReporter::ThreadQuiet quiet_per_query;  // each query's scoring pass is its own small call
+    for (int q = 0; q < n; ++q, progress.Update()) {
+      InsertOlderThanWindow(q);
+      if (!IsQueryFrame(protocol_, laps_[q], poses_[q].run)) continue;
+      if (inserted_ == 0) {
+        RecordEmptyDatabase(q);
+      } else {
+        ScoreQuery(q, result);
+      }
+    }
+    progress.Done();
+  }
+
+ private:
+  // The database: every frame older than the exclusion window (frames are in time order).
+  void InsertOlderThanWindow(int q) {
+    while (inserted_ < q && poses_[q].time_s - poses_[inserted_].time_s > protocol_.exclusion_window_s) {
+      const auto t = Clock::now();
+      index_.Add(inserted_, front_ends_.thumbnails.descriptor(inserted_));
+      tally_.insert_ms.push_back(MsSince(t));
+      ++inserted_;
+    }
+  }
+
+  // A query with nothing older to match: recorded, unscored, in every slot.
+  void RecordEmptyDatabase(int q) {
+    for (std::vector<QueryRecord>& records : tally_.records) {
+      QueryRecord r;
+      r.frame = q, r.lap = laps_[q];
+      records.push_back(r);
+    }
+  }
+
+  // The query's shortlist, with each frame's label.
+  Query Shortlisted(int q, double* search_ms) {
+    Query query;
+    query.frame = q;
+    query.lap = laps_[q];
+    query.run = poses_[q].run;
+    const auto t_search = Clock::now();
+    query.database = index_.Search(front_ends_.thumbnails.descriptor(q), shortlist_.k);
+    *search_ms = MsSince(t_search);
+    std::sort(query.database.begin(), query.database.end());
+    for (int f : query.database) query.is_true_match.push_back(IsTrueMatch(poses_[q], poses_[f], protocol_) ? 1 : 0);
+    return query;
+  }
+
+  // Every method's scores of the query's shortlist: one labelling of one query.
+  std::map<std::string, MethodScores> ScoreShortlist(const Query& query) const {
+    Labelling one;
+    one.protocol = protocol_;
+    one.frame_rate_hz = dataset_.manifest().frame_rate_hz;
+    one.ground_truth = protocol_.ground_truth;
+    one.queries = {query};
+    one.to_score = {true};
+    return ScoreMethods(dataset_, options_, methods_, one, front_ends_);
+  }
+
+  void ScoreQuery(int q, OnlineResult* result) {
+    const int true_matches = grid_.CountTrueMatches(q, inserted_, protocol_);
+    double search_ms = 0;
+    const Query query = Shortlisted(q, &search_ms);
+    const std::map<std::string, MethodScores> scored = ScoreShortlist(query);
+    for (size_t m = 0; m < options_.methods.size(); ++m) {
+      const MethodScores& s = scored.at(options_.methods[m]);
+      tally_.records[m].push_back(ShortlistRecord(query, s.scores.front(), inserted_, true_matches, poses_));
+      tally_.query_ms[m].push_back(search_ms + s.match_ms.front());
+    }
+    ++result->queries_processed;
+    tally_.processed_sizes.push_back(inserted_);
+    result->search_ms.push_back(search_ms);
+    if (true_matches > 0) {
+      ++result->queries_scored;
+      if (query.NumTrueMatches() > 0) ++result->shortlist_hits;
+    }
+  }
+
+  const Dataset& dataset_;
+  const BenchOptions& options_;
+  const ProtocolOptions& protocol_;
+  const ResolvedMethods& methods_;
+  const FrontEndOutput& front_ends_;
+  const ShortlistOptions& shortlist_;
+  const std::vector<PoseRecord> poses_;
+  const std::vector<int> laps_;
+  const PositionGrid grid_;
+  ShortlistIndex index_;
+  OnlineTally tally_;
+  int inserted_ = 0;  // frames in the index: [0, inserted_)
+};
+
+// Each method slot's metrics and timing from the tally, in options.methods' order.
+std::vector<OnlineMethodRun> MethodRuns(const std::vector<std::string>& names, const ResolvedMethods& methods,
+                                        OnlineTally* tally) {
+  std::vector<OnlineMethodRun> runs;
+  for (size_t m = 0; m < names.size(); ++m) {
+    OnlineMethodRun run;
+    run.name = names[m];
+    run.metrics = SummariseQueries(tally->records[m]);
+    run.query_ms = std::move(tally->query_ms[m]);
+    run.p50_ms = Quantile(run.query_ms, 0.5);
+    run.p99_ms = Quantile(run.query_ms, 0.99);
+    run.by_database_size = TimingByDatabaseSize(tally->processed_sizes, run.query_ms);
+    if (methods.resolved.count(run.name)) run.options = methods.resolved.at(run.name);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+// The bootstrap plan over every method's queries, each method's intervals and the metrics per recording run.
+void AddIntervals(const Dataset& dataset, const BenchOptions& options, OnlineResult* result) {
+  std::vector<const std::vector<QueryRecord>*> all_records;
+  for (const OnlineMethodRun& run : result->runs) all_records.push_back(&run.metrics.queries);
+  result->bootstrap = PlanBootstrap(all_records, dataset.manifest().frame_rate_hz, options.bootstrap);
+  for (OnlineMethodRun& run : result->runs) {
+    run.intervals = BootstrapHeadline(run.metrics.queries, result->bootstrap, options.bootstrap.seed, options.threads);
+  }
+  result->per_run = MetricsPerRun(dataset.runs(), options.methods, all_records, result->bootstrap,
+                                  options.bootstrap.seed, options.threads);
 }
 
 }  // namespace
@@ -132,20 +293,9 @@ std::vector<OnlineTimingRow> TimingByDatabaseSize(const std::vector<int64_t>& da
 
 OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_in, const ShortlistOptions& shortlist) {
   const auto start = Clock::now();
-  if (const std::string problem = shortlist.Check(); !problem.empty()) throw InputError("--shortlist", problem);
-  BenchOptions options = WithManifest(options_in, dataset.manifest());
-  if (options.methods.empty()) options.methods = options.optional_methods = DefaultMethods();
-  if (const std::string problem = options.Check(); !problem.empty()) throw InputError("bench", problem);
-  CheckProtocolFits(dataset, options.protocol);
-  if (options.protocol.ground_truth == "overlap") {
-    throw InputError("--ground-truth",
-                     "online: overlap labels pairs from the EXR frames, which a robot does not "
-                     "have; use odometry (the paper's) or true");
-  }
   OnlineResult result;
   result.shortlist = shortlist;
-  result.skipped = KeepOnlineMethods(&options);
-  for (std::string& note : LeaveOutUnavailable(dataset, &options)) result.skipped.push_back(std::move(note));
+  const BenchOptions options = OnlineOptions(dataset, options_in, shortlist, &result.skipped);
   const std::vector<const LoopClosureMethod*> order = ScoringOrder(options.methods);
   std::set<FrontEnd> needed = NeededFrontEnds(order);
   needed.insert(FrontEnd::kThumbnails);  // the shortlist's global descriptors
@@ -153,189 +303,24 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options_
   const ResolvedMethods methods = ResolveMethods(options, order);
   const FrontEndOutput front_ends = RunFrontEndsWithParams(dataset, options, needed);
 
-  const ProtocolOptions& protocol = options.protocol;
-  const std::vector<PoseRecord> poses = LabelPoses(dataset.poses(), protocol.ground_truth);
-  const std::vector<int> laps = LapIndexFromPoses(poses);
-  const int n = static_cast<int>(poses.size());
-  result.protocol = protocol.protocol;
-  result.ground_truth = protocol.ground_truth;
-  result.frames = n;
-  const PositionGrid grid(poses, std::max(protocol.radius_m, 1e-3));
-  ShortlistIndex index(static_cast<int>(front_ends.thumbnails.descriptor(0).size()), shortlist);
+  OnlinePass pass(dataset, options, methods, front_ends, shortlist);
+  result.protocol = options.protocol.protocol;
+  result.ground_truth = options.protocol.ground_truth;
+  result.frames = pass.frames();
+  pass.Run(&result);
 
-  const size_t runs = options.methods.size();
-  std::vector<std::vector<QueryRecord>> records(runs);
-  std::vector<std::vector<double>> query_ms(runs);
-  std::vector<int64_t> processed_sizes;
-  std::vector<double> insert_ms;
-  ProgressReporter progress("online " + std::to_string(shortlist.k) + "-shortlist", n, "frames");
-  const ProgressReporter::ThreadQuiet quiet_per_query;  // each query's scoring pass is its own small call
-  int inserted = 0;
-  for (int q = 0; q < n; ++q, progress.Update()) {
-    // The database: every frame older than the exclusion window (frames are in time order).
-    while (inserted < q && poses[q].time_s - poses[inserted].time_s > protocol.exclusion_window_s) {
-      const auto t = Clock::now();
-      index.Add(inserted, front_ends.thumbnails.descriptor(inserted));
-      insert_ms.push_back(MsSince(t));
-      ++inserted;
-    }
-    if (!IsQueryFrame(protocol, laps[q], poses[q].run)) continue;
-    Query query;
-    query.frame = q;
-    query.lap = laps[q];
-    query.run = poses[q].run;
-    const int true_matches = inserted > 0 ? grid.CountTrueMatches(q, inserted, protocol) : 0;
-    if (inserted == 0) {
-      for (size_t m = 0; m < runs; ++m) {
-        QueryRecord r;
-        r.frame = q, r.lap = laps[q];
-        records[m].push_back(r);
-      }
-      continue;
-    }
-    const auto t_search = Clock::now();
-    query.database = index.Search(front_ends.thumbnails.descriptor(q), shortlist.k);
-    const double search_ms = MsSince(t_search);
-    std::sort(query.database.begin(), query.database.end());
-    for (int f : query.database) query.is_true_match.push_back(IsTrueMatch(poses[q], poses[f], protocol) ? 1 : 0);
-    Labelling one;
-    one.protocol = protocol;
-    one.frame_rate_hz = dataset.manifest().frame_rate_hz;
-    one.ground_truth = protocol.ground_truth;
-    one.queries = {query};
-    one.to_score = {true};
-    const std::map<std::string, MethodScores> scored = ScoreMethods(dataset, options, methods, one, front_ends);
-    for (size_t m = 0; m < runs; ++m) {
-      const MethodScores& s = scored.at(options.methods[m]);
-      records[m].push_back(ShortlistRecord(query, s.scores.front(), inserted, true_matches, poses));
-      query_ms[m].push_back(search_ms + s.match_ms.front());
-    }
-    ++result.queries_processed;
-    processed_sizes.push_back(inserted);
-    result.search_ms.push_back(search_ms);
-    if (true_matches > 0) {
-      ++result.queries_scored;
-      if (query.NumTrueMatches() > 0) ++result.shortlist_hits;
-    }
-  }
-  progress.Done();
-
+  OnlineTally& tally = pass.tally();
   result.shortlist_recall =
       result.queries_scored ? static_cast<double>(result.shortlist_hits) / result.queries_scored : NAN;
-  result.search_by_database_size = TimingByDatabaseSize(processed_sizes, result.search_ms);
-  result.insert_p50_ms = Quantile(insert_ms, 0.5);
-  result.insert_p99_ms = Quantile(insert_ms, 0.99);
-  result.index_bytes = index.MemoryBytes();
-  std::vector<const std::vector<QueryRecord>*> all_records;
-  for (size_t m = 0; m < runs; ++m) {
-    OnlineMethodRun run;
-    run.name = options.methods[m];
-    run.metrics = SummariseQueries(records[m]);
-    run.query_ms = std::move(query_ms[m]);
-    run.p50_ms = Quantile(run.query_ms, 0.5);
-    run.p99_ms = Quantile(run.query_ms, 0.99);
-    run.by_database_size = TimingByDatabaseSize(processed_sizes, run.query_ms);
-    if (methods.resolved.count(run.name)) run.options = methods.resolved.at(run.name);
-    result.runs.push_back(std::move(run));
-  }
-  for (const OnlineMethodRun& run : result.runs) all_records.push_back(&run.metrics.queries);
-  result.bootstrap = PlanBootstrap(all_records, dataset.manifest().frame_rate_hz, options.bootstrap);
-  for (OnlineMethodRun& run : result.runs) {
-    run.intervals = BootstrapHeadline(run.metrics.queries, result.bootstrap, options.bootstrap.seed, options.threads);
-  }
-  result.per_run = MetricsPerRun(dataset.runs(), options.methods, all_records, result.bootstrap, options.bootstrap.seed,
-                                 options.threads);
+  result.search_by_database_size = TimingByDatabaseSize(tally.processed_sizes, result.search_ms);
+  result.insert_p50_ms = Quantile(tally.insert_ms, 0.5);
+  result.insert_p99_ms = Quantile(tally.insert_ms, 0.99);
+  result.index_bytes = pass.index().MemoryBytes();
+  result.runs = MethodRuns(options.methods, methods, &tally);
+  AddIntervals(dataset, options, &result);
   result.peak_rss_bytes = PeakResidentBytes();
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
-}
-
-nlohmann::json OnlineResultToJson(const OnlineResult& result) {
-  nlohmann::json j;
-  j["shortlist"] = ShortlistOptions::Table().ToJson(result.shortlist);
-  j["shortlist"]["descriptor"] = "thumbnail (the thumbnails front end)";
-  j["protocol"] = result.protocol;
-  j["database"] = "every frame older than the exclusion window";
-  j["unranked"] = "frames outside the shortlist tie below every shortlisted frame";
-  j["ground_truth"] = result.ground_truth;
-  j["frames"] = result.frames;
-  j["queries_processed"] = result.queries_processed;
-  j["queries_scored"] = result.queries_scored;
-  j["shortlist_hits"] = result.shortlist_hits;
-  j["shortlist_recall"] = JsonNumber(result.shortlist_recall);
-  j["search_p50_ms"] = JsonNumber(Quantile(result.search_ms, 0.5));
-  j["search_p99_ms"] = JsonNumber(Quantile(result.search_ms, 0.99));
-  j["search_by_database_size"] = TimingRowsJson(result.search_by_database_size);
-  j["insert_p50_ms"] = JsonNumber(result.insert_p50_ms);
-  j["insert_p99_ms"] = JsonNumber(result.insert_p99_ms);
-  j["index_bytes"] = JsonNumber(result.index_bytes);
-  j["peak_rss_bytes"] = JsonNumber(result.peak_rss_bytes);
-  j["seconds"] = JsonNumber(result.seconds);
-  j["bootstrap"] = result.bootstrap.ToJson();
-  j["skipped"] = result.skipped;
-  nlohmann::json methods = nlohmann::json::object();
-  for (const OnlineMethodRun& run : result.runs) {
-    nlohmann::json m = run.metrics.ToJson();
-    for (const char* timing : {"ms_per_query", "ms_per_query_median", "extract_ms_mean", "extract_ms_median",
-                               "match_ms_mean", "match_ms_median"}) {
-      m.erase(timing);  // online timing is per query below, search included
-    }
-    m["intervals"] = run.intervals.ToJson();
-    m["p50_ms"] = JsonNumber(run.p50_ms);
-    m["p99_ms"] = JsonNumber(run.p99_ms);
-    m["by_database_size"] = TimingRowsJson(run.by_database_size);
-    m["options"] = run.options;
-    methods[run.name] = m;
-  }
-  nlohmann::json out = {{"mode", "online"}, {"online", j}, {"methods", methods}};
-  if (!result.per_run.empty()) out["recording_runs"] = MetricsPerRunJson(result.per_run);
-  return out;
-}
-
-std::string OnlineResultToMarkdown(const OnlineResult& result) {
-  std::ostringstream md;
-  md << "# Online loop closure\n\n";
-  md << "Frames in time order; the database is every frame older than the exclusion window; each query "
-        "takes a shortlist of "
-     << (result.shortlist.k > 0 ? std::to_string(result.shortlist.k) : std::string("every"))
-     << " frames by thumbnail similarity (FAISS " << result.shortlist.index
-     << "), then each method scores only those; frames outside the shortlist are unranked (they tie below every "
-        "shortlisted frame). Queries: the "
-     << result.protocol << " protocol's; ground truth: " << result.ground_truth << ".\n\n";
-  md << "Queries processed " << result.queries_processed << ", scored (a true match in the database) "
-     << result.queries_scored << "; **shortlist recall " << Fixed(result.shortlist_recall, 3) << "** ("
-     << result.shortlist_hits << " scored queries with a true match in their shortlist).\n\n";
-  md << "| method | MRR | 95 % interval | R@1 | p50 ms/query | p99 ms/query |\n|---|---|---|---|---|---|\n";
-  for (const OnlineMethodRun& run : result.runs) {
-    md << "| " << run.name << " | " << Fixed(run.metrics.mrr, 3) << " | [" << Fixed(run.intervals.mrr.low, 3) << ", "
-       << Fixed(run.intervals.mrr.high, 3) << "] | " << Fixed(run.metrics.recall_at_1, 3) << " | "
-       << Fixed(run.p50_ms, 2) << " | " << Fixed(run.p99_ms, 2) << " |\n";
-  }
-  md << MetricsPerRunMarkdown(result.per_run, result.bootstrap.confidence);
-  md << "\nms per query (shortlist search plus the method's scoring; extraction not included) as the database "
-        "grows:\n\n| database frames | queries | search p50 / p99 |";
-  for (const OnlineMethodRun& run : result.runs) md << " " << run.name << " p50 / p99 |";
-  md << "\n|---|---|---|";
-  for (size_t i = 0; i < result.runs.size(); ++i) md << "---|";
-  md << "\n";
-  for (size_t row = 0; row < result.search_by_database_size.size(); ++row) {
-    const OnlineTimingRow& s = result.search_by_database_size[row];
-    md << "| " << s.database_from << "–" << s.database_to << " | " << s.queries << " | " << Fixed(s.p50_ms, 2) << " / "
-       << Fixed(s.p99_ms, 2) << " |";
-    for (const OnlineMethodRun& run : result.runs) {
-      const OnlineTimingRow& r = run.by_database_size[row];
-      md << " " << Fixed(r.p50_ms, 2) << " / " << Fixed(r.p99_ms, 2) << " |";
-    }
-    md << "\n";
-  }
-  md << "\nAdding a frame to the index: p50 " << Fixed(result.insert_p50_ms, 3) << " ms, p99 "
-     << Fixed(result.insert_p99_ms, 3) << " ms. Index " << FormatBytes(result.index_bytes) << "; peak memory "
-     << FormatBytes(result.peak_rss_bytes) << "; " << Fixed(result.seconds, 1) << " s in all.\n";
-  if (!result.skipped.empty()) {
-    md << "\nLeft out:\n\n";
-    for (const std::string& s : result.skipped) md << "- " << s << "\n";
-  }
-  return md.str();
 }
 
 }  // namespace hoilcd

@@ -172,188 +172,271 @@ std::vector<std::string> FloorRouteProblems(const Scene& scene, double wall_m) {
   return problems;
 }
 
-// One draw of the floor (attempt keys every room's draw).
-ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o) {
-  const FloorLayoutOptions& f = o.floor;
-  const double t = f.wall_thickness_m, corridor = f.corridor_width_m;
-  const double south_depth = f.south_depth_m, north_depth = f.north_depth_m;
-  const double corridor_y0 = south_depth + t, corridor_y1 = corridor_y0 + corridor;  // the corridor's floor
-  const double north_y0 = corridor_y1 + t;
-  const uint64_t rooms_seed = HashCombine(HashString("generate.floor.rooms"), seed, static_cast<uint64_t>(index),
-                                          static_cast<uint64_t>(attempt)) >>
-                              11;
-  // Slot s: the north row west to east (s < n), then the south row east to west: the route's order.
-  const int n = f.rooms_per_side;
-  std::vector<PlacedRoom> rooms;
-  std::array<double, 2> row_end = {0, 0};  // south, north: x of the row's east end
-  std::vector<PlacedRoom> north, south;
-  for (int s = 0; s < 2 * n; ++s) {
-    const bool is_north = s < n;
-    const double depth = is_north ? north_depth : south_depth;
-    const std::vector<std::string> families = FamiliesFor(depth, o);
-    if (families.empty())
-      throw InputError("--set floor." + std::string(is_north ? "north" : "south") + "_depth_m",
-                       "a depth some family's width range holds");
-    Rng rng = KeyedRng(rooms_seed, "generate.floor.family", s);
-    PlacedRoom room;
-    room.family = families[rng.UniformInt(static_cast<uint32_t>(families.size()))];
-    room.scene = DrawRoom(room.family, depth, rooms_seed, s, o);
-    const ojson& size = room.scene["room"]["size_m"];
-    room.where.size_m = Eigen::Vector2d(size[0].get<double>(), size[1].get<double>());
-    (is_north ? north : south).push_back(room);
+// The floor's rooms in two rows, each listed west to east.
+struct FloorRows {
+  std::vector<PlacedRoom> south, north;
+  const std::vector<PlacedRoom>& Row(int row) const { return row == 0 ? south : north; }
+  std::vector<PlacedRoom>& Row(int row) { return row == 0 ? south : north; }
+  // The rooms in the route's order: the north row west to east, then the south row east to west.
+  std::vector<PlacedRoom> RouteOrder() const {
+    std::vector<PlacedRoom> ordered = north;
+    for (auto it = south.rbegin(); it != south.rend(); ++it) ordered.push_back(*it);
+    return ordered;
   }
-  // South rooms in the route's order run east to west; lay both rows out west to east.
-  std::reverse(south.begin(), south.end());
-  for (int row = 0; row < 2; ++row) {
-    std::vector<PlacedRoom>& line = row == 0 ? south : north;
-    double x = kLobbyM + t;
-    for (PlacedRoom& room : line) {
-      room.where.turned = row == 0;
-      room.where.origin_m = Eigen::Vector2d(x, row == 0 ? 0.0 : north_y0);
-      PlaceDoors(&room, o);
-      x += room.where.size_m.x() + t;
-    }
-    row_end[static_cast<size_t>(row)] = x - t;
-  }
-  const double length = Mm(std::max(row_end[0], row_end[1]) + t + kLobbyM);
-  const double width = Mm(north_y0 + north_depth);
+};
 
-  ojson rooms_json = ojson::array(), walls = ojson::array(), tables = ojson::array(), objects = ojson::array();
-  ojson seating = ojson::array(), standing = ojson::array(), windows = ojson::array();
-  std::vector<Eigen::Vector2d> route;
-  double cups = 0, laptops = 0;
-  // A row's corridor wall, its walls between rooms and its east end wall.
+// Where the floor's parts lie, m: across the rows (y) from the south outside wall, and along them (x).
+struct FloorGeometry {
+  double t = 0;                                                      // the walls' thickness
+  double corridor_y0 = 0, corridor_y1 = 0;                           // the corridor's floor
+  double north_y0 = 0;                                               // the north rooms' south side
+  std::array<double, 2> row_end = {0, 0};                            // south, north: x of the row's east end
+  double length = 0, width = 0;                                      // the whole floor
+  double RowY0(int row) const { return row == 0 ? 0.0 : north_y0; }  // the row's rooms' y origin
+};
+
+// The room of slot s (the route's order: the north row west to east for s < n, then the south row
+// east to west), its family drawn among those that fit the row's depth.
+PlacedRoom DrawSlot(uint64_t rooms_seed, int s, const GeneratorOptions& o) {
+  const bool is_north = s < o.floor.rooms_per_side;
+  const double depth = is_north ? o.floor.north_depth_m : o.floor.south_depth_m;
+  const std::vector<std::string> families = FamiliesFor(depth, o);
+  if (families.empty())
+    throw InputError("--set floor." + std::string(is_north ? "north" : "south") + "_depth_m",
+                     "a depth some family's width range holds");
+  Rng rng = KeyedRng(rooms_seed, "generate.floor.family", s);
+  PlacedRoom room;
+  room.family = families[rng.UniformInt(static_cast<uint32_t>(families.size()))];
+  room.scene = DrawRoom(room.family, depth, rooms_seed, s, o);
+  const ojson& size = room.scene["room"]["size_m"];
+  room.where.size_m = Eigen::Vector2d(size[0].get<double>(), size[1].get<double>());
+  return room;
+}
+
+FloorRows DrawRows(uint64_t rooms_seed, const GeneratorOptions& o) {
+  FloorRows rows;
+  const int n = o.floor.rooms_per_side;
+  for (int s = 0; s < 2 * n; ++s) (s < n ? rows.north : rows.south).push_back(DrawSlot(rooms_seed, s, o));
+  // South rooms in the route's order run east to west; lay both rows out west to east.
+  std::reverse(rows.south.begin(), rows.south.end());
+  return rows;
+}
+
+// Places both rows side by side from the west lobby (the south row turned half round) with their
+// doorways, and measures the floor.
+FloorGeometry PlaceRows(FloorRows* rows, const GeneratorOptions& o) {
+  const FloorLayoutOptions& f = o.floor;
+  FloorGeometry g;
+  g.t = f.wall_thickness_m;
+  g.corridor_y0 = f.south_depth_m + g.t;
+  g.corridor_y1 = g.corridor_y0 + f.corridor_width_m;
+  g.north_y0 = g.corridor_y1 + g.t;
   for (int row = 0; row < 2; ++row) {
-    const std::vector<PlacedRoom>& line = row == 0 ? south : north;
-    const double wall_y = row == 0 ? south_depth + 0.5 * t : north_y0 - 0.5 * t;
-    const double far_y = row == 0 ? 0.0 : width;
-    ojson doors = ojson::array();
-    for (const PlacedRoom& room : line) {
-      for (double along : {room.door_a_m, room.door_b_m}) {
-        const double x = room.where.Apply({along, 0}).x();
-        doors.push_back({{"center_m", Mm(x - kLobbyM)}, {"width_m", f.door_width_m}});  // from the wall's west end
-      }
+    double x = kLobbyM + g.t;
+    for (PlacedRoom& room : rows->Row(row)) {
+      room.where.turned = row == 0;
+      room.where.origin_m = Eigen::Vector2d(x, g.RowY0(row));
+      PlaceDoors(&room, o);
+      x += room.where.size_m.x() + g.t;
     }
-    std::sort(doors.begin(), doors.end(),
-              [](const ojson& a, const ojson& b) { return a["center_m"].get<double>() < b["center_m"].get<double>(); });
-    const double end = row_end[static_cast<size_t>(row)] + t;
-    walls.push_back(
-        {{"from_m", Point({kLobbyM, wall_y})}, {"to_m", Point({end, wall_y})}, {"thickness_m", t}, {"doors", doors}});
-    walls.push_back({{"from_m", Point({kLobbyM + 0.5 * t, far_y})},
-                     {"to_m", Point({kLobbyM + 0.5 * t, wall_y})},
-                     {"thickness_m", t}});
-    for (const PlacedRoom& room : line) {
-      const double x = room.where.origin_m.x() + room.where.size_m.x() + 0.5 * t;
-      walls.push_back({{"from_m", Point({x, far_y})}, {"to_m", Point({x, wall_y})}, {"thickness_m", t}});
+    g.row_end[static_cast<size_t>(row)] = x - g.t;
+  }
+  g.length = Mm(std::max(g.row_end[0], g.row_end[1]) + g.t + kLobbyM);
+  g.width = Mm(g.north_y0 + f.north_depth_m);
+  return g;
+}
+
+// A row's corridor wall with its rooms' doorways, its west end wall and the wall east of each room.
+void AddRowWalls(const std::vector<PlacedRoom>& line, int row, const FloorGeometry& g, const FloorLayoutOptions& f,
+                 ojson* walls) {
+  const double t = g.t;
+  const double wall_y = row == 0 ? f.south_depth_m + 0.5 * t : g.north_y0 - 0.5 * t;
+  const double far_y = row == 0 ? 0.0 : g.width;
+  ojson doors = ojson::array();
+  for (const PlacedRoom& room : line) {
+    for (double along : {room.door_a_m, room.door_b_m}) {
+      const double x = room.where.Apply({along, 0}).x();
+      doors.push_back({{"center_m", Mm(x - kLobbyM)}, {"width_m", f.door_width_m}});  // from the wall's west end
     }
   }
-  // The rooms, in the route's order, with their furniture, objects, people and windows in the floor's frame.
-  std::vector<PlacedRoom> ordered = north;
-  for (auto it = south.rbegin(); it != south.rend(); ++it) ordered.push_back(*it);
-  const double north_lane = corridor_y1 - kLaneFromWallM, south_lane = corridor_y0 + kLaneFromWallM;
-  route.push_back({kTurnFromEndM, north_lane});
-  for (const PlacedRoom& room : ordered) {
-    const Placement& w = room.where;
-    const Eigen::Vector2d lo = w.Apply({0, 0}), hi = w.Apply(w.size_m);
-    rooms_json.push_back({{"name", room.family + " " + std::to_string(rooms_json.size())},
-                          {"kind", "room"},
-                          {"layout", room.family},
-                          {"min_m", Point(lo.cwiseMin(hi))},
-                          {"max_m", Point(lo.cwiseMax(hi))}});
-    const int table_base = static_cast<int>(tables.size());
-    for (ojson table : room.scene["tables"]) {
-      table["center_m"] = Point(w.Apply(Vec2(table["center_m"])));
-      table["yaw_deg"] = w.Yaw(table["yaw_deg"].get<double>());
-      tables.push_back(table);
-    }
-    for (ojson object : room.scene["objects"]) {
-      if (!KeepObject(object, room, f.door_width_m)) continue;
-      const Eigen::Vector2d p = w.Apply(Vec2(object["position_m"]));
-      object["position_m"] = ojson::array({Mm(p.x()), Mm(p.y()), object["position_m"][2]});
-      object["yaw_deg"] = w.Yaw(object["yaw_deg"].get<double>());
-      objects.push_back(object);
-    }
-    const ojson& crowd = room.scene["crowd"];
-    for (ojson s : crowd["seating"]) {
-      s["table"] = s["table"].get<int>() + table_base;
-      seating.push_back(s);
-    }
-    for (ojson s : crowd["standing"]) {
-      s["position_m"] = Point(w.Apply(Vec2(s["position_m"])));
-      s["yaw_deg"] = w.Yaw(s["yaw_deg"].get<double>());
-      standing.push_back(s);
-    }
-    cups += crowd["cup_fraction"].get<double>() / ordered.size();
-    laptops += crowd["laptop_fraction"].get<double>() / ordered.size();
-    for (ojson window : room.scene["room"]["windows"]) {
-      const double c = window["center_m"].get<double>();
-      window["wall"] = w.turned ? "south" : "north";
-      window["center_m"] = Mm(w.turned ? w.origin_m.x() + w.size_m.x() - c : w.origin_m.x() + c);
-      windows.push_back(window);
-    }
-    // The visit, lane y in the room's frame (the corridor is below its south wall).
-    const double lane_y = -(t + kLaneFromWallM);
-    for (const Eigen::Vector2d& p : RoomVisit(room, lane_y)) route.push_back(w.Apply(p));
-    if (&room == &ordered[static_cast<size_t>(n) - 1]) {  // the turn at the corridor's east end
-      route.push_back({length - kTurnFromEndM, north_lane});
-      route.push_back({length - kTurnFromEndM, south_lane});
+  std::sort(doors.begin(), doors.end(),
+            [](const ojson& a, const ojson& b) { return a["center_m"].get<double>() < b["center_m"].get<double>(); });
+  const double end = g.row_end[static_cast<size_t>(row)] + t;
+  walls->push_back(
+      {{"from_m", Point({kLobbyM, wall_y})}, {"to_m", Point({end, wall_y})}, {"thickness_m", t}, {"doors", doors}});
+  walls->push_back({{"from_m", Point({kLobbyM + 0.5 * t, far_y})},
+                    {"to_m", Point({kLobbyM + 0.5 * t, wall_y})},
+                    {"thickness_m", t}});
+  for (const PlacedRoom& room : line) {
+    const double x = room.where.origin_m.x() + room.where.size_m.x() + 0.5 * t;
+    walls->push_back({{"from_m", Point({x, far_y})}, {"to_m", Point({x, wall_y})}, {"thickness_m", t}});
+  }
+}
+
+// What the floor's rooms hold, gathered in the floor's frame.
+struct FloorContents {
+  ojson rooms = ojson::array(), walls = ojson::array(), tables = ojson::array(), objects = ojson::array();
+  ojson seating = ojson::array(), standing = ojson::array(), windows = ojson::array();
+  double cups = 0, laptops = 0;  // the rooms' mean cup and laptop fractions
+};
+
+// The room's tables and the objects it keeps, in the floor's frame.
+void AddFurniture(const PlacedRoom& room, double door_width_m, FloorContents* out) {
+  const Placement& w = room.where;
+  for (ojson table : room.scene["tables"]) {
+    table["center_m"] = Point(w.Apply(Vec2(table["center_m"])));
+    table["yaw_deg"] = w.Yaw(table["yaw_deg"].get<double>());
+    out->tables.push_back(table);
+  }
+  for (ojson object : room.scene["objects"]) {
+    if (!KeepObject(object, room, door_width_m)) continue;
+    const Eigen::Vector2d p = w.Apply(Vec2(object["position_m"]));
+    object["position_m"] = ojson::array({Mm(p.x()), Mm(p.y()), object["position_m"][2]});
+    object["yaw_deg"] = w.Yaw(object["yaw_deg"].get<double>());
+    out->objects.push_back(object);
+  }
+}
+
+// The room's seated people (at its tables, numbered after those before it) and people standing,
+// in the floor's frame; its share of the cup and laptop fractions.
+void AddPeople(const PlacedRoom& room, int table_base, size_t room_count, FloorContents* out) {
+  const Placement& w = room.where;
+  const ojson& crowd = room.scene["crowd"];
+  for (ojson s : crowd["seating"]) {
+    s["table"] = s["table"].get<int>() + table_base;
+    out->seating.push_back(s);
+  }
+  for (ojson s : crowd["standing"]) {
+    s["position_m"] = Point(w.Apply(Vec2(s["position_m"])));
+    s["yaw_deg"] = w.Yaw(s["yaw_deg"].get<double>());
+    out->standing.push_back(s);
+  }
+  out->cups += crowd["cup_fraction"].get<double>() / room_count;
+  out->laptops += crowd["laptop_fraction"].get<double>() / room_count;
+}
+
+// The room's windows on the floor's outside wall beside it.
+void AddWindows(const PlacedRoom& room, FloorContents* out) {
+  const Placement& w = room.where;
+  for (ojson window : room.scene["room"]["windows"]) {
+    const double c = window["center_m"].get<double>();
+    window["wall"] = w.turned ? "south" : "north";
+    window["center_m"] = Mm(w.turned ? w.origin_m.x() + w.size_m.x() - c : w.origin_m.x() + c);
+    out->windows.push_back(window);
+  }
+}
+
+// The room's entry in /floor/rooms and everything it holds, in the floor's frame.
+void AddRoom(const PlacedRoom& room, size_t room_count, double door_width_m, FloorContents* out) {
+  const Placement& w = room.where;
+  const Eigen::Vector2d lo = w.Apply({0, 0}), hi = w.Apply(w.size_m);
+  out->rooms.push_back({{"name", room.family + " " + std::to_string(out->rooms.size())},
+                        {"kind", "room"},
+                        {"layout", room.family},
+                        {"min_m", Point(lo.cwiseMin(hi))},
+                        {"max_m", Point(lo.cwiseMax(hi))}});
+  const int table_base = static_cast<int>(out->tables.size());
+  AddFurniture(room, door_width_m, out);
+  AddPeople(room, table_base, room_count, out);
+  AddWindows(room, out);
+}
+
+// The corridor, and the lobbies beyond each row's ends, open to it.
+void AddCorridor(const FloorGeometry& g, ojson* rooms) {
+  rooms->push_back({{"name", "corridor"},
+                    {"kind", "corridor"},
+                    {"min_m", Point({0, g.corridor_y0})},
+                    {"max_m", Point({g.length, g.corridor_y1})}});
+  for (int row = 0; row < 2; ++row) {
+    const double y0 = row == 0 ? 0.0 : g.corridor_y1, y1 = row == 0 ? g.corridor_y0 : g.width;
+    const std::string side = row == 0 ? "south" : "north";
+    rooms->push_back({{"name", "west " + side + " lobby"},
+                      {"kind", "corridor"},
+                      {"min_m", Point({0, y0})},
+                      {"max_m", Point({kLobbyM, y1})}});
+    rooms->push_back({{"name", "east " + side + " lobby"},
+                      {"kind", "corridor"},
+                      {"min_m", Point({g.row_end[static_cast<size_t>(row)] + g.t, y0})},
+                      {"max_m", Point({g.length, y1})}});
+  }
+}
+
+// The route (before Simplified): eastwards in the corridor's north lane, through each north room,
+// the turn at the corridor's east end, westwards in the south lane through each south room.
+std::vector<Eigen::Vector2d> FloorRoute(const std::vector<PlacedRoom>& ordered, int rooms_per_side,
+                                        const FloorGeometry& g) {
+  const double north_lane = g.corridor_y1 - kLaneFromWallM, south_lane = g.corridor_y0 + kLaneFromWallM;
+  const double lane_y = -(g.t + kLaneFromWallM);  // in a room's frame: the corridor is below its south wall
+  std::vector<Eigen::Vector2d> route = {{kTurnFromEndM, north_lane}};
+  for (size_t i = 0; i < ordered.size(); ++i) {
+    for (const Eigen::Vector2d& p : RoomVisit(ordered[i], lane_y)) route.push_back(ordered[i].where.Apply(p));
+    if (i + 1 == static_cast<size_t>(rooms_per_side)) {
+      route.push_back({g.length - kTurnFromEndM, north_lane});
+      route.push_back({g.length - kTurnFromEndM, south_lane});
     }
   }
   route.push_back({kTurnFromEndM, south_lane});
-  rooms_json.push_back({{"name", "corridor"},
-                        {"kind", "corridor"},
-                        {"min_m", Point({0, corridor_y0})},
-                        {"max_m", Point({length, corridor_y1})}});
-  // The lobbies beyond each row's ends, open to the corridor.
-  for (int row = 0; row < 2; ++row) {
-    const double y0 = row == 0 ? 0.0 : corridor_y1, y1 = row == 0 ? corridor_y0 : width;
-    const std::string side = row == 0 ? "south" : "north";
-    rooms_json.push_back({{"name", "west " + side + " lobby"},
-                          {"kind", "corridor"},
-                          {"min_m", Point({0, y0})},
-                          {"max_m", Point({kLobbyM, y1})}});
-    rooms_json.push_back({{"name", "east " + side + " lobby"},
-                          {"kind", "corridor"},
-                          {"min_m", Point({row_end[static_cast<size_t>(row)] + t, y0})},
-                          {"max_m", Point({length, y1})}});
-  }
+  return route;
+}
 
-  const ojson& first = ordered.front().scene;
-  ojson crowd = first["crowd"];
-  crowd["seating"] = seating;
-  crowd["standing"] = standing;
-  crowd["cup_fraction"] = Mm(cups);
-  crowd["laptop_fraction"] = Mm(laptops);
+// The floor's crowd: the first room's settings with every room's people, their mean cup and
+// laptop fractions, no walkers and the floor's turnover.
+ojson FloorCrowd(const ojson& first_crowd, const FloorContents& c, double turnover_probability) {
+  ojson crowd = first_crowd;
+  crowd["seating"] = c.seating;
+  crowd["standing"] = c.standing;
+  crowd["cup_fraction"] = Mm(c.cups);
+  crowd["laptop_fraction"] = Mm(c.laptops);
   crowd["walkers"] = 0;
-  crowd["turnover_probability"] = f.turnover_probability;
-  ojson options = ojson::parse(GeneratorOptions::Table().ToJson(o).dump());
-  const uint64_t scene_seed = HashCombine(HashString("generate.scene_seed"), seed, static_cast<uint64_t>(index)) >> 11;
+  crowd["turnover_probability"] = turnover_probability;
+  return crowd;
+}
+
+std::string FloorDescription(const std::vector<PlacedRoom>& ordered, double corridor_m, const FloorGeometry& g) {
   std::string families;
   for (const PlacedRoom& room : ordered) families += (families.empty() ? "" : ", ") + room.family;
+  return "Generated by hoilcd generate --layout floor: " + std::to_string(ordered.size()) + " rooms (" + families +
+         ") along a " + ShortestDouble(corridor_m) + " m corridor, " + ShortestDouble(g.length) + " x " +
+         ShortestDouble(g.width) + " m (generator.seed and generator.index regenerate it).";
+}
+
+// One draw of the floor (attempt keys every room's draw).
+ojson DrawFloor(uint64_t seed, int index, int attempt, const GeneratorOptions& o) {
+  const FloorLayoutOptions& f = o.floor;
+  const uint64_t rooms_seed = HashCombine(HashString("generate.floor.rooms"), seed, static_cast<uint64_t>(index),
+                                          static_cast<uint64_t>(attempt)) >>
+                              11;
+  FloorRows rows = DrawRows(rooms_seed, o);
+  const FloorGeometry g = PlaceRows(&rows, o);
+  FloorContents contents;
+  for (int row = 0; row < 2; ++row) AddRowWalls(rows.Row(row), row, g, f, &contents.walls);
+  const std::vector<PlacedRoom> ordered = rows.RouteOrder();
+  for (const PlacedRoom& room : ordered) AddRoom(room, ordered.size(), f.door_width_m, &contents);
+  AddCorridor(g, &contents.rooms);
+  const ojson& first = ordered.front().scene;
+  ojson options = ojson::parse(GeneratorOptions::Table().ToJson(o).dump());
+  const uint64_t scene_seed = HashCombine(HashString("generate.scene_seed"), seed, static_cast<uint64_t>(index)) >> 11;
   ojson route_json = ojson::array();
-  for (const Eigen::Vector2d& p : Simplified(route)) route_json.push_back(Point(p));
+  for (const Eigen::Vector2d& p : Simplified(FloorRoute(ordered, f.rooms_per_side, g))) route_json.push_back(Point(p));
+  const double corridor_mid_y = 0.5 * (g.corridor_y0 + g.corridor_y1);
   return {
       {"name", "floor_" + std::to_string(seed) + "_" + std::to_string(index)},
-      {"description", "Generated by hoilcd generate --layout floor: " + std::to_string(ordered.size()) + " rooms (" +
-                          families + ") along a " + ShortestDouble(corridor) + " m corridor, " +
-                          ShortestDouble(length) + " x " + ShortestDouble(width) +
-                          " m (generator.seed and generator.index regenerate it)."},
+      {"description", FloorDescription(ordered, f.corridor_width_m, g)},
       {"generator",
        {{"layout", "floor"}, {"seed", seed}, {"index", index}, {"version", kGeneratorVersion}, {"options", options}}},
       {"seed", scene_seed},
       {"frames", 1},
       {"frame_rate_hz", 25.0},
       {"room",
-       {{"size_m", ojson::array({length, width, f.height_m})},
-        {"windows", windows},
+       {{"size_m", ojson::array({g.length, g.width, f.height_m})},
+        {"windows", contents.windows},
         {"floor", first["room"]["floor"]},
-        {"doors",
-         ojson::array({{{"position_m", Point({0, 0.5 * (corridor_y0 + corridor_y1)})}, {"width_m", 1.2}},
-                       {{"position_m", Point({length, 0.5 * (corridor_y0 + corridor_y1)})}, {"width_m", 1.2}}})}}},
-      {"floor", {{"rooms", rooms_json}, {"walls", walls}}},
-      {"tables", tables},
-      {"crowd", crowd},
-      {"objects", objects},
+        {"doors", ojson::array({{{"position_m", Point({0, corridor_mid_y})}, {"width_m", 1.2}},
+                                {{"position_m", Point({g.length, corridor_mid_y})}, {"width_m", 1.2}}})}}},
+      {"floor", {{"rooms", contents.rooms}, {"walls", contents.walls}}},
+      {"tables", contents.tables},
+      {"crowd", FloorCrowd(first["crowd"], contents, f.turnover_probability)},
+      {"objects", contents.objects},
       {"route", {{"waypoints_m", route_json}}}};
 }
 

@@ -403,13 +403,11 @@ ojson GenerateScene(const std::string& layout, uint64_t seed, int index, const G
     const Eigen::Vector3d room = scene.room.size_m;
     const bool whiteboard = HasFrontWall(family) && things_rng.Uniform() < options.objects.whiteboard_probability;
     const std::vector<Eigen::Vector2d> doors = RoomDoors(room.head<2>(), whiteboard);
-    std::vector<PlacedObject> added =
-        RoomFittings(room, layout, doc["room"]["windows"], doors, whiteboard, world, route, options, &things_rng);
+    const RoomContext context{layout, doors, world, route, options, &things_rng};
+    std::vector<PlacedObject> added = RoomFittings(room, doc["room"]["windows"], whiteboard, context);
     std::vector<std::pair<int, int>> occupied;
     for (const ojson& s : doc["crowd"]["seating"]) occupied.emplace_back(s["table"].get<int>(), s["seat"].get<int>());
-    for (const PlacedObject& o :
-         PeoplesThings(occupied, room.head<2>(), layout, doors, world, route, options, &things_rng))
-      added.push_back(o);
+    for (const PlacedObject& o : PeoplesThings(occupied, room.head<2>(), context)) added.push_back(o);
     // The clutter, from its own stream: at density 0 the room is what it was without it.
     Rng clutter_rng = KeyedRng(seed, "generate.clutter", index, HashString(family), attempt);
     std::vector<PlacedObject> so_far = layout.objects;

@@ -42,11 +42,9 @@ std::vector<Eigen::Vector2d> RoomDoors(const Eigen::Vector2d& size_m, bool white
   return doors;
 }
 
-std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layout& layout,
-                                       const nlohmann::ordered_json& windows, const std::vector<Eigen::Vector2d>& doors,
-                                       bool whiteboard, const World& world, const std::vector<Eigen::Vector2d>& route,
-                                       const GeneratorOptions& options, Rng* rng) {
-  const RoomObjectOptions& o = options.objects;
+std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const nlohmann::ordered_json& windows,
+                                       bool whiteboard, const RoomContext& context) {
+  const RoomObjectOptions& o = context.options.objects;
   WallPlan plan(size_m);
   std::vector<PlacedObject> out;
   for (const auto& w : windows) {
@@ -58,7 +56,7 @@ std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layo
   if (whiteboard)
     Mount(&plan, &out, "whiteboard", kWest, 0.5 * size_m.y(), kWhiteboardHalfM, kWhiteboardBottomM, kWhiteboardHeightM);
   // Each door in its frame, its switch on the handle's side (the frame's -y), else on the other.
-  for (const Eigen::Vector2d& d : doors) {
+  for (const Eigen::Vector2d& d : context.doors) {
     const Wall wall = d.x() < 0.5 * size_m.x() ? kWest : kEast;
     plan.Take(wall, d.y() - kDoorFrameHalfM, d.y() + kDoorFrameHalfM, 0, kDoorFrameHeightM);
     out.push_back(plan.On("door_frame", wall, d.y(), 0));
@@ -71,35 +69,36 @@ std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layo
     }
   }
   // The air conditioner high on the south or the east wall, its top kAcBelowCeilingM down.
-  if (rng->Uniform() < o.ac_unit_probability) {
+  if (context.rng->Uniform() < o.ac_unit_probability) {
     const double bottom = size_m.z() - kAcBelowCeilingM - kAcHeightM;
-    const Wall first = rng->Uniform() < 0.5 ? kSouth : kEast;
+    const Wall first = context.rng->Uniform() < 0.5 ? kSouth : kEast;
     bool placed = false;
     for (int attempt = 0; attempt < 8 && !placed; ++attempt) {
       const Wall wall = attempt % 2 == 0 ? first : (first == kSouth ? kEast : kSouth);
-      const double along = rng->Uniform(kCornerM + kAcHalfM, plan.Length(wall) - kCornerM - kAcHalfM);
+      const double along = context.rng->Uniform(kCornerM + kAcHalfM, plan.Length(wall) - kCornerM - kAcHalfM);
       placed = Mount(&plan, &out, "ac_unit", wall, along, kAcHalfM, bottom, kAcHeightM);
     }
   }
   // A socket on the nearer long wall for some of the tables and desks.
-  for (const Piece& piece : layout.pieces) {
-    if (rng->Uniform() >= o.socket_probability || piece.seats == "none" || piece.seats == "sofa") continue;
+  for (const Piece& piece : context.layout.pieces) {
+    if (context.rng->Uniform() >= o.socket_probability || piece.seats == "none" || piece.seats == "sofa") continue;
     const Wall wall = piece.center_m.y() < 0.5 * size_m.y() ? kSouth : kNorth;
     Mount(&plan, &out, "wall_socket", wall, piece.center_m.x(), 2 * kPlateHalfM, kSocketBottomM, kPlateHeightM);
   }
   // Shelves and cabinets on free stretches of the south, north and east walls.
   const Wall shelf_walls[] = {kSouth, kNorth, kEast};
-  const int shelves = static_cast<int>(rng->UniformInt(static_cast<uint32_t>(o.shelf_count_max + 1)));
+  const int shelves = static_cast<int>(context.rng->UniformInt(static_cast<uint32_t>(o.shelf_count_max + 1)));
   for (int k = 0, tries = 0; k < shelves && tries < 12 * shelves; ++tries) {
-    const Wall wall = shelf_walls[rng->UniformInt(3)];
-    const double along = rng->Uniform(kCornerM + kShelfHalfM, plan.Length(wall) - kCornerM - kShelfHalfM);
+    const Wall wall = shelf_walls[context.rng->UniformInt(3)];
+    const double along = context.rng->Uniform(kCornerM + kShelfHalfM, plan.Length(wall) - kCornerM - kShelfHalfM);
     k += Mount(&plan, &out, "shelf", wall, along, kShelfHalfM, kShelfBottomM, kShelfHeightM);
   }
-  FloorCheck floor = MakeFloorCheck(size_m.head<2>(), world, doors, route, options.route_clearance_m);
-  const int cabinets = static_cast<int>(rng->UniformInt(static_cast<uint32_t>(o.cabinet_count_max + 1)));
+  FloorCheck floor =
+      MakeFloorCheck(size_m.head<2>(), context.world, context.doors, context.route, context.options.route_clearance_m);
+  const int cabinets = static_cast<int>(context.rng->UniformInt(static_cast<uint32_t>(o.cabinet_count_max + 1)));
   for (int k = 0, tries = 0; k < cabinets && tries < 12 * cabinets; ++tries) {
-    const Wall wall = shelf_walls[rng->UniformInt(3)];
-    const double along = rng->Uniform(kCornerM + kCabinetHalfM, plan.Length(wall) - kCornerM - kCabinetHalfM);
+    const Wall wall = shelf_walls[context.rng->UniformInt(3)];
+    const double along = context.rng->Uniform(kCornerM + kCabinetHalfM, plan.Length(wall) - kCornerM - kCabinetHalfM);
     if (!plan.Free(wall, along - kCabinetHalfM, along + kCabinetHalfM, 0, kCabinetHeightM)) continue;
     // The cabinet stands 1 cm off the wall: its origin is under its centre.
     PlacedObject cabinet = plan.On("cabinet", wall, along, 0);
@@ -124,19 +123,18 @@ std::vector<PlacedObject> RoomFittings(const Eigen::Vector3d& size_m, const Layo
 }
 
 std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& occupied, const Eigen::Vector2d& size_m,
-                                        const Layout& layout, const std::vector<Eigen::Vector2d>& doors,
-                                        const World& world, const std::vector<Eigen::Vector2d>& route,
-                                        const GeneratorOptions& options, Rng* rng) {
-  const RoomObjectOptions& o = options.objects;
-  FloorCheck floor = MakeFloorCheck(size_m, world, doors, route, options.route_clearance_m);
+                                        const RoomContext& context) {
+  const RoomObjectOptions& o = context.options.objects;
+  FloorCheck floor =
+      MakeFloorCheck(size_m, context.world, context.doors, context.route, context.options.route_clearance_m);
   std::vector<PlacedObject> out;
-  const std::vector<Crowd::SeatPlace> seats = world.seat_places();
+  const std::vector<Crowd::SeatPlace> seats = context.world.seat_places();
   for (const auto& [table, seat] : occupied) {
     const auto place = std::find_if(seats.begin(), seats.end(), [&, t = table, k = seat](const Crowd::SeatPlace& s) {
       return s.table == t && s.seat == k;
     });
-    const double bag = rng->Uniform(), coat = rng->Uniform(), charger = rng->Uniform(),
-                 side = rng->Uniform() < 0.5 ? 1.0 : -1.0;
+    const double bag = context.rng->Uniform(), coat = context.rng->Uniform(), charger = context.rng->Uniform(),
+                 side = context.rng->Uniform() < 0.5 ? 1.0 : -1.0;
     if (place == seats.end() || !place->chair) continue;  // a sofa's places hold nothing of this
     const Eigen::Vector2d at = place->world_from_seat.topRightCorner<2, 1>().cast<double>();
     const Eigen::Vector2d facing = place->world_from_seat.block<2, 1>(0, 0).cast<double>().normalized();
@@ -163,12 +161,12 @@ std::vector<PlacedObject> PeoplesThings(const std::vector<std::pair<int, int>>& 
     if (charger < o.charger_probability) {
       // On the table top 6 cm in from its near edge, 0.30 m to the person's left (clear of their
       // cup on the right, their laptop in front and the neighbours' props), along the edge.
-      const Piece& piece = layout.pieces[static_cast<size_t>(table)];
+      const Piece& piece = context.layout.pieces[static_cast<size_t>(table)];
       if (piece.asset == "low_table" || piece.asset == "sofa" || piece.asset == "lectern") continue;
       const std::string name = "table " + std::to_string(table);
-      const auto top = std::find_if(world.obstacles().begin(), world.obstacles().end(),
+      const auto top = std::find_if(context.world.obstacles().begin(), context.world.obstacles().end(),
                                     [&](const Obstacle2D& f) { return f.name == name; });
-      if (top == world.obstacles().end()) continue;
+      if (top == context.world.obstacles().end()) continue;
       double edge = 0;
       while (edge < 1.0 && DistanceToObstacle(at + edge * facing, *top) > 0) edge += 0.005;
       const Eigen::Vector2d center = at + Rotate(yaw, Eigen::Vector2d(edge + 0.055, 0.30));

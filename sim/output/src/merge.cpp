@@ -203,36 +203,25 @@ bool PlaceFile(const ShardFolder& shard, const std::string& relative, const std:
   return true;
 }
 
-}  // namespace
-
-MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::string& output_dir, int threads) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<ShardFolder> shards = ReadShards(shard_dirs);
-  const DatasetManifest& first = shards.front().manifest;
+// The merged dataset's manifest as it starts: the first shard's, for the whole sequence, no files yet.
+DatasetManifest MergedManifest(const DatasetManifest& first) {
   DatasetManifest merged = first;
   merged.shard.reset();
   merged.files.clear();
   merged.complete = false;
-  // One merge at a time into a folder (a render's rule): the second is refused by name.
-  const FolderLock lock(output_dir, FolderLock::IfBusy::kRefuse);
-  CheckOutputFolder(output_dir, merged);
-  const std::string scene_path = shards.front().dir + "/scene.json";
-  const Scene scene = SceneFromJson(nlohmann::json::parse(VerifiedBytes(shards.front(), "scene.json")), scene_path);
-  const VideoOptions video = scene.camera.video;
-  const bool encode_video = merged.outputs.video || (video.enabled && merged.outputs.thermal);
+  return merged;
+}
 
-  std::error_code ec;
-  RemoveDatasetTempFiles(output_dir);
-  // First, so a merge stopped half way leaves a folder a re-run recognises as its own.
-  WriteFileAtomic(output_dir + "/manifest.json", merged.ToJson());
-
-  // Frame files, placed in parallel and synced as one batch before the manifest lists them.
+// Every shard's frame files placed in the output folder in parallel, synced as one batch, then
+// listed in the merged manifest.
+void PlaceFrameFiles(const std::vector<ShardFolder>& shards, const std::string& output_dir, int threads,
+                     DatasetManifest* merged) {
   std::vector<std::pair<const ShardFolder*, std::string>> copies;  // shard, relative path
   for (const ShardFolder& shard : shards) {
     for (int f = shard.part().first_frame; f < shard.part().end_frame; ++f) {
-      if (merged.outputs.thermal) copies.emplace_back(&shard, "thermal/" + FrameFileName(f, "png"));
-      if (merged.outputs.radiometric) copies.emplace_back(&shard, "radiometric/" + FrameFileName(f, "png"));
-      if (merged.outputs.exr) copies.emplace_back(&shard, "exr/" + FrameFileName(f, "exr"));
+      if (merged->outputs.thermal) copies.emplace_back(&shard, "thermal/" + FrameFileName(f, "png"));
+      if (merged->outputs.radiometric) copies.emplace_back(&shard, "radiometric/" + FrameFileName(f, "png"));
+      if (merged->outputs.exr) copies.emplace_back(&shard, "exr/" + FrameFileName(f, "exr"));
     }
   }
   ProgressReporter progress("merge", static_cast<int64_t>(copies.size()), "files");
@@ -249,47 +238,78 @@ MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::s
   for (size_t i = 0; i < paths.size(); ++i) {
     if (!linked[i]) to_sync.push_back(paths[i]);
   }
+  std::error_code ec;
   for (const char* folder : {"thermal", "radiometric", "exr"}) {
     if (fs::is_directory(output_dir + "/" + folder, ec)) to_sync.push_back(output_dir + "/" + folder);
   }
   SyncFiles(to_sync);
-  for (const auto& [shard, relative] : copies) merged.files[relative] = shard->manifest.files.at(relative);
+  for (const auto& [shard, relative] : copies) merged->files[relative] = shard->manifest.files.at(relative);
   progress.Done();
+}
 
-  if (merged.outputs.persons) {
-    std::vector<FramePersons> persons;
-    for (const ShardFolder& shard : shards) {
-      const std::string path = shard.dir + "/persons.json";
-      const std::vector<FramePersons> part = PersonsFromJson(VerifiedBytes(shard, "persons.json"), path, threads);
-      bool in_order = part.size() == static_cast<size_t>(shard.part().end_frame - shard.part().first_frame);
-      for (size_t k = 0; k < part.size() && in_order; ++k) {
-        in_order = part[k].frame == shard.part().first_frame + static_cast<int>(k);
-      }
-      if (!in_order) {
-        throw InputError(path, "expected the persons of " +
-                                   FramesText(shard.part().first_frame, shard.part().end_frame) +
-                                   ", one entry a frame in order");
-      }
-      persons.insert(persons.end(), part.begin(), part.end());
+// The shards' persons.json joined, each checked to hold its frames, one entry a frame in order.
+std::vector<FramePersons> MergedPersons(const std::vector<ShardFolder>& shards, int threads) {
+  std::vector<FramePersons> persons;
+  for (const ShardFolder& shard : shards) {
+    const std::string path = shard.dir + "/persons.json";
+    const std::vector<FramePersons> part = PersonsFromJson(VerifiedBytes(shard, "persons.json"), path, threads);
+    bool in_order = part.size() == static_cast<size_t>(shard.part().end_frame - shard.part().first_frame);
+    for (size_t k = 0; k < part.size() && in_order; ++k) {
+      in_order = part[k].frame == shard.part().first_frame + static_cast<int>(k);
     }
-    WriteDatasetFile(output_dir, "persons.json", PersonsToJson(persons, threads), &merged);
+    if (!in_order) {
+      throw InputError(path, "expected the persons of " + FramesText(shard.part().first_frame, shard.part().end_frame) +
+                                 ", one entry a frame in order");
+    }
+    persons.insert(persons.end(), part.begin(), part.end());
   }
+  return persons;
+}
 
-  MergeResult result;
-  if (encode_video) {
-    // From the copied, checked frames, as a resumed render encodes from its folder; the thermal
-    // PNGs of a shard are uncompressed even in video mode.
-    const auto video_start = std::chrono::steady_clock::now();
-    const std::string mp4 = EncodeVideo(video, merged, merged.frame_count, [&](int f) {
-      return UncompressedFrame(output_dir, f, merged, !merged.outputs.thermal);
-    });
-    WriteVideoFiles(output_dir, mp4, video, merged.frame_count, threads, &merged);
-    result.video_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - video_start).count();
-  }
+// The video files, encoded from the copied, checked frames as a resumed render encodes from its
+// folder (the thermal PNGs of a shard are uncompressed even in video mode); returns the seconds taken.
+double EncodeMergedVideo(const VideoOptions& video, const std::string& output_dir, int threads,
+                         DatasetManifest* merged) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string mp4 = EncodeVideo(video, *merged, merged->frame_count, [&](int f) {
+    return UncompressedFrame(output_dir, f, *merged, !merged->outputs.thermal);
+  });
+  WriteVideoFiles(output_dir, mp4, video, merged->frame_count, threads, merged);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The whole sequence's side files, copied from the first shard after checking them.
+void CopySideFiles(const ShardFolder& first, const std::string& output_dir, DatasetManifest* merged) {
   for (const char* name : kSideFiles) {
-    if (Optional(name) && shards.front().manifest.files.count(name) == 0) continue;
-    WriteDatasetFile(output_dir, name, VerifiedBytes(shards.front(), name), &merged);
+    if (Optional(name) && first.manifest.files.count(name) == 0) continue;
+    WriteDatasetFile(output_dir, name, VerifiedBytes(first, name), merged);
   }
+}
+
+}  // namespace
+
+MergeResult MergeShards(const std::vector<std::string>& shard_dirs, const std::string& output_dir, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<ShardFolder> shards = ReadShards(shard_dirs);
+  DatasetManifest merged = MergedManifest(shards.front().manifest);
+  // One merge at a time into a folder (a render's rule): the second is refused by name.
+  const FolderLock lock(output_dir, FolderLock::IfBusy::kRefuse);
+  CheckOutputFolder(output_dir, merged);
+  const std::string scene_path = shards.front().dir + "/scene.json";
+  const Scene scene = SceneFromJson(nlohmann::json::parse(VerifiedBytes(shards.front(), "scene.json")), scene_path);
+  const VideoOptions video = scene.camera.video;
+  const bool encode_video = merged.outputs.video || (video.enabled && merged.outputs.thermal);
+
+  RemoveDatasetTempFiles(output_dir);
+  // First, so a merge stopped half way leaves a folder a re-run recognises as its own.
+  WriteFileAtomic(output_dir + "/manifest.json", merged.ToJson());
+  PlaceFrameFiles(shards, output_dir, threads, &merged);
+  if (merged.outputs.persons) {
+    WriteDatasetFile(output_dir, "persons.json", PersonsToJson(MergedPersons(shards, threads), threads), &merged);
+  }
+  MergeResult result;
+  if (encode_video) result.video_seconds = EncodeMergedVideo(video, output_dir, threads, &merged);
+  CopySideFiles(shards.front(), output_dir, &merged);
   merged.complete = true;
   WriteFileAtomic(output_dir + "/manifest.json", merged.ToJson());
   result.frames = merged.frame_count;

@@ -172,12 +172,20 @@ int WallCrossedBy(const FloorPlan& floor, const Eigen::Vector2d& a, const Eigen:
   return -1;
 }
 
-void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const std::vector<Eigen::Vector2d>& route,
-                    const std::string& file, ProblemCollector* problems) {
-  if (floor.empty()) return;
-  const Eigen::AlignedBox2d outer(Eigen::Vector2d(-kToleranceM, -kToleranceM), size_m.head<2>().array() + kToleranceM);
-  const std::string box_text =
-      "x in [0, " + ShortestDouble(size_m.x()) + "], y in [0, " + ShortestDouble(size_m.y()) + "]";
+namespace {
+
+// The room box a floor's rooms and walls must lie in (with the tolerance), and how it reads in messages.
+struct RoomBox {
+  Eigen::AlignedBox2d outer;
+  std::string text;
+  explicit RoomBox(const Eigen::Vector3d& size_m)
+      : outer(Eigen::Vector2d(-kToleranceM, -kToleranceM), size_m.head<2>().array() + kToleranceM),
+        text("x in [0, " + ShortestDouble(size_m.x()) + "], y in [0, " + ShortestDouble(size_m.y()) + "]") {}
+};
+
+// The rooms' problems: each at least 0.5 m across, inside the room box, named once, apart from
+// the others. False when a room's shape or overlap leaves the room graph meaningless.
+bool CheckRooms(const FloorPlan& floor, const RoomBox& box, const std::string& file, ProblemCollector* problems) {
   bool rooms_ok = true;
   for (size_t i = 0; i < floor.rooms.size(); ++i) {
     const FloorRoom& r = floor.rooms[i];
@@ -188,8 +196,8 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
       rooms_ok = false;
       continue;
     }
-    if (!outer.contains(r.box_m)) {
-      problems->Add(at, "a room inside the room box (" + box_text + "); '" + r.name + "' spans " +
+    if (!box.outer.contains(r.box_m)) {
+      problems->Add(at, "a room inside the room box (" + box.text + "); '" + r.name + "' spans " +
                             Point(r.box_m.min()) + " to " + Point(r.box_m.max()));
     }
     for (size_t j = 0; j < i; ++j) {
@@ -205,6 +213,39 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
       }
     }
   }
+  return rooms_ok;
+}
+
+// A wall's doorways' problems (`at`: the wall's place): each within its wall and below the
+// ceiling, apart from each other. False when one lies outside its wall.
+bool CheckDoors(const InteriorWall& w, double height_m, const std::string& at, ProblemCollector* problems) {
+  bool doors_ok = true;
+  std::vector<std::pair<double, double>> spans;
+  for (size_t k = 0; k < w.doors.size(); ++k) {
+    const FloorDoor& door = w.doors[k];
+    const std::string door_at = at + "/doors/" + std::to_string(k);
+    if (door.center_m - 0.5 * door.width_m < 0 || door.center_m + 0.5 * door.width_m > w.LengthM() + 1e-9) {
+      problems->Add(door_at + "/center_m", "a doorway within its wall: the wall is " + ShortestDouble(w.LengthM()) +
+                                               " m long, the doorway " + ShortestDouble(door.width_m) +
+                                               " m wide centred " + ShortestDouble(door.center_m) + " m along it");
+      doors_ok = false;
+    }
+    if (door.height_m > height_m)
+      problems->Add(door_at + "/height_m", "a doorway below the ceiling (" + ShortestDouble(height_m) + " m)");
+    spans.push_back(DoorSpan(w, door));
+  }
+  std::sort(spans.begin(), spans.end());
+  for (size_t k = 1; k < spans.size(); ++k) {
+    if (spans[k].first < spans[k - 1].second)
+      problems->Add(at + "/doors", "doorways apart from each other along the wall");
+  }
+  return doors_ok;
+}
+
+// The walls' problems: each along x or y, inside the room box, with sound doorways. False when a
+// wall's shape or a doorway leaves the room graph and the route's check meaningless.
+bool CheckWalls(const FloorPlan& floor, const RoomBox& box, double height_m, const std::string& file,
+                ProblemCollector* problems) {
   bool walls_ok = true;
   for (size_t i = 0; i < floor.walls.size(); ++i) {
     const InteriorWall& w = floor.walls[i];
@@ -216,52 +257,41 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
       walls_ok = false;
       continue;
     }
-    if (!outer.contains(w.from_m) || !outer.contains(w.to_m))
-      problems->Add(at, "a wall inside the room box (" + box_text + ")");
-    std::vector<std::pair<double, double>> spans;
-    for (size_t k = 0; k < w.doors.size(); ++k) {
-      const FloorDoor& door = w.doors[k];
-      const std::string door_at = at + "/doors/" + std::to_string(k);
-      if (door.center_m - 0.5 * door.width_m < 0 || door.center_m + 0.5 * door.width_m > w.LengthM() + 1e-9) {
-        problems->Add(door_at + "/center_m", "a doorway within its wall: the wall is " + ShortestDouble(w.LengthM()) +
-                                                 " m long, the doorway " + ShortestDouble(door.width_m) +
-                                                 " m wide centred " + ShortestDouble(door.center_m) + " m along it");
-        walls_ok = false;
-      }
-      if (door.height_m > size_m.z())
-        problems->Add(door_at + "/height_m", "a doorway below the ceiling (" + ShortestDouble(size_m.z()) + " m)");
-      spans.push_back(DoorSpan(w, door));
-    }
-    std::sort(spans.begin(), spans.end());
-    for (size_t k = 1; k < spans.size(); ++k) {
-      if (spans[k].first < spans[k - 1].second)
-        problems->Add(at + "/doors", "doorways apart from each other along the wall");
+    if (!box.outer.contains(w.from_m) || !box.outer.contains(w.to_m))
+      problems->Add(at, "a wall inside the room box (" + box.text + ")");
+    if (!CheckDoors(w, height_m, at, problems)) walls_ok = false;
+  }
+  return walls_ok;
+}
+
+// Every room reachable from room 0 through doorways and open edges.
+void CheckReachable(const FloorPlan& floor, double height_m, const std::string& file, ProblemCollector* problems) {
+  const std::vector<std::vector<int>> graph = RoomGraph(floor, height_m);
+  std::vector<bool> reached(floor.rooms.size(), false);
+  std::deque<int> queue = {0};
+  reached[0] = true;
+  while (!queue.empty()) {
+    const int r = queue.front();
+    queue.pop_front();
+    for (int n : graph[r])
+      if (!reached[n]) reached[n] = true, queue.push_back(n);
+  }
+  for (size_t i = 0; i < floor.rooms.size(); ++i) {
+    if (!reached[i]) {
+      problems->Add(file + ": /floor/rooms/" + std::to_string(i), "a room reachable from room 0 '" +
+                                                                      floor.rooms[0].name + "' through doorways; '" +
+                                                                      floor.rooms[i].name + "' is not");
     }
   }
-  if (rooms_ok && walls_ok) {
-    const std::vector<std::vector<int>> graph = RoomGraph(floor, size_m.z());
-    std::vector<bool> reached(floor.rooms.size(), false);
-    std::deque<int> queue = {0};
-    reached[0] = true;
-    while (!queue.empty()) {
-      const int r = queue.front();
-      queue.pop_front();
-      for (int n : graph[r])
-        if (!reached[n]) reached[n] = true, queue.push_back(n);
-    }
-    for (size_t i = 0; i < floor.rooms.size(); ++i) {
-      if (!reached[i]) {
-        problems->Add(file + ": /floor/rooms/" + std::to_string(i), "a room reachable from room 0 '" +
-                                                                        floor.rooms[0].name + "' through doorways; '" +
-                                                                        floor.rooms[i].name + "' is not");
-      }
-    }
-  }
-  if (!walls_ok) return;
+}
+
+// No leg of the route through an interior wall outside its doorways.
+void CheckRouteLegs(const FloorPlan& floor, const std::vector<Eigen::Vector2d>& route, double height_m,
+                    const std::string& file, ProblemCollector* problems) {
   for (size_t i = 0; i < route.size(); ++i) {
     const Eigen::Vector2d& a = route[i];
     const Eigen::Vector2d& b = route[(i + 1) % route.size()];
-    const int wall = WallCrossedBy(floor, a, b, 0.0, size_m.z());
+    const int wall = WallCrossedBy(floor, a, b, 0.0, height_m);
     if (wall >= 0) {
       problems->Add(file + ": /route/waypoints_m/" + std::to_string(i),
                     "a leg clear of the interior walls; the leg " + Point(a) + " to " + Point(b) + " (to waypoint " +
@@ -269,6 +299,18 @@ void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const
                         std::to_string(wall) + " outside its doorways");
     }
   }
+}
+
+}  // namespace
+
+void CheckFloorPlan(const FloorPlan& floor, const Eigen::Vector3d& size_m, const std::vector<Eigen::Vector2d>& route,
+                    const std::string& file, ProblemCollector* problems) {
+  if (floor.empty()) return;
+  const RoomBox box(size_m);
+  const bool rooms_ok = CheckRooms(floor, box, file, problems);
+  const bool walls_ok = CheckWalls(floor, box, size_m.z(), file, problems);
+  if (rooms_ok && walls_ok) CheckReachable(floor, size_m.z(), file, problems);
+  if (walls_ok) CheckRouteLegs(floor, route, size_m.z(), file, problems);
 }
 
 }  // namespace hoilcd

@@ -548,7 +548,7 @@ void Crowd::KeepOwnElbowRoom(const Person& p, BodyPose* pose) const {
     arm.elbow_hint.y() = -sign * std::clamp((0.30 - p.side_room_m[s]) * 5, 0.0, 0.6);
     for (int iteration = 0; iteration < 8; ++iteration) {
       const auto keypoints = skeleton_->Keypoints(skeleton_->PartTransforms(skeleton_->Limit(*pose)));
-      const double out = std::max(sign * keypoints[7 + s].y(), sign * keypoints[9 + s].y()) - limit;
+      const double out = std::max(sign * keypoints[kLeftElbow + s].y(), sign * keypoints[kLeftWrist + s].y()) - limit;
       if (out <= 0) break;
       arm.elbow_hint.y() -= sign * 0.5;
       arm.elbow_hint.x() += 0.3;  // elbow forward, in front of the chest
@@ -676,7 +676,7 @@ void Crowd::SetTime(double time_s) {
       p.contacts_m.emplace_back(
           "seat", Apply(world_from_person, Eigen::Vector3d(pose.pelvis_m.x() + 0.02, pose.pelvis_m.y(), 0.45)));
       for (int s = 0; s < 2 && p.at_table_top; ++s) {
-        const Eigen::Vector3d elbow = keypoints[7 + s], wrist = keypoints[9 + s];
+        const Eigen::Vector3d elbow = keypoints[kLeftElbow + s], wrist = keypoints[kLeftWrist + s];
         if (!ForearmOnTable(p, wrist)) continue;
         const Eigen::Vector3d mid = 0.5 * (elbow + wrist);
         p.contacts_m.emplace_back(

@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -32,6 +35,35 @@ void ExpectRigid(const std::array<Eigen::Matrix4d, Skeleton::kPartCount>& parts,
   }
 }
 
+TEST(Skeleton, EachCocoKeypointConstantIndexesTheKeypointItNames) {
+  const std::vector<std::pair<CocoKeypoint, std::string>> named = {{kNose, "nose"},
+                                                                   {kLeftEye, "left_eye"},
+                                                                   {kRightEye, "right_eye"},
+                                                                   {kLeftEar, "left_ear"},
+                                                                   {kRightEar, "right_ear"},
+                                                                   {kLeftShoulder, "left_shoulder"},
+                                                                   {kRightShoulder, "right_shoulder"},
+                                                                   {kLeftElbow, "left_elbow"},
+                                                                   {kRightElbow, "right_elbow"},
+                                                                   {kLeftWrist, "left_wrist"},
+                                                                   {kRightWrist, "right_wrist"},
+                                                                   {kLeftHip, "left_hip"},
+                                                                   {kRightHip, "right_hip"},
+                                                                   {kLeftKnee, "left_knee"},
+                                                                   {kRightKnee, "right_knee"},
+                                                                   {kLeftAnkle, "left_ankle"},
+                                                                   {kRightAnkle, "right_ankle"}};
+  ASSERT_EQ(named.size(), static_cast<size_t>(kCocoKeypointCount));
+  for (const auto& [k, name] : named) EXPECT_EQ(kCocoKeypointNames[k], name);
+  // A side's keypoint is the left one plus the side (0 left, 1 right).
+  for (const CocoKeypoint left :
+       {kLeftEye, kLeftEar, kLeftShoulder, kLeftElbow, kLeftWrist, kLeftHip, kLeftKnee, kLeftAnkle}) {
+    std::string right = kCocoKeypointNames[left];
+    right.replace(0, 4, "right");
+    EXPECT_EQ(kCocoKeypointNames[left + 1], right);
+  }
+}
+
 TEST(Skeleton, EveryPresetGivesRigidPartTransformsAndKeypointsOnTheBody) {
   for (const char* name :
        {"seated_upright", "seated_leaning", "seated_arms_on_table", "seated_leaning_back", "standing"}) {
@@ -39,12 +71,12 @@ TEST(Skeleton, EveryPresetGivesRigidPartTransformsAndKeypointsOnTheBody) {
     ExpectRigid(parts, name);
     const auto keypoints = Shipped().Keypoints(parts);
     // Head above shoulders above hips; ankles near the floor.
-    EXPECT_GT(keypoints[0].z(), keypoints[5].z()) << name;
-    EXPECT_GT(keypoints[5].z(), keypoints[11].z()) << name;
-    EXPECT_LT(keypoints[15].z(), 0.12) << name;
-    EXPECT_LT(keypoints[16].z(), 0.12) << name;
+    EXPECT_GT(keypoints[kNose].z(), keypoints[kLeftShoulder].z()) << name;
+    EXPECT_GT(keypoints[kLeftShoulder].z(), keypoints[kLeftHip].z()) << name;
+    EXPECT_LT(keypoints[kLeftAnkle].z(), 0.12) << name;
+    EXPECT_LT(keypoints[kRightAnkle].z(), 0.12) << name;
     // Left is +y.
-    EXPECT_GT(keypoints[5].y(), keypoints[6].y()) << name;
+    EXPECT_GT(keypoints[kLeftShoulder].y(), keypoints[kRightShoulder].y()) << name;
   }
 }
 
@@ -93,8 +125,8 @@ TEST(Skeleton, WalkingSwingsTheLegsAndKeepsAFootOnTheFloor) {
     for (const auto& [name, at] : Shipped().FootContacts(parts)) lowest = std::min(lowest, at.z());
     EXPECT_NEAR(lowest, 0.0, 1e-6);
     const auto keypoints = Shipped().Keypoints(parts);
-    min_ankle_x = std::min(min_ankle_x, keypoints[15].x());
-    max_ankle_x = std::max(max_ankle_x, keypoints[15].x());
+    min_ankle_x = std::min(min_ankle_x, keypoints[kLeftAnkle].x());
+    max_ankle_x = std::max(max_ankle_x, keypoints[kLeftAnkle].x());
   }
   EXPECT_GT(max_ankle_x - min_ankle_x, 0.3);  // a step of ~0.7 m swings each ankle
 }

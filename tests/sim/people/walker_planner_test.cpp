@@ -83,7 +83,7 @@ TEST(Walkers, InTheOpenRoomTheyCrossAndOvertakeTheRobotAndNeverOverlapFurnitureE
         continue;
       }
       // The footprint: a circle about the pelvis (between the hips).
-      const Eigen::Vector2d at = 0.5 * (p.keypoints_m[11] + p.keypoints_m[12]).head<2>();
+      const Eigen::Vector2d at = 0.5 * (p.keypoints_m[kLeftHip] + p.keypoints_m[kRightHip]).head<2>();
       const double radius = kWalkerRadiusM * p.height_scale;
       for (const Obstacle2D& o : world.obstacles()) {
         if (o.name.rfind("chair", 0) != 0 && o.name.rfind("table", 0) != 0) continue;
@@ -165,7 +165,7 @@ TEST(Walkers, AppearAndVanishOnlyInADoorwayAndLeaveTheRoomOnlyThroughOne) {
       world.SetTime(run.samples[f].time_s);
       for (const Person& p : world.people()) {
         if (p.walker < 0) continue;
-        const Eigen::Vector2d at = 0.5 * (p.keypoints_m[11] + p.keypoints_m[12]).head<2>();
+        const Eigen::Vector2d at = 0.5 * (p.keypoints_m[kLeftHip] + p.keypoints_m[kRightHip]).head<2>();
         const double radius = kWalkerRadiusM * p.height_scale;
         if (p.present) {
           postures.insert(p.posture);
@@ -218,7 +218,7 @@ TEST(Walkers, TurnSmoothlyWhereADoorWalkJoinsTheRouteOrTheyTurnBack) {
           last_facing.erase(p.person_id);
           continue;
         }
-        const Eigen::Vector2d across = (p.keypoints_m[11] - p.keypoints_m[12]).head<2>();
+        const Eigen::Vector2d across = (p.keypoints_m[kLeftHip] - p.keypoints_m[kRightHip]).head<2>();
         const double facing = std::atan2(across.y(), across.x()) - M_PI / 2;
         const auto last = last_facing.find(p.person_id);
         if (last != last_facing.end()) {
@@ -264,7 +264,7 @@ TEST(Walkers, PlansAreTheSameForTheSameSeed) {
     for (double t = 0; t < 90; t += 0.7) {
       world.SetTime(t);
       for (const Person& p : world.people())
-        if (p.walker >= 0 && p.present) out.push_back(p.keypoints_m[0].x() + 10 * p.keypoints_m[15].y());
+        if (p.walker >= 0 && p.present) out.push_back(p.keypoints_m[kNose].x() + 10 * p.keypoints_m[kLeftAnkle].y());
     }
     return out;
   };
@@ -320,8 +320,8 @@ TEST(Walkers, NobodyStrollsJustInFrontOfTheCameraForLong) {
       bool close = false;
       for (const Person& p : planned.world.people()) {
         if (p.walker < 0 || !p.present) continue;
-        const Eigen::Vector2d d =
-            ((p.keypoints_m[11] + p.keypoints_m[12]) / 2).head<2>() - Eigen::Vector2d(camera.x_m, camera.y_m);
+        const Eigen::Vector2d d = ((p.keypoints_m[kLeftHip] + p.keypoints_m[kRightHip]) / 2).head<2>() -
+                                  Eigen::Vector2d(camera.x_m, camera.y_m);
         const double ahead = d.dot(forward), across = std::abs(forward.x() * d.y() - forward.y() * d.x());
         close = close || (ahead > 0 && ahead < 2.0 && across < ahead * std::tan(25 * M_PI / 180) + 0.25);
       }

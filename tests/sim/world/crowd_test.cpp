@@ -71,8 +71,8 @@ TEST(Crowd, TalkersTurnToTheirNeighbourWhoeverSatDownFirst) {
       auto in_seat = [&](const Eigen::Vector3d& w) {
         return (seat_from_world.topLeftCorner<3, 3>() * w + seat_from_world.topRightCorner<3, 1>()).eval();
       };
-      const Eigen::Vector3d nose = in_seat(me.keypoints_m[0]);
-      const Eigen::Vector3d neck = in_seat(0.5 * (me.keypoints_m[5] + me.keypoints_m[6]));
+      const Eigen::Vector3d nose = in_seat(me.keypoints_m[kNose]);
+      const Eigen::Vector3d neck = in_seat(0.5 * (me.keypoints_m[kLeftShoulder] + me.keypoints_m[kRightShoulder]));
       const Eigen::Vector3d them = in_seat(other.world_from_seat.cast<double>().topRightCorner<3, 1>());
       ((nose.y() - neck.y()) * them.y() > 0 ? toward : away)[me.seat] += 1;
     }

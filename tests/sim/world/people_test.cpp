@@ -51,7 +51,7 @@ TEST(People, InThirtySecondsMostSeatedPeopleMoveHeadOrHandAndWalkersSwingTheirAn
       if (p.seated) {
         for (int i = 0; i < 3; ++i) seated[p.person_id][i].push_back(p.keypoints_m[i == 0 ? 0 : 8 + i]);
       } else {
-        ankle_gap[p.person_id].push_back((p.keypoints_m[15] - p.keypoints_m[16]).norm());
+        ankle_gap[p.person_id].push_back((p.keypoints_m[kLeftAnkle] - p.keypoints_m[kRightAnkle]).norm());
       }
     }
   }
@@ -352,8 +352,8 @@ TEST(People, VisibleKeypointsLandOnTheirPersonsInstanceInTheExr) {
     ASSERT_FALSE(ids.empty());
     for (const PersonRecord& person : frame.persons) {
       ASSERT_EQ(person.keypoints.size(), 17u);
-      EXPECT_EQ(person.keypoints[0].name, "nose");
-      EXPECT_EQ(person.keypoints[16].name, "right_ankle");
+      EXPECT_EQ(person.keypoints[kNose].name, "nose");
+      EXPECT_EQ(person.keypoints[kRightAnkle].name, "right_ankle");
       ++listed;
       for (const KeypointRecord& k : person.keypoints) {
         if (!k.visible) continue;
@@ -378,7 +378,7 @@ TEST(People, MotionIsTheSameForTheSameSeedAndDiffersForAnother) {
     for (double t = 0; t < 20; t += 0.5) {
       world.SetTime(t);
       for (const Person& p : world.people()) {
-        if (p.present) out.push_back(p.keypoints_m[0].x() + p.keypoints_m[9].z());
+        if (p.present) out.push_back(p.keypoints_m[kNose].x() + p.keypoints_m[kLeftWrist].z());
       }
     }
     return out;
@@ -430,13 +430,13 @@ TEST(People, WalkersKeepPaceWalkAwayApproachAndStopWithoutMeetingTheRobotOrEachO
     for (const Person& p : world.people()) {
       if (p.seated || !p.present) continue;
       seen.insert(p.posture);
-      const Eigen::Vector2d hips = 0.5 * (p.keypoints_m[11] + p.keypoints_m[12]).head<2>();
+      const Eigen::Vector2d hips = 0.5 * (p.keypoints_m[kLeftHip] + p.keypoints_m[kRightHip]).head<2>();
       EXPECT_GT((hips - robot).norm(), 0.6) << "frame " << f << ": " << p.posture;
       for (const Eigen::Vector2d& other : at) EXPECT_GT((hips - other).norm(), 0.4) << "frame " << f;
       at.push_back(hips);
       if (p.posture == "approach") {
         // Facing the robot: the nose is on the robot's side of the hips.
-        const Eigen::Vector2d nose = p.keypoints_m[0].head<2>();
+        const Eigen::Vector2d nose = p.keypoints_m[kNose].head<2>();
         faced_robot |= (nose - hips).dot(robot - hips) > 0;
       }
     }

@@ -6,7 +6,8 @@
 // Queries are the protocol's (laps: the later laps; revisit: every frame; runs: the later recording
 // runs); the database is every older frame, in all. Reported per method: the metrics with their
 // intervals (and per recording run), the shortlist's recall, and ms per query at p50 and p99 as the
-// database grows. The offline runner (runner.h) is unchanged.
+// database grows (bench/report's online_report.h writes them). The offline runner (runner.h) is
+// unchanged.
 #pragma once
 
 #include <cstdint>
@@ -75,11 +76,5 @@ OnlineResult RunOnlineBench(const Dataset& dataset, const BenchOptions& options,
 // those holding a query. database_sizes and ms are parallel.
 std::vector<OnlineTimingRow> TimingByDatabaseSize(const std::vector<int64_t>& database_sizes,
                                                   const std::vector<double>& ms);
-
-// The result for report.json: {"mode": "online", "online": {shortlist, recall, timing, ...},
-// "methods": {name: metrics, intervals, p50/p99 ms, ...}, "recording_runs" (2+ runs only)}; and as
-// report.md.
-nlohmann::json OnlineResultToJson(const OnlineResult& result);
-std::string OnlineResultToMarkdown(const OnlineResult& result);
 
 }  // namespace hoilcd

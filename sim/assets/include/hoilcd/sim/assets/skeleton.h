@@ -15,6 +15,28 @@
 namespace hoilcd {
 
 constexpr int kCocoKeypointCount = 17;
+// The COCO keypoints in COCO order: indices into Keypoints(), Person::keypoints_m and
+// kCocoKeypointNames. A side's keypoint is the left one plus the side (0 left, 1 right).
+enum CocoKeypoint {
+  kNose,
+  kLeftEye,
+  kRightEye,
+  kLeftEar,
+  kRightEar,
+  kLeftShoulder,
+  kRightShoulder,
+  kLeftElbow,
+  kRightElbow,
+  kLeftWrist,
+  kRightWrist,
+  kLeftHip,
+  kRightHip,
+  kLeftKnee,
+  kRightKnee,
+  kLeftAnkle,
+  kRightAnkle
+};
+static_assert(kRightAnkle + 1 == kCocoKeypointCount, "one name for each COCO keypoint");
 // COCO keypoint names in COCO order.
 extern const std::array<const char*, kCocoKeypointCount> kCocoKeypointNames;
 

@@ -169,6 +169,21 @@ class Crowd {
   // Contact heat (crowd_contacts.cpp): prints planned from the seats, postures and activities
   // of the plan, cups' pouring and laptops' opening times; applied to the instances at time t.
   void PlanContactHeat();
+  // The steps of PlanContactHeat: a person's postures on their seat with the times they hold them
+  // (the arms lifted or put down halfway through a blend); the body resting in a posture a moment
+  // after it was taken (`still`: the person without activities); an instance's print field (made
+  // on first use); the prints of seat and backrest, of forearms on the table top and of typing
+  // hands on the laptop; a person's cup and laptop warming and cooling, and the hand on the cup's
+  // handle (first_s: when the person first sat down).
+  using PostureSpans = std::vector<std::pair<ContactInterval, std::string>>;
+  PostureSpans PostureSpansOf(const Person& p) const;
+  BodyPose RestPose(const Person& still, const ContactInterval& c) const;
+  PrintField& PrintsOn(int instance);
+  void PlanSeatPrints(const Person& p, const Person& still, const PostureSpans& postures);
+  void PlanTablePrints(const Person& p, const Person& still, const PostureSpans& postures);
+  void PlanKeyboardPrints(const Person& p);
+  void PlanProps(const Person& p);
+  void PlanCupHeat(const Person& p, double first_s, double drink_age_s);
   // Whether a seated person's forearm rests on their table top, by its wrist (seat frame).
   static bool ForearmOnTable(const Person& p, const Eigen::Vector3d& wrist);
   void UpdateContactHeat(double time_s);
