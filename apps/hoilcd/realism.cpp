@@ -77,10 +77,10 @@ int RealismCommand(const RealismArgs& args) {
 
 Command AddRealismCommand(CLI::App* app) {
   auto args = std::make_shared<RealismArgs>();
-  CLI::App* cmd =
-      app->add_subcommand("realism",
-                          "compare a dataset's frames with a folder of real thermal frames: corners, edges, entropy, "
-                          "spectrum slope, temperatures, wall residual, blank views, temporal noise");
+  CLI::App* cmd = app->add_subcommand(
+      "realism",
+      "compare a dataset's frames with a folder of real thermal frames: corners, edges, entropy, "
+      "spectrum slope, flat-region noise, temperatures, wall residual, blank views, temporal noise");
   cmd->add_option("dataset", args->dataset, "dataset folder written by hoilcd render")->required();
   cmd->add_option("real_dir", args->real_dir,
                   "folder of real frames: 16-bit PNG/TIFF (with --scale and --offset), .npy (°C or K), "

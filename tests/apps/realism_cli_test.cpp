@@ -64,8 +64,9 @@ TEST_F(RealismCli, TheDatasetsOwnFramesAsRealFramesAreAtDistanceZero) {
   EXPECT_EQ(j["real"]["frames"], 12);
   EXPECT_EQ(j["real"]["radiometric"], 12);
   EXPECT_EQ(j["real"]["skipped"], nlohmann::json::array({"SOURCES.txt"}));
-  for (const char* key : {"shi_tomasi_corners", "slcd_corners", "fast_corners", "strong_edge_fraction", "entropy_bits",
-                          "spectrum_slope", "temperature_p50_c", "temperature_spread_k", "wall_residual_k"}) {
+  for (const char* key :
+       {"shi_tomasi_corners", "slcd_corners", "fast_corners", "strong_edge_fraction", "entropy_bits", "spectrum_slope",
+        "temperature_p50_c", "temperature_spread_k", "wall_residual_k", "flat_noise_k", "flat_noise_lag1"}) {
     const nlohmann::json& s = Statistic(j, key)["all_views"];
     EXPECT_NEAR(s["wasserstein1"].get<double>(), 0.0, 1e-9) << key;
     if (!s["median_ratio"].is_null()) {
@@ -73,6 +74,10 @@ TEST_F(RealismCli, TheDatasetsOwnFramesAsRealFramesAreAtDistanceZero) {
     }
     EXPECT_EQ(s["real"]["count"], s["synthetic"]["count"]) << key;
   }
+  // One camera on each side: one frame-size group each, the same figures.
+  ASSERT_EQ(j["by_frame_size"]["real"].size(), 1u);
+  EXPECT_EQ(j["by_frame_size"]["real"], j["by_frame_size"]["synthetic"]);
+  EXPECT_EQ(j["by_frame_size"]["real"][0]["width_px"], dataset.RadiometricC(0).cols);
   EXPECT_TRUE(std::filesystem::exists(temp / "out/realism.md"));
   for (const char* key : {"shi_tomasi_corners", "spectrum_slope", "wall_residual_k", "temporal_noise_k"}) {
     const cv::Mat png = cv::imread(temp / ("out/histograms/" + std::string(key) + ".png"));
@@ -144,7 +149,8 @@ TEST_F(RealismCli, InspectGivesTheSyntheticSideOfTheFrameStatistics) {
   const nlohmann::json& s = j["frame_statistics"];
   EXPECT_EQ(s["frames"], 24);
   for (const char* key : {"shi_tomasi_corners_median", "shi_tomasi_corners_median_not_blank", "spectrum_slope_median",
-                          "strong_edge_fraction_median", "wall_residual_k_median", "blank_views_pct", "static_pairs"}) {
+                          "strong_edge_fraction_median", "wall_residual_k_median", "flat_noise_k_median",
+                          "flat_noise_lag1_median", "blank_views_pct", "static_pairs"}) {
     EXPECT_TRUE(s.contains(key)) << key;
   }
   EXPECT_GT(s["shi_tomasi_corners_median"].get<double>(), 0);

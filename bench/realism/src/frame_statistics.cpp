@@ -7,6 +7,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "hoilcd/bench/realism/flat_noise.h"
 #include "hoilcd/core/features/keypoints.h"
 #include "hoilcd/core/util/error.h"
 
@@ -48,20 +49,8 @@ cv::Mat ResizedToStatisticsSize(const cv::Mat& f32) {
   return out;
 }
 
-FrameStatistics ImageStatistics(const cv::Mat& stretched) {
-  FrameStatistics s;
-  s.shi_tomasi_corners = ShiTomasiCorners(stretched);
-  s.slcd_corners = SlcdCorners(stretched);
-  s.fast_corners = FastCorners(stretched);
-  s.strong_edge_fraction = StrongEdgeFraction(stretched);
-  s.entropy_bits = EntropyBits(stretched);
-  s.spectrum_slope = SpectrumSlope(stretched);
-  return s;
-}
-
-}  // namespace
-
-cv::Mat StretchedFrame(const cv::Mat& frame) {
+// The 1st..99th percentile of `frame` onto 0..255 (clamped), CV_32F at its native size.
+cv::Mat StretchedFloat(const cv::Mat& frame) {
   const cv::Mat f = AsFloat(frame);
   const double p1 = ImageQuantile(f, 0.01);
   const double p99 = ImageQuantile(f, 0.99);
@@ -70,9 +59,54 @@ cv::Mat StretchedFrame(const cv::Mat& frame) {
     f.convertTo(stretched, CV_32F, 255.0 / (p99 - p1), -p1 * 255.0 / (p99 - p1));
     cv::min(cv::max(stretched, 0.0), 255.0, stretched);
   }
+  return stretched;
+}
+
+cv::Mat RoundedToU8(const cv::Mat& f32) {
   cv::Mat u8;
-  ResizedToStatisticsSize(stretched).convertTo(u8, CV_8U);  // rounds
+  f32.convertTo(u8, CV_8U);  // rounds
   return u8;
+}
+
+// The statistics of the stretched frame: resized (`stretched`) and the one for the slope (`spectrum`).
+FrameStatistics ImageStatistics(const cv::Mat& stretched, const cv::Mat& spectrum) {
+  FrameStatistics s;
+  s.shi_tomasi_corners = ShiTomasiCorners(stretched);
+  s.slcd_corners = SlcdCorners(stretched);
+  s.fast_corners = FastCorners(stretched);
+  s.strong_edge_fraction = StrongEdgeFraction(stretched);
+  s.entropy_bits = EntropyBits(stretched);
+  s.spectrum_slope = SpectrumSlope(spectrum);
+  return s;
+}
+
+// The image statistics of `frame` (native size, stretched once), its size and its flat-region
+// noise's correlation (the noise's level only where `frame` holds temperatures).
+FrameStatistics NativeFrameStatistics(const cv::Mat& frame, bool temperatures) {
+  const cv::Mat stretched = StretchedFloat(frame);
+  const cv::Mat resized = RoundedToU8(ResizedToStatisticsSize(stretched));
+  FrameStatistics s =
+      ImageStatistics(resized, SmallerThanStatisticsSize(frame.size()) ? RoundedToU8(stretched) : resized);
+  s.width_px = frame.cols;
+  s.height_px = frame.rows;
+  const FlatNoise noise = MeasureFlatNoise(frame);
+  s.flat_noise_lag1 = noise.lag1;
+  if (temperatures) s.flat_noise_k = noise.std;
+  return s;
+}
+
+}  // namespace
+
+cv::Mat StretchedFrame(const cv::Mat& frame) { return RoundedToU8(ResizedToStatisticsSize(StretchedFloat(frame))); }
+
+cv::Mat NativeStretchedFrame(const cv::Mat& frame) { return RoundedToU8(StretchedFloat(frame)); }
+
+bool SmallerThanStatisticsSize(cv::Size size) {
+  return size.width < kStatisticsWidthPx || size.height < kStatisticsHeightPx;
+}
+
+cv::Mat SpectrumFrame(const cv::Mat& frame) {
+  return SmallerThanStatisticsSize(frame.size()) ? NativeStretchedFrame(frame) : StretchedFrame(frame);
 }
 
 cv::Mat ResizedTemperatures(const cv::Mat& temperature_c) { return ResizedToStatisticsSize(AsFloat(temperature_c)); }
@@ -225,7 +259,7 @@ double WallResidualK(const cv::Mat& temperature_c, double* share) {
 
 FrameStatistics MeasureTemperatureFrame(const cv::Mat& temperature_c) {
   const cv::Mat t = ResizedTemperatures(temperature_c);
-  FrameStatistics s = ImageStatistics(StretchedFrame(temperature_c));
+  FrameStatistics s = NativeFrameStatistics(temperature_c, true);
   s.radiometric = true;
   s.p1_c = ImageQuantile(t, 0.01);
   s.p5_c = ImageQuantile(t, 0.05);
@@ -239,7 +273,7 @@ FrameStatistics MeasureTemperatureFrame(const cv::Mat& temperature_c) {
   return s;
 }
 
-FrameStatistics MeasureGreyFrame(const cv::Mat& grey) { return ImageStatistics(StretchedFrame(grey)); }
+FrameStatistics MeasureGreyFrame(const cv::Mat& grey) { return NativeFrameStatistics(grey, false); }
 
 double TemporalNoiseK(const cv::Mat& first_c, const cv::Mat& second_c) {
   HOILCD_CHECK(first_c.size() == second_c.size());
@@ -273,6 +307,10 @@ const std::vector<StatisticInfo>& FrameStatisticList() {
        [](const FrameStatistics& s) { return s.wall_dominated ? s.wall_residual_k : NAN; }},
       {"wall_share", "share of pixels within 1.5 K of the median", "", true,
        [](const FrameStatistics& s) { return s.wall_share; }},
+      {"flat_noise_k", "flat-region noise (flattest 10 % of 16-px blocks, native size)", "K", true,
+       [](const FrameStatistics& s) { return s.flat_noise_k; }},
+      {"flat_noise_lag1", "flat-region noise, lag-1 correlation (native size)", "", false,
+       [](const FrameStatistics& s) { return s.flat_noise_lag1; }},
   };
   return kList;
 }

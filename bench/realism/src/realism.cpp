@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "hoilcd/bench/realism/frame_size_groups.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
 #include "hoilcd/core/util/progress.h"
@@ -58,10 +59,8 @@ nlohmann::json ComparisonJson(const StatisticComparison& c) {
 }
 
 nlohmann::json FrameJson(const std::string& frame, const FrameStatistics& s) {
-  nlohmann::json j = {{"frame", SafeText(frame)},
-                      {"radiometric", s.radiometric},
-                      {"blank", s.blank},
-                      {"wall_dominated", s.wall_dominated}};
+  nlohmann::json j = {{"frame", SafeText(frame)},     {"width_px", s.width_px}, {"height_px", s.height_px},
+                      {"radiometric", s.radiometric}, {"blank", s.blank},       {"wall_dominated", s.wall_dominated}};
   for (const StatisticInfo& info : FrameStatisticList()) j[info.key] = Number(info.value(s));
   j["temperature_p1_c"] = Number(s.p1_c);
   j["temperature_p99_c"] = Number(s.p99_c);
@@ -102,6 +101,18 @@ std::string SideText(const SideSummary& s, int digits) {
   if (s.count == 0) return "–";
   return Format(s.median, digits) + " (" + Format(s.p25, digits) + "–" + Format(s.p75, digits) + ", n " +
          std::to_string(s.count) + ")";
+}
+
+constexpr const char* kSizeCaption =
+    "Frames grouped by their native size (W×H), the only camera identity a .npy or PNG carries: cameras of one "
+    "size share a row. Medians over the views that are not blank.";
+
+void SizeRows(std::ostringstream& md, const char* side, const std::vector<FrameSizeGroup>& groups) {
+  for (const FrameSizeGroup& g : groups) {
+    md << "| " << side << " | " << g.width_px << "×" << g.height_px << " | " << g.views << " | " << g.not_blank << " | "
+       << Format(g.spectrum_slope, 2) << " | " << Format(g.flat_noise_k, 3) << " | " << Format(g.flat_noise_lag1, 2)
+       << " |\n";
+  }
 }
 
 std::string Share(int part, int whole) {
@@ -270,11 +281,17 @@ nlohmann::json RealismComparison::ToJson() const {
   }
   return {{"hoilcd_version", HOILCD_VERSION},
           {"stretch",
-           "each frame stretched from its 1st to its 99th percentile onto 0..255, resized to 256x192 (INTER_AREA)"},
+           "each frame stretched from its 1st to its 99th percentile onto 0..255, resized to 256x192 (INTER_AREA); "
+           "the spectrum slope of a frame smaller than 256x192 at its native size; the flat-region noise of every "
+           "frame at its native size, unstretched"},
           {"blank_rule", "radiometric p95 - p5 below 2 K"},
           {"synthetic", SetJson(synthetic)},
           {"real", SetJson(real)},
-          {"statistics", statistics}};
+          {"statistics", statistics},
+          {"by_frame_size",
+           {{"caption", kSizeCaption},
+            {"real", FrameSizeGroupsJson(GroupByFrameSize(real.statistics))},
+            {"synthetic", FrameSizeGroupsJson(GroupByFrameSize(synthetic.statistics))}}}};
 }
 
 std::string RealismComparison::ToMarkdown() const {
@@ -290,10 +307,10 @@ std::string RealismComparison::ToMarkdown() const {
      << Share(synthetic.Blank(), synthetic.Radiometric()) << ", real " << Share(real.Blank(), real.Radiometric())
      << "\n\n"
      << "Every frame is stretched from its 1st to its 99th percentile onto 0–255 and resized to 256×192 before the "
-        "image "
-        "statistics; temperatures are resized the same way. Each cell: median (p25–p75, n frames). Ratio: synthetic "
-        "median / real median; W1: Wasserstein-1 distance between the two sides' distributions, in the statistic's "
-        "unit.\n";
+        "image statistics; temperatures are resized the same way. The spectrum slope of a frame smaller than 256×192 "
+        "is taken at its native size instead (upsampling would steepen it), and the flat-region noise of every frame "
+        "at its native size, unstretched. Each cell: median (p25–p75, n frames). Ratio: synthetic median / real "
+        "median; W1: Wasserstein-1 distance between the two sides' distributions, in the statistic's unit.\n";
   const auto table = [&](const char* title, bool not_blank) {
     md << "\n## " << title << "\n\n| statistic | real | synthetic | synthetic / real | W1 |\n|---|---|---|---|---|\n";
     for (const StatisticRow& row : rows) {
@@ -306,6 +323,12 @@ std::string RealismComparison::ToMarkdown() const {
   };
   table("Views that are not blank", true);
   table("Every view", false);
+  md << "\n## By frame size\n\n"
+     << kSizeCaption
+     << "\n\n| side | frame size | views | not blank | spectrum slope | flat-region noise, K | flat-region noise lag-1 "
+        "|\n|---|---|---|---|---|---|---|\n";
+  SizeRows(md, "real", GroupByFrameSize(real.statistics));
+  SizeRows(md, "synthetic", GroupByFrameSize(synthetic.statistics));
   md << "\nHistograms of both sides: `histograms/<statistic>.png`. Per-frame values: `realism.json`.\n";
   return md.str();
 }

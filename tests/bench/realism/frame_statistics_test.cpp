@@ -27,19 +27,19 @@ cv::Mat Step(int low, int high) {
 }
 
 // A Gaussian field whose power spectrum is proportional to f^-exponent: white noise filtered by
-// f^(-exponent/2) in the frequency domain (mean zero).
-cv::Mat PowerLawField(double exponent, unsigned seed) {
+// f^(-exponent/2) in the frequency domain (mean zero), `width` x `height`.
+cv::Mat PowerLawField(double exponent, unsigned seed, int width = kW, int height = kH) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;
-  cv::Mat noise(kH, kW, CV_64F);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) noise.at<double>(y, x) = normal(rng);
+  cv::Mat noise(height, width, CV_64F);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) noise.at<double>(y, x) = normal(rng);
   cv::Mat spectrum;
   cv::dft(noise, spectrum, cv::DFT_COMPLEX_OUTPUT);
-  for (int y = 0; y < kH; ++y) {
-    const double fy = static_cast<double>(y <= kH / 2 ? y : y - kH) / kH;
-    for (int x = 0; x < kW; ++x) {
-      const double fx = static_cast<double>(x <= kW / 2 ? x : x - kW) / kW;
+  for (int y = 0; y < height; ++y) {
+    const double fy = static_cast<double>(y <= height / 2 ? y : y - height) / height;
+    for (int x = 0; x < width; ++x) {
+      const double fx = static_cast<double>(x <= width / 2 ? x : x - width) / width;
       const double f = std::hypot(fx, fy);
       spectrum.at<cv::Vec2d>(y, x) *= f > 0 ? std::pow(f, -exponent / 2) : 0.0;
     }
@@ -49,12 +49,12 @@ cv::Mat PowerLawField(double exponent, unsigned seed) {
   return field;
 }
 
-cv::Mat Noise(double mean, double sigma, unsigned seed) {
+cv::Mat Noise(double mean, double sigma, unsigned seed, int width = kW, int height = kH) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(mean, sigma);
-  cv::Mat t(kH, kW, CV_32F);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) t.at<float>(y, x) = static_cast<float>(normal(rng));
+  cv::Mat t(height, width, CV_32F);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) t.at<float>(y, x) = static_cast<float>(normal(rng));
   return t;
 }
 
@@ -100,6 +100,65 @@ TEST(FrameStatistics, SpectrumSlopeOfAPowerLawFieldIsItsExponent) {
   }
   // White noise: a flat spectrum.
   EXPECT_NEAR(SpectrumSlope(StretchedFrame(Noise(0, 1, 3))), 0.0, 0.1);
+}
+
+TEST(FrameStatistics, SpectrumSlopeIsItsExponentAtOddAndNonFourByThreeSizes) {
+  // Frequencies in cycles per pixel along each axis: rings that no frequency falls in (the x and y
+  // steps are 1/width and 1/height, coarser than the 1/256 rings) are left out of the fit.
+  for (const cv::Size size : {cv::Size(180, 180), cv::Size(160, 120), cv::Size(181, 143), cv::Size(320, 240)}) {
+    for (const double exponent : {2.0, 3.0}) {
+      const double slope = SpectrumSlope(NativeStretchedFrame(PowerLawField(exponent, 7, size.width, size.height)));
+      EXPECT_NEAR(slope, -exponent, 0.15) << size << " exponent " << exponent;
+    }
+  }
+}
+
+TEST(FrameStatistics, SmallFrameSlopeIsTakenAtNativeSizeNotUpsampled) {
+  // Fine structure at the FLIR E40's 160 x 120: noise correlated over about a pixel, as a camera
+  // that filters its frames gives it. Upsampling to 256 x 192 spreads each native pixel over 1.6
+  // and moves that power below 1/4 cycles per output pixel, steepening the slope.
+  cv::Mat small = Noise(22.0, 0.1, 9, 160, 120);
+  cv::GaussianBlur(small, small, cv::Size(0, 0), 0.9);
+  const double native = SpectrumSlope(NativeStretchedFrame(small));
+  const double upsampled = SpectrumSlope(StretchedFrame(small));
+  EXPECT_EQ(NativeStretchedFrame(small).size(), cv::Size(160, 120));
+  EXPECT_GT(native - upsampled, 0.5) << native << " vs upsampled " << upsampled;
+  const FrameStatistics s = MeasureTemperatureFrame(small);
+  EXPECT_DOUBLE_EQ(s.spectrum_slope, native);
+  EXPECT_EQ(s.width_px, 160);
+  EXPECT_EQ(s.height_px, 120);
+  EXPECT_DOUBLE_EQ(MeasureGreyFrame(NativeStretchedFrame(small)).spectrum_slope, native);
+  // The other image statistics stay on the 256 x 192 frame.
+  EXPECT_EQ(s.shi_tomasi_corners, ShiTomasiCorners(StretchedFrame(small)));
+  EXPECT_EQ(s.strong_edge_fraction, StrongEdgeFraction(StretchedFrame(small)));
+  // Shorter in one dimension is enough: 320 x 180 is measured natively too.
+  const cv::Mat wide = PowerLawField(2.0, 9, 320, 180);
+  EXPECT_DOUBLE_EQ(MeasureTemperatureFrame(wide).spectrum_slope, SpectrumSlope(NativeStretchedFrame(wide)));
+  EXPECT_EQ(SpectrumFrame(wide).size(), cv::Size(320, 180));
+}
+
+TEST(FrameStatistics, FrameAtLeastStatisticsSizeIsResizedForTheSlope) {
+  const cv::Mat big = PowerLawField(2.5, 4, 320, 240);
+  const FrameStatistics s = MeasureTemperatureFrame(big);
+  EXPECT_DOUBLE_EQ(s.spectrum_slope, SpectrumSlope(StretchedFrame(big)));
+  EXPECT_EQ(SpectrumFrame(big).size(), cv::Size(kW, kH));
+  EXPECT_EQ(s.width_px, 320);
+  EXPECT_EQ(s.height_px, 240);
+  EXPECT_FALSE(SmallerThanStatisticsSize(cv::Size(kW, kH)));
+  EXPECT_TRUE(SmallerThanStatisticsSize(cv::Size(kW - 1, kH)));
+  EXPECT_TRUE(SmallerThanStatisticsSize(cv::Size(kW, kH - 1)));
+}
+
+TEST(FrameStatistics, FlatNoiseIsMeasuredAtNativeSizeAndInKelvinOnlyForTemperatures) {
+  const cv::Mat t = Noise(22.0, 0.04, 12, 160, 120);
+  const FrameStatistics s = MeasureTemperatureFrame(t);
+  EXPECT_NEAR(s.flat_noise_k, 0.04, 0.005);  // not smoothed by a resize to 256 x 192
+  EXPECT_LT(std::fabs(s.flat_noise_lag1), 0.05);
+  cv::Mat grey;
+  t.convertTo(grey, CV_8U, 1000.0, -21872.0);  // 1 grey level per mK, 22 °C at 128
+  const FrameStatistics g = MeasureGreyFrame(grey);
+  EXPECT_TRUE(std::isnan(g.flat_noise_k));
+  EXPECT_LT(std::fabs(g.flat_noise_lag1), 0.05);
 }
 
 TEST(FrameStatistics, StretchMapsFirstAndNinetyNinthPercentileToBlackAndWhite) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "hoilcd/bench/realism/frame_size_groups.h"
 #include "test_dir.h"
 
 namespace hoilcd {
@@ -79,6 +80,60 @@ TEST(Realism, ComparisonGivesMediansRatiosAndNotBlankViewsApart) {
   EXPECT_NE(md.find("| Shi-Tomasi corners | 240 (220–320, n 3) | 110 (105–115, n 2) | 0.46 |"), std::string::npos)
       << md;
   EXPECT_NE(md.find("1 8-bit: no temperature statistics for those"), std::string::npos);
+}
+
+FrameStatistics SizedFrame(int width, int height, bool blank, double slope, double noise_k, double lag1) {
+  FrameStatistics s;
+  s.width_px = width;
+  s.height_px = height;
+  s.radiometric = true;
+  s.blank = blank;
+  s.spectrum_slope = slope;
+  s.flat_noise_k = noise_k;
+  s.flat_noise_lag1 = lag1;
+  return s;
+}
+
+TEST(Realism, FrameSizeGroupsGiveMediansOverViewsNotBlankPerSize) {
+  const std::vector<FrameStatistics> frames = {
+      SizedFrame(320, 240, false, -3.5, 0.02, 0.7), SizedFrame(160, 120, false, -2.9, 0.1, 0.6),
+      SizedFrame(320, 240, false, -3.3, 0.03, 0.8), SizedFrame(320, 240, true, -1.0, 0.5, 0.0),
+      SizedFrame(640, 512, true, -3.0, 0.1, 0.1)};
+  const std::vector<FrameSizeGroup> groups = GroupByFrameSize(frames);
+  ASSERT_EQ(groups.size(), 3u);
+  // The most frames first, then by width.
+  EXPECT_EQ(groups[0].width_px, 320);
+  EXPECT_EQ(groups[0].height_px, 240);
+  EXPECT_EQ(groups[0].views, 3);
+  EXPECT_EQ(groups[0].not_blank, 2);
+  EXPECT_DOUBLE_EQ(groups[0].spectrum_slope, -3.4);  // the blank view left out
+  EXPECT_DOUBLE_EQ(groups[0].flat_noise_k, 0.025);
+  EXPECT_DOUBLE_EQ(groups[0].flat_noise_lag1, 0.75);
+  EXPECT_EQ(groups[1].width_px, 160);
+  EXPECT_EQ(groups[2].width_px, 640);
+  EXPECT_EQ(groups[2].not_blank, 0);
+  EXPECT_TRUE(std::isnan(groups[2].spectrum_slope));
+  const nlohmann::json j = FrameSizeGroupsJson(groups);
+  EXPECT_EQ(j[0]["views_not_blank"], 2);
+  EXPECT_TRUE(j[2]["spectrum_slope_median"].is_null());
+
+  FrameSet synthetic, real;
+  synthetic.frames = {"0"};
+  synthetic.statistics = {SizedFrame(256, 192, false, -2.93, 0.066, -0.04)};
+  real.frames = {"a", "b", "c", "d", "e"};
+  real.statistics = frames;
+  const RealismComparison c = CompareFrameSets(synthetic, real);
+  const std::string md = c.ToMarkdown();
+  EXPECT_NE(md.find("## By frame size"), std::string::npos) << md;
+  EXPECT_NE(md.find("the only camera identity a .npy or PNG carries"), std::string::npos);
+  EXPECT_NE(md.find("| real | 320×240 | 3 | 2 | -3.40 | 0.025 | 0.75 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| real | 640×512 | 1 | 0 | – | – | – |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| synthetic | 256×192 | 1 | 1 | -2.93 | 0.066 | -0.04 |"), std::string::npos) << md;
+  const nlohmann::json report = c.ToJson();
+  EXPECT_EQ(report["by_frame_size"]["real"].size(), 3u);
+  EXPECT_EQ(report["by_frame_size"]["synthetic"][0]["width_px"], 256);
+  EXPECT_EQ(report["real"]["per_frame"][1]["width_px"], 160);
+  EXPECT_EQ(report["real"]["per_frame"][1]["flat_noise_lag1"], 0.6);
 }
 
 TEST(Realism, StaticPairsAreFramesWhoseCameraBarelyMoved) {
