@@ -95,35 +95,30 @@ PixelResponseFilter::PixelResponseFilter(const PixelResponse& response, int widt
   HOILCD_CHECK_MSG(width > 0 && height > 0, width << "x" << height);
   const BandSamples band = SampleBand(response);
   const int even_w = width + width % 2, even_h = height + height % 2;
-  gain_.create(even_h, even_w, CV_32F);
-  for (int v = 0; v < even_h; ++v) {
-    for (int u = 0; u < even_w; ++u) {
-      gain_.at<float>(v, u) = static_cast<float>(MtfAt(band, response, u / (2.0 * even_w), v / (2.0 * even_h)));
+  // Stored transposed (row u, column v): the gain applies between the columns' two passes.
+  gain_t_.create(even_w, even_h, CV_32F);
+  for (int u = 0; u < even_w; ++u) {
+    for (int v = 0; v < even_h; ++v) {
+      gain_t_.at<float>(u, v) = static_cast<float>(MtfAt(band, response, u / (2.0 * even_w), v / (2.0 * even_h)));
     }
   }
-  gain_t_ = gain_.t();
 }
 
 void PixelResponseFilter::Apply(const cv::Mat& radiance, cv::Mat* out, int num_threads) const {
   HOILCD_CHECK_MSG(radiance.type() == CV_32FC1 && radiance.cols == width_ && radiance.rows == height_,
                    "radiance must be CV_32F " << width_ << "x" << height_);
   HOILCD_CHECK(out != nullptr && out->data != radiance.data);
+  const bool evened = gain_t_.cols != height_ || gain_t_.rows != width_;
   cv::Mat even = radiance;
-  if (gain_.size() != radiance.size()) {
-    cv::copyMakeBorder(radiance, even, 0, gain_.rows - height_, 0, gain_.cols - width_, cv::BORDER_REFLECT);
-  }
+  if (evened)
+    cv::copyMakeBorder(radiance, even, 0, gain_t_.cols - height_, 0, gain_t_.rows - width_, cv::BORDER_REFLECT);
   // The 2-D DCT separates: the rows, then the columns as the rows of the transpose.
-  cv::Mat rows, columns, filtered_columns;
+  cv::Mat rows, columns, filtered_columns, filtered;
   DctRows(even, &rows, 0, num_threads);
   DctRows(rows.t(), &columns, 0, num_threads);
   DctRows(columns.mul(gain_t_), &filtered_columns, cv::DCT_INVERSE, num_threads);
-  if (gain_.size() == radiance.size()) {
-    DctRows(filtered_columns.t(), out, cv::DCT_INVERSE, num_threads);
-  } else {
-    cv::Mat filtered;
-    DctRows(filtered_columns.t(), &filtered, cv::DCT_INVERSE, num_threads);
-    filtered(cv::Rect(0, 0, width_, height_)).copyTo(*out);
-  }
+  DctRows(filtered_columns.t(), evened ? &filtered : out, cv::DCT_INVERSE, num_threads);
+  if (evened) filtered(cv::Rect(0, 0, width_, height_)).copyTo(*out);
 }
 
 }  // namespace hoilcd

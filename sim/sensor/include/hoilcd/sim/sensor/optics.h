@@ -41,12 +41,11 @@ class PixelResponseFilter {
   // threads at once.
   void Apply(const cv::Mat& radiance, cv::Mat* out, int num_threads = 1) const;
   // The MTF at DCT coefficient (u, v) of the (evened) image.
-  double GainAt(int u, int v) const { return gain_.at<float>(v, u); }
+  double GainAt(int u, int v) const { return gain_t_.at<float>(u, v); }
 
  private:
   int width_, height_;
-  cv::Mat gain_;    // CV_32F, the evened size
-  cv::Mat gain_t_;  // its transpose: the columns' pass works on the transposed image
+  cv::Mat gain_t_;  // CV_32F MTF at coefficient (u, v) in row u, column v: the evened size, transposed
 };
 
 }  // namespace hoilcd
