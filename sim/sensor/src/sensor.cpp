@@ -66,21 +66,21 @@ __attribute__((target_clones("avx2", "default"))) void SignalRow(
   }
 }
 
-// Step 8: kelvin to °C, rounded to the quantisation step when `step_k` > 0.
-__attribute__((target_clones("avx2", "default"))) void CelsiusRow(int width, const double* __restrict kelvin,
-                                                                  double step_k, float* __restrict out) {
-  for (int x = 0; x < width; ++x) {
-    float t_c = static_cast<float>(kelvin[x] - kZeroCelsiusK);
-    if (step_k > 0) t_c = static_cast<float>(RoundHalfAway(t_c / step_k) * step_k);
-    out[x] = t_c;
-  }
+// Step 8's rounding: `t_c` to the nearest multiple of `step_k` (halves away from zero) when
+// `step_k` > 0, else itself.
+inline float Quantised(float t_c, double step_k) {
+  return step_k > 0 ? static_cast<float>(RoundHalfAway(t_c / step_k) * step_k) : t_c;
 }
 
-// Step 8 after the in-camera filter: °C rounded to the quantisation step when `step_k` > 0.
+// Step 8: kelvin to °C, quantised.
+__attribute__((target_clones("avx2", "default"))) void CelsiusRow(int width, const double* __restrict kelvin,
+                                                                  double step_k, float* __restrict out) {
+  for (int x = 0; x < width; ++x) out[x] = Quantised(static_cast<float>(kelvin[x] - kZeroCelsiusK), step_k);
+}
+
+// Step 8 after the in-camera filter: °C quantised.
 void QuantiseRow(int width, const float* in_c, double step_k, float* out_c) {
-  for (int x = 0; x < width; ++x) {
-    out_c[x] = step_k > 0 ? static_cast<float>(RoundHalfAway(in_c[x] / step_k) * step_k) : in_c[x];
-  }
+  for (int x = 0; x < width; ++x) out_c[x] = Quantised(in_c[x], step_k);
 }
 
 }  // namespace
