@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "hoilcd/bench/evaluation/json_number.h"
 #include "hoilcd/bench/realism/frame_size_groups.h"
 #include "hoilcd/core/util/error.h"
 #include "hoilcd/core/util/parallel.h"
@@ -45,25 +46,23 @@ StatisticComparison Compare(const std::vector<double>& synthetic, const std::vec
   return c;
 }
 
-nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 nlohmann::json SideJson(const SideSummary& s) {
-  return {{"count", s.count}, {"median", Number(s.median)}, {"p25", Number(s.p25)}, {"p75", Number(s.p75)}};
+  return {{"count", s.count}, {"median", JsonNumber(s.median)}, {"p25", JsonNumber(s.p25)}, {"p75", JsonNumber(s.p75)}};
 }
 
 nlohmann::json ComparisonJson(const StatisticComparison& c) {
   return {{"synthetic", SideJson(c.synthetic)},
           {"real", SideJson(c.real)},
-          {"median_ratio", Number(c.median_ratio)},
-          {"wasserstein1", Number(c.wasserstein1)}};
+          {"median_ratio", JsonNumber(c.median_ratio)},
+          {"wasserstein1", JsonNumber(c.wasserstein1)}};
 }
 
 nlohmann::json FrameJson(const std::string& frame, const FrameStatistics& s) {
   nlohmann::json j = {{"frame", SafeText(frame)},     {"width_px", s.width_px}, {"height_px", s.height_px},
                       {"radiometric", s.radiometric}, {"blank", s.blank},       {"wall_dominated", s.wall_dominated}};
-  for (const StatisticInfo& info : FrameStatisticList()) j[info.key] = Number(info.value(s));
-  j["temperature_p1_c"] = Number(s.p1_c);
-  j["temperature_p99_c"] = Number(s.p99_c);
+  for (const StatisticInfo& info : FrameStatisticList()) j[info.key] = JsonNumber(info.value(s));
+  j["temperature_p1_c"] = JsonNumber(s.p1_c);
+  j["temperature_p99_c"] = JsonNumber(s.p99_c);
   return j;
 }
 
@@ -73,15 +72,15 @@ nlohmann::json SetJson(const FrameSet& set) {
   nlohmann::json skipped = nlohmann::json::array();
   for (const std::string& name : set.skipped) skipped.push_back(SafeText(name));
   const int n = static_cast<int>(set.frames.size());
-  return {
-      {"source", SafeText(set.source)},
-      {"frames", n},
-      {"radiometric", set.Radiometric()},
-      {"blank", set.Blank()},
-      {"blank_share", set.Radiometric() > 0 ? Number(static_cast<double>(set.Blank()) / set.Radiometric()) : nullptr},
-      {"static_pairs", static_cast<int>(set.temporal_noise_k.size())},
-      {"skipped", skipped},
-      {"per_frame", frames}};
+  return {{"source", SafeText(set.source)},
+          {"frames", n},
+          {"radiometric", set.Radiometric()},
+          {"blank", set.Blank()},
+          {"blank_share",
+           set.Radiometric() > 0 ? JsonNumber(static_cast<double>(set.Blank()) / set.Radiometric()) : nullptr},
+          {"static_pairs", static_cast<int>(set.temporal_noise_k.size())},
+          {"skipped", skipped},
+          {"per_frame", frames}};
 }
 
 std::string Format(double v, int digits) {
